@@ -1,0 +1,575 @@
+/* CPU conservative voxelization against an independent brute-force evaluation of the definition,
+   plus scene validation, grids, binvox and the result API. */
+#define VOXGI_IMPLEMENTATION
+#include "../voxgi.h"
+#include "harness.h"
+#include "scenes.h"
+#include <stdlib.h>
+
+/* ---------------------------------------------------------------- the oracle
+   Inputs are dyadic (every float is), and the tests keep them on a 2^-ORACLE_BITS lattice with
+   small magnitudes, so every coordinate times 2^ORACLE_BITS is an integer and the separating
+   axis theorem (13 axes, closed sets: touching counts) is evaluated exactly in 128-bit integers.
+   Nothing here shares code with the library. */
+#define ORACLE_BITS 20
+__extension__ typedef __int128 i128;
+
+static int64_t to_fixed(double x)
+{
+    double y = ldexp(x, ORACLE_BITS);
+    if (y != floor(y) || fabs(y) > 9e15) { fprintf(stderr, "oracle input %.17g is off the lattice\n", x); abort(); }
+    return (int64_t)y;
+}
+
+static void interval3(i128 a, i128 b, i128 c, i128 *lo, i128 *hi)
+{
+    *lo = a < b ? a : b; if (c < *lo) *lo = c;
+    *hi = a > b ? a : b; if (c > *hi) *hi = c;
+}
+
+/* does the closed box [bmin, bmax] meet the closed triangle v? (all fixed point) */
+static int oracle_overlap(const int64_t v[3][3], const int64_t bmin[3], const int64_t bmax[3])
+{
+    i128 e[3][3], ax[3], lo, hi, blo, bhi;
+    int a, i, j, c;
+    for (a = 0; a < 3; a++) {
+        interval3(v[0][a], v[1][a], v[2][a], &lo, &hi);
+        if (hi < bmin[a] || lo > bmax[a]) return 0;
+    }
+    for (i = 0; i < 3; i++)
+        for (a = 0; a < 3; a++) e[i][a] = (i128)v[(i + 1) % 3][a] - v[i][a];
+    /* 13 axes: the normal, then edge x unit axis */
+    for (j = -1; j < 9; j++) {
+        if (j < 0) {
+            ax[0] = e[0][1] * -e[2][2] - e[0][2] * -e[2][1];
+            ax[1] = e[0][2] * -e[2][0] - e[0][0] * -e[2][2];
+            ax[2] = e[0][0] * -e[2][1] - e[0][1] * -e[2][0];
+        } else {
+            const i128 *d = e[j / 3];
+            int u = j % 3; /* d x unit_u */
+            ax[u] = 0;
+            ax[(u + 1) % 3] = d[(u + 2) % 3];
+            ax[(u + 2) % 3] = -d[(u + 1) % 3];
+        }
+        if (ax[0] == 0 && ax[1] == 0 && ax[2] == 0) continue;
+        interval3(ax[0] * v[0][0] + ax[1] * v[0][1] + ax[2] * v[0][2], ax[0] * v[1][0] + ax[1] * v[1][1] + ax[2] * v[1][2],
+                  ax[0] * v[2][0] + ax[1] * v[2][1] + ax[2] * v[2][2], &lo, &hi);
+        blo = bhi = 0;
+        for (c = 0; c < 8; c++) {
+            i128 p = 0;
+            for (a = 0; a < 3; a++) p += ax[a] * ((c >> a) & 1 ? bmax[a] : bmin[a]);
+            if (c == 0 || p < blo) blo = p;
+            if (c == 0 || p > bhi) bhi = p;
+        }
+        if (hi < blo || lo > bhi) return 0;
+    }
+    return 1;
+}
+
+/* Brute force over every voxel of the grid. */
+static uint32_t *oracle_voxelize(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g)
+{
+    uint64_t nvox = voxgi_grid_voxel_count(g);
+    uint32_t *bits = (uint32_t *)calloc((size_t)(nvox + 31) / 32, 4);
+    int64_t o[3], s = to_fixed(g->voxel_size);
+    size_t t;
+    int a;
+    for (a = 0; a < 3; a++) o[a] = to_fixed(g->origin[a]);
+    for (t = 0; t < ntri; t++) {
+        int64_t v[3][3];
+        int i, j, k, c;
+        for (c = 0; c < 3; c++)
+            for (a = 0; a < 3; a++) v[c][a] = to_fixed(pos[3 * idx[3 * t + (size_t)c] + (size_t)a]);
+        for (k = 0; k < g->res[2]; k++)
+            for (j = 0; j < g->res[1]; j++)
+                for (i = 0; i < g->res[0]; i++) {
+                    int64_t bmin[3], bmax[3];
+                    int ijk[3];
+                    uint64_t l = (uint64_t)i + (uint64_t)g->res[0] * ((uint64_t)j + (uint64_t)g->res[1] * (uint64_t)k);
+                    if (bits[l >> 5] & (1u << (l & 31))) continue;
+                    ijk[0] = i; ijk[1] = j; ijk[2] = k;
+                    for (a = 0; a < 3; a++) { bmin[a] = o[a] + ijk[a] * s; bmax[a] = bmin[a] + s; }
+                    if (oracle_overlap((const int64_t(*)[3])v, bmin, bmax)) bits[l >> 5] |= 1u << (l & 31);
+                }
+    }
+    return bits;
+}
+
+/* ---------------------------------------------------------------- helpers */
+static voxgi_context *make_ctx(int threads)
+{
+    voxgi_desc d;
+    voxgi_context *ctx = NULL;
+    memset(&d, 0, sizeof d);
+    d.backend = VOXGI_BACKEND_CPU;
+    d.thread_count = threads;
+    if (voxgi_create(&d, &ctx) != VOXGI_OK) return NULL;
+    return ctx;
+}
+
+static uint32_t *voxelize_bits(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t ntri,
+                               const voxgi_grid *g, voxgi_voxels_info *info)
+{
+    voxgi_mesh m;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *vox = NULL;
+    uint32_t *bits;
+    size_t need = 0;
+    memset(&m, 0, sizeof m);
+    memset(&sc, 0, sizeof sc);
+    memset(&vd, 0, sizeof vd);
+    m.positions = pos; m.vertex_count = nv; m.indices = idx; m.index_count = 3 * ntri;
+    sc.meshes = &m; sc.mesh_count = 1;
+    vd.grid = *g;
+    if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) { printf("    voxelize failed: %s\n", voxgi_last_error(ctx)); return NULL; }
+    voxgi_voxels_read(ctx, vox, NULL, 0, &need);
+    bits = (uint32_t *)malloc(need);
+    if (voxgi_voxels_read(ctx, vox, bits, need, NULL) != VOXGI_OK) { free(bits); bits = NULL; }
+    if (info) voxgi_voxels_query(vox, info);
+    voxgi_voxels_destroy(ctx, vox);
+    return bits;
+}
+
+/* Compares with the oracle; returns the number of differing voxels (and reports a few). */
+static uint64_t compare_bits(const uint32_t *a, const uint32_t *b, const voxgi_grid *g, const char *what)
+{
+    uint64_t n = voxgi_grid_voxel_count(g), l, diff = 0;
+    for (l = 0; l < n; l++) {
+        int x = voxgi_bit_get(a, l), y = voxgi_bit_get(b, l);
+        if (x != y && ++diff <= 3)
+            printf("    %s: voxel (%d,%d,%d) library %d, reference %d\n", what, (int)(l % (uint64_t)g->res[0]),
+                   (int)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]), (int)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1])), x, y);
+    }
+    return diff;
+}
+
+static double lattice(double x) { return ldexp(floor(ldexp(x, ORACLE_BITS) + 0.5), -ORACLE_BITS); }
+
+static uint64_t check_against_oracle(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t nt,
+                                     const voxgi_grid *g, const char *what)
+{
+    uint32_t *mine = voxelize_bits(ctx, pos, nv, idx, nt, g, NULL), *ref = oracle_voxelize(pos, idx, nt, g);
+    uint64_t d = mine ? compare_bits(mine, ref, g, what) : (uint64_t)-1;
+    free(mine);
+    free(ref);
+    return d;
+}
+
+/* ---------------------------------------------------------------- tests */
+static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
+static double rnd(void) /* [0,1) */
+{
+    rng_state ^= rng_state << 13; rng_state ^= rng_state >> 7; rng_state ^= rng_state << 17;
+    return (double)(rng_state >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* Random triangles of every size, one at a time, on a grid with an awkward origin and size. */
+static void test_random_triangles_vs_oracle(void)
+{
+    voxgi_context *ctx = make_ctx(1);
+    voxgi_grid g;
+    int trial;
+    uint64_t bad = 0;
+    g.origin[0] = lattice(-3.3); g.origin[1] = lattice(1.7); g.origin[2] = lattice(-0.45);
+    g.voxel_size = lattice(0.73);
+    g.res[0] = 13; g.res[1] = 9; g.res[2] = 11;
+    for (trial = 0; trial < 400 && bad == 0; trial++) {
+        float p[9];
+        uint32_t idx[3] = {0, 1, 2};
+        double size = trial % 4 == 0 ? 12.0 : (trial % 4 == 1 ? 2.0 : (trial % 4 == 2 ? 0.3 : 30.0));
+        double cx = -4 + 12 * rnd(), cy = 1 + 8 * rnd(), cz = -1 + 9 * rnd();
+        int c;
+        for (c = 0; c < 3; c++) {
+            p[3 * c + 0] = (float)lattice(cx + size * (rnd() - 0.5));
+            p[3 * c + 1] = (float)lattice(cy + size * (rnd() - 0.5));
+            p[3 * c + 2] = (float)lattice(cz + size * (rnd() - 0.5));
+        }
+        if (trial % 7 == 3) { /* needle: third vertex almost on the first edge */
+            for (c = 0; c < 3; c++) p[6 + c] = (float)lattice(0.5 * (p[c] + p[3 + c]) + 1e-5 * (rnd() - 0.5));
+        }
+        bad += check_against_oracle(ctx, p, 3, idx, 1, &g, "random triangle");
+    }
+    TH_CHECK(bad == 0, "%llu voxels differ from the definition (trial %d)", (unsigned long long)bad, trial);
+    voxgi_destroy(ctx);
+}
+
+/* Triangles whose vertices sit on voxel corners, faces and edges; in grid planes; axis-aligned;
+   zero-area (segments, points); the whole grid; partly outside. */
+static void test_adversarial_vs_oracle(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    voxgi_grid g;
+    int trial;
+    uint64_t bad = 0;
+    g.origin[0] = -2; g.origin[1] = 0.5; g.origin[2] = 1;
+    g.voxel_size = 0.5;
+    g.res[0] = 12; g.res[1] = 10; g.res[2] = 9;
+    for (trial = 0; trial < 600 && bad == 0; trial++) {
+        float p[9];
+        uint32_t idx[3] = {0, 1, 2};
+        int c, a, kind = trial % 10;
+        for (c = 0; c < 3; c++)
+            for (a = 0; a < 3; a++) {
+                /* voxel corners, face centres, quarter points: all exact ties */
+                double q = floor(rnd() * 14 * 4) / 4.0 - 1.0;
+                if (kind >= 6) q = floor(q); /* only corners */
+                p[3 * c + a] = (float)(g.origin[a] + q * g.voxel_size);
+            }
+        if (kind == 1) p[2] = p[5] = p[8];            /* in a grid-parallel plane */
+        if (kind == 2) { p[1] = p[4] = p[7]; p[0] = p[3]; } /* axis-aligned right triangle in a y plane */
+        if (kind == 3) for (a = 0; a < 3; a++) p[6 + a] = p[a];            /* segment (two equal vertices) */
+        if (kind == 4) for (a = 0; a < 3; a++) p[6 + a] = 0.5f * (p[a] + p[3 + a]); /* collinear */
+        if (kind == 5) for (a = 0; a < 3; a++) p[3 + a] = p[6 + a] = p[a]; /* a point */
+        if (kind == 7) { p[0] = p[3]; p[1] = p[4]; } /* edge parallel to z */
+        bad += check_against_oracle(ctx, p, 3, idx, 1, &g, "adversarial triangle");
+    }
+    TH_CHECK(bad == 0, "%llu voxels differ from the definition (trial %d)", (unsigned long long)bad, trial);
+    {   /* one triangle far larger than the grid, and one spanning it exactly corner to corner */
+        float big[9] = {-1000, -1000, 2.25f, 3000, -1000, 3.125f, -1000, 3000, 3.875f};
+        float span[9] = {-2, 0.5f, 1, 4, 5.5f, 5.5f, -2, 5.5f, 5.5f};
+        uint32_t idx[3] = {0, 1, 2};
+        TH_CHECK(check_against_oracle(ctx, big, 3, idx, 1, &g, "huge triangle") == 0, "huge triangle differs");
+        TH_CHECK(check_against_oracle(ctx, span, 3, idx, 1, &g, "spanning triangle") == 0, "spanning triangle differs");
+    }
+    voxgi_destroy(ctx);
+}
+
+/* A closed procedural mesh on a non-cubic grid, all triangles at once, against the oracle. */
+static void test_mesh_vs_oracle(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    test_mesh m;
+    voxgi_grid g;
+    size_t i;
+    scene_sphere(&m, 12, 9, 2.0, 0.3, -0.2, 0.1);
+    for (i = 0; i < 3 * m.vertex_count; i++) m.pos[i] = (float)lattice(m.pos[i]);
+    g.origin[0] = lattice(-2.21); g.origin[1] = lattice(-2.52); g.origin[2] = lattice(-2.07);
+    g.voxel_size = lattice(0.31);
+    g.res[0] = 15; g.res[1] = 17; g.res[2] = 14;
+    TH_CHECK(check_against_oracle(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, "sphere") == 0,
+             "sphere differs from the definition");
+    test_mesh_free(&m);
+    voxgi_destroy(ctx);
+}
+
+/* The same scene moved by 1e7, scaled by 2^-20 and by 2^20 (exactly representable moves, so the
+   geometry is the same) gives the same voxels: nothing depends on where the scene sits. */
+static void test_offset_and_scale_invariance(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    test_mesh m;
+    voxgi_grid g0, g;
+    uint32_t *ref, *bits;
+    size_t i;
+    int variant;
+    float *moved;
+    scene_box_and_tilted(&m); /* integer coordinates in [0, 24] */
+    g0.origin[0] = -1; g0.origin[1] = -1; g0.origin[2] = -1;
+    g0.voxel_size = 1.5;
+    g0.res[0] = 19; g0.res[1] = 18; g0.res[2] = 17;
+    ref = voxelize_bits(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g0, NULL);
+    moved = (float *)malloc(3 * m.vertex_count * sizeof(float));
+    for (variant = 0; variant < 3; variant++) {
+        double scale = variant == 0 ? 1.0 : (variant == 1 ? ldexp(1, -20) : ldexp(1, 20));
+        double offset = variant == 0 ? 1e7 : 0.0;
+        for (i = 0; i < 3 * m.vertex_count; i++) moved[i] = (float)(m.pos[i] * scale + offset);
+        g = g0;
+        for (i = 0; i < 3; i++) g.origin[i] = g0.origin[i] * scale + offset;
+        g.voxel_size = g0.voxel_size * scale;
+        bits = voxelize_bits(ctx, moved, m.vertex_count, m.idx, m.triangle_count, &g, NULL);
+        TH_CHECK(bits && compare_bits(bits, ref, &g, "moved scene") == 0, "variant %d (scale %g, offset %g) differs", variant,
+                 scale, offset);
+        free(bits);
+    }
+    {   /* and the original against the oracle */
+        uint32_t *o = oracle_voxelize(m.pos, m.idx, m.triangle_count, &g0);
+        TH_CHECK(compare_bits(ref, o, &g0, "box scene") == 0, "box scene differs from the definition");
+        free(o);
+    }
+    free(moved);
+    free(ref);
+    test_mesh_free(&m);
+    voxgi_destroy(ctx);
+}
+
+/* 1, 2 and 7 threads give identical bits. */
+static void test_thread_determinism(void)
+{
+    test_mesh m;
+    voxgi_grid g;
+    uint32_t *b[3];
+    int i, threads[3] = {1, 2, 7};
+    scene_sphere(&m, 48, 32, 1.0, 0, 0, 0);
+    g.origin[0] = g.origin[1] = g.origin[2] = -1.1;
+    g.voxel_size = 2.2 / 40;
+    g.res[0] = g.res[1] = g.res[2] = 40;
+    for (i = 0; i < 3; i++) {
+        voxgi_context *ctx = make_ctx(threads[i]);
+        b[i] = voxelize_bits(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, NULL);
+        voxgi_destroy(ctx);
+    }
+    TH_CHECK(b[0] && b[1] && b[2] && memcmp(b[0], b[1], (40 * 40 * 40 + 31) / 32 * 4) == 0 &&
+             memcmp(b[0], b[2], (40 * 40 * 40 + 31) / 32 * 4) == 0, "thread counts disagree");
+    for (i = 0; i < 3; i++) free(b[i]);
+    test_mesh_free(&m);
+}
+
+/* ---------------------------------------------------------------- bad input */
+static voxgi_result try_scene(voxgi_context *ctx, const voxgi_mesh *m, size_t nm, const voxgi_grid *g)
+{
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *vox = (voxgi_voxels *)1;
+    voxgi_result r;
+    memset(&sc, 0, sizeof sc);
+    memset(&vd, 0, sizeof vd);
+    sc.meshes = m; sc.mesh_count = nm;
+    vd.grid = *g;
+    r = voxgi_voxelize(ctx, &sc, &vd, &vox);
+    if (r != VOXGI_OK && vox != NULL) return (voxgi_result)-1; /* no partial output */
+    if (r == VOXGI_OK) voxgi_voxels_destroy(ctx, vox);
+    return r;
+}
+
+static void test_bad_input(void)
+{
+    voxgi_context *ctx = make_ctx(1);
+    float p[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    uint32_t idx[6] = {0, 1, 2, 1, 3, 2};
+    voxgi_mesh m;
+    voxgi_grid g;
+    g.origin[0] = g.origin[1] = g.origin[2] = -0.5;
+    g.voxel_size = 0.25;
+    g.res[0] = g.res[1] = g.res[2] = 8;
+    memset(&m, 0, sizeof m);
+    m.positions = p; m.vertex_count = 4; m.indices = idx; m.index_count = 6;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_OK, "good scene rejected: %s", voxgi_last_error(ctx));
+
+    p[4] = NAN;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "NaN accepted");
+    TH_CHECK(strstr(voxgi_last_error(ctx), "triangle 0") && strstr(voxgi_last_error(ctx), "vertex 1"),
+             "NaN message does not name the triangle and vertex: %s", voxgi_last_error(ctx));
+    p[4] = INFINITY;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "infinity accepted");
+    p[4] = 0;
+    idx[4] = 4;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "index out of range accepted");
+    TH_CHECK(strstr(voxgi_last_error(ctx), "triangle 1") && strstr(voxgi_last_error(ctx), "out of range"),
+             "message: %s", voxgi_last_error(ctx));
+    idx[4] = 3;
+    m.index_count = 5;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "index_count 5 accepted");
+    m.index_count = 6;
+    m.vertex_count = (size_t)-1 / 4;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_TOO_LARGE, "overflowing vertex count accepted");
+    m.vertex_count = 4;
+    m.position_stride = 8;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "stride 8 accepted");
+    m.position_stride = 0;
+    m.material = 3;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "material out of range accepted");
+    m.material = 0;
+    m.index_count = 0;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_EMPTY_SCENE, "empty mesh accepted");
+    TH_CHECK(try_scene(ctx, &m, 0, &g) == VOXGI_ERR_EMPTY_SCENE, "no meshes accepted");
+    m.index_count = 6;
+    m.positions = NULL;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "NULL positions accepted");
+    m.positions = p;
+    /* grids */
+    g.res[1] = 0;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "zero resolution accepted");
+    g.res[1] = VOXGI_MAX_RES + 1;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "huge resolution accepted");
+    g.res[1] = 8;
+    g.voxel_size = 0;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "zero voxel size accepted");
+    g.voxel_size = NAN;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "NaN voxel size accepted");
+    g.voxel_size = 0.25;
+    g.origin[2] = INFINITY;
+    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "infinite origin accepted");
+    g.origin[2] = -0.5;
+    voxgi_destroy(ctx);
+    {   /* a grid beyond the memory budget is a clear error, not an allocation failure half-way */
+        voxgi_desc d;
+        memset(&d, 0, sizeof d);
+        d.backend = VOXGI_BACKEND_CPU;
+        d.memory_budget = 1 << 20;
+        voxgi_create(&d, &ctx);
+        g.res[0] = g.res[1] = g.res[2] = 2048;
+        TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_TOO_LARGE, "over-budget grid accepted");
+        TH_CHECK(strstr(voxgi_last_error(ctx), "budget") != NULL, "message: %s", voxgi_last_error(ctx));
+        voxgi_destroy(ctx);
+    }
+    TH_CHECK(voxgi_create(NULL, &ctx) == VOXGI_ERR_INVALID_ARGUMENT, "NULL desc accepted");
+    TH_CHECK(voxgi_voxelize(NULL, NULL, NULL, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "NULL context accepted");
+}
+
+/* Every allocation failure is reported as VOXGI_ERR_OUT_OF_MEMORY, never a crash or a leak. */
+typedef struct fail_alloc { int countdown, live; } fail_alloc;
+static void *fa_alloc(size_t n, void *u)
+{
+    fail_alloc *f = (fail_alloc *)u;
+    if (f->countdown-- == 0) return NULL;
+    f->live++;
+    return malloc(n);
+}
+static void fa_free(void *p, void *u) { ((fail_alloc *)u)->live--; free(p); }
+
+static void test_failing_allocator(void)
+{
+    float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0.5f};
+    voxgi_mesh m;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    int n, ok_at = -1;
+    memset(&m, 0, sizeof m);
+    memset(&sc, 0, sizeof sc);
+    memset(&vd, 0, sizeof vd);
+    m.positions = p; m.vertex_count = 3;
+    sc.meshes = &m; sc.mesh_count = 1;
+    vd.grid.origin[0] = vd.grid.origin[1] = vd.grid.origin[2] = -0.1;
+    vd.grid.voxel_size = 0.1;
+    vd.grid.res[0] = vd.grid.res[1] = vd.grid.res[2] = 14;
+    for (n = 0; n < 20 && ok_at < 0; n++) {
+        fail_alloc fa = {0, 0};
+        voxgi_desc d;
+        voxgi_context *ctx = NULL;
+        voxgi_voxels *vox = NULL;
+        voxgi_result r;
+        memset(&d, 0, sizeof d);
+        d.backend = VOXGI_BACKEND_CPU;
+        d.allocator.alloc = fa_alloc; d.allocator.free = fa_free; d.allocator.user = &fa;
+        fa.countdown = n;
+        r = voxgi_create(&d, &ctx);
+        if (r == VOXGI_OK) {
+            r = voxgi_voxelize(ctx, &sc, &vd, &vox);
+            TH_CHECK(r == VOXGI_OK || r == VOXGI_ERR_OUT_OF_MEMORY, "failure %d gave %s", n, voxgi_result_string(r));
+            TH_CHECK((r == VOXGI_OK) == (vox != NULL), "failure %d: result and output disagree", n);
+            if (r == VOXGI_OK) ok_at = n;
+            voxgi_voxels_destroy(ctx, vox);
+            voxgi_destroy(ctx);
+        } else TH_CHECK(r == VOXGI_ERR_OUT_OF_MEMORY, "create failure gave %s", voxgi_result_string(r));
+        TH_CHECK(fa.live == 0, "failure %d leaked %d blocks", n, fa.live);
+    }
+    TH_CHECK(ok_at > 0, "never succeeded");
+}
+
+static int cancel_at_once(double f, const char *stage, void *u) { (void)f; (void)stage; (void)u; return 1; }
+
+static void test_cancel_and_api(void)
+{
+    test_mesh m;
+    voxgi_desc d;
+    voxgi_context *ctx = NULL;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *vox = NULL;
+    voxgi_voxels_info info;
+    uint32_t small[4];
+    size_t need = 0;
+    scene_sphere(&m, 64, 48, 1.0, 0, 0, 0);
+    memset(&d, 0, sizeof d);
+    memset(&mesh, 0, sizeof mesh);
+    memset(&sc, 0, sizeof sc);
+    memset(&vd, 0, sizeof vd);
+    d.backend = VOXGI_BACKEND_CPU;
+    d.progress.func = cancel_at_once;
+    voxgi_create(&d, &ctx);
+    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
+    sc.meshes = &mesh; sc.mesh_count = 1;
+    {
+        voxgi_fit_desc fit;
+        memset(&fit, 0, sizeof fit);
+        fit.res = 32;
+        fit.padding = 1;
+        TH_CHECK(voxgi_fit_grid(ctx, &sc, &fit, &vd.grid) == VOXGI_OK, "fit failed");
+        TH_CHECK(vd.grid.res[0] == 32 && vd.grid.res[2] == 32, "cubic fit gave %d %d %d", vd.grid.res[0], vd.grid.res[1], vd.grid.res[2]);
+        /* the scene (radius 1) sits inside with a voxel of padding */
+        TH_CHECK(vd.grid.origin[0] + vd.grid.voxel_size <= -1.0 && vd.grid.origin[0] + 31 * vd.grid.voxel_size >= 1.0,
+                 "fit does not pad: origin %g size %g", vd.grid.origin[0], vd.grid.voxel_size);
+    }
+    TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_ERR_CANCELLED && vox == NULL, "cancel ignored");
+    voxgi_destroy(ctx);
+    d.progress.func = NULL;
+    voxgi_create(&d, &ctx);
+    TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "voxelize failed");
+    voxgi_voxels_query(vox, &info);
+    TH_CHECK(info.voxel_count > 0 && info.triangle_count == m.triangle_count && info.bytes == (32 * 32 * 32) / 8,
+             "info wrong: %llu voxels", (unsigned long long)info.voxel_count);
+    TH_CHECK(voxgi_voxels_read(ctx, vox, NULL, 0, &need) == VOXGI_OK && need == info.bytes, "size query wrong");
+    TH_CHECK(voxgi_voxels_read(ctx, vox, small, sizeof small, NULL) == VOXGI_ERR_BUFFER_TOO_SMALL, "small buffer accepted");
+    {
+        unsigned name = 0;
+        TH_CHECK(voxgi_voxels_gl_buffer(ctx, vox, &name) == VOXGI_ERR_UNSUPPORTED, "CPU voxels gave a GL buffer");
+    }
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_destroy(ctx);
+    test_mesh_free(&m);
+}
+
+/* binvox write then read gives the same grid and bits; a truncated file is an error. */
+static void test_binvox_roundtrip(void)
+{
+    voxgi_context *ctx = make_ctx(1);
+    test_mesh m;
+    voxgi_grid g, g2;
+    uint32_t *bits, *back;
+    size_t need = 0, bytes;
+    FILE *f = tmpfile();
+    long len;
+    scene_sphere(&m, 20, 14, 1.0, 0, 0, 0);
+    g.origin[0] = -1.25; g.origin[1] = -1.5; g.origin[2] = -1.125;
+    g.voxel_size = 0.125;
+    g.res[0] = 21; g.res[1] = 24; g.res[2] = 19; /* non-cubic: checks the axis order */
+    bits = voxelize_bits(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, NULL);
+    bytes = (voxgi_grid_voxel_count(&g) + 31) / 32 * 4;
+    TH_CHECK(voxgi_binvox_write(f, &g, bits) == VOXGI_OK, "write failed");
+    len = ftell(f);
+    rewind(f);
+    TH_CHECK(voxgi_binvox_read(f, &g2, NULL, 0, &need) == VOXGI_OK && need == bytes, "header read failed");
+    rewind(f);
+    back = (uint32_t *)malloc(need);
+    TH_CHECK(voxgi_binvox_read(f, &g2, back, need, NULL) == VOXGI_OK, "read failed");
+    TH_CHECK(memcmp(&g, &g2, sizeof g) == 0, "grid differs after the round trip");
+    TH_CHECK(memcmp(bits, back, bytes) == 0, "bits differ after the round trip");
+    {   /* truncated: every shorter prefix must fail cleanly */
+        char *buf = (char *)malloc((size_t)len);
+        long cut;
+        int bad = 0;
+        rewind(f);
+        if (fread(buf, 1, (size_t)len, f) != (size_t)len) bad++;
+        for (cut = 0; cut < len; cut += 1 + cut / 8) {
+            FILE *t = tmpfile();
+            voxgi_grid gt;
+            fwrite(buf, 1, (size_t)cut, t);
+            rewind(t);
+            if (voxgi_binvox_read(t, &gt, back, need, NULL) == VOXGI_OK) bad++;
+            fclose(t);
+        }
+        TH_CHECK(bad == 0, "%d truncated files accepted", bad);
+        free(buf);
+    }
+    fclose(f);
+    free(bits);
+    free(back);
+    test_mesh_free(&m);
+    voxgi_destroy(ctx);
+}
+
+int main(void)
+{
+    TH_RUN(test_random_triangles_vs_oracle);
+    TH_RUN(test_adversarial_vs_oracle);
+    TH_RUN(test_mesh_vs_oracle);
+    TH_RUN(test_offset_and_scale_invariance);
+    TH_RUN(test_thread_determinism);
+    TH_RUN(test_bad_input);
+    TH_RUN(test_failing_allocator);
+    TH_RUN(test_cancel_and_api);
+    TH_RUN(test_binvox_roundtrip);
+    return th_finish();
+}

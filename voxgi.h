@@ -1,0 +1,1621 @@
+/* voxgi.h - v0.1.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
+
+   voxgi voxelizes triangle scenes and (in later parts) computes voxel-based lighting. Every GPU
+   pass has a CPU twin that computes the same result, so the library works where no GL 4.5
+   context exists, and the CPU twin is the oracle the GPU pass is tested against.
+
+   USAGE
+     In exactly one C or C++ file:
+         #define VOXGI_IMPLEMENTATION
+         #include "voxgi.h"
+     Everywhere else just #include "voxgi.h". The GL backend also needs shaders.h (generated from
+     the GLSL files in shaders/) next to voxgi.h; define VOXGI_NO_GL to build without it.
+
+     voxgi_desc desc = {0};                 // zero means default; C++: voxgi_desc desc = {};
+     desc.backend = VOXGI_BACKEND_CPU;      // or AUTO / GL (then set desc.gl_get_proc_address)
+     voxgi_context *ctx;
+     if (voxgi_create(&desc, &ctx) != VOXGI_OK) return 1;
+
+     voxgi_mesh mesh = {0};
+     mesh.positions = xyz; mesh.vertex_count = nv;     // floats; position_stride 0 = tightly packed
+     mesh.indices = tri; mesh.index_count = 3 * nt;    // uint32; NULL = non-indexed
+     voxgi_scene scene = {0};
+     scene.meshes = &mesh; scene.mesh_count = 1;
+
+     voxgi_voxelize_desc vd = {0};
+     voxgi_fit_desc fit = {0}; fit.res = 128;          // longest axis 128 voxels
+     voxgi_fit_grid(ctx, &scene, &fit, &vd.grid);
+     voxgi_voxels *vox;
+     if (voxgi_voxelize(ctx, &scene, &vd, &vox) == VOXGI_OK) {
+         voxgi_voxels_info info; voxgi_voxels_query(vox, &info);   // info.voxel_count, info.ms, ...
+         size_t bytes; voxgi_voxels_read(ctx, vox, NULL, 0, &bytes); // size query, then read
+         voxgi_voxels_destroy(ctx, vox);
+     } else fprintf(stderr, "%s\n", voxgi_last_error(ctx));
+     voxgi_destroy(ctx);
+
+   SEMANTICS (exact; see the part banners below for each capability)
+     Grid: origin o (double[3]), voxel size s (double > 0), resolution n (int[3]). Voxel (i,j,k) is
+     the CLOSED box [o+(i,j,k)s, o+(i+1,j+1,k+1)s]; its linear index is i + n.x*(j + n.y*k) in
+     64 bits, and bit grids store voxel L at bit (L & 31) of 32-bit word L >> 5.
+     Conservative voxelization sets a voxel exactly when its closed box meets the closed triangle
+     (touching counts), evaluated exactly in rational arithmetic on the float vertices and the
+     double grid, so results never depend on where in the world a scene sits. Degenerate
+     triangles are the segments or points they are.
+
+   CONFIGURATION (define before the implementation)
+     VOXGI_STATIC          all functions static (private copy per translation unit)
+     VOXGI_NO_GL           no GL code or GL types at all; CPU backend only
+     VOXGI_NO_THREADS      the CPU backend runs on the calling thread only
+     VOXGI_MALLOC(sz)/VOXGI_FREE(p)   default allocator when desc.allocator is not set (both or none)
+     VOXGI_ASSERT(x)       internal assertions (default: assert)
+     Do not compile the implementation with -ffast-math: exactness needs IEEE double arithmetic.
+
+   GL LOADER (desc.gl_get_proc_address is called only while the GL 4.5 context is current)
+     EGL:    desc.gl_get_proc_address = (voxgi_gl_loader)eglGetProcAddress;
+     GLFW:   desc.gl_get_proc_address = (voxgi_gl_loader)glfwGetProcAddress;
+     SDL2:   desc.gl_get_proc_address = (voxgi_gl_loader)SDL_GL_GetProcAddress;
+     OSMesa: desc.gl_get_proc_address = (voxgi_gl_loader)OSMesaGetProcAddress;
+     glad:   desc.gl_get_proc_address = (voxgi_gl_loader)glfwGetProcAddress; (the one glad used), or
+             desc.gl_get_proc_address_user + desc.gl_user for loaders that take a user pointer.
+     voxgi keeps its own table of exactly the GL functions it calls and its own GL typedefs, so no
+     GL header is needed and none can clash; voxgi never opens libGL itself.
+
+   VERSION HISTORY
+     0.1.0  context, scenes, grids, exact conservative voxelization (CPU and GL), binvox.
+*/
+#ifndef VOXGI_H
+#define VOXGI_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#define VOXGI_VERSION_MAJOR 0
+#define VOXGI_VERSION_MINOR 1
+#define VOXGI_VERSION_PATCH 0
+#define VOXGI_VERSION (VOXGI_VERSION_MAJOR * 10000 + VOXGI_VERSION_MINOR * 100 + VOXGI_VERSION_PATCH)
+#define VOXGI_VERSION_STRING "0.1.0"
+
+#ifndef VOXGI_API
+#ifdef VOXGI_STATIC
+#define VOXGI_API static
+#else
+#define VOXGI_API extern
+#endif
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ===================================================================== results */
+typedef enum voxgi_result {
+    VOXGI_OK = 0,
+    VOXGI_ERR_INVALID_ARGUMENT,    /* NULL where an object is needed, unknown enum value, ... */
+    VOXGI_ERR_INVALID_SCENE,       /* non-finite vertex, index out of range, bad stride, ... */
+    VOXGI_ERR_EMPTY_SCENE,         /* no triangles at all */
+    VOXGI_ERR_INVALID_GRID,        /* zero/negative resolution or voxel size, non-finite origin */
+    VOXGI_ERR_TOO_LARGE,           /* sizes overflow, exceed a limit or the memory budget */
+    VOXGI_ERR_OUT_OF_MEMORY,       /* the allocator returned NULL */
+    VOXGI_ERR_BUFFER_TOO_SMALL,    /* caller memory smaller than the size query said */
+    VOXGI_ERR_UNSUPPORTED,         /* compiled out, or not available on this backend */
+    VOXGI_ERR_GL_UNAVAILABLE,      /* no GL 4.5 context or no loader */
+    VOXGI_ERR_GL_MISSING_FUNCTION, /* the loader did not return a needed entry point */
+    VOXGI_ERR_GL_SHADER,           /* a shader failed to compile or link (log in voxgi_last_error) */
+    VOXGI_ERR_GL,                  /* a GL call failed */
+    VOXGI_ERR_CANCELLED,           /* the progress callback asked to stop */
+    VOXGI_ERR_IO,                  /* a file could not be read or written */
+    VOXGI_ERR_FORMAT,              /* a file is malformed */
+    VOXGI_RESULT_COUNT_
+} voxgi_result;
+
+typedef enum voxgi_backend { VOXGI_BACKEND_AUTO = 0, VOXGI_BACKEND_CPU, VOXGI_BACKEND_GL } voxgi_backend;
+typedef enum voxgi_log_level { VOXGI_LOG_ERROR = 0, VOXGI_LOG_WARNING, VOXGI_LOG_INFO, VOXGI_LOG_DEBUG } voxgi_log_level;
+
+/* ===================================================================== context */
+typedef struct voxgi_context voxgi_context;
+typedef void (*voxgi_gl_proc)(void);
+typedef voxgi_gl_proc (*voxgi_gl_loader)(const char *name);
+typedef voxgi_gl_proc (*voxgi_gl_loader_user)(const char *name, void *user);
+
+typedef struct voxgi_allocator {
+    void *(*alloc)(size_t size, void *user);   /* both or neither; NULL = VOXGI_MALLOC */
+    void (*free)(void *ptr, void *user);
+    void *user;
+} voxgi_allocator;
+typedef struct voxgi_logger {
+    void (*func)(voxgi_log_level level, const char *message, void *user); /* NULL = silent */
+    void *user;
+} voxgi_logger;
+typedef struct voxgi_progress {
+    /* Called from the calling thread during long work; return non-zero to cancel. */
+    int (*func)(double fraction, const char *stage, void *user);
+    void *user;
+} voxgi_progress;
+
+typedef struct voxgi_desc {
+    voxgi_backend backend;                     /* AUTO: GL when usable, else CPU (logged) */
+    voxgi_gl_loader gl_get_proc_address;       /* GL loader, or ... */
+    voxgi_gl_loader_user gl_get_proc_address_user; /* ... one that takes gl_user */
+    void *gl_user;
+    int thread_count;                          /* CPU workers; 0 = one per core */
+    size_t memory_budget;                      /* bytes a single result may use; 0 = no limit */
+    voxgi_allocator allocator;
+    voxgi_logger logger;
+    voxgi_progress progress;
+} voxgi_desc;
+
+typedef struct voxgi_info {
+    voxgi_backend backend;     /* the backend in use */
+    int thread_count;          /* resolved CPU worker count */
+    const char *gl_version;    /* GL_VERSION / GL_RENDERER of the current context, or "" */
+    const char *gl_renderer;
+    const char *capabilities;  /* compiled-in capabilities, space separated */
+} voxgi_info;
+
+/* Creates a context. With backend GL (or AUTO picking GL), the GL 4.5 context that is current now
+   is the one voxgi uses; every later call on this voxgi context must run with it current. */
+VOXGI_API voxgi_result voxgi_create(const voxgi_desc *desc, voxgi_context **out);
+VOXGI_API void voxgi_destroy(voxgi_context *ctx);
+VOXGI_API voxgi_desc voxgi_query_desc(const voxgi_context *ctx);   /* with defaults resolved */
+VOXGI_API void voxgi_query_info(const voxgi_context *ctx, voxgi_info *out);
+VOXGI_API const char *voxgi_result_string(voxgi_result r);
+VOXGI_API const char *voxgi_backend_name(voxgi_backend b);
+/* Detail of the last failed call on ctx (which input was bad and why, GLSL log, ...); "" if none. */
+VOXGI_API const char *voxgi_last_error(const voxgi_context *ctx);
+
+/* ===================================================================== scenes */
+typedef struct voxgi_material {
+    float albedo[3];        /* Lambertian reflectance */
+    float emission[3];      /* emitted radiance, front face only */
+    float transparency;     /* 1 - opacity (zero = opaque, so zero-initialised materials are opaque) */
+} voxgi_material;
+
+typedef struct voxgi_mesh {
+    const float *positions;      /* x y z floats */
+    size_t position_stride;      /* bytes between vertices; 0 = 12 */
+    size_t vertex_count;
+    const uint32_t *indices;     /* 3 per triangle; NULL = vertices taken three at a time */
+    size_t index_count;
+    const float *normals;        /* optional, per vertex */
+    size_t normal_stride;        /* 0 = 12 */
+    const float *uvs;            /* optional, per vertex */
+    size_t uv_stride;            /* 0 = 8 */
+    const uint32_t *material_ids;/* optional, one per triangle */
+    uint32_t material;           /* material of every triangle when material_ids is NULL */
+} voxgi_mesh;
+
+typedef struct voxgi_scene {
+    const voxgi_mesh *meshes;
+    size_t mesh_count;
+    const voxgi_material *materials;   /* may be NULL when no mesh names a material other than 0 */
+    size_t material_count;
+} voxgi_scene;
+
+/* Checks a scene; the message names the mesh, triangle and what is wrong. */
+VOXGI_API voxgi_result voxgi_validate_scene(voxgi_context *ctx, const voxgi_scene *scene);
+
+/* ===================================================================== grids */
+typedef struct voxgi_grid {
+    double origin[3];       /* world position of voxel (0,0,0)'s minimum corner */
+    double voxel_size;      /* edge length of the cubic voxels */
+    int res[3];             /* voxels per axis, each >= 1 */
+} voxgi_grid;
+
+typedef struct voxgi_fit_desc {
+    int res;                /* voxels along the longest axis of the scene; 0 = 64 */
+    int per_axis;           /* 0: res^3 grid; non-zero: each axis just long enough for the scene */
+    double padding;         /* empty voxels kept around the scene on each side; 0 = none */
+} voxgi_fit_desc;
+
+#define VOXGI_MAX_RES 65536
+VOXGI_API voxgi_result voxgi_validate_grid(voxgi_context *ctx, const voxgi_grid *grid);
+VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *scene,
+                                      const voxgi_fit_desc *fit, voxgi_grid *out);
+VOXGI_API uint64_t voxgi_grid_voxel_count(const voxgi_grid *grid);
+
+/* ===================================================================== voxelization */
+typedef enum voxgi_method {
+    VOXGI_METHOD_CONSERVATIVE = 0   /* voxel set <=> closed box meets closed triangle (exact) */
+} voxgi_method;
+
+typedef struct voxgi_voxelize_desc {
+    voxgi_grid grid;
+    voxgi_method method;
+} voxgi_voxelize_desc;
+
+typedef struct voxgi_voxels voxgi_voxels;
+typedef struct voxgi_voxels_info {
+    voxgi_grid grid;
+    voxgi_method method;
+    voxgi_backend backend;      /* where the bits live */
+    uint64_t voxel_count;       /* set voxels */
+    uint64_t triangle_count;    /* triangles in the scene */
+    uint64_t exact_tests;       /* tests the double filter could not decide (resolved exactly) */
+    uint64_t exact_triangles;   /* GL only: triangles handed whole to the exact CPU path */
+    double ms;                  /* wall time of voxgi_voxelize */
+    size_t bytes;               /* size of the bit grid */
+} voxgi_voxels_info;
+
+VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene,
+                                      const voxgi_voxelize_desc *desc, voxgi_voxels **out);
+VOXGI_API void voxgi_voxels_destroy(voxgi_context *ctx, voxgi_voxels *voxels);
+VOXGI_API void voxgi_voxels_query(const voxgi_voxels *voxels, voxgi_voxels_info *out);
+/* Copies the bit grid into dst (32-bit words, layout above). dst == NULL: only *needed is set. */
+VOXGI_API voxgi_result voxgi_voxels_read(voxgi_context *ctx, const voxgi_voxels *voxels,
+                                         uint32_t *dst, size_t dst_bytes, size_t *needed);
+/* GL backend: the name of the GL shader storage buffer holding the bit grid (owned by voxels). */
+VOXGI_API voxgi_result voxgi_voxels_gl_buffer(voxgi_context *ctx, const voxgi_voxels *voxels,
+                                              unsigned int *gl_buffer_name);
+
+/* Bit helpers over a caller-held bit grid. */
+static inline int voxgi_bit_get(const uint32_t *bits, uint64_t index)
+{ return (int)((bits[index >> 5] >> (index & 31u)) & 1u); }
+
+/* ===================================================================== binvox files */
+/* binvox: "dim" lists x z y extents (binvox's depth, height, width), data runs with y fastest,
+   then z, then x; translate = grid origin, scale = voxel_size * max(res). */
+VOXGI_API voxgi_result voxgi_binvox_write(FILE *f, const voxgi_grid *grid, const uint32_t *bits);
+/* Reads a binvox file: call with bits == NULL to learn the grid and *needed bytes, then again. */
+VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bits,
+                                         size_t bits_bytes, size_t *needed);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* VOXGI_H */
+
+/* ************************************************************************************************
+   IMPLEMENTATION
+   ************************************************************************************************ */
+#ifdef VOXGI_IMPLEMENTATION
+#ifndef VOXGI__IMPLEMENTED
+#define VOXGI__IMPLEMENTED
+
+#if defined(__FAST_MATH__)
+#error "voxgi: the implementation needs IEEE double arithmetic; compile it without -ffast-math"
+#endif
+
+#include <stdlib.h>
+#include <string.h>
+#include <math.h>
+#include <stdarg.h>
+#include <float.h>
+#include <limits.h>
+
+/* ===================================================================== config defaults */
+#if defined(VOXGI_MALLOC) != defined(VOXGI_FREE)
+#error "voxgi: define both VOXGI_MALLOC and VOXGI_FREE, or neither"
+#endif
+#ifndef VOXGI_MALLOC
+#define VOXGI_MALLOC(sz) malloc(sz)
+#define VOXGI_FREE(p) free(p)
+#endif
+#ifndef VOXGI_ASSERT
+#include <assert.h>
+#define VOXGI_ASSERT(x) assert(x)
+#endif
+#if defined(_WIN32) && !defined(VOXGI_NO_THREADS)
+#define VOXGI_NO_THREADS /* the worker pool is written against pthreads */
+#endif
+#ifndef VOXGI_NO_THREADS
+#include <pthread.h>
+#include <unistd.h>
+#endif
+#include <time.h>
+#ifndef _WIN32
+#include <sys/time.h>
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+#define VOXGI__ATOMIC_OR_U32(p, v) __atomic_fetch_or((p), (v), __ATOMIC_RELAXED)
+#define VOXGI__ATOMIC_ADD_SIZE(p, v) __atomic_fetch_add((p), (v), __ATOMIC_RELAXED)
+#define VOXGI__ATOMIC_LOAD_INT(p) __atomic_load_n((p), __ATOMIC_RELAXED)
+#define VOXGI__ATOMIC_STORE_INT(p, v) __atomic_store_n((p), (v), __ATOMIC_RELAXED)
+#else
+#ifndef VOXGI_NO_THREADS
+#define VOXGI_NO_THREADS
+#endif
+#define VOXGI__ATOMIC_OR_U32(p, v) (*(p) |= (v))
+#define VOXGI__ATOMIC_ADD_SIZE(p, v) ((*(p) += (v)) - (v))
+#define VOXGI__ATOMIC_LOAD_INT(p) (*(p))
+#define VOXGI__ATOMIC_STORE_INT(p, v) (*(p) = (v))
+#endif
+
+#define VOXGI__MIN(a, b) ((a) < (b) ? (a) : (b))
+#define VOXGI__MAX(a, b) ((a) > (b) ? (a) : (b))
+
+/* ===================================================================== context, errors, memory */
+#ifndef VOXGI_NO_GL
+typedef struct voxgi__gl voxgi__gl;
+static voxgi_result voxgi__gl_init(voxgi_context *ctx);
+static void voxgi__gl_shutdown(voxgi_context *ctx);
+#endif
+
+struct voxgi_context {
+    voxgi_desc desc;               /* resolved */
+    voxgi_backend backend;
+    char error[4096];
+    char gl_version[160], gl_renderer[160];
+#ifndef VOXGI_NO_GL
+    voxgi__gl *gl;
+#endif
+};
+
+static double voxgi__now_ms(void)
+{
+#if defined(CLOCK_MONOTONIC) && !defined(_WIN32)
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+#elif !defined(_WIN32)
+    struct timeval tv;
+    gettimeofday(&tv, NULL);
+    return (double)tv.tv_sec * 1e3 + (double)tv.tv_usec * 1e-3;
+#else
+    return (double)clock() * 1e3 / (double)CLOCKS_PER_SEC;
+#endif
+}
+
+static void voxgi__log(const voxgi_context *ctx, voxgi_log_level level, const char *fmt, ...)
+{
+    char msg[1024];
+    va_list ap;
+    if (!ctx || !ctx->desc.logger.func) return;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    ctx->desc.logger.func(level, msg, ctx->desc.logger.user);
+}
+
+/* Records why a call failed (voxgi_last_error), logs it, and returns the result code. */
+static voxgi_result voxgi__fail(voxgi_context *ctx, voxgi_result r, const char *fmt, ...)
+{
+    va_list ap;
+    if (!ctx) return r;
+    va_start(ap, fmt);
+    vsnprintf(ctx->error, sizeof ctx->error, fmt, ap);
+    va_end(ap);
+    voxgi__log(ctx, VOXGI_LOG_ERROR, "%s: %s", voxgi_result_string(r), ctx->error);
+    return r;
+}
+
+static void *voxgi__alloc(voxgi_context *ctx, size_t size)
+{
+    if (size == 0) size = 1;
+    if (ctx->desc.allocator.alloc) return ctx->desc.allocator.alloc(size, ctx->desc.allocator.user);
+    return VOXGI_MALLOC(size);
+}
+static void voxgi__free(voxgi_context *ctx, void *p)
+{
+    if (!p) return;
+    if (ctx->desc.allocator.free) ctx->desc.allocator.free(p, ctx->desc.allocator.user);
+    else VOXGI_FREE(p);
+}
+/* Allocates count*size bytes, failing cleanly on overflow; zeroed when asked. */
+static void *voxgi__alloc_array(voxgi_context *ctx, size_t count, size_t size, int zero)
+{
+    void *p;
+    if (size && count > (size_t)-1 / size) return NULL;
+    p = voxgi__alloc(ctx, count * size);
+    if (p && zero) memset(p, 0, count * size);
+    return p;
+}
+
+/* Calls the progress hook; non-zero means the caller cancelled. */
+static int voxgi__progress(voxgi_context *ctx, double fraction, const char *stage)
+{
+    return ctx->desc.progress.func ? ctx->desc.progress.func(fraction, stage, ctx->desc.progress.user) : 0;
+}
+
+static int voxgi__core_count(void)
+{
+#if !defined(VOXGI_NO_THREADS) && defined(_SC_NPROCESSORS_ONLN)
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : (n > 256 ? 256 : (int)n);
+#else
+    return 1;
+#endif
+}
+
+/* Every default lives here: zero in a desc means "use this". */
+static voxgi_desc voxgi__desc_defaults(const voxgi_desc *in)
+{
+    voxgi_desc d = *in;
+    if (d.thread_count <= 0) d.thread_count = voxgi__core_count();
+#ifdef VOXGI_NO_THREADS
+    d.thread_count = 1;
+#endif
+    if (!d.allocator.alloc || !d.allocator.free) { d.allocator.alloc = NULL; d.allocator.free = NULL; }
+    return d;
+}
+
+VOXGI_API const char *voxgi_result_string(voxgi_result r)
+{
+    static const char *names[VOXGI_RESULT_COUNT_] = {
+        "VOXGI_OK", "VOXGI_ERR_INVALID_ARGUMENT", "VOXGI_ERR_INVALID_SCENE", "VOXGI_ERR_EMPTY_SCENE",
+        "VOXGI_ERR_INVALID_GRID", "VOXGI_ERR_TOO_LARGE", "VOXGI_ERR_OUT_OF_MEMORY",
+        "VOXGI_ERR_BUFFER_TOO_SMALL", "VOXGI_ERR_UNSUPPORTED", "VOXGI_ERR_GL_UNAVAILABLE",
+        "VOXGI_ERR_GL_MISSING_FUNCTION", "VOXGI_ERR_GL_SHADER", "VOXGI_ERR_GL", "VOXGI_ERR_CANCELLED",
+        "VOXGI_ERR_IO", "VOXGI_ERR_FORMAT"};
+    return ((unsigned)r < VOXGI_RESULT_COUNT_) ? names[r] : "VOXGI_ERR_UNKNOWN";
+}
+
+VOXGI_API const char *voxgi_backend_name(voxgi_backend b)
+{
+    switch (b) {
+    case VOXGI_BACKEND_AUTO: return "auto";
+    case VOXGI_BACKEND_CPU: return "cpu";
+    case VOXGI_BACKEND_GL: return "gl";
+    }
+    return "unknown";
+}
+
+VOXGI_API voxgi_result voxgi_create(const voxgi_desc *desc, voxgi_context **out)
+{
+    voxgi_desc d;
+    voxgi_context *ctx;
+    if (!out) return VOXGI_ERR_INVALID_ARGUMENT;
+    *out = NULL;
+    if (!desc) return VOXGI_ERR_INVALID_ARGUMENT;
+    if ((unsigned)desc->backend > (unsigned)VOXGI_BACKEND_GL) return VOXGI_ERR_INVALID_ARGUMENT;
+    d = voxgi__desc_defaults(desc);
+    ctx = (voxgi_context *)(d.allocator.alloc ? d.allocator.alloc(sizeof *ctx, d.allocator.user)
+                                              : VOXGI_MALLOC(sizeof *ctx));
+    if (!ctx) return VOXGI_ERR_OUT_OF_MEMORY;
+    memset(ctx, 0, sizeof *ctx);
+    ctx->desc = d;
+    ctx->backend = VOXGI_BACKEND_CPU;
+    if (d.backend != VOXGI_BACKEND_CPU) {
+#ifdef VOXGI_NO_GL
+        if (d.backend == VOXGI_BACKEND_GL) {
+            voxgi__log(ctx, VOXGI_LOG_ERROR, "the GL backend is compiled out (VOXGI_NO_GL)");
+            voxgi_destroy(ctx);
+            return VOXGI_ERR_UNSUPPORTED;
+        }
+        voxgi__log(ctx, VOXGI_LOG_INFO, "backend auto: CPU, because GL is compiled out (VOXGI_NO_GL)");
+#else
+        voxgi_result r = voxgi__gl_init(ctx);
+        if (r == VOXGI_OK) {
+            ctx->backend = VOXGI_BACKEND_GL;
+        } else if (d.backend == VOXGI_BACKEND_GL) {
+            voxgi_destroy(ctx);
+            return r;
+        } else {
+            voxgi__log(ctx, VOXGI_LOG_INFO, "backend auto: CPU, because GL is not usable: %s", ctx->error);
+            ctx->error[0] = 0;
+        }
+#endif
+    }
+    *out = ctx;
+    return VOXGI_OK;
+}
+
+VOXGI_API void voxgi_destroy(voxgi_context *ctx)
+{
+    voxgi_allocator a;
+    if (!ctx) return;
+#ifndef VOXGI_NO_GL
+    voxgi__gl_shutdown(ctx);
+#endif
+    a = ctx->desc.allocator;
+    if (a.free) a.free(ctx, a.user);
+    else VOXGI_FREE(ctx);
+}
+
+VOXGI_API voxgi_desc voxgi_query_desc(const voxgi_context *ctx)
+{
+    voxgi_desc d;
+    memset(&d, 0, sizeof d);
+    return ctx ? ctx->desc : d;
+}
+
+VOXGI_API void voxgi_query_info(const voxgi_context *ctx, voxgi_info *out)
+{
+    if (!out) return;
+    memset(out, 0, sizeof *out);
+    out->capabilities = "cpu"
+#ifndef VOXGI_NO_GL
+                        " gl"
+#endif
+#ifndef VOXGI_NO_THREADS
+                        " threads"
+#endif
+                        " conservative binvox";
+    out->gl_version = ctx ? ctx->gl_version : "";
+    out->gl_renderer = ctx ? ctx->gl_renderer : "";
+    if (!ctx) return;
+    out->backend = ctx->backend;
+    out->thread_count = ctx->desc.thread_count;
+}
+
+VOXGI_API const char *voxgi_last_error(const voxgi_context *ctx) { return ctx ? ctx->error : ""; }
+
+/* ===================================================================== exact arithmetic
+   Floating-point expansions (Priest; Shewchuk 1997): a real number held exactly as a sum of
+   non-overlapping doubles, smallest first. Sums and products of a few float coordinates and the
+   double grid are exact in this form, so the rare tests the double filter cannot decide are
+   decided here. Every routine drops zero components, so the sign is that of the last one. */
+typedef struct voxgi__xp { int n; double c[512]; } voxgi__xp;
+
+static void voxgi__two_sum(double a, double b, double *s, double *e)
+{
+    double x = a + b, bv = x - a, av = x - bv;
+    *s = x;
+    *e = (a - av) + (b - bv);
+}
+static void voxgi__two_prod(double a, double b, double *p, double *e)
+{
+    *p = a * b;
+    *e = fma(a, b, -*p);
+}
+/* h = e + b (h may alias e). */
+static void voxgi__xp_add1(voxgi__xp *h, const voxgi__xp *e, double b)
+{
+    double q = b, hh;
+    int i, n = 0, en = e->n;
+    for (i = 0; i < en; i++) {
+        voxgi__two_sum(q, e->c[i], &q, &hh);
+        if (hh != 0.0) h->c[n++] = hh;
+    }
+    if (q != 0.0 || n == 0) h->c[n++] = q;
+    h->n = n;
+}
+/* h += f */
+static void voxgi__xp_add(voxgi__xp *h, const voxgi__xp *f)
+{
+    int i;
+    for (i = 0; i < f->n; i++) voxgi__xp_add1(h, h, f->c[i]);
+}
+/* h = e * b */
+static void voxgi__xp_scale(voxgi__xp *h, const voxgi__xp *e, double b)
+{
+    double q, hh, p1, p0, sum;
+    int i, n = 0;
+    voxgi__two_prod(e->c[0], b, &q, &hh);
+    if (hh != 0.0) h->c[n++] = hh;
+    for (i = 1; i < e->n; i++) {
+        voxgi__two_prod(e->c[i], b, &p1, &p0);
+        voxgi__two_sum(q, p0, &sum, &hh);
+        if (hh != 0.0) h->c[n++] = hh;
+        voxgi__two_sum(p1, sum, &q, &hh);
+        if (hh != 0.0) h->c[n++] = hh;
+    }
+    if (q != 0.0 || n == 0) h->c[n++] = q;
+    h->n = n;
+}
+/* h = e * f (h must not alias either) */
+static void voxgi__xp_mul(voxgi__xp *h, const voxgi__xp *e, const voxgi__xp *f)
+{
+    voxgi__xp t;
+    int j;
+    h->n = 1; h->c[0] = 0.0;
+    for (j = 0; j < f->n; j++) {
+        voxgi__xp_scale(&t, e, f->c[j]);
+        voxgi__xp_add(h, &t);
+    }
+}
+static void voxgi__xp_neg(voxgi__xp *e)
+{
+    int i;
+    for (i = 0; i < e->n; i++) e->c[i] = -e->c[i];
+}
+static int voxgi__xp_sign(const voxgi__xp *e)
+{
+    double top = e->c[e->n - 1];
+    return (top > 0.0) - (top < 0.0);
+}
+/* x = a - b exactly */
+static void voxgi__xp_diff(voxgi__xp *x, double a, double b)
+{
+    double s, e;
+    voxgi__two_sum(a, -b, &s, &e);
+    x->n = 0;
+    if (e != 0.0) x->c[x->n++] = e;
+    x->c[x->n++] = s;
+    if (x->n == 2 && s == 0.0) x->n = 1;
+}
+/* x = o + k*s - w exactly: a grid plane's coordinate minus a vertex coordinate */
+static void voxgi__xp_plane_minus(voxgi__xp *x, double o, double k, double s, double w)
+{
+    double p, e;
+    voxgi__two_prod(k, s, &p, &e);
+    x->n = 1; x->c[0] = e;
+    voxgi__xp_add1(x, x, p);
+    voxgi__xp_add1(x, x, o);
+    voxgi__xp_add1(x, x, -w);
+}
+
+/* ===================================================================== scene validation */
+static const float *voxgi__vertex(const voxgi_mesh *m, size_t i)
+{
+    size_t stride = m->position_stride ? m->position_stride : 3 * sizeof(float);
+    return (const float *)(const void *)((const unsigned char *)m->positions + i * stride);
+}
+static size_t voxgi__mesh_triangles(const voxgi_mesh *m)
+{
+    return m->indices ? m->index_count / 3 : m->vertex_count / 3;
+}
+static uint32_t voxgi__mesh_index(const voxgi_mesh *m, size_t t, int corner)
+{
+    return m->indices ? m->indices[3 * t + (size_t)corner] : (uint32_t)(3 * t + (size_t)corner);
+}
+static int voxgi__finite3(const float *p)
+{
+    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+}
+
+/* Counts the triangles and checks every input a voxelizer or renderer reads. */
+static voxgi_result voxgi__validate(voxgi_context *ctx, const voxgi_scene *scene, size_t *triangles_out,
+                                    size_t *vertices_out)
+{
+    size_t mi, t, total_tris = 0, total_verts = 0;
+    if (!scene) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene is NULL");
+    if (scene->mesh_count && !scene->meshes)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "scene.meshes is NULL but mesh_count is %lu",
+                           (unsigned long)scene->mesh_count);
+    if (scene->material_count && !scene->materials)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "scene.materials is NULL but material_count is %lu",
+                           (unsigned long)scene->material_count);
+    for (mi = 0; mi < scene->mesh_count; mi++) {
+        const voxgi_mesh *m = &scene->meshes[mi];
+        size_t nt;
+        if (m->position_stride && m->position_stride < 3 * sizeof(float))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: position_stride %lu is less than 12 bytes",
+                               (unsigned long)mi, (unsigned long)m->position_stride);
+        if ((m->normal_stride && m->normal_stride < 3 * sizeof(float)) || (m->uv_stride && m->uv_stride < 2 * sizeof(float)))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: normal or uv stride too small", (unsigned long)mi);
+        if (m->vertex_count && !m->positions)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: positions is NULL but vertex_count is %lu",
+                               (unsigned long)mi, (unsigned long)m->vertex_count);
+        if (m->vertex_count > (size_t)UINT32_MAX)
+            return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "mesh %lu: %lu vertices exceed the 32-bit index range",
+                               (unsigned long)mi, (unsigned long)m->vertex_count);
+        if (m->vertex_count > (size_t)-1 / (m->position_stride ? m->position_stride : 12))
+            return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "mesh %lu: vertex_count * stride overflows", (unsigned long)mi);
+        if (m->indices == NULL && m->index_count)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: indices is NULL but index_count is %lu",
+                               (unsigned long)mi, (unsigned long)m->index_count);
+        if (m->indices && m->index_count % 3)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: index_count %lu is not a multiple of 3",
+                               (unsigned long)mi, (unsigned long)m->index_count);
+        if (!m->indices && m->vertex_count % 3)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE,
+                               "mesh %lu: non-indexed mesh with vertex_count %lu, not a multiple of 3",
+                               (unsigned long)mi, (unsigned long)m->vertex_count);
+        nt = voxgi__mesh_triangles(m);
+        for (t = 0; t < nt; t++) {
+            int c;
+            for (c = 0; c < 3; c++) {
+                uint32_t vi = voxgi__mesh_index(m, t, c);
+                if ((size_t)vi >= m->vertex_count)
+                    return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE,
+                                       "mesh %lu, triangle %lu: index %lu out of range (vertex_count %lu)",
+                                       (unsigned long)mi, (unsigned long)t, (unsigned long)vi,
+                                       (unsigned long)m->vertex_count);
+                if (!voxgi__finite3(voxgi__vertex(m, vi)))
+                    return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE,
+                                       "mesh %lu, triangle %lu: vertex %lu is not finite (NaN or infinity)",
+                                       (unsigned long)mi, (unsigned long)t, (unsigned long)vi);
+            }
+            {
+                uint32_t mat = m->material_ids ? m->material_ids[t] : m->material;
+                if (mat && (size_t)mat >= scene->material_count)
+                    return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE,
+                                       "mesh %lu, triangle %lu: material %lu out of range (material_count %lu)",
+                                       (unsigned long)mi, (unsigned long)t, (unsigned long)mat,
+                                       (unsigned long)scene->material_count);
+            }
+        }
+        if (total_tris + nt < total_tris || total_tris + nt > (size_t)INT32_MAX ||
+            total_verts + m->vertex_count > (size_t)UINT32_MAX)
+            return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the scene has more than 2^31 triangles or 2^32 vertices");
+        total_tris += nt;
+        total_verts += m->vertex_count;
+    }
+    if (total_tris == 0) return voxgi__fail(ctx, VOXGI_ERR_EMPTY_SCENE, "the scene has no triangles");
+    if (triangles_out) *triangles_out = total_tris;
+    if (vertices_out) *vertices_out = total_verts;
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_validate_scene(voxgi_context *ctx, const voxgi_scene *scene)
+{
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    return voxgi__validate(ctx, scene, NULL, NULL);
+}
+
+/* The scene as one tight vertex array and one index array, so later passes need no strides. */
+typedef struct voxgi__flat {
+    size_t vertex_count, triangle_count;
+    float *pos;        /* 3 per vertex */
+    uint32_t *tri;     /* 3 per triangle, into pos */
+} voxgi__flat;
+
+static void voxgi__flat_free(voxgi_context *ctx, voxgi__flat *f)
+{
+    voxgi__free(ctx, f->pos);
+    voxgi__free(ctx, f->tri);
+    memset(f, 0, sizeof *f);
+}
+
+static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene, voxgi__flat *f)
+{
+    size_t mi, t, v, nt, nv, tri_at = 0, vert_at = 0;
+    voxgi_result r = voxgi__validate(ctx, scene, &nt, &nv);
+    memset(f, 0, sizeof *f);
+    if (r != VOXGI_OK) return r;
+    f->pos = (float *)voxgi__alloc_array(ctx, nv, 3 * sizeof(float), 0);
+    f->tri = (uint32_t *)voxgi__alloc_array(ctx, nt, 3 * sizeof(uint32_t), 0);
+    if (!f->pos || !f->tri) {
+        voxgi__flat_free(ctx, f);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)nt);
+    }
+    for (mi = 0; mi < scene->mesh_count; mi++) {
+        const voxgi_mesh *m = &scene->meshes[mi];
+        size_t mt = voxgi__mesh_triangles(m);
+        for (v = 0; v < m->vertex_count; v++) memcpy(f->pos + 3 * (vert_at + v), voxgi__vertex(m, v), 3 * sizeof(float));
+        for (t = 0; t < mt; t++) {
+            int c;
+            for (c = 0; c < 3; c++) f->tri[3 * (tri_at + t) + (size_t)c] = (uint32_t)(vert_at + voxgi__mesh_index(m, t, c));
+        }
+        tri_at += mt;
+        vert_at += m->vertex_count;
+    }
+    f->vertex_count = nv;
+    f->triangle_count = nt;
+    return VOXGI_OK;
+}
+
+/* ===================================================================== grids */
+VOXGI_API uint64_t voxgi_grid_voxel_count(const voxgi_grid *g)
+{
+    if (!g || g->res[0] < 1 || g->res[1] < 1 || g->res[2] < 1) return 0;
+    return (uint64_t)g->res[0] * (uint64_t)g->res[1] * (uint64_t)g->res[2];
+}
+
+static uint64_t voxgi__grid_words(const voxgi_grid *g) { return (voxgi_grid_voxel_count(g) + 31u) / 32u; }
+
+VOXGI_API voxgi_result voxgi_validate_grid(voxgi_context *ctx, const voxgi_grid *g)
+{
+    int a;
+    uint64_t bytes;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!g) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "grid is NULL");
+    for (a = 0; a < 3; a++) {
+        if (g->res[a] < 1 || g->res[a] > VOXGI_MAX_RES)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_GRID, "grid resolution %d on axis %c is outside 1..%d",
+                               g->res[a], "xyz"[a], VOXGI_MAX_RES);
+        /* the range keeps every exact product of coordinates far from overflow and underflow */
+        if (!isfinite(g->origin[a]) || fabs(g->origin[a]) > 1e30)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_GRID, "grid origin %c = %g is not finite or beyond 1e30",
+                               "xyz"[a], g->origin[a]);
+    }
+    if (!(g->voxel_size >= 1e-30 && g->voxel_size <= 1e30))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_GRID, "voxel size %g is not in [1e-30, 1e30]", g->voxel_size);
+    bytes = voxgi__grid_words(g) * 4u;
+    if (bytes > (uint64_t)((size_t)-1 / 2))
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d bit grid does not fit in this address space",
+                           g->res[0], g->res[1], g->res[2]);
+    if (ctx->desc.memory_budget && bytes > (uint64_t)ctx->desc.memory_budget)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d bit grid needs %llu bytes, over the budget of %llu",
+                           g->res[0], g->res[1], g->res[2], (unsigned long long)bytes,
+                           (unsigned long long)ctx->desc.memory_budget);
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_fit_desc *fit,
+                                      voxgi_grid *out)
+{
+    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, ext = 0, s, pad;
+    size_t mi, t;
+    int a, res;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!fit || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "fit or out is NULL");
+    r = voxgi__validate(ctx, scene, NULL, NULL);
+    if (r != VOXGI_OK) return r;
+    res = fit->res ? fit->res : 64;
+    pad = fit->padding;
+    if (res < 1 || res > VOXGI_MAX_RES || !(pad >= 0) || 2 * pad >= res)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_GRID, "fit: res %d with padding %g leaves no room for the scene", res, pad);
+    for (mi = 0; mi < scene->mesh_count; mi++) {
+        const voxgi_mesh *m = &scene->meshes[mi];
+        size_t nt = voxgi__mesh_triangles(m);
+        for (t = 0; t < nt; t++) {
+            int c;
+            for (c = 0; c < 3; c++) {
+                const float *p = voxgi__vertex(m, voxgi__mesh_index(m, t, c));
+                for (a = 0; a < 3; a++) {
+                    lo[a] = VOXGI__MIN(lo[a], (double)p[a]);
+                    hi[a] = VOXGI__MAX(hi[a], (double)p[a]);
+                }
+            }
+        }
+    }
+    for (a = 0; a < 3; a++) ext = VOXGI__MAX(ext, hi[a] - lo[a]);
+    /* a flat or point scene still gets a usable voxel size */
+    s = ext > 0 ? ext / ((double)res - 2 * pad) : VOXGI__MAX(1e-6 * VOXGI__MAX(fabs(lo[0]), VOXGI__MAX(fabs(lo[1]), fabs(lo[2]))), 1e-6);
+    /* one ulp of slack so the far side of the scene never lands exactly outside the last voxel */
+    s *= 1.0 + 4 * DBL_EPSILON;
+    out->voxel_size = s;
+    for (a = 0; a < 3; a++) {
+        double n = fit->per_axis ? ceil((hi[a] - lo[a]) / s + 2 * pad) : (double)res;
+        if (n < 1) n = 1;
+        if (n > res) n = res;
+        out->res[a] = (int)n;
+        out->origin[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * n * s;
+    }
+    return voxgi_validate_grid(ctx, out);
+}
+
+/* ===================================================================== conservative voxelization: exact setup
+   A voxel is set exactly when its closed box meets the closed triangle. The test is Schwarz and
+   Seidel's (2010): bounding ranges, the triangle's plane against the box, and the triangle's
+   three axis-aligned projections against the box's squares, each an edge-function sign test at
+   a critical corner. Every sign is first computed in double with a rigorous forward error bound
+   (voxel units, relative to the triangle's own corner, so magnitudes stay small); a sign the
+   bound cannot certify is recomputed exactly from the float vertices and the double grid. When
+   all coordinates sit on a coarse binary lattice (integer or dyadic voxel coordinates, as in
+   axis-aligned models) the double arithmetic is itself exact and is used as such. */
+#define VOXGI__U (DBL_EPSILON * 0.5)
+#define VOXGI__GAMMA(k) ((k) * VOXGI__U / (1.0 - (k) * VOXGI__U))
+#define VOXGI__UNKNOWN 2
+
+typedef struct voxgi__vprep {
+    double q[3];           /* (v - o) / s in double: the vertex in voxel units */
+    int32_t lo[3], hi[3];  /* exact range of voxel indices whose closed box holds the coordinate */
+    int32_t frac_bits;     /* q is exact with at most this many fractional bits, or -1 */
+} voxgi__vprep;
+
+/* Exact sign of x - (o + k s): where a coordinate lies against a grid plane. */
+static int voxgi__cmp_grid_plane(double x, double o, double k, double s)
+{
+    double ks = k * s, d = (x - o) - ks, bound = 4 * VOXGI__U * (fabs(x) + fabs(o) + fabs(ks));
+    voxgi__xp e;
+    if (d > bound) return 1;
+    if (d < -bound) return -1;
+    voxgi__xp_plane_minus(&e, o, k, s, x);
+    return -voxgi__xp_sign(&e);
+}
+
+static void voxgi__prep_vertex(const float *v, const voxgi_grid *g, voxgi__vprep *out)
+{
+    int a, frac = 0;
+    for (a = 0; a < 3; a++) {
+        double x = v[a], o = g->origin[a], s = g->voxel_size, d = x - o, q = d / s, k;
+        out->q[a] = q;
+        if (!(q > -4.0)) { /* far below the grid (or not finite; such vertices are never used) */
+            out->lo[a] = out->hi[a] = -4;
+            frac = -1;
+            continue;
+        }
+        if (!(q < (double)g->res[a] + 4.0)) {
+            out->lo[a] = out->hi[a] = g->res[a] + 4;
+            frac = -1;
+            continue;
+        }
+        k = floor(q);
+        while (voxgi__cmp_grid_plane(x, o, k + 1, s) >= 0) k += 1;
+        while (voxgi__cmp_grid_plane(x, o, k, s) < 0) k -= 1;
+        out->hi[a] = (int32_t)k;
+        out->lo[a] = (int32_t)k - (voxgi__cmp_grid_plane(x, o, k, s) == 0);
+        /* q is a lattice value when x - o and the division were exact and few fraction bits remain */
+        if (frac >= 0) {
+            int f;
+            double se, pe, pp;
+            for (f = 0; f <= 30 && ldexp(q, f) != floor(ldexp(q, f)); f++) {}
+            voxgi__two_sum(x, -o, &pp, &se);
+            voxgi__two_prod(q, s, &pp, &pe);
+            if (f > 30 || se != 0.0 || pp != d || pe != 0.0) frac = -1;
+            else frac = VOXGI__MAX(frac, f);
+        }
+    }
+    out->frac_bits = frac;
+}
+
+typedef struct voxgi__tri {
+    int32_t lo[3], hi[3];      /* exact voxel range of the triangle, clipped to the grid */
+    int one_slice[3];          /* the unclipped range is a single voxel thick on this axis */
+    double r[3][3], dr[3][3];  /* vertices relative to lo (voxel units), error bounds */
+    double e[3][3], de[3][3];  /* edges v0->v1, v1->v2, v2->v0, error bounds */
+    double n[3], dn[3];        /* normal (v1-v0)x(v2-v0), error bounds */
+    double plane_err;          /* bound on the plane test's value */
+    double edge_err[3][3];     /* [plane][edge] bound on an edge test's value */
+    int sig[3];                /* exact sign of the normal per axis, or VOXGI__UNKNOWN */
+    int exact;                 /* all double arithmetic of the tests is exact */
+    uint32_t v[3];             /* vertex indices */
+} voxgi__tri;
+
+/* Read-only state shared by all workers of one voxelization. */
+typedef struct voxgi__vox_shared {
+    const voxgi_grid *grid;
+    const float *pos;
+    const uint32_t *tri;
+    const voxgi__vprep *vp;
+    uint32_t *bits;
+    double inv_s;
+} voxgi__vox_shared;
+
+/* Largest |c + off - r| over the triangle's voxel range, for one vertex coordinate. */
+static double voxgi__span(const voxgi__tri *t, int k, int a)
+{
+    double ext = (double)(t->hi[a] - t->lo[a] + 1);
+    return VOXGI__MAX(fabs(t->r[k][a]), fabs(ext - t->r[k][a])) * (1 + 4 * VOXGI__U);
+}
+
+/* Fills the triangle record; returns 0 when its range misses the grid. */
+static int voxgi__tri_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri *t)
+{
+    const voxgi_grid *g = vs->grid;
+    const voxgi__vprep *p[3];
+    int a, k, c;
+    double m = 0;
+    for (k = 0; k < 3; k++) {
+        t->v[k] = vs->tri[3 * ti + (size_t)k];
+        p[k] = &vs->vp[t->v[k]];
+    }
+    for (a = 0; a < 3; a++) {
+        t->lo[a] = VOXGI__MAX(0, VOXGI__MIN(p[0]->lo[a], VOXGI__MIN(p[1]->lo[a], p[2]->lo[a])));
+        t->hi[a] = VOXGI__MIN(g->res[a] - 1, VOXGI__MAX(p[0]->hi[a], VOXGI__MAX(p[1]->hi[a], p[2]->hi[a])));
+        if (t->lo[a] > t->hi[a]) return 0;
+        t->one_slice[a] = VOXGI__MIN(p[0]->lo[a], VOXGI__MIN(p[1]->lo[a], p[2]->lo[a])) ==
+                          VOXGI__MAX(p[0]->hi[a], VOXGI__MAX(p[1]->hi[a], p[2]->hi[a]));
+    }
+    for (k = 0; k < 3; k++)
+        for (a = 0; a < 3; a++) {
+            double q = p[k]->q[a];
+            t->r[k][a] = q - (double)t->lo[a];
+            t->dr[k][a] = p[k]->frac_bits >= 0 ? 0.0 : 2.01 * VOXGI__U * fabs(q) + VOXGI__U * fabs(t->r[k][a]);
+            m = VOXGI__MAX(m, VOXGI__MAX(fabs(t->r[k][a]), (double)(t->hi[a] - t->lo[a] + 1)));
+        }
+    /* Exact mode: numerators of edges and offsets need at most B bits, products 3B+3 <= 53. */
+    t->exact = 0;
+    if (p[0]->frac_bits >= 0 && p[1]->frac_bits >= 0 && p[2]->frac_bits >= 0) {
+        int fb = VOXGI__MAX(p[0]->frac_bits, VOXGI__MAX(p[1]->frac_bits, p[2]->frac_bits)), bits = 0;
+        while (ldexp(1.0, bits) < 2 * m + 1) bits++;
+        t->exact = bits + fb <= 16;
+    }
+    for (k = 0; k < 3; k++) {
+        int j = (k + 1) % 3;
+        for (a = 0; a < 3; a++) {
+            if (t->exact) {
+                t->e[k][a] = t->r[j][a] - t->r[k][a];
+                t->de[k][a] = 0;
+            } else {
+                /* from the floats themselves: exactly zero for equal coordinates, relative error 3u */
+                const float *wk = vs->pos + 3 * (size_t)t->v[k], *wj = vs->pos + 3 * (size_t)t->v[j];
+                t->e[k][a] = ((double)wj[a] - (double)wk[a]) * vs->inv_s;
+                t->de[k][a] = 3.01 * VOXGI__U * fabs(t->e[k][a]);
+            }
+        }
+    }
+    for (c = 0; c < 3; c++) {
+        int a1 = (c + 1) % 3, b1 = (c + 2) % 3;
+        /* n = e0 x f with f = v2 - v0 = -e2 */
+        double e0a = t->e[0][a1], e0b = t->e[0][b1], fa = -t->e[2][a1], fb = -t->e[2][b1];
+        double p1 = e0a * fb, p2 = e0b * fa;
+        t->n[c] = p1 - p2;
+        t->dn[c] = t->exact ? 0.0
+                            : (fabs(e0a) * t->de[2][b1] + fabs(fb) * t->de[0][a1] + t->de[0][a1] * t->de[2][b1] +
+                               fabs(e0b) * t->de[2][a1] + fabs(fa) * t->de[0][b1] + t->de[0][b1] * t->de[2][a1] +
+                               VOXGI__GAMMA(2) * (fabs(p1) + fabs(p2))) * 1.001;
+        if (t->n[c] > t->dn[c]) t->sig[c] = 1;
+        else if (t->n[c] < -t->dn[c]) t->sig[c] = -1;
+        else t->sig[c] = t->dn[c] == 0.0 ? 0 : VOXGI__UNKNOWN;
+    }
+    if (t->exact) {
+        t->plane_err = 0;
+        memset(t->edge_err, 0, sizeof t->edge_err);
+    } else {
+        double s = 0, r = 0;
+        for (a = 0; a < 3; a++) {
+            double T = voxgi__span(t, 0, a), dt = t->dr[0][a] + VOXGI__U * T;
+            s += fabs(t->n[a]) * dt + T * t->dn[a] + t->dn[a] * dt;
+            r += fabs(t->n[a]) * T;
+        }
+        t->plane_err = (s + VOXGI__GAMMA(3) * r * 1.01) * 1.001;
+        for (c = 0; c < 3; c++) {
+            int a1 = (c + 1) % 3, b1 = (c + 2) % 3;
+            for (k = 0; k < 3; k++) {
+                /* m = (-e_b, e_a) from edge k, evaluated against vertex k */
+                double Ta = voxgi__span(t, k, a1), Tb = voxgi__span(t, k, b1);
+                double dta = t->dr[k][a1] + VOXGI__U * Ta, dtb = t->dr[k][b1] + VOXGI__U * Tb;
+                double ma = fabs(t->e[k][b1]), mb = fabs(t->e[k][a1]), dma = t->de[k][b1], dmb = t->de[k][a1];
+                t->edge_err[c][k] = (ma * dta + Ta * dma + dma * dta + mb * dtb + Tb * dmb + dmb * dtb +
+                                     VOXGI__GAMMA(2) * (ma * Ta + mb * Tb) * 1.01) * 1.001;
+            }
+        }
+    }
+    return 1;
+}
+
+static int voxgi__sign_within(double v, double err)
+{
+    if (v > err) return 1;
+    if (v < -err) return -1;
+    return err == 0.0 ? 0 : VOXGI__UNKNOWN;
+}
+
+/* ----- exact fallbacks: world floats and the double grid, no rounding anywhere */
+static void voxgi__exact_normal(const voxgi__vox_shared *vs, const voxgi__tri *t, int c, voxgi__xp *n)
+{
+    const float *w0 = vs->pos + 3 * (size_t)t->v[0], *w1 = vs->pos + 3 * (size_t)t->v[1], *w2 = vs->pos + 3 * (size_t)t->v[2];
+    int a = (c + 1) % 3, b = (c + 2) % 3;
+    voxgi__xp ea, eb, fa, fb, p;
+    voxgi__xp_diff(&ea, w1[a], w0[a]);
+    voxgi__xp_diff(&eb, w1[b], w0[b]);
+    voxgi__xp_diff(&fa, w2[a], w0[a]);
+    voxgi__xp_diff(&fb, w2[b], w0[b]);
+    voxgi__xp_mul(n, &ea, &fb);
+    voxgi__xp_mul(&p, &eb, &fa);
+    voxgi__xp_neg(&p);
+    voxgi__xp_add(n, &p);
+}
+
+/* Sign of n . (corner - v0) at absolute voxel corner index corner[3]. */
+static int voxgi__exact_plane(const voxgi__vox_shared *vs, const voxgi__tri *t, const int64_t corner[3])
+{
+    const float *w0 = vs->pos + 3 * (size_t)t->v[0];
+    voxgi__xp sum, n, x, prod;
+    int a;
+    sum.n = 1; sum.c[0] = 0;
+    for (a = 0; a < 3; a++) {
+        voxgi__exact_normal(vs, t, a, &n);
+        voxgi__xp_plane_minus(&x, vs->grid->origin[a], (double)corner[a], vs->grid->voxel_size, w0[a]);
+        voxgi__xp_mul(&prod, &n, &x);
+        voxgi__xp_add(&sum, &prod);
+    }
+    return voxgi__xp_sign(&sum);
+}
+
+/* Sign of (-d_b, d_a) . (corner - w_k) in plane c, d = edge k in world units (unoriented). */
+static int voxgi__exact_edge(const voxgi__vox_shared *vs, const voxgi__tri *t, int c, int k, const int64_t corner[3])
+{
+    const float *wk = vs->pos + 3 * (size_t)t->v[k], *wj = vs->pos + 3 * (size_t)t->v[(k + 1) % 3];
+    int a = (c + 1) % 3, b = (c + 2) % 3;
+    voxgi__xp da, db, xa, xb, s, p;
+    voxgi__xp_diff(&da, wj[a], wk[a]);
+    voxgi__xp_diff(&db, wj[b], wk[b]);
+    voxgi__xp_plane_minus(&xa, vs->grid->origin[a], (double)corner[a], vs->grid->voxel_size, wk[a]);
+    voxgi__xp_plane_minus(&xb, vs->grid->origin[b], (double)corner[b], vs->grid->voxel_size, wk[b]);
+    voxgi__xp_mul(&s, &da, &xb);
+    voxgi__xp_mul(&p, &db, &xa);
+    voxgi__xp_neg(&p);
+    voxgi__xp_add(&s, &p);
+    return voxgi__xp_sign(&s);
+}
+
+/* Makes every sign of the normal exact (CPU only; the GL pass hands such triangles over). */
+static void voxgi__tri_resolve_signs(const voxgi__vox_shared *vs, voxgi__tri *t, uint64_t *exact_tests)
+{
+    int c;
+    for (c = 0; c < 3; c++)
+        if (t->sig[c] == VOXGI__UNKNOWN) {
+            voxgi__xp n;
+            voxgi__exact_normal(vs, t, c, &n);
+            t->sig[c] = voxgi__xp_sign(&n);
+            ++*exact_tests;
+        }
+}
+
+/* ----- the tests; rel[] is the voxel index relative to t->lo */
+
+/* Plane of the triangle against the box: passes when the plane meets the closed box. */
+static int voxgi__test_plane(const voxgi__vox_shared *vs, const voxgi__tri *t, const int32_t rel[3], uint64_t *exact_tests)
+{
+    int side;
+    for (side = 0; side < 2; side++) {
+        double f = 0;
+        int a, s;
+        int64_t corner[3];
+        for (a = 0; a < 3; a++) {
+            /* side 0: the corner minimising n.p, side 1: maximising */
+            int off = side ? (t->sig[a] > 0) : (t->sig[a] < 0);
+            corner[a] = (int64_t)rel[a] + off;
+            f += t->n[a] * ((double)(rel[a] + off) - t->r[0][a]);
+        }
+        s = voxgi__sign_within(f, t->plane_err);
+        if (s == VOXGI__UNKNOWN) {
+            for (a = 0; a < 3; a++) corner[a] += t->lo[a];
+            s = voxgi__exact_plane(vs, t, corner);
+            ++*exact_tests;
+        }
+        if (side == 0 ? s > 0 : s < 0) return 0;
+    }
+    return 1;
+}
+
+/* One edge function of the projection onto the plane normal to axis c.
+   orient = +1/-1: one-sided test with the inward normal orient*(-e_b, e_a), passes when >= 0.
+   orient = 0: the projection is a segment along edge k; two-sided: the line meets the square. */
+static int voxgi__test_edge(const voxgi__vox_shared *vs, const voxgi__tri *t, int c, int k, int orient,
+                            const int32_t rel[3], uint64_t *exact_tests)
+{
+    int a = (c + 1) % 3, b = (c + 2) % 3, side;
+    double ma = -t->e[k][b], mb = t->e[k][a];
+    for (side = (orient ? 1 : 0); side < 2; side++) {
+        /* side 0: the corner minimising m.p; side 1: maximising */
+        double sa = orient ? orient * ma : ma, sb = orient ? orient * mb : mb;
+        int offa = side ? (sa > 0) : (sa < 0), offb = side ? (sb > 0) : (sb < 0), s;
+        double g = sa * ((double)(rel[a] + offa) - t->r[k][a]) + sb * ((double)(rel[b] + offb) - t->r[k][b]);
+        s = voxgi__sign_within(g, t->edge_err[c][k]);
+        if (s == VOXGI__UNKNOWN) {
+            int64_t corner[3];
+            corner[a] = (int64_t)t->lo[a] + rel[a] + offa;
+            corner[b] = (int64_t)t->lo[b] + rel[b] + offb;
+            corner[c] = 0;
+            s = voxgi__exact_edge(vs, t, c, k, corner) * (orient ? orient : 1);
+            ++*exact_tests;
+        }
+        if (side == 0 ? s > 0 : s < 0) return 0;
+    }
+    return 1;
+}
+
+/* The edge whose projection onto plane c is longest (for segment-shaped projections), or -1. */
+static int voxgi__longest_projected_edge(const voxgi__tri *t, int c)
+{
+    int a = (c + 1) % 3, b = (c + 2) % 3, k, best = -1;
+    double len = 0;
+    for (k = 0; k < 3; k++) {
+        double l = fabs(t->e[k][a]) + fabs(t->e[k][b]);
+        if (l > len) { len = l; best = k; }
+    }
+    return best;
+}
+
+/* The projection of the triangle onto the plane normal to axis c against the voxel's square. */
+static int voxgi__test_projection(const voxgi__vox_shared *vs, const voxgi__tri *t, int c, const int32_t rel[3],
+                                  uint64_t *exact_tests)
+{
+    int k;
+    if (t->sig[c] == 0) {
+        k = voxgi__longest_projected_edge(t, c);
+        return k < 0 || voxgi__test_edge(vs, t, c, k, 0, rel, exact_tests);
+    }
+    for (k = 0; k < 3; k++)
+        if (!voxgi__test_edge(vs, t, c, k, t->sig[c], rel, exact_tests)) return 0;
+    return 1;
+}
+
+#ifndef VOXGI_NO_GL
+/* The complete exact test of one voxel (any triangle, degenerate or not): the GL pass's referee. */
+static int voxgi__test_voxel(const voxgi__vox_shared *vs, const voxgi__tri *t, const int32_t rel[3], uint64_t *exact_tests)
+{
+    int a;
+    for (a = 0; a < 3; a++)
+        if (rel[a] < 0 || rel[a] > t->hi[a] - t->lo[a]) return 0;
+    if ((t->sig[0] | t->sig[1] | t->sig[2]) != 0 && !voxgi__test_plane(vs, t, rel, exact_tests)) return 0;
+    for (a = 0; a < 3; a++)
+        if (!voxgi__test_projection(vs, t, a, rel, exact_tests)) return 0;
+    return 1;
+}
+#endif
+
+/* ----- CPU conservative voxelizer */
+static void voxgi__set_voxel(const voxgi__vox_shared *vs, int64_t i, int64_t j, int64_t k)
+{
+    const voxgi_grid *g = vs->grid;
+    uint64_t idx = (uint64_t)i + (uint64_t)g->res[0] * ((uint64_t)j + (uint64_t)g->res[1] * (uint64_t)k);
+    uint32_t *w = vs->bits + (idx >> 5), mask = 1u << (idx & 31u);
+    if (!(*w & mask)) VOXGI__ATOMIC_OR_U32(w, mask);
+}
+
+static void voxgi__fill_range(const voxgi__vox_shared *vs, const int32_t lo[3], const int32_t hi[3])
+{
+    int32_t i, j, k;
+    for (k = lo[2]; k <= hi[2]; k++)
+        for (j = lo[1]; j <= hi[1]; j++)
+            for (i = lo[0]; i <= hi[0]; i++) voxgi__set_voxel(vs, i, j, k);
+}
+
+/* Index range [ceil(lo)-1, floor(hi)] of closed unit cells meeting [lo, hi], clipped to [0, max]. */
+static void voxgi__cell_range(double lo, double hi, int32_t max, int32_t *first, int32_t *last)
+{
+    double f = ceil(lo) - 1, l = floor(hi);
+    *first = f < 0 ? 0 : (f > max ? max + 1 : (int32_t)f);
+    *last = l > max ? max : (l < 0 ? -1 : (int32_t)l);
+}
+
+/* Degenerate triangles are the union of their edges: each edge is voxelized as a segment, slab
+   by slab along its longest axis, with the exact line tests of all three projections. */
+static void voxgi__voxelize_segment(const voxgi__vox_shared *vs, const voxgi__tri *t, int k, uint64_t *exact_tests)
+{
+    const voxgi__vprep *p = &vs->vp[t->v[k]], *q = &vs->vp[t->v[(k + 1) % 3]];
+    int32_t lo[3], hi[3], rel[3];
+    int a, b, c, ax = 0;
+    double m = 1e-3, len;
+    for (a = 0; a < 3; a++) {
+        /* the segment's own exact range, relative to the triangle's */
+        lo[a] = VOXGI__MAX(t->lo[a], VOXGI__MIN(p->lo[a], q->lo[a])) - t->lo[a];
+        hi[a] = VOXGI__MIN(t->hi[a], VOXGI__MAX(p->hi[a], q->hi[a])) - t->lo[a];
+        if (lo[a] > hi[a]) return;
+        if (fabs(t->e[k][a]) > fabs(t->e[k][ax])) ax = a;
+        m += 1e-6 * (fabs(t->r[k][a]) + fabs(t->e[k][a]));
+    }
+    len = t->e[k][ax];
+    if (len == 0) return; /* a point: the other edges cover it */
+    b = (ax + 1) % 3;
+    c = (ax + 2) % 3;
+    for (rel[ax] = lo[ax]; rel[ax] <= hi[ax]; rel[ax]++) {
+        double t0 = ((double)rel[ax] - m - t->r[k][ax]) / len, t1 = ((double)rel[ax] + 1 + m - t->r[k][ax]) / len;
+        int32_t b0, b1, c0, c1;
+        if (t0 > t1) { double s = t0; t0 = t1; t1 = s; }
+        t0 = VOXGI__MAX(t0, 0.0);
+        t1 = VOXGI__MIN(t1, 1.0);
+        if (t0 > t1) continue;
+        {
+            double ub0 = t->r[k][b] + t0 * t->e[k][b], ub1 = t->r[k][b] + t1 * t->e[k][b];
+            double uc0 = t->r[k][c] + t0 * t->e[k][c], uc1 = t->r[k][c] + t1 * t->e[k][c];
+            voxgi__cell_range(VOXGI__MIN(ub0, ub1) - m, VOXGI__MAX(ub0, ub1) + m, hi[b], &b0, &b1);
+            voxgi__cell_range(VOXGI__MIN(uc0, uc1) - m, VOXGI__MAX(uc0, uc1) + m, hi[c], &c0, &c1);
+        }
+        for (rel[c] = VOXGI__MAX(c0, lo[c]); rel[c] <= c1; rel[c]++)
+            for (rel[b] = VOXGI__MAX(b0, lo[b]); rel[b] <= b1; rel[b]++) {
+                int plane, ok = 1;
+                for (plane = 0; plane < 3 && ok; plane++) {
+                    int pa = (plane + 1) % 3, pb = (plane + 2) % 3;
+                    if (t->e[k][pa] != 0 || t->e[k][pb] != 0) ok = voxgi__test_edge(vs, t, plane, k, 0, rel, exact_tests);
+                }
+                if (ok) voxgi__set_voxel(vs, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
+            }
+    }
+}
+
+static void voxgi__voxelize_triangle(const voxgi__vox_shared *vs, size_t ti, uint64_t *exact_tests)
+{
+    voxgi__tri t;
+    int32_t ext[3], rel[3];
+    int a, b, c, thin = 0, single = -1;
+    if (!voxgi__tri_setup(vs, ti, &t)) return;
+    for (a = 0; a < 3; a++) {
+        ext[a] = t.hi[a] - t.lo[a] + 1;
+        if (t.one_slice[a]) { thin++; single = a; }
+    }
+    /* a single column or voxel: every voxel of the exact range meets the triangle */
+    if (thin >= 2) { voxgi__fill_range(vs, t.lo, t.hi); return; }
+    voxgi__tri_resolve_signs(vs, &t, exact_tests);
+    if ((t.sig[0] | t.sig[1] | t.sig[2]) == 0) {
+        if (t.e[0][0] == 0 && t.e[0][1] == 0 && t.e[0][2] == 0 && t.e[1][0] == 0 && t.e[1][1] == 0 && t.e[1][2] == 0) {
+            voxgi__fill_range(vs, t.lo, t.hi); /* a point */
+            return;
+        }
+        for (a = 0; a < 3; a++) voxgi__voxelize_segment(vs, &t, a, exact_tests);
+        return;
+    }
+    /* Columns along c: a single slice's own axis (then its projection decides alone), else the
+       dominant normal axis, where the plane crosses each column in at most three voxels. */
+    if (single >= 0) c = single;
+    else {
+        c = -1;
+        for (a = 0; a < 3; a++)
+            if (t.sig[a] != 0 && (c < 0 || fabs(t.n[a]) > fabs(t.n[c]))) c = a;
+    }
+    a = (c + 1) % 3;
+    b = (c + 2) % 3;
+    for (rel[b] = 0; rel[b] < ext[b]; rel[b]++)
+        for (rel[a] = 0; rel[a] < ext[a]; rel[a]++) {
+            int32_t k0, k1;
+            rel[c] = 0;
+            if (!voxgi__test_projection(vs, &t, c, rel, exact_tests)) continue;
+            if (single >= 0) {
+                voxgi__set_voxel(vs, (int64_t)t.lo[0] + rel[0], (int64_t)t.lo[1] + rel[1], (int64_t)t.lo[2] + rel[2]);
+                continue;
+            }
+            {
+                double nc = t.n[c], dsum = t.dn[0] + t.dn[1] + t.dn[2];
+                if (fabs(nc) <= 4 * dsum) { k0 = 0; k1 = ext[c] - 1; } /* slopes unreliable: whole range */
+                else {
+                    double ka = -t.n[a] / nc, kb = -t.n[b] / nc;
+                    double Da = fabs((double)rel[a] - t.r[0][a]) + 1, Db = fabs((double)rel[b] - t.r[0][b]) + 1;
+                    double z0 = t.r[0][c] + ka * ((double)rel[a] - t.r[0][a]) + kb * ((double)rel[b] - t.r[0][b]);
+                    double dka = (t.dn[a] + fabs(ka) * t.dn[c]) / (fabs(nc) - t.dn[c]);
+                    double dkb = (t.dn[b] + fabs(kb) * t.dn[c]) / (fabs(nc) - t.dn[c]);
+                    double m = 2 * (dka * Da + dkb * Db) + 2 * (t.dr[0][c] + fabs(ka) * t.dr[0][a] + fabs(kb) * t.dr[0][b]) +
+                               1e-9 * (1 + fabs(z0) + fabs(ka) * Da + fabs(kb) * Db);
+                    double zmin = z0 + VOXGI__MIN(ka, 0.0) + VOXGI__MIN(kb, 0.0), zmax = z0 + VOXGI__MAX(ka, 0.0) + VOXGI__MAX(kb, 0.0);
+                    voxgi__cell_range(zmin - m, zmax + m, ext[c] - 1, &k0, &k1);
+                }
+            }
+            for (rel[c] = k0; rel[c] <= k1; rel[c]++)
+                if (voxgi__test_plane(vs, &t, rel, exact_tests) && voxgi__test_projection(vs, &t, a, rel, exact_tests) &&
+                    voxgi__test_projection(vs, &t, b, rel, exact_tests))
+                    voxgi__set_voxel(vs, (int64_t)t.lo[0] + rel[0], (int64_t)t.lo[1] + rel[1], (int64_t)t.lo[2] + rel[2]);
+        }
+}
+
+/* ----- worker pool: triangles are handed out in chunks; OR is order-free, so the bits do not
+   depend on the thread count or schedule. */
+typedef struct voxgi__vox_job {
+    const voxgi__vox_shared *vs;
+    size_t triangle_count, next;
+    int cancel;
+    uint64_t exact_tests;
+} voxgi__vox_job;
+
+#define VOXGI__CHUNK 64
+
+static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress)
+{
+    uint64_t exact = 0;
+    for (;;) {
+        size_t first = VOXGI__ATOMIC_ADD_SIZE(&job->next, (size_t)VOXGI__CHUNK), t, end;
+        if (first >= job->triangle_count || VOXGI__ATOMIC_LOAD_INT(&job->cancel)) break;
+        end = VOXGI__MIN(first + VOXGI__CHUNK, job->triangle_count);
+        for (t = first; t < end; t++) voxgi__voxelize_triangle(job->vs, t, &exact);
+        if (ctx_for_progress && (first / VOXGI__CHUNK) % 64 == 0 &&
+            voxgi__progress(ctx_for_progress, (double)end / (double)job->triangle_count, "voxelize"))
+            VOXGI__ATOMIC_STORE_INT(&job->cancel, 1);
+    }
+    VOXGI__ATOMIC_ADD_SIZE(&job->exact_tests, exact);
+}
+
+#ifndef VOXGI_NO_THREADS
+static void *voxgi__vox_thread(void *p)
+{
+    voxgi__vox_work((voxgi__vox_job *)p, NULL);
+    return NULL;
+}
+#endif
+
+/* Runs the CPU voxelizer over all triangles into vs->bits (which the caller zeroed). */
+static voxgi_result voxgi__voxelize_cpu_run(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
+                                            uint64_t *exact_tests)
+{
+    voxgi__vox_job job;
+    int started = 0;
+#ifndef VOXGI_NO_THREADS
+    pthread_t threads[256];
+    int i, want = ctx->desc.thread_count - 1;
+    if ((size_t)want > triangle_count / VOXGI__CHUNK) want = (int)(triangle_count / VOXGI__CHUNK);
+#endif
+    memset(&job, 0, sizeof job);
+    job.vs = vs;
+    job.triangle_count = triangle_count;
+#ifndef VOXGI_NO_THREADS
+    for (i = 0; i < want && i < 256; i++) {
+        if (pthread_create(&threads[i], NULL, voxgi__vox_thread, &job) != 0) break;
+        started++;
+    }
+#endif
+    voxgi__vox_work(&job, ctx); /* the calling thread works too, and reports progress */
+#ifndef VOXGI_NO_THREADS
+    for (i = 0; i < started; i++) pthread_join(threads[i], NULL);
+#else
+    (void)started;
+#endif
+    *exact_tests += job.exact_tests;
+    if (job.cancel) return voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "voxelization cancelled by the progress callback");
+    return VOXGI_OK;
+}
+
+static voxgi_result voxgi__prep_vertices(voxgi_context *ctx, const voxgi__flat *f, const voxgi_grid *g, voxgi__vprep **out)
+{
+    size_t v;
+    voxgi__vprep *vp = (voxgi__vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *vp, 0);
+    *out = vp;
+    if (!vp) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
+    for (v = 0; v < f->vertex_count; v++) voxgi__prep_vertex(f->pos + 3 * v, g, &vp[v]);
+    return VOXGI_OK;
+}
+
+static uint64_t voxgi__popcount_words(const uint32_t *w, uint64_t n)
+{
+    uint64_t i, c = 0;
+    for (i = 0; i < n; i++) {
+        uint32_t x = w[i];
+        x = x - ((x >> 1) & 0x55555555u);
+        x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+        c += (((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
+    }
+    return c;
+}
+
+/* ===================================================================== voxel results */
+struct voxgi_voxels {
+    voxgi_voxels_info info;
+    uint32_t *bits;            /* CPU backend */
+    unsigned int gl_buffer;    /* GL backend */
+};
+
+VOXGI_API void voxgi_voxels_query(const voxgi_voxels *v, voxgi_voxels_info *out)
+{
+    if (!out) return;
+    if (!v) { memset(out, 0, sizeof *out); return; }
+    *out = v->info;
+}
+
+#ifndef VOXGI_NO_GL
+static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                       const voxgi_voxelize_desc *d, voxgi_voxels *out);
+static voxgi_result voxgi__gl_read_buffer(voxgi_context *ctx, unsigned int buffer, void *dst, size_t bytes);
+static void voxgi__gl_delete_buffer(voxgi_context *ctx, unsigned int buffer);
+#endif
+
+VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxelize_desc *desc,
+                                      voxgi_voxels **out)
+{
+    voxgi__flat flat;
+    voxgi__vprep *vp = NULL;
+    voxgi_voxels *vox;
+    voxgi_result r;
+    double t0 = voxgi__now_ms();
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or out is NULL");
+    *out = NULL;
+    if (desc->method != VOXGI_METHOD_CONSERVATIVE)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown voxelization method %d", (int)desc->method);
+    r = voxgi_validate_grid(ctx, &desc->grid);
+    if (r != VOXGI_OK) return r;
+    r = voxgi__flatten(ctx, scene, &flat);
+    if (r != VOXGI_OK) return r;
+    vox = (voxgi_voxels *)voxgi__alloc_array(ctx, 1, sizeof *vox, 1);
+    if (!vox) { voxgi__flat_free(ctx, &flat); return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the result"); }
+    vox->info.grid = desc->grid;
+    vox->info.method = desc->method;
+    vox->info.backend = ctx->backend;
+    vox->info.triangle_count = flat.triangle_count;
+    vox->info.bytes = (size_t)(voxgi__grid_words(&desc->grid) * 4u);
+    r = voxgi__prep_vertices(ctx, &flat, &desc->grid, &vp);
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU) {
+        voxgi__vox_shared vs;
+        vox->bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)voxgi__grid_words(&desc->grid), 4, 1);
+        if (!vox->bits) {
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %dx%dx%d bit grid (%lu bytes)", desc->grid.res[0],
+                            desc->grid.res[1], desc->grid.res[2], (unsigned long)vox->info.bytes);
+        } else {
+            vs.grid = &desc->grid;
+            vs.pos = flat.pos;
+            vs.tri = flat.tri;
+            vs.vp = vp;
+            vs.bits = vox->bits;
+            vs.inv_s = 1.0 / desc->grid.voxel_size;
+            r = voxgi__voxelize_cpu_run(ctx, &vs, flat.triangle_count, &vox->info.exact_tests);
+            if (r == VOXGI_OK) vox->info.voxel_count = voxgi__popcount_words(vox->bits, voxgi__grid_words(&desc->grid));
+        }
+    }
+#ifndef VOXGI_NO_GL
+    else if (r == VOXGI_OK) r = voxgi__voxelize_gl(ctx, &flat, vp, desc, vox);
+#endif
+    voxgi__free(ctx, vp);
+    voxgi__flat_free(ctx, &flat);
+    if (r != VOXGI_OK) { voxgi_voxels_destroy(ctx, vox); return r; }
+    vox->info.ms = voxgi__now_ms() - t0;
+    *out = vox;
+    return VOXGI_OK;
+}
+
+VOXGI_API void voxgi_voxels_destroy(voxgi_context *ctx, voxgi_voxels *v)
+{
+    if (!ctx || !v) return;
+#ifndef VOXGI_NO_GL
+    if (v->gl_buffer) voxgi__gl_delete_buffer(ctx, v->gl_buffer);
+#endif
+    voxgi__free(ctx, v->bits);
+    voxgi__free(ctx, v);
+}
+
+VOXGI_API voxgi_result voxgi_voxels_read(voxgi_context *ctx, const voxgi_voxels *v, uint32_t *dst, size_t dst_bytes,
+                                         size_t *needed)
+{
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!v) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels is NULL");
+    if (needed) *needed = v->info.bytes;
+    if (!dst) return needed ? VOXGI_OK : voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "dst and needed are both NULL");
+    if (dst_bytes < v->info.bytes)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "the bit grid needs %lu bytes, dst has %lu",
+                           (unsigned long)v->info.bytes, (unsigned long)dst_bytes);
+    if (v->bits) { memcpy(dst, v->bits, v->info.bytes); return VOXGI_OK; }
+#ifndef VOXGI_NO_GL
+    if (v->gl_buffer) return voxgi__gl_read_buffer(ctx, v->gl_buffer, dst, v->info.bytes);
+#endif
+    return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels hold no data");
+}
+
+VOXGI_API voxgi_result voxgi_voxels_gl_buffer(voxgi_context *ctx, const voxgi_voxels *v, unsigned int *name)
+{
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!v || !name) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels or name is NULL");
+    if (!v->gl_buffer) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "these voxels live on the CPU, not in a GL buffer");
+    *name = v->gl_buffer;
+    return VOXGI_OK;
+}
+
+/* ===================================================================== binvox files */
+VOXGI_API voxgi_result voxgi_binvox_write(FILE *f, const voxgi_grid *g, const uint32_t *bits)
+{
+    int x, y, z, dmax;
+    int value = -1, run = 0;
+    if (!f || !g || !bits || voxgi_grid_voxel_count(g) == 0) return VOXGI_ERR_INVALID_ARGUMENT;
+    dmax = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2]));
+    /* %.17g round-trips every double */
+    fprintf(f, "#binvox 1\ndim %d %d %d\ntranslate %.17g %.17g %.17g\nscale %.17g\ndata\n", g->res[0], g->res[2], g->res[1],
+            g->origin[0], g->origin[1], g->origin[2], g->voxel_size * dmax);
+    for (x = 0; x < g->res[0]; x++)
+        for (z = 0; z < g->res[2]; z++)
+            for (y = 0; y < g->res[1]; y++) {
+                uint64_t idx = (uint64_t)x + (uint64_t)g->res[0] * ((uint64_t)y + (uint64_t)g->res[1] * (uint64_t)z);
+                int b = voxgi_bit_get(bits, idx);
+                if (b == value && run < 255) { run++; continue; }
+                if (run) { fputc(value, f); fputc(run, f); }
+                value = b;
+                run = 1;
+            }
+    fputc(value, f);
+    fputc(run, f);
+    return ferror(f) ? VOXGI_ERR_IO : VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *g, uint32_t *bits, size_t bits_bytes, size_t *needed)
+{
+    char line[256];
+    int dims[3] = {0, 0, 0}, have_dim = 0, have_data = 0, dmax;
+    double tr[3] = {0, 0, 0}, scale = 1;
+    uint64_t total, at = 0, x = 0, y = 0, z = 0;
+    if (!f || !g) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!fgets(line, sizeof line, f) || strncmp(line, "#binvox", 7) != 0) return VOXGI_ERR_FORMAT;
+    while (fgets(line, sizeof line, f)) {
+        if (strncmp(line, "dim", 3) == 0) have_dim = sscanf(line + 3, "%d %d %d", &dims[0], &dims[1], &dims[2]) == 3;
+        else if (strncmp(line, "translate", 9) == 0) { if (sscanf(line + 9, "%lf %lf %lf", &tr[0], &tr[1], &tr[2]) != 3) return VOXGI_ERR_FORMAT; }
+        else if (strncmp(line, "scale", 5) == 0) { if (sscanf(line + 5, "%lf", &scale) != 1) return VOXGI_ERR_FORMAT; }
+        else if (strncmp(line, "data", 4) == 0) { have_data = 1; break; }
+        else return VOXGI_ERR_FORMAT;
+    }
+    if (!have_dim || !have_data || dims[0] < 1 || dims[1] < 1 || dims[2] < 1 || dims[0] > VOXGI_MAX_RES ||
+        dims[1] > VOXGI_MAX_RES || dims[2] > VOXGI_MAX_RES || !(scale > 0) || !isfinite(scale))
+        return VOXGI_ERR_FORMAT;
+    /* binvox's dim line is depth (x), height (z), width (y) */
+    g->res[0] = dims[0];
+    g->res[2] = dims[1];
+    g->res[1] = dims[2];
+    g->origin[0] = tr[0];
+    g->origin[1] = tr[1];
+    g->origin[2] = tr[2];
+    dmax = VOXGI__MAX(dims[0], VOXGI__MAX(dims[1], dims[2]));
+    g->voxel_size = scale / dmax;
+    total = voxgi_grid_voxel_count(g);
+    if ((total + 31) / 32 * 4 > (uint64_t)((size_t)-1 / 2)) return VOXGI_ERR_TOO_LARGE;
+    if (needed) *needed = (size_t)((total + 31) / 32 * 4);
+    if (!bits) return VOXGI_OK;
+    if (bits_bytes < (size_t)((total + 31) / 32 * 4)) return VOXGI_ERR_BUFFER_TOO_SMALL;
+    memset(bits, 0, (size_t)((total + 31) / 32 * 4));
+    while (at < total) {
+        int value = fgetc(f), count = fgetc(f);
+        if (value == EOF || count == EOF || value > 1 || count == 0 || at + (uint64_t)count > total) return VOXGI_ERR_FORMAT;
+        while (count--) {
+            if (value) {
+                uint64_t idx = x + (uint64_t)g->res[0] * (y + (uint64_t)g->res[1] * z);
+                bits[idx >> 5] |= 1u << (idx & 31u);
+            }
+            at++;
+            /* y runs fastest, then z, then x */
+            if (++y == (uint64_t)g->res[1]) { y = 0; if (++z == (uint64_t)g->res[2]) { z = 0; x++; } }
+        }
+    }
+    return VOXGI_OK;
+}
+
+#endif /* VOXGI__IMPLEMENTED */
+#endif /* VOXGI_IMPLEMENTATION */
+
+/*
+MIT License
+
+Copyright (c) 2026 the voxgi authors
+
+Permission is hereby granted, free of charge, to any person obtaining a copy of this software and
+associated documentation files (the "Software"), to deal in the Software without restriction,
+including without limitation the rights to use, copy, modify, merge, publish, distribute,
+sublicense, and/or sell copies of the Software, and to permit persons to whom the Software is
+furnished to do so, subject to the following conditions:
+
+The above copyright notice and this permission notice shall be included in all copies or
+substantial portions of the Software.
+
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR IMPLIED, INCLUDING BUT
+NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY, FITNESS FOR A PARTICULAR PURPOSE AND
+NONINFRINGEMENT. IN NO EVENT SHALL THE AUTHORS OR COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM,
+DAMAGES OR OTHER LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM, OUT
+OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE SOFTWARE.
+*/
