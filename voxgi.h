@@ -879,6 +879,19 @@ static int voxgi__cmp_grid_plane(double x, double o, double k, double s)
     return -voxgi__xp_sign(&e);
 }
 
+/* Fraction bits of x's binary expansion: 0 for integers, up to 1074. */
+static int voxgi__fraction_bits(double x)
+{
+    uint64_t b, mant;
+    int e, tz = 0;
+    if (x == floor(x)) return 0;
+    memcpy(&b, &x, sizeof b);
+    e = (int)((b >> 52) & 0x7ff);
+    mant = (b & ((1ull << 52) - 1)) | (e ? 1ull << 52 : 0);
+    while (!(mant & 1u)) { mant >>= 1; tz++; }
+    return 1075 - (e ? e : 1) - tz; /* x = mant * 2^(e - 1075) */
+}
+
 static void voxgi__prep_vertex(const float *v, const voxgi_grid *g, voxgi__vprep *out)
 {
     int a, frac = 0;
@@ -902,17 +915,29 @@ static void voxgi__prep_vertex(const float *v, const voxgi_grid *g, voxgi__vprep
         out->lo[a] = (int32_t)k - (voxgi__cmp_grid_plane(x, o, k, s) == 0);
         /* q is a lattice value when x - o and the division were exact and few fraction bits remain */
         if (frac >= 0) {
-            int f;
+            int f = voxgi__fraction_bits(q);
             double se, pe, pp;
-            for (f = 0; f <= 30 && ldexp(q, f) != floor(ldexp(q, f)); f++) {}
-            voxgi__two_sum(x, -o, &pp, &se);
-            voxgi__two_prod(q, s, &pp, &pe);
-            if (f > 30 || se != 0.0 || pp != d || pe != 0.0) frac = -1;
-            else frac = VOXGI__MAX(frac, f);
+            if (f > 30 || fabs(q) > 4194304.0) frac = -1;
+            else {
+                voxgi__two_sum(x, -o, &pp, &se);
+                voxgi__two_prod(q, s, &pp, &pe);
+                frac = (se != 0.0 || pp != d || pe != 0.0) ? -1 : VOXGI__MAX(frac, f);
+            }
         }
     }
     out->frac_bits = frac;
 }
+
+/* A test value that is linear in the voxel index: v = v0[side] + k . rel, where rel is the voxel
+   index relative to the triangle's range and side picks the box corner minimising (0) or
+   maximising (1) the function. err bounds |computed - exact| for every voxel of the range. */
+typedef struct voxgi__lin {
+    double k[3], v0[2], err;
+    int8_t off[2][3];    /* corner offsets per side */
+    int8_t plane;        /* -1: the triangle's plane; else the projection normal to this axis */
+    int8_t edge;         /* edge (from this vertex) of a projection test */
+    int8_t orient;       /* +-1: one-sided (max corner >= 0); 0: two-sided (min <= 0 <= max) */
+} voxgi__lin;
 
 typedef struct voxgi__tri {
     int32_t lo[3], hi[3];      /* exact voxel range of the triangle, clipped to the grid */
@@ -920,11 +945,12 @@ typedef struct voxgi__tri {
     double r[3][3], dr[3][3];  /* vertices relative to lo (voxel units), error bounds */
     double e[3][3], de[3][3];  /* edges v0->v1, v1->v2, v2->v0, error bounds */
     double n[3], dn[3];        /* normal (v1-v0)x(v2-v0), error bounds */
-    double plane_err;          /* bound on the plane test's value */
-    double edge_err[3][3];     /* [plane][edge] bound on an edge test's value */
     int sig[3];                /* exact sign of the normal per axis, or VOXGI__UNKNOWN */
     int exact;                 /* all double arithmetic of the tests is exact */
     uint32_t v[3];             /* vertex indices */
+    voxgi__lin plane;          /* valid when the normal is not zero */
+    voxgi__lin proj[3][3];     /* [axis][i]: the projection normal to axis: 3 oriented edges, */
+    int proj_count[3];         /* 1 two-sided line (segment-shaped projection), or 0 (a point) */
 } voxgi__tri;
 
 /* Read-only state shared by all workers of one voxelization. */
@@ -937,14 +963,7 @@ typedef struct voxgi__vox_shared {
     double inv_s;
 } voxgi__vox_shared;
 
-/* Largest |c + off - r| over the triangle's voxel range, for one vertex coordinate. */
-static double voxgi__span(const voxgi__tri *t, int k, int a)
-{
-    double ext = (double)(t->hi[a] - t->lo[a] + 1);
-    return VOXGI__MAX(fabs(t->r[k][a]), fabs(ext - t->r[k][a])) * (1 + 4 * VOXGI__U);
-}
-
-/* Fills the triangle record; returns 0 when its range misses the grid. */
+/* Fills the triangle's range, coordinates, edges and normal; returns 0 when it misses the grid. */
 static int voxgi__tri_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri *t)
 {
     const voxgi_grid *g = vs->grid;
@@ -956,11 +975,12 @@ static int voxgi__tri_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri *
         p[k] = &vs->vp[t->v[k]];
     }
     for (a = 0; a < 3; a++) {
-        t->lo[a] = VOXGI__MAX(0, VOXGI__MIN(p[0]->lo[a], VOXGI__MIN(p[1]->lo[a], p[2]->lo[a])));
-        t->hi[a] = VOXGI__MIN(g->res[a] - 1, VOXGI__MAX(p[0]->hi[a], VOXGI__MAX(p[1]->hi[a], p[2]->hi[a])));
+        int32_t lo = VOXGI__MIN(p[0]->lo[a], VOXGI__MIN(p[1]->lo[a], p[2]->lo[a]));
+        int32_t hi = VOXGI__MAX(p[0]->hi[a], VOXGI__MAX(p[1]->hi[a], p[2]->hi[a]));
+        t->lo[a] = VOXGI__MAX(0, lo);
+        t->hi[a] = VOXGI__MIN(g->res[a] - 1, hi);
         if (t->lo[a] > t->hi[a]) return 0;
-        t->one_slice[a] = VOXGI__MIN(p[0]->lo[a], VOXGI__MIN(p[1]->lo[a], p[2]->lo[a])) ==
-                          VOXGI__MAX(p[0]->hi[a], VOXGI__MAX(p[1]->hi[a], p[2]->hi[a]));
+        t->one_slice[a] = lo == hi;
     }
     for (k = 0; k < 3; k++)
         for (a = 0; a < 3; a++) {
@@ -969,11 +989,12 @@ static int voxgi__tri_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri *
             t->dr[k][a] = p[k]->frac_bits >= 0 ? 0.0 : 2.01 * VOXGI__U * fabs(q) + VOXGI__U * fabs(t->r[k][a]);
             m = VOXGI__MAX(m, VOXGI__MAX(fabs(t->r[k][a]), (double)(t->hi[a] - t->lo[a] + 1)));
         }
-    /* Exact mode: numerators of edges and offsets need at most B bits, products 3B+3 <= 53. */
+    /* Exact mode: numerators (in units of 2^-fb) of edges and offsets need at most B bits, so
+       every intermediate of the tests, up to 3B+4 bits, is exact in double when B <= 16. */
     t->exact = 0;
     if (p[0]->frac_bits >= 0 && p[1]->frac_bits >= 0 && p[2]->frac_bits >= 0) {
         int fb = VOXGI__MAX(p[0]->frac_bits, VOXGI__MAX(p[1]->frac_bits, p[2]->frac_bits)), bits = 0;
-        while (ldexp(1.0, bits) < 2 * m + 1) bits++;
+        while (bits < 20 && (double)(1 << bits) < 2 * m + 1) bits++;
         t->exact = bits + fb <= 16;
     }
     for (k = 0; k < 3; k++) {
@@ -1004,30 +1025,67 @@ static int voxgi__tri_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri *
         else if (t->n[c] < -t->dn[c]) t->sig[c] = -1;
         else t->sig[c] = t->dn[c] == 0.0 ? 0 : VOXGI__UNKNOWN;
     }
-    if (t->exact) {
-        t->plane_err = 0;
-        memset(t->edge_err, 0, sizeof t->edge_err);
-    } else {
-        double s = 0, r = 0;
+    return 1;
+}
+
+/* Builds v(rel) = sum_a k_a (rel_a + off_a - r_a) for coefficients k (bounds dk) about vertex vk. */
+static void voxgi__lin_make(const voxgi__tri *t, voxgi__lin *L, const double k[3], const double dk[3], int vk)
+{
+    double s = 0, mag = 0;
+    int a, side;
+    for (side = 0; side < 2; side++) {
+        L->v0[side] = 0;
         for (a = 0; a < 3; a++) {
-            double T = voxgi__span(t, 0, a), dt = t->dr[0][a] + VOXGI__U * T;
-            s += fabs(t->n[a]) * dt + T * t->dn[a] + t->dn[a] * dt;
-            r += fabs(t->n[a]) * T;
-        }
-        t->plane_err = (s + VOXGI__GAMMA(3) * r * 1.01) * 1.001;
-        for (c = 0; c < 3; c++) {
-            int a1 = (c + 1) % 3, b1 = (c + 2) % 3;
-            for (k = 0; k < 3; k++) {
-                /* m = (-e_b, e_a) from edge k, evaluated against vertex k */
-                double Ta = voxgi__span(t, k, a1), Tb = voxgi__span(t, k, b1);
-                double dta = t->dr[k][a1] + VOXGI__U * Ta, dtb = t->dr[k][b1] + VOXGI__U * Tb;
-                double ma = fabs(t->e[k][b1]), mb = fabs(t->e[k][a1]), dma = t->de[k][b1], dmb = t->de[k][a1];
-                t->edge_err[c][k] = (ma * dta + Ta * dma + dma * dta + mb * dtb + Tb * dmb + dmb * dtb +
-                                     VOXGI__GAMMA(2) * (ma * Ta + mb * Tb) * 1.01) * 1.001;
-            }
+            L->off[side][a] = (int8_t)(side ? k[a] > 0 : k[a] < 0);
+            L->v0[side] += k[a] * ((double)L->off[side][a] - t->r[vk][a]);
         }
     }
-    return 1;
+    for (a = 0; a < 3; a++) {
+        /* |rel + off - r| <= T over the whole range */
+        double T = fabs(t->r[vk][a]) + 1 + (double)(t->hi[a] - t->lo[a] + 1);
+        L->k[a] = k[a];
+        s += fabs(k[a]) * t->dr[vk][a] + T * dk[a] + dk[a] * t->dr[vk][a];
+        mag += fabs(k[a]) * T;
+    }
+    /* the inputs' errors, then the roundings of at most 8 operations in any order */
+    L->err = t->exact ? 0.0 : (s + VOXGI__GAMMA(8) * mag * 1.01) * 1.001;
+}
+
+/* Builds the plane and projection tests once every sign the tests rely on is known. */
+static void voxgi__tri_forms(voxgi__tri *t)
+{
+    int c, k;
+    const double zero[3] = {0, 0, 0};
+    voxgi__lin_make(t, &t->plane, t->n, t->dn, 0);
+    t->plane.plane = -1;
+    t->plane.orient = 0;
+    for (c = 0; c < 3; c++) {
+        int a = (c + 1) % 3, b = (c + 2) % 3, best = -1;
+        double len = 0, m[3], dm[3];
+        t->proj_count[c] = 0;
+        if (t->sig[c] == VOXGI__UNKNOWN) continue;
+        for (k = 0; k < 3; k++) {
+            double l = fabs(t->e[k][a]) + fabs(t->e[k][b]);
+            if (l > len) { len = l; best = k; }
+        }
+        for (k = 0; k < 3; k++) {
+            int o = t->sig[c];
+            /* oriented: the inward normal o*(-e_b, e_a) of each edge; a segment-shaped
+               projection (o == 0): the line through its longest edge, tested on both sides */
+            if (o == 0 && k != best) continue;
+            memcpy(m, zero, sizeof m);
+            memcpy(dm, zero, sizeof dm);
+            m[a] = -t->e[k][b] * (o ? o : 1);
+            m[b] = t->e[k][a] * (o ? o : 1);
+            dm[a] = t->de[k][b];
+            dm[b] = t->de[k][a];
+            voxgi__lin_make(t, &t->proj[c][t->proj_count[c]], m, dm, k);
+            t->proj[c][t->proj_count[c]].plane = (int8_t)c;
+            t->proj[c][t->proj_count[c]].edge = (int8_t)k;
+            t->proj[c][t->proj_count[c]].orient = (int8_t)o;
+            t->proj_count[c]++;
+        }
+    }
 }
 
 static int voxgi__sign_within(double v, double err)
@@ -1099,83 +1157,34 @@ static void voxgi__tri_resolve_signs(const voxgi__vox_shared *vs, voxgi__tri *t,
         }
 }
 
-/* ----- the tests; rel[] is the voxel index relative to t->lo */
-
-/* Plane of the triangle against the box: passes when the plane meets the closed box. */
-static int voxgi__test_plane(const voxgi__vox_shared *vs, const voxgi__tri *t, const int32_t rel[3], uint64_t *exact_tests)
+/* One linear test at voxel rel (relative to t->lo): 1 pass, 0 fail; undecided signs exactly. */
+static int voxgi__test_lin(const voxgi__vox_shared *vs, const voxgi__tri *t, const voxgi__lin *L, const int32_t rel[3],
+                           uint64_t *exact_tests)
 {
     int side;
-    for (side = 0; side < 2; side++) {
-        double f = 0;
-        int a, s;
-        int64_t corner[3];
-        for (a = 0; a < 3; a++) {
-            /* side 0: the corner minimising n.p, side 1: maximising */
-            int off = side ? (t->sig[a] > 0) : (t->sig[a] < 0);
-            corner[a] = (int64_t)rel[a] + off;
-            f += t->n[a] * ((double)(rel[a] + off) - t->r[0][a]);
-        }
-        s = voxgi__sign_within(f, t->plane_err);
-        if (s == VOXGI__UNKNOWN) {
-            for (a = 0; a < 3; a++) corner[a] += t->lo[a];
-            s = voxgi__exact_plane(vs, t, corner);
-            ++*exact_tests;
-        }
-        if (side == 0 ? s > 0 : s < 0) return 0;
-    }
-    return 1;
-}
-
-/* One edge function of the projection onto the plane normal to axis c.
-   orient = +1/-1: one-sided test with the inward normal orient*(-e_b, e_a), passes when >= 0.
-   orient = 0: the projection is a segment along edge k; two-sided: the line meets the square. */
-static int voxgi__test_edge(const voxgi__vox_shared *vs, const voxgi__tri *t, int c, int k, int orient,
-                            const int32_t rel[3], uint64_t *exact_tests)
-{
-    int a = (c + 1) % 3, b = (c + 2) % 3, side;
-    double ma = -t->e[k][b], mb = t->e[k][a];
-    for (side = (orient ? 1 : 0); side < 2; side++) {
-        /* side 0: the corner minimising m.p; side 1: maximising */
-        double sa = orient ? orient * ma : ma, sb = orient ? orient * mb : mb;
-        int offa = side ? (sa > 0) : (sa < 0), offb = side ? (sb > 0) : (sb < 0), s;
-        double g = sa * ((double)(rel[a] + offa) - t->r[k][a]) + sb * ((double)(rel[b] + offb) - t->r[k][b]);
-        s = voxgi__sign_within(g, t->edge_err[c][k]);
+    for (side = L->orient ? 1 : 0; side < 2; side++) {
+        double v = L->v0[side] + L->k[0] * (double)rel[0] + L->k[1] * (double)rel[1] + L->k[2] * (double)rel[2];
+        int s = voxgi__sign_within(v, L->err);
         if (s == VOXGI__UNKNOWN) {
             int64_t corner[3];
-            corner[a] = (int64_t)t->lo[a] + rel[a] + offa;
-            corner[b] = (int64_t)t->lo[b] + rel[b] + offb;
-            corner[c] = 0;
-            s = voxgi__exact_edge(vs, t, c, k, corner) * (orient ? orient : 1);
+            int a;
+            for (a = 0; a < 3; a++) corner[a] = (int64_t)t->lo[a] + rel[a] + L->off[side][a];
+            s = L->plane < 0 ? voxgi__exact_plane(vs, t, corner)
+                             : voxgi__exact_edge(vs, t, L->plane, L->edge, corner) * (L->orient ? L->orient : 1);
             ++*exact_tests;
         }
         if (side == 0 ? s > 0 : s < 0) return 0;
     }
     return 1;
-}
-
-/* The edge whose projection onto plane c is longest (for segment-shaped projections), or -1. */
-static int voxgi__longest_projected_edge(const voxgi__tri *t, int c)
-{
-    int a = (c + 1) % 3, b = (c + 2) % 3, k, best = -1;
-    double len = 0;
-    for (k = 0; k < 3; k++) {
-        double l = fabs(t->e[k][a]) + fabs(t->e[k][b]);
-        if (l > len) { len = l; best = k; }
-    }
-    return best;
 }
 
 /* The projection of the triangle onto the plane normal to axis c against the voxel's square. */
 static int voxgi__test_projection(const voxgi__vox_shared *vs, const voxgi__tri *t, int c, const int32_t rel[3],
                                   uint64_t *exact_tests)
 {
-    int k;
-    if (t->sig[c] == 0) {
-        k = voxgi__longest_projected_edge(t, c);
-        return k < 0 || voxgi__test_edge(vs, t, c, k, 0, rel, exact_tests);
-    }
-    for (k = 0; k < 3; k++)
-        if (!voxgi__test_edge(vs, t, c, k, t->sig[c], rel, exact_tests)) return 0;
+    int i;
+    for (i = 0; i < t->proj_count[c]; i++)
+        if (!voxgi__test_lin(vs, t, &t->proj[c][i], rel, exact_tests)) return 0;
     return 1;
 }
 
@@ -1186,7 +1195,7 @@ static int voxgi__test_voxel(const voxgi__vox_shared *vs, const voxgi__tri *t, c
     int a;
     for (a = 0; a < 3; a++)
         if (rel[a] < 0 || rel[a] > t->hi[a] - t->lo[a]) return 0;
-    if ((t->sig[0] | t->sig[1] | t->sig[2]) != 0 && !voxgi__test_plane(vs, t, rel, exact_tests)) return 0;
+    if ((t->sig[0] | t->sig[1] | t->sig[2]) != 0 && !voxgi__test_lin(vs, t, &t->plane, rel, exact_tests)) return 0;
     for (a = 0; a < 3; a++)
         if (!voxgi__test_projection(vs, t, a, rel, exact_tests)) return 0;
     return 1;
@@ -1220,7 +1229,7 @@ static void voxgi__cell_range(double lo, double hi, int32_t max, int32_t *first,
 
 /* Degenerate triangles are the union of their edges: each edge is voxelized as a segment, slab
    by slab along its longest axis, with the exact line tests of all three projections. */
-static void voxgi__voxelize_segment(const voxgi__vox_shared *vs, const voxgi__tri *t, int k, uint64_t *exact_tests)
+static void voxgi__voxelize_segment(const voxgi__vox_shared *vs, voxgi__tri *t, int k, uint64_t *exact_tests)
 {
     const voxgi__vprep *p = &vs->vp[t->v[k]], *q = &vs->vp[t->v[(k + 1) % 3]];
     int32_t lo[3], hi[3], rel[3];
@@ -1236,6 +1245,20 @@ static void voxgi__voxelize_segment(const voxgi__vox_shared *vs, const voxgi__tr
     }
     len = t->e[k][ax];
     if (len == 0) return; /* a point: the other edges cover it */
+    /* this edge's line tests in the three projections */
+    for (c = 0; c < 3; c++) {
+        double mm[3] = {0, 0, 0}, dm[3] = {0, 0, 0};
+        int pa = (c + 1) % 3, pb = (c + 2) % 3;
+        t->proj_count[c] = 0;
+        if (t->e[k][pa] == 0 && t->e[k][pb] == 0) continue;
+        mm[pa] = -t->e[k][pb]; dm[pa] = t->de[k][pb];
+        mm[pb] = t->e[k][pa]; dm[pb] = t->de[k][pa];
+        voxgi__lin_make(t, &t->proj[c][0], mm, dm, k);
+        t->proj[c][0].plane = (int8_t)c;
+        t->proj[c][0].edge = (int8_t)k;
+        t->proj[c][0].orient = 0;
+        t->proj_count[c] = 1;
+    }
     b = (ax + 1) % 3;
     c = (ax + 2) % 3;
     for (rel[ax] = lo[ax]; rel[ax] <= hi[ax]; rel[ax]++) {
@@ -1252,15 +1275,29 @@ static void voxgi__voxelize_segment(const voxgi__vox_shared *vs, const voxgi__tr
             voxgi__cell_range(VOXGI__MIN(uc0, uc1) - m, VOXGI__MAX(uc0, uc1) + m, hi[c], &c0, &c1);
         }
         for (rel[c] = VOXGI__MAX(c0, lo[c]); rel[c] <= c1; rel[c]++)
-            for (rel[b] = VOXGI__MAX(b0, lo[b]); rel[b] <= b1; rel[b]++) {
-                int plane, ok = 1;
-                for (plane = 0; plane < 3 && ok; plane++) {
-                    int pa = (plane + 1) % 3, pb = (plane + 2) % 3;
-                    if (t->e[k][pa] != 0 || t->e[k][pb] != 0) ok = voxgi__test_edge(vs, t, plane, k, 0, rel, exact_tests);
-                }
-                if (ok) voxgi__set_voxel(vs, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
-            }
+            for (rel[b] = VOXGI__MAX(b0, lo[b]); rel[b] <= b1; rel[b]++)
+                if (voxgi__test_projection(vs, t, 0, rel, exact_tests) && voxgi__test_projection(vs, t, 1, rel, exact_tests) &&
+                    voxgi__test_projection(vs, t, 2, rel, exact_tests))
+                    voxgi__set_voxel(vs, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
     }
+}
+
+/* The columns [first, last] of row rel[b] that can pass the oriented projection tests of axis c
+   (a superset: each column is still tested exactly). */
+static void voxgi__row_span(const voxgi__tri *t, int c, int32_t rel_b, int32_t ext_a, int32_t *first, int32_t *last)
+{
+    int a = (c + 1) % 3, b = (c + 2) % 3, i;
+    double lo = 0, hi = (double)ext_a - 1;
+    for (i = 0; i < t->proj_count[c] && t->proj[c][i].orient; i++) {
+        const voxgi__lin *L = &t->proj[c][i];
+        double g = L->v0[1] + L->k[b] * (double)rel_b + L->err, ka = L->k[a];
+        /* need g + ka * A >= 0 (within the bound); one column of slack for the division */
+        if (ka > 0) lo = VOXGI__MAX(lo, floor(-g / ka) - 1);
+        else if (ka < 0) hi = VOXGI__MIN(hi, ceil(-g / ka) + 1);
+        else if (g < 0) hi = -1;
+    }
+    *first = lo > hi ? 1 : (int32_t)lo;
+    *last = lo > hi ? 0 : (int32_t)hi;
 }
 
 static void voxgi__voxelize_triangle(const voxgi__vox_shared *vs, size_t ti, uint64_t *exact_tests)
@@ -1284,6 +1321,7 @@ static void voxgi__voxelize_triangle(const voxgi__vox_shared *vs, size_t ti, uin
         for (a = 0; a < 3; a++) voxgi__voxelize_segment(vs, &t, a, exact_tests);
         return;
     }
+    voxgi__tri_forms(&t);
     /* Columns along c: a single slice's own axis (then its projection decides alone), else the
        dominant normal axis, where the plane crosses each column in at most three voxels. */
     if (single >= 0) c = single;
@@ -1294,8 +1332,10 @@ static void voxgi__voxelize_triangle(const voxgi__vox_shared *vs, size_t ti, uin
     }
     a = (c + 1) % 3;
     b = (c + 2) % 3;
-    for (rel[b] = 0; rel[b] < ext[b]; rel[b]++)
-        for (rel[a] = 0; rel[a] < ext[a]; rel[a]++) {
+    for (rel[b] = 0; rel[b] < ext[b]; rel[b]++) {
+        int32_t first = 0, last = ext[a] - 1;
+        if (t.sig[c] != 0) voxgi__row_span(&t, c, rel[b], ext[a], &first, &last);
+        for (rel[a] = first; rel[a] <= last; rel[a]++) {
             int32_t k0, k1;
             rel[c] = 0;
             if (!voxgi__test_projection(vs, &t, c, rel, exact_tests)) continue;
@@ -1319,10 +1359,11 @@ static void voxgi__voxelize_triangle(const voxgi__vox_shared *vs, size_t ti, uin
                 }
             }
             for (rel[c] = k0; rel[c] <= k1; rel[c]++)
-                if (voxgi__test_plane(vs, &t, rel, exact_tests) && voxgi__test_projection(vs, &t, a, rel, exact_tests) &&
+                if (voxgi__test_lin(vs, &t, &t.plane, rel, exact_tests) && voxgi__test_projection(vs, &t, a, rel, exact_tests) &&
                     voxgi__test_projection(vs, &t, b, rel, exact_tests))
                     voxgi__set_voxel(vs, (int64_t)t.lo[0] + rel[0], (int64_t)t.lo[1] + rel[1], (int64_t)t.lo[2] + rel[2]);
         }
+    }
 }
 
 /* ----- worker pool: triangles are handed out in chunks; OR is order-free, so the bits do not
