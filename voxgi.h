@@ -849,6 +849,262 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     return voxgi_validate_grid(ctx, out);
 }
 
+#ifndef VOXGI_NO_GL
+/* ===================================================================== GL loader and shaders
+   voxgi's own GL types and enums (no GL header needed, none can clash) and a table of exactly
+   the functions voxgi calls, filled from the caller's loader; the first missing name is
+   reported. With VOXGI_GL_EXTERNAL the application's own gl* symbols are used instead (its GL
+   4.5 prototypes must be in scope). voxgi binds programs, shader storage buffers 0..7 and the
+   dispatch-indirect buffer while it works and leaves all of them unbound (0) afterwards. */
+#if defined(_WIN32) && !defined(_WIN64) && !defined(__MINGW64__)
+#define VOXGI__APIENTRY __stdcall
+#else
+#define VOXGI__APIENTRY
+#endif
+#define VOXGI__GL_RENDERER 0x1F01
+#define VOXGI__GL_VERSION 0x1F02
+#define VOXGI__GL_MAJOR_VERSION 0x821B
+#define VOXGI__GL_MINOR_VERSION 0x821C
+#define VOXGI__GL_COMPUTE_SHADER 0x91B9
+#define VOXGI__GL_COMPILE_STATUS 0x8B81
+#define VOXGI__GL_LINK_STATUS 0x8B82
+#define VOXGI__GL_INFO_LOG_LENGTH 0x8B84
+#define VOXGI__GL_SHADER_STORAGE_BUFFER 0x90D2
+#define VOXGI__GL_DISPATCH_INDIRECT_BUFFER 0x90EE
+#define VOXGI__GL_MAX_SHADER_STORAGE_BLOCK_SIZE 0x90DE
+#define VOXGI__GL_DYNAMIC_COPY 0x88EA
+#define VOXGI__GL_STATIC_DRAW 0x88E4
+#define VOXGI__GL_SHADER_STORAGE_BARRIER_BIT 0x2000
+#define VOXGI__GL_COMMAND_BARRIER_BIT 0x0040
+#define VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT 0x0200
+#define VOXGI__GL_R32UI 0x8236
+#define VOXGI__GL_RED_INTEGER 0x8D94
+#define VOXGI__GL_UNSIGNED_INT 0x1405
+#define VOXGI__GL_OUT_OF_MEMORY 0x0505
+
+/* X(return type, name without the gl prefix, parameters) */
+#define VOXGI__GL_FUNCS(X)                                                                               \
+    X(const unsigned char *, GetString, (unsigned int name))                                             \
+    X(void, GetIntegerv, (unsigned int pname, int *data))                                                \
+    X(void, GetInteger64v, (unsigned int pname, int64_t *data))                                          \
+    X(unsigned int, GetError, (void))                                                                    \
+    X(unsigned int, CreateShader, (unsigned int type))                                                   \
+    X(void, ShaderSource, (unsigned int shader, int count, const char *const *string, const int *length)) \
+    X(void, CompileShader, (unsigned int shader))                                                        \
+    X(void, GetShaderiv, (unsigned int shader, unsigned int pname, int *params))                         \
+    X(void, GetShaderInfoLog, (unsigned int shader, int size, int *length, char *log))                   \
+    X(unsigned int, CreateProgram, (void))                                                               \
+    X(void, AttachShader, (unsigned int program, unsigned int shader))                                   \
+    X(void, LinkProgram, (unsigned int program))                                                         \
+    X(void, GetProgramiv, (unsigned int program, unsigned int pname, int *params))                       \
+    X(void, GetProgramInfoLog, (unsigned int program, int size, int *length, char *log))                 \
+    X(void, DeleteShader, (unsigned int shader))                                                         \
+    X(void, DeleteProgram, (unsigned int program))                                                       \
+    X(void, UseProgram, (unsigned int program))                                                          \
+    X(int, GetUniformLocation, (unsigned int program, const char *name))                                 \
+    X(void, ProgramUniform1i, (unsigned int program, int location, int v0))                              \
+    X(void, ProgramUniform1ui, (unsigned int program, int location, unsigned int v0))                    \
+    X(void, ProgramUniform3i, (unsigned int program, int location, int v0, int v1, int v2))              \
+    X(void, ProgramUniform1d, (unsigned int program, int location, double v0))                           \
+    X(void, CreateBuffers, (int n, unsigned int *buffers))                                               \
+    X(void, DeleteBuffers, (int n, const unsigned int *buffers))                                         \
+    X(void, NamedBufferData, (unsigned int buffer, ptrdiff_t size, const void *data, unsigned int usage)) \
+    X(void, NamedBufferSubData, (unsigned int buffer, ptrdiff_t offset, ptrdiff_t size, const void *data)) \
+    X(void, GetNamedBufferSubData, (unsigned int buffer, ptrdiff_t offset, ptrdiff_t size, void *data))  \
+    X(void, ClearNamedBufferData, (unsigned int buffer, unsigned int internalformat, unsigned int format, \
+                                   unsigned int type, const void *data))                                 \
+    X(void, BindBufferBase, (unsigned int target, unsigned int index, unsigned int buffer))              \
+    X(void, BindBuffer, (unsigned int target, unsigned int buffer))                                      \
+    X(void, DispatchCompute, (unsigned int x, unsigned int y, unsigned int z))                           \
+    X(void, DispatchComputeIndirect, (ptrdiff_t indirect))                                               \
+    X(void, MemoryBarrier, (unsigned int barriers))
+
+#define VOXGI__GL_PROGRAMS(X) X(voxelize_conservative) X(popcount)
+
+struct voxgi__gl {
+#define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
+    VOXGI__GL_FUNCS(VOXGI__GL_MEMBER)
+#undef VOXGI__GL_MEMBER
+#define VOXGI__GL_PROGRAM_MEMBER(name) unsigned int prog_##name;
+    VOXGI__GL_PROGRAMS(VOXGI__GL_PROGRAM_MEMBER)
+#undef VOXGI__GL_PROGRAM_MEMBER
+    int64_t max_ssbo_bytes;
+};
+
+#include "shaders.h"
+
+static voxgi_gl_proc voxgi__gl_lookup(voxgi_context *ctx, const char *name)
+{
+    if (ctx->desc.gl_get_proc_address_user) return ctx->desc.gl_get_proc_address_user(name, ctx->desc.gl_user);
+    return ctx->desc.gl_get_proc_address(name);
+}
+
+static voxgi_result voxgi__gl_init(voxgi_context *ctx)
+{
+    voxgi__gl *gl;
+    int major = 0, minor = 0;
+    const char *s;
+#ifndef VOXGI_GL_EXTERNAL
+    if (!ctx->desc.gl_get_proc_address && !ctx->desc.gl_get_proc_address_user)
+        return voxgi__fail(ctx, VOXGI_ERR_GL_UNAVAILABLE, "no GL loader given (desc.gl_get_proc_address)");
+#endif
+    gl = (voxgi__gl *)voxgi__alloc_array(ctx, 1, sizeof *gl, 1);
+    if (!gl) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the GL state");
+    ctx->gl = gl;
+#ifdef VOXGI_GL_EXTERNAL
+#define VOXGI__GL_LOAD(ret, name, args) gl->name = (ret(VOXGI__APIENTRY *) args)gl##name;
+#else
+#define VOXGI__GL_LOAD(ret, name, args)                                                                   \
+    gl->name = (ret(VOXGI__APIENTRY *) args)voxgi__gl_lookup(ctx, "gl" #name);                            \
+    if (!gl->name) return voxgi__fail(ctx, VOXGI_ERR_GL_MISSING_FUNCTION, "the GL loader has no gl" #name);
+#endif
+    VOXGI__GL_FUNCS(VOXGI__GL_LOAD)
+#undef VOXGI__GL_LOAD
+    s = (const char *)gl->GetString(VOXGI__GL_VERSION);
+    if (!s) return voxgi__fail(ctx, VOXGI_ERR_GL_UNAVAILABLE, "no GL context is current (glGetString returned NULL)");
+    snprintf(ctx->gl_version, sizeof ctx->gl_version, "%s", s);
+    s = (const char *)gl->GetString(VOXGI__GL_RENDERER);
+    snprintf(ctx->gl_renderer, sizeof ctx->gl_renderer, "%s", s ? s : "");
+    gl->GetIntegerv(VOXGI__GL_MAJOR_VERSION, &major);
+    gl->GetIntegerv(VOXGI__GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 45)
+        return voxgi__fail(ctx, VOXGI_ERR_GL_UNAVAILABLE, "GL %d.%d is current, voxgi needs 4.5 (%s)", major, minor, ctx->gl_version);
+    gl->GetInteger64v(VOXGI__GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &gl->max_ssbo_bytes);
+    while (gl->GetError() != 0) {}
+    voxgi__log(ctx, VOXGI_LOG_INFO, "GL backend: %s, %s", ctx->gl_version, ctx->gl_renderer);
+    return VOXGI_OK;
+}
+
+static void voxgi__gl_shutdown(voxgi_context *ctx)
+{
+    voxgi__gl *gl = ctx->gl;
+    if (!gl) return;
+    if (gl->DeleteProgram) {
+#define VOXGI__GL_PROGRAM_DELETE(name) if (gl->prog_##name) gl->DeleteProgram(gl->prog_##name);
+        VOXGI__GL_PROGRAMS(VOXGI__GL_PROGRAM_DELETE)
+#undef VOXGI__GL_PROGRAM_DELETE
+    }
+    voxgi__free(ctx, gl);
+    ctx->gl = NULL;
+}
+
+/* Rewrites the driver's "0:LINE(COL)" (Mesa) or "0(LINE)" (others) at the start of each log
+   line as "file.glsl:LINE"; the prelude's #line makes LINE the file's own line number. */
+static void voxgi__gl_map_log(const char *log, const char *file, char *out, size_t out_size)
+{
+    size_t n = 0;
+    int line_start = 1;
+    while (*log && n + 1 < out_size) {
+        if (line_start && *log >= '0' && *log <= '9') {
+            const char *p = log;
+            int line = -1;
+            while (*p >= '0' && *p <= '9') p++;
+            if (*p == ':' && p[1] >= '0' && p[1] <= '9') { /* N:LINE(COL) */
+                line = atoi(p + 1);
+                for (p++; *p >= '0' && *p <= '9'; p++) {}
+                if (*p == '(') { while (*p && *p != ')') p++; if (*p) p++; }
+            } else if (*p == '(' && p[1] >= '0' && p[1] <= '9') { /* N(LINE) */
+                line = atoi(p + 1);
+                while (*p && *p != ')') p++;
+                if (*p) p++;
+            }
+            if (line >= 0) {
+                int w = snprintf(out + n, out_size - n, "%s:%d", file, line);
+                n = w < 0 ? n : VOXGI__MIN(out_size - 1, n + (size_t)w);
+                log = p;
+                line_start = 0;
+                continue;
+            }
+        }
+        line_start = *log == '\n';
+        out[n++] = *log++;
+    }
+    out[n] = 0;
+}
+
+/* Compiles one compute program: the runtime prelude (#version, defines), then the file's text
+   as source string 1, so compile errors name the .glsl file and its own line numbers. */
+static voxgi_result voxgi__gl_program(voxgi_context *ctx, const char *file, const char *text, unsigned int *out)
+{
+    voxgi__gl *gl = ctx->gl;
+    const char *prelude = "#version 450 core\n"
+                          "#define VOXGI_LOCAL_SIZE 64\n"
+                          "#define VOXGI_SMALL_COLUMNS 64\n"
+                          "#line 1 1\n";
+    const char *src[2];
+    unsigned int sh, prog;
+    int ok = 0, len = 0;
+    src[0] = prelude;
+    src[1] = text;
+    sh = gl->CreateShader(VOXGI__GL_COMPUTE_SHADER);
+    gl->ShaderSource(sh, 2, src, NULL);
+    gl->CompileShader(sh);
+    gl->GetShaderiv(sh, VOXGI__GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[3000], mapped[3600];
+        gl->GetShaderInfoLog(sh, (int)sizeof log, &len, log);
+        log[VOXGI__MIN(VOXGI__MAX(len, 0), (int)sizeof log - 1)] = 0;
+        gl->DeleteShader(sh);
+        voxgi__gl_map_log(log, file, mapped, sizeof mapped);
+        return voxgi__fail(ctx, VOXGI_ERR_GL_SHADER, "%s", mapped);
+    }
+    prog = gl->CreateProgram();
+    gl->AttachShader(prog, sh);
+    gl->LinkProgram(prog);
+    gl->DeleteShader(sh);
+    gl->GetProgramiv(prog, VOXGI__GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[3000];
+        gl->GetProgramInfoLog(prog, (int)sizeof log, &len, log);
+        log[VOXGI__MIN(VOXGI__MAX(len, 0), (int)sizeof log - 1)] = 0;
+        gl->DeleteProgram(prog);
+        return voxgi__fail(ctx, VOXGI_ERR_GL_SHADER, "%s: link failed: %s", file, log);
+    }
+    *out = prog;
+    return VOXGI_OK;
+}
+
+/* The program of an embedded shader file, compiled on first use. */
+static voxgi_result voxgi__gl_get_program(voxgi_context *ctx, const char *file, unsigned int *prog)
+{
+    int i;
+    if (*prog) return VOXGI_OK;
+    for (i = 0; i < VOXGI__GLSL_FILE_COUNT; i++)
+        if (strcmp(voxgi__glsl_files[i].name, file) == 0)
+            return voxgi__gl_program(ctx, file, (const char *)voxgi__glsl_files[i].text, prog);
+    return voxgi__fail(ctx, VOXGI_ERR_GL_SHADER, "%s is not among the embedded shaders (shaders.h is stale)", file);
+}
+
+static unsigned int voxgi__gl_buffer(voxgi_context *ctx, size_t bytes, const void *data)
+{
+    unsigned int b = 0;
+    ctx->gl->CreateBuffers(1, &b);
+    ctx->gl->NamedBufferData(b, (ptrdiff_t)(bytes ? bytes : 4), data, VOXGI__GL_DYNAMIC_COPY);
+    return b;
+}
+
+static void voxgi__gl_delete_buffer(voxgi_context *ctx, unsigned int buffer)
+{
+    if (ctx->gl && buffer) ctx->gl->DeleteBuffers(1, &buffer);
+}
+
+static voxgi_result voxgi__gl_check(voxgi_context *ctx, const char *what)
+{
+    unsigned int e = ctx->gl->GetError(), first = e;
+    while (e != 0) e = ctx->gl->GetError();
+    if (first == VOXGI__GL_OUT_OF_MEMORY) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "GL out of memory in %s", what);
+    if (first != 0) return voxgi__fail(ctx, VOXGI_ERR_GL, "GL error 0x%04x in %s", first, what);
+    return VOXGI_OK;
+}
+
+static voxgi_result voxgi__gl_read_buffer(voxgi_context *ctx, unsigned int buffer, void *dst, size_t bytes)
+{
+    ctx->gl->MemoryBarrier(VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+    ctx->gl->GetNamedBufferSubData(buffer, 0, (ptrdiff_t)bytes, dst);
+    return voxgi__gl_check(ctx, "reading a buffer back");
+}
+#endif /* VOXGI_NO_GL */
+
 /* ===================================================================== conservative voxelization: exact setup
    A voxel is set exactly when its closed box meets the closed triangle. The test is Schwarz and
    Seidel's (2010): bounding ranges, the triangle's plane against the box, and the triangle's
@@ -1470,8 +1726,6 @@ VOXGI_API void voxgi_voxels_query(const voxgi_voxels *v, voxgi_voxels_info *out)
 #ifndef VOXGI_NO_GL
 static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                        const voxgi_voxelize_desc *d, voxgi_voxels *out);
-static voxgi_result voxgi__gl_read_buffer(voxgi_context *ctx, unsigned int buffer, void *dst, size_t bytes);
-static void voxgi__gl_delete_buffer(voxgi_context *ctx, unsigned int buffer);
 #endif
 
 VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxelize_desc *desc,
@@ -1562,6 +1816,151 @@ VOXGI_API voxgi_result voxgi_voxels_gl_buffer(voxgi_context *ctx, const voxgi_vo
     *name = v->gl_buffer;
     return VOXGI_OK;
 }
+
+#ifndef VOXGI_NO_GL
+/* ----- GL conservative voxelizer (shaders/voxelize_conservative.glsl): the same tests and
+   bounds as the CPU twin above. The CPU prepares each vertex (voxel coordinates and exact
+   ranges, O(vertices)); the GPU does everything per triangle and per voxel; what its filter
+   cannot decide comes back here and is decided exactly, so the bits equal the CPU's. */
+typedef struct voxgi__gl_vprep { double q[4]; int32_t lo[4], hi[4]; float w[4], pad[4]; } voxgi__gl_vprep; /* std430 */
+
+#define VOXGI__GL_PAIR_CAPACITY 65536u
+#define VOXGI__GL_SPLIT_Y 16u
+
+static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                       const voxgi_voxelize_desc *d, voxgi_voxels *out)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    uint64_t nvox = voxgi_grid_voxel_count(g), words = voxgi__grid_words(g);
+    size_t bytes = (size_t)words * 4, v, nt = f->triangle_count, flag_words = (nt + 31) / 32;
+    unsigned int buf[7] = {0, 0, 0, 0, 0, 0, 0}, count_buf = 0, zero = 0, t0;
+    uint32_t control[8] = {0, VOXGI__GL_SPLIT_Y, 1, 0, 0, 0, 0, 0};
+    voxgi__gl_vprep *gv = NULL;
+    uint32_t *copy = NULL, *flags = NULL, *pairs = NULL;
+    voxgi_result r;
+    int i;
+    if (nvox > (uint64_t)UINT32_MAX)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grids hold at most 2^32 voxels (32-bit bit indices in GLSL); "
+                           "%dx%dx%d needs the CPU backend", g->res[0], g->res[1], g->res[2]);
+    if ((int64_t)bytes > gl->max_ssbo_bytes)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d bit grid needs %lu bytes, more than this GL's "
+                           "GL_MAX_SHADER_STORAGE_BLOCK_SIZE (%lld); use the CPU backend", g->res[0], g->res[1], g->res[2],
+                           (unsigned long)bytes, (long long)gl->max_ssbo_bytes);
+    r = voxgi__gl_get_program(ctx, "voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "popcount.glsl", &gl->prog_popcount);
+    if (r != VOXGI_OK) return r;
+    gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
+    if (!gv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
+    for (v = 0; v < f->vertex_count; v++) {
+        for (i = 0; i < 3; i++) {
+            gv[v].q[i] = vp[v].q[i];
+            gv[v].lo[i] = vp[v].lo[i];
+            gv[v].hi[i] = vp[v].hi[i];
+            gv[v].w[i] = f->pos[3 * v + (size_t)i];
+        }
+        gv[v].q[3] = vp[v].frac_bits;
+    }
+    buf[0] = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
+    buf[1] = voxgi__gl_buffer(ctx, nt * 3 * sizeof(uint32_t), f->tri);
+    buf[2] = voxgi__gl_buffer(ctx, bytes, NULL);
+    buf[3] = voxgi__gl_buffer(ctx, sizeof control, control);
+    buf[4] = voxgi__gl_buffer(ctx, VOXGI__GL_PAIR_CAPACITY * 16, NULL);
+    buf[5] = voxgi__gl_buffer(ctx, flag_words * 4, NULL);
+    buf[6] = voxgi__gl_buffer(ctx, nt * 4, NULL);
+    voxgi__free(ctx, gv);
+    gl->ClearNamedBufferData(buf[2], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+    gl->ClearNamedBufferData(buf[5], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+    r = voxgi__gl_check(ctx, "allocating the voxelization buffers");
+    if (r == VOXGI_OK) {
+        unsigned int p = gl->prog_voxelize_conservative;
+        for (i = 0; i < 7; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i]);
+        gl->UseProgram(p);
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_count"), (unsigned)nt);
+        gl->ProgramUniform1d(p, gl->GetUniformLocation(p, "u_inv_s"), 1.0 / g->voxel_size);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), VOXGI__GL_PAIR_CAPACITY);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+        /* pass 0, in slices of at most 65535 work groups */
+        for (t0 = 0; t0 < nt; t0 += 65535u * 64u) {
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_offset"), t0);
+            gl->DispatchCompute((unsigned)VOXGI__MIN((nt - t0 + 63) / 64, (size_t)65535), 1, 1);
+        }
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+        /* pass 1: the listed big triangles, sized on the GPU by pass 0 */
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, buf[3]);
+        gl->DispatchComputeIndirect(0);
+        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+        r = voxgi__gl_read_buffer(ctx, buf[3], control, sizeof control);
+    }
+    /* the undecided: control[4] pairs, control[5] flagged triangles */
+    if (r == VOXGI_OK && (control[4] || control[5])) {
+        size_t np = VOXGI__MIN((size_t)control[4], (size_t)VOXGI__GL_PAIR_CAPACITY), k;
+        copy = (uint32_t *)voxgi__alloc(ctx, bytes);
+        flags = (uint32_t *)voxgi__alloc_array(ctx, flag_words, 4, 0);
+        pairs = (uint32_t *)voxgi__alloc_array(ctx, np, 16, 0);
+        if (!copy || !flags || !pairs) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to resolve the GL pass's undecided tests");
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[2], copy, bytes);
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[5], flags, flag_words * 4);
+        if (r == VOXGI_OK && np) r = voxgi__gl_read_buffer(ctx, buf[4], pairs, np * 16);
+        if (r == VOXGI_OK) {
+            voxgi__vox_shared vs;
+            vs.grid = g;
+            vs.pos = f->pos;
+            vs.tri = f->tri;
+            vs.vp = vp;
+            vs.bits = copy;
+            vs.inv_s = 1.0 / g->voxel_size;
+            for (k = 0; k < nt; k++)
+                if (flags[k >> 5] & (1u << (k & 31u))) {
+                    voxgi__voxelize_triangle(&vs, k, &out->info.exact_tests);
+                    out->info.exact_triangles++;
+                }
+            for (k = 0; k < np; k++) {
+                voxgi__tri t;
+                const uint32_t *pr = pairs + 4 * k;
+                if (voxgi__tri_setup(&vs, pr[0], &t)) {
+                    int32_t rel[3];
+                    voxgi__tri_resolve_signs(&vs, &t, &out->info.exact_tests);
+                    voxgi__tri_forms(&t);
+                    for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
+                    if (voxgi__test_voxel(&vs, &t, rel, &out->info.exact_tests)) voxgi__set_voxel(&vs, pr[1], pr[2], pr[3]);
+                }
+            }
+            gl->NamedBufferSubData(buf[2], 0, (ptrdiff_t)bytes, copy);
+            r = voxgi__gl_check(ctx, "uploading the exact decisions");
+        }
+    }
+    if (r == VOXGI_OK) { /* count the set voxels on the GPU */
+        unsigned int p = gl->prog_popcount;
+        uint32_t count = 0;
+        count_buf = voxgi__gl_buffer(ctx, 4, &count);
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, buf[2]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, count_buf);
+        gl->UseProgram(p);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
+        gl->DispatchCompute((unsigned)VOXGI__MIN((words + 63) / 64, (uint64_t)1024), 1, 1);
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+        r = voxgi__gl_read_buffer(ctx, count_buf, &count, 4);
+        out->info.voxel_count = count;
+    }
+    gl->UseProgram(0);
+    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
+    for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, 0);
+    for (i = 0; i < 7; i++)
+        if (i != 2) voxgi__gl_delete_buffer(ctx, buf[i]);
+    voxgi__gl_delete_buffer(ctx, count_buf);
+    voxgi__free(ctx, copy);
+    voxgi__free(ctx, flags);
+    voxgi__free(ctx, pairs);
+    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, buf[2]); return r; }
+    out->gl_buffer = buf[2];
+    return voxgi__gl_check(ctx, "voxelization");
+}
+#endif
 
 /* ===================================================================== binvox files */
 VOXGI_API voxgi_result voxgi_binvox_write(FILE *f, const voxgi_grid *g, const uint32_t *bits)

@@ -1,0 +1,272 @@
+/* The GL conservative voxelizer equals the CPU voxelizer bit for bit, on a real headless GL 4.5
+   context (EGL surfaceless or OSMesa, llvmpipe). Also: the loader table, backend choice and
+   shader error reporting. Skips (loudly) only when no GL 4.5 context can be made;
+   VOXGI_TEST_GL=egl|osmesa picks the kind, VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
+#define VOXGI_IMPLEMENTATION
+#include "../voxgi.h"
+#include "../tools/headless_gl.h"
+#include "harness.h"
+#include "scenes.h"
+#include <stdlib.h>
+
+static vxt_gl *g_gl;
+static char g_gl_error[512];
+
+static int have_gl(void)
+{
+    if (g_gl) return 1;
+    if (getenv("VOXGI_REQUIRE_GL") && atoi(getenv("VOXGI_REQUIRE_GL")))
+        TH_CHECK(0, "no GL 4.5 context: %s", g_gl_error);
+    else th_skip("no GL 4.5 context could be made: %s", g_gl_error);
+    return 0;
+}
+
+static voxgi_context *make_ctx(voxgi_backend b)
+{
+    voxgi_desc d;
+    voxgi_context *ctx = NULL;
+    memset(&d, 0, sizeof d);
+    d.backend = b;
+    d.gl_get_proc_address_user = vxt_gl_get_proc;
+    d.gl_user = g_gl;
+    if (voxgi_create(&d, &ctx) != VOXGI_OK) return NULL;
+    return ctx;
+}
+
+static uint32_t *run(voxgi_context *ctx, const test_mesh *m, const voxgi_grid *g, voxgi_voxels_info *info)
+{
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *vox = NULL;
+    uint32_t *bits;
+    size_t need = 0;
+    memset(&mesh, 0, sizeof mesh);
+    memset(&sc, 0, sizeof sc);
+    memset(&vd, 0, sizeof vd);
+    mesh.positions = m->pos; mesh.vertex_count = m->vertex_count; mesh.indices = m->idx; mesh.index_count = 3 * m->triangle_count;
+    sc.meshes = &mesh; sc.mesh_count = 1;
+    vd.grid = *g;
+    if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) { printf("    voxelize: %s\n", voxgi_last_error(ctx)); return NULL; }
+    voxgi_voxels_read(ctx, vox, NULL, 0, &need);
+    bits = (uint32_t *)malloc(need);
+    if (voxgi_voxels_read(ctx, vox, bits, need, NULL) != VOXGI_OK) { printf("    read: %s\n", voxgi_last_error(ctx)); free(bits); bits = NULL; }
+    voxgi_voxels_query(vox, info);
+    voxgi_voxels_destroy(ctx, vox);
+    return bits;
+}
+
+/* GL and CPU bits must be identical, and the GL count must equal the CPU popcount. */
+static void compare(const test_mesh *m, const voxgi_grid *g, const char *what)
+{
+    voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
+    voxgi_voxels_info ic, ig;
+    uint32_t *a, *b;
+    size_t bytes = (size_t)((voxgi_grid_voxel_count(g) + 31) / 32 * 4);
+    TH_CHECK(gl != NULL, "%s: no GL voxgi context", what);
+    if (!gl) { voxgi_destroy(cpu); return; }
+    a = run(cpu, m, g, &ic);
+    b = run(gl, m, g, &ig);
+    TH_CHECK(a && b, "%s: a run failed", what);
+    if (a && b) {
+        size_t w, diff = 0;
+        for (w = 0; w < bytes / 4; w++) diff += a[w] != b[w];
+        TH_CHECK(diff == 0, "%s: %lu words differ between GL and CPU", what, (unsigned long)diff);
+        TH_CHECK(ic.voxel_count == ig.voxel_count, "%s: counts %llu (CPU) vs %llu (GL)", what,
+                 (unsigned long long)ic.voxel_count, (unsigned long long)ig.voxel_count);
+        TH_CHECK(ic.voxel_count > 0, "%s: nothing voxelized", what);
+        printf("    %s: %llu voxels, GL exact tests %llu, triangles handed to the CPU %llu\n", what,
+               (unsigned long long)ig.voxel_count, (unsigned long long)ig.exact_tests, (unsigned long long)ig.exact_triangles);
+    }
+    free(a);
+    free(b);
+    voxgi_destroy(cpu);
+    voxgi_destroy(gl);
+}
+
+static void cubic(voxgi_grid *g, double lo, double size, int n)
+{
+    g->origin[0] = g->origin[1] = g->origin[2] = lo;
+    g->voxel_size = size / n;
+    g->res[0] = g->res[1] = g->res[2] = n;
+}
+
+static void test_gl_equals_cpu_sphere(void)
+{
+    test_mesh m;
+    voxgi_grid g;
+    if (!have_gl()) return;
+    scene_sphere(&m, 40, 28, 1.0, 0.013, -0.021, 0.007);
+    cubic(&g, -1.1, 2.2, 32);
+    compare(&m, &g, "sphere 32^3");
+    cubic(&g, -1.1, 2.2, 100);
+    compare(&m, &g, "sphere 100^3");
+    g.res[0] = 70; g.res[1] = 45; g.res[2] = 33; /* non-cubic, cut through the scene */
+    compare(&m, &g, "sphere 70x45x33");
+    test_mesh_free(&m);
+}
+
+static void test_gl_equals_cpu_ties(void)
+{
+    test_mesh m;
+    voxgi_grid g;
+    if (!have_gl()) return;
+    scene_box_and_tilted(&m); /* lattice coordinates: every face on voxel boundaries */
+    g.origin[0] = g.origin[1] = g.origin[2] = -1;
+    g.voxel_size = 1.5;
+    g.res[0] = 19; g.res[1] = 18; g.res[2] = 17;
+    compare(&m, &g, "box on voxel faces");
+    g.voxel_size = 0.5; /* every integer coordinate on a boundary */
+    g.res[0] = 51; g.res[1] = 50; g.res[2] = 52;
+    compare(&m, &g, "box at half voxels");
+    g.origin[0] = -1.1; g.origin[1] = -0.9; g.origin[2] = -1.05; /* generic: filter with exact fallbacks */
+    g.voxel_size = 0.3;
+    g.res[0] = 85; g.res[1] = 80; g.res[2] = 87;
+    compare(&m, &g, "box generic grid");
+    test_mesh_free(&m);
+}
+
+static void test_gl_equals_cpu_quads_and_huge(void)
+{
+    test_mesh m;
+    voxgi_grid g;
+    if (!have_gl()) return;
+    scene_quad(&m, 1); /* two triangles, each far larger than the small-triangle limit */
+    m.pos[2] = 0.3f; m.pos[5] = -0.2f;
+    cubic(&g, -1.05, 2.1, 256);
+    compare(&m, &g, "tilted simple quad 256^3");
+    test_mesh_free(&m);
+    scene_quad(&m, 40);
+    cubic(&g, -1.05, 2.1, 64);
+    compare(&m, &g, "subdivided quad 64^3");
+    test_mesh_free(&m);
+    {   /* one triangle much larger than the grid */
+        test_mesh big;
+        float p[9] = {-1000, -1000, 2.25f, 3000, -1000, 3.125f, -1000, 3000, 3.875f};
+        test_mesh_alloc(&big, 3, 1);
+        memcpy(big.pos, p, sizeof p);
+        big.idx[0] = 0; big.idx[1] = 1; big.idx[2] = 2;
+        g.origin[0] = -2; g.origin[1] = -3; g.origin[2] = 0;
+        g.voxel_size = 0.0625;
+        g.res[0] = 300; g.res[1] = 256; g.res[2] = 100;
+        compare(&big, &g, "one huge triangle");
+        test_mesh_free(&big);
+    }
+}
+
+static void test_gl_equals_cpu_degenerate(void)
+{
+    /* segments, points and collinear triangles go to the exact CPU path whole */
+    test_mesh m;
+    voxgi_grid g;
+    float p[] = {0.1f, 0.2f, 0.3f, 3.7f, 2.9f, 1.3f, 1.9f, 1.55f, 0.8f, /* collinear */
+                 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f,  /* point on voxel corners */
+                 0.5f, 3.5f, 0.25f, 3.5f, 0.5f, 3.75f, 0.5f, 3.5f, 0.25f}; /* segment */
+    size_t i;
+    if (!have_gl()) return;
+    test_mesh_alloc(&m, 9, 3);
+    memcpy(m.pos, p, sizeof p);
+    for (i = 0; i < 9; i++) m.idx[i] = (uint32_t)i;
+    cubic(&g, 0, 4, 16);
+    compare(&m, &g, "degenerate triangles");
+    test_mesh_free(&m);
+}
+
+static void test_gl_interop_and_backends(void)
+{
+    voxgi_context *ctx;
+    voxgi_info info;
+    if (!have_gl()) return;
+    ctx = make_ctx(VOXGI_BACKEND_AUTO);
+    voxgi_query_info(ctx, &info);
+    TH_CHECK(info.backend == VOXGI_BACKEND_GL, "AUTO with a GL 4.5 context picked %s", voxgi_backend_name(info.backend));
+    TH_CHECK(strstr(info.gl_version, "4.") != NULL, "GL version '%s'", info.gl_version);
+    {
+        test_mesh m;
+        voxgi_mesh mesh;
+        voxgi_scene sc;
+        voxgi_voxelize_desc vd;
+        voxgi_voxels *vox = NULL;
+        unsigned name = 0;
+        scene_sphere(&m, 8, 6, 1.0, 0, 0, 0);
+        memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
+        mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
+        sc.meshes = &mesh; sc.mesh_count = 1;
+        cubic(&vd.grid, -1.2, 2.4, 16);
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "GL voxelize failed");
+        TH_CHECK(voxgi_voxels_gl_buffer(ctx, vox, &name) == VOXGI_OK && name != 0, "no GL buffer name");
+        voxgi_voxels_destroy(ctx, vox);
+        cubic(&vd.grid, -1.2, 2.4, 2048); /* 1 GiB of bits: beyond this GL's storage block limit */
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_ERR_TOO_LARGE && vox == NULL, "2048^3 on GL not refused cleanly");
+        TH_CHECK(strstr(voxgi_last_error(ctx), "CPU backend") != NULL, "message: %s", voxgi_last_error(ctx));
+        test_mesh_free(&m);
+    }
+    voxgi_destroy(ctx);
+}
+
+/* A loader that lacks one entry point: GL fails naming it, AUTO falls back to the CPU. */
+static voxgi_gl_proc loader_without_indirect(const char *name, void *user)
+{
+    if (strcmp(name, "glDispatchComputeIndirect") == 0) return NULL;
+    return vxt_gl_get_proc(name, user);
+}
+static char g_log[1024];
+static void keep_log(voxgi_log_level l, const char *msg, void *u) { (void)l; (void)u; snprintf(g_log, sizeof g_log, "%s", msg); }
+
+static void test_gl_missing_function_and_fallback(void)
+{
+    voxgi_desc d;
+    voxgi_context *ctx = NULL;
+    voxgi_info info;
+    if (!have_gl()) return;
+    memset(&d, 0, sizeof d);
+    d.backend = VOXGI_BACKEND_GL;
+    d.gl_get_proc_address_user = loader_without_indirect;
+    d.gl_user = g_gl;
+    d.logger.func = keep_log;
+    TH_CHECK(voxgi_create(&d, &ctx) == VOXGI_ERR_GL_MISSING_FUNCTION && ctx == NULL, "missing entry point accepted");
+    TH_CHECK(strstr(g_log, "glDispatchComputeIndirect") != NULL, "log does not name the function: %s", g_log);
+    d.backend = VOXGI_BACKEND_AUTO;
+    TH_CHECK(voxgi_create(&d, &ctx) == VOXGI_OK, "AUTO failed");
+    voxgi_query_info(ctx, &info);
+    TH_CHECK(info.backend == VOXGI_BACKEND_CPU, "AUTO did not fall back to the CPU");
+    TH_CHECK(strstr(g_log, "CPU") && strstr(g_log, "glDispatchComputeIndirect"), "fallback not explained: %s", g_log);
+    voxgi_destroy(ctx);
+    memset(&d, 0, sizeof d); /* no loader at all */
+    TH_CHECK(voxgi_create(&d, &ctx) == VOXGI_OK, "AUTO without loader failed");
+    voxgi_query_info(ctx, &info);
+    TH_CHECK(info.backend == VOXGI_BACKEND_CPU, "AUTO without loader is not CPU");
+    voxgi_destroy(ctx);
+}
+
+/* A shader that fails to compile gives VOXGI_ERR_GL_SHADER with the log mapped to file:line. */
+static void test_gl_shader_error_mapping(void)
+{
+    voxgi_context *ctx;
+    unsigned int prog = 0;
+    const char *bad = "layout(local_size_x = 1) in;\nvoid main()\n{\n    undefined_thing = 1;\n}\n";
+    if (!have_gl()) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL);
+    TH_CHECK(voxgi__gl_program(ctx, "broken.glsl", bad, &prog) == VOXGI_ERR_GL_SHADER, "broken shader compiled");
+    TH_CHECK(strstr(voxgi_last_error(ctx), "broken.glsl:4") != NULL, "log not mapped to broken.glsl:4: %s", voxgi_last_error(ctx));
+    voxgi_destroy(ctx);
+}
+
+int main(void)
+{
+    vxt_gl_kind kind = VXT_GL_AUTO;
+    const char *want = getenv("VOXGI_TEST_GL");
+    if (want && vxt_gl_kind_parse(want, &kind) != 0) kind = VXT_GL_AUTO;
+    g_gl = vxt_gl_create(kind, g_gl_error, sizeof g_gl_error);
+    if (g_gl) printf("GL context: %s, %s\n", vxt_gl_kind_name(g_gl), vxt_gl_renderer(g_gl));
+    else printf("NO GL CONTEXT: %s\n", g_gl_error);
+    TH_RUN(test_gl_equals_cpu_sphere);
+    TH_RUN(test_gl_equals_cpu_ties);
+    TH_RUN(test_gl_equals_cpu_quads_and_huge);
+    TH_RUN(test_gl_equals_cpu_degenerate);
+    TH_RUN(test_gl_interop_and_backends);
+    TH_RUN(test_gl_missing_function_and_fallback);
+    TH_RUN(test_gl_shader_error_mapping);
+    if (g_gl) vxt_gl_destroy(g_gl);
+    return th_finish();
+}

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs the Debian packages voxgi's tests, tools and examples need to get a headless
+# OpenGL 4.5 context. Idempotent and silent when everything is already there.
+#
+# Our programs load EGL and OSMesa at run time (tools/headless_gl.h), so the runtime
+# libraries are what they need; the -dev packages add the headers and link names for
+# programs that bind OSMesa or EGL directly, as an application embedding voxgi may:
+#   libegl1          libEGL.so.1, the EGL loader
+#   libegl-mesa0     Mesa's EGL vendor, which provides the surfaceless platform
+#   libgl1-mesa-dri  the llvmpipe software rasteriser behind EGL
+#   libosmesa6       libOSMesa.so.8, the fallback when EGL is unusable
+#   libosmesa6-dev, libegl-dev   osmesa.h, EGL/egl.h and the libraries to link against
+set -euo pipefail
+
+packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev)
+
+missing=()
+for p in "${packages[@]}"; do
+    # The status, as dpkg -s shows it: a removed but not purged package still has an entry.
+    [ "$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null)" = "install ok installed" ] || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+if [ "$(id -u)" -eq 0 ]; then
+    as_root=()
+elif command -v sudo >/dev/null 2>&1; then
+    as_root=(sudo)
+else
+    echo "deps.sh: need root or sudo to install: ${missing[*]}" >&2
+    exit 1
+fi
+
+# sudo resets the environment, so the settings go through env.
+apt_get() { "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive DEBCONF_NOWARNINGS=yes apt-get -qq "$@"; }
+
+echo "deps.sh: installing ${missing[*]}"
+apt_get update
+apt_get install -y --no-install-recommends "${missing[@]}" >/dev/null
+echo "deps.sh: done"
