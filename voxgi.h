@@ -78,7 +78,11 @@
 
 #ifndef VOXGI_API
 #ifdef VOXGI_STATIC
+#if defined(__GNUC__) || defined(__clang__)
+#define VOXGI_API static __attribute__((unused)) /* a private copy need not use every function */
+#else
 #define VOXGI_API static
+#endif
 #else
 #define VOXGI_API extern
 #endif
@@ -1121,7 +1125,8 @@ static voxgi_result voxgi__gl_read_buffer(voxgi_context *ctx, unsigned int buffe
 typedef struct voxgi__vprep {
     double q[3];           /* (v - o) / s in double: the vertex in voxel units */
     int32_t lo[3], hi[3];  /* exact range of voxel indices whose closed box holds the coordinate */
-    int32_t frac_bits;     /* q is exact with at most this many fractional bits, or -1 */
+    int32_t frac_bits;     /* every q is exact with at most this many fraction bits, or -1 */
+    int32_t exact_axes;    /* bit a: q[a] is exact with at most 30 fraction bits */
 } voxgi__vprep;
 
 /* Exact sign of x - (o + k s): where a coordinate lies against a grid plane. */
@@ -1151,6 +1156,7 @@ static int voxgi__fraction_bits(double x)
 static void voxgi__prep_vertex(const float *v, const voxgi_grid *g, voxgi__vprep *out)
 {
     int a, frac = 0;
+    out->exact_axes = 0;
     for (a = 0; a < 3; a++) {
         double x = v[a], o = g->origin[a], s = g->voxel_size, d = x - o, q = d / s, k;
         out->q[a] = q;
@@ -1170,14 +1176,15 @@ static void voxgi__prep_vertex(const float *v, const voxgi_grid *g, voxgi__vprep
         out->hi[a] = (int32_t)k;
         out->lo[a] = (int32_t)k - (voxgi__cmp_grid_plane(x, o, k, s) == 0);
         /* q is a lattice value when x - o and the division were exact and few fraction bits remain */
-        if (frac >= 0) {
+        {
             int f = voxgi__fraction_bits(q);
             double se, pe, pp;
-            if (f > 30 || fabs(q) > 4194304.0) frac = -1;
+            voxgi__two_sum(x, -o, &pp, &se);
+            voxgi__two_prod(q, s, &pp, &pe);
+            if (f > 30 || fabs(q) > 4194304.0 || se != 0.0 || pp != d || pe != 0.0) frac = -1;
             else {
-                voxgi__two_sum(x, -o, &pp, &se);
-                voxgi__two_prod(q, s, &pp, &pe);
-                frac = (se != 0.0 || pp != d || pe != 0.0) ? -1 : VOXGI__MAX(frac, f);
+                out->exact_axes |= 1 << a;
+                if (frac >= 0) frac = VOXGI__MAX(frac, f);
             }
         }
     }
@@ -1188,8 +1195,9 @@ static void voxgi__prep_vertex(const float *v, const voxgi_grid *g, voxgi__vprep
    index relative to the triangle's range and side picks the box corner minimising (0) or
    maximising (1) the function. err bounds |computed - exact| for every voxel of the range. */
 typedef struct voxgi__lin {
-    double k[3], v0[2], err;
+    double k[3], dk[3], v0[2], err;
     int8_t off[2][3];    /* corner offsets per side */
+    int8_t vertex;       /* the vertex the function is measured from */
     int8_t plane;        /* -1: the triangle's plane; else the projection normal to this axis */
     int8_t edge;         /* edge (from this vertex) of a projection test */
     int8_t orient;       /* +-1: one-sided (max corner >= 0); 0: two-sided (min <= 0 <= max) */
@@ -1242,7 +1250,7 @@ static int voxgi__tri_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri *
         for (a = 0; a < 3; a++) {
             double q = p[k]->q[a];
             t->r[k][a] = q - (double)t->lo[a];
-            t->dr[k][a] = p[k]->frac_bits >= 0 ? 0.0 : 2.01 * VOXGI__U * fabs(q) + VOXGI__U * fabs(t->r[k][a]);
+            t->dr[k][a] = (p[k]->exact_axes >> a) & 1 ? 0.0 : 2.01 * VOXGI__U * fabs(q) + VOXGI__U * fabs(t->r[k][a]);
             m = VOXGI__MAX(m, VOXGI__MAX(fabs(t->r[k][a]), (double)(t->hi[a] - t->lo[a] + 1)));
         }
     /* Exact mode: numerators (in units of 2^-fb) of edges and offsets need at most B bits, so
@@ -1296,10 +1304,12 @@ static void voxgi__lin_make(const voxgi__tri *t, voxgi__lin *L, const double k[3
             L->v0[side] += k[a] * ((double)L->off[side][a] - t->r[vk][a]);
         }
     }
+    L->vertex = (int8_t)vk;
     for (a = 0; a < 3; a++) {
         /* |rel + off - r| <= T over the whole range */
         double T = fabs(t->r[vk][a]) + 1 + (double)(t->hi[a] - t->lo[a] + 1);
         L->k[a] = k[a];
+        L->dk[a] = dk[a];
         s += fabs(k[a]) * t->dr[vk][a] + T * dk[a] + dk[a] * t->dr[vk][a];
         mag += fabs(k[a]) * T;
     }
@@ -1413,6 +1423,23 @@ static void voxgi__tri_resolve_signs(const voxgi__vox_shared *vs, voxgi__tri *t,
         }
 }
 
+/* Second opinion on a sign the range-wide bound left open: sum k_a t_a with t_a = rel_a + off_a
+   - r_a and a bound for this voxel alone, so exact ties (a face on a voxel boundary) cost no
+   exact arithmetic: there t_a and its error are both zero. */
+static int voxgi__sign_tight(const voxgi__tri *t, const voxgi__lin *L, int side, const int32_t rel[3])
+{
+    double v = 0, e = 0, g = 0;
+    int a;
+    for (a = 0; a < 3; a++) {
+        double ta = (double)(rel[a] + L->off[side][a]) - t->r[L->vertex][a];
+        double dt = t->dr[L->vertex][a] + VOXGI__U * fabs(ta);
+        v += L->k[a] * ta;
+        e += fabs(L->k[a]) * dt + L->dk[a] * fabs(ta) + L->dk[a] * dt;
+        g += fabs(L->k[a] * ta);
+    }
+    return voxgi__sign_within(v, (e + VOXGI__GAMMA(3) * g * 1.01) * 1.001);
+}
+
 /* One linear test at voxel rel (relative to t->lo): 1 pass, 0 fail; undecided signs exactly. */
 static int voxgi__test_lin(const voxgi__vox_shared *vs, const voxgi__tri *t, const voxgi__lin *L, const int32_t rel[3],
                            uint64_t *exact_tests)
@@ -1421,6 +1448,7 @@ static int voxgi__test_lin(const voxgi__vox_shared *vs, const voxgi__tri *t, con
     for (side = L->orient ? 1 : 0; side < 2; side++) {
         double v = L->v0[side] + L->k[0] * (double)rel[0] + L->k[1] * (double)rel[1] + L->k[2] * (double)rel[2];
         int s = voxgi__sign_within(v, L->err);
+        if (s == VOXGI__UNKNOWN) s = voxgi__sign_tight(t, L, side, rel);
         if (s == VOXGI__UNKNOWN) {
             int64_t corner[3];
             int a;
@@ -1860,6 +1888,7 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
             gv[v].w[i] = f->pos[3 * v + (size_t)i];
         }
         gv[v].q[3] = vp[v].frac_bits;
+        gv[v].lo[3] = vp[v].exact_axes;
     }
     buf[0] = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
     buf[1] = voxgi__gl_buffer(ctx, nt * 3 * sizeof(uint32_t), f->tri);

@@ -7,7 +7,7 @@ layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 
 struct VPrep {
     dvec4 q;   // xyz: (v - o) / s;  w: fraction bits of an exact q, or -1
-    ivec4 lo;  // exact voxel range of the coordinate
+    ivec4 lo;  // exact voxel range of the coordinate; w: bit a set when q[a] is exact
     ivec4 hi;
     vec4 w;    // the float vertex
     vec4 pad;
@@ -32,7 +32,7 @@ const double U = 1.1102230246251565404e-16LF; // 2^-53
 const int UNKNOWN = 2;
 double gamma_(double k) { return k * U / (1.0LF - k * U); }
 
-struct Lin { dvec3 k; dvec2 v0; double err; ivec3 off0; ivec3 off1; int orient; };
+struct Lin { dvec3 k; dvec3 dk; dvec2 v0; double err; ivec3 off0; ivec3 off1; int orient; int vertex; };
 
 uint T;
 ivec3 lo, hi, ext;
@@ -62,9 +62,11 @@ bool setup(uint t)
     int fb = 0;
     for (int k = 0; k < 3; k++) {
         dvec3 q = vp[vi[k]].q.xyz;
-        int frac = int(vp[vi[k]].q.w);
+        int frac = int(vp[vi[k]].q.w), exact_axes = vp[vi[k]].lo.w;
         r[k] = q - dvec3(lo);
-        dr[k] = frac >= 0 ? dvec3(0.0LF) : 2.01LF * U * abs(q) + U * abs(r[k]);
+        dr[k] = 2.01LF * U * abs(q) + U * abs(r[k]);
+        for (int a = 0; a < 3; a++)
+            if (((exact_axes >> a) & 1) != 0) dr[k][a] = 0.0LF;
         m = max(m, max(max(abs(r[k].x), abs(r[k].y)), max(abs(r[k].z), double(max(ext.x, max(ext.y, ext.z))))));
         lattice = lattice && frac >= 0;
         fb = max(fb, frac);
@@ -115,6 +117,8 @@ Lin lin_make(dvec3 k, dvec3 dk, int vk)
         mag += abs(k[a]) * Tm;
     }
     L.k = k;
+    L.dk = dk;
+    L.vertex = vk;
     L.err = exact ? 0.0LF : (s + gamma_(8.0LF) * mag * 1.01LF) * 1.001LF;
     L.orient = 0;
     return L;
@@ -155,6 +159,21 @@ int sign_within(double v, double err)
     return err == 0.0LF ? 0 : UNKNOWN;
 }
 
+// A bound for this voxel alone (see voxgi__sign_tight): exact ties need no CPU help.
+int sign_tight(Lin L, int side, ivec3 rel)
+{
+    double v = 0.0LF, e = 0.0LF, g = 0.0LF;
+    ivec3 off = side == 0 ? L.off0 : L.off1;
+    for (int a = 0; a < 3; a++) {
+        double ta = double(rel[a] + off[a]) - r[L.vertex][a];
+        double dt = dr[L.vertex][a] + U * abs(ta);
+        v += L.k[a] * ta;
+        e += abs(L.k[a]) * dt + L.dk[a] * abs(ta) + L.dk[a] * dt;
+        g += abs(L.k[a] * ta);
+    }
+    return sign_within(v, (e + gamma_(3.0LF) * g * 1.01LF) * 1.001LF);
+}
+
 // 1 pass, 0 fail, UNKNOWN when the bound cannot tell
 int test_lin(Lin L, ivec3 rel)
 {
@@ -163,6 +182,7 @@ int test_lin(Lin L, ivec3 rel)
     for (int side = L.orient != 0 ? 1 : 0; side < 2; side++) {
         double v = (side == 0 ? L.v0.x : L.v0.y) + L.k.x * dr3.x + L.k.y * dr3.y + L.k.z * dr3.z;
         int s = sign_within(v, L.err);
+        if (s == UNKNOWN) s = sign_tight(L, side, rel);
         if (s == UNKNOWN) result = UNKNOWN;
         else if (side == 0 ? s > 0 : s < 0) return 0;
     }

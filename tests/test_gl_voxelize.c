@@ -6,7 +6,7 @@
 #include "../voxgi.h"
 #include "../tools/headless_gl.h"
 #include "harness.h"
-#include "scenes.h"
+#include "../tools/shapes.h"
 #include <stdlib.h>
 
 static vxt_gl *g_gl;
@@ -33,7 +33,7 @@ static voxgi_context *make_ctx(voxgi_backend b)
     return ctx;
 }
 
-static uint32_t *run(voxgi_context *ctx, const test_mesh *m, const voxgi_grid *g, voxgi_voxels_info *info)
+static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g, voxgi_voxels_info *info)
 {
     voxgi_mesh mesh;
     voxgi_scene sc;
@@ -57,7 +57,7 @@ static uint32_t *run(voxgi_context *ctx, const test_mesh *m, const voxgi_grid *g
 }
 
 /* GL and CPU bits must be identical, and the GL count must equal the CPU popcount. */
-static void compare(const test_mesh *m, const voxgi_grid *g, const char *what)
+static void compare(const vxt_shape *m, const voxgi_grid *g, const char *what)
 {
     voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
     voxgi_voxels_info ic, ig;
@@ -93,25 +93,25 @@ static void cubic(voxgi_grid *g, double lo, double size, int n)
 
 static void test_gl_equals_cpu_sphere(void)
 {
-    test_mesh m;
+    vxt_shape m;
     voxgi_grid g;
     if (!have_gl()) return;
-    scene_sphere(&m, 40, 28, 1.0, 0.013, -0.021, 0.007);
+    vxt_shape_sphere(&m, 40, 28, 1.0, 0.013, -0.021, 0.007);
     cubic(&g, -1.1, 2.2, 32);
     compare(&m, &g, "sphere 32^3");
     cubic(&g, -1.1, 2.2, 100);
     compare(&m, &g, "sphere 100^3");
     g.res[0] = 70; g.res[1] = 45; g.res[2] = 33; /* non-cubic, cut through the scene */
     compare(&m, &g, "sphere 70x45x33");
-    test_mesh_free(&m);
+    vxt_shape_free(&m);
 }
 
 static void test_gl_equals_cpu_ties(void)
 {
-    test_mesh m;
+    vxt_shape m;
     voxgi_grid g;
     if (!have_gl()) return;
-    scene_box_and_tilted(&m); /* lattice coordinates: every face on voxel boundaries */
+    vxt_shape_box_and_tilted(&m); /* lattice coordinates: every face on voxel boundaries */
     g.origin[0] = g.origin[1] = g.origin[2] = -1;
     g.voxel_size = 1.5;
     g.res[0] = 19; g.res[1] = 18; g.res[2] = 17;
@@ -123,53 +123,53 @@ static void test_gl_equals_cpu_ties(void)
     g.voxel_size = 0.3;
     g.res[0] = 85; g.res[1] = 80; g.res[2] = 87;
     compare(&m, &g, "box generic grid");
-    test_mesh_free(&m);
+    vxt_shape_free(&m);
 }
 
 static void test_gl_equals_cpu_quads_and_huge(void)
 {
-    test_mesh m;
+    vxt_shape m;
     voxgi_grid g;
     if (!have_gl()) return;
-    scene_quad(&m, 1); /* two triangles, each far larger than the small-triangle limit */
+    vxt_shape_quad(&m, 1); /* two triangles, each far larger than the small-triangle limit */
     m.pos[2] = 0.3f; m.pos[5] = -0.2f;
     cubic(&g, -1.05, 2.1, 256);
     compare(&m, &g, "tilted simple quad 256^3");
-    test_mesh_free(&m);
-    scene_quad(&m, 40);
+    vxt_shape_free(&m);
+    vxt_shape_quad(&m, 40);
     cubic(&g, -1.05, 2.1, 64);
     compare(&m, &g, "subdivided quad 64^3");
-    test_mesh_free(&m);
+    vxt_shape_free(&m);
     {   /* one triangle much larger than the grid */
-        test_mesh big;
+        vxt_shape big;
         float p[9] = {-1000, -1000, 2.25f, 3000, -1000, 3.125f, -1000, 3000, 3.875f};
-        test_mesh_alloc(&big, 3, 1);
+        vxt_shape_alloc(&big, 3, 1);
         memcpy(big.pos, p, sizeof p);
         big.idx[0] = 0; big.idx[1] = 1; big.idx[2] = 2;
         g.origin[0] = -2; g.origin[1] = -3; g.origin[2] = 0;
         g.voxel_size = 0.0625;
         g.res[0] = 300; g.res[1] = 256; g.res[2] = 100;
         compare(&big, &g, "one huge triangle");
-        test_mesh_free(&big);
+        vxt_shape_free(&big);
     }
 }
 
 static void test_gl_equals_cpu_degenerate(void)
 {
     /* segments, points and collinear triangles go to the exact CPU path whole */
-    test_mesh m;
+    vxt_shape m;
     voxgi_grid g;
     float p[] = {0.1f, 0.2f, 0.3f, 3.7f, 2.9f, 1.3f, 1.9f, 1.55f, 0.8f, /* collinear */
                  1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f,  /* point on voxel corners */
                  0.5f, 3.5f, 0.25f, 3.5f, 0.5f, 3.75f, 0.5f, 3.5f, 0.25f}; /* segment */
     size_t i;
     if (!have_gl()) return;
-    test_mesh_alloc(&m, 9, 3);
+    vxt_shape_alloc(&m, 9, 3);
     memcpy(m.pos, p, sizeof p);
     for (i = 0; i < 9; i++) m.idx[i] = (uint32_t)i;
     cubic(&g, 0, 4, 16);
     compare(&m, &g, "degenerate triangles");
-    test_mesh_free(&m);
+    vxt_shape_free(&m);
 }
 
 static void test_gl_interop_and_backends(void)
@@ -182,13 +182,13 @@ static void test_gl_interop_and_backends(void)
     TH_CHECK(info.backend == VOXGI_BACKEND_GL, "AUTO with a GL 4.5 context picked %s", voxgi_backend_name(info.backend));
     TH_CHECK(strstr(info.gl_version, "4.") != NULL, "GL version '%s'", info.gl_version);
     {
-        test_mesh m;
+        vxt_shape m;
         voxgi_mesh mesh;
         voxgi_scene sc;
         voxgi_voxelize_desc vd;
         voxgi_voxels *vox = NULL;
         unsigned name = 0;
-        scene_sphere(&m, 8, 6, 1.0, 0, 0, 0);
+        vxt_shape_sphere(&m, 8, 6, 1.0, 0, 0, 0);
         memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
         mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
         sc.meshes = &mesh; sc.mesh_count = 1;
@@ -199,7 +199,7 @@ static void test_gl_interop_and_backends(void)
         cubic(&vd.grid, -1.2, 2.4, 2048); /* 1 GiB of bits: beyond this GL's storage block limit */
         TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_ERR_TOO_LARGE && vox == NULL, "2048^3 on GL not refused cleanly");
         TH_CHECK(strstr(voxgi_last_error(ctx), "CPU backend") != NULL, "message: %s", voxgi_last_error(ctx));
-        test_mesh_free(&m);
+        vxt_shape_free(&m);
     }
     voxgi_destroy(ctx);
 }

@@ -3,7 +3,7 @@
 #define VOXGI_IMPLEMENTATION
 #include "../voxgi.h"
 #include "harness.h"
-#include "scenes.h"
+#include "../tools/shapes.h"
 #include <stdlib.h>
 
 /* ---------------------------------------------------------------- the oracle
@@ -239,17 +239,17 @@ static void test_adversarial_vs_oracle(void)
 static void test_mesh_vs_oracle(void)
 {
     voxgi_context *ctx = make_ctx(2);
-    test_mesh m;
+    vxt_shape m;
     voxgi_grid g;
     size_t i;
-    scene_sphere(&m, 12, 9, 2.0, 0.3, -0.2, 0.1);
+    vxt_shape_sphere(&m, 12, 9, 2.0, 0.3, -0.2, 0.1);
     for (i = 0; i < 3 * m.vertex_count; i++) m.pos[i] = (float)lattice(m.pos[i]);
     g.origin[0] = lattice(-2.21); g.origin[1] = lattice(-2.52); g.origin[2] = lattice(-2.07);
     g.voxel_size = lattice(0.31);
     g.res[0] = 15; g.res[1] = 17; g.res[2] = 14;
     TH_CHECK(check_against_oracle(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, "sphere") == 0,
              "sphere differs from the definition");
-    test_mesh_free(&m);
+    vxt_shape_free(&m);
     voxgi_destroy(ctx);
 }
 
@@ -258,13 +258,13 @@ static void test_mesh_vs_oracle(void)
 static void test_offset_and_scale_invariance(void)
 {
     voxgi_context *ctx = make_ctx(2);
-    test_mesh m;
+    vxt_shape m;
     voxgi_grid g0, g;
     uint32_t *ref, *bits;
     size_t i;
     int variant;
     float *moved;
-    scene_box_and_tilted(&m); /* integer coordinates in [0, 24] */
+    vxt_shape_box_and_tilted(&m); /* integer coordinates in [0, 24] */
     g0.origin[0] = -1; g0.origin[1] = -1; g0.origin[2] = -1;
     g0.voxel_size = 1.5;
     g0.res[0] = 19; g0.res[1] = 18; g0.res[2] = 17;
@@ -289,18 +289,18 @@ static void test_offset_and_scale_invariance(void)
     }
     free(moved);
     free(ref);
-    test_mesh_free(&m);
+    vxt_shape_free(&m);
     voxgi_destroy(ctx);
 }
 
 /* 1, 2 and 7 threads give identical bits. */
 static void test_thread_determinism(void)
 {
-    test_mesh m;
+    vxt_shape m;
     voxgi_grid g;
     uint32_t *b[3];
     int i, threads[3] = {1, 2, 7};
-    scene_sphere(&m, 48, 32, 1.0, 0, 0, 0);
+    vxt_shape_sphere(&m, 48, 32, 1.0, 0, 0, 0);
     g.origin[0] = g.origin[1] = g.origin[2] = -1.1;
     g.voxel_size = 2.2 / 40;
     g.res[0] = g.res[1] = g.res[2] = 40;
@@ -312,7 +312,7 @@ static void test_thread_determinism(void)
     TH_CHECK(b[0] && b[1] && b[2] && memcmp(b[0], b[1], (40 * 40 * 40 + 31) / 32 * 4) == 0 &&
              memcmp(b[0], b[2], (40 * 40 * 40 + 31) / 32 * 4) == 0, "thread counts disagree");
     for (i = 0; i < 3; i++) free(b[i]);
-    test_mesh_free(&m);
+    vxt_shape_free(&m);
 }
 
 /* ---------------------------------------------------------------- bad input */
@@ -461,7 +461,7 @@ static int cancel_at_once(double f, const char *stage, void *u) { (void)f; (void
 
 static void test_cancel_and_api(void)
 {
-    test_mesh m;
+    vxt_shape m;
     voxgi_desc d;
     voxgi_context *ctx = NULL;
     voxgi_mesh mesh;
@@ -471,7 +471,7 @@ static void test_cancel_and_api(void)
     voxgi_voxels_info info;
     uint32_t small[4];
     size_t need = 0;
-    scene_sphere(&m, 64, 48, 1.0, 0, 0, 0);
+    vxt_shape_sphere(&m, 64, 48, 1.0, 0, 0, 0);
     memset(&d, 0, sizeof d);
     memset(&mesh, 0, sizeof mesh);
     memset(&sc, 0, sizeof sc);
@@ -508,20 +508,20 @@ static void test_cancel_and_api(void)
     }
     voxgi_voxels_destroy(ctx, vox);
     voxgi_destroy(ctx);
-    test_mesh_free(&m);
+    vxt_shape_free(&m);
 }
 
 /* binvox write then read gives the same grid and bits; a truncated file is an error. */
 static void test_binvox_roundtrip(void)
 {
     voxgi_context *ctx = make_ctx(1);
-    test_mesh m;
+    vxt_shape m;
     voxgi_grid g, g2;
     uint32_t *bits, *back;
     size_t need = 0, bytes;
     FILE *f = tmpfile();
     long len;
-    scene_sphere(&m, 20, 14, 1.0, 0, 0, 0);
+    vxt_shape_sphere(&m, 20, 14, 1.0, 0, 0, 0);
     g.origin[0] = -1.25; g.origin[1] = -1.5; g.origin[2] = -1.125;
     g.voxel_size = 0.125;
     g.res[0] = 21; g.res[1] = 24; g.res[2] = 19; /* non-cubic: checks the axis order */
@@ -556,7 +556,7 @@ static void test_binvox_roundtrip(void)
     fclose(f);
     free(bits);
     free(back);
-    test_mesh_free(&m);
+    vxt_shape_free(&m);
     voxgi_destroy(ctx);
 }
 

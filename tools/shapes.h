@@ -1,25 +1,25 @@
-/* tests/scenes.h - procedural meshes the tests generate themselves (no files needed). */
-#ifndef VOXGI_TEST_SCENES_H
-#define VOXGI_TEST_SCENES_H
+/* tools/shapes.h - procedural meshes for the tests, tools and examples (no files needed). */
+#ifndef VXT_SHAPES_H
+#define VXT_SHAPES_H
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct test_mesh {
+typedef struct vxt_shape {
     float *pos;
     uint32_t *idx;
     size_t vertex_count, triangle_count;
-} test_mesh;
+} vxt_shape;
 
-static inline void test_mesh_free(test_mesh *m)
+static inline void vxt_shape_free(vxt_shape *m)
 {
     free(m->pos);
     free(m->idx);
     memset(m, 0, sizeof *m);
 }
 
-static inline void test_mesh_alloc(test_mesh *m, size_t nv, size_t nt)
+static inline void vxt_shape_alloc(vxt_shape *m, size_t nv, size_t nt)
 {
     m->pos = (float *)malloc(nv * 3 * sizeof(float));
     m->idx = (uint32_t *)malloc(nt * 3 * sizeof(uint32_t));
@@ -28,11 +28,11 @@ static inline void test_mesh_alloc(test_mesh *m, size_t nv, size_t nt)
 }
 
 /* A closed UV sphere, counter-clockwise seen from outside. */
-static inline void scene_sphere(test_mesh *m, int slices, int stacks, double radius, double cx, double cy, double cz)
+static inline void vxt_shape_sphere(vxt_shape *m, int slices, int stacks, double radius, double cx, double cy, double cz)
 {
     int i, j;
     size_t v = 0, t = 0;
-    test_mesh_alloc(m, (size_t)(slices + 1) * (size_t)(stacks + 1), (size_t)slices * (size_t)stacks * 2);
+    vxt_shape_alloc(m, (size_t)(slices + 1) * (size_t)(stacks + 1), (size_t)slices * (size_t)stacks * 2);
     for (j = 0; j <= stacks; j++)
         for (i = 0; i <= slices; i++) {
             double th = 3.14159265358979 * j / stacks, ph = 2 * 3.14159265358979 * i / slices;
@@ -50,7 +50,7 @@ static inline void scene_sphere(test_mesh *m, int slices, int stacks, double rad
 }
 
 /* Axis-aligned box [x0,x1]x[y0,y1]x[z0,z1] as 12 triangles, appended at vertex v / triangle t. */
-static inline void scene_put_box(test_mesh *m, size_t v, size_t t, const float lo[3], const float hi[3])
+static inline void vxt_shape_put_box(vxt_shape *m, size_t v, size_t t, const float lo[3], const float hi[3])
 {
     static const int faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
     int c, f;
@@ -68,11 +68,11 @@ static inline void scene_put_box(test_mesh *m, size_t v, size_t t, const float l
 }
 
 /* An axis-aligned box and a tilted quad, integer coordinates in [0, 24]: ties on voxel faces. */
-static inline void scene_box_and_tilted(test_mesh *m)
+static inline void vxt_shape_box_and_tilted(vxt_shape *m)
 {
     const float lo[3] = {2, 3, 4}, hi[3] = {20, 17, 13};
-    test_mesh_alloc(m, 12, 14);
-    scene_put_box(m, 0, 0, lo, hi);
+    vxt_shape_alloc(m, 12, 14);
+    vxt_shape_put_box(m, 0, 0, lo, hi);
     {
         const float q[12] = {1, 1, 22, 23, 4, 2, 24, 20, 9, 3, 23, 24};
         memcpy(m->pos + 24, q, sizeof q);
@@ -82,11 +82,11 @@ static inline void scene_box_and_tilted(test_mesh *m)
 }
 
 /* A square [-1,1]^2 at z = 0 split into 2*n*n triangles (n = 1: seed 000's simple quad). */
-static inline void scene_quad(test_mesh *m, int n)
+static inline void vxt_shape_quad(vxt_shape *m, int n)
 {
     int i, j;
     size_t t = 0;
-    test_mesh_alloc(m, (size_t)(n + 1) * (size_t)(n + 1), (size_t)n * (size_t)n * 2);
+    vxt_shape_alloc(m, (size_t)(n + 1) * (size_t)(n + 1), (size_t)n * (size_t)n * 2);
     for (j = 0; j <= n; j++)
         for (i = 0; i <= n; i++) {
             size_t v = (size_t)j * (size_t)(n + 1) + (size_t)i;

@@ -1,0 +1,63 @@
+# voxgi - build, tests, demo and benchmarks.  `make test` and `make demo` set up what they need.
+CC      ?= cc
+CXX     ?= c++
+WARN    := -Wall -Wextra -pedantic -Werror
+CFLAGS  ?= -O2 -g
+LDLIBS  := -lm -lpthread -ldl
+B       := build
+
+GLSL    := $(sort $(wildcard shaders/*.glsl))
+TESTS   := test_voxelize test_gl_voxelize test_mesh_io test_headless_gl test_tool
+TOOL_SRC := tools/voxgi.c tools/mesh_io.c
+
+.PHONY: all deps test demo bench bench-anchors clean
+all: deps $(B)/voxgi $(B)/example_voxelize
+
+# Installs missing system packages (headless GL) with apt-get; silent when all is there.
+deps:
+	@bash tools/deps.sh
+
+$(B):
+	@mkdir -p $(B) $(B)/asan
+
+$(B)/embed_shaders: tools/embed_shaders.c | $(B)
+	$(CC) -O2 $(WARN) -o $@ $<
+
+# shaders.h is generated from shaders/*.glsl, never edited; it is committed so that
+# voxgi.h + shaders.h work without this Makefile. Builds never regenerate it behind your
+# back: after editing GLSL run `make shaders.h` (the tests fail while it is stale).
+shaders.h: $(GLSL) $(B)/embed_shaders
+	$(B)/embed_shaders $@ $(GLSL)
+
+$(B)/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h voxgi.h | $(B) shaders.h
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $(TOOL_SRC) $(LDLIBS)
+
+$(B)/example_voxelize: examples/voxelize.c voxgi.h | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
+
+$(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
+$(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)
+	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
+
+$(B)/test_%: tests/test_%.c voxgi.h tests/harness.h tools/shapes.h | $(B) shaders.h
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
+ASAN := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+$(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tools/shapes.h | $(B) shaders.h
+	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(LDLIBS)
+
+test: deps $(B)/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(addprefix $(B)/asan/,$(TESTS))
+	@bash tests/run.sh
+
+demo: all
+	$(B)/voxgi bench voxelize --max-res 256
+
+bench: all
+	$(B)/voxgi bench voxelize
+
+# Optional: voxgi's CPU voxelizer against OpenVDB's meshToLevelSet (needs libopenvdb-dev).
+bench-anchors: all
+	bash bench/anchors.sh $(ANCHOR_ARGS)
+
+clean:
+	rm -rf $(B)

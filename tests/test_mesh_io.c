@@ -1,0 +1,619 @@
+/* tests/test_mesh_io.c - the mesh loaders of tools/mesh_io.c.
+ *
+ * First exact results on small files of every format and variant, then hostile input: every
+ * truncated prefix and random corruptions of each valid file, garbage, bad indices, non-finite
+ * numbers and absurd counts must fail cleanly (run under ASan/UBSan) with a message naming the file
+ * and the line or byte offset. All files live in a fresh temporary directory. */
+#define _XOPEN_SOURCE 700 /* mkdtemp */
+#include "harness.h"
+#include "../tools/mesh_io.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+static char tmp_dir[512];
+static char created[128][64];
+static int created_count;
+
+/* Paths come from a ring of buffers so a test can hold a few at once. */
+static const char *tmp_path(const char *name)
+{
+    static char ring[4][1024];
+    static int next;
+    char *path = ring[next++ % 4];
+    int n = snprintf(path, sizeof ring[0], "%s/%s", tmp_dir, name);
+    if (n < 0 || n >= (int)sizeof ring[0]) {
+        printf("temporary path too long: %s/%s\n", tmp_dir, name);
+        exit(1);
+    }
+    return path;
+}
+
+static const char *write_file(const char *name, const void *data, size_t size)
+{
+    const char *path = tmp_path(name);
+    FILE *f = fopen(path, "wb");
+    int i;
+    TH_CHECK(f != NULL, "cannot create %s", path);
+    if (!f) return path;
+    TH_CHECK(fwrite(data, 1, size, f) == size, "cannot write %s", path);
+    fclose(f);
+    for (i = 0; i < created_count && strcmp(created[i], name); i++) {}
+    if (i == created_count && created_count < 128) snprintf(created[created_count++], sizeof created[0], "%s", name);
+    return path;
+}
+
+static const char *write_text(const char *name, const char *text) { return write_file(name, text, strlen(text)); }
+
+/* Binary files are assembled little-endian, byte by byte, whatever the host. */
+typedef struct bytes { unsigned char data[4096]; size_t size; } bytes;
+static void put_uint(bytes *b, uint64_t v, int n) { while (n--) { b->data[b->size++] = (unsigned char)v; v >>= 8; } }
+static void put_f32(bytes *b, float f) { uint32_t u; memcpy(&u, &f, 4); put_uint(b, u, 4); }
+static void put_f64(bytes *b, double d) { uint64_t u; memcpy(&u, &d, 8); put_uint(b, u, 8); }
+static void put_text(bytes *b, const char *s) { memcpy(b->data + b->size, s, strlen(s)); b->size += strlen(s); }
+
+static int near(float a, float b) { return fabsf(a - b) < 1e-6f; }
+static int is_empty(const vxt_mesh *m) { vxt_mesh zero; memset(&zero, 0, sizeof zero); return !memcmp(m, &zero, sizeof zero); }
+
+/* Every index in range, every array present: what callers may rely on after a successful load. */
+static void check_consistent(const vxt_mesh *m, const char *path)
+{
+    size_t i;
+    TH_CHECK(m->positions && m->indices && m->material_ids && m->materials, "%s: missing arrays", path);
+    TH_CHECK(m->triangle_count > 0 && m->vertex_count > 0 && m->material_count > 0, "%s: empty mesh", path);
+    for (i = 0; i < 3 * m->triangle_count; i++)
+        if (m->indices[i] >= m->vertex_count) { TH_CHECK(0, "%s: index %u out of range", path, m->indices[i]); break; }
+    for (i = 0; i < m->triangle_count; i++)
+        if (m->material_ids[i] >= m->material_count) { TH_CHECK(0, "%s: material id out of range", path); break; }
+}
+
+static int load_ok(const char *path, vxt_mesh *m)
+{
+    char err[512];
+    int rc = vxt_mesh_load(path, m, err, sizeof err);
+    TH_CHECK(rc == 0, "loading %s failed: %s", path, err);
+    if (!rc) check_consistent(m, path);
+    return rc == 0;
+}
+
+/* The file must fail to load with a message naming it and containing `expect`. */
+static void expect_error(const char *name, const void *data, size_t size, const char *expect)
+{
+    const char *path = write_file(name, data, size);
+    char err[512];
+    vxt_mesh m;
+    int rc = vxt_mesh_load(path, &m, err, sizeof err);
+    TH_CHECK(rc != 0, "%s loaded although it should fail with '%s'", name, expect);
+    if (!rc) { vxt_mesh_free(&m); return; }
+    TH_CHECK(is_empty(&m), "%s: mesh not left empty on failure", name);
+    TH_CHECK(strstr(err, path) != NULL, "%s: message does not name the file: %s", name, err);
+    TH_CHECK(strstr(err, expect) != NULL, "%s: message lacks '%s': %s", name, expect, err);
+}
+static void expect_text_error(const char *name, const char *text, const char *expect) { expect_error(name, text, strlen(text), expect); }
+
+/* ---- valid files ---- */
+
+static const char obj_quads[] =
+    "# a unit cube of quads, plus a pentagon\n"
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+    "v 0.5 -0.5 0\nf 1 9 2 3 4\n";
+
+static void test_obj_quads_fan(void)
+{
+    vxt_mesh m;
+    size_t i;
+    if (!load_ok(write_text("quads.obj", obj_quads), &m)) return;
+    TH_CHECK(m.vertex_count == 9 && m.triangle_count == 15, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    TH_CHECK(m.indices[0] == 0 && m.indices[1] == 3 && m.indices[2] == 2 && m.indices[3] == 0 && m.indices[4] == 2 && m.indices[5] == 1,
+             "first quad not split as a fan");
+    TH_CHECK(m.indices[36] == 0 && m.indices[37] == 8 && m.indices[38] == 1 && m.indices[42] == 0 && m.indices[43] == 2 && m.indices[44] == 3,
+             "pentagon not split as a fan");
+    TH_CHECK(near(m.positions[24], 0.5f) && near(m.positions[25], -0.5f), "vertex 9 is %g %g", m.positions[24], m.positions[25]);
+    TH_CHECK(m.normals == NULL && m.uvs == NULL, "normals or uvs without vt/vn");
+    TH_CHECK(m.material_count == 1 && !strcmp(m.materials[0].name, "default"), "default material missing");
+    TH_CHECK(near(m.materials[0].albedo[1], 0.8f) && near(m.materials[0].opacity, 1) && m.materials[0].emission[2] == 0, "default values wrong");
+    for (i = 0; i < m.triangle_count; i++) TH_CHECK(m.material_ids[i] == 0, "material id %u", m.material_ids[i]);
+    vxt_mesh_free(&m);
+    TH_CHECK(is_empty(&m), "vxt_mesh_free did not zero the mesh");
+}
+
+static void test_obj_negative_indices(void)
+{
+    vxt_mesh m;
+    static const uint32_t expect[] = {0, 1, 2, 0, 3, 2};
+    if (!load_ok(write_text("negative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0 1.0\nf -3 -2 -1\nv 0 0 1\nv 7 7 7\nf -5 -2 -3\n"), &m)) return;
+    TH_CHECK(m.vertex_count == 5 && m.triangle_count == 2, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    TH_CHECK(!memcmp(m.indices, expect, sizeof expect), "indices %u %u %u %u %u %u", m.indices[0], m.indices[1], m.indices[2], m.indices[3], m.indices[4], m.indices[5]);
+    vxt_mesh_free(&m);
+}
+
+static const char obj_split[] =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+    "vt 0 0\nvt 1 0\nvt 0 1\n"
+    "vn 0 0 1\nvn 0 0 -1\n"
+    "f 1/1/1 2/2/1 3/3/1\n"
+    "f 2/2/1 4/1/1 3/3/1\n" /* shares two corners with the first face */
+    "f 1//2 3//2 2//2\n"
+    "f 1/2 2/3 3/1\n";
+
+static void test_obj_split_vertices(void)
+{
+    /* first use of each (v, vt, vn) triple gives the vertex order */
+    static const uint32_t expect_indices[] = {0, 1, 2, 1, 3, 2, 4, 5, 6, 7, 8, 9};
+    static const int expect_v[] = {0, 1, 2, 3, 0, 2, 1, 0, 1, 2};
+    vxt_mesh m;
+    int i;
+    if (!load_ok(write_text("split.obj", obj_split), &m)) return;
+    TH_CHECK(m.vertex_count == 10 && m.triangle_count == 4, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    TH_CHECK(m.normals && m.uvs, "normals and uvs expected");
+    if (m.vertex_count != 10 || !m.normals || !m.uvs) { vxt_mesh_free(&m); return; }
+    TH_CHECK(!memcmp(m.indices, expect_indices, sizeof expect_indices), "indices differ");
+    for (i = 0; i < 10; i++)
+        TH_CHECK(near(m.positions[3 * i], (float)(expect_v[i] & 1)) && near(m.positions[3 * i + 1], (float)(expect_v[i] >> 1)), "vertex %d position", i);
+    TH_CHECK(near(m.uvs[6], 0) && near(m.uvs[7], 0) && near(m.normals[11], 1), "vertex 3 is (4, 1, 1)");
+    TH_CHECK(near(m.normals[14], -1) && m.uvs[8] == 0 && m.uvs[9] == 0, "vertex 4 has vn 2 and no vt");
+    TH_CHECK(near(m.uvs[14], 1) && near(m.uvs[15], 0) && m.normals[21] == 0 && m.normals[23] == 0, "vertex 7 has vt 2 and no vn");
+    vxt_mesh_free(&m);
+}
+
+static const char mtl_scene[] =
+    "# materials\r\n"
+    "newmtl red\r\nKa 0 0 0\r\nKd 1 0 0\r\nKe 0 0 0\r\nd 0.5\r\nillum 2\r\n"
+    "\r\n"
+    "newmtl lamp  \r\n\tKd 0.25\r\nKe 4 3 2\r\nTr 0.25\r\nmap_Kd textures/lamp.png\r\n";
+static const char obj_scene[] =
+    "# exported with CRLF and trailing blanks\r\n"
+    "mtllib scene.mtl\r\n"
+    "o thing\r\n"
+    "v 0 0 0 \t\r\nv 1 0 0\r\nv 1 1 0\r\nv 0 1 0  \r\n"
+    "g part\r\ns 1\r\ns off\r\n"
+    "f 1 2 3   \r\n"
+    "usemtl lamp\r\nf 1 3 4 # a comment\r\n"
+    "usemtl red\r\nf 2 3 4\r\n"
+    "usemtl ghost\r\nf 1 2 4\r\n";
+
+static void test_obj_mtl_materials(void)
+{
+    static const uint32_t expect_ids[] = {2, 1, 0, 3};
+    const vxt_material *red, *lamp;
+    vxt_mesh m;
+    write_text("scene.mtl", mtl_scene);
+    if (!load_ok(write_text("scene.obj", obj_scene), &m)) return;
+    TH_CHECK(m.vertex_count == 4 && m.triangle_count == 4, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    TH_CHECK(m.material_count == 4, "%zu materials, expected red, lamp, default, ghost", m.material_count);
+    if (m.material_count != 4) { vxt_mesh_free(&m); return; }
+    red = &m.materials[0];
+    lamp = &m.materials[1];
+    TH_CHECK(!strcmp(red->name, "red") && !strcmp(lamp->name, "lamp") && !strcmp(m.materials[2].name, "default") && !strcmp(m.materials[3].name, "ghost"),
+             "names %s %s %s %s", red->name, lamp->name, m.materials[2].name, m.materials[3].name);
+    TH_CHECK(!memcmp(m.material_ids, expect_ids, sizeof expect_ids), "material ids %u %u %u %u", m.material_ids[0], m.material_ids[1], m.material_ids[2], m.material_ids[3]);
+    TH_CHECK(near(red->albedo[0], 1) && red->albedo[1] == 0 && red->emission[0] == 0 && near(red->opacity, 0.5f), "red values");
+    TH_CHECK(near(lamp->albedo[0], 0.25f) && near(lamp->albedo[2], 0.25f), "Kd with one value is grey");
+    TH_CHECK(near(lamp->emission[0], 4) && near(lamp->emission[1], 3) && near(lamp->emission[2], 2), "lamp emission");
+    TH_CHECK(near(lamp->opacity, 0.75f), "Tr 0.25 gives opacity %g", lamp->opacity);
+    TH_CHECK(near(m.materials[3].albedo[0], 0.8f) && near(m.materials[3].opacity, 1), "usemtl of an unknown name gets defaults");
+    vxt_mesh_free(&m);
+}
+
+static void test_obj_missing_mtl(void)
+{
+    vxt_mesh m;
+    if (!load_ok(write_text("lonely.obj", "mtllib does_not_exist.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 3 2 1\n"), &m)) return;
+    TH_CHECK(m.material_count == 2 && !strcmp(m.materials[1].name, "b") && m.material_ids[1] == 1, "usemtl names kept as default materials");
+    vxt_mesh_free(&m);
+}
+
+static void test_obj_mtl_in_subfolder(void)
+{
+    char dir[600];
+    vxt_mesh m;
+    snprintf(dir, sizeof dir, "%s/sub", tmp_dir);
+    TH_CHECK(mkdir(dir, 0700) == 0, "cannot create %s", dir);
+    write_text("sub/tinted.mtl", "newmtl tint\nKd 0.1 0.2 0.3\n");
+    if (!load_ok(write_text("sub/tinted.obj", "mtllib tinted.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl tint\nf 1 2 3\n"), &m)) return;
+    TH_CHECK(m.material_count == 1 && near(m.materials[0].albedo[2], 0.3f), "MTL next to the OBJ not found");
+    vxt_mesh_free(&m);
+}
+
+/* A malformed MTL line fails the OBJ, and the message names the MTL file and its line. */
+static void test_mtl_errors(void)
+{
+    static const struct { const char *mtl; int line; } cases[] = {
+        {"newmtl a\nKd 1 1 1\nKd 1 zero 0\n", 3}, {"Kd 1 1 1\n", 1}, {"newmtl a\nd 0.5 0.5\n", 2}, {"newmtl a\r\nKe nan 0 0\r\n", 2}};
+    char obj[1024], err[512], expect[600];
+    vxt_mesh m;
+    size_t i;
+    snprintf(obj, sizeof obj, "%s", write_text("bad_mtl.obj", "mtllib bad.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(expect, sizeof expect, "%s: line %d: ", write_text("bad.mtl", cases[i].mtl), cases[i].line);
+        TH_CHECK(vxt_mesh_load(obj, &m, err, sizeof err) != 0 && is_empty(&m), "case %zu loaded", i);
+        TH_CHECK(strstr(err, expect) == err, "case %zu: expected '%s...', got '%s'", i, expect, err);
+    }
+}
+
+static const char off_pyramid[] =
+    "OFF\n# a square pyramid\n5 2 0\n\n"
+    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 1\n"
+    "4 0 1 2 3\n3 0 1 4  255 0 0\n";
+
+static void test_off(void)
+{
+    static const uint32_t expect[] = {0, 1, 2, 0, 2, 3, 0, 1, 4};
+    vxt_mesh m;
+    if (!load_ok(write_text("pyramid.off", off_pyramid), &m)) return;
+    TH_CHECK(m.vertex_count == 5 && m.triangle_count == 3, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    TH_CHECK(!memcmp(m.indices, expect, sizeof expect), "indices differ");
+    TH_CHECK(near(m.positions[12], 0.5f) && near(m.positions[14], 1), "apex position");
+    vxt_mesh_free(&m);
+    /* the counts may follow OFF on its line, and the content decides over the extension */
+    if (!load_ok(write_text("inline_counts.txt", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), &m)) return;
+    TH_CHECK(m.triangle_count == 1, "%zu triangles", m.triangle_count);
+    vxt_mesh_free(&m);
+}
+
+static const char stl_ascii[] =
+    "solid two triangles\n"
+    "  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n      vertex 1 1 0\n    endloop\n  endfacet\n"
+    "  facet normal 0 0 -1\n    outer loop\n      vertex 0 0 0\n      vertex 1 1 0\n      vertex 0 1 -2.5e-1\n    endloop\n  endfacet\n"
+    "endsolid two triangles\n";
+
+static void test_stl_ascii(void)
+{
+    vxt_mesh m;
+    if (!load_ok(write_text("two.stl", stl_ascii), &m)) return;
+    TH_CHECK(m.vertex_count == 6 && m.triangle_count == 2, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    TH_CHECK(m.indices[3] == 3 && m.indices[5] == 5 && near(m.positions[17], -0.25f), "second facet");
+    vxt_mesh_free(&m);
+}
+
+static bytes stl_binary(const char *header, float last_z)
+{
+    bytes b;
+    int t, k;
+    memset(&b, 0, sizeof b);
+    memcpy(b.data, header, strlen(header)); /* the rest of the 80 bytes stays zero */
+    b.size = 80;
+    put_uint(&b, 2, 4);
+    for (t = 0; t < 2; t++) {
+        put_f32(&b, 0); put_f32(&b, 0); put_f32(&b, 1);
+        for (k = 0; k < 9; k++) put_f32(&b, k == 8 && t == 1 ? last_z : (float)(k / 3 + t));
+        put_uint(&b, 0, 2);
+    }
+    return b;
+}
+
+static void test_stl_binary(void)
+{
+    bytes plain = stl_binary("binary STL", 7.5f), solid = stl_binary("solid looks like ASCII but is binary", 7.5f);
+    vxt_mesh m;
+    TH_CHECK(plain.size == 84 + 2 * 50, "test file has %zu bytes", plain.size);
+    if (load_ok(write_file("binary.stl", plain.data, plain.size), &m)) {
+        TH_CHECK(m.vertex_count == 6 && m.triangle_count == 2, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+        TH_CHECK(near(m.positions[3], 1) && near(m.positions[9], 1) && near(m.positions[17], 7.5f), "coordinates");
+        vxt_mesh_free(&m);
+    }
+    if (load_ok(write_file("solid_header.stl", solid.data, solid.size), &m)) {
+        TH_CHECK(m.triangle_count == 2 && near(m.positions[17], 7.5f), "binary STL with a 'solid' header");
+        vxt_mesh_free(&m);
+    }
+    if (load_ok(write_file("solid_header.bin", solid.data, solid.size), &m)) vxt_mesh_free(&m); /* size alone tells */
+}
+
+static const char ply_ascii[] =
+    "ply\nformat ascii 1.0\ncomment made by hand\n"
+    "element vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float s\nproperty float t\n"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 -3 0 0.5\n4 0 1 2 3\n";
+
+static void test_ply_ascii(void)
+{
+    static const uint32_t expect[] = {0, 1, 2, 0, 2, 3};
+    vxt_mesh m;
+    if (!load_ok(write_text("quad.ply", ply_ascii), &m)) return;
+    TH_CHECK(m.vertex_count == 4 && m.triangle_count == 2, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    TH_CHECK(!memcmp(m.indices, expect, sizeof expect), "indices differ");
+    TH_CHECK(m.uvs && !m.normals, "s,t give uvs; no normals");
+    if (m.uvs) TH_CHECK(near(m.uvs[7], 0.5f) && near(m.positions[11], -3), "vertex 3");
+    vxt_mesh_free(&m);
+}
+
+/* Doubles, normals, uvs, an unused scalar and list on the vertices, an extra element before the
+   faces, and faces with a flag, a uint-counted index list and another list. */
+static bytes ply_binary(void)
+{
+    static const double xyz[4][3] = {{0, 0, 0}, {0.5, 0, 0}, {0.5, -2.25, 0}, {0, -2.25, 1e10}};
+    bytes b;
+    int i, k;
+    memset(&b, 0, sizeof b);
+    put_text(&b, "ply\r\nformat binary_little_endian 1.0\r\ncomment extra properties and an extra element\r\n"
+                 "element vertex 4\r\nproperty double x\r\nproperty double y\r\nproperty double z\r\nproperty uchar red\r\n"
+                 "property float nx\r\nproperty float ny\r\nproperty float nz\r\nproperty list uchar float extra\r\n"
+                 "property float u\r\nproperty float v\r\n"
+                 "element edge 2\r\nproperty int vertex1\r\nproperty int vertex2\r\n"
+                 "element face 2\r\nproperty uchar flags\r\nproperty list uint int vertex_index\r\nproperty list int short other\r\n"
+                 "end_header\r\n");
+    for (i = 0; i < 4; i++) {
+        put_f64(&b, xyz[i][0]); put_f64(&b, xyz[i][1]); put_f64(&b, xyz[i][2]);
+        put_uint(&b, 200, 1);
+        put_f32(&b, 0); put_f32(&b, (float)i); put_f32(&b, 1);
+        put_uint(&b, (uint64_t)i, 1);
+        for (k = 0; k < i; k++) put_f32(&b, -1);
+        put_f32(&b, 0.25f * (float)i); put_f32(&b, 1);
+    }
+    put_uint(&b, (uint64_t)-1, 4); put_uint(&b, 3, 4);
+    put_uint(&b, 1, 4); put_uint(&b, 2, 4);
+    put_uint(&b, 7, 1); put_uint(&b, 3, 4); put_uint(&b, 0, 4); put_uint(&b, 1, 4); put_uint(&b, 2, 4);
+    put_uint(&b, 1, 4); put_uint(&b, (uint64_t)-5, 2);
+    put_uint(&b, 7, 1); put_uint(&b, 4, 4); put_uint(&b, 3, 4); put_uint(&b, 2, 4); put_uint(&b, 1, 4); put_uint(&b, 0, 4);
+    put_uint(&b, 0, 4);
+    return b;
+}
+
+static void test_ply_binary(void)
+{
+    static const uint32_t expect[] = {0, 1, 2, 3, 2, 1, 3, 1, 0};
+    bytes b = ply_binary();
+    vxt_mesh m;
+    if (!load_ok(write_file("extras.ply", b.data, b.size), &m)) return;
+    TH_CHECK(m.vertex_count == 4 && m.triangle_count == 3, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    TH_CHECK(!memcmp(m.indices, expect, sizeof expect), "indices %u %u %u / %u %u %u", m.indices[0], m.indices[1], m.indices[2], m.indices[3], m.indices[4], m.indices[5]);
+    TH_CHECK(near(m.positions[3], 0.5f) && near(m.positions[7], -2.25f) && m.positions[11] == 1e10f, "positions");
+    TH_CHECK(m.normals && m.uvs, "normals and uvs expected");
+    if (m.normals && m.uvs) TH_CHECK(near(m.normals[10], 3) && near(m.uvs[6], 0.75f) && near(m.uvs[7], 1), "vertex 3 attributes");
+    vxt_mesh_free(&m);
+}
+
+/* ---- hostile input ---- */
+
+typedef struct sample { const char *name; const void *data; size_t size; } sample;
+
+static int valid_samples(sample *s, bytes *stl, bytes *ply)
+{
+    *stl = stl_binary("solid", 2);
+    *ply = ply_binary();
+    write_text("scene.mtl", mtl_scene);
+    s[0].name = "scene.obj"; s[0].data = obj_scene; s[0].size = strlen(obj_scene);
+    s[1].name = "split.obj"; s[1].data = obj_split; s[1].size = strlen(obj_split);
+    s[2].name = "pyramid.off"; s[2].data = off_pyramid; s[2].size = strlen(off_pyramid);
+    s[3].name = "two.stl"; s[3].data = stl_ascii; s[3].size = strlen(stl_ascii);
+    s[4].name = "binary.stl"; s[4].data = stl->data; s[4].size = stl->size;
+    s[5].name = "quad.ply"; s[5].data = ply_ascii; s[5].size = strlen(ply_ascii);
+    s[6].name = "extras.ply"; s[6].data = ply->data; s[6].size = ply->size;
+    return 7;
+}
+
+/* Loads a file that may be valid or not: either way the result must be clean. */
+static int load_any(const char *path)
+{
+    char err[256];
+    vxt_mesh m;
+    int rc = vxt_mesh_load(path, &m, err, sizeof err);
+    if (rc) {
+        TH_CHECK(is_empty(&m), "%s: mesh not left empty on failure", path);
+        TH_CHECK(strstr(err, path) == err, "%s: message does not start with the file: %s", path, err);
+        return 0;
+    }
+    check_consistent(&m, path);
+    vxt_mesh_free(&m);
+    return 1;
+}
+
+static void test_truncated_prefixes(void)
+{
+    sample s[8];
+    bytes stl, ply;
+    int n = valid_samples(s, &stl, &ply), i;
+    size_t len;
+    for (i = 0; i < n; i++) {
+        for (len = 0; len < s[i].size; len++) load_any(write_file(s[i].name, s[i].data, len));
+        TH_CHECK(load_any(write_file(s[i].name, s[i].data, len)), "%s: the whole file did not load", s[i].name);
+    }
+}
+
+static uint32_t rng_state = 12345;
+static uint32_t rng(void) { rng_state = rng_state * 1664525u + 1013904223u; return rng_state >> 8; }
+
+static void test_corrupted_and_garbage(void)
+{
+    static const char *const names[] = {"garbage.obj", "garbage.off", "garbage.stl", "garbage.ply", "garbage.dat"};
+    static const char alphabet[] = "vtnf/ -0123456789.e#\n\rnaOFFsolidply";
+    unsigned char data[4096];
+    sample s[8];
+    bytes stl, ply;
+    int n = valid_samples(s, &stl, &ply), i, k, round;
+    for (round = 0; round < 300; round++) { /* valid files with a few bytes changed */
+        const sample *v = &s[round % n];
+        memcpy(data, v->data, v->size);
+        for (k = 0; k < 1 + (int)(rng() % 4); k++) data[rng() % v->size] = (unsigned char)rng();
+        load_any(write_file(v->name, data, v->size));
+    }
+    for (round = 0; round < 200; round++) { /* random bytes, and random text from the formats' own characters */
+        size_t size = rng() % 300;
+        for (i = 0; i < (int)size; i++) data[i] = round % 2 ? (unsigned char)rng() : (unsigned char)alphabet[rng() % (sizeof alphabet - 1)];
+        load_any(write_file(names[round % 5], data, size));
+    }
+    expect_text_error("binary_junk.obj", "\x01\x02\x03 garbage\n", "line 1");
+    expect_text_error("late_junk.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n\xff\xfe\n", "line 5");
+    expect_text_error("hello.dat", "hello world\n", "unrecognised");
+    expect_text_error("empty.obj", "", "no triangles");
+    expect_text_error("points.obj", "v 0 0 0\nv 1 0 0\n", "no triangles");
+}
+
+static void test_bad_indices(void)
+{
+    bytes b;
+    static const char ply_head[] = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    int i;
+    expect_text_error("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "line 4");
+    expect_text_error("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "out of range");
+    expect_text_error("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "line 4");
+    expect_text_error("before.obj", "v 0 0 0\nv 1 0 0\nf -3 1 2\nv 0 1 0\n", "line 3");
+    expect_text_error("forward.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n", "line 3");
+    expect_text_error("vt.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "texture coordinate index 2");
+    expect_text_error("vn.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//-2\n", "normal index -2");
+    expect_text_error("overflow.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n", "line 4");
+    expect_text_error("slashes.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/ 2 3\n", "line 4");
+    expect_text_error("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n", "fewer than 3");
+    expect_text_error("range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "line 6");
+    expect_text_error("negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "line 6");
+    expect_text_error("range.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "line 13");
+    memset(&b, 0, sizeof b);
+    put_text(&b, ply_head);
+    for (i = 0; i < 9; i++) put_f32(&b, (float)(i % 4 == 0));
+    put_uint(&b, 3, 1); put_uint(&b, 0, 4); put_uint(&b, (uint64_t)-1, 4); put_uint(&b, 2, 4);
+    {
+        char where[64];
+        snprintf(where, sizeof where, "byte offset %zu", b.size - 8);
+        expect_error("range_binary.ply", b.data, b.size, where);
+    }
+}
+
+static void test_non_finite_numbers(void)
+{
+    bytes stl = stl_binary("nan", NAN), b;
+    char where[64];
+    int i;
+    expect_text_error("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "line 2");
+    expect_text_error("inf.obj", "v 0 0 0\nv 0 -inf 0\n", "line 2");
+    expect_text_error("huge.obj", "v 0 0 1e39\n", "line 1");
+    expect_text_error("word.obj", "v 0 0 0\nv 1 2 abc\n", "line 2");
+    expect_text_error("short.obj", "v 0 0 0\nv 1 2\n", "line 2");
+    expect_text_error("glued.obj", "v 0 0 0\nv 1 2 3x\n", "line 2");
+    expect_text_error("nan.off", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", "line 4");
+    expect_text_error("nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 NaN\n", "line 5");
+    expect_text_error("nan_ascii.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 inf 0\n0 1 0\n3 0 1 2\n", "line 11");
+    expect_error("nan.stl", stl.data, stl.size, "byte offset 178"); /* the last vertex's z: 84 + 50 + 12 + 32 */
+    memset(&b, 0, sizeof b);
+    put_text(&b, "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty double y\nproperty float z\n"
+                 "element face 0\nproperty list uchar int vertex_indices\nend_header\n");
+    snprintf(where, sizeof where, "byte offset %zu", b.size + 16 + 4);
+    for (i = 0; i < 3; i++) { put_f32(&b, 0); put_f64(&b, i == 1 ? NAN : 0.0); put_f32(&b, 0); }
+    expect_error("nan_binary.ply", b.data, b.size, where);
+}
+
+static void test_absurd_counts(void)
+{
+    bytes b;
+    static const char head[] = "ply\nformat binary_little_endian 1.0\nelement vertex 100000000\nproperty float x\nproperty float y\nproperty float z\n"
+                               "element face 1\nproperty list uint int vertex_indices\nend_header\n";
+    char where[64];
+    expect_text_error("huge.ply", "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\n"
+                                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n", "declares 4000000000 records");
+    expect_text_error("overflow.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999\n", "line 3");
+    expect_text_error("huge.off", "OFF\n1000000000 1000000000 0\n0 0 0\n1 0 0\n", "line 5");
+    expect_text_error("huge_face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n", "line 6");
+    expect_text_error("toolong.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n99999999999 0 1 2\n", "line 6");
+    memset(&b, 0, sizeof b);
+    put_text(&b, head);
+    snprintf(where, sizeof where, "byte offset %zu", b.size);
+    put_f32(&b, 0); put_f32(&b, 0); put_f32(&b, 0);
+    expect_error("huge_binary.ply", b.data, b.size, where);
+    /* one vertex element record, then a face whose uint list length claims 4 billion indices */
+    memset(&b, 0, sizeof b);
+    put_text(&b, "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+                 "element face 1\nproperty list uint int vertex_indices\nend_header\n");
+    put_f32(&b, 0); put_f32(&b, 0); put_f32(&b, 0);
+    snprintf(where, sizeof where, "byte offset %zu", b.size);
+    put_uint(&b, 4000000000u, 4); put_uint(&b, 0, 4);
+    expect_error("huge_list.ply", b.data, b.size, where);
+    expect_text_error("negative_list.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                                           "element face 1\nproperty list char int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n", "line 13");
+    memset(&b, 0, sizeof b);
+    put_text(&b, "solid but binary");
+    b.size = 80;
+    put_uint(&b, 1000000, 4);
+    memset(b.data + b.size, 0, 50);
+    b.size += 50;
+    expect_error("huge_count.stl", b.data, b.size, "byte offset 80");
+    expect_error("tiny.stl", "abc", 3, "byte offset 3");
+}
+
+static void test_other_failures(void)
+{
+    char err[512], small[12];
+    vxt_mesh m;
+    const char *missing = tmp_path("does_not_exist.obj");
+    TH_CHECK(vxt_mesh_load(missing, &m, err, sizeof err) != 0 && strstr(err, missing) && strstr(err, "cannot open"), "missing file: %s", err);
+    TH_CHECK(is_empty(&m), "mesh not left empty");
+    TH_CHECK(vxt_mesh_load(tmp_dir, &m, err, sizeof err) != 0 && strstr(err, "cannot read"), "directory: %s", err);
+    expect_text_error("big_endian.ply", "ply\nformat binary_big_endian 1.0\nend_header\n", "line 2");
+    expect_text_error("no_faces.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n",
+                      "no face element");
+    expect_text_error("no_end.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n", "endsolid");
+    TH_CHECK(vxt_mesh_load(write_text("bad.obj", "f 1 2 3\n"), &m, NULL, 0) != 0, "no error buffer");
+    TH_CHECK(vxt_mesh_load(write_text("bad.obj", "f 1 2 3\n"), &m, small, sizeof small) != 0 && strlen(small) == sizeof small - 1,
+             "a small error buffer is filled and terminated");
+    vxt_mesh_free(NULL);
+}
+
+/* A 100k-triangle OBJ with v/vt/vn must load in linear time: a quadratic vertex search would take
+   minutes here, so the generous bound only catches that, not a slow machine. */
+static void test_large_obj(void)
+{
+    enum { N = 224 };
+    const char *path = tmp_path("large.obj");
+    FILE *f = fopen(path, "wb");
+    vxt_mesh m;
+    clock_t start;
+    double seconds;
+    int x, y;
+    TH_CHECK(f != NULL, "cannot create %s", path);
+    if (!f) return;
+    if (created_count < 128) snprintf(created[created_count++], sizeof created[0], "large.obj");
+    for (y = 0; y < N; y++)
+        for (x = 0; x < N; x++) fprintf(f, "v %d %d %f\nvt %f %f\n", x, y, 0.001 * x * y, x / (double)N, y / (double)N);
+    fprintf(f, "vn 0 0 1\n");
+    for (y = 0; y + 1 < N; y++)
+        for (x = 0; x + 1 < N; x++) {
+            int a = y * N + x + 1, b = a + 1, c = a + N, d = c + 1;
+            fprintf(f, "f %d/%d/1 %d/%d/1 %d/%d/1\nf %d/%d/1 %d/%d/1 %d/%d/1\n", a, a, b, b, d, d, a, a, d, d, c, c);
+        }
+    fclose(f);
+    start = clock();
+    if (!load_ok(path, &m)) return;
+    seconds = (double)(clock() - start) / CLOCKS_PER_SEC;
+    TH_CHECK(m.vertex_count == N * N && m.triangle_count == 2 * (N - 1) * (N - 1), "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    TH_CHECK(seconds < 10, "took %.1f s", seconds);
+    vxt_mesh_free(&m);
+}
+
+int main(void)
+{
+    const char *base = getenv("TMPDIR");
+    int i;
+    snprintf(tmp_dir, sizeof tmp_dir, "%s/voxgi_mesh_io_XXXXXX", base && *base ? base : "/tmp");
+    if (!mkdtemp(tmp_dir)) {
+        printf("cannot create a temporary directory under %s\n", base && *base ? base : "/tmp");
+        return 1;
+    }
+    TH_RUN(test_obj_quads_fan);
+    TH_RUN(test_obj_negative_indices);
+    TH_RUN(test_obj_split_vertices);
+    TH_RUN(test_obj_mtl_materials);
+    TH_RUN(test_obj_missing_mtl);
+    TH_RUN(test_obj_mtl_in_subfolder);
+    TH_RUN(test_mtl_errors);
+    TH_RUN(test_off);
+    TH_RUN(test_stl_ascii);
+    TH_RUN(test_stl_binary);
+    TH_RUN(test_ply_ascii);
+    TH_RUN(test_ply_binary);
+    TH_RUN(test_truncated_prefixes);
+    TH_RUN(test_corrupted_and_garbage);
+    TH_RUN(test_bad_indices);
+    TH_RUN(test_non_finite_numbers);
+    TH_RUN(test_absurd_counts);
+    TH_RUN(test_other_failures);
+    TH_RUN(test_large_obj);
+    for (i = 0; i < created_count; i++) remove(tmp_path(created[i]));
+    rmdir(tmp_path("sub"));
+    rmdir(tmp_dir);
+    return th_finish();
+}

@@ -1,0 +1,554 @@
+/* tools/voxgi.c - the voxgi command-line tool.
+ *
+ *   voxgi voxelize MESH [--res N | --grid OX OY OZ SIZE NX NY NZ] [--backend B] [-o OUT.binvox] [--json]
+ *   voxgi info [--gl KIND] [--json]
+ *   voxgi bench voxelize [MESH ...] [--min-res N] [--max-res N] [--runs R] [--csv FILE]
+ *
+ * MESH is an OBJ (+MTL), OFF, STL or PLY file, or a built-in shape: builtin:quad,
+ * builtin:subdivided-quad, builtin:cube, builtin:sphere. Every command takes --help. */
+#define VOXGI_IMPLEMENTATION
+#include "../voxgi.h"
+#include "headless_gl.h"
+#include "mesh_io.h"
+#include "shapes.h"
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* ------------------------------------------------------------------ meshes */
+typedef struct tool_mesh {
+    char name[256];
+    vxt_mesh m;            /* file meshes */
+    vxt_shape shape;       /* built-in shapes */
+    voxgi_mesh vm;
+    voxgi_scene scene;
+    voxgi_material *materials;
+} tool_mesh;
+
+static const char *builtin_names = "builtin:quad, builtin:subdivided-quad, builtin:cube, builtin:sphere";
+
+static int builtin_shape(const char *name, vxt_shape *s)
+{
+    memset(s, 0, sizeof *s);
+    if (strcmp(name, "builtin:quad") == 0) vxt_shape_quad(s, 1);
+    else if (strcmp(name, "builtin:subdivided-quad") == 0) vxt_shape_quad(s, 77); /* 11,858 triangles, as seed 000's */
+    else if (strcmp(name, "builtin:cube") == 0) {
+        const float lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
+        vxt_shape_alloc(s, 8, 12);
+        vxt_shape_put_box(s, 0, 0, lo, hi);
+    } else if (strcmp(name, "builtin:sphere") == 0) vxt_shape_sphere(s, 96, 64, 1.0, 0, 0, 0);
+    else return 0;
+    return 1;
+}
+
+/* Loads a file or built-in shape into a voxgi scene; 0 on success, else prints why. */
+static int mesh_open(const char *path, tool_mesh *t)
+{
+    char err[512];
+    memset(t, 0, sizeof *t);
+    snprintf(t->name, sizeof t->name, "%s", path);
+    if (strncmp(path, "builtin:", 8) == 0) {
+        if (!builtin_shape(path, &t->shape)) {
+            fprintf(stderr, "voxgi: unknown built-in shape '%s' (there are %s)\n", path, builtin_names);
+            return 1;
+        }
+        t->vm.positions = t->shape.pos;
+        t->vm.vertex_count = t->shape.vertex_count;
+        t->vm.indices = t->shape.idx;
+        t->vm.index_count = 3 * t->shape.triangle_count;
+    } else {
+        size_t i;
+        if (vxt_mesh_load(path, &t->m, err, sizeof err) != 0) {
+            fprintf(stderr, "voxgi: %s\n", err);
+            return 1;
+        }
+        t->vm.positions = t->m.positions;
+        t->vm.vertex_count = t->m.vertex_count;
+        t->vm.indices = t->m.indices;
+        t->vm.index_count = 3 * t->m.triangle_count;
+        t->vm.normals = t->m.normals;
+        t->vm.uvs = t->m.uvs;
+        t->vm.material_ids = t->m.material_ids;
+        t->materials = (voxgi_material *)calloc(t->m.material_count, sizeof *t->materials);
+        if (!t->materials) { fprintf(stderr, "voxgi: out of memory\n"); return 1; }
+        for (i = 0; i < t->m.material_count; i++) {
+            memcpy(t->materials[i].albedo, t->m.materials[i].albedo, sizeof t->materials[i].albedo);
+            memcpy(t->materials[i].emission, t->m.materials[i].emission, sizeof t->materials[i].emission);
+            t->materials[i].transparency = 1.0f - t->m.materials[i].opacity;
+        }
+        t->scene.materials = t->materials;
+        t->scene.material_count = t->m.material_count;
+    }
+    t->scene.meshes = &t->vm;
+    t->scene.mesh_count = 1;
+    return 0;
+}
+
+static void mesh_close(tool_mesh *t)
+{
+    vxt_mesh_free(&t->m);
+    vxt_shape_free(&t->shape);
+    free(t->materials);
+    memset(t, 0, sizeof *t);
+}
+
+static size_t mesh_triangles(const tool_mesh *t) { return t->vm.index_count / 3; }
+
+/* ------------------------------------------------------------------ arguments */
+static int parse_int(const char *s, int lo, int hi, int *out)
+{
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (*s == 0 || *end != 0 || v < lo || v > hi) return 0;
+    *out = (int)v;
+    return 1;
+}
+static int parse_double(const char *s, double *out)
+{
+    char *end;
+    double v = strtod(s, &end);
+    if (*s == 0 || *end != 0) return 0;
+    *out = v;
+    return 1;
+}
+static int parse_backend(const char *s, voxgi_backend *b)
+{
+    if (strcmp(s, "auto") == 0) *b = VOXGI_BACKEND_AUTO;
+    else if (strcmp(s, "cpu") == 0) *b = VOXGI_BACKEND_CPU;
+    else if (strcmp(s, "gl") == 0) *b = VOXGI_BACKEND_GL;
+    else return 0;
+    return 1;
+}
+
+static int bad_arg(const char *cmd, const char *what)
+{
+    fprintf(stderr, "voxgi %s: %s (see 'voxgi %s --help')\n", cmd, what, cmd);
+    return 2;
+}
+
+/* ------------------------------------------------------------------ contexts */
+static void log_to_stderr(voxgi_log_level level, const char *msg, void *user)
+{
+    (void)user;
+    if (level <= VOXGI_LOG_WARNING) fprintf(stderr, "voxgi: %s\n", msg);
+}
+
+static int progress_to_stderr(double fraction, const char *stage, void *user)
+{
+    (void)user;
+    fprintf(stderr, "\r%s %3d%%", stage, (int)(fraction * 100 + 0.5));
+    if (fraction >= 1) fprintf(stderr, "\n");
+    return 0;
+}
+
+/* Makes a voxgi context; for GL (or AUTO) it first makes a headless GL context. */
+static voxgi_context *make_context(voxgi_backend backend, vxt_gl_kind kind, int threads, int progress, vxt_gl **gl_out,
+                                   char *why, size_t why_size)
+{
+    voxgi_desc d;
+    voxgi_context *ctx = NULL;
+    vxt_gl *gl = NULL;
+    voxgi_result r;
+    memset(&d, 0, sizeof d);
+    d.backend = backend;
+    d.thread_count = threads;
+    d.logger.func = log_to_stderr;
+    if (progress) d.progress.func = progress_to_stderr;
+    if (backend != VOXGI_BACKEND_CPU) {
+        gl = vxt_gl_create(kind, why, why_size);
+        if (!gl && backend == VOXGI_BACKEND_GL) return NULL;
+        d.gl_get_proc_address_user = vxt_gl_get_proc;
+        d.gl_user = gl;
+    }
+    r = voxgi_create(&d, &ctx);
+    if (r != VOXGI_OK) {
+        snprintf(why, why_size, "%s", voxgi_result_string(r));
+        if (gl) vxt_gl_destroy(gl);
+        return NULL;
+    }
+    *gl_out = gl;
+    return ctx;
+}
+
+static void close_context(voxgi_context *ctx, vxt_gl *gl)
+{
+    voxgi_destroy(ctx);
+    if (gl) vxt_gl_destroy(gl);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* ------------------------------------------------------------------ voxelize */
+static const char *voxelize_help =
+    "usage: voxgi voxelize MESH [options]\n"
+    "Voxelizes a mesh conservatively: a voxel is set exactly when its closed box meets a triangle.\n"
+    "MESH: an OBJ (+MTL), OFF, STL or PLY file, or builtin:quad|subdivided-quad|cube|sphere.\n"
+    "  --res N                  cubic grid of N^3 voxels fitted around the mesh (default 128)\n"
+    "  --per-axis               with --res: each axis only as long as the mesh needs\n"
+    "  --pad P                  with --res: P empty voxels around the mesh (default 1)\n"
+    "  --grid OX OY OZ S NX NY NZ   exactly this grid: origin, voxel size, resolution\n"
+    "  --backend auto|cpu|gl    (default auto: GL when a headless GL 4.5 context works)\n"
+    "  --gl auto|egl|osmesa     headless GL context to create (default auto)\n"
+    "  --threads T              CPU worker threads (default: one per core)\n"
+    "  --runs R                 repeat R times and report the median time (default 1)\n"
+    "  -o FILE.binvox           write the voxels\n"
+    "  --json                   print one JSON object instead of text\n";
+
+static int cmd_voxelize(int argc, char **argv)
+{
+    const char *mesh_path = NULL, *out_path = NULL;
+    int res = 128, per_axis = 0, json = 0, threads = 0, runs = 1, have_grid = 0, i, rc = 1;
+    double pad = 1;
+    voxgi_backend backend = VOXGI_BACKEND_AUTO;
+    vxt_gl_kind kind = VXT_GL_AUTO;
+    voxgi_voxelize_desc vd;
+    tool_mesh tm;
+    voxgi_context *ctx;
+    vxt_gl *gl = NULL;
+    voxgi_voxels *vox = NULL;
+    voxgi_voxels_info info;
+    voxgi_info ci;
+    char why[512] = "";
+    double *times;
+    memset(&vd, 0, sizeof vd);
+    for (i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(voxelize_help, stdout); return 0; }
+        else if (strcmp(a, "--res") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, VOXGI_MAX_RES, &res)) return bad_arg("voxelize", "--res needs 1..65536"); }
+        else if (strcmp(a, "--per-axis") == 0) per_axis = 1;
+        else if (strcmp(a, "--pad") == 0 && i + 1 < argc) { if (!parse_double(argv[++i], &pad) || !(pad >= 0)) return bad_arg("voxelize", "--pad needs a number >= 0"); }
+        else if (strcmp(a, "--grid") == 0 && i + 7 < argc) {
+            int k;
+            for (k = 0; k < 3; k++)
+                if (!parse_double(argv[i + 1 + k], &vd.grid.origin[k])) return bad_arg("voxelize", "--grid origin is not a number");
+            if (!parse_double(argv[i + 4], &vd.grid.voxel_size)) return bad_arg("voxelize", "--grid voxel size is not a number");
+            for (k = 0; k < 3; k++)
+                if (!parse_int(argv[i + 5 + k], 1, VOXGI_MAX_RES, &vd.grid.res[k])) return bad_arg("voxelize", "--grid resolution needs 1..65536");
+            i += 7;
+            have_grid = 1;
+        } else if (strcmp(a, "--backend") == 0 && i + 1 < argc) { if (!parse_backend(argv[++i], &backend)) return bad_arg("voxelize", "--backend is auto, cpu or gl"); }
+        else if (strcmp(a, "--gl") == 0 && i + 1 < argc) { if (vxt_gl_kind_parse(argv[++i], &kind) != 0) return bad_arg("voxelize", "--gl is auto, egl or osmesa"); }
+        else if (strcmp(a, "--threads") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 256, &threads)) return bad_arg("voxelize", "--threads needs 1..256"); }
+        else if (strcmp(a, "--runs") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 1000, &runs)) return bad_arg("voxelize", "--runs needs 1..1000"); }
+        else if (strcmp(a, "-o") == 0 && i + 1 < argc) out_path = argv[++i];
+        else if (strcmp(a, "--json") == 0) json = 1;
+        else if (a[0] == '-') return bad_arg("voxelize", "unknown option or missing value");
+        else if (!mesh_path) mesh_path = a;
+        else return bad_arg("voxelize", "more than one mesh given");
+    }
+    if (!mesh_path) return bad_arg("voxelize", "no mesh given");
+    if (mesh_open(mesh_path, &tm)) return 1;
+    ctx = make_context(backend, kind, threads, !json && isatty(2), &gl, why, sizeof why);
+    if (!ctx) {
+        fprintf(stderr, "voxgi voxelize: cannot use backend %s: %s\n", voxgi_backend_name(backend), why);
+        mesh_close(&tm);
+        return 1;
+    }
+    if (!have_grid) {
+        voxgi_fit_desc fit;
+        memset(&fit, 0, sizeof fit);
+        fit.res = res;
+        fit.per_axis = per_axis;
+        fit.padding = pad;
+        if (voxgi_fit_grid(ctx, &tm.scene, &fit, &vd.grid) != VOXGI_OK) {
+            fprintf(stderr, "voxgi voxelize: %s: %s\n", mesh_path, voxgi_last_error(ctx));
+            goto done;
+        }
+    }
+    times = (double *)malloc((size_t)runs * sizeof *times);
+    for (i = 0; i < runs; i++) {
+        voxgi_result r;
+        if (vox) voxgi_voxels_destroy(ctx, vox);
+        vox = NULL;
+        r = voxgi_voxelize(ctx, &tm.scene, &vd, &vox);
+        if (r != VOXGI_OK) {
+            fprintf(stderr, "voxgi voxelize: %s: %s: %s\n", mesh_path, voxgi_result_string(r), voxgi_last_error(ctx));
+            free(times);
+            goto done;
+        }
+        voxgi_voxels_query(vox, &info);
+        times[i] = info.ms;
+    }
+    qsort(times, (size_t)runs, sizeof *times, cmp_double);
+    info.ms = times[runs / 2];
+    free(times);
+    voxgi_query_info(ctx, &ci);
+    if (out_path) {
+        size_t need = 0;
+        uint32_t *bits;
+        FILE *f;
+        voxgi_voxels_read(ctx, vox, NULL, 0, &need);
+        bits = (uint32_t *)malloc(need);
+        f = fopen(out_path, "wb");
+        if (!bits || !f || voxgi_voxels_read(ctx, vox, bits, need, NULL) != VOXGI_OK ||
+            voxgi_binvox_write(f, &vd.grid, bits) != VOXGI_OK || fclose(f) != 0) {
+            fprintf(stderr, "voxgi voxelize: cannot write %s\n", out_path);
+            free(bits);
+            goto done;
+        }
+        free(bits);
+    }
+    if (json)
+        printf("{\"mesh\":\"%s\",\"triangles\":%lu,\"voxels\":%llu,\"ms\":%.3f,\"runs\":%d,\"backend\":\"%s\",\"renderer\":\"%s\","
+               "\"threads\":%d,\"method\":\"conservative\",\"origin\":[%.17g,%.17g,%.17g],\"voxel_size\":%.17g,"
+               "\"res\":[%d,%d,%d],\"exact_tests\":%llu,\"exact_triangles\":%llu%s%s%s}\n",
+               mesh_path, (unsigned long)mesh_triangles(&tm), (unsigned long long)info.voxel_count, info.ms, runs,
+               voxgi_backend_name(ci.backend), ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "", ci.thread_count,
+               vd.grid.origin[0], vd.grid.origin[1], vd.grid.origin[2], vd.grid.voxel_size, vd.grid.res[0], vd.grid.res[1],
+               vd.grid.res[2], (unsigned long long)info.exact_tests, (unsigned long long)info.exact_triangles,
+               out_path ? ",\"output\":\"" : "", out_path ? out_path : "", out_path ? "\"" : "");
+    else {
+        printf("%s: %lu triangles -> %llu voxels of %dx%dx%d in %.2f ms (%s%s%s)\n", mesh_path,
+               (unsigned long)mesh_triangles(&tm), (unsigned long long)info.voxel_count, vd.grid.res[0], vd.grid.res[1],
+               vd.grid.res[2], info.ms, voxgi_backend_name(ci.backend), ci.backend == VOXGI_BACKEND_GL ? ", " : "",
+               ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "");
+        printf("grid: origin %.17g %.17g %.17g, voxel size %.17g\n", vd.grid.origin[0], vd.grid.origin[1], vd.grid.origin[2],
+               vd.grid.voxel_size);
+        if (out_path) printf("wrote %s\n", out_path);
+    }
+    rc = 0;
+done:
+    if (vox) voxgi_voxels_destroy(ctx, vox);
+    close_context(ctx, gl);
+    mesh_close(&tm);
+    return rc;
+}
+
+/* ------------------------------------------------------------------ info */
+static const char *info_help =
+    "usage: voxgi info [--gl auto|egl|osmesa] [--json]\n"
+    "Prints the version, the compiled-in capabilities, the CPU threads and, for each way of making\n"
+    "a headless GL context, whether a GL 4.5 context works and which renderer it has.\n";
+
+static int cmd_info(int argc, char **argv)
+{
+    int json = 0, i, k;
+    vxt_gl_kind only = VXT_GL_AUTO;
+    voxgi_info ci;
+    voxgi_context *cpu;
+    char why[512];
+    vxt_gl *gl = NULL;
+    const vxt_gl_kind kinds[2] = {VXT_GL_EGL, VXT_GL_OSMESA};
+    for (i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) { fputs(info_help, stdout); return 0; }
+        else if (strcmp(argv[i], "--json") == 0) json = 1;
+        else if (strcmp(argv[i], "--gl") == 0 && i + 1 < argc) { if (vxt_gl_kind_parse(argv[++i], &only) != 0) return bad_arg("info", "--gl is auto, egl or osmesa"); }
+        else return bad_arg("info", "unknown option");
+    }
+    cpu = make_context(VOXGI_BACKEND_CPU, VXT_GL_AUTO, 0, 0, &gl, why, sizeof why);
+    voxgi_query_info(cpu, &ci);
+    if (json) printf("{\"version\":\"%s\",\"capabilities\":\"%s\",\"cpu_threads\":%d,\"gl\":[", VOXGI_VERSION_STRING, ci.capabilities, ci.thread_count);
+    else printf("voxgi %s\ncapabilities: %s\ncpu: %d worker threads\n", VOXGI_VERSION_STRING, ci.capabilities, ci.thread_count);
+    close_context(cpu, NULL);
+    for (k = 0; k < 2; k++) {
+        voxgi_context *ctx;
+        if (only != VXT_GL_AUTO && only != kinds[k]) continue;
+        ctx = make_context(VOXGI_BACKEND_GL, kinds[k], 0, 0, &gl, why, sizeof why);
+        if (ctx) voxgi_query_info(ctx, &ci);
+        if (json)
+            printf("%s{\"context\":\"%s\",\"ok\":%s,\"version\":\"%s\",\"renderer\":\"%s\",\"error\":\"%s\"}", k ? "," : "",
+                   k ? "osmesa" : "egl", ctx ? "true" : "false", ctx ? ci.gl_version : "", ctx ? ci.gl_renderer : "", ctx ? "" : why);
+        else if (ctx)
+            printf("gl (%s): %s, %s%s\n", k ? "osmesa" : "egl", ci.gl_version, ci.gl_renderer,
+                   strstr(ci.gl_renderer, "llvmpipe") ? " (software rasteriser: timings are not GPU timings)" : "");
+        else printf("gl (%s): not available: %s\n", k ? "osmesa" : "egl", why);
+        if (ctx) close_context(ctx, gl);
+    }
+    if (json) printf("]}\n");
+    return 0;
+}
+
+/* ------------------------------------------------------------------ bench voxelize */
+static const char *bench_help =
+    "usage: voxgi bench voxelize [MESH ...] [options]\n"
+    "Times conservative voxelization in the shape of Buchacher 2014's Tables 1 and 2: rows are\n"
+    "the simple quad (2 triangles), the subdivided quad, the axis-aligned cube and any meshes\n"
+    "given; columns are cubic grids N^3 fitted around each mesh (one voxel of padding), N = 32..512.\n"
+    "Time is the median of several runs of a whole voxgi_voxelize call, for the CPU with one thread,\n"
+    "the CPU with every core, and GL. GL runs on whatever headless context exists - on a machine\n"
+    "without a GPU that is Mesa's llvmpipe, a software rasteriser: not GPU timings.\n"
+    "  --min-res N / --max-res N   range of N, powers of two (default 32..512)\n"
+    "  --runs R                    runs per cell, median reported (default 3)\n"
+    "  --no-gl                     CPU only\n"
+    "  --gl auto|egl|osmesa        headless GL context kind\n"
+    "  --csv FILE                  also write every measurement as CSV\n";
+
+typedef struct bench_cell { double ms[3]; uint64_t voxels[3]; int ok[3]; } bench_cell;
+
+static int bench_measure(voxgi_context *ctx, const tool_mesh *tm, int n, int runs, double *ms, uint64_t *voxels)
+{
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
+    double t[32];
+    int i;
+    memset(&vd, 0, sizeof vd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = n;
+    fit.padding = 1;
+    if (voxgi_fit_grid(ctx, &tm->scene, &fit, &vd.grid) != VOXGI_OK) return 0;
+    for (i = 0; i < runs; i++) {
+        voxgi_voxels *vox = NULL;
+        voxgi_voxels_info info;
+        if (voxgi_voxelize(ctx, &tm->scene, &vd, &vox) != VOXGI_OK) {
+            fprintf(stderr, "voxgi bench: %s at %d: %s\n", tm->name, n, voxgi_last_error(ctx));
+            return 0;
+        }
+        voxgi_voxels_query(vox, &info);
+        t[i] = info.ms;
+        *voxels = info.voxel_count;
+        voxgi_voxels_destroy(ctx, vox);
+    }
+    qsort(t, (size_t)runs, sizeof t[0], cmp_double);
+    *ms = t[runs / 2];
+    return 1;
+}
+
+static int cmd_bench(int argc, char **argv)
+{
+    const char *meshes[64], *csv_path = NULL;
+    int nmesh = 0, min_res = 32, max_res = 512, runs = 3, use_gl = 1, i, m, n, ncols = 0, cols[16], mismatch = 0;
+    vxt_gl_kind kind = VXT_GL_AUTO;
+    voxgi_context *ctx[3] = {NULL, NULL, NULL};
+    vxt_gl *gl = NULL, *unused = NULL;
+    voxgi_info ci;
+    char why[512] = "";
+    bench_cell *cells;
+    FILE *csv = NULL;
+    static const char *labels[3] = {"CPU 1T", "CPU nT", "GL"};
+    if (argc < 1 || strcmp(argv[0], "voxelize") != 0) {
+        if (argc >= 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) { fputs(bench_help, stdout); return 0; }
+        return bad_arg("bench", "the benchmark to run is 'voxelize'");
+    }
+    meshes[nmesh++] = "builtin:quad";
+    meshes[nmesh++] = "builtin:subdivided-quad";
+    meshes[nmesh++] = "builtin:cube";
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(bench_help, stdout); return 0; }
+        else if (strcmp(a, "--min-res") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 4096, &min_res)) return bad_arg("bench", "--min-res needs 1..4096"); }
+        else if (strcmp(a, "--max-res") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 4096, &max_res)) return bad_arg("bench", "--max-res needs 1..4096"); }
+        else if (strcmp(a, "--runs") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 31, &runs)) return bad_arg("bench", "--runs needs 1..31"); }
+        else if (strcmp(a, "--no-gl") == 0) use_gl = 0;
+        else if (strcmp(a, "--gl") == 0 && i + 1 < argc) { if (vxt_gl_kind_parse(argv[++i], &kind) != 0) return bad_arg("bench", "--gl is auto, egl or osmesa"); }
+        else if (strcmp(a, "--csv") == 0 && i + 1 < argc) csv_path = argv[++i];
+        else if (a[0] == '-') return bad_arg("bench", "unknown option or missing value");
+        else if (nmesh < 64) meshes[nmesh++] = a;
+    }
+    for (n = min_res; n <= max_res && ncols < 16; n *= 2) cols[ncols++] = n;
+    if (!ncols) return bad_arg("bench", "empty resolution range");
+    ctx[0] = make_context(VOXGI_BACKEND_CPU, kind, 1, 0, &unused, why, sizeof why);
+    ctx[1] = make_context(VOXGI_BACKEND_CPU, kind, 0, 0, &unused, why, sizeof why);
+    if (use_gl) {
+        ctx[2] = make_context(VOXGI_BACKEND_GL, kind, 0, 0, &gl, why, sizeof why);
+        if (!ctx[2]) fprintf(stderr, "voxgi bench: no GL column: %s\n", why);
+        else { /* compile the shaders before anything is timed */
+            tool_mesh warm;
+            double ms;
+            uint64_t count;
+            if (mesh_open("builtin:cube", &warm) == 0) {
+                bench_measure(ctx[2], &warm, 8, 1, &ms, &count);
+                mesh_close(&warm);
+            }
+        }
+    }
+    voxgi_query_info(ctx[1], &ci);
+    printf("Conservative voxelization, N^3 grids fitted to each mesh; median of %d runs; CPU nT = %d threads.\n", runs,
+           ci.thread_count);
+    if (ctx[2]) {
+        voxgi_query_info(ctx[2], &ci);
+        printf("GL: %s, %s%s\n", ci.gl_version, ci.gl_renderer,
+               strstr(ci.gl_renderer, "llvmpipe") ? " - a software rasteriser on the CPU: not GPU timings" : "");
+    }
+    if (csv_path && !(csv = fopen(csv_path, "w"))) { fprintf(stderr, "voxgi bench: cannot write %s\n", csv_path); return 1; }
+    if (csv) fprintf(csv, "mesh,triangles,n,backend,ms,voxels\n");
+    cells = (bench_cell *)calloc((size_t)nmesh * (size_t)ncols, sizeof *cells);
+    for (m = 0; m < nmesh; m++) {
+        tool_mesh tm;
+        if (mesh_open(meshes[m], &tm)) continue;
+        for (n = 0; n < ncols; n++) {
+            bench_cell *c = &cells[m * ncols + n];
+            int b;
+            for (b = 0; b < 3; b++)
+                if (ctx[b]) {
+                    c->ok[b] = bench_measure(ctx[b], &tm, cols[n], runs, &c->ms[b], &c->voxels[b]);
+                    if (c->ok[b] && csv)
+                        fprintf(csv, "%s,%lu,%d,%s,%.4f,%llu\n", meshes[m], (unsigned long)mesh_triangles(&tm), cols[n],
+                                b == 0 ? "cpu1" : (b == 1 ? "cpu" : "gl"), c->ms[b], (unsigned long long)c->voxels[b]);
+                }
+            for (b = 1; b < 3; b++)
+                if (c->ok[0] && c->ok[b] && c->voxels[b] != c->voxels[0]) mismatch++;
+            fprintf(stderr, "\r%s %d^3 done   ", meshes[m], cols[n]);
+        }
+        fprintf(stderr, "\r%60s\r", "");
+        printf("%s: %lu triangles\n", meshes[m], (unsigned long)mesh_triangles(&tm));
+        mesh_close(&tm);
+    }
+    /* Table 1: time */
+    printf("\nTable 1: time in ms (median)\n| mesh | backend |");
+    for (n = 0; n < ncols; n++) printf(" %d |", cols[n]);
+    printf("\n|---|---|");
+    for (n = 0; n < ncols; n++) printf("---:|");
+    printf("\n");
+    for (m = 0; m < nmesh; m++) {
+        int b;
+        for (b = 0; b < 3; b++) {
+            if (!ctx[b]) continue;
+            printf("| %s | %s |", meshes[m], labels[b]);
+            for (n = 0; n < ncols; n++) {
+                bench_cell *c = &cells[m * ncols + n];
+                if (c->ok[b]) printf(" %.2f |", c->ms[b]);
+                else printf(" - |");
+            }
+            printf("\n");
+        }
+    }
+    /* Table 2: voxel counts (equal across backends: the result is exact) */
+    printf("\nTable 2: set voxels (identical for every backend)\n| mesh |");
+    for (n = 0; n < ncols; n++) printf(" %d |", cols[n]);
+    printf("\n|---|");
+    for (n = 0; n < ncols; n++) printf("---:|");
+    printf("\n| total |");
+    for (n = 0; n < ncols; n++) printf(" %llu |", (unsigned long long)cols[n] * (unsigned long long)cols[n] * (unsigned long long)cols[n]);
+    printf("\n");
+    for (m = 0; m < nmesh; m++) {
+        printf("| %s |", meshes[m]);
+        for (n = 0; n < ncols; n++) {
+            bench_cell *c = &cells[m * ncols + n];
+            if (c->ok[0]) printf(" %llu |", (unsigned long long)c->voxels[0]);
+            else printf(" - |");
+        }
+        printf("\n");
+    }
+    if (mismatch) printf("\nWARNING: %d cells where a backend's voxel count differs from the CPU's\n", mismatch);
+    free(cells);
+    if (csv) fclose(csv);
+    close_context(ctx[0], NULL);
+    close_context(ctx[1], NULL);
+    if (ctx[2]) close_context(ctx[2], gl);
+    return mismatch ? 1 : 0;
+}
+
+/* ------------------------------------------------------------------ main */
+static const char *main_help =
+    "usage: voxgi COMMAND [options]      (voxgi COMMAND --help for each)\n"
+    "  voxelize MESH ...   exact conservative voxelization to binvox / JSON\n"
+    "  info                version, capabilities, CPU threads and headless GL contexts\n"
+    "  bench voxelize ...  timing and voxel-count tables (Buchacher 2014, Tables 1-2)\n";
+
+int main(int argc, char **argv)
+{
+    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
+        fputs(main_help, argc < 2 ? stderr : stdout);
+        return argc < 2 ? 2 : 0;
+    }
+    if (strcmp(argv[1], "--version") == 0) { printf("voxgi %s\n", VOXGI_VERSION_STRING); return 0; }
+    if (strcmp(argv[1], "voxelize") == 0) return cmd_voxelize(argc - 2, argv + 2);
+    if (strcmp(argv[1], "info") == 0) return cmd_info(argc - 2, argv + 2);
+    if (strcmp(argv[1], "bench") == 0) return cmd_bench(argc - 2, argv + 2);
+    fprintf(stderr, "voxgi: unknown command '%s'\n%s", argv[1], main_help);
+    return 2;
+}
