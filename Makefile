@@ -5,6 +5,7 @@ WARN    := -Wall -Wextra -pedantic -Werror
 CFLAGS  ?= -O2 -g
 LDLIBS  := -lm -lpthread -ldl
 B       := build
+ASAN    := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 
 GLSL    := $(sort $(wildcard shaders/*.glsl))
 TESTS   := test_voxelize test_gl_voxelize test_mesh_io test_headless_gl test_tool
@@ -17,8 +18,8 @@ all: deps $(B)/voxgi $(B)/example_voxelize
 deps:
 	@bash tools/deps.sh
 
-$(B):
-	@mkdir -p $(B) $(B)/asan
+$(B) $(B)/asan:
+	@mkdir -p $@
 
 $(B)/embed_shaders: tools/embed_shaders.c | $(B)
 	$(CC) -O2 $(WARN) -o $@ $<
@@ -37,16 +38,18 @@ $(B)/example_voxelize: examples/voxelize.c voxgi.h | $(B)
 
 $(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
-$(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)
+$(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
 
 $(B)/test_%: tests/test_%.c voxgi.h tests/harness.h tools/shapes.h | $(B) shaders.h
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
-ASAN := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
-$(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tools/shapes.h | $(B) shaders.h
+$(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tools/shapes.h | $(B)/asan shaders.h
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(LDLIBS)
 
-test: deps $(B)/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(addprefix $(B)/asan/,$(TESTS))
+$(B)/asan/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h voxgi.h | $(B)/asan shaders.h
+	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(LDLIBS)
+
+test: deps $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(addprefix $(B)/asan/,$(TESTS))
 	@bash tests/run.sh
 
 demo: all

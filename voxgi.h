@@ -745,7 +745,7 @@ static void voxgi__flat_free(voxgi_context *ctx, voxgi__flat *f)
 
 static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene, voxgi__flat *f)
 {
-    size_t mi, t, v, nt, nv, tri_at = 0, vert_at = 0;
+    size_t mi, t, v, nt = 0, nv = 0, tri_at = 0, vert_at = 0;
     voxgi_result r = voxgi__validate(ctx, scene, &nt, &nv);
     memset(f, 0, sizeof *f);
     if (r != VOXGI_OK) return r;

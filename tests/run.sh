@@ -64,6 +64,7 @@ for t in test_voxelize test_gl_voxelize test_mesh_io test_headless_gl test_tool;
     run_program "$t" "$B/$t"
 done
 export ASAN_OPTIONS=detect_leaks=1
+export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1
 for t in test_voxelize test_gl_voxelize test_mesh_io test_headless_gl test_tool; do
     run_program "asan/$t" env VOXGI_TOOL="$B/asan/voxgi" "$B/asan/$t"

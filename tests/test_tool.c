@@ -1,0 +1,182 @@
+/* The voxgi command-line tool, run as a user runs it: help, exact grids, JSON, binvox output,
+   backends, and bad files and arguments (clear message, non-zero exit, never a crash).
+   VOXGI_TOOL names the binary (default build/voxgi). */
+#define _POSIX_C_SOURCE 200809L
+#define VOXGI_IMPLEMENTATION
+#define VOXGI_NO_GL
+#include "../voxgi.h"
+#include "harness.h"
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static const char *tool(void) { return getenv("VOXGI_TOOL") ? getenv("VOXGI_TOOL") : "build/voxgi"; }
+static char tmpdir[256];
+
+/* Runs "voxgi ARGS" and captures stdout+stderr; returns the exit status (-1 if it died). */
+static int run(const char *args, char *out, size_t out_size)
+{
+    char cmd[2048];
+    FILE *p;
+    size_t n = 0;
+    int st;
+    snprintf(cmd, sizeof cmd, "%s %s 2>&1", tool(), args);
+    p = popen(cmd, "r");
+    if (!p) return -1;
+    while (n + 1 < out_size) {
+        size_t got = fread(out + n, 1, out_size - 1 - n, p);
+        if (got == 0) break;
+        n += got;
+    }
+    out[n] = 0;
+    st = pclose(p);
+    return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+static double json_number(const char *json, const char *key)
+{
+    char pat[64];
+    const char *at;
+    snprintf(pat, sizeof pat, "\"%s\":", key);
+    at = strstr(json, pat);
+    return at ? strtod(at + strlen(pat), NULL) : -1;
+}
+
+static void write_file(const char *name, const char *text, char *path, size_t path_size)
+{
+    FILE *f;
+    snprintf(path, path_size, "%s/%s", tmpdir, name);
+    f = fopen(path, "wb");
+    fputs(text, f);
+    fclose(f);
+}
+
+static void test_help_everywhere(void)
+{
+    static char out[8192];
+    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help"};
+    size_t i;
+    for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+        int rc = run(cmds[i], out, sizeof out);
+        TH_CHECK(rc == 0 && strstr(out, "usage:"), "'voxgi %s' gave %d: %.200s", cmds[i], rc, out);
+    }
+    TH_CHECK(run("", out, sizeof out) == 2, "no command should exit 2");
+    TH_CHECK(run("frobnicate", out, sizeof out) == 2 && strstr(out, "unknown command"), "unknown command: %s", out);
+}
+
+/* The cube [-1,1]^3 on a grid whose planes pass through its faces: exactly the voxels that
+   touch the surface, 10^3 - 6^3 = 784 (the closed cube meets index range 1..10 per axis, the
+   open interior contains 3..8). */
+static void test_voxelize_exact_grid_json_binvox(void)
+{
+    static char out[8192];
+    char args[1024], path[512];
+    FILE *f;
+    voxgi_grid g;
+    size_t need = 0;
+    uint32_t *bits;
+    int rc;
+    snprintf(path, sizeof path, "%s/cube.binvox", tmpdir);
+    snprintf(args, sizeof args, "voxelize builtin:cube --grid -1.5 -1.5 -1.5 0.25 12 12 12 --backend cpu --json -o %s", path);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 0, "exit %d: %s", rc, out);
+    TH_CHECK(json_number(out, "voxels") == 784, "voxels %g, expected 784: %s", json_number(out, "voxels"), out);
+    TH_CHECK(json_number(out, "triangles") == 12, "triangles: %s", out);
+    TH_CHECK(json_number(out, "voxel_size") == 0.25 && json_number(out, "ms") >= 0, "voxel_size/ms: %s", out);
+    TH_CHECK(strstr(out, "\"backend\":\"cpu\"") && strstr(out, "\"method\":\"conservative\"") &&
+             strstr(out, "\"origin\":[-1.5,-1.5,-1.5]") && strstr(out, "\"res\":[12,12,12]"), "fields: %s", out);
+    f = fopen(path, "rb");
+    TH_CHECK(f != NULL, "no binvox written");
+    if (!f) return;
+    TH_CHECK(voxgi_binvox_read(f, &g, NULL, 0, &need) == VOXGI_OK, "binvox header unreadable");
+    rewind(f);
+    bits = (uint32_t *)malloc(need);
+    TH_CHECK(voxgi_binvox_read(f, &g, bits, need, NULL) == VOXGI_OK, "binvox unreadable");
+    fclose(f);
+    {
+        uint64_t i, count = 0;
+        for (i = 0; i < 12 * 12 * 12; i++) count += (uint64_t)voxgi_bit_get(bits, i);
+        TH_CHECK(count == 784 && g.res[0] == 12 && g.origin[1] == -1.5 && g.voxel_size == 0.25, "binvox holds %llu voxels",
+                 (unsigned long long)count);
+    }
+    free(bits);
+    /* --grid takes the numbers as given: 0.1 stays the double nearest 0.1 */
+    rc = run("voxelize builtin:sphere --grid 0.1 -1.3 -1.7 0.1 30 31 32 --backend cpu --json", out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "\"origin\":[0.10000000000000001,-1.3,-1.7]") && json_number(out, "voxel_size") == 0.1,
+             "grid not taken as given: %s", out);
+}
+
+/* GL and CPU give the same count through the tool (when a GL context can be made). */
+static void test_voxelize_backends_agree(void)
+{
+    static char cpu[8192], gl[8192];
+    int rc = run("voxelize builtin:sphere --res 48 --backend cpu --json", cpu, sizeof cpu);
+    TH_CHECK(rc == 0, "cpu: %s", cpu);
+    rc = run("voxelize builtin:sphere --res 48 --backend gl --json", gl, sizeof gl);
+    if (rc != 0 && strstr(gl, "cannot use backend gl")) {
+        if (getenv("VOXGI_REQUIRE_GL") && atoi(getenv("VOXGI_REQUIRE_GL"))) TH_CHECK(0, "no GL: %s", gl);
+        else th_skip("no GL context: %s", gl);
+        return;
+    }
+    TH_CHECK(rc == 0 && strstr(gl, "\"backend\":\"gl\""), "gl: %s", gl);
+    TH_CHECK(json_number(cpu, "voxels") == json_number(gl, "voxels") && json_number(cpu, "voxels") > 0, "cpu %g vs gl %g",
+             json_number(cpu, "voxels"), json_number(gl, "voxels"));
+}
+
+static void test_bad_files_and_arguments(void)
+{
+    static char out[8192];
+    char path[512], args[1024];
+    int rc;
+    write_file("trunc.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", path, sizeof path);
+    snprintf(args, sizeof args, "voxelize %s --backend cpu", path);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "trunc.obj") && strstr(out, "line 4"), "bad index: exit %d: %s", rc, out);
+    write_file("nan.off", "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", path, sizeof path);
+    snprintf(args, sizeof args, "voxelize %s --backend cpu", path);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "nan.off"), "nan: exit %d: %s", rc, out);
+    write_file("short.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", path, sizeof path);
+    snprintf(args, sizeof args, "voxelize %s --backend cpu", path);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "short.stl"), "truncated stl: exit %d: %s", rc, out);
+    rc = run("voxelize /nonexistent/mesh.ply --backend cpu", out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "/nonexistent/mesh.ply"), "missing file: exit %d: %s", rc, out);
+    rc = run("voxelize builtin:cube --res 0", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--res"), "--res 0: exit %d: %s", rc, out);
+    rc = run("voxelize builtin:cube --grid 0 0 0 -1 4 4 4 --backend cpu", out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "voxel size"), "negative voxel size: exit %d: %s", rc, out);
+    rc = run("voxelize builtin:nothing", out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "builtin:"), "unknown built-in: exit %d: %s", rc, out);
+    rc = run("voxelize builtin:cube --backend cpu -o /nonexistent/dir/x.binvox", out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "cannot write"), "unwritable output: exit %d: %s", rc, out);
+}
+
+static void test_info_and_bench(void)
+{
+    static char out[16384];
+    int rc = run("info --json", out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "\"version\":\"" VOXGI_VERSION_STRING "\"") && strstr(out, "\"gl\":["), "info: %s", out);
+    rc = run("bench voxelize --min-res 8 --max-res 16 --runs 1 --no-gl", out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "Table 1") && strstr(out, "Table 2") && strstr(out, "builtin:cube"), "bench: %s", out);
+    /* the quad [-1,1]^2 fills N-2 columns per axis (one voxel of padding) and lies on the
+       grid's middle plane, so it touches two slices: 2 (N-2)^2 = 72 and 392 */
+    TH_CHECK(strstr(out, "| builtin:quad | 72 | 392 |") != NULL, "quad counts: %s", out);
+}
+
+int main(void)
+{
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/voxgi_tool_XXXXXX");
+    if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }
+    TH_RUN(test_help_everywhere);
+    TH_RUN(test_voxelize_exact_grid_json_binvox);
+    TH_RUN(test_voxelize_backends_agree);
+    TH_RUN(test_bad_files_and_arguments);
+    TH_RUN(test_info_and_bench);
+    {
+        char cmd[300];
+        snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
+        if (system(cmd) != 0) return 1;
+    }
+    return th_finish();
+}
