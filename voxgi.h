@@ -235,7 +235,7 @@ typedef struct voxgi_voxels_info {
     voxgi_backend backend;      /* where the bits live */
     uint64_t voxel_count;       /* set voxels */
     uint64_t triangle_count;    /* triangles in the scene */
-    uint64_t exact_tests;       /* tests the double filter could not decide (resolved exactly) */
+    uint64_t exact_tests; /* tests the double filter could not decide (resolved exactly) */
     uint64_t exact_triangles;   /* GL only: triangles handed whole to the exact CPU path */
     double ms;                  /* wall time of voxgi_voxelize */
     size_t bytes;               /* size of the bit grid */
@@ -1217,6 +1217,9 @@ typedef struct voxgi__tri {
     int proj_count[3];         /* 1 two-sided line (segment-shaped projection), or 0 (a point) */
 } voxgi__tri;
 
+/* What one worker counted: tests decided by exact arithmetic, and bits it set. */
+typedef struct voxgi__stats { uint64_t exact_tests, voxels; } voxgi__stats;
+
 /* Read-only state shared by all workers of one voxelization. */
 typedef struct voxgi__vox_shared {
     const voxgi_grid *grid;
@@ -1411,7 +1414,7 @@ static int voxgi__exact_edge(const voxgi__vox_shared *vs, const voxgi__tri *t, i
 }
 
 /* Makes every sign of the normal exact (CPU only; the GL pass hands such triangles over). */
-static void voxgi__tri_resolve_signs(const voxgi__vox_shared *vs, voxgi__tri *t, uint64_t *exact_tests)
+static void voxgi__tri_resolve_signs(const voxgi__vox_shared *vs, voxgi__tri *t, voxgi__stats *st)
 {
     int c;
     for (c = 0; c < 3; c++)
@@ -1419,7 +1422,7 @@ static void voxgi__tri_resolve_signs(const voxgi__vox_shared *vs, voxgi__tri *t,
             voxgi__xp n;
             voxgi__exact_normal(vs, t, c, &n);
             t->sig[c] = voxgi__xp_sign(&n);
-            ++*exact_tests;
+            st->exact_tests++;
         }
 }
 
@@ -1442,7 +1445,7 @@ static int voxgi__sign_tight(const voxgi__tri *t, const voxgi__lin *L, int side,
 
 /* One linear test at voxel rel (relative to t->lo): 1 pass, 0 fail; undecided signs exactly. */
 static int voxgi__test_lin(const voxgi__vox_shared *vs, const voxgi__tri *t, const voxgi__lin *L, const int32_t rel[3],
-                           uint64_t *exact_tests)
+                           voxgi__stats *st)
 {
     int side;
     for (side = L->orient ? 1 : 0; side < 2; side++) {
@@ -1455,7 +1458,7 @@ static int voxgi__test_lin(const voxgi__vox_shared *vs, const voxgi__tri *t, con
             for (a = 0; a < 3; a++) corner[a] = (int64_t)t->lo[a] + rel[a] + L->off[side][a];
             s = L->plane < 0 ? voxgi__exact_plane(vs, t, corner)
                              : voxgi__exact_edge(vs, t, L->plane, L->edge, corner) * (L->orient ? L->orient : 1);
-            ++*exact_tests;
+            st->exact_tests++;
         }
         if (side == 0 ? s > 0 : s < 0) return 0;
     }
@@ -1464,43 +1467,44 @@ static int voxgi__test_lin(const voxgi__vox_shared *vs, const voxgi__tri *t, con
 
 /* The projection of the triangle onto the plane normal to axis c against the voxel's square. */
 static int voxgi__test_projection(const voxgi__vox_shared *vs, const voxgi__tri *t, int c, const int32_t rel[3],
-                                  uint64_t *exact_tests)
+                                  voxgi__stats *st)
 {
     int i;
     for (i = 0; i < t->proj_count[c]; i++)
-        if (!voxgi__test_lin(vs, t, &t->proj[c][i], rel, exact_tests)) return 0;
+        if (!voxgi__test_lin(vs, t, &t->proj[c][i], rel, st)) return 0;
     return 1;
 }
 
 #ifndef VOXGI_NO_GL
 /* The complete exact test of one voxel (any triangle, degenerate or not): the GL pass's referee. */
-static int voxgi__test_voxel(const voxgi__vox_shared *vs, const voxgi__tri *t, const int32_t rel[3], uint64_t *exact_tests)
+static int voxgi__test_voxel(const voxgi__vox_shared *vs, const voxgi__tri *t, const int32_t rel[3], voxgi__stats *st)
 {
     int a;
     for (a = 0; a < 3; a++)
         if (rel[a] < 0 || rel[a] > t->hi[a] - t->lo[a]) return 0;
-    if ((t->sig[0] | t->sig[1] | t->sig[2]) != 0 && !voxgi__test_lin(vs, t, &t->plane, rel, exact_tests)) return 0;
+    if ((t->sig[0] | t->sig[1] | t->sig[2]) != 0 && !voxgi__test_lin(vs, t, &t->plane, rel, st)) return 0;
     for (a = 0; a < 3; a++)
-        if (!voxgi__test_projection(vs, t, a, rel, exact_tests)) return 0;
+        if (!voxgi__test_projection(vs, t, a, rel, st)) return 0;
     return 1;
 }
 #endif
 
 /* ----- CPU conservative voxelizer */
-static void voxgi__set_voxel(const voxgi__vox_shared *vs, int64_t i, int64_t j, int64_t k)
+static void voxgi__set_voxel(const voxgi__vox_shared *vs, voxgi__stats *st, int64_t i, int64_t j, int64_t k)
 {
     const voxgi_grid *g = vs->grid;
     uint64_t idx = (uint64_t)i + (uint64_t)g->res[0] * ((uint64_t)j + (uint64_t)g->res[1] * (uint64_t)k);
     uint32_t *w = vs->bits + (idx >> 5), mask = 1u << (idx & 31u);
-    if (!(*w & mask)) VOXGI__ATOMIC_OR_U32(w, mask);
+    /* the old word tells whether this call set the bit, so counting costs nothing */
+    if (!(*w & mask) && !(VOXGI__ATOMIC_OR_U32(w, mask) & mask)) st->voxels++;
 }
 
-static void voxgi__fill_range(const voxgi__vox_shared *vs, const int32_t lo[3], const int32_t hi[3])
+static void voxgi__fill_range(const voxgi__vox_shared *vs, voxgi__stats *st, const int32_t lo[3], const int32_t hi[3])
 {
     int32_t i, j, k;
     for (k = lo[2]; k <= hi[2]; k++)
         for (j = lo[1]; j <= hi[1]; j++)
-            for (i = lo[0]; i <= hi[0]; i++) voxgi__set_voxel(vs, i, j, k);
+            for (i = lo[0]; i <= hi[0]; i++) voxgi__set_voxel(vs, st, i, j, k);
 }
 
 /* Index range [ceil(lo)-1, floor(hi)] of closed unit cells meeting [lo, hi], clipped to [0, max]. */
@@ -1513,7 +1517,7 @@ static void voxgi__cell_range(double lo, double hi, int32_t max, int32_t *first,
 
 /* Degenerate triangles are the union of their edges: each edge is voxelized as a segment, slab
    by slab along its longest axis, with the exact line tests of all three projections. */
-static void voxgi__voxelize_segment(const voxgi__vox_shared *vs, voxgi__tri *t, int k, uint64_t *exact_tests)
+static void voxgi__voxelize_segment(const voxgi__vox_shared *vs, voxgi__tri *t, int k, voxgi__stats *st)
 {
     const voxgi__vprep *p = &vs->vp[t->v[k]], *q = &vs->vp[t->v[(k + 1) % 3]];
     int32_t lo[3], hi[3], rel[3];
@@ -1560,9 +1564,9 @@ static void voxgi__voxelize_segment(const voxgi__vox_shared *vs, voxgi__tri *t, 
         }
         for (rel[c] = VOXGI__MAX(c0, lo[c]); rel[c] <= c1; rel[c]++)
             for (rel[b] = VOXGI__MAX(b0, lo[b]); rel[b] <= b1; rel[b]++)
-                if (voxgi__test_projection(vs, t, 0, rel, exact_tests) && voxgi__test_projection(vs, t, 1, rel, exact_tests) &&
-                    voxgi__test_projection(vs, t, 2, rel, exact_tests))
-                    voxgi__set_voxel(vs, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
+                if (voxgi__test_projection(vs, t, 0, rel, st) && voxgi__test_projection(vs, t, 1, rel, st) &&
+                    voxgi__test_projection(vs, t, 2, rel, st))
+                    voxgi__set_voxel(vs, st, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
     }
 }
 
@@ -1584,96 +1588,155 @@ static void voxgi__row_span(const voxgi__tri *t, int c, int32_t rel_b, int32_t e
     *last = lo > hi ? 0 : (int32_t)hi;
 }
 
-static void voxgi__voxelize_triangle(const voxgi__vox_shared *vs, size_t ti, uint64_t *exact_tests)
-{
+/* A triangle ready for its column loop: columns along axis c, rows along b = (c + 2) % 3. */
+typedef struct voxgi__prepared {
     voxgi__tri t;
-    int32_t ext[3], rel[3];
-    int a, b, c, thin = 0, single = -1;
-    if (!voxgi__tri_setup(vs, ti, &t)) return;
+    int c, single;
+    int32_t ext[3];
+} voxgi__prepared;
+
+/* Everything before the column loop. Returns 0 when the triangle is already done (outside the
+   grid, a column or voxel, a segment or point), else 1 with its rows still to visit. */
+static int voxgi__tri_prepare(const voxgi__vox_shared *vs, size_t ti, voxgi__prepared *P, voxgi__stats *st)
+{
+    voxgi__tri *t = &P->t;
+    int a, thin = 0;
+    if (!voxgi__tri_setup(vs, ti, t)) return 0;
+    P->single = -1;
     for (a = 0; a < 3; a++) {
-        ext[a] = t.hi[a] - t.lo[a] + 1;
-        if (t.one_slice[a]) { thin++; single = a; }
+        P->ext[a] = t->hi[a] - t->lo[a] + 1;
+        if (t->one_slice[a]) { thin++; P->single = a; }
     }
     /* a single column or voxel: every voxel of the exact range meets the triangle */
-    if (thin >= 2) { voxgi__fill_range(vs, t.lo, t.hi); return; }
-    voxgi__tri_resolve_signs(vs, &t, exact_tests);
-    if ((t.sig[0] | t.sig[1] | t.sig[2]) == 0) {
-        if (t.e[0][0] == 0 && t.e[0][1] == 0 && t.e[0][2] == 0 && t.e[1][0] == 0 && t.e[1][1] == 0 && t.e[1][2] == 0) {
-            voxgi__fill_range(vs, t.lo, t.hi); /* a point */
-            return;
+    if (thin >= 2) { voxgi__fill_range(vs, st, t->lo, t->hi); return 0; }
+    voxgi__tri_resolve_signs(vs, t, st);
+    if ((t->sig[0] | t->sig[1] | t->sig[2]) == 0) {
+        if (t->e[0][0] == 0 && t->e[0][1] == 0 && t->e[0][2] == 0 && t->e[1][0] == 0 && t->e[1][1] == 0 && t->e[1][2] == 0) {
+            voxgi__fill_range(vs, st, t->lo, t->hi); /* a point */
+            return 0;
         }
-        for (a = 0; a < 3; a++) voxgi__voxelize_segment(vs, &t, a, exact_tests);
-        return;
+        for (a = 0; a < 3; a++) voxgi__voxelize_segment(vs, t, a, st);
+        return 0;
     }
-    voxgi__tri_forms(&t);
+    voxgi__tri_forms(t);
     /* Columns along c: a single slice's own axis (then its projection decides alone), else the
        dominant normal axis, where the plane crosses each column in at most three voxels. */
-    if (single >= 0) c = single;
+    if (P->single >= 0) P->c = P->single;
     else {
-        c = -1;
+        P->c = -1;
         for (a = 0; a < 3; a++)
-            if (t.sig[a] != 0 && (c < 0 || fabs(t.n[a]) > fabs(t.n[c]))) c = a;
+            if (t->sig[a] != 0 && (P->c < 0 || fabs(t->n[a]) > fabs(t->n[P->c]))) P->c = a;
     }
-    a = (c + 1) % 3;
-    b = (c + 2) % 3;
-    for (rel[b] = 0; rel[b] < ext[b]; rel[b]++) {
+    return 1;
+}
+
+/* The column loop over rows [row_first, row_last] (relative to the range). */
+static void voxgi__tri_rows(const voxgi__vox_shared *vs, const voxgi__prepared *P, int32_t row_first, int32_t row_last,
+                            voxgi__stats *st)
+{
+    const voxgi__tri *t = &P->t;
+    const int32_t *ext = P->ext;
+    int c = P->c, single = P->single, a = (c + 1) % 3, b = (c + 2) % 3;
+    int32_t rel[3];
+    for (rel[b] = row_first; rel[b] <= row_last; rel[b]++) {
         int32_t first = 0, last = ext[a] - 1;
-        if (t.sig[c] != 0) voxgi__row_span(&t, c, rel[b], ext[a], &first, &last);
+        if (t->sig[c] != 0) voxgi__row_span(t, c, rel[b], ext[a], &first, &last);
         for (rel[a] = first; rel[a] <= last; rel[a]++) {
             int32_t k0, k1;
             rel[c] = 0;
-            if (!voxgi__test_projection(vs, &t, c, rel, exact_tests)) continue;
+            if (!voxgi__test_projection(vs, t, c, rel, st)) continue;
             if (single >= 0) {
-                voxgi__set_voxel(vs, (int64_t)t.lo[0] + rel[0], (int64_t)t.lo[1] + rel[1], (int64_t)t.lo[2] + rel[2]);
+                voxgi__set_voxel(vs, st, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
                 continue;
             }
             {
-                double nc = t.n[c], dsum = t.dn[0] + t.dn[1] + t.dn[2];
+                double nc = t->n[c], dsum = t->dn[0] + t->dn[1] + t->dn[2];
                 if (fabs(nc) <= 4 * dsum) { k0 = 0; k1 = ext[c] - 1; } /* slopes unreliable: whole range */
                 else {
-                    double ka = -t.n[a] / nc, kb = -t.n[b] / nc;
-                    double Da = fabs((double)rel[a] - t.r[0][a]) + 1, Db = fabs((double)rel[b] - t.r[0][b]) + 1;
-                    double z0 = t.r[0][c] + ka * ((double)rel[a] - t.r[0][a]) + kb * ((double)rel[b] - t.r[0][b]);
-                    double dka = (t.dn[a] + fabs(ka) * t.dn[c]) / (fabs(nc) - t.dn[c]);
-                    double dkb = (t.dn[b] + fabs(kb) * t.dn[c]) / (fabs(nc) - t.dn[c]);
-                    double m = 2 * (dka * Da + dkb * Db) + 2 * (t.dr[0][c] + fabs(ka) * t.dr[0][a] + fabs(kb) * t.dr[0][b]) +
+                    double ka = -t->n[a] / nc, kb = -t->n[b] / nc;
+                    double Da = fabs((double)rel[a] - t->r[0][a]) + 1, Db = fabs((double)rel[b] - t->r[0][b]) + 1;
+                    double z0 = t->r[0][c] + ka * ((double)rel[a] - t->r[0][a]) + kb * ((double)rel[b] - t->r[0][b]);
+                    double dka = (t->dn[a] + fabs(ka) * t->dn[c]) / (fabs(nc) - t->dn[c]);
+                    double dkb = (t->dn[b] + fabs(kb) * t->dn[c]) / (fabs(nc) - t->dn[c]);
+                    double m = 2 * (dka * Da + dkb * Db) + 2 * (t->dr[0][c] + fabs(ka) * t->dr[0][a] + fabs(kb) * t->dr[0][b]) +
                                1e-9 * (1 + fabs(z0) + fabs(ka) * Da + fabs(kb) * Db);
                     double zmin = z0 + VOXGI__MIN(ka, 0.0) + VOXGI__MIN(kb, 0.0), zmax = z0 + VOXGI__MAX(ka, 0.0) + VOXGI__MAX(kb, 0.0);
                     voxgi__cell_range(zmin - m, zmax + m, ext[c] - 1, &k0, &k1);
                 }
             }
             for (rel[c] = k0; rel[c] <= k1; rel[c]++)
-                if (voxgi__test_lin(vs, &t, &t.plane, rel, exact_tests) && voxgi__test_projection(vs, &t, a, rel, exact_tests) &&
-                    voxgi__test_projection(vs, &t, b, rel, exact_tests))
-                    voxgi__set_voxel(vs, (int64_t)t.lo[0] + rel[0], (int64_t)t.lo[1] + rel[1], (int64_t)t.lo[2] + rel[2]);
+                if (voxgi__test_lin(vs, t, &t->plane, rel, st) && voxgi__test_projection(vs, t, a, rel, st) &&
+                    voxgi__test_projection(vs, t, b, rel, st))
+                    voxgi__set_voxel(vs, st, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
         }
     }
 }
 
-/* ----- worker pool: triangles are handed out in chunks; OR is order-free, so the bits do not
-   depend on the thread count or schedule. */
+#ifndef VOXGI_NO_GL
+/* One whole triangle on the calling thread: the GL pass's referee for triangles it hands over. */
+static void voxgi__voxelize_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
+{
+    voxgi__prepared P;
+    if (voxgi__tri_prepare(vs, ti, &P, st)) voxgi__tri_rows(vs, &P, 0, P.ext[(P.c + 2) % 3] - 1, st);
+}
+#endif
+
+/* ----- worker pool. Phase 1 hands out triangles in chunks and lists the big ones (more than
+   VOXGI__BIG_COLUMNS columns); phase 2 hands out blocks of their rows, so a few huge triangles
+   keep every core busy too. OR is order-free: the bits do not depend on threads or schedule. */
+#define VOXGI__CHUNK 64
+#define VOXGI__BIG_COLUMNS 4096
+#define VOXGI__ROWS_PER_ITEM 8
+
 typedef struct voxgi__vox_job {
     const voxgi__vox_shared *vs;
     size_t triangle_count, next;
-    int cancel;
-    uint64_t exact_tests;
+    int phase, cancel;
+    uint64_t exact_tests, voxels;
+    uint32_t *big;             /* phase 1 output: big triangles */
+    size_t big_count;
+    size_t *big_first_item;    /* phase 2: prefix sums of row blocks, big_count + 1 entries */
 } voxgi__vox_job;
-
-#define VOXGI__CHUNK 64
 
 static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress)
 {
-    uint64_t exact = 0;
+    voxgi__stats st = {0, 0};
+    voxgi__prepared P;
     for (;;) {
-        size_t first = VOXGI__ATOMIC_ADD_SIZE(&job->next, (size_t)VOXGI__CHUNK), t, end;
-        if (first >= job->triangle_count || VOXGI__ATOMIC_LOAD_INT(&job->cancel)) break;
-        end = VOXGI__MIN(first + VOXGI__CHUNK, job->triangle_count);
-        for (t = first; t < end; t++) voxgi__voxelize_triangle(job->vs, t, &exact);
-        if (ctx_for_progress && (first / VOXGI__CHUNK) % 64 == 0 &&
-            voxgi__progress(ctx_for_progress, (double)end / (double)job->triangle_count, "voxelize"))
+        size_t first = VOXGI__ATOMIC_ADD_SIZE(&job->next, job->phase ? (size_t)1 : (size_t)VOXGI__CHUNK), t, end;
+        double fraction;
+        if (VOXGI__ATOMIC_LOAD_INT(&job->cancel)) break;
+        if (job->phase == 0) {
+            if (first >= job->triangle_count) break;
+            end = VOXGI__MIN(first + VOXGI__CHUNK, job->triangle_count);
+            for (t = first; t < end; t++) {
+                if (!voxgi__tri_prepare(job->vs, t, &P, &st)) continue;
+                if ((int64_t)P.ext[(P.c + 1) % 3] * P.ext[(P.c + 2) % 3] > VOXGI__BIG_COLUMNS)
+                    job->big[VOXGI__ATOMIC_ADD_SIZE(&job->big_count, (size_t)1)] = (uint32_t)t;
+                else voxgi__tri_rows(job->vs, &P, 0, P.ext[(P.c + 2) % 3] - 1, &st);
+            }
+            fraction = (double)end / (double)job->triangle_count;
+        } else {
+            size_t lo = 0, hi = job->big_count, item = first;
+            int32_t row0;
+            if (item >= job->big_first_item[job->big_count]) break;
+            while (hi - lo > 1) { /* the big triangle whose blocks hold this item */
+                size_t mid = (lo + hi) / 2;
+                if (job->big_first_item[mid] <= item) lo = mid;
+                else hi = mid;
+            }
+            voxgi__tri_prepare(job->vs, job->big[lo], &P, &st);
+            row0 = (int32_t)(item - job->big_first_item[lo]) * VOXGI__ROWS_PER_ITEM;
+            voxgi__tri_rows(job->vs, &P, row0, VOXGI__MIN(row0 + VOXGI__ROWS_PER_ITEM, P.ext[(P.c + 2) % 3]) - 1, &st);
+            fraction = (double)(item + 1) / (double)job->big_first_item[job->big_count];
+            if (item % 64) continue;
+        }
+        if (ctx_for_progress && (job->phase || (first / VOXGI__CHUNK) % 64 == 0) &&
+            voxgi__progress(ctx_for_progress, fraction, job->phase ? "voxelize large triangles" : "voxelize"))
             VOXGI__ATOMIC_STORE_INT(&job->cancel, 1);
     }
-    VOXGI__ATOMIC_ADD_SIZE(&job->exact_tests, exact);
+    VOXGI__ATOMIC_ADD_SIZE(&job->exact_tests, st.exact_tests);
+    VOXGI__ATOMIC_ADD_SIZE(&job->voxels, st.voxels);
 }
 
 #ifndef VOXGI_NO_THREADS
@@ -1684,33 +1747,63 @@ static void *voxgi__vox_thread(void *p)
 }
 #endif
 
-/* Runs the CPU voxelizer over all triangles into vs->bits (which the caller zeroed). */
-static voxgi_result voxgi__voxelize_cpu_run(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
-                                            uint64_t *exact_tests)
+/* Runs one phase of the job on the calling thread and (thread_count - 1) helpers. */
+static void voxgi__vox_phase(voxgi_context *ctx, voxgi__vox_job *job, size_t items)
 {
-    voxgi__vox_job job;
     int started = 0;
 #ifndef VOXGI_NO_THREADS
     pthread_t threads[256];
     int i, want = ctx->desc.thread_count - 1;
-    if ((size_t)want > triangle_count / VOXGI__CHUNK) want = (int)(triangle_count / VOXGI__CHUNK);
-#endif
-    memset(&job, 0, sizeof job);
-    job.vs = vs;
-    job.triangle_count = triangle_count;
-#ifndef VOXGI_NO_THREADS
+    if ((size_t)want > items) want = (int)items;
     for (i = 0; i < want && i < 256; i++) {
-        if (pthread_create(&threads[i], NULL, voxgi__vox_thread, &job) != 0) break;
+        if (pthread_create(&threads[i], NULL, voxgi__vox_thread, job) != 0) break;
         started++;
     }
+#else
+    (void)items;
 #endif
-    voxgi__vox_work(&job, ctx); /* the calling thread works too, and reports progress */
+    voxgi__vox_work(job, ctx); /* the calling thread works too, and reports progress */
 #ifndef VOXGI_NO_THREADS
     for (i = 0; i < started; i++) pthread_join(threads[i], NULL);
 #else
     (void)started;
 #endif
-    *exact_tests += job.exact_tests;
+}
+
+/* Runs the CPU voxelizer over all triangles into vs->bits (which the caller zeroed). */
+static voxgi_result voxgi__voxelize_cpu_run(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
+                                            voxgi__stats *st)
+{
+    voxgi__vox_job job;
+    size_t i;
+    memset(&job, 0, sizeof job);
+    job.vs = vs;
+    job.triangle_count = triangle_count;
+    job.big = (uint32_t *)voxgi__alloc_array(ctx, triangle_count, sizeof *job.big, 0);
+    if (!job.big) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)triangle_count);
+    voxgi__vox_phase(ctx, &job, triangle_count / VOXGI__CHUNK);
+    if (job.big_count && !job.cancel) {
+        job.big_first_item = (size_t *)voxgi__alloc_array(ctx, job.big_count + 1, sizeof(size_t), 0);
+        if (!job.big_first_item) {
+            voxgi__free(ctx, job.big);
+            return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the large-triangle list");
+        }
+        job.big_first_item[0] = 0;
+        for (i = 0; i < job.big_count; i++) {
+            voxgi__prepared P;
+            voxgi__stats unused = {0, 0};
+            voxgi__tri_prepare(vs, job.big[i], &P, &unused);
+            job.big_first_item[i + 1] = job.big_first_item[i] +
+                                        (size_t)(P.ext[(P.c + 2) % 3] + VOXGI__ROWS_PER_ITEM - 1) / VOXGI__ROWS_PER_ITEM;
+        }
+        job.phase = 1;
+        job.next = 0;
+        voxgi__vox_phase(ctx, &job, job.big_first_item[job.big_count]);
+    }
+    voxgi__free(ctx, job.big);
+    voxgi__free(ctx, job.big_first_item);
+    st->exact_tests += job.exact_tests;
+    st->voxels += job.voxels;
     if (job.cancel) return voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "voxelization cancelled by the progress callback");
     return VOXGI_OK;
 }
@@ -1723,18 +1816,6 @@ static voxgi_result voxgi__prep_vertices(voxgi_context *ctx, const voxgi__flat *
     if (!vp) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
     for (v = 0; v < f->vertex_count; v++) voxgi__prep_vertex(f->pos + 3 * v, g, &vp[v]);
     return VOXGI_OK;
-}
-
-static uint64_t voxgi__popcount_words(const uint32_t *w, uint64_t n)
-{
-    uint64_t i, c = 0;
-    for (i = 0; i < n; i++) {
-        uint32_t x = w[i];
-        x = x - ((x >> 1) & 0x55555555u);
-        x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
-        c += (((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
-    }
-    return c;
 }
 
 /* ===================================================================== voxel results */
@@ -1794,8 +1875,10 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
             vs.vp = vp;
             vs.bits = vox->bits;
             vs.inv_s = 1.0 / desc->grid.voxel_size;
-            r = voxgi__voxelize_cpu_run(ctx, &vs, flat.triangle_count, &vox->info.exact_tests);
-            if (r == VOXGI_OK) vox->info.voxel_count = voxgi__popcount_words(vox->bits, voxgi__grid_words(&desc->grid));
+            voxgi__stats st = {0, 0};
+            r = voxgi__voxelize_cpu_run(ctx, &vs, flat.triangle_count, &st);
+            vox->info.exact_tests = st.exact_tests;
+            vox->info.voxel_count = st.voxels;
         }
     }
 #ifndef VOXGI_NO_GL
@@ -1936,6 +2019,7 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
         if (r == VOXGI_OK && np) r = voxgi__gl_read_buffer(ctx, buf[4], pairs, np * 16);
         if (r == VOXGI_OK) {
             voxgi__vox_shared vs;
+            voxgi__stats st = {0, 0};
             vs.grid = g;
             vs.pos = f->pos;
             vs.tri = f->tri;
@@ -1944,7 +2028,7 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
             vs.inv_s = 1.0 / g->voxel_size;
             for (k = 0; k < nt; k++)
                 if (flags[k >> 5] & (1u << (k & 31u))) {
-                    voxgi__voxelize_triangle(&vs, k, &out->info.exact_tests);
+                    voxgi__voxelize_triangle(&vs, k, &st);
                     out->info.exact_triangles++;
                 }
             for (k = 0; k < np; k++) {
@@ -1952,12 +2036,13 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
                 const uint32_t *pr = pairs + 4 * k;
                 if (voxgi__tri_setup(&vs, pr[0], &t)) {
                     int32_t rel[3];
-                    voxgi__tri_resolve_signs(&vs, &t, &out->info.exact_tests);
+                    voxgi__tri_resolve_signs(&vs, &t, &st);
                     voxgi__tri_forms(&t);
                     for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
-                    if (voxgi__test_voxel(&vs, &t, rel, &out->info.exact_tests)) voxgi__set_voxel(&vs, pr[1], pr[2], pr[3]);
+                    if (voxgi__test_voxel(&vs, &t, rel, &st)) voxgi__set_voxel(&vs, &st, pr[1], pr[2], pr[3]);
                 }
             }
+            out->info.exact_tests = st.exact_tests;
             gl->NamedBufferSubData(buf[2], 0, (ptrdiff_t)bytes, copy);
             r = voxgi__gl_check(ctx, "uploading the exact decisions");
         }
