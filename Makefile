@@ -53,7 +53,7 @@ test: deps $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(
 	@bash tests/run.sh
 
 demo: all
-	$(B)/voxgi bench voxelize --max-res 256
+	$(B)/voxgi bench voxelize
 
 bench: all
 	$(B)/voxgi bench voxelize

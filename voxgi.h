@@ -857,8 +857,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 /* ===================================================================== GL loader and shaders
    voxgi's own GL types and enums (no GL header needed, none can clash) and a table of exactly
    the functions voxgi calls, filled from the caller's loader; the first missing name is
-   reported. With VOXGI_GL_EXTERNAL the application's own gl* symbols are used instead (its GL
-   4.5 prototypes must be in scope). voxgi binds programs, shader storage buffers 0..7 and the
+   reported. voxgi binds programs, shader storage buffers 0..7 and the
    dispatch-indirect buffer while it works and leaves all of them unbound (0) afterwards. */
 #if defined(_WIN32) && !defined(_WIN64) && !defined(__MINGW64__)
 #define VOXGI__APIENTRY __stdcall
@@ -948,20 +947,14 @@ static voxgi_result voxgi__gl_init(voxgi_context *ctx)
     voxgi__gl *gl;
     int major = 0, minor = 0;
     const char *s;
-#ifndef VOXGI_GL_EXTERNAL
     if (!ctx->desc.gl_get_proc_address && !ctx->desc.gl_get_proc_address_user)
         return voxgi__fail(ctx, VOXGI_ERR_GL_UNAVAILABLE, "no GL loader given (desc.gl_get_proc_address)");
-#endif
     gl = (voxgi__gl *)voxgi__alloc_array(ctx, 1, sizeof *gl, 1);
     if (!gl) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the GL state");
     ctx->gl = gl;
-#ifdef VOXGI_GL_EXTERNAL
-#define VOXGI__GL_LOAD(ret, name, args) gl->name = (ret(VOXGI__APIENTRY *) args)gl##name;
-#else
 #define VOXGI__GL_LOAD(ret, name, args)                                                                   \
     gl->name = (ret(VOXGI__APIENTRY *) args)voxgi__gl_lookup(ctx, "gl" #name);                            \
     if (!gl->name) return voxgi__fail(ctx, VOXGI_ERR_GL_MISSING_FUNCTION, "the GL loader has no gl" #name);
-#endif
     VOXGI__GL_FUNCS(VOXGI__GL_LOAD)
 #undef VOXGI__GL_LOAD
     s = (const char *)gl->GetString(VOXGI__GL_VERSION);

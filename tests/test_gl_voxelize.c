@@ -213,6 +213,24 @@ static voxgi_gl_proc loader_without_indirect(const char *name, void *user)
 static char g_log[1024];
 static void keep_log(voxgi_log_level l, const char *msg, void *u) { (void)l; (void)u; snprintf(g_log, sizeof g_log, "%s", msg); }
 
+/* The plain loader hook (no user pointer), shaped like eglGetProcAddress and glfwGetProcAddress. */
+static voxgi_gl_proc plain_loader(const char *name) { return vxt_gl_get_proc(name, g_gl); }
+
+static void test_gl_plain_loader(void)
+{
+    voxgi_desc d;
+    voxgi_context *ctx = NULL;
+    voxgi_info info;
+    if (!have_gl()) return;
+    memset(&d, 0, sizeof d);
+    d.backend = VOXGI_BACKEND_GL;
+    d.gl_get_proc_address = plain_loader;
+    TH_CHECK(voxgi_create(&d, &ctx) == VOXGI_OK, "plain loader rejected");
+    voxgi_query_info(ctx, &info);
+    TH_CHECK(info.backend == VOXGI_BACKEND_GL && info.gl_renderer[0], "plain loader: backend %s", voxgi_backend_name(info.backend));
+    voxgi_destroy(ctx);
+}
+
 static void test_gl_missing_function_and_fallback(void)
 {
     voxgi_desc d;
@@ -265,6 +283,7 @@ int main(void)
     TH_RUN(test_gl_equals_cpu_quads_and_huge);
     TH_RUN(test_gl_equals_cpu_degenerate);
     TH_RUN(test_gl_interop_and_backends);
+    TH_RUN(test_gl_plain_loader);
     TH_RUN(test_gl_missing_function_and_fallback);
     TH_RUN(test_gl_shader_error_mapping);
     if (g_gl) vxt_gl_destroy(g_gl);

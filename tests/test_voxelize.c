@@ -235,6 +235,31 @@ static void test_adversarial_vs_oracle(void)
     voxgi_destroy(ctx);
 }
 
+/* Triangles of more than 4096 columns go through the row-block phase of the worker pool. */
+static void test_big_triangles_vs_oracle(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    voxgi_grid g;
+    int trial;
+    uint64_t bad = 0;
+    g.origin[0] = lattice(-1.3); g.origin[1] = lattice(-0.7); g.origin[2] = lattice(-0.2);
+    g.voxel_size = lattice(0.1);
+    g.res[0] = 76; g.res[1] = 70; g.res[2] = 10;
+    for (trial = 0; trial < 6 && bad == 0; trial++) {
+        float p[9];
+        uint32_t idx[3] = {0, 1, 2};
+        int c;
+        for (c = 0; c < 3; c++) {
+            p[3 * c + 0] = (float)lattice(-2 + 10 * rnd());
+            p[3 * c + 1] = (float)lattice(-1.5 + 9 * rnd());
+            p[3 * c + 2] = (float)lattice(trial < 3 ? 0.3 + 0.2 * rnd() : 0.5); /* tilted, then flat on a grid plane */
+        }
+        bad += check_against_oracle(ctx, p, 3, idx, 1, &g, "big triangle");
+    }
+    TH_CHECK(bad == 0, "%llu voxels differ from the definition (trial %d)", (unsigned long long)bad, trial);
+    voxgi_destroy(ctx);
+}
+
 /* A closed procedural mesh on a non-cubic grid, all triangles at once, against the oracle. */
 static void test_mesh_vs_oracle(void)
 {
@@ -286,6 +311,39 @@ static void test_offset_and_scale_invariance(void)
         uint32_t *o = oracle_voxelize(m.pos, m.idx, m.triangle_count, &g0);
         TH_CHECK(compare_bits(ref, o, &g0, "box scene") == 0, "box scene differs from the definition");
         free(o);
+    }
+    free(moved);
+    free(ref);
+    vxt_shape_free(&m);
+    voxgi_destroy(ctx);
+}
+
+/* Literal scale factors 1e-6 and 1e6 round the float vertices, so identical voxels are only
+   guaranteed away from ties; a generic sphere on a generic grid has none, and must not change. */
+static void test_literal_scales(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    vxt_shape m;
+    voxgi_grid g0, g;
+    uint32_t *ref, *bits;
+    size_t i;
+    int variant;
+    float *moved;
+    vxt_shape_sphere(&m, 37, 23, 1.0, 0.0123, -0.0456, 0.0789);
+    g0.origin[0] = -1.1; g0.origin[1] = -1.2; g0.origin[2] = -1.05;
+    g0.voxel_size = 0.07;
+    g0.res[0] = 33; g0.res[1] = 35; g0.res[2] = 31;
+    ref = voxelize_bits(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g0, NULL);
+    moved = (float *)malloc(3 * m.vertex_count * sizeof(float));
+    for (variant = 0; variant < 2; variant++) {
+        double scale = variant ? 1e6 : 1e-6;
+        for (i = 0; i < 3 * m.vertex_count; i++) moved[i] = (float)(m.pos[i] * scale);
+        g = g0;
+        for (i = 0; i < 3; i++) g.origin[i] = g0.origin[i] * scale;
+        g.voxel_size = g0.voxel_size * scale;
+        bits = voxelize_bits(ctx, moved, m.vertex_count, m.idx, m.triangle_count, &g, NULL);
+        TH_CHECK(bits && compare_bits(bits, ref, &g, "scaled sphere") == 0, "scale %g changes the voxels", scale);
+        free(bits);
     }
     free(moved);
     free(ref);
@@ -564,8 +622,10 @@ int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
     TH_RUN(test_adversarial_vs_oracle);
+    TH_RUN(test_big_triangles_vs_oracle);
     TH_RUN(test_mesh_vs_oracle);
     TH_RUN(test_offset_and_scale_invariance);
+    TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
     TH_RUN(test_bad_input);
     TH_RUN(test_failing_allocator);
