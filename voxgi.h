@@ -220,8 +220,13 @@ VOXGI_API uint64_t voxgi_grid_voxel_count(const voxgi_grid *grid);
 
 /* ===================================================================== voxelization */
 typedef enum voxgi_method {
-    VOXGI_METHOD_CONSERVATIVE = 0   /* voxel set <=> closed box meets closed triangle (exact) */
+    VOXGI_METHOD_CONSERVATIVE = 0,  /* voxel set <=> closed box meets closed triangle (26-separating) */
+    VOXGI_METHOD_THIN,              /* 6-separating (Schwarz & Seidel 2010): every test of the
+                                       conservative one with the box replaced by its inscribed
+                                       octahedron (plane) and diamonds (projections) */
+    VOXGI_METHOD_COUNT_
 } voxgi_method;
+VOXGI_API const char *voxgi_method_name(voxgi_method m);
 
 typedef struct voxgi_voxelize_desc {
     voxgi_grid grid;
@@ -451,6 +456,16 @@ VOXGI_API const char *voxgi_backend_name(voxgi_backend b)
     case VOXGI_BACKEND_AUTO: return "auto";
     case VOXGI_BACKEND_CPU: return "cpu";
     case VOXGI_BACKEND_GL: return "gl";
+    }
+    return "unknown";
+}
+
+VOXGI_API const char *voxgi_method_name(voxgi_method m)
+{
+    switch (m) {
+    case VOXGI_METHOD_CONSERVATIVE: return "conservative";
+    case VOXGI_METHOD_THIN: return "thin";
+    case VOXGI_METHOD_COUNT_: break;
     }
     return "unknown";
 }
@@ -1188,7 +1203,7 @@ static void voxgi__prep_vertex(const float *v, const voxgi_grid *g, voxgi__vprep
    index relative to the triangle's range and side picks the box corner minimising (0) or
    maximising (1) the function. err bounds |computed - exact| for every voxel of the range. */
 typedef struct voxgi__lin {
-    double k[3], dk[3], v0[2], err;
+    double k[3], dk[3], v0[2], vc, err; /* vc: the constant at the voxel centre (thin tests) */
     int8_t off[2][3];    /* corner offsets per side */
     int8_t vertex;       /* the vertex the function is measured from */
     int8_t plane;        /* -1: the triangle's plane; else the projection normal to this axis */
@@ -1221,6 +1236,7 @@ typedef struct voxgi__vox_shared {
     const voxgi__vprep *vp;
     uint32_t *bits;
     double inv_s;
+    int thin;              /* VOXGI_METHOD_THIN: every set voxel also passes the thin tests */
 } voxgi__vox_shared;
 
 /* Fills the triangle's range, coordinates, edges and normal; returns 0 when it misses the grid. */
@@ -1301,6 +1317,8 @@ static void voxgi__lin_make(const voxgi__tri *t, voxgi__lin *L, const double k[3
         }
     }
     L->vertex = (int8_t)vk;
+    L->vc = 0;
+    for (a = 0; a < 3; a++) L->vc += k[a] * (0.5 - t->r[vk][a]);
     for (a = 0; a < 3; a++) {
         /* |rel + off - r| <= T over the whole range */
         double T = fabs(t->r[vk][a]) + 1 + (double)(t->hi[a] - t->lo[a] + 1);
@@ -1373,37 +1391,38 @@ static void voxgi__exact_normal(const voxgi__vox_shared *vs, const voxgi__tri *t
     voxgi__xp_add(n, &p);
 }
 
-/* Sign of n . (corner - v0) at absolute voxel corner index corner[3]. */
-static int voxgi__exact_plane(const voxgi__vox_shared *vs, const voxgi__tri *t, const int64_t corner[3])
+/* Exact sign of a linear form in world units at grid coordinates g (a voxel index plus 0, 1/2
+   or 1 per axis, exact in double), plus sgn * s/2 * |K_j| when j >= 0: the thin tests' radius.
+   K is the form's world coefficient vector: the normal (v1-v0)x(v2-v0), or orient * (-d_b, d_a)
+   for an edge d of a projection. */
+static int voxgi__exact_form(const voxgi__vox_shared *vs, const voxgi__tri *t, const voxgi__lin *L, const double g[3], int j,
+                             int sgn)
 {
-    const float *w0 = vs->pos + 3 * (size_t)t->v[0];
-    voxgi__xp sum, n, x, prod;
+    const float *w = vs->pos + 3 * (size_t)t->v[(int)L->vertex];
+    voxgi__xp k[3], x, prod, sum;
     int a;
+    if (L->plane < 0) {
+        for (a = 0; a < 3; a++) voxgi__exact_normal(vs, t, a, &k[a]);
+    } else {
+        int c = L->plane, pa = (c + 1) % 3, pb = (c + 2) % 3;
+        const float *wj = vs->pos + 3 * (size_t)t->v[(L->edge + 1) % 3];
+        k[c].n = 1; k[c].c[0] = 0;
+        voxgi__xp_diff(&k[pa], w[pb], wj[pb]); /* -d_b */
+        voxgi__xp_diff(&k[pb], wj[pa], w[pa]); /* d_a */
+        if (L->orient < 0) { voxgi__xp_neg(&k[pa]); voxgi__xp_neg(&k[pb]); }
+    }
     sum.n = 1; sum.c[0] = 0;
     for (a = 0; a < 3; a++) {
-        voxgi__exact_normal(vs, t, a, &n);
-        voxgi__xp_plane_minus(&x, vs->grid->origin[a], (double)corner[a], vs->grid->voxel_size, w0[a]);
-        voxgi__xp_mul(&prod, &n, &x);
+        if (k[a].n == 1 && k[a].c[0] == 0) continue;
+        voxgi__xp_plane_minus(&x, vs->grid->origin[a], g[a], vs->grid->voxel_size, w[a]);
+        voxgi__xp_mul(&prod, &k[a], &x);
+        voxgi__xp_add(&sum, &prod);
+    }
+    if (j >= 0) {
+        voxgi__xp_scale(&prod, &k[j], 0.5 * vs->grid->voxel_size * sgn * voxgi__xp_sign(&k[j]));
         voxgi__xp_add(&sum, &prod);
     }
     return voxgi__xp_sign(&sum);
-}
-
-/* Sign of (-d_b, d_a) . (corner - w_k) in plane c, d = edge k in world units (unoriented). */
-static int voxgi__exact_edge(const voxgi__vox_shared *vs, const voxgi__tri *t, int c, int k, const int64_t corner[3])
-{
-    const float *wk = vs->pos + 3 * (size_t)t->v[k], *wj = vs->pos + 3 * (size_t)t->v[(k + 1) % 3];
-    int a = (c + 1) % 3, b = (c + 2) % 3;
-    voxgi__xp da, db, xa, xb, s, p;
-    voxgi__xp_diff(&da, wj[a], wk[a]);
-    voxgi__xp_diff(&db, wj[b], wk[b]);
-    voxgi__xp_plane_minus(&xa, vs->grid->origin[a], (double)corner[a], vs->grid->voxel_size, wk[a]);
-    voxgi__xp_plane_minus(&xb, vs->grid->origin[b], (double)corner[b], vs->grid->voxel_size, wk[b]);
-    voxgi__xp_mul(&s, &da, &xb);
-    voxgi__xp_mul(&p, &db, &xa);
-    voxgi__xp_neg(&p);
-    voxgi__xp_add(&s, &p);
-    return voxgi__xp_sign(&s);
 }
 
 /* Makes every sign of the normal exact (CPU only; the GL pass hands such triangles over). */
@@ -1446,15 +1465,87 @@ static int voxgi__test_lin(const voxgi__vox_shared *vs, const voxgi__tri *t, con
         int s = voxgi__sign_within(v, L->err);
         if (s == VOXGI__UNKNOWN) s = voxgi__sign_tight(t, L, side, rel);
         if (s == VOXGI__UNKNOWN) {
-            int64_t corner[3];
+            double g[3];
             int a;
-            for (a = 0; a < 3; a++) corner[a] = (int64_t)t->lo[a] + rel[a] + L->off[side][a];
-            s = L->plane < 0 ? voxgi__exact_plane(vs, t, corner)
-                             : voxgi__exact_edge(vs, t, L->plane, L->edge, corner) * (L->orient ? L->orient : 1);
+            for (a = 0; a < 3; a++) g[a] = (double)((int64_t)t->lo[a] + rel[a] + L->off[side][a]);
+            s = voxgi__exact_form(vs, t, L, g, -1, 0);
             st->exact_tests++;
         }
         if (side == 0 ? s > 0 : s < 0) return 0;
     }
+    return 1;
+}
+
+/* Per-voxel decision of a thin test side: side 1 asks whether v + |k_j|/2 >= 0 for some j,
+   side 0 whether v - |k_j|/2 <= 0 for some j (the maximum as an OR). Each candidate is summed
+   as k_j (t_j +- 1/2) + the other terms, so a face exactly on the octahedron's vertex cancels
+   without rounding and needs no exact arithmetic. */
+static int voxgi__sign_thin_tight(const voxgi__tri *t, const voxgi__lin *L, int side, const int32_t rel[3])
+{
+    int j, a, known = 0;
+    for (j = 0; j < 3; j++) {
+        double v = 0, e = 0, gm = 0, sj = L->k[j] > 0 ? 1 : -1;
+        for (a = 0; a < 3; a++) {
+            /* t_a = rel + 1/2 - r, shifted by +-1/2 on axis j: a whole number minus r */
+            double off = a == j ? 0.5 + (side ? 0.5 : -0.5) * sj : 0.5;
+            double ta = ((double)rel[a] + off) - t->r[(int)L->vertex][a];
+            double dt = t->dr[(int)L->vertex][a] + VOXGI__U * fabs(ta);
+            v += L->k[a] * ta;
+            e += fabs(L->k[a]) * dt + L->dk[a] * fabs(ta) + L->dk[a] * dt;
+            gm += fabs(L->k[a] * ta);
+        }
+        if (fabs(L->k[j]) <= L->dk[j]) e += L->dk[j]; /* |k_j|'s sign may be the wrong one */
+        e += VOXGI__GAMMA(3) * gm * 1.01;
+        switch (voxgi__sign_within(v, e == 0 ? 0.0 : e * 1.001)) {
+        case 0: return 0;
+        case 1: if (side) return 1; known++; break;
+        case -1: if (!side) return -1; known++; break;
+        default: break;
+        }
+    }
+    return known == 3 ? (side ? -1 : 1) : VOXGI__UNKNOWN;
+}
+
+/* The same form against the voxel's inscribed octahedron (plane) or diamond (projection),
+   whose support is half the largest |k_j|: one-sided v_centre + T >= 0, or two-sided
+   |v_centre| <= T. Undecided signs are decided exactly, T's maximum as an OR over j. */
+static int voxgi__test_lin_thin(const voxgi__vox_shared *vs, const voxgi__tri *t, const voxgi__lin *L, const int32_t rel[3],
+                                voxgi__stats *st)
+{
+    double vc = L->vc + L->k[0] * (double)rel[0] + L->k[1] * (double)rel[1] + L->k[2] * (double)rel[2];
+    double T = 0.5 * VOXGI__MAX(fabs(L->k[0]), VOXGI__MAX(fabs(L->k[1]), fabs(L->k[2])));
+    double dT = 0.5 * VOXGI__MAX(L->dk[0], VOXGI__MAX(L->dk[1], L->dk[2]));
+    int side;
+    for (side = L->orient ? 1 : 0; side < 2; side++) {
+        double w = side ? vc + T : vc - T;
+        int s = voxgi__sign_within(w, L->err == 0 && dT == 0 ? 0.0 : (L->err + dT + VOXGI__U * fabs(w)) * 1.001);
+        if (s == VOXGI__UNKNOWN) s = voxgi__sign_thin_tight(t, L, side, rel);
+        if (s == VOXGI__UNKNOWN) {
+            double g[3];
+            int a, j;
+            for (a = 0; a < 3; a++) g[a] = (double)((int64_t)t->lo[a] + rel[a]) + 0.5;
+            /* side 1: max over j of v + |K_j|/2; side 0: min over j of v - |K_j|/2 */
+            s = side ? -1 : 1;
+            for (j = 0; j < 3; j++) {
+                int sj = voxgi__exact_form(vs, t, L, g, j, side ? 1 : -1);
+                s = side ? VOXGI__MAX(s, sj) : VOXGI__MIN(s, sj);
+            }
+            st->exact_tests++;
+        }
+        if (side == 0 ? s > 0 : s < 0) return 0;
+    }
+    return 1;
+}
+
+/* The thin (6-separating) test of a voxel the conservative tests accepted: every form the
+   triangle uses, against the octahedron or diamonds. */
+static int voxgi__test_thin(const voxgi__vox_shared *vs, const voxgi__tri *t, const int32_t rel[3], voxgi__stats *st)
+{
+    int c, i;
+    if ((t->sig[0] | t->sig[1] | t->sig[2]) != 0 && !voxgi__test_lin_thin(vs, t, &t->plane, rel, st)) return 0;
+    for (c = 0; c < 3; c++)
+        for (i = 0; i < t->proj_count[c]; i++)
+            if (!voxgi__test_lin_thin(vs, t, &t->proj[c][i], rel, st)) return 0;
     return 1;
 }
 
@@ -1490,6 +1581,13 @@ static void voxgi__set_voxel(const voxgi__vox_shared *vs, voxgi__stats *st, int6
     uint32_t *w = vs->bits + (idx >> 5), mask = 1u << (idx & 31u);
     /* the old word tells whether this call set the bit, so counting costs nothing */
     if (!(*w & mask) && !(VOXGI__ATOMIC_OR_U32(w, mask) & mask)) st->voxels++;
+}
+
+/* Sets a voxel the conservative tests accepted (rel relative to t->lo), after the thin tests in thin mode. */
+static void voxgi__emit(const voxgi__vox_shared *vs, voxgi__stats *st, const voxgi__tri *t, const int32_t rel[3])
+{
+    if (vs->thin && !voxgi__test_thin(vs, t, rel, st)) return;
+    voxgi__set_voxel(vs, st, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
 }
 
 static void voxgi__fill_range(const voxgi__vox_shared *vs, voxgi__stats *st, const int32_t lo[3], const int32_t hi[3])
@@ -1559,7 +1657,7 @@ static void voxgi__voxelize_segment(const voxgi__vox_shared *vs, voxgi__tri *t, 
             for (rel[b] = VOXGI__MAX(b0, lo[b]); rel[b] <= b1; rel[b]++)
                 if (voxgi__test_projection(vs, t, 0, rel, st) && voxgi__test_projection(vs, t, 1, rel, st) &&
                     voxgi__test_projection(vs, t, 2, rel, st))
-                    voxgi__set_voxel(vs, st, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
+                    voxgi__emit(vs, st, t, rel);
     }
 }
 
@@ -1600,8 +1698,9 @@ static int voxgi__tri_prepare(const voxgi__vox_shared *vs, size_t ti, voxgi__pre
         P->ext[a] = t->hi[a] - t->lo[a] + 1;
         if (t->one_slice[a]) { thin++; P->single = a; }
     }
-    /* a single column or voxel: every voxel of the exact range meets the triangle */
-    if (thin >= 2) { voxgi__fill_range(vs, st, t->lo, t->hi); return 0; }
+    /* a single column or voxel: every voxel of the exact range meets the triangle (the thin
+       tests still need the column loop) */
+    if (thin >= 2 && !vs->thin) { voxgi__fill_range(vs, st, t->lo, t->hi); return 0; }
     voxgi__tri_resolve_signs(vs, t, st);
     if ((t->sig[0] | t->sig[1] | t->sig[2]) == 0) {
         if (t->e[0][0] == 0 && t->e[0][1] == 0 && t->e[0][2] == 0 && t->e[1][0] == 0 && t->e[1][1] == 0 && t->e[1][2] == 0) {
@@ -1639,7 +1738,7 @@ static void voxgi__tri_rows(const voxgi__vox_shared *vs, const voxgi__prepared *
             rel[c] = 0;
             if (!voxgi__test_projection(vs, t, c, rel, st)) continue;
             if (single >= 0) {
-                voxgi__set_voxel(vs, st, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
+                voxgi__emit(vs, st, t, rel);
                 continue;
             }
             {
@@ -1660,7 +1759,7 @@ static void voxgi__tri_rows(const voxgi__vox_shared *vs, const voxgi__prepared *
             for (rel[c] = k0; rel[c] <= k1; rel[c]++)
                 if (voxgi__test_lin(vs, t, &t->plane, rel, st) && voxgi__test_projection(vs, t, a, rel, st) &&
                     voxgi__test_projection(vs, t, b, rel, st))
-                    voxgi__set_voxel(vs, st, (int64_t)t->lo[0] + rel[0], (int64_t)t->lo[1] + rel[1], (int64_t)t->lo[2] + rel[2]);
+                    voxgi__emit(vs, st, t, rel);
         }
     }
 }
@@ -1841,7 +1940,7 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or out is NULL");
     *out = NULL;
-    if (desc->method != VOXGI_METHOD_CONSERVATIVE)
+    if ((unsigned)desc->method >= (unsigned)VOXGI_METHOD_COUNT_)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown voxelization method %d", (int)desc->method);
     r = voxgi_validate_grid(ctx, &desc->grid);
     if (r != VOXGI_OK) return r;
@@ -1868,6 +1967,7 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
             vs.vp = vp;
             vs.bits = vox->bits;
             vs.inv_s = 1.0 / desc->grid.voxel_size;
+            vs.thin = desc->method == VOXGI_METHOD_THIN;
             voxgi__stats st = {0, 0};
             r = voxgi__voxelize_cpu_run(ctx, &vs, flat.triangle_count, &st);
             vox->info.exact_tests = st.exact_tests;
@@ -1986,6 +2086,7 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
         gl->ProgramUniform1d(p, gl->GetUniformLocation(p, "u_inv_s"), 1.0 / g->voxel_size);
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), VOXGI__GL_PAIR_CAPACITY);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_thin"), d->method == VOXGI_METHOD_THIN);
         /* pass 0, in slices of at most 65535 work groups */
         for (t0 = 0; t0 < nt; t0 += 65535u * 64u) {
             gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_offset"), t0);
@@ -2019,6 +2120,7 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
             vs.vp = vp;
             vs.bits = copy;
             vs.inv_s = 1.0 / g->voxel_size;
+            vs.thin = d->method == VOXGI_METHOD_THIN;
             for (k = 0; k < nt; k++)
                 if (flags[k >> 5] & (1u << (k & 31u))) {
                     voxgi__voxelize_triangle(&vs, k, &st);
@@ -2032,7 +2134,7 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
                     voxgi__tri_resolve_signs(&vs, &t, &st);
                     voxgi__tri_forms(&t);
                     for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
-                    if (voxgi__test_voxel(&vs, &t, rel, &st)) voxgi__set_voxel(&vs, &st, pr[1], pr[2], pr[3]);
+                    if (voxgi__test_voxel(&vs, &t, rel, &st)) voxgi__emit(&vs, &st, &t, rel);
                 }
             }
             out->info.exact_tests = st.exact_tests;

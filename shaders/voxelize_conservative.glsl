@@ -27,12 +27,13 @@ uniform uint u_tri_offset;
 uniform double u_inv_s;
 uniform uint u_pair_capacity;
 uniform int u_pass;
+uniform int u_thin;        // 1: the thin (6-separating) tests too
 
 const double U = 1.1102230246251565404e-16LF; // 2^-53
 const int UNKNOWN = 2;
 double gamma_(double k) { return k * U / (1.0LF - k * U); }
 
-struct Lin { dvec3 k; dvec3 dk; dvec2 v0; double err; ivec3 off0; ivec3 off1; int orient; int vertex; };
+struct Lin { dvec3 k; dvec3 dk; dvec2 v0; double vc; double err; ivec3 off0; ivec3 off1; int orient; int vertex; };
 
 uint T;
 ivec3 lo, hi, ext;
@@ -110,6 +111,7 @@ Lin lin_make(dvec3 k, dvec3 dk, int vk)
     L.off1 = ivec3(greaterThan(k, dvec3(0.0LF)));
     L.v0.x = k.x * (double(L.off0.x) - r[vk].x) + k.y * (double(L.off0.y) - r[vk].y) + k.z * (double(L.off0.z) - r[vk].z);
     L.v0.y = k.x * (double(L.off1.x) - r[vk].x) + k.y * (double(L.off1.y) - r[vk].y) + k.z * (double(L.off1.z) - r[vk].z);
+    L.vc = k.x * (0.5LF - r[vk].x) + k.y * (0.5LF - r[vk].y) + k.z * (0.5LF - r[vk].z);
     double s = 0.0LF, mag = 0.0LF;
     for (int a = 0; a < 3; a++) {
         double Tm = abs(r[vk][a]) + 1.0LF + double(ext[a]);
@@ -191,6 +193,55 @@ int test_lin(Lin L, ivec3 rel)
 
 int combine(int a, int b) { return (a == 0 || b == 0) ? 0 : max(a, b); }
 
+// One side of a thin test for this voxel alone (see voxgi__sign_thin_tight).
+int sign_thin_tight(Lin L, int side, ivec3 rel)
+{
+    int known = 0;
+    for (int j = 0; j < 3; j++) {
+        double v = 0.0LF, e = 0.0LF, gm = 0.0LF, sj = L.k[j] > 0.0LF ? 1.0LF : -1.0LF;
+        for (int a = 0; a < 3; a++) {
+            double off = a == j ? 0.5LF + (side == 1 ? 0.5LF : -0.5LF) * sj : 0.5LF;
+            double ta = (double(rel[a]) + off) - r[L.vertex][a];
+            double dt = dr[L.vertex][a] + U * abs(ta);
+            v += L.k[a] * ta;
+            e += abs(L.k[a]) * dt + L.dk[a] * abs(ta) + L.dk[a] * dt;
+            gm += abs(L.k[a] * ta);
+        }
+        if (abs(L.k[j]) <= L.dk[j]) e += L.dk[j];
+        e += gamma_(3.0LF) * gm * 1.01LF;
+        int s = sign_within(v, e == 0.0LF ? 0.0LF : e * 1.001LF);
+        if (s == 0) return 0;
+        if (s == 1) { if (side == 1) return 1; known++; }
+        if (s == -1) { if (side == 0) return -1; known++; }
+    }
+    return known == 3 ? (side == 1 ? -1 : 1) : UNKNOWN;
+}
+
+// The form against the voxel's inscribed octahedron or diamond (see voxgi__test_lin_thin).
+int test_lin_thin(Lin L, ivec3 rel)
+{
+    int result = 1;
+    double vc = L.vc + L.k.x * double(rel.x) + L.k.y * double(rel.y) + L.k.z * double(rel.z);
+    double T = 0.5LF * max(abs(L.k.x), max(abs(L.k.y), abs(L.k.z)));
+    double dT = 0.5LF * max(L.dk.x, max(L.dk.y, L.dk.z));
+    for (int side = L.orient != 0 ? 1 : 0; side < 2; side++) {
+        double w = side == 1 ? vc + T : vc - T;
+        int s = sign_within(w, L.err == 0.0LF && dT == 0.0LF ? 0.0LF : (L.err + dT + U * abs(w)) * 1.001LF);
+        if (s == UNKNOWN) s = sign_thin_tight(L, side, rel);
+        if (s == UNKNOWN) result = UNKNOWN;
+        else if (side == 0 ? s > 0 : s < 0) return 0;
+    }
+    return result;
+}
+
+int test_thin(ivec3 rel)
+{
+    int result = combine(1, test_lin_thin(plane, rel)); // prepare() hands degenerate triangles over
+    for (int c = 0; c < 3 && result != 0; c++)
+        for (int i = 0; i < proj_count[c] && result != 0; i++) result = combine(result, test_lin_thin(proj[3 * c + i], rel));
+    return result;
+}
+
 int test_projection(int c, ivec3 rel)
 {
     int result = 1;
@@ -209,6 +260,7 @@ void flag_triangle()
 
 void emit(ivec3 rel, int status)
 {
+    if (u_thin != 0 && status != 0) status = combine(status, test_thin(rel));
     ivec3 v = lo + rel;
     if (status == 1) {
         uint idx = uint(v.x) + uint(u_res.x) * (uint(v.y) + uint(u_res.y) * uint(v.z));
@@ -286,7 +338,7 @@ int prepare(uint t, out int single)
     int thin = 0;
     for (int a = 0; a < 3; a++)
         if (one_slice[a]) { thin++; single = a; }
-    if (thin >= 2) { // a column or a voxel: all of its range
+    if (thin >= 2 && u_thin == 0) { // a column or a voxel: all of its range
         for (int k = lo.z; k <= hi.z; k++)
             for (int j = lo.y; j <= hi.y; j++)
                 for (int i = lo.x; i <= hi.x; i++) emit(ivec3(i, j, k) - lo, 1);

@@ -33,6 +33,8 @@ static voxgi_context *make_ctx(voxgi_backend b)
     return ctx;
 }
 
+static voxgi_method g_method; /* the method compare() runs */
+
 static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g, voxgi_voxels_info *info)
 {
     voxgi_mesh mesh;
@@ -47,6 +49,7 @@ static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g
     mesh.positions = m->pos; mesh.vertex_count = m->vertex_count; mesh.indices = m->idx; mesh.index_count = 3 * m->triangle_count;
     sc.meshes = &mesh; sc.mesh_count = 1;
     vd.grid = *g;
+    vd.method = g_method;
     if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) { printf("    voxelize: %s\n", voxgi_last_error(ctx)); return NULL; }
     voxgi_voxels_read(ctx, vox, NULL, 0, &need);
     bits = (uint32_t *)malloc(need);
@@ -57,7 +60,7 @@ static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g
 }
 
 /* GL and CPU bits must be identical, and the GL count must equal the CPU popcount. */
-static void compare(const vxt_shape *m, const voxgi_grid *g, const char *what)
+static void compare_method(const vxt_shape *m, const voxgi_grid *g, const char *what)
 {
     voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
     voxgi_voxels_info ic, ig;
@@ -75,13 +78,21 @@ static void compare(const vxt_shape *m, const voxgi_grid *g, const char *what)
         TH_CHECK(ic.voxel_count == ig.voxel_count, "%s: counts %llu (CPU) vs %llu (GL)", what,
                  (unsigned long long)ic.voxel_count, (unsigned long long)ig.voxel_count);
         TH_CHECK(ic.voxel_count > 0, "%s: nothing voxelized", what);
-        printf("    %s: %llu voxels, GL exact tests %llu, triangles handed to the CPU %llu\n", what,
+        printf("    %s %s: %llu voxels, GL exact tests %llu, triangles handed to the CPU %llu\n", voxgi_method_name(g_method), what,
                (unsigned long long)ig.voxel_count, (unsigned long long)ig.exact_tests, (unsigned long long)ig.exact_triangles);
     }
     free(a);
     free(b);
     voxgi_destroy(cpu);
     voxgi_destroy(gl);
+}
+
+/* Every method with a GL pass. */
+static void compare(const vxt_shape *m, const voxgi_grid *g, const char *what)
+{
+    for (g_method = VOXGI_METHOD_CONSERVATIVE; g_method <= VOXGI_METHOD_THIN; g_method = (voxgi_method)(g_method + 1))
+        compare_method(m, g, what);
+    g_method = VOXGI_METHOD_CONSERVATIVE;
 }
 
 static void cubic(voxgi_grid *g, double lo, double size, int n)

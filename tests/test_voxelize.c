@@ -66,8 +66,50 @@ static int oracle_overlap(const int64_t v[3][3], const int64_t bmin[3], const in
     return 1;
 }
 
+/* The thin (6-separating) test of Schwarz & Seidel on the same lattice, doubled so the voxel
+   centre is an integer: the conservative tests with the box replaced by its inscribed
+   octahedron (plane: |n.(c - v0)| <= max|n_i| h) and diamonds (projections). */
+static i128 abs128(i128 x) { return x < 0 ? -x : x; }
+static i128 max3_128(i128 a, i128 b, i128 c) { i128 m = a > b ? a : b; return m > c ? m : c; }
+static int oracle_thin(const int64_t v[3][3], const int64_t bmin[3], const int64_t bmax[3])
+{
+    i128 e[3][3], n[3], c2[3], w[3][3], h;
+    int a, k, p;
+    if (!oracle_overlap(v, bmin, bmax)) return 0;
+    for (a = 0; a < 3; a++) {
+        c2[a] = (i128)bmin[a] + bmax[a]; /* twice the centre */
+        for (k = 0; k < 3; k++) w[k][a] = 2 * (i128)v[k][a];
+    }
+    h = (i128)bmax[0] - bmin[0]; /* the voxel size: twice the half size, as everything is doubled */
+    for (k = 0; k < 3; k++)
+        for (a = 0; a < 3; a++) e[k][a] = w[(k + 1) % 3][a] - w[k][a];
+    n[0] = e[0][1] * -e[2][2] - e[0][2] * -e[2][1];
+    n[1] = e[0][2] * -e[2][0] - e[0][0] * -e[2][2];
+    n[2] = e[0][0] * -e[2][1] - e[0][1] * -e[2][0];
+    if (n[0] || n[1] || n[2]) {
+        i128 f = n[0] * (c2[0] - w[0][0]) + n[1] * (c2[1] - w[0][1]) + n[2] * (c2[2] - w[0][2]);
+        if (abs128(f) > max3_128(abs128(n[0]), abs128(n[1]), abs128(n[2])) * h) return 0;
+    }
+    for (p = 0; p < 3; p++) {
+        int x = (p + 1) % 3, y = (p + 2) % 3, best = -1;
+        i128 sig = n[p] > 0 ? 1 : (n[p] < 0 ? -1 : 0), len = 0;
+        for (k = 0; k < 3; k++) {
+            i128 mx = -e[k][y], my = e[k][x];
+            i128 g = mx * (c2[x] - w[k][x]) + my * (c2[y] - w[k][y]), r = (abs128(mx) > abs128(my) ? abs128(mx) : abs128(my)) * h;
+            if (sig != 0 && sig * g + r < 0) return 0; /* oriented edge against the diamond */
+            if (abs128(mx) + abs128(my) > len) { len = abs128(mx) + abs128(my); best = k; }
+        }
+        if (sig == 0 && best >= 0) { /* a segment-shaped projection: its line through the diamond */
+            i128 mx = -e[best][y], my = e[best][x];
+            i128 g = mx * (c2[x] - w[best][x]) + my * (c2[y] - w[best][y]), r = (abs128(mx) > abs128(my) ? abs128(mx) : abs128(my)) * h;
+            if (abs128(g) > r) return 0;
+        }
+    }
+    return 1;
+}
+
 /* Brute force over every voxel of the grid. */
-static uint32_t *oracle_voxelize(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g)
+static uint32_t *oracle_voxelize_method(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g, int thin)
 {
     uint64_t nvox = voxgi_grid_voxel_count(g);
     uint32_t *bits = (uint32_t *)calloc((size_t)(nvox + 31) / 32, 4);
@@ -89,10 +131,16 @@ static uint32_t *oracle_voxelize(const float *pos, const uint32_t *idx, size_t n
                     if (bits[l >> 5] & (1u << (l & 31))) continue;
                     ijk[0] = i; ijk[1] = j; ijk[2] = k;
                     for (a = 0; a < 3; a++) { bmin[a] = o[a] + ijk[a] * s; bmax[a] = bmin[a] + s; }
-                    if (oracle_overlap((const int64_t(*)[3])v, bmin, bmax)) bits[l >> 5] |= 1u << (l & 31);
+                    if (thin ? oracle_thin((const int64_t(*)[3])v, bmin, bmax) : oracle_overlap((const int64_t(*)[3])v, bmin, bmax))
+                        bits[l >> 5] |= 1u << (l & 31);
                 }
     }
     return bits;
+}
+
+static uint32_t *oracle_voxelize(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g)
+{
+    return oracle_voxelize_method(pos, idx, ntri, g, 0);
 }
 
 /* ---------------------------------------------------------------- helpers */
@@ -107,8 +155,8 @@ static voxgi_context *make_ctx(int threads)
     return ctx;
 }
 
-static uint32_t *voxelize_bits(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t ntri,
-                               const voxgi_grid *g, voxgi_voxels_info *info)
+static uint32_t *voxelize_bits_method(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t ntri,
+                                      const voxgi_grid *g, voxgi_method method, voxgi_voxels_info *info)
 {
     voxgi_mesh m;
     voxgi_scene sc;
@@ -122,6 +170,7 @@ static uint32_t *voxelize_bits(voxgi_context *ctx, const float *pos, size_t nv, 
     m.positions = pos; m.vertex_count = nv; m.indices = idx; m.index_count = 3 * ntri;
     sc.meshes = &m; sc.mesh_count = 1;
     vd.grid = *g;
+    vd.method = method;
     if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) { printf("    voxelize failed: %s\n", voxgi_last_error(ctx)); return NULL; }
     voxgi_voxels_read(ctx, vox, NULL, 0, &need);
     bits = (uint32_t *)malloc(need);
@@ -129,6 +178,12 @@ static uint32_t *voxelize_bits(voxgi_context *ctx, const float *pos, size_t nv, 
     if (info) voxgi_voxels_query(vox, info);
     voxgi_voxels_destroy(ctx, vox);
     return bits;
+}
+
+static uint32_t *voxelize_bits(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t ntri,
+                               const voxgi_grid *g, voxgi_voxels_info *info)
+{
+    return voxelize_bits_method(ctx, pos, nv, idx, ntri, g, VOXGI_METHOD_CONSERVATIVE, info);
 }
 
 /* Compares with the oracle; returns the number of differing voxels (and reports a few). */
@@ -146,10 +201,12 @@ static uint64_t compare_bits(const uint32_t *a, const uint32_t *b, const voxgi_g
 
 static double lattice(double x) { return ldexp(floor(ldexp(x, ORACLE_BITS) + 0.5), -ORACLE_BITS); }
 
+static int g_thin; /* check_against_oracle checks the thin method too when set */
 static uint64_t check_against_oracle(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t nt,
                                      const voxgi_grid *g, const char *what)
 {
-    uint32_t *mine = voxelize_bits(ctx, pos, nv, idx, nt, g, NULL), *ref = oracle_voxelize(pos, idx, nt, g);
+    uint32_t *mine = voxelize_bits_method(ctx, pos, nv, idx, nt, g, g_thin ? VOXGI_METHOD_THIN : VOXGI_METHOD_CONSERVATIVE, NULL);
+    uint32_t *ref = oracle_voxelize_method(pos, idx, nt, g, g_thin);
     uint64_t d = mine ? compare_bits(mine, ref, g, what) : (uint64_t)-1;
     free(mine);
     free(ref);
@@ -618,12 +675,52 @@ static void test_binvox_roundtrip(void)
     voxgi_destroy(ctx);
 }
 
+/* The thin method on every oracle scene above, and thin within conservative. */
+static void test_thin_vs_oracle(void)
+{
+    int before = th_.cur_failed;
+    g_thin = 1;
+    test_random_triangles_vs_oracle();
+    test_adversarial_vs_oracle();
+    test_big_triangles_vs_oracle();
+    test_mesh_vs_oracle();
+    g_thin = 0;
+    TH_CHECK(th_.cur_failed == before, "thin differs from its definition");
+    {
+        voxgi_context *ctx = make_ctx(2);
+        vxt_shape m;
+        voxgi_grid g;
+        uint32_t *cons, *thin;
+        uint64_t l, n, nc = 0, nt = 0, outside = 0;
+        vxt_shape_sphere(&m, 60, 40, 1.0, 0.01, 0.02, 0.03);
+        g.origin[0] = g.origin[1] = g.origin[2] = -1.1;
+        g.voxel_size = 2.2 / 64;
+        g.res[0] = g.res[1] = g.res[2] = 64;
+        n = voxgi_grid_voxel_count(&g);
+        cons = voxelize_bits_method(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, VOXGI_METHOD_CONSERVATIVE, NULL);
+        thin = voxelize_bits_method(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, VOXGI_METHOD_THIN, NULL);
+        for (l = 0; l < n; l++) {
+            nc += (uint64_t)voxgi_bit_get(cons, l);
+            nt += (uint64_t)voxgi_bit_get(thin, l);
+            outside += (uint64_t)(voxgi_bit_get(thin, l) && !voxgi_bit_get(cons, l));
+        }
+        TH_CHECK(outside == 0, "%llu thin voxels outside the conservative set", (unsigned long long)outside);
+        TH_CHECK(nt > 0 && nt < nc, "thin %llu vs conservative %llu voxels", (unsigned long long)nt, (unsigned long long)nc);
+        printf("    sphere 64^3: conservative %llu, thin %llu voxels\n", (unsigned long long)nc, (unsigned long long)nt);
+        free(cons);
+        free(thin);
+        vxt_shape_free(&m);
+        voxgi_destroy(ctx);
+    }
+}
+
 int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
     TH_RUN(test_adversarial_vs_oracle);
     TH_RUN(test_big_triangles_vs_oracle);
     TH_RUN(test_mesh_vs_oracle);
+    TH_RUN(test_thin_vs_oracle);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
