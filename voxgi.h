@@ -224,13 +224,29 @@ typedef enum voxgi_method {
     VOXGI_METHOD_THIN,              /* 6-separating (Schwarz & Seidel 2010): every test of the
                                        conservative one with the box replaced by its inscribed
                                        octahedron (plane) and diamonds (projections) */
+    VOXGI_METHOD_SOLID,             /* interior: see voxgi_solid_mode */
     VOXGI_METHOD_COUNT_
 } voxgi_method;
 VOXGI_API const char *voxgi_method_name(voxgi_method m);
 
+typedef enum voxgi_axis { VOXGI_AXIS_DEFAULT = 0, VOXGI_AXIS_X, VOXGI_AXIS_Y, VOXGI_AXIS_Z } voxgi_axis;
+
+/* Solid voxelization. PARITY: a voxel is set when its centre has an odd number of surface
+   crossings at or below it along the axis (default z): a column centre belongs to a triangle's
+   projection when strictly inside, or on an edge whose CCW-normalised direction d has d_b < 0,
+   or d_b == 0 and d_a > 0 ((a, b) = the axes after the solid axis, cyclically), so shared edges
+   and vertices of a closed mesh count once; triangles seen edge-on count never. Needs a closed
+   mesh. VOTE: parity along x, y and z, voxel set when at least two agree: holes that do not
+   face all three axes are outvoted. FLOOD: the conservative surface, plus every voxel that the
+   grid's boundary cannot reach through empty voxels (6-connected): holes smaller than a voxel
+   are closed by the surface itself. */
+typedef enum voxgi_solid_mode { VOXGI_SOLID_PARITY = 0, VOXGI_SOLID_VOTE, VOXGI_SOLID_FLOOD } voxgi_solid_mode;
+
 typedef struct voxgi_voxelize_desc {
     voxgi_grid grid;
     voxgi_method method;
+    voxgi_axis axis;              /* SOLID with PARITY: the counting axis; 0 = z */
+    voxgi_solid_mode solid_mode;  /* SOLID: 0 = PARITY */
 } voxgi_voxelize_desc;
 
 typedef struct voxgi_voxels voxgi_voxels;
@@ -465,6 +481,7 @@ VOXGI_API const char *voxgi_method_name(voxgi_method m)
     switch (m) {
     case VOXGI_METHOD_CONSERVATIVE: return "conservative";
     case VOXGI_METHOD_THIN: return "thin";
+    case VOXGI_METHOD_SOLID: return "solid";
     case VOXGI_METHOD_COUNT_: break;
     }
     return "unknown";
@@ -1237,6 +1254,7 @@ typedef struct voxgi__vox_shared {
     uint32_t *bits;
     double inv_s;
     int thin;              /* VOXGI_METHOD_THIN: every set voxel also passes the thin tests */
+    int solid_axis;        /* solid parity along this axis, else -1 */
 } voxgi__vox_shared;
 
 /* Fills the triangle's range, coordinates, edges and normal; returns 0 when it misses the grid. */
@@ -1253,6 +1271,8 @@ static int voxgi__tri_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri *
     for (a = 0; a < 3; a++) {
         int32_t lo = VOXGI__MIN(p[0]->lo[a], VOXGI__MIN(p[1]->lo[a], p[2]->lo[a]));
         int32_t hi = VOXGI__MAX(p[0]->hi[a], VOXGI__MAX(p[1]->hi[a], p[2]->hi[a]));
+        /* solid parity counts crossings below the grid too: keep such triangles, at slice 0 */
+        if (a == vs->solid_axis && hi < 0) lo = hi = 0;
         t->lo[a] = VOXGI__MAX(0, lo);
         t->hi[a] = VOXGI__MIN(g->res[a] - 1, hi);
         if (t->lo[a] > t->hi[a]) return 0;
@@ -1773,6 +1793,146 @@ static void voxgi__voxelize_triangle(const voxgi__vox_shared *vs, size_t ti, vox
 }
 #endif
 
+/* ----- CPU solid voxelization: each triangle toggles, in every column whose centre it owns,
+   the first voxel whose centre lies at or above it; a prefix XOR along the axis then turns the
+   toggles into parity. */
+
+/* Exact sign of form L at rel + off (off: 0, 1/2 or 1 per axis), per-voxel bound first. */
+static int voxgi__form_sign(const voxgi__vox_shared *vs, const voxgi__tri *t, const voxgi__lin *L, const int32_t rel[3],
+                            const double off[3], voxgi__stats *st)
+{
+    double v = 0, e = 0, gm = 0, g[3];
+    int a, s;
+    for (a = 0; a < 3; a++) {
+        double ta = ((double)rel[a] + off[a]) - t->r[(int)L->vertex][a];
+        double dt = t->dr[(int)L->vertex][a] + VOXGI__U * fabs(ta);
+        v += L->k[a] * ta;
+        e += fabs(L->k[a]) * dt + L->dk[a] * fabs(ta) + L->dk[a] * dt;
+        gm += fabs(L->k[a] * ta);
+    }
+    e += VOXGI__GAMMA(3) * gm * 1.01;
+    s = voxgi__sign_within(v, e == 0 ? 0.0 : e * 1.001);
+    if (s != VOXGI__UNKNOWN) return s;
+    for (a = 0; a < 3; a++) g[a] = (double)((int64_t)t->lo[a] + rel[a]) + off[a];
+    st->exact_tests++;
+    return voxgi__exact_form(vs, t, L, g, -1, 0);
+}
+
+/* Does the centre of column rel belong to the triangle's projection along A (with ties)? */
+static int voxgi__owns_centre(const voxgi__vox_shared *vs, const voxgi__tri *t, int A, const int32_t rel[3], voxgi__stats *st)
+{
+    static const double centre[3] = {0.5, 0.5, 0.5};
+    int i, a = (A + 1) % 3, b = (A + 2) % 3;
+    for (i = 0; i < t->proj_count[A]; i++) {
+        const voxgi__lin *L = &t->proj[A][i];
+        int s = voxgi__form_sign(vs, t, L, rel, centre, st);
+        if (s < 0) return 0;
+        if (s == 0) { /* on the edge: owned by the side the CCW direction's perturbation picks */
+            double da = L->orient * t->e[(int)L->edge][a], db = L->orient * t->e[(int)L->edge][b];
+            if (!(db < 0 || (db == 0 && da > 0))) return 0;
+        }
+    }
+    return 1;
+}
+
+static void voxgi__toggle_voxel(const voxgi__vox_shared *vs, int64_t i, int64_t j, int64_t k)
+{
+    const voxgi_grid *g = vs->grid;
+    uint64_t idx = (uint64_t)i + (uint64_t)g->res[0] * ((uint64_t)j + (uint64_t)g->res[1] * (uint64_t)k);
+#if defined(__GNUC__) || defined(__clang__)
+    __atomic_fetch_xor(vs->bits + (idx >> 5), 1u << (idx & 31u), __ATOMIC_RELAXED);
+#else
+    vs->bits[idx >> 5] ^= 1u << (idx & 31u);
+#endif
+}
+
+static void voxgi__solid_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
+{
+    voxgi__tri t;
+    int A = vs->solid_axis, a = (A + 1) % 3, b = (A + 2) % 3;
+    int32_t rel[3], ext_a, ext_b, kmax;
+    if (!voxgi__tri_setup(vs, ti, &t)) return;
+    voxgi__tri_resolve_signs(vs, &t, st);
+    if (t.sig[A] == 0) return; /* seen edge-on (or degenerate): owns no centre */
+    voxgi__tri_forms(&t);
+    ext_a = t.hi[a] - t.lo[a] + 1;
+    ext_b = t.hi[b] - t.lo[b] + 1;
+    kmax = vs->grid->res[A] - 1 - t.lo[A]; /* the last slice, relative */
+    for (rel[b] = 0; rel[b] < ext_b; rel[b]++) {
+        int32_t first, last;
+        voxgi__row_span(&t, A, rel[b], ext_a, &first, &last);
+        for (rel[a] = first; rel[a] <= last; rel[a]++) {
+            static const double centre[3] = {0.5, 0.5, 0.5};
+            double ca, cb, zc;
+            int32_t k;
+            rel[A] = 0;
+            if (!voxgi__owns_centre(vs, &t, A, rel, st)) continue;
+            /* the first centre at or above the plane: estimate, then step with exact signs */
+            ca = (double)rel[a] + 0.5 - t.r[0][a];
+            cb = (double)rel[b] + 0.5 - t.r[0][b];
+            zc = ceil(t.r[0][A] - (t.n[a] * ca + t.n[b] * cb) / t.n[A] - 0.5);
+            if (!(zc >= -t.lo[A])) k = -t.lo[A]; /* also when the rounded normal lost the axis */
+            else k = zc > kmax + 1 ? kmax + 1 : (int32_t)zc;
+            for (;;) {
+                rel[A] = k - 1;
+                if (k <= -t.lo[A] || t.sig[A] * voxgi__form_sign(vs, &t, &t.plane, rel, centre, st) < 0) break;
+                k--;
+            }
+            for (;;) {
+                rel[A] = k;
+                if (k > kmax || t.sig[A] * voxgi__form_sign(vs, &t, &t.plane, rel, centre, st) >= 0) break;
+                k++;
+            }
+            if (k < -t.lo[A]) k = -t.lo[A];
+            if (k <= kmax) {
+                int64_t v[3];
+                v[a] = (int64_t)t.lo[a] + rel[a];
+                v[b] = (int64_t)t.lo[b] + rel[b];
+                v[A] = (int64_t)t.lo[A] + k;
+                voxgi__toggle_voxel(vs, v[0], v[1], v[2]);
+            }
+        }
+    }
+}
+
+/* XOR of bit ranges: dst[db .. db+n) ^= src[sb .. sb+n), any alignment (dst after src). */
+static void voxgi__xor_bit_range(uint32_t *bits, uint64_t db, uint64_t sb, uint64_t n)
+{
+    while (n) {
+        uint32_t chunk = (uint32_t)VOXGI__MIN(n, (uint64_t)(32 - (db & 31)));
+        uint64_t s0 = sb >> 5;
+        uint32_t so = (uint32_t)(sb & 31), word = bits[s0] >> so, mask;
+        if (so && so + chunk > 32) word |= bits[s0 + 1] << (32 - so);
+        mask = chunk == 32 ? 0xffffffffu : ((1u << chunk) - 1u);
+        bits[db >> 5] ^= (word & mask) << (db & 31);
+        db += chunk;
+        sb += chunk;
+        n -= chunk;
+    }
+}
+
+/* Turns toggles into parity: every voxel becomes the XOR of itself and all below it on axis A. */
+static void voxgi__prefix_xor(uint32_t *bits, const voxgi_grid *g, int A)
+{
+    uint64_t nx = (uint64_t)g->res[0], ny = (uint64_t)g->res[1], nz = (uint64_t)g->res[2], i, j, k;
+    if (A == 2) {
+        for (k = 1; k < nz; k++) voxgi__xor_bit_range(bits, k * nx * ny, (k - 1) * nx * ny, nx * ny);
+    } else if (A == 1) {
+        for (k = 0; k < nz; k++)
+            for (j = 1; j < ny; j++) voxgi__xor_bit_range(bits, (k * ny + j) * nx, (k * ny + j - 1) * nx, nx);
+    } else {
+        for (k = 0; k < nz; k++)
+            for (j = 0; j < ny; j++) {
+                uint32_t parity = 0;
+                for (i = 0; i < nx; i++) {
+                    uint64_t l = i + nx * (j + ny * k);
+                    parity ^= (bits[l >> 5] >> (l & 31)) & 1u;
+                    bits[l >> 5] = (bits[l >> 5] & ~(1u << (l & 31))) | (parity << (l & 31));
+                }
+            }
+    }
+}
+
 /* ----- worker pool. Phase 1 hands out triangles in chunks and lists the big ones (more than
    VOXGI__BIG_COLUMNS columns); phase 2 hands out blocks of their rows, so a few huge triangles
    keep every core busy too. OR is order-free: the bits do not depend on threads or schedule. */
@@ -1802,6 +1962,7 @@ static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress
             if (first >= job->triangle_count) break;
             end = VOXGI__MIN(first + VOXGI__CHUNK, job->triangle_count);
             for (t = first; t < end; t++) {
+                if (job->vs->solid_axis >= 0) { voxgi__solid_triangle(job->vs, t, &st); continue; }
                 if (!voxgi__tri_prepare(job->vs, t, &P, &st)) continue;
                 if ((int64_t)P.ext[(P.c + 1) % 3] * P.ext[(P.c + 2) % 3] > VOXGI__BIG_COLUMNS)
                     job->big[VOXGI__ATOMIC_ADD_SIZE(&job->big_count, (size_t)1)] = (uint32_t)t;
@@ -1929,6 +2090,119 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
                                        const voxgi_voxelize_desc *d, voxgi_voxels *out);
 #endif
 
+static uint64_t voxgi__popcount_words(const uint32_t *w, uint64_t n)
+{
+    uint64_t i, c = 0;
+    for (i = 0; i < n; i++) {
+        uint32_t x = w[i];
+        x = x - ((x >> 1) & 0x55555555u);
+        x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+        c += (((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
+    }
+    return c;
+}
+
+/* Flood fill from the grid's boundary through empty voxels (6-connected), by sweeps along rows
+   in both directions and along y and z until nothing changes; returns the solid: not reached. */
+static voxgi_result voxgi__flood_solid(voxgi_context *ctx, const voxgi_grid *g, uint32_t *bits)
+{
+    uint64_t nx = (uint64_t)g->res[0], ny = (uint64_t)g->res[1], nz = (uint64_t)g->res[2], words = voxgi__grid_words(g);
+    uint64_t i, j, k;
+    uint32_t *out = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 1);
+    int changed = 1;
+#define VOXGI__IDX(x, y, z) ((x) + nx * ((y) + ny * (z)))
+#define VOXGI__GET(b, l) (((b)[(l) >> 5] >> ((l) & 31)) & 1u)
+#define VOXGI__SET(b, l) ((b)[(l) >> 5] |= 1u << ((l) & 31))
+    if (!out) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the flood fill");
+    /* seeds: empty voxels on the boundary */
+    for (k = 0; k < nz; k++)
+        for (j = 0; j < ny; j++)
+            for (i = 0; i < nx; i++)
+                if ((i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) && !VOXGI__GET(bits, VOXGI__IDX(i, j, k)))
+                    VOXGI__SET(out, VOXGI__IDX(i, j, k));
+    while (changed) {
+        int axis;
+        changed = 0;
+        for (axis = 0; axis < 3; axis++) {
+            uint64_t n[3], d, len, stride, u, v, t;
+            n[0] = nx; n[1] = ny; n[2] = nz;
+            len = n[axis];
+            stride = axis == 0 ? 1 : (axis == 1 ? nx : nx * ny);
+            /* every line along the axis: forward then backward */
+            for (v = 0; v < n[(axis + 2) % 3]; v++)
+                for (u = 0; u < n[(axis + 1) % 3]; u++) {
+                    uint64_t c[3], base;
+                    c[axis] = 0;
+                    c[(axis + 1) % 3] = u;
+                    c[(axis + 2) % 3] = v;
+                    base = VOXGI__IDX(c[0], c[1], c[2]);
+                    for (d = 0; d < 2; d++) {
+                        int reach = 0;
+                        for (t = 0; t < len; t++) {
+                            uint64_t l = base + stride * (d ? len - 1 - t : t);
+                            if (VOXGI__GET(bits, l)) reach = 0;
+                            else if (VOXGI__GET(out, l)) reach = 1;
+                            else if (reach) { VOXGI__SET(out, l); changed = 1; }
+                        }
+                    }
+                }
+        }
+    }
+    for (i = 0; i < words; i++) bits[i] = ~out[i];
+    if (voxgi_grid_voxel_count(g) % 32) bits[words - 1] &= (1u << (voxgi_grid_voxel_count(g) % 32)) - 1u;
+#undef VOXGI__IDX
+#undef VOXGI__GET
+#undef VOXGI__SET
+    voxgi__free(ctx, out);
+    return VOXGI_OK;
+}
+
+/* The CPU twin of every method, into vox->bits. */
+static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *flat, const voxgi__vprep *vp,
+                                       const voxgi_voxelize_desc *desc, voxgi_voxels *vox)
+{
+    voxgi__vox_shared vs;
+    voxgi__stats st = {0, 0};
+    size_t words = (size_t)voxgi__grid_words(&desc->grid), i;
+    uint32_t *extra[2] = {NULL, NULL};
+    voxgi_result r = VOXGI_OK;
+    int pass, passes = 1, solid = desc->method == VOXGI_METHOD_SOLID;
+    vox->bits = (uint32_t *)voxgi__alloc_array(ctx, words, 4, 1);
+    if (!vox->bits)
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %dx%dx%d bit grid (%lu bytes)", desc->grid.res[0],
+                           desc->grid.res[1], desc->grid.res[2], (unsigned long)vox->info.bytes);
+    if (solid && desc->solid_mode == VOXGI_SOLID_VOTE) {
+        passes = 3;
+        for (i = 0; i < 2; i++)
+            if (!(extra[i] = (uint32_t *)voxgi__alloc_array(ctx, words, 4, 1))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the vote");
+    }
+    vs.grid = &desc->grid;
+    vs.pos = flat->pos;
+    vs.tri = flat->tri;
+    vs.vp = vp;
+    vs.inv_s = 1.0 / desc->grid.voxel_size;
+    vs.thin = desc->method == VOXGI_METHOD_THIN;
+    for (pass = 0; pass < passes && r == VOXGI_OK; pass++) {
+        vs.bits = pass ? extra[pass - 1] : vox->bits;
+        vs.solid_axis = -1;
+        if (solid && desc->solid_mode != VOXGI_SOLID_FLOOD)
+            vs.solid_axis = passes == 3 ? pass : (desc->axis ? (int)desc->axis - 1 : 2);
+        r = voxgi__voxelize_cpu_run(ctx, &vs, flat->triangle_count, &st);
+        if (r == VOXGI_OK && vs.solid_axis >= 0) voxgi__prefix_xor(vs.bits, &desc->grid, vs.solid_axis);
+    }
+    if (r == VOXGI_OK && passes == 3) /* majority of three */
+        for (i = 0; i < words; i++) {
+            uint32_t x = vox->bits[i], y = extra[0][i], z = extra[1][i];
+            vox->bits[i] = (x & y) | (y & z) | (x & z);
+        }
+    if (r == VOXGI_OK && solid && desc->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__flood_solid(ctx, &desc->grid, vox->bits);
+    voxgi__free(ctx, extra[0]);
+    voxgi__free(ctx, extra[1]);
+    vox->info.exact_tests = st.exact_tests;
+    vox->info.voxel_count = solid ? voxgi__popcount_words(vox->bits, words) : st.voxels;
+    return r;
+}
+
 VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxelize_desc *desc,
                                       voxgi_voxels **out)
 {
@@ -1942,6 +2216,8 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
     *out = NULL;
     if ((unsigned)desc->method >= (unsigned)VOXGI_METHOD_COUNT_)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown voxelization method %d", (int)desc->method);
+    if ((unsigned)desc->axis > (unsigned)VOXGI_AXIS_Z || (unsigned)desc->solid_mode > (unsigned)VOXGI_SOLID_FLOOD)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown axis %d or solid mode %d", (int)desc->axis, (int)desc->solid_mode);
     r = voxgi_validate_grid(ctx, &desc->grid);
     if (r != VOXGI_OK) return r;
     r = voxgi__flatten(ctx, scene, &flat);
@@ -1954,26 +2230,7 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
     vox->info.triangle_count = flat.triangle_count;
     vox->info.bytes = (size_t)(voxgi__grid_words(&desc->grid) * 4u);
     r = voxgi__prep_vertices(ctx, &flat, &desc->grid, &vp);
-    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU) {
-        voxgi__vox_shared vs;
-        vox->bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)voxgi__grid_words(&desc->grid), 4, 1);
-        if (!vox->bits) {
-            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %dx%dx%d bit grid (%lu bytes)", desc->grid.res[0],
-                            desc->grid.res[1], desc->grid.res[2], (unsigned long)vox->info.bytes);
-        } else {
-            vs.grid = &desc->grid;
-            vs.pos = flat.pos;
-            vs.tri = flat.tri;
-            vs.vp = vp;
-            vs.bits = vox->bits;
-            vs.inv_s = 1.0 / desc->grid.voxel_size;
-            vs.thin = desc->method == VOXGI_METHOD_THIN;
-            voxgi__stats st = {0, 0};
-            r = voxgi__voxelize_cpu_run(ctx, &vs, flat.triangle_count, &st);
-            vox->info.exact_tests = st.exact_tests;
-            vox->info.voxel_count = st.voxels;
-        }
-    }
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU) r = voxgi__voxelize_cpu(ctx, &flat, vp, desc, vox);
 #ifndef VOXGI_NO_GL
     else if (r == VOXGI_OK) r = voxgi__voxelize_gl(ctx, &flat, vp, desc, vox);
 #endif
@@ -2121,6 +2378,7 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
             vs.bits = copy;
             vs.inv_s = 1.0 / g->voxel_size;
             vs.thin = d->method == VOXGI_METHOD_THIN;
+            vs.solid_axis = -1;
             for (k = 0; k < nt; k++)
                 if (flags[k >> 5] & (1u << (k & 31u))) {
                     voxgi__voxelize_triangle(&vs, k, &st);

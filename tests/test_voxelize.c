@@ -714,6 +714,204 @@ static void test_thin_vs_oracle(void)
     }
 }
 
+/* ---------------------------------------------------------------- solid */
+/* Generalized winding number of a closed mesh at p (solid angles, Van Oosterom & Strackee). */
+static double winding_number(const vxt_shape *m, const double p[3])
+{
+    double w = 0;
+    size_t t;
+    for (t = 0; t < m->triangle_count; t++) {
+        double a[3], b[3], c[3], la, lb, lc, det, den;
+        int k;
+        for (k = 0; k < 3; k++) {
+            a[k] = m->pos[3 * m->idx[3 * t] + (size_t)k] - p[k];
+            b[k] = m->pos[3 * m->idx[3 * t + 1] + (size_t)k] - p[k];
+            c[k] = m->pos[3 * m->idx[3 * t + 2] + (size_t)k] - p[k];
+        }
+        la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        lc = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+        den = la * lb * lc + (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * lc + (a[0] * c[0] + a[1] * c[1] + a[2] * c[2]) * lb +
+              (b[0] * c[0] + b[1] * c[1] + b[2] * c[2]) * la;
+        w += 2 * atan2(det, den);
+    }
+    return w / (4 * 3.14159265358979323846);
+}
+
+static uint32_t *solid_bits(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g, voxgi_solid_mode mode, voxgi_axis axis)
+{
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *vox = NULL;
+    uint32_t *bits;
+    size_t need = 0;
+    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
+    mesh.positions = m->pos; mesh.vertex_count = m->vertex_count; mesh.indices = m->idx; mesh.index_count = 3 * m->triangle_count;
+    sc.meshes = &mesh; sc.mesh_count = 1;
+    vd.grid = *g;
+    vd.method = VOXGI_METHOD_SOLID;
+    vd.solid_mode = mode;
+    vd.axis = axis;
+    if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) { printf("    solid: %s\n", voxgi_last_error(ctx)); return NULL; }
+    voxgi_voxels_read(ctx, vox, NULL, 0, &need);
+    bits = (uint32_t *)malloc(need);
+    voxgi_voxels_read(ctx, vox, bits, need, NULL);
+    voxgi_voxels_destroy(ctx, vox);
+    return bits;
+}
+
+/* Parity along each axis and the vote equal the inside test (winding number) at every voxel
+   centre of a closed sphere and of a shell of two nested spheres. */
+static void test_solid_closed_vs_inside_test(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    vxt_shape outer, inner, shell;
+    voxgi_grid g;
+    int scene;
+    vxt_shape_sphere(&outer, 40, 26, 1.0, 0.013, -0.021, 0.007);
+    vxt_shape_sphere(&inner, 24, 16, 0.55, 0.1, 0.05, -0.08);
+    vxt_shape_alloc(&shell, outer.vertex_count + inner.vertex_count, outer.triangle_count + inner.triangle_count);
+    memcpy(shell.pos, outer.pos, outer.vertex_count * 12);
+    memcpy(shell.pos + 3 * outer.vertex_count, inner.pos, inner.vertex_count * 12);
+    memcpy(shell.idx, outer.idx, outer.triangle_count * 12);
+    {
+        size_t i;
+        for (i = 0; i < 3 * inner.triangle_count; i++) shell.idx[3 * outer.triangle_count + i] = inner.idx[i] + (uint32_t)outer.vertex_count;
+    }
+    g.origin[0] = -1.13; g.origin[1] = -1.07; g.origin[2] = -1.2;
+    g.voxel_size = 0.071;
+    g.res[0] = 33; g.res[1] = 31; g.res[2] = 35;
+    for (scene = 0; scene < 2; scene++) {
+        const vxt_shape *m = scene ? &shell : &outer;
+        uint32_t *b[4];
+        int v;
+        uint64_t l, n = voxgi_grid_voxel_count(&g), bad[4] = {0, 0, 0, 0}, set = 0;
+        b[0] = solid_bits(ctx, m, &g, VOXGI_SOLID_PARITY, VOXGI_AXIS_DEFAULT);
+        b[1] = solid_bits(ctx, m, &g, VOXGI_SOLID_PARITY, VOXGI_AXIS_X);
+        b[2] = solid_bits(ctx, m, &g, VOXGI_SOLID_PARITY, VOXGI_AXIS_Y);
+        b[3] = solid_bits(ctx, m, &g, VOXGI_SOLID_VOTE, VOXGI_AXIS_DEFAULT);
+        for (l = 0; l < n; l++) {
+            double p[3], w;
+            int inside;
+            p[0] = g.origin[0] + ((double)(l % 33) + 0.5) * g.voxel_size;
+            p[1] = g.origin[1] + ((double)(l / 33 % 31) + 0.5) * g.voxel_size;
+            p[2] = g.origin[2] + ((double)(l / (33 * 31)) + 0.5) * g.voxel_size;
+            w = winding_number(m, p);
+            inside = ((long)floor(fabs(w) + 0.5)) % 2;
+            set += (uint64_t)inside;
+            for (v = 0; v < 4; v++) bad[v] += (uint64_t)(voxgi_bit_get(b[v], l) != inside);
+        }
+        for (v = 0; v < 4; v++) {
+            TH_CHECK(bad[v] == 0, "%s: variant %d differs from the inside test at %llu of %llu centres", scene ? "shell" : "sphere", v,
+                     (unsigned long long)bad[v], (unsigned long long)set);
+            free(b[v]);
+        }
+        TH_CHECK(set > 1000, "too few inside voxels: %llu", (unsigned long long)set);
+    }
+    vxt_shape_free(&outer);
+    vxt_shape_free(&inner);
+    vxt_shape_free(&shell);
+    voxgi_destroy(ctx);
+}
+
+/* A box with lattice coordinates (faces on voxel faces, centres never on faces): parity is
+   exactly the voxels whose centres lie inside, along every axis. */
+static void test_solid_box_exact(void)
+{
+    voxgi_context *ctx = make_ctx(1);
+    vxt_shape m;
+    voxgi_grid g;
+    const float lo[3] = {2, 3, 4}, hi[3] = {20, 17, 13};
+    int axis;
+    vxt_shape_alloc(&m, 8, 12);
+    vxt_shape_put_box(&m, 0, 0, lo, hi);
+    g.origin[0] = g.origin[1] = g.origin[2] = -1;
+    g.voxel_size = 1.5;
+    g.res[0] = 19; g.res[1] = 18; g.res[2] = 17;
+    for (axis = VOXGI_AXIS_X; axis <= VOXGI_AXIS_Z; axis++) {
+        uint32_t *b = solid_bits(ctx, &m, &g, VOXGI_SOLID_PARITY, (voxgi_axis)axis);
+        uint64_t bad = 0;
+        int i, j, k;
+        for (k = 0; k < 17; k++)
+            for (j = 0; j < 18; j++)
+                for (i = 0; i < 19; i++) {
+                    double c[3];
+                    int a, in = 1;
+                    c[0] = -1 + 1.5 * (i + 0.5); c[1] = -1 + 1.5 * (j + 0.5); c[2] = -1 + 1.5 * (k + 0.5);
+                    for (a = 0; a < 3; a++) in &= c[a] > lo[a] && c[a] < hi[a];
+                    bad += (uint64_t)(voxgi_bit_get(b, (uint64_t)(i + 19 * (j + 18 * k))) != in);
+                }
+        TH_CHECK(bad == 0, "axis %d: %llu voxels wrong", axis, (unsigned long long)bad);
+        free(b);
+    }
+    vxt_shape_free(&m);
+    voxgi_destroy(ctx);
+}
+
+/* Open meshes: a box without its bottom face is filled by the vote (x and y still see it
+   closed); a box whose bottom face leaves a gap thinner than a voxel is filled by the flood. */
+static void test_solid_open_mesh_robust_modes(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    vxt_shape m;
+    voxgi_grid g;
+    const float lo[3] = {0.3f, 0.35f, 0.4f}, hi[3] = {2.56f, 2.45f, 2.3f}; /* a centre at x = 2.55 sees the gap */
+    int variant;
+    g.origin[0] = g.origin[1] = g.origin[2] = -0.5;
+    g.voxel_size = 0.1;
+    g.res[0] = g.res[1] = g.res[2] = 36;
+    for (variant = 0; variant < 2; variant++) {
+        uint32_t *b, *parity;
+        uint64_t wrong_in = 0, wrong_out = 0, parity_wrong = 0;
+        int i, j, k;
+        vxt_shape_alloc(&m, 8, 12);
+        vxt_shape_put_box(&m, 0, 0, lo, hi);
+        if (variant == 0) m.triangle_count = 10; /* drop the last face (z = hi) */
+        else { /* the bottom face gets its own vertices, its x = hi edge pulled in by 0.02 */
+            size_t v;
+            vxt_shape_free(&m);
+            vxt_shape_alloc(&m, 12, 12);
+            vxt_shape_put_box(&m, 0, 0, lo, hi);
+            for (v = 0; v < 36; v += 3)
+                if (m.pos[3 * m.idx[v] + 2] == lo[2] && m.pos[3 * m.idx[v + 1] + 2] == lo[2] && m.pos[3 * m.idx[v + 2] + 2] == lo[2]) {
+                    int c;
+                    for (c = 0; c < 3; c++) {
+                        uint32_t vi = m.idx[v + (size_t)c], copy = 8 + (vi & 3); /* corners 0..3 have z = lo */
+                        memcpy(m.pos + 3 * copy, m.pos + 3 * vi, 3 * sizeof(float));
+                        if (m.pos[3 * vi] == hi[0]) m.pos[3 * copy] = hi[0] - 0.02f;
+                        m.idx[v + (size_t)c] = copy;
+                    }
+                }
+        }
+        b = solid_bits(ctx, &m, &g, variant == 0 ? VOXGI_SOLID_VOTE : VOXGI_SOLID_FLOOD, VOXGI_AXIS_DEFAULT);
+        parity = solid_bits(ctx, &m, &g, VOXGI_SOLID_PARITY, VOXGI_AXIS_DEFAULT);
+        for (k = 0; k < 36; k++)
+            for (j = 0; j < 36; j++)
+                for (i = 0; i < 36; i++) {
+                    double c[3];
+                    int a, in = 1, out = 0;
+                    uint64_t l = (uint64_t)(i + 36 * (j + 36 * k));
+                    c[0] = -0.5 + 0.1 * (i + 0.5); c[1] = -0.5 + 0.1 * (j + 0.5); c[2] = -0.5 + 0.1 * (k + 0.5);
+                    for (a = 0; a < 3; a++) {
+                        in &= c[a] > lo[a] + 0.15 && c[a] < hi[a] - 0.15;  /* deep inside */
+                        out |= c[a] < lo[a] - 0.15 || c[a] > hi[a] + 0.15; /* clearly outside */
+                    }
+                    wrong_in += (uint64_t)(in && !voxgi_bit_get(b, l));
+                    wrong_out += (uint64_t)(out && voxgi_bit_get(b, l));
+                    parity_wrong += (uint64_t)((in && !voxgi_bit_get(parity, l)) || (out && voxgi_bit_get(parity, l)));
+                }
+        TH_CHECK(wrong_in == 0 && wrong_out == 0, "%s: %llu interior voxels empty, %llu exterior set", variant ? "flood" : "vote",
+                 (unsigned long long)wrong_in, (unsigned long long)wrong_out);
+        TH_CHECK(parity_wrong > 0, "%s case: parity alone should fail on this open mesh", variant ? "flood" : "vote");
+        free(b);
+        free(parity);
+        vxt_shape_free(&m);
+    }
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
@@ -721,6 +919,9 @@ int main(void)
     TH_RUN(test_big_triangles_vs_oracle);
     TH_RUN(test_mesh_vs_oracle);
     TH_RUN(test_thin_vs_oracle);
+    TH_RUN(test_solid_closed_vs_inside_test);
+    TH_RUN(test_solid_box_exact);
+    TH_RUN(test_solid_open_mesh_robust_modes);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
