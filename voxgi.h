@@ -954,7 +954,8 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, DispatchComputeIndirect, (ptrdiff_t indirect))                                               \
     X(void, MemoryBarrier, (unsigned int barriers))
 
-#define VOXGI__GL_PROGRAMS(X) X(voxelize_conservative) X(popcount)
+#define VOXGI__GL_PROGRAMS(X) \
+    X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -1017,9 +1018,11 @@ static void voxgi__gl_shutdown(voxgi_context *ctx)
     ctx->gl = NULL;
 }
 
-/* Rewrites the driver's "0:LINE(COL)" (Mesa) or "0(LINE)" (others) at the start of each log
-   line as "file.glsl:LINE"; the prelude's #line makes LINE the file's own line number. */
-static void voxgi__gl_map_log(const char *log, const char *file, char *out, size_t out_size)
+/* Each file of a program starts at line 10000 * (its position + 1) + 1 (#line), which every
+   driver reports whatever it does with source-string numbers. This rewrites the locations
+   "0:LINE(COL)" (Mesa) or "0(LINE)" (others) at the start of each log line as "file.glsl:LINE". */
+#define VOXGI__GL_LINES_PER_FILE 10000
+static void voxgi__gl_map_log(const char *log, int count, const char *const *files, char *out, size_t out_size)
 {
     size_t n = 0;
     int line_start = 1;
@@ -1038,7 +1041,9 @@ static void voxgi__gl_map_log(const char *log, const char *file, char *out, size
                 if (*p) p++;
             }
             if (line >= 0) {
-                int w = snprintf(out + n, out_size - n, "%s:%d", file, line);
+                int k = line / VOXGI__GL_LINES_PER_FILE - 1, w;
+                if (k >= 0 && k < count) w = snprintf(out + n, out_size - n, "%s:%d", files[k], line - (k + 1) * VOXGI__GL_LINES_PER_FILE);
+                else w = snprintf(out + n, out_size - n, "(prelude):%d", line);
                 n = w < 0 ? n : VOXGI__MIN(out_size - 1, n + (size_t)w);
                 log = p;
                 line_start = 0;
@@ -1051,22 +1056,27 @@ static void voxgi__gl_map_log(const char *log, const char *file, char *out, size
     out[n] = 0;
 }
 
-/* Compiles one compute program: the runtime prelude (#version, defines), then the file's text
-   as source string 1, so compile errors name the .glsl file and its own line numbers. */
-static voxgi_result voxgi__gl_program(voxgi_context *ctx, const char *file, const char *text, unsigned int *out)
+/* Compiles one compute program from the runtime prelude (#version, defines) and the given
+   files in order; compile errors name the .glsl file and its own line numbers. */
+static voxgi_result voxgi__gl_program(voxgi_context *ctx, int count, const char *const *files, const char *const *texts,
+                                      unsigned int *out)
 {
     voxgi__gl *gl = ctx->gl;
-    const char *prelude = "#version 450 core\n"
-                          "#define VOXGI_LOCAL_SIZE 64\n"
-                          "#define VOXGI_SMALL_COLUMNS 64\n"
-                          "#line 1 1\n";
-    const char *src[2];
+    const char *src[2 * 8 + 1];
+    char lines[8][32];
     unsigned int sh, prog;
-    int ok = 0, len = 0;
-    src[0] = prelude;
-    src[1] = text;
+    int ok = 0, len = 0, k;
+    if (count < 1 || count > 8) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "a program has 1 to 8 files");
+    src[0] = "#version 450 core\n"
+             "#define VOXGI_LOCAL_SIZE 64\n"
+             "#define VOXGI_SMALL_COLUMNS 64\n";
+    for (k = 0; k < count; k++) {
+        snprintf(lines[k], sizeof lines[k], "\n#line %d\n", (k + 1) * VOXGI__GL_LINES_PER_FILE + 1);
+        src[1 + 2 * k] = lines[k];
+        src[2 + 2 * k] = texts[k];
+    }
     sh = gl->CreateShader(VOXGI__GL_COMPUTE_SHADER);
-    gl->ShaderSource(sh, 2, src, NULL);
+    gl->ShaderSource(sh, 1 + 2 * count, src, NULL);
     gl->CompileShader(sh);
     gl->GetShaderiv(sh, VOXGI__GL_COMPILE_STATUS, &ok);
     if (!ok) {
@@ -1074,7 +1084,7 @@ static voxgi_result voxgi__gl_program(voxgi_context *ctx, const char *file, cons
         gl->GetShaderInfoLog(sh, (int)sizeof log, &len, log);
         log[VOXGI__MIN(VOXGI__MAX(len, 0), (int)sizeof log - 1)] = 0;
         gl->DeleteShader(sh);
-        voxgi__gl_map_log(log, file, mapped, sizeof mapped);
+        voxgi__gl_map_log(log, count, files, mapped, sizeof mapped);
         return voxgi__fail(ctx, VOXGI_ERR_GL_SHADER, "%s", mapped);
     }
     prog = gl->CreateProgram();
@@ -1087,21 +1097,36 @@ static voxgi_result voxgi__gl_program(voxgi_context *ctx, const char *file, cons
         gl->GetProgramInfoLog(prog, (int)sizeof log, &len, log);
         log[VOXGI__MIN(VOXGI__MAX(len, 0), (int)sizeof log - 1)] = 0;
         gl->DeleteProgram(prog);
-        return voxgi__fail(ctx, VOXGI_ERR_GL_SHADER, "%s: link failed: %s", file, log);
+        return voxgi__fail(ctx, VOXGI_ERR_GL_SHADER, "%s: link failed: %s", files[count - 1], log);
     }
     *out = prog;
     return VOXGI_OK;
 }
 
-/* The program of an embedded shader file, compiled on first use. */
-static voxgi_result voxgi__gl_get_program(voxgi_context *ctx, const char *file, unsigned int *prog)
+/* The program of embedded shader files ("a.glsl b.glsl": in that order), compiled on first use. */
+static voxgi_result voxgi__gl_get_program(voxgi_context *ctx, const char *file_list, unsigned int *prog)
 {
-    int i;
+    const char *files[8], *texts[8];
+    char names[8][64];
+    int count = 0, i;
+    const char *p = file_list;
     if (*prog) return VOXGI_OK;
-    for (i = 0; i < VOXGI__GLSL_FILE_COUNT; i++)
-        if (strcmp(voxgi__glsl_files[i].name, file) == 0)
-            return voxgi__gl_program(ctx, file, (const char *)voxgi__glsl_files[i].text, prog);
-    return voxgi__fail(ctx, VOXGI_ERR_GL_SHADER, "%s is not among the embedded shaders (shaders.h is stale)", file);
+    while (*p && count < 8) {
+        size_t len = strcspn(p, " ");
+        if (len >= sizeof names[0]) len = sizeof names[0] - 1;
+        memcpy(names[count], p, len);
+        names[count][len] = 0;
+        files[count] = names[count];
+        texts[count] = NULL;
+        for (i = 0; i < VOXGI__GLSL_FILE_COUNT; i++)
+            if (strcmp(voxgi__glsl_files[i].name, names[count]) == 0) texts[count] = (const char *)voxgi__glsl_files[i].text;
+        if (!texts[count])
+            return voxgi__fail(ctx, VOXGI_ERR_GL_SHADER, "%s is not among the embedded shaders (shaders.h is stale)", names[count]);
+        count++;
+        p += strcspn(p, " ");
+        while (*p == ' ') p++;
+    }
+    return voxgi__gl_program(ctx, count, files, texts, prog);
 }
 
 static unsigned int voxgi__gl_buffer(voxgi_context *ctx, size_t bytes, const void *data)
@@ -1846,52 +1871,59 @@ static void voxgi__toggle_voxel(const voxgi__vox_shared *vs, int64_t i, int64_t 
 #endif
 }
 
+/* One column of a solid triangle (rel[a], rel[b] relative to t->lo): when the triangle owns its
+   centre, toggle the first voxel whose centre lies at or above the triangle. */
+static void voxgi__solid_column(const voxgi__vox_shared *vs, const voxgi__tri *t, int32_t rel[3], voxgi__stats *st)
+{
+    static const double centre[3] = {0.5, 0.5, 0.5};
+    int A = vs->solid_axis, a = (A + 1) % 3, b = (A + 2) % 3;
+    int32_t k, kmax = vs->grid->res[A] - 1 - t->lo[A]; /* the last slice, relative */
+    double zc;
+    rel[A] = 0;
+    if (!voxgi__owns_centre(vs, t, A, rel, st)) return;
+    /* estimate the first centre at or above the plane, then step with exact signs */
+    zc = ceil(t->r[0][A] - (t->n[a] * ((double)rel[a] + 0.5 - t->r[0][a]) + t->n[b] * ((double)rel[b] + 0.5 - t->r[0][b])) / t->n[A] - 0.5);
+    if (!(zc >= -t->lo[A])) k = -t->lo[A]; /* also when the rounded normal lost the axis */
+    else k = zc > kmax + 1 ? kmax + 1 : (int32_t)zc;
+    for (;;) {
+        rel[A] = k - 1;
+        if (k <= -t->lo[A] || t->sig[A] * voxgi__form_sign(vs, t, &t->plane, rel, centre, st) < 0) break;
+        k--;
+    }
+    for (;;) {
+        rel[A] = k;
+        if (k > kmax || t->sig[A] * voxgi__form_sign(vs, t, &t->plane, rel, centre, st) >= 0) break;
+        k++;
+    }
+    if (k <= kmax) {
+        int64_t v[3];
+        v[a] = (int64_t)t->lo[a] + rel[a];
+        v[b] = (int64_t)t->lo[b] + rel[b];
+        v[A] = (int64_t)t->lo[A] + k;
+        voxgi__toggle_voxel(vs, v[0], v[1], v[2]);
+    }
+}
+
+/* Sets up a triangle for the solid pass along vs->solid_axis; 0 when it owns no centre. */
+static int voxgi__solid_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri *t, voxgi__stats *st)
+{
+    if (!voxgi__tri_setup(vs, ti, t)) return 0;
+    voxgi__tri_resolve_signs(vs, t, st);
+    if (t->sig[vs->solid_axis] == 0) return 0; /* seen edge-on (or degenerate) */
+    voxgi__tri_forms(t);
+    return 1;
+}
+
 static void voxgi__solid_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
 {
     voxgi__tri t;
     int A = vs->solid_axis, a = (A + 1) % 3, b = (A + 2) % 3;
-    int32_t rel[3], ext_a, ext_b, kmax;
-    if (!voxgi__tri_setup(vs, ti, &t)) return;
-    voxgi__tri_resolve_signs(vs, &t, st);
-    if (t.sig[A] == 0) return; /* seen edge-on (or degenerate): owns no centre */
-    voxgi__tri_forms(&t);
-    ext_a = t.hi[a] - t.lo[a] + 1;
-    ext_b = t.hi[b] - t.lo[b] + 1;
-    kmax = vs->grid->res[A] - 1 - t.lo[A]; /* the last slice, relative */
-    for (rel[b] = 0; rel[b] < ext_b; rel[b]++) {
+    int32_t rel[3];
+    if (!voxgi__solid_setup(vs, ti, &t, st)) return;
+    for (rel[b] = 0; rel[b] <= t.hi[b] - t.lo[b]; rel[b]++) {
         int32_t first, last;
-        voxgi__row_span(&t, A, rel[b], ext_a, &first, &last);
-        for (rel[a] = first; rel[a] <= last; rel[a]++) {
-            static const double centre[3] = {0.5, 0.5, 0.5};
-            double ca, cb, zc;
-            int32_t k;
-            rel[A] = 0;
-            if (!voxgi__owns_centre(vs, &t, A, rel, st)) continue;
-            /* the first centre at or above the plane: estimate, then step with exact signs */
-            ca = (double)rel[a] + 0.5 - t.r[0][a];
-            cb = (double)rel[b] + 0.5 - t.r[0][b];
-            zc = ceil(t.r[0][A] - (t.n[a] * ca + t.n[b] * cb) / t.n[A] - 0.5);
-            if (!(zc >= -t.lo[A])) k = -t.lo[A]; /* also when the rounded normal lost the axis */
-            else k = zc > kmax + 1 ? kmax + 1 : (int32_t)zc;
-            for (;;) {
-                rel[A] = k - 1;
-                if (k <= -t.lo[A] || t.sig[A] * voxgi__form_sign(vs, &t, &t.plane, rel, centre, st) < 0) break;
-                k--;
-            }
-            for (;;) {
-                rel[A] = k;
-                if (k > kmax || t.sig[A] * voxgi__form_sign(vs, &t, &t.plane, rel, centre, st) >= 0) break;
-                k++;
-            }
-            if (k < -t.lo[A]) k = -t.lo[A];
-            if (k <= kmax) {
-                int64_t v[3];
-                v[a] = (int64_t)t.lo[a] + rel[a];
-                v[b] = (int64_t)t.lo[b] + rel[b];
-                v[A] = (int64_t)t.lo[A] + k;
-                voxgi__toggle_voxel(vs, v[0], v[1], v[2]);
-            }
-        }
+        voxgi__row_span(&t, A, rel[b], t.hi[a] - t.lo[a] + 1, &first, &last);
+        for (rel[a] = first; rel[a] <= last; rel[a]++) voxgi__solid_column(vs, &t, rel, st);
     }
 }
 
@@ -2288,29 +2320,47 @@ typedef struct voxgi__gl_vprep { double q[4]; int32_t lo[4], hi[4]; float w[4], 
 #define VOXGI__GL_PAIR_CAPACITY 65536u
 #define VOXGI__GL_SPLIT_Y 16u
 
-static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                       const voxgi_voxelize_desc *d, voxgi_voxels *out)
+static void voxgi__gl_unbind(voxgi__gl *gl)
+{
+    int i;
+    gl->UseProgram(0);
+    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
+    for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, 0);
+}
+
+/* A zeroed buffer of the grid's words. */
+static unsigned int voxgi__gl_grid_buffer(voxgi_context *ctx, size_t bytes)
+{
+    unsigned int b = voxgi__gl_buffer(ctx, bytes, NULL), zero = 0;
+    ctx->gl->ClearNamedBufferData(b, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+    return b;
+}
+
+/* Runs `program` with one invocation per item (grid-sized dispatch in slices of 65535 groups is
+   not needed: callers keep items below 65535 * 64). */
+static void voxgi__gl_dispatch_items(voxgi__gl *gl, uint64_t items)
+{
+    gl->DispatchCompute((unsigned)((items + 63) / 64), 1, 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* The triangle pass: conservative/thin voxels (solid_axis < 0) or solid toggles along
+   solid_axis, into a new buffer *bits_out. What the GPU's filter cannot decide is decided here
+   exactly and written back. */
+static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                            const voxgi_voxelize_desc *d, int solid_axis, unsigned int *bits_out,
+                                            voxgi_voxels_info *info)
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = &d->grid;
-    uint64_t nvox = voxgi_grid_voxel_count(g), words = voxgi__grid_words(g);
-    size_t bytes = (size_t)words * 4, v, nt = f->triangle_count, flag_words = (nt + 31) / 32;
-    unsigned int buf[7] = {0, 0, 0, 0, 0, 0, 0}, count_buf = 0, zero = 0, t0;
-    uint32_t control[8] = {0, VOXGI__GL_SPLIT_Y, 1, 0, 0, 0, 0, 0};
-    voxgi__gl_vprep *gv = NULL;
+    size_t bytes = (size_t)voxgi__grid_words(g) * 4, v, nt = f->triangle_count, flag_words = (nt + 31) / 32;
+    unsigned int buf[7] = {0, 0, 0, 0, 0, 0, 0}, t0, zero = 0, capacity = VOXGI__GL_PAIR_CAPACITY;
+    uint32_t control[8];
+    voxgi__gl_vprep *gv;
     uint32_t *copy = NULL, *flags = NULL, *pairs = NULL;
+    unsigned int p = solid_axis >= 0 ? gl->prog_voxelize_solid : gl->prog_voxelize_conservative;
     voxgi_result r;
-    int i;
-    if (nvox > (uint64_t)UINT32_MAX)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grids hold at most 2^32 voxels (32-bit bit indices in GLSL); "
-                           "%dx%dx%d needs the CPU backend", g->res[0], g->res[1], g->res[2]);
-    if ((int64_t)bytes > gl->max_ssbo_bytes)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d bit grid needs %lu bytes, more than this GL's "
-                           "GL_MAX_SHADER_STORAGE_BLOCK_SIZE (%lld); use the CPU backend", g->res[0], g->res[1], g->res[2],
-                           (unsigned long)bytes, (long long)gl->max_ssbo_bytes);
-    r = voxgi__gl_get_program(ctx, "voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "popcount.glsl", &gl->prog_popcount);
-    if (r != VOXGI_OK) return r;
+    int i, attempt;
     gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
     if (!gv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
     for (v = 0; v < f->vertex_count; v++) {
@@ -2325,27 +2375,31 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
     }
     buf[0] = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
     buf[1] = voxgi__gl_buffer(ctx, nt * 3 * sizeof(uint32_t), f->tri);
-    buf[2] = voxgi__gl_buffer(ctx, bytes, NULL);
-    buf[3] = voxgi__gl_buffer(ctx, sizeof control, control);
-    buf[4] = voxgi__gl_buffer(ctx, VOXGI__GL_PAIR_CAPACITY * 16, NULL);
-    buf[5] = voxgi__gl_buffer(ctx, flag_words * 4, NULL);
     buf[6] = voxgi__gl_buffer(ctx, nt * 4, NULL);
     voxgi__free(ctx, gv);
-    gl->ClearNamedBufferData(buf[2], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-    gl->ClearNamedBufferData(buf[5], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-    r = voxgi__gl_check(ctx, "allocating the voxelization buffers");
-    if (r == VOXGI_OK) {
-        unsigned int p = gl->prog_voxelize_conservative;
+    /* a solid pass whose pair list overflowed runs again with room for all of them: toggles
+       cannot be patched the way set bits can */
+    for (attempt = 0; attempt < 2; attempt++) {
+        memset(control, 0, sizeof control);
+        control[1] = VOXGI__GL_SPLIT_Y;
+        control[2] = 1;
+        buf[2] = voxgi__gl_grid_buffer(ctx, bytes);
+        buf[3] = voxgi__gl_buffer(ctx, sizeof control, control);
+        buf[4] = voxgi__gl_buffer(ctx, (size_t)capacity * 16, NULL);
+        buf[5] = voxgi__gl_buffer(ctx, flag_words * 4, NULL);
+        gl->ClearNamedBufferData(buf[5], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        r = voxgi__gl_check(ctx, "allocating the voxelization buffers");
+        if (r != VOXGI_OK) break;
         for (i = 0; i < 7; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i]);
         gl->UseProgram(p);
         gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_count"), (unsigned)nt);
         gl->ProgramUniform1d(p, gl->GetUniformLocation(p, "u_inv_s"), 1.0 / g->voxel_size);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), VOXGI__GL_PAIR_CAPACITY);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), capacity);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_solid_axis"), solid_axis);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_thin"), d->method == VOXGI_METHOD_THIN);
-        /* pass 0, in slices of at most 65535 work groups */
-        for (t0 = 0; t0 < nt; t0 += 65535u * 64u) {
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+        for (t0 = 0; t0 < nt; t0 += 65535u * 64u) { /* pass 0, in slices of at most 65535 work groups */
             gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_offset"), t0);
             gl->DispatchCompute((unsigned)VOXGI__MIN((nt - t0 + 63) / 64, (size_t)65535), 1, 1);
         }
@@ -2357,10 +2411,13 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
         gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
         gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
         r = voxgi__gl_read_buffer(ctx, buf[3], control, sizeof control);
+        if (r != VOXGI_OK || solid_axis < 0 || control[4] <= capacity) break;
+        capacity = control[4];
+        for (i = 2; i < 6; i++) { voxgi__gl_delete_buffer(ctx, buf[i]); buf[i] = 0; }
     }
     /* the undecided: control[4] pairs, control[5] flagged triangles */
     if (r == VOXGI_OK && (control[4] || control[5])) {
-        size_t np = VOXGI__MIN((size_t)control[4], (size_t)VOXGI__GL_PAIR_CAPACITY), k;
+        size_t np = VOXGI__MIN((size_t)control[4], (size_t)capacity), k;
         copy = (uint32_t *)voxgi__alloc(ctx, bytes);
         flags = (uint32_t *)voxgi__alloc_array(ctx, flag_words, 4, 0);
         pairs = (uint32_t *)voxgi__alloc_array(ctx, np, 16, 0);
@@ -2378,53 +2435,177 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
             vs.bits = copy;
             vs.inv_s = 1.0 / g->voxel_size;
             vs.thin = d->method == VOXGI_METHOD_THIN;
-            vs.solid_axis = -1;
+            vs.solid_axis = solid_axis;
             for (k = 0; k < nt; k++)
                 if (flags[k >> 5] & (1u << (k & 31u))) {
-                    voxgi__voxelize_triangle(&vs, k, &st);
-                    out->info.exact_triangles++;
+                    if (solid_axis >= 0) voxgi__solid_triangle(&vs, k, &st);
+                    else voxgi__voxelize_triangle(&vs, k, &st);
+                    info->exact_triangles++;
                 }
             for (k = 0; k < np; k++) {
                 voxgi__tri t;
                 const uint32_t *pr = pairs + 4 * k;
-                if (voxgi__tri_setup(&vs, pr[0], &t)) {
-                    int32_t rel[3];
+                int32_t rel[3];
+                if (solid_axis >= 0) {
+                    if (!voxgi__solid_setup(&vs, pr[0], &t, &st)) continue;
+                    for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
+                    voxgi__solid_column(&vs, &t, rel, &st);
+                } else if (voxgi__tri_setup(&vs, pr[0], &t)) {
                     voxgi__tri_resolve_signs(&vs, &t, &st);
                     voxgi__tri_forms(&t);
                     for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
                     if (voxgi__test_voxel(&vs, &t, rel, &st)) voxgi__emit(&vs, &st, &t, rel);
                 }
             }
-            out->info.exact_tests = st.exact_tests;
+            info->exact_tests += st.exact_tests;
             gl->NamedBufferSubData(buf[2], 0, (ptrdiff_t)bytes, copy);
             r = voxgi__gl_check(ctx, "uploading the exact decisions");
         }
     }
-    if (r == VOXGI_OK) { /* count the set voxels on the GPU */
+    voxgi__gl_unbind(gl);
+    for (i = 0; i < 7; i++)
+        if (i != 2) voxgi__gl_delete_buffer(ctx, buf[i]);
+    voxgi__free(ctx, copy);
+    voxgi__free(ctx, flags);
+    voxgi__free(ctx, pairs);
+    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, buf[2]); return r; }
+    *bits_out = buf[2];
+    return VOXGI_OK;
+}
+
+/* Solid parity along axis A: toggles, then one walk per line. */
+static voxgi_result voxgi__gl_solid_parity(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                           const voxgi_voxelize_desc *d, int A, unsigned int *solid, voxgi_voxels_info *info)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    unsigned int toggles = 0, p = gl->prog_solid_prefix;
+    voxgi_result r = voxgi__gl_triangle_pass(ctx, f, vp, d, A, &toggles, info);
+    if (r != VOXGI_OK) return r;
+    *solid = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, toggles);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *solid);
+    gl->UseProgram(p);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
+    voxgi__gl_dispatch_items(gl, (uint64_t)g->res[(A + 1) % 3] * (uint64_t)g->res[(A + 2) % 3]);
+    voxgi__gl_unbind(gl);
+    voxgi__gl_delete_buffer(ctx, toggles);
+    return voxgi__gl_check(ctx, "the solid parity pass");
+}
+
+/* Solid by flooding the outside of the conservative surface, sweeping until nothing grows. */
+static voxgi_result voxgi__gl_solid_flood(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                          const voxgi_voxelize_desc *d, unsigned int *solid, voxgi_voxels_info *info)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    voxgi_voxelize_desc cd = *d;
+    size_t bytes = (size_t)voxgi__grid_words(g) * 4;
+    unsigned int surface = 0, outside, changed_buf, p = gl->prog_flood;
+    uint32_t changed = 1;
+    voxgi_result r;
+    int axis;
+    cd.method = VOXGI_METHOD_CONSERVATIVE;
+    r = voxgi__gl_triangle_pass(ctx, f, vp, &cd, -1, &surface, info);
+    if (r != VOXGI_OK) return r;
+    outside = voxgi__gl_grid_buffer(ctx, bytes);
+    changed_buf = voxgi__gl_buffer(ctx, 4, &changed);
+    *solid = voxgi__gl_grid_buffer(ctx, bytes);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, surface);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, outside);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, changed_buf);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, *solid);
+    gl->UseProgram(p);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)(bytes / 4));
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 0);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), 2);
+    voxgi__gl_dispatch_items(gl, (uint64_t)g->res[0] * (uint64_t)g->res[1]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 1);
+    while (changed && r == VOXGI_OK) {
+        changed = 0;
+        gl->NamedBufferSubData(changed_buf, 0, 4, &changed);
+        for (axis = 0; axis < 3; axis++) {
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), axis);
+            voxgi__gl_dispatch_items(gl, (uint64_t)g->res[(axis + 1) % 3] * (uint64_t)g->res[(axis + 2) % 3]);
+        }
+        r = voxgi__gl_read_buffer(ctx, changed_buf, &changed, 4);
+    }
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 2);
+    voxgi__gl_dispatch_items(gl, bytes / 4);
+    voxgi__gl_unbind(gl);
+    voxgi__gl_delete_buffer(ctx, surface);
+    voxgi__gl_delete_buffer(ctx, outside);
+    voxgi__gl_delete_buffer(ctx, changed_buf);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the flood fill");
+    if (r != VOXGI_OK) voxgi__gl_delete_buffer(ctx, *solid);
+    return r;
+}
+
+static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                       const voxgi_voxelize_desc *d, voxgi_voxels *out)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    uint64_t nvox = voxgi_grid_voxel_count(g), words = voxgi__grid_words(g);
+    size_t bytes = (size_t)words * 4;
+    unsigned int result = 0, count_buf;
+    uint32_t count = 0;
+    voxgi_result r;
+    if (nvox > (uint64_t)UINT32_MAX)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grids hold at most 2^32 voxels (32-bit bit indices in GLSL); "
+                           "%dx%dx%d needs the CPU backend", g->res[0], g->res[1], g->res[2]);
+    if ((int64_t)bytes > gl->max_ssbo_bytes)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d bit grid needs %lu bytes, more than this GL's "
+                           "GL_MAX_SHADER_STORAGE_BLOCK_SIZE (%lld); use the CPU backend", g->res[0], g->res[1], g->res[2],
+                           (unsigned long)bytes, (long long)gl->max_ssbo_bytes);
+    if ((uint64_t)g->res[0] * g->res[1] > 65535u * 64u || (uint64_t)g->res[1] * g->res[2] > 65535u * 64u ||
+        (uint64_t)g->res[0] * g->res[2] > 65535u * 64u)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grid slices hold at most 65535*64 lines; use the CPU backend");
+    r = voxgi__gl_get_program(ctx, "triangle.glsl voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "triangle.glsl voxelize_solid.glsl", &gl->prog_voxelize_solid);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "solid_prefix.glsl", &gl->prog_solid_prefix);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "flood.glsl", &gl->prog_flood);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "bits_majority.glsl", &gl->prog_bits_majority);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "popcount.glsl", &gl->prog_popcount);
+    if (r != VOXGI_OK) return r;
+    if (d->method != VOXGI_METHOD_SOLID) r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info);
+    else if (d->solid_mode == VOXGI_SOLID_PARITY)
+        r = voxgi__gl_solid_parity(ctx, f, vp, d, d->axis ? (int)d->axis - 1 : 2, &result, &out->info);
+    else if (d->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__gl_solid_flood(ctx, f, vp, d, &result, &out->info);
+    else { /* vote: parity along x, y and z, then the majority into the last */
+        unsigned int axes[3] = {0, 0, 0}, p = gl->prog_bits_majority;
+        int a;
+        for (a = 0; a < 3 && r == VOXGI_OK; a++) r = voxgi__gl_solid_parity(ctx, f, vp, d, a, &axes[a], &out->info);
+        if (r == VOXGI_OK) {
+            for (a = 0; a < 3; a++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)a, axes[a]);
+            gl->UseProgram(p);
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
+            voxgi__gl_dispatch_items(gl, words);
+            voxgi__gl_unbind(gl);
+            result = axes[2];
+            axes[2] = 0;
+        }
+        for (a = 0; a < 3; a++) voxgi__gl_delete_buffer(ctx, axes[a]);
+    }
+    if (r != VOXGI_OK) return r;
+    { /* count the set voxels on the GPU */
         unsigned int p = gl->prog_popcount;
-        uint32_t count = 0;
         count_buf = voxgi__gl_buffer(ctx, 4, &count);
-        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, buf[2]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, result);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, count_buf);
         gl->UseProgram(p);
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
         gl->DispatchCompute((unsigned)VOXGI__MIN((words + 63) / 64, (uint64_t)1024), 1, 1);
         gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+        voxgi__gl_unbind(gl);
         r = voxgi__gl_read_buffer(ctx, count_buf, &count, 4);
+        voxgi__gl_delete_buffer(ctx, count_buf);
         out->info.voxel_count = count;
     }
-    gl->UseProgram(0);
-    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
-    for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, 0);
-    for (i = 0; i < 7; i++)
-        if (i != 2) voxgi__gl_delete_buffer(ctx, buf[i]);
-    voxgi__gl_delete_buffer(ctx, count_buf);
-    voxgi__free(ctx, copy);
-    voxgi__free(ctx, flags);
-    voxgi__free(ctx, pairs);
-    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, buf[2]); return r; }
-    out->gl_buffer = buf[2];
+    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, result); return r; }
+    out->gl_buffer = result;
     return voxgi__gl_check(ctx, "voxelization");
 }
 #endif

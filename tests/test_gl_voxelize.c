@@ -33,7 +33,9 @@ static voxgi_context *make_ctx(voxgi_backend b)
     return ctx;
 }
 
-static voxgi_method g_method; /* the method compare() runs */
+static voxgi_method g_method; /* what compare() runs */
+static voxgi_solid_mode g_solid_mode;
+static voxgi_axis g_axis;
 
 static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g, voxgi_voxels_info *info)
 {
@@ -50,6 +52,8 @@ static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g
     sc.meshes = &mesh; sc.mesh_count = 1;
     vd.grid = *g;
     vd.method = g_method;
+    vd.solid_mode = g_solid_mode;
+    vd.axis = g_axis;
     if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) { printf("    voxelize: %s\n", voxgi_last_error(ctx)); return NULL; }
     voxgi_voxels_read(ctx, vox, NULL, 0, &need);
     bits = (uint32_t *)malloc(need);
@@ -78,7 +82,9 @@ static void compare_method(const vxt_shape *m, const voxgi_grid *g, const char *
         TH_CHECK(ic.voxel_count == ig.voxel_count, "%s: counts %llu (CPU) vs %llu (GL)", what,
                  (unsigned long long)ic.voxel_count, (unsigned long long)ig.voxel_count);
         TH_CHECK(ic.voxel_count > 0, "%s: nothing voxelized", what);
-        printf("    %s %s: %llu voxels, GL exact tests %llu, triangles handed to the CPU %llu\n", voxgi_method_name(g_method), what,
+        static const char *modes[3] = {"parity", "vote", "flood"};
+        printf("    %s%s%s %s: %llu voxels, GL exact tests %llu, triangles handed to the CPU %llu\n", voxgi_method_name(g_method),
+               g_method == VOXGI_METHOD_SOLID ? " " : "", g_method == VOXGI_METHOD_SOLID ? modes[g_solid_mode] : "", what,
                (unsigned long long)ig.voxel_count, (unsigned long long)ig.exact_tests, (unsigned long long)ig.exact_triangles);
     }
     free(a);
@@ -87,12 +93,55 @@ static void compare_method(const vxt_shape *m, const voxgi_grid *g, const char *
     voxgi_destroy(gl);
 }
 
-/* Every method with a GL pass. */
+/* Every surface method with a GL pass. */
 static void compare(const vxt_shape *m, const voxgi_grid *g, const char *what)
 {
     for (g_method = VOXGI_METHOD_CONSERVATIVE; g_method <= VOXGI_METHOD_THIN; g_method = (voxgi_method)(g_method + 1))
         compare_method(m, g, what);
     g_method = VOXGI_METHOD_CONSERVATIVE;
+}
+
+/* Every solid mode (parity along each axis, vote, flood). */
+static void compare_solid(const vxt_shape *m, const voxgi_grid *g, const char *what)
+{
+    g_method = VOXGI_METHOD_SOLID;
+    for (g_axis = VOXGI_AXIS_X; g_axis <= VOXGI_AXIS_Z; g_axis = (voxgi_axis)(g_axis + 1)) compare_method(m, g, what);
+    g_axis = VOXGI_AXIS_DEFAULT;
+    g_solid_mode = VOXGI_SOLID_VOTE;
+    compare_method(m, g, what);
+    g_solid_mode = VOXGI_SOLID_FLOOD;
+    compare_method(m, g, what);
+    g_solid_mode = VOXGI_SOLID_PARITY;
+    g_method = VOXGI_METHOD_CONSERVATIVE;
+}
+
+static void test_gl_equals_cpu_solid(void)
+{
+    vxt_shape m, big;
+    voxgi_grid g;
+    if (!have_gl()) return;
+    vxt_shape_sphere(&m, 40, 28, 1.0, 0.013, -0.021, 0.007);
+    g.origin[0] = -1.13; g.origin[1] = -1.07; g.origin[2] = -1.2;
+    g.voxel_size = 0.031;
+    g.res[0] = 75; g.res[1] = 70; g.res[2] = 60; /* cut through the sphere: crossings below the grid count */
+    compare_solid(&m, &g, "sphere");
+    vxt_shape_free(&m);
+    vxt_shape_box_and_tilted(&m); /* ties: lattice box, and an open quad */
+    g.origin[0] = g.origin[1] = g.origin[2] = -1;
+    g.voxel_size = 0.5;
+    g.res[0] = 51; g.res[1] = 50; g.res[2] = 52;
+    compare_solid(&m, &g, "box and quad");
+    vxt_shape_free(&m);
+    {   /* a box far larger than a few triangles' worth of columns: the big-triangle pass */
+        const float lo[3] = {-0.9f, -0.8f, -0.7f}, hi[3] = {0.85f, 0.9f, 0.8f};
+        vxt_shape_alloc(&big, 8, 12);
+        vxt_shape_put_box(&big, 0, 0, lo, hi);
+        g.origin[0] = g.origin[1] = g.origin[2] = -1.0;
+        g.voxel_size = 2.0 / 96;
+        g.res[0] = g.res[1] = g.res[2] = 96;
+        compare_solid(&big, &g, "big box");
+        vxt_shape_free(&big);
+    }
 }
 
 static void cubic(voxgi_grid *g, double lo, double size, int n)
@@ -273,11 +322,13 @@ static void test_gl_shader_error_mapping(void)
 {
     voxgi_context *ctx;
     unsigned int prog = 0;
-    const char *bad = "layout(local_size_x = 1) in;\nvoid main()\n{\n    undefined_thing = 1;\n}\n";
+    const char *files[2] = {"good.glsl", "broken.glsl"};
+    const char *texts[2] = {"layout(local_size_x = 1) in;\nint one() { return 1; }\n",
+                            "void main()\n{\n    undefined_thing = one();\n}\n"};
     if (!have_gl()) return;
     ctx = make_ctx(VOXGI_BACKEND_GL);
-    TH_CHECK(voxgi__gl_program(ctx, "broken.glsl", bad, &prog) == VOXGI_ERR_GL_SHADER, "broken shader compiled");
-    TH_CHECK(strstr(voxgi_last_error(ctx), "broken.glsl:4") != NULL, "log not mapped to broken.glsl:4: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi__gl_program(ctx, 2, files, texts, &prog) == VOXGI_ERR_GL_SHADER, "broken shader compiled");
+    TH_CHECK(strstr(voxgi_last_error(ctx), "broken.glsl:3") != NULL, "log not mapped to broken.glsl:3: %s", voxgi_last_error(ctx));
     voxgi_destroy(ctx);
 }
 
@@ -293,6 +344,7 @@ int main(void)
     TH_RUN(test_gl_equals_cpu_ties);
     TH_RUN(test_gl_equals_cpu_quads_and_huge);
     TH_RUN(test_gl_equals_cpu_degenerate);
+    TH_RUN(test_gl_equals_cpu_solid);
     TH_RUN(test_gl_interop_and_backends);
     TH_RUN(test_gl_plain_loader);
     TH_RUN(test_gl_missing_function_and_fallback);
