@@ -25,12 +25,11 @@ $(B)/embed_shaders: tools/embed_shaders.c | $(B)
 	$(CC) -O2 $(WARN) -o $@ $<
 
 # shaders.h is generated from shaders/*.glsl, never edited; it is committed so that
-# voxgi.h + shaders.h work without this Makefile. Builds never regenerate it behind your
-# back: after editing GLSL run `make shaders.h` (the tests fail while it is stale).
+# voxgi.h + shaders.h work without this Makefile (a test fails when the committed copy is stale).
 shaders.h: $(GLSL) $(B)/embed_shaders
 	$(B)/embed_shaders $@ $(GLSL)
 
-$(B)/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h voxgi.h | $(B) shaders.h
+$(B)/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h voxgi.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $(TOOL_SRC) $(LDLIBS)
 
 $(B)/example_voxelize: examples/voxelize.c voxgi.h | $(B)
@@ -41,12 +40,12 @@ $(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/ha
 $(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
 
-$(B)/test_%: tests/test_%.c voxgi.h tests/harness.h tools/shapes.h | $(B) shaders.h
+$(B)/test_%: tests/test_%.c voxgi.h tests/harness.h tools/shapes.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
-$(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tools/shapes.h | $(B)/asan shaders.h
+$(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tools/shapes.h shaders.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(LDLIBS)
 
-$(B)/asan/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h voxgi.h | $(B)/asan shaders.h
+$(B)/asan/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h voxgi.h shaders.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(LDLIBS)
 
 test: deps $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(addprefix $(B)/asan/,$(TESTS))

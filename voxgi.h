@@ -273,6 +273,15 @@ VOXGI_API voxgi_result voxgi_voxels_read(voxgi_context *ctx, const voxgi_voxels 
 VOXGI_API voxgi_result voxgi_voxels_gl_buffer(voxgi_context *ctx, const voxgi_voxels *voxels,
                                               unsigned int *gl_buffer_name);
 
+/* OR-reduction (mipmaps of occupancy): a new voxel grid on the same backend whose voxel (i,j,k)
+   is set when any voxel of the block [f*i, f*i + f) of the source is (f = factor per axis, 1 or
+   2; the last block of an odd axis is clipped). factor {2,2,2} is the next level of 3D occupancy
+   mips; {2,2,1} is the next level of Buchacher's OR-mipmap over columns along z. The result's
+   grid keeps the origin, doubles the voxel size along reduced axes only when all are reduced
+   (otherwise voxel_size is kept: the grid is then no longer cubic and is described by res). */
+VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxels *src, const int factor[3],
+                                           voxgi_voxels **out);
+
 /* Bit helpers over a caller-held bit grid. */
 static inline int voxgi_bit_get(const uint32_t *bits, uint64_t index)
 { return (int)((bits[index >> 5] >> (index & 31u)) & 1u); }
@@ -955,7 +964,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, MemoryBarrier, (unsigned int barriers))
 
 #define VOXGI__GL_PROGRAMS(X) \
-    X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount)
+    X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -2311,6 +2320,55 @@ VOXGI_API voxgi_result voxgi_voxels_gl_buffer(voxgi_context *ctx, const voxgi_vo
 }
 
 #ifndef VOXGI_NO_GL
+static voxgi_result voxgi__reduce_gl(voxgi_context *ctx, const voxgi_voxels *src, const int f[3], voxgi_voxels *dst);
+#endif
+
+VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxels *src, const int factor[3], voxgi_voxels **out)
+{
+    voxgi_voxels *dst;
+    const voxgi_grid *sg;
+    voxgi_result r = VOXGI_OK;
+    double t0 = voxgi__now_ms();
+    int a;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!src || !factor || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "src, factor or out is NULL");
+    *out = NULL;
+    for (a = 0; a < 3; a++)
+        if (factor[a] != 1 && factor[a] != 2) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "reduction factors are 1 or 2");
+    dst = (voxgi_voxels *)voxgi__alloc_array(ctx, 1, sizeof *dst, 1);
+    if (!dst) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the result");
+    sg = &src->info.grid;
+    dst->info = src->info;
+    dst->info.exact_tests = dst->info.exact_triangles = 0;
+    for (a = 0; a < 3; a++) dst->info.grid.res[a] = (sg->res[a] + factor[a] - 1) / factor[a];
+    if (factor[0] == 2 && factor[1] == 2 && factor[2] == 2) dst->info.grid.voxel_size = 2 * sg->voxel_size;
+    dst->info.bytes = (size_t)(voxgi__grid_words(&dst->info.grid) * 4u);
+    if (src->bits) {
+        const voxgi_grid *dg = &dst->info.grid;
+        uint64_t i, j, k;
+        dst->bits = (uint32_t *)voxgi__alloc_array(ctx, dst->info.bytes / 4, 4, 1);
+        if (!dst->bits) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the reduced grid");
+        else
+            for (k = 0; k < (uint64_t)sg->res[2]; k++)
+                for (j = 0; j < (uint64_t)sg->res[1]; j++)
+                    for (i = 0; i < (uint64_t)sg->res[0]; i++) {
+                        uint64_t l = i + (uint64_t)sg->res[0] * (j + (uint64_t)sg->res[1] * k), d;
+                        if (!voxgi_bit_get(src->bits, l)) continue;
+                        d = i / (uint64_t)factor[0] + (uint64_t)dg->res[0] * (j / (uint64_t)factor[1] + (uint64_t)dg->res[1] * (k / (uint64_t)factor[2]));
+                        dst->bits[d >> 5] |= 1u << (d & 31u);
+                    }
+        if (r == VOXGI_OK) dst->info.voxel_count = voxgi__popcount_words(dst->bits, dst->info.bytes / 4);
+    }
+#ifndef VOXGI_NO_GL
+    else r = voxgi__reduce_gl(ctx, src, factor, dst);
+#endif
+    if (r != VOXGI_OK) { voxgi_voxels_destroy(ctx, dst); return r; }
+    dst->info.ms = voxgi__now_ms() - t0;
+    *out = dst;
+    return VOXGI_OK;
+}
+
+#ifndef VOXGI_NO_GL
 /* ----- GL conservative voxelizer (shaders/voxelize_conservative.glsl): the same tests and
    bounds as the CPU twin above. The CPU prepares each vertex (voxel coordinates and exact
    ranges, O(vertices)); the GPU does everything per triangle and per voxel; what its filter
@@ -2473,6 +2531,29 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
     return VOXGI_OK;
 }
 
+/* Counts the set bits of a grid buffer on the GPU. */
+static voxgi_result voxgi__gl_popcount(voxgi_context *ctx, unsigned int buffer, uint64_t words, uint64_t *count)
+{
+    voxgi__gl *gl = ctx->gl;
+    unsigned int p, count_buf;
+    uint32_t c = 0;
+    voxgi_result r = voxgi__gl_get_program(ctx, "popcount.glsl", &gl->prog_popcount);
+    if (r != VOXGI_OK) return r;
+    p = gl->prog_popcount;
+    count_buf = voxgi__gl_buffer(ctx, 4, &c);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, buffer);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, count_buf);
+    gl->UseProgram(p);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
+    gl->DispatchCompute((unsigned)VOXGI__MIN((words + 63) / 64, (uint64_t)1024), 1, 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+    voxgi__gl_unbind(gl);
+    r = voxgi__gl_read_buffer(ctx, count_buf, &c, 4);
+    voxgi__gl_delete_buffer(ctx, count_buf);
+    *count = c;
+    return r;
+}
+
 /* Solid parity along axis A: toggles, then one walk per line. */
 static voxgi_result voxgi__gl_solid_parity(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                            const voxgi_voxelize_desc *d, int A, unsigned int *solid, voxgi_voxels_info *info)
@@ -2550,8 +2631,7 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
     const voxgi_grid *g = &d->grid;
     uint64_t nvox = voxgi_grid_voxel_count(g), words = voxgi__grid_words(g);
     size_t bytes = (size_t)words * 4;
-    unsigned int result = 0, count_buf;
-    uint32_t count = 0;
+    unsigned int result = 0;
     voxgi_result r;
     if (nvox > (uint64_t)UINT32_MAX)
         return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grids hold at most 2^32 voxels (32-bit bit indices in GLSL); "
@@ -2568,7 +2648,6 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "solid_prefix.glsl", &gl->prog_solid_prefix);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "flood.glsl", &gl->prog_flood);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "bits_majority.glsl", &gl->prog_bits_majority);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "popcount.glsl", &gl->prog_popcount);
     if (r != VOXGI_OK) return r;
     if (d->method != VOXGI_METHOD_SOLID) r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info);
     else if (d->solid_mode == VOXGI_SOLID_PARITY)
@@ -2590,23 +2669,35 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
         for (a = 0; a < 3; a++) voxgi__gl_delete_buffer(ctx, axes[a]);
     }
     if (r != VOXGI_OK) return r;
-    { /* count the set voxels on the GPU */
-        unsigned int p = gl->prog_popcount;
-        count_buf = voxgi__gl_buffer(ctx, 4, &count);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, result);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, count_buf);
-        gl->UseProgram(p);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
-        gl->DispatchCompute((unsigned)VOXGI__MIN((words + 63) / 64, (uint64_t)1024), 1, 1);
-        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
-        voxgi__gl_unbind(gl);
-        r = voxgi__gl_read_buffer(ctx, count_buf, &count, 4);
-        voxgi__gl_delete_buffer(ctx, count_buf);
-        out->info.voxel_count = count;
-    }
+    r = voxgi__gl_popcount(ctx, result, words, &out->info.voxel_count); /* count the set voxels on the GPU */
     if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, result); return r; }
     out->gl_buffer = result;
     return voxgi__gl_check(ctx, "voxelization");
+}
+
+static voxgi_result voxgi__reduce_gl(voxgi_context *ctx, const voxgi_voxels *src, const int f[3], voxgi_voxels *dst)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *sg = &src->info.grid, *dg = &dst->info.grid;
+    unsigned int p, out;
+    voxgi_result r = voxgi__gl_get_program(ctx, "reduce.glsl", &gl->prog_reduce);
+    if (r != VOXGI_OK) return r;
+    p = gl->prog_reduce;
+    out = voxgi__gl_grid_buffer(ctx, dst->info.bytes);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, src->gl_buffer);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, out);
+    gl->UseProgram(p);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_src_res"), sg->res[0], sg->res[1], sg->res[2]);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_dst_res"), dg->res[0], dg->res[1], dg->res[2]);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_factor"), f[0], f[1], f[2]);
+    /* one invocation per destination line along x, in work-group slices */
+    gl->DispatchCompute((unsigned)(((uint64_t)dg->res[1] * (uint64_t)dg->res[2] + 63) / 64), 1, 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+    voxgi__gl_unbind(gl);
+    dst->gl_buffer = out;
+    r = voxgi__gl_check(ctx, "the OR reduction");
+    if (r == VOXGI_OK) r = voxgi__gl_popcount(ctx, out, dst->info.bytes / 4, &dst->info.voxel_count);
+    return r;
 }
 #endif
 

@@ -232,6 +232,56 @@ static void test_gl_equals_cpu_degenerate(void)
     vxt_shape_free(&m);
 }
 
+/* GL OR-reduction equals the CPU's level by level (bits and GPU popcount). */
+static void test_gl_reduce_equals_cpu(void)
+{
+    vxt_shape m;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_context *ctx[2];
+    voxgi_voxels *cur[2] = {NULL, NULL};
+    int b, level, variant;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL);
+    vxt_shape_sphere(&m, 30, 20, 1.0, 0.1, 0.0, -0.05);
+    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
+    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
+    sc.meshes = &mesh; sc.mesh_count = 1;
+    vd.grid.origin[0] = -1.2; vd.grid.origin[1] = -1.1; vd.grid.origin[2] = -1.3;
+    vd.grid.voxel_size = 0.05;
+    vd.grid.res[0] = 45; vd.grid.res[1] = 37; vd.grid.res[2] = 50;
+    for (variant = 0; variant < 2; variant++) {
+        const int f[3] = {2, 2, variant ? 1 : 2};
+        for (b = 0; b < 2; b++) TH_CHECK(voxgi_voxelize(ctx[b], &sc, &vd, &cur[b]) == VOXGI_OK, "voxelize");
+        for (level = 1; level <= 6; level++) {
+            voxgi_voxels *next[2];
+            voxgi_voxels_info info[2];
+            uint32_t *bits[2];
+            size_t need = 0;
+            for (b = 0; b < 2; b++) {
+                TH_CHECK(voxgi_voxels_reduce(ctx[b], cur[b], f, &next[b]) == VOXGI_OK, "reduce: %s", voxgi_last_error(ctx[b]));
+                voxgi_voxels_destroy(ctx[b], cur[b]);
+                cur[b] = next[b];
+                voxgi_voxels_query(cur[b], &info[b]);
+                voxgi_voxels_read(ctx[b], cur[b], NULL, 0, &need);
+                bits[b] = (uint32_t *)malloc(need);
+                voxgi_voxels_read(ctx[b], cur[b], bits[b], need, NULL);
+            }
+            TH_CHECK(memcmp(bits[0], bits[1], need) == 0 && info[0].voxel_count == info[1].voxel_count,
+                     "factor %d%d%d level %d: GL differs (%llu vs %llu voxels)", f[0], f[1], f[2], level,
+                     (unsigned long long)info[0].voxel_count, (unsigned long long)info[1].voxel_count);
+            free(bits[0]);
+            free(bits[1]);
+        }
+        for (b = 0; b < 2; b++) voxgi_voxels_destroy(ctx[b], cur[b]);
+    }
+    vxt_shape_free(&m);
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
 static void test_gl_interop_and_backends(void)
 {
     voxgi_context *ctx;
@@ -345,6 +395,7 @@ int main(void)
     TH_RUN(test_gl_equals_cpu_quads_and_huge);
     TH_RUN(test_gl_equals_cpu_degenerate);
     TH_RUN(test_gl_equals_cpu_solid);
+    TH_RUN(test_gl_reduce_equals_cpu);
     TH_RUN(test_gl_interop_and_backends);
     TH_RUN(test_gl_plain_loader);
     TH_RUN(test_gl_missing_function_and_fallback);

@@ -912,6 +912,83 @@ static void test_solid_open_mesh_robust_modes(void)
     voxgi_destroy(ctx);
 }
 
+/* OR-reduction: every level of 3D occupancy mips and of the column OR-mipmap equals a direct
+   OR over the source blocks, down to one voxel, on a non-power-of-two grid. */
+static void test_or_mips(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    vxt_shape m;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *base = NULL;
+    uint32_t *src;
+    int variant;
+    size_t need = 0;
+    vxt_shape_sphere(&m, 30, 20, 1.0, 0.1, 0.0, -0.05);
+    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
+    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
+    sc.meshes = &mesh; sc.mesh_count = 1;
+    vd.grid.origin[0] = -1.2; vd.grid.origin[1] = -1.1; vd.grid.origin[2] = -1.3;
+    vd.grid.voxel_size = 0.05;
+    vd.grid.res[0] = 45; vd.grid.res[1] = 37; vd.grid.res[2] = 50;
+    TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &base) == VOXGI_OK, "voxelize failed");
+    for (variant = 0; variant < 2; variant++) {
+        const int f[3] = {2, 2, variant ? 1 : 2};
+        const voxgi_voxels *cur = base;
+        voxgi_voxels *next = NULL;
+        int level = 0;
+        voxgi_voxels_info ci, ni;
+        voxgi_voxels_query(cur, &ci);
+        voxgi_voxels_read(ctx, cur, NULL, 0, &need);
+        src = (uint32_t *)malloc(need);
+        voxgi_voxels_read(ctx, cur, src, need, NULL);
+        while ((ci.grid.res[0] > 1 || ci.grid.res[1] > 1) && level < 10) {
+            uint32_t *dst;
+            uint64_t i, j, k, bad = 0, count = 0;
+            TH_CHECK(voxgi_voxels_reduce(ctx, cur, f, &next) == VOXGI_OK, "reduce failed");
+            voxgi_voxels_query(next, &ni);
+            TH_CHECK(ni.grid.res[0] == (ci.grid.res[0] + 1) / 2 && ni.grid.res[2] == (ci.grid.res[2] + f[2] - 1) / f[2], "level %d size", level);
+            voxgi_voxels_read(ctx, next, NULL, 0, &need);
+            dst = (uint32_t *)malloc(need);
+            voxgi_voxels_read(ctx, next, dst, need, NULL);
+            for (k = 0; k < (uint64_t)ni.grid.res[2]; k++)
+                for (j = 0; j < (uint64_t)ni.grid.res[1]; j++)
+                    for (i = 0; i < (uint64_t)ni.grid.res[0]; i++) {
+                        int want = 0, dx, dy, dz;
+                        for (dz = 0; dz < f[2]; dz++)
+                            for (dy = 0; dy < 2; dy++)
+                                for (dx = 0; dx < 2; dx++) {
+                                    uint64_t x = 2 * i + (uint64_t)dx, y = 2 * j + (uint64_t)dy, z = (uint64_t)f[2] * k + (uint64_t)dz;
+                                    if (x < (uint64_t)ci.grid.res[0] && y < (uint64_t)ci.grid.res[1] && z < (uint64_t)ci.grid.res[2])
+                                        want |= voxgi_bit_get(src, x + (uint64_t)ci.grid.res[0] * (y + (uint64_t)ci.grid.res[1] * z));
+                                }
+                        count += (uint64_t)want;
+                        bad += (uint64_t)(want != voxgi_bit_get(dst, i + (uint64_t)ni.grid.res[0] * (j + (uint64_t)ni.grid.res[1] * k)));
+                    }
+            TH_CHECK(bad == 0 && count == ni.voxel_count, "factor %d%d%d level %d: %llu wrong, count %llu vs %llu", f[0], f[1], f[2],
+                     level + 1, (unsigned long long)bad, (unsigned long long)count, (unsigned long long)ni.voxel_count);
+            free(src);
+            src = dst;
+            if (cur != base) voxgi_voxels_destroy(ctx, (voxgi_voxels *)cur);
+            cur = next;
+            ci = ni;
+            level++;
+        }
+        TH_CHECK(level >= 5, "only %d levels", level);
+        free(src);
+        if (cur != base) voxgi_voxels_destroy(ctx, (voxgi_voxels *)cur);
+    }
+    {
+        const int bad_factor[3] = {2, 3, 2};
+        voxgi_voxels *o = NULL;
+        TH_CHECK(voxgi_voxels_reduce(ctx, base, bad_factor, &o) == VOXGI_ERR_INVALID_ARGUMENT && !o, "factor 3 accepted");
+    }
+    voxgi_voxels_destroy(ctx, base);
+    vxt_shape_free(&m);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
@@ -922,6 +999,7 @@ int main(void)
     TH_RUN(test_solid_closed_vs_inside_test);
     TH_RUN(test_solid_box_exact);
     TH_RUN(test_solid_open_mesh_robust_modes);
+    TH_RUN(test_or_mips);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
