@@ -152,16 +152,36 @@ static void test_bad_files_and_arguments(void)
     TH_CHECK(rc == 1 && strstr(out, "cannot write"), "unwritable output: exit %d: %s", rc, out);
 }
 
+/* --method: thin is within conservative; solid of the closed cube is its 8^3 interior centres. */
+static void test_voxelize_methods(void)
+{
+    static char out[8192];
+    double cons, thin;
+    int rc = run("voxelize builtin:sphere --res 40 --backend cpu --json", out, sizeof out);
+    cons = json_number(out, "voxels");
+    rc |= run("voxelize builtin:sphere --res 40 --backend cpu --json --method thin", out, sizeof out);
+    thin = json_number(out, "voxels");
+    TH_CHECK(rc == 0 && strstr(out, "\"method\":\"thin\"") && thin > 0 && thin < cons, "thin %g vs conservative %g: %s", thin, cons, out);
+    /* cube [-1,1]^3, voxels of 0.25 from -1.5: centres -1.375 + 0.25 i inside for i = 2..9 */
+    rc = run("voxelize builtin:cube --grid -1.5 -1.5 -1.5 0.25 12 12 12 --backend cpu --json --method solid --axis x", out, sizeof out);
+    TH_CHECK(rc == 0 && json_number(out, "voxels") == 512 && strstr(out, "\"method\":\"solid\""), "solid cube: %s", out);
+    rc = run("voxelize builtin:cube --grid -1.5 -1.5 -1.5 0.25 12 12 12 --backend cpu --json --method solid --solid-mode flood", out, sizeof out);
+    TH_CHECK(rc == 0 && json_number(out, "voxels") == 1000, "flood cube (interior and the touching shell, 10^3): %s", out);
+    TH_CHECK(run("voxelize builtin:cube --method wobbly", out, sizeof out) == 2, "unknown method accepted");
+    TH_CHECK(run("voxelize builtin:cube --method solid --solid-mode guess", out, sizeof out) == 2, "unknown solid mode accepted");
+}
+
 static void test_info_and_bench(void)
 {
     static char out[16384];
     int rc = run("info --json", out, sizeof out);
     TH_CHECK(rc == 0 && strstr(out, "\"version\":\"" VOXGI_VERSION_STRING "\"") && strstr(out, "\"gl\":["), "info: %s", out);
-    rc = run("bench voxelize --min-res 8 --max-res 16 --runs 1 --no-gl", out, sizeof out);
-    TH_CHECK(rc == 0 && strstr(out, "Table 1") && strstr(out, "Table 2") && strstr(out, "builtin:cube"), "bench: %s", out);
+    rc = run("bench voxelize --min-res 8 --max-res 16 --runs 1 --no-gl --methods conservative,thin", out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "Table 1") && strstr(out, "Table 3") && strstr(out, "builtin:cube"), "bench: %s", out);
     /* the quad [-1,1]^2 fills N-2 columns per axis (one voxel of padding) and lies on the
        grid's middle plane, so it touches two slices: 2 (N-2)^2 = 72 and 392 */
-    TH_CHECK(strstr(out, "| builtin:quad | 72 | 392 |") != NULL, "quad counts: %s", out);
+    TH_CHECK(strstr(out, "| builtin:quad | conservative | 72 | 392 |") != NULL, "quad counts: %s", out);
+    TH_CHECK(strstr(out, "| builtin:quad | conservative | 0 / 0 | 0 / 0 |") != NULL, "conservative against itself: %s", out);
 }
 
 int main(void)
@@ -172,6 +192,7 @@ int main(void)
     TH_RUN(test_voxelize_exact_grid_json_binvox);
     TH_RUN(test_voxelize_backends_agree);
     TH_RUN(test_bad_files_and_arguments);
+    TH_RUN(test_voxelize_methods);
     TH_RUN(test_info_and_bench);
     {
         char cmd[300];
