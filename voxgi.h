@@ -225,6 +225,9 @@ typedef enum voxgi_method {
                                        conservative one with the box replaced by its inscribed
                                        octahedron (plane) and diamonds (projections) */
     VOXGI_METHOD_SOLID,             /* interior: see voxgi_solid_mode */
+    VOXGI_METHOD_SLICEMAP,          /* raster slicemap (Eisemann & Decoret 2006): along the axis,
+                                       every pixel centre a triangle covers (GL fill rule) sets
+                                       the slice floor(depth) of the triangle's plane there */
     VOXGI_METHOD_COUNT_
 } voxgi_method;
 VOXGI_API const char *voxgi_method_name(voxgi_method m);
@@ -245,8 +248,9 @@ typedef enum voxgi_solid_mode { VOXGI_SOLID_PARITY = 0, VOXGI_SOLID_VOTE, VOXGI_
 typedef struct voxgi_voxelize_desc {
     voxgi_grid grid;
     voxgi_method method;
-    voxgi_axis axis;              /* SOLID with PARITY: the counting axis; 0 = z */
+    voxgi_axis axis;              /* SOLID parity: the counting axis; SLICEMAP: the slicing axis; 0 = z */
     voxgi_solid_mode solid_mode;  /* SOLID: 0 = PARITY */
+    int atomic;                   /* SLICEMAP on GL: 0 = logic-op OR into RGBA32UI targets, 1 = imageAtomicOr */
 } voxgi_voxelize_desc;
 
 typedef struct voxgi_voxels voxgi_voxels;
@@ -491,6 +495,7 @@ VOXGI_API const char *voxgi_method_name(voxgi_method m)
     case VOXGI_METHOD_CONSERVATIVE: return "conservative";
     case VOXGI_METHOD_THIN: return "thin";
     case VOXGI_METHOD_SOLID: return "solid";
+    case VOXGI_METHOD_SLICEMAP: return "slicemap";
     case VOXGI_METHOD_COUNT_: break;
     }
     return "unknown";
@@ -898,8 +903,11 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 /* ===================================================================== GL loader and shaders
    voxgi's own GL types and enums (no GL header needed, none can clash) and a table of exactly
    the functions voxgi calls, filled from the caller's loader; the first missing name is
-   reported. voxgi binds programs, shader storage buffers 0..7 and the
-   dispatch-indirect buffer while it works and leaves all of them unbound (0) afterwards. */
+   reported. voxgi binds programs, shader storage buffers 0..7, the dispatch-indirect buffer,
+   texture and image unit 0, a vertex array and a framebuffer while it works and leaves all of
+   them unbound (0) afterwards; the raster slicemap also sets the viewport and turns off depth,
+   stencil and scissor tests, culling, blending, multisampling and rasterizer discard, and
+   restores each of them. It assumes the default polygon mode (fill) and colour masks. */
 #if defined(_WIN32) && !defined(_WIN64) && !defined(__MINGW64__)
 #define VOXGI__APIENTRY __stdcall
 #else
@@ -910,6 +918,8 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_MAJOR_VERSION 0x821B
 #define VOXGI__GL_MINOR_VERSION 0x821C
 #define VOXGI__GL_COMPUTE_SHADER 0x91B9
+#define VOXGI__GL_VERTEX_SHADER 0x8B31
+#define VOXGI__GL_FRAGMENT_SHADER 0x8B30
 #define VOXGI__GL_COMPILE_STATUS 0x8B81
 #define VOXGI__GL_LINK_STATUS 0x8B82
 #define VOXGI__GL_INFO_LOG_LENGTH 0x8B84
@@ -925,6 +935,35 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_RED_INTEGER 0x8D94
 #define VOXGI__GL_UNSIGNED_INT 0x1405
 #define VOXGI__GL_OUT_OF_MEMORY 0x0505
+#define VOXGI__GL_TEXTURE_2D_ARRAY 0x8C1A
+#define VOXGI__GL_TEXTURE_MIN_FILTER 0x2801
+#define VOXGI__GL_TEXTURE_MAG_FILTER 0x2800
+#define VOXGI__GL_NEAREST 0x2600
+#define VOXGI__GL_RGBA32UI 0x8D70
+#define VOXGI__GL_RGBA_INTEGER 0x8D99
+#define VOXGI__GL_FRAMEBUFFER 0x8D40
+#define VOXGI__GL_COLOR_ATTACHMENT0 0x8CE0
+#define VOXGI__GL_FRAMEBUFFER_COMPLETE 0x8CD5
+#define VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH 0x9310
+#define VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT 0x9311
+#define VOXGI__GL_FRAMEBUFFER_DEFAULT_LAYERS 0x9312
+#define VOXGI__GL_COLOR_LOGIC_OP 0x0BF2
+#define VOXGI__GL_OR 0x1507
+#define VOXGI__GL_TRIANGLES 0x0004
+#define VOXGI__GL_READ_WRITE 0x88BA
+#define VOXGI__GL_VIEWPORT 0x0BA2
+#define VOXGI__GL_MAX_DRAW_BUFFERS 0x8824
+#define VOXGI__GL_MAX_TEXTURE_SIZE 0x0D33
+#define VOXGI__GL_DEPTH_TEST 0x0B71
+#define VOXGI__GL_CULL_FACE 0x0B44
+#define VOXGI__GL_BLEND 0x0BE2
+#define VOXGI__GL_SCISSOR_TEST 0x0C11
+#define VOXGI__GL_STENCIL_TEST 0x0B90
+#define VOXGI__GL_RASTERIZER_DISCARD 0x8C89
+#define VOXGI__GL_MULTISAMPLE 0x809D
+#define VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT 0x0020
+#define VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT 0x0008
+#define VOXGI__GL_FRAMEBUFFER_BARRIER_BIT 0x0400
 
 /* X(return type, name without the gl prefix, parameters) */
 #define VOXGI__GL_FUNCS(X)                                                                               \
@@ -961,10 +1000,37 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, BindBuffer, (unsigned int target, unsigned int buffer))                                      \
     X(void, DispatchCompute, (unsigned int x, unsigned int y, unsigned int z))                           \
     X(void, DispatchComputeIndirect, (ptrdiff_t indirect))                                               \
-    X(void, MemoryBarrier, (unsigned int barriers))
+    X(void, MemoryBarrier, (unsigned int barriers))                                                      \
+    X(void, CreateVertexArrays, (int n, unsigned int *arrays))                                           \
+    X(void, DeleteVertexArrays, (int n, const unsigned int *arrays))                                     \
+    X(void, BindVertexArray, (unsigned int array))                                                       \
+    X(void, CreateFramebuffers, (int n, unsigned int *framebuffers))                                     \
+    X(void, DeleteFramebuffers, (int n, const unsigned int *framebuffers))                               \
+    X(void, BindFramebuffer, (unsigned int target, unsigned int framebuffer))                            \
+    X(void, NamedFramebufferTextureLayer, (unsigned int fb, unsigned int attachment, unsigned int texture, \
+                                           int level, int layer))                                        \
+    X(void, NamedFramebufferDrawBuffers, (unsigned int fb, int n, const unsigned int *buffers))          \
+    X(void, NamedFramebufferParameteri, (unsigned int fb, unsigned int pname, int param))                \
+    X(unsigned int, CheckNamedFramebufferStatus, (unsigned int fb, unsigned int target))                 \
+    X(void, CreateTextures, (unsigned int target, int n, unsigned int *textures))                        \
+    X(void, DeleteTextures, (int n, const unsigned int *textures))                                       \
+    X(void, TextureStorage3D, (unsigned int texture, int levels, unsigned int format, int w, int h, int d)) \
+    X(void, ClearTexImage, (unsigned int texture, int level, unsigned int format, unsigned int type,      \
+                            const void *data))                                                           \
+    X(void, BindImageTexture, (unsigned int unit, unsigned int texture, int level, unsigned char layered, \
+                               int layer, unsigned int access, unsigned int format))                     \
+    X(void, BindTextureUnit, (unsigned int unit, unsigned int texture))                                  \
+    X(void, TextureParameteri, (unsigned int texture, unsigned int pname, int param))                    \
+    X(void, Viewport, (int x, int y, int width, int height))                                             \
+    X(void, Enable, (unsigned int cap))                                                                  \
+    X(void, Disable, (unsigned int cap))                                                                 \
+    X(unsigned char, IsEnabled, (unsigned int cap))                                                      \
+    X(void, LogicOp, (unsigned int opcode))                                                              \
+    X(void, DrawArrays, (unsigned int mode, int first, int count))
 
 #define VOXGI__GL_PROGRAMS(X) \
-    X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce)
+    X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
+    X(slicemap) X(slicemap_unpack)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -1065,27 +1131,27 @@ static void voxgi__gl_map_log(const char *log, int count, const char *const *fil
     out[n] = 0;
 }
 
-/* Compiles one compute program from the runtime prelude (#version, defines) and the given
-   files in order; compile errors name the .glsl file and its own line numbers. */
-static voxgi_result voxgi__gl_program(voxgi_context *ctx, int count, const char *const *files, const char *const *texts,
-                                      unsigned int *out)
+/* Compiles and attaches one stage: the runtime prelude (#version, defines, the stage's
+   VOXGI_COMPUTE / VOXGI_VERTEX / VOXGI_FRAGMENT), then the files in order. */
+static voxgi_result voxgi__gl_stage(voxgi_context *ctx, unsigned int prog, unsigned int type, const char *define, int count,
+                                    const char *const *files, const char *const *texts)
 {
     voxgi__gl *gl = ctx->gl;
-    const char *src[2 * 8 + 1];
+    const char *src[2 * 8 + 2];
     char lines[8][32];
-    unsigned int sh, prog;
+    unsigned int sh;
     int ok = 0, len = 0, k;
-    if (count < 1 || count > 8) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "a program has 1 to 8 files");
     src[0] = "#version 450 core\n"
              "#define VOXGI_LOCAL_SIZE 64\n"
              "#define VOXGI_SMALL_COLUMNS 64\n";
+    src[1] = define;
     for (k = 0; k < count; k++) {
         snprintf(lines[k], sizeof lines[k], "\n#line %d\n", (k + 1) * VOXGI__GL_LINES_PER_FILE + 1);
-        src[1 + 2 * k] = lines[k];
-        src[2 + 2 * k] = texts[k];
+        src[2 + 2 * k] = lines[k];
+        src[3 + 2 * k] = texts[k];
     }
-    sh = gl->CreateShader(VOXGI__GL_COMPUTE_SHADER);
-    gl->ShaderSource(sh, 1 + 2 * count, src, NULL);
+    sh = gl->CreateShader(type);
+    gl->ShaderSource(sh, 2 + 2 * count, src, NULL);
     gl->CompileShader(sh);
     gl->GetShaderiv(sh, VOXGI__GL_COMPILE_STATUS, &ok);
     if (!ok) {
@@ -1096,10 +1162,27 @@ static voxgi_result voxgi__gl_program(voxgi_context *ctx, int count, const char 
         voxgi__gl_map_log(log, count, files, mapped, sizeof mapped);
         return voxgi__fail(ctx, VOXGI_ERR_GL_SHADER, "%s", mapped);
     }
-    prog = gl->CreateProgram();
     gl->AttachShader(prog, sh);
+    gl->DeleteShader(sh); /* freed with the program */
+    return VOXGI_OK;
+}
+
+/* A compute program, or (graphics) a vertex + fragment program, from the given files. */
+static voxgi_result voxgi__gl_program(voxgi_context *ctx, int graphics, int count, const char *const *files,
+                                      const char *const *texts, unsigned int *out)
+{
+    voxgi__gl *gl = ctx->gl;
+    unsigned int prog;
+    int ok = 0, len = 0;
+    voxgi_result r;
+    if (count < 1 || count > 8) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "a program has 1 to 8 files");
+    prog = gl->CreateProgram();
+    if (graphics) {
+        r = voxgi__gl_stage(ctx, prog, VOXGI__GL_VERTEX_SHADER, "#define VOXGI_VERTEX\n", count, files, texts);
+        if (r == VOXGI_OK) r = voxgi__gl_stage(ctx, prog, VOXGI__GL_FRAGMENT_SHADER, "#define VOXGI_FRAGMENT\n", count, files, texts);
+    } else r = voxgi__gl_stage(ctx, prog, VOXGI__GL_COMPUTE_SHADER, "#define VOXGI_COMPUTE\n", count, files, texts);
+    if (r != VOXGI_OK) { gl->DeleteProgram(prog); return r; }
     gl->LinkProgram(prog);
-    gl->DeleteShader(sh);
     gl->GetProgramiv(prog, VOXGI__GL_LINK_STATUS, &ok);
     if (!ok) {
         char log[3000];
@@ -1112,8 +1195,9 @@ static voxgi_result voxgi__gl_program(voxgi_context *ctx, int count, const char 
     return VOXGI_OK;
 }
 
-/* The program of embedded shader files ("a.glsl b.glsl": in that order), compiled on first use. */
-static voxgi_result voxgi__gl_get_program(voxgi_context *ctx, const char *file_list, unsigned int *prog)
+/* The program of embedded shader files ("a.glsl b.glsl": in that order), compiled on first
+   use; graphics: a vertex + fragment program, else compute. */
+static voxgi_result voxgi__gl_build(voxgi_context *ctx, int graphics, const char *file_list, unsigned int *prog)
 {
     const char *files[8], *texts[8];
     char names[8][64];
@@ -1135,7 +1219,12 @@ static voxgi_result voxgi__gl_get_program(voxgi_context *ctx, const char *file_l
         p += strcspn(p, " ");
         while (*p == ' ') p++;
     }
-    return voxgi__gl_program(ctx, count, files, texts, prog);
+    return voxgi__gl_program(ctx, graphics, count, files, texts, prog);
+}
+
+static voxgi_result voxgi__gl_get_program(voxgi_context *ctx, const char *file_list, unsigned int *prog)
+{
+    return voxgi__gl_build(ctx, 0, file_list, prog);
 }
 
 static unsigned int voxgi__gl_buffer(voxgi_context *ctx, size_t bytes, const void *data)
@@ -1289,6 +1378,7 @@ typedef struct voxgi__vox_shared {
     double inv_s;
     int thin;              /* VOXGI_METHOD_THIN: every set voxel also passes the thin tests */
     int solid_axis;        /* solid parity along this axis, else -1 */
+    int slice_axis;        /* raster slicemap along this axis, else -1 */
 } voxgi__vox_shared;
 
 /* Fills the triangle's range, coordinates, edges and normal; returns 0 when it misses the grid. */
@@ -1974,6 +2064,62 @@ static void voxgi__prefix_xor(uint32_t *bits, const voxgi_grid *g, int A)
     }
 }
 
+/* ----- CPU raster slicemap: the rasterizer's sampling, exactly. A pixel centre is covered when
+   strictly inside the projected triangle, or on an edge the fill rule gives it (the rule of
+   Mesa's rasterizer, measured: an edge whose CCW direction d has d_b < 0, or d_b == 0 and
+   d_a > 0; the same ownership as solid parity);
+   the slice is floor of the plane's depth there, computed in double in the same order as the
+   fragment shader (shaders/slicemap.glsl). GL differs only where a centre is within the
+   rasterizer's snapping (1/256 pixel) of an edge, or a depth within an ulp of a slice. */
+static double voxgi__slicemap_depth(const double q0[3], const double q1[3], const double q2[3], int A, double ca, double cb)
+{
+    int a = (A + 1) % 3, b = (A + 2) % 3;
+    double e1a = q1[a] - q0[a], e1b = q1[b] - q0[b], e1A = q1[A] - q0[A];
+    double fa = q2[a] - q0[a], fb = q2[b] - q0[b], fA = q2[A] - q0[A];
+    double na = e1b * fA - e1A * fb, nb = e1A * fa - e1a * fA, nA = e1a * fb - e1b * fa;
+    return q0[A] - (na * (ca - q0[a]) + nb * (cb - q0[b])) / nA;
+}
+
+static void voxgi__slicemap_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
+{
+    static const double centre[3] = {0.5, 0.5, 0.5};
+    voxgi__tri t;
+    int A = vs->slice_axis, a = (A + 1) % 3, b = (A + 2) % 3, i;
+    int32_t rel[3];
+    const double *q[3];
+    if (!voxgi__tri_setup(vs, ti, &t)) return; /* its fragments would all lie outside the grid */
+    voxgi__tri_resolve_signs(vs, &t, st);
+    if (t.sig[A] == 0) return; /* zero projected area: the rasterizer makes no fragments */
+    voxgi__tri_forms(&t);
+    for (i = 0; i < 3; i++) q[i] = vs->vp[t.v[i]].q;
+    for (rel[b] = 0; rel[b] <= t.hi[b] - t.lo[b]; rel[b]++) {
+        int32_t first, last;
+        voxgi__row_span(&t, A, rel[b], t.hi[a] - t.lo[a] + 1, &first, &last);
+        for (rel[a] = first; rel[a] <= last; rel[a]++) {
+            double z;
+            int covered = 1;
+            rel[A] = 0;
+            for (i = 0; i < t.proj_count[A] && covered; i++) {
+                const voxgi__lin *L = &t.proj[A][i];
+                int s = voxgi__form_sign(vs, &t, L, rel, centre, st);
+                if (s == 0) {
+                    double da = L->orient * t.e[(int)L->edge][a], db = L->orient * t.e[(int)L->edge][b];
+                    covered = db < 0 || (db == 0 && da > 0);
+                } else covered = s > 0;
+            }
+            if (!covered) continue;
+            z = floor(voxgi__slicemap_depth(q[0], q[1], q[2], A, (double)(t.lo[a] + rel[a]) + 0.5, (double)(t.lo[b] + rel[b]) + 0.5));
+            if (z >= 0 && z < (double)vs->grid->res[A]) {
+                int64_t v[3];
+                v[a] = (int64_t)t.lo[a] + rel[a];
+                v[b] = (int64_t)t.lo[b] + rel[b];
+                v[A] = (int64_t)z;
+                voxgi__set_voxel(vs, st, v[0], v[1], v[2]);
+            }
+        }
+    }
+}
+
 /* ----- worker pool. Phase 1 hands out triangles in chunks and lists the big ones (more than
    VOXGI__BIG_COLUMNS columns); phase 2 hands out blocks of their rows, so a few huge triangles
    keep every core busy too. OR is order-free: the bits do not depend on threads or schedule. */
@@ -2004,6 +2150,7 @@ static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress
             end = VOXGI__MIN(first + VOXGI__CHUNK, job->triangle_count);
             for (t = first; t < end; t++) {
                 if (job->vs->solid_axis >= 0) { voxgi__solid_triangle(job->vs, t, &st); continue; }
+                if (job->vs->slice_axis >= 0) { voxgi__slicemap_triangle(job->vs, t, &st); continue; }
                 if (!voxgi__tri_prepare(job->vs, t, &P, &st)) continue;
                 if ((int64_t)P.ext[(P.c + 1) % 3] * P.ext[(P.c + 2) % 3] > VOXGI__BIG_COLUMNS)
                     job->big[VOXGI__ATOMIC_ADD_SIZE(&job->big_count, (size_t)1)] = (uint32_t)t;
@@ -2223,6 +2370,7 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
     vs.vp = vp;
     vs.inv_s = 1.0 / desc->grid.voxel_size;
     vs.thin = desc->method == VOXGI_METHOD_THIN;
+    vs.slice_axis = desc->method == VOXGI_METHOD_SLICEMAP ? (desc->axis ? (int)desc->axis - 1 : 2) : -1;
     for (pass = 0; pass < passes && r == VOXGI_OK; pass++) {
         vs.bits = pass ? extra[pass - 1] : vox->bits;
         vs.solid_axis = -1;
@@ -2494,6 +2642,7 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
             vs.inv_s = 1.0 / g->voxel_size;
             vs.thin = d->method == VOXGI_METHOD_THIN;
             vs.solid_axis = solid_axis;
+            vs.slice_axis = -1;
             for (k = 0; k < nt; k++)
                 if (flags[k >> 5] & (1u << (k & 31u))) {
                     if (solid_axis >= 0) voxgi__solid_triangle(&vs, k, &st);
@@ -2624,6 +2773,116 @@ static voxgi_result voxgi__gl_solid_flood(voxgi_context *ctx, const voxgi__flat 
     return r;
 }
 
+/* The raster slicemap: triangles drawn along axis A into slicemap textures (128 slices per
+   RGBA32UI layer, up to 8 layers per draw through MRT, ORed by the logic op; or 32 slices per
+   R32UI layer with imageAtomicOr), then unpacked into the bit grid. */
+static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                       const voxgi_voxelize_desc *d, unsigned int *bits_out)
+{
+    static const unsigned int caps[] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST, VOXGI__GL_CULL_FACE,
+                                        VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP};
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    int A = d->axis ? (int)d->axis - 1 : 2, a = (A + 1) % 3, b = (A + 2) % 3, per_layer = d->atomic ? 32 : 128;
+    int layers = (g->res[A] + per_layer - 1) / per_layer, max_targets = 1, max_size = 0, viewport[4], i, first;
+    unsigned char was_enabled[8];
+    unsigned int tex = 0, fbo = 0, vao = 0, verts, tris, zero[4] = {0, 0, 0, 0}, p;
+    voxgi__gl_vprep *gv;
+    size_t v, bytes = (size_t)voxgi__grid_words(g) * 4;
+    voxgi_result r = voxgi__gl_build(ctx, 1, "triangle.glsl slicemap.glsl", &gl->prog_slicemap);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "slicemap_unpack.glsl", &gl->prog_slicemap_unpack);
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_DRAW_BUFFERS, &max_targets);
+    gl->GetIntegerv(VOXGI__GL_MAX_TEXTURE_SIZE, &max_size);
+    max_targets = VOXGI__MIN(max_targets, 8);
+    if (g->res[a] > max_size || g->res[b] > max_size)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d slicemap exceeds GL_MAX_TEXTURE_SIZE %d", g->res[a], g->res[b], max_size);
+    gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
+    if (!gv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
+    for (v = 0; v < f->vertex_count; v++)
+        for (i = 0; i < 3; i++) gv[v].q[i] = vp[v].q[i];
+    verts = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
+    tris = voxgi__gl_buffer(ctx, f->triangle_count * 3 * sizeof(uint32_t), f->tri);
+    voxgi__free(ctx, gv);
+    gl->CreateTextures(VOXGI__GL_TEXTURE_2D_ARRAY, 1, &tex);
+    gl->TextureStorage3D(tex, 1, d->atomic ? VOXGI__GL_R32UI : VOXGI__GL_RGBA32UI, g->res[a], g->res[b], layers);
+    /* integer textures are incomplete with the default linear filters: texelFetch would read 0 */
+    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
+    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
+    gl->ClearTexImage(tex, 0, d->atomic ? VOXGI__GL_RED_INTEGER : VOXGI__GL_RGBA_INTEGER, VOXGI__GL_UNSIGNED_INT, zero);
+    gl->CreateVertexArrays(1, &vao);
+    gl->CreateFramebuffers(1, &fbo);
+    gl->GetIntegerv(VOXGI__GL_VIEWPORT, viewport);
+    for (i = 0; i < 8; i++) {
+        was_enabled[i] = gl->IsEnabled(caps[i]);
+        gl->Disable(caps[i]);
+    }
+    p = gl->prog_slicemap;
+    gl->UseProgram(p);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_atomic"), d->atomic);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, verts);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, tris);
+    gl->BindVertexArray(vao);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+    gl->Viewport(0, 0, g->res[a], g->res[b]);
+    if (d->atomic) { /* no colour outputs: an attachment-less framebuffer of the slicemap's size */
+        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, g->res[a]);
+        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, g->res[b]);
+        gl->BindImageTexture(0, tex, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), 0);
+        gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+    } else {
+        gl->Enable(VOXGI__GL_COLOR_LOGIC_OP);
+        gl->LogicOp(VOXGI__GL_OR);
+        for (first = 0; first < layers && r == VOXGI_OK; first += max_targets) {
+            unsigned int bufs[8];
+            int n = VOXGI__MIN(max_targets, layers - first);
+            for (i = 0; i < 8; i++) {
+                gl->NamedFramebufferTextureLayer(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)i, i < n ? tex : 0, 0, i < n ? first + i : 0);
+                bufs[i] = i < n ? VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)i : 0;
+            }
+            gl->NamedFramebufferDrawBuffers(fbo, 8, bufs);
+            if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE)
+                r = voxgi__fail(ctx, VOXGI_ERR_GL, "the slicemap framebuffer is incomplete");
+            else {
+                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), first * per_layer);
+                gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+            }
+        }
+    }
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+    gl->BindVertexArray(0);
+    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    for (i = 0; i < 8; i++)
+        if (was_enabled[i]) gl->Enable(caps[i]);
+        else gl->Disable(caps[i]);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT);
+    if (r == VOXGI_OK) { /* slicemap columns -> the linear bit grid */
+        *bits_out = voxgi__gl_grid_buffer(ctx, bytes);
+        p = gl->prog_slicemap_unpack;
+        gl->UseProgram(p);
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_per_layer"), per_layer);
+        gl->BindTextureUnit(0, tex);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, *bits_out);
+        voxgi__gl_dispatch_items(gl, (uint64_t)g->res[a] * (uint64_t)g->res[b]);
+        gl->BindTextureUnit(0, 0);
+    }
+    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
+    voxgi__gl_unbind(gl);
+    gl->DeleteTextures(1, &tex);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    voxgi__gl_delete_buffer(ctx, verts);
+    voxgi__gl_delete_buffer(ctx, tris);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the raster slicemap");
+    if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
+    return r;
+}
+
 static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                        const voxgi_voxelize_desc *d, voxgi_voxels *out)
 {
@@ -2649,7 +2908,8 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "flood.glsl", &gl->prog_flood);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "bits_majority.glsl", &gl->prog_bits_majority);
     if (r != VOXGI_OK) return r;
-    if (d->method != VOXGI_METHOD_SOLID) r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info);
+    if (d->method == VOXGI_METHOD_SLICEMAP) r = voxgi__gl_slicemap(ctx, f, vp, d, &result);
+    else if (d->method != VOXGI_METHOD_SOLID) r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info);
     else if (d->solid_mode == VOXGI_SOLID_PARITY)
         r = voxgi__gl_solid_parity(ctx, f, vp, d, d->axis ? (int)d->axis - 1 : 2, &result, &out->info);
     else if (d->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__gl_solid_flood(ctx, f, vp, d, &result, &out->info);

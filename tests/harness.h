@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdarg.h>
 #include <string.h>
+#include <stdlib.h>
 
 typedef struct th_state { int passed, failed, skipped, cur_failed, cur_skipped; const char *cur; } th_state;
 static th_state th_;
@@ -40,7 +41,10 @@ static inline void th_skip(const char *fmt, ...)
 }
 
 #define TH_CHECK(cond, ...) do { if (!(cond)) th_fail_(__FILE__, __LINE__, __VA_ARGS__); } while (0)
+/* TH_ONLY=substring runs only the tests whose name contains it, TH_EXCLUDE=substring all others. */
 #define TH_RUN(fn) do {                                                       \
+        if (getenv("TH_ONLY") && !strstr(#fn, getenv("TH_ONLY"))) break;      \
+        if (getenv("TH_EXCLUDE") && strstr(#fn, getenv("TH_EXCLUDE"))) break; \
         th_.cur = #fn; th_.cur_failed = 0; th_.cur_skipped = 0;               \
         fn();                                                                 \
         if (th_.cur_failed) th_.failed++;                                     \

@@ -192,9 +192,10 @@ static const char *voxelize_help =
     "  --per-axis               with --res: each axis only as long as the mesh needs\n"
     "  --pad P                  with --res: P empty voxels around the mesh (default 1)\n"
     "  --grid OX OY OZ S NX NY NZ   exactly this grid: origin, voxel size, resolution\n"
-    "  --method NAME            conservative (default), thin (6-separating), solid\n"
+    "  --method NAME            conservative (default), thin (6-separating), solid, slicemap (raster,\n"
+    "                           logic-op OR on GL), slicemap-atomic (raster, imageAtomicOr on GL)\n"
     "  --solid-mode MODE        with --method solid: parity (default, closed meshes), vote, flood\n"
-    "  --axis x|y|z             with solid parity: the counting axis (default z)\n"
+    "  --axis x|y|z             solid parity: the counting axis; slicemap: the slicing axis (default z)\n"
     "  --backend auto|cpu|gl    (default auto: GL when a headless GL 4.5 context works)\n"
     "  --gl auto|egl|osmesa     headless GL context to create (default auto)\n"
     "  --threads T              CPU worker threads (default: one per core)\n"
@@ -229,7 +230,9 @@ static int cmd_voxelize(int argc, char **argv)
             if (strcmp(mname, "conservative") == 0) vd.method = VOXGI_METHOD_CONSERVATIVE;
             else if (strcmp(mname, "thin") == 0) vd.method = VOXGI_METHOD_THIN;
             else if (strcmp(mname, "solid") == 0) vd.method = VOXGI_METHOD_SOLID;
-            else return bad_arg("voxelize", "--method is conservative, thin or solid");
+            else if (strcmp(mname, "slicemap") == 0) vd.method = VOXGI_METHOD_SLICEMAP;
+            else if (strcmp(mname, "slicemap-atomic") == 0) { vd.method = VOXGI_METHOD_SLICEMAP; vd.atomic = 1; }
+            else return bad_arg("voxelize", "--method is conservative, thin, solid, slicemap or slicemap-atomic");
         } else if (strcmp(a, "--solid-mode") == 0 && i + 1 < argc) {
             const char *mode = argv[++i];
             if (strcmp(mode, "parity") == 0) vd.solid_mode = VOXGI_SOLID_PARITY;
@@ -394,7 +397,8 @@ static const char *bench_help =
     "whatever headless context exists - without a GPU that is Mesa's llvmpipe, a software\n"
     "rasteriser: not GPU timings. Table 3 counts missed / extra voxels against exact conservative\n"
     "voxelization (surface methods) or solid parity, the exact inside test of a closed mesh.\n"
-    "  --methods LIST              comma separated: conservative, thin, solid, solid-vote, solid-flood\n"
+    "  --methods LIST              comma separated: conservative, thin, solid, solid-vote, solid-flood,\n"
+    "                              slicemap, slicemap-atomic\n"
     "                              (default conservative)\n"
     "  --min-res N / --max-res N   range of N, powers of two (default 32..512)\n"
     "  --runs R                    runs per cell, median reported (default 3)\n"
@@ -402,11 +406,12 @@ static const char *bench_help =
     "  --gl auto|egl|osmesa        headless GL context kind\n"
     "  --csv FILE                  also write every measurement as CSV\n";
 
-typedef struct bench_method { const char *name; voxgi_method method; voxgi_solid_mode mode; } bench_method;
+typedef struct bench_method { const char *name; voxgi_method method; voxgi_solid_mode mode; int atomic; } bench_method;
 static const bench_method bench_methods[] = {
-    {"conservative", VOXGI_METHOD_CONSERVATIVE, VOXGI_SOLID_PARITY}, {"thin", VOXGI_METHOD_THIN, VOXGI_SOLID_PARITY},
-    {"solid", VOXGI_METHOD_SOLID, VOXGI_SOLID_PARITY},               {"solid-vote", VOXGI_METHOD_SOLID, VOXGI_SOLID_VOTE},
-    {"solid-flood", VOXGI_METHOD_SOLID, VOXGI_SOLID_FLOOD}};
+    {"conservative", VOXGI_METHOD_CONSERVATIVE, VOXGI_SOLID_PARITY, 0}, {"thin", VOXGI_METHOD_THIN, VOXGI_SOLID_PARITY, 0},
+    {"solid", VOXGI_METHOD_SOLID, VOXGI_SOLID_PARITY, 0},               {"solid-vote", VOXGI_METHOD_SOLID, VOXGI_SOLID_VOTE, 0},
+    {"solid-flood", VOXGI_METHOD_SOLID, VOXGI_SOLID_FLOOD, 0},          {"slicemap", VOXGI_METHOD_SLICEMAP, VOXGI_SOLID_PARITY, 0},
+    {"slicemap-atomic", VOXGI_METHOD_SLICEMAP, VOXGI_SOLID_PARITY, 1}};
 #define BENCH_METHOD_COUNT (int)(sizeof bench_methods / sizeof bench_methods[0])
 
 typedef struct bench_cell { double ms[3]; uint64_t voxels[3], missed, extra; int ok[3]; } bench_cell;
@@ -426,6 +431,7 @@ static int bench_measure(voxgi_context *ctx, const tool_mesh *tm, int n, const b
     if (voxgi_fit_grid(ctx, &tm->scene, &fit, &vd.grid) != VOXGI_OK) return 0;
     vd.method = bm->method;
     vd.solid_mode = bm->mode;
+    vd.atomic = bm->atomic;
     for (i = 0; i < runs; i++) {
         voxgi_voxels *vox = NULL;
         voxgi_voxels_info info;
