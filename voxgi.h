@@ -33,6 +33,9 @@
      } else fprintf(stderr, "%s\n", voxgi_last_error(ctx));
      voxgi_destroy(ctx);
 
+   METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
+   (raster); see voxgi_method. voxgi_voxels_reduce builds OR mipmaps.
+
    SEMANTICS (exact; see the part banners below for each capability)
      Grid: origin o (double[3]), voxel size s (double > 0), resolution n (int[3]). Voxel (i,j,k) is
      the CLOSED box [o+(i,j,k)s, o+(i+1,j+1,k+1)s]; its linear index is i + n.x*(j + n.y*k) in
@@ -61,7 +64,8 @@
      GL header is needed and none can clash; voxgi never opens libGL itself.
 
    VERSION HISTORY
-     0.1.0  context, scenes, grids, exact conservative voxelization (CPU and GL), binvox.
+     0.1.0  context, scenes, grids, exact conservative, thin and solid voxelization, raster
+            slicemap, OR mipmaps (CPU and GL), binvox.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -1143,7 +1147,7 @@ static voxgi_result voxgi__gl_stage(voxgi_context *ctx, unsigned int prog, unsig
     int ok = 0, len = 0, k;
     src[0] = "#version 450 core\n"
              "#define VOXGI_LOCAL_SIZE 64\n"
-             "#define VOXGI_SMALL_COLUMNS 64\n";
+             "#define VOXGI_SMALL_COLUMNS 64\n"; /* columns one invocation handles alone */
     src[1] = define;
     for (k = 0; k < count; k++) {
         snprintf(lines[k], sizeof lines[k], "\n#line %d\n", (k + 1) * VOXGI__GL_LINES_PER_FILE + 1);

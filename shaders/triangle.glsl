@@ -162,16 +162,16 @@ int sign_within(double v, double err)
 // A bound for this voxel alone (see voxgi__sign_tight): exact ties need no CPU help.
 int sign_tight(Lin L, int side, ivec3 rel)
 {
-    double v = 0.0LF, e = 0.0LF, g = 0.0LF;
+    double v = 0.0LF, bound = 0.0LF, g = 0.0LF;
     ivec3 off = side == 0 ? L.off0 : L.off1;
     for (int a = 0; a < 3; a++) {
         double ta = double(rel[a] + off[a]) - r[L.vertex][a];
         double dt = dr[L.vertex][a] + U * abs(ta);
         v += L.k[a] * ta;
-        e += abs(L.k[a]) * dt + L.dk[a] * abs(ta) + L.dk[a] * dt;
+        bound += abs(L.k[a]) * dt + L.dk[a] * abs(ta) + L.dk[a] * dt;
         g += abs(L.k[a] * ta);
     }
-    return sign_within(v, (e + gamma_(3.0LF) * g * 1.01LF) * 1.001LF);
+    return sign_within(v, (bound + gamma_(3.0LF) * g * 1.01LF) * 1.001LF);
 }
 
 // 1 pass, 0 fail, UNKNOWN when the bound cannot tell
@@ -228,3 +228,17 @@ ivec2 cell_range(double zlo, double zhi, int maxi)
     double f = ceil(zlo) - 1.0LF, l = floor(zhi);
     return ivec2(f < 0.0LF ? 0 : (f > double(maxi) ? maxi + 1 : int(f)), l > double(maxi) ? maxi : (l < 0.0LF ? -1 : int(l)));
 }
+
+// Pass 1 splits a big triangle's rows into chunks of columns, one per lane. Lanes beyond an
+// upper bound of its chunks (from the vertices' voxel ranges alone, whatever the column axis)
+// skip the triangle without its setup.
+const int CHUNK = 32;
+bool lane_has_work(uint t, uint lane)
+{
+    uint v0 = tri_index[3u * t], v1 = tri_index[3u * t + 1u], v2 = tri_index[3u * t + 2u];
+    ivec3 extent = min(max(vp[v0].hi.xyz, max(vp[v1].hi.xyz, vp[v2].hi.xyz)), u_res - 1) -
+              max(min(vp[v0].lo.xyz, min(vp[v1].lo.xyz, vp[v2].lo.xyz)), ivec3(0)) + 1;
+    int m = max(extent.x, max(extent.y, extent.z));
+    return lane < uint(m * ((m + CHUNK - 1) / CHUNK));
+}
+

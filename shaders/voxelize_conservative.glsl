@@ -13,18 +13,18 @@ int sign_thin_tight(Lin L, int side, ivec3 rel)
 {
     int known = 0;
     for (int j = 0; j < 3; j++) {
-        double v = 0.0LF, e = 0.0LF, gm = 0.0LF, sj = L.k[j] > 0.0LF ? 1.0LF : -1.0LF;
+        double v = 0.0LF, bound = 0.0LF, gm = 0.0LF, sj = L.k[j] > 0.0LF ? 1.0LF : -1.0LF;
         for (int a = 0; a < 3; a++) {
             double off = a == j ? 0.5LF + (side == 1 ? 0.5LF : -0.5LF) * sj : 0.5LF;
             double ta = (double(rel[a]) + off) - r[L.vertex][a];
             double dt = dr[L.vertex][a] + U * abs(ta);
             v += L.k[a] * ta;
-            e += abs(L.k[a]) * dt + L.dk[a] * abs(ta) + L.dk[a] * dt;
+            bound += abs(L.k[a]) * dt + L.dk[a] * abs(ta) + L.dk[a] * dt;
             gm += abs(L.k[a] * ta);
         }
-        if (abs(L.k[j]) <= L.dk[j]) e += L.dk[j];
-        e += gamma_(3.0LF) * gm * 1.01LF;
-        int s = sign_within(v, e == 0.0LF ? 0.0LF : e * 1.001LF);
+        if (abs(L.k[j]) <= L.dk[j]) bound += L.dk[j];
+        bound += gamma_(3.0LF) * gm * 1.01LF;
+        int s = sign_within(v, bound == 0.0LF ? 0.0LF : bound * 1.001LF);
         if (s == 0) return 0;
         if (s == 1) { if (side == 1) return 1; known++; }
         if (s == -1) { if (side == 0) return -1; known++; }
@@ -130,8 +130,6 @@ int prepare(uint t, out int single)
     return c;
 }
 
-const int CHUNK = 32;
-
 void main()
 {
     int single;
@@ -155,6 +153,7 @@ void main()
         uint lanes = gl_NumWorkGroups.y * gl_WorkGroupSize.x;
         uint lane = gl_WorkGroupID.y * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
         for (uint bi = gl_WorkGroupID.x; bi < big_count; bi += gl_NumWorkGroups.x) {
+            if (!lane_has_work(big_list[bi], lane)) continue;
             int c = prepare(big_list[bi], single);
             int a = (c + 1) % 3, b = (c + 2) % 3;
             int chunks = (ext[a] + CHUNK - 1) / CHUNK;

@@ -11,16 +11,16 @@ layout(std430, binding = 2) buffer Toggles { uint toggles[]; };
 // Sign of form L at the centre of voxel rel, with the per-voxel bound (see voxgi__form_sign).
 int centre_sign(Lin L, ivec3 rel)
 {
-    double v = 0.0LF, e = 0.0LF, gm = 0.0LF;
+    double v = 0.0LF, bound = 0.0LF, gm = 0.0LF;
     for (int a = 0; a < 3; a++) {
         double ta = (double(rel[a]) + 0.5LF) - r[L.vertex][a];
         double dt = dr[L.vertex][a] + U * abs(ta);
         v += L.k[a] * ta;
-        e += abs(L.k[a]) * dt + L.dk[a] * abs(ta) + L.dk[a] * dt;
+        bound += abs(L.k[a]) * dt + L.dk[a] * abs(ta) + L.dk[a] * dt;
         gm += abs(L.k[a] * ta);
     }
-    e += gamma_(3.0LF) * gm * 1.01LF;
-    return sign_within(v, e == 0.0LF ? 0.0LF : e * 1.001LF);
+    bound += gamma_(3.0LF) * gm * 1.01LF;
+    return sign_within(v, bound == 0.0LF ? 0.0LF : bound * 1.001LF);
 }
 
 // 1 when the triangle's projection along A owns the column centre, 0 when not, else UNKNOWN.
@@ -90,8 +90,6 @@ bool prepare_solid(uint t)
     return true;
 }
 
-const int CHUNK = 32;
-
 void main()
 {
     int A = u_solid_axis, a = (A + 1) % 3, b = (A + 2) % 3;
@@ -117,6 +115,7 @@ void main()
         uint lanes = gl_NumWorkGroups.y * gl_WorkGroupSize.x;
         uint lane = gl_WorkGroupID.y * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
         for (uint bi = gl_WorkGroupID.x; bi < big_count; bi += gl_NumWorkGroups.x) {
+            if (!lane_has_work(big_list[bi], lane)) continue;
             setup(big_list[bi]);
             forms();
             int chunks = (ext[a] + CHUNK - 1) / CHUNK;

@@ -463,9 +463,11 @@ static uint64_t popcount32(uint32_t x)
 static void print_header(const char *first, int ncols, const int *cols)
 {
     int n;
+    const char *bar = first;
     printf("| mesh | %s |", first);
     for (n = 0; n < ncols; n++) printf(" %d |", cols[n]);
     printf("\n|---|---|");
+    while ((bar = strchr(bar, '|')) != NULL) { printf("---|"); bar++; } /* one more per extra label column */
     for (n = 0; n < ncols; n++) printf("---:|");
     printf("\n");
 }
