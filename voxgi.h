@@ -1261,11 +1261,11 @@ static voxgi_result voxgi__gl_read_buffer(voxgi_context *ctx, unsigned int buffe
 }
 #endif /* VOXGI_NO_GL */
 
-/* ===================================================================== conservative voxelization: exact setup
-   A voxel is set exactly when its closed box meets the closed triangle. The test is Schwarz and
-   Seidel's (2010): bounding ranges, the triangle's plane against the box, and the triangle's
-   three axis-aligned projections against the box's squares, each an edge-function sign test at
-   a critical corner. Every sign is first computed in double with a rigorous forward error bound
+/* ===================================================================== voxelization: exact triangle tests
+   Conservative: a voxel is set exactly when its closed box meets the closed triangle. The test
+   is Schwarz and Seidel's (2010): bounding ranges, the triangle's plane against the box, and
+   the triangle's three axis-aligned projections against the box's squares, each an
+   edge-function sign test at a critical corner. Thin, solid and slicemap reuse the same forms. Every sign is first computed in double with a rigorous forward error bound
    (voxel units, relative to the triangle's own corner, so magnitudes stay small); a sign the
    bound cannot certify is recomputed exactly from the float vertices and the double grid. When
    all coordinates sit on a coarse binary lattice (integer or dyadic voxel coordinates, as in
@@ -2521,7 +2521,7 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
 }
 
 #ifndef VOXGI_NO_GL
-/* ----- GL conservative voxelizer (shaders/voxelize_conservative.glsl): the same tests and
+/* ----- GL voxelizers (shaders/voxelize_*.glsl, slicemap*.glsl, ...): the same tests and
    bounds as the CPU twin above. The CPU prepares each vertex (voxel coordinates and exact
    ranges, O(vertices)); the GPU does everything per triangle and per voxel; what its filter
    cannot decide comes back here and is decided exactly, so the bits equal the CPU's. */
