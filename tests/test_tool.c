@@ -186,7 +186,7 @@ static void test_info_and_bench(void)
 
 int main(void)
 {
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/voxgi_tool_XXXXXX");
+    snprintf(tmpdir, sizeof tmpdir, "%s/voxgi_tool_XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
     if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }
     TH_RUN(test_help_everywhere);
     TH_RUN(test_voxelize_exact_grid_json_binvox);
