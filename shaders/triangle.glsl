@@ -229,6 +229,17 @@ ivec2 cell_range(double zlo, double zhi, int maxi)
     return ivec2(f < 0.0LF ? 0 : (f > double(maxi) ? maxi + 1 : int(f)), l > double(maxi) ? maxi : (l < 0.0LF ? -1 : int(l)));
 }
 
+// Pass 0 lists a triangle of more than VOXGI_SMALL_COLUMNS columns (rows along b, columns
+// along a) for pass 1, whose indirect dispatch gets one work group row per listed triangle.
+bool listed_as_big(uint t, int a, int b)
+{
+    if (ext[a] * ext[b] <= VOXGI_SMALL_COLUMNS) return false;
+    uint at = atomicAdd(big_count, 1u);
+    big_list[at] = t;
+    atomicMax(big_dispatch, min(at + 1u, 65535u));
+    return true;
+}
+
 // Pass 1 splits a big triangle's rows into chunks of columns, one per lane. Lanes beyond an
 // upper bound of its chunks (from the vertices' voxel ranges alone, whatever the column axis)
 // skip the triangle without its setup.

@@ -139,12 +139,7 @@ void main()
         int c = prepare(t, single);
         if (c < 0) return;
         int a = (c + 1) % 3, b = (c + 2) % 3;
-        if (ext[a] * ext[b] > VOXGI_SMALL_COLUMNS) {
-            uint at = atomicAdd(big_count, 1u);
-            big_list[at] = t;
-            atomicMax(big_dispatch, min(at + 1u, 65535u));
-            return;
-        }
+        if (listed_as_big(t, a, b)) return;
         for (int rb = 0; rb < ext[b]; rb++) {
             ivec2 span = sig[c] != 0 ? row_span(c, rb) : ivec2(0, ext[a] - 1);
             do_columns(c, single, rb, span.x, span.y);

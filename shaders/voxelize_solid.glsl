@@ -96,12 +96,7 @@ void main()
     if (u_pass == 0) {
         uint t = u_tri_offset + gl_GlobalInvocationID.x;
         if (t >= u_tri_count || !prepare_solid(t)) return;
-        if (ext[a] * ext[b] > VOXGI_SMALL_COLUMNS) {
-            uint at = atomicAdd(big_count, 1u);
-            big_list[at] = t;
-            atomicMax(big_dispatch, min(at + 1u, 65535u));
-            return;
-        }
+        if (listed_as_big(t, a, b)) return;
         for (int rb = 0; rb < ext[b]; rb++) {
             ivec2 span = row_span(A, rb);
             for (int ra = span.x; ra <= span.y; ra++) {
