@@ -2528,7 +2528,6 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
 typedef struct voxgi__gl_vprep { double q[4]; int32_t lo[4], hi[4]; float w[4], pad[4]; } voxgi__gl_vprep; /* std430 */
 
 #define VOXGI__GL_PAIR_CAPACITY 65536u
-#define VOXGI__GL_SPLIT_Y 16u
 
 static void voxgi__gl_unbind(voxgi__gl *gl)
 {
@@ -2591,7 +2590,7 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
        cannot be patched the way set bits can */
     for (attempt = 0; attempt < 2; attempt++) {
         memset(control, 0, sizeof control);
-        control[1] = VOXGI__GL_SPLIT_Y;
+        control[1] = 1; /* work groups per big triangle: raised by pass 0 */
         control[2] = 1;
         buf[2] = voxgi__gl_grid_buffer(ctx, bytes);
         buf[3] = voxgi__gl_buffer(ctx, sizeof control, control);

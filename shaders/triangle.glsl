@@ -230,20 +230,25 @@ ivec2 cell_range(double zlo, double zhi, int maxi)
 }
 
 // Pass 0 lists a triangle of more than VOXGI_SMALL_COLUMNS columns (rows along b, columns
-// along a) for pass 1, whose indirect dispatch gets one work group row per listed triangle.
+// along a) for pass 1, and sizes pass 1's indirect dispatch: one work group column per listed
+// triangle, and enough work groups per triangle that no lane gets more than two chunks
+// (VOXGI_SMALL_COLUMNS columns). Bounded work per invocation is not only speed: llvmpipe cuts
+// off invocations that loop too long and their voxels would be lost without a trace.
+const int CHUNK = 32;
 bool listed_as_big(uint t, int a, int b)
 {
     if (ext[a] * ext[b] <= VOXGI_SMALL_COLUMNS) return false;
     uint at = atomicAdd(big_count, 1u);
     big_list[at] = t;
     atomicMax(big_dispatch, min(at + 1u, 65535u));
+    uint items = uint(ext[b] * ((ext[a] + CHUNK - 1) / CHUNK));
+    atomicMax(split_y, min((items + uint(2 * VOXGI_LOCAL_SIZE) - 1u) / uint(2 * VOXGI_LOCAL_SIZE), 65535u));
     return true;
 }
 
 // Pass 1 splits a big triangle's rows into chunks of columns, one per lane. Lanes beyond an
 // upper bound of its chunks (from the vertices' voxel ranges alone, whatever the column axis)
 // skip the triangle without its setup.
-const int CHUNK = 32;
 bool lane_has_work(uint t, uint lane)
 {
     uint v0 = tri_index[3u * t], v1 = tri_index[3u * t + 1u], v2 = tri_index[3u * t + 2u];

@@ -197,6 +197,12 @@ static void test_gl_equals_cpu_quads_and_huge(void)
     m.pos[2] = 0.3f; m.pos[5] = -0.2f;
     cubic(&g, -1.05, 2.1, 256);
     compare(&m, &g, "tilted simple quad 256^3");
+    /* 1024^3: about a million columns per triangle, so each pass-1 lane must keep its share
+       small (llvmpipe cuts off invocations that loop too long, losing their voxels) */
+    g_method = VOXGI_METHOD_THIN;
+    cubic(&g, -1.05, 2.1, 1024);
+    compare_method(&m, &g, "tilted simple quad 1024^3");
+    g_method = VOXGI_METHOD_CONSERVATIVE;
     vxt_shape_free(&m);
     vxt_shape_quad(&m, 40);
     cubic(&g, -1.05, 2.1, 64);
