@@ -232,6 +232,11 @@ typedef enum voxgi_method {
     VOXGI_METHOD_SLICEMAP,          /* raster slicemap (Eisemann & Decoret 2006): along the axis,
                                        every pixel centre a triangle covers (GL fill rule) sets
                                        the slice floor(depth) of the triangle's plane there */
+    VOXGI_METHOD_ATLAS,             /* texture atlas points (Thiedemann et al. 2011), drawn as GL
+                                       points: every atlas texel whose centre a triangle's chart
+                                       covers (GL fill rule) is a point of that triangle (same
+                                       barycentrics), and sets the voxel floor(point) */
+    VOXGI_METHOD_ATLAS_COMPUTE,     /* the same points, one compute invocation each: the same set */
     VOXGI_METHOD_COUNT_
 } voxgi_method;
 VOXGI_API const char *voxgi_method_name(voxgi_method m);
@@ -249,12 +254,24 @@ typedef enum voxgi_axis { VOXGI_AXIS_DEFAULT = 0, VOXGI_AXIS_X, VOXGI_AXIS_Y, VO
    are closed by the surface itself. */
 typedef enum voxgi_solid_mode { VOXGI_SOLID_PARITY = 0, VOXGI_SOLID_VOTE, VOXGI_SOLID_FLOOD } voxgi_solid_mode;
 
+/* Texture atlas charts. AUTO: voxgi's own atlas, one chart per triangle at one scale for all
+   (area-proportional), longest edge on a row of texel centres, packed on shelves at the largest
+   scale that fits; a triangle whose chart would be under 1.25 texels long gets a chart whose
+   centroid is a texel centre, so every triangle has at least one point. MESH: the meshes' own
+   uvs (texel = uv * atlas_size); where charts overlap, the triangle drawn last (the highest
+   index) owns the texel, as in GL. Chart corners are rounded to 1/256 texel, the rasterizer's
+   subpixel grid, so GL and CPU see the same triangles. */
+typedef enum voxgi_atlas_uv { VOXGI_ATLAS_AUTO = 0, VOXGI_ATLAS_MESH } voxgi_atlas_uv;
+
 typedef struct voxgi_voxelize_desc {
     voxgi_grid grid;
     voxgi_method method;
     voxgi_axis axis;              /* SOLID parity: the counting axis; SLICEMAP: the slicing axis; 0 = z */
     voxgi_solid_mode solid_mode;  /* SOLID: 0 = PARITY */
-    int atomic;                   /* SLICEMAP on GL: 0 = logic-op OR into RGBA32UI targets, 1 = imageAtomicOr */
+    int atomic;                   /* SLICEMAP, ATLAS on GL: 0 = logic-op OR into RGBA32UI targets, 1 = imageAtomicOr */
+    int atlas_size;               /* ATLAS*: texels per side (at most 16384); 0 = from the grid: the
+                                     size that holds AUTO charts at 2 texels per voxel edge, at most 8192 */
+    voxgi_atlas_uv atlas_uv;      /* ATLAS*: 0 = AUTO */
 } voxgi_voxelize_desc;
 
 typedef struct voxgi_voxels voxgi_voxels;
@@ -268,6 +285,9 @@ typedef struct voxgi_voxels_info {
     uint64_t exact_triangles;   /* GL only: triangles handed whole to the exact CPU path */
     double ms;                  /* wall time of voxgi_voxelize */
     size_t bytes;               /* size of the bit grid */
+    int atlas_size;             /* ATLAS*: texels per side */
+    double atlas_scale;         /* ATLAS* with AUTO charts: texels per voxel edge */
+    uint64_t atlas_points;      /* ATLAS*: covered texels */
 } voxgi_voxels_info;
 
 VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene,
@@ -354,6 +374,8 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #define VOXGI__ATOMIC_ADD_SIZE(p, v) __atomic_fetch_add((p), (v), __ATOMIC_RELAXED)
 #define VOXGI__ATOMIC_LOAD_INT(p) __atomic_load_n((p), __ATOMIC_RELAXED)
 #define VOXGI__ATOMIC_STORE_INT(p, v) __atomic_store_n((p), (v), __ATOMIC_RELAXED)
+#define VOXGI__ATOMIC_LOAD_U32(p) __atomic_load_n((p), __ATOMIC_RELAXED)
+#define VOXGI__ATOMIC_CAS_U32(p, expected, v) __atomic_compare_exchange_n((p), (expected), (v), 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED)
 #else
 #ifndef VOXGI_NO_THREADS
 #define VOXGI_NO_THREADS
@@ -362,6 +384,8 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #define VOXGI__ATOMIC_ADD_SIZE(p, v) ((*(p) += (v)) - (v))
 #define VOXGI__ATOMIC_LOAD_INT(p) (*(p))
 #define VOXGI__ATOMIC_STORE_INT(p, v) (*(p) = (v))
+#define VOXGI__ATOMIC_LOAD_U32(p) (*(p))
+#define VOXGI__ATOMIC_CAS_U32(p, expected, v) (*(p) = (v), 1) /* single-threaded: no one else writes */
 #endif
 
 #define VOXGI__MIN(a, b) ((a) < (b) ? (a) : (b))
@@ -500,6 +524,8 @@ VOXGI_API const char *voxgi_method_name(voxgi_method m)
     case VOXGI_METHOD_THIN: return "thin";
     case VOXGI_METHOD_SOLID: return "solid";
     case VOXGI_METHOD_SLICEMAP: return "slicemap";
+    case VOXGI_METHOD_ATLAS: return "atlas";
+    case VOXGI_METHOD_ATLAS_COMPUTE: return "atlas-compute";
     case VOXGI_METHOD_COUNT_: break;
     }
     return "unknown";
@@ -784,16 +810,19 @@ typedef struct voxgi__flat {
     size_t vertex_count, triangle_count;
     float *pos;        /* 3 per vertex */
     uint32_t *tri;     /* 3 per triangle, into pos */
+    float *uv;         /* 2 per vertex, when asked for */
 } voxgi__flat;
 
 static void voxgi__flat_free(voxgi_context *ctx, voxgi__flat *f)
 {
     voxgi__free(ctx, f->pos);
     voxgi__free(ctx, f->tri);
+    voxgi__free(ctx, f->uv);
     memset(f, 0, sizeof *f);
 }
 
-static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene, voxgi__flat *f)
+/* One vertex and index array for the whole scene; with want_uv, every mesh must have finite uvs. */
+static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene, int want_uv, voxgi__flat *f)
 {
     size_t mi, t, v, nt = 0, nv = 0, tri_at = 0, vert_at = 0;
     voxgi_result r = voxgi__validate(ctx, scene, &nt, &nv);
@@ -801,7 +830,8 @@ static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene,
     if (r != VOXGI_OK) return r;
     f->pos = (float *)voxgi__alloc_array(ctx, nv, 3 * sizeof(float), 0);
     f->tri = (uint32_t *)voxgi__alloc_array(ctx, nt, 3 * sizeof(uint32_t), 0);
-    if (!f->pos || !f->tri) {
+    if (want_uv) f->uv = (float *)voxgi__alloc_array(ctx, nv, 2 * sizeof(float), 0);
+    if (!f->pos || !f->tri || (want_uv && !f->uv)) {
         voxgi__flat_free(ctx, f);
         return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)nt);
     }
@@ -809,6 +839,18 @@ static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene,
         const voxgi_mesh *m = &scene->meshes[mi];
         size_t mt = voxgi__mesh_triangles(m);
         for (v = 0; v < m->vertex_count; v++) memcpy(f->pos + 3 * (vert_at + v), voxgi__vertex(m, v), 3 * sizeof(float));
+        if (want_uv && m->vertex_count && !m->uvs) {
+            voxgi__flat_free(ctx, f);
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu has no uvs, and its own uvs were asked for", (unsigned long)mi);
+        }
+        for (v = 0; want_uv && v < m->vertex_count; v++) {
+            const float *uv = (const float *)(const void *)((const unsigned char *)m->uvs + v * (m->uv_stride ? m->uv_stride : 8));
+            if (!isfinite(uv[0]) || !isfinite(uv[1])) {
+                voxgi__flat_free(ctx, f);
+                return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu, vertex %lu: the uv is not finite", (unsigned long)mi, (unsigned long)v);
+            }
+            memcpy(f->uv + 2 * (vert_at + v), uv, 2 * sizeof(float));
+        }
         for (t = 0; t < mt; t++) {
             int c;
             for (c = 0; c < 3; c++) f->tri[3 * (tri_at + t) + (size_t)c] = (uint32_t)(vert_at + voxgi__mesh_index(m, t, c));
@@ -954,6 +996,9 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_COLOR_LOGIC_OP 0x0BF2
 #define VOXGI__GL_OR 0x1507
 #define VOXGI__GL_TRIANGLES 0x0004
+#define VOXGI__GL_POINTS 0x0000
+#define VOXGI__GL_PROGRAM_POINT_SIZE 0x8642
+#define VOXGI__GL_TEXTURE_2D 0x0DE1
 #define VOXGI__GL_READ_WRITE 0x88BA
 #define VOXGI__GL_VIEWPORT 0x0BA2
 #define VOXGI__GL_MAX_DRAW_BUFFERS 0x8824
@@ -1019,6 +1064,8 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, CreateTextures, (unsigned int target, int n, unsigned int *textures))                        \
     X(void, DeleteTextures, (int n, const unsigned int *textures))                                       \
     X(void, TextureStorage3D, (unsigned int texture, int levels, unsigned int format, int w, int h, int d)) \
+    X(void, TextureStorage2D, (unsigned int texture, int levels, unsigned int format, int w, int h))       \
+    X(void, NamedFramebufferTexture, (unsigned int fb, unsigned int attachment, unsigned int texture, int level)) \
     X(void, ClearTexImage, (unsigned int texture, int level, unsigned int format, unsigned int type,      \
                             const void *data))                                                           \
     X(void, BindImageTexture, (unsigned int unit, unsigned int texture, int level, unsigned char layered, \
@@ -1034,7 +1081,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(slicemap) X(slicemap_unpack)
+    X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -2263,6 +2310,334 @@ static voxgi_result voxgi__prep_vertices(voxgi_context *ctx, const voxgi__flat *
     return VOXGI_OK;
 }
 
+/* ----- a parallel loop over items [0, count) in chunks, on the calling thread and
+   (thread_count - 1) helpers; fn must be safe to run concurrently on disjoint ranges. */
+typedef void (*voxgi__range_fn)(void *user, size_t first, size_t end);
+typedef struct voxgi__loop { voxgi__range_fn fn; void *user; size_t count, chunk, next; } voxgi__loop;
+
+static void *voxgi__loop_work(void *p)
+{
+    voxgi__loop *l = (voxgi__loop *)p;
+    for (;;) {
+        size_t first = VOXGI__ATOMIC_ADD_SIZE(&l->next, l->chunk);
+        if (first >= l->count) break;
+        l->fn(l->user, first, VOXGI__MIN(first + l->chunk, l->count));
+    }
+    return NULL;
+}
+
+static void voxgi__parallel(voxgi_context *ctx, size_t count, size_t chunk, voxgi__range_fn fn, void *user)
+{
+    voxgi__loop l;
+    int started = 0;
+#ifndef VOXGI_NO_THREADS
+    pthread_t threads[256];
+    int i, want = ctx->desc.thread_count - 1;
+    if ((size_t)want > count / chunk) want = (int)(count / chunk);
+#else
+    (void)ctx;
+#endif
+    l.fn = fn;
+    l.user = user;
+    l.count = count;
+    l.chunk = chunk ? chunk : 1;
+    l.next = 0;
+#ifndef VOXGI_NO_THREADS
+    for (i = 0; i < want && i < 256; i++) {
+        if (pthread_create(&threads[i], NULL, voxgi__loop_work, &l) != 0) break;
+        started++;
+    }
+#endif
+    voxgi__loop_work(&l);
+#ifndef VOXGI_NO_THREADS
+    for (i = 0; i < started; i++) pthread_join(threads[i], NULL);
+#else
+    (void)started;
+#endif
+}
+
+/* ===================================================================== voxelization: texture atlas
+   Thiedemann et al. 2011, Buchacher's methods B (atlas points drawn as GL points) and D (one
+   compute invocation per point). The atlas is rasterized once: each texel whose centre a chart
+   covers (the GL fill rule: strictly inside, or on an edge whose CCW direction d has d_y < 0, or
+   d_y == 0 and d_x > 0) holds that triangle (the last one drawn, where charts overlap). Every
+   such texel is a point: the texel centre's barycentrics in the chart, applied to the triangle in
+   voxel coordinates, in double, in one fixed order that shaders/atlas.glsl repeats; it sets the
+   voxel floor(point) when that lies in the grid. Chart corners are multiples of 1/256 texel
+   below 2^14, so coverage is decided exactly in double on both sides. The result lies within
+   one voxel of the conservative set (a point computed in double may round across a face). */
+#define VOXGI__ATLAS_MAX 16384
+#define VOXGI__ATLAS_MAX_DEFAULT 8192
+#define VOXGI__ATLAS_TEXELS_PER_VOXEL 2.0
+#define VOXGI__ATLAS_TINY 1.25 /* charts shorter than this (texels) are centred on a texel centre */
+
+typedef struct voxgi__atlas {
+    int size;         /* texels per side */
+    int view;         /* power of two >= size: the raster viewport, so texel coordinates map
+                         to window coordinates without rounding */
+    double scale;     /* AUTO: texels per voxel edge */
+    float *uv;        /* 6 per triangle: the chart's corners in texels */
+} voxgi__atlas;
+
+static int voxgi__is_atlas(voxgi_method m) { return m == VOXGI_METHOD_ATLAS || m == VOXGI_METHOD_ATLAS_COMPUTE; }
+
+static double voxgi__snap256(double x) { return floor(x * 256.0 + 0.5) / 256.0; }
+
+/* A triangle's chart before scaling: its longest edge (from corner `first`) along u. */
+typedef struct voxgi__chart { double len, apex_u, height; uint32_t tri; int first; } voxgi__chart;
+
+static void voxgi__chart_shape(const voxgi__vprep *vp, const uint32_t *tri, uint32_t t, voxgi__chart *c)
+{
+    double best = -1;
+    int k, a;
+    c->tri = t;
+    c->first = 0;
+    for (k = 0; k < 3; k++) { /* the longest edge */
+        const double *p = vp[tri[3 * t + (uint32_t)k]].q, *q = vp[tri[3 * t + (uint32_t)(k + 1) % 3]].q;
+        double l2 = 0;
+        for (a = 0; a < 3; a++) l2 += (q[a] - p[a]) * (q[a] - p[a]);
+        if (l2 > best) { best = l2; c->first = k; }
+    }
+    c->len = sqrt(best);
+    c->apex_u = c->height = 0;
+    if (c->len > 0) {
+        const double *A = vp[tri[3 * t + (uint32_t)c->first]].q, *B = vp[tri[3 * t + (uint32_t)(c->first + 1) % 3]].q,
+                     *C = vp[tri[3 * t + (uint32_t)(c->first + 2) % 3]].q;
+        double e[3], f[3], x[3], along = 0, cross2 = 0;
+        for (a = 0; a < 3; a++) { e[a] = B[a] - A[a]; f[a] = C[a] - A[a]; }
+        for (a = 0; a < 3; a++) {
+            x[a] = e[(a + 1) % 3] * f[(a + 2) % 3] - e[(a + 2) % 3] * f[(a + 1) % 3];
+            along += e[a] * f[a];
+            cross2 += x[a] * x[a];
+        }
+        c->apex_u = VOXGI__MIN(VOXGI__MAX(along / c->len, 0.0), c->len);
+        c->height = sqrt(cross2) / c->len;
+    }
+}
+
+/* The chart's box in texels at `scale`: the corners lie at least half a texel inside it, so no
+   texel centre is shared by two charts. */
+static void voxgi__chart_box(const voxgi__chart *c, double scale, double *w, double *h)
+{
+    if (c->len * scale < VOXGI__ATLAS_TINY) { *w = *h = 3; return; }
+    *w = ceil(c->len * scale + 1.3);
+    *h = ceil(VOXGI__MAX(c->height * scale, 1.0 / 32) + 1.05);
+}
+
+/* Writes the chart's corners (texels, CCW: A, B on a row of texel centres, apex above) into uv. */
+static void voxgi__chart_place(const voxgi__chart *c, double scale, double x, double y, float *uv)
+{
+    double u[3], v[3], ox, oy;
+    int k;
+    if (c->len * scale < VOXGI__ATLAS_TINY) { /* tiny: a chart at least 1/16 texel wide and high, centroid on (x+1.5, y+1.5) */
+        u[0] = 0;
+        u[1] = VOXGI__MAX(voxgi__snap256(c->len * scale), 1.0 / 16);
+        u[2] = VOXGI__MIN(voxgi__snap256(c->apex_u * scale), u[1]);
+        v[0] = v[1] = 0;
+        v[2] = VOXGI__MAX(voxgi__snap256(c->height * scale), 1.0 / 16);
+        ox = voxgi__snap256(x + 1.5 - (u[1] + u[2]) / 3);
+        oy = voxgi__snap256(y + 1.5 - v[2] / 3);
+    } else {
+        u[0] = 0;
+        u[1] = voxgi__snap256(c->len * scale);
+        u[2] = voxgi__snap256(c->apex_u * scale);
+        v[0] = v[1] = 0;
+        v[2] = voxgi__snap256(VOXGI__MAX(c->height * scale, 1.0 / 32));
+        ox = x + 0.75;
+        oy = y + 0.5;
+    }
+    for (k = 0; k < 3; k++) {
+        int corner = (c->first + k) % 3;
+        uv[2 * corner] = (float)(ox + u[k]);
+        uv[2 * corner + 1] = (float)(oy + v[k]);
+    }
+}
+
+/* Shelf packing in the charts' order; 1 when all fit into size x size. With uv, places them. */
+static int voxgi__atlas_pack(const voxgi__chart *charts, size_t n, double scale, int size, float *uv)
+{
+    double x = 0, y = 0, shelf = 0;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        double w, h;
+        voxgi__chart_box(&charts[i], scale, &w, &h);
+        if (w > size || h > size) return 0;
+        if (x + w > size) { y += shelf; x = 0; shelf = 0; }
+        if (y + h > size) return 0;
+        if (uv) voxgi__chart_place(&charts[i], scale, x, y, uv + 6 * (size_t)charts[i].tri);
+        x += w;
+        shelf = VOXGI__MAX(shelf, h);
+    }
+    return 1;
+}
+
+static int voxgi__chart_by_height(const void *pa, const void *pb)
+{
+    const voxgi__chart *a = (const voxgi__chart *)pa, *b = (const voxgi__chart *)pb;
+    if (a->height != b->height) return a->height > b->height ? -1 : 1;
+    return a->tri < b->tri ? -1 : (a->tri > b->tri);
+}
+
+/* Builds the atlas: its size, and every triangle's chart corners. */
+static voxgi_result voxgi__atlas_build(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                       const voxgi_voxelize_desc *d, voxgi__atlas *at)
+{
+    size_t n = f->triangle_count, i;
+    memset(at, 0, sizeof *at);
+    if (d->atlas_size < 0 || d->atlas_size > VOXGI__ATLAS_MAX)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "atlas_size %d is outside 1..%d (0 = default)", d->atlas_size, VOXGI__ATLAS_MAX);
+    if ((unsigned)d->atlas_uv > (unsigned)VOXGI_ATLAS_MESH)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown atlas_uv %d", (int)d->atlas_uv);
+    at->uv = (float *)voxgi__alloc_array(ctx, n ? n : 1, 6 * sizeof(float), 1);
+    if (!at->uv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu atlas charts", (unsigned long)n);
+    if (d->atlas_uv == VOXGI_ATLAS_MESH) {
+        at->size = d->atlas_size ? d->atlas_size : 1024;
+        for (i = 0; i < 3 * n; i++) {
+            const float *uv = f->uv + 2 * (size_t)f->tri[i];
+            at->uv[2 * i] = (float)voxgi__snap256(VOXGI__MIN(VOXGI__MAX((double)uv[0], 0.0), 1.0) * at->size);
+            at->uv[2 * i + 1] = (float)voxgi__snap256(VOXGI__MIN(VOXGI__MAX((double)uv[1], 0.0), 1.0) * at->size);
+        }
+    } else {
+        voxgi__chart *charts = (voxgi__chart *)voxgi__alloc_array(ctx, n ? n : 1, sizeof *charts, 0);
+        double lo = 0, hi;
+        int steps;
+        if (!charts) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu atlas charts", (unsigned long)n);
+        for (i = 0; i < n; i++) voxgi__chart_shape(vp, f->tri, (uint32_t)i, &charts[i]);
+        qsort(charts, n, sizeof *charts, voxgi__chart_by_height);
+        at->size = d->atlas_size;
+        if (!at->size) { /* the side that holds the charts at 2 texels per voxel, with 10% to spare for shelves */
+            double area = 0, w, h;
+            for (i = 0; i < n; i++) {
+                voxgi__chart_box(&charts[i], VOXGI__ATLAS_TEXELS_PER_VOXEL, &w, &h);
+                area += w * h;
+            }
+            at->size = (int)VOXGI__MIN(ceil(sqrt(area * 1.1) / 64) * 64, (double)VOXGI__ATLAS_MAX_DEFAULT);
+            at->size = VOXGI__MAX(at->size, 64);
+        }
+        if (!voxgi__atlas_pack(charts, n, 0, at->size, NULL)) {
+            voxgi__free(ctx, charts);
+            return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d atlas cannot hold %lu charts of 3x3 texels; raise atlas_size",
+                               at->size, at->size, (unsigned long)n);
+        }
+        /* the largest scale that fits: doubling, then bisection */
+        for (hi = 1.0 / 1024, steps = 0; steps < 80 && voxgi__atlas_pack(charts, n, hi, at->size, NULL); steps++) { lo = hi; hi *= 2; }
+        for (steps = 0; steps < 40; steps++) {
+            double mid = 0.5 * (lo + hi);
+            if (voxgi__atlas_pack(charts, n, mid, at->size, NULL)) lo = mid;
+            else hi = mid;
+        }
+        at->scale = lo;
+        voxgi__atlas_pack(charts, n, lo, at->size, at->uv);
+        voxgi__free(ctx, charts);
+        if (!d->atlas_size && lo < VOXGI__ATLAS_TEXELS_PER_VOXEL)
+            voxgi__log(ctx, VOXGI_LOG_INFO, "the default atlas stops at %dx%d: %.3g texels per voxel edge, expect holes",
+                       at->size, at->size, lo);
+    }
+    for (at->view = 1; at->view < at->size; at->view *= 2) {}
+    return VOXGI_OK;
+}
+
+/* The triangle (index + 1) each texel centre belongs to; 0 = none. Concurrent writers keep the
+   highest index, which is the one GL draws last. */
+typedef struct voxgi__atlas_job {
+    const voxgi__atlas *at;
+    const voxgi__vox_shared *vs;
+    uint32_t *texels;
+    uint64_t points;
+} voxgi__atlas_job;
+
+static void voxgi__atlas_raster(void *user, size_t first, size_t end)
+{
+    voxgi__atlas_job *job = (voxgi__atlas_job *)user;
+    const voxgi__atlas *at = job->at;
+    size_t t;
+    for (t = first; t < end; t++) {
+        const float *c = at->uv + 6 * t;
+        double x[3], y[3], area;
+        int k, i0, i1, j0, j1, i, j;
+        for (k = 0; k < 3; k++) { x[k] = c[2 * k]; y[k] = c[2 * k + 1]; }
+        area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+        if (area == 0) continue; /* no fragments */
+        if (area < 0) { /* make it CCW: the fill rule speaks of CCW edges */
+            double tx = x[1], ty = y[1];
+            x[1] = x[2]; y[1] = y[2]; x[2] = tx; y[2] = ty;
+        }
+        i0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(x[0], VOXGI__MIN(x[1], x[2])) - 0.5), 0.0);
+        i1 = (int)VOXGI__MIN(floor(VOXGI__MAX(x[0], VOXGI__MAX(x[1], x[2])) - 0.5), (double)at->size - 1);
+        j0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(y[0], VOXGI__MIN(y[1], y[2])) - 0.5), 0.0);
+        j1 = (int)VOXGI__MIN(floor(VOXGI__MAX(y[0], VOXGI__MAX(y[1], y[2])) - 0.5), (double)at->size - 1);
+        for (j = j0; j <= j1; j++)
+            for (i = i0; i <= i1; i++) {
+                double px = i + 0.5, py = j + 0.5;
+                int inside = 1;
+                uint32_t *texel, old;
+                for (k = 0; k < 3 && inside; k++) {
+                    double dx = x[(k + 1) % 3] - x[k], dy = y[(k + 1) % 3] - y[k];
+                    double e = dx * (py - y[k]) - dy * (px - x[k]); /* exact: 1/256 lattice below 2^14 */
+                    inside = e > 0 || (e == 0 && (dy < 0 || (dy == 0 && dx > 0)));
+                }
+                if (!inside) continue;
+                texel = job->texels + (size_t)j * (size_t)at->size + (size_t)i;
+                old = VOXGI__ATOMIC_LOAD_U32(texel);
+                while (old < (uint32_t)t + 1 && !VOXGI__ATOMIC_CAS_U32(texel, &old, (uint32_t)t + 1)) {}
+            }
+    }
+}
+
+/* The voxel of atlas point (texel i, j) of triangle t; 0 when it lies outside the grid. The
+   arithmetic and its order are those of atlas_point_voxel in shaders/atlas.glsl. */
+static int voxgi__atlas_point(const voxgi__atlas *at, const voxgi__vox_shared *vs, uint32_t t, int i, int j, int64_t v[3])
+{
+    const float *c = at->uv + 6 * (size_t)t;
+    const double *q0 = vs->vp[vs->tri[3 * t]].q, *q1 = vs->vp[vs->tri[3 * t + 1]].q, *q2 = vs->vp[vs->tri[3 * t + 2]].q;
+    double px = (double)i + 0.5 - c[0], py = (double)j + 0.5 - c[1];
+    double e1x = (double)c[2] - c[0], e1y = (double)c[3] - c[1], e2x = (double)c[4] - c[0], e2y = (double)c[5] - c[1];
+    double den = e1x * e2y - e1y * e2x, n1 = px * e2y - py * e2x, n2 = e1x * py - e1y * px; /* exact */
+    int a;
+    for (a = 0; a < 3; a++) {
+        double p = q0[a] + (n1 * (q1[a] - q0[a]) + n2 * (q2[a] - q0[a])) / den, k = floor(p);
+        if (!(k >= 0 && k < (double)vs->grid->res[a])) return 0;
+        v[a] = (int64_t)k;
+    }
+    return 1;
+}
+
+static void voxgi__atlas_points(void *user, size_t first, size_t end)
+{
+    voxgi__atlas_job *job = (voxgi__atlas_job *)user;
+    voxgi__stats st = {0, 0};
+    uint64_t points = 0;
+    size_t row, size = (size_t)job->at->size;
+    for (row = first; row < end; row++) {
+        size_t i;
+        for (i = 0; i < size; i++) {
+            uint32_t t = job->texels[row * size + i];
+            int64_t v[3];
+            if (!t) continue;
+            points++;
+            if (voxgi__atlas_point(job->at, job->vs, t - 1, (int)i, (int)row, v)) voxgi__set_voxel(job->vs, &st, v[0], v[1], v[2]);
+        }
+    }
+    VOXGI__ATOMIC_ADD_SIZE(&job->points, points);
+}
+
+/* The CPU twin of both atlas methods. */
+static voxgi_result voxgi__atlas_cpu(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
+                                     const voxgi__atlas *at, uint64_t *points)
+{
+    voxgi__atlas_job job;
+    job.at = at;
+    job.vs = vs;
+    job.points = 0;
+    job.texels = (uint32_t *)voxgi__alloc_array(ctx, (size_t)at->size * (size_t)at->size, 4, 1);
+    if (!job.texels) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %dx%d atlas", at->size, at->size);
+    voxgi__parallel(ctx, triangle_count, 256, voxgi__atlas_raster, &job);
+    voxgi__parallel(ctx, (size_t)at->size, 16, voxgi__atlas_points, &job);
+    voxgi__free(ctx, job.texels);
+    *points = job.points;
+    return VOXGI_OK;
+}
+
 /* ===================================================================== voxel results */
 struct voxgi_voxels {
     voxgi_voxels_info info;
@@ -2279,7 +2654,7 @@ VOXGI_API void voxgi_voxels_query(const voxgi_voxels *v, voxgi_voxels_info *out)
 
 #ifndef VOXGI_NO_GL
 static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                       const voxgi_voxelize_desc *d, voxgi_voxels *out);
+                                       const voxgi_voxelize_desc *d, const voxgi__atlas *atlas, voxgi_voxels *out);
 #endif
 
 static uint64_t voxgi__popcount_words(const uint32_t *w, uint64_t n)
@@ -2351,7 +2726,7 @@ static voxgi_result voxgi__flood_solid(voxgi_context *ctx, const voxgi_grid *g, 
 
 /* The CPU twin of every method, into vox->bits. */
 static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *flat, const voxgi__vprep *vp,
-                                       const voxgi_voxelize_desc *desc, voxgi_voxels *vox)
+                                       const voxgi_voxelize_desc *desc, const voxgi__atlas *atlas, voxgi_voxels *vox)
 {
     voxgi__vox_shared vs;
     voxgi__stats st = {0, 0};
@@ -2375,6 +2750,11 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
     vs.inv_s = 1.0 / desc->grid.voxel_size;
     vs.thin = desc->method == VOXGI_METHOD_THIN;
     vs.slice_axis = desc->method == VOXGI_METHOD_SLICEMAP ? (desc->axis ? (int)desc->axis - 1 : 2) : -1;
+    if (atlas) {
+        vs.bits = vox->bits;
+        r = voxgi__atlas_cpu(ctx, &vs, flat->triangle_count, atlas, &vox->info.atlas_points);
+        passes = 0;
+    }
     for (pass = 0; pass < passes && r == VOXGI_OK; pass++) {
         vs.bits = pass ? extra[pass - 1] : vox->bits;
         vs.solid_axis = -1;
@@ -2392,7 +2772,7 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
     voxgi__free(ctx, extra[0]);
     voxgi__free(ctx, extra[1]);
     vox->info.exact_tests = st.exact_tests;
-    vox->info.voxel_count = solid ? voxgi__popcount_words(vox->bits, words) : st.voxels;
+    vox->info.voxel_count = solid || atlas ? voxgi__popcount_words(vox->bits, words) : st.voxels;
     return r;
 }
 
@@ -2401,6 +2781,7 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
 {
     voxgi__flat flat;
     voxgi__vprep *vp = NULL;
+    voxgi__atlas atlas;
     voxgi_voxels *vox;
     voxgi_result r;
     double t0 = voxgi__now_ms();
@@ -2413,7 +2794,7 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown axis %d or solid mode %d", (int)desc->axis, (int)desc->solid_mode);
     r = voxgi_validate_grid(ctx, &desc->grid);
     if (r != VOXGI_OK) return r;
-    r = voxgi__flatten(ctx, scene, &flat);
+    r = voxgi__flatten(ctx, scene, voxgi__is_atlas(desc->method) && desc->atlas_uv == VOXGI_ATLAS_MESH, &flat);
     if (r != VOXGI_OK) return r;
     vox = (voxgi_voxels *)voxgi__alloc_array(ctx, 1, sizeof *vox, 1);
     if (!vox) { voxgi__flat_free(ctx, &flat); return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the result"); }
@@ -2423,10 +2804,18 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
     vox->info.triangle_count = flat.triangle_count;
     vox->info.bytes = (size_t)(voxgi__grid_words(&desc->grid) * 4u);
     r = voxgi__prep_vertices(ctx, &flat, &desc->grid, &vp);
-    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU) r = voxgi__voxelize_cpu(ctx, &flat, vp, desc, vox);
+    memset(&atlas, 0, sizeof atlas);
+    if (r == VOXGI_OK && voxgi__is_atlas(desc->method)) {
+        r = voxgi__atlas_build(ctx, &flat, vp, desc, &atlas);
+        vox->info.atlas_size = atlas.size;
+        vox->info.atlas_scale = atlas.scale;
+    }
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU)
+        r = voxgi__voxelize_cpu(ctx, &flat, vp, desc, voxgi__is_atlas(desc->method) ? &atlas : NULL, vox);
 #ifndef VOXGI_NO_GL
-    else if (r == VOXGI_OK) r = voxgi__voxelize_gl(ctx, &flat, vp, desc, vox);
+    else if (r == VOXGI_OK) r = voxgi__voxelize_gl(ctx, &flat, vp, desc, voxgi__is_atlas(desc->method) ? &atlas : NULL, vox);
 #endif
+    voxgi__free(ctx, atlas.uv);
     voxgi__free(ctx, vp);
     voxgi__flat_free(ctx, &flat);
     if (r != VOXGI_OK) { voxgi_voxels_destroy(ctx, vox); return r; }
@@ -2776,66 +3165,76 @@ static voxgi_result voxgi__gl_solid_flood(voxgi_context *ctx, const voxgi__flat 
     return r;
 }
 
-/* The raster slicemap: triangles drawn along axis A into slicemap textures (128 slices per
-   RGBA32UI layer, up to 8 layers per draw through MRT, ORed by the logic op; or 32 slices per
-   R32UI layer with imageAtomicOr), then unpacked into the bit grid. */
-static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                       const voxgi_voxelize_desc *d, unsigned int *bits_out)
+/* Uploads the prepared vertices (binding 0) and the triangles (binding 1). */
+static void voxgi__gl_scene_buffers(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp, unsigned int *verts,
+                                    unsigned int *tris, voxgi_result *r)
+{
+    voxgi__gl_vprep *gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
+    size_t v;
+    int i;
+    *verts = *tris = 0;
+    if (!gv) { *r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count); return; }
+    for (v = 0; v < f->vertex_count; v++)
+        for (i = 0; i < 3; i++) gv[v].q[i] = vp[v].q[i];
+    *verts = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
+    *tris = voxgi__gl_buffer(ctx, f->triangle_count * 3 * sizeof(uint32_t), f->tri);
+    voxgi__free(ctx, gv);
+    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, *verts);
+    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *tris);
+}
+
+/* Draws `count` vertices as `mode` with `program` (its buffers bound by the caller) into
+   slicemap textures along axis A (128 slices per RGBA32UI layer, up to 8 layers per draw
+   through MRT, ORed by the logic op; or 32 slices per R32UI layer with imageAtomicOr), then
+   unpacks them into a new bit grid *bits_out. The caller's GL state is restored. */
+static voxgi_result voxgi__gl_slice_raster(voxgi_context *ctx, const voxgi_grid *g, int A, int atomic, unsigned int p,
+                                           unsigned int mode, uint64_t count, unsigned int *bits_out)
 {
     static const unsigned int caps[] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST, VOXGI__GL_CULL_FACE,
-                                        VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP};
+                                        VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP,
+                                        VOXGI__GL_PROGRAM_POINT_SIZE};
     voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &d->grid;
-    int A = d->axis ? (int)d->axis - 1 : 2, a = (A + 1) % 3, b = (A + 2) % 3, per_layer = d->atomic ? 32 : 128;
+    int a = (A + 1) % 3, b = (A + 2) % 3, per_layer = atomic ? 32 : 128;
     int layers = (g->res[A] + per_layer - 1) / per_layer, max_targets = 1, max_size = 0, viewport[4], i, first;
-    unsigned char was_enabled[8];
-    unsigned int tex = 0, fbo = 0, vao = 0, verts, tris, zero[4] = {0, 0, 0, 0}, p;
-    voxgi__gl_vprep *gv;
-    size_t v, bytes = (size_t)voxgi__grid_words(g) * 4;
-    voxgi_result r = voxgi__gl_build(ctx, 1, "triangle.glsl slicemap.glsl", &gl->prog_slicemap);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "slicemap_unpack.glsl", &gl->prog_slicemap_unpack);
+    unsigned char was_enabled[9];
+    unsigned int tex = 0, fbo = 0, vao = 0, zero[4] = {0, 0, 0, 0};
+    size_t bytes = (size_t)voxgi__grid_words(g) * 4;
+    voxgi_result r = voxgi__gl_get_program(ctx, "slicemap_unpack.glsl", &gl->prog_slicemap_unpack);
+    *bits_out = 0;
     if (r != VOXGI_OK) return r;
     gl->GetIntegerv(VOXGI__GL_MAX_DRAW_BUFFERS, &max_targets);
     gl->GetIntegerv(VOXGI__GL_MAX_TEXTURE_SIZE, &max_size);
     max_targets = VOXGI__MIN(max_targets, 8);
     if (g->res[a] > max_size || g->res[b] > max_size)
         return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d slicemap exceeds GL_MAX_TEXTURE_SIZE %d", g->res[a], g->res[b], max_size);
-    gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
-    if (!gv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
-    for (v = 0; v < f->vertex_count; v++)
-        for (i = 0; i < 3; i++) gv[v].q[i] = vp[v].q[i];
-    verts = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
-    tris = voxgi__gl_buffer(ctx, f->triangle_count * 3 * sizeof(uint32_t), f->tri);
-    voxgi__free(ctx, gv);
+    if (count > (uint64_t)INT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%llu vertices exceed one draw", (unsigned long long)count);
     gl->CreateTextures(VOXGI__GL_TEXTURE_2D_ARRAY, 1, &tex);
-    gl->TextureStorage3D(tex, 1, d->atomic ? VOXGI__GL_R32UI : VOXGI__GL_RGBA32UI, g->res[a], g->res[b], layers);
+    gl->TextureStorage3D(tex, 1, atomic ? VOXGI__GL_R32UI : VOXGI__GL_RGBA32UI, g->res[a], g->res[b], layers);
     /* integer textures are incomplete with the default linear filters: texelFetch would read 0 */
     gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
     gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
-    gl->ClearTexImage(tex, 0, d->atomic ? VOXGI__GL_RED_INTEGER : VOXGI__GL_RGBA_INTEGER, VOXGI__GL_UNSIGNED_INT, zero);
+    gl->ClearTexImage(tex, 0, atomic ? VOXGI__GL_RED_INTEGER : VOXGI__GL_RGBA_INTEGER, VOXGI__GL_UNSIGNED_INT, zero);
     gl->CreateVertexArrays(1, &vao);
     gl->CreateFramebuffers(1, &fbo);
     gl->GetIntegerv(VOXGI__GL_VIEWPORT, viewport);
-    for (i = 0; i < 8; i++) {
+    for (i = 0; i < 9; i++) {
         was_enabled[i] = gl->IsEnabled(caps[i]);
         gl->Disable(caps[i]);
     }
-    p = gl->prog_slicemap;
+    gl->Enable(VOXGI__GL_PROGRAM_POINT_SIZE); /* points are one pixel whatever glPointSize says */
     gl->UseProgram(p);
     gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_atomic"), d->atomic);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, verts);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, tris);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_atomic"), atomic);
     gl->BindVertexArray(vao);
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
     gl->Viewport(0, 0, g->res[a], g->res[b]);
-    if (d->atomic) { /* no colour outputs: an attachment-less framebuffer of the slicemap's size */
+    if (atomic) { /* no colour outputs: an attachment-less framebuffer of the slicemap's size */
         gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, g->res[a]);
         gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, g->res[b]);
         gl->BindImageTexture(0, tex, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), 0);
-        gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+        gl->DrawArrays(mode, 0, (int)count);
     } else {
         gl->Enable(VOXGI__GL_COLOR_LOGIC_OP);
         gl->LogicOp(VOXGI__GL_OR);
@@ -2851,14 +3250,14 @@ static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f,
                 r = voxgi__fail(ctx, VOXGI_ERR_GL, "the slicemap framebuffer is incomplete");
             else {
                 gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), first * per_layer);
-                gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+                gl->DrawArrays(mode, 0, (int)count);
             }
         }
     }
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
     gl->BindVertexArray(0);
     gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    for (i = 0; i < 8; i++)
+    for (i = 0; i < 9; i++)
         if (was_enabled[i]) gl->Enable(caps[i]);
         else gl->Disable(caps[i]);
     gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT);
@@ -2879,15 +3278,148 @@ static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f,
     gl->DeleteTextures(1, &tex);
     gl->DeleteFramebuffers(1, &fbo);
     gl->DeleteVertexArrays(1, &vao);
-    voxgi__gl_delete_buffer(ctx, verts);
-    voxgi__gl_delete_buffer(ctx, tris);
     if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the raster slicemap");
     if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
     return r;
 }
 
+/* The raster slicemap: the triangles drawn along the axis. */
+static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                       const voxgi_voxelize_desc *d, unsigned int *bits_out)
+{
+    unsigned int verts = 0, tris = 0;
+    voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl slice_targets.glsl slicemap.glsl", &ctx->gl->prog_slicemap);
+    if (r == VOXGI_OK) voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
+    if (r == VOXGI_OK)
+        r = voxgi__gl_slice_raster(ctx, &d->grid, d->axis ? (int)d->axis - 1 : 2, d->atomic, ctx->gl->prog_slicemap,
+                                   VOXGI__GL_TRIANGLES, 3 * (uint64_t)f->triangle_count, bits_out);
+    voxgi__gl_delete_buffer(ctx, verts);
+    voxgi__gl_delete_buffer(ctx, tris);
+    return r;
+}
+
+/* Dispatches one invocation per item, 65536 per row of work groups (see atlas_item()). */
+static void voxgi__gl_dispatch_rows(voxgi__gl *gl, uint64_t items)
+{
+    gl->DispatchCompute(1024u, (unsigned)((items + 65535) / 65536), 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* The texture atlas: the charts drawn into an R32UI atlas, its covered texels listed as
+   points, then the points either drawn into slicemap targets (ATLAS) or each set by one
+   compute invocation (ATLAS_COMPUTE). */
+static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                    const voxgi_voxelize_desc *d, const voxgi__atlas *at, unsigned int *bits_out,
+                                    voxgi_voxels_info *info)
+{
+    static const unsigned int caps[] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST, VOXGI__GL_CULL_FACE,
+                                        VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP};
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    unsigned int verts = 0, tris = 0, charts = 0, points = 0, tex = 0, fbo = 0, vao = 0, zero = 0, p, drawbuf = VOXGI__GL_COLOR_ATTACHMENT0;
+    unsigned char was_enabled[8];
+    uint32_t count = 0;
+    int viewport[4], max_size = 0, i;
+    uint64_t texels = (uint64_t)at->size * (uint64_t)at->size;
+    voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl atlas.glsl atlas_fill.glsl", &gl->prog_atlas_fill);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl atlas.glsl atlas_list.glsl", &gl->prog_atlas_list);
+    if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS)
+        r = voxgi__gl_build(ctx, 1, "scene.glsl atlas.glsl slice_targets.glsl atlas_points.glsl", &gl->prog_atlas_points);
+    if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS_COMPUTE)
+        r = voxgi__gl_get_program(ctx, "scene.glsl atlas.glsl atlas_compute.glsl", &gl->prog_atlas_compute);
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_TEXTURE_SIZE, &max_size);
+    if (at->view > max_size)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d atlas (viewport %d) exceeds GL_MAX_TEXTURE_SIZE %d", at->size, at->size,
+                           at->view, max_size);
+    voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
+    if (r != VOXGI_OK) return r;
+    charts = voxgi__gl_buffer(ctx, f->triangle_count * 6 * sizeof(float), at->uv);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, charts);
+    /* 1. the charts into the atlas */
+    gl->CreateTextures(VOXGI__GL_TEXTURE_2D, 1, &tex);
+    gl->TextureStorage2D(tex, 1, VOXGI__GL_R32UI, at->size, at->size);
+    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
+    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
+    gl->ClearTexImage(tex, 0, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+    gl->CreateFramebuffers(1, &fbo);
+    gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0, tex, 0);
+    gl->NamedFramebufferDrawBuffers(fbo, 1, &drawbuf);
+    gl->CreateVertexArrays(1, &vao);
+    gl->GetIntegerv(VOXGI__GL_VIEWPORT, viewport);
+    for (i = 0; i < 8; i++) {
+        was_enabled[i] = gl->IsEnabled(caps[i]);
+        gl->Disable(caps[i]);
+    }
+    if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE)
+        r = voxgi__fail(ctx, VOXGI_ERR_GL, "the atlas framebuffer is incomplete");
+    else {
+        p = gl->prog_atlas_fill;
+        gl->UseProgram(p);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_view"), at->view);
+        gl->BindVertexArray(vao);
+        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+        gl->Viewport(0, 0, at->view, at->view); /* beyond the atlas: the corners map to window coordinates exactly */
+        gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+        gl->BindVertexArray(0);
+    }
+    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    for (i = 0; i < 8; i++)
+        if (was_enabled[i]) gl->Enable(caps[i]);
+        else gl->Disable(caps[i]);
+    gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT);
+    /* 2. the covered texels: count, then list */
+    if (r == VOXGI_OK) {
+        points = voxgi__gl_buffer(ctx, 8, NULL);
+        gl->ClearNamedBufferData(points, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, points);
+        gl->BindTextureUnit(0, tex);
+        p = gl->prog_atlas_list;
+        gl->UseProgram(p);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_size"), at->size);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+        voxgi__gl_dispatch_rows(gl, texels);
+        r = voxgi__gl_read_buffer(ctx, points, &count, 4);
+    }
+    if (r == VOXGI_OK) {
+        voxgi__gl_delete_buffer(ctx, points);
+        points = voxgi__gl_buffer(ctx, 8 + 8 * (size_t)count, NULL);
+        gl->ClearNamedBufferData(points, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, points);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+        voxgi__gl_dispatch_rows(gl, texels);
+        gl->BindTextureUnit(0, 0);
+        info->atlas_points = count;
+        r = voxgi__gl_check(ctx, "the atlas");
+    }
+    gl->DeleteTextures(1, &tex);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    /* 3. the points into voxels */
+    if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS)
+        r = voxgi__gl_slice_raster(ctx, g, d->axis ? (int)d->axis - 1 : 2, d->atomic, gl->prog_atlas_points, VOXGI__GL_POINTS,
+                                   count, bits_out);
+    else if (r == VOXGI_OK) {
+        *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
+        p = gl->prog_atlas_compute;
+        gl->UseProgram(p);
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        voxgi__gl_dispatch_rows(gl, count);
+        r = voxgi__gl_check(ctx, "the atlas points");
+    }
+    voxgi__gl_unbind(gl);
+    voxgi__gl_delete_buffer(ctx, verts);
+    voxgi__gl_delete_buffer(ctx, tris);
+    voxgi__gl_delete_buffer(ctx, charts);
+    voxgi__gl_delete_buffer(ctx, points);
+    if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
+    return r;
+}
+
 static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                       const voxgi_voxelize_desc *d, voxgi_voxels *out)
+                                       const voxgi_voxelize_desc *d, const voxgi__atlas *atlas, voxgi_voxels *out)
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = &d->grid;
@@ -2905,13 +3437,14 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
     if ((uint64_t)g->res[0] * g->res[1] > 65535u * 64u || (uint64_t)g->res[1] * g->res[2] > 65535u * 64u ||
         (uint64_t)g->res[0] * g->res[2] > 65535u * 64u)
         return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grid slices hold at most 65535*64 lines; use the CPU backend");
-    r = voxgi__gl_get_program(ctx, "triangle.glsl voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "triangle.glsl voxelize_solid.glsl", &gl->prog_voxelize_solid);
+    r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl voxelize_solid.glsl", &gl->prog_voxelize_solid);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "solid_prefix.glsl", &gl->prog_solid_prefix);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "flood.glsl", &gl->prog_flood);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "bits_majority.glsl", &gl->prog_bits_majority);
     if (r != VOXGI_OK) return r;
     if (d->method == VOXGI_METHOD_SLICEMAP) r = voxgi__gl_slicemap(ctx, f, vp, d, &result);
+    else if (atlas) r = voxgi__gl_atlas(ctx, f, vp, d, atlas, &result, &out->info);
     else if (d->method != VOXGI_METHOD_SOLID) r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info);
     else if (d->solid_mode == VOXGI_SOLID_PARITY)
         r = voxgi__gl_solid_parity(ctx, f, vp, d, d->axis ? (int)d->axis - 1 : 2, &result, &out->info);

@@ -1,15 +1,6 @@
-// Shared by the triangle passes (voxelize_conservative.glsl, voxelize_solid.glsl): the per-triangle
-// setup, test forms and error bounds of voxgi.h's exact voxelizer, the same arithmetic in double.
-
-struct VPrep {
-    dvec4 q;   // xyz: (v - o) / s;  w: fraction bits of an exact q, or -1
-    ivec4 lo;  // exact voxel range of the coordinate; w: bit a set when q[a] is exact
-    ivec4 hi;
-    vec4 w;    // the float vertex
-    vec4 pad;
-};
-layout(std430, binding = 0) readonly buffer Verts { VPrep vp[]; };
-layout(std430, binding = 1) readonly buffer Tris { uint tri_index[]; };
+// Shared by the triangle passes (voxelize_conservative.glsl, voxelize_solid.glsl), after
+// scene.glsl: the per-triangle setup, test forms and error bounds of voxgi.h's exact voxelizer,
+// the same arithmetic in double.
 
 // dispatch (x, y, z) for pass 1, then counters
 layout(std430, binding = 3) buffer Control { uint big_dispatch; uint split_y; uint split_z; uint big_count; uint pair_count; uint flagged_count; };
@@ -18,7 +9,6 @@ layout(std430, binding = 5) buffer Flags { uint tri_flags[]; };
 layout(std430, binding = 6) buffer Big { uint big_list[]; };
 
 
-uniform ivec3 u_res;
 uniform uint u_tri_count;
 uniform uint u_tri_offset;
 uniform double u_inv_s;

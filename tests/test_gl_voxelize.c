@@ -37,6 +37,9 @@ static voxgi_method g_method; /* what compare() runs */
 static voxgi_solid_mode g_solid_mode;
 static voxgi_axis g_axis;
 static int g_atomic;
+static int g_atlas_size;
+static voxgi_atlas_uv g_atlas_uv;
+static const float *g_uvs;
 
 static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g, voxgi_voxels_info *info)
 {
@@ -56,6 +59,9 @@ static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g
     vd.solid_mode = g_solid_mode;
     vd.axis = g_axis;
     vd.atomic = g_atomic;
+    vd.atlas_size = g_atlas_size;
+    vd.atlas_uv = g_atlas_uv;
+    mesh.uvs = g_uvs;
     if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) { printf("    voxelize: %s\n", voxgi_last_error(ctx)); return NULL; }
     voxgi_voxels_read(ctx, vox, NULL, 0, &need);
     bits = (uint32_t *)malloc(need);
@@ -323,7 +329,7 @@ static double nearest_edge(const vxt_shape *m, const voxgi_grid *g, int A, int i
    (1/256 pixel, with margin 1/64) of a projected edge. Where every vertex sits on the
    rasterizer's subpixel lattice (shapes 1 and 2: edges through pixel centres, horizontal and
    vertical ones included) snapping is exact and the fill rules must agree bit for bit. */
-static void test_gl_slicemap_equals_cpu(void)
+static void test_gl_raster_slicemap_equals_cpu(void)
 {
     vxt_shape shapes[3];
     voxgi_grid g;
@@ -381,6 +387,47 @@ static void test_gl_slicemap_equals_cpu(void)
     vxt_shape_free(&shapes[0]);
     vxt_shape_free(&shapes[1]);
     vxt_shape_free(&shapes[2]);
+}
+
+/* Both atlas methods (points drawn, and one compute invocation per point) equal the CPU twin
+   bit for bit: the charts' corners are on the rasterizer's subpixel grid, and the points are
+   computed in double in the same order. */
+static void test_gl_raster_atlas_equals_cpu(void)
+{
+    vxt_shape shapes[3];
+    voxgi_grid g;
+    int sh, c;
+    float *uv;
+    if (!have_gl()) return;
+    vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
+    vxt_shape_box_and_tilted(&shapes[1]);
+    vxt_shape_alloc(&shapes[2], 90, 30); /* random triangles with random, overlapping uvs */
+    uv = (float *)malloc(90 * 2 * sizeof(float));
+    for (c = 0; c < 270; c++) shapes[2].pos[c] = (float)(-1 + 2 * (double)rand() / RAND_MAX);
+    for (c = 0; c < 90; c++) shapes[2].idx[c] = (uint32_t)c;
+    for (c = 0; c < 180; c++) uv[c] = (float)((double)rand() / RAND_MAX);
+    for (sh = 0; sh < 3; sh++) {
+        cubic(&g, -1.1, 2.2, sh == 1 ? 40 : 64);
+        if (sh == 1) { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 300; }
+        for (g_method = VOXGI_METHOD_ATLAS; g_method <= VOXGI_METHOD_ATLAS_COMPUTE; g_method = (voxgi_method)(g_method + 1)) {
+            if (sh == 2) { g_uvs = uv; g_atlas_uv = VOXGI_ATLAS_MESH; g_atlas_size = 300; }
+            compare_method(&shapes[sh], &g, sh == 0 ? "sphere, default atlas" : (sh == 1 ? "box and tilted box, 300 slices" : "random triangles, mesh uvs"));
+            if (sh == 0 && g_method == VOXGI_METHOD_ATLAS) { /* the atomic variant, another axis, a large atlas */
+                g_atomic = 1;
+                g_axis = VOXGI_AXIS_X;
+                compare_method(&shapes[sh], &g, "sphere, atomic, along x");
+                g_atomic = 0;
+                g_axis = VOXGI_AXIS_DEFAULT;
+                g_atlas_size = 4000;
+                compare_method(&shapes[sh], &g, "sphere, 4000^2 atlas");
+                g_atlas_size = 0;
+            }
+            g_uvs = NULL; g_atlas_uv = VOXGI_ATLAS_AUTO; g_atlas_size = 0;
+        }
+    }
+    g_method = VOXGI_METHOD_CONSERVATIVE;
+    free(uv);
+    for (sh = 0; sh < 3; sh++) vxt_shape_free(&shapes[sh]);
 }
 
 static void test_gl_interop_and_backends(void)
@@ -497,7 +544,8 @@ int main(void)
     TH_RUN(test_gl_equals_cpu_degenerate);
     TH_RUN(test_gl_equals_cpu_solid);
     TH_RUN(test_gl_reduce_equals_cpu);
-    TH_RUN(test_gl_slicemap_equals_cpu);
+    TH_RUN(test_gl_raster_slicemap_equals_cpu);
+    TH_RUN(test_gl_raster_atlas_equals_cpu);
     TH_RUN(test_gl_interop_and_backends);
     TH_RUN(test_gl_plain_loader);
     TH_RUN(test_gl_missing_function_and_fallback);

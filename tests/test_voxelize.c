@@ -1117,6 +1117,226 @@ static void test_slicemap_vs_oracle_and_relations(void)
     voxgi_destroy(ctx);
 }
 
+/* ---------------------------------------------------------------- texture atlas */
+static uint32_t *atlas_bits(voxgi_context *ctx, const voxgi_scene *sc, const voxgi_grid *g, voxgi_method method, int size,
+                            voxgi_atlas_uv uv, voxgi_voxels_info *info)
+{
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *vox = NULL;
+    uint32_t *bits;
+    size_t need = 0;
+    memset(&vd, 0, sizeof vd);
+    vd.grid = *g;
+    vd.method = method;
+    vd.atlas_size = size;
+    vd.atlas_uv = uv;
+    if (voxgi_voxelize(ctx, sc, &vd, &vox) != VOXGI_OK) { printf("    atlas failed: %s\n", voxgi_last_error(ctx)); return NULL; }
+    voxgi_voxels_read(ctx, vox, NULL, 0, &need);
+    bits = (uint32_t *)malloc(need);
+    voxgi_voxels_read(ctx, vox, bits, need, NULL);
+    if (info) voxgi_voxels_query(vox, info);
+    voxgi_voxels_destroy(ctx, vox);
+    return bits;
+}
+
+/* Voxels set in a but in no 26-neighbourhood (or itself) of a voxel of b. */
+static uint64_t outside_dilated(const uint32_t *a, const uint32_t *b, const voxgi_grid *g)
+{
+    uint64_t n = voxgi_grid_voxel_count(g), l, out = 0;
+    for (l = 0; l < n; l++) {
+        int x = (int)(l % (uint64_t)g->res[0]), y = (int)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]);
+        int z = (int)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1])), dx, dy, dz, near = 0;
+        if (!voxgi_bit_get(a, l)) continue;
+        for (dz = -1; dz <= 1 && !near; dz++)
+            for (dy = -1; dy <= 1 && !near; dy++)
+                for (dx = -1; dx <= 1 && !near; dx++) {
+                    int X = x + dx, Y = y + dy, Z = z + dz;
+                    if (X < 0 || Y < 0 || Z < 0 || X >= g->res[0] || Y >= g->res[1] || Z >= g->res[2]) continue;
+                    near = voxgi_bit_get(b, (uint64_t)X + (uint64_t)g->res[0] * ((uint64_t)Y + (uint64_t)g->res[1] * (uint64_t)Z));
+                }
+        out += (uint64_t)!near;
+    }
+    return out;
+}
+
+/* The mesh's own uvs: texel ownership (highest covering triangle) and each point's voxel
+   evaluated exactly in 128-bit integers: uv * size on the 1/256 lattice, voxel size 1, lattice
+   vertices, so the point is a rational number. (The library rounds the point in double; a point
+   within an ulp of a voxel face could round across it, which random inputs do not produce.) */
+static void test_atlas_mesh_uvs_vs_oracle(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    enum { NT = 40, SIZE = 97 };
+    float pos[NT * 9], uv[NT * 6];
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_grid g;
+    voxgi_voxels_info info;
+    uint32_t *mine, *ref;
+    int64_t *owner = (int64_t *)malloc(sizeof(int64_t) * SIZE * SIZE);
+    uint64_t points = 0, l, n;
+    int t, c, i, j;
+    for (c = 0; c < NT * 9; c++) pos[c] = (float)lattice(0.5 + 14 * rnd());
+    for (c = 0; c < NT * 6; c++) uv[c] = (float)lattice(rnd() * 1.2 - 0.1); /* some outside [0,1]: clamped */
+    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc);
+    mesh.positions = pos; mesh.vertex_count = NT * 3; mesh.uvs = uv;
+    sc.meshes = &mesh; sc.mesh_count = 1;
+    g.origin[0] = 0; g.origin[1] = 0; g.origin[2] = 0; g.voxel_size = 1;
+    g.res[0] = 15; g.res[1] = 16; g.res[2] = 14;
+    n = voxgi_grid_voxel_count(&g);
+    mine = atlas_bits(ctx, &sc, &g, VOXGI_METHOD_ATLAS, SIZE, VOXGI_ATLAS_MESH, &info);
+    ref = (uint32_t *)calloc((size_t)(n + 31) / 32, 4);
+    for (i = 0; i < SIZE * SIZE; i++) owner[i] = -1;
+    for (t = 0; t < NT; t++) { /* integer coverage, texel units * 512 so centres are integers */
+        int64_t x[3], y[3];
+        int64_t area;
+        for (c = 0; c < 3; c++) {
+            double u = uv[6 * t + 2 * c], v = uv[6 * t + 2 * c + 1];
+            u = u < 0 ? 0 : (u > 1 ? 1 : u);
+            v = v < 0 ? 0 : (v > 1 ? 1 : v);
+            x[c] = 2 * (int64_t)floor(u * SIZE * 256 + 0.5);
+            y[c] = 2 * (int64_t)floor(v * SIZE * 256 + 0.5);
+        }
+        area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+        if (area == 0) continue;
+        for (j = 0; j < SIZE; j++)
+            for (i = 0; i < SIZE; i++) {
+                int64_t px = 512 * (int64_t)i + 256, py = 512 * (int64_t)j + 256;
+                int covered = 1;
+                for (c = 0; c < 3 && covered; c++) {
+                    int64_t dx = (x[(c + 1) % 3] - x[c]) * (area > 0 ? 1 : -1), dy = (y[(c + 1) % 3] - y[c]) * (area > 0 ? 1 : -1);
+                    int64_t x0 = area > 0 ? x[c] : x[(c + 1) % 3], y0 = area > 0 ? y[c] : y[(c + 1) % 3];
+                    int64_t e = dx * (py - y0) - dy * (px - x0);
+                    covered = e > 0 || (e == 0 && (dy < 0 || (dy == 0 && dx > 0)));
+                }
+                if (covered) owner[j * SIZE + i] = t;
+            }
+    }
+    for (j = 0; j < SIZE; j++)
+        for (i = 0; i < SIZE; i++) {
+            int64_t x[3], y[3], den, n1, n2, px, py;
+            int a, inside = 1;
+            int64_t vox[3];
+            t = (int)owner[j * SIZE + i];
+            if (t < 0) continue;
+            points++;
+            for (c = 0; c < 3; c++) {
+                double u = uv[6 * t + 2 * c], v = uv[6 * t + 2 * c + 1];
+                x[c] = (int64_t)floor((u < 0 ? 0 : (u > 1 ? 1 : u)) * SIZE * 256 + 0.5);
+                y[c] = (int64_t)floor((v < 0 ? 0 : (v > 1 ? 1 : v)) * SIZE * 256 + 0.5);
+            }
+            px = 256 * (int64_t)i + 128 - x[0]; py = 256 * (int64_t)j + 128 - y[0];
+            den = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+            n1 = px * (y[2] - y[0]) - py * (x[2] - x[0]);
+            n2 = (x[1] - x[0]) * py - (y[1] - y[0]) * px;
+            for (a = 0; a < 3 && inside; a++) { /* P * den * 2^B = q0 den + n1 (q1 - q0) + n2 (q2 - q0), exact */
+                i128 q0 = to_fixed(pos[9 * t + a]), q1 = to_fixed(pos[9 * t + 3 + a]), q2 = to_fixed(pos[9 * t + 6 + a]);
+                i128 num = q0 * den + (i128)n1 * (q1 - q0) + (i128)n2 * (q2 - q0), d = (i128)den * ((i128)1 << ORACLE_BITS), f;
+                if (d < 0) { num = -num; d = -d; }
+                f = num >= 0 ? num / d : -((-num + d - 1) / d);
+                vox[a] = (int64_t)f;
+                inside = f >= 0 && f < g.res[a];
+            }
+            if (inside) {
+                l = (uint64_t)vox[0] + (uint64_t)g.res[0] * ((uint64_t)vox[1] + (uint64_t)g.res[1] * (uint64_t)vox[2]);
+                ref[l >> 5] |= 1u << (l & 31);
+            }
+        }
+    TH_CHECK(mine != NULL && info.atlas_points == points, "atlas points %llu, oracle %llu", (unsigned long long)info.atlas_points,
+             (unsigned long long)points);
+    TH_CHECK(mine && compare_bits(mine, ref, &g, "atlas (mesh uvs)") == 0, "atlas voxels differ from the exact points");
+    free(mine); free(ref); free(owner);
+    /* a mesh without uvs is refused when its uvs are asked for */
+    mesh.uvs = NULL;
+    {
+        voxgi_voxelize_desc vd;
+        voxgi_voxels *vox = NULL;
+        memset(&vd, 0, sizeof vd);
+        vd.grid = g; vd.method = VOXGI_METHOD_ATLAS; vd.atlas_uv = VOXGI_ATLAS_MESH;
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_ERR_INVALID_SCENE && !vox, "missing uvs accepted");
+        vd.atlas_uv = VOXGI_ATLAS_AUTO; vd.atlas_size = 16385;
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_ERR_INVALID_ARGUMENT && !vox, "atlas_size 16385 accepted");
+        vd.atlas_size = 8; /* 40 charts of at least 3x3 texels do not fit into 8x8 */
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_ERR_TOO_LARGE && !vox, "a too small atlas accepted: %s", voxgi_last_error(ctx));
+    }
+    voxgi_destroy(ctx);
+}
+
+/* voxgi's own charts: within one voxel of the conservative set; every triangle has a point (a
+   scatter of triangles much smaller than a texel); coverage rises with the atlas size; the
+   raster (B) and compute (D) methods give one set; any thread count gives the same bits. */
+static void test_atlas_auto_relations(void)
+{
+    voxgi_context *ctx = make_ctx(2), *one = make_ctx(1);
+    vxt_shape m;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_grid g;
+    voxgi_fit_desc fit;
+    voxgi_voxels_info info;
+    uint32_t *cons, *b, *d, *c1;
+    uint64_t missed[3], n;
+    int k, sizes[3] = {160, 320, 1024};
+    vxt_shape_sphere(&m, 48, 24, 1.0, 0.1, -0.2, 0.3);
+    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&fit, 0, sizeof fit);
+    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
+    sc.meshes = &mesh; sc.mesh_count = 1;
+    fit.res = 48; fit.padding = 1;
+    voxgi_fit_grid(ctx, &sc, &fit, &g);
+    n = voxgi_grid_voxel_count(&g);
+    cons = voxelize_bits(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, NULL);
+    b = atlas_bits(ctx, &sc, &g, VOXGI_METHOD_ATLAS, 0, VOXGI_ATLAS_AUTO, &info);
+    d = atlas_bits(ctx, &sc, &g, VOXGI_METHOD_ATLAS_COMPUTE, 0, VOXGI_ATLAS_AUTO, NULL);
+    c1 = atlas_bits(one, &sc, &g, VOXGI_METHOD_ATLAS, 0, VOXGI_ATLAS_AUTO, NULL);
+    TH_CHECK(b && d && c1 && memcmp(b, d, (size_t)(n + 31) / 32 * 4) == 0 && memcmp(b, c1, (size_t)(n + 31) / 32 * 4) == 0,
+             "atlas and atlas-compute (or 1 and 2 threads) differ");
+    TH_CHECK(b && outside_dilated(b, cons, &g) == 0, "atlas voxels beyond one voxel of the conservative set");
+    TH_CHECK(info.atlas_scale >= 2.0 && info.atlas_points > 0, "default atlas: %.3g texels per voxel", info.atlas_scale);
+    printf("    sphere 48^3: default atlas %dx%d (%.3g texels/voxel), %llu points\n", info.atlas_size, info.atlas_size,
+           info.atlas_scale, (unsigned long long)info.atlas_points);
+    for (k = 0; k < 3; k++) {
+        uint32_t *a = atlas_bits(ctx, &sc, &g, VOXGI_METHOD_ATLAS, sizes[k], VOXGI_ATLAS_AUTO, &info);
+        uint64_t l;
+        missed[k] = 0;
+        TH_CHECK(a != NULL, "atlas %d failed", sizes[k]);
+        for (l = 0; a && l < n; l++) missed[k] += (uint64_t)(voxgi_bit_get(cons, l) && !voxgi_bit_get(a, l));
+        printf("    atlas %d^2: %llu points, missed %llu of the conservative voxels\n", sizes[k], (unsigned long long)info.atlas_points,
+               (unsigned long long)missed[k]);
+        free(a);
+    }
+    TH_CHECK(missed[0] > missed[1] && missed[1] > missed[2], "coverage does not rise with the atlas size");
+    free(cons); free(b); free(d); free(c1);
+    vxt_shape_free(&m);
+    {   /* 300 triangles far smaller than a texel, scattered: each sets the voxel of its centroid */
+        enum { NT = 300 };
+        float p[NT * 9];
+        uint32_t *bits;
+        uint64_t lost = 0;
+        int t, c;
+        g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1; g.res[0] = g.res[1] = g.res[2] = 40;
+        for (t = 0; t < NT; t++) {
+            double cx = 1 + 38 * rnd(), cy = 1 + 38 * rnd(), cz = 1 + 38 * rnd();
+            for (c = 0; c < 3; c++) {
+                p[9 * t + 3 * c] = (float)(cx + 1e-3 * rnd());
+                p[9 * t + 3 * c + 1] = (float)(cy + 1e-3 * rnd());
+                p[9 * t + 3 * c + 2] = (float)(cz + 1e-3 * rnd());
+            }
+        }
+        memset(&mesh, 0, sizeof mesh);
+        mesh.positions = p; mesh.vertex_count = NT * 3;
+        bits = atlas_bits(ctx, &sc, &g, VOXGI_METHOD_ATLAS, 0, VOXGI_ATLAS_AUTO, &info);
+        for (t = 0; bits && t < NT; t++) {
+            int v[3], a;
+            for (a = 0; a < 3; a++) v[a] = (int)floor((p[9 * t + a] + p[9 * t + 3 + a] + p[9 * t + 6 + a]) / 3);
+            lost += (uint64_t)!voxgi_bit_get(bits, (uint64_t)v[0] + 40u * ((uint64_t)v[1] + 40u * (uint64_t)v[2]));
+        }
+        TH_CHECK(bits && lost == 0 && info.atlas_points >= NT, "%llu tiny triangles lost their point", (unsigned long long)lost);
+        free(bits);
+    }
+    voxgi_destroy(ctx);
+    voxgi_destroy(one);
+}
+
 int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
@@ -1129,6 +1349,8 @@ int main(void)
     TH_RUN(test_solid_open_mesh_robust_modes);
     TH_RUN(test_or_mips);
     TH_RUN(test_slicemap_vs_oracle_and_relations);
+    TH_RUN(test_atlas_mesh_uvs_vs_oracle);
+    TH_RUN(test_atlas_auto_relations);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);

@@ -193,7 +193,12 @@ static const char *voxelize_help =
     "  --pad P                  with --res: P empty voxels around the mesh (default 1)\n"
     "  --grid OX OY OZ S NX NY NZ   exactly this grid: origin, voxel size, resolution\n"
     "  --method NAME            conservative (default), thin (6-separating), solid, slicemap (raster,\n"
-    "                           logic-op OR on GL), slicemap-atomic (raster, imageAtomicOr on GL)\n"
+    "                           logic-op OR on GL), slicemap-atomic (raster, imageAtomicOr on GL),\n"
+    "                           atlas (texture atlas points drawn as GL points), atlas-compute\n"
+    "                           (the same points, one compute invocation each)\n"
+    "  --atlas-size N           atlas methods: texels per side (default: from the grid, 2 texels\n"
+    "                           per voxel edge, at most 8192)\n"
+    "  --atlas-uv auto|mesh     atlas methods: voxgi's own charts (default) or the mesh's uvs\n"
     "  --solid-mode MODE        with --method solid: parity (default, closed meshes), vote, flood\n"
     "  --axis x|y|z             solid parity: the counting axis; slicemap: the slicing axis (default z)\n"
     "  --backend auto|cpu|gl    (default auto: GL when a headless GL 4.5 context works)\n"
@@ -232,7 +237,16 @@ static int cmd_voxelize(int argc, char **argv)
             else if (strcmp(mname, "solid") == 0) vd.method = VOXGI_METHOD_SOLID;
             else if (strcmp(mname, "slicemap") == 0) vd.method = VOXGI_METHOD_SLICEMAP;
             else if (strcmp(mname, "slicemap-atomic") == 0) { vd.method = VOXGI_METHOD_SLICEMAP; vd.atomic = 1; }
-            else return bad_arg("voxelize", "--method is conservative, thin, solid, slicemap or slicemap-atomic");
+            else if (strcmp(mname, "atlas") == 0) vd.method = VOXGI_METHOD_ATLAS;
+            else if (strcmp(mname, "atlas-compute") == 0) vd.method = VOXGI_METHOD_ATLAS_COMPUTE;
+            else return bad_arg("voxelize", "--method is conservative, thin, solid, slicemap, slicemap-atomic, atlas or atlas-compute");
+        } else if (strcmp(a, "--atlas-size") == 0 && i + 1 < argc) {
+            if (!parse_int(argv[++i], 1, 16384, &vd.atlas_size)) return bad_arg("voxelize", "--atlas-size needs 1..16384");
+        } else if (strcmp(a, "--atlas-uv") == 0 && i + 1 < argc) {
+            const char *uv = argv[++i];
+            if (strcmp(uv, "auto") == 0) vd.atlas_uv = VOXGI_ATLAS_AUTO;
+            else if (strcmp(uv, "mesh") == 0) vd.atlas_uv = VOXGI_ATLAS_MESH;
+            else return bad_arg("voxelize", "--atlas-uv is auto or mesh");
         } else if (strcmp(a, "--solid-mode") == 0 && i + 1 < argc) {
             const char *mode = argv[++i];
             if (strcmp(mode, "parity") == 0) vd.solid_mode = VOXGI_SOLID_PARITY;
@@ -319,12 +333,12 @@ static int cmd_voxelize(int argc, char **argv)
     if (json)
         printf("{\"mesh\":\"%s\",\"triangles\":%lu,\"voxels\":%llu,\"ms\":%.3f,\"runs\":%d,\"backend\":\"%s\",\"renderer\":\"%s\","
                "\"threads\":%d,\"method\":\"%s\",\"origin\":[%.17g,%.17g,%.17g],\"voxel_size\":%.17g,"
-               "\"res\":[%d,%d,%d],\"exact_tests\":%llu,\"exact_triangles\":%llu%s%s%s}\n",
+               "\"res\":[%d,%d,%d],\"exact_tests\":%llu,\"exact_triangles\":%llu,\"atlas_size\":%d,\"atlas_points\":%llu%s%s%s}\n",
                mesh_path, (unsigned long)mesh_triangles(&tm), (unsigned long long)info.voxel_count, info.ms, runs,
                voxgi_backend_name(ci.backend), ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "", ci.thread_count,
                voxgi_method_name(vd.method), vd.grid.origin[0], vd.grid.origin[1], vd.grid.origin[2], vd.grid.voxel_size, vd.grid.res[0], vd.grid.res[1],
-               vd.grid.res[2], (unsigned long long)info.exact_tests, (unsigned long long)info.exact_triangles,
-               out_path ? ",\"output\":\"" : "", out_path ? out_path : "", out_path ? "\"" : "");
+               vd.grid.res[2], (unsigned long long)info.exact_tests, (unsigned long long)info.exact_triangles, info.atlas_size,
+               (unsigned long long)info.atlas_points, out_path ? ",\"output\":\"" : "", out_path ? out_path : "", out_path ? "\"" : "");
     else {
         printf("%s: %lu triangles -> %llu voxels of %dx%dx%d in %.2f ms (%s%s%s)\n", mesh_path,
                (unsigned long)mesh_triangles(&tm), (unsigned long long)info.voxel_count, vd.grid.res[0], vd.grid.res[1],
@@ -332,6 +346,9 @@ static int cmd_voxelize(int argc, char **argv)
                ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "");
         printf("grid: origin %.17g %.17g %.17g, voxel size %.17g\n", vd.grid.origin[0], vd.grid.origin[1], vd.grid.origin[2],
                vd.grid.voxel_size);
+        if (info.atlas_size)
+            printf("atlas: %dx%d texels, %llu points, %.3g texels per voxel edge\n", info.atlas_size, info.atlas_size,
+                   (unsigned long long)info.atlas_points, info.atlas_scale);
         if (out_path) printf("wrote %s\n", out_path);
     }
     rc = 0;
@@ -398,7 +415,7 @@ static const char *bench_help =
     "rasteriser: not GPU timings. Table 3 counts missed / extra voxels against exact conservative\n"
     "voxelization (surface methods) or solid parity, the exact inside test of a closed mesh.\n"
     "  --methods LIST              comma separated: conservative, thin, solid, solid-vote, solid-flood,\n"
-    "                              slicemap, slicemap-atomic\n"
+    "                              slicemap, slicemap-atomic, atlas, atlas-compute\n"
     "                              (default conservative)\n"
     "  --min-res N / --max-res N   range of N, powers of two (default 32..512)\n"
     "  --runs R                    runs per cell, median reported (default 3)\n"
@@ -411,7 +428,8 @@ static const bench_method bench_methods[] = {
     {"conservative", VOXGI_METHOD_CONSERVATIVE, VOXGI_SOLID_PARITY, 0}, {"thin", VOXGI_METHOD_THIN, VOXGI_SOLID_PARITY, 0},
     {"solid", VOXGI_METHOD_SOLID, VOXGI_SOLID_PARITY, 0},               {"solid-vote", VOXGI_METHOD_SOLID, VOXGI_SOLID_VOTE, 0},
     {"solid-flood", VOXGI_METHOD_SOLID, VOXGI_SOLID_FLOOD, 0},          {"slicemap", VOXGI_METHOD_SLICEMAP, VOXGI_SOLID_PARITY, 0},
-    {"slicemap-atomic", VOXGI_METHOD_SLICEMAP, VOXGI_SOLID_PARITY, 1}};
+    {"slicemap-atomic", VOXGI_METHOD_SLICEMAP, VOXGI_SOLID_PARITY, 1}, {"atlas", VOXGI_METHOD_ATLAS, VOXGI_SOLID_PARITY, 0},
+    {"atlas-compute", VOXGI_METHOD_ATLAS_COMPUTE, VOXGI_SOLID_PARITY, 0}};
 #define BENCH_METHOD_COUNT (int)(sizeof bench_methods / sizeof bench_methods[0])
 
 typedef struct bench_cell { double ms[3]; uint64_t voxels[3], missed, extra; int ok[3]; } bench_cell;
