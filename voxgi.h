@@ -196,7 +196,8 @@ typedef struct voxgi_mesh {
 typedef struct voxgi_scene {
     const voxgi_mesh *meshes;
     size_t mesh_count;
-    const voxgi_material *materials;   /* may be NULL when no mesh names a material other than 0 */
+    const voxgi_material *materials;   /* may be NULL when no mesh names a material other than 0;
+                                          material 0 is then albedo 0.8, no emission, opaque */
     size_t material_count;
 } voxgi_scene;
 
@@ -263,6 +264,21 @@ typedef enum voxgi_solid_mode { VOXGI_SOLID_PARITY = 0, VOXGI_SOLID_VOTE, VOXGI_
    subpixel grid, so GL and CPU see the same triangles. */
 typedef enum voxgi_atlas_uv { VOXGI_ATLAS_AUTO = 0, VOXGI_ATLAS_MESH } voxgi_atlas_uv;
 
+/* Attributes: per set voxel, the mean over the triangles that set it of each triangle's value.
+   ALBEDO and EMISSION come from the material (3 floats each), OPACITY is 1 - transparency (1
+   float), NORMAL is the triangle's unit geometric normal, front = counter-clockwise (3 floats;
+   the mean is not renormalised: its length tells how much the normals agree). Values enter as
+   24-bit fixed point of their channel's range ([0,1]; [-1,1] for normals; for emission, the
+   scene's largest emitted component rounded up to a power of two) and are summed in 64-bit
+   integers, so a mean is the same for any triangle order, thread count and backend, and lies
+   within half a unit (range * 2^-25) of the exact mean before its rounding to float. */
+typedef enum voxgi_attribute {
+    VOXGI_ATTRIBUTE_ALBEDO = 1,
+    VOXGI_ATTRIBUTE_NORMAL = 2,
+    VOXGI_ATTRIBUTE_EMISSION = 4,
+    VOXGI_ATTRIBUTE_OPACITY = 8
+} voxgi_attribute;
+
 typedef struct voxgi_voxelize_desc {
     voxgi_grid grid;
     voxgi_method method;
@@ -272,6 +288,7 @@ typedef struct voxgi_voxelize_desc {
     int atlas_size;               /* ATLAS*: texels per side (at most 16384); 0 = from the grid: the
                                      size that holds AUTO charts at 2 texels per voxel edge, at most 8192 */
     voxgi_atlas_uv atlas_uv;      /* ATLAS*: 0 = AUTO */
+    unsigned attributes;          /* CONSERVATIVE, THIN: voxgi_attribute bits to average per voxel; 0 = none */
 } voxgi_voxelize_desc;
 
 typedef struct voxgi_voxels voxgi_voxels;
@@ -288,6 +305,8 @@ typedef struct voxgi_voxels_info {
     int atlas_size;             /* ATLAS*: texels per side */
     double atlas_scale;         /* ATLAS* with AUTO charts: texels per voxel edge */
     uint64_t atlas_points;      /* ATLAS*: covered texels */
+    unsigned attributes;        /* voxgi_attribute bits held */
+    uint64_t attribute_pairs;   /* (triangle, voxel) pairs averaged */
 } voxgi_voxels_info;
 
 VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene,
@@ -297,6 +316,10 @@ VOXGI_API void voxgi_voxels_query(const voxgi_voxels *voxels, voxgi_voxels_info 
 /* Copies the bit grid into dst (32-bit words, layout above). dst == NULL: only *needed is set. */
 VOXGI_API voxgi_result voxgi_voxels_read(voxgi_context *ctx, const voxgi_voxels *voxels,
                                          uint32_t *dst, size_t dst_bytes, size_t *needed);
+/* One attribute of every set voxel, in the order of the bit grid (linear index): 3 floats per
+   voxel (ALBEDO, NORMAL, EMISSION) or 1 (OPACITY). dst == NULL: only *needed is set. */
+VOXGI_API voxgi_result voxgi_voxels_read_attribute(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_attribute which,
+                                                   float *dst, size_t dst_bytes, size_t *needed);
 /* GL backend: the name of the GL shader storage buffer holding the bit grid (owned by voxels). */
 VOXGI_API voxgi_result voxgi_voxels_gl_buffer(voxgi_context *ctx, const voxgi_voxels *voxels,
                                               unsigned int *gl_buffer_name);
@@ -737,6 +760,16 @@ static voxgi_result voxgi__validate(voxgi_context *ctx, const voxgi_scene *scene
     if (scene->material_count && !scene->materials)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "scene.materials is NULL but material_count is %lu",
                            (unsigned long)scene->material_count);
+    for (mi = 0; mi < scene->material_count; mi++) {
+        const voxgi_material *mat = &scene->materials[mi];
+        int c, ok = isfinite(mat->transparency) && mat->transparency >= 0 && mat->transparency <= 1;
+        for (c = 0; c < 3; c++)
+            ok = ok && isfinite(mat->albedo[c]) && mat->albedo[c] >= 0 && mat->albedo[c] <= 1 && isfinite(mat->emission[c]) &&
+                 mat->emission[c] >= 0;
+        if (!ok)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "material %lu: albedo and transparency must lie in [0,1], "
+                               "emission must be finite and >= 0", (unsigned long)mi);
+    }
     for (mi = 0; mi < scene->mesh_count; mi++) {
         const voxgi_mesh *m = &scene->meshes[mi];
         size_t nt;
@@ -811,6 +844,9 @@ typedef struct voxgi__flat {
     float *pos;        /* 3 per vertex */
     uint32_t *tri;     /* 3 per triangle, into pos */
     float *uv;         /* 2 per vertex, when asked for */
+    uint32_t *mat;     /* 1 per triangle, when asked for */
+    const voxgi_material *materials;
+    size_t material_count;
 } voxgi__flat;
 
 static void voxgi__flat_free(voxgi_context *ctx, voxgi__flat *f)
@@ -818,11 +854,12 @@ static void voxgi__flat_free(voxgi_context *ctx, voxgi__flat *f)
     voxgi__free(ctx, f->pos);
     voxgi__free(ctx, f->tri);
     voxgi__free(ctx, f->uv);
+    voxgi__free(ctx, f->mat);
     memset(f, 0, sizeof *f);
 }
 
 /* One vertex and index array for the whole scene; with want_uv, every mesh must have finite uvs. */
-static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene, int want_uv, voxgi__flat *f)
+static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene, int want_uv, int want_mat, voxgi__flat *f)
 {
     size_t mi, t, v, nt = 0, nv = 0, tri_at = 0, vert_at = 0;
     voxgi_result r = voxgi__validate(ctx, scene, &nt, &nv);
@@ -831,7 +868,8 @@ static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene,
     f->pos = (float *)voxgi__alloc_array(ctx, nv, 3 * sizeof(float), 0);
     f->tri = (uint32_t *)voxgi__alloc_array(ctx, nt, 3 * sizeof(uint32_t), 0);
     if (want_uv) f->uv = (float *)voxgi__alloc_array(ctx, nv, 2 * sizeof(float), 0);
-    if (!f->pos || !f->tri || (want_uv && !f->uv)) {
+    if (want_mat) f->mat = (uint32_t *)voxgi__alloc_array(ctx, nt, sizeof(uint32_t), 0);
+    if (!f->pos || !f->tri || (want_uv && !f->uv) || (want_mat && !f->mat)) {
         voxgi__flat_free(ctx, f);
         return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)nt);
     }
@@ -854,12 +892,15 @@ static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene,
         for (t = 0; t < mt; t++) {
             int c;
             for (c = 0; c < 3; c++) f->tri[3 * (tri_at + t) + (size_t)c] = (uint32_t)(vert_at + voxgi__mesh_index(m, t, c));
+            if (want_mat) f->mat[tri_at + t] = m->material_ids ? m->material_ids[t] : m->material;
         }
         tri_at += mt;
         vert_at += m->vertex_count;
     }
     f->vertex_count = nv;
     f->triangle_count = nt;
+    f->materials = scene->materials;
+    f->material_count = scene->material_count;
     return VOXGI_OK;
 }
 
@@ -1416,8 +1457,39 @@ typedef struct voxgi__tri {
     int proj_count[3];         /* 1 two-sided line (segment-shaped projection), or 0 (a point) */
 } voxgi__tri;
 
-/* What one worker counted: tests decided by exact arithmetic, and bits it set. */
-typedef struct voxgi__stats { uint64_t exact_tests, voxels; } voxgi__stats;
+/* What one worker counted: tests decided by exact arithmetic, and bits it set; and the
+   triangle it works on (whose attributes a voxel receives). */
+typedef struct voxgi__stats { uint64_t exact_tests, voxels; uint32_t tri; } voxgi__stats;
+
+/* Attribute sums (see voxgi_attribute): each triangle's values in fixed point; per set voxel a
+   count and 64-bit sums, at the voxel's rank among the set bits. */
+#define VOXGI__MAX_CHANNELS 10
+typedef struct voxgi__attr {
+    int channels;                       /* values per triangle and per voxel */
+    double unit[VOXGI__MAX_CHANNELS];   /* what one fixed-point unit of a channel is worth */
+    double zero[VOXGI__MAX_CHANNELS];   /* the value fixed point 0 stands for */
+    uint32_t *rec;                      /* channels per triangle */
+    uint32_t *rank;                     /* per word of the bit grid: set voxels in the words before */
+    uint32_t *count;                    /* per set voxel: triangles added */
+    uint64_t *sum;                      /* channels per set voxel */
+} voxgi__attr;
+
+static uint32_t voxgi__popcount32(uint32_t x)
+{
+    x = x - ((x >> 1) & 0x55555555u);
+    x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+    return (((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
+}
+
+/* Adds triangle t's values to set voxel idx. */
+static void voxgi__attr_add(const voxgi__attr *at, const uint32_t *bits, uint64_t idx, uint32_t t)
+{
+    uint64_t slot = at->rank[idx >> 5] + voxgi__popcount32(bits[idx >> 5] & ((1u << (idx & 31u)) - 1u));
+    int c;
+    VOXGI__ATOMIC_ADD_SIZE(&at->count[slot], 1u);
+    for (c = 0; c < at->channels; c++)
+        VOXGI__ATOMIC_ADD_SIZE(&at->sum[slot * (uint64_t)at->channels + (uint64_t)c], (uint64_t)at->rec[(size_t)t * (size_t)at->channels + (size_t)c]);
+}
 
 /* Read-only state shared by all workers of one voxelization. */
 typedef struct voxgi__vox_shared {
@@ -1430,6 +1502,7 @@ typedef struct voxgi__vox_shared {
     int thin;              /* VOXGI_METHOD_THIN: every set voxel also passes the thin tests */
     int solid_axis;        /* solid parity along this axis, else -1 */
     int slice_axis;        /* raster slicemap along this axis, else -1 */
+    const voxgi__attr *attr; /* attribute pass: bits are final, set voxels receive attributes */
 } voxgi__vox_shared;
 
 /* Fills the triangle's range, coordinates, edges and normal; returns 0 when it misses the grid. */
@@ -1774,6 +1847,7 @@ static void voxgi__set_voxel(const voxgi__vox_shared *vs, voxgi__stats *st, int6
     const voxgi_grid *g = vs->grid;
     uint64_t idx = (uint64_t)i + (uint64_t)g->res[0] * ((uint64_t)j + (uint64_t)g->res[1] * (uint64_t)k);
     uint32_t *w = vs->bits + (idx >> 5), mask = 1u << (idx & 31u);
+    if (vs->attr) { voxgi__attr_add(vs->attr, vs->bits, idx, st->tri); return; }
     /* the old word tells whether this call set the bit, so counting costs nothing */
     if (!(*w & mask) && !(VOXGI__ATOMIC_OR_U32(w, mask) & mask)) st->voxels++;
 }
@@ -2190,7 +2264,7 @@ typedef struct voxgi__vox_job {
 
 static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress)
 {
-    voxgi__stats st = {0, 0};
+    voxgi__stats st = {0, 0, 0};
     voxgi__prepared P;
     for (;;) {
         size_t first = VOXGI__ATOMIC_ADD_SIZE(&job->next, job->phase ? (size_t)1 : (size_t)VOXGI__CHUNK), t, end;
@@ -2200,6 +2274,7 @@ static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress
             if (first >= job->triangle_count) break;
             end = VOXGI__MIN(first + VOXGI__CHUNK, job->triangle_count);
             for (t = first; t < end; t++) {
+                st.tri = (uint32_t)t;
                 if (job->vs->solid_axis >= 0) { voxgi__solid_triangle(job->vs, t, &st); continue; }
                 if (job->vs->slice_axis >= 0) { voxgi__slicemap_triangle(job->vs, t, &st); continue; }
                 if (!voxgi__tri_prepare(job->vs, t, &P, &st)) continue;
@@ -2217,6 +2292,7 @@ static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress
                 if (job->big_first_item[mid] <= item) lo = mid;
                 else hi = mid;
             }
+            st.tri = job->big[lo];
             voxgi__tri_prepare(job->vs, job->big[lo], &P, &st);
             row0 = (int32_t)(item - job->big_first_item[lo]) * VOXGI__ROWS_PER_ITEM;
             voxgi__tri_rows(job->vs, &P, row0, VOXGI__MIN(row0 + VOXGI__ROWS_PER_ITEM, P.ext[(P.c + 2) % 3]) - 1, &st);
@@ -2283,7 +2359,7 @@ static voxgi_result voxgi__voxelize_cpu_run(voxgi_context *ctx, const voxgi__vox
         job.big_first_item[0] = 0;
         for (i = 0; i < job.big_count; i++) {
             voxgi__prepared P;
-            voxgi__stats unused = {0, 0};
+            voxgi__stats unused = {0, 0, 0};
             voxgi__tri_prepare(vs, job.big[i], &P, &unused);
             job.big_first_item[i + 1] = job.big_first_item[i] +
                                         (size_t)(P.ext[(P.c + 2) % 3] + VOXGI__ROWS_PER_ITEM - 1) / VOXGI__ROWS_PER_ITEM;
@@ -2605,7 +2681,7 @@ static int voxgi__atlas_point(const voxgi__atlas *at, const voxgi__vox_shared *v
 static void voxgi__atlas_points(void *user, size_t first, size_t end)
 {
     voxgi__atlas_job *job = (voxgi__atlas_job *)user;
-    voxgi__stats st = {0, 0};
+    voxgi__stats st = {0, 0, 0};
     uint64_t points = 0;
     size_t row, size = (size_t)job->at->size;
     for (row = first; row < end; row++) {
@@ -2643,7 +2719,105 @@ struct voxgi_voxels {
     voxgi_voxels_info info;
     uint32_t *bits;            /* CPU backend */
     unsigned int gl_buffer;    /* GL backend */
+    voxgi__attr attr;          /* with attributes: counts and sums per set voxel (on the CPU for both backends) */
 };
+
+/* Each triangle's attribute values in fixed point, channels in the order albedo, normal,
+   emission, opacity (those asked for). */
+static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f, unsigned mask, voxgi__attr *at)
+{
+    static const voxgi_material fallback = {{0.8f, 0.8f, 0.8f}, {0, 0, 0}, 0};
+    double emax = 0, erange = 1, v[VOXGI__MAX_CHANNELS];
+    size_t t;
+    int c;
+    memset(at, 0, sizeof *at);
+    at->channels = (mask & VOXGI_ATTRIBUTE_ALBEDO ? 3 : 0) + (mask & VOXGI_ATTRIBUTE_NORMAL ? 3 : 0) +
+                   (mask & VOXGI_ATTRIBUTE_EMISSION ? 3 : 0) + (mask & VOXGI_ATTRIBUTE_OPACITY ? 1 : 0);
+    for (t = 0; t < f->triangle_count; t++) {
+        const voxgi_material *m = f->material_count ? &f->materials[f->mat[t]] : &fallback;
+        for (c = 0; c < 3; c++) emax = VOXGI__MAX(emax, (double)m->emission[c]);
+    }
+    while (erange < emax) erange *= 2;
+    while (erange / 2 >= emax && emax > 0) erange /= 2;
+    at->rec = (uint32_t *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, (size_t)at->channels * 4, 0);
+    if (!at->rec) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' attributes");
+    for (t = 0; t < f->triangle_count; t++) {
+        const voxgi_material *m = f->material_count ? &f->materials[f->mat[t]] : &fallback;
+        double step[VOXGI__MAX_CHANNELS]; /* v / step is the fixed-point value: v in [0,1], normals n + 1 in [0,2] */
+        int k = 0, a;
+        if (mask & VOXGI_ATTRIBUTE_ALBEDO)
+            for (a = 0; a < 3; a++, k++) { v[k] = m->albedo[a]; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = step[k]; }
+        if (mask & VOXGI_ATTRIBUTE_NORMAL) { /* the geometric normal in double from the float vertices */
+            const float *p0 = f->pos + 3 * (size_t)f->tri[3 * t], *p1 = f->pos + 3 * (size_t)f->tri[3 * t + 1],
+                        *p2 = f->pos + 3 * (size_t)f->tri[3 * t + 2];
+            double e[3], g[3], n[3], len;
+            for (a = 0; a < 3; a++) { e[a] = (double)p1[a] - p0[a]; g[a] = (double)p2[a] - p0[a]; }
+            for (a = 0; a < 3; a++) n[a] = e[(a + 1) % 3] * g[(a + 2) % 3] - e[(a + 2) % 3] * g[(a + 1) % 3];
+            len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (a = 0; a < 3; a++, k++) { v[k] = len > 0 ? n[a] / len + 1 : 1; step[k] = ldexp(1.0, -23); at->zero[k] = -1; at->unit[k] = step[k]; }
+        }
+        if (mask & VOXGI_ATTRIBUTE_EMISSION)
+            for (a = 0; a < 3; a++, k++) { v[k] = m->emission[a] / erange; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = erange * step[k]; }
+        if (mask & VOXGI_ATTRIBUTE_OPACITY) { v[k] = 1.0 - m->transparency; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = step[k]; k++; }
+        for (c = 0; c < k; c++) /* round to nearest: no truncation bias */
+            at->rec[t * (size_t)at->channels + (size_t)c] = (uint32_t)floor(VOXGI__MIN(VOXGI__MAX(v[c], 0.0), 2.0) / step[c] + 0.5);
+    }
+    return VOXGI_OK;
+}
+
+/* After the bits are final: ranks, counts and sums for the attribute pass. */
+static voxgi_result voxgi__attr_alloc(voxgi_context *ctx, voxgi__attr *at, const uint32_t *bits, uint64_t words, uint64_t voxels)
+{
+    uint64_t w, before = 0;
+    if (voxels > (uint64_t)UINT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "attributes hold at most 2^32 voxels");
+    at->rank = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0);
+    at->count = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), 4, 1);
+    at->sum = (uint64_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), (size_t)at->channels * 8, 1);
+    if (!at->rank || !at->count || !at->sum)
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attributes of %llu voxels", (unsigned long long)voxels);
+    for (w = 0; w < words; w++) {
+        at->rank[w] = (uint32_t)before;
+        before += voxgi__popcount32(bits[w]);
+    }
+    return VOXGI_OK;
+}
+
+static void voxgi__attr_free(voxgi_context *ctx, voxgi__attr *at)
+{
+    voxgi__free(ctx, at->rec);
+    voxgi__free(ctx, at->rank);
+    voxgi__free(ctx, at->count);
+    voxgi__free(ctx, at->sum);
+    memset(at, 0, sizeof *at);
+}
+
+VOXGI_API voxgi_result voxgi_voxels_read_attribute(voxgi_context *ctx, const voxgi_voxels *v, voxgi_attribute which, float *dst,
+                                                   size_t dst_bytes, size_t *needed)
+{
+    int first = 0, width = which == VOXGI_ATTRIBUTE_OPACITY ? 1 : 3, c;
+    uint64_t i, n;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!v) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels is NULL");
+    if ((which != VOXGI_ATTRIBUTE_ALBEDO && which != VOXGI_ATTRIBUTE_NORMAL && which != VOXGI_ATTRIBUTE_EMISSION &&
+         which != VOXGI_ATTRIBUTE_OPACITY) || !(v->info.attributes & (unsigned)which))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attribute %d was not voxelized (held: 0x%x)", (int)which, v->info.attributes);
+    n = v->info.voxel_count;
+    if (needed) *needed = (size_t)(n * (uint64_t)width * 4);
+    if (!dst) return needed ? VOXGI_OK : voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "dst and needed are both NULL");
+    if (dst_bytes < n * (uint64_t)width * 4)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "the attribute needs %llu bytes, dst has %lu",
+                           (unsigned long long)(n * (uint64_t)width * 4), (unsigned long)dst_bytes);
+    if ((unsigned)which > VOXGI_ATTRIBUTE_ALBEDO && (v->info.attributes & VOXGI_ATTRIBUTE_ALBEDO)) first += 3;
+    if ((unsigned)which > VOXGI_ATTRIBUTE_NORMAL && (v->info.attributes & VOXGI_ATTRIBUTE_NORMAL)) first += 3;
+    if ((unsigned)which > VOXGI_ATTRIBUTE_EMISSION && (v->info.attributes & VOXGI_ATTRIBUTE_EMISSION)) first += 3;
+    for (i = 0; i < n; i++)
+        for (c = 0; c < width; c++) {
+            int ch = first + c;
+            double mean = (double)v->attr.sum[i * (uint64_t)v->attr.channels + (uint64_t)ch] / (double)v->attr.count[i];
+            dst[i * (uint64_t)width + (uint64_t)c] = (float)(v->attr.zero[ch] + mean * v->attr.unit[ch]);
+        }
+    return VOXGI_OK;
+}
 
 VOXGI_API void voxgi_voxels_query(const voxgi_voxels *v, voxgi_voxels_info *out)
 {
@@ -2729,7 +2903,7 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
                                        const voxgi_voxelize_desc *desc, const voxgi__atlas *atlas, voxgi_voxels *vox)
 {
     voxgi__vox_shared vs;
-    voxgi__stats st = {0, 0};
+    voxgi__stats st = {0, 0, 0};
     size_t words = (size_t)voxgi__grid_words(&desc->grid), i;
     uint32_t *extra[2] = {NULL, NULL};
     voxgi_result r = VOXGI_OK;
@@ -2750,6 +2924,7 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
     vs.inv_s = 1.0 / desc->grid.voxel_size;
     vs.thin = desc->method == VOXGI_METHOD_THIN;
     vs.slice_axis = desc->method == VOXGI_METHOD_SLICEMAP ? (desc->axis ? (int)desc->axis - 1 : 2) : -1;
+    vs.attr = NULL;
     if (atlas) {
         vs.bits = vox->bits;
         r = voxgi__atlas_cpu(ctx, &vs, flat->triangle_count, atlas, &vox->info.atlas_points);
@@ -2769,6 +2944,13 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
             vox->bits[i] = (x & y) | (y & z) | (x & z);
         }
     if (r == VOXGI_OK && solid && desc->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__flood_solid(ctx, &desc->grid, vox->bits);
+    if (r == VOXGI_OK && vox->attr.rec) { /* the attribute pass: the same tests again, now adding to the set voxels */
+        voxgi__stats ast = {0, 0, 0};
+        r = voxgi__attr_alloc(ctx, &vox->attr, vox->bits, words, st.voxels);
+        vs.bits = vox->bits;
+        vs.attr = &vox->attr;
+        if (r == VOXGI_OK) r = voxgi__voxelize_cpu_run(ctx, &vs, flat->triangle_count, &ast);
+    }
     voxgi__free(ctx, extra[0]);
     voxgi__free(ctx, extra[1]);
     vox->info.exact_tests = st.exact_tests;
@@ -2792,9 +2974,14 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown voxelization method %d", (int)desc->method);
     if ((unsigned)desc->axis > (unsigned)VOXGI_AXIS_Z || (unsigned)desc->solid_mode > (unsigned)VOXGI_SOLID_FLOOD)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown axis %d or solid mode %d", (int)desc->axis, (int)desc->solid_mode);
+    if (desc->attributes & ~15u)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown attribute bits 0x%x", desc->attributes & ~15u);
+    if (desc->attributes && desc->method != VOXGI_METHOD_CONSERVATIVE && desc->method != VOXGI_METHOD_THIN)
+        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "attributes are averaged by the conservative and thin methods, not %s",
+                           voxgi_method_name(desc->method));
     r = voxgi_validate_grid(ctx, &desc->grid);
     if (r != VOXGI_OK) return r;
-    r = voxgi__flatten(ctx, scene, voxgi__is_atlas(desc->method) && desc->atlas_uv == VOXGI_ATLAS_MESH, &flat);
+    r = voxgi__flatten(ctx, scene, voxgi__is_atlas(desc->method) && desc->atlas_uv == VOXGI_ATLAS_MESH, desc->attributes != 0, &flat);
     if (r != VOXGI_OK) return r;
     vox = (voxgi_voxels *)voxgi__alloc_array(ctx, 1, sizeof *vox, 1);
     if (!vox) { voxgi__flat_free(ctx, &flat); return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the result"); }
@@ -2804,6 +2991,10 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
     vox->info.triangle_count = flat.triangle_count;
     vox->info.bytes = (size_t)(voxgi__grid_words(&desc->grid) * 4u);
     r = voxgi__prep_vertices(ctx, &flat, &desc->grid, &vp);
+    if (r == VOXGI_OK && desc->attributes) {
+        r = voxgi__attr_prepare(ctx, &flat, desc->attributes, &vox->attr);
+        vox->info.attributes = desc->attributes;
+    }
     memset(&atlas, 0, sizeof atlas);
     if (r == VOXGI_OK && voxgi__is_atlas(desc->method)) {
         r = voxgi__atlas_build(ctx, &flat, vp, desc, &atlas);
@@ -2817,6 +3008,13 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
 #endif
     voxgi__free(ctx, atlas.uv);
     voxgi__free(ctx, vp);
+    voxgi__free(ctx, vox->attr.rec); /* what stays: counts and sums */
+    voxgi__free(ctx, vox->attr.rank);
+    vox->attr.rec = vox->attr.rank = NULL;
+    if (r == VOXGI_OK && vox->attr.count) {
+        uint64_t i;
+        for (i = 0; i < vox->info.voxel_count; i++) vox->info.attribute_pairs += vox->attr.count[i];
+    }
     voxgi__flat_free(ctx, &flat);
     if (r != VOXGI_OK) { voxgi_voxels_destroy(ctx, vox); return r; }
     vox->info.ms = voxgi__now_ms() - t0;
@@ -2831,6 +3029,7 @@ VOXGI_API void voxgi_voxels_destroy(voxgi_context *ctx, voxgi_voxels *v)
     if (v->gl_buffer) voxgi__gl_delete_buffer(ctx, v->gl_buffer);
 #endif
     voxgi__free(ctx, v->bits);
+    voxgi__attr_free(ctx, &v->attr);
     voxgi__free(ctx, v);
 }
 
@@ -2945,14 +3144,140 @@ static void voxgi__gl_dispatch_items(voxgi__gl *gl, uint64_t items)
 /* The triangle pass: conservative/thin voxels (solid_axis < 0) or solid toggles along
    solid_axis, into a new buffer *bits_out. What the GPU's filter cannot decide is decided here
    exactly and written back. */
+/* Pass 0 over all triangles (in slices of at most 65535 work groups), then pass 1 over the big
+   ones it listed, sized on the GPU; the program's other uniforms are set by the caller. */
+static void voxgi__gl_run_triangles(voxgi__gl *gl, unsigned int p, size_t nt, unsigned int control)
+{
+    size_t t0;
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+    for (t0 = 0; t0 < nt; t0 += 65535u * 64u) {
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_offset"), (unsigned)t0);
+        gl->DispatchCompute((unsigned)VOXGI__MIN((nt - t0 + 63) / 64, (size_t)65535), 1, 1);
+    }
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, control);
+    gl->DispatchComputeIndirect(0);
+    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/* The attribute pass after the conservative (or thin) bits are final in buf[2]: the same
+   triangles again, each set voxel receiving its triangles' values on the GPU; the triangles the
+   bit pass flagged (buf[5]) and the pairs its filter could not decide are added here, exactly.
+   pair_capacity: the bit pass's pair count, which this pass cannot exceed. */
+static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                             const voxgi_voxelize_desc *d, const unsigned int *buf, uint32_t pair_capacity,
+                                             voxgi__attr *attr)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    uint64_t words = voxgi__grid_words(g), voxels = 0, w, stride = 1 + 2 * (uint64_t)attr->channels, s;
+    size_t nt = f->triangle_count, flag_words = (nt + 31) / 32, k;
+    unsigned int control_buf = 0, pairs_buf = 0, rank_buf = 0, rec_buf = 0, sums_buf = 0, zero = 0, p = gl->prog_voxelize_conservative;
+    uint32_t control[8], *bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0), *sums = NULL, *flags = NULL, *pairs = NULL;
+    voxgi_result r = VOXGI_OK;
+    if (!bits) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attribute pass");
+    r = voxgi__gl_read_buffer(ctx, buf[2], bits, (size_t)words * 4);
+    for (w = 0; w < words; w++) voxels += voxgi__popcount32(bits[w]);
+    if (r == VOXGI_OK && voxels * stride * 4 > (uint64_t)gl->max_ssbo_bytes)
+        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the attribute sums of %llu voxels exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE; "
+                        "use the CPU backend", (unsigned long long)voxels);
+    if (r == VOXGI_OK) r = voxgi__attr_alloc(ctx, attr, bits, words, voxels);
+    if (r == VOXGI_OK) {
+        memset(control, 0, sizeof control);
+        control[1] = control[2] = 1;
+        control_buf = voxgi__gl_buffer(ctx, sizeof control, control);
+        pairs_buf = voxgi__gl_buffer(ctx, (size_t)VOXGI__MAX(pair_capacity, 1u) * 16, NULL);
+        rank_buf = voxgi__gl_buffer(ctx, (size_t)words * 4, attr->rank);
+        rec_buf = voxgi__gl_buffer(ctx, nt * (size_t)attr->channels * 4, attr->rec);
+        sums_buf = voxgi__gl_buffer(ctx, (size_t)(voxels * stride * 4), NULL);
+        gl->ClearNamedBufferData(sums_buf, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        r = voxgi__gl_check(ctx, "allocating the attribute buffers");
+    }
+    if (r == VOXGI_OK) {
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, control_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, pairs_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, rank_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 8, rec_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 9, sums_buf);
+        gl->UseProgram(p);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), pair_capacity);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 1);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr->channels);
+        voxgi__gl_run_triangles(gl, p, nt, control_buf);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
+        for (k = 7; k < 10; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, 0);
+        r = voxgi__gl_read_buffer(ctx, control_buf, control, sizeof control);
+        if (r == VOXGI_OK && control[4] > pair_capacity)
+            r = voxgi__fail(ctx, VOXGI_ERR_GL, "the attribute pass found %u undecided pairs, the bit pass %u", control[4], pair_capacity);
+    }
+    if (r == VOXGI_OK) { /* the GPU's sums, then the CPU's share */
+        sums = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels * stride : 1), 4, 0);
+        flags = (uint32_t *)voxgi__alloc_array(ctx, flag_words ? flag_words : 1, 4, 0);
+        pairs = (uint32_t *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(control[4], 1u), 16, 0);
+        if (!sums || !flags || !pairs) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to read the attribute sums");
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, sums_buf, sums, (size_t)(voxels * stride * 4));
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[5], flags, flag_words * 4);
+        if (r == VOXGI_OK && control[4]) r = voxgi__gl_read_buffer(ctx, pairs_buf, pairs, (size_t)control[4] * 16);
+    }
+    if (r == VOXGI_OK) {
+        voxgi__vox_shared vs;
+        voxgi__stats st = {0, 0, 0};
+        int c, i;
+        for (s = 0; s < voxels; s++) {
+            attr->count[s] = sums[s * stride];
+            for (c = 0; c < attr->channels; c++)
+                attr->sum[s * (uint64_t)attr->channels + (uint64_t)c] =
+                    (uint64_t)sums[s * stride + 1 + 2 * (uint64_t)c] | ((uint64_t)sums[s * stride + 2 + 2 * (uint64_t)c] << 32);
+        }
+        memset(&vs, 0, sizeof vs);
+        vs.grid = g;
+        vs.pos = f->pos;
+        vs.tri = f->tri;
+        vs.vp = vp;
+        vs.bits = bits;
+        vs.inv_s = 1.0 / g->voxel_size;
+        vs.thin = d->method == VOXGI_METHOD_THIN;
+        vs.solid_axis = vs.slice_axis = -1;
+        vs.attr = attr;
+        for (k = 0; k < nt; k++)
+            if (flags[k >> 5] & (1u << (k & 31u))) {
+                st.tri = (uint32_t)k;
+                voxgi__voxelize_triangle(&vs, k, &st);
+            }
+        for (k = 0; k < control[4]; k++) {
+            voxgi__tri t;
+            const uint32_t *pr = pairs + 4 * k;
+            int32_t rel[3];
+            st.tri = pr[0];
+            if (!voxgi__tri_setup(&vs, pr[0], &t)) continue;
+            voxgi__tri_resolve_signs(&vs, &t, &st);
+            voxgi__tri_forms(&t);
+            for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
+            if (voxgi__test_voxel(&vs, &t, rel, &st)) voxgi__emit(&vs, &st, &t, rel);
+        }
+    }
+    voxgi__gl_delete_buffer(ctx, control_buf);
+    voxgi__gl_delete_buffer(ctx, pairs_buf);
+    voxgi__gl_delete_buffer(ctx, rank_buf);
+    voxgi__gl_delete_buffer(ctx, rec_buf);
+    voxgi__gl_delete_buffer(ctx, sums_buf);
+    voxgi__free(ctx, bits);
+    voxgi__free(ctx, sums);
+    voxgi__free(ctx, flags);
+    voxgi__free(ctx, pairs);
+    return r;
+}
+
 static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                             const voxgi_voxelize_desc *d, int solid_axis, unsigned int *bits_out,
-                                            voxgi_voxels_info *info)
+                                            voxgi_voxels_info *info, voxgi__attr *attr)
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = &d->grid;
     size_t bytes = (size_t)voxgi__grid_words(g) * 4, v, nt = f->triangle_count, flag_words = (nt + 31) / 32;
-    unsigned int buf[7] = {0, 0, 0, 0, 0, 0, 0}, t0, zero = 0, capacity = VOXGI__GL_PAIR_CAPACITY;
+    unsigned int buf[7] = {0, 0, 0, 0, 0, 0, 0}, zero = 0, capacity = VOXGI__GL_PAIR_CAPACITY;
     uint32_t control[8];
     voxgi__gl_vprep *gv;
     uint32_t *copy = NULL, *flags = NULL, *pairs = NULL;
@@ -2996,18 +3321,8 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), capacity);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_solid_axis"), solid_axis);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_thin"), d->method == VOXGI_METHOD_THIN);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
-        for (t0 = 0; t0 < nt; t0 += 65535u * 64u) { /* pass 0, in slices of at most 65535 work groups */
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_offset"), t0);
-            gl->DispatchCompute((unsigned)VOXGI__MIN((nt - t0 + 63) / 64, (size_t)65535), 1, 1);
-        }
-        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
-        /* pass 1: the listed big triangles, sized on the GPU by pass 0 */
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
-        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, buf[3]);
-        gl->DispatchComputeIndirect(0);
-        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
-        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+        if (solid_axis < 0) gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
+        voxgi__gl_run_triangles(gl, p, nt, buf[3]);
         r = voxgi__gl_read_buffer(ctx, buf[3], control, sizeof control);
         if (r != VOXGI_OK || solid_axis < 0 || control[4] <= capacity) break;
         capacity = control[4];
@@ -3025,7 +3340,7 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
         if (r == VOXGI_OK && np) r = voxgi__gl_read_buffer(ctx, buf[4], pairs, np * 16);
         if (r == VOXGI_OK) {
             voxgi__vox_shared vs;
-            voxgi__stats st = {0, 0};
+            voxgi__stats st = {0, 0, 0};
             vs.grid = g;
             vs.pos = f->pos;
             vs.tri = f->tri;
@@ -3061,6 +3376,7 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
             r = voxgi__gl_check(ctx, "uploading the exact decisions");
         }
     }
+    if (r == VOXGI_OK && attr) r = voxgi__gl_attribute_pass(ctx, f, vp, d, buf, control[4], attr);
     voxgi__gl_unbind(gl);
     for (i = 0; i < 7; i++)
         if (i != 2) voxgi__gl_delete_buffer(ctx, buf[i]);
@@ -3102,7 +3418,7 @@ static voxgi_result voxgi__gl_solid_parity(voxgi_context *ctx, const voxgi__flat
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = &d->grid;
     unsigned int toggles = 0, p = gl->prog_solid_prefix;
-    voxgi_result r = voxgi__gl_triangle_pass(ctx, f, vp, d, A, &toggles, info);
+    voxgi_result r = voxgi__gl_triangle_pass(ctx, f, vp, d, A, &toggles, info, NULL);
     if (r != VOXGI_OK) return r;
     *solid = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, toggles);
@@ -3129,7 +3445,7 @@ static voxgi_result voxgi__gl_solid_flood(voxgi_context *ctx, const voxgi__flat 
     voxgi_result r;
     int axis;
     cd.method = VOXGI_METHOD_CONSERVATIVE;
-    r = voxgi__gl_triangle_pass(ctx, f, vp, &cd, -1, &surface, info);
+    r = voxgi__gl_triangle_pass(ctx, f, vp, &cd, -1, &surface, info, NULL);
     if (r != VOXGI_OK) return r;
     outside = voxgi__gl_grid_buffer(ctx, bytes);
     changed_buf = voxgi__gl_buffer(ctx, 4, &changed);
@@ -3445,7 +3761,8 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
     if (r != VOXGI_OK) return r;
     if (d->method == VOXGI_METHOD_SLICEMAP) r = voxgi__gl_slicemap(ctx, f, vp, d, &result);
     else if (atlas) r = voxgi__gl_atlas(ctx, f, vp, d, atlas, &result, &out->info);
-    else if (d->method != VOXGI_METHOD_SOLID) r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info);
+    else if (d->method != VOXGI_METHOD_SOLID)
+        r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info, out->attr.rec ? &out->attr : NULL);
     else if (d->solid_mode == VOXGI_SOLID_PARITY)
         r = voxgi__gl_solid_parity(ctx, f, vp, d, d->axis ? (int)d->axis - 1 : 2, &result, &out->info);
     else if (d->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__gl_solid_flood(ctx, f, vp, d, &result, &out->info);

@@ -8,6 +8,27 @@ layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 2) buffer Bits { uint bits[]; };
 uniform int u_thin;        // 1: the thin (6-separating) tests too
 
+// The attribute pass (u_attr 1): the bits are final; a voxel the tests set receives its
+// triangle's fixed-point values, added to 64-bit sums (low word, then the carry into the high
+// word: the total is exact whatever the order) after a count, at the voxel's rank.
+layout(std430, binding = 7) readonly buffer Rank { uint rank[]; };
+layout(std430, binding = 8) readonly buffer Rec { uint rec[]; };
+layout(std430, binding = 9) buffer Sums { uint sums[]; };
+uniform int u_attr;
+uniform int u_channels;
+
+void add_attributes(uint idx)
+{
+    uint slot = rank[idx >> 5] + uint(bitCount(bits[idx >> 5] & ((1u << (idx & 31u)) - 1u)));
+    uint base = slot * uint(1 + 2 * u_channels);
+    atomicAdd(sums[base], 1u);
+    for (int c = 0; c < u_channels; c++) {
+        uint v = rec[T * uint(u_channels) + uint(c)], at = base + 1u + 2u * uint(c);
+        uint old = atomicAdd(sums[at], v);
+        if (old + v < old) atomicAdd(sums[at + 1u], 1u);
+    }
+}
+
 // One side of a thin test for this voxel alone (see voxgi__sign_thin_tight).
 int sign_thin_tight(Lin L, int side, ivec3 rel)
 {
@@ -64,7 +85,8 @@ void emit(ivec3 rel, int status)
     if (status == 1) {
         uint idx = uint(v.x) + uint(u_res.x) * (uint(v.y) + uint(u_res.y) * uint(v.z));
         uint mask = 1u << (idx & 31u);
-        if ((bits[idx >> 5] & mask) == 0u) atomicOr(bits[idx >> 5], mask);
+        if (u_attr != 0) add_attributes(idx);
+        else if ((bits[idx >> 5] & mask) == 0u) atomicOr(bits[idx >> 5], mask);
     } else if (status == UNKNOWN) {
         uint at = atomicAdd(pair_count, 1u);
         if (at < u_pair_capacity) pairs[at] = uvec4(T, uvec3(v));
@@ -136,6 +158,7 @@ void main()
     if (u_pass == 0) {
         uint t = u_tri_offset + gl_GlobalInvocationID.x;
         if (t >= u_tri_count) return;
+        if (u_attr != 0 && (tri_flags[t >> 5] & (1u << (t & 31u))) != 0u) return; // the CPU does all of it
         int c = prepare(t, single);
         if (c < 0) return;
         int a = (c + 1) % 3, b = (c + 2) % 3;

@@ -430,6 +430,68 @@ static void test_gl_raster_atlas_equals_cpu(void)
     for (sh = 0; sh < 3; sh++) vxt_shape_free(&shapes[sh]);
 }
 
+/* Attribute averages: GL (sums on the GPU, undecided pairs and flagged triangles on the CPU)
+   equals the CPU bit for bit, since both add the same fixed-point integers. */
+static void test_gl_attributes_equal_cpu(void)
+{
+    static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
+    vxt_shape shapes[2];
+    voxgi_material mats[3] = {{{0.9f, 0.1f, 0.2f}, {0, 0, 0}, 0}, {{0.3f, 0.7f, 0.5f}, {40, 20, 5}, 0.25f}, {{1, 1, 1}, {0, 0, 0}, 1}};
+    int sh, method;
+    if (!have_gl()) return;
+    vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
+    vxt_shape_box_and_tilted(&shapes[1]); /* big triangles: the row-chunk pass */
+    for (sh = 0; sh < 2; sh++)
+        for (method = 0; method < 2; method++) {
+            voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
+            voxgi_voxels *vox[2] = {NULL, NULL};
+            uint32_t *ids = (uint32_t *)malloc(shapes[sh].triangle_count * 4);
+            voxgi_grid g;
+            size_t t;
+            int b, k, same = 1;
+            for (t = 0; t < shapes[sh].triangle_count; t++) ids[t] = (uint32_t)(t % 3);
+            if (sh == 0) cubic(&g, -1.1, 2.2, 48);
+            else { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 52; }
+            for (b = 0; b < 2; b++) {
+                voxgi_mesh mesh;
+                voxgi_scene sc;
+                voxgi_voxelize_desc vd;
+                memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
+                mesh.positions = shapes[sh].pos; mesh.vertex_count = shapes[sh].vertex_count; mesh.indices = shapes[sh].idx;
+                mesh.index_count = 3 * shapes[sh].triangle_count; mesh.material_ids = ids;
+                sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 3;
+                vd.grid = g; vd.method = method ? VOXGI_METHOD_THIN : VOXGI_METHOD_CONSERVATIVE; vd.attributes = 15;
+                if (voxgi_voxelize(b ? gl : cpu, &sc, &vd, &vox[b]) != VOXGI_OK) printf("    %s\n", voxgi_last_error(b ? gl : cpu));
+            }
+            TH_CHECK(vox[0] && vox[1], "shape %d: attribute voxelization failed", sh);
+            for (k = 0; k < 4 && vox[0] && vox[1]; k++) {
+                size_t na = 0, nb = 0;
+                float *a, *c;
+                voxgi_voxels_read_attribute(cpu, vox[0], kinds[k], NULL, 0, &na);
+                voxgi_voxels_read_attribute(gl, vox[1], kinds[k], NULL, 0, &nb);
+                a = (float *)malloc(na + 4); c = (float *)malloc(nb + 4);
+                voxgi_voxels_read_attribute(cpu, vox[0], kinds[k], a, na, NULL);
+                voxgi_voxels_read_attribute(gl, vox[1], kinds[k], c, nb, NULL);
+                same = same && na == nb && na > 0 && memcmp(a, c, na) == 0;
+                free(a); free(c);
+            }
+            TH_CHECK(same, "shape %d %s: GL attributes differ from the CPU's", sh, method ? "thin" : "conservative");
+            if (vox[1]) {
+                voxgi_voxels_info info;
+                voxgi_voxels_query(vox[1], &info);
+                printf("    attributes shape %d %s: %llu voxels, %llu (triangle, voxel) pairs averaged, GL == CPU\n", sh,
+                       method ? "thin" : "conservative", (unsigned long long)info.voxel_count, (unsigned long long)info.attribute_pairs);
+            }
+            voxgi_voxels_destroy(cpu, vox[0]);
+            voxgi_voxels_destroy(gl, vox[1]);
+            free(ids);
+            voxgi_destroy(cpu);
+            voxgi_destroy(gl);
+        }
+    vxt_shape_free(&shapes[0]);
+    vxt_shape_free(&shapes[1]);
+}
+
 static void test_gl_interop_and_backends(void)
 {
     voxgi_context *ctx;
@@ -546,6 +608,7 @@ int main(void)
     TH_RUN(test_gl_reduce_equals_cpu);
     TH_RUN(test_gl_raster_slicemap_equals_cpu);
     TH_RUN(test_gl_raster_atlas_equals_cpu);
+    TH_RUN(test_gl_attributes_equal_cpu);
     TH_RUN(test_gl_interop_and_backends);
     TH_RUN(test_gl_plain_loader);
     TH_RUN(test_gl_missing_function_and_fallback);

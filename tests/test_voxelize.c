@@ -1337,6 +1337,159 @@ static void test_atlas_auto_relations(void)
     voxgi_destroy(one);
 }
 
+/* ---------------------------------------------------------------- attributes */
+static voxgi_voxels *attr_run(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t nt, const uint32_t *mat_ids,
+                              const voxgi_material *mats, size_t nm, const voxgi_grid *g, unsigned attributes)
+{
+    voxgi_mesh m;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *vox = NULL;
+    memset(&m, 0, sizeof m); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
+    m.positions = pos; m.vertex_count = nv; m.indices = idx; m.index_count = 3 * nt; m.material_ids = mat_ids;
+    sc.meshes = &m; sc.mesh_count = 1; sc.materials = mats; sc.material_count = nm;
+    vd.grid = *g; vd.attributes = attributes;
+    if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) printf("    voxelize: %s\n", voxgi_last_error(ctx));
+    return vox;
+}
+
+static float *attr_read(voxgi_context *ctx, const voxgi_voxels *vox, voxgi_attribute which)
+{
+    size_t need = 0;
+    float *out;
+    if (voxgi_voxels_read_attribute(ctx, vox, which, NULL, 0, &need) != VOXGI_OK) return NULL;
+    out = (float *)malloc(need ? need : 4);
+    if (voxgi_voxels_read_attribute(ctx, vox, which, out, need, NULL) != VOXGI_OK) { free(out); return NULL; }
+    return out;
+}
+
+/* Each voxel's attributes against the mean over the triangles whose exact (oracle) conservative
+   set holds it, computed here in double: within half a fixed-point unit plus the float rounding
+   of the output. Shuffling the triangles or changing the thread count changes no bit. */
+static void test_attributes_vs_oracle_and_order(void)
+{
+    enum { NT = 24, NM = 4 };
+    voxgi_context *ctx = make_ctx(2), *one = make_ctx(1);
+    float pos[NT * 9], shuffled[NT * 9];
+    uint32_t idx[NT * 3], mat_ids[NT], smat[NT], perm[NT];
+    voxgi_material mats[NM];
+    voxgi_grid g;
+    uint32_t *tri_bits[NT];
+    voxgi_voxels *vox, *vs, *v1;
+    double worst[4] = {0, 0, 0, 0}, emax = 0;
+    int t, c, k, a;
+    uint64_t n, l, slot = 0, bad_order = 0;
+    static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
+    g.origin[0] = lattice(-0.3); g.origin[1] = lattice(0.2); g.origin[2] = lattice(-0.1);
+    g.voxel_size = lattice(0.37);
+    g.res[0] = 11; g.res[1] = 10; g.res[2] = 12;
+    n = voxgi_grid_voxel_count(&g);
+    for (k = 0; k < NM; k++) {
+        for (c = 0; c < 3; c++) {
+            mats[k].albedo[c] = (float)rnd();
+            mats[k].emission[c] = k == 2 ? (float)(100 * rnd()) : 0.0f; /* one bright emitter */
+            emax = mats[k].emission[c] > emax ? mats[k].emission[c] : emax;
+        }
+        mats[k].transparency = (float)rnd();
+    }
+    for (t = 0; t < NT; t++) { /* clustered, so voxels are shared by several triangles */
+        double cx = 1 + 2 * rnd(), cy = 1 + 2 * rnd(), cz = 1 + 2 * rnd();
+        for (c = 0; c < 3; c++)
+            for (a = 0; a < 3; a++) pos[9 * t + 3 * c + a] = (float)lattice((a == 0 ? cx : (a == 1 ? cy : cz)) + 1.6 * (rnd() - 0.5));
+        for (c = 0; c < 3; c++) idx[3 * t + c] = (uint32_t)(3 * t + c);
+        mat_ids[t] = (uint32_t)(t % NM);
+        tri_bits[t] = oracle_voxelize(pos + 9 * t, idx, 1, &g); /* idx[0..2] = 0,1,2 */
+    }
+    vox = attr_run(ctx, pos, NT * 3, idx, NT, mat_ids, mats, NM, &g, 15);
+    v1 = attr_run(one, pos, NT * 3, idx, NT, mat_ids, mats, NM, &g, 15);
+    for (t = 0; t < NT; t++) perm[t] = (uint32_t)t;
+    for (t = NT - 1; t > 0; t--) { int j = (int)(rnd() * (t + 1)); uint32_t x = perm[t]; perm[t] = perm[j]; perm[j] = x; }
+    for (t = 0; t < NT; t++) { /* triangle t of the shuffled scene is perm[t], its corners rotated */
+        for (c = 0; c < 3; c++) memcpy(shuffled + 9 * t + 3 * c, pos + 9 * perm[t] + 3 * ((c + t) % 3), 3 * sizeof(float));
+        smat[t] = mat_ids[perm[t]];
+    }
+    vs = attr_run(ctx, shuffled, NT * 3, idx, NT, smat, mats, NM, &g, 15);
+    TH_CHECK(vox && vs && v1, "attribute voxelization failed");
+    if (!vox || !vs || !v1) return;
+    for (k = 0; k < 4; k++) {
+        float *mine = attr_read(ctx, vox, kinds[k]), *other = attr_read(ctx, vs, kinds[k]), *single = attr_read(one, v1, kinds[k]);
+        int w = k == 3 ? 1 : 3;
+        voxgi_voxels_info info;
+        voxgi_voxels_query(vox, &info);
+        bad_order += (uint64_t)(memcmp(mine, other, info.voxel_count * (size_t)w * 4) != 0);
+        bad_order += (uint64_t)(memcmp(mine, single, info.voxel_count * (size_t)w * 4) != 0);
+        slot = 0;
+        for (l = 0; l < n; l++) {
+            double sum[3] = {0, 0, 0};
+            int cnt = 0;
+            for (t = 0; t < NT; t++) {
+                const voxgi_material *m = &mats[mat_ids[t]];
+                if (!voxgi_bit_get(tri_bits[t], l)) continue;
+                cnt++;
+                for (c = 0; c < w; c++) {
+                    if (k == 0) sum[c] += m->albedo[c];
+                    else if (k == 2) sum[c] += m->emission[c];
+                    else if (k == 3) sum[c] += 1.0 - m->transparency;
+                    else {
+                        const float *p = pos + 9 * t;
+                        double e[3], f[3], nn[3], len;
+                        for (a = 0; a < 3; a++) { e[a] = (double)p[3 + a] - p[a]; f[a] = (double)p[6 + a] - p[a]; }
+                        for (a = 0; a < 3; a++) nn[a] = e[(a + 1) % 3] * f[(a + 2) % 3] - e[(a + 2) % 3] * f[(a + 1) % 3];
+                        len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+                        sum[c] += nn[c] / len;
+                    }
+                }
+            }
+            if (!cnt) continue;
+            for (c = 0; c < w; c++) {
+                double err = fabs(mine[slot * (uint64_t)w + (uint64_t)c] - sum[c] / cnt);
+                if (err > worst[k]) worst[k] = err;
+            }
+            slot++;
+        }
+        TH_CHECK(slot == info.voxel_count, "%llu voxels with triangles, %llu set", (unsigned long long)slot, (unsigned long long)info.voxel_count);
+        free(mine); free(other); free(single);
+    }
+    {   /* half a unit of 2^-24 of the range, plus float rounding of the result */
+        double erange = 1;
+        while (erange < emax) erange *= 2;
+        TH_CHECK(worst[0] <= ldexp(1, -25) + ldexp(1, -24), "albedo off by %g", worst[0]);
+        TH_CHECK(worst[1] <= ldexp(1, -24) + ldexp(1, -24) + 1e-12, "normal off by %g", worst[1]);
+        TH_CHECK(worst[2] <= erange * ldexp(1, -25) + emax * ldexp(1, -24), "emission off by %g (range %g)", worst[2], erange);
+        TH_CHECK(worst[3] <= ldexp(1, -25) + ldexp(1, -24), "opacity off by %g", worst[3]);
+        printf("    worst errors: albedo %.3g, normal %.3g, emission %.3g (max %.4g), opacity %.3g\n", worst[0], worst[1], worst[2], emax, worst[3]);
+    }
+    TH_CHECK(bad_order == 0, "attributes depend on triangle order or thread count (%llu arrays differ)", (unsigned long long)bad_order);
+    {   /* refusals */
+        float *none;
+        voxgi_voxelize_desc vd;
+        voxgi_mesh m;
+        voxgi_scene sc;
+        voxgi_voxels *bad = NULL;
+        memset(&vd, 0, sizeof vd); memset(&m, 0, sizeof m); memset(&sc, 0, sizeof sc);
+        m.positions = pos; m.vertex_count = NT * 3; sc.meshes = &m; sc.mesh_count = 1;
+        vd.grid = g; vd.attributes = VOXGI_ATTRIBUTE_ALBEDO; vd.method = VOXGI_METHOD_SLICEMAP;
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &bad) == VOXGI_ERR_UNSUPPORTED && !bad, "slicemap attributes accepted");
+        vd.method = VOXGI_METHOD_CONSERVATIVE; vd.attributes = 16;
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &bad) == VOXGI_ERR_INVALID_ARGUMENT && !bad, "attribute bit 16 accepted");
+        mats[1].albedo[0] = 1.5f;
+        vd.attributes = 1; sc.materials = mats; sc.material_count = NM;
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &bad) == VOXGI_ERR_INVALID_SCENE && !bad, "albedo 1.5 accepted");
+        mats[1].albedo[0] = 0.5f;
+        vd.attributes = 0;
+        voxgi_voxelize(ctx, &sc, &vd, &bad);
+        none = attr_read(ctx, bad, VOXGI_ATTRIBUTE_ALBEDO);
+        TH_CHECK(bad && !none, "an attribute read from voxels without attributes");
+        voxgi_voxels_destroy(ctx, bad);
+    }
+    for (t = 0; t < NT; t++) free(tri_bits[t]);
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_voxels_destroy(ctx, vs);
+    voxgi_voxels_destroy(one, v1);
+    voxgi_destroy(ctx);
+    voxgi_destroy(one);
+}
+
 int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
@@ -1351,6 +1504,7 @@ int main(void)
     TH_RUN(test_slicemap_vs_oracle_and_relations);
     TH_RUN(test_atlas_mesh_uvs_vs_oracle);
     TH_RUN(test_atlas_auto_relations);
+    TH_RUN(test_attributes_vs_oracle_and_order);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
