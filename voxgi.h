@@ -34,7 +34,8 @@
      voxgi_destroy(ctx);
 
    METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
-   (raster); see voxgi_method. voxgi_voxels_reduce builds OR mipmaps.
+   (raster), atlas and atlas-compute (texture atlas points); see voxgi_method. Conservative and
+   thin also average per-voxel attributes (voxgi_attribute). voxgi_voxels_reduce builds OR mipmaps.
 
    SEMANTICS (exact; see the part banners below for each capability)
      Grid: origin o (double[3]), voxel size s (double > 0), resolution n (int[3]). Voxel (i,j,k) is
@@ -66,6 +67,8 @@
    VERSION HISTORY
      0.1.0  context, scenes, grids, exact conservative, thin and solid voxelization, raster
             slicemap, OR mipmaps (CPU and GL), binvox.
+     0.2.0  texture atlas voxelization (raster and compute, own charts or mesh uvs); per-voxel
+            attribute averages; materials validated.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -75,10 +78,10 @@
 #include <stdio.h>
 
 #define VOXGI_VERSION_MAJOR 0
-#define VOXGI_VERSION_MINOR 1
+#define VOXGI_VERSION_MINOR 2
 #define VOXGI_VERSION_PATCH 0
 #define VOXGI_VERSION (VOXGI_VERSION_MAJOR * 10000 + VOXGI_VERSION_MINOR * 100 + VOXGI_VERSION_PATCH)
-#define VOXGI_VERSION_STRING "0.1.0"
+#define VOXGI_VERSION_STRING "0.2.0"
 
 #ifndef VOXGI_API
 #ifdef VOXGI_STATIC
@@ -3341,6 +3344,7 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
         if (r == VOXGI_OK) {
             voxgi__vox_shared vs;
             voxgi__stats st = {0, 0, 0};
+            memset(&vs, 0, sizeof vs);
             vs.grid = g;
             vs.pos = f->pos;
             vs.tri = f->tri;

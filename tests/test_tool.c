@@ -167,6 +167,14 @@ static void test_voxelize_methods(void)
     TH_CHECK(rc == 0 && json_number(out, "voxels") == 512 && strstr(out, "\"method\":\"solid\""), "solid cube: %s", out);
     rc = run("voxelize builtin:cube --grid -1.5 -1.5 -1.5 0.25 12 12 12 --backend cpu --json --method solid --solid-mode flood", out, sizeof out);
     TH_CHECK(rc == 0 && json_number(out, "voxels") == 1000, "flood cube (interior and the touching shell, 10^3): %s", out);
+    /* the atlas: every point lies within one voxel of the conservative set, so it cannot outnumber it
+       by much; it reports its atlas; attributes: at least one triangle per voxel */
+    rc = run("voxelize builtin:sphere --res 40 --backend cpu --json --method atlas", out, sizeof out);
+    TH_CHECK(rc == 0 && json_number(out, "atlas_points") > 0 && json_number(out, "voxels") > 0.5 * cons &&
+             json_number(out, "voxels") <= 1.05 * cons && json_number(out, "atlas_size") >= 64, "atlas: %s", out);
+    rc = run("voxelize builtin:sphere --res 40 --backend cpu --json --attributes albedo,normal", out, sizeof out);
+    TH_CHECK(rc == 0 && json_number(out, "voxels") == cons && json_number(out, "attribute_pairs") >= cons, "attributes: %s", out);
+    TH_CHECK(run("voxelize builtin:cube --attributes colour", out, sizeof out) == 2, "unknown attribute accepted");
     TH_CHECK(run("voxelize builtin:cube --method wobbly", out, sizeof out) == 2, "unknown method accepted");
     TH_CHECK(run("voxelize builtin:cube --method solid --solid-mode guess", out, sizeof out) == 2, "unknown solid mode accepted");
 }

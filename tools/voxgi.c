@@ -199,6 +199,8 @@ static const char *voxelize_help =
     "  --atlas-size N           atlas methods: texels per side (default: from the grid, 2 texels\n"
     "                           per voxel edge, at most 8192)\n"
     "  --atlas-uv auto|mesh     atlas methods: voxgi's own charts (default) or the mesh's uvs\n"
+    "  --attributes LIST        conservative and thin: average albedo,normal,emission,opacity (or all)\n"
+    "                           per voxel over the triangles that set it\n"
     "  --solid-mode MODE        with --method solid: parity (default, closed meshes), vote, flood\n"
     "  --axis x|y|z             solid parity: the counting axis; slicemap: the slicing axis (default z)\n"
     "  --backend auto|cpu|gl    (default auto: GL when a headless GL 4.5 context works)\n"
@@ -242,6 +244,17 @@ static int cmd_voxelize(int argc, char **argv)
             else return bad_arg("voxelize", "--method is conservative, thin, solid, slicemap, slicemap-atomic, atlas or atlas-compute");
         } else if (strcmp(a, "--atlas-size") == 0 && i + 1 < argc) {
             if (!parse_int(argv[++i], 1, 16384, &vd.atlas_size)) return bad_arg("voxelize", "--atlas-size needs 1..16384");
+        } else if (strcmp(a, "--attributes") == 0 && i + 1 < argc) {
+            char list[128], *tok;
+            snprintf(list, sizeof list, "%s", argv[++i]);
+            for (tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
+                if (strcmp(tok, "albedo") == 0) vd.attributes |= VOXGI_ATTRIBUTE_ALBEDO;
+                else if (strcmp(tok, "normal") == 0) vd.attributes |= VOXGI_ATTRIBUTE_NORMAL;
+                else if (strcmp(tok, "emission") == 0) vd.attributes |= VOXGI_ATTRIBUTE_EMISSION;
+                else if (strcmp(tok, "opacity") == 0) vd.attributes |= VOXGI_ATTRIBUTE_OPACITY;
+                else if (strcmp(tok, "all") == 0) vd.attributes |= 15u;
+                else return bad_arg("voxelize", "--attributes lists albedo, normal, emission, opacity or all");
+            }
         } else if (strcmp(a, "--atlas-uv") == 0 && i + 1 < argc) {
             const char *uv = argv[++i];
             if (strcmp(uv, "auto") == 0) vd.atlas_uv = VOXGI_ATLAS_AUTO;
@@ -333,12 +346,12 @@ static int cmd_voxelize(int argc, char **argv)
     if (json)
         printf("{\"mesh\":\"%s\",\"triangles\":%lu,\"voxels\":%llu,\"ms\":%.3f,\"runs\":%d,\"backend\":\"%s\",\"renderer\":\"%s\","
                "\"threads\":%d,\"method\":\"%s\",\"origin\":[%.17g,%.17g,%.17g],\"voxel_size\":%.17g,"
-               "\"res\":[%d,%d,%d],\"exact_tests\":%llu,\"exact_triangles\":%llu,\"atlas_size\":%d,\"atlas_points\":%llu%s%s%s}\n",
+               "\"res\":[%d,%d,%d],\"exact_tests\":%llu,\"exact_triangles\":%llu,\"atlas_size\":%d,\"atlas_points\":%llu,\"attribute_pairs\":%llu%s%s%s}\n",
                mesh_path, (unsigned long)mesh_triangles(&tm), (unsigned long long)info.voxel_count, info.ms, runs,
                voxgi_backend_name(ci.backend), ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "", ci.thread_count,
                voxgi_method_name(vd.method), vd.grid.origin[0], vd.grid.origin[1], vd.grid.origin[2], vd.grid.voxel_size, vd.grid.res[0], vd.grid.res[1],
                vd.grid.res[2], (unsigned long long)info.exact_tests, (unsigned long long)info.exact_triangles, info.atlas_size,
-               (unsigned long long)info.atlas_points, out_path ? ",\"output\":\"" : "", out_path ? out_path : "", out_path ? "\"" : "");
+               (unsigned long long)info.atlas_points, (unsigned long long)info.attribute_pairs, out_path ? ",\"output\":\"" : "", out_path ? out_path : "", out_path ? "\"" : "");
     else {
         printf("%s: %lu triangles -> %llu voxels of %dx%dx%d in %.2f ms (%s%s%s)\n", mesh_path,
                (unsigned long)mesh_triangles(&tm), (unsigned long long)info.voxel_count, vd.grid.res[0], vd.grid.res[1],
@@ -346,6 +359,9 @@ static int cmd_voxelize(int argc, char **argv)
                ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "");
         printf("grid: origin %.17g %.17g %.17g, voxel size %.17g\n", vd.grid.origin[0], vd.grid.origin[1], vd.grid.origin[2],
                vd.grid.voxel_size);
+        if (info.attributes)
+            printf("attributes: %llu (triangle, voxel) pairs averaged, %.2f triangles per voxel\n",
+                   (unsigned long long)info.attribute_pairs, info.voxel_count ? (double)info.attribute_pairs / (double)info.voxel_count : 0.0);
         if (info.atlas_size)
             printf("atlas: %dx%d texels, %llu points, %.3g texels per voxel edge\n", info.atlas_size, info.atlas_size,
                    (unsigned long long)info.atlas_points, info.atlas_scale);
