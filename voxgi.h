@@ -241,6 +241,10 @@ typedef enum voxgi_method {
                                        covers (GL fill rule) is a point of that triangle (same
                                        barycentrics), and sets the voxel floor(point) */
     VOXGI_METHOD_ATLAS_COMPUTE,     /* the same points, one compute invocation each: the same set */
+    VOXGI_METHOD_GEOMETRY,          /* the conservative set (bit for bit), by rasterization: the
+                                       geometry shader projects each triangle along its dominant
+                                       axis and grows it conservatively (Crassin & Green); each
+                                       fragment runs the exact tests of its voxel column */
     VOXGI_METHOD_COUNT_
 } voxgi_method;
 VOXGI_API const char *voxgi_method_name(voxgi_method m);
@@ -291,7 +295,7 @@ typedef struct voxgi_voxelize_desc {
     int atlas_size;               /* ATLAS*: texels per side (at most 16384); 0 = from the grid: the
                                      size that holds AUTO charts at 2 texels per voxel edge, at most 8192 */
     voxgi_atlas_uv atlas_uv;      /* ATLAS*: 0 = AUTO */
-    unsigned attributes;          /* CONSERVATIVE, THIN: voxgi_attribute bits to average per voxel; 0 = none */
+    unsigned attributes;          /* CONSERVATIVE, THIN, GEOMETRY: voxgi_attribute bits to average per voxel; 0 = none */
 } voxgi_voxelize_desc;
 
 typedef struct voxgi_voxels voxgi_voxels;
@@ -552,6 +556,7 @@ VOXGI_API const char *voxgi_method_name(voxgi_method m)
     case VOXGI_METHOD_SLICEMAP: return "slicemap";
     case VOXGI_METHOD_ATLAS: return "atlas";
     case VOXGI_METHOD_ATLAS_COMPUTE: return "atlas-compute";
+    case VOXGI_METHOD_GEOMETRY: return "geometry";
     case VOXGI_METHOD_COUNT_: break;
     }
     return "unknown";
@@ -1010,6 +1015,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_COMPUTE_SHADER 0x91B9
 #define VOXGI__GL_VERTEX_SHADER 0x8B31
 #define VOXGI__GL_FRAGMENT_SHADER 0x8B30
+#define VOXGI__GL_GEOMETRY_SHADER 0x8DD9
 #define VOXGI__GL_COMPILE_STATUS 0x8B81
 #define VOXGI__GL_LINK_STATUS 0x8B82
 #define VOXGI__GL_INFO_LOG_LENGTH 0x8B84
@@ -1047,6 +1053,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_VIEWPORT 0x0BA2
 #define VOXGI__GL_MAX_DRAW_BUFFERS 0x8824
 #define VOXGI__GL_MAX_TEXTURE_SIZE 0x0D33
+#define VOXGI__GL_MAX_FRAMEBUFFER_WIDTH 0x9315
 #define VOXGI__GL_DEPTH_TEST 0x0B71
 #define VOXGI__GL_CULL_FACE 0x0B44
 #define VOXGI__GL_BLEND 0x0BE2
@@ -1125,7 +1132,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -1274,6 +1281,8 @@ static voxgi_result voxgi__gl_program(voxgi_context *ctx, int graphics, int coun
     prog = gl->CreateProgram();
     if (graphics) {
         r = voxgi__gl_stage(ctx, prog, VOXGI__GL_VERTEX_SHADER, "#define VOXGI_VERTEX\n", count, files, texts);
+        if (r == VOXGI_OK && graphics == 2)
+            r = voxgi__gl_stage(ctx, prog, VOXGI__GL_GEOMETRY_SHADER, "#define VOXGI_GEOMETRY\n", count, files, texts);
         if (r == VOXGI_OK) r = voxgi__gl_stage(ctx, prog, VOXGI__GL_FRAGMENT_SHADER, "#define VOXGI_FRAGMENT\n", count, files, texts);
     } else r = voxgi__gl_stage(ctx, prog, VOXGI__GL_COMPUTE_SHADER, "#define VOXGI_COMPUTE\n", count, files, texts);
     if (r != VOXGI_OK) { gl->DeleteProgram(prog); return r; }
@@ -1291,7 +1300,7 @@ static voxgi_result voxgi__gl_program(voxgi_context *ctx, int graphics, int coun
 }
 
 /* The program of embedded shader files ("a.glsl b.glsl": in that order), compiled on first
-   use; graphics: a vertex + fragment program, else compute. */
+   use; graphics: 1 = vertex + fragment, 2 = vertex + geometry + fragment, 0 = compute. */
 static voxgi_result voxgi__gl_build(voxgi_context *ctx, int graphics, const char *file_list, unsigned int *prog)
 {
     const char *files[8], *texts[8];
@@ -2979,8 +2988,9 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown axis %d or solid mode %d", (int)desc->axis, (int)desc->solid_mode);
     if (desc->attributes & ~15u)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown attribute bits 0x%x", desc->attributes & ~15u);
-    if (desc->attributes && desc->method != VOXGI_METHOD_CONSERVATIVE && desc->method != VOXGI_METHOD_THIN)
-        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "attributes are averaged by the conservative and thin methods, not %s",
+    if (desc->attributes && desc->method != VOXGI_METHOD_CONSERVATIVE && desc->method != VOXGI_METHOD_THIN &&
+        desc->method != VOXGI_METHOD_GEOMETRY)
+        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "attributes are averaged by the conservative, thin and geometry methods, not %s",
                            voxgi_method_name(desc->method));
     r = voxgi_validate_grid(ctx, &desc->grid);
     if (r != VOXGI_OK) return r;
@@ -3165,6 +3175,48 @@ static void voxgi__gl_run_triangles(voxgi__gl *gl, unsigned int p, size_t nt, un
     gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
+/* The geometry-shader voxelizer's draw: every triangle once into an attachment-less
+   framebuffer of view x view pixels (voxel columns); the caller's GL state is restored. */
+static void voxgi__gl_draw_geometry(voxgi__gl *gl, unsigned int p, size_t nt, int view)
+{
+    static const unsigned int caps[] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST, VOXGI__GL_CULL_FACE,
+                                        VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP};
+    unsigned char was_enabled[8];
+    unsigned int fbo = 0, vao = 0;
+    int viewport[4], i;
+    gl->GetIntegerv(VOXGI__GL_VIEWPORT, viewport);
+    for (i = 0; i < 8; i++) {
+        was_enabled[i] = gl->IsEnabled(caps[i]);
+        gl->Disable(caps[i]);
+    }
+    gl->CreateVertexArrays(1, &vao);
+    gl->CreateFramebuffers(1, &fbo);
+    gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, view);
+    gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, view);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+    gl->BindVertexArray(vao);
+    gl->Viewport(0, 0, view, view);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_view"), view);
+    gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+    gl->BindVertexArray(0);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    for (i = 0; i < 8; i++)
+        if (was_enabled[i]) gl->Enable(caps[i]);
+        else gl->Disable(caps[i]);
+}
+
+/* Runs the conservative tests of every triangle: compute dispatches, or the geometry draw. */
+static void voxgi__gl_run(voxgi__gl *gl, const voxgi_voxelize_desc *d, unsigned int p, size_t nt, unsigned int control)
+{
+    if (d->method == VOXGI_METHOD_GEOMETRY)
+        voxgi__gl_draw_geometry(gl, p, nt, VOXGI__MAX(d->grid.res[0], VOXGI__MAX(d->grid.res[1], d->grid.res[2])));
+    else voxgi__gl_run_triangles(gl, p, nt, control);
+}
+
 /* The attribute pass after the conservative (or thin) bits are final in buf[2]: the same
    triangles again, each set voxel receiving its triangles' values on the GPU; the triangles the
    bit pass flagged (buf[5]) and the pairs its filter could not decide are added here, exactly.
@@ -3177,7 +3229,8 @@ static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__fl
     const voxgi_grid *g = &d->grid;
     uint64_t words = voxgi__grid_words(g), voxels = 0, w, stride = 1 + 2 * (uint64_t)attr->channels, s;
     size_t nt = f->triangle_count, flag_words = (nt + 31) / 32, k;
-    unsigned int control_buf = 0, pairs_buf = 0, rank_buf = 0, rec_buf = 0, sums_buf = 0, zero = 0, p = gl->prog_voxelize_conservative;
+    unsigned int control_buf = 0, pairs_buf = 0, rank_buf = 0, rec_buf = 0, sums_buf = 0, zero = 0;
+    unsigned int p = d->method == VOXGI_METHOD_GEOMETRY ? gl->prog_voxelize_geometry : gl->prog_voxelize_conservative;
     uint32_t control[8], *bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0), *sums = NULL, *flags = NULL, *pairs = NULL;
     voxgi_result r = VOXGI_OK;
     if (!bits) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attribute pass");
@@ -3208,7 +3261,7 @@ static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__fl
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), pair_capacity);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 1);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr->channels);
-        voxgi__gl_run_triangles(gl, p, nt, control_buf);
+        voxgi__gl_run(gl, d, p, nt, control_buf);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
         for (k = 7; k < 10; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, 0);
         r = voxgi__gl_read_buffer(ctx, control_buf, control, sizeof control);
@@ -3284,7 +3337,8 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
     uint32_t control[8];
     voxgi__gl_vprep *gv;
     uint32_t *copy = NULL, *flags = NULL, *pairs = NULL;
-    unsigned int p = solid_axis >= 0 ? gl->prog_voxelize_solid : gl->prog_voxelize_conservative;
+    unsigned int p = solid_axis >= 0 ? gl->prog_voxelize_solid
+                     : (d->method == VOXGI_METHOD_GEOMETRY ? gl->prog_voxelize_geometry : gl->prog_voxelize_conservative);
     voxgi_result r;
     int i, attempt;
     gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
@@ -3325,7 +3379,7 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_solid_axis"), solid_axis);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_thin"), d->method == VOXGI_METHOD_THIN);
         if (solid_axis < 0) gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
-        voxgi__gl_run_triangles(gl, p, nt, buf[3]);
+        voxgi__gl_run(gl, d, p, nt, buf[3]);
         r = voxgi__gl_read_buffer(ctx, buf[3], control, sizeof control);
         if (r != VOXGI_OK || solid_axis < 0 || control[4] <= capacity) break;
         capacity = control[4];
@@ -3757,8 +3811,16 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
     if ((uint64_t)g->res[0] * g->res[1] > 65535u * 64u || (uint64_t)g->res[1] * g->res[2] > 65535u * 64u ||
         (uint64_t)g->res[0] * g->res[2] > 65535u * 64u)
         return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grid slices hold at most 65535*64 lines; use the CPU backend");
-    r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
+    r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl conservative.glsl voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl voxelize_solid.glsl", &gl->prog_voxelize_solid);
+    if (r == VOXGI_OK && d->method == VOXGI_METHOD_GEOMETRY) {
+        int max_view = 0;
+        gl->GetIntegerv(VOXGI__GL_MAX_FRAMEBUFFER_WIDTH, &max_view);
+        if (VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])) > max_view)
+            return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the geometry voxelizer draws into %d pixels, more than this GL's "
+                               "GL_MAX_FRAMEBUFFER_WIDTH %d", VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])), max_view);
+        r = voxgi__gl_build(ctx, 2, "scene.glsl triangle.glsl conservative.glsl voxelize_geometry.glsl", &gl->prog_voxelize_geometry);
+    }
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "solid_prefix.glsl", &gl->prog_solid_prefix);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "flood.glsl", &gl->prog_flood);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "bits_majority.glsl", &gl->prog_bits_majority);

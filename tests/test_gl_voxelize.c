@@ -101,11 +101,18 @@ static void compare_method(const vxt_shape *m, const voxgi_grid *g, const char *
     voxgi_destroy(gl);
 }
 
-/* Every surface method with a GL pass. */
+/* Every exact surface method with a GL pass: conservative and thin by compute; or, from the
+   raster test (rasterizing tests run apart, see tests/run.sh), the conservative set by
+   geometry-shader rasterization. */
+static int g_geometry;
 static void compare(const vxt_shape *m, const voxgi_grid *g, const char *what)
 {
-    for (g_method = VOXGI_METHOD_CONSERVATIVE; g_method <= VOXGI_METHOD_THIN; g_method = (voxgi_method)(g_method + 1))
+    if (g_geometry) {
+        g_method = VOXGI_METHOD_GEOMETRY;
         compare_method(m, g, what);
+    } else
+        for (g_method = VOXGI_METHOD_CONSERVATIVE; g_method <= VOXGI_METHOD_THIN; g_method = (voxgi_method)(g_method + 1))
+            compare_method(m, g, what);
     g_method = VOXGI_METHOD_CONSERVATIVE;
 }
 
@@ -432,7 +439,7 @@ static void test_gl_raster_atlas_equals_cpu(void)
 
 /* Attribute averages: GL (sums on the GPU, undecided pairs and flagged triangles on the CPU)
    equals the CPU bit for bit, since both add the same fixed-point integers. */
-static void test_gl_attributes_equal_cpu(void)
+static void test_gl_raster_attributes_equal_cpu(void)
 {
     static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
     vxt_shape shapes[2];
@@ -442,7 +449,8 @@ static void test_gl_attributes_equal_cpu(void)
     vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
     vxt_shape_box_and_tilted(&shapes[1]); /* big triangles: the row-chunk pass */
     for (sh = 0; sh < 2; sh++)
-        for (method = 0; method < 2; method++) {
+        for (method = 0; method < 3; method++) {
+            static const voxgi_method methods[3] = {VOXGI_METHOD_CONSERVATIVE, VOXGI_METHOD_THIN, VOXGI_METHOD_GEOMETRY};
             voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
             voxgi_voxels *vox[2] = {NULL, NULL};
             uint32_t *ids = (uint32_t *)malloc(shapes[sh].triangle_count * 4);
@@ -460,7 +468,7 @@ static void test_gl_attributes_equal_cpu(void)
                 mesh.positions = shapes[sh].pos; mesh.vertex_count = shapes[sh].vertex_count; mesh.indices = shapes[sh].idx;
                 mesh.index_count = 3 * shapes[sh].triangle_count; mesh.material_ids = ids;
                 sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 3;
-                vd.grid = g; vd.method = method ? VOXGI_METHOD_THIN : VOXGI_METHOD_CONSERVATIVE; vd.attributes = 15;
+                vd.grid = g; vd.method = methods[method]; vd.attributes = 15;
                 if (voxgi_voxelize(b ? gl : cpu, &sc, &vd, &vox[b]) != VOXGI_OK) printf("    %s\n", voxgi_last_error(b ? gl : cpu));
             }
             TH_CHECK(vox[0] && vox[1], "shape %d: attribute voxelization failed", sh);
@@ -475,12 +483,12 @@ static void test_gl_attributes_equal_cpu(void)
                 same = same && na == nb && na > 0 && memcmp(a, c, na) == 0;
                 free(a); free(c);
             }
-            TH_CHECK(same, "shape %d %s: GL attributes differ from the CPU's", sh, method ? "thin" : "conservative");
+            TH_CHECK(same, "shape %d %s: GL attributes differ from the CPU's", sh, voxgi_method_name(methods[method]));
             if (vox[1]) {
                 voxgi_voxels_info info;
                 voxgi_voxels_query(vox[1], &info);
                 printf("    attributes shape %d %s: %llu voxels, %llu (triangle, voxel) pairs averaged, GL == CPU\n", sh,
-                       method ? "thin" : "conservative", (unsigned long long)info.voxel_count, (unsigned long long)info.attribute_pairs);
+                       voxgi_method_name(methods[method]), (unsigned long long)info.voxel_count, (unsigned long long)info.attribute_pairs);
             }
             voxgi_voxels_destroy(cpu, vox[0]);
             voxgi_voxels_destroy(gl, vox[1]);
@@ -490,6 +498,17 @@ static void test_gl_attributes_equal_cpu(void)
         }
     vxt_shape_free(&shapes[0]);
     vxt_shape_free(&shapes[1]);
+}
+
+/* The geometry-shader voxelizer on every shape of the compute tests: bit for bit the CPU's. */
+static void test_gl_raster_geometry_equals_cpu(void)
+{
+    g_geometry = 1;
+    test_gl_equals_cpu_sphere();
+    test_gl_equals_cpu_ties();
+    test_gl_equals_cpu_quads_and_huge();
+    test_gl_equals_cpu_degenerate();
+    g_geometry = 0;
 }
 
 static void test_gl_interop_and_backends(void)
@@ -608,7 +627,8 @@ int main(void)
     TH_RUN(test_gl_reduce_equals_cpu);
     TH_RUN(test_gl_raster_slicemap_equals_cpu);
     TH_RUN(test_gl_raster_atlas_equals_cpu);
-    TH_RUN(test_gl_attributes_equal_cpu);
+    TH_RUN(test_gl_raster_geometry_equals_cpu);
+    TH_RUN(test_gl_raster_attributes_equal_cpu);
     TH_RUN(test_gl_interop_and_backends);
     TH_RUN(test_gl_plain_loader);
     TH_RUN(test_gl_missing_function_and_fallback);

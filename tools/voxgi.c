@@ -195,11 +195,12 @@ static const char *voxelize_help =
     "  --method NAME            conservative (default), thin (6-separating), solid, slicemap (raster,\n"
     "                           logic-op OR on GL), slicemap-atomic (raster, imageAtomicOr on GL),\n"
     "                           atlas (texture atlas points drawn as GL points), atlas-compute\n"
-    "                           (the same points, one compute invocation each)\n"
+    "                           (the same points, one compute invocation each), geometry (the\n"
+    "                           conservative set by geometry-shader rasterization on GL)\n"
     "  --atlas-size N           atlas methods: texels per side (default: from the grid, 2 texels\n"
     "                           per voxel edge, at most 8192)\n"
     "  --atlas-uv auto|mesh     atlas methods: voxgi's own charts (default) or the mesh's uvs\n"
-    "  --attributes LIST        conservative and thin: average albedo,normal,emission,opacity (or all)\n"
+    "  --attributes LIST        conservative, thin, geometry: average albedo,normal,emission,opacity (or all)\n"
     "                           per voxel over the triangles that set it\n"
     "  --solid-mode MODE        with --method solid: parity (default, closed meshes), vote, flood\n"
     "  --axis x|y|z             solid parity: the counting axis; slicemap: the slicing axis (default z)\n"
@@ -241,7 +242,8 @@ static int cmd_voxelize(int argc, char **argv)
             else if (strcmp(mname, "slicemap-atomic") == 0) { vd.method = VOXGI_METHOD_SLICEMAP; vd.atomic = 1; }
             else if (strcmp(mname, "atlas") == 0) vd.method = VOXGI_METHOD_ATLAS;
             else if (strcmp(mname, "atlas-compute") == 0) vd.method = VOXGI_METHOD_ATLAS_COMPUTE;
-            else return bad_arg("voxelize", "--method is conservative, thin, solid, slicemap, slicemap-atomic, atlas or atlas-compute");
+            else if (strcmp(mname, "geometry") == 0) vd.method = VOXGI_METHOD_GEOMETRY;
+            else return bad_arg("voxelize", "--method is conservative, thin, solid, slicemap, slicemap-atomic, atlas, atlas-compute or geometry");
         } else if (strcmp(a, "--atlas-size") == 0 && i + 1 < argc) {
             if (!parse_int(argv[++i], 1, 16384, &vd.atlas_size)) return bad_arg("voxelize", "--atlas-size needs 1..16384");
         } else if (strcmp(a, "--attributes") == 0 && i + 1 < argc) {
@@ -431,7 +433,7 @@ static const char *bench_help =
     "rasteriser: not GPU timings. Table 3 counts missed / extra voxels against exact conservative\n"
     "voxelization (surface methods) or solid parity, the exact inside test of a closed mesh.\n"
     "  --methods LIST              comma separated: conservative, thin, solid, solid-vote, solid-flood,\n"
-    "                              slicemap, slicemap-atomic, atlas, atlas-compute\n"
+    "                              slicemap, slicemap-atomic, atlas, atlas-compute, geometry\n"
     "                              (default conservative)\n"
     "  --min-res N / --max-res N   range of N, powers of two (default 32..512)\n"
     "  --runs R                    runs per cell, median reported (default 3)\n"
@@ -445,7 +447,7 @@ static const bench_method bench_methods[] = {
     {"solid", VOXGI_METHOD_SOLID, VOXGI_SOLID_PARITY, 0},               {"solid-vote", VOXGI_METHOD_SOLID, VOXGI_SOLID_VOTE, 0},
     {"solid-flood", VOXGI_METHOD_SOLID, VOXGI_SOLID_FLOOD, 0},          {"slicemap", VOXGI_METHOD_SLICEMAP, VOXGI_SOLID_PARITY, 0},
     {"slicemap-atomic", VOXGI_METHOD_SLICEMAP, VOXGI_SOLID_PARITY, 1}, {"atlas", VOXGI_METHOD_ATLAS, VOXGI_SOLID_PARITY, 0},
-    {"atlas-compute", VOXGI_METHOD_ATLAS_COMPUTE, VOXGI_SOLID_PARITY, 0}};
+    {"atlas-compute", VOXGI_METHOD_ATLAS_COMPUTE, VOXGI_SOLID_PARITY, 0}, {"geometry", VOXGI_METHOD_GEOMETRY, VOXGI_SOLID_PARITY, 0}};
 #define BENCH_METHOD_COUNT (int)(sizeof bench_methods / sizeof bench_methods[0])
 
 typedef struct bench_cell { double ms[3]; uint64_t voxels[3], missed, extra; int ok[3]; } bench_cell;
