@@ -245,6 +245,13 @@ typedef enum voxgi_method {
                                        geometry shader projects each triangle along its dominant
                                        axis and grows it conservatively (Crassin & Green); each
                                        fragment runs the exact tests of its voxel column */
+    VOXGI_METHOD_VOLUME_BUFFER,     /* Volume Buffer (Gaitatzes et al. 2011): each triangle drawn
+                                       once, along its dominant axis (largest |normal| component,
+                                       the lowest axis on ties), corners rounded to the 1/256
+                                       subpixel grid; every pixel centre it covers (GL fill rule)
+                                       sets the voxel holding the plane's depth there. On GL one
+                                       layered draw per axis, attributes blended in float render
+                                       targets (see voxgi_blend), then merged */
     VOXGI_METHOD_COUNT_
 } voxgi_method;
 VOXGI_API const char *voxgi_method_name(voxgi_method m);
@@ -286,6 +293,11 @@ typedef enum voxgi_attribute {
     VOXGI_ATTRIBUTE_OPACITY = 8
 } voxgi_attribute;
 
+/* How a voxel combines the values of the triangles (fragments) that set it, per attribute:
+   AVERAGE (the default) the mean; MAX the component-wise maximum (the Volume Buffer's GL_MAX,
+   order-free); ADD the sum (for light: several sources add up). */
+typedef enum voxgi_blend { VOXGI_BLEND_AVERAGE = 0, VOXGI_BLEND_MAX, VOXGI_BLEND_ADD } voxgi_blend;
+
 typedef struct voxgi_voxelize_desc {
     voxgi_grid grid;
     voxgi_method method;
@@ -295,7 +307,9 @@ typedef struct voxgi_voxelize_desc {
     int atlas_size;               /* ATLAS*: texels per side (at most 16384); 0 = from the grid: the
                                      size that holds AUTO charts at 2 texels per voxel edge, at most 8192 */
     voxgi_atlas_uv atlas_uv;      /* ATLAS*: 0 = AUTO */
-    unsigned attributes;          /* CONSERVATIVE, THIN, GEOMETRY: voxgi_attribute bits to average per voxel; 0 = none */
+    unsigned attributes;          /* CONSERVATIVE, THIN, GEOMETRY, VOLUME_BUFFER: voxgi_attribute bits; 0 = none */
+    voxgi_blend blend[4];         /* per attribute (albedo, normal, emission, opacity); 0 = AVERAGE */
+    int volume_slicing;           /* VOLUME_BUFFER on GL: 0 or 2 = M2 (fragment clipping), 1 = M1 (triangle slicing) */
 } voxgi_voxelize_desc;
 
 typedef struct voxgi_voxels voxgi_voxels;
@@ -314,6 +328,9 @@ typedef struct voxgi_voxels_info {
     uint64_t atlas_points;      /* ATLAS*: covered texels */
     unsigned attributes;        /* voxgi_attribute bits held */
     uint64_t attribute_pairs;   /* (triangle, voxel) pairs averaged */
+    uint64_t lost_slices;       /* VOLUME_BUFFER on GL: triangle slices beyond the geometry
+                                   shader's output budget (holes): 32 invocations x 56 slices (M2) or x 33
+                                   (M1) per triangle, never reached below 896^3 (M2) or 528^3 (M1) */
 } voxgi_voxels_info;
 
 VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene,
@@ -406,6 +423,8 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #define VOXGI__ATOMIC_STORE_INT(p, v) __atomic_store_n((p), (v), __ATOMIC_RELAXED)
 #define VOXGI__ATOMIC_LOAD_U32(p) __atomic_load_n((p), __ATOMIC_RELAXED)
 #define VOXGI__ATOMIC_CAS_U32(p, expected, v) __atomic_compare_exchange_n((p), (expected), (v), 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED)
+#define VOXGI__ATOMIC_LOAD_U64(p) __atomic_load_n((p), __ATOMIC_RELAXED)
+#define VOXGI__ATOMIC_CAS_U64(p, expected, v) __atomic_compare_exchange_n((p), (expected), (v), 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED)
 #else
 #ifndef VOXGI_NO_THREADS
 #define VOXGI_NO_THREADS
@@ -416,6 +435,8 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #define VOXGI__ATOMIC_STORE_INT(p, v) (*(p) = (v))
 #define VOXGI__ATOMIC_LOAD_U32(p) (*(p))
 #define VOXGI__ATOMIC_CAS_U32(p, expected, v) (*(p) = (v), 1) /* single-threaded: no one else writes */
+#define VOXGI__ATOMIC_LOAD_U64(p) (*(p))
+#define VOXGI__ATOMIC_CAS_U64(p, expected, v) (*(p) = (v), 1)
 #endif
 
 #define VOXGI__MIN(a, b) ((a) < (b) ? (a) : (b))
@@ -557,6 +578,7 @@ VOXGI_API const char *voxgi_method_name(voxgi_method m)
     case VOXGI_METHOD_ATLAS: return "atlas";
     case VOXGI_METHOD_ATLAS_COMPUTE: return "atlas-compute";
     case VOXGI_METHOD_GEOMETRY: return "geometry";
+    case VOXGI_METHOD_VOLUME_BUFFER: return "volume-buffer";
     case VOXGI_METHOD_COUNT_: break;
     }
     return "unknown";
@@ -1037,6 +1059,22 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_NEAREST 0x2600
 #define VOXGI__GL_RGBA32UI 0x8D70
 #define VOXGI__GL_RGBA_INTEGER 0x8D99
+#define VOXGI__GL_RGBA 0x1908
+#define VOXGI__GL_RED 0x1903
+#define VOXGI__GL_FLOAT 0x1406
+#define VOXGI__GL_RGBA32F 0x8814
+#define VOXGI__GL_R32F 0x822E
+#define VOXGI__GL_TEXTURE_3D 0x806F
+#define VOXGI__GL_MAX_3D_TEXTURE_SIZE 0x8073
+#define VOXGI__GL_ONE 1
+#define VOXGI__GL_FUNC_ADD 0x8006
+#define VOXGI__GL_MAX 0x8008
+#define VOXGI__GL_BLEND_SRC_RGB 0x80C9
+#define VOXGI__GL_BLEND_DST_RGB 0x80C8
+#define VOXGI__GL_BLEND_SRC_ALPHA 0x80CB
+#define VOXGI__GL_BLEND_DST_ALPHA 0x80CA
+#define VOXGI__GL_BLEND_EQUATION_RGB 0x8009
+#define VOXGI__GL_BLEND_EQUATION_ALPHA 0x883D
 #define VOXGI__GL_FRAMEBUFFER 0x8D40
 #define VOXGI__GL_COLOR_ATTACHMENT0 0x8CE0
 #define VOXGI__GL_FRAMEBUFFER_COMPLETE 0x8CD5
@@ -1088,6 +1126,8 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, ProgramUniform1i, (unsigned int program, int location, int v0))                              \
     X(void, ProgramUniform1ui, (unsigned int program, int location, unsigned int v0))                    \
     X(void, ProgramUniform3i, (unsigned int program, int location, int v0, int v1, int v2))              \
+    X(void, ProgramUniform2i, (unsigned int program, int location, int v0, int v1))                     \
+    X(void, ProgramUniform4i, (unsigned int program, int location, int v0, int v1, int v2, int v3))     \
     X(void, ProgramUniform1d, (unsigned int program, int location, double v0))                           \
     X(void, CreateBuffers, (int n, unsigned int *buffers))                                               \
     X(void, DeleteBuffers, (int n, const unsigned int *buffers))                                         \
@@ -1125,6 +1165,13 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, TextureParameteri, (unsigned int texture, unsigned int pname, int param))                    \
     X(void, Viewport, (int x, int y, int width, int height))                                             \
     X(void, Enable, (unsigned int cap))                                                                  \
+    X(void, Enablei, (unsigned int cap, unsigned int index))                                             \
+    X(void, Disablei, (unsigned int cap, unsigned int index))                                            \
+    X(unsigned char, IsEnabledi, (unsigned int cap, unsigned int index))                                 \
+    X(void, GetIntegeri_v, (unsigned int pname, unsigned int index, int *data))                          \
+    X(void, BlendFuncSeparatei, (unsigned int buf, unsigned int src_rgb, unsigned int dst_rgb,           \
+                                 unsigned int src_alpha, unsigned int dst_alpha))                        \
+    X(void, BlendEquationSeparatei, (unsigned int buf, unsigned int mode_rgb, unsigned int mode_alpha))  \
     X(void, Disable, (unsigned int cap))                                                                 \
     X(unsigned char, IsEnabled, (unsigned int cap))                                                      \
     X(void, LogicOp, (unsigned int opcode))                                                              \
@@ -1132,7 +1179,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(volume_buffer) X(volume_merge) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -1480,6 +1527,9 @@ typedef struct voxgi__attr {
     int channels;                       /* values per triangle and per voxel */
     double unit[VOXGI__MAX_CHANNELS];   /* what one fixed-point unit of a channel is worth */
     double zero[VOXGI__MAX_CHANNELS];   /* the value fixed point 0 stands for */
+    unsigned char max_op[VOXGI__MAX_CHANNELS]; /* 1: the channel keeps the maximum, else the sum */
+    voxgi_blend blend[4];               /* per attribute (albedo, normal, emission, opacity) */
+    float *values;                      /* when set (GL Volume Buffer): the final values, channels per set voxel */
     uint32_t *rec;                      /* channels per triangle */
     uint32_t *rank;                     /* per word of the bit grid: set voxels in the words before */
     uint32_t *count;                    /* per set voxel: triangles added */
@@ -1499,8 +1549,13 @@ static void voxgi__attr_add(const voxgi__attr *at, const uint32_t *bits, uint64_
     uint64_t slot = at->rank[idx >> 5] + voxgi__popcount32(bits[idx >> 5] & ((1u << (idx & 31u)) - 1u));
     int c;
     VOXGI__ATOMIC_ADD_SIZE(&at->count[slot], 1u);
-    for (c = 0; c < at->channels; c++)
-        VOXGI__ATOMIC_ADD_SIZE(&at->sum[slot * (uint64_t)at->channels + (uint64_t)c], (uint64_t)at->rec[(size_t)t * (size_t)at->channels + (size_t)c]);
+    for (c = 0; c < at->channels; c++) {
+        uint64_t *sum = &at->sum[slot * (uint64_t)at->channels + (uint64_t)c], v = at->rec[(size_t)t * (size_t)at->channels + (size_t)c];
+        if (at->max_op[c]) {
+            uint64_t old = VOXGI__ATOMIC_LOAD_U64(sum);
+            while (old < v && !VOXGI__ATOMIC_CAS_U64(sum, &old, v)) {}
+        } else VOXGI__ATOMIC_ADD_SIZE(sum, v);
+    }
 }
 
 /* Read-only state shared by all workers of one voxelization. */
@@ -1514,6 +1569,7 @@ typedef struct voxgi__vox_shared {
     int thin;              /* VOXGI_METHOD_THIN: every set voxel also passes the thin tests */
     int solid_axis;        /* solid parity along this axis, else -1 */
     int slice_axis;        /* raster slicemap along this axis, else -1 */
+    int volume_buffer;     /* VOLUME_BUFFER: each triangle along its dominant axis */
     const voxgi__attr *attr; /* attribute pass: bits are final, set voxels receive attributes */
 } voxgi__vox_shared;
 
@@ -2257,6 +2313,94 @@ static void voxgi__slicemap_triangle(const voxgi__vox_shared *vs, size_t ti, vox
     }
 }
 
+static double voxgi__snap256(double x) { return floor(x * 256.0 + 0.5) / 256.0; }
+
+/* ----- the rasterizer's coverage, exactly: every pixel centre (i + 1/2, j + 1/2) in [0,w)x[0,h)
+   that a triangle with corners on the 1/256 subpixel grid covers: strictly inside, or on an
+   edge the fill rule gives it (Mesa's, measured: the CCW edge direction d has d_y < 0, or
+   d_y == 0 and d_x > 0). Exact in double while coordinates stay below 2^17 pixels. */
+typedef void (*voxgi__pixel_fn)(void *user, uint32_t tri, int i, int j);
+
+static void voxgi__raster_centres(const double xin[3], const double yin[3], int w, int h, voxgi__pixel_fn fn, void *user,
+                                  uint32_t tri)
+{
+    double x[3], y[3], area;
+    int k, i0, i1, j0, j1, i, j;
+    for (k = 0; k < 3; k++) { x[k] = xin[k]; y[k] = yin[k]; }
+    area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    if (area == 0) return; /* no fragments */
+    if (area < 0) { /* make it CCW: the fill rule speaks of CCW edges */
+        double tx = x[1], ty = y[1];
+        x[1] = x[2]; y[1] = y[2]; x[2] = tx; y[2] = ty;
+    }
+    i0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(x[0], VOXGI__MIN(x[1], x[2])) - 0.5), 0.0);
+    i1 = (int)VOXGI__MIN(floor(VOXGI__MAX(x[0], VOXGI__MAX(x[1], x[2])) - 0.5), (double)w - 1);
+    j0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(y[0], VOXGI__MIN(y[1], y[2])) - 0.5), 0.0);
+    j1 = (int)VOXGI__MIN(floor(VOXGI__MAX(y[0], VOXGI__MAX(y[1], y[2])) - 0.5), (double)h - 1);
+    for (j = j0; j <= j1; j++)
+        for (i = i0; i <= i1; i++) {
+            double px = i + 0.5, py = j + 0.5;
+            int inside = 1;
+            for (k = 0; k < 3 && inside; k++) {
+                double dx = x[(k + 1) % 3] - x[k], dy = y[(k + 1) % 3] - y[k];
+                double e = dx * (py - y[k]) - dy * (px - x[k]);
+                inside = e > 0 || (e == 0 && (dy < 0 || (dy == 0 && dx > 0)));
+            }
+            if (inside) fn(user, tri, i, j);
+        }
+}
+
+/* ----- CPU Volume Buffer (Gaitatzes et al. 2011): each triangle along its dominant axis c
+   (largest |normal| component of (q1-q0)x(q2-q0) in double, the lowest axis on ties), its
+   corners rounded to the 1/256 subpixel grid in the (c+1, c+2) plane; each covered pixel centre
+   sets the voxel floor(depth) of the unrounded plane there (voxgi__slicemap_depth). The same
+   arithmetic as shaders/volume_buffer.glsl, so GL sets the same voxels. */
+static int voxgi__dominant_axis(const double *q0, const double *q1, const double *q2, double n[3])
+{
+    double e[3], f[3];
+    int a, c = 0;
+    for (a = 0; a < 3; a++) { e[a] = q1[a] - q0[a]; f[a] = q2[a] - q0[a]; }
+    n[0] = e[1] * f[2] - f[1] * e[2]; /* GLSL's cross(): the same products and order */
+    n[1] = e[2] * f[0] - f[2] * e[0];
+    n[2] = e[0] * f[1] - f[0] * e[1];
+    for (a = 1; a < 3; a++)
+        if (fabs(n[a]) > fabs(n[c])) c = a;
+    return c;
+}
+
+typedef struct voxgi__vb_job { const voxgi__vox_shared *vs; voxgi__stats *st; const double *q[3]; int c; } voxgi__vb_job;
+
+static void voxgi__vb_pixel(void *user, uint32_t tri, int i, int j)
+{
+    voxgi__vb_job *job = (voxgi__vb_job *)user;
+    int c = job->c, a = (c + 1) % 3, b = (c + 2) % 3;
+    double z = floor(voxgi__slicemap_depth(job->q[0], job->q[1], job->q[2], c, (double)i + 0.5, (double)j + 0.5));
+    (void)tri;
+    if (z >= 0 && z < (double)job->vs->grid->res[c]) {
+        int64_t v[3];
+        v[a] = i;
+        v[b] = j;
+        v[c] = (int64_t)z;
+        voxgi__set_voxel(job->vs, job->st, v[0], v[1], v[2]);
+    }
+}
+
+static void voxgi__vb_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
+{
+    voxgi__vb_job job;
+    double n[3], x[3], y[3];
+    int k, a, b;
+    for (k = 0; k < 3; k++) job.q[k] = vs->vp[vs->tri[3 * ti + (size_t)k]].q;
+    job.c = voxgi__dominant_axis(job.q[0], job.q[1], job.q[2], n);
+    if (n[job.c] == 0) return; /* no area in any projection */
+    job.vs = vs;
+    job.st = st;
+    a = (job.c + 1) % 3;
+    b = (job.c + 2) % 3;
+    for (k = 0; k < 3; k++) { x[k] = voxgi__snap256(job.q[k][a]); y[k] = voxgi__snap256(job.q[k][b]); }
+    voxgi__raster_centres(x, y, vs->grid->res[a], vs->grid->res[b], voxgi__vb_pixel, &job, (uint32_t)ti);
+}
+
 /* ----- worker pool. Phase 1 hands out triangles in chunks and lists the big ones (more than
    VOXGI__BIG_COLUMNS columns); phase 2 hands out blocks of their rows, so a few huge triangles
    keep every core busy too. OR is order-free: the bits do not depend on threads or schedule. */
@@ -2289,6 +2433,7 @@ static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress
                 st.tri = (uint32_t)t;
                 if (job->vs->solid_axis >= 0) { voxgi__solid_triangle(job->vs, t, &st); continue; }
                 if (job->vs->slice_axis >= 0) { voxgi__slicemap_triangle(job->vs, t, &st); continue; }
+                if (job->vs->volume_buffer) { voxgi__vb_triangle(job->vs, t, &st); continue; }
                 if (!voxgi__tri_prepare(job->vs, t, &P, &st)) continue;
                 if ((int64_t)P.ext[(P.c + 1) % 3] * P.ext[(P.c + 2) % 3] > VOXGI__BIG_COLUMNS)
                     job->big[VOXGI__ATOMIC_ADD_SIZE(&job->big_count, (size_t)1)] = (uint32_t)t;
@@ -2469,7 +2614,6 @@ typedef struct voxgi__atlas {
 
 static int voxgi__is_atlas(voxgi_method m) { return m == VOXGI_METHOD_ATLAS || m == VOXGI_METHOD_ATLAS_COMPUTE; }
 
-static double voxgi__snap256(double x) { return floor(x * 256.0 + 0.5) / 256.0; }
 
 /* A triangle's chart before scaling: its longest edge (from corner `first`) along u. */
 typedef struct voxgi__chart { double len, apex_u, height; uint32_t tri; int first; } voxgi__chart;
@@ -2634,41 +2778,23 @@ typedef struct voxgi__atlas_job {
     uint64_t points;
 } voxgi__atlas_job;
 
+static void voxgi__atlas_texel(void *user, uint32_t t, int i, int j)
+{
+    voxgi__atlas_job *job = (voxgi__atlas_job *)user;
+    uint32_t *texel = job->texels + (size_t)j * (size_t)job->at->size + (size_t)i, old = VOXGI__ATOMIC_LOAD_U32(texel);
+    while (old < t + 1 && !VOXGI__ATOMIC_CAS_U32(texel, &old, t + 1)) {}
+}
+
 static void voxgi__atlas_raster(void *user, size_t first, size_t end)
 {
     voxgi__atlas_job *job = (voxgi__atlas_job *)user;
-    const voxgi__atlas *at = job->at;
     size_t t;
     for (t = first; t < end; t++) {
-        const float *c = at->uv + 6 * t;
-        double x[3], y[3], area;
-        int k, i0, i1, j0, j1, i, j;
+        const float *c = job->at->uv + 6 * t;
+        double x[3], y[3];
+        int k;
         for (k = 0; k < 3; k++) { x[k] = c[2 * k]; y[k] = c[2 * k + 1]; }
-        area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
-        if (area == 0) continue; /* no fragments */
-        if (area < 0) { /* make it CCW: the fill rule speaks of CCW edges */
-            double tx = x[1], ty = y[1];
-            x[1] = x[2]; y[1] = y[2]; x[2] = tx; y[2] = ty;
-        }
-        i0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(x[0], VOXGI__MIN(x[1], x[2])) - 0.5), 0.0);
-        i1 = (int)VOXGI__MIN(floor(VOXGI__MAX(x[0], VOXGI__MAX(x[1], x[2])) - 0.5), (double)at->size - 1);
-        j0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(y[0], VOXGI__MIN(y[1], y[2])) - 0.5), 0.0);
-        j1 = (int)VOXGI__MIN(floor(VOXGI__MAX(y[0], VOXGI__MAX(y[1], y[2])) - 0.5), (double)at->size - 1);
-        for (j = j0; j <= j1; j++)
-            for (i = i0; i <= i1; i++) {
-                double px = i + 0.5, py = j + 0.5;
-                int inside = 1;
-                uint32_t *texel, old;
-                for (k = 0; k < 3 && inside; k++) {
-                    double dx = x[(k + 1) % 3] - x[k], dy = y[(k + 1) % 3] - y[k];
-                    double e = dx * (py - y[k]) - dy * (px - x[k]); /* exact: 1/256 lattice below 2^14 */
-                    inside = e > 0 || (e == 0 && (dy < 0 || (dy == 0 && dx > 0)));
-                }
-                if (!inside) continue;
-                texel = job->texels + (size_t)j * (size_t)at->size + (size_t)i;
-                old = VOXGI__ATOMIC_LOAD_U32(texel);
-                while (old < (uint32_t)t + 1 && !VOXGI__ATOMIC_CAS_U32(texel, &old, (uint32_t)t + 1)) {}
-            }
+        voxgi__raster_centres(x, y, job->at->size, job->at->size, voxgi__atlas_texel, job, (uint32_t)t);
     }
 }
 
@@ -2736,7 +2862,8 @@ struct voxgi_voxels {
 
 /* Each triangle's attribute values in fixed point, channels in the order albedo, normal,
    emission, opacity (those asked for). */
-static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f, unsigned mask, voxgi__attr *at)
+static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f, unsigned mask, const voxgi_blend blend[4],
+                                        voxgi__attr *at)
 {
     static const voxgi_material fallback = {{0.8f, 0.8f, 0.8f}, {0, 0, 0}, 0};
     double emax = 0, erange = 1, v[VOXGI__MAX_CHANNELS];
@@ -2751,6 +2878,14 @@ static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f
     }
     while (erange < emax) erange *= 2;
     while (erange / 2 >= emax && emax > 0) erange /= 2;
+    for (c = 0; c < 4; c++) at->blend[c] = blend[c];
+    {   /* channel -> attribute: the channels of each asked-for attribute in order */
+        int k = 0, a, n;
+        for (a = 0; a < 4; a++) {
+            if (!(mask & (1u << a))) continue;
+            for (n = 0; n < (a == 3 ? 1 : 3); n++) at->max_op[k++] = (unsigned char)(blend[a] == VOXGI_BLEND_MAX);
+        }
+    }
     at->rec = (uint32_t *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, (size_t)at->channels * 4, 0);
     if (!at->rec) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' attributes");
     for (t = 0; t < f->triangle_count; t++) {
@@ -2800,6 +2935,7 @@ static void voxgi__attr_free(voxgi_context *ctx, voxgi__attr *at)
     voxgi__free(ctx, at->rank);
     voxgi__free(ctx, at->count);
     voxgi__free(ctx, at->sum);
+    voxgi__free(ctx, at->values);
     memset(at, 0, sizeof *at);
 }
 
@@ -2807,6 +2943,7 @@ VOXGI_API voxgi_result voxgi_voxels_read_attribute(voxgi_context *ctx, const vox
                                                    size_t dst_bytes, size_t *needed)
 {
     int first = 0, width = which == VOXGI_ATTRIBUTE_OPACITY ? 1 : 3, c;
+    voxgi_blend blend;
     uint64_t i, n;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!v) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels is NULL");
@@ -2822,11 +2959,16 @@ VOXGI_API voxgi_result voxgi_voxels_read_attribute(voxgi_context *ctx, const vox
     if ((unsigned)which > VOXGI_ATTRIBUTE_ALBEDO && (v->info.attributes & VOXGI_ATTRIBUTE_ALBEDO)) first += 3;
     if ((unsigned)which > VOXGI_ATTRIBUTE_NORMAL && (v->info.attributes & VOXGI_ATTRIBUTE_NORMAL)) first += 3;
     if ((unsigned)which > VOXGI_ATTRIBUTE_EMISSION && (v->info.attributes & VOXGI_ATTRIBUTE_EMISSION)) first += 3;
+    blend = v->attr.blend[which == VOXGI_ATTRIBUTE_ALBEDO ? 0 : (which == VOXGI_ATTRIBUTE_NORMAL ? 1 : (which == VOXGI_ATTRIBUTE_EMISSION ? 2 : 3))];
     for (i = 0; i < n; i++)
         for (c = 0; c < width; c++) {
             int ch = first + c;
-            double mean = (double)v->attr.sum[i * (uint64_t)v->attr.channels + (uint64_t)ch] / (double)v->attr.count[i];
-            dst[i * (uint64_t)width + (uint64_t)c] = (float)(v->attr.zero[ch] + mean * v->attr.unit[ch]);
+            double q = (double)v->attr.sum[i * (uint64_t)v->attr.channels + (uint64_t)ch], k = (double)v->attr.count[i], out;
+            if (v->attr.values) out = v->attr.values[i * (uint64_t)v->attr.channels + (uint64_t)ch];
+            else if (blend == VOXGI_BLEND_AVERAGE) out = v->attr.zero[ch] + q / k * v->attr.unit[ch];
+            else if (blend == VOXGI_BLEND_ADD) out = k * v->attr.zero[ch] + q * v->attr.unit[ch];
+            else out = v->attr.zero[ch] + q * v->attr.unit[ch];
+            dst[i * (uint64_t)width + (uint64_t)c] = (float)out;
         }
     return VOXGI_OK;
 }
@@ -2937,6 +3079,7 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
     vs.thin = desc->method == VOXGI_METHOD_THIN;
     vs.slice_axis = desc->method == VOXGI_METHOD_SLICEMAP ? (desc->axis ? (int)desc->axis - 1 : 2) : -1;
     vs.attr = NULL;
+    vs.volume_buffer = desc->method == VOXGI_METHOD_VOLUME_BUFFER;
     if (atlas) {
         vs.bits = vox->bits;
         r = voxgi__atlas_cpu(ctx, &vs, flat->triangle_count, atlas, &vox->info.atlas_points);
@@ -2988,9 +3131,13 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown axis %d or solid mode %d", (int)desc->axis, (int)desc->solid_mode);
     if (desc->attributes & ~15u)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown attribute bits 0x%x", desc->attributes & ~15u);
+    if ((unsigned)desc->blend[0] > VOXGI_BLEND_ADD || (unsigned)desc->blend[1] > VOXGI_BLEND_ADD ||
+        (unsigned)desc->blend[2] > VOXGI_BLEND_ADD || (unsigned)desc->blend[3] > VOXGI_BLEND_ADD ||
+        desc->volume_slicing < 0 || desc->volume_slicing > 2)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown blend mode or volume_slicing %d", desc->volume_slicing);
     if (desc->attributes && desc->method != VOXGI_METHOD_CONSERVATIVE && desc->method != VOXGI_METHOD_THIN &&
-        desc->method != VOXGI_METHOD_GEOMETRY)
-        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "attributes are averaged by the conservative, thin and geometry methods, not %s",
+        desc->method != VOXGI_METHOD_GEOMETRY && desc->method != VOXGI_METHOD_VOLUME_BUFFER)
+        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "attributes come from the conservative, thin, geometry and volume-buffer methods, not %s",
                            voxgi_method_name(desc->method));
     r = voxgi_validate_grid(ctx, &desc->grid);
     if (r != VOXGI_OK) return r;
@@ -3005,7 +3152,7 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
     vox->info.bytes = (size_t)(voxgi__grid_words(&desc->grid) * 4u);
     r = voxgi__prep_vertices(ctx, &flat, &desc->grid, &vp);
     if (r == VOXGI_OK && desc->attributes) {
-        r = voxgi__attr_prepare(ctx, &flat, desc->attributes, &vox->attr);
+        r = voxgi__attr_prepare(ctx, &flat, desc->attributes, desc->blend, &vox->attr);
         vox->info.attributes = desc->attributes;
     }
     memset(&atlas, 0, sizeof atlas);
@@ -3261,6 +3408,12 @@ static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__fl
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), pair_capacity);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 1);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr->channels);
+        {
+            unsigned int max_channels = 0;
+            int c;
+            for (c = 0; c < attr->channels; c++) max_channels |= (unsigned)attr->max_op[c] << c;
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_max_channels"), max_channels);
+        }
         voxgi__gl_run(gl, d, p, nt, control_buf);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
         for (k = 7; k < 10; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, 0);
@@ -3792,6 +3945,197 @@ static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, co
     return r;
 }
 
+/* The Volume Buffer: three layered draws (one per sweep axis, each triangle in the sweep of its
+   dominant axis) into float 3D targets blended per attribute, then merged into the bit grid and,
+   with attributes, each set voxel's values (on the CPU afterwards, as floats). */
+static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                            const voxgi_voxelize_desc *d, unsigned int *bits_out, voxgi__attr *attr,
+                                            voxgi_voxels_info *info)
+{
+    static const unsigned int caps[] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST, VOXGI__GL_CULL_FACE,
+                                        VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP};
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    unsigned int attrs = d->attributes, tex[3][3], fbo = 0, vao = 0, verts = 0, tris = 0, values_buf = 0, lost_buf = 0, p, zero = 0;
+    unsigned char was_enabled[7], blend_was[3];
+    int saved[3][6], viewport[4], max3d = 0, c, k, i, targets = 1 + ((attrs & 10u) ? 1 : 0) + ((attrs & 4u) ? 1 : 0);
+    uint64_t words = voxgi__grid_words(g), nvox = voxgi_grid_voxel_count(g), bytes_per_voxel = attrs ? 16u * (uint64_t)targets : 4u;
+    float *tv;
+    size_t t;
+    voxgi_result r = voxgi__gl_build(ctx, 2, "scene.glsl volume_buffer.glsl", &gl->prog_volume_buffer);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl volume_merge.glsl", &gl->prog_volume_merge);
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
+    if (g->res[0] > max3d || g->res[1] > max3d || g->res[2] > max3d)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's 3D targets stop at GL_MAX_3D_TEXTURE_SIZE %d", max3d);
+    if (3 * nvox * bytes_per_voxel > ((uint64_t)1 << 30))
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's three %dx%dx%d sweeps need %llu MiB of float targets "
+                           "(at most 1024 here); ask for fewer attributes or a smaller grid", g->res[0], g->res[1], g->res[2],
+                           (unsigned long long)(3 * nvox * bytes_per_voxel >> 20));
+    /* each triangle's values as the targets take them */
+    tv = (float *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, 10 * sizeof(float), 1);
+    if (!tv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' values");
+    for (t = 0; t < f->triangle_count && attrs; t++) {
+        static const voxgi_material fallback = {{0.8f, 0.8f, 0.8f}, {0, 0, 0}, 0};
+        const voxgi_material *m = f->material_count ? &f->materials[f->mat[t]] : &fallback;
+        const float *p0 = f->pos + 3 * (size_t)f->tri[3 * t], *p1 = f->pos + 3 * (size_t)f->tri[3 * t + 1], *p2 = f->pos + 3 * (size_t)f->tri[3 * t + 2];
+        double e[3], h[3], n[3], len;
+        for (k = 0; k < 3; k++) { e[k] = (double)p1[k] - p0[k]; h[k] = (double)p2[k] - p0[k]; }
+        for (k = 0; k < 3; k++) n[k] = e[(k + 1) % 3] * h[(k + 2) % 3] - e[(k + 2) % 3] * h[(k + 1) % 3];
+        len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (k = 0; k < 3; k++) {
+            double nk = len > 0 ? n[k] / len : 0;
+            tv[10 * t + (size_t)k] = m->albedo[k];
+            tv[10 * t + 3 + (size_t)k] = (float)(d->blend[1] == VOXGI_BLEND_MAX ? nk * 0.5 + 0.5 : nk);
+            tv[10 * t + 6 + (size_t)k] = m->emission[k];
+        }
+        tv[10 * t + 9] = 1.0f - m->transparency;
+    }
+    voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
+    values_buf = voxgi__gl_buffer(ctx, f->triangle_count * 10 * sizeof(float), tv);
+    lost_buf = voxgi__gl_buffer(ctx, 4, &zero);
+    voxgi__free(ctx, tv);
+    memset(tex, 0, sizeof tex);
+    gl->CreateVertexArrays(1, &vao);
+    gl->CreateFramebuffers(1, &fbo);
+    gl->GetIntegerv(VOXGI__GL_VIEWPORT, viewport);
+    for (i = 0; i < 7; i++) {
+        was_enabled[i] = gl->IsEnabled(caps[i]);
+        gl->Disable(caps[i]);
+    }
+    for (i = 0; i < 3; i++) { /* the blend state of draw buffers 0-2, restored at the end */
+        static const unsigned int names[6] = {VOXGI__GL_BLEND_SRC_RGB, VOXGI__GL_BLEND_DST_RGB, VOXGI__GL_BLEND_SRC_ALPHA,
+                                              VOXGI__GL_BLEND_DST_ALPHA, VOXGI__GL_BLEND_EQUATION_RGB, VOXGI__GL_BLEND_EQUATION_ALPHA};
+        blend_was[i] = gl->IsEnabledi(VOXGI__GL_BLEND, (unsigned)i);
+        for (k = 0; k < 6; k++) gl->GetIntegeri_v(names[k], (unsigned)i, &saved[i][k]);
+        gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
+        gl->BlendFuncSeparatei((unsigned)i, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE);
+    }
+    {   /* per target: rgb and alpha by their attributes' blend mode (the fragment count always adds) */
+        unsigned int eq[3][2];
+        eq[0][0] = d->blend[0] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+        eq[0][1] = VOXGI__GL_FUNC_ADD;
+        eq[1][0] = d->blend[1] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+        eq[1][1] = d->blend[3] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+        eq[2][0] = d->blend[2] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+        eq[2][1] = VOXGI__GL_FUNC_ADD;
+        for (i = 0; i < 3; i++) gl->BlendEquationSeparatei((unsigned)i, eq[i][0], eq[i][1]);
+    }
+    p = gl->prog_volume_buffer;
+    gl->UseProgram(p);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, values_buf);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, lost_buf);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_slicing"), d->volume_slicing == 1 ? 1 : 2);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_with_values"), attrs != 0);
+    gl->BindVertexArray(vao);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+    for (c = 0; c < 3 && r == VOXGI_OK; c++) {
+        int a = (c + 1) % 3, b = (c + 2) % 3, vw = 1, vh = 1;
+        unsigned int bufs[3];
+        float zeros[4] = {0, 0, 0, 0};
+        for (k = 0; k < 3; k++) {
+            bufs[k] = 0;
+            if (k == 1 && !(attrs & 10u)) continue;
+            if (k == 2 && !(attrs & 4u)) continue;
+            gl->CreateTextures(VOXGI__GL_TEXTURE_3D, 1, &tex[c][k]);
+            gl->TextureStorage3D(tex[c][k], 1, k == 0 && !attrs ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F, g->res[a], g->res[b], g->res[c]);
+            gl->TextureParameteri(tex[c][k], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
+            gl->TextureParameteri(tex[c][k], VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
+            gl->ClearTexImage(tex[c][k], 0, k == 0 && !attrs ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
+            gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)k, tex[c][k], 0);
+            bufs[k] = VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)k;
+        }
+        for (k = 0; k < 3; k++)
+            if (!bufs[k]) gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)k, 0, 0);
+        gl->NamedFramebufferDrawBuffers(fbo, 3, bufs);
+        if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE) {
+            r = voxgi__fail(ctx, VOXGI_ERR_GL, "the Volume Buffer's framebuffer is incomplete");
+            break;
+        }
+        while (vw < g->res[a]) vw *= 2;
+        while (vh < g->res[b]) vh *= 2;
+        gl->Viewport(0, 0, vw, vh);
+        gl->ProgramUniform2i(p, gl->GetUniformLocation(p, "u_view"), vw, vh);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), c);
+        gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+    }
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+    gl->BindVertexArray(0);
+    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    for (i = 0; i < 7; i++)
+        if (was_enabled[i]) gl->Enable(caps[i]);
+        else gl->Disable(caps[i]);
+    for (i = 0; i < 3; i++) {
+        gl->BlendFuncSeparatei((unsigned)i, (unsigned)saved[i][0], (unsigned)saved[i][1], (unsigned)saved[i][2], (unsigned)saved[i][3]);
+        gl->BlendEquationSeparatei((unsigned)i, (unsigned)saved[i][4], (unsigned)saved[i][5]);
+        if (blend_was[i]) gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
+        else gl->Disablei(VOXGI__GL_BLEND, (unsigned)i);
+    }
+    gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT | VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+    if (r == VOXGI_OK) {
+        uint32_t lost = 0;
+        r = voxgi__gl_read_buffer(ctx, lost_buf, &lost, 4);
+        info->lost_slices = lost;
+    }
+    if (r == VOXGI_OK) { /* merge: the bits */
+        *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)words * 4);
+        p = gl->prog_volume_merge;
+        gl->UseProgram(p);
+        for (c = 0; c < 3; c++)
+            for (k = 0; k < 3; k++) gl->BindTextureUnit((unsigned)(3 * k + c), tex[c][k]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_attributes"), attrs);
+        gl->ProgramUniform4i(p, gl->GetUniformLocation(p, "u_blend"), (int)d->blend[0], (int)d->blend[1], (int)d->blend[2], (int)d->blend[3]);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr ? attr->channels : 0);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+        voxgi__gl_dispatch_rows(gl, nvox);
+        r = voxgi__gl_check(ctx, "the Volume Buffer");
+    }
+    if (r == VOXGI_OK && attr) { /* merge: each set voxel's values at its rank */
+        uint32_t *bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0);
+        unsigned int rank_buf = 0, out_buf = 0, count_buf = 0;
+        uint64_t voxels = 0, w;
+        if (!bits) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the Volume Buffer's merge");
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, *bits_out, bits, (size_t)words * 4);
+        for (w = 0; r == VOXGI_OK && w < words; w++) voxels += voxgi__popcount32(bits[w]);
+        if (r == VOXGI_OK) r = voxgi__attr_alloc(ctx, attr, bits, words, voxels);
+        if (r == VOXGI_OK && !(attr->values = (float *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), (size_t)attr->channels * 4, 0)))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attributes of %llu voxels", (unsigned long long)voxels);
+        if (r == VOXGI_OK) {
+            rank_buf = voxgi__gl_buffer(ctx, (size_t)words * 4, attr->rank);
+            out_buf = voxgi__gl_buffer(ctx, (size_t)voxels * (size_t)attr->channels * 4, NULL);
+            count_buf = voxgi__gl_buffer(ctx, (size_t)voxels * 4, NULL);
+            gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, rank_buf);
+            gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 8, out_buf);
+            gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 9, count_buf);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+            voxgi__gl_dispatch_rows(gl, nvox);
+            r = voxgi__gl_read_buffer(ctx, out_buf, attr->values, (size_t)voxels * (size_t)attr->channels * 4);
+            if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, count_buf, attr->count, (size_t)voxels * 4);
+        }
+        voxgi__gl_delete_buffer(ctx, rank_buf);
+        voxgi__gl_delete_buffer(ctx, out_buf);
+        voxgi__gl_delete_buffer(ctx, count_buf);
+        voxgi__free(ctx, bits);
+    }
+    for (i = 0; i < 9; i++) gl->BindTextureUnit((unsigned)i, 0);
+    voxgi__gl_unbind(gl);
+    for (c = 0; c < 3; c++)
+        for (k = 0; k < 3; k++)
+            if (tex[c][k]) gl->DeleteTextures(1, &tex[c][k]);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    voxgi__gl_delete_buffer(ctx, verts);
+    voxgi__gl_delete_buffer(ctx, tris);
+    voxgi__gl_delete_buffer(ctx, values_buf);
+    voxgi__gl_delete_buffer(ctx, lost_buf);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the Volume Buffer");
+    if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
+    return r;
+}
+
 static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                        const voxgi_voxelize_desc *d, const voxgi__atlas *atlas, voxgi_voxels *out)
 {
@@ -3827,6 +4171,8 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
     if (r != VOXGI_OK) return r;
     if (d->method == VOXGI_METHOD_SLICEMAP) r = voxgi__gl_slicemap(ctx, f, vp, d, &result);
     else if (atlas) r = voxgi__gl_atlas(ctx, f, vp, d, atlas, &result, &out->info);
+    else if (d->method == VOXGI_METHOD_VOLUME_BUFFER)
+        r = voxgi__gl_volume_buffer(ctx, f, vp, d, &result, out->attr.rec ? &out->attr : NULL, &out->info);
     else if (d->method != VOXGI_METHOD_SOLID)
         r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info, out->attr.rec ? &out->attr : NULL);
     else if (d->solid_mode == VOXGI_SOLID_PARITY)

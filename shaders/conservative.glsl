@@ -15,6 +15,7 @@ layout(std430, binding = 8) readonly buffer Rec { uint rec[]; };
 layout(std430, binding = 9) buffer Sums { uint sums[]; };
 uniform int u_attr;
 uniform int u_channels;
+uniform uint u_max_channels; // bit c: channel c keeps the maximum (in the low word), else the sum
 
 void add_attributes(uint idx)
 {
@@ -23,6 +24,7 @@ void add_attributes(uint idx)
     atomicAdd(sums[base], 1u);
     for (int c = 0; c < u_channels; c++) {
         uint v = rec[T * uint(u_channels) + uint(c)], at = base + 1u + 2u * uint(c);
+        if ((u_max_channels & (1u << uint(c))) != 0u) { atomicMax(sums[at], v); continue; }
         uint old = atomicAdd(sums[at], v);
         if (old + v < old) atomicAdd(sums[at + 1u], 1u);
     }

@@ -8,6 +8,7 @@
 #include "harness.h"
 #include "../tools/shapes.h"
 #include <stdlib.h>
+#include <math.h>
 
 static vxt_gl *g_gl;
 static char g_gl_error[512];
@@ -500,6 +501,104 @@ static void test_gl_raster_attributes_equal_cpu(void)
     vxt_shape_free(&shapes[1]);
 }
 
+/* The Volume Buffer: M2 sets the CPU twin's voxels bit for bit; M1 (sliced triangles) differs
+   only by a slice, next to a CPU voxel of the same column, and rarely; attributes blended in
+   float targets match the CPU's integer sums within float rounding (count * 2^-24 relative). */
+static void test_gl_raster_volume_buffer(void)
+{
+    static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
+    static const voxgi_blend blends[2][4] = {{VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE},
+                                             {VOXGI_BLEND_MAX, VOXGI_BLEND_MAX, VOXGI_BLEND_ADD, VOXGI_BLEND_MAX}};
+    vxt_shape shapes[2];
+    voxgi_material mats[3] = {{{0.9f, 0.1f, 0.2f}, {0, 0, 0}, 0}, {{0.3f, 0.7f, 0.5f}, {40, 20, 5}, 0.25f}, {{1, 1, 1}, {0, 0, 0}, 1}};
+    int sh, variant;
+    if (!have_gl()) return;
+    vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
+    vxt_shape_box_and_tilted(&shapes[1]);
+    for (sh = 0; sh < 2; sh++)
+        for (variant = 0; variant < 3; variant++) { /* M2 mean, M2 max/add, M1 mean */
+            voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
+            voxgi_voxels *vox[2] = {NULL, NULL};
+            uint32_t *ids = (uint32_t *)malloc(shapes[sh].triangle_count * 4), *bits[2] = {NULL, NULL};
+            voxgi_voxels_info info[2];
+            voxgi_grid g;
+            size_t t, need = 0;
+            uint64_t l, n, diff = 0, far = 0;
+            int b, k;
+            double worst = 0;
+            for (t = 0; t < shapes[sh].triangle_count; t++) ids[t] = (uint32_t)(t % 3);
+            if (sh == 0) cubic(&g, -1.1, 2.2, 48);
+            else { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 52; }
+            n = voxgi_grid_voxel_count(&g);
+            for (b = 0; b < 2; b++) {
+                voxgi_mesh mesh;
+                voxgi_scene sc;
+                voxgi_voxelize_desc vd;
+                memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
+                mesh.positions = shapes[sh].pos; mesh.vertex_count = shapes[sh].vertex_count; mesh.indices = shapes[sh].idx;
+                mesh.index_count = 3 * shapes[sh].triangle_count; mesh.material_ids = ids;
+                sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 3;
+                vd.grid = g; vd.method = VOXGI_METHOD_VOLUME_BUFFER; vd.attributes = 15;
+                vd.volume_slicing = variant == 2 ? 1 : 2;
+                memcpy(vd.blend, blends[variant == 1], sizeof vd.blend);
+                if (voxgi_voxelize(b ? gl : cpu, &sc, &vd, &vox[b]) != VOXGI_OK) { printf("    %s\n", voxgi_last_error(b ? gl : cpu)); continue; }
+                voxgi_voxels_query(vox[b], &info[b]);
+                voxgi_voxels_read(b ? gl : cpu, vox[b], NULL, 0, &need);
+                bits[b] = (uint32_t *)malloc(need);
+                voxgi_voxels_read(b ? gl : cpu, vox[b], bits[b], need, NULL);
+            }
+            TH_CHECK(bits[0] && bits[1], "shape %d variant %d: volume buffer failed", sh, variant);
+            if (!bits[0] || !bits[1]) continue;
+            for (l = 0; l < n; l++)
+                if (voxgi_bit_get(bits[0], l) != voxgi_bit_get(bits[1], l)) {
+                    /* M1: the CPU (exact depth) has a voxel one slice away in some axis' column */
+                    int x = (int)(l % (uint64_t)g.res[0]), y = (int)(l / (uint64_t)g.res[0] % (uint64_t)g.res[1]);
+                    int z = (int)(l / ((uint64_t)g.res[0] * (uint64_t)g.res[1])), d, a, near = 0;
+                    diff++;
+                    for (a = 0; a < 3 && !near; a++)
+                        for (d = -1; d <= 1; d += 2) {
+                            int v[3] = {x, y, z};
+                            v[a] += d;
+                            if (v[a] < 0 || v[a] >= g.res[a]) continue;
+                            near |= voxgi_bit_get(bits[voxgi_bit_get(bits[0], l) ? 1 : 0],
+                                                  (uint64_t)v[0] + (uint64_t)g.res[0] * ((uint64_t)v[1] + (uint64_t)g.res[1] * (uint64_t)v[2]));
+                        }
+                    far += (uint64_t)!near;
+                }
+            if (variant < 2) TH_CHECK(diff == 0, "shape %d: M2 differs from the CPU in %llu voxels", sh, (unsigned long long)diff);
+            else TH_CHECK(far == 0 && diff * 100 <= info[0].voxel_count, "shape %d: M1 differs in %llu voxels, %llu not next to a CPU voxel",
+                          sh, (unsigned long long)diff, (unsigned long long)far);
+            for (k = 0; k < 4 && variant < 2; k++) {
+                size_t na = 0, nb = 0, i;
+                float *a, *c;
+                voxgi_voxels_read_attribute(cpu, vox[0], kinds[k], NULL, 0, &na);
+                voxgi_voxels_read_attribute(gl, vox[1], kinds[k], NULL, 0, &nb);
+                a = (float *)malloc(na + 4); c = (float *)malloc(nb + 4);
+                voxgi_voxels_read_attribute(cpu, vox[0], kinds[k], a, na, NULL);
+                voxgi_voxels_read_attribute(gl, vox[1], kinds[k], c, nb, NULL);
+                TH_CHECK(na == nb && na > 0, "attribute sizes %lu vs %lu", (unsigned long)na, (unsigned long)nb);
+                for (i = 0; na == nb && i < na / 4; i++) { /* relative to the larger of 1 and the value */
+                    double e = fabs((double)a[i] - c[i]) / (fabs(a[i]) > 1 ? fabs(a[i]) : 1);
+                    if (e > worst) worst = e;
+                }
+                free(a); free(c);
+            }
+            if (variant < 2) TH_CHECK(worst <= 64 * ldexp(1, -24), "shape %d: GL attributes off by %g", sh, worst);
+            printf("    volume buffer %s shape %d%s: %llu voxels CPU, %llu GL, %llu differ", variant == 2 ? "M1" : "M2", sh,
+                   variant == 1 ? " (max/add)" : "", (unsigned long long)info[0].voxel_count, (unsigned long long)info[1].voxel_count,
+                   (unsigned long long)diff);
+            if (variant < 2) printf("; attributes within %.3g (relative)", worst);
+            printf("\n");
+            voxgi_voxels_destroy(cpu, vox[0]);
+            voxgi_voxels_destroy(gl, vox[1]);
+            free(bits[0]); free(bits[1]); free(ids);
+            voxgi_destroy(cpu);
+            voxgi_destroy(gl);
+        }
+    vxt_shape_free(&shapes[0]);
+    vxt_shape_free(&shapes[1]);
+}
+
 /* The geometry-shader voxelizer on every shape of the compute tests: bit for bit the CPU's. */
 static void test_gl_raster_geometry_equals_cpu(void)
 {
@@ -628,6 +727,7 @@ int main(void)
     TH_RUN(test_gl_raster_slicemap_equals_cpu);
     TH_RUN(test_gl_raster_atlas_equals_cpu);
     TH_RUN(test_gl_raster_geometry_equals_cpu);
+    TH_RUN(test_gl_raster_volume_buffer);
     TH_RUN(test_gl_raster_attributes_equal_cpu);
     TH_RUN(test_gl_interop_and_backends);
     TH_RUN(test_gl_plain_loader);

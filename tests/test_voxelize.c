@@ -1339,7 +1339,8 @@ static void test_atlas_auto_relations(void)
 
 /* ---------------------------------------------------------------- attributes */
 static voxgi_voxels *attr_run(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t nt, const uint32_t *mat_ids,
-                              const voxgi_material *mats, size_t nm, const voxgi_grid *g, unsigned attributes)
+                              const voxgi_material *mats, size_t nm, const voxgi_grid *g, unsigned attributes, voxgi_method method,
+                              const voxgi_blend blend[4])
 {
     voxgi_mesh m;
     voxgi_scene sc;
@@ -1348,7 +1349,8 @@ static voxgi_voxels *attr_run(voxgi_context *ctx, const float *pos, size_t nv, c
     memset(&m, 0, sizeof m); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
     m.positions = pos; m.vertex_count = nv; m.indices = idx; m.index_count = 3 * nt; m.material_ids = mat_ids;
     sc.meshes = &m; sc.mesh_count = 1; sc.materials = mats; sc.material_count = nm;
-    vd.grid = *g; vd.attributes = attributes;
+    vd.grid = *g; vd.attributes = attributes; vd.method = method;
+    memcpy(vd.blend, blend, sizeof vd.blend);
     if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) printf("    voxelize: %s\n", voxgi_last_error(ctx));
     return vox;
 }
@@ -1363,10 +1365,116 @@ static float *attr_read(voxgi_context *ctx, const voxgi_voxels *vox, voxgi_attri
     return out;
 }
 
-/* Each voxel's attributes against the mean over the triangles whose exact (oracle) conservative
-   set holds it, computed here in double: within half a fixed-point unit plus the float rounding
-   of the output. Shuffling the triangles or changing the thread count changes no bit. */
-static void test_attributes_vs_oracle_and_order(void)
+/* The Volume Buffer's definition in 128-bit integers: each triangle along its dominant axis
+   (largest |n|, lowest axis on ties), corners rounded half up to 1/256 of a voxel in the other
+   two axes, pixel centres covered under the fill rule, the exact plane's depth floored. Needs a
+   power-of-two voxel size, so that the library's voxel coordinates are exact. */
+static int64_t floor_div(i128 num, i128 den)
+{
+    if (den < 0) { num = -num; den = -den; }
+    return (int64_t)(num >= 0 ? num / den : -((-num + den - 1) / den));
+}
+
+static uint32_t *oracle_volume_buffer(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g)
+{
+    uint64_t nvox = voxgi_grid_voxel_count(g);
+    uint32_t *bits = (uint32_t *)calloc((size_t)(nvox + 31) / 32, 4);
+    int64_t o[3], s = to_fixed(g->voxel_size);
+    const i128 one = (i128)1 << ORACLE_BITS; /* a voxel, in units of 2^-ORACLE_BITS voxels */
+    size_t t;
+    int k;
+    for (k = 0; k < 3; k++) o[k] = to_fixed(g->origin[k]);
+    for (t = 0; t < ntri; t++) {
+        i128 q[3][3], n[3], e[3], f[3], X[3], Y[3], area;
+        int c = 0, a, b, i, j, v;
+        for (v = 0; v < 3; v++)
+            for (k = 0; k < 3; k++) q[v][k] = ((i128)to_fixed(pos[3 * idx[3 * t + (size_t)v] + (size_t)k]) - o[k]) * one / s; /* exact: s is 2^m */
+        for (k = 0; k < 3; k++) { e[k] = q[1][k] - q[0][k]; f[k] = q[2][k] - q[0][k]; }
+        n[0] = e[1] * f[2] - f[1] * e[2]; n[1] = e[2] * f[0] - f[2] * e[0]; n[2] = e[0] * f[1] - f[0] * e[1];
+        for (k = 1; k < 3; k++) if ((n[k] < 0 ? -n[k] : n[k]) > (n[c] < 0 ? -n[c] : n[c])) c = k;
+        if (n[c] == 0) continue;
+        a = (c + 1) % 3; b = (c + 2) % 3;
+        for (v = 0; v < 3; v++) { /* rounded to 1/256, then in units of 1/512 so centres are integers */
+            X[v] = 2 * (i128)floor_div(q[v][a] * 256 + one / 2, one);
+            Y[v] = 2 * (i128)floor_div(q[v][b] * 256 + one / 2, one);
+        }
+        area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
+        if (area == 0) continue;
+        for (j = 0; j < g->res[b]; j++)
+            for (i = 0; i < g->res[a]; i++) {
+                i128 px = 512 * (i128)i + 256, py = 512 * (i128)j + 256;
+                int covered = 1;
+                int64_t z;
+                for (v = 0; v < 3 && covered; v++) {
+                    int w = (v + 1) % 3;
+                    i128 dx = (X[w] - X[v]) * (area > 0 ? 1 : -1), dy = (Y[w] - Y[v]) * (area > 0 ? 1 : -1);
+                    i128 x0 = area > 0 ? X[v] : X[w], y0 = area > 0 ? Y[v] : Y[w];
+                    i128 ev = dx * (py - y0) - dy * (px - x0);
+                    covered = ev > 0 || (ev == 0 && (dy < 0 || (dy == 0 && dx > 0)));
+                }
+                if (!covered) continue;
+                {   /* depth: q0c - (n_a (pa - q0a) + n_b (pb - q0b)) / n_c, centres (i + 1/2) voxels */
+                    i128 pa = (2 * (i128)i + 1) * one / 2, pb = (2 * (i128)j + 1) * one / 2;
+                    z = floor_div(q[0][c] * n[c] - (n[a] * (pa - q[0][a]) + n[b] * (pb - q[0][b])), n[c] * one);
+                }
+                if (z >= 0 && z < g->res[c]) {
+                    int vv[3];
+                    uint64_t l;
+                    vv[a] = i; vv[b] = j; vv[c] = (int)z;
+                    l = (uint64_t)vv[0] + (uint64_t)g->res[0] * ((uint64_t)vv[1] + (uint64_t)g->res[1] * (uint64_t)vv[2]);
+                    bits[l >> 5] |= 1u << (l & 31);
+                }
+            }
+    }
+    return bits;
+}
+
+/* The Volume Buffer on the CPU equals its integer definition, triangle by triangle and for a
+   whole mesh, and stays within one voxel of the conservative set. */
+static void test_volume_buffer_vs_oracle(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    voxgi_grid g;
+    vxt_shape m;
+    uint64_t bad = 0, outside = 0, n;
+    int trial;
+    g.origin[0] = lattice(-3.3); g.origin[1] = lattice(1.7); g.origin[2] = lattice(-0.45);
+    g.voxel_size = 0.5;
+    g.res[0] = 23; g.res[1] = 19; g.res[2] = 21;
+    n = voxgi_grid_voxel_count(&g);
+    for (trial = 0; trial < 200 && bad == 0; trial++) {
+        float p[9];
+        uint32_t idx[3] = {0, 1, 2}, *mine, *ref, *cons;
+        int c;
+        for (c = 0; c < 9; c++) p[c] = (float)lattice((c % 3 == 0 ? -4 : (c % 3 == 1 ? 1 : -1)) + 11 * rnd());
+        mine = voxelize_bits_method(ctx, p, 3, idx, 1, &g, VOXGI_METHOD_VOLUME_BUFFER, NULL);
+        ref = oracle_volume_buffer(p, idx, 1, &g);
+        cons = oracle_voxelize(p, idx, 1, &g);
+        bad += mine ? compare_bits(mine, ref, &g, "volume buffer") : 1;
+        if (mine) outside += outside_dilated(mine, cons, &g);
+        free(mine); free(ref); free(cons);
+    }
+    TH_CHECK(bad == 0 && outside == 0, "volume buffer: %llu voxels differ from the definition (trial %d), %llu beyond one voxel of conservative",
+             (unsigned long long)bad, trial, (unsigned long long)outside);
+    vxt_shape_sphere(&m, 30, 17, 4.2, 2.5, 6.4, 4.9);
+    for (trial = 0; trial < (int)(3 * m.vertex_count); trial++) m.pos[trial] = (float)lattice(m.pos[trial]);
+    {
+        uint32_t *mine = voxelize_bits_method(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, VOXGI_METHOD_VOLUME_BUFFER, NULL);
+        uint32_t *ref = oracle_volume_buffer(m.pos, m.idx, m.triangle_count, &g);
+        uint64_t l, count = 0;
+        for (l = 0; mine && l < n; l++) count += (uint64_t)voxgi_bit_get(mine, l);
+        TH_CHECK(mine && compare_bits(mine, ref, &g, "volume buffer sphere") == 0 && count > 0, "volume buffer sphere differs");
+        free(mine); free(ref);
+    }
+    vxt_shape_free(&m);
+    voxgi_destroy(ctx);
+}
+
+/* Each voxel's attributes against the blend (mean, maximum or sum) over the triangles whose
+   exact (oracle) set holds it, computed here in double: within half a fixed-point unit plus the
+   float rounding of the output. Shuffling the triangles or changing the thread count changes no
+   bit. For the conservative set and the Volume Buffer's. */
+static void check_attributes(voxgi_method method, const voxgi_blend blend[4])
 {
     enum { NT = 24, NM = 4 };
     voxgi_context *ctx = make_ctx(2), *one = make_ctx(1);
@@ -1376,13 +1484,14 @@ static void test_attributes_vs_oracle_and_order(void)
     voxgi_grid g;
     uint32_t *tri_bits[NT];
     voxgi_voxels *vox, *vs, *v1;
-    double worst[4] = {0, 0, 0, 0}, emax = 0;
+    double worst[4] = {0, 0, 0, 0}, emax = 0, erange = 1, esum_max = 0;
     int t, c, k, a;
     uint64_t n, l, slot = 0, bad_order = 0;
     static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
     g.origin[0] = lattice(-0.3); g.origin[1] = lattice(0.2); g.origin[2] = lattice(-0.1);
-    g.voxel_size = lattice(0.37);
+    g.voxel_size = method == VOXGI_METHOD_VOLUME_BUFFER ? 0.25 : lattice(0.37);
     g.res[0] = 11; g.res[1] = 10; g.res[2] = 12;
+    if (method == VOXGI_METHOD_VOLUME_BUFFER) { g.res[0] = 18; g.res[1] = 17; g.res[2] = 19; }
     n = voxgi_grid_voxel_count(&g);
     for (k = 0; k < NM; k++) {
         for (c = 0; c < 3; c++) {
@@ -1392,23 +1501,25 @@ static void test_attributes_vs_oracle_and_order(void)
         }
         mats[k].transparency = (float)rnd();
     }
+    while (erange < emax) erange *= 2;
     for (t = 0; t < NT; t++) { /* clustered, so voxels are shared by several triangles */
         double cx = 1 + 2 * rnd(), cy = 1 + 2 * rnd(), cz = 1 + 2 * rnd();
         for (c = 0; c < 3; c++)
             for (a = 0; a < 3; a++) pos[9 * t + 3 * c + a] = (float)lattice((a == 0 ? cx : (a == 1 ? cy : cz)) + 1.6 * (rnd() - 0.5));
         for (c = 0; c < 3; c++) idx[3 * t + c] = (uint32_t)(3 * t + c);
         mat_ids[t] = (uint32_t)(t % NM);
-        tri_bits[t] = oracle_voxelize(pos + 9 * t, idx, 1, &g); /* idx[0..2] = 0,1,2 */
+        tri_bits[t] = method == VOXGI_METHOD_VOLUME_BUFFER ? oracle_volume_buffer(pos + 9 * t, idx, 1, &g)
+                                                           : oracle_voxelize(pos + 9 * t, idx, 1, &g); /* idx[0..2] = 0,1,2 */
     }
-    vox = attr_run(ctx, pos, NT * 3, idx, NT, mat_ids, mats, NM, &g, 15);
-    v1 = attr_run(one, pos, NT * 3, idx, NT, mat_ids, mats, NM, &g, 15);
+    vox = attr_run(ctx, pos, NT * 3, idx, NT, mat_ids, mats, NM, &g, 15, method, blend);
+    v1 = attr_run(one, pos, NT * 3, idx, NT, mat_ids, mats, NM, &g, 15, method, blend);
     for (t = 0; t < NT; t++) perm[t] = (uint32_t)t;
     for (t = NT - 1; t > 0; t--) { int j = (int)(rnd() * (t + 1)); uint32_t x = perm[t]; perm[t] = perm[j]; perm[j] = x; }
     for (t = 0; t < NT; t++) { /* triangle t of the shuffled scene is perm[t], its corners rotated */
         for (c = 0; c < 3; c++) memcpy(shuffled + 9 * t + 3 * c, pos + 9 * perm[t] + 3 * ((c + t) % 3), 3 * sizeof(float));
         smat[t] = mat_ids[perm[t]];
     }
-    vs = attr_run(ctx, shuffled, NT * 3, idx, NT, smat, mats, NM, &g, 15);
+    vs = attr_run(ctx, shuffled, NT * 3, idx, NT, smat, mats, NM, &g, 15, method, blend);
     TH_CHECK(vox && vs && v1, "attribute voxelization failed");
     if (!vox || !vs || !v1) return;
     for (k = 0; k < 4; k++) {
@@ -1416,64 +1527,91 @@ static void test_attributes_vs_oracle_and_order(void)
         int w = k == 3 ? 1 : 3;
         voxgi_voxels_info info;
         voxgi_voxels_query(vox, &info);
+        /* corners rotated cyclically: the Volume Buffer's rounding sees the same triangle, the order alone changed */
         bad_order += (uint64_t)(memcmp(mine, other, info.voxel_count * (size_t)w * 4) != 0);
         bad_order += (uint64_t)(memcmp(mine, single, info.voxel_count * (size_t)w * 4) != 0);
         slot = 0;
         for (l = 0; l < n; l++) {
-            double sum[3] = {0, 0, 0};
+            double acc[3] = {0, 0, 0};
             int cnt = 0;
             for (t = 0; t < NT; t++) {
                 const voxgi_material *m = &mats[mat_ids[t]];
                 if (!voxgi_bit_get(tri_bits[t], l)) continue;
                 cnt++;
                 for (c = 0; c < w; c++) {
-                    if (k == 0) sum[c] += m->albedo[c];
-                    else if (k == 2) sum[c] += m->emission[c];
-                    else if (k == 3) sum[c] += 1.0 - m->transparency;
+                    double x;
+                    if (k == 0) x = m->albedo[c];
+                    else if (k == 2) x = m->emission[c];
+                    else if (k == 3) x = 1.0 - m->transparency;
                     else {
                         const float *p = pos + 9 * t;
                         double e[3], f[3], nn[3], len;
                         for (a = 0; a < 3; a++) { e[a] = (double)p[3 + a] - p[a]; f[a] = (double)p[6 + a] - p[a]; }
                         for (a = 0; a < 3; a++) nn[a] = e[(a + 1) % 3] * f[(a + 2) % 3] - e[(a + 2) % 3] * f[(a + 1) % 3];
                         len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
-                        sum[c] += nn[c] / len;
+                        x = nn[c] / len;
                     }
+                    if (blend[k] == VOXGI_BLEND_MAX) acc[c] = cnt == 1 || x > acc[c] ? x : acc[c];
+                    else acc[c] += x;
                 }
             }
             if (!cnt) continue;
             for (c = 0; c < w; c++) {
-                double err = fabs(mine[slot * (uint64_t)w + (uint64_t)c] - sum[c] / cnt);
+                double want = blend[k] == VOXGI_BLEND_AVERAGE ? acc[c] / cnt : acc[c], err = fabs(mine[slot * (uint64_t)w + (uint64_t)c] - want);
                 if (err > worst[k]) worst[k] = err;
+                if (k == 2 && want > esum_max) esum_max = want;
             }
             slot++;
         }
         TH_CHECK(slot == info.voxel_count, "%llu voxels with triangles, %llu set", (unsigned long long)slot, (unsigned long long)info.voxel_count);
         free(mine); free(other); free(single);
     }
-    {   /* half a unit of 2^-24 of the range, plus float rounding of the result */
-        double erange = 1;
-        while (erange < emax) erange *= 2;
+    {   /* half a unit of 2^-24 of the range (times the count for sums), plus float rounding */
+        double sum_units = blend[2] == VOXGI_BLEND_ADD ? NT : 1;
         TH_CHECK(worst[0] <= ldexp(1, -25) + ldexp(1, -24), "albedo off by %g", worst[0]);
         TH_CHECK(worst[1] <= ldexp(1, -24) + ldexp(1, -24) + 1e-12, "normal off by %g", worst[1]);
-        TH_CHECK(worst[2] <= erange * ldexp(1, -25) + emax * ldexp(1, -24), "emission off by %g (range %g)", worst[2], erange);
+        TH_CHECK(worst[2] <= sum_units * erange * ldexp(1, -25) + esum_max * ldexp(1, -24), "emission off by %g (range %g)", worst[2], erange);
         TH_CHECK(worst[3] <= ldexp(1, -25) + ldexp(1, -24), "opacity off by %g", worst[3]);
-        printf("    worst errors: albedo %.3g, normal %.3g, emission %.3g (max %.4g), opacity %.3g\n", worst[0], worst[1], worst[2], emax, worst[3]);
+        printf("    %s, blend %d%d%d%d: worst errors albedo %.3g, normal %.3g, emission %.3g (max %.4g), opacity %.3g\n",
+               voxgi_method_name(method), blend[0], blend[1], blend[2], blend[3], worst[0], worst[1], worst[2], esum_max, worst[3]);
     }
     TH_CHECK(bad_order == 0, "attributes depend on triangle order or thread count (%llu arrays differ)", (unsigned long long)bad_order);
+    for (t = 0; t < NT; t++) free(tri_bits[t]);
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_voxels_destroy(ctx, vs);
+    voxgi_voxels_destroy(one, v1);
+    voxgi_destroy(ctx);
+    voxgi_destroy(one);
+}
+
+static void test_attributes_vs_oracle_and_order(void)
+{
+    static const voxgi_blend mean[4] = {VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE};
+    static const voxgi_blend paper[4] = {VOXGI_BLEND_MAX, VOXGI_BLEND_MAX, VOXGI_BLEND_ADD, VOXGI_BLEND_MAX};
+    voxgi_context *ctx = make_ctx(2);
+    check_attributes(VOXGI_METHOD_CONSERVATIVE, mean);
+    check_attributes(VOXGI_METHOD_CONSERVATIVE, paper);
+    check_attributes(VOXGI_METHOD_VOLUME_BUFFER, mean);
+    check_attributes(VOXGI_METHOD_VOLUME_BUFFER, paper);
     {   /* refusals */
-        float *none;
+        float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, *none;
+        voxgi_material mats[2] = {{{0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0}, {{1.5f, 0.5f, 0.5f}, {0, 0, 0}, 0}};
+        uint32_t ids[1] = {1};
         voxgi_voxelize_desc vd;
         voxgi_mesh m;
         voxgi_scene sc;
         voxgi_voxels *bad = NULL;
         memset(&vd, 0, sizeof vd); memset(&m, 0, sizeof m); memset(&sc, 0, sizeof sc);
-        m.positions = pos; m.vertex_count = NT * 3; sc.meshes = &m; sc.mesh_count = 1;
-        vd.grid = g; vd.attributes = VOXGI_ATTRIBUTE_ALBEDO; vd.method = VOXGI_METHOD_SLICEMAP;
+        m.positions = pos; m.vertex_count = 3; sc.meshes = &m; sc.mesh_count = 1;
+        vd.grid.voxel_size = 0.5; vd.grid.res[0] = vd.grid.res[1] = vd.grid.res[2] = 4;
+        vd.attributes = VOXGI_ATTRIBUTE_ALBEDO; vd.method = VOXGI_METHOD_SLICEMAP;
         TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &bad) == VOXGI_ERR_UNSUPPORTED && !bad, "slicemap attributes accepted");
         vd.method = VOXGI_METHOD_CONSERVATIVE; vd.attributes = 16;
         TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &bad) == VOXGI_ERR_INVALID_ARGUMENT && !bad, "attribute bit 16 accepted");
-        mats[1].albedo[0] = 1.5f;
-        vd.attributes = 1; sc.materials = mats; sc.material_count = NM;
+        vd.attributes = 1; vd.blend[2] = (voxgi_blend)7;
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &bad) == VOXGI_ERR_INVALID_ARGUMENT && !bad, "blend mode 7 accepted");
+        vd.blend[2] = VOXGI_BLEND_AVERAGE;
+        m.material_ids = ids; sc.materials = mats; sc.material_count = 2;
         TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &bad) == VOXGI_ERR_INVALID_SCENE && !bad, "albedo 1.5 accepted");
         mats[1].albedo[0] = 0.5f;
         vd.attributes = 0;
@@ -1482,12 +1620,7 @@ static void test_attributes_vs_oracle_and_order(void)
         TH_CHECK(bad && !none, "an attribute read from voxels without attributes");
         voxgi_voxels_destroy(ctx, bad);
     }
-    for (t = 0; t < NT; t++) free(tri_bits[t]);
-    voxgi_voxels_destroy(ctx, vox);
-    voxgi_voxels_destroy(ctx, vs);
-    voxgi_voxels_destroy(one, v1);
     voxgi_destroy(ctx);
-    voxgi_destroy(one);
 }
 
 int main(void)
@@ -1504,6 +1637,7 @@ int main(void)
     TH_RUN(test_slicemap_vs_oracle_and_relations);
     TH_RUN(test_atlas_mesh_uvs_vs_oracle);
     TH_RUN(test_atlas_auto_relations);
+    TH_RUN(test_volume_buffer_vs_oracle);
     TH_RUN(test_attributes_vs_oracle_and_order);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);

@@ -196,11 +196,15 @@ static const char *voxelize_help =
     "                           logic-op OR on GL), slicemap-atomic (raster, imageAtomicOr on GL),\n"
     "                           atlas (texture atlas points drawn as GL points), atlas-compute\n"
     "                           (the same points, one compute invocation each), geometry (the\n"
-    "                           conservative set by geometry-shader rasterization on GL)\n"
+    "                           conservative set by geometry-shader rasterization on GL),\n"
+    "                           volume-buffer (Volume Buffer M2: each triangle along its dominant\n"
+    "                           axis, fragments clipped to slices), volume-buffer-m1 (triangles sliced)\n"
+    "  --blend A,N,E,O          per attribute (albedo, normal, emission, opacity): average (default),\n"
+    "                           max or add\n"
     "  --atlas-size N           atlas methods: texels per side (default: from the grid, 2 texels\n"
     "                           per voxel edge, at most 8192)\n"
     "  --atlas-uv auto|mesh     atlas methods: voxgi's own charts (default) or the mesh's uvs\n"
-    "  --attributes LIST        conservative, thin, geometry: average albedo,normal,emission,opacity (or all)\n"
+    "  --attributes LIST        conservative, thin, geometry, volume-buffer: blend albedo,normal,emission,opacity (or all)\n"
     "                           per voxel over the triangles that set it\n"
     "  --solid-mode MODE        with --method solid: parity (default, closed meshes), vote, flood\n"
     "  --axis x|y|z             solid parity: the counting axis; slicemap: the slicing axis (default z)\n"
@@ -243,7 +247,10 @@ static int cmd_voxelize(int argc, char **argv)
             else if (strcmp(mname, "atlas") == 0) vd.method = VOXGI_METHOD_ATLAS;
             else if (strcmp(mname, "atlas-compute") == 0) vd.method = VOXGI_METHOD_ATLAS_COMPUTE;
             else if (strcmp(mname, "geometry") == 0) vd.method = VOXGI_METHOD_GEOMETRY;
-            else return bad_arg("voxelize", "--method is conservative, thin, solid, slicemap, slicemap-atomic, atlas, atlas-compute or geometry");
+            else if (strcmp(mname, "volume-buffer") == 0) vd.method = VOXGI_METHOD_VOLUME_BUFFER;
+            else if (strcmp(mname, "volume-buffer-m1") == 0) { vd.method = VOXGI_METHOD_VOLUME_BUFFER; vd.volume_slicing = 1; }
+            else return bad_arg("voxelize", "--method is conservative, thin, solid, slicemap, slicemap-atomic, atlas, atlas-compute, "
+                                            "geometry, volume-buffer or volume-buffer-m1");
         } else if (strcmp(a, "--atlas-size") == 0 && i + 1 < argc) {
             if (!parse_int(argv[++i], 1, 16384, &vd.atlas_size)) return bad_arg("voxelize", "--atlas-size needs 1..16384");
         } else if (strcmp(a, "--attributes") == 0 && i + 1 < argc) {
@@ -257,6 +264,17 @@ static int cmd_voxelize(int argc, char **argv)
                 else if (strcmp(tok, "all") == 0) vd.attributes |= 15u;
                 else return bad_arg("voxelize", "--attributes lists albedo, normal, emission, opacity or all");
             }
+        } else if (strcmp(a, "--blend") == 0 && i + 1 < argc) {
+            char list[128], *tok;
+            int k = 0;
+            snprintf(list, sizeof list, "%s", argv[++i]);
+            for (tok = strtok(list, ","); tok && k < 4; tok = strtok(NULL, ","), k++) {
+                if (strcmp(tok, "average") == 0) vd.blend[k] = VOXGI_BLEND_AVERAGE;
+                else if (strcmp(tok, "max") == 0) vd.blend[k] = VOXGI_BLEND_MAX;
+                else if (strcmp(tok, "add") == 0) vd.blend[k] = VOXGI_BLEND_ADD;
+                else return bad_arg("voxelize", "--blend lists average, max or add for albedo, normal, emission, opacity");
+            }
+            if (k != 4 || tok) return bad_arg("voxelize", "--blend needs four modes: albedo,normal,emission,opacity");
         } else if (strcmp(a, "--atlas-uv") == 0 && i + 1 < argc) {
             const char *uv = argv[++i];
             if (strcmp(uv, "auto") == 0) vd.atlas_uv = VOXGI_ATLAS_AUTO;
@@ -433,7 +451,8 @@ static const char *bench_help =
     "rasteriser: not GPU timings. Table 3 counts missed / extra voxels against exact conservative\n"
     "voxelization (surface methods) or solid parity, the exact inside test of a closed mesh.\n"
     "  --methods LIST              comma separated: conservative, thin, solid, solid-vote, solid-flood,\n"
-    "                              slicemap, slicemap-atomic, atlas, atlas-compute, geometry\n"
+    "                              slicemap, slicemap-atomic, atlas, atlas-compute, geometry,\n"
+    "                              volume-buffer, volume-buffer-m1\n"
     "                              (default conservative)\n"
     "  --min-res N / --max-res N   range of N, powers of two (default 32..512)\n"
     "  --runs R                    runs per cell, median reported (default 3)\n"
@@ -441,13 +460,15 @@ static const char *bench_help =
     "  --gl auto|egl|osmesa        headless GL context kind\n"
     "  --csv FILE                  also write every measurement as CSV\n";
 
-typedef struct bench_method { const char *name; voxgi_method method; voxgi_solid_mode mode; int atomic; } bench_method;
+/* variant: atomic (slicemap, atlas) or volume_slicing (volume buffer) */
+typedef struct bench_method { const char *name; voxgi_method method; voxgi_solid_mode mode; int variant; } bench_method;
 static const bench_method bench_methods[] = {
     {"conservative", VOXGI_METHOD_CONSERVATIVE, VOXGI_SOLID_PARITY, 0}, {"thin", VOXGI_METHOD_THIN, VOXGI_SOLID_PARITY, 0},
     {"solid", VOXGI_METHOD_SOLID, VOXGI_SOLID_PARITY, 0},               {"solid-vote", VOXGI_METHOD_SOLID, VOXGI_SOLID_VOTE, 0},
     {"solid-flood", VOXGI_METHOD_SOLID, VOXGI_SOLID_FLOOD, 0},          {"slicemap", VOXGI_METHOD_SLICEMAP, VOXGI_SOLID_PARITY, 0},
     {"slicemap-atomic", VOXGI_METHOD_SLICEMAP, VOXGI_SOLID_PARITY, 1}, {"atlas", VOXGI_METHOD_ATLAS, VOXGI_SOLID_PARITY, 0},
-    {"atlas-compute", VOXGI_METHOD_ATLAS_COMPUTE, VOXGI_SOLID_PARITY, 0}, {"geometry", VOXGI_METHOD_GEOMETRY, VOXGI_SOLID_PARITY, 0}};
+    {"atlas-compute", VOXGI_METHOD_ATLAS_COMPUTE, VOXGI_SOLID_PARITY, 0}, {"geometry", VOXGI_METHOD_GEOMETRY, VOXGI_SOLID_PARITY, 0},
+    {"volume-buffer", VOXGI_METHOD_VOLUME_BUFFER, VOXGI_SOLID_PARITY, 2}, {"volume-buffer-m1", VOXGI_METHOD_VOLUME_BUFFER, VOXGI_SOLID_PARITY, 1}};
 #define BENCH_METHOD_COUNT (int)(sizeof bench_methods / sizeof bench_methods[0])
 
 typedef struct bench_cell { double ms[3]; uint64_t voxels[3], missed, extra; int ok[3]; } bench_cell;
@@ -467,7 +488,8 @@ static int bench_measure(voxgi_context *ctx, const tool_mesh *tm, int n, const b
     if (voxgi_fit_grid(ctx, &tm->scene, &fit, &vd.grid) != VOXGI_OK) return 0;
     vd.method = bm->method;
     vd.solid_mode = bm->mode;
-    vd.atomic = bm->atomic;
+    if (bm->method == VOXGI_METHOD_VOLUME_BUFFER) vd.volume_slicing = bm->variant;
+    else vd.atomic = bm->variant;
     for (i = 0; i < runs; i++) {
         voxgi_voxels *vox = NULL;
         voxgi_voxels_info info;
