@@ -190,6 +190,11 @@ static void test_info_and_bench(void)
        grid's middle plane, so it touches two slices: 2 (N-2)^2 = 72 and 392 */
     TH_CHECK(strstr(out, "| builtin:quad | conservative | 72 | 392 |") != NULL, "quad counts: %s", out);
     TH_CHECK(strstr(out, "| builtin:quad | conservative | 0 / 0 | 0 / 0 |") != NULL, "conservative against itself: %s", out);
+    /* Table 4: the closed cube's parity interior agrees with the winding number at every sampled
+       centre; the open quad's parity fills the half space above it, which vote undoes */
+    rc = run("bench voxelize --min-res 16 --max-res 16 --runs 1 --no-gl --methods solid,solid-vote", out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "Table 4") && strstr(out, "| builtin:cube | solid | 0.00% (") &&
+             strstr(out, "| builtin:quad | solid-vote | 0.00% (") && !strstr(out, "| builtin:quad | solid | 0.00% ("), "bench solid: %s", out);
 }
 
 int main(void)
