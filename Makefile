@@ -55,7 +55,7 @@ demo: all
 	$(B)/voxgi bench voxelize
 
 bench: all
-	$(B)/voxgi bench voxelize --methods conservative,thin,solid,solid-vote,solid-flood,slicemap,slicemap-atomic --csv $(B)/bench.csv
+	$(B)/voxgi bench voxelize --methods conservative,thin,geometry,solid,solid-vote,solid-flood,slicemap,slicemap-atomic,atlas,atlas-compute,volume-buffer,volume-buffer-m1 --csv $(B)/bench.csv
 
 # Optional: voxgi's CPU voxelizer against OpenVDB's meshToLevelSet (needs libopenvdb-dev).
 bench-anchors: all

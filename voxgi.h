@@ -2997,60 +2997,76 @@ static uint64_t voxgi__popcount_words(const uint32_t *w, uint64_t n)
     return c;
 }
 
-/* Flood fill from the grid's boundary through empty voxels (6-connected), by sweeps along rows
-   in both directions and along y and z until nothing changes; returns the solid: not reached. */
+/* Flood fill from the grid's boundary through empty voxels (6-connected), by sweeps along
+   every line of each axis in both directions until nothing changes; returns the solid: what the
+   flood does not reach. Lines run in parallel (a bit set by another line late is seen by the
+   next sweep; the fixed point does not depend on the order). */
+typedef struct voxgi__flood_job {
+    const voxgi_grid *g;
+    const uint32_t *bits;
+    uint32_t *out;
+    int axis, changed;
+} voxgi__flood_job;
+
+#define VOXGI__GET(b, l) (((b)[(l) >> 5] >> ((l) & 31)) & 1u)
+
+static void voxgi__flood_lines(void *user, size_t first, size_t end)
+{
+    voxgi__flood_job *job = (voxgi__flood_job *)user;
+    uint64_t n[3], len, stride, line, t;
+    int axis = job->axis, changed = 0, d;
+    n[0] = (uint64_t)job->g->res[0]; n[1] = (uint64_t)job->g->res[1]; n[2] = (uint64_t)job->g->res[2];
+    len = n[axis];
+    stride = axis == 0 ? 1 : (axis == 1 ? n[0] : n[0] * n[1]);
+    for (line = first; line < end; line++) {
+        uint64_t c[3], base;
+        c[axis] = 0;
+        c[(axis + 1) % 3] = line % n[(axis + 1) % 3];
+        c[(axis + 2) % 3] = line / n[(axis + 1) % 3];
+        base = c[0] + n[0] * (c[1] + n[1] * c[2]);
+        for (d = 0; d < 2; d++) {
+            int reach = 0;
+            for (t = 0; t < len; t++) {
+                uint64_t l = base + stride * (d ? len - 1 - t : t);
+                if (VOXGI__GET(job->bits, l)) reach = 0;
+                else if ((VOXGI__ATOMIC_LOAD_U32(&job->out[l >> 5]) >> (l & 31)) & 1u) reach = 1;
+                else if (reach) { VOXGI__ATOMIC_OR_U32(&job->out[l >> 5], 1u << (l & 31)); changed = 1; }
+            }
+        }
+    }
+    if (changed) VOXGI__ATOMIC_STORE_INT(&job->changed, 1);
+}
+
 static voxgi_result voxgi__flood_solid(voxgi_context *ctx, const voxgi_grid *g, uint32_t *bits)
 {
     uint64_t nx = (uint64_t)g->res[0], ny = (uint64_t)g->res[1], nz = (uint64_t)g->res[2], words = voxgi__grid_words(g);
     uint64_t i, j, k;
-    uint32_t *out = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 1);
-    int changed = 1;
-#define VOXGI__IDX(x, y, z) ((x) + nx * ((y) + ny * (z)))
-#define VOXGI__GET(b, l) (((b)[(l) >> 5] >> ((l) & 31)) & 1u)
-#define VOXGI__SET(b, l) ((b)[(l) >> 5] |= 1u << ((l) & 31))
-    if (!out) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the flood fill");
+    voxgi__flood_job job;
+    if (!(job.out = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 1))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the flood fill");
+    job.g = g;
+    job.bits = bits;
     /* seeds: empty voxels on the boundary */
     for (k = 0; k < nz; k++)
         for (j = 0; j < ny; j++)
-            for (i = 0; i < nx; i++)
-                if ((i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) && !VOXGI__GET(bits, VOXGI__IDX(i, j, k)))
-                    VOXGI__SET(out, VOXGI__IDX(i, j, k));
-    while (changed) {
-        int axis;
-        changed = 0;
-        for (axis = 0; axis < 3; axis++) {
-            uint64_t n[3], d, len, stride, u, v, t;
+            for (i = 0; i < nx; i++) {
+                uint64_t l = i + nx * (j + ny * k);
+                if ((i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) && !VOXGI__GET(bits, l))
+                    job.out[l >> 5] |= 1u << (l & 31);
+            }
+    do {
+        job.changed = 0;
+        for (job.axis = 0; job.axis < 3; job.axis++) {
+            uint64_t n[3];
             n[0] = nx; n[1] = ny; n[2] = nz;
-            len = n[axis];
-            stride = axis == 0 ? 1 : (axis == 1 ? nx : nx * ny);
-            /* every line along the axis: forward then backward */
-            for (v = 0; v < n[(axis + 2) % 3]; v++)
-                for (u = 0; u < n[(axis + 1) % 3]; u++) {
-                    uint64_t c[3], base;
-                    c[axis] = 0;
-                    c[(axis + 1) % 3] = u;
-                    c[(axis + 2) % 3] = v;
-                    base = VOXGI__IDX(c[0], c[1], c[2]);
-                    for (d = 0; d < 2; d++) {
-                        int reach = 0;
-                        for (t = 0; t < len; t++) {
-                            uint64_t l = base + stride * (d ? len - 1 - t : t);
-                            if (VOXGI__GET(bits, l)) reach = 0;
-                            else if (VOXGI__GET(out, l)) reach = 1;
-                            else if (reach) { VOXGI__SET(out, l); changed = 1; }
-                        }
-                    }
-                }
+            voxgi__parallel(ctx, (size_t)(n[(job.axis + 1) % 3] * n[(job.axis + 2) % 3]), 64, voxgi__flood_lines, &job);
         }
-    }
-    for (i = 0; i < words; i++) bits[i] = ~out[i];
+    } while (job.changed);
+    for (i = 0; i < words; i++) bits[i] = ~job.out[i];
     if (voxgi_grid_voxel_count(g) % 32) bits[words - 1] &= (1u << (voxgi_grid_voxel_count(g) % 32)) - 1u;
-#undef VOXGI__IDX
-#undef VOXGI__GET
-#undef VOXGI__SET
-    voxgi__free(ctx, out);
+    voxgi__free(ctx, job.out);
     return VOXGI_OK;
 }
+#undef VOXGI__GET
 
 /* The CPU twin of every method, into vox->bits. */
 static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *flat, const voxgi__vprep *vp,

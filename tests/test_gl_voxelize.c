@@ -443,13 +443,16 @@ static void test_gl_raster_atlas_equals_cpu(void)
 static void test_gl_raster_attributes_equal_cpu(void)
 {
     static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
-    vxt_shape shapes[2];
+    vxt_shape shapes[3];
     voxgi_material mats[3] = {{{0.9f, 0.1f, 0.2f}, {0, 0, 0}, 0}, {{0.3f, 0.7f, 0.5f}, {40, 20, 5}, 0.25f}, {{1, 1, 1}, {0, 0, 0}, 1}};
-    int sh, method;
+    int sh, method, k0;
     if (!have_gl()) return;
     vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
     vxt_shape_box_and_tilted(&shapes[1]); /* big triangles: the row-chunk pass */
-    for (sh = 0; sh < 2; sh++)
+    vxt_shape_alloc(&shapes[2], 900, 300); /* 300 small triangles inside one voxel: no counter wraps */
+    for (k0 = 0; k0 < 2700; k0++) shapes[2].pos[k0] = (float)(1.25 + 0.5 * (double)rand() / RAND_MAX);
+    for (k0 = 0; k0 < 900; k0++) shapes[2].idx[k0] = (uint32_t)k0;
+    for (sh = 0; sh < 3; sh++)
         for (method = 0; method < 3; method++) {
             static const voxgi_method methods[3] = {VOXGI_METHOD_CONSERVATIVE, VOXGI_METHOD_THIN, VOXGI_METHOD_GEOMETRY};
             voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
@@ -460,7 +463,8 @@ static void test_gl_raster_attributes_equal_cpu(void)
             int b, k, same = 1;
             for (t = 0; t < shapes[sh].triangle_count; t++) ids[t] = (uint32_t)(t % 3);
             if (sh == 0) cubic(&g, -1.1, 2.2, 48);
-            else { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 52; }
+            else if (sh == 1) { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 52; }
+            else cubic(&g, 0, 3, 3);
             for (b = 0; b < 2; b++) {
                 voxgi_mesh mesh;
                 voxgi_scene sc;
@@ -499,6 +503,7 @@ static void test_gl_raster_attributes_equal_cpu(void)
         }
     vxt_shape_free(&shapes[0]);
     vxt_shape_free(&shapes[1]);
+    vxt_shape_free(&shapes[2]);
 }
 
 /* The Volume Buffer: M2 sets the CPU twin's voxels bit for bit; M1 (sliced triangles) differs

@@ -1584,6 +1584,39 @@ static void check_attributes(voxgi_method method, const voxgi_blend blend[4])
     voxgi_destroy(one);
 }
 
+/* The faults of 8-bit moving averages (truncation bias, updates below one step lost, the
+   counter wrapping at 256) cannot happen: 300 triangles inside one voxel, one of albedo 1 and
+   299 of albedo 0, give 1/300; 300 of albedo 0.2 + 1e-6 give exactly that. */
+static void test_attributes_many_small_updates(void)
+{
+    enum { NT = 300 };
+    voxgi_context *ctx = make_ctx(2);
+    static float pos[NT * 9];
+    static uint32_t idx[NT * 3], ids[NT];
+    voxgi_material mats[3] = {{{0, 0, 0}, {0, 0, 0}, 0}, {{1, 1, 1}, {0, 0, 0}, 0}, {{0.200001f, 0.200001f, 0.200001f}, {0, 0, 0}, 0}};
+    static const voxgi_blend mean[4] = {VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE};
+    voxgi_grid g;
+    int t, c, pass;
+    g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1; g.res[0] = g.res[1] = g.res[2] = 3;
+    for (t = 0; t < NT; t++) { /* small triangles strictly inside voxel (1,1,1) */
+        for (c = 0; c < 9; c++) pos[9 * t + c] = (float)(1.25 + 0.5 * rnd());
+        for (c = 0; c < 3; c++) idx[3 * t + c] = (uint32_t)(3 * t + c);
+    }
+    for (pass = 0; pass < 2; pass++) {
+        voxgi_voxels *vox;
+        float *albedo;
+        double want = pass == 0 ? 1.0 / NT : (double)0.200001f;
+        for (t = 0; t < NT; t++) ids[t] = pass == 0 ? (t == NT / 2 ? 1u : 0u) : 2u;
+        vox = attr_run(ctx, pos, NT * 3, idx, NT, ids, mats, 3, &g, VOXGI_ATTRIBUTE_ALBEDO, VOXGI_METHOD_CONSERVATIVE, mean);
+        albedo = vox ? attr_read(ctx, vox, VOXGI_ATTRIBUTE_ALBEDO) : NULL;
+        TH_CHECK(albedo && fabs(albedo[0] - want) <= ldexp(1, -24), "%d triangles in one voxel: albedo %.9g, want %.9g", NT,
+                 albedo ? albedo[0] : -1.0, want);
+        free(albedo);
+        voxgi_voxels_destroy(ctx, vox);
+    }
+    voxgi_destroy(ctx);
+}
+
 static void test_attributes_vs_oracle_and_order(void)
 {
     static const voxgi_blend mean[4] = {VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE};
@@ -1639,6 +1672,7 @@ int main(void)
     TH_RUN(test_atlas_auto_relations);
     TH_RUN(test_volume_buffer_vs_oracle);
     TH_RUN(test_attributes_vs_oracle_and_order);
+    TH_RUN(test_attributes_many_small_updates);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
