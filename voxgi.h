@@ -328,6 +328,7 @@ typedef struct voxgi_voxels_info {
     uint64_t atlas_points;      /* ATLAS*: covered texels */
     unsigned attributes;        /* voxgi_attribute bits held */
     uint64_t attribute_pairs;   /* (triangle, voxel) pairs averaged */
+    uint64_t big_triangles;     /* VOLUME_BUFFER on GL: triangles drawn again by the 32-invocation pass */
     uint64_t lost_slices;       /* VOLUME_BUFFER on GL: triangle slices beyond the geometry
                                    shader's output budget (holes): 32 invocations x 56 slices (M2) or x 33
                                    (M1) per triangle, never reached below 896^3 (M2) or 528^3 (M1) */
@@ -1179,7 +1180,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(volume_buffer) X(volume_merge) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -2766,6 +2767,10 @@ static voxgi_result voxgi__atlas_build(voxgi_context *ctx, const voxgi__flat *f,
                        at->size, at->size, lo);
     }
     for (at->view = 1; at->view < at->size; at->view *= 2) {}
+    if (ctx->desc.memory_budget && (uint64_t)at->size * (uint64_t)at->size * 4u > (uint64_t)ctx->desc.memory_budget)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d atlas needs %llu bytes, more than the memory budget %llu", at->size,
+                           at->size, (unsigned long long)((uint64_t)at->size * (uint64_t)at->size * 4u),
+                           (unsigned long long)ctx->desc.memory_budget);
     return VOXGI_OK;
 }
 
@@ -2916,7 +2921,11 @@ static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f
 static voxgi_result voxgi__attr_alloc(voxgi_context *ctx, voxgi__attr *at, const uint32_t *bits, uint64_t words, uint64_t voxels)
 {
     uint64_t w, before = 0;
+    uint64_t need = voxels * (4u + 8u * (uint64_t)at->channels) + words * 4u;
     if (voxels > (uint64_t)UINT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "attributes hold at most 2^32 voxels");
+    if (ctx->desc.memory_budget && need > (uint64_t)ctx->desc.memory_budget)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the attributes of %llu voxels need %llu bytes, more than the memory budget %llu",
+                           (unsigned long long)voxels, (unsigned long long)need, (unsigned long long)ctx->desc.memory_budget);
     at->rank = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0);
     at->count = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), 4, 1);
     at->sum = (uint64_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), (size_t)at->channels * 8, 1);
@@ -3979,6 +3988,7 @@ static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__fla
     float *tv;
     size_t t;
     voxgi_result r = voxgi__gl_build(ctx, 2, "scene.glsl volume_buffer.glsl", &gl->prog_volume_buffer);
+    if (r == VOXGI_OK) r = voxgi__gl_build(ctx, 2, "scene.glsl volume_buffer_big.glsl volume_buffer.glsl", &gl->prog_volume_buffer_big);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl volume_merge.glsl", &gl->prog_volume_merge);
     if (r != VOXGI_OK) return r;
     gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
@@ -4009,7 +4019,8 @@ static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__fla
     }
     voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
     values_buf = voxgi__gl_buffer(ctx, f->triangle_count * 10 * sizeof(float), tv);
-    lost_buf = voxgi__gl_buffer(ctx, 4, &zero);
+    lost_buf = voxgi__gl_buffer(ctx, 8 + 4 * f->triangle_count, NULL); /* lost, big_count, big_list */
+    gl->ClearNamedBufferData(lost_buf, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
     voxgi__free(ctx, tv);
     memset(tex, 0, sizeof tex);
     gl->CreateVertexArrays(1, &vao);
@@ -4037,13 +4048,15 @@ static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__fla
         eq[2][1] = VOXGI__GL_FUNC_ADD;
         for (i = 0; i < 3; i++) gl->BlendEquationSeparatei((unsigned)i, eq[i][0], eq[i][1]);
     }
-    p = gl->prog_volume_buffer;
-    gl->UseProgram(p);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, values_buf);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, lost_buf);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_slicing"), d->volume_slicing == 1 ? 1 : 2);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_with_values"), attrs != 0);
+    for (i = 0; i < 2; i++) {
+        p = i ? gl->prog_volume_buffer_big : gl->prog_volume_buffer;
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_slicing"), d->volume_slicing == 1 ? 1 : 2);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_with_values"), attrs != 0);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_big"), i);
+    }
     gl->BindVertexArray(vao);
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
     for (c = 0; c < 3 && r == VOXGI_OK; c++) {
@@ -4072,9 +4085,22 @@ static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__fla
         while (vw < g->res[a]) vw *= 2;
         while (vh < g->res[b]) vh *= 2;
         gl->Viewport(0, 0, vw, vh);
-        gl->ProgramUniform2i(p, gl->GetUniformLocation(p, "u_view"), vw, vh);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), c);
-        gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+        for (i = 0; i < 2 && r == VOXGI_OK; i++) { /* every triangle; then the listed ones spanning many layers */
+            uint32_t big = 0;
+            p = i ? gl->prog_volume_buffer_big : gl->prog_volume_buffer;
+            gl->UseProgram(p);
+            gl->ProgramUniform2i(p, gl->GetUniformLocation(p, "u_view"), vw, vh);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), c);
+            if (i == 0) gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+            else {
+                gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+                gl->GetNamedBufferSubData(lost_buf, 4, 4, &big);
+                if (big) gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * big));
+                gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+                gl->NamedBufferSubData(lost_buf, 4, 4, &zero);
+                info->big_triangles += big;
+            }
+        }
     }
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
     gl->BindVertexArray(0);

@@ -9,11 +9,17 @@
 //   M1 (u_slicing 1): the triangle cut at the layer boundaries into convex pieces, each drawn
 //      into its own layer; a pixel centre near a cut (within the subpixel rounding of the cut
 //      points) may land in the neighbouring layer.
-// 32 invocations per triangle share its layers; layers beyond their output budget are lost and
-// counted (the paper's max_vertices holes). Fragments write the triangle's values into up to
-// three float targets whose blending (ADD or MAX per target and channel) the host sets.
+// One invocation draws a triangle that spans at most one invocation's output budget of layers;
+// a longer one is listed and drawn again by the big pass (volume_buffer_big.glsl), whose 32
+// invocations share its layers; layers beyond that are lost and counted (the paper's
+// max_vertices holes). Fragments write the triangle's values into up to three float targets
+// whose blending (ADD or MAX per target and channel) the host sets.
+#ifndef VB_INVOCATIONS
+#define VB_INVOCATIONS 1
+#endif
 layout(std430, binding = 2) readonly buffer Values { float values[]; }; // 10 per triangle
-layout(std430, binding = 3) buffer Lost { uint lost; };
+layout(std430, binding = 3) buffer Lost { uint lost; uint big_count; uint big_list[]; };
+uniform int u_big;       // 1: this draw goes over big_list
 uniform int u_axis;
 uniform ivec2 u_view;    // viewport, powers of two: window = clip exactly
 uniform int u_slicing;
@@ -24,10 +30,9 @@ void main() { gl_Position = vec4(0.0); } // the geometry stage reads the vertice
 #endif
 
 #ifdef VOXGI_GEOMETRY
-#define INVOCATIONS 32
 #define SLABS_M2 56 // 3 vertices each
 #define SLABS_M1 33 // up to 5 vertices each
-layout(triangles, invocations = INVOCATIONS) in;
+layout(triangles, invocations = VB_INVOCATIONS) in;
 layout(triangle_strip, max_vertices = 168) out;
 flat out uint g_tri;
 
@@ -43,7 +48,7 @@ void put(dvec3 p, int a, int b, uint t, int layer)
 
 void main()
 {
-    uint t = uint(gl_PrimitiveIDIn);
+    uint t = u_big != 0 ? big_list[gl_PrimitiveIDIn] : uint(gl_PrimitiveIDIn);
     dvec3 q[3];
     for (int k = 0; k < 3; k++) q[k] = vp[tri_index[3u * t + uint(k)]].q.xyz;
     dvec3 e = q[1] - q[0], f = q[2] - q[0];
@@ -57,7 +62,8 @@ void main()
     // rounding the corners moves a covered centre by at most 1/512 pixel: its depth by 1/256 slice
     int first = max(int(floor(zlo - 1.0LF / 128.0LF)), 0), last = min(int(floor(zhi + 1.0LF / 128.0LF)), u_res[c] - 1);
     int per = u_slicing == 1 ? SLABS_M1 : SLABS_M2;
-    if (gl_InvocationID == 0 && last - first + 1 > per * INVOCATIONS) atomicAdd(lost, uint(last - first + 1 - per * INVOCATIONS));
+    if (u_big == 0 && last - first + 1 > per) { big_list[atomicAdd(big_count, 1u)] = t; return; }
+    if (gl_InvocationID == 0 && last - first + 1 > per * VB_INVOCATIONS) atomicAdd(lost, uint(last - first + 1 - per * VB_INVOCATIONS));
     int s0 = first + gl_InvocationID * per, s1 = min(last, s0 + per - 1);
     for (int s = s0; s <= s1; s++) {
         if (u_slicing != 1) {

@@ -514,13 +514,18 @@ static void test_gl_raster_volume_buffer(void)
     static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
     static const voxgi_blend blends[2][4] = {{VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE},
                                              {VOXGI_BLEND_MAX, VOXGI_BLEND_MAX, VOXGI_BLEND_ADD, VOXGI_BLEND_MAX}};
-    vxt_shape shapes[2];
+    vxt_shape shapes[3];
+    static const float tilted[] = {0.5f, 0.5f, 0.3f, 99.5f, 0.5f, 70.0f, 0.5f, 99.5f, 1.0f, 99.5f, 99.5f, 71.0f};
+    static const uint32_t tilted_idx[] = {0, 1, 2, 2, 1, 3};
     voxgi_material mats[3] = {{{0.9f, 0.1f, 0.2f}, {0, 0, 0}, 0}, {{0.3f, 0.7f, 0.5f}, {40, 20, 5}, 0.25f}, {{1, 1, 1}, {0, 0, 0}, 1}};
     int sh, variant;
     if (!have_gl()) return;
     vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
     vxt_shape_box_and_tilted(&shapes[1]);
-    for (sh = 0; sh < 2; sh++)
+    vxt_shape_alloc(&shapes[2], 4, 2); /* two big triangles over ~70 slices: the 32-invocation pass */
+    memcpy(shapes[2].pos, tilted, sizeof tilted);
+    memcpy(shapes[2].idx, tilted_idx, sizeof tilted_idx);
+    for (sh = 0; sh < 3; sh++)
         for (variant = 0; variant < 3; variant++) { /* M2 mean, M2 max/add, M1 mean */
             voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
             voxgi_voxels *vox[2] = {NULL, NULL};
@@ -533,7 +538,8 @@ static void test_gl_raster_volume_buffer(void)
             double worst = 0;
             for (t = 0; t < shapes[sh].triangle_count; t++) ids[t] = (uint32_t)(t % 3);
             if (sh == 0) cubic(&g, -1.1, 2.2, 48);
-            else { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 52; }
+            else if (sh == 1) { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 52; }
+            else cubic(&g, 0, 100, 100);
             n = voxgi_grid_voxel_count(&g);
             for (b = 0; b < 2; b++) {
                 voxgi_mesh mesh;
@@ -593,7 +599,9 @@ static void test_gl_raster_volume_buffer(void)
                    variant == 1 ? " (max/add)" : "", (unsigned long long)info[0].voxel_count, (unsigned long long)info[1].voxel_count,
                    (unsigned long long)diff);
             if (variant < 2) printf("; attributes within %.3g (relative)", worst);
-            printf("\n");
+            printf("; %llu triangles in the big pass\n", (unsigned long long)info[1].big_triangles);
+            if (sh == 2) TH_CHECK(info[1].big_triangles == 2 && info[1].lost_slices == 0, "big pass: %llu triangles, %llu slices lost",
+                                  (unsigned long long)info[1].big_triangles, (unsigned long long)info[1].lost_slices);
             voxgi_voxels_destroy(cpu, vox[0]);
             voxgi_voxels_destroy(gl, vox[1]);
             free(bits[0]); free(bits[1]); free(ids);
@@ -602,6 +610,7 @@ static void test_gl_raster_volume_buffer(void)
         }
     vxt_shape_free(&shapes[0]);
     vxt_shape_free(&shapes[1]);
+    vxt_shape_free(&shapes[2]);
 }
 
 /* The geometry-shader voxelizer on every shape of the compute tests: bit for bit the CPU's. */
