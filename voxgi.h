@@ -2754,7 +2754,7 @@ static voxgi_result voxgi__atlas_build(voxgi_context *ctx, const voxgi__flat *f,
         }
         /* the largest scale that fits: doubling, then bisection */
         for (hi = 1.0 / 1024, steps = 0; steps < 80 && voxgi__atlas_pack(charts, n, hi, at->size, NULL); steps++) { lo = hi; hi *= 2; }
-        for (steps = 0; steps < 40; steps++) {
+        for (steps = 0; steps < 24; steps++) { /* to 2^-24 of the scale */
             double mid = 0.5 * (lo + hi);
             if (voxgi__atlas_pack(charts, n, mid, at->size, NULL)) lo = mid;
             else hi = mid;
