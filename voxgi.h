@@ -2314,6 +2314,8 @@ static void voxgi__slicemap_triangle(const voxgi__vox_shared *vs, size_t ti, vox
     }
 }
 
+/* ===================================================================== voxelization: rasterizer coverage, Volume Buffer */
+/* Rounds to the rasterizer's subpixel grid (1/256 pixel), half up. */
 static double voxgi__snap256(double x) { return floor(x * 256.0 + 0.5) / 256.0; }
 
 /* ----- the rasterizer's coverage, exactly: every pixel centre (i + 1/2, j + 1/2) in [0,w)x[0,h)
@@ -2402,7 +2404,8 @@ static void voxgi__vb_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__st
     voxgi__raster_centres(x, y, vs->grid->res[a], vs->grid->res[b], voxgi__vb_pixel, &job, (uint32_t)ti);
 }
 
-/* ----- worker pool. Phase 1 hands out triangles in chunks and lists the big ones (more than
+/* ===================================================================== voxelization: CPU worker pool */
+/* Phase 1 hands out triangles in chunks and lists the big ones (more than
    VOXGI__BIG_COLUMNS columns); phase 2 hands out blocks of their rows, so a few huge triangles
    keep every core busy too. OR is order-free: the bits do not depend on threads or schedule. */
 #define VOXGI__CHUNK 64
@@ -2614,7 +2617,6 @@ typedef struct voxgi__atlas {
 } voxgi__atlas;
 
 static int voxgi__is_atlas(voxgi_method m) { return m == VOXGI_METHOD_ATLAS || m == VOXGI_METHOD_ATLAS_COMPUTE; }
-
 
 /* A triangle's chart before scaling: its longest edge (from corner `first`) along u. */
 typedef struct voxgi__chart { double len, apex_u, height; uint32_t tri; int first; } voxgi__chart;
@@ -2865,6 +2867,7 @@ struct voxgi_voxels {
     voxgi__attr attr;          /* with attributes: counts and sums per set voxel (on the CPU for both backends) */
 };
 
+/* ===================================================================== attributes */
 /* Each triangle's attribute values in fixed point, channels in the order albedo, normal,
    emission, opacity (those asked for). */
 static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f, unsigned mask, const voxgi_blend blend[4],
@@ -3294,10 +3297,11 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
 }
 
 #ifndef VOXGI_NO_GL
-/* ----- GL voxelizers (shaders/voxelize_*.glsl, slicemap*.glsl, ...): the same tests and
-   bounds as the CPU twin above. The CPU prepares each vertex (voxel coordinates and exact
-   ranges, O(vertices)); the GPU does everything per triangle and per voxel; what its filter
-   cannot decide comes back here and is decided exactly, so the bits equal the CPU's. */
+/* ===================================================================== GL voxelizers
+   The twins of the CPU parts above, one GL pass per method (GLSL in shaders/). The CPU prepares
+   each vertex (voxel coordinates and exact ranges, O(vertices)); the GPU does everything per
+   triangle, fragment and voxel; what an exact pass's filter cannot decide comes back here and is
+   decided exactly, so the bits equal the CPU's. */
 typedef struct voxgi__gl_vprep { double q[4]; int32_t lo[4], hi[4]; float w[4], pad[4]; } voxgi__gl_vprep; /* std430 */
 
 #define VOXGI__GL_PAIR_CAPACITY 65536u
