@@ -2706,11 +2706,38 @@ static int voxgi__atlas_pack(const voxgi__chart *charts, size_t n, double scale,
     return 1;
 }
 
-static int voxgi__chart_by_height(const void *pa, const void *pb)
+/* Orders the charts by decreasing height, then triangle (a stable LSD radix sort on 64-bit keys:
+   the height's float bits, which order like the heights, inverted; then the index). */
+static voxgi_result voxgi__charts_by_height(voxgi_context *ctx, voxgi__chart *charts, size_t n)
 {
-    const voxgi__chart *a = (const voxgi__chart *)pa, *b = (const voxgi__chart *)pb;
-    if (a->height != b->height) return a->height > b->height ? -1 : 1;
-    return a->tri < b->tri ? -1 : (a->tri > b->tri);
+    uint64_t *key = (uint64_t *)voxgi__alloc_array(ctx, n ? 2 * n : 1, sizeof(uint64_t), 0), *tmp = key + n;
+    voxgi__chart *sorted = (voxgi__chart *)voxgi__alloc_array(ctx, n ? n : 1, sizeof *sorted, 0);
+    size_t i, count[256];
+    int pass;
+    if (!key || !sorted) {
+        voxgi__free(ctx, key);
+        voxgi__free(ctx, sorted);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to sort %lu charts", (unsigned long)n);
+    }
+    for (i = 0; i < n; i++) {
+        float h = (float)charts[i].height;
+        uint32_t bits;
+        memcpy(&bits, &h, 4);
+        key[i] = ((uint64_t)(~bits) << 32) | charts[i].tri; /* heights are >= 0: their bits grow with them */
+    }
+    for (pass = 0; pass < 8; pass++) {
+        size_t sum = 0;
+        memset(count, 0, sizeof count);
+        for (i = 0; i < n; i++) count[(key[i] >> (8 * pass)) & 255u]++;
+        for (i = 0; i < 256; i++) { size_t c = count[i]; count[i] = sum; sum += c; }
+        for (i = 0; i < n; i++) tmp[count[(key[i] >> (8 * pass)) & 255u]++] = key[i];
+        memcpy(key, tmp, n * sizeof *key);
+    }
+    for (i = 0; i < n; i++) sorted[i] = charts[(uint32_t)key[i]]; /* charts[t].tri == t before sorting */
+    memcpy(charts, sorted, n * sizeof *charts);
+    voxgi__free(ctx, key);
+    voxgi__free(ctx, sorted);
+    return VOXGI_OK;
 }
 
 /* Builds the atlas: its size, and every triangle's chart corners. */
@@ -2738,7 +2765,7 @@ static voxgi_result voxgi__atlas_build(voxgi_context *ctx, const voxgi__flat *f,
         int steps;
         if (!charts) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu atlas charts", (unsigned long)n);
         for (i = 0; i < n; i++) voxgi__chart_shape(vp, f->tri, (uint32_t)i, &charts[i]);
-        qsort(charts, n, sizeof *charts, voxgi__chart_by_height);
+        if (voxgi__charts_by_height(ctx, charts, n) != VOXGI_OK) { voxgi__free(ctx, charts); return VOXGI_ERR_OUT_OF_MEMORY; }
         at->size = d->atlas_size;
         if (!at->size) { /* the side that holds the charts at 2 texels per voxel, with 10% to spare for shelves */
             double area = 0, w, h;
@@ -2754,9 +2781,20 @@ static voxgi_result voxgi__atlas_build(voxgi_context *ctx, const voxgi__flat *f,
             return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d atlas cannot hold %lu charts of 3x3 texels; raise atlas_size",
                                at->size, at->size, (unsigned long)n);
         }
-        /* the largest scale that fits: doubling, then bisection */
-        for (hi = 1.0 / 1024, steps = 0; steps < 80 && voxgi__atlas_pack(charts, n, hi, at->size, NULL); steps++) { lo = hi; hi *= 2; }
-        for (steps = 0; steps < 24; steps++) { /* to 2^-24 of the scale */
+        /* the largest scale that fits: a bracket around the area estimate (boxes hold twice
+           their triangle), then bisection to a thousandth */
+        {
+            double area = 0, guess;
+            for (i = 0; i < n; i++) area += charts[i].len * charts[i].height;
+            guess = area > 0 ? sqrt((double)at->size * at->size / area) : 1.0;
+            for (hi = guess, steps = 0; steps < 80 && voxgi__atlas_pack(charts, n, hi, at->size, NULL); steps++) { lo = hi; hi *= 2; }
+            for (steps = 0; steps < 80 && lo == 0; steps++) {
+                double try_lo = hi / 2;
+                if (voxgi__atlas_pack(charts, n, try_lo, at->size, NULL)) lo = try_lo;
+                else hi = try_lo;
+            }
+        }
+        for (steps = 0; steps < 10; steps++) {
             double mid = 0.5 * (lo + hi);
             if (voxgi__atlas_pack(charts, n, mid, at->size, NULL)) lo = mid;
             else hi = mid;
