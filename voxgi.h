@@ -2767,12 +2767,14 @@ static voxgi_result voxgi__atlas_build(voxgi_context *ctx, const voxgi__flat *f,
         for (i = 0; i < n; i++) voxgi__chart_shape(vp, f->tri, (uint32_t)i, &charts[i]);
         if (voxgi__charts_by_height(ctx, charts, n) != VOXGI_OK) { voxgi__free(ctx, charts); return VOXGI_ERR_OUT_OF_MEMORY; }
         at->size = d->atlas_size;
-        if (!at->size) { /* the side that holds the charts at 2 texels per voxel, with 10% to spare for shelves */
+        if (!at->size) { /* the side that holds the charts at 2 texels per voxel, and at least
+                              every chart at its smallest (3x3), with 10% to spare for shelves */
             double area = 0, w, h;
             for (i = 0; i < n; i++) {
                 voxgi__chart_box(&charts[i], VOXGI__ATLAS_TEXELS_PER_VOXEL, &w, &h);
                 area += w * h;
             }
+            area = VOXGI__MAX(area, 9.0 * (double)n);
             at->size = (int)VOXGI__MIN(ceil(sqrt(area * 1.1) / 64) * 64, (double)VOXGI__ATLAS_MAX_DEFAULT);
             at->size = VOXGI__MAX(at->size, 64);
         }
