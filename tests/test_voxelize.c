@@ -1305,6 +1305,15 @@ static void test_atlas_auto_relations(void)
         free(a);
     }
     TH_CHECK(missed[0] > missed[1] && missed[1] > missed[2], "coverage does not rise with the atlas size");
+    {   /* a coarse grid: every chart is at its smallest, and the default atlas still holds them */
+        voxgi_grid coarse = g;
+        uint32_t *a;
+        coarse.voxel_size = g.voxel_size * 16;
+        coarse.res[0] = coarse.res[1] = coarse.res[2] = 3;
+        a = atlas_bits(ctx, &sc, &coarse, VOXGI_METHOD_ATLAS, 0, VOXGI_ATLAS_AUTO, &info);
+        TH_CHECK(a && info.voxel_count > 0 && info.atlas_points >= m.triangle_count, "coarse grid: default atlas failed");
+        free(a);
+    }
     free(cons); free(b); free(d); free(c1);
     vxt_shape_free(&m);
     {   /* 300 triangles far smaller than a texel, scattered: each sets the voxel of its centroid */
