@@ -362,6 +362,57 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
 static inline int voxgi_bit_get(const uint32_t *bits, uint64_t index)
 { return (int)((bits[index >> 5] >> (index & 31u)) & 1u); }
 
+/* ===================================================================== attribute volumes and mipmaps */
+/* Dense volumes of the attributes a voxelization averaged, with a mip chain, for the lighting
+   passes to sample. Every voxel holds (value, alpha): alpha is the voxel's opacity when the
+   voxels hold OPACITY, else 1 for set voxels; empty voxels are all zero. ALBEDO, NORMAL and
+   EMISSION volumes hold RGBA (value in rgb), the OPACITY volume alpha alone. Level k has
+   ceil(n / 2^k) voxels per axis, down to one voxel; a parent covers its 2x2x2 children, those
+   beyond the grid counting as empty.
+   ISOTROPIC: alpha = the children's mean alpha; value = their alpha-weighted mean (empty
+   children do not darken it; a lone voxel keeps its colour at every level).
+   ANISOTROPIC: six volumes per attribute, one per direction of travel (+x -x +y -y +z -z):
+   each pair of children along the direction is composited front to back (premultiplied:
+   c = c_near a_near + (1 - a_near) c_far a_far, a = a_near + (1 - a_near) a_far), the four
+   pairs averaged, the value un-premultiplied; level 0 is the same in every direction. */
+typedef enum voxgi_mip_filter { VOXGI_MIPS_ISOTROPIC = 0, VOXGI_MIPS_ANISOTROPIC } voxgi_mip_filter;
+typedef enum voxgi_direction { VOXGI_DIR_POS_X = 0, VOXGI_DIR_NEG_X, VOXGI_DIR_POS_Y, VOXGI_DIR_NEG_Y, VOXGI_DIR_POS_Z, VOXGI_DIR_NEG_Z } voxgi_direction;
+
+typedef struct voxgi_volume_desc {
+    unsigned attributes;          /* voxgi_attribute bits to build (0 = all the voxels hold) */
+    voxgi_mip_filter filter;
+    int levels;                   /* mip levels including the base; 0 = down to one voxel */
+} voxgi_volume_desc;
+
+typedef struct voxgi_volume voxgi_volume;
+typedef struct voxgi_volume_info {
+    voxgi_grid grid;              /* level 0 */
+    voxgi_backend backend;        /* GL: 3D textures (RGBA32F / R32F with mips); CPU: arrays */
+    unsigned attributes;
+    voxgi_mip_filter filter;
+    int levels;
+    size_t bytes;                 /* every level of every volume */
+    int gl_size[3];               /* GL: the textures' base size, res rounded up to a multiple of
+                                     2^(levels-1) so GL's mip chain holds every level; the padding is empty */
+    double ms;
+} voxgi_volume_info;
+
+VOXGI_API voxgi_result voxgi_volume_create(voxgi_context *ctx, const voxgi_voxels *voxels, const voxgi_volume_desc *desc,
+                                           voxgi_volume **out);
+/* The same from dense data the caller holds: base[a] is level 0 of attribute 1 << a (albedo,
+   normal, emission: 4 floats per voxel, value and alpha; opacity: 1), x fastest, or NULL. */
+VOXGI_API voxgi_result voxgi_volume_create_dense(voxgi_context *ctx, const voxgi_grid *grid, const voxgi_volume_desc *desc,
+                                                 const float *const base[4], voxgi_volume **out);
+VOXGI_API void voxgi_volume_destroy(voxgi_context *ctx, voxgi_volume *volume);
+VOXGI_API void voxgi_volume_query(const voxgi_volume *volume, voxgi_volume_info *out);
+/* One level of one attribute's volume (direction: 0 for ISOTROPIC), x fastest then y then z,
+   4 floats per voxel (1 for OPACITY). dst == NULL: only *needed is set. */
+VOXGI_API voxgi_result voxgi_volume_read(voxgi_context *ctx, const voxgi_volume *volume, voxgi_attribute which,
+                                         voxgi_direction direction, int level, float *dst, size_t dst_bytes, size_t *needed);
+/* GL backend: the 3D texture of one attribute (and direction), all levels (owned by volume). */
+VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_volume *volume, voxgi_attribute which,
+                                               voxgi_direction direction, unsigned int *gl_texture_name);
+
 /* ===================================================================== binvox files */
 /* binvox: "dim" lists x z y extents (binvox's depth, height, width), data runs with y fastest,
    then z, then x; translate = grid origin, scale = voxel_size * max(res). */
@@ -1066,6 +1117,8 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_RGBA32F 0x8814
 #define VOXGI__GL_R32F 0x822E
 #define VOXGI__GL_TEXTURE_3D 0x806F
+#define VOXGI__GL_WRITE_ONLY 0x88B9
+#define VOXGI__GL_TEXTURE_UPDATE_BARRIER_BIT 0x0100
 #define VOXGI__GL_MAX_3D_TEXTURE_SIZE 0x8073
 #define VOXGI__GL_ONE 1
 #define VOXGI__GL_FUNC_ADD 0x8006
@@ -1156,6 +1209,10 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, CreateTextures, (unsigned int target, int n, unsigned int *textures))                        \
     X(void, DeleteTextures, (int n, const unsigned int *textures))                                       \
     X(void, TextureStorage3D, (unsigned int texture, int levels, unsigned int format, int w, int h, int d)) \
+    X(void, TextureSubImage3D, (unsigned int texture, int level, int x, int y, int z, int w, int h, int d,  \
+                                unsigned int format, unsigned int type, const void *pixels))            \
+    X(void, GetTextureSubImage, (unsigned int texture, int level, int x, int y, int z, int w, int h, int d, \
+                                 unsigned int format, unsigned int type, int size, void *pixels))       \
     X(void, TextureStorage2D, (unsigned int texture, int levels, unsigned int format, int w, int h))       \
     X(void, NamedFramebufferTexture, (unsigned int fb, unsigned int attachment, unsigned int texture, int level)) \
     X(void, ClearTexImage, (unsigned int texture, int level, unsigned int format, unsigned int type,      \
@@ -1180,7 +1237,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -4309,6 +4366,356 @@ static voxgi_result voxgi__reduce_gl(voxgi_context *ctx, const voxgi_voxels *src
     r = voxgi__gl_check(ctx, "the OR reduction");
     if (r == VOXGI_OK) r = voxgi__gl_popcount(ctx, out, dst->info.bytes / 4, &dst->info.voxel_count);
     return r;
+}
+#endif
+
+/* ===================================================================== attribute volumes and mipmaps
+   CPU: float arrays, level after level; GL: 3D textures whose base level is uploaded from the
+   same dense data and whose levels a compute pass builds (shaders/volume_mip.glsl) with the same
+   formulas in float, so the two agree to float rounding. */
+#define VOXGI__MAX_LEVELS 17
+
+struct voxgi_volume {
+    voxgi_volume_info info;
+    int dims[VOXGI__MAX_LEVELS][3];
+    size_t first[VOXGI__MAX_LEVELS];   /* voxel offset of each level in a CPU array */
+    size_t voxels;                     /* all levels */
+    float *cpu[4][6];                  /* [attribute bit][direction] */
+    unsigned int tex[4][6];
+};
+
+static int voxgi__attr_index(voxgi_attribute a)
+{
+    return a == VOXGI_ATTRIBUTE_ALBEDO ? 0 : (a == VOXGI_ATTRIBUTE_NORMAL ? 1 : (a == VOXGI_ATTRIBUTE_EMISSION ? 2 : (a == VOXGI_ATTRIBUTE_OPACITY ? 3 : -1)));
+}
+
+/* Parent p of level l from level l - 1 of the same direction's array; w: floats per voxel (4 or 1). */
+static void voxgi__mip_voxel(const float *src, const int sd[3], float *dst, int w, int dir, const int p[3])
+{
+    float c[8][4];
+    int k, ch, n = 0;
+    for (k = 0; k < 8; k++) { /* children in x-fastest order; beyond the grid: empty */
+        int v[3], a;
+        v[0] = 2 * p[0] + (k & 1); v[1] = 2 * p[1] + ((k >> 1) & 1); v[2] = 2 * p[2] + ((k >> 2) & 1);
+        for (a = 0; a < 3 && v[a] < sd[a]; a++) {}
+        for (ch = 0; ch < 4; ch++) c[k][ch] = 0;
+        if (a == 3) {
+            const float *s = src + ((size_t)v[0] + (size_t)sd[0] * ((size_t)v[1] + (size_t)sd[1] * (size_t)v[2])) * (size_t)w;
+            for (ch = 0; ch < w; ch++) c[k][w == 1 ? 3 : ch] = s[ch];
+        }
+        (void)n;
+    }
+    if (dir < 0) { /* isotropic: mean alpha, alpha-weighted value */
+        float asum = 0, vsum[3] = {0, 0, 0};
+        for (k = 0; k < 8; k++) {
+            asum += c[k][3];
+            for (ch = 0; ch < 3; ch++) vsum[ch] += c[k][ch] * c[k][3];
+        }
+        if (w == 1) { dst[0] = asum / 8; return; }
+        for (ch = 0; ch < 3; ch++) dst[ch] = asum > 0 ? vsum[ch] / asum : 0;
+        dst[3] = asum / 8;
+    } else { /* anisotropic: the four pairs along the axis, front to back, averaged */
+        int axis = dir / 2, bit = 1 << axis, pair = 0;
+        float asum = 0, vsum[3] = {0, 0, 0};
+        for (k = 0; k < 8; k++) {
+            const float *nr, *fr;
+            float a;
+            if (k & bit) continue;
+            nr = (dir & 1) ? c[k | bit] : c[k]; /* +dir travels from low to high */
+            fr = (dir & 1) ? c[k] : c[k | bit];
+            a = nr[3] + (1 - nr[3]) * fr[3];
+            asum += a;
+            for (ch = 0; ch < 3; ch++) vsum[ch] += nr[ch] * nr[3] + (1 - nr[3]) * fr[ch] * fr[3];
+            pair++;
+        }
+        if (w == 1) { dst[0] = asum / (float)pair; return; }
+        for (ch = 0; ch < 3; ch++) dst[ch] = asum > 0 ? vsum[ch] / asum : 0;
+        dst[3] = asum / (float)pair;
+    }
+}
+
+/* Level 0 of every asked-for attribute, dense, from the voxels' bits and attribute means. */
+static voxgi_result voxgi__volume_base(voxgi_context *ctx, const voxgi_voxels *vx, voxgi_volume *vol, float *base[4])
+{
+    const voxgi_grid *g = &vx->info.grid;
+    uint64_t n = voxgi_grid_voxel_count(g), l, slot = 0;
+    size_t need = 0;
+    uint32_t *bits = NULL;
+    float *vals[4] = {NULL, NULL, NULL, NULL};
+    int a;
+    voxgi_result r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
+    if (r == VOXGI_OK && !(bits = (uint32_t *)voxgi__alloc(ctx, need))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bits");
+    if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, bits, need, NULL);
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+        voxgi_attribute which = (voxgi_attribute)(1 << a);
+        if (!(vx->info.attributes & (unsigned)which) || (a < 3 && !(vol->info.attributes & (unsigned)which))) continue;
+        r = voxgi_voxels_read_attribute(ctx, vx, which, NULL, 0, &need);
+        if (r == VOXGI_OK && !(vals[a] = (float *)voxgi__alloc(ctx, need ? need : 4))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+        if (r == VOXGI_OK) r = voxgi_voxels_read_attribute(ctx, vx, which, vals[a], need, NULL);
+    }
+    for (l = 0; r == VOXGI_OK && l < n; l++) {
+        float alpha;
+        if (!voxgi_bit_get(bits, l)) continue;
+        alpha = vals[3] ? vals[3][slot] : 1.0f;
+        for (a = 0; a < 4; a++) {
+            float *o;
+            if (!base[a]) continue;
+            if (a == 3) { base[3][l] = alpha; continue; }
+            o = base[a] + 4 * l;
+            o[0] = vals[a][3 * slot];
+            o[1] = vals[a][3 * slot + 1];
+            o[2] = vals[a][3 * slot + 2];
+            o[3] = alpha;
+        }
+        slot++;
+    }
+    voxgi__free(ctx, bits);
+    for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
+    return r;
+}
+
+#ifndef VOXGI_NO_GL
+static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[4]);
+#endif
+
+/* The volume's levels and sizes, for `attributes` (already checked). */
+static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, const voxgi_volume_desc *desc, unsigned attributes,
+                                      voxgi_volume **out)
+{
+    voxgi_volume *vol;
+    uint64_t bytes = 0;
+    int a, k, dirs = desc->filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
+    *out = NULL;
+    if ((unsigned)desc->filter > VOXGI_MIPS_ANISOTROPIC || desc->levels < 0 || desc->levels > VOXGI__MAX_LEVELS)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown mip filter %d or levels %d", (int)desc->filter, desc->levels);
+    if (!attributes || (attributes & ~15u)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attributes 0x%x", attributes);
+    vol = (voxgi_volume *)voxgi__alloc_array(ctx, 1, sizeof *vol, 1);
+    if (!vol) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the volume");
+    vol->info.grid = *g;
+    vol->info.backend = ctx->backend;
+    vol->info.attributes = attributes;
+    vol->info.filter = desc->filter;
+    for (k = 0; k < VOXGI__MAX_LEVELS; k++) { /* the chain down to one voxel, or as asked */
+        for (a = 0; a < 3; a++) vol->dims[k][a] = k ? (vol->dims[k - 1][a] + 1) / 2 : g->res[a];
+        vol->first[k] = vol->voxels;
+        vol->voxels += (size_t)vol->dims[k][0] * (size_t)vol->dims[k][1] * (size_t)vol->dims[k][2];
+        vol->info.levels = k + 1;
+        if ((desc->levels && k + 1 == desc->levels) || (vol->dims[k][0] == 1 && vol->dims[k][1] == 1 && vol->dims[k][2] == 1)) break;
+    }
+    for (a = 0; a < 4; a++)
+        if (attributes & (1u << a)) bytes += (uint64_t)vol->voxels * (a == 3 ? 4u : 16u) * (uint64_t)dirs;
+    vol->info.bytes = (size_t)bytes;
+    if (ctx->desc.memory_budget && bytes > (uint64_t)ctx->desc.memory_budget) {
+        voxgi__free(ctx, vol);
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the volumes need %llu bytes, more than the memory budget %llu",
+                           (unsigned long long)bytes, (unsigned long long)ctx->desc.memory_budget);
+    }
+    *out = vol;
+    return VOXGI_OK;
+}
+
+/* Every level of every volume from the dense base levels. */
+static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, const float *const base[4])
+{
+    voxgi_result r = VOXGI_OK;
+    int a, d, k, dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
+    size_t base_voxels = (size_t)vol->dims[0][0] * (size_t)vol->dims[0][1] * (size_t)vol->dims[0][2];
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__volume_gl(ctx, vol, base);
+#endif
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+        int w = a == 3 ? 1 : 4;
+        if (!base[a]) continue;
+        for (d = 0; d < dirs && r == VOXGI_OK; d++) {
+            float *arr = (float *)voxgi__alloc_array(ctx, vol->voxels, (size_t)w * 4, 1);
+            int p[3];
+            if (!arr) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the mip chain"); break; }
+            vol->cpu[a][d] = arr;
+            memcpy(arr, base[a], base_voxels * (size_t)w * 4);
+            for (k = 1; k < vol->info.levels; k++)
+                for (p[2] = 0; p[2] < vol->dims[k][2]; p[2]++)
+                    for (p[1] = 0; p[1] < vol->dims[k][1]; p[1]++)
+                        for (p[0] = 0; p[0] < vol->dims[k][0]; p[0]++) {
+                            size_t at = vol->first[k] + (size_t)p[0] + (size_t)vol->dims[k][0] * ((size_t)p[1] + (size_t)vol->dims[k][1] * (size_t)p[2]);
+                            voxgi__mip_voxel(arr + vol->first[k - 1] * (size_t)w, vol->dims[k - 1], arr + at * (size_t)w, w, dirs == 6 ? d : -1, p);
+                        }
+        }
+    }
+    return r;
+}
+
+VOXGI_API voxgi_result voxgi_volume_create(voxgi_context *ctx, const voxgi_voxels *vx, const voxgi_volume_desc *desc, voxgi_volume **out)
+{
+    voxgi_volume *vol = NULL;
+    float *base[4] = {NULL, NULL, NULL, NULL};
+    voxgi_result r;
+    double t0 = voxgi__now_ms();
+    int a;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vx || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
+    *out = NULL;
+    if (!vx->info.attributes) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "these voxels hold no attributes (voxgi_voxelize_desc.attributes)");
+    if (desc->attributes & ~vx->info.attributes)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attributes 0x%x asked for, the voxels hold 0x%x", desc->attributes, vx->info.attributes);
+    r = voxgi__volume_new(ctx, &vx->info.grid, desc, desc->attributes ? desc->attributes : vx->info.attributes, &vol);
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) { /* level 0, dense, on the CPU for both backends */
+        if (!(vol->info.attributes & (1u << a))) continue;
+        base[a] = (float *)voxgi__alloc_array(ctx, (size_t)voxgi_grid_voxel_count(&vx->info.grid), a == 3 ? 4 : 16, 1);
+        if (!base[a]) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %dx%dx%d volume", vol->dims[0][0], vol->dims[0][1], vol->dims[0][2]);
+    }
+    if (r == VOXGI_OK) r = voxgi__volume_base(ctx, vx, vol, base);
+    if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, (const float *const *)base);
+    for (a = 0; a < 4; a++) voxgi__free(ctx, base[a]);
+    if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); return r; }
+    vol->info.ms = voxgi__now_ms() - t0;
+    *out = vol;
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_volume_create_dense(voxgi_context *ctx, const voxgi_grid *grid, const voxgi_volume_desc *desc,
+                                                 const float *const base[4], voxgi_volume **out)
+{
+    voxgi_volume *vol = NULL;
+    voxgi_result r;
+    double t0 = voxgi__now_ms();
+    unsigned attributes = 0;
+    int a;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!grid || !desc || !base || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "grid, desc, base or out is NULL");
+    *out = NULL;
+    if ((r = voxgi_validate_grid(ctx, grid)) != VOXGI_OK) return r;
+    for (a = 0; a < 4; a++)
+        if (base[a]) attributes |= 1u << a;
+    r = voxgi__volume_new(ctx, grid, desc, attributes, &vol);
+    if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, base);
+    if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); return r; }
+    vol->info.ms = voxgi__now_ms() - t0;
+    *out = vol;
+    return VOXGI_OK;
+}
+
+VOXGI_API void voxgi_volume_destroy(voxgi_context *ctx, voxgi_volume *vol)
+{
+    int a, d;
+    if (!ctx || !vol) return;
+    for (a = 0; a < 4; a++)
+        for (d = 0; d < 6; d++) {
+            voxgi__free(ctx, vol->cpu[a][d]);
+#ifndef VOXGI_NO_GL
+            if (vol->tex[a][d] && ctx->gl) ctx->gl->DeleteTextures(1, &vol->tex[a][d]);
+#endif
+        }
+    voxgi__free(ctx, vol);
+}
+
+VOXGI_API void voxgi_volume_query(const voxgi_volume *vol, voxgi_volume_info *out)
+{
+    if (!out) return;
+    if (!vol) { memset(out, 0, sizeof *out); return; }
+    *out = vol->info;
+}
+
+static voxgi_result voxgi__volume_pick(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir,
+                                       int *a, int *d)
+{
+    *a = voxgi__attr_index(which);
+    *d = (int)dir;
+    if (*a < 0 || !(vol->info.attributes & (unsigned)which))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attribute %d is not in this volume (0x%x)", (int)which, vol->info.attributes);
+    if ((unsigned)dir > VOXGI_DIR_NEG_Z || (vol->info.filter == VOXGI_MIPS_ISOTROPIC && dir != 0))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "direction %d: an isotropic volume has direction 0 only", (int)dir);
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_volume_read(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir,
+                                         int level, float *dst, size_t dst_bytes, size_t *needed)
+{
+    int a, d;
+    size_t bytes;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vol) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume is NULL");
+    if ((r = voxgi__volume_pick(ctx, vol, which, dir, &a, &d)) != VOXGI_OK) return r;
+    if (level < 0 || level >= vol->info.levels) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "level %d of %d", level, vol->info.levels);
+    bytes = (size_t)vol->dims[level][0] * (size_t)vol->dims[level][1] * (size_t)vol->dims[level][2] * (a == 3 ? 4u : 16u);
+    if (needed) *needed = bytes;
+    if (!dst) return needed ? VOXGI_OK : voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "dst and needed are both NULL");
+    if (dst_bytes < bytes) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "level %d needs %lu bytes, dst has %lu", level, (unsigned long)bytes, (unsigned long)dst_bytes);
+    if (vol->cpu[a][d]) { memcpy(dst, vol->cpu[a][d] + vol->first[level] * (a == 3 ? 1u : 4u), bytes); return VOXGI_OK; }
+#ifndef VOXGI_NO_GL
+    if (vol->tex[a][d]) {
+        ctx->gl->MemoryBarrier(VOXGI__GL_TEXTURE_UPDATE_BARRIER_BIT);
+        ctx->gl->GetTextureSubImage(vol->tex[a][d], level, 0, 0, 0, vol->dims[level][0], vol->dims[level][1], vol->dims[level][2],
+                                    a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, (int)bytes, dst);
+        return voxgi__gl_check(ctx, "reading a volume");
+    }
+#endif
+    return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the volume holds no data");
+}
+
+VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir,
+                                               unsigned int *name)
+{
+    int a, d;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vol || !name) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume or name is NULL");
+    if ((r = voxgi__volume_pick(ctx, vol, which, dir, &a, &d)) != VOXGI_OK) return r;
+    if (!vol->tex[a][d]) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "this volume lives on the CPU, not in a GL texture");
+    *name = vol->tex[a][d];
+    return VOXGI_OK;
+}
+
+#ifndef VOXGI_NO_GL
+/* GL: the base level uploaded into every direction's texture, then each level from the one
+   below by shaders/volume_mip.glsl. */
+static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[4])
+{
+    voxgi__gl *gl = ctx->gl;
+    int a, d, k, dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1, max3d = 0;
+    const float zeros[4] = {0, 0, 0, 0};
+    voxgi_result r = voxgi__gl_get_program(ctx, "volume_mip.glsl", &gl->prog_volume_mip);
+    unsigned int p = gl->prog_volume_mip;
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
+    for (a = 0; a < 3; a++) { /* GL halves sizes rounding down: pad so that its chain holds ours */
+        int m = 1 << (vol->info.levels - 1);
+        vol->info.gl_size[a] = (vol->dims[0][a] + m - 1) / m * m;
+    }
+    if (vol->info.gl_size[0] > max3d || vol->info.gl_size[1] > max3d || vol->info.gl_size[2] > max3d)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d volume texture exceeds GL_MAX_3D_TEXTURE_SIZE %d", vol->info.gl_size[0],
+                           vol->info.gl_size[1], vol->info.gl_size[2], max3d);
+    gl->UseProgram(p);
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+        if (!base[a]) continue;
+        for (d = 0; d < dirs; d++) {
+            unsigned int t = 0, fmt = a == 3 ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F;
+            gl->CreateTextures(VOXGI__GL_TEXTURE_3D, 1, &t);
+            vol->tex[a][d] = t;
+            gl->TextureStorage3D(t, vol->info.levels, fmt, vol->info.gl_size[0], vol->info.gl_size[1], vol->info.gl_size[2]);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
+            for (k = 0; k < vol->info.levels; k++) gl->ClearTexImage(t, k, a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
+            gl->TextureSubImage3D(t, 0, 0, 0, 0, vol->dims[0][0], vol->dims[0][1], vol->dims[0][2], a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA,
+                                  VOXGI__GL_FLOAT, base[a]);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_single"), a == 3);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_dir"), dirs == 6 ? d : -1);
+            for (k = 1; k < vol->info.levels; k++) {
+                gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_src_dims"), vol->dims[k - 1][0], vol->dims[k - 1][1], vol->dims[k - 1][2]);
+                gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_dst_dims"), vol->dims[k][0], vol->dims[k][1], vol->dims[k][2]);
+                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_src_level"), k - 1);
+                gl->BindTextureUnit(0, t);
+                gl->BindImageTexture(a == 3 ? 1 : 0, t, k, 1, 0, VOXGI__GL_WRITE_ONLY, fmt);
+                gl->DispatchCompute((unsigned)((vol->dims[k][0] + 3) / 4), (unsigned)((vol->dims[k][1] + 3) / 4), (unsigned)((vol->dims[k][2] + 3) / 4));
+                gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            }
+        }
+    }
+    gl->BindTextureUnit(0, 0);
+    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_RGBA32F);
+    gl->BindImageTexture(1, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32F);
+    voxgi__gl_unbind(gl);
+    return voxgi__gl_check(ctx, "the volume mipmaps");
 }
 #endif
 

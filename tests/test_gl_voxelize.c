@@ -613,6 +613,79 @@ static void test_gl_raster_volume_buffer(void)
     vxt_shape_free(&shapes[2]);
 }
 
+/* Attribute volumes and their mips: GL (3D textures, compute mips) equals the CPU's arrays
+   within float rounding (1e-6 relative) at every level, isotropic and in all six directions. */
+static void test_gl_volume_mips_equal_cpu(void)
+{
+    static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
+    voxgi_material mats[2] = {{{0.9f, 0.1f, 0.2f}, {3, 2, 1}, 0.5f}, {{0.3f, 0.7f, 0.5f}, {0, 0, 0}, 0.0f}};
+    voxgi_context *cpu, *gl;
+    vxt_shape m;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_voxelize_desc xd;
+    voxgi_voxels *vox[2] = {NULL, NULL};
+    uint32_t *ids;
+    size_t t;
+    int filter, b;
+    double worst = 0;
+    if (!have_gl()) return;
+    cpu = make_ctx(VOXGI_BACKEND_CPU);
+    gl = make_ctx(VOXGI_BACKEND_GL);
+    vxt_shape_sphere(&m, 30, 15, 1.0, 0.013, -0.021, 0.007);
+    ids = (uint32_t *)malloc(m.triangle_count * 4);
+    for (t = 0; t < m.triangle_count; t++) ids[t] = (uint32_t)(t % 2);
+    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&xd, 0, sizeof xd);
+    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
+    mesh.material_ids = ids;
+    sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 2;
+    cubic(&xd.grid, -1.1, 2.2, 27); /* odd: incomplete parents at the far faces */
+    xd.attributes = 15;
+    for (b = 0; b < 2; b++) voxgi_voxelize(b ? gl : cpu, &sc, &xd, &vox[b]);
+    TH_CHECK(vox[0] && vox[1], "voxelization failed");
+    for (filter = 0; filter < 2 && vox[0] && vox[1]; filter++) {
+        voxgi_volume_desc vd;
+        voxgi_volume *vol[2] = {NULL, NULL};
+        voxgi_volume_info info;
+        int k, d, a;
+        unsigned int tex = 0;
+        memset(&vd, 0, sizeof vd);
+        vd.filter = (voxgi_mip_filter)filter;
+        for (b = 0; b < 2; b++)
+            if (voxgi_volume_create(b ? gl : cpu, vox[b], &vd, &vol[b]) != VOXGI_OK) printf("    %s\n", voxgi_last_error(b ? gl : cpu));
+        TH_CHECK(vol[0] && vol[1], "volume creation failed");
+        if (!vol[0] || !vol[1]) continue;
+        voxgi_volume_query(vol[1], &info);
+        TH_CHECK(voxgi_volume_gl_texture(gl, vol[1], VOXGI_ATTRIBUTE_ALBEDO, 0, &tex) == VOXGI_OK && tex != 0, "no GL texture");
+        for (a = 0; a < 4; a++)
+            for (d = 0; d < (filter ? 6 : 1); d++)
+                for (k = 0; k < info.levels; k++) {
+                    size_t na = 0, nb = 0, i;
+                    float *x, *y;
+                    voxgi_volume_read(cpu, vol[0], kinds[a], (voxgi_direction)d, k, NULL, 0, &na);
+                    voxgi_volume_read(gl, vol[1], kinds[a], (voxgi_direction)d, k, NULL, 0, &nb);
+                    x = (float *)malloc(na); y = (float *)malloc(nb);
+                    voxgi_volume_read(cpu, vol[0], kinds[a], (voxgi_direction)d, k, x, na, NULL);
+                    voxgi_volume_read(gl, vol[1], kinds[a], (voxgi_direction)d, k, y, nb, NULL);
+                    TH_CHECK(na == nb, "level sizes differ");
+                    for (i = 0; na == nb && i < na / 4; i++) {
+                        double e = fabs((double)x[i] - y[i]) / (fabs(x[i]) > 1 ? fabs(x[i]) : 1);
+                        if (e > worst) worst = e;
+                    }
+                    free(x); free(y);
+                }
+        printf("    volume %s: %d levels, %lu bytes, GL within %.3g of the CPU\n", filter ? "anisotropic" : "isotropic", info.levels,
+               (unsigned long)info.bytes, worst);
+        for (b = 0; b < 2; b++) voxgi_volume_destroy(b ? gl : cpu, vol[b]);
+    }
+    TH_CHECK(worst <= 1e-6, "GL mips differ from the CPU's by %g", worst);
+    for (b = 0; b < 2; b++) voxgi_voxels_destroy(b ? gl : cpu, vox[b]);
+    free(ids);
+    vxt_shape_free(&m);
+    voxgi_destroy(cpu);
+    voxgi_destroy(gl);
+}
+
 /* The geometry-shader voxelizer on every shape of the compute tests: bit for bit the CPU's. */
 static void test_gl_raster_geometry_equals_cpu(void)
 {
@@ -741,6 +814,7 @@ int main(void)
     TH_RUN(test_gl_raster_slicemap_equals_cpu);
     TH_RUN(test_gl_raster_atlas_equals_cpu);
     TH_RUN(test_gl_raster_geometry_equals_cpu);
+    TH_RUN(test_gl_volume_mips_equal_cpu);
     TH_RUN(test_gl_raster_volume_buffer);
     TH_RUN(test_gl_raster_attributes_equal_cpu);
     TH_RUN(test_gl_interop_and_backends);

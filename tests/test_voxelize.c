@@ -1665,6 +1665,137 @@ static void test_attributes_vs_oracle_and_order(void)
     voxgi_destroy(ctx);
 }
 
+/* ---------------------------------------------------------------- attribute volumes and mips */
+static float *volume_level(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir, int level)
+{
+    size_t need = 0;
+    float *out;
+    if (voxgi_volume_read(ctx, vol, which, dir, level, NULL, 0, &need) != VOXGI_OK) return NULL;
+    out = (float *)malloc(need);
+    if (voxgi_volume_read(ctx, vol, which, dir, level, out, need, NULL) != VOXGI_OK) { free(out); return NULL; }
+    return out;
+}
+
+/* A constant field stays constant (and full parents keep its alpha); a lone voxel keeps its
+   colour at every level with alpha / 8 per level (isotropic) or / 4 (anisotropic, in every
+   direction); two opaque voxels along x show the near one's colour in each direction; the
+   base level of a voxelization's volume is its attribute means. */
+static void test_volume_mips(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    voxgi_grid g;
+    voxgi_volume_desc vd;
+    voxgi_volume *vol = NULL;
+    voxgi_volume_info info;
+    float *albedo, *opacity;
+    const float *base[4];
+    size_t n, i;
+    int k, dir, bad = 0;
+    g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1;
+    g.res[0] = 9; g.res[1] = 6; g.res[2] = 5; /* odd sizes: parents at the far faces lack children */
+    n = (size_t)voxgi_grid_voxel_count(&g);
+    albedo = (float *)malloc(n * 16);
+    opacity = (float *)malloc(n * 4);
+    for (i = 0; i < n; i++) { albedo[4 * i] = 0.3f; albedo[4 * i + 1] = 0.6f; albedo[4 * i + 2] = 0.9f; albedo[4 * i + 3] = 0.5f; opacity[i] = 0.5f; }
+    base[0] = albedo; base[1] = NULL; base[2] = NULL; base[3] = opacity;
+    memset(&vd, 0, sizeof vd);
+    TH_CHECK(voxgi_volume_create_dense(ctx, &g, &vd, base, &vol) == VOXGI_OK, "dense volume: %s", voxgi_last_error(ctx));
+    voxgi_volume_query(vol, &info);
+    TH_CHECK(info.levels == 5, "9x6x5 has 5 levels down to one voxel, got %d", info.levels);
+    for (k = 0; k < info.levels; k++) {
+        float *lv = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, k), *op = volume_level(ctx, vol, VOXGI_ATTRIBUTE_OPACITY, 0, k);
+        int d[3], x, y, z, a;
+        for (a = 0; a < 3; a++) { d[a] = g.res[a]; for (x = 0; x < k; x++) d[a] = (d[a] + 1) / 2; }
+        for (z = 0; z < d[2]; z++)
+            for (y = 0; y < d[1]; y++)
+                for (x = 0; x < d[0]; x++) {
+                    size_t l = (size_t)x + (size_t)d[0] * ((size_t)y + (size_t)d[1] * (size_t)z);
+                    int full = ((x + 1) << k) <= g.res[0] && ((y + 1) << k) <= g.res[1] && ((z + 1) << k) <= g.res[2];
+                    bad += fabs(lv[4 * l] - 0.3f) > 1e-6 || fabs(lv[4 * l + 1] - 0.6f) > 1e-6 || fabs(lv[4 * l + 2] - 0.9f) > 1e-6;
+                    bad += full && (fabs(lv[4 * l + 3] - 0.5f) > 1e-6 || fabs(op[l] - 0.5f) > 1e-6);
+                    bad += !full && !(lv[4 * l + 3] < 0.5f && fabs(op[l] - lv[4 * l + 3]) < 1e-6);
+                }
+        free(lv); free(op);
+    }
+    TH_CHECK(bad == 0, "constant field: %d values changed through the mips", bad);
+    voxgi_volume_destroy(ctx, vol);
+    for (dir = -1; dir < 6; dir++) { /* a lone voxel at (5, 3, 2), red, alpha 0.8 */
+        memset(albedo, 0, n * 16);
+        i = 5 + 9 * (3 + 6 * 2);
+        albedo[4 * i] = 1; albedo[4 * i + 3] = 0.8f;
+        base[3] = NULL;
+        vd.filter = dir < 0 ? VOXGI_MIPS_ISOTROPIC : VOXGI_MIPS_ANISOTROPIC;
+        voxgi_volume_create_dense(ctx, &g, &vd, base, &vol);
+        for (k = 0; k < 5; k++) {
+            float *lv = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, (voxgi_direction)(dir < 0 ? 0 : dir), k);
+            int d0 = g.res[0], d1 = g.res[1], x;
+            size_t l;
+            double want = 0.8 / pow(dir < 0 ? 8.0 : 4.0, k);
+            for (x = 0; x < k; x++) { d0 = (d0 + 1) / 2; d1 = (d1 + 1) / 2; }
+            l = (size_t)(5 >> k) + (size_t)d0 * ((size_t)(3 >> k) + (size_t)d1 * (size_t)(2 >> k));
+            bad += !lv || fabs(lv[4 * l] - 1.0f) > 1e-6 || lv[4 * l + 1] != 0 || fabs(lv[4 * l + 3] - want) > 1e-6 * want;
+            free(lv);
+        }
+        voxgi_volume_destroy(ctx, vol);
+    }
+    TH_CHECK(bad == 0, "a lone voxel lost its colour or alpha in the mips (%d)", bad);
+    {   /* red opaque at x = 0, blue opaque at x = 1: +x sees red, -x blue, alpha 1/4 at level 1 */
+        float *px, *nx;
+        memset(albedo, 0, n * 16);
+        albedo[0] = 1; albedo[3] = 1;
+        albedo[4 * 1 + 2] = 1; albedo[4 * 1 + 3] = 1;
+        vd.filter = VOXGI_MIPS_ANISOTROPIC;
+        voxgi_volume_create_dense(ctx, &g, &vd, base, &vol);
+        px = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, VOXGI_DIR_POS_X, 1);
+        nx = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, VOXGI_DIR_NEG_X, 1);
+        TH_CHECK(px && nx && px[0] == 1 && px[2] == 0 && px[3] == 0.25f && nx[0] == 0 && nx[2] == 1 && nx[3] == 0.25f,
+                 "anisotropic front-to-back: +x (%g %g %g %g), -x (%g %g %g %g)", px ? px[0] : -1, px ? px[1] : -1, px ? px[2] : -1,
+                 px ? px[3] : -1, nx ? nx[0] : -1, nx ? nx[1] : -1, nx ? nx[2] : -1, nx ? nx[3] : -1);
+        free(px); free(nx);
+        TH_CHECK(voxgi_volume_read(ctx, vol, VOXGI_ATTRIBUTE_NORMAL, 0, 0, NULL, 0, &i) == VOXGI_ERR_INVALID_ARGUMENT, "absent attribute read");
+        TH_CHECK(voxgi_volume_read(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 9, NULL, 0, &i) == VOXGI_ERR_INVALID_ARGUMENT, "level 9 read");
+        voxgi_volume_destroy(ctx, vol);
+    }
+    {   /* from a voxelization: level 0 holds the attribute means at the set voxels, alpha = opacity */
+        vxt_shape m;
+        voxgi_mesh mesh;
+        voxgi_scene sc;
+        voxgi_voxelize_desc xd;
+        voxgi_voxels *vox = NULL;
+        voxgi_material mat = {{0.25f, 0.5f, 0.75f}, {0, 0, 0}, 0.5f};
+        float *lv, *means;
+        uint32_t *bits;
+        size_t need = 0, slot = 0, l;
+        vxt_shape_sphere(&m, 24, 12, 1.0, 0, 0, 0);
+        memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&xd, 0, sizeof xd);
+        mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
+        sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = &mat; sc.material_count = 1;
+        xd.grid.origin[0] = xd.grid.origin[1] = xd.grid.origin[2] = -1.2; xd.grid.voxel_size = 0.1;
+        xd.grid.res[0] = xd.grid.res[1] = xd.grid.res[2] = 24;
+        xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_OPACITY;
+        voxgi_voxelize(ctx, &sc, &xd, &vox);
+        memset(&vd, 0, sizeof vd);
+        TH_CHECK(voxgi_volume_create(ctx, vox, &vd, &vol) == VOXGI_OK, "volume from voxels: %s", voxgi_last_error(ctx));
+        lv = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 0);
+        means = attr_read(ctx, vox, VOXGI_ATTRIBUTE_ALBEDO);
+        voxgi_voxels_read(ctx, vox, NULL, 0, &need);
+        bits = (uint32_t *)malloc(need);
+        voxgi_voxels_read(ctx, vox, bits, need, NULL);
+        for (l = 0, bad = 0; lv && means && l < 24 * 24 * 24; l++) {
+            if (!voxgi_bit_get(bits, l)) { bad += lv[4 * l + 3] != 0; continue; }
+            bad += lv[4 * l] != means[3 * slot] || lv[4 * l + 2] != means[3 * slot + 2] || fabs(lv[4 * l + 3] - 0.5f) > 1e-6;
+            slot++;
+        }
+        TH_CHECK(lv && means && bad == 0 && slot > 0, "volume base level differs from the voxels' means (%d)", bad);
+        free(lv); free(means); free(bits);
+        voxgi_volume_destroy(ctx, vol);
+        voxgi_voxels_destroy(ctx, vox);
+        vxt_shape_free(&m);
+    }
+    free(albedo); free(opacity);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
@@ -1682,6 +1813,7 @@ int main(void)
     TH_RUN(test_volume_buffer_vs_oracle);
     TH_RUN(test_attributes_vs_oracle_and_order);
     TH_RUN(test_attributes_many_small_updates);
+    TH_RUN(test_volume_mips);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
