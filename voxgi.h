@@ -409,7 +409,16 @@ VOXGI_API void voxgi_volume_query(const voxgi_volume *volume, voxgi_volume_info 
    4 floats per voxel (1 for OPACITY). dst == NULL: only *needed is set. */
 VOXGI_API voxgi_result voxgi_volume_read(voxgi_context *ctx, const voxgi_volume *volume, voxgi_attribute which,
                                          voxgi_direction direction, int level, float *dst, size_t dst_bytes, size_t *needed);
-/* GL backend: the 3D texture of one attribute (and direction), all levels (owned by volume). */
+/* Samples one attribute at `count` points: positions in grid units (voxel (i,j,k) spans
+   [i, i+1] per axis), lod >= 0 in levels (fractional: linear between the two levels around it,
+   clamped to the chain), trilinear between each level's voxel centres, beyond the grid empty.
+   out: 4 floats per point (1 for OPACITY). On GL a compute pass samples the textures with
+   shaders/volume_sample.glsl's voxgi_sample_volume (hardware filtering), on the CPU the same in C. */
+VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volume *volume, voxgi_attribute which,
+                                           voxgi_direction direction, size_t count, const float *positions, const float *lods,
+                                           float *out);
+/* GL backend: the 3D texture of one attribute (and direction), all levels (owned by volume);
+   filtering LINEAR_MIPMAP_LINEAR, clamped to an empty border, texture coordinates p / gl_size. */
 VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_volume *volume, voxgi_attribute which,
                                                voxgi_direction direction, unsigned int *gl_texture_name);
 
@@ -1117,6 +1126,13 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_RGBA32F 0x8814
 #define VOXGI__GL_R32F 0x822E
 #define VOXGI__GL_TEXTURE_3D 0x806F
+#define VOXGI__GL_TEXTURE_WRAP_S 0x2802
+#define VOXGI__GL_TEXTURE_WRAP_T 0x2803
+#define VOXGI__GL_TEXTURE_WRAP_R 0x8072
+#define VOXGI__GL_CLAMP_TO_BORDER 0x812D
+#define VOXGI__GL_TEXTURE_BORDER_COLOR 0x1004
+#define VOXGI__GL_LINEAR 0x2601
+#define VOXGI__GL_LINEAR_MIPMAP_LINEAR 0x2703
 #define VOXGI__GL_WRITE_ONLY 0x88B9
 #define VOXGI__GL_TEXTURE_UPDATE_BARRIER_BIT 0x0100
 #define VOXGI__GL_MAX_3D_TEXTURE_SIZE 0x8073
@@ -1180,6 +1196,8 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, ProgramUniform1i, (unsigned int program, int location, int v0))                              \
     X(void, ProgramUniform1ui, (unsigned int program, int location, unsigned int v0))                    \
     X(void, ProgramUniform3i, (unsigned int program, int location, int v0, int v1, int v2))              \
+    X(void, ProgramUniform1f, (unsigned int program, int location, float v0))                            \
+    X(void, ProgramUniform3f, (unsigned int program, int location, float v0, float v1, float v2))        \
     X(void, ProgramUniform2i, (unsigned int program, int location, int v0, int v1))                     \
     X(void, ProgramUniform4i, (unsigned int program, int location, int v0, int v1, int v2, int v3))     \
     X(void, ProgramUniform1d, (unsigned int program, int location, double v0))                           \
@@ -1221,6 +1239,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
                                int layer, unsigned int access, unsigned int format))                     \
     X(void, BindTextureUnit, (unsigned int unit, unsigned int texture))                                  \
     X(void, TextureParameteri, (unsigned int texture, unsigned int pname, int param))                    \
+    X(void, TextureParameterfv, (unsigned int texture, unsigned int pname, const float *params))          \
     X(void, Viewport, (int x, int y, int width, int height))                                             \
     X(void, Enable, (unsigned int cap))                                                                  \
     X(void, Enablei, (unsigned int cap, unsigned int index))                                             \
@@ -1237,7 +1256,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -4653,6 +4672,67 @@ VOXGI_API voxgi_result voxgi_volume_read(voxgi_context *ctx, const voxgi_volume 
     return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the volume holds no data");
 }
 
+/* Trilinear sample of level k of a CPU array at p (grid units of level 0). */
+static void voxgi__sample_level(const voxgi_volume *vol, const float *arr, int w, int k, const float p[3], float out[4])
+{
+    double c[3], f[3];
+    int i0[3], a, corner, ch;
+    for (ch = 0; ch < 4; ch++) out[ch] = 0;
+    for (a = 0; a < 3; a++) {
+        c[a] = (double)p[a] / (double)(1 << k) - 0.5;
+        i0[a] = (int)floor(c[a]);
+        f[a] = c[a] - i0[a];
+    }
+    for (corner = 0; corner < 8; corner++) {
+        int v[3];
+        double wt = 1;
+        for (a = 0; a < 3; a++) {
+            int hi = (corner >> a) & 1;
+            v[a] = i0[a] + hi;
+            wt *= hi ? f[a] : 1 - f[a];
+        }
+        if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= vol->dims[k][0] || v[1] >= vol->dims[k][1] || v[2] >= vol->dims[k][2] || wt == 0)
+            continue; /* beyond the grid: empty */
+        {
+            const float *t = arr + (vol->first[k] + (size_t)v[0] + (size_t)vol->dims[k][0] * ((size_t)v[1] + (size_t)vol->dims[k][1] * (size_t)v[2])) * (size_t)w;
+            for (ch = 0; ch < w; ch++) out[ch] += (float)(wt * t[ch]);
+        }
+    }
+}
+
+#ifndef VOXGI_NO_GL
+static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volume *vol, int a, int d, size_t count, const float *pos,
+                                            const float *lods, float *out);
+#endif
+
+VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir,
+                                           size_t count, const float *pos, const float *lods, float *out)
+{
+    int a, d;
+    size_t i;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vol || (count && (!pos || !lods || !out))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, positions, lods or out is NULL");
+    if ((r = voxgi__volume_pick(ctx, vol, which, dir, &a, &d)) != VOXGI_OK) return r;
+    for (i = 0; i < count; i++)
+        if (!isfinite(pos[3 * i]) || !isfinite(pos[3 * i + 1]) || !isfinite(pos[3 * i + 2]) || !isfinite(lods[i]))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)i);
+#ifndef VOXGI_NO_GL
+    if (vol->tex[a][d]) return voxgi__volume_sample_gl(ctx, vol, a, d, count, pos, lods, out);
+#endif
+    for (i = 0; i < count; i++) {
+        int w = a == 3 ? 1 : 4, ch, k0;
+        float lod = lods[i] < 0 ? 0 : (lods[i] > (float)(vol->info.levels - 1) ? (float)(vol->info.levels - 1) : lods[i]), s0[4], s1[4];
+        float t;
+        k0 = (int)floor(lod);
+        t = lod - (float)k0;
+        voxgi__sample_level(vol, vol->cpu[a][d], w, k0, pos + 3 * i, s0);
+        if (t > 0) voxgi__sample_level(vol, vol->cpu[a][d], w, k0 + 1, pos + 3 * i, s1);
+        for (ch = 0; ch < w; ch++) out[(size_t)w * i + (size_t)ch] = t > 0 ? s0[ch] + t * (s1[ch] - s0[ch]) : s0[ch];
+    }
+    return VOXGI_OK;
+}
+
 VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir,
                                                unsigned int *name)
 {
@@ -4696,6 +4776,10 @@ static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, cons
             gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
             gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
             for (k = 0; k < vol->info.levels; k++) gl->ClearTexImage(t, k, a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_S, VOXGI__GL_CLAMP_TO_BORDER);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_T, VOXGI__GL_CLAMP_TO_BORDER);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_R, VOXGI__GL_CLAMP_TO_BORDER);
+            gl->TextureParameterfv(t, VOXGI__GL_TEXTURE_BORDER_COLOR, zeros);
             gl->TextureSubImage3D(t, 0, 0, 0, 0, vol->dims[0][0], vol->dims[0][1], vol->dims[0][2], a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA,
                                   VOXGI__GL_FLOAT, base[a]);
             gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_single"), a == 3);
@@ -4711,11 +4795,62 @@ static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, cons
             }
         }
     }
+    for (a = 0; a < 4; a++) /* ready for sampling: trilinear between levels */
+        for (d = 0; d < dirs; d++)
+            if (vol->tex[a][d]) {
+                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_LINEAR_MIPMAP_LINEAR);
+                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_LINEAR);
+            }
     gl->BindTextureUnit(0, 0);
     gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_RGBA32F);
     gl->BindImageTexture(1, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32F);
     voxgi__gl_unbind(gl);
     return voxgi__gl_check(ctx, "the volume mipmaps");
+}
+
+/* The GLSL sampler over a batch of points (shaders/volume_sample.glsl). */
+static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volume *vol, int a, int d, size_t count, const float *pos,
+                                            const float *lods, float *out)
+{
+    voxgi__gl *gl = ctx->gl;
+    unsigned int bufs[3], p;
+    float *packed;
+    size_t i;
+    int w = a == 3 ? 1 : 4;
+    voxgi_result r = voxgi__gl_get_program(ctx, "volume_sample.glsl", &gl->prog_volume_sample);
+    if (r != VOXGI_OK) return r;
+    if (!count) return VOXGI_OK;
+    if (count > (size_t)65535 * 64 * 64) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
+    packed = (float *)voxgi__alloc_array(ctx, count, 4 * sizeof(float), 0);
+    if (!packed) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
+    for (i = 0; i < count; i++) {
+        memcpy(packed + 4 * i, pos + 3 * i, 3 * sizeof(float));
+        packed[4 * i + 3] = lods[i];
+    }
+    bufs[0] = voxgi__gl_buffer(ctx, count * 16, packed);
+    bufs[1] = voxgi__gl_buffer(ctx, count * 16, NULL);
+    voxgi__free(ctx, packed);
+    p = gl->prog_volume_sample;
+    gl->UseProgram(p);
+    gl->BindTextureUnit(0, vol->tex[a][d]);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)count);
+    gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_size"), (float)vol->info.gl_size[0], (float)vol->info.gl_size[1], (float)vol->info.gl_size[2]);
+    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_max_lod"), (float)(vol->info.levels - 1));
+    gl->DispatchCompute((unsigned)VOXGI__MIN((count + 63) / 64, (size_t)65535), (unsigned)((count + 65535 * 64 - 1) / (65535 * 64)), 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl->BindTextureUnit(0, 0);
+    voxgi__gl_unbind(gl);
+    packed = (float *)voxgi__alloc_array(ctx, count, 4 * sizeof(float), 0);
+    if (!packed) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu samples", (unsigned long)count);
+    if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, bufs[1], packed, count * 16);
+    for (i = 0; r == VOXGI_OK && i < count; i++) memcpy(out + (size_t)w * i, packed + 4 * i, (size_t)w * sizeof(float));
+    voxgi__free(ctx, packed);
+    voxgi__gl_delete_buffer(ctx, bufs[0]);
+    voxgi__gl_delete_buffer(ctx, bufs[1]);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "sampling a volume");
+    return r;
 }
 #endif
 

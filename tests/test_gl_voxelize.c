@@ -686,6 +686,63 @@ static void test_gl_volume_mips_equal_cpu(void)
     voxgi_destroy(gl);
 }
 
+/* The GLSL sampler (hardware trilinear between levels on the padded textures) against the
+   CPU's, on a non-power-of-two volume with structure, at random points inside and around the
+   grid and random lods: equal within the rasterizer's filter precision. */
+static void test_gl_volume_sampling_equals_cpu(void)
+{
+    voxgi_context *cpu, *gl;
+    voxgi_grid g;
+    voxgi_volume_desc vd;
+    voxgi_volume *vol[2] = {NULL, NULL};
+    const float *base[4];
+    float *albedo, *opacity, pos[3 * 1000], lods[1000], out[2][4 * 1000];
+    size_t i, n;
+    int b, f;
+    double worst = 0;
+    if (!have_gl()) return;
+    cpu = make_ctx(VOXGI_BACKEND_CPU);
+    gl = make_ctx(VOXGI_BACKEND_GL);
+    g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1;
+    g.res[0] = 21; g.res[1] = 13; g.res[2] = 10;
+    n = (size_t)voxgi_grid_voxel_count(&g);
+    albedo = (float *)malloc(n * 16);
+    opacity = (float *)malloc(n * 4);
+    for (i = 0; i < n; i++) {
+        int x = (int)(i % 21), y = (int)(i / 21 % 13), z = (int)(i / 273);
+        int set = (x * 7 + y * 3 + z * 5) % 4 != 0;
+        albedo[4 * i] = set ? (float)x / 21 : 0; albedo[4 * i + 1] = set ? (float)y / 13 : 0;
+        albedo[4 * i + 2] = set ? (float)z / 10 : 0; albedo[4 * i + 3] = set ? 0.25f + 0.75f * (float)((x + y) % 3) / 2 : 0;
+        opacity[i] = albedo[4 * i + 3];
+    }
+    base[0] = albedo; base[1] = base[2] = NULL; base[3] = opacity;
+    for (i = 0; i < 1000; i++) {
+        pos[3 * i] = (float)(-2 + 25 * ((double)rand() / RAND_MAX));
+        pos[3 * i + 1] = (float)(-2 + 17 * ((double)rand() / RAND_MAX));
+        pos[3 * i + 2] = (float)(-2 + 14 * ((double)rand() / RAND_MAX));
+        lods[i] = (float)(-0.5 + 6 * ((double)rand() / RAND_MAX));
+    }
+    for (f = 0; f < 2; f++) {
+        memset(&vd, 0, sizeof vd);
+        vd.filter = (voxgi_mip_filter)f;
+        for (b = 0; b < 2; b++) {
+            voxgi_volume_create_dense(b ? gl : cpu, &g, &vd, base, &vol[b]);
+            TH_CHECK(vol[b] && voxgi_volume_sample(b ? gl : cpu, vol[b], VOXGI_ATTRIBUTE_ALBEDO, (voxgi_direction)(f ? 3 : 0), 1000, pos, lods,
+                                                   out[b]) == VOXGI_OK, "sampling failed: %s", voxgi_last_error(b ? gl : cpu));
+        }
+        for (i = 0; i < 4000; i++) {
+            double e = fabs((double)out[0][i] - out[1][i]);
+            if (e > worst) worst = e;
+        }
+        for (b = 0; b < 2; b++) voxgi_volume_destroy(b ? gl : cpu, vol[b]);
+    }
+    printf("    GL sampling within %.3g of the CPU's (values in [0,1])\n", worst);
+    TH_CHECK(worst <= 1e-3, "GL sampling differs from the CPU's by %g", worst);
+    free(albedo); free(opacity);
+    voxgi_destroy(cpu);
+    voxgi_destroy(gl);
+}
+
 /* The geometry-shader voxelizer on every shape of the compute tests: bit for bit the CPU's. */
 static void test_gl_raster_geometry_equals_cpu(void)
 {
@@ -815,6 +872,7 @@ int main(void)
     TH_RUN(test_gl_raster_atlas_equals_cpu);
     TH_RUN(test_gl_raster_geometry_equals_cpu);
     TH_RUN(test_gl_volume_mips_equal_cpu);
+    TH_RUN(test_gl_volume_sampling_equals_cpu);
     TH_RUN(test_gl_raster_volume_buffer);
     TH_RUN(test_gl_raster_attributes_equal_cpu);
     TH_RUN(test_gl_interop_and_backends);

@@ -1796,6 +1796,54 @@ static void test_volume_mips(void)
     voxgi_destroy(ctx);
 }
 
+/* Sampling: trilinear between voxel centres and linear between levels reproduce a linear field
+   (red = x) at every lod in the interior, whatever the level; beyond the grid the volume is empty. */
+static void test_volume_sampling(void)
+{
+    voxgi_context *ctx = make_ctx(1);
+    voxgi_grid g;
+    voxgi_volume_desc vd;
+    voxgi_volume *vol = NULL;
+    float *albedo, pos[3 * 200], lods[200], out[4 * 200];
+    const float *base[4];
+    size_t i, n;
+    double worst = 0;
+    g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1;
+    g.res[0] = 32; g.res[1] = 16; g.res[2] = 16;
+    n = (size_t)voxgi_grid_voxel_count(&g);
+    albedo = (float *)malloc(n * 16);
+    for (i = 0; i < n; i++) {
+        albedo[4 * i] = (float)(i % 32) + 0.5f;
+        albedo[4 * i + 1] = 0.25f; albedo[4 * i + 2] = 0.5f; albedo[4 * i + 3] = 1;
+    }
+    base[0] = albedo; base[1] = base[2] = base[3] = NULL;
+    memset(&vd, 0, sizeof vd);
+    voxgi_volume_create_dense(ctx, &g, &vd, base, &vol);
+    for (i = 0; i < 200; i++) { /* lod l needs 2^l voxels of margin for its centres to straddle p */
+        lods[i] = (float)(3.0 * rnd());
+        pos[3 * i] = (float)(8 + 16 * rnd());
+        pos[3 * i + 1] = (float)(8 + 0.1 * rnd());
+        pos[3 * i + 2] = (float)(8 + 0.1 * rnd());
+    }
+    TH_CHECK(voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 200, pos, lods, out) == VOXGI_OK, "sample: %s", voxgi_last_error(ctx));
+    for (i = 0; i < 200; i++) {
+        double e = fabs(out[4 * i] - pos[3 * i]) + fabs(out[4 * i + 1] - 0.25) + fabs(out[4 * i + 3] - 1);
+        if (e > worst) worst = e;
+    }
+    TH_CHECK(worst < 1e-4, "a linear field sampled off by %g", worst);
+    pos[0] = -3; pos[1] = 5; pos[2] = 5; lods[0] = 0;
+    voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 1, pos, lods, out);
+    TH_CHECK(out[0] == 0 && out[3] == 0, "outside the grid: %g %g", out[0], out[3]);
+    pos[0] = 0.5f; /* half way between the border and the first centre column: alpha half */
+    voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 1, pos, lods, out);
+    TH_CHECK(fabs(out[3] - 1) < 1e-6 && out[0] == 0.5f, "on the first centre: %g %g", out[0], out[3]);
+    pos[0] = 0; voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 1, pos, lods, out);
+    TH_CHECK(fabs(out[3] - 0.5) < 1e-6, "at the grid's face alpha %g, want 0.5", out[3]);
+    voxgi_volume_destroy(ctx, vol);
+    free(albedo);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
@@ -1814,6 +1862,7 @@ int main(void)
     TH_RUN(test_attributes_vs_oracle_and_order);
     TH_RUN(test_attributes_many_small_updates);
     TH_RUN(test_volume_mips);
+    TH_RUN(test_volume_sampling);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
