@@ -35,7 +35,8 @@
 
    METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
    (raster), atlas and atlas-compute (texture atlas points); see voxgi_method. Conservative and
-   thin also average per-voxel attributes (voxgi_attribute). voxgi_voxels_reduce builds OR mipmaps.
+   thin also average per-voxel attributes (voxgi_attribute). voxgi_voxels_reduce builds OR mipmaps;
+   voxgi_volume_create builds attribute volumes with mipmaps, voxgi_volume_sample samples them.
 
    SEMANTICS (exact; see the part banners below for each capability)
      Grid: origin o (double[3]), voxel size s (double > 0), resolution n (int[3]). Voxel (i,j,k) is
@@ -67,8 +68,9 @@
    VERSION HISTORY
      0.1.0  context, scenes, grids, exact conservative, thin and solid voxelization, raster
             slicemap, OR mipmaps (CPU and GL), binvox.
-     0.2.0  texture atlas voxelization (raster and compute, own charts or mesh uvs); per-voxel
-            attribute averages; materials validated.
+     0.2.0  texture atlas, geometry-shader and Volume Buffer voxelization; per-voxel attributes
+            with blend modes; attribute volumes with isotropic and anisotropic mipmaps and
+            sampling; materials validated.
 */
 #ifndef VOXGI_H
 #define VOXGI_H

@@ -339,38 +339,42 @@ static void test_mesh_vs_oracle(void)
    geometry is the same) gives the same voxels: nothing depends on where the scene sits. */
 static void test_offset_and_scale_invariance(void)
 {
+    static const voxgi_method methods[] = {VOXGI_METHOD_CONSERVATIVE, VOXGI_METHOD_THIN, VOXGI_METHOD_SOLID, VOXGI_METHOD_SLICEMAP,
+                                           VOXGI_METHOD_ATLAS, VOXGI_METHOD_VOLUME_BUFFER};
     voxgi_context *ctx = make_ctx(2);
     vxt_shape m;
     voxgi_grid g0, g;
     uint32_t *ref, *bits;
     size_t i;
-    int variant;
+    int variant, k;
     float *moved;
     vxt_shape_box_and_tilted(&m); /* integer coordinates in [0, 24] */
     g0.origin[0] = -1; g0.origin[1] = -1; g0.origin[2] = -1;
     g0.voxel_size = 1.5;
     g0.res[0] = 19; g0.res[1] = 18; g0.res[2] = 17;
-    ref = voxelize_bits(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g0, NULL);
     moved = (float *)malloc(3 * m.vertex_count * sizeof(float));
-    for (variant = 0; variant < 3; variant++) {
-        double scale = variant == 0 ? 1.0 : (variant == 1 ? ldexp(1, -20) : ldexp(1, 20));
-        double offset = variant == 0 ? 1e7 : 0.0;
-        for (i = 0; i < 3 * m.vertex_count; i++) moved[i] = (float)(m.pos[i] * scale + offset);
-        g = g0;
-        for (i = 0; i < 3; i++) g.origin[i] = g0.origin[i] * scale + offset;
-        g.voxel_size = g0.voxel_size * scale;
-        bits = voxelize_bits(ctx, moved, m.vertex_count, m.idx, m.triangle_count, &g, NULL);
-        TH_CHECK(bits && compare_bits(bits, ref, &g, "moved scene") == 0, "variant %d (scale %g, offset %g) differs", variant,
-                 scale, offset);
-        free(bits);
-    }
-    {   /* and the original against the oracle */
-        uint32_t *o = oracle_voxelize(m.pos, m.idx, m.triangle_count, &g0);
-        TH_CHECK(compare_bits(ref, o, &g0, "box scene") == 0, "box scene differs from the definition");
-        free(o);
+    for (k = 0; k < (int)(sizeof methods / sizeof methods[0]); k++) { /* exact moves change no method's voxels */
+        ref = voxelize_bits_method(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g0, methods[k], NULL);
+        for (variant = 0; variant < 3; variant++) {
+            double scale = variant == 0 ? 1.0 : (variant == 1 ? ldexp(1, -20) : ldexp(1, 20));
+            double offset = variant == 0 ? 1e7 : 0.0;
+            for (i = 0; i < 3 * m.vertex_count; i++) moved[i] = (float)(m.pos[i] * scale + offset);
+            g = g0;
+            for (i = 0; i < 3; i++) g.origin[i] = g0.origin[i] * scale + offset;
+            g.voxel_size = g0.voxel_size * scale;
+            bits = voxelize_bits_method(ctx, moved, m.vertex_count, m.idx, m.triangle_count, &g, methods[k], NULL);
+            TH_CHECK(ref && bits && compare_bits(bits, ref, &g, "moved scene") == 0, "%s: variant %d (scale %g, offset %g) differs",
+                     voxgi_method_name(methods[k]), variant, scale, offset);
+            free(bits);
+        }
+        if (k == 0) { /* and the original against the oracle */
+            uint32_t *o = oracle_voxelize(m.pos, m.idx, m.triangle_count, &g0);
+            TH_CHECK(compare_bits(ref, o, &g0, "box scene") == 0, "box scene differs from the definition");
+            free(o);
+        }
+        free(ref);
     }
     free(moved);
-    free(ref);
     vxt_shape_free(&m);
     voxgi_destroy(ctx);
 }
@@ -1844,6 +1848,93 @@ static void test_volume_sampling(void)
     voxgi_destroy(ctx);
 }
 
+/* Every allocation of the attribute, atlas, Volume Buffer and volume paths may fail: the result
+   is VOXGI_ERR_OUT_OF_MEMORY (never a crash or a half result) and nothing leaks. Bad points and
+   voxels without attributes are refused. */
+static void test_volume_and_attribute_failures(void)
+{
+    float p[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0.5f, 0.2f, 0.1f, 0.3f, 1.1f, 0.4f, 0.2f, 0.3f, 1.2f, 0.9f};
+    voxgi_mesh m;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    int n, full_at = -1;
+    memset(&m, 0, sizeof m); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
+    m.positions = p; m.vertex_count = 6;
+    sc.meshes = &m; sc.mesh_count = 1;
+    vd.grid.origin[0] = vd.grid.origin[1] = vd.grid.origin[2] = -0.1;
+    vd.grid.voxel_size = 0.1;
+    vd.grid.res[0] = vd.grid.res[1] = vd.grid.res[2] = 14;
+    for (n = 0; n < 200 && full_at < 0; n++) {
+        fail_alloc fa = {0, 0};
+        voxgi_desc d;
+        voxgi_context *ctx = NULL;
+        voxgi_voxels *vox = NULL, *other = NULL;
+        voxgi_volume *vol = NULL;
+        voxgi_volume_desc vold;
+        voxgi_result r, r2 = VOXGI_ERR_OUT_OF_MEMORY, r3 = VOXGI_ERR_OUT_OF_MEMORY, r4 = VOXGI_ERR_OUT_OF_MEMORY;
+        memset(&d, 0, sizeof d);
+        d.backend = VOXGI_BACKEND_CPU;
+        d.allocator.alloc = fa_alloc; d.allocator.free = fa_free; d.allocator.user = &fa;
+        fa.countdown = n;
+        if (voxgi_create(&d, &ctx) != VOXGI_OK) continue;
+        vd.attributes = 15; vd.method = VOXGI_METHOD_CONSERVATIVE;
+        r = voxgi_voxelize(ctx, &sc, &vd, &vox);
+        if (r == VOXGI_OK) {
+            memset(&vold, 0, sizeof vold);
+            vold.filter = VOXGI_MIPS_ANISOTROPIC;
+            r2 = voxgi_volume_create(ctx, vox, &vold, &vol);
+            TH_CHECK((r2 == VOXGI_OK) == (vol != NULL) && (r2 == VOXGI_OK || r2 == VOXGI_ERR_OUT_OF_MEMORY), "volume: %s", voxgi_result_string(r2));
+        }
+        if (r2 == VOXGI_OK) {
+            vd.method = VOXGI_METHOD_ATLAS; vd.attributes = 0;
+            r3 = voxgi_voxelize(ctx, &sc, &vd, &other);
+            TH_CHECK((r3 == VOXGI_OK) == (other != NULL) && (r3 == VOXGI_OK || r3 == VOXGI_ERR_OUT_OF_MEMORY), "atlas: %s", voxgi_result_string(r3));
+            voxgi_voxels_destroy(ctx, other);
+            other = NULL;
+        }
+        if (r3 == VOXGI_OK) {
+            vd.method = VOXGI_METHOD_VOLUME_BUFFER; vd.attributes = 15;
+            r4 = voxgi_voxelize(ctx, &sc, &vd, &other);
+            TH_CHECK((r4 == VOXGI_OK) == (other != NULL) && (r4 == VOXGI_OK || r4 == VOXGI_ERR_OUT_OF_MEMORY), "volume buffer: %s", voxgi_result_string(r4));
+            voxgi_voxels_destroy(ctx, other);
+        }
+        TH_CHECK(r == VOXGI_OK || r == VOXGI_ERR_OUT_OF_MEMORY, "attributes: failure %d gave %s", n, voxgi_result_string(r));
+        if (r4 == VOXGI_OK) full_at = n;
+        voxgi_volume_destroy(ctx, vol);
+        voxgi_voxels_destroy(ctx, vox);
+        voxgi_destroy(ctx);
+        TH_CHECK(fa.live == 0, "failure %d leaked %d blocks", n, fa.live);
+    }
+    TH_CHECK(full_at > 0, "never got through");
+    {   /* refusals */
+        voxgi_context *ctx = make_ctx(1);
+        voxgi_voxels *vox = NULL;
+        voxgi_volume *vol = NULL;
+        voxgi_volume_desc vold;
+        float pos[3] = {1, 1, 1}, lod = 0, nan_pos[3], out[4];
+        nan_pos[0] = (float)sqrt(-1.0); nan_pos[1] = nan_pos[2] = 1;
+        memset(&vold, 0, sizeof vold);
+        vd.method = VOXGI_METHOD_CONSERVATIVE; vd.attributes = 0;
+        voxgi_voxelize(ctx, &sc, &vd, &vox);
+        TH_CHECK(voxgi_volume_create(ctx, vox, &vold, &vol) == VOXGI_ERR_INVALID_ARGUMENT && !vol, "a volume from voxels without attributes");
+        voxgi_voxels_destroy(ctx, vox);
+        vd.attributes = VOXGI_ATTRIBUTE_ALBEDO;
+        voxgi_voxelize(ctx, &sc, &vd, &vox);
+        vold.attributes = VOXGI_ATTRIBUTE_NORMAL;
+        TH_CHECK(voxgi_volume_create(ctx, vox, &vold, &vol) == VOXGI_ERR_INVALID_ARGUMENT && !vol, "a volume of an attribute not voxelized");
+        vold.attributes = 0; vold.levels = 99;
+        TH_CHECK(voxgi_volume_create(ctx, vox, &vold, &vol) == VOXGI_ERR_INVALID_ARGUMENT && !vol, "99 levels accepted");
+        vold.levels = 2;
+        TH_CHECK(voxgi_volume_create(ctx, vox, &vold, &vol) == VOXGI_OK && vol, "2 levels: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 1, nan_pos, &lod, out) == VOXGI_ERR_INVALID_ARGUMENT, "NaN point sampled");
+        TH_CHECK(voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, VOXGI_DIR_NEG_Y, 1, pos, &lod, out) == VOXGI_ERR_INVALID_ARGUMENT,
+                 "an isotropic volume sampled in a direction");
+        voxgi_volume_destroy(ctx, vol);
+        voxgi_voxels_destroy(ctx, vox);
+        voxgi_destroy(ctx);
+    }
+}
+
 int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
@@ -1863,6 +1954,7 @@ int main(void)
     TH_RUN(test_attributes_many_small_updates);
     TH_RUN(test_volume_mips);
     TH_RUN(test_volume_sampling);
+    TH_RUN(test_volume_and_attribute_failures);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
