@@ -34,9 +34,11 @@
      voxgi_destroy(ctx);
 
    METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
-   (raster), atlas and atlas-compute (texture atlas points); see voxgi_method. Conservative and
-   thin also average per-voxel attributes (voxgi_attribute). voxgi_voxels_reduce builds OR mipmaps;
-   voxgi_volume_create builds attribute volumes with mipmaps, voxgi_volume_sample samples them.
+   (raster), atlas and atlas-compute (texture atlas points), geometry (conservative by geometry
+   shader), volume buffer (M1, M2); see voxgi_method. Conservative, thin, geometry and volume
+   buffer also blend per-voxel attributes (voxgi_attribute, voxgi_blend). voxgi_voxels_reduce
+   builds OR mipmaps; voxgi_volume_create builds attribute volumes with mipmaps,
+   voxgi_volume_sample samples them.
 
    SEMANTICS (exact; see the part banners below for each capability)
      Grid: origin o (double[3]), voxel size s (double > 0), resolution n (int[3]). Voxel (i,j,k) is
