@@ -426,6 +426,43 @@ VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volum
 VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_volume *volume, voxgi_attribute which,
                                                voxgi_direction direction, unsigned int *gl_texture_name);
 
+/* ===================================================================== sparse voxel octree */
+/* The voxels of a grid in an octree over the cube of 2^depth voxels (depth = ceil(log2 of the
+   largest resolution)). Levels 0..depth: level 0 is the root, level depth the voxels themselves;
+   a node at level l covers 2^(depth - l) voxels per axis. Children come in tiles of 8 (child c
+   = x + 2y + 4z of the node's halves); a node's child pointer is 1 + its tile's index, 0 meaning
+   no children (the root is never a child, so 0 is never a tile). Nodes at level depth - 1 point
+   to leaf tiles: the voxel values, which carry no pointers. Every node and leaf slot holds the
+   attributes as the attribute volumes do (RGBA value and alpha, opacity alone), inner nodes the
+   isotropic mip of their children, so a lookup at level l equals the dense volume's level
+   depth - l at the same place. */
+typedef struct voxgi_svo voxgi_svo;
+typedef struct voxgi_svo_desc {
+    unsigned attributes;          /* voxgi_attribute bits (0 = all the voxels hold) */
+} voxgi_svo_desc;
+typedef struct voxgi_svo_info {
+    voxgi_grid grid;
+    voxgi_backend backend;        /* where the octree lives */
+    unsigned attributes;
+    int depth;                    /* leaves at level depth */
+    uint64_t leaf_voxels;         /* set voxels */
+    uint64_t nodes;               /* node slots: the root and 8 per inner tile */
+    uint64_t leaf_slots;          /* 8 per leaf tile (empty slots included) */
+    uint64_t level_nodes[17];     /* nodes that exist at each level 0..depth (at depth: the leaf voxels) */
+    size_t structure_bytes;       /* child pointers */
+    size_t bytes;                 /* everything: structure and values */
+    size_t dense_bytes;           /* the dense equivalent: level 0 of the same attributes as RGBA32F (R32F) */
+    double ms, ms_sort, ms_nodes, ms_values; /* whole build, then its passes */
+} voxgi_svo_info;
+
+VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *voxels, const voxgi_svo_desc *desc, voxgi_svo **out);
+VOXGI_API void voxgi_svo_destroy(voxgi_context *ctx, voxgi_svo *svo);
+VOXGI_API void voxgi_svo_query(const voxgi_svo *svo, voxgi_svo_info *out);
+/* Point lookups: the value of the node at `level` (0..depth) containing voxel coords[3i..3i+2]
+   (level-depth voxel coordinates), 4 floats per point (1 for OPACITY); empty where no node is. */
+VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, int level, size_t count,
+                                        const uint32_t *coords, float *out);
+
 /* ===================================================================== binvox files */
 /* binvox: "dim" lists x z y extents (binvox's depth, height, width), data runs with y fastest,
    then z, then x; translate = grid origin, scale = voxel_size * max(res). */
@@ -4412,49 +4449,57 @@ static int voxgi__attr_index(voxgi_attribute a)
     return a == VOXGI_ATTRIBUTE_ALBEDO ? 0 : (a == VOXGI_ATTRIBUTE_NORMAL ? 1 : (a == VOXGI_ATTRIBUTE_EMISSION ? 2 : (a == VOXGI_ATTRIBUTE_OPACITY ? 3 : -1)));
 }
 
-/* Parent p of level l from level l - 1 of the same direction's array; w: floats per voxel (4 or 1). */
-static void voxgi__mip_voxel(const float *src, const int sd[3], float *dst, int w, int dir, const int p[3])
+/* A parent's value from its 8 children c[k] (k = x + 2y + 4z; alpha in c[k][3]); dir < 0:
+   isotropic, else anisotropic along dir; w: floats per voxel stored (4, or 1 for alpha alone). */
+static void voxgi__mip_combine(float c[8][4], int w, int dir, float *dst)
 {
-    float c[8][4];
-    int k, ch, n = 0;
-    for (k = 0; k < 8; k++) { /* children in x-fastest order; beyond the grid: empty */
-        int v[3], a;
-        v[0] = 2 * p[0] + (k & 1); v[1] = 2 * p[1] + ((k >> 1) & 1); v[2] = 2 * p[2] + ((k >> 2) & 1);
-        for (a = 0; a < 3 && v[a] < sd[a]; a++) {}
-        for (ch = 0; ch < 4; ch++) c[k][ch] = 0;
-        if (a == 3) {
-            const float *s = src + ((size_t)v[0] + (size_t)sd[0] * ((size_t)v[1] + (size_t)sd[1] * (size_t)v[2])) * (size_t)w;
-            for (ch = 0; ch < w; ch++) c[k][w == 1 ? 3 : ch] = s[ch];
-        }
-        (void)n;
-    }
+    float asum = 0, vsum[3] = {0, 0, 0}, pairs = 8;
+    int k, ch;
     if (dir < 0) { /* isotropic: mean alpha, alpha-weighted value */
-        float asum = 0, vsum[3] = {0, 0, 0};
         for (k = 0; k < 8; k++) {
             asum += c[k][3];
             for (ch = 0; ch < 3; ch++) vsum[ch] += c[k][ch] * c[k][3];
         }
-        if (w == 1) { dst[0] = asum / 8; return; }
-        for (ch = 0; ch < 3; ch++) dst[ch] = asum > 0 ? vsum[ch] / asum : 0;
-        dst[3] = asum / 8;
     } else { /* anisotropic: the four pairs along the axis, front to back, averaged */
-        int axis = dir / 2, bit = 1 << axis, pair = 0;
-        float asum = 0, vsum[3] = {0, 0, 0};
+        int bit = 1 << (dir / 2);
+        pairs = 0;
         for (k = 0; k < 8; k++) {
             const float *nr, *fr;
-            float a;
             if (k & bit) continue;
             nr = (dir & 1) ? c[k | bit] : c[k]; /* +dir travels from low to high */
             fr = (dir & 1) ? c[k] : c[k | bit];
-            a = nr[3] + (1 - nr[3]) * fr[3];
-            asum += a;
+            asum += nr[3] + (1 - nr[3]) * fr[3];
             for (ch = 0; ch < 3; ch++) vsum[ch] += nr[ch] * nr[3] + (1 - nr[3]) * fr[ch] * fr[3];
-            pair++;
+            pairs += 1;
         }
-        if (w == 1) { dst[0] = asum / (float)pair; return; }
-        for (ch = 0; ch < 3; ch++) dst[ch] = asum > 0 ? vsum[ch] / asum : 0;
-        dst[3] = asum / (float)pair;
     }
+    if (w == 1) { dst[0] = asum / pairs; return; }
+    for (ch = 0; ch < 3; ch++) dst[ch] = asum > 0 ? vsum[ch] / asum : 0;
+    dst[3] = asum / pairs;
+}
+
+/* Loads one stored voxel (w floats) as (value, alpha). */
+static void voxgi__mip_load(const float *s, int w, float c[4])
+{
+    int ch;
+    for (ch = 0; ch < 4; ch++) c[ch] = 0;
+    if (!s) return;
+    if (w == 1) c[3] = s[0];
+    else for (ch = 0; ch < 4; ch++) c[ch] = s[ch];
+}
+
+/* Parent p of level l from level l - 1 of the same direction's array; w: floats per voxel (4 or 1). */
+static void voxgi__mip_voxel(const float *src, const int sd[3], float *dst, int w, int dir, const int p[3])
+{
+    float c[8][4];
+    int k;
+    for (k = 0; k < 8; k++) { /* children in x-fastest order; beyond the grid: empty */
+        int v[3], a;
+        v[0] = 2 * p[0] + (k & 1); v[1] = 2 * p[1] + ((k >> 1) & 1); v[2] = 2 * p[2] + ((k >> 2) & 1);
+        for (a = 0; a < 3 && v[a] < sd[a]; a++) {}
+        voxgi__mip_load(a == 3 ? src + ((size_t)v[0] + (size_t)sd[0] * ((size_t)v[1] + (size_t)sd[1] * (size_t)v[2])) * (size_t)w : NULL, w, c[k]);
+    }
+    voxgi__mip_combine(c, w, dir, dst);
 }
 
 /* Level 0 of every asked-for attribute, dense, from the voxels' bits and attribute means. */
@@ -4857,6 +4902,243 @@ static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volu
     return r;
 }
 #endif
+
+/* ===================================================================== sparse voxel octree
+   CPU build, linear in the voxels: their Morton codes radix-sorted; the nodes of level l are the
+   distinct codes >> 3 (depth - l) in Morton order, so each level's tiles are contiguous and a
+   node's tile is numbered by the rank of its parent; values from the leaves up. */
+struct voxgi_svo {
+    voxgi_svo_info info;
+    uint32_t *child;                          /* per node slot: 1 + tile index, 0 = none */
+    float *node_values[4], *leaf_values[4];   /* per node slot / per leaf slot, 4 floats (1 for opacity) */
+};
+
+static uint64_t voxgi__morton(uint32_t x, uint32_t y, uint32_t z, int depth)
+{
+    uint64_t m = 0;
+    int b;
+    for (b = 0; b < depth; b++)
+        m |= ((uint64_t)((x >> b) & 1u) << (3 * b)) | ((uint64_t)((y >> b) & 1u) << (3 * b + 1)) | ((uint64_t)((z >> b) & 1u) << (3 * b + 2));
+    return m;
+}
+
+/* Sorts codes (with their payloads) ascending: LSD radix over the bytes the codes use. */
+static voxgi_result voxgi__sort_codes(voxgi_context *ctx, uint64_t *code, uint32_t *payload, size_t n, int bits)
+{
+    uint64_t *c2 = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof *c2, 0);
+    uint32_t *p2 = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof *p2, 0);
+    size_t i, count[256];
+    int shift;
+    if (!c2 || !p2) { voxgi__free(ctx, c2); voxgi__free(ctx, p2); return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to sort"); }
+    for (shift = 0; shift < bits; shift += 8) {
+        size_t sum = 0;
+        memset(count, 0, sizeof count);
+        for (i = 0; i < n; i++) count[(code[i] >> shift) & 255u]++;
+        for (i = 0; i < 256; i++) { size_t k = count[i]; count[i] = sum; sum += k; }
+        for (i = 0; i < n; i++) {
+            size_t at = count[(code[i] >> shift) & 255u]++;
+            c2[at] = code[i];
+            p2[at] = payload[i];
+        }
+        memcpy(code, c2, n * sizeof *code);
+        memcpy(payload, p2, n * sizeof *payload);
+    }
+    voxgi__free(ctx, c2);
+    voxgi__free(ctx, p2);
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *vx, const voxgi_svo_desc *desc, voxgi_svo **out)
+{
+    voxgi_svo *svo;
+    const voxgi_grid *g;
+    uint64_t *codes[VOXGI__MAX_LEVELS + 1], nvox, l, tiles_before[VOXGI__MAX_LEVELS + 1];
+    size_t count[VOXGI__MAX_LEVELS + 1], need = 0, i, n = 0;
+    uint32_t *bits = NULL, *order = NULL;
+    float *vals[4] = {NULL, NULL, NULL, NULL};
+    double t0 = voxgi__now_ms(), t1;
+    int depth = 1, lev, a, maxres;
+    voxgi_result r = VOXGI_OK;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vx || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
+    *out = NULL;
+    if (!vx->info.attributes) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "these voxels hold no attributes (voxgi_voxelize_desc.attributes)");
+    if (desc->attributes & ~vx->info.attributes)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attributes 0x%x asked for, the voxels hold 0x%x", desc->attributes, vx->info.attributes);
+    g = &vx->info.grid;
+    maxres = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2]));
+    while ((1 << depth) < maxres) depth++;
+    if (depth > 16) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "octrees hold grids up to 65536 voxels per axis");
+    svo = (voxgi_svo *)voxgi__alloc_array(ctx, 1, sizeof *svo, 1);
+    if (!svo) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree");
+    memset(codes, 0, sizeof codes);
+    svo->info.grid = *g;
+    svo->info.backend = VOXGI_BACKEND_CPU;
+    svo->info.attributes = desc->attributes ? desc->attributes : vx->info.attributes;
+    svo->info.depth = depth;
+    nvox = voxgi_grid_voxel_count(g);
+    /* 1. the leaves: Morton codes of the set voxels, with their index in bit order */
+    r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
+    if (r == VOXGI_OK && !(bits = (uint32_t *)voxgi__alloc(ctx, need))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bits");
+    if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, bits, need, NULL);
+    n = (size_t)vx->info.voxel_count;
+    if (r == VOXGI_OK && (!(codes[depth] = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)) ||
+                          !(order = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 4, 0))))
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu leaves", (unsigned long)n);
+    for (l = 0, i = 0; r == VOXGI_OK && l < nvox; l++) {
+        if (!voxgi_bit_get(bits, l)) continue;
+        codes[depth][i] = voxgi__morton((uint32_t)(l % (uint64_t)g->res[0]), (uint32_t)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]),
+                                        (uint32_t)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1])), depth);
+        order[i] = (uint32_t)i;
+        i++;
+    }
+    if (r == VOXGI_OK) r = voxgi__sort_codes(ctx, codes[depth], order, n, 3 * depth);
+    t1 = voxgi__now_ms();
+    svo->info.ms_sort = t1 - t0;
+    /* 2. each level's nodes: the distinct parent codes; tiles numbered level by level */
+    count[depth] = n;
+    for (lev = depth - 1; lev >= 0 && r == VOXGI_OK; lev--) {
+        size_t m = 0;
+        if (!(codes[lev] = (uint64_t *)voxgi__alloc_array(ctx, count[lev + 1] ? count[lev + 1] : 1, 8, 0))) {
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's levels");
+            break;
+        }
+        for (i = 0; i < count[lev + 1]; i++)
+            if (!m || codes[lev][m - 1] != codes[lev + 1][i] >> 3) codes[lev][m++] = codes[lev + 1][i] >> 3;
+        if (!n && lev == 0) codes[0][m++] = 0; /* an empty octree still has its root */
+        count[lev] = m;
+    }
+    for (lev = 0; lev <= depth && r == VOXGI_OK; lev++) svo->info.level_nodes[lev] = count[lev];
+    if (r == VOXGI_OK) { /* inner tiles: level 1 .. depth-1, one per node of the level above */
+        uint64_t tiles = 0;
+        for (lev = 1; lev < depth; lev++) { tiles_before[lev] = tiles; tiles += count[lev - 1]; }
+        svo->info.nodes = 1 + 8 * tiles;
+        svo->info.leaf_slots = 8 * (uint64_t)count[depth - 1];
+        svo->info.leaf_voxels = n;
+        svo->info.structure_bytes = (size_t)(svo->info.nodes * 4);
+        if (!(svo->child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 4, 1)))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %llu nodes", (unsigned long long)svo->info.nodes);
+    }
+    if (r == VOXGI_OK) { /* child pointers: node (lev, rank) -> 1 + its tile one level down */
+        for (lev = 0; lev < depth; lev++) {
+            for (i = 0; i < count[lev]; i++) {
+                uint64_t slot;
+                if (lev == 0) slot = 0;
+                else { /* the node's slot: its parent's tile, at its digit */
+                    size_t lo = 0, hi = count[lev - 1];
+                    uint64_t parent = codes[lev][i] >> 3;
+                    while (hi - lo > 1) { size_t mid = (lo + hi) / 2; if (codes[lev - 1][mid] <= parent) lo = mid; else hi = mid; }
+                    slot = 1 + 8 * (tiles_before[lev] + lo) + (codes[lev][i] & 7u);
+                }
+                svo->child[slot] = (uint32_t)(1 + (lev == depth - 1 ? i : tiles_before[lev + 1] + i));
+            }
+        }
+    }
+    t0 = voxgi__now_ms();
+    svo->info.ms_nodes = t0 - t1;
+    /* 3. values: the leaves from the attribute means, then every node the isotropic mip of its tile */
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+        voxgi_attribute which = (voxgi_attribute)(1 << a);
+        if (!(vx->info.attributes & (unsigned)which) || (a < 3 && !(svo->info.attributes & (unsigned)which))) continue;
+        r = voxgi_voxels_read_attribute(ctx, vx, which, NULL, 0, &need);
+        if (r == VOXGI_OK && !(vals[a] = (float *)voxgi__alloc(ctx, need ? need : 4))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+        if (r == VOXGI_OK) r = voxgi_voxels_read_attribute(ctx, vx, which, vals[a], need, NULL);
+    }
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+        int w = a == 3 ? 1 : 4;
+        float *leaf, *node;
+        if (!(svo->info.attributes & (1u << a))) continue;
+        leaf = svo->leaf_values[a] = (float *)voxgi__alloc_array(ctx, (size_t)(svo->info.leaf_slots ? svo->info.leaf_slots : 1), (size_t)w * 4, 1);
+        node = svo->node_values[a] = (float *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, (size_t)w * 4, 1);
+        if (!leaf || !node) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's values"); break; }
+        {   /* leaves: slot 8 * rank(parent) + digit */
+            size_t parent_rank = 0;
+            for (i = 0; i < n; i++) {
+                uint64_t parent = codes[depth][i] >> 3;
+                float *o;
+                float alpha = vals[3] ? vals[3][order[i]] : 1.0f;
+                while (codes[depth - 1][parent_rank] != parent) parent_rank++;
+                o = leaf + (8 * parent_rank + (codes[depth][i] & 7u)) * (size_t)w;
+                if (w == 1) o[0] = alpha;
+                else { o[0] = vals[a][3 * (size_t)order[i]]; o[1] = vals[a][3 * (size_t)order[i] + 1]; o[2] = vals[a][3 * (size_t)order[i] + 2]; o[3] = alpha; }
+            }
+        }
+        for (lev = depth - 1; lev >= 0; lev--) /* nodes bottom up */
+            for (i = 0; i < count[lev]; i++) {
+                uint64_t slot = 0, tile;
+                float c[8][4];
+                int k;
+                if (lev > 0) {
+                    size_t lo = 0, hi = count[lev - 1];
+                    uint64_t parent = codes[lev][i] >> 3;
+                    while (hi - lo > 1) { size_t mid = (lo + hi) / 2; if (codes[lev - 1][mid] <= parent) lo = mid; else hi = mid; }
+                    slot = 1 + 8 * (tiles_before[lev] + lo) + (codes[lev][i] & 7u);
+                }
+                tile = svo->child[slot] - 1;
+                for (k = 0; k < 8; k++)
+                    voxgi__mip_load(lev == depth - 1 ? leaf + (8 * tile + (uint64_t)k) * (uint64_t)w : node + (1 + 8 * tile + (uint64_t)k) * (uint64_t)w, w, c[k]);
+                voxgi__mip_combine(c, w, -1, node + slot * (uint64_t)w);
+            }
+        svo->info.bytes += (size_t)((svo->info.nodes + svo->info.leaf_slots) * (uint64_t)w * 4);
+        svo->info.dense_bytes += (size_t)(nvox * (uint64_t)w * 4);
+    }
+    svo->info.bytes += svo->info.structure_bytes;
+    svo->info.ms_values = voxgi__now_ms() - t0;
+    for (lev = 0; lev <= VOXGI__MAX_LEVELS; lev++) voxgi__free(ctx, codes[lev]);
+    for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
+    voxgi__free(ctx, bits);
+    voxgi__free(ctx, order);
+    if (r != VOXGI_OK) { voxgi_svo_destroy(ctx, svo); return r; }
+    svo->info.ms = svo->info.ms_sort + svo->info.ms_nodes + svo->info.ms_values;
+    *out = svo;
+    return VOXGI_OK;
+}
+
+VOXGI_API void voxgi_svo_destroy(voxgi_context *ctx, voxgi_svo *svo)
+{
+    int a;
+    if (!ctx || !svo) return;
+    voxgi__free(ctx, svo->child);
+    for (a = 0; a < 4; a++) { voxgi__free(ctx, svo->node_values[a]); voxgi__free(ctx, svo->leaf_values[a]); }
+    voxgi__free(ctx, svo);
+}
+
+VOXGI_API void voxgi_svo_query(const voxgi_svo *svo, voxgi_svo_info *out)
+{
+    if (!out) return;
+    if (!svo) { memset(out, 0, sizeof *out); return; }
+    *out = svo->info;
+}
+
+VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, int level, size_t count,
+                                        const uint32_t *coords, float *out)
+{
+    int a = voxgi__attr_index(which), w = which == VOXGI_ATTRIBUTE_OPACITY ? 1 : 4, depth, ch;
+    size_t i;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!svo || (count && (!coords || !out))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "svo, coords or out is NULL");
+    if (a < 0 || !(svo->info.attributes & (unsigned)which))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attribute %d is not in this octree (0x%x)", (int)which, svo->info.attributes);
+    depth = svo->info.depth;
+    if (level < 0 || level > depth) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "level %d of 0..%d", level, depth);
+    for (i = 0; i < count; i++) {
+        const uint32_t *v = coords + 3 * i;
+        const float *val = NULL;
+        uint64_t node = 0;
+        int m;
+        if (!(v[0] >> depth) && !(v[1] >> depth) && !(v[2] >> depth)) { /* inside the cube: descend */
+            val = svo->node_values[a];
+            for (m = 1; m <= level && val; m++) {
+                uint32_t ptr = svo->child[node], digit = ((v[0] >> (depth - m)) & 1u) | (((v[1] >> (depth - m)) & 1u) << 1) | (((v[2] >> (depth - m)) & 1u) << 2);
+                if (!ptr) val = NULL;
+                else if (m == depth) { val = svo->leaf_values[a]; node = 8 * (uint64_t)(ptr - 1) + digit; }
+                else node = 1 + 8 * (uint64_t)(ptr - 1) + digit;
+            }
+        }
+        for (ch = 0; ch < w; ch++) out[(size_t)w * i + (size_t)ch] = val ? val[node * (uint64_t)w + (uint64_t)ch] : 0.0f;
+    }
+    return VOXGI_OK;
+}
 
 /* ===================================================================== binvox files */
 VOXGI_API voxgi_result voxgi_binvox_write(FILE *f, const voxgi_grid *g, const uint32_t *bits)

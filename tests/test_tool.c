@@ -54,7 +54,7 @@ static void write_file(const char *name, const char *text, char *path, size_t pa
 static void test_help_everywhere(void)
 {
     static char out[8192];
-    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help"};
+    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "svo --help"};
     size_t i;
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         int rc = run(cmds[i], out, sizeof out);
@@ -179,6 +179,24 @@ static void test_voxelize_methods(void)
     TH_CHECK(run("voxelize builtin:cube --method solid --solid-mode guess", out, sizeof out) == 2, "unknown solid mode accepted");
 }
 
+/* voxgi svo: as many leaves as the voxelization sets, a root, and at most 8 structure bytes
+   per voxel; the per-level node counts end with the leaves. */
+static void test_svo_command(void)
+{
+    static char out[8192];
+    double cons, leaves;
+    int rc = run("voxelize builtin:sphere --res 40 --backend cpu --json", out, sizeof out);
+    cons = json_number(out, "voxels");
+    rc |= run("svo builtin:sphere --res 40 --backend cpu --json", out, sizeof out);
+    leaves = json_number(out, "leaf_voxels");
+    TH_CHECK(rc == 0 && leaves == cons && json_number(out, "nodes") > 8 && json_number(out, "structure_bytes") <= 8 * leaves &&
+             json_number(out, "bytes") > json_number(out, "structure_bytes") && json_number(out, "depth") == 6 && strstr(out, "\"level_nodes\":[1,"),
+             "svo: %s", out);
+    rc = run("svo builtin:cube --res 16 --backend cpu", out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "Table 5.1") && strstr(out, "Table 5.2"), "svo tables: %s", out);
+    TH_CHECK(run("svo builtin:cube --attributes colour", out, sizeof out) == 2, "unknown attribute accepted");
+}
+
 static void test_info_and_bench(void)
 {
     static char out[16384];
@@ -207,6 +225,7 @@ int main(void)
     TH_RUN(test_bad_files_and_arguments);
     TH_RUN(test_voxelize_methods);
     TH_RUN(test_info_and_bench);
+    TH_RUN(test_svo_command);
     {
         char cmd[300];
         snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);

@@ -1935,6 +1935,101 @@ static void test_volume_and_attribute_failures(void)
     }
 }
 
+/* ---------------------------------------------------------------- sparse voxel octree */
+/* Octree lookups equal the dense isotropic volume at every level, bit for bit (the same float
+   formulas in the same child order); the nodes of level l are exactly the distinct
+   coordinates >> (depth - l) of the voxels; child pointers never use 0 for a tile; the
+   structure costs at most 8 bytes per voxel. */
+static void test_svo_equals_dense(void)
+{
+    voxgi_context *ctx = make_ctx(2);
+    vxt_shape m;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_voxelize_desc xd;
+    voxgi_voxels *vox = NULL;
+    voxgi_volume *vol = NULL;
+    voxgi_volume_desc vd;
+    voxgi_svo *svo = NULL;
+    voxgi_svo_desc sd;
+    voxgi_svo_info info;
+    voxgi_material mats[2] = {{{0.9f, 0.1f, 0.2f}, {3, 2, 1}, 0.5f}, {{0.3f, 0.7f, 0.5f}, {0, 0, 0}, 0.0f}};
+    uint32_t *ids, *bits;
+    size_t t, need = 0;
+    int lev, bad = 0, a;
+    vxt_shape_sphere(&m, 30, 15, 1.0, 0.013, -0.021, 0.007);
+    ids = (uint32_t *)malloc(m.triangle_count * 4);
+    for (t = 0; t < m.triangle_count; t++) ids[t] = (uint32_t)(t % 2);
+    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&xd, 0, sizeof xd);
+    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
+    mesh.material_ids = ids;
+    sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 2;
+    xd.grid.origin[0] = -1.1; xd.grid.origin[1] = -1.2; xd.grid.origin[2] = -1.05;
+    xd.grid.voxel_size = 0.09;
+    xd.grid.res[0] = 27; xd.grid.res[1] = 25; xd.grid.res[2] = 30; /* not powers of two */
+    xd.attributes = 15;
+    voxgi_voxelize(ctx, &sc, &xd, &vox);
+    memset(&vd, 0, sizeof vd); memset(&sd, 0, sizeof sd);
+    TH_CHECK(vox && voxgi_volume_create(ctx, vox, &vd, &vol) == VOXGI_OK, "volume: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK, "octree: %s", voxgi_last_error(ctx));
+    if (!vol || !svo) return;
+    voxgi_svo_query(svo, &info);
+    TH_CHECK(info.depth == 5 && info.leaf_voxels > 0 && info.level_nodes[5] == info.leaf_voxels && info.level_nodes[0] == 1, "depth %d", info.depth);
+    voxgi_voxels_read(ctx, vox, NULL, 0, &need);
+    bits = (uint32_t *)malloc(need);
+    voxgi_voxels_read(ctx, vox, bits, need, NULL);
+    for (lev = 0; lev <= info.depth; lev++) {
+        int k = info.depth - lev, d[3], x, y, z;
+        uint64_t distinct = 0, l;
+        unsigned char *seen;
+        for (a = 0; a < 3; a++) { d[a] = xd.grid.res[a]; for (x = 0; x < k; x++) d[a] = (d[a] + 1) / 2; }
+        seen = (unsigned char *)calloc((size_t)d[0] * (size_t)d[1] * (size_t)d[2], 1);
+        for (l = 0; l < 27u * 25u * 30u; l++)
+            if (voxgi_bit_get(bits, l)) {
+                size_t at = (size_t)((l % 27) >> k) + (size_t)d[0] * ((size_t)((l / 27 % 25) >> k) + (size_t)d[1] * (size_t)((l / 675) >> k));
+                distinct += !seen[at];
+                seen[at] = 1;
+            }
+        bad += distinct != info.level_nodes[lev];
+        for (a = 0; a < 4; a++) {
+            voxgi_attribute which = (voxgi_attribute)(1 << a);
+            int w = a == 3 ? 1 : 4;
+            size_t nd = (size_t)d[0] * (size_t)d[1] * (size_t)d[2], i;
+            float *dense = (float *)malloc(nd * (size_t)w * 4), *got = (float *)malloc(nd * (size_t)w * 4);
+            uint32_t *coords = (uint32_t *)malloc(nd * 12);
+            voxgi_volume_read(ctx, vol, which, 0, k, dense, nd * (size_t)w * 4, NULL);
+            for (z = 0, i = 0; z < d[2]; z++)
+                for (y = 0; y < d[1]; y++)
+                    for (x = 0; x < d[0]; x++, i++) {
+                        coords[3 * i] = (uint32_t)x << k; coords[3 * i + 1] = (uint32_t)y << k; coords[3 * i + 2] = (uint32_t)z << k;
+                    }
+            voxgi_svo_lookup(ctx, svo, which, lev, nd, coords, got);
+            bad += memcmp(dense, got, nd * (size_t)w * 4) != 0;
+            free(dense); free(got); free(coords);
+        }
+        free(seen);
+    }
+    TH_CHECK(bad == 0, "octree and dense volume differ (%d level/attribute pairs)", bad);
+    printf("    octree 27x25x30, depth %d: %llu voxels, %llu node slots, %llu leaf slots, structure %.2f bytes per voxel, %lu bytes vs %lu dense\n",
+           info.depth, (unsigned long long)info.leaf_voxels, (unsigned long long)info.nodes, (unsigned long long)info.leaf_slots,
+           (double)info.structure_bytes / (double)info.leaf_voxels, (unsigned long)info.bytes, (unsigned long)info.dense_bytes);
+    TH_CHECK(info.structure_bytes <= 8 * info.leaf_voxels, "structure %lu bytes for %llu voxels", (unsigned long)info.structure_bytes,
+             (unsigned long long)info.leaf_voxels);
+    {   /* outside the grid's cube and at empty places: empty */
+        uint32_t c[6] = {40, 1, 1, 0, 0, 0};
+        float o[8];
+        voxgi_svo_lookup(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, info.depth, 2, c, o);
+        TH_CHECK(o[3] == 0 && o[7] == 0, "empty places are not empty");
+        TH_CHECK(voxgi_svo_lookup(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, 9, 1, c, o) == VOXGI_ERR_INVALID_ARGUMENT, "level 9 accepted");
+    }
+    free(bits); free(ids);
+    voxgi_svo_destroy(ctx, svo);
+    voxgi_volume_destroy(ctx, vol);
+    voxgi_voxels_destroy(ctx, vox);
+    vxt_shape_free(&m);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     TH_RUN(test_random_triangles_vs_oracle);
@@ -1955,6 +2050,7 @@ int main(void)
     TH_RUN(test_volume_mips);
     TH_RUN(test_volume_sampling);
     TH_RUN(test_volume_and_attribute_failures);
+    TH_RUN(test_svo_equals_dense);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
     TH_RUN(test_thread_determinism);
