@@ -4985,12 +4985,15 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     if (r == VOXGI_OK && (!(codes[depth] = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)) ||
                           !(order = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 4, 0))))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu leaves", (unsigned long)n);
-    for (l = 0, i = 0; r == VOXGI_OK && l < nvox; l++) {
-        if (!voxgi_bit_get(bits, l)) continue;
-        codes[depth][i] = voxgi__morton((uint32_t)(l % (uint64_t)g->res[0]), (uint32_t)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]),
-                                        (uint32_t)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1])), depth);
-        order[i] = (uint32_t)i;
-        i++;
+    for (l = 0, i = 0; r == VOXGI_OK && l < (nvox + 31) / 32; l++) { /* word by word: empty space costs little */
+        uint32_t word = bits[l];
+        for (; word; word &= word - 1) {
+            uint64_t v = 32 * l + (uint64_t)voxgi__popcount32((word & (0u - word)) - 1u);
+            codes[depth][i] = voxgi__morton((uint32_t)(v % (uint64_t)g->res[0]), (uint32_t)(v / (uint64_t)g->res[0] % (uint64_t)g->res[1]),
+                                            (uint32_t)(v / ((uint64_t)g->res[0] * (uint64_t)g->res[1])), depth);
+            order[i] = (uint32_t)i;
+            i++;
+        }
     }
     if (r == VOXGI_OK) r = voxgi__sort_codes(ctx, codes[depth], order, n, 3 * depth);
     t1 = voxgi__now_ms();
