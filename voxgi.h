@@ -4913,13 +4913,22 @@ struct voxgi_svo {
     float *node_values[4], *leaf_values[4];   /* per node slot / per leaf slot, 4 floats (1 for opacity) */
 };
 
-static uint64_t voxgi__morton(uint32_t x, uint32_t y, uint32_t z, int depth)
+/* Spreads the low 21 bits of v to every third bit. */
+static uint64_t voxgi__spread3(uint64_t v)
 {
-    uint64_t m = 0;
-    int b;
-    for (b = 0; b < depth; b++)
-        m |= ((uint64_t)((x >> b) & 1u) << (3 * b)) | ((uint64_t)((y >> b) & 1u) << (3 * b + 1)) | ((uint64_t)((z >> b) & 1u) << (3 * b + 2));
-    return m;
+    v &= 0x1FFFFFu;
+    v = (v | v << 32) & 0x1F00000000FFFFull;
+    v = (v | v << 16) & 0x1F0000FF0000FFull;
+    v = (v | v << 8) & 0x100F00F00F00F00Full;
+    v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+}
+
+/* The Morton code: x in bit 0 of every octal digit, y in bit 1, z in bit 2. */
+static uint64_t voxgi__morton(uint32_t x, uint32_t y, uint32_t z)
+{
+    return voxgi__spread3(x) | voxgi__spread3(y) << 1 | voxgi__spread3(z) << 2;
 }
 
 /* Sorts codes (with their payloads) ascending: LSD radix over the bytes the codes use. */
@@ -4955,6 +4964,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     uint64_t *codes[VOXGI__MAX_LEVELS + 1], nvox, l, tiles_before[VOXGI__MAX_LEVELS + 1];
     size_t count[VOXGI__MAX_LEVELS + 1], need = 0, i, n = 0;
     uint32_t *bits = NULL, *order = NULL;
+    const uint32_t *leaf_bits = NULL;
     float *vals[4] = {NULL, NULL, NULL, NULL};
     double t0 = voxgi__now_ms(), t1;
     int depth = 1, lev, a, maxres;
@@ -4977,20 +4987,25 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     svo->info.attributes = desc->attributes ? desc->attributes : vx->info.attributes;
     svo->info.depth = depth;
     nvox = voxgi_grid_voxel_count(g);
-    /* 1. the leaves: Morton codes of the set voxels, with their index in bit order */
-    r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
-    if (r == VOXGI_OK && !(bits = (uint32_t *)voxgi__alloc(ctx, need))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bits");
-    if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, bits, need, NULL);
+    /* 1. the leaves: Morton codes of the set voxels, with their index in bit order (GL voxels
+       are read back; CPU ones are used where they are) */
+    if (vx->bits) leaf_bits = vx->bits;
+    else {
+        r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
+        if (r == VOXGI_OK && !(bits = (uint32_t *)voxgi__alloc(ctx, need))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bits");
+        if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, bits, need, NULL);
+        leaf_bits = bits;
+    }
     n = (size_t)vx->info.voxel_count;
     if (r == VOXGI_OK && (!(codes[depth] = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)) ||
                           !(order = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 4, 0))))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu leaves", (unsigned long)n);
     for (l = 0, i = 0; r == VOXGI_OK && l < (nvox + 31) / 32; l++) { /* word by word: empty space costs little */
-        uint32_t word = bits[l];
+        uint32_t word = leaf_bits[l];
         for (; word; word &= word - 1) {
             uint64_t v = 32 * l + (uint64_t)voxgi__popcount32((word & (0u - word)) - 1u);
             codes[depth][i] = voxgi__morton((uint32_t)(v % (uint64_t)g->res[0]), (uint32_t)(v / (uint64_t)g->res[0] % (uint64_t)g->res[1]),
-                                            (uint32_t)(v / ((uint64_t)g->res[0] * (uint64_t)g->res[1])), depth);
+                                            (uint32_t)(v / ((uint64_t)g->res[0] * (uint64_t)g->res[1])));
             order[i] = (uint32_t)i;
             i++;
         }
@@ -5024,14 +5039,12 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     }
     if (r == VOXGI_OK) { /* child pointers: node (lev, rank) -> 1 + its tile one level down */
         for (lev = 0; lev < depth; lev++) {
+            size_t parent_rank = 0; /* both levels are in Morton order: the parent only moves forward */
             for (i = 0; i < count[lev]; i++) {
-                uint64_t slot;
-                if (lev == 0) slot = 0;
-                else { /* the node's slot: its parent's tile, at its digit */
-                    size_t lo = 0, hi = count[lev - 1];
-                    uint64_t parent = codes[lev][i] >> 3;
-                    while (hi - lo > 1) { size_t mid = (lo + hi) / 2; if (codes[lev - 1][mid] <= parent) lo = mid; else hi = mid; }
-                    slot = 1 + 8 * (tiles_before[lev] + lo) + (codes[lev][i] & 7u);
+                uint64_t slot = 0;
+                if (lev > 0) { /* the node's slot: its parent's tile, at its digit */
+                    while (codes[lev - 1][parent_rank] != codes[lev][i] >> 3) parent_rank++;
+                    slot = 1 + 8 * (tiles_before[lev] + parent_rank) + (codes[lev][i] & 7u);
                 }
                 svo->child[slot] = (uint32_t)(1 + (lev == depth - 1 ? i : tiles_before[lev + 1] + i));
             }
@@ -5066,22 +5079,22 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
                 else { o[0] = vals[a][3 * (size_t)order[i]]; o[1] = vals[a][3 * (size_t)order[i] + 1]; o[2] = vals[a][3 * (size_t)order[i] + 2]; o[3] = alpha; }
             }
         }
-        for (lev = depth - 1; lev >= 0; lev--) /* nodes bottom up */
+        for (lev = depth - 1; lev >= 0; lev--) { /* nodes bottom up */
+            size_t parent_rank = 0;
             for (i = 0; i < count[lev]; i++) {
                 uint64_t slot = 0, tile;
                 float c[8][4];
                 int k;
                 if (lev > 0) {
-                    size_t lo = 0, hi = count[lev - 1];
-                    uint64_t parent = codes[lev][i] >> 3;
-                    while (hi - lo > 1) { size_t mid = (lo + hi) / 2; if (codes[lev - 1][mid] <= parent) lo = mid; else hi = mid; }
-                    slot = 1 + 8 * (tiles_before[lev] + lo) + (codes[lev][i] & 7u);
+                    while (codes[lev - 1][parent_rank] != codes[lev][i] >> 3) parent_rank++;
+                    slot = 1 + 8 * (tiles_before[lev] + parent_rank) + (codes[lev][i] & 7u);
                 }
                 tile = svo->child[slot] - 1;
                 for (k = 0; k < 8; k++)
                     voxgi__mip_load(lev == depth - 1 ? leaf + (8 * tile + (uint64_t)k) * (uint64_t)w : node + (1 + 8 * tile + (uint64_t)k) * (uint64_t)w, w, c[k]);
                 voxgi__mip_combine(c, w, -1, node + slot * (uint64_t)w);
             }
+        }
         svo->info.bytes += (size_t)((svo->info.nodes + svo->info.leaf_slots) * (uint64_t)w * 4);
         svo->info.dense_bytes += (size_t)(nvox * (uint64_t)w * 4);
     }
