@@ -282,14 +282,15 @@ typedef enum voxgi_solid_mode { VOXGI_SOLID_PARITY = 0, VOXGI_SOLID_VOTE, VOXGI_
    subpixel grid, so GL and CPU see the same triangles. */
 typedef enum voxgi_atlas_uv { VOXGI_ATLAS_AUTO = 0, VOXGI_ATLAS_MESH } voxgi_atlas_uv;
 
-/* Attributes: per set voxel, the mean over the triangles that set it of each triangle's value.
-   ALBEDO and EMISSION come from the material (3 floats each), OPACITY is 1 - transparency (1
+/* Attributes: per set voxel, a blend (voxgi_blend; by default the mean) over the triangles that
+   set it (fragments, for the Volume Buffer) of each one's value. ALBEDO and EMISSION come from the material (3 floats each), OPACITY is 1 - transparency (1
    float), NORMAL is the triangle's unit geometric normal, front = counter-clockwise (3 floats;
    the mean is not renormalised: its length tells how much the normals agree). Values enter as
    24-bit fixed point of their channel's range ([0,1]; [-1,1] for normals; for emission, the
    scene's largest emitted component rounded up to a power of two) and are summed in 64-bit
-   integers, so a mean is the same for any triangle order, thread count and backend, and lies
-   within half a unit (range * 2^-25) of the exact mean before its rounding to float. */
+   integers (a maximum keeps the largest), so a result is the same for any triangle order, thread
+   count and backend, and a mean lies within half a unit (range * 2^-25) of the exact mean before
+   its rounding to float. The Volume Buffer on GL blends in float render targets instead. */
 typedef enum voxgi_attribute {
     VOXGI_ATTRIBUTE_ALBEDO = 1,
     VOXGI_ATTRIBUTE_NORMAL = 2,
@@ -428,10 +429,10 @@ VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_v
 
 /* ===================================================================== sparse voxel octree */
 /* The voxels of a grid in an octree over the cube of 2^depth voxels (depth = ceil(log2 of the
-   largest resolution)). Levels 0..depth: level 0 is the root, level depth the voxels themselves;
-   a node at level l covers 2^(depth - l) voxels per axis. Children come in tiles of 8 (child c
-   = x + 2y + 4z of the node's halves); a node's child pointer is 1 + its tile's index, 0 meaning
-   no children (the root is never a child, so 0 is never a tile). Nodes at level depth - 1 point
+   largest resolution), at least 1). Levels 0..depth: level 0 is the root, level depth the voxels
+   themselves; a node at level l covers 2^(depth - l) voxels per axis. Children come in tiles of
+   8 (child c = x + 2y + 4z of the node's halves); a node's child pointer is 1 + its tile's index,
+   which leaves 0 free to mean "no children" (never also "the root"). Nodes at level depth - 1 point
    to leaf tiles: the voxel values, which carry no pointers. Every node and leaf slot holds the
    attributes as the attribute volumes do (RGBA value and alpha, opacity alone), inner nodes the
    isotropic mip of their children, so a lookup at level l equals the dense volume's level
