@@ -463,6 +463,10 @@ VOXGI_API void voxgi_svo_query(const voxgi_svo *svo, voxgi_svo_info *out);
    (level-depth voxel coordinates), 4 floats per point (1 for OPACITY); empty where no node is. */
 VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, int level, size_t count,
                                         const uint32_t *coords, float *out);
+/* Sampling as voxgi_volume_sample does (lod 0 = the voxels, lod depth = the root), through
+   lookups: equal to sampling the dense isotropic volume. */
+VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
+                                        const float *positions, const float *lods, float *out);
 
 /* ===================================================================== binvox files */
 /* binvox: "dim" lists x z y extents (binvox's depth, height, width), data runs with y fastest,
@@ -4722,8 +4726,11 @@ VOXGI_API voxgi_result voxgi_volume_read(voxgi_context *ctx, const voxgi_volume 
     return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the volume holds no data");
 }
 
-/* Trilinear sample of level k of a CPU array at p (grid units of level 0). */
-static void voxgi__sample_level(const voxgi_volume *vol, const float *arr, int w, int k, const float p[3], float out[4])
+/* Level k's stored value of voxel v (w floats), or NULL where it is empty or beyond the grid. */
+typedef const float *(*voxgi__fetch_fn)(const void *source, int k, const int v[3]);
+
+/* Trilinear sample of level k at p (grid units of level 0) between the voxel centres. */
+static void voxgi__trilinear(voxgi__fetch_fn fetch, const void *source, int w, int k, const float p[3], float out[4])
 {
     double c[3], f[3];
     int i0[3], a, corner, ch;
@@ -4736,18 +4743,36 @@ static void voxgi__sample_level(const voxgi_volume *vol, const float *arr, int w
     for (corner = 0; corner < 8; corner++) {
         int v[3];
         double wt = 1;
+        const float *t;
         for (a = 0; a < 3; a++) {
             int hi = (corner >> a) & 1;
             v[a] = i0[a] + hi;
             wt *= hi ? f[a] : 1 - f[a];
         }
-        if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= vol->dims[k][0] || v[1] >= vol->dims[k][1] || v[2] >= vol->dims[k][2] || wt == 0)
-            continue; /* beyond the grid: empty */
-        {
-            const float *t = arr + (vol->first[k] + (size_t)v[0] + (size_t)vol->dims[k][0] * ((size_t)v[1] + (size_t)vol->dims[k][1] * (size_t)v[2])) * (size_t)w;
-            for (ch = 0; ch < w; ch++) out[ch] += (float)(wt * t[ch]);
-        }
+        if (wt == 0 || !(t = fetch(source, k, v))) continue; /* empty */
+        for (ch = 0; ch < w; ch++) out[ch] += (float)(wt * t[ch]);
     }
+}
+
+/* Linear between the levels around lod (clamped to 0..levels-1) of trilinear samples. */
+static void voxgi__sample_lod(voxgi__fetch_fn fetch, const void *source, int w, int levels, const float p[3], float lod_in, float *out)
+{
+    float lod = lod_in < 0 ? 0 : (lod_in > (float)(levels - 1) ? (float)(levels - 1) : lod_in), s0[4], s1[4], t;
+    int k0 = (int)floor(lod), ch;
+    t = lod - (float)k0;
+    voxgi__trilinear(fetch, source, w, k0, p, s0);
+    if (t > 0) voxgi__trilinear(fetch, source, w, k0 + 1, p, s1);
+    for (ch = 0; ch < w; ch++) out[ch] = t > 0 ? s0[ch] + t * (s1[ch] - s0[ch]) : s0[ch];
+}
+
+typedef struct voxgi__volume_source { const voxgi_volume *vol; const float *arr; int w; } voxgi__volume_source;
+
+static const float *voxgi__volume_fetch(const void *source, int k, const int v[3])
+{
+    const voxgi__volume_source *s = (const voxgi__volume_source *)source;
+    const int *d = s->vol->dims[k];
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= d[0] || v[1] >= d[1] || v[2] >= d[2]) return NULL;
+    return s->arr + (s->vol->first[k] + (size_t)v[0] + (size_t)d[0] * ((size_t)v[1] + (size_t)d[1] * (size_t)v[2])) * (size_t)s->w;
 }
 
 #ifndef VOXGI_NO_GL
@@ -4770,15 +4795,13 @@ VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volum
 #ifndef VOXGI_NO_GL
     if (vol->tex[a][d]) return voxgi__volume_sample_gl(ctx, vol, a, d, count, pos, lods, out);
 #endif
-    for (i = 0; i < count; i++) {
-        int w = a == 3 ? 1 : 4, ch, k0;
-        float lod = lods[i] < 0 ? 0 : (lods[i] > (float)(vol->info.levels - 1) ? (float)(vol->info.levels - 1) : lods[i]), s0[4], s1[4];
-        float t;
-        k0 = (int)floor(lod);
-        t = lod - (float)k0;
-        voxgi__sample_level(vol, vol->cpu[a][d], w, k0, pos + 3 * i, s0);
-        if (t > 0) voxgi__sample_level(vol, vol->cpu[a][d], w, k0 + 1, pos + 3 * i, s1);
-        for (ch = 0; ch < w; ch++) out[(size_t)w * i + (size_t)ch] = t > 0 ? s0[ch] + t * (s1[ch] - s0[ch]) : s0[ch];
+    {
+        voxgi__volume_source src;
+        src.vol = vol;
+        src.arr = vol->cpu[a][d];
+        src.w = a == 3 ? 1 : 4;
+        for (i = 0; i < count; i++)
+            voxgi__sample_lod(voxgi__volume_fetch, &src, src.w, vol->info.levels, pos + 3 * i, lods[i], out + (size_t)src.w * i);
     }
     return VOXGI_OK;
 }
@@ -5153,6 +5176,47 @@ VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo
             }
         }
         for (ch = 0; ch < w; ch++) out[(size_t)w * i + (size_t)ch] = val ? val[node * (uint64_t)w + (uint64_t)ch] : 0.0f;
+    }
+    return VOXGI_OK;
+}
+
+
+/* The octree as a sampling source: level k of the dense chain is octree level depth - k. */
+typedef struct voxgi__svo_source { const voxgi_svo *svo; int a, w; } voxgi__svo_source;
+
+static const float *voxgi__svo_fetch(const void *source, int k, const int v[3])
+{
+    const voxgi__svo_source *s = (const voxgi__svo_source *)source;
+    const voxgi_svo *svo = s->svo;
+    int depth = svo->info.depth, level = depth - k, m;
+    uint64_t node = 0;
+    const float *val = svo->node_values[s->a];
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || (v[0] >> level) || (v[1] >> level) || (v[2] >> level)) return NULL;
+    for (m = 1; m <= level; m++) { /* v is in level-`level` coordinates: its bits from the top */
+        uint32_t ptr = svo->child[node], digit = (uint32_t)(((v[0] >> (level - m)) & 1) | (((v[1] >> (level - m)) & 1) << 1) | (((v[2] >> (level - m)) & 1) << 2));
+        if (!ptr) return NULL;
+        if (m == depth) { val = svo->leaf_values[s->a]; node = 8 * (uint64_t)(ptr - 1) + digit; }
+        else node = 1 + 8 * (uint64_t)(ptr - 1) + digit;
+    }
+    return val + node * (uint64_t)s->w;
+}
+
+VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
+                                        const float *pos, const float *lods, float *out)
+{
+    voxgi__svo_source src;
+    size_t i;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!svo || (count && (!pos || !lods || !out))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "svo, positions, lods or out is NULL");
+    src.svo = svo;
+    src.a = voxgi__attr_index(which);
+    src.w = which == VOXGI_ATTRIBUTE_OPACITY ? 1 : 4;
+    if (src.a < 0 || !(svo->info.attributes & (unsigned)which))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attribute %d is not in this octree (0x%x)", (int)which, svo->info.attributes);
+    for (i = 0; i < count; i++) {
+        if (!isfinite(pos[3 * i]) || !isfinite(pos[3 * i + 1]) || !isfinite(pos[3 * i + 2]) || !isfinite(lods[i]))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)i);
+        voxgi__sample_lod(voxgi__svo_fetch, &src, src.w, svo->info.depth + 1, pos + 3 * i, lods[i], out + (size_t)src.w * i);
     }
     return VOXGI_OK;
 }

@@ -2015,6 +2015,21 @@ static void test_svo_equals_dense(void)
            (double)info.structure_bytes / (double)info.leaf_voxels, (unsigned long)info.bytes, (unsigned long)info.dense_bytes);
     TH_CHECK(info.structure_bytes <= 8 * info.leaf_voxels, "structure %lu bytes for %llu voxels", (unsigned long)info.structure_bytes,
              (unsigned long long)info.leaf_voxels);
+    {   /* sampling through the octree equals sampling the dense volume, bit for bit */
+        float pos[3 * 500], lods[500], a_out[4 * 500], b_out[4 * 500];
+        size_t q;
+        for (q = 0; q < 500; q++) {
+            pos[3 * q] = (float)(-2 + 31 * rnd()); pos[3 * q + 1] = (float)(-2 + 29 * rnd()); pos[3 * q + 2] = (float)(-2 + 34 * rnd());
+            lods[q] = (float)(-0.5 + 6.5 * rnd());
+        }
+        for (a = 0; a < 4; a++) {
+            voxgi_attribute which = (voxgi_attribute)(1 << a);
+            int w = a == 3 ? 1 : 4;
+            TH_CHECK(voxgi_volume_sample(ctx, vol, which, 0, 500, pos, lods, a_out) == VOXGI_OK &&
+                     voxgi_svo_sample(ctx, svo, which, 500, pos, lods, b_out) == VOXGI_OK, "sampling failed");
+            TH_CHECK(memcmp(a_out, b_out, 500 * (size_t)w * 4) == 0, "attribute %d: octree and dense samples differ", a);
+        }
+    }
     {   /* outside the grid's cube and at empty places: empty */
         uint32_t c[6] = {40, 1, 1, 0, 0, 0};
         float o[8];
