@@ -440,6 +440,7 @@ VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_v
 typedef struct voxgi_svo voxgi_svo;
 typedef struct voxgi_svo_desc {
     unsigned attributes;          /* voxgi_attribute bits (0 = all the voxels hold) */
+    int neighbours;               /* 1: also the six neighbour pointers of every node (24 bytes per node slot) */
 } voxgi_svo_desc;
 typedef struct voxgi_svo_info {
     voxgi_grid grid;
@@ -451,9 +452,10 @@ typedef struct voxgi_svo_info {
     uint64_t leaf_slots;          /* 8 per leaf tile (empty slots included) */
     uint64_t level_nodes[17];     /* nodes that exist at each level 0..depth (at depth: the leaf voxels) */
     size_t structure_bytes;       /* child pointers */
-    size_t bytes;                 /* everything: structure and values */
+    size_t neighbour_bytes;       /* neighbour pointers, when built */
+    size_t bytes;                 /* everything: structure, neighbours and values */
     size_t dense_bytes;           /* the dense equivalent: level 0 of the same attributes as RGBA32F (R32F) */
-    double ms, ms_sort, ms_nodes, ms_values; /* whole build, then its passes */
+    double ms, ms_sort, ms_nodes, ms_values, ms_neighbours; /* whole build, then its passes */
 } voxgi_svo_info;
 
 VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *voxels, const voxgi_svo_desc *desc, voxgi_svo **out);
@@ -463,6 +465,12 @@ VOXGI_API void voxgi_svo_query(const voxgi_svo *svo, voxgi_svo_info *out);
    (level-depth voxel coordinates), 4 floats per point (1 for OPACITY); empty where no node is. */
 VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, int level, size_t count,
                                         const uint32_t *coords, float *out);
+/* The node slot at `level` (1..depth-1: inner nodes) containing voxel coord, 0 where there is
+   none (level 0: the root, slot 0). */
+VOXGI_API voxgi_result voxgi_svo_node(voxgi_context *ctx, const voxgi_svo *svo, int level, const uint32_t coord[3], uint32_t *slot);
+/* A node's neighbour slots in the order of voxgi_direction (+x -x +y -y +z -z), each at the same
+   level, 0 where there is none (the root is nobody's neighbour, so 0 is free); needs desc.neighbours. */
+VOXGI_API voxgi_result voxgi_svo_neighbours(voxgi_context *ctx, const voxgi_svo *svo, uint32_t slot, uint32_t out[6]);
 /* Sampling as voxgi_volume_sample does (lod 0 = the voxels, lod depth = the root), through
    lookups: equal to sampling the dense isotropic volume. */
 VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
@@ -4934,6 +4942,7 @@ static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volu
 struct voxgi_svo {
     voxgi_svo_info info;
     uint32_t *child;                          /* per node slot: 1 + tile index, 0 = none */
+    uint32_t *neighbour;                      /* 6 per node slot: slot of the same-level neighbour, 0 = none */
     float *node_values[4], *leaf_values[4];   /* per node slot / per leaf slot, 4 floats (1 for opacity) */
 };
 
@@ -5076,6 +5085,41 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     }
     t0 = voxgi__now_ms();
     svo->info.ms_nodes = t0 - t1;
+    if (r == VOXGI_OK && desc->neighbours) { /* each inner node's same-level neighbours, by binary search in the level's codes */
+        if (!(svo->neighbour = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 6 * 4, 1)))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the neighbour pointers");
+        for (lev = 1; lev < depth && r == VOXGI_OK; lev++) {
+            size_t parent_rank = 0;
+            for (i = 0; i < count[lev]; i++) {
+                uint64_t slot, code = codes[lev][i];
+                uint32_t x = 0, y = 0, z = 0;
+                int b, dir;
+                while (codes[lev - 1][parent_rank] != code >> 3) parent_rank++;
+                slot = 1 + 8 * (tiles_before[lev] + parent_rank) + (code & 7u);
+                for (b = 0; b < lev; b++) { /* the node's coordinates from its code */
+                    x |= (uint32_t)((code >> (3 * b)) & 1u) << b;
+                    y |= (uint32_t)((code >> (3 * b + 1)) & 1u) << b;
+                    z |= (uint32_t)((code >> (3 * b + 2)) & 1u) << b;
+                }
+                for (dir = 0; dir < 6; dir++) {
+                    int64_t c[3];
+                    uint64_t ncode;
+                    size_t lo = 0, hi = count[lev], plo = 0, phi = count[lev - 1];
+                    c[0] = x; c[1] = y; c[2] = z;
+                    c[dir / 2] += (dir & 1) ? -1 : 1;
+                    if (c[dir / 2] < 0 || c[dir / 2] >= ((int64_t)1 << lev)) continue;
+                    ncode = voxgi__morton((uint32_t)c[0], (uint32_t)c[1], (uint32_t)c[2]);
+                    while (hi - lo > 1) { size_t mid = (lo + hi) / 2; if (codes[lev][mid] <= ncode) lo = mid; else hi = mid; }
+                    if (codes[lev][lo] != ncode) continue;
+                    while (phi - plo > 1) { size_t mid = (plo + phi) / 2; if (codes[lev - 1][mid] <= ncode >> 3) plo = mid; else phi = mid; }
+                    svo->neighbour[6 * slot + (uint64_t)dir] = (uint32_t)(1 + 8 * (tiles_before[lev] + plo) + (ncode & 7u));
+                }
+            }
+        }
+        svo->info.neighbour_bytes = (size_t)(svo->info.nodes * 24);
+        svo->info.ms_neighbours = voxgi__now_ms() - t0;
+        t0 = voxgi__now_ms();
+    }
     /* 3. values: the leaves from the attribute means, then every node the isotropic mip of its tile */
     for (a = 0; a < 4 && r == VOXGI_OK; a++) {
         voxgi_attribute which = (voxgi_attribute)(1 << a);
@@ -5122,14 +5166,14 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
         svo->info.bytes += (size_t)((svo->info.nodes + svo->info.leaf_slots) * (uint64_t)w * 4);
         svo->info.dense_bytes += (size_t)(nvox * (uint64_t)w * 4);
     }
-    svo->info.bytes += svo->info.structure_bytes;
+    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes;
     svo->info.ms_values = voxgi__now_ms() - t0;
     for (lev = 0; lev <= VOXGI__MAX_LEVELS; lev++) voxgi__free(ctx, codes[lev]);
     for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
     voxgi__free(ctx, bits);
     voxgi__free(ctx, order);
     if (r != VOXGI_OK) { voxgi_svo_destroy(ctx, svo); return r; }
-    svo->info.ms = svo->info.ms_sort + svo->info.ms_nodes + svo->info.ms_values;
+    svo->info.ms = svo->info.ms_sort + svo->info.ms_nodes + svo->info.ms_neighbours + svo->info.ms_values;
     *out = svo;
     return VOXGI_OK;
 }
@@ -5139,6 +5183,7 @@ VOXGI_API void voxgi_svo_destroy(voxgi_context *ctx, voxgi_svo *svo)
     int a;
     if (!ctx || !svo) return;
     voxgi__free(ctx, svo->child);
+    voxgi__free(ctx, svo->neighbour);
     for (a = 0; a < 4; a++) { voxgi__free(ctx, svo->node_values[a]); voxgi__free(ctx, svo->leaf_values[a]); }
     voxgi__free(ctx, svo);
 }
@@ -5180,6 +5225,39 @@ VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo
     return VOXGI_OK;
 }
 
+
+VOXGI_API voxgi_result voxgi_svo_node(voxgi_context *ctx, const voxgi_svo *svo, int level, const uint32_t coord[3], uint32_t *slot)
+{
+    int depth, m;
+    uint64_t node = 0;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!svo || !coord || !slot) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "svo, coord or slot is NULL");
+    depth = svo->info.depth;
+    if (level < 0 || level >= depth) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "level %d: inner nodes are at 0..%d", level, depth - 1);
+    *slot = 0;
+    if ((coord[0] >> depth) || (coord[1] >> depth) || (coord[2] >> depth)) return VOXGI_OK;
+    for (m = 1; m <= level; m++) {
+        uint32_t ptr = svo->child[node], digit = ((coord[0] >> (depth - m)) & 1u) | (((coord[1] >> (depth - m)) & 1u) << 1) |
+                                                 (((coord[2] >> (depth - m)) & 1u) << 2);
+        if (!ptr) return VOXGI_OK;
+        node = 1 + 8 * (uint64_t)(ptr - 1) + digit;
+    }
+    /* a slot of an existing tile whose node is absent has neither children nor a value: it is no node */
+    if (level > 0 && !svo->child[node]) return VOXGI_OK;
+    *slot = (uint32_t)node;
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_svo_neighbours(voxgi_context *ctx, const voxgi_svo *svo, uint32_t slot, uint32_t out[6])
+{
+    int d;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!svo || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "svo or out is NULL");
+    if (!svo->neighbour) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "this octree was built without neighbour pointers");
+    if ((uint64_t)slot >= svo->info.nodes) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "slot %u of %llu", slot, (unsigned long long)svo->info.nodes);
+    for (d = 0; d < 6; d++) out[d] = svo->neighbour[6 * (uint64_t)slot + (uint64_t)d];
+    return VOXGI_OK;
+}
 
 /* The octree as a sampling source: level k of the dense chain is octree level depth - k. */
 typedef struct voxgi__svo_source { const voxgi_svo *svo; int a, w; } voxgi__svo_source;

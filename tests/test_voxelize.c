@@ -1970,6 +1970,7 @@ static void test_svo_equals_dense(void)
     xd.attributes = 15;
     voxgi_voxelize(ctx, &sc, &xd, &vox);
     memset(&vd, 0, sizeof vd); memset(&sd, 0, sizeof sd);
+    sd.neighbours = 1;
     TH_CHECK(vox && voxgi_volume_create(ctx, vox, &vd, &vol) == VOXGI_OK, "volume: %s", voxgi_last_error(ctx));
     TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK, "octree: %s", voxgi_last_error(ctx));
     if (!vol || !svo) return;
@@ -2029,6 +2030,40 @@ static void test_svo_equals_dense(void)
                      voxgi_svo_sample(ctx, svo, which, 500, pos, lods, b_out) == VOXGI_OK, "sampling failed");
             TH_CHECK(memcmp(a_out, b_out, 500 * (size_t)w * 4) == 0, "attribute %d: octree and dense samples differ", a);
         }
+    }
+    {   /* neighbour pointers: at the same level, exactly the node one step away, symmetric */
+        int nodes = 0, wrong = 0;
+        for (lev = 1; lev < info.depth; lev++) {
+            uint32_t n = 1u << lev, x, y, z, sh = (uint32_t)(info.depth - lev);
+            for (z = 0; z < n; z++)
+                for (y = 0; y < n; y++)
+                    for (x = 0; x < n; x++) {
+                        uint32_t c[3], slot = 0, nb[6], back[6];
+                        int dir;
+                        c[0] = x << sh; c[1] = y << sh; c[2] = z << sh;
+                        voxgi_svo_node(ctx, svo, lev, c, &slot);
+                        if (!slot) continue;
+                        nodes++;
+                        voxgi_svo_neighbours(ctx, svo, slot, nb);
+                        for (dir = 0; dir < 6; dir++) {
+                            uint32_t d[3], want = 0;
+                            int64_t v = (int64_t)(dir / 2 == 0 ? x : (dir / 2 == 1 ? y : z)) + ((dir & 1) ? -1 : 1);
+                            d[0] = x; d[1] = y; d[2] = z;
+                            if (v >= 0 && v < (int64_t)n) {
+                                d[dir / 2] = (uint32_t)v;
+                                d[0] <<= sh; d[1] <<= sh; d[2] <<= sh;
+                                voxgi_svo_node(ctx, svo, lev, d, &want);
+                            }
+                            wrong += nb[dir] != want;
+                            if (nb[dir]) {
+                                voxgi_svo_neighbours(ctx, svo, nb[dir], back);
+                                wrong += back[dir ^ 1] != slot;
+                            }
+                        }
+                    }
+        }
+        TH_CHECK(nodes > 0 && wrong == 0, "%d wrong neighbour pointers over %d nodes", wrong, nodes);
+        TH_CHECK(info.neighbour_bytes == 24 * info.nodes, "neighbour bytes %lu", (unsigned long)info.neighbour_bytes);
     }
     {   /* outside the grid's cube and at empty places: empty */
         uint32_t c[6] = {40, 1, 1, 0, 0, 0};
