@@ -1704,6 +1704,21 @@ typedef struct voxgi__vox_shared {
     const voxgi__attr *attr; /* attribute pass: bits are final, set voxels receive attributes */
 } voxgi__vox_shared;
 
+/* Shared state for the CPU's exact tests over the scene (the GL passes' referee and the CPU twin). */
+static void voxgi__vox_shared_init(voxgi__vox_shared *vs, const voxgi_grid *g, const voxgi__flat *f, const voxgi__vprep *vp,
+                                   voxgi_method method, uint32_t *bits)
+{
+    memset(vs, 0, sizeof *vs);
+    vs->grid = g;
+    vs->pos = f->pos;
+    vs->tri = f->tri;
+    vs->vp = vp;
+    vs->bits = bits;
+    vs->inv_s = 1.0 / g->voxel_size;
+    vs->thin = method == VOXGI_METHOD_THIN;
+    vs->solid_axis = vs->slice_axis = -1;
+}
+
 /* Fills the triangle's range, coordinates, edges and normal; returns 0 when it misses the grid. */
 static int voxgi__tri_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri *t)
 {
@@ -3038,22 +3053,39 @@ struct voxgi_voxels {
 };
 
 /* ===================================================================== attributes */
+/* Triangle t's material (material 0 without a table: albedo 0.8, no emission, opaque). */
+static const voxgi_material *voxgi__tri_material(const voxgi__flat *f, size_t t)
+{
+    static const voxgi_material fallback = {{0.8f, 0.8f, 0.8f}, {0, 0, 0}, 0};
+    return f->material_count ? &f->materials[f->mat[t]] : &fallback;
+}
+
+/* Triangle t's unit geometric normal (counter-clockwise front), in double from the float
+   vertices; zero for a degenerate triangle. */
+static void voxgi__tri_unit_normal(const voxgi__flat *f, size_t t, double n[3])
+{
+    const float *p0 = f->pos + 3 * (size_t)f->tri[3 * t], *p1 = f->pos + 3 * (size_t)f->tri[3 * t + 1], *p2 = f->pos + 3 * (size_t)f->tri[3 * t + 2];
+    double e[3], g[3], len;
+    int a;
+    for (a = 0; a < 3; a++) { e[a] = (double)p1[a] - p0[a]; g[a] = (double)p2[a] - p0[a]; }
+    for (a = 0; a < 3; a++) n[a] = e[(a + 1) % 3] * g[(a + 2) % 3] - e[(a + 2) % 3] * g[(a + 1) % 3];
+    len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (a = 0; a < 3; a++) n[a] = len > 0 ? n[a] / len : 0;
+}
+
 /* Each triangle's attribute values in fixed point, channels in the order albedo, normal,
    emission, opacity (those asked for). */
 static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f, unsigned mask, const voxgi_blend blend[4],
                                         voxgi__attr *at)
 {
-    static const voxgi_material fallback = {{0.8f, 0.8f, 0.8f}, {0, 0, 0}, 0};
     double emax = 0, erange = 1, v[VOXGI__MAX_CHANNELS];
     size_t t;
     int c;
     memset(at, 0, sizeof *at);
     at->channels = (mask & VOXGI_ATTRIBUTE_ALBEDO ? 3 : 0) + (mask & VOXGI_ATTRIBUTE_NORMAL ? 3 : 0) +
                    (mask & VOXGI_ATTRIBUTE_EMISSION ? 3 : 0) + (mask & VOXGI_ATTRIBUTE_OPACITY ? 1 : 0);
-    for (t = 0; t < f->triangle_count; t++) {
-        const voxgi_material *m = f->material_count ? &f->materials[f->mat[t]] : &fallback;
-        for (c = 0; c < 3; c++) emax = VOXGI__MAX(emax, (double)m->emission[c]);
-    }
+    for (t = 0; t < f->triangle_count; t++)
+        for (c = 0; c < 3; c++) emax = VOXGI__MAX(emax, (double)voxgi__tri_material(f, t)->emission[c]);
     while (erange < emax) erange *= 2;
     while (erange / 2 >= emax && emax > 0) erange /= 2;
     for (c = 0; c < 4; c++) at->blend[c] = blend[c];
@@ -3067,19 +3099,15 @@ static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f
     at->rec = (uint32_t *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, (size_t)at->channels * 4, 0);
     if (!at->rec) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' attributes");
     for (t = 0; t < f->triangle_count; t++) {
-        const voxgi_material *m = f->material_count ? &f->materials[f->mat[t]] : &fallback;
+        const voxgi_material *m = voxgi__tri_material(f, t);
         double step[VOXGI__MAX_CHANNELS]; /* v / step is the fixed-point value: v in [0,1], normals n + 1 in [0,2] */
         int k = 0, a;
         if (mask & VOXGI_ATTRIBUTE_ALBEDO)
             for (a = 0; a < 3; a++, k++) { v[k] = m->albedo[a]; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = step[k]; }
-        if (mask & VOXGI_ATTRIBUTE_NORMAL) { /* the geometric normal in double from the float vertices */
-            const float *p0 = f->pos + 3 * (size_t)f->tri[3 * t], *p1 = f->pos + 3 * (size_t)f->tri[3 * t + 1],
-                        *p2 = f->pos + 3 * (size_t)f->tri[3 * t + 2];
-            double e[3], g[3], n[3], len;
-            for (a = 0; a < 3; a++) { e[a] = (double)p1[a] - p0[a]; g[a] = (double)p2[a] - p0[a]; }
-            for (a = 0; a < 3; a++) n[a] = e[(a + 1) % 3] * g[(a + 2) % 3] - e[(a + 2) % 3] * g[(a + 1) % 3];
-            len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (a = 0; a < 3; a++, k++) { v[k] = len > 0 ? n[a] / len + 1 : 1; step[k] = ldexp(1.0, -23); at->zero[k] = -1; at->unit[k] = step[k]; }
+        if (mask & VOXGI_ATTRIBUTE_NORMAL) {
+            double n[3];
+            voxgi__tri_unit_normal(f, t, n);
+            for (a = 0; a < 3; a++, k++) { v[k] = n[a] + 1; step[k] = ldexp(1.0, -23); at->zero[k] = -1; at->unit[k] = step[k]; }
         }
         if (mask & VOXGI_ATTRIBUTE_EMISSION)
             for (a = 0; a < 3; a++, k++) { v[k] = m->emission[a] / erange; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = erange * step[k]; }
@@ -3269,14 +3297,8 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
         for (i = 0; i < 2; i++)
             if (!(extra[i] = (uint32_t *)voxgi__alloc_array(ctx, words, 4, 1))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the vote");
     }
-    vs.grid = &desc->grid;
-    vs.pos = flat->pos;
-    vs.tri = flat->tri;
-    vs.vp = vp;
-    vs.inv_s = 1.0 / desc->grid.voxel_size;
-    vs.thin = desc->method == VOXGI_METHOD_THIN;
+    voxgi__vox_shared_init(&vs, &desc->grid, flat, vp, desc->method, vox->bits);
     vs.slice_axis = desc->method == VOXGI_METHOD_SLICEMAP ? (desc->axis ? (int)desc->axis - 1 : 2) : -1;
-    vs.attr = NULL;
     vs.volume_buffer = desc->method == VOXGI_METHOD_VOLUME_BUFFER;
     if (atlas) {
         vs.bits = vox->bits;
@@ -3503,6 +3525,33 @@ static void voxgi__gl_dispatch_items(voxgi__gl *gl, uint64_t items)
 /* The triangle pass: conservative/thin voxels (solid_axis < 0) or solid toggles along
    solid_axis, into a new buffer *bits_out. What the GPU's filter cannot decide is decided here
    exactly and written back. */
+/* The GL state a raster pass changes (capabilities off, the viewport), saved by begin and given
+   back to the caller by end. */
+static const unsigned int voxgi__gl_raster_caps[9] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST,
+                                                      VOXGI__GL_CULL_FACE, VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE,
+                                                      VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP, VOXGI__GL_PROGRAM_POINT_SIZE};
+typedef struct voxgi__gl_raster_state { unsigned char enabled[9]; int viewport[4]; } voxgi__gl_raster_state;
+
+static void voxgi__gl_raster_begin(voxgi__gl *gl, voxgi__gl_raster_state *st)
+{
+    int i;
+    gl->GetIntegerv(VOXGI__GL_VIEWPORT, st->viewport);
+    for (i = 0; i < 9; i++) {
+        st->enabled[i] = gl->IsEnabled(voxgi__gl_raster_caps[i]);
+        gl->Disable(voxgi__gl_raster_caps[i]);
+    }
+}
+
+static void voxgi__gl_raster_end(voxgi__gl *gl, const voxgi__gl_raster_state *st)
+{
+    int i;
+    gl->Viewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
+    for (i = 0; i < 9; i++)
+        if (st->enabled[i]) gl->Enable(voxgi__gl_raster_caps[i]);
+        else gl->Disable(voxgi__gl_raster_caps[i]);
+}
+
+
 /* Pass 0 over all triangles (in slices of at most 65535 work groups), then pass 1 over the big
    ones it listed, sized on the GPU; the program's other uniforms are set by the caller. */
 static void voxgi__gl_run_triangles(voxgi__gl *gl, unsigned int p, size_t nt, unsigned int control)
@@ -3525,16 +3574,9 @@ static void voxgi__gl_run_triangles(voxgi__gl *gl, unsigned int p, size_t nt, un
    framebuffer of view x view pixels (voxel columns); the caller's GL state is restored. */
 static void voxgi__gl_draw_geometry(voxgi__gl *gl, unsigned int p, size_t nt, int view)
 {
-    static const unsigned int caps[] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST, VOXGI__GL_CULL_FACE,
-                                        VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP};
-    unsigned char was_enabled[8];
+    voxgi__gl_raster_state state;
     unsigned int fbo = 0, vao = 0;
-    int viewport[4], i;
-    gl->GetIntegerv(VOXGI__GL_VIEWPORT, viewport);
-    for (i = 0; i < 8; i++) {
-        was_enabled[i] = gl->IsEnabled(caps[i]);
-        gl->Disable(caps[i]);
-    }
+    voxgi__gl_raster_begin(gl, &state);
     gl->CreateVertexArrays(1, &vao);
     gl->CreateFramebuffers(1, &fbo);
     gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, view);
@@ -3549,10 +3591,7 @@ static void voxgi__gl_draw_geometry(voxgi__gl *gl, unsigned int p, size_t nt, in
     gl->BindVertexArray(0);
     gl->DeleteFramebuffers(1, &fbo);
     gl->DeleteVertexArrays(1, &vao);
-    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    for (i = 0; i < 8; i++)
-        if (was_enabled[i]) gl->Enable(caps[i]);
-        else gl->Disable(caps[i]);
+    voxgi__gl_raster_end(gl, &state);
 }
 
 /* Runs the conservative tests of every triangle: compute dispatches, or the geometry draw. */
@@ -3639,15 +3678,7 @@ static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__fl
                 attr->sum[s * (uint64_t)attr->channels + (uint64_t)c] =
                     (uint64_t)sums[s * stride + 1 + 2 * (uint64_t)c] | ((uint64_t)sums[s * stride + 2 + 2 * (uint64_t)c] << 32);
         }
-        memset(&vs, 0, sizeof vs);
-        vs.grid = g;
-        vs.pos = f->pos;
-        vs.tri = f->tri;
-        vs.vp = vp;
-        vs.bits = bits;
-        vs.inv_s = 1.0 / g->voxel_size;
-        vs.thin = d->method == VOXGI_METHOD_THIN;
-        vs.solid_axis = vs.slice_axis = -1;
+        voxgi__vox_shared_init(&vs, g, f, vp, d->method, bits);
         vs.attr = attr;
         for (k = 0; k < nt; k++)
             if (flags[k >> 5] & (1u << (k & 31u))) {
@@ -3750,16 +3781,8 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
         if (r == VOXGI_OK) {
             voxgi__vox_shared vs;
             voxgi__stats st = {0, 0, 0};
-            memset(&vs, 0, sizeof vs);
-            vs.grid = g;
-            vs.pos = f->pos;
-            vs.tri = f->tri;
-            vs.vp = vp;
-            vs.bits = copy;
-            vs.inv_s = 1.0 / g->voxel_size;
-            vs.thin = d->method == VOXGI_METHOD_THIN;
+            voxgi__vox_shared_init(&vs, g, f, vp, d->method, copy);
             vs.solid_axis = solid_axis;
-            vs.slice_axis = -1;
             for (k = 0; k < nt; k++)
                 if (flags[k >> 5] & (1u << (k & 31u))) {
                     if (solid_axis >= 0) voxgi__solid_triangle(&vs, k, &st);
@@ -3916,13 +3939,10 @@ static void voxgi__gl_scene_buffers(voxgi_context *ctx, const voxgi__flat *f, co
 static voxgi_result voxgi__gl_slice_raster(voxgi_context *ctx, const voxgi_grid *g, int A, int atomic, unsigned int p,
                                            unsigned int mode, uint64_t count, unsigned int *bits_out)
 {
-    static const unsigned int caps[] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST, VOXGI__GL_CULL_FACE,
-                                        VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP,
-                                        VOXGI__GL_PROGRAM_POINT_SIZE};
     voxgi__gl *gl = ctx->gl;
+    voxgi__gl_raster_state state;
     int a = (A + 1) % 3, b = (A + 2) % 3, per_layer = atomic ? 32 : 128;
-    int layers = (g->res[A] + per_layer - 1) / per_layer, max_targets = 1, max_size = 0, viewport[4], i, first;
-    unsigned char was_enabled[9];
+    int layers = (g->res[A] + per_layer - 1) / per_layer, max_targets = 1, max_size = 0, i, first;
     unsigned int tex = 0, fbo = 0, vao = 0, zero[4] = {0, 0, 0, 0};
     size_t bytes = (size_t)voxgi__grid_words(g) * 4;
     voxgi_result r = voxgi__gl_get_program(ctx, "slicemap_unpack.glsl", &gl->prog_slicemap_unpack);
@@ -3942,11 +3962,7 @@ static voxgi_result voxgi__gl_slice_raster(voxgi_context *ctx, const voxgi_grid 
     gl->ClearTexImage(tex, 0, atomic ? VOXGI__GL_RED_INTEGER : VOXGI__GL_RGBA_INTEGER, VOXGI__GL_UNSIGNED_INT, zero);
     gl->CreateVertexArrays(1, &vao);
     gl->CreateFramebuffers(1, &fbo);
-    gl->GetIntegerv(VOXGI__GL_VIEWPORT, viewport);
-    for (i = 0; i < 9; i++) {
-        was_enabled[i] = gl->IsEnabled(caps[i]);
-        gl->Disable(caps[i]);
-    }
+    voxgi__gl_raster_begin(gl, &state);
     gl->Enable(VOXGI__GL_PROGRAM_POINT_SIZE); /* points are one pixel whatever glPointSize says */
     gl->UseProgram(p);
     gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
@@ -3982,10 +3998,7 @@ static voxgi_result voxgi__gl_slice_raster(voxgi_context *ctx, const voxgi_grid 
     }
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
     gl->BindVertexArray(0);
-    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    for (i = 0; i < 9; i++)
-        if (was_enabled[i]) gl->Enable(caps[i]);
-        else gl->Disable(caps[i]);
+    voxgi__gl_raster_end(gl, &state);
     gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT);
     if (r == VOXGI_OK) { /* slicemap columns -> the linear bit grid */
         *bits_out = voxgi__gl_grid_buffer(ctx, bytes);
@@ -4038,14 +4051,12 @@ static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, co
                                     const voxgi_voxelize_desc *d, const voxgi__atlas *at, unsigned int *bits_out,
                                     voxgi_voxels_info *info)
 {
-    static const unsigned int caps[] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST, VOXGI__GL_CULL_FACE,
-                                        VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP};
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = &d->grid;
+    voxgi__gl_raster_state state;
     unsigned int verts = 0, tris = 0, charts = 0, points = 0, tex = 0, fbo = 0, vao = 0, zero = 0, p, drawbuf = VOXGI__GL_COLOR_ATTACHMENT0;
-    unsigned char was_enabled[8];
     uint32_t count = 0;
-    int viewport[4], max_size = 0, i;
+    int max_size = 0;
     uint64_t texels = (uint64_t)at->size * (uint64_t)at->size;
     voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl atlas.glsl atlas_fill.glsl", &gl->prog_atlas_fill);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl atlas.glsl atlas_list.glsl", &gl->prog_atlas_list);
@@ -4072,11 +4083,7 @@ static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, co
     gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0, tex, 0);
     gl->NamedFramebufferDrawBuffers(fbo, 1, &drawbuf);
     gl->CreateVertexArrays(1, &vao);
-    gl->GetIntegerv(VOXGI__GL_VIEWPORT, viewport);
-    for (i = 0; i < 8; i++) {
-        was_enabled[i] = gl->IsEnabled(caps[i]);
-        gl->Disable(caps[i]);
-    }
+    voxgi__gl_raster_begin(gl, &state);
     if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE)
         r = voxgi__fail(ctx, VOXGI_ERR_GL, "the atlas framebuffer is incomplete");
     else {
@@ -4090,10 +4097,7 @@ static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, co
         gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
         gl->BindVertexArray(0);
     }
-    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    for (i = 0; i < 8; i++)
-        if (was_enabled[i]) gl->Enable(caps[i]);
-        else gl->Disable(caps[i]);
+    voxgi__gl_raster_end(gl, &state);
     gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT);
     /* 2. the covered texels: count, then list */
     if (r == VOXGI_OK) {
@@ -4151,13 +4155,12 @@ static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__fla
                                             const voxgi_voxelize_desc *d, unsigned int *bits_out, voxgi__attr *attr,
                                             voxgi_voxels_info *info)
 {
-    static const unsigned int caps[] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST, VOXGI__GL_CULL_FACE,
-                                        VOXGI__GL_MULTISAMPLE, VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP};
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = &d->grid;
+    voxgi__gl_raster_state state;
     unsigned int attrs = d->attributes, tex[3][3], fbo = 0, vao = 0, verts = 0, tris = 0, values_buf = 0, lost_buf = 0, p, zero = 0;
-    unsigned char was_enabled[7], blend_was[3];
-    int saved[3][6], viewport[4], max3d = 0, c, k, i, targets = 1 + ((attrs & 10u) ? 1 : 0) + ((attrs & 4u) ? 1 : 0);
+    unsigned char blend_was[3];
+    int saved[3][6], max3d = 0, c, k, i, targets = 1 + ((attrs & 10u) ? 1 : 0) + ((attrs & 4u) ? 1 : 0);
     uint64_t words = voxgi__grid_words(g), nvox = voxgi_grid_voxel_count(g), bytes_per_voxel = attrs ? 16u * (uint64_t)targets : 4u;
     float *tv;
     size_t t;
@@ -4176,17 +4179,12 @@ static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__fla
     tv = (float *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, 10 * sizeof(float), 1);
     if (!tv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' values");
     for (t = 0; t < f->triangle_count && attrs; t++) {
-        static const voxgi_material fallback = {{0.8f, 0.8f, 0.8f}, {0, 0, 0}, 0};
-        const voxgi_material *m = f->material_count ? &f->materials[f->mat[t]] : &fallback;
-        const float *p0 = f->pos + 3 * (size_t)f->tri[3 * t], *p1 = f->pos + 3 * (size_t)f->tri[3 * t + 1], *p2 = f->pos + 3 * (size_t)f->tri[3 * t + 2];
-        double e[3], h[3], n[3], len;
-        for (k = 0; k < 3; k++) { e[k] = (double)p1[k] - p0[k]; h[k] = (double)p2[k] - p0[k]; }
-        for (k = 0; k < 3; k++) n[k] = e[(k + 1) % 3] * h[(k + 2) % 3] - e[(k + 2) % 3] * h[(k + 1) % 3];
-        len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        const voxgi_material *m = voxgi__tri_material(f, t);
+        double n[3];
+        voxgi__tri_unit_normal(f, t, n);
         for (k = 0; k < 3; k++) {
-            double nk = len > 0 ? n[k] / len : 0;
             tv[10 * t + (size_t)k] = m->albedo[k];
-            tv[10 * t + 3 + (size_t)k] = (float)(d->blend[1] == VOXGI_BLEND_MAX ? nk * 0.5 + 0.5 : nk);
+            tv[10 * t + 3 + (size_t)k] = (float)(d->blend[1] == VOXGI_BLEND_MAX ? n[k] * 0.5 + 0.5 : n[k]);
             tv[10 * t + 6 + (size_t)k] = m->emission[k];
         }
         tv[10 * t + 9] = 1.0f - m->transparency;
@@ -4199,16 +4197,14 @@ static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__fla
     memset(tex, 0, sizeof tex);
     gl->CreateVertexArrays(1, &vao);
     gl->CreateFramebuffers(1, &fbo);
-    gl->GetIntegerv(VOXGI__GL_VIEWPORT, viewport);
-    for (i = 0; i < 7; i++) {
-        was_enabled[i] = gl->IsEnabled(caps[i]);
-        gl->Disable(caps[i]);
-    }
-    for (i = 0; i < 3; i++) { /* the blend state of draw buffers 0-2, restored at the end */
+    for (i = 0; i < 3; i++) { /* the blend state of draw buffers 0-2, saved first: it is restored last */
         static const unsigned int names[6] = {VOXGI__GL_BLEND_SRC_RGB, VOXGI__GL_BLEND_DST_RGB, VOXGI__GL_BLEND_SRC_ALPHA,
                                               VOXGI__GL_BLEND_DST_ALPHA, VOXGI__GL_BLEND_EQUATION_RGB, VOXGI__GL_BLEND_EQUATION_ALPHA};
         blend_was[i] = gl->IsEnabledi(VOXGI__GL_BLEND, (unsigned)i);
         for (k = 0; k < 6; k++) gl->GetIntegeri_v(names[k], (unsigned)i, &saved[i][k]);
+    }
+    voxgi__gl_raster_begin(gl, &state);
+    for (i = 0; i < 3; i++) {
         gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
         gl->BlendFuncSeparatei((unsigned)i, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE);
     }
@@ -4278,10 +4274,7 @@ static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__fla
     }
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
     gl->BindVertexArray(0);
-    gl->Viewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    for (i = 0; i < 7; i++)
-        if (was_enabled[i]) gl->Enable(caps[i]);
-        else gl->Disable(caps[i]);
+    voxgi__gl_raster_end(gl, &state);
     for (i = 0; i < 3; i++) {
         gl->BlendFuncSeparatei((unsigned)i, (unsigned)saved[i][0], (unsigned)saved[i][1], (unsigned)saved[i][2], (unsigned)saved[i][3]);
         gl->BlendEquationSeparatei((unsigned)i, (unsigned)saved[i][4], (unsigned)saved[i][5]);

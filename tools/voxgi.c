@@ -182,6 +182,23 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* "albedo,normal,emission,opacity" or "all" -> voxgi_attribute bits; 0 on a bad name. */
+static int parse_attributes(const char *arg, unsigned *out)
+{
+    char list[128], *tok;
+    snprintf(list, sizeof list, "%s", arg);
+    *out = 0;
+    for (tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
+        if (strcmp(tok, "albedo") == 0) *out |= VOXGI_ATTRIBUTE_ALBEDO;
+        else if (strcmp(tok, "normal") == 0) *out |= VOXGI_ATTRIBUTE_NORMAL;
+        else if (strcmp(tok, "emission") == 0) *out |= VOXGI_ATTRIBUTE_EMISSION;
+        else if (strcmp(tok, "opacity") == 0) *out |= VOXGI_ATTRIBUTE_OPACITY;
+        else if (strcmp(tok, "all") == 0) *out |= 15u;
+        else return 0;
+    }
+    return *out != 0;
+}
+
 /* ------------------------------------------------------------------ voxelize */
 static const char *voxelize_help =
     "usage: voxgi voxelize MESH [options]\n"
@@ -254,16 +271,7 @@ static int cmd_voxelize(int argc, char **argv)
         } else if (strcmp(a, "--atlas-size") == 0 && i + 1 < argc) {
             if (!parse_int(argv[++i], 1, 16384, &vd.atlas_size)) return bad_arg("voxelize", "--atlas-size needs 1..16384");
         } else if (strcmp(a, "--attributes") == 0 && i + 1 < argc) {
-            char list[128], *tok;
-            snprintf(list, sizeof list, "%s", argv[++i]);
-            for (tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
-                if (strcmp(tok, "albedo") == 0) vd.attributes |= VOXGI_ATTRIBUTE_ALBEDO;
-                else if (strcmp(tok, "normal") == 0) vd.attributes |= VOXGI_ATTRIBUTE_NORMAL;
-                else if (strcmp(tok, "emission") == 0) vd.attributes |= VOXGI_ATTRIBUTE_EMISSION;
-                else if (strcmp(tok, "opacity") == 0) vd.attributes |= VOXGI_ATTRIBUTE_OPACITY;
-                else if (strcmp(tok, "all") == 0) vd.attributes |= 15u;
-                else return bad_arg("voxelize", "--attributes lists albedo, normal, emission, opacity or all");
-            }
+            if (!parse_attributes(argv[++i], &vd.attributes)) return bad_arg("voxelize", "--attributes lists albedo, normal, emission, opacity or all");
         } else if (strcmp(a, "--blend") == 0 && i + 1 < argc) {
             char list[128], *tok;
             int k = 0;
@@ -841,17 +849,7 @@ static int cmd_svo(int argc, char **argv)
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(svo_help, stdout); return 0; }
         else if (strcmp(a, "--res") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, VOXGI_MAX_RES, &res)) return bad_arg("svo", "--res needs 1..65536"); }
         else if (strcmp(a, "--attributes") == 0 && i + 1 < argc) {
-            char list[128], *tok;
-            vd.attributes = 0;
-            snprintf(list, sizeof list, "%s", argv[++i]);
-            for (tok = strtok(list, ","); tok; tok = strtok(NULL, ",")) {
-                if (strcmp(tok, "albedo") == 0) vd.attributes |= VOXGI_ATTRIBUTE_ALBEDO;
-                else if (strcmp(tok, "normal") == 0) vd.attributes |= VOXGI_ATTRIBUTE_NORMAL;
-                else if (strcmp(tok, "emission") == 0) vd.attributes |= VOXGI_ATTRIBUTE_EMISSION;
-                else if (strcmp(tok, "opacity") == 0) vd.attributes |= VOXGI_ATTRIBUTE_OPACITY;
-                else if (strcmp(tok, "all") == 0) vd.attributes |= 15u;
-                else return bad_arg("svo", "--attributes lists albedo, normal, emission, opacity or all");
-            }
+            if (!parse_attributes(argv[++i], &vd.attributes)) return bad_arg("svo", "--attributes lists albedo, normal, emission, opacity or all");
         } else if (strcmp(a, "--backend") == 0 && i + 1 < argc) { if (!parse_backend(argv[++i], &backend)) return bad_arg("svo", "--backend is auto, cpu or gl"); }
         else if (strcmp(a, "--gl") == 0 && i + 1 < argc) { if (vxt_gl_kind_parse(argv[++i], &kind) != 0) return bad_arg("svo", "--gl is auto, egl or osmesa"); }
         else if (strcmp(a, "--threads") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 256, &threads)) return bad_arg("svo", "--threads needs 1..256"); }
