@@ -5054,13 +5054,21 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     }
     for (lev = 0; lev <= depth && r == VOXGI_OK; lev++) svo->info.level_nodes[lev] = count[lev];
     if (r == VOXGI_OK) { /* inner tiles: level 1 .. depth-1, one per node of the level above */
-        uint64_t tiles = 0;
+        uint64_t tiles = 0, value_bytes = 0, total;
         for (lev = 1; lev < depth; lev++) { tiles_before[lev] = tiles; tiles += count[lev - 1]; }
         svo->info.nodes = 1 + 8 * tiles;
         svo->info.leaf_slots = 8 * (uint64_t)count[depth - 1];
         svo->info.leaf_voxels = n;
         svo->info.structure_bytes = (size_t)(svo->info.nodes * 4);
-        if (!(svo->child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 4, 1)))
+        for (a = 0; a < 4; a++)
+            if (svo->info.attributes & (1u << a)) value_bytes += (svo->info.nodes + svo->info.leaf_slots) * (a == 3 ? 4u : 16u);
+        total = svo->info.nodes * (desc->neighbours ? 28u : 4u) + value_bytes;
+        if (svo->info.nodes > (uint64_t)UINT32_MAX || svo->info.leaf_slots > (uint64_t)UINT32_MAX * 8)
+            r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%llu node slots exceed the 32-bit pointers", (unsigned long long)svo->info.nodes);
+        else if (ctx->desc.memory_budget && total > (uint64_t)ctx->desc.memory_budget) /* before any of it is allocated */
+            r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree needs %llu bytes, more than the memory budget %llu", (unsigned long long)total,
+                            (unsigned long long)ctx->desc.memory_budget);
+        else if (!(svo->child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 4, 1)))
             r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %llu nodes", (unsigned long long)svo->info.nodes);
     }
     if (r == VOXGI_OK) { /* child pointers: node (lev, rank) -> 1 + its tile one level down */

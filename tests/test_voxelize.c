@@ -1848,7 +1848,7 @@ static void test_volume_sampling(void)
     voxgi_destroy(ctx);
 }
 
-/* Every allocation of the attribute, atlas, Volume Buffer and volume paths may fail: the result
+/* Every allocation of the attribute, volume, octree, atlas and Volume Buffer paths may fail: the result
    is VOXGI_ERR_OUT_OF_MEMORY (never a crash or a half result) and nothing leaks. Bad points and
    voxels without attributes are refused. */
 static void test_volume_and_attribute_failures(void)
@@ -1884,6 +1884,17 @@ static void test_volume_and_attribute_failures(void)
             vold.filter = VOXGI_MIPS_ANISOTROPIC;
             r2 = voxgi_volume_create(ctx, vox, &vold, &vol);
             TH_CHECK((r2 == VOXGI_OK) == (vol != NULL) && (r2 == VOXGI_OK || r2 == VOXGI_ERR_OUT_OF_MEMORY), "volume: %s", voxgi_result_string(r2));
+        }
+        if (r2 == VOXGI_OK) {
+            voxgi_svo_desc sd;
+            voxgi_svo *svo = NULL;
+            voxgi_result rs;
+            memset(&sd, 0, sizeof sd);
+            sd.neighbours = 1;
+            rs = voxgi_svo_create(ctx, vox, &sd, &svo);
+            TH_CHECK((rs == VOXGI_OK) == (svo != NULL) && (rs == VOXGI_OK || rs == VOXGI_ERR_OUT_OF_MEMORY), "octree: %s", voxgi_result_string(rs));
+            voxgi_svo_destroy(ctx, svo);
+            if (rs != VOXGI_OK) r2 = rs;
         }
         if (r2 == VOXGI_OK) {
             vd.method = VOXGI_METHOD_ATLAS; vd.attributes = 0;
@@ -2071,6 +2082,23 @@ static void test_svo_equals_dense(void)
         voxgi_svo_lookup(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, info.depth, 2, c, o);
         TH_CHECK(o[3] == 0 && o[7] == 0, "empty places are not empty");
         TH_CHECK(voxgi_svo_lookup(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, 9, 1, c, o) == VOXGI_ERR_INVALID_ARGUMENT, "level 9 accepted");
+    }
+    {   /* a memory budget below the octree's size: refused before anything is built, nothing leaks */
+        voxgi_desc d;
+        voxgi_context *small = NULL;
+        voxgi_svo *none = NULL;
+        memset(&d, 0, sizeof d);
+        d.backend = VOXGI_BACKEND_CPU;
+        d.memory_budget = info.bytes / 2;
+        voxgi_create(&d, &small);
+        TH_CHECK(voxgi_svo_create(small, vox, &sd, &none) == VOXGI_ERR_TOO_LARGE && !none, "budget %lu: %s", (unsigned long)d.memory_budget,
+                 voxgi_last_error(small));
+        d.memory_budget = info.bytes;
+        voxgi_destroy(small);
+        voxgi_create(&d, &small);
+        TH_CHECK(voxgi_svo_create(small, vox, &sd, &none) == VOXGI_OK && none, "the exact budget refused: %s", voxgi_last_error(small));
+        voxgi_svo_destroy(small, none);
+        voxgi_destroy(small);
     }
     free(bits); free(ids);
     voxgi_svo_destroy(ctx, svo);
