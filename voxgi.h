@@ -438,14 +438,20 @@ VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_v
    isotropic mip of their children, so a lookup at level l equals the dense volume's level
    depth - l at the same place. */
 typedef struct voxgi_svo voxgi_svo;
+/* How node and leaf values are stored: FLOAT32 (RGBA32F, R32F) or FLOAT16 (RGBA16F, R16F; each
+   value rounded to the nearest half, ties to even; a parent is the mip of its children's stored
+   values, as a GPU builds the mips of a half-float texture). */
+typedef enum voxgi_svo_format { VOXGI_SVO_FLOAT32 = 0, VOXGI_SVO_FLOAT16 } voxgi_svo_format;
 typedef struct voxgi_svo_desc {
     unsigned attributes;          /* voxgi_attribute bits (0 = all the voxels hold) */
     int neighbours;               /* 1: also the six neighbour pointers of every node (24 bytes per node slot) */
+    voxgi_svo_format format;
 } voxgi_svo_desc;
 typedef struct voxgi_svo_info {
     voxgi_grid grid;
     voxgi_backend backend;        /* where the octree lives */
     unsigned attributes;
+    voxgi_svo_format format;
     int depth;                    /* leaves at level depth */
     uint64_t leaf_voxels;         /* set voxels */
     uint64_t nodes;               /* node slots: the root and 8 per inner tile */
@@ -454,7 +460,7 @@ typedef struct voxgi_svo_info {
     size_t structure_bytes;       /* child pointers */
     size_t neighbour_bytes;       /* neighbour pointers, when built */
     size_t bytes;                 /* everything: structure, neighbours and values */
-    size_t dense_bytes;           /* the dense equivalent: level 0 of the same attributes as RGBA32F (R32F) */
+    size_t dense_bytes;           /* the dense equivalent: level 0 of the same attributes in the same format */
     double ms, ms_sort, ms_nodes, ms_values, ms_neighbours; /* whole build, then its passes */
 } voxgi_svo_info;
 
@@ -1266,6 +1272,9 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, BindBuffer, (unsigned int target, unsigned int buffer))                                      \
     X(void, DispatchCompute, (unsigned int x, unsigned int y, unsigned int z))                           \
     X(void, DispatchComputeIndirect, (ptrdiff_t indirect))                                               \
+    X(void, CopyNamedBufferSubData, (unsigned int read, unsigned int write, ptrdiff_t read_offset,        \
+                                     ptrdiff_t write_offset, ptrdiff_t size))                            \
+    X(void, Finish, (void))                                                                              \
     X(void, MemoryBarrier, (unsigned int barriers))                                                      \
     X(void, CreateVertexArrays, (int n, unsigned int *arrays))                                           \
     X(void, DeleteVertexArrays, (int n, const unsigned int *arrays))                                     \
@@ -1310,7 +1319,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -3522,6 +3531,15 @@ static void voxgi__gl_dispatch_items(voxgi__gl *gl, uint64_t items)
     gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
+/* One invocation per item, in rows of at most 65535 work groups (the shaders' item index is
+   x + y * the row's invocations); the barrier covers storage and indirect commands. */
+static void voxgi__gl_dispatch_rows(voxgi__gl *gl, uint64_t items)
+{
+    uint64_t groups = (items + 63) / 64;
+    if (groups) gl->DispatchCompute((unsigned)VOXGI__MIN(groups, (uint64_t)65535), (unsigned)((groups + 65534) / 65535), 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+}
+
 /* The triangle pass: conservative/thin voxels (solid_axis < 0) or solid toggles along
    solid_axis, into a new buffer *bits_out. What the GPU's filter cannot decide is decided here
    exactly and written back. */
@@ -4037,12 +4055,6 @@ static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f,
     return r;
 }
 
-/* Dispatches one invocation per item, 65536 per row of work groups (see atlas_item()). */
-static void voxgi__gl_dispatch_rows(voxgi__gl *gl, uint64_t items)
-{
-    gl->DispatchCompute(1024u, (unsigned)((items + 65535) / 65536), 1);
-    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
-}
 
 /* The texture atlas: the charts drawn into an R32UI atlas, its covered texels listed as
    points, then the points either drawn into slicemap targets (ATLAS) or each set by one
@@ -4727,8 +4739,8 @@ VOXGI_API voxgi_result voxgi_volume_read(voxgi_context *ctx, const voxgi_volume 
     return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the volume holds no data");
 }
 
-/* Level k's stored value of voxel v (w floats), or NULL where it is empty or beyond the grid. */
-typedef const float *(*voxgi__fetch_fn)(const void *source, int k, const int v[3]);
+/* Level k's stored value of voxel v into t (w floats); 0 where it is empty or beyond the grid. */
+typedef int (*voxgi__fetch_fn)(const void *source, int k, const int v[3], float t[4]);
 
 /* Trilinear sample of level k at p (grid units of level 0) between the voxel centres. */
 static void voxgi__trilinear(voxgi__fetch_fn fetch, const void *source, int w, int k, const float p[3], float out[4])
@@ -4744,13 +4756,13 @@ static void voxgi__trilinear(voxgi__fetch_fn fetch, const void *source, int w, i
     for (corner = 0; corner < 8; corner++) {
         int v[3];
         double wt = 1;
-        const float *t;
+        float t[4];
         for (a = 0; a < 3; a++) {
             int hi = (corner >> a) & 1;
             v[a] = i0[a] + hi;
             wt *= hi ? f[a] : 1 - f[a];
         }
-        if (wt == 0 || !(t = fetch(source, k, v))) continue; /* empty */
+        if (wt == 0 || !fetch(source, k, v, t)) continue; /* empty */
         for (ch = 0; ch < w; ch++) out[ch] += (float)(wt * t[ch]);
     }
 }
@@ -4768,12 +4780,14 @@ static void voxgi__sample_lod(voxgi__fetch_fn fetch, const void *source, int w, 
 
 typedef struct voxgi__volume_source { const voxgi_volume *vol; const float *arr; int w; } voxgi__volume_source;
 
-static const float *voxgi__volume_fetch(const void *source, int k, const int v[3])
+static int voxgi__volume_fetch(const void *source, int k, const int v[3], float t[4])
 {
     const voxgi__volume_source *s = (const voxgi__volume_source *)source;
     const int *d = s->vol->dims[k];
-    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= d[0] || v[1] >= d[1] || v[2] >= d[2]) return NULL;
-    return s->arr + (s->vol->first[k] + (size_t)v[0] + (size_t)d[0] * ((size_t)v[1] + (size_t)d[1] * (size_t)v[2])) * (size_t)s->w;
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= d[0] || v[1] >= d[1] || v[2] >= d[2]) return 0;
+    memcpy(t, s->arr + (s->vol->first[k] + (size_t)v[0] + (size_t)d[0] * ((size_t)v[1] + (size_t)d[1] * (size_t)v[2])) * (size_t)s->w,
+           (size_t)s->w * sizeof(float));
+    return 1;
 }
 
 #ifndef VOXGI_NO_GL
@@ -4936,8 +4950,66 @@ struct voxgi_svo {
     voxgi_svo_info info;
     uint32_t *child;                          /* per node slot: 1 + tile index, 0 = none */
     uint32_t *neighbour;                      /* 6 per node slot: slot of the same-level neighbour, 0 = none */
-    float *node_values[4], *leaf_values[4];   /* per node slot / per leaf slot, 4 floats (1 for opacity) */
+    unsigned char *node_values[4], *leaf_values[4]; /* per node slot / per leaf slot: slot_bytes[a] in info.format */
+    int slot_bytes[4];
+    unsigned int gl_child, gl_neighbour, gl_node_values[4], gl_leaf_values[4]; /* GL: the same arrays in buffers */
 };
+
+/* float -> half, rounded to the nearest, ties to even (finite input; 65520 and beyond: infinity).
+   Integer steps only, so shaders/svo.glsl rounds exactly alike. */
+static uint16_t voxgi__half_from_float(float f)
+{
+    uint32_t x, ax, sign, h;
+    memcpy(&x, &f, 4);
+    sign = (x >> 16) & 0x8000u;
+    ax = x & 0x7FFFFFFFu;
+    if (ax >= 0x47800000u) return (uint16_t)(sign | 0x7C00u);
+    if (ax < 0x38800000u) { /* below 2^-14: a subnormal half, |f| * 2^24 rounded (the scaling is exact) */
+        float v = fabsf(f) * 16777216.0f, frac;
+        h = (uint32_t)v;
+        frac = v - (float)h;
+        h += frac > 0.5f || (frac == 0.5f && (h & 1u));
+        return (uint16_t)(sign | h);
+    }
+    ax += 0x0FFFu + ((ax >> 13) & 1u); /* round the 13 dropped bits; a carry moves into the exponent */
+    h = (ax >> 13) - (112u << 10);
+    return (uint16_t)(sign | (h > 0x7C00u ? 0x7C00u : h));
+}
+
+static float voxgi__float_from_half(uint16_t h)
+{
+    uint32_t e = (h >> 10) & 31u, m = h & 1023u;
+    float v = e == 0 ? (float)m / 16777216.0f : (e == 31 ? (m ? NAN : INFINITY) : ldexpf((float)(m | 1024u), (int)e - 25));
+    return (h & 0x8000u) ? -v : v;
+}
+
+/* Stores c (value, alpha) into a slot of an attribute array (opacity: alpha alone). */
+static void voxgi__svo_put(const voxgi_svo *svo, int a, unsigned char *base, uint64_t slot, const float c[4])
+{
+    unsigned char *o = base + slot * (uint64_t)svo->slot_bytes[a];
+    int ch;
+    if (svo->info.format == VOXGI_SVO_FLOAT16) {
+        uint16_t h[4];
+        if (a == 3) h[0] = voxgi__half_from_float(c[3]);
+        else for (ch = 0; ch < 4; ch++) h[ch] = voxgi__half_from_float(c[ch]);
+        memcpy(o, h, (size_t)svo->slot_bytes[a]);
+    } else memcpy(o, a == 3 ? c + 3 : c, (size_t)svo->slot_bytes[a]);
+}
+
+/* Loads a slot as (value, alpha). */
+static void voxgi__svo_get(const voxgi_svo *svo, int a, const unsigned char *base, uint64_t slot, float c[4])
+{
+    const unsigned char *s = base + slot * (uint64_t)svo->slot_bytes[a];
+    float f[4] = {0, 0, 0, 0};
+    int ch, w = a == 3 ? 1 : 4;
+    if (svo->info.format == VOXGI_SVO_FLOAT16) {
+        uint16_t h[4];
+        memcpy(h, s, (size_t)svo->slot_bytes[a]);
+        for (ch = 0; ch < w; ch++) f[ch] = voxgi__float_from_half(h[ch]);
+    } else memcpy(f, s, (size_t)svo->slot_bytes[a]);
+    if (w == 1) { c[0] = c[1] = c[2] = 0; c[3] = f[0]; }
+    else for (ch = 0; ch < 4; ch++) c[ch] = f[ch];
+}
 
 /* Spreads the low 21 bits of v to every third bit. */
 static uint64_t voxgi__spread3(uint64_t v)
@@ -4983,13 +5055,211 @@ static voxgi_result voxgi__sort_codes(voxgi_context *ctx, uint64_t *code, uint32
     return VOXGI_OK;
 }
 
+#ifndef VOXGI_NO_GL
+/* GL: the octree's buffers grow level by level to the size the flag pass counted (a 4-byte
+   read per level), never beyond the memory budget or the largest storage buffer. */
+static voxgi_result voxgi__svo_gl_grow(voxgi_context *ctx, unsigned int *buf, uint64_t *cap, uint64_t need, const char *what)
+{
+    voxgi__gl *gl = ctx->gl;
+    uint64_t bytes;
+    unsigned int b;
+    if (need <= *cap) return VOXGI_OK;
+    bytes = VOXGI__MAX(need, *cap + *cap / 2);
+    if ((int64_t)need > gl->max_ssbo_bytes || (ctx->desc.memory_budget && need > (uint64_t)ctx->desc.memory_budget))
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree's %s need %llu bytes, beyond the storage buffer limit %lld or the budget %llu", what,
+                           (unsigned long long)need, (long long)gl->max_ssbo_bytes, (unsigned long long)ctx->desc.memory_budget);
+    if ((int64_t)bytes > gl->max_ssbo_bytes) bytes = need;
+    b = voxgi__gl_buffer(ctx, (size_t)bytes, NULL);
+    if (*buf) {
+        gl->CopyNamedBufferSubData(*buf, b, 0, 0, (ptrdiff_t)*cap);
+        voxgi__gl_delete_buffer(ctx, *buf);
+    }
+    *buf = b;
+    *cap = bytes;
+    return voxgi__gl_check(ctx, "growing the octree");
+}
+
+/* Binds an octree's child and value buffers of attribute a for shaders/svo.glsl. */
+static void voxgi__svo_gl_bind(voxgi_context *ctx, const voxgi_svo *svo, unsigned int p, int a)
+{
+    voxgi__gl *gl = ctx->gl;
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, svo->gl_child);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, a >= 0 ? svo->gl_node_values[a] : 0);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, a >= 0 ? svo->gl_leaf_values[a] : 0);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_depth"), svo->info.depth);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_format"), (int)svo->info.format);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_single"), a == 3);
+}
+
+
+
+enum { VOXGI__SVO_FLAG, VOXGI__SVO_ARGS, VOXGI__SVO_ALLOCATE, VOXGI__SVO_INIT, VOXGI__SVO_LEAVES, VOXGI__SVO_MIP, VOXGI__SVO_NEIGHBOURS };
+
+/* The GPU build (shaders/svo_build.glsl) from the voxel fragments (x | y << 16, z) and their
+   attribute means in the same order. */
+static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size_t n, const uint32_t *packed, float *const vals[4],
+                                        int neighbours)
+{
+    voxgi__gl *gl = ctx->gl;
+    int depth = svo->info.depth, m, a;
+    unsigned int p, frag = 0, list = 0, counters = 0, fvals = 0;
+    uint64_t child_cap = 0, list_cap = 0, tiles = depth > 1 ? 1 : 0, entries = 1, first[VOXGI__MAX_LEVELS + 1], value_bytes = 0, total;
+    uint32_t init[16], root_tile[9];
+    double t0;
+    voxgi_result r = voxgi__gl_get_program(ctx, "svo.glsl svo_build.glsl", &gl->prog_svo_build);
+    if (r != VOXGI_OK) return r;
+    t0 = voxgi__now_ms();
+    p = gl->prog_svo_build;
+    memset(init, 0, sizeof init);
+    memset(root_tile, 0, sizeof root_tile);
+    root_tile[0] = 1; /* the root always has its tile (a leaf tile when depth is 1), as on the CPU */
+    init[0] = depth > 1 ? 1u : 0u;
+    init[1] = depth > 1 ? 0u : 1u;
+    init[3] = 1; /* the node list holds the root */
+    r = voxgi__svo_gl_grow(ctx, &svo->gl_child, &child_cap, depth > 1 ? 36 : 4, "child pointers");
+    if (r == VOXGI_OK) r = voxgi__svo_gl_grow(ctx, &list, &list_cap, 16, "node list");
+    if (r != VOXGI_OK) goto done;
+    gl->NamedBufferSubData(svo->gl_child, 0, depth > 1 ? 36 : 4, root_tile);
+    gl->NamedBufferSubData(list, 0, 16, init + 4); /* slot 0 at (0, 0, 0) */
+    counters = voxgi__gl_buffer(ctx, sizeof init, init);
+    frag = voxgi__gl_buffer(ctx, n * 8, packed);
+    gl->UseProgram(p);
+    voxgi__svo_gl_bind(ctx, svo, p, -1);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, frag);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, counters);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
+    svo->info.level_nodes[0] = 1;
+    first[0] = 0;
+    for (m = 1; m < depth && r == VOXGI_OK; m++) { /* level m's nodes and their tiles */
+        uint32_t flagged = 0;
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_FLAG);
+        voxgi__gl_dispatch_rows(gl, n);
+        gl->GetNamedBufferSubData(counters, 8, 4, &flagged);
+        svo->info.level_nodes[m] = flagged;
+        first[m] = entries;
+        entries += flagged;
+        if (m < depth - 1) tiles += flagged;
+        r = voxgi__svo_gl_grow(ctx, &svo->gl_child, &child_cap, 4 * (1 + 8 * tiles), "child pointers");
+        if (r == VOXGI_OK) r = voxgi__svo_gl_grow(ctx, &list, &list_cap, 16 * entries, "node list");
+        if (r != VOXGI_OK) break;
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, svo->gl_child);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_ARGS);
+        gl->DispatchCompute(1, 1, 1);
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, counters);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_ALLOCATE);
+        gl->DispatchComputeIndirect(16);
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_INIT);
+        gl->DispatchComputeIndirect(32);
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
+    }
+    if (r != VOXGI_OK) goto done;
+    svo->info.level_nodes[depth] = n;
+    svo->info.nodes = 1 + 8 * tiles;
+    svo->info.leaf_slots = 8 * svo->info.level_nodes[depth - 1];
+    svo->info.leaf_voxels = n;
+    svo->info.structure_bytes = (size_t)(svo->info.nodes * 4);
+    for (a = 0; a < 4; a++)
+        if (svo->info.attributes & (1u << a)) value_bytes += (svo->info.nodes + svo->info.leaf_slots) * (uint64_t)svo->slot_bytes[a];
+    total = svo->info.nodes * (neighbours ? 28u : 4u) + value_bytes;
+    if (svo->info.nodes > (uint64_t)UINT32_MAX || svo->info.leaf_slots > (uint64_t)UINT32_MAX * 8) {
+        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%llu node slots exceed the 32-bit pointers", (unsigned long long)svo->info.nodes);
+        goto done;
+    }
+    if (ctx->desc.memory_budget && total > (uint64_t)ctx->desc.memory_budget) { /* before the values are allocated */
+        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree needs %llu bytes, more than the memory budget %llu", (unsigned long long)total,
+                        (unsigned long long)ctx->desc.memory_budget);
+        goto done;
+    }
+    if (child_cap > svo->info.structure_bytes) { /* give back the growth's slack */
+        unsigned int exact = voxgi__gl_buffer(ctx, svo->info.structure_bytes, NULL);
+        gl->CopyNamedBufferSubData(svo->gl_child, exact, 0, 0, (ptrdiff_t)svo->info.structure_bytes);
+        voxgi__gl_delete_buffer(ctx, svo->gl_child);
+        svo->gl_child = exact;
+    }
+    gl->Finish();
+    svo->info.ms_nodes = voxgi__now_ms() - t0;
+    t0 = voxgi__now_ms();
+    if (neighbours) { /* levels 1 .. depth-1 */
+        unsigned int zero = 0;
+        svo->gl_neighbour = voxgi__gl_buffer(ctx, (size_t)svo->info.nodes * 24, NULL);
+        gl->ClearNamedBufferData(svo->gl_neighbour, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        voxgi__svo_gl_bind(ctx, svo, p, -1);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 6, svo->gl_neighbour);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_NEIGHBOURS);
+        for (m = 1; m < depth; m++) {
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first[m]);
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)svo->info.level_nodes[m]);
+            voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
+        }
+        svo->info.neighbour_bytes = (size_t)(svo->info.nodes * 24);
+        gl->Finish();
+        svo->info.ms_neighbours = voxgi__now_ms() - t0;
+        t0 = voxgi__now_ms();
+    }
+    fvals = voxgi__gl_buffer(ctx, n * 16, NULL);
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) { /* leaves from the fragments, then the mips bottom up */
+        uint64_t node_bytes = svo->info.nodes * (uint64_t)svo->slot_bytes[a], leaf_bytes = svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a];
+        unsigned int zero = 0;
+        float *v4;
+        size_t i;
+        if (!(svo->info.attributes & (1u << a))) continue;
+        if (!(v4 = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the fragment values"); break; }
+        for (i = 0; i < n; i++) {
+            v4[4 * i] = a < 3 ? vals[a][3 * i] : 0;
+            v4[4 * i + 1] = a < 3 ? vals[a][3 * i + 1] : 0;
+            v4[4 * i + 2] = a < 3 ? vals[a][3 * i + 2] : 0;
+            v4[4 * i + 3] = vals[3] ? vals[3][i] : 1.0f;
+        }
+        gl->NamedBufferSubData(fvals, 0, (ptrdiff_t)(n * 16), v4);
+        voxgi__free(ctx, v4);
+        svo->gl_node_values[a] = voxgi__gl_buffer(ctx, (size_t)((node_bytes + 3) / 4 * 4), NULL);
+        svo->gl_leaf_values[a] = voxgi__gl_buffer(ctx, (size_t)((leaf_bytes + 3) / 4 * 4), NULL);
+        gl->ClearNamedBufferData(svo->gl_node_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        gl->ClearNamedBufferData(svo->gl_leaf_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        voxgi__svo_gl_bind(ctx, svo, p, a);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, fvals);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_LEAVES);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
+        voxgi__gl_dispatch_rows(gl, n);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_MIP);
+        for (m = depth - 1; m >= 0; m--) {
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first[m]);
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)svo->info.level_nodes[m]);
+            voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
+        }
+        svo->info.bytes += (size_t)(node_bytes + leaf_bytes);
+        svo->info.dense_bytes += (size_t)(voxgi_grid_voxel_count(&svo->info.grid) * (uint64_t)svo->slot_bytes[a]);
+        r = voxgi__gl_check(ctx, "the octree's values");
+    }
+    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes;
+    gl->Finish();
+    svo->info.ms_values = voxgi__now_ms() - t0;
+done:
+    voxgi__gl_unbind(gl);
+    voxgi__gl_delete_buffer(ctx, frag);
+    voxgi__gl_delete_buffer(ctx, list);
+    voxgi__gl_delete_buffer(ctx, counters);
+    voxgi__gl_delete_buffer(ctx, fvals);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "building the octree");
+    return r;
+}
+#endif
+
 VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *vx, const voxgi_svo_desc *desc, voxgi_svo **out)
 {
     voxgi_svo *svo;
     const voxgi_grid *g;
     uint64_t *codes[VOXGI__MAX_LEVELS + 1], nvox, l, tiles_before[VOXGI__MAX_LEVELS + 1];
     size_t count[VOXGI__MAX_LEVELS + 1], need = 0, i, n = 0;
-    uint32_t *bits = NULL, *order = NULL;
+    uint32_t *bits = NULL, *order = NULL, *packed = NULL;
     const uint32_t *leaf_bits = NULL;
     float *vals[4] = {NULL, NULL, NULL, NULL};
     double t0 = voxgi__now_ms(), t1;
@@ -5005,13 +5275,17 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     maxres = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2]));
     while ((1 << depth) < maxres) depth++;
     if (depth > 16) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "octrees hold grids up to 65536 voxels per axis");
+    if (desc->format != VOXGI_SVO_FLOAT32 && desc->format != VOXGI_SVO_FLOAT16)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "octree value format %d", (int)desc->format);
     svo = (voxgi_svo *)voxgi__alloc_array(ctx, 1, sizeof *svo, 1);
     if (!svo) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree");
     memset(codes, 0, sizeof codes);
     svo->info.grid = *g;
-    svo->info.backend = VOXGI_BACKEND_CPU;
+    svo->info.backend = ctx->backend;
     svo->info.attributes = desc->attributes ? desc->attributes : vx->info.attributes;
     svo->info.depth = depth;
+    svo->info.format = desc->format;
+    for (a = 0; a < 4; a++) svo->slot_bytes[a] = (a == 3 ? 4 : 16) >> (desc->format == VOXGI_SVO_FLOAT16);
     nvox = voxgi_grid_voxel_count(g);
     /* 1. the leaves: Morton codes of the set voxels, with their index in bit order (GL voxels
        are read back; CPU ones are used where they are) */
@@ -5023,19 +5297,37 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
         leaf_bits = bits;
     }
     n = (size_t)vx->info.voxel_count;
-    if (r == VOXGI_OK && (!(codes[depth] = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)) ||
-                          !(order = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 4, 0))))
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_GL) { /* the GPU's voxel fragment list: x | y << 16, z */
+        if (!(packed = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu voxel fragments", (unsigned long)n);
+    } else if (r == VOXGI_OK && (!(codes[depth] = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)) ||
+                                 !(order = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 4, 0))))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu leaves", (unsigned long)n);
     for (l = 0, i = 0; r == VOXGI_OK && l < (nvox + 31) / 32; l++) { /* word by word: empty space costs little */
         uint32_t word = leaf_bits[l];
         for (; word; word &= word - 1) {
             uint64_t v = 32 * l + (uint64_t)voxgi__popcount32((word & (0u - word)) - 1u);
-            codes[depth][i] = voxgi__morton((uint32_t)(v % (uint64_t)g->res[0]), (uint32_t)(v / (uint64_t)g->res[0] % (uint64_t)g->res[1]),
-                                            (uint32_t)(v / ((uint64_t)g->res[0] * (uint64_t)g->res[1])));
-            order[i] = (uint32_t)i;
+            uint32_t x = (uint32_t)(v % (uint64_t)g->res[0]), y = (uint32_t)(v / (uint64_t)g->res[0] % (uint64_t)g->res[1]),
+                     z = (uint32_t)(v / ((uint64_t)g->res[0] * (uint64_t)g->res[1]));
+            if (packed) { packed[2 * i] = x | y << 16; packed[2 * i + 1] = z; }
+            else { codes[depth][i] = voxgi__morton(x, y, z); order[i] = (uint32_t)i; }
             i++;
         }
     }
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) { /* the attribute means, in bit order */
+        voxgi_attribute which = (voxgi_attribute)(1 << a);
+        if (!(vx->info.attributes & (unsigned)which) || (a < 3 && !(svo->info.attributes & (unsigned)which))) continue;
+        r = voxgi_voxels_read_attribute(ctx, vx, which, NULL, 0, &need);
+        if (r == VOXGI_OK && !(vals[a] = (float *)voxgi__alloc(ctx, need ? need : 4))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+        if (r == VOXGI_OK) r = voxgi_voxels_read_attribute(ctx, vx, which, vals[a], need, NULL);
+    }
+#ifndef VOXGI_NO_GL
+    if (packed) {
+        svo->info.ms_sort = voxgi__now_ms() - t0;
+        if (r == VOXGI_OK) r = voxgi__svo_gl_build(ctx, svo, n, packed, vals, desc->neighbours);
+        goto finish;
+    }
+#endif
     if (r == VOXGI_OK) r = voxgi__sort_codes(ctx, codes[depth], order, n, 3 * depth);
     t1 = voxgi__now_ms();
     svo->info.ms_sort = t1 - t0;
@@ -5061,7 +5353,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
         svo->info.leaf_voxels = n;
         svo->info.structure_bytes = (size_t)(svo->info.nodes * 4);
         for (a = 0; a < 4; a++)
-            if (svo->info.attributes & (1u << a)) value_bytes += (svo->info.nodes + svo->info.leaf_slots) * (a == 3 ? 4u : 16u);
+            if (svo->info.attributes & (1u << a)) value_bytes += (svo->info.nodes + svo->info.leaf_slots) * (uint64_t)svo->slot_bytes[a];
         total = svo->info.nodes * (desc->neighbours ? 28u : 4u) + value_bytes;
         if (svo->info.nodes > (uint64_t)UINT32_MAX || svo->info.leaf_slots > (uint64_t)UINT32_MAX * 8)
             r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%llu node slots exceed the 32-bit pointers", (unsigned long long)svo->info.nodes);
@@ -5123,52 +5415,51 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     }
     /* 3. values: the leaves from the attribute means, then every node the isotropic mip of its tile */
     for (a = 0; a < 4 && r == VOXGI_OK; a++) {
-        voxgi_attribute which = (voxgi_attribute)(1 << a);
-        if (!(vx->info.attributes & (unsigned)which) || (a < 3 && !(svo->info.attributes & (unsigned)which))) continue;
-        r = voxgi_voxels_read_attribute(ctx, vx, which, NULL, 0, &need);
-        if (r == VOXGI_OK && !(vals[a] = (float *)voxgi__alloc(ctx, need ? need : 4))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
-        if (r == VOXGI_OK) r = voxgi_voxels_read_attribute(ctx, vx, which, vals[a], need, NULL);
-    }
-    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
-        int w = a == 3 ? 1 : 4;
-        float *leaf, *node;
+        int b = svo->slot_bytes[a];
+        unsigned char *leaf, *node;
         if (!(svo->info.attributes & (1u << a))) continue;
-        leaf = svo->leaf_values[a] = (float *)voxgi__alloc_array(ctx, (size_t)(svo->info.leaf_slots ? svo->info.leaf_slots : 1), (size_t)w * 4, 1);
-        node = svo->node_values[a] = (float *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, (size_t)w * 4, 1);
+        leaf = svo->leaf_values[a] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)(svo->info.leaf_slots ? svo->info.leaf_slots : 1), (size_t)b, 1);
+        node = svo->node_values[a] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, (size_t)b, 1);
         if (!leaf || !node) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's values"); break; }
         {   /* leaves: slot 8 * rank(parent) + digit */
             size_t parent_rank = 0;
             for (i = 0; i < n; i++) {
                 uint64_t parent = codes[depth][i] >> 3;
-                float *o;
-                float alpha = vals[3] ? vals[3][order[i]] : 1.0f;
+                float c[4] = {0, 0, 0, 0};
+                c[3] = vals[3] ? vals[3][order[i]] : 1.0f;
+                if (a < 3) memcpy(c, vals[a] + 3 * (size_t)order[i], 3 * sizeof(float));
                 while (codes[depth - 1][parent_rank] != parent) parent_rank++;
-                o = leaf + (8 * parent_rank + (codes[depth][i] & 7u)) * (size_t)w;
-                if (w == 1) o[0] = alpha;
-                else { o[0] = vals[a][3 * (size_t)order[i]]; o[1] = vals[a][3 * (size_t)order[i] + 1]; o[2] = vals[a][3 * (size_t)order[i] + 2]; o[3] = alpha; }
+                voxgi__svo_put(svo, a, leaf, 8 * parent_rank + (codes[depth][i] & 7u), c);
             }
         }
-        for (lev = depth - 1; lev >= 0; lev--) { /* nodes bottom up */
+        for (lev = depth - 1; lev >= 0; lev--) { /* nodes bottom up, from the stored values of their children */
             size_t parent_rank = 0;
             for (i = 0; i < count[lev]; i++) {
                 uint64_t slot = 0, tile;
-                float c[8][4];
+                float c[8][4], m[4];
                 int k;
                 if (lev > 0) {
                     while (codes[lev - 1][parent_rank] != codes[lev][i] >> 3) parent_rank++;
                     slot = 1 + 8 * (tiles_before[lev] + parent_rank) + (codes[lev][i] & 7u);
                 }
                 tile = svo->child[slot] - 1;
-                for (k = 0; k < 8; k++)
-                    voxgi__mip_load(lev == depth - 1 ? leaf + (8 * tile + (uint64_t)k) * (uint64_t)w : node + (1 + 8 * tile + (uint64_t)k) * (uint64_t)w, w, c[k]);
-                voxgi__mip_combine(c, w, -1, node + slot * (uint64_t)w);
+                for (k = 0; k < 8; k++) {
+                    if (lev == depth - 1) voxgi__svo_get(svo, a, leaf, 8 * tile + (uint64_t)k, c[k]);
+                    else voxgi__svo_get(svo, a, node, 1 + 8 * tile + (uint64_t)k, c[k]);
+                }
+                voxgi__mip_combine(c, 4, -1, m);
+                voxgi__svo_put(svo, a, node, slot, m);
             }
         }
-        svo->info.bytes += (size_t)((svo->info.nodes + svo->info.leaf_slots) * (uint64_t)w * 4);
-        svo->info.dense_bytes += (size_t)(nvox * (uint64_t)w * 4);
+        svo->info.bytes += (size_t)((svo->info.nodes + svo->info.leaf_slots) * (uint64_t)b);
+        svo->info.dense_bytes += (size_t)(nvox * (uint64_t)b);
     }
     svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes;
     svo->info.ms_values = voxgi__now_ms() - t0;
+#ifndef VOXGI_NO_GL
+finish:
+#endif
+    voxgi__free(ctx, packed);
     for (lev = 0; lev <= VOXGI__MAX_LEVELS; lev++) voxgi__free(ctx, codes[lev]);
     for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
     voxgi__free(ctx, bits);
@@ -5186,6 +5477,11 @@ VOXGI_API void voxgi_svo_destroy(voxgi_context *ctx, voxgi_svo *svo)
     voxgi__free(ctx, svo->child);
     voxgi__free(ctx, svo->neighbour);
     for (a = 0; a < 4; a++) { voxgi__free(ctx, svo->node_values[a]); voxgi__free(ctx, svo->leaf_values[a]); }
+#ifndef VOXGI_NO_GL
+    voxgi__gl_delete_buffer(ctx, svo->gl_child);
+    voxgi__gl_delete_buffer(ctx, svo->gl_neighbour);
+    for (a = 0; a < 4; a++) { voxgi__gl_delete_buffer(ctx, svo->gl_node_values[a]); voxgi__gl_delete_buffer(ctx, svo->gl_leaf_values[a]); }
+#endif
     voxgi__free(ctx, svo);
 }
 
@@ -5194,6 +5490,57 @@ VOXGI_API void voxgi_svo_query(const voxgi_svo *svo, voxgi_svo_info *out)
     if (!out) return;
     if (!svo) { memset(out, 0, sizeof *out); return; }
     *out = svo->info;
+}
+
+#ifndef VOXGI_NO_GL
+/* GL: lookups (lookup = 1; points hold the coordinates' and the level's bits) or samples (xyz,
+   lod) of attribute a at `count` points by shaders/svo_sample.glsl. */
+static voxgi_result voxgi__svo_gl_points(voxgi_context *ctx, const voxgi_svo *svo, int a, int lookup, size_t count, const float *points,
+                                         float *out)
+{
+    voxgi__gl *gl = ctx->gl;
+    unsigned int bufs[2], p;
+    float *got;
+    size_t i;
+    int w = a == 3 ? 1 : 4;
+    voxgi_result r = voxgi__gl_get_program(ctx, "svo.glsl svo_sample.glsl", &gl->prog_svo_sample);
+    if (r != VOXGI_OK || !count) return r;
+    if (count > (size_t)65535 * 65535 * 64) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
+    if (!(got = (float *)voxgi__alloc_array(ctx, count, 16, 0))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu samples", (unsigned long)count);
+    bufs[0] = voxgi__gl_buffer(ctx, count * 16, points);
+    bufs[1] = voxgi__gl_buffer(ctx, count * 16, NULL);
+    p = gl->prog_svo_sample;
+    gl->UseProgram(p);
+    voxgi__svo_gl_bind(ctx, svo, p, a);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, bufs[0]);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, bufs[1]);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)count);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_lookup"), lookup);
+    voxgi__gl_dispatch_rows(gl, count);
+    voxgi__gl_unbind(gl);
+    r = voxgi__gl_read_buffer(ctx, bufs[1], got, count * 16);
+    for (i = 0; r == VOXGI_OK && i < count; i++) memcpy(out + (size_t)w * i, got + 4 * i + (w == 1 ? 3 : 0), (size_t)w * sizeof(float));
+    voxgi__free(ctx, got);
+    voxgi__gl_delete_buffer(ctx, bufs[0]);
+    voxgi__gl_delete_buffer(ctx, bufs[1]);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "sampling the octree");
+    return r;
+}
+#endif
+
+/* A node slot's child pointer, wherever the octree lives. */
+static uint32_t voxgi__svo_child(voxgi_context *ctx, const voxgi_svo *svo, uint64_t slot)
+{
+#ifndef VOXGI_NO_GL
+    if (svo->gl_child) {
+        uint32_t ptr = 0;
+        ctx->gl->MemoryBarrier(VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+        ctx->gl->GetNamedBufferSubData(svo->gl_child, (ptrdiff_t)(4 * slot), 4, &ptr);
+        return ptr;
+    }
+#endif
+    (void)ctx;
+    return svo->child[slot];
 }
 
 VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, int level, size_t count,
@@ -5207,25 +5554,37 @@ VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attribute %d is not in this octree (0x%x)", (int)which, svo->info.attributes);
     depth = svo->info.depth;
     if (level < 0 || level > depth) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "level %d of 0..%d", level, depth);
+#ifndef VOXGI_NO_GL
+    if (svo->gl_child) {
+        uint32_t *points = (uint32_t *)voxgi__alloc_array(ctx, count ? count : 1, 16, 0);
+        voxgi_result r;
+        if (!points) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
+        for (i = 0; i < count; i++) { /* outside the cube: a coordinate the shader sees as outside too */
+            int out_of_cube = (coords[3 * i] >> depth) || (coords[3 * i + 1] >> depth) || (coords[3 * i + 2] >> depth);
+            for (ch = 0; ch < 3; ch++) points[4 * i + (size_t)ch] = out_of_cube ? 0xFFFFFFFFu : coords[3 * i + (size_t)ch];
+            points[4 * i + 3] = (uint32_t)level;
+        }
+        r = voxgi__svo_gl_points(ctx, svo, a, 1, count, (const float *)(const void *)points, out);
+        voxgi__free(ctx, points);
+        return r;
+    }
+#endif
     for (i = 0; i < count; i++) {
         const uint32_t *v = coords + 3 * i;
-        const float *val = NULL;
+        float c[4] = {0, 0, 0, 0};
+        int found = !(v[0] >> depth) && !(v[1] >> depth) && !(v[2] >> depth), m;
         uint64_t node = 0;
-        int m;
-        if (!(v[0] >> depth) && !(v[1] >> depth) && !(v[2] >> depth)) { /* inside the cube: descend */
-            val = svo->node_values[a];
-            for (m = 1; m <= level && val; m++) {
-                uint32_t ptr = svo->child[node], digit = ((v[0] >> (depth - m)) & 1u) | (((v[1] >> (depth - m)) & 1u) << 1) | (((v[2] >> (depth - m)) & 1u) << 2);
-                if (!ptr) val = NULL;
-                else if (m == depth) { val = svo->leaf_values[a]; node = 8 * (uint64_t)(ptr - 1) + digit; }
-                else node = 1 + 8 * (uint64_t)(ptr - 1) + digit;
-            }
+        for (m = 1; m <= level && found; m++) { /* descend from the root */
+            uint32_t ptr = svo->child[node], digit = ((v[0] >> (depth - m)) & 1u) | (((v[1] >> (depth - m)) & 1u) << 1) | (((v[2] >> (depth - m)) & 1u) << 2);
+            found = ptr != 0;
+            node = (m == depth ? 0u : 1u) + 8 * (uint64_t)(ptr - 1) + digit;
         }
-        for (ch = 0; ch < w; ch++) out[(size_t)w * i + (size_t)ch] = val ? val[node * (uint64_t)w + (uint64_t)ch] : 0.0f;
+        if (found) voxgi__svo_get(svo, a, level == depth ? svo->leaf_values[a] : svo->node_values[a], node, c);
+        if (w == 1) out[i] = c[3];
+        else for (ch = 0; ch < 4; ch++) out[4 * i + (size_t)ch] = c[ch];
     }
     return VOXGI_OK;
 }
-
 
 VOXGI_API voxgi_result voxgi_svo_node(voxgi_context *ctx, const voxgi_svo *svo, int level, const uint32_t coord[3], uint32_t *slot)
 {
@@ -5238,13 +5597,13 @@ VOXGI_API voxgi_result voxgi_svo_node(voxgi_context *ctx, const voxgi_svo *svo, 
     *slot = 0;
     if ((coord[0] >> depth) || (coord[1] >> depth) || (coord[2] >> depth)) return VOXGI_OK;
     for (m = 1; m <= level; m++) {
-        uint32_t ptr = svo->child[node], digit = ((coord[0] >> (depth - m)) & 1u) | (((coord[1] >> (depth - m)) & 1u) << 1) |
+        uint32_t ptr = voxgi__svo_child(ctx, svo, node), digit = ((coord[0] >> (depth - m)) & 1u) | (((coord[1] >> (depth - m)) & 1u) << 1) |
                                                  (((coord[2] >> (depth - m)) & 1u) << 2);
         if (!ptr) return VOXGI_OK;
         node = 1 + 8 * (uint64_t)(ptr - 1) + digit;
     }
     /* a slot of an existing tile whose node is absent has neither children nor a value: it is no node */
-    if (level > 0 && !svo->child[node]) return VOXGI_OK;
+    if (level > 0 && !voxgi__svo_child(ctx, svo, node)) return VOXGI_OK;
     *slot = (uint32_t)node;
     return VOXGI_OK;
 }
@@ -5254,8 +5613,15 @@ VOXGI_API voxgi_result voxgi_svo_neighbours(voxgi_context *ctx, const voxgi_svo 
     int d;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!svo || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "svo or out is NULL");
-    if (!svo->neighbour) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "this octree was built without neighbour pointers");
+    if (!svo->neighbour && !svo->gl_neighbour) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "this octree was built without neighbour pointers");
     if ((uint64_t)slot >= svo->info.nodes) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "slot %u of %llu", slot, (unsigned long long)svo->info.nodes);
+#ifndef VOXGI_NO_GL
+    if (svo->gl_neighbour) {
+        ctx->gl->MemoryBarrier(VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+        ctx->gl->GetNamedBufferSubData(svo->gl_neighbour, (ptrdiff_t)(24 * (uint64_t)slot), 24, out);
+        return voxgi__gl_check(ctx, "reading neighbour pointers");
+    }
+#endif
     for (d = 0; d < 6; d++) out[d] = svo->neighbour[6 * (uint64_t)slot + (uint64_t)d];
     return VOXGI_OK;
 }
@@ -5263,21 +5629,23 @@ VOXGI_API voxgi_result voxgi_svo_neighbours(voxgi_context *ctx, const voxgi_svo 
 /* The octree as a sampling source: level k of the dense chain is octree level depth - k. */
 typedef struct voxgi__svo_source { const voxgi_svo *svo; int a, w; } voxgi__svo_source;
 
-static const float *voxgi__svo_fetch(const void *source, int k, const int v[3])
+static int voxgi__svo_fetch(const void *source, int k, const int v[3], float t[4])
 {
     const voxgi__svo_source *s = (const voxgi__svo_source *)source;
     const voxgi_svo *svo = s->svo;
     int depth = svo->info.depth, level = depth - k, m;
     uint64_t node = 0;
-    const float *val = svo->node_values[s->a];
-    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || (v[0] >> level) || (v[1] >> level) || (v[2] >> level)) return NULL;
+    float c[4];
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || (v[0] >> level) || (v[1] >> level) || (v[2] >> level)) return 0;
     for (m = 1; m <= level; m++) { /* v is in level-`level` coordinates: its bits from the top */
         uint32_t ptr = svo->child[node], digit = (uint32_t)(((v[0] >> (level - m)) & 1) | (((v[1] >> (level - m)) & 1) << 1) | (((v[2] >> (level - m)) & 1) << 2));
-        if (!ptr) return NULL;
-        if (m == depth) { val = svo->leaf_values[s->a]; node = 8 * (uint64_t)(ptr - 1) + digit; }
-        else node = 1 + 8 * (uint64_t)(ptr - 1) + digit;
+        if (!ptr) return 0;
+        node = (m == depth ? 0u : 1u) + 8 * (uint64_t)(ptr - 1) + digit;
     }
-    return val + node * (uint64_t)s->w;
+    voxgi__svo_get(svo, s->a, level == depth ? svo->leaf_values[s->a] : svo->node_values[s->a], node, c);
+    if (s->w == 1) t[0] = c[3];
+    else memcpy(t, c, sizeof c);
+    return 1;
 }
 
 VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
@@ -5292,11 +5660,22 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
     src.w = which == VOXGI_ATTRIBUTE_OPACITY ? 1 : 4;
     if (src.a < 0 || !(svo->info.attributes & (unsigned)which))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attribute %d is not in this octree (0x%x)", (int)which, svo->info.attributes);
-    for (i = 0; i < count; i++) {
+    for (i = 0; i < count; i++)
         if (!isfinite(pos[3 * i]) || !isfinite(pos[3 * i + 1]) || !isfinite(pos[3 * i + 2]) || !isfinite(lods[i]))
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)i);
-        voxgi__sample_lod(voxgi__svo_fetch, &src, src.w, svo->info.depth + 1, pos + 3 * i, lods[i], out + (size_t)src.w * i);
+#ifndef VOXGI_NO_GL
+    if (svo->gl_child) {
+        float *points = (float *)voxgi__alloc_array(ctx, count ? count : 1, 16, 0);
+        voxgi_result r;
+        if (!points) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
+        for (i = 0; i < count; i++) { memcpy(points + 4 * i, pos + 3 * i, 3 * sizeof(float)); points[4 * i + 3] = lods[i]; }
+        r = voxgi__svo_gl_points(ctx, svo, src.a, 0, count, points, out);
+        voxgi__free(ctx, points);
+        return r;
     }
+#endif
+    for (i = 0; i < count; i++)
+        voxgi__sample_lod(voxgi__svo_fetch, &src, src.w, svo->info.depth + 1, pos + 3 * i, lods[i], out + (size_t)src.w * i);
     return VOXGI_OK;
 }
 

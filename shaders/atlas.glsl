@@ -24,6 +24,6 @@ bool atlas_point_voxel(uvec2 p, out ivec3 v)
 }
 
 #ifdef VOXGI_COMPUTE
-// Invocations are laid out 65536 per row of work groups (atlas sizes exceed one dispatch row).
-uint atlas_item() { return gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * 65536u; }
+// Invocations are laid out in rows of work groups (atlas sizes exceed one dispatch row).
+uint atlas_item() { return gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * uint(VOXGI_LOCAL_SIZE); }
 #endif

@@ -7,6 +7,7 @@
 #include "../tools/headless_gl.h"
 #include "harness.h"
 #include "../tools/shapes.h"
+#include "svo_checks.h"
 #include <stdlib.h>
 #include <math.h>
 
@@ -743,6 +744,133 @@ static void test_gl_volume_sampling_equals_cpu(void)
     voxgi_destroy(gl);
 }
 
+/* The GPU-built octree against the CPU's, through lookups (allocation order differs, so the
+   slots do, the values at every place do not): the same nodes per level, point lookups at every
+   level bit for bit, samples within float rounding, neighbour pointers right, in both value
+   formats; grids 27^3 (odd: incomplete parents), 2 (depth 1) and an empty one. */
+static void test_gl_svo_equals_cpu(void)
+{
+    voxgi_material mats[2] = {{{0.9f, 0.1f, 0.2f}, {3, 2, 1}, 0.5f}, {{0.3f, 0.7f, 0.5f}, {0, 0, 0}, 0.0f}};
+    voxgi_context *cpu, *gl;
+    vxt_shape m;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    uint32_t *ids;
+    size_t t;
+    int res_i, b;
+    double worst_sample = 0;
+    if (!have_gl()) return;
+    cpu = make_ctx(VOXGI_BACKEND_CPU);
+    gl = make_ctx(VOXGI_BACKEND_GL);
+    vxt_shape_sphere(&m, 30, 15, 1.0, 0.013, -0.021, 0.007);
+    ids = (uint32_t *)malloc(m.triangle_count * 4);
+    for (t = 0; t < m.triangle_count; t++) ids[t] = (uint32_t)(t % 2);
+    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc);
+    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
+    mesh.material_ids = ids;
+    sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 2;
+    for (res_i = 0; res_i < 3; res_i++) {
+        voxgi_voxelize_desc xd;
+        voxgi_voxels *vox[2] = {NULL, NULL};
+        int fmt;
+        memset(&xd, 0, sizeof xd);
+        if (res_i == 2) cubic(&xd.grid, 5, 1, 4); /* far from the sphere: no voxels */
+        else cubic(&xd.grid, -1.1, 2.2, res_i == 0 ? 27 : 2);
+        xd.attributes = 15;
+        for (b = 0; b < 2; b++) voxgi_voxelize(b ? gl : cpu, &sc, &xd, &vox[b]);
+        TH_CHECK(vox[0] && vox[1], "voxelization failed");
+        for (fmt = 0; fmt < 2 && vox[0] && vox[1]; fmt++) {
+            voxgi_svo_desc sd;
+            voxgi_svo *svo[2] = {NULL, NULL};
+            voxgi_svo_info info[2];
+            int lev, a, diff = 0, nodes = 0, wrong;
+            memset(&sd, 0, sizeof sd);
+            sd.neighbours = 1;
+            sd.format = (voxgi_svo_format)fmt;
+            for (b = 0; b < 2; b++) {
+                if (voxgi_svo_create(b ? gl : cpu, vox[b], &sd, &svo[b]) != VOXGI_OK) printf("    %s\n", voxgi_last_error(b ? gl : cpu));
+                voxgi_svo_query(svo[b], &info[b]);
+            }
+            TH_CHECK(svo[0] && svo[1] && info[1].backend == VOXGI_BACKEND_GL, "octree creation failed");
+            if (!svo[0] || !svo[1]) continue;
+            TH_CHECK(info[0].nodes == info[1].nodes && info[0].leaf_slots == info[1].leaf_slots && info[0].bytes == info[1].bytes &&
+                     info[0].depth == info[1].depth && info[0].leaf_voxels == info[1].leaf_voxels &&
+                     memcmp(info[0].level_nodes, info[1].level_nodes, sizeof info[0].level_nodes) == 0,
+                     "res %d: GL octree %llu nodes, %llu leaf slots; CPU %llu, %llu", xd.grid.res[0], (unsigned long long)info[1].nodes,
+                     (unsigned long long)info[1].leaf_slots, (unsigned long long)info[0].nodes, (unsigned long long)info[0].leaf_slots);
+            for (lev = 0; lev <= info[0].depth; lev++) { /* every node place at every level, and a place outside the cube */
+                uint32_t n = 1u << lev, sh = (uint32_t)(info[0].depth - lev), q = 0, x, y, z;
+                uint32_t *coords = (uint32_t *)malloc(((size_t)n * n * n + 1) * 12);
+                float *got[2];
+                got[0] = (float *)malloc(((size_t)n * n * n + 1) * 16);
+                got[1] = (float *)malloc(((size_t)n * n * n + 1) * 16);
+                for (z = 0; z < n; z++)
+                    for (y = 0; y < n; y++)
+                        for (x = 0; x < n; x++, q++) { coords[3 * q] = x << sh; coords[3 * q + 1] = y << sh; coords[3 * q + 2] = z << sh; }
+                coords[3 * q] = 1u << info[0].depth; coords[3 * q + 1] = coords[3 * q + 2] = 0; q++;
+                for (a = 0; a < 4; a++) {
+                    voxgi_attribute which = (voxgi_attribute)(1 << a);
+                    for (b = 0; b < 2; b++)
+                        TH_CHECK(voxgi_svo_lookup(b ? gl : cpu, svo[b], which, lev, q, coords, got[b]) == VOXGI_OK, "lookup: %s",
+                                 voxgi_last_error(b ? gl : cpu));
+                    diff += memcmp(got[0], got[1], (size_t)q * (a == 3 ? 4u : 16u)) != 0;
+                }
+                free(coords); free(got[0]); free(got[1]);
+            }
+            TH_CHECK(diff == 0, "res %d format %d: GL and CPU lookups differ at %d level/attribute pairs", xd.grid.res[0], fmt, diff);
+            {   /* samples: float weights on GL, double on the CPU */
+                float pos[3 * 400], lods[400], out[2][4 * 400];
+                int i;
+                for (i = 0; i < 400; i++) {
+                    pos[3 * i] = (float)(-2 + 31 * ((double)rand() / RAND_MAX));
+                    pos[3 * i + 1] = (float)(-2 + 31 * ((double)rand() / RAND_MAX));
+                    pos[3 * i + 2] = (float)(-2 + 31 * ((double)rand() / RAND_MAX));
+                    lods[i] = (float)(-0.5 + 6.5 * ((double)rand() / RAND_MAX));
+                }
+                for (a = 0; a < 4; a++) {
+                    for (b = 0; b < 2; b++)
+                        TH_CHECK(voxgi_svo_sample(b ? gl : cpu, svo[b], (voxgi_attribute)(1 << a), 400, pos, lods, out[b]) == VOXGI_OK,
+                                 "sampling: %s", voxgi_last_error(b ? gl : cpu));
+                    for (i = 0; i < 400 * (a == 3 ? 1 : 4); i++) {
+                        double e = fabs((double)out[0][i] - out[1][i]) / fmax(1, fabs(out[0][i]));
+                        if (e > worst_sample) worst_sample = e;
+                    }
+                }
+            }
+            wrong = svo_wrong_neighbours(gl, svo[1], info[1].depth, &nodes);
+            for (lev = 1; lev < info[1].depth; lev++) nodes -= (int)info[1].level_nodes[lev];
+            TH_CHECK(wrong == 0 && nodes == 0, "%d wrong GL neighbour pointers, %d nodes unaccounted for", wrong, nodes);
+            if (res_i == 0 && fmt == 0) { /* a memory budget below the octree: a clean refusal; the exact size: built */
+                voxgi_desc d;
+                voxgi_context *small = NULL;
+                voxgi_svo *none = NULL;
+                memset(&d, 0, sizeof d);
+                d.backend = VOXGI_BACKEND_GL;
+                d.gl_get_proc_address_user = vxt_gl_get_proc;
+                d.gl_user = g_gl;
+                d.memory_budget = info[1].bytes - 1;
+                voxgi_create(&d, &small);
+                TH_CHECK(small && voxgi_svo_create(small, vox[1], &sd, &none) == VOXGI_ERR_TOO_LARGE && !none, "budget %lu: %s",
+                         (unsigned long)d.memory_budget, small ? voxgi_last_error(small) : "no context");
+                voxgi_destroy(small);
+                d.memory_budget = info[1].bytes;
+                voxgi_create(&d, &small);
+                TH_CHECK(small && voxgi_svo_create(small, vox[1], &sd, &none) == VOXGI_OK && none, "the exact budget refused");
+                voxgi_svo_destroy(small, none);
+                voxgi_destroy(small);
+            }
+            for (b = 0; b < 2; b++) voxgi_svo_destroy(b ? gl : cpu, svo[b]);
+        }
+        for (b = 0; b < 2; b++) voxgi_voxels_destroy(b ? gl : cpu, vox[b]);
+    }
+    printf("    GL octree samples within %.3g (relative) of the CPU's\n", worst_sample);
+    TH_CHECK(worst_sample <= 1e-6, "GL octree samples differ from the CPU's by %g", worst_sample);
+    free(ids);
+    vxt_shape_free(&m);
+    voxgi_destroy(cpu);
+    voxgi_destroy(gl);
+}
+
 /* The geometry-shader voxelizer on every shape of the compute tests: bit for bit the CPU's. */
 static void test_gl_raster_geometry_equals_cpu(void)
 {
@@ -873,6 +1001,7 @@ int main(void)
     TH_RUN(test_gl_raster_geometry_equals_cpu);
     TH_RUN(test_gl_volume_mips_equal_cpu);
     TH_RUN(test_gl_volume_sampling_equals_cpu);
+    TH_RUN(test_gl_svo_equals_cpu);
     TH_RUN(test_gl_raster_volume_buffer);
     TH_RUN(test_gl_raster_attributes_equal_cpu);
     TH_RUN(test_gl_interop_and_backends);

@@ -4,6 +4,7 @@
 #include "../voxgi.h"
 #include "harness.h"
 #include "../tools/shapes.h"
+#include "svo_checks.h"
 #include <stdlib.h>
 
 /* ---------------------------------------------------------------- the oracle
@@ -1951,6 +1952,35 @@ static void test_volume_and_attribute_failures(void)
    formulas in the same child order); the nodes of level l are exactly the distinct
    coordinates >> (depth - l) of the voxels; child pointers never use 0 for a tile; the
    structure costs at most 8 bytes per voxel. */
+/* Every finite half survives float and back; every midpoint between neighbours rounds to the
+   even one, and a float just above or below it to the nearer; beyond the range: infinity. */
+static void test_half_rounding(void)
+{
+    uint32_t h;
+    int bad = 0;
+    for (h = 0; h < 0x10000u; h++) {
+        uint16_t hh = (uint16_t)h, up = (uint16_t)(h + 1);
+        double v, next, mid;
+        float f;
+        if ((h & 0x7C00u) == 0x7C00u) continue; /* infinities and NaNs */
+        v = voxgi__float_from_half(hh);
+        bad += voxgi__half_from_float((float)v) != hh;
+        if ((h & 0x7FFFu) == 0x7BFFu) { /* the largest finite: beyond its midpoint to 65536 is infinity */
+            double away = v < 0 ? -1 : 1;
+            bad += voxgi__half_from_float((float)(v + 15.99 * away)) != hh || voxgi__half_from_float((float)(v + 16 * away)) != ((hh & 0x8000u) | 0x7C00u);
+            continue;
+        }
+        next = voxgi__float_from_half(up);
+        mid = (v + next) / 2; /* exact in float: halves have 11 significant bits */
+        f = (float)mid;
+        bad += voxgi__half_from_float(f) != ((h & 1u) ? up : hh);
+        bad += voxgi__half_from_float(nextafterf(f, (float)next)) != up || voxgi__half_from_float(nextafterf(f, (float)v)) != hh;
+    }
+    TH_CHECK(bad == 0, "%d half conversions wrong", bad);
+    TH_CHECK(voxgi__half_from_float(1e-9f) == 0 && voxgi__half_from_float(-1e-9f) == 0x8000u && voxgi__half_from_float(1e30f) == 0x7C00u,
+             "tiny and huge values");
+}
+
 static void test_svo_equals_dense(void)
 {
     voxgi_context *ctx = make_ctx(2);
@@ -2043,36 +2073,7 @@ static void test_svo_equals_dense(void)
         }
     }
     {   /* neighbour pointers: at the same level, exactly the node one step away, symmetric */
-        int nodes = 0, wrong = 0;
-        for (lev = 1; lev < info.depth; lev++) {
-            uint32_t n = 1u << lev, x, y, z, sh = (uint32_t)(info.depth - lev);
-            for (z = 0; z < n; z++)
-                for (y = 0; y < n; y++)
-                    for (x = 0; x < n; x++) {
-                        uint32_t c[3], slot = 0, nb[6], back[6];
-                        int dir;
-                        c[0] = x << sh; c[1] = y << sh; c[2] = z << sh;
-                        voxgi_svo_node(ctx, svo, lev, c, &slot);
-                        if (!slot) continue;
-                        nodes++;
-                        voxgi_svo_neighbours(ctx, svo, slot, nb);
-                        for (dir = 0; dir < 6; dir++) {
-                            uint32_t d[3], want = 0;
-                            int64_t v = (int64_t)(dir / 2 == 0 ? x : (dir / 2 == 1 ? y : z)) + ((dir & 1) ? -1 : 1);
-                            d[0] = x; d[1] = y; d[2] = z;
-                            if (v >= 0 && v < (int64_t)n) {
-                                d[dir / 2] = (uint32_t)v;
-                                d[0] <<= sh; d[1] <<= sh; d[2] <<= sh;
-                                voxgi_svo_node(ctx, svo, lev, d, &want);
-                            }
-                            wrong += nb[dir] != want;
-                            if (nb[dir]) {
-                                voxgi_svo_neighbours(ctx, svo, nb[dir], back);
-                                wrong += back[dir ^ 1] != slot;
-                            }
-                        }
-                    }
-        }
+        int nodes = 0, wrong = svo_wrong_neighbours(ctx, svo, info.depth, &nodes);
         TH_CHECK(nodes > 0 && wrong == 0, "%d wrong neighbour pointers over %d nodes", wrong, nodes);
         TH_CHECK(info.neighbour_bytes == 24 * info.nodes, "neighbour bytes %lu", (unsigned long)info.neighbour_bytes);
     }
@@ -2082,6 +2083,50 @@ static void test_svo_equals_dense(void)
         voxgi_svo_lookup(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, info.depth, 2, c, o);
         TH_CHECK(o[3] == 0 && o[7] == 0, "empty places are not empty");
         TH_CHECK(voxgi_svo_lookup(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, 9, 1, c, o) == VOXGI_ERR_INVALID_ARGUMENT, "level 9 accepted");
+    }
+    {   /* half-float values: every lookup within (levels above the voxels + 1) x 2^-10 relative of
+           the float octree's (a rounding per level: half has 11 significant bits), a quarter of the
+           value bytes, the same nodes */
+        voxgi_svo *h = NULL;
+        voxgi_svo_info hi;
+        double worst = 0;
+        int over = 0;
+        sd.format = VOXGI_SVO_FLOAT16;
+        TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &h) == VOXGI_OK, "half octree: %s", voxgi_last_error(ctx));
+        sd.format = VOXGI_SVO_FLOAT32;
+        if (h) {
+            voxgi_svo_query(h, &hi);
+            TH_CHECK(hi.nodes == info.nodes && hi.leaf_slots == info.leaf_slots && hi.format == VOXGI_SVO_FLOAT16 &&
+                     hi.bytes - hi.structure_bytes - hi.neighbour_bytes == (info.bytes - info.structure_bytes - info.neighbour_bytes) / 2 &&
+                     hi.dense_bytes == info.dense_bytes / 2, "half octree sizes: %lu of %lu bytes", (unsigned long)hi.bytes, (unsigned long)info.bytes);
+            for (lev = 0; lev <= info.depth; lev++) {
+                uint32_t n = 1u << lev, sh = (uint32_t)(info.depth - lev), q = 0, x, y, z;
+                uint32_t *coords = (uint32_t *)malloc((size_t)n * n * n * 12);
+                float *f32 = (float *)malloc((size_t)n * n * n * 16), *f16 = (float *)malloc((size_t)n * n * n * 16);
+                for (z = 0; z < n; z++)
+                    for (y = 0; y < n; y++)
+                        for (x = 0; x < n; x++, q++) { coords[3 * q] = x << sh; coords[3 * q + 1] = y << sh; coords[3 * q + 2] = z << sh; }
+                for (a = 0; a < 4; a++) {
+                    voxgi_attribute which = (voxgi_attribute)(1 << a);
+                    size_t e, ne = (size_t)q * (a == 3 ? 1u : 4u);
+                    voxgi_svo_lookup(ctx, svo, which, lev, q, coords, f32);
+                    voxgi_svo_lookup(ctx, h, which, lev, q, coords, f16);
+                    for (e = 0; e < ne; e++) {
+                        double d = fabs((double)f32[e] - f16[e]), tol = (sh + 1) * ldexp(1, -10) * fmax(1, fabs(f32[e]));
+                        over += d > tol || ((a == 3 || e % 4 == 3) && (f32[e] == 0) != (f16[e] == 0)); /* empty stays empty */
+                        worst = fmax(worst, d / fmax(1, fabs(f32[e])));
+                    }
+                }
+                free(coords); free(f32); free(f16);
+            }
+            TH_CHECK(over == 0, "%d half values beyond the bound", over);
+            printf("    half-float octree: %lu bytes (float: %lu), worst relative difference %.2e over every level\n", (unsigned long)hi.bytes,
+                   (unsigned long)info.bytes, worst);
+        }
+        voxgi_svo_destroy(ctx, h);
+        sd.format = (voxgi_svo_format)7;
+        TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &h) == VOXGI_ERR_INVALID_ARGUMENT && !h, "format 7 accepted");
+        sd.format = VOXGI_SVO_FLOAT32;
     }
     {   /* a memory budget below the octree's size: refused before anything is built, nothing leaks */
         voxgi_desc d;
@@ -2128,6 +2173,7 @@ int main(void)
     TH_RUN(test_volume_mips);
     TH_RUN(test_volume_sampling);
     TH_RUN(test_volume_and_attribute_failures);
+    TH_RUN(test_half_rounding);
     TH_RUN(test_svo_equals_dense);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);

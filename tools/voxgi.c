@@ -814,20 +814,22 @@ static const char *svo_help =
     "usage: voxgi svo MESH [options]\n"
     "Voxelizes a mesh with its material attributes and builds the sparse voxel octree: prints\n"
     "its nodes per level, bytes per occupied voxel against the dense equivalent, and the time of\n"
-    "each pass (the rows of Pracuch 2016, Tables 5.1 and 5.2). The octree is built on the CPU;\n"
-    "--backend picks where the voxelization runs.\n"
+    "each pass (the rows of Pracuch 2016, Tables 5.1 and 5.2). --backend picks where the\n"
+    "voxelization and the octree build run (GL: flag, allocate and initialise passes per level).\n"
     "  --res N                  cubic grid of N^3 voxels fitted around the mesh (default 128)\n"
     "  --attributes LIST        albedo,normal,emission,opacity or all (default all)\n"
-    "  --backend auto|cpu|gl    voxelization backend (default auto)\n"
+    "  --backend auto|cpu|gl    where it runs (default auto)\n"
     "  --gl auto|egl|osmesa     headless GL context to create (default auto)\n"
     "  --threads T              CPU worker threads (default: one per core)\n"
     "  --neighbours             also build the six neighbour pointers of every node\n"
+    "  --format float32|float16 how values are stored (default float32)\n"
     "  --json                   one JSON object: leaf_voxels, nodes, bytes, structure_bytes, ms, ...\n";
 
 static int cmd_svo(int argc, char **argv)
 {
     const char *mesh_path = NULL;
     int res = 128, json = 0, threads = 0, i, rc = 1, lev;
+    double dense8 = 0;
     voxgi_backend backend = VOXGI_BACKEND_AUTO;
     vxt_gl_kind kind = VXT_GL_AUTO;
     voxgi_voxelize_desc vd;
@@ -855,6 +857,12 @@ static int cmd_svo(int argc, char **argv)
         else if (strcmp(a, "--threads") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 256, &threads)) return bad_arg("svo", "--threads needs 1..256"); }
         else if (strcmp(a, "--json") == 0) json = 1;
         else if (strcmp(a, "--neighbours") == 0) sd.neighbours = 1;
+        else if (strcmp(a, "--format") == 0 && i + 1 < argc) {
+            const char *f = argv[++i];
+            if (strcmp(f, "float32") == 0) sd.format = VOXGI_SVO_FLOAT32;
+            else if (strcmp(f, "float16") == 0) sd.format = VOXGI_SVO_FLOAT16;
+            else return bad_arg("svo", "--format is float32 or float16");
+        }
         else if (a[0] == '-') return bad_arg("svo", "unknown option or missing value");
         else if (!mesh_path) mesh_path = a;
         else return bad_arg("svo", "more than one mesh given");
@@ -877,14 +885,17 @@ static int cmd_svo(int argc, char **argv)
     }
     voxgi_voxels_query(vox, &vinfo);
     voxgi_svo_query(svo, &info);
+    for (lev = 0; lev < 4; lev++) /* the dense RGBA8 (R8) equivalent, the usual yardstick */
+        if (info.attributes & (1u << lev)) dense8 += (double)voxgi_grid_voxel_count(&vd.grid) * (lev == 3 ? 1 : 4);
     if (json) {
         printf("{\"mesh\":\"%s\",\"triangles\":%lu,\"res\":[%d,%d,%d],\"depth\":%d,\"leaf_voxels\":%llu,\"nodes\":%llu,\"leaf_slots\":%llu,"
-               "\"bytes\":%lu,\"structure_bytes\":%lu,\"neighbour_bytes\":%lu,\"dense_bytes\":%lu,\"voxelize_ms\":%.3f,\"ms\":%.3f,"
+               "\"format\":\"%s\",\"bytes\":%lu,\"structure_bytes\":%lu,\"neighbour_bytes\":%lu,\"dense_bytes\":%lu,\"dense_rgba8_bytes\":%.0f,"
+               "\"voxelize_ms\":%.3f,\"ms\":%.3f,"
                "\"sort_ms\":%.3f,\"nodes_ms\":%.3f,\"neighbours_ms\":%.3f,\"values_ms\":%.3f,\"level_nodes\":[",
                mesh_path, (unsigned long)mesh_triangles(&tm), vd.grid.res[0], vd.grid.res[1], vd.grid.res[2], info.depth,
                (unsigned long long)info.leaf_voxels, (unsigned long long)info.nodes, (unsigned long long)info.leaf_slots,
-               (unsigned long)info.bytes, (unsigned long)info.structure_bytes, (unsigned long)info.neighbour_bytes,
-               (unsigned long)info.dense_bytes, vinfo.ms, info.ms, info.ms_sort, info.ms_nodes, info.ms_neighbours, info.ms_values);
+               info.format == VOXGI_SVO_FLOAT16 ? "float16" : "float32", (unsigned long)info.bytes, (unsigned long)info.structure_bytes,
+               (unsigned long)info.neighbour_bytes, (unsigned long)info.dense_bytes, dense8, vinfo.ms, info.ms, info.ms_sort, info.ms_nodes, info.ms_neighbours, info.ms_values);
         for (lev = 0; lev <= info.depth; lev++) printf("%s%llu", lev ? "," : "", (unsigned long long)info.level_nodes[lev]);
         printf("]}\n");
     } else {
@@ -893,8 +904,9 @@ static int cmd_svo(int argc, char **argv)
         printf("| level | nodes |\n|---:|---:|\n");
         for (lev = 0; lev <= info.depth; lev++) printf("| %d | %llu |\n", lev, (unsigned long long)info.level_nodes[lev]);
         printf("\nTable 5.1 (memory)\n| structure | bytes | per voxel |\n|---|---:|---:|\n");
-        printf("| dense RGBA32F (R32F) equivalent | %lu | %.1f |\n", (unsigned long)info.dense_bytes,
-               (double)info.dense_bytes / (double)(info.leaf_voxels ? info.leaf_voxels : 1));
+        printf("| dense equivalent, %s | %lu | %.1f |\n", info.format == VOXGI_SVO_FLOAT16 ? "RGBA16F (R16F)" : "RGBA32F (R32F)",
+               (unsigned long)info.dense_bytes, (double)info.dense_bytes / (double)(info.leaf_voxels ? info.leaf_voxels : 1));
+        printf("| dense equivalent, RGBA8 (R8) | %.0f | %.1f |\n", dense8, dense8 / (double)(info.leaf_voxels ? info.leaf_voxels : 1));
         printf("| octree structure (%llu node slots) | %lu | %.2f |\n", (unsigned long long)info.nodes, (unsigned long)info.structure_bytes,
                (double)info.structure_bytes / (double)(info.leaf_voxels ? info.leaf_voxels : 1));
         if (info.neighbour_bytes)
@@ -902,6 +914,7 @@ static int cmd_svo(int argc, char **argv)
                    (double)info.neighbour_bytes / (double)(info.leaf_voxels ? info.leaf_voxels : 1));
         printf("| octree everything (%llu leaf slots) | %lu | %.1f |\n", (unsigned long long)info.leaf_slots, (unsigned long)info.bytes,
                (double)info.bytes / (double)(info.leaf_voxels ? info.leaf_voxels : 1));
+        printf("\ndense RGBA8 / octree: %.1fx less memory\n", dense8 / (double)(info.bytes ? info.bytes : 1));
         printf("\nTable 5.2 (ms; %s)\n| pass | ms |\n|---|---:|\n", voxgi_backend_name(vinfo.backend));
         printf("| voxelization with attributes | %.2f |\n| sort voxels (Morton) | %.2f |\n| nodes and child pointers | %.2f |\n"
                "| neighbour pointers | %.2f |\n| values and mips | %.2f |\n", vinfo.ms, info.ms_sort, info.ms_nodes, info.ms_neighbours,

@@ -1,0 +1,110 @@
+// The sparse voxel octree on the GPU (voxgi.h, part "sparse voxel octree"): its buffers, value
+// formats, descent, point fetch and sampling, shared by the build passes (svo_build.glsl) and
+// the lighting passes. The layout is the CPU octree's byte for byte: svo_child[slot] = 1 + the
+// index of the slot's child tile (0: none); inner tile t holds slots 1 + 8t .. 8 + 8t, leaf tile t
+// the leaf slots 8t .. 7 + 8t; values per slot RGBA32F / R32F (u_svo_format 0) or RGBA16F / R16F
+// (1, two halves per word, the first in the low bits), (value, alpha), opacity alpha alone.
+layout(std430, binding = 0) buffer SvoChild { uint svo_child[]; };
+layout(std430, binding = 1) buffer SvoNodeValues { uint svo_node_words[]; };
+layout(std430, binding = 2) buffer SvoLeafValues { uint svo_leaf_words[]; };
+uniform int u_svo_depth;   // leaves at level depth
+uniform int u_svo_format;  // 0: float32, 1: float16
+uniform int u_svo_single;  // 1: the attribute is opacity (alpha alone)
+
+// float -> half, nearest, ties to even; integer steps as voxgi__half_from_float.
+uint voxgi_half_from_float(float f)
+{
+    uint x = floatBitsToUint(f), sign = (x >> 16) & 0x8000u, ax = x & 0x7FFFFFFFu;
+    if (ax >= 0x47800000u) return sign | 0x7C00u;
+    if (ax < 0x38800000u) {
+        float v = abs(f) * 16777216.0;
+        uint h = uint(v);
+        float frac = v - float(h);
+        if (frac > 0.5 || (frac == 0.5 && (h & 1u) != 0u)) h += 1u;
+        return sign | h;
+    }
+    ax += 0x0FFFu + ((ax >> 13) & 1u);
+    return sign | min((ax >> 13) - (112u << 10), 0x7C00u);
+}
+
+float voxgi_float_from_half(uint h)
+{
+    return unpackHalf2x16(h & 0xFFFFu).x; // exact
+}
+
+uint voxgi_svo_word(bool leaf, uint i)
+{
+    return leaf ? svo_leaf_words[i] : svo_node_words[i];
+}
+
+// A slot's value as (value, alpha).
+vec4 voxgi_svo_load(bool leaf, uint slot)
+{
+    if (u_svo_format == 0) {
+        if (u_svo_single != 0) return vec4(0.0, 0.0, 0.0, uintBitsToFloat(voxgi_svo_word(leaf, slot)));
+        return uintBitsToFloat(uvec4(voxgi_svo_word(leaf, 4u * slot), voxgi_svo_word(leaf, 4u * slot + 1u),
+                                     voxgi_svo_word(leaf, 4u * slot + 2u), voxgi_svo_word(leaf, 4u * slot + 3u)));
+    }
+    if (u_svo_single != 0) return vec4(0.0, 0.0, 0.0, voxgi_float_from_half(voxgi_svo_word(leaf, slot >> 1) >> (16u * (slot & 1u))));
+    uint lo = voxgi_svo_word(leaf, 2u * slot), hi = voxgi_svo_word(leaf, 2u * slot + 1u);
+    return vec4(voxgi_float_from_half(lo), voxgi_float_from_half(lo >> 16), voxgi_float_from_half(hi), voxgi_float_from_half(hi >> 16));
+}
+
+// The slot of the node at `level` (0 = the root) holding v (in level-`level` coordinates);
+// false where there is none. leaf: the slot is a leaf slot (level == depth).
+bool voxgi_svo_descend(int level, ivec3 v, out uint slot, out bool leaf)
+{
+    slot = 0u;
+    leaf = false;
+    if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(1 << level)))) return false;
+    for (int m = 1; m <= level; m++) {
+        uint ptr = svo_child[slot];
+        if (ptr == 0u) return false;
+        ivec3 b = (v >> (level - m)) & 1;
+        uint digit = uint(b.x | (b.y << 1) | (b.z << 2));
+        leaf = m == u_svo_depth;
+        slot = (leaf ? 0u : 1u) + 8u * (ptr - 1u) + digit;
+    }
+    return true;
+}
+
+// The stored value of the node at `level` holding v; zero where there is none.
+vec4 voxgi_svo_fetch(int level, ivec3 v)
+{
+    uint slot;
+    bool leaf;
+    return voxgi_svo_descend(level, v, slot, leaf) ? voxgi_svo_load(leaf, slot) : vec4(0.0);
+}
+
+// Trilinear between the node centres of mip level k (octree level depth - k) at p (grid units of
+// the voxels), as voxgi__trilinear on the CPU.
+vec4 voxgi_svo_trilinear(int k, vec3 p)
+{
+    vec3 c = p / float(1 << k) - 0.5, f = c - floor(c);
+    ivec3 i0 = ivec3(floor(c));
+    vec4 s = vec4(0.0);
+    for (int corner = 0; corner < 8; corner++) {
+        ivec3 hi = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+        vec3 w3 = mix(1.0 - f, f, vec3(hi));
+        float w = w3.x * w3.y * w3.z;
+        if (w != 0.0) s += w * voxgi_svo_fetch(u_svo_depth - k, i0 + hi);
+    }
+    return s;
+}
+
+// The octree's sample at p (grid units) and lod (0 = the voxels, depth = the root; fractional:
+// linear between levels), as voxgi_svo_sample on the CPU.
+vec4 voxgi_sample_svo(vec3 p, float lod)
+{
+    float l = clamp(lod, 0.0, float(u_svo_depth)), t = l - floor(l);
+    int k0 = int(floor(l));
+    vec4 s0 = voxgi_svo_trilinear(k0, p);
+    return t > 0.0 ? s0 + t * (voxgi_svo_trilinear(k0 + 1, p) - s0) : s0;
+}
+
+// The level of detail whose voxels are `diameter` voxels wide (a cone's footprint): log2 of it,
+// 0 below one voxel.
+float voxgi_lod_from_footprint(float diameter)
+{
+    return log2(max(diameter, 1.0));
+}
