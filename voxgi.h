@@ -445,6 +445,7 @@ typedef enum voxgi_svo_format { VOXGI_SVO_FLOAT32 = 0, VOXGI_SVO_FLOAT16 } voxgi
 typedef struct voxgi_svo_desc {
     unsigned attributes;          /* voxgi_attribute bits (0 = all the voxels hold) */
     int neighbours;               /* 1: also the six neighbour pointers of every node (24 bytes per node slot) */
+    int bricks;                   /* 1: also a brick per inner node (64 values per node) */
     voxgi_svo_format format;
 } voxgi_svo_desc;
 typedef struct voxgi_svo_info {
@@ -459,6 +460,7 @@ typedef struct voxgi_svo_info {
     uint64_t level_nodes[17];     /* nodes that exist at each level 0..depth (at depth: the leaf voxels) */
     size_t structure_bytes;       /* child pointers */
     size_t neighbour_bytes;       /* neighbour pointers, when built */
+    size_t brick_bytes;           /* bricks, when built */
     size_t bytes;                 /* everything: structure, neighbours and values */
     size_t dense_bytes;           /* the dense equivalent: level 0 of the same attributes in the same format */
     double ms, ms_sort, ms_nodes, ms_values, ms_neighbours; /* whole build, then its passes */
@@ -477,8 +479,16 @@ VOXGI_API voxgi_result voxgi_svo_node(voxgi_context *ctx, const voxgi_svo *svo, 
 /* A node's neighbour slots in the order of voxgi_direction (+x -x +y -y +z -z), each at the same
    level, 0 where there is none (the root is nobody's neighbour, so 0 is free); needs desc.neighbours. */
 VOXGI_API voxgi_result voxgi_svo_neighbours(voxgi_context *ctx, const voxgi_svo *svo, uint32_t slot, uint32_t out[6]);
-/* Sampling as voxgi_volume_sample does (lod 0 = the voxels, lod depth = the root), through
-   lookups: equal to sampling the dense isotropic volume. */
+/* Bricks (desc.bricks): inner node N at level l holds the 4x4x4 values of level l + 1 at
+   2N - 1 .. 2N + 2 per axis (its children and a border one child wide, empty where no node is),
+   x fastest, 4 floats per value (1 for OPACITY). A border value is the same value its neighbour
+   holds inside, so a trilinear sample anywhere in N's box at level l + 1 reads N's brick alone.
+   The brick of the node at `level` (0..depth-1) holding voxel coord; all empty where none is. */
+VOXGI_API voxgi_result voxgi_svo_brick(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, int level, const uint32_t coord[3],
+                                       float *out);
+/* Sampling as voxgi_volume_sample does (lod 0 = the voxels, lod depth = the root): equal to
+   sampling the dense isotropic volume. With bricks, a sample whose node exists reads its brick
+   after one descent (else eight lookups), with the same result bit for bit. */
 VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
                                         const float *positions, const float *lods, float *out);
 
@@ -4767,14 +4777,18 @@ static void voxgi__trilinear(voxgi__fetch_fn fetch, const void *source, int w, i
     }
 }
 
+/* A faster trilinear sample of level k with the same result, or 0 where it cannot tell. */
+typedef int (*voxgi__fast_trilinear_fn)(const void *source, int w, int k, const float p[3], float out[4]);
+
 /* Linear between the levels around lod (clamped to 0..levels-1) of trilinear samples. */
-static void voxgi__sample_lod(voxgi__fetch_fn fetch, const void *source, int w, int levels, const float p[3], float lod_in, float *out)
+static void voxgi__sample_lod(voxgi__fetch_fn fetch, voxgi__fast_trilinear_fn fast, const void *source, int w, int levels, const float p[3],
+                              float lod_in, float *out)
 {
     float lod = lod_in < 0 ? 0 : (lod_in > (float)(levels - 1) ? (float)(levels - 1) : lod_in), s0[4], s1[4], t;
     int k0 = (int)floor(lod), ch;
     t = lod - (float)k0;
-    voxgi__trilinear(fetch, source, w, k0, p, s0);
-    if (t > 0) voxgi__trilinear(fetch, source, w, k0 + 1, p, s1);
+    if (!fast || !fast(source, w, k0, p, s0)) voxgi__trilinear(fetch, source, w, k0, p, s0);
+    if (t > 0 && (!fast || !fast(source, w, k0 + 1, p, s1))) voxgi__trilinear(fetch, source, w, k0 + 1, p, s1);
     for (ch = 0; ch < w; ch++) out[ch] = t > 0 ? s0[ch] + t * (s1[ch] - s0[ch]) : s0[ch];
 }
 
@@ -4816,7 +4830,7 @@ VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volum
         src.arr = vol->cpu[a][d];
         src.w = a == 3 ? 1 : 4;
         for (i = 0; i < count; i++)
-            voxgi__sample_lod(voxgi__volume_fetch, &src, src.w, vol->info.levels, pos + 3 * i, lods[i], out + (size_t)src.w * i);
+            voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, src.w, vol->info.levels, pos + 3 * i, lods[i], out + (size_t)src.w * i);
     }
     return VOXGI_OK;
 }
@@ -4952,6 +4966,7 @@ struct voxgi_svo {
     uint32_t *neighbour;                      /* 6 per node slot: slot of the same-level neighbour, 0 = none */
     unsigned char *node_values[4], *leaf_values[4]; /* per node slot / per leaf slot: slot_bytes[a] in info.format */
     int slot_bytes[4];
+    uint64_t inner_tiles, bricks;             /* bricks: one per inner node, or 0 */
     unsigned int gl_child, gl_neighbour, gl_node_values[4], gl_leaf_values[4]; /* GL: the same arrays in buffers */
 };
 
@@ -5055,6 +5070,112 @@ static voxgi_result voxgi__sort_codes(voxgi_context *ctx, uint64_t *code, uint32
     return VOXGI_OK;
 }
 
+/* The octree's sizes from its inner tiles and info.level_nodes, and the refusals that come
+   before anything is allocated: 32-bit pointers and the memory budget. */
+static voxgi_result voxgi__svo_size(voxgi_context *ctx, voxgi_svo *svo, uint64_t inner_tiles, const voxgi_svo_desc *desc)
+{
+    uint64_t value_bytes = 0, total, bricks = 0;
+    int a, lev, depth = svo->info.depth;
+    for (lev = 0; lev < depth; lev++) bricks += svo->info.level_nodes[lev];
+    svo->inner_tiles = inner_tiles;
+    svo->bricks = desc->bricks ? bricks : 0;
+    svo->info.nodes = 1 + 8 * inner_tiles;
+    svo->info.leaf_slots = 8 * svo->info.level_nodes[depth - 1];
+    svo->info.leaf_voxels = svo->info.level_nodes[depth];
+    svo->info.structure_bytes = (size_t)(svo->info.nodes * 4);
+    svo->info.neighbour_bytes = desc->neighbours ? (size_t)(svo->info.nodes * 24) : 0;
+    svo->info.brick_bytes = 0;
+    for (a = 0; a < 4; a++)
+        if (svo->info.attributes & (1u << a)) {
+            value_bytes += (svo->info.nodes + svo->info.leaf_slots) * (uint64_t)svo->slot_bytes[a];
+            svo->info.brick_bytes += (size_t)(64 * svo->bricks * (uint64_t)svo->slot_bytes[a]);
+        }
+    total = svo->info.structure_bytes + svo->info.neighbour_bytes + value_bytes + svo->info.brick_bytes;
+    if (svo->info.nodes + 64 * svo->bricks > (uint64_t)UINT32_MAX || svo->info.leaf_slots > (uint64_t)UINT32_MAX)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%llu node slots and %llu bricks exceed the 32-bit indices", (unsigned long long)svo->info.nodes,
+                           (unsigned long long)svo->bricks);
+    if (ctx->desc.memory_budget && total > (uint64_t)ctx->desc.memory_budget)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree needs %llu bytes, more than the memory budget %llu", (unsigned long long)total,
+                           (unsigned long long)ctx->desc.memory_budget);
+    return VOXGI_OK;
+}
+
+/* A node's coordinates at its level from its Morton code. */
+static void voxgi__svo_coords(uint64_t code, int lev, int64_t c[3])
+{
+    int b;
+    c[0] = c[1] = c[2] = 0;
+    for (b = 0; b < lev; b++) {
+        c[0] |= (int64_t)((code >> (3 * b)) & 1u) << b;
+        c[1] |= (int64_t)((code >> (3 * b + 1)) & 1u) << b;
+        c[2] |= (int64_t)((code >> (3 * b + 2)) & 1u) << b;
+    }
+}
+
+/* A node slot's child pointer, wherever the octree lives. */
+static uint32_t voxgi__svo_child(voxgi_context *ctx, const voxgi_svo *svo, uint64_t slot)
+{
+#ifndef VOXGI_NO_GL
+    if (svo->gl_child) {
+        uint32_t ptr = 0;
+        ctx->gl->MemoryBarrier(VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+        ctx->gl->GetNamedBufferSubData(svo->gl_child, (ptrdiff_t)(4 * slot), 4, &ptr);
+        return ptr;
+    }
+#endif
+    (void)ctx;
+    return svo->child[slot];
+}
+
+/* The child pointer of the node at `lev` and coordinates c (0: no node there, or outside). */
+static uint32_t voxgi__svo_ptr_at(voxgi_context *ctx, const voxgi_svo *svo, int lev, const int64_t c[3])
+{
+    uint64_t node = 0;
+    int m;
+    if (c[0] < 0 || c[1] < 0 || c[2] < 0 || (c[0] >> lev) || (c[1] >> lev) || (c[2] >> lev)) return 0;
+    for (m = 1; m <= lev; m++) {
+        uint32_t ptr = voxgi__svo_child(ctx, svo, node);
+        if (!ptr) return 0;
+        node = 1 + 8 * (uint64_t)(ptr - 1) + (uint64_t)(((c[0] >> (lev - m)) & 1) | (((c[1] >> (lev - m)) & 1) << 1) | (((c[2] >> (lev - m)) & 1) << 2));
+    }
+    return voxgi__svo_child(ctx, svo, node);
+}
+
+/* A brick's index from its node's level and child pointer: inner tiles first, then leaf tiles;
+   its values follow the node slots in node_values. */
+static uint64_t voxgi__svo_brick_index(const voxgi_svo *svo, int lev, uint32_t ptr)
+{
+    return (lev < svo->info.depth - 1 ? 0 : svo->inner_tiles) + ptr - 1;
+}
+
+/* The brick of the node at `lev`, coordinates c, child pointer ptr, for attribute a: the stored
+   values of its 27 neighbourhood's child tiles, copied. */
+static void voxgi__svo_fill_brick(voxgi_context *ctx, voxgi_svo *svo, int a, int lev, const int64_t c[3], uint32_t ptr)
+{
+    uint32_t around[27];
+    uint64_t b = (uint64_t)svo->slot_bytes[a];
+    unsigned char *dst = svo->node_values[a] + (svo->info.nodes + 64 * voxgi__svo_brick_index(svo, lev, ptr)) * b;
+    int d, t;
+    for (d = 0; d < 27; d++) {
+        int64_t q[3];
+        q[0] = c[0] + d % 3 - 1; q[1] = c[1] + d / 3 % 3 - 1; q[2] = c[2] + d / 9 - 1;
+        around[d] = d == 13 ? ptr : voxgi__svo_ptr_at(ctx, svo, lev, q);
+    }
+    for (t = 0; t < 64; t++) {
+        int ax, nd = 0;
+        uint32_t digit = 0, p;
+        for (ax = 0; ax < 3; ax++) {
+            int64_t q = 2 * c[ax] - 1 + ((t >> (2 * ax)) & 3); /* child coordinate, -1 .. 2^(lev+1) */
+            nd += (int)((q + 2) / 2 - c[ax]) * (ax == 0 ? 1 : (ax == 1 ? 3 : 9)); /* floor(q / 2) - c + 1 */
+            digit |= (uint32_t)(q & 1) << ax;
+        }
+        if (!(p = around[nd])) continue; /* stays empty */
+        memcpy(dst + (uint64_t)t * b,
+               lev == svo->info.depth - 1 ? svo->leaf_values[a] + (8 * (uint64_t)(p - 1) + digit) * b
+                                          : svo->node_values[a] + (1 + 8 * (uint64_t)(p - 1) + digit) * b, (size_t)b);
+    }
+}
+
 #ifndef VOXGI_NO_GL
 /* GL: the octree's buffers grow level by level to the size the flag pass counted (a 4-byte
    read per level), never beyond the memory budget or the largest storage buffer. */
@@ -5089,21 +5210,24 @@ static void voxgi__svo_gl_bind(voxgi_context *ctx, const voxgi_svo *svo, unsigne
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_depth"), svo->info.depth);
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_format"), (int)svo->info.format);
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_single"), a == 3);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_svo_nodes"), (unsigned)svo->info.nodes);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_svo_inner_tiles"), (unsigned)svo->inner_tiles);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_bricks"), svo->bricks != 0);
 }
 
 
 
-enum { VOXGI__SVO_FLAG, VOXGI__SVO_ARGS, VOXGI__SVO_ALLOCATE, VOXGI__SVO_INIT, VOXGI__SVO_LEAVES, VOXGI__SVO_MIP, VOXGI__SVO_NEIGHBOURS };
+enum { VOXGI__SVO_FLAG, VOXGI__SVO_ARGS, VOXGI__SVO_ALLOCATE, VOXGI__SVO_INIT, VOXGI__SVO_LEAVES, VOXGI__SVO_MIP, VOXGI__SVO_NEIGHBOURS, VOXGI__SVO_BRICKS };
 
 /* The GPU build (shaders/svo_build.glsl) from the voxel fragments (x | y << 16, z) and their
    attribute means in the same order. */
 static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size_t n, const uint32_t *packed, float *const vals[4],
-                                        int neighbours)
+                                        const voxgi_svo_desc *desc)
 {
     voxgi__gl *gl = ctx->gl;
     int depth = svo->info.depth, m, a;
     unsigned int p, frag = 0, list = 0, counters = 0, fvals = 0;
-    uint64_t child_cap = 0, list_cap = 0, tiles = depth > 1 ? 1 : 0, entries = 1, first[VOXGI__MAX_LEVELS + 1], value_bytes = 0, total;
+    uint64_t child_cap = 0, list_cap = 0, tiles = depth > 1 ? 1 : 0, entries = 1, first[VOXGI__MAX_LEVELS + 1];
     uint32_t init[16], root_tile[9];
     double t0;
     voxgi_result r = voxgi__gl_get_program(ctx, "svo.glsl svo_build.glsl", &gl->prog_svo_build);
@@ -5160,22 +5284,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
     }
     if (r != VOXGI_OK) goto done;
     svo->info.level_nodes[depth] = n;
-    svo->info.nodes = 1 + 8 * tiles;
-    svo->info.leaf_slots = 8 * svo->info.level_nodes[depth - 1];
-    svo->info.leaf_voxels = n;
-    svo->info.structure_bytes = (size_t)(svo->info.nodes * 4);
-    for (a = 0; a < 4; a++)
-        if (svo->info.attributes & (1u << a)) value_bytes += (svo->info.nodes + svo->info.leaf_slots) * (uint64_t)svo->slot_bytes[a];
-    total = svo->info.nodes * (neighbours ? 28u : 4u) + value_bytes;
-    if (svo->info.nodes > (uint64_t)UINT32_MAX || svo->info.leaf_slots > (uint64_t)UINT32_MAX * 8) {
-        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%llu node slots exceed the 32-bit pointers", (unsigned long long)svo->info.nodes);
-        goto done;
-    }
-    if (ctx->desc.memory_budget && total > (uint64_t)ctx->desc.memory_budget) { /* before the values are allocated */
-        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree needs %llu bytes, more than the memory budget %llu", (unsigned long long)total,
-                        (unsigned long long)ctx->desc.memory_budget);
-        goto done;
-    }
+    if ((r = voxgi__svo_size(ctx, svo, tiles, desc)) != VOXGI_OK) goto done; /* before the values are allocated */
     if (child_cap > svo->info.structure_bytes) { /* give back the growth's slack */
         unsigned int exact = voxgi__gl_buffer(ctx, svo->info.structure_bytes, NULL);
         gl->CopyNamedBufferSubData(svo->gl_child, exact, 0, 0, (ptrdiff_t)svo->info.structure_bytes);
@@ -5185,7 +5294,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
     gl->Finish();
     svo->info.ms_nodes = voxgi__now_ms() - t0;
     t0 = voxgi__now_ms();
-    if (neighbours) { /* levels 1 .. depth-1 */
+    if (desc->neighbours) { /* levels 1 .. depth-1 */
         unsigned int zero = 0;
         svo->gl_neighbour = voxgi__gl_buffer(ctx, (size_t)svo->info.nodes * 24, NULL);
         gl->ClearNamedBufferData(svo->gl_neighbour, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
@@ -5198,7 +5307,6 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
             gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)svo->info.level_nodes[m]);
             voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
         }
-        svo->info.neighbour_bytes = (size_t)(svo->info.nodes * 24);
         gl->Finish();
         svo->info.ms_neighbours = voxgi__now_ms() - t0;
         t0 = voxgi__now_ms();
@@ -5219,7 +5327,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
         }
         gl->NamedBufferSubData(fvals, 0, (ptrdiff_t)(n * 16), v4);
         voxgi__free(ctx, v4);
-        svo->gl_node_values[a] = voxgi__gl_buffer(ctx, (size_t)((node_bytes + 3) / 4 * 4), NULL);
+        svo->gl_node_values[a] = voxgi__gl_buffer(ctx, (size_t)((node_bytes + 64 * svo->bricks * (uint64_t)svo->slot_bytes[a] + 3) / 4 * 4), NULL);
         svo->gl_leaf_values[a] = voxgi__gl_buffer(ctx, (size_t)((leaf_bytes + 3) / 4 * 4), NULL);
         gl->ClearNamedBufferData(svo->gl_node_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
         gl->ClearNamedBufferData(svo->gl_leaf_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
@@ -5235,11 +5343,18 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
             gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)svo->info.level_nodes[m]);
             voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
         }
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_BRICKS);
+        for (m = 0; m < depth && svo->bricks; m++) { /* 64 texels per node, from the finished values */
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first[m]);
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)(64 * svo->info.level_nodes[m]));
+            voxgi__gl_dispatch_rows(gl, 64 * svo->info.level_nodes[m]);
+        }
         svo->info.bytes += (size_t)(node_bytes + leaf_bytes);
         svo->info.dense_bytes += (size_t)(voxgi_grid_voxel_count(&svo->info.grid) * (uint64_t)svo->slot_bytes[a]);
         r = voxgi__gl_check(ctx, "the octree's values");
     }
-    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes;
+    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
     gl->Finish();
     svo->info.ms_values = voxgi__now_ms() - t0;
 done:
@@ -5324,7 +5439,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
 #ifndef VOXGI_NO_GL
     if (packed) {
         svo->info.ms_sort = voxgi__now_ms() - t0;
-        if (r == VOXGI_OK) r = voxgi__svo_gl_build(ctx, svo, n, packed, vals, desc->neighbours);
+        if (r == VOXGI_OK) r = voxgi__svo_gl_build(ctx, svo, n, packed, vals, desc);
         goto finish;
     }
 #endif
@@ -5344,23 +5459,12 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
         if (!n && lev == 0) codes[0][m++] = 0; /* an empty octree still has its root */
         count[lev] = m;
     }
-    for (lev = 0; lev <= depth && r == VOXGI_OK; lev++) svo->info.level_nodes[lev] = count[lev];
     if (r == VOXGI_OK) { /* inner tiles: level 1 .. depth-1, one per node of the level above */
-        uint64_t tiles = 0, value_bytes = 0, total;
+        uint64_t tiles = 0;
         for (lev = 1; lev < depth; lev++) { tiles_before[lev] = tiles; tiles += count[lev - 1]; }
-        svo->info.nodes = 1 + 8 * tiles;
-        svo->info.leaf_slots = 8 * (uint64_t)count[depth - 1];
-        svo->info.leaf_voxels = n;
-        svo->info.structure_bytes = (size_t)(svo->info.nodes * 4);
-        for (a = 0; a < 4; a++)
-            if (svo->info.attributes & (1u << a)) value_bytes += (svo->info.nodes + svo->info.leaf_slots) * (uint64_t)svo->slot_bytes[a];
-        total = svo->info.nodes * (desc->neighbours ? 28u : 4u) + value_bytes;
-        if (svo->info.nodes > (uint64_t)UINT32_MAX || svo->info.leaf_slots > (uint64_t)UINT32_MAX * 8)
-            r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%llu node slots exceed the 32-bit pointers", (unsigned long long)svo->info.nodes);
-        else if (ctx->desc.memory_budget && total > (uint64_t)ctx->desc.memory_budget) /* before any of it is allocated */
-            r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree needs %llu bytes, more than the memory budget %llu", (unsigned long long)total,
-                            (unsigned long long)ctx->desc.memory_budget);
-        else if (!(svo->child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 4, 1)))
+        for (lev = 0; lev <= depth; lev++) svo->info.level_nodes[lev] = count[lev];
+        r = voxgi__svo_size(ctx, svo, tiles, desc);
+        if (r == VOXGI_OK && !(svo->child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 4, 1)))
             r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %llu nodes", (unsigned long long)svo->info.nodes);
     }
     if (r == VOXGI_OK) { /* child pointers: node (lev, rank) -> 1 + its tile one level down */
@@ -5385,20 +5489,16 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
             size_t parent_rank = 0;
             for (i = 0; i < count[lev]; i++) {
                 uint64_t slot, code = codes[lev][i];
-                uint32_t x = 0, y = 0, z = 0;
-                int b, dir;
+                int64_t at[3];
+                int dir;
                 while (codes[lev - 1][parent_rank] != code >> 3) parent_rank++;
                 slot = 1 + 8 * (tiles_before[lev] + parent_rank) + (code & 7u);
-                for (b = 0; b < lev; b++) { /* the node's coordinates from its code */
-                    x |= (uint32_t)((code >> (3 * b)) & 1u) << b;
-                    y |= (uint32_t)((code >> (3 * b + 1)) & 1u) << b;
-                    z |= (uint32_t)((code >> (3 * b + 2)) & 1u) << b;
-                }
+                voxgi__svo_coords(code, lev, at);
                 for (dir = 0; dir < 6; dir++) {
                     int64_t c[3];
                     uint64_t ncode;
                     size_t lo = 0, hi = count[lev], plo = 0, phi = count[lev - 1];
-                    c[0] = x; c[1] = y; c[2] = z;
+                    memcpy(c, at, sizeof c);
                     c[dir / 2] += (dir & 1) ? -1 : 1;
                     if (c[dir / 2] < 0 || c[dir / 2] >= ((int64_t)1 << lev)) continue;
                     ncode = voxgi__morton((uint32_t)c[0], (uint32_t)c[1], (uint32_t)c[2]);
@@ -5409,7 +5509,6 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
                 }
             }
         }
-        svo->info.neighbour_bytes = (size_t)(svo->info.nodes * 24);
         svo->info.ms_neighbours = voxgi__now_ms() - t0;
         t0 = voxgi__now_ms();
     }
@@ -5419,7 +5518,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
         unsigned char *leaf, *node;
         if (!(svo->info.attributes & (1u << a))) continue;
         leaf = svo->leaf_values[a] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)(svo->info.leaf_slots ? svo->info.leaf_slots : 1), (size_t)b, 1);
-        node = svo->node_values[a] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, (size_t)b, 1);
+        node = svo->node_values[a] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)(svo->info.nodes + 64 * svo->bricks), (size_t)b, 1);
         if (!leaf || !node) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's values"); break; }
         {   /* leaves: slot 8 * rank(parent) + digit */
             size_t parent_rank = 0;
@@ -5451,10 +5550,16 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
                 voxgi__svo_put(svo, a, node, slot, m);
             }
         }
+        for (lev = 0; lev < depth && svo->bricks; lev++) /* 4. bricks, from the finished values */
+            for (i = 0; i < count[lev]; i++) {
+                int64_t c[3];
+                voxgi__svo_coords(codes[lev][i], lev, c);
+                voxgi__svo_fill_brick(ctx, svo, a, lev, c, voxgi__svo_ptr_at(ctx, svo, lev, c));
+            }
         svo->info.bytes += (size_t)((svo->info.nodes + svo->info.leaf_slots) * (uint64_t)b);
         svo->info.dense_bytes += (size_t)(nvox * (uint64_t)b);
     }
-    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes;
+    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
     svo->info.ms_values = voxgi__now_ms() - t0;
 #ifndef VOXGI_NO_GL
 finish:
@@ -5527,21 +5632,6 @@ static voxgi_result voxgi__svo_gl_points(voxgi_context *ctx, const voxgi_svo *sv
     return r;
 }
 #endif
-
-/* A node slot's child pointer, wherever the octree lives. */
-static uint32_t voxgi__svo_child(voxgi_context *ctx, const voxgi_svo *svo, uint64_t slot)
-{
-#ifndef VOXGI_NO_GL
-    if (svo->gl_child) {
-        uint32_t ptr = 0;
-        ctx->gl->MemoryBarrier(VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
-        ctx->gl->GetNamedBufferSubData(svo->gl_child, (ptrdiff_t)(4 * slot), 4, &ptr);
-        return ptr;
-    }
-#endif
-    (void)ctx;
-    return svo->child[slot];
-}
 
 VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, int level, size_t count,
                                         const uint32_t *coords, float *out)
@@ -5648,6 +5738,94 @@ static int voxgi__svo_fetch(const void *source, int k, const int v[3], float t[4
     return 1;
 }
 
+/* Trilinear at level k through one descent and a brick: the level-(k+1) node around p holds
+   every value the sample needs; where an ancestor is missing and the sample's corners all lie
+   in its box, the sample is empty. The same corners, weights and sums as voxgi__trilinear, so
+   the same result bit for bit; 0 (use the lookups) where neither holds. */
+static int voxgi__svo_brick_trilinear(const void *source, int w, int k, const float p[3], float out[4])
+{
+    const voxgi__svo_source *s = (const voxgi__svo_source *)source;
+    const voxgi_svo *svo = s->svo;
+    int depth = svo->info.depth, lev = depth - k - 1, m, a, corner, ch; /* the brick's node level */
+    double c[3], f[3];
+    int64_t i0[3], pc[3];
+    uint64_t node = 0, b = (uint64_t)svo->slot_bytes[s->a];
+    uint32_t ptr = 0;
+    const unsigned char *brick;
+    if (lev < 0) return 0;
+    for (a = 0; a < 3; a++) {
+        c[a] = (double)p[a] / (double)(1 << k) - 0.5;
+        i0[a] = (int64_t)floor(c[a]);
+        f[a] = c[a] - (double)i0[a];
+        pc[a] = (int64_t)floor((double)p[a] / (double)(1 << (k + 1)));
+        if (pc[a] < 0 || (pc[a] >> lev)) return 0;
+    }
+    for (m = 0; m <= lev; m++) {
+        ptr = svo->child[node];
+        if (!ptr) { /* no node at level m here: its box in level-(lev+1) units */
+            int sh = lev + 1 - m;
+            for (a = 0; a < 3; a++)
+                if (i0[a] < (pc[a] >> (lev - m)) << sh || i0[a] + 1 >= ((pc[a] >> (lev - m)) + 1) << sh) return 0;
+            for (ch = 0; ch < 4; ch++) out[ch] = 0;
+            return 1;
+        }
+        if (m < lev)
+            node = 1 + 8 * (uint64_t)(ptr - 1) + (uint64_t)(((pc[0] >> (lev - m - 1)) & 1) | (((pc[1] >> (lev - m - 1)) & 1) << 1) |
+                                                            (((pc[2] >> (lev - m - 1)) & 1) << 2));
+    }
+    brick = svo->node_values[s->a] + (svo->info.nodes + 64 * voxgi__svo_brick_index(svo, lev, ptr)) * b;
+    for (ch = 0; ch < 4; ch++) out[ch] = 0;
+    for (corner = 0; corner < 8; corner++) {
+        double wt = 1;
+        int t = 0;
+        float v[4];
+        for (a = 0; a < 3; a++) {
+            int hi = (corner >> a) & 1;
+            wt *= hi ? f[a] : 1 - f[a];
+            t += (int)(i0[a] + hi - (2 * pc[a] - 1)) << (2 * a);
+        }
+        if (wt == 0) continue;
+        voxgi__svo_get(svo, s->a, brick, (uint64_t)t, v);
+        for (ch = 0; ch < w; ch++) out[ch] += (float)(wt * (w == 1 ? v[3] : v[ch]));
+    }
+    return 1;
+}
+
+VOXGI_API voxgi_result voxgi_svo_brick(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, int level, const uint32_t coord[3],
+                                       float *out)
+{
+    int a = voxgi__attr_index(which), w = which == VOXGI_ATTRIBUTE_OPACITY ? 1 : 4, depth, t, ch;
+    int64_t c[3];
+    uint32_t ptr;
+    uint64_t first, b;
+    unsigned char raw[64 * 16];
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!svo || !coord || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "svo, coord or out is NULL");
+    if (a < 0 || !(svo->info.attributes & (unsigned)which))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attribute %d is not in this octree (0x%x)", (int)which, svo->info.attributes);
+    if (!svo->bricks) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "this octree was built without bricks");
+    depth = svo->info.depth;
+    b = (uint64_t)svo->slot_bytes[a];
+    if (level < 0 || level >= depth) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "level %d: bricks are at 0..%d", level, depth - 1);
+    memset(out, 0, (size_t)(64 * w) * sizeof(float));
+    for (t = 0; t < 3; t++) c[t] = (int64_t)(coord[t] >> (depth - level));
+    if ((coord[0] >> depth) || (coord[1] >> depth) || (coord[2] >> depth) || !(ptr = voxgi__svo_ptr_at(ctx, svo, level, c))) return VOXGI_OK;
+    first = (svo->info.nodes + 64 * voxgi__svo_brick_index(svo, level, ptr)) * b;
+#ifndef VOXGI_NO_GL
+    if (svo->gl_child) {
+        ctx->gl->MemoryBarrier(VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+        ctx->gl->GetNamedBufferSubData(svo->gl_node_values[a], (ptrdiff_t)first, (ptrdiff_t)(64 * b), raw);
+    } else
+#endif
+        memcpy(raw, svo->node_values[a] + first, (size_t)(64 * b));
+    for (t = 0; t < 64; t++) {
+        float v[4];
+        voxgi__svo_get(svo, a, raw, (uint64_t)t, v);
+        for (ch = 0; ch < w; ch++) out[w * t + ch] = w == 1 ? v[3] : v[ch];
+    }
+    return VOXGI_OK;
+}
+
 VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
                                         const float *pos, const float *lods, float *out)
 {
@@ -5675,7 +5853,7 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
     }
 #endif
     for (i = 0; i < count; i++)
-        voxgi__sample_lod(voxgi__svo_fetch, &src, src.w, svo->info.depth + 1, pos + 3 * i, lods[i], out + (size_t)src.w * i);
+        voxgi__sample_lod(voxgi__svo_fetch, svo->info.brick_bytes ? voxgi__svo_brick_trilinear : NULL, &src, src.w, svo->info.depth + 1, pos + 3 * i, lods[i], out + (size_t)src.w * i);
     return VOXGI_OK;
 }
 

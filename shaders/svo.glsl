@@ -10,6 +10,9 @@ layout(std430, binding = 2) buffer SvoLeafValues { uint svo_leaf_words[]; };
 uniform int u_svo_depth;   // leaves at level depth
 uniform int u_svo_format;  // 0: float32, 1: float16
 uniform int u_svo_single;  // 1: the attribute is opacity (alpha alone)
+uniform int u_svo_bricks;  // 1: every inner node has a brick (4x4x4 values of its children's level)
+uniform uint u_svo_nodes;  // node slots; brick b's texels follow them at u_svo_nodes + 64 b
+uniform uint u_svo_inner_tiles; // bricks of nodes with inner tiles come first, then those with leaf tiles
 
 // float -> half, nearest, ties to even; integer steps as voxgi__half_from_float.
 uint voxgi_half_from_float(float f)
@@ -76,13 +79,49 @@ vec4 voxgi_svo_fetch(int level, ivec3 v)
     return voxgi_svo_descend(level, v, slot, leaf) ? voxgi_svo_load(leaf, slot) : vec4(0.0);
 }
 
+// Trilinear at mip level k from one descent and the brick of the node around p one level up;
+// where an ancestor is missing and the sample's corners all lie in its box, empty; false where
+// the lookups must do it (voxgi__svo_brick_trilinear on the CPU).
+bool voxgi_svo_brick_trilinear(int k, vec3 p, out vec4 s)
+{
+    int lev = u_svo_depth - k - 1;
+    s = vec4(0.0);
+    if (u_svo_bricks == 0 || lev < 0) return false;
+    vec3 c = p / float(1 << k) - 0.5, f = c - floor(c);
+    ivec3 i0 = ivec3(floor(c)), pc = ivec3(floor(p / float(1 << (k + 1))));
+    if (any(lessThan(pc, ivec3(0))) || any(greaterThanEqual(pc, ivec3(1 << lev)))) return false;
+    uint node = 0u, ptr = 0u;
+    for (int m = 0; m <= lev; m++) {
+        ptr = svo_child[node];
+        if (ptr == 0u) {
+            int sh = lev + 1 - m;
+            ivec3 lo = (pc >> (lev - m)) << sh, hi = ((pc >> (lev - m)) + 1) << sh;
+            return all(greaterThanEqual(i0, lo)) && all(lessThan(i0 + 1, hi));
+        }
+        if (m < lev) {
+            ivec3 b = (pc >> (lev - m - 1)) & 1;
+            node = 1u + 8u * (ptr - 1u) + uint(b.x | (b.y << 1) | (b.z << 2));
+        }
+    }
+    uint first = u_svo_nodes + 64u * ((lev < u_svo_depth - 1 ? 0u : u_svo_inner_tiles) + ptr - 1u);
+    ivec3 t0 = i0 - (2 * pc - 1);
+    for (int corner = 0; corner < 8; corner++) {
+        ivec3 hi = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1), t = t0 + hi;
+        vec3 w3 = mix(1.0 - f, f, vec3(hi));
+        float w = w3.x * w3.y * w3.z;
+        if (w != 0.0) s += w * voxgi_svo_load(false, first + uint(t.x + 4 * t.y + 16 * t.z));
+    }
+    return true;
+}
+
 // Trilinear between the node centres of mip level k (octree level depth - k) at p (grid units of
 // the voxels), as voxgi__trilinear on the CPU.
 vec4 voxgi_svo_trilinear(int k, vec3 p)
 {
+    vec4 s;
+    if (voxgi_svo_brick_trilinear(k, p, s)) return s;
     vec3 c = p / float(1 << k) - 0.5, f = c - floor(c);
     ivec3 i0 = ivec3(floor(c));
-    vec4 s = vec4(0.0);
     for (int corner = 0; corner < 8; corner++) {
         ivec3 hi = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
         vec3 w3 = mix(1.0 - f, f, vec3(hi));

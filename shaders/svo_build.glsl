@@ -22,6 +22,7 @@ uniform uint u_first;  // its first node list entry
 #define VOXGI_PASS_LEAVES 4
 #define VOXGI_PASS_MIP 5
 #define VOXGI_PASS_NEIGHBOURS 6
+#define VOXGI_PASS_BRICKS 7
 // counters: [0] inner tiles, [1] leaf tiles, [2] nodes flagged at this level, [3] node list
 // entries, [4..6] allocate dispatch, [8..10] initialise dispatch, [12] the parents' first
 // entry, [13] the first entry of the next level's parents, [14] the first new inner tile,
@@ -108,6 +109,13 @@ void main()
         return;
     }
     if (i >= u_count) return;
+    if (u_pass == VOXGI_PASS_BRICKS) { // per texel of the bricks of u_level's nodes: the value one level down
+        uvec4 owner = node_list[u_first + i / 64u];
+        uint t = i & 63u, brick = (u_level < u_svo_depth - 1 ? 0u : u_svo_inner_tiles) + svo_child[owner.x] - 1u;
+        ivec3 q = 2 * ivec3(owner.yzw) - 1 + ivec3(t & 3u, (t >> 2) & 3u, t >> 4);
+        voxgi_svo_store(false, u_svo_nodes + 64u * brick + t, voxgi_svo_fetch(u_level + 1, q));
+        return;
+    }
     uvec4 node = node_list[u_first + i];
     if (u_pass == VOXGI_PASS_MIP) { // per node of u_level: the isotropic mip of its tile (voxgi__mip_combine)
         bool leaves = u_level == u_svo_depth - 1;

@@ -787,6 +787,7 @@ static void test_gl_svo_equals_cpu(void)
             memset(&sd, 0, sizeof sd);
             sd.neighbours = 1;
             sd.format = (voxgi_svo_format)fmt;
+            sd.bricks = fmt; /* half floats with bricks, floats without */
             for (b = 0; b < 2; b++) {
                 if (voxgi_svo_create(b ? gl : cpu, vox[b], &sd, &svo[b]) != VOXGI_OK) printf("    %s\n", voxgi_last_error(b ? gl : cpu));
                 voxgi_svo_query(svo[b], &info[b]);
@@ -818,6 +819,21 @@ static void test_gl_svo_equals_cpu(void)
                 free(coords); free(got[0]); free(got[1]);
             }
             TH_CHECK(diff == 0, "res %d format %d: GL and CPU lookups differ at %d level/attribute pairs", xd.grid.res[0], fmt, diff);
+            for (lev = 0; lev < info[0].depth && sd.bricks; lev++) { /* every brick, texel for texel */
+                uint32_t n = 1u << lev, sh = (uint32_t)(info[0].depth - lev), x, y, z;
+                for (z = 0; z < n; z++)
+                    for (y = 0; y < n; y++)
+                        for (x = 0; x < n; x++) {
+                            uint32_t c[3];
+                            float br[2][64 * 4];
+                            c[0] = x << sh; c[1] = y << sh; c[2] = z << sh;
+                            for (a = 0; a < 4; a++) {
+                                for (b = 0; b < 2; b++) voxgi_svo_brick(b ? gl : cpu, svo[b], (voxgi_attribute)(1 << a), lev, c, br[b]);
+                                diff += memcmp(br[0], br[1], (size_t)(a == 3 ? 64 * 4 : 64 * 16)) != 0;
+                            }
+                        }
+            }
+            TH_CHECK(diff == 0 && info[1].brick_bytes == info[0].brick_bytes, "res %d: %d GL bricks differ from the CPU's", xd.grid.res[0], diff);
             {   /* samples: float weights on GL, double on the CPU */
                 float pos[3 * 400], lods[400], out[2][4 * 400];
                 int i;

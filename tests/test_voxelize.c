@@ -2084,6 +2084,91 @@ static void test_svo_equals_dense(void)
         TH_CHECK(o[3] == 0 && o[7] == 0, "empty places are not empty");
         TH_CHECK(voxgi_svo_lookup(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, 9, 1, c, o) == VOXGI_ERR_INVALID_ARGUMENT, "level 9 accepted");
     }
+    {   /* bricks: every texel is the dense volume's value at its place one level down (empty
+           outside); the texels a brick shares with its +x/+y/+z neighbour's are equal; sampling
+           through bricks equals sampling the dense volume bit for bit */
+        voxgi_svo *bk = NULL;
+        voxgi_svo_info bi;
+        int wrong = 0, bricks = 0, shared = 0;
+        sd.bricks = 1;
+        TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &bk) == VOXGI_OK, "octree with bricks: %s", voxgi_last_error(ctx));
+        sd.bricks = 0;
+        if (bk) {
+            uint64_t inner = 0;
+            voxgi_svo_query(bk, &bi);
+            for (lev = 0; lev < bi.depth; lev++) inner += bi.level_nodes[lev];
+            TH_CHECK(bi.brick_bytes == inner * 64 * (16 * 3 + 4) && bi.bytes == info.bytes + bi.brick_bytes, "brick bytes %lu for %llu inner nodes",
+                     (unsigned long)bi.brick_bytes, (unsigned long long)inner);
+            for (a = 0; a < 4; a++) {
+                voxgi_attribute which = (voxgi_attribute)(1 << a);
+                int w = a == 3 ? 1 : 4;
+                for (lev = 0; lev < bi.depth; lev++) {
+                    int k = bi.depth - lev - 1, d[3], ax;
+                    uint32_t n = 1u << lev, sh = (uint32_t)(bi.depth - lev), x, y, z;
+                    float *dense, brick[64 * 4], other[64 * 4];
+                    for (ax = 0; ax < 3; ax++) { d[ax] = xd.grid.res[ax]; for (x = 0; x < (uint32_t)k; x++) d[ax] = (d[ax] + 1) / 2; }
+                    dense = (float *)malloc((size_t)d[0] * (size_t)d[1] * (size_t)d[2] * (size_t)w * 4);
+                    voxgi_volume_read(ctx, vol, which, 0, k, dense, (size_t)d[0] * (size_t)d[1] * (size_t)d[2] * (size_t)w * 4, NULL);
+                    for (z = 0; z < n; z++)
+                        for (y = 0; y < n; y++)
+                            for (x = 0; x < n; x++) {
+                                uint32_t c[3], slot = 0;
+                                int t, ch, dir;
+                                c[0] = x << sh; c[1] = y << sh; c[2] = z << sh;
+                                if (lev > 0 && (voxgi_svo_node(ctx, bk, lev, c, &slot), !slot)) continue;
+                                voxgi_svo_brick(ctx, bk, which, lev, c, brick);
+                                bricks++;
+                                for (t = 0; t < 64; t++) {
+                                    int q[3], inside = 1;
+                                    q[0] = 2 * (int)x - 1 + (t & 3); q[1] = 2 * (int)y - 1 + ((t >> 2) & 3); q[2] = 2 * (int)z - 1 + (t >> 4);
+                                    for (ax = 0; ax < 3; ax++) inside &= q[ax] >= 0 && q[ax] < d[ax];
+                                    for (ch = 0; ch < w; ch++)
+                                        wrong += brick[w * t + ch] !=
+                                                 (inside ? dense[((size_t)q[0] + (size_t)d[0] * ((size_t)q[1] + (size_t)d[1] * (size_t)q[2])) * (size_t)w + (size_t)ch] : 0.0f);
+                                }
+                                for (dir = 0; dir < 3; dir++) { /* the shared layers: mine at 2, 3; the neighbour's at 0, 1 */
+                                    uint32_t e[3], nslot = 0;
+                                    e[0] = x; e[1] = y; e[2] = z;
+                                    if (++e[dir] >= n) continue;
+                                    e[0] <<= sh; e[1] <<= sh; e[2] <<= sh;
+                                    voxgi_svo_node(ctx, bk, lev, e, &nslot);
+                                    if (!nslot) continue;
+                                    voxgi_svo_brick(ctx, bk, which, lev, e, other);
+                                    for (t = 0; t < 64; t++) {
+                                        int along = (t >> (2 * dir)) & 3;
+                                        if (along >= 2) {
+                                            shared++;
+                                            wrong += memcmp(brick + w * t, other + w * (t - (2 << (2 * dir))), (size_t)w * 4) != 0;
+                                        }
+                                    }
+                                }
+                            }
+                    free(dense);
+                }
+            }
+            TH_CHECK(bricks > 0 && shared > 0 && wrong == 0, "%d wrong brick texels over %d bricks (%d shared)", wrong, bricks, shared);
+            {
+                float pos[3 * 500], lods[500], a_out[4 * 500], b_out[4 * 500];
+                size_t q;
+                for (q = 0; q < 500; q++) {
+                    pos[3 * q] = (float)(-2 + 31 * rnd()); pos[3 * q + 1] = (float)(-2 + 29 * rnd()); pos[3 * q + 2] = (float)(-2 + 34 * rnd());
+                    lods[q] = (float)(-0.5 + 6.5 * rnd());
+                }
+                for (a = 0; a < 4; a++) {
+                    voxgi_attribute which = (voxgi_attribute)(1 << a);
+                    TH_CHECK(voxgi_volume_sample(ctx, vol, which, 0, 500, pos, lods, a_out) == VOXGI_OK &&
+                             voxgi_svo_sample(ctx, bk, which, 500, pos, lods, b_out) == VOXGI_OK, "sampling failed");
+                    TH_CHECK(memcmp(a_out, b_out, 500 * (size_t)(a == 3 ? 1 : 4) * 4) == 0, "attribute %d: brick and dense samples differ", a);
+                }
+            }
+        }
+        voxgi_svo_destroy(ctx, bk);
+        {
+            uint32_t c[3] = {0, 0, 0};
+            float texels[64 * 4];
+            TH_CHECK(voxgi_svo_brick(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, 0, c, texels) == VOXGI_ERR_UNSUPPORTED, "bricks of an octree without them");
+        }
+    }
     {   /* half-float values: every lookup within (levels above the voxels + 1) x 2^-10 relative of
            the float octree's (a rounding per level: half has 11 significant bits), a quarter of the
            value bytes, the same nodes */

@@ -822,6 +822,7 @@ static const char *svo_help =
     "  --gl auto|egl|osmesa     headless GL context to create (default auto)\n"
     "  --threads T              CPU worker threads (default: one per core)\n"
     "  --neighbours             also build the six neighbour pointers of every node\n"
+    "  --bricks                 also a 4x4x4 brick per inner node (seamless trilinear sampling)\n"
     "  --format float32|float16 how values are stored (default float32)\n"
     "  --json                   one JSON object: leaf_voxels, nodes, bytes, structure_bytes, ms, ...\n";
 
@@ -857,6 +858,7 @@ static int cmd_svo(int argc, char **argv)
         else if (strcmp(a, "--threads") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 256, &threads)) return bad_arg("svo", "--threads needs 1..256"); }
         else if (strcmp(a, "--json") == 0) json = 1;
         else if (strcmp(a, "--neighbours") == 0) sd.neighbours = 1;
+        else if (strcmp(a, "--bricks") == 0) sd.bricks = 1;
         else if (strcmp(a, "--format") == 0 && i + 1 < argc) {
             const char *f = argv[++i];
             if (strcmp(f, "float32") == 0) sd.format = VOXGI_SVO_FLOAT32;
@@ -889,13 +891,13 @@ static int cmd_svo(int argc, char **argv)
         if (info.attributes & (1u << lev)) dense8 += (double)voxgi_grid_voxel_count(&vd.grid) * (lev == 3 ? 1 : 4);
     if (json) {
         printf("{\"mesh\":\"%s\",\"triangles\":%lu,\"res\":[%d,%d,%d],\"depth\":%d,\"leaf_voxels\":%llu,\"nodes\":%llu,\"leaf_slots\":%llu,"
-               "\"format\":\"%s\",\"bytes\":%lu,\"structure_bytes\":%lu,\"neighbour_bytes\":%lu,\"dense_bytes\":%lu,\"dense_rgba8_bytes\":%.0f,"
+               "\"format\":\"%s\",\"bytes\":%lu,\"structure_bytes\":%lu,\"neighbour_bytes\":%lu,\"brick_bytes\":%lu,\"dense_bytes\":%lu,\"dense_rgba8_bytes\":%.0f,"
                "\"voxelize_ms\":%.3f,\"ms\":%.3f,"
                "\"sort_ms\":%.3f,\"nodes_ms\":%.3f,\"neighbours_ms\":%.3f,\"values_ms\":%.3f,\"level_nodes\":[",
                mesh_path, (unsigned long)mesh_triangles(&tm), vd.grid.res[0], vd.grid.res[1], vd.grid.res[2], info.depth,
                (unsigned long long)info.leaf_voxels, (unsigned long long)info.nodes, (unsigned long long)info.leaf_slots,
                info.format == VOXGI_SVO_FLOAT16 ? "float16" : "float32", (unsigned long)info.bytes, (unsigned long)info.structure_bytes,
-               (unsigned long)info.neighbour_bytes, (unsigned long)info.dense_bytes, dense8, vinfo.ms, info.ms, info.ms_sort, info.ms_nodes, info.ms_neighbours, info.ms_values);
+               (unsigned long)info.neighbour_bytes, (unsigned long)info.brick_bytes, (unsigned long)info.dense_bytes, dense8, vinfo.ms, info.ms, info.ms_sort, info.ms_nodes, info.ms_neighbours, info.ms_values);
         for (lev = 0; lev <= info.depth; lev++) printf("%s%llu", lev ? "," : "", (unsigned long long)info.level_nodes[lev]);
         printf("]}\n");
     } else {
@@ -912,12 +914,15 @@ static int cmd_svo(int argc, char **argv)
         if (info.neighbour_bytes)
             printf("| neighbour pointers | %lu | %.2f |\n", (unsigned long)info.neighbour_bytes,
                    (double)info.neighbour_bytes / (double)(info.leaf_voxels ? info.leaf_voxels : 1));
+        if (info.brick_bytes)
+            printf("| bricks (4x4x4 per inner node) | %lu | %.2f |\n", (unsigned long)info.brick_bytes,
+                   (double)info.brick_bytes / (double)(info.leaf_voxels ? info.leaf_voxels : 1));
         printf("| octree everything (%llu leaf slots) | %lu | %.1f |\n", (unsigned long long)info.leaf_slots, (unsigned long)info.bytes,
                (double)info.bytes / (double)(info.leaf_voxels ? info.leaf_voxels : 1));
         printf("\ndense RGBA8 / octree: %.1fx less memory\n", dense8 / (double)(info.bytes ? info.bytes : 1));
         printf("\nTable 5.2 (ms; %s)\n| pass | ms |\n|---|---:|\n", voxgi_backend_name(vinfo.backend));
         printf("| voxelization with attributes | %.2f |\n| sort voxels (Morton) | %.2f |\n| nodes and child pointers | %.2f |\n"
-               "| neighbour pointers | %.2f |\n| values and mips | %.2f |\n", vinfo.ms, info.ms_sort, info.ms_nodes, info.ms_neighbours,
+               "| neighbour pointers | %.2f |\n| values, mips and bricks | %.2f |\n", vinfo.ms, info.ms_sort, info.ms_nodes, info.ms_neighbours,
                info.ms_values);
     }
     rc = 0;
