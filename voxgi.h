@@ -422,6 +422,10 @@ VOXGI_API voxgi_result voxgi_volume_read(voxgi_context *ctx, const voxgi_volume 
 VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volume *volume, voxgi_attribute which,
                                            voxgi_direction direction, size_t count, const float *positions, const float *lods,
                                            float *out);
+/* The lod at which one voxel is as wide as a footprint of `diameter` voxels of level 0 (a
+   cone's width where it samples): log2(diameter), 0 below one voxel. The same in GLSL:
+   voxgi_lod_from_footprint (shaders/sampling.glsl). */
+VOXGI_API float voxgi_lod_from_footprint(float diameter);
 /* GL backend: the 3D texture of one attribute (and direction), all levels (owned by volume);
    filtering LINEAR_MIPMAP_LINEAR, clamped to an empty border, texture coordinates p / gl_size. */
 VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_volume *volume, voxgi_attribute which,
@@ -4792,6 +4796,11 @@ static void voxgi__sample_lod(voxgi__fetch_fn fetch, voxgi__fast_trilinear_fn fa
     for (ch = 0; ch < w; ch++) out[ch] = t > 0 ? s0[ch] + t * (s1[ch] - s0[ch]) : s0[ch];
 }
 
+VOXGI_API float voxgi_lod_from_footprint(float diameter)
+{
+    return diameter > 1 ? log2f(diameter) : 0.0f; /* NaN: 0 */
+}
+
 typedef struct voxgi__volume_source { const voxgi_volume *vol; const float *arr; int w; } voxgi__volume_source;
 
 static int voxgi__volume_fetch(const void *source, int k, const int v[3], float t[4])
@@ -4919,7 +4928,7 @@ static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volu
     float *packed;
     size_t i;
     int w = a == 3 ? 1 : 4;
-    voxgi_result r = voxgi__gl_get_program(ctx, "volume_sample.glsl", &gl->prog_volume_sample);
+    voxgi_result r = voxgi__gl_get_program(ctx, "sampling.glsl volume_sample.glsl", &gl->prog_volume_sample);
     if (r != VOXGI_OK) return r;
     if (!count) return VOXGI_OK;
     if (count > (size_t)65535 * 64 * 64) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
@@ -5100,6 +5109,14 @@ static voxgi_result voxgi__svo_size(voxgi_context *ctx, voxgi_svo *svo, uint64_t
     return VOXGI_OK;
 }
 
+/* Reports octree progress; non-zero: the caller cancelled (the error is set). */
+static int voxgi__svo_cancelled(voxgi_context *ctx, double fraction, const char *stage)
+{
+    if (!voxgi__progress(ctx, fraction, stage)) return 0;
+    voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "octree build cancelled by the progress callback (%s)", stage);
+    return 1;
+}
+
 /* A node's coordinates at its level from its Morton code. */
 static void voxgi__svo_coords(uint64_t code, int lev, int64_t c[3])
 {
@@ -5265,6 +5282,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
         first[m] = entries;
         entries += flagged;
         if (m < depth - 1) tiles += flagged;
+        if (voxgi__svo_cancelled(ctx, 0.5 * m / depth, "octree: nodes")) { r = VOXGI_ERR_CANCELLED; break; }
         r = voxgi__svo_gl_grow(ctx, &svo->gl_child, &child_cap, 4 * (1 + 8 * tiles), "child pointers");
         if (r == VOXGI_OK) r = voxgi__svo_gl_grow(ctx, &list, &list_cap, 16 * entries, "node list");
         if (r != VOXGI_OK) break;
@@ -5353,6 +5371,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
         svo->info.bytes += (size_t)(node_bytes + leaf_bytes);
         svo->info.dense_bytes += (size_t)(voxgi_grid_voxel_count(&svo->info.grid) * (uint64_t)svo->slot_bytes[a]);
         r = voxgi__gl_check(ctx, "the octree's values");
+        if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree: values")) r = VOXGI_ERR_CANCELLED;
     }
     svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
     gl->Finish();
@@ -5444,6 +5463,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     }
 #endif
     if (r == VOXGI_OK) r = voxgi__sort_codes(ctx, codes[depth], order, n, 3 * depth);
+    if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.3, "octree: voxels sorted")) r = VOXGI_ERR_CANCELLED;
     t1 = voxgi__now_ms();
     svo->info.ms_sort = t1 - t0;
     /* 2. each level's nodes: the distinct parent codes; tiles numbered level by level */
@@ -5480,6 +5500,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
             }
         }
     }
+    if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.5, "octree: nodes")) r = VOXGI_ERR_CANCELLED;
     t0 = voxgi__now_ms();
     svo->info.ms_nodes = t0 - t1;
     if (r == VOXGI_OK && desc->neighbours) { /* each inner node's same-level neighbours, by binary search in the level's codes */
@@ -5558,6 +5579,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
             }
         svo->info.bytes += (size_t)((svo->info.nodes + svo->info.leaf_slots) * (uint64_t)b);
         svo->info.dense_bytes += (size_t)(nvox * (uint64_t)b);
+        if (voxgi__svo_cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree: values")) r = VOXGI_ERR_CANCELLED;
     }
     svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
     svo->info.ms_values = voxgi__now_ms() - t0;
@@ -5608,7 +5630,7 @@ static voxgi_result voxgi__svo_gl_points(voxgi_context *ctx, const voxgi_svo *sv
     float *got;
     size_t i;
     int w = a == 3 ? 1 : 4;
-    voxgi_result r = voxgi__gl_get_program(ctx, "svo.glsl svo_sample.glsl", &gl->prog_svo_sample);
+    voxgi_result r = voxgi__gl_get_program(ctx, "sampling.glsl svo.glsl svo_sample.glsl", &gl->prog_svo_sample);
     if (r != VOXGI_OK || !count) return r;
     if (count > (size_t)65535 * 65535 * 64) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
     if (!(got = (float *)voxgi__alloc_array(ctx, count, 16, 0))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu samples", (unsigned long)count);

@@ -140,10 +140,3 @@ vec4 voxgi_sample_svo(vec3 p, float lod)
     vec4 s0 = voxgi_svo_trilinear(k0, p);
     return t > 0.0 ? s0 + t * (voxgi_svo_trilinear(k0 + 1, p) - s0) : s0;
 }
-
-// The level of detail whose voxels are `diameter` voxels wide (a cone's footprint): log2 of it,
-// 0 below one voxel.
-float voxgi_lod_from_footprint(float diameter)
-{
-    return log2(max(diameter, 1.0));
-}

@@ -879,6 +879,27 @@ static void test_gl_svo_equals_cpu(void)
         }
         for (b = 0; b < 2; b++) voxgi_voxels_destroy(b ? gl : cpu, vox[b]);
     }
+    {   /* footprint -> lod: the GLSL function and the C one agree (log2 within an ulp), 0 below a voxel */
+        static const float d[8] = {0.0f, 0.25f, 1.0f, 1.5f, 2.0f, 8.0f, 1000.0f, 65536.0f};
+        float pts[8 * 4], lod[8 * 4];
+        voxgi_svo_desc sd;
+        voxgi_svo *one = NULL;
+        voxgi_voxels *v = NULL;
+        voxgi_voxelize_desc xd;
+        int i, bad = 0;
+        memset(&xd, 0, sizeof xd); memset(&sd, 0, sizeof sd); memset(pts, 0, sizeof pts);
+        cubic(&xd.grid, -1.1, 2.2, 4);
+        xd.attributes = VOXGI_ATTRIBUTE_ALBEDO;
+        voxgi_voxelize(gl, &sc, &xd, &v);
+        if (v) voxgi_svo_create(gl, v, &sd, &one);
+        for (i = 0; i < 8; i++) pts[4 * i + 3] = d[i];
+        TH_CHECK(one && voxgi__svo_gl_points(gl, one, 0, 2, 8, pts, lod) == VOXGI_OK, "footprints on GL");
+        for (i = 0; i < 8 && one; i++) bad += fabsf(lod[4 * i] - voxgi_lod_from_footprint(d[i])) > 1e-6f * fmaxf(1, lod[4 * i]);
+        TH_CHECK(bad == 0 && voxgi_lod_from_footprint(8) == 3 && voxgi_lod_from_footprint(0.5f) == 0 && voxgi_lod_from_footprint(1) == 0,
+                 "footprint lods: %d differ", bad);
+        voxgi_svo_destroy(gl, one);
+        voxgi_voxels_destroy(gl, v);
+    }
     printf("    GL octree samples within %.3g (relative) of the CPU's\n", worst_sample);
     TH_CHECK(worst_sample <= 1e-6, "GL octree samples differ from the CPU's by %g", worst_sample);
     free(ids);

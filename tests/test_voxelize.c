@@ -579,6 +579,13 @@ static void test_failing_allocator(void)
 
 static int cancel_at_once(double f, const char *stage, void *u) { (void)f; (void)stage; (void)u; return 1; }
 
+static int cancel_octree_values(double fraction, const char *stage, void *user)
+{
+    (void)fraction;
+    ++*(int *)user;
+    return strcmp(stage, "octree: values") == 0;
+}
+
 static void test_cancel_and_api(void)
 {
     vxt_shape m;
@@ -614,6 +621,23 @@ static void test_cancel_and_api(void)
     }
     TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_ERR_CANCELLED && vox == NULL, "cancel ignored");
     voxgi_destroy(ctx);
+    {   /* an octree build reports its stages and stops cleanly when asked to */
+        int calls = 0;
+        voxgi_svo_desc sd;
+        voxgi_svo *svo = NULL;
+        d.progress.func = cancel_octree_values;
+        d.progress.user = &calls;
+        voxgi_create(&d, &ctx);
+        vd.attributes = VOXGI_ATTRIBUTE_ALBEDO;
+        memset(&sd, 0, sizeof sd);
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK && voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_ERR_CANCELLED && !svo &&
+                 calls > 2, "octree cancel: %s", voxgi_last_error(ctx));
+        voxgi_voxels_destroy(ctx, vox);
+        vox = NULL;
+        vd.attributes = 0;
+        voxgi_destroy(ctx);
+        d.progress.user = NULL;
+    }
     d.progress.func = NULL;
     voxgi_create(&d, &ctx);
     TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "voxelize failed");
