@@ -73,6 +73,8 @@
      0.2.0  texture atlas, geometry-shader and Volume Buffer voxelization; per-voxel attributes
             with blend modes; attribute volumes with isotropic and anisotropic mipmaps and
             sampling; materials validated.
+     0.3.0  sparse voxel octree on the CPU and GL (float32 or float16 values, neighbour
+            pointers, bricks), GLSL octree sampling, footprint lods, octree progress.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -82,10 +84,10 @@
 #include <stdio.h>
 
 #define VOXGI_VERSION_MAJOR 0
-#define VOXGI_VERSION_MINOR 2
+#define VOXGI_VERSION_MINOR 3
 #define VOXGI_VERSION_PATCH 0
 #define VOXGI_VERSION (VOXGI_VERSION_MAJOR * 10000 + VOXGI_VERSION_MINOR * 100 + VOXGI_VERSION_PATCH)
-#define VOXGI_VERSION_STRING "0.2.0"
+#define VOXGI_VERSION_STRING "0.3.0"
 
 #ifndef VOXGI_API
 #ifdef VOXGI_STATIC
@@ -4069,7 +4071,6 @@ static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f,
     return r;
 }
 
-
 /* The texture atlas: the charts drawn into an R32UI atlas, its covered texels listed as
    points, then the points either drawn into slicemap targets (ATLAS) or each set by one
    compute invocation (ATLAS_COMPUTE). */
@@ -5232,8 +5233,6 @@ static void voxgi__svo_gl_bind(voxgi_context *ctx, const voxgi_svo *svo, unsigne
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_bricks"), svo->bricks != 0);
 }
 
-
-
 enum { VOXGI__SVO_FLAG, VOXGI__SVO_ARGS, VOXGI__SVO_ALLOCATE, VOXGI__SVO_INIT, VOXGI__SVO_LEAVES, VOXGI__SVO_MIP, VOXGI__SVO_NEIGHBOURS, VOXGI__SVO_BRICKS };
 
 /* The GPU build (shaders/svo_build.glsl) from the voxel fragments (x | y << 16, z) and their
@@ -5303,6 +5302,14 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
     if (r != VOXGI_OK) goto done;
     svo->info.level_nodes[depth] = n;
     if ((r = voxgi__svo_size(ctx, svo, tiles, desc)) != VOXGI_OK) goto done; /* before the values are allocated */
+    for (a = 0; a < 4; a++) /* each value buffer within one storage block (so word indices stay 32-bit too) */
+        if ((svo->info.attributes & (1u << a)) &&
+            ((int64_t)((svo->info.nodes + 64 * svo->bricks) * (uint64_t)svo->slot_bytes[a]) > gl->max_ssbo_bytes ||
+             (int64_t)(svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a]) > gl->max_ssbo_bytes || (int64_t)(16 * (uint64_t)n) > gl->max_ssbo_bytes)) {
+            r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree's values of attribute %d exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld", a,
+                            (long long)gl->max_ssbo_bytes);
+            goto done;
+        }
     if (child_cap > svo->info.structure_bytes) { /* give back the growth's slack */
         unsigned int exact = voxgi__gl_buffer(ctx, svo->info.structure_bytes, NULL);
         gl->CopyNamedBufferSubData(svo->gl_child, exact, 0, 0, (ptrdiff_t)svo->info.structure_bytes);
