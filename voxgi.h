@@ -202,12 +202,30 @@ typedef struct voxgi_mesh {
     uint32_t material;           /* material of every triangle when material_ids is NULL */
 } voxgi_mesh;
 
+/* Lights beside emissive materials. Intensities per colour channel:
+   POINT and SPOT: radiant intensity I (irradiance I cos / d^2 at distance d); SPOT scales it by 1
+   inside spot_inner (half-angle, radians) falling smoothly to 0 at spot_outer;
+   DIRECTIONAL: irradiance on a surface facing it, travelling along direction;
+   RECT: radiance, emitted from the parallelogram position + s edge_u + t edge_v (s, t in [0,1])
+   to the side edge_u x edge_v points to. */
+typedef enum voxgi_light_type { VOXGI_LIGHT_POINT = 0, VOXGI_LIGHT_SPOT, VOXGI_LIGHT_DIRECTIONAL, VOXGI_LIGHT_RECT } voxgi_light_type;
+typedef struct voxgi_light {
+    voxgi_light_type type;
+    float position[3];            /* POINT, SPOT; RECT: a corner */
+    float direction[3];           /* SPOT: its axis; DIRECTIONAL: where the light travels */
+    float intensity[3];
+    float edge_u[3], edge_v[3];   /* RECT */
+    float spot_inner, spot_outer; /* SPOT */
+} voxgi_light;
+
 typedef struct voxgi_scene {
     const voxgi_mesh *meshes;
     size_t mesh_count;
     const voxgi_material *materials;   /* may be NULL when no mesh names a material other than 0;
                                           material 0 is then albedo 0.8, no emission, opaque */
     size_t material_count;
+    const voxgi_light *lights;
+    size_t light_count;
 } voxgi_scene;
 
 /* Checks a scene; the message names the mesh, triangle and what is wrong. */
@@ -497,6 +515,41 @@ VOXGI_API voxgi_result voxgi_svo_brick(voxgi_context *ctx, const voxgi_svo *svo,
    after one descent (else eight lookups), with the same result bit for bit. */
 VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
                                         const float *positions, const float *lods, float *out);
+
+/* ===================================================================== reference renderer */
+/* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, over a
+   BVH with watertight ray-triangle tests in double. Surfaces are Lambertian (albedo) and emit
+   their material's emission from their front faces; the scene's lights add point, spot,
+   directional and rectangular light; there is no environment (misses are black) and
+   transparency is ignored (every surface is opaque). Paths gather direct light at every vertex
+   (next-event estimation towards the lights and the emissive triangles) and count emission seen
+   directly from the camera. A pixel is the mean radiance over its square (uniformly jittered
+   samples). Sample s of pixel p draws its random numbers from (seed, p, s) alone, so the image
+   is the same for any thread count; the progress callback sees each pass and may cancel. */
+typedef struct voxgi_camera {
+    double eye[3], target[3];     /* gluLookAt with up +Y */
+    double fovy_degrees;          /* vertical field of view */
+    int width, height;            /* pixels */
+} voxgi_camera;
+
+typedef struct voxgi_reference_desc {
+    voxgi_camera camera;
+    int samples;                  /* per pixel; 0 = 16 */
+    int bounces;                  /* indirect bounces: 0 = direct light only, 1 = one bounce, ...;
+                                     -1 = unlimited (Russian roulette ends paths without bias) */
+    uint64_t seed;
+} voxgi_reference_desc;
+
+typedef struct voxgi_reference_info {
+    size_t triangles, bvh_nodes;
+    uint64_t rays;                /* camera, bounce and shadow rays */
+    double ms_bvh, ms_render;
+} voxgi_reference_info;
+
+/* Renders into rgb (3 floats per pixel, linear radiance, rows from the top, width * height * 12
+   bytes); info may be NULL. */
+VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
+                                              size_t rgb_bytes, voxgi_reference_info *info);
 
 /* ===================================================================== binvox files */
 /* binvox: "dim" lists x z y extents (binvox's depth, height, width), data runs with y fastest,
@@ -936,6 +989,26 @@ static voxgi_result voxgi__validate(voxgi_context *ctx, const voxgi_scene *scene
         if (!ok)
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "material %lu: albedo and transparency must lie in [0,1], "
                                "emission must be finite and >= 0", (unsigned long)mi);
+    }
+    if (scene->light_count && !scene->lights)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "scene.lights is NULL but light_count is %lu", (unsigned long)scene->light_count);
+    for (mi = 0; mi < scene->light_count; mi++) {
+        const voxgi_light *L = &scene->lights[mi];
+        double dir = 0, cross = 0;
+        int c, ok = L->type >= VOXGI_LIGHT_POINT && L->type <= VOXGI_LIGHT_RECT && isfinite(L->spot_inner) && isfinite(L->spot_outer);
+        for (c = 0; c < 3; c++) {
+            double x = (double)L->edge_u[(c + 1) % 3] * L->edge_v[(c + 2) % 3] - (double)L->edge_u[(c + 2) % 3] * L->edge_v[(c + 1) % 3];
+            ok = ok && isfinite(L->position[c]) && isfinite(L->direction[c]) && isfinite(L->intensity[c]) && L->intensity[c] >= 0 &&
+                 isfinite(L->edge_u[c]) && isfinite(L->edge_v[c]);
+            dir += (double)L->direction[c] * L->direction[c];
+            cross += x * x;
+        }
+        if ((L->type == VOXGI_LIGHT_SPOT || L->type == VOXGI_LIGHT_DIRECTIONAL) && !(dir > 0)) ok = 0;
+        if (L->type == VOXGI_LIGHT_RECT && !(cross > 0)) ok = 0;
+        if (L->type == VOXGI_LIGHT_SPOT && !(L->spot_inner >= 0 && L->spot_inner <= L->spot_outer && L->spot_outer <= 3.14159265f)) ok = 0;
+        if (!ok)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "light %lu: a known type, finite values, intensity >= 0, a direction for spot and "
+                               "directional lights, two independent edges for a rect light, 0 <= spot_inner <= spot_outer <= pi", (unsigned long)mi);
     }
     for (mi = 0; mi < scene->mesh_count; mi++) {
         const voxgi_mesh *m = &scene->meshes[mi];
@@ -5884,6 +5957,583 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
     for (i = 0; i < count; i++)
         voxgi__sample_lod(voxgi__svo_fetch, svo->info.brick_bytes ? voxgi__svo_brick_trilinear : NULL, &src, src.w, svo->info.depth + 1, pos + 3 * i, lods[i], out + (size_t)src.w * i);
     return VOXGI_OK;
+}
+
+/* ===================================================================== reference renderer
+   A BVH (binned surface area heuristic, float boxes that hold the float vertices exactly) over
+   the triangles in double; the ray-triangle test is Woop, Benthin and Wald's watertight one (2013)
+   in double, so rays never slip between triangles that share an edge. A ray leaving a surface
+   skips the triangle it left and starts a hair off it. */
+#define VOXGI__BVH_DEPTH 200 /* deeper ranges stay leaves, so traversal stacks are bounded */
+typedef struct voxgi__bvh_node {
+    float lo[3], hi[3];
+    uint32_t first, count;        /* leaf: triangles [first, first + count) of the order; inner
+                                     (count 0): left child next in the array, right child at first */
+} voxgi__bvh_node;
+
+typedef struct voxgi__tracer {
+    voxgi__flat flat;
+    double *v;                    /* 9 per triangle, in BVH order */
+    double *n;                    /* unit geometric normal (front: counter-clockwise) per triangle */
+    uint32_t *tri;                /* BVH order -> flat triangle */
+    voxgi__bvh_node *nodes;
+    size_t node_count;
+    double scale;                 /* largest coordinate magnitude: sets the offset off surfaces */
+} voxgi__tracer;
+
+typedef struct voxgi__hit { double t, p[3]; uint32_t prim; int front; } voxgi__hit;
+
+static void voxgi__tracer_free(voxgi_context *ctx, voxgi__tracer *tr)
+{
+    voxgi__flat_free(ctx, &tr->flat);
+    voxgi__free(ctx, tr->v);
+    voxgi__free(ctx, tr->n);
+    voxgi__free(ctx, tr->tri);
+    voxgi__free(ctx, tr->nodes);
+    memset(tr, 0, sizeof *tr);
+}
+
+typedef struct voxgi__bvh_build {
+    const float *cmin, *cmax;     /* per flat triangle: its box */
+    uint32_t *order;
+    voxgi__bvh_node *nodes;
+    size_t count;
+} voxgi__bvh_build;
+
+static void voxgi__box_area(const float lo[3], const float hi[3], double *area)
+{
+    double d[3];
+    int a;
+    for (a = 0; a < 3; a++) d[a] = hi[a] > lo[a] ? (double)hi[a] - lo[a] : 0;
+    *area = 2 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+}
+
+static void voxgi__bvh_split(voxgi__bvh_build *b, size_t node, size_t first, size_t end, int depth)
+{
+    enum { BINS = 12 };
+    voxgi__bvh_node *nd = &b->nodes[node];
+    float clo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, chi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+    size_t i, n = end - first, mid;
+    int a, axis = 0, best_bin = -1;
+    double best = DBL_MAX, leaf_area;
+    for (a = 0; a < 3; a++) { nd->lo[a] = FLT_MAX; nd->hi[a] = -FLT_MAX; }
+    for (i = first; i < end; i++) {
+        uint32_t t = b->order[i];
+        for (a = 0; a < 3; a++) {
+            float c = 0.5f * (b->cmin[3 * t + a] + b->cmax[3 * t + a]);
+            nd->lo[a] = VOXGI__MIN(nd->lo[a], b->cmin[3 * t + a]);
+            nd->hi[a] = VOXGI__MAX(nd->hi[a], b->cmax[3 * t + a]);
+            clo[a] = VOXGI__MIN(clo[a], c);
+            chi[a] = VOXGI__MAX(chi[a], c);
+        }
+    }
+    for (a = 1; a < 3; a++)
+        if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
+    nd->first = (uint32_t)first;
+    nd->count = (uint32_t)n;
+    if (n <= 2 || !(chi[axis] > clo[axis]) || depth >= VOXGI__BVH_DEPTH) return; /* a leaf */
+    {   /* binned SAH along the widest centroid axis */
+        size_t cnt[BINS];
+        float blo[BINS][3], bhi[BINS][3];
+        double scale = BINS / ((double)chi[axis] - clo[axis]);
+        int k;
+        for (k = 0; k < BINS; k++) { cnt[k] = 0; for (a = 0; a < 3; a++) { blo[k][a] = FLT_MAX; bhi[k][a] = -FLT_MAX; } }
+        for (i = first; i < end; i++) {
+            uint32_t t = b->order[i];
+            double c = 0.5 * ((double)b->cmin[3 * t + axis] + b->cmax[3 * t + axis]);
+            k = VOXGI__MIN((int)((c - clo[axis]) * scale), BINS - 1);
+            cnt[k]++;
+            for (a = 0; a < 3; a++) { blo[k][a] = VOXGI__MIN(blo[k][a], b->cmin[3 * t + a]); bhi[k][a] = VOXGI__MAX(bhi[k][a], b->cmax[3 * t + a]); }
+        }
+        for (k = 1; k < BINS; k++) { /* split between bins k - 1 and k */
+            float llo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, lhi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX}, rlo[3] = {FLT_MAX, FLT_MAX, FLT_MAX},
+                  rhi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+            size_t nl = 0, nr = 0;
+            double al, ar, cost;
+            int j;
+            for (j = 0; j < BINS; j++) {
+                float *lo = j < k ? llo : rlo, *hi = j < k ? lhi : rhi;
+                if (!cnt[j]) continue;
+                if (j < k) nl += cnt[j]; else nr += cnt[j];
+                for (a = 0; a < 3; a++) { lo[a] = VOXGI__MIN(lo[a], blo[j][a]); hi[a] = VOXGI__MAX(hi[a], bhi[j][a]); }
+            }
+            if (!nl || !nr) continue;
+            voxgi__box_area(llo, lhi, &al);
+            voxgi__box_area(rlo, rhi, &ar);
+            cost = al * (double)nl + ar * (double)nr;
+            if (cost < best) { best = cost; best_bin = k; }
+        }
+        voxgi__box_area(nd->lo, nd->hi, &leaf_area);
+        if (best_bin < 0 || (n <= 8 && best >= leaf_area * (double)(n - 1))) return; /* splitting does not pay */
+        for (i = mid = first; i < end; i++) { /* partition */
+            uint32_t t = b->order[i];
+            double c = 0.5 * ((double)b->cmin[3 * t + axis] + b->cmax[3 * t + axis]);
+            if (VOXGI__MIN((int)((c - clo[axis]) * scale), BINS - 1) < best_bin) { b->order[i] = b->order[mid]; b->order[mid++] = t; }
+        }
+    }
+    nd->count = 0;
+    {   /* the left child is the next node, the right one follows its subtree */
+        size_t left = b->count++, right;
+        voxgi__bvh_split(b, left, first, mid, depth + 1);
+        right = b->count++;
+        b->nodes[node].first = (uint32_t)right;
+        voxgi__bvh_split(b, right, mid, end, depth + 1);
+    }
+}
+
+static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *scene, voxgi__tracer *tr)
+{
+    voxgi__bvh_build b;
+    float *boxes = NULL;
+    size_t t, nt;
+    voxgi_result r;
+    memset(tr, 0, sizeof *tr);
+    if ((r = voxgi__flatten(ctx, scene, 0, 1, &tr->flat)) != VOXGI_OK) return r;
+    nt = tr->flat.triangle_count;
+    if (nt > (size_t)UINT32_MAX / 2) { voxgi__tracer_free(ctx, tr); return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)nt); }
+    tr->v = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, 9 * sizeof(double), 0);
+    tr->n = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, 3 * sizeof(double), 0);
+    tr->tri = (uint32_t *)voxgi__alloc_array(ctx, nt ? nt : 1, 4, 0);
+    tr->nodes = (voxgi__bvh_node *)voxgi__alloc_array(ctx, 2 * nt + 1, sizeof *tr->nodes, 1);
+    boxes = (float *)voxgi__alloc_array(ctx, nt ? nt : 1, 6 * sizeof(float), 0);
+    if (!tr->v || !tr->n || !tr->tri || !tr->nodes || !boxes) {
+        voxgi__free(ctx, boxes);
+        voxgi__tracer_free(ctx, tr);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the BVH of %lu triangles", (unsigned long)nt);
+    }
+    for (t = 0; t < nt; t++) {
+        int a, k;
+        tr->tri[t] = (uint32_t)t;
+        for (a = 0; a < 3; a++) {
+            boxes[3 * t + a] = FLT_MAX;
+            boxes[3 * nt + 3 * t + a] = -FLT_MAX;
+            for (k = 0; k < 3; k++) {
+                float c = tr->flat.pos[3 * (size_t)tr->flat.tri[3 * t + (size_t)k] + (size_t)a];
+                boxes[3 * t + a] = VOXGI__MIN(boxes[3 * t + a], c);
+                boxes[3 * nt + 3 * t + a] = VOXGI__MAX(boxes[3 * nt + 3 * t + a], c);
+                tr->scale = VOXGI__MAX(tr->scale, fabs((double)c));
+            }
+        }
+    }
+    b.cmin = boxes;
+    b.cmax = boxes + 3 * nt;
+    b.order = tr->tri;
+    b.nodes = tr->nodes;
+    b.count = 1;
+    if (nt) voxgi__bvh_split(&b, 0, 0, nt, 0);
+    else { int a; for (a = 0; a < 3; a++) { tr->nodes[0].lo[a] = 1; tr->nodes[0].hi[a] = -1; } } /* an empty box: nothing is hit */
+    tr->node_count = b.count;
+    for (t = 0; t < nt; t++) { /* vertices and normals in BVH order */
+        uint32_t src = tr->tri[t];
+        int k, a;
+        double e1[3], e2[3], len;
+        for (k = 0; k < 3; k++)
+            for (a = 0; a < 3; a++) tr->v[9 * t + 3 * (size_t)k + (size_t)a] = tr->flat.pos[3 * (size_t)tr->flat.tri[3 * (size_t)src + (size_t)k] + (size_t)a];
+        for (a = 0; a < 3; a++) { e1[a] = tr->v[9 * t + 3 + (size_t)a] - tr->v[9 * t + (size_t)a]; e2[a] = tr->v[9 * t + 6 + (size_t)a] - tr->v[9 * t + (size_t)a]; }
+        for (a = 0; a < 3; a++) tr->n[3 * t + (size_t)a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+        len = sqrt(tr->n[3 * t] * tr->n[3 * t] + tr->n[3 * t + 1] * tr->n[3 * t + 1] + tr->n[3 * t + 2] * tr->n[3 * t + 2]);
+        for (a = 0; a < 3; a++) tr->n[3 * t + (size_t)a] = len > 0 ? tr->n[3 * t + (size_t)a] / len : 0;
+    }
+    voxgi__free(ctx, boxes);
+    return VOXGI_OK;
+}
+
+/* The watertight test of ray (o, d) against triangle t for a hit in (0, tmax): its t, or -1. */
+static double voxgi__ray_triangle(const voxgi__tracer *tr, size_t t, const double o[3], const double d[3], int kx, int ky, int kz,
+                                  const double s[3], double tmax)
+{
+    const double *v = tr->v + 9 * t;
+    double ax = v[kx] - o[kx], ay = v[ky] - o[ky], az = v[kz] - o[kz];
+    double bx = v[3 + kx] - o[kx], by = v[3 + ky] - o[ky], bz = v[3 + kz] - o[kz];
+    double cx = v[6 + kx] - o[kx], cy = v[6 + ky] - o[ky], cz = v[6 + kz] - o[kz];
+    double u, w, x, det, tt;
+    (void)d;
+    ax -= s[0] * az; ay -= s[1] * az;
+    bx -= s[0] * bz; by -= s[1] * bz;
+    cx -= s[0] * cz; cy -= s[1] * cz;
+    u = cx * by - cy * bx;
+    w = ax * cy - ay * cx;
+    x = bx * ay - by * ax;
+    if ((u < 0 || w < 0 || x < 0) && (u > 0 || w > 0 || x > 0)) return -1;
+    det = u + w + x;
+    if (det == 0) return -1;
+    tt = (u * s[2] * az + w * s[2] * bz + x * s[2] * cz) / det;
+    return tt > 0 && tt < tmax ? tt : -1;
+}
+
+/* The nearest hit of ray (o, d) before tmax, skipping triangle `skip` (BVH order; UINT32_MAX:
+   none); any = 1 stops at the first hit (shadow rays). */
+static int voxgi__trace(const voxgi__tracer *tr, const double o[3], const double d[3], double tmax, uint32_t skip, int any, voxgi__hit *hit)
+{
+    uint32_t stack[VOXGI__BVH_DEPTH + 8];
+    int sp = 0, kz = 0, kx, ky, a, found = 0;
+    double inv[3], s[3];
+    size_t node = 0;
+    for (a = 1; a < 3; a++)
+        if (fabs(d[a]) > fabs(d[kz])) kz = a;
+    kx = (kz + 1) % 3;
+    ky = (kx + 1) % 3;
+    if (d[kz] < 0) { int tmp = kx; kx = ky; ky = tmp; }
+    s[0] = d[kx] / d[kz]; s[1] = d[ky] / d[kz]; s[2] = 1.0 / d[kz];
+    for (a = 0; a < 3; a++) inv[a] = 1.0 / d[a];
+    for (;;) {
+        const voxgi__bvh_node *nd = &tr->nodes[node];
+        double t0 = 0, t1 = tmax;
+        for (a = 0; a < 3 && t0 <= t1; a++) { /* slabs; the box is widened by a relative hair against rounding */
+            double lo = (nd->lo[a] - o[a]) * inv[a], hi = (nd->hi[a] - o[a]) * inv[a];
+            if (lo > hi) { double tmp = lo; lo = hi; hi = tmp; }
+            if (isnan(lo)) lo = -DBL_MAX; /* a zero direction inside the slab's plane */
+            if (isnan(hi)) hi = DBL_MAX;
+            t0 = VOXGI__MAX(t0, lo);
+            t1 = VOXGI__MIN(t1, hi * (1 + 4 * DBL_EPSILON));
+        }
+        if (t0 <= t1) {
+            if (nd->count) {
+                uint32_t i;
+                for (i = nd->first; i < nd->first + nd->count; i++) {
+                    double t;
+                    if (i == skip || (t = voxgi__ray_triangle(tr, i, o, d, kx, ky, kz, s, tmax)) < 0) continue;
+                    tmax = t;
+                    found = 1;
+                    hit->t = t;
+                    hit->prim = i;
+                    if (any) return 1;
+                }
+            } else {
+                stack[sp++] = nd->first;
+                node++;
+                continue;
+            }
+        }
+        if (!sp) break;
+        node = stack[--sp];
+    }
+    if (found) {
+        const double *n = tr->n + 3 * (size_t)hit->prim;
+        for (a = 0; a < 3; a++) hit->p[a] = o[a] + hit->t * d[a];
+        hit->front = n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0;
+    }
+    return found;
+}
+
+/* Random numbers: one PCG32 stream per (seed, pixel, sample), seeded through splitmix64. */
+typedef struct voxgi__rng { uint64_t state, inc; } voxgi__rng;
+
+static uint64_t voxgi__splitmix(uint64_t *x)
+{
+    uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+static void voxgi__rng_seed(voxgi__rng *g, uint64_t seed, uint64_t pixel, uint64_t sample)
+{
+    uint64_t x = seed ^ voxgi__splitmix(&pixel) ^ (voxgi__splitmix(&sample) << 1);
+    g->state = voxgi__splitmix(&x);
+    g->inc = voxgi__splitmix(&x) | 1u;
+}
+
+static uint32_t voxgi__rng_u32(voxgi__rng *g)
+{
+    uint64_t old = g->state;
+    uint32_t xs, rot;
+    g->state = old * 6364136223846793005ull + g->inc;
+    xs = (uint32_t)(((old >> 18) ^ old) >> 27);
+    rot = (uint32_t)(old >> 59);
+    return (xs >> rot) | (xs << ((32u - rot) & 31u));
+}
+
+static double voxgi__rng_unit(voxgi__rng *g) /* [0, 1) with 53 bits */
+{
+    uint64_t hi = voxgi__rng_u32(g) >> 5, lo = voxgi__rng_u32(g) >> 6;
+    return (double)(hi * 67108864u + lo) / 9007199254740992.0;
+}
+
+/* An orthonormal basis (t, b) around unit n. */
+static void voxgi__basis(const double n[3], double t[3], double b[3])
+{
+    double sgn = n[2] >= 0 ? 1.0 : -1.0, a = -1.0 / (sgn + n[2]), c = n[0] * n[1] * a;
+    t[0] = 1 + sgn * n[0] * n[0] * a; t[1] = sgn * c; t[2] = -sgn * n[0];
+    b[0] = c; b[1] = sgn + n[1] * n[1] * a; b[2] = -n[1];
+}
+
+typedef struct voxgi__render {
+    voxgi_context *ctx;
+    const voxgi__tracer *tr;
+    const voxgi_scene *scene;
+    const voxgi_reference_desc *desc;
+    double eye[3], right[3], up[3], forward[3], tan_half;
+    uint32_t *emitters;           /* BVH-order triangles with emission, front faces */
+    double *emitter_cdf;          /* by area x mean emission */
+    double *emitter_pdf;          /* per BVH-order triangle: the area density of picking a point on it */
+    size_t emitter_count;
+    double *sum;                  /* 3 per pixel */
+    int first_sample, pass_samples;
+    size_t rays;                  /* summed over the workers */
+} voxgi__render;
+
+static const voxgi_material *voxgi__prim_material(const voxgi__tracer *tr, uint32_t prim)
+{
+    return voxgi__tri_material(&tr->flat, tr->tri[prim]);
+}
+
+/* Nothing between p (leaving triangle skip) and the point dist away along dir? (1e-9 short of
+   it, so the light's own triangle does not count) */
+static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const double dir[3], double dist, uint32_t skip, uint64_t *rays)
+{
+    voxgi__hit h;
+    ++*rays;
+    return !voxgi__trace(tr, p, dir, dist * (1 - 1e-9), skip, 1, &h);
+}
+
+/* Irradiance-like sum E at p (unit normal ns facing the arriving ray) from every light and one
+   sampled point on the emissive triangles; the reflected radiance is albedo / pi * E. Emissive
+   triangles are also found by the paths' own bounces: both estimates carry power-heuristic
+   weights (multiple importance sampling), which keeps the variance finite where emitters meet
+   at concave edges. */
+static void voxgi__direct(voxgi__render *R, const double p[3], const double ns[3], uint32_t prim, voxgi__rng *g, uint64_t *rays, double e[3])
+{
+    const voxgi__tracer *tr = R->tr;
+    size_t li;
+    int a;
+    e[0] = e[1] = e[2] = 0;
+    for (li = 0; li < R->scene->light_count; li++) {
+        const voxgi_light *L = &R->scene->lights[li];
+        double dir[3], dist = DBL_MAX, cos_s, w = 0, q[3];
+        if (L->type == VOXGI_LIGHT_DIRECTIONAL) {
+            double len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
+            for (a = 0; a < 3; a++) dir[a] = -L->direction[a] / len;
+            w = 1;
+        } else {
+            double area = 1, cos_l = 1;
+            if (L->type == VOXGI_LIGHT_RECT) {
+                double u = voxgi__rng_unit(g), v = voxgi__rng_unit(g), n[3];
+                for (a = 0; a < 3; a++) q[a] = L->position[a] + u * L->edge_u[a] + v * L->edge_v[a];
+                for (a = 0; a < 3; a++) n[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
+                area = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+                for (a = 0; a < 3; a++) dir[a] = q[a] - p[a];
+                dist = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+                if (dist <= 0) continue;
+                for (a = 0; a < 3; a++) dir[a] /= dist;
+                cos_l = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]) / area;
+                if (cos_l <= 0) continue;
+            } else {
+                for (a = 0; a < 3; a++) { q[a] = L->position[a]; dir[a] = q[a] - p[a]; }
+                dist = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+                if (dist <= 0) continue;
+                for (a = 0; a < 3; a++) dir[a] /= dist;
+                if (L->type == VOXGI_LIGHT_SPOT) { /* smoothstep from the outer to the inner cone */
+                    double len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
+                    double c = -(dir[0] * L->direction[0] + dir[1] * L->direction[1] + dir[2] * L->direction[2]) / len;
+                    double ci = cos((double)L->spot_inner), co = cos((double)L->spot_outer), x = ci > co ? (c - co) / (ci - co) : (c >= ci ? 1 : 0);
+                    x = x < 0 ? 0 : (x > 1 ? 1 : x);
+                    cos_l = x * x * (3 - 2 * x);
+                    if (cos_l <= 0) continue;
+                }
+            }
+            w = cos_l * area / (dist * dist);
+        }
+        cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
+        if (cos_s <= 0 || !voxgi__visible(tr, p, dir, dist, prim, rays)) continue;
+        for (a = 0; a < 3; a++) e[a] += L->intensity[a] * w * cos_s;
+    }
+    if (R->emitter_count) { /* one emissive triangle by power, one uniform point on it */
+        double u = voxgi__rng_unit(g) * R->emitter_cdf[R->emitter_count - 1], b1, b2, r1, q[3], dir[3], dist2, dist, cos_s, cos_l;
+        size_t lo = 0, hi = R->emitter_count - 1;
+        uint32_t k;
+        const double *v, *n;
+        const voxgi_material *m;
+        while (lo < hi) { size_t mid = (lo + hi) / 2; if (R->emitter_cdf[mid] <= u) lo = mid + 1; else hi = mid; }
+        k = R->emitters[lo];
+        v = tr->v + 9 * (size_t)k;
+        n = tr->n + 3 * (size_t)k;
+        r1 = sqrt(voxgi__rng_unit(g));
+        b1 = 1 - r1;
+        b2 = r1 * voxgi__rng_unit(g);
+        for (a = 0; a < 3; a++) {
+            q[a] = v[a] + b1 * (v[3 + a] - v[a]) + b2 * (v[6 + a] - v[a]);
+            dir[a] = q[a] - p[a];
+        }
+        dist2 = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
+        dist = sqrt(dist2);
+        if (dist > 0 && k != prim) {
+            for (a = 0; a < 3; a++) dir[a] /= dist;
+            cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
+            cos_l = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]);
+            if (cos_s > 0 && cos_l > 0 && voxgi__visible(tr, p, dir, dist, prim, rays)) {
+                double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / 3.14159265358979323846; /* per solid angle */
+                double mis = pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf);
+                m = voxgi__prim_material(tr, k);
+                for (a = 0; a < 3; a++) e[a] += mis * m->emission[a] * cos_s / pdf_light;
+            }
+        }
+    }
+}
+
+/* One path's radiance through the camera ray (o, d). */
+static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *g, uint64_t *rays, double out[3])
+{
+    const voxgi__tracer *tr = R->tr;
+    double T[3] = {1, 1, 1}, pdf_bsdf = 0; /* the density (per solid angle) of the bounce that led here */
+    uint32_t skip = UINT32_MAX;
+    int depth, a, bounces = R->desc->bounces;
+    out[0] = out[1] = out[2] = 0;
+    for (depth = 0;; depth++) {
+        voxgi__hit h;
+        double ns[3], e[3], t[3], b[3], r1, phi, lx, ly, lz, off;
+        const voxgi_material *m;
+        const double *n;
+        ++*rays;
+        if (!voxgi__trace(tr, o, d, DBL_MAX, skip, 0, &h)) break;
+        m = voxgi__prim_material(tr, h.prim);
+        n = tr->n + 3 * (size_t)h.prim;
+        for (a = 0; a < 3; a++) ns[a] = h.front ? n[a] : -n[a];
+        if (h.front && R->emitter_pdf[h.prim] > 0) { /* seen by the camera, or found by a bounce (weighted against the direct light) */
+            double mis = 1;
+            if (depth > 0) {
+                double pdf_light = R->emitter_pdf[h.prim] * h.t * h.t / -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
+                mis = pdf_bsdf * pdf_bsdf / (pdf_bsdf * pdf_bsdf + pdf_light * pdf_light);
+            }
+            for (a = 0; a < 3; a++) out[a] += T[a] * mis * m->emission[a];
+        }
+        if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
+        voxgi__direct(R, h.p, ns, h.prim, g, rays, e);
+        for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / 3.14159265358979323846 * e[a];
+        for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
+        if (bounces < 0 && depth >= 2) { /* Russian roulette */
+            double q = VOXGI__MAX(T[0], VOXGI__MAX(T[1], T[2]));
+            if (q < 1) {
+                if (voxgi__rng_unit(g) >= q) break;
+                for (a = 0; a < 3; a++) T[a] /= q;
+            }
+        }
+        if (T[0] == 0 && T[1] == 0 && T[2] == 0) break;
+        voxgi__basis(ns, t, b);
+        r1 = voxgi__rng_unit(g);
+        phi = 2 * 3.14159265358979323846 * voxgi__rng_unit(g);
+        lx = sqrt(r1) * cos(phi);
+        ly = sqrt(r1) * sin(phi);
+        lz = sqrt(1 - r1);
+        off = 1e-9 * (1 + tr->scale);
+        for (a = 0; a < 3; a++) {
+            d[a] = lx * t[a] + ly * b[a] + lz * ns[a];
+            o[a] = h.p[a] + off * ns[a];
+        }
+        pdf_bsdf = lz / 3.14159265358979323846;
+        skip = h.prim;
+    }
+}
+
+static void voxgi__render_rows(void *user, size_t first, size_t end)
+{
+    voxgi__render *R = (voxgi__render *)user;
+    const voxgi_camera *cam = &R->desc->camera;
+    uint64_t rays = 0;
+    size_t y;
+    for (y = first; y < end; y++) {
+        int x, s;
+        for (x = 0; x < cam->width; x++) {
+            size_t pix = y * (size_t)cam->width + (size_t)x;
+            double *acc = R->sum + 3 * pix;
+            for (s = R->first_sample; s < R->first_sample + R->pass_samples; s++) {
+                voxgi__rng g;
+                double sx, sy, o[3], d[3], len, L[3];
+                int a;
+                voxgi__rng_seed(&g, R->desc->seed, pix, (uint64_t)s);
+                sx = (2 * (x + voxgi__rng_unit(&g)) / cam->width - 1) * R->tan_half * cam->width / cam->height;
+                sy = (1 - 2 * ((double)y + voxgi__rng_unit(&g)) / cam->height) * R->tan_half;
+                for (a = 0; a < 3; a++) { o[a] = R->eye[a]; d[a] = R->forward[a] + sx * R->right[a] + sy * R->up[a]; }
+                len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                for (a = 0; a < 3; a++) d[a] /= len;
+                voxgi__path(R, o, d, &g, &rays, L);
+                for (a = 0; a < 3; a++) acc[a] += L[a];
+            }
+        }
+    }
+    VOXGI__ATOMIC_ADD_SIZE(&R->rays, (size_t)rays);
+}
+
+VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
+                                              size_t rgb_bytes, voxgi_reference_info *info)
+{
+    voxgi__tracer tr;
+    voxgi__render R;
+    const voxgi_camera *cam;
+    double t0 = voxgi__now_ms(), len;
+    size_t pixels, i;
+    int a, samples;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
+    if (info) memset(info, 0, sizeof *info);
+    cam = &desc->camera;
+    if (cam->width < 1 || cam->height < 1 || cam->width > 65536 || cam->height > 65536)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d: each side must be 1..65536", cam->width, cam->height);
+    pixels = (size_t)cam->width * (size_t)cam->height;
+    if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
+    if (!(cam->fovy_degrees > 0 && cam->fovy_degrees < 180)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "fovy %g: it must lie in (0, 180) degrees", cam->fovy_degrees);
+    if (desc->samples < 0 || desc->bounces < -1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d", desc->samples, desc->bounces);
+    memset(&R, 0, sizeof R);
+    for (a = 0; a < 3; a++) {
+        if (!isfinite(cam->eye[a]) || !isfinite(cam->target[a])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera is not finite");
+        R.eye[a] = cam->eye[a];
+        R.forward[a] = cam->target[a] - cam->eye[a];
+    }
+    len = sqrt(R.forward[0] * R.forward[0] + R.forward[1] * R.forward[1] + R.forward[2] * R.forward[2]);
+    if (!(len > 0) || sqrt(R.forward[0] * R.forward[0] + R.forward[2] * R.forward[2]) <= 1e-12 * len)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera looks along +-Y or at its own eye: up +Y leaves no view");
+    for (a = 0; a < 3; a++) R.forward[a] /= len;
+    R.right[0] = -R.forward[2]; R.right[1] = 0; R.right[2] = R.forward[0]; /* forward x (0, 1, 0) */
+    len = sqrt(R.right[0] * R.right[0] + R.right[2] * R.right[2]);
+    R.right[0] /= len; R.right[2] /= len;
+    R.up[0] = R.right[1] * R.forward[2] - R.right[2] * R.forward[1];
+    R.up[1] = R.right[2] * R.forward[0] - R.right[0] * R.forward[2];
+    R.up[2] = R.right[0] * R.forward[1] - R.right[1] * R.forward[0];
+    R.tan_half = tan(cam->fovy_degrees * 3.14159265358979323846 / 360);
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    R.ctx = ctx;
+    R.tr = &tr;
+    R.scene = scene;
+    R.desc = desc;
+    samples = desc->samples ? desc->samples : 16;
+    R.sum = (double *)voxgi__alloc_array(ctx, pixels, 3 * sizeof(double), 1);
+    R.emitters = (uint32_t *)voxgi__alloc_array(ctx, tr.flat.triangle_count ? tr.flat.triangle_count : 1, 4, 0);
+    R.emitter_cdf = (double *)voxgi__alloc_array(ctx, tr.flat.triangle_count ? tr.flat.triangle_count : 1, sizeof(double), 0);
+    R.emitter_pdf = (double *)voxgi__alloc_array(ctx, tr.flat.triangle_count ? tr.flat.triangle_count : 1, sizeof(double), 1);
+    if (!R.sum || !R.emitters || !R.emitter_cdf || !R.emitter_pdf) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d render", cam->width, cam->height);
+    for (i = 0; r == VOXGI_OK && i < tr.flat.triangle_count; i++) { /* emitters, weighted by area x mean emission */
+        const voxgi_material *m = voxgi__prim_material(&tr, (uint32_t)i);
+        const double *v = tr.v + 9 * i;
+        double power = ((double)m->emission[0] + m->emission[1] + m->emission[2]) / 3, c[3], e1[3], e2[3];
+        for (a = 0; a < 3; a++) { e1[a] = v[3 + a] - v[a]; e2[a] = v[6 + a] - v[a]; }
+        for (a = 0; a < 3; a++) c[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+        R.emitter_pdf[i] = power; /* / the total power, below: the area density */
+        power *= 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        if (!(power > 0)) { R.emitter_pdf[i] = 0; continue; }
+        R.emitters[R.emitter_count] = (uint32_t)i;
+        R.emitter_cdf[R.emitter_count] = (R.emitter_count ? R.emitter_cdf[R.emitter_count - 1] : 0) + power;
+        R.emitter_count++;
+    }
+    for (i = 0; r == VOXGI_OK && i < tr.flat.triangle_count; i++) R.emitter_pdf[i] /= R.emitter_count ? R.emitter_cdf[R.emitter_count - 1] : 1;
+    if (info) { info->triangles = tr.flat.triangle_count; info->bvh_nodes = tr.node_count; info->ms_bvh = voxgi__now_ms() - t0; }
+    t0 = voxgi__now_ms();
+    for (R.first_sample = 0; r == VOXGI_OK && R.first_sample < samples; R.first_sample += R.pass_samples) { /* progressive passes */
+        R.pass_samples = VOXGI__MIN(VOXGI__MAX(1, samples / 16), samples - R.first_sample);
+        voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__render_rows, &R);
+        if (voxgi__progress(ctx, (double)(R.first_sample + R.pass_samples) / samples, "reference render"))
+            r = voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "reference render cancelled by the progress callback after %d samples per pixel",
+                            R.first_sample + R.pass_samples);
+    }
+    for (i = 0; r == VOXGI_OK && i < 3 * pixels; i++) rgb[i] = (float)(R.sum[i] / samples);
+    if (info) { info->rays = R.rays; info->ms_render = voxgi__now_ms() - t0; }
+    voxgi__free(ctx, R.sum);
+    voxgi__free(ctx, R.emitters);
+    voxgi__free(ctx, R.emitter_cdf);
+    voxgi__free(ctx, R.emitter_pdf);
+    voxgi__tracer_free(ctx, &tr);
+    return r;
 }
 
 /* ===================================================================== binvox files */
