@@ -29,7 +29,7 @@ $(B)/embed_shaders: tools/embed_shaders.c | $(B)
 shaders.h: $(GLSL) $(B)/embed_shaders
 	$(B)/embed_shaders $@ $(GLSL)
 
-$(B)/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h voxgi.h shaders.h | $(B)
+$(B)/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h tools/image_io.h voxgi.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $(TOOL_SRC) $(LDLIBS)
 
 $(B)/example_voxelize: examples/voxelize.c voxgi.h | $(B)
@@ -45,7 +45,7 @@ $(B)/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tools/sha
 $(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tools/shapes.h shaders.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(LDLIBS)
 
-$(B)/asan/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h voxgi.h shaders.h | $(B)/asan
+$(B)/asan/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h tools/image_io.h voxgi.h shaders.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(LDLIBS)
 
 test: deps $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(addprefix $(B)/asan/,$(TESTS))
@@ -53,6 +53,8 @@ test: deps $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(
 
 demo: all
 	$(B)/voxgi bench voxelize
+	$(B)/voxgi svo builtin:sphere --res 256 --format float16
+	$(B)/voxgi render cornell-box --spp 64 --bounces -1 -o $(B)/cornell-box.png
 
 bench: all
 	$(B)/voxgi bench voxelize --methods conservative,thin,geometry,solid,solid-vote,solid-flood,slicemap,slicemap-atomic,atlas,atlas-compute,volume-buffer,volume-buffer-m1 --csv $(B)/bench.csv

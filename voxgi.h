@@ -551,6 +551,27 @@ typedef struct voxgi_reference_info {
 VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
                                               size_t rgb_bytes, voxgi_reference_info *info);
 
+/* ===================================================================== built-in scenes */
+/* Scenes that need no files, each with its usual view (256 x 256):
+   "cornell-box"  the Cornell box (the published geometry in metres, the light 0.1 mm below the
+                  ceiling; albedos white 0.725 0.71 0.68, red 0.63 0.065 0.05, green 0.14 0.45
+                  0.091; the light's radiance 17 12 4);
+   "two-spheres"  two white spheres before a red and a blue wall with a grey divider between
+                  them, lit by a directional light (Buchacher 2014's visibility test scene);
+   "leak-box"     a closed box with the camera inside and every light outside: the exact image
+                  is black, so anything else is light leaking through the walls;
+   "furnace"      a closed sphere of albedo 0.5 and emission 1 seen from inside: radiance 2
+                  everywhere (E / (1 - albedo)). */
+typedef struct voxgi_builtin_scene {
+    voxgi_scene scene;            /* points into memory the struct owns */
+    voxgi_camera camera;
+    const char *name;
+    void *storage;
+} voxgi_builtin_scene;
+VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char *name, voxgi_builtin_scene *out);
+VOXGI_API void voxgi_builtin_scene_destroy(voxgi_context *ctx, voxgi_builtin_scene *scene);
+VOXGI_API const char *voxgi_builtin_scene_names(void); /* space separated */
+
 /* ===================================================================== binvox files */
 /* binvox: "dim" lists x z y extents (binvox's depth, height, width), data runs with y fastest,
    then z, then x; translate = grid origin, scale = voxel_size * max(res). */
@@ -6534,6 +6555,219 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     voxgi__free(ctx, R.emitter_pdf);
     voxgi__tracer_free(ctx, &tr);
     return r;
+}
+
+/* ===================================================================== built-in scenes */
+#define VOXGI__BUILTIN_VERTICES 6144
+#define VOXGI__BUILTIN_TRIANGLES 6144
+typedef struct voxgi__builtin {
+    float pos[3 * VOXGI__BUILTIN_VERTICES];
+    uint32_t idx[3 * VOXGI__BUILTIN_TRIANGLES], mat[VOXGI__BUILTIN_TRIANGLES];
+    voxgi_material materials[8];
+    voxgi_light lights[2];
+    voxgi_mesh mesh;
+    size_t nv, nt;
+} voxgi__builtin;
+
+/* A quad p0 p1 p2 p3 (in order around it) whose front faces `toward` (away = 1: faces away from it). */
+static void voxgi__builtin_quad(voxgi__builtin *b, const double q[4][3], uint32_t mat, const double toward[3], int away)
+{
+    double e1[3], e2[3], n[3], d = 0;
+    uint32_t v = (uint32_t)b->nv;
+    int a, k, flip;
+    for (a = 0; a < 3; a++) { e1[a] = q[1][a] - q[0][a]; e2[a] = q[2][a] - q[0][a]; }
+    for (a = 0; a < 3; a++) n[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+    for (a = 0; a < 3; a++) d += n[a] * (toward[a] - 0.25 * (q[0][a] + q[1][a] + q[2][a] + q[3][a]));
+    flip = (d < 0) != (away != 0);
+    for (k = 0; k < 4; k++)
+        for (a = 0; a < 3; a++) b->pos[3 * b->nv + 3 * (size_t)k + (size_t)a] = (float)q[k][a];
+    b->nv += 4;
+    b->idx[3 * b->nt] = v; b->idx[3 * b->nt + 1] = v + (flip ? 2u : 1u); b->idx[3 * b->nt + 2] = v + (flip ? 1u : 2u);
+    b->mat[b->nt++] = mat;
+    b->idx[3 * b->nt] = v; b->idx[3 * b->nt + 1] = v + (flip ? 3u : 2u); b->idx[3 * b->nt + 2] = v + (flip ? 2u : 3u);
+    b->mat[b->nt++] = mat;
+}
+
+/* An axis-aligned box's six faces, facing out (inward = 1: in). */
+static void voxgi__builtin_box(voxgi__builtin *b, const double lo[3], const double hi[3], uint32_t mat, int inward)
+{
+    double c[3], q[4][3];
+    int axis, side, k, a;
+    for (a = 0; a < 3; a++) c[a] = 0.5 * (lo[a] + hi[a]);
+    for (axis = 0; axis < 3; axis++)
+        for (side = 0; side < 2; side++) {
+            int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            for (k = 0; k < 4; k++) {
+                q[k][axis] = side ? hi[axis] : lo[axis];
+                q[k][u] = (k == 1 || k == 2) ? hi[u] : lo[u];
+                q[k][v] = (k >= 2) ? hi[v] : lo[v];
+            }
+            voxgi__builtin_quad(b, (const double(*)[3])q, mat, c, !inward);
+        }
+}
+
+/* A UV sphere (front faces out, or in). */
+static void voxgi__builtin_sphere(voxgi__builtin *b, const double c[3], double r, int slices, int stacks, uint32_t mat, int inward)
+{
+    uint32_t first = (uint32_t)b->nv;
+    int i, j;
+    for (j = 0; j <= stacks; j++)
+        for (i = 0; i <= slices; i++) {
+            double th = 3.14159265358979323846 * j / stacks, ph = 2 * 3.14159265358979323846 * i / slices;
+            b->pos[3 * b->nv] = (float)(c[0] + r * sin(th) * cos(ph));
+            b->pos[3 * b->nv + 1] = (float)(c[1] + r * cos(th));
+            b->pos[3 * b->nv + 2] = (float)(c[2] + r * sin(th) * sin(ph));
+            b->nv++;
+        }
+    for (j = 0; j < stacks; j++)
+        for (i = 0; i < slices; i++) { /* counter-clockwise from outside: (a, c, b), (b, c, d) */
+            uint32_t a0 = first + (uint32_t)(j * (slices + 1) + i), b0 = a0 + 1, c0 = a0 + (uint32_t)slices + 1, d0 = c0 + 1;
+            uint32_t t[6];
+            int k;
+            t[0] = a0; t[1] = inward ? c0 : b0; t[2] = inward ? b0 : c0;
+            t[3] = b0; t[4] = inward ? c0 : d0; t[5] = inward ? d0 : c0;
+            for (k = 0; k < 2; k++) {
+                memcpy(b->idx + 3 * b->nt, t + 3 * k, 3 * sizeof(uint32_t));
+                b->mat[b->nt++] = mat;
+            }
+        }
+}
+
+static void voxgi__material_set(voxgi_material *m, float r, float g, float bl, float er, float eg, float eb)
+{
+    m->albedo[0] = r; m->albedo[1] = g; m->albedo[2] = bl;
+    m->emission[0] = er; m->emission[1] = eg; m->emission[2] = eb;
+    m->transparency = 0;
+}
+
+static void voxgi__view(voxgi_camera *c, double ex, double ey, double ez, double tx, double ty, double tz, double fovy)
+{
+    c->eye[0] = ex; c->eye[1] = ey; c->eye[2] = ez;
+    c->target[0] = tx; c->target[1] = ty; c->target[2] = tz;
+    c->fovy_degrees = fovy;
+    c->width = c->height = 256;
+}
+
+static const char *const voxgi__builtin_names[4] = {"cornell-box", "two-spheres", "leak-box", "furnace"};
+
+VOXGI_API const char *voxgi_builtin_scene_names(void)
+{
+    return "cornell-box two-spheres leak-box furnace";
+}
+
+VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char *name, voxgi_builtin_scene *out)
+{
+    voxgi__builtin *b;
+    int which;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!name || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "name or out is NULL");
+    memset(out, 0, sizeof *out);
+    for (which = 0; which < 4 && strcmp(name, voxgi__builtin_names[which]) != 0; which++) {}
+    if (which == 4) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "no built-in scene \"%s\" (there are: %s)", name, voxgi_builtin_scene_names());
+    if (!(b = (voxgi__builtin *)voxgi__alloc_array(ctx, 1, sizeof *b, 1))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a scene");
+    if (which == 0) { /* the Cornell box, millimetres / 1000 */
+        static const double walls[5][4][3] = {
+            {{552.8, 0, 0}, {0, 0, 0}, {0, 0, 559.2}, {549.6, 0, 559.2}},               /* floor */
+            {{556, 548.8, 0}, {556, 548.8, 559.2}, {0, 548.8, 559.2}, {0, 548.8, 0}},   /* ceiling */
+            {{549.6, 0, 559.2}, {0, 0, 559.2}, {0, 548.8, 559.2}, {556, 548.8, 559.2}}, /* back */
+            {{0, 0, 559.2}, {0, 0, 0}, {0, 548.8, 0}, {0, 548.8, 559.2}},               /* right: green */
+            {{552.8, 0, 0}, {549.6, 0, 559.2}, {556, 548.8, 559.2}, {556, 548.8, 0}}};  /* left: red */
+        static const double light[4][3] = {{343, 548.7, 227}, {343, 548.7, 332}, {213, 548.7, 332}, {213, 548.7, 227}};
+        static const double blocks[2][5][4][3] = {
+            {{{130, 165, 65}, {82, 165, 225}, {240, 165, 272}, {290, 165, 114}},
+             {{290, 0, 114}, {290, 165, 114}, {240, 165, 272}, {240, 0, 272}},
+             {{130, 0, 65}, {130, 165, 65}, {290, 165, 114}, {290, 0, 114}},
+             {{82, 0, 225}, {82, 165, 225}, {130, 165, 65}, {130, 0, 65}},
+             {{240, 0, 272}, {240, 165, 272}, {82, 165, 225}, {82, 0, 225}}},
+            {{{423, 330, 247}, {265, 330, 296}, {314, 330, 456}, {472, 330, 406}},
+             {{423, 0, 247}, {423, 330, 247}, {472, 330, 406}, {472, 0, 406}},
+             {{472, 0, 406}, {472, 330, 406}, {314, 330, 456}, {314, 0, 456}},
+             {{314, 0, 456}, {314, 330, 456}, {265, 330, 296}, {265, 0, 296}},
+             {{265, 0, 296}, {265, 330, 296}, {423, 330, 247}, {423, 0, 247}}}};
+        static const double centres[2][3] = {{186, 82.5, 168.5}, {368.5, 165, 351.5}};
+        double room[3] = {278, 274.4, 279.6}, q[4][3], c[3];
+        int w, k, a, blk;
+        voxgi__material_set(&b->materials[0], 0.725f, 0.71f, 0.68f, 0, 0, 0);
+        voxgi__material_set(&b->materials[1], 0.63f, 0.065f, 0.05f, 0, 0, 0);
+        voxgi__material_set(&b->materials[2], 0.14f, 0.45f, 0.091f, 0, 0, 0);
+        voxgi__material_set(&b->materials[3], 0.78f, 0.78f, 0.78f, 17, 12, 4);
+        for (a = 0; a < 3; a++) room[a] /= 1000;
+        for (w = 0; w < 5; w++) {
+            for (k = 0; k < 4; k++) for (a = 0; a < 3; a++) q[k][a] = walls[w][k][a] / 1000;
+            voxgi__builtin_quad(b, (const double(*)[3])q, w == 3 ? 2u : (w == 4 ? 1u : 0u), room, 0);
+        }
+        for (k = 0; k < 4; k++) for (a = 0; a < 3; a++) q[k][a] = light[k][a] / 1000;
+        c[0] = 0.278; c[1] = 0; c[2] = 0.2795; /* faces down */
+        voxgi__builtin_quad(b, (const double(*)[3])q, 3, c, 0);
+        for (blk = 0; blk < 2; blk++)
+            for (w = 0; w < 5; w++) {
+                for (k = 0; k < 4; k++) for (a = 0; a < 3; a++) q[k][a] = blocks[blk][w][k][a] / 1000;
+                for (a = 0; a < 3; a++) c[a] = centres[blk][a] / 1000;
+                voxgi__builtin_quad(b, (const double(*)[3])q, 0, c, 1);
+            }
+        out->scene.material_count = 4;
+        voxgi__view(&out->camera, 0.278, 0.273, -0.8, 0.278, 0.273, 0, 39.3077);
+    } else if (which == 1) { /* two spheres, red and blue walls, a divider */
+        static const double floor_q[4][3] = {{-2.5, 0, -2}, {2.5, 0, -2}, {2.5, 0, 1.5}, {-2.5, 0, 1.5}};
+        static const double red[4][3] = {{-2.5, 0, 1}, {0, 0, 1}, {0, 2, 1}, {-2.5, 2, 1}}, blue[4][3] = {{0, 0, 1}, {2.5, 0, 1}, {2.5, 2, 1}, {0, 2, 1}};
+        double up[3] = {0, 1, 0}, front[3] = {0, 1, -1}, lo[3] = {-0.05, 0, -1}, hi[3] = {0.05, 1.5, 1}, s0[3] = {-1.1, 0.5, 0}, s1[3] = {1.1, 0.5, 0};
+        voxgi__material_set(&b->materials[0], 0.5f, 0.5f, 0.5f, 0, 0, 0);
+        voxgi__material_set(&b->materials[1], 0.8f, 0.1f, 0.1f, 0, 0, 0);
+        voxgi__material_set(&b->materials[2], 0.1f, 0.1f, 0.8f, 0, 0, 0);
+        voxgi__material_set(&b->materials[3], 0.9f, 0.9f, 0.9f, 0, 0, 0);
+        voxgi__builtin_quad(b, floor_q, 0, up, 0);
+        voxgi__builtin_quad(b, red, 1, front, 0);
+        voxgi__builtin_quad(b, blue, 2, front, 0);
+        voxgi__builtin_box(b, lo, hi, 0, 0);
+        voxgi__builtin_sphere(b, s0, 0.5, 48, 24, 3, 0);
+        voxgi__builtin_sphere(b, s1, 0.5, 48, 24, 3, 0);
+        b->lights[0].type = VOXGI_LIGHT_DIRECTIONAL;
+        b->lights[0].direction[0] = 0.35f; b->lights[0].direction[1] = -0.8f; b->lights[0].direction[2] = 0.5f;
+        b->lights[0].intensity[0] = b->lights[0].intensity[1] = b->lights[0].intensity[2] = 3;
+        out->scene.material_count = 4;
+        out->scene.light_count = 1;
+        voxgi__view(&out->camera, 0, 2.2, -4.5, 0, 0.5, 0.3, 45);
+    } else if (which == 2) { /* a closed box, lights and a lit ground outside */
+        double lo[3] = {-0.5, 0, -0.5}, hi[3] = {0.5, 1, 0.5}, up[3] = {0, 1, 0};
+        static const double ground[4][3] = {{-20, -0.01, -20}, {20, -0.01, -20}, {20, -0.01, 20}, {-20, -0.01, 20}};
+        voxgi__material_set(&b->materials[0], 0.8f, 0.8f, 0.8f, 0, 0, 0);
+        voxgi__builtin_box(b, lo, hi, 0, 1);
+        voxgi__builtin_quad(b, ground, 0, up, 0);
+        b->lights[0].type = VOXGI_LIGHT_DIRECTIONAL;
+        b->lights[0].direction[0] = -0.3f; b->lights[0].direction[1] = -1; b->lights[0].direction[2] = 0.4f;
+        b->lights[0].intensity[0] = b->lights[0].intensity[1] = b->lights[0].intensity[2] = 10;
+        b->lights[1].type = VOXGI_LIGHT_POINT;
+        b->lights[1].position[0] = 1.5f; b->lights[1].position[1] = 0.5f; b->lights[1].position[2] = -1;
+        b->lights[1].intensity[0] = b->lights[1].intensity[1] = b->lights[1].intensity[2] = 50;
+        out->scene.material_count = 1;
+        out->scene.light_count = 2;
+        voxgi__view(&out->camera, 0.3, 0.5, -0.4, -0.1, 0.35, 0.5, 90);
+    } else { /* the furnace */
+        double c[3] = {0, 0, 0};
+        voxgi__material_set(&b->materials[0], 0.5f, 0.5f, 0.5f, 1, 1, 1);
+        voxgi__builtin_sphere(b, c, 1, 48, 24, 0, 1);
+        out->scene.material_count = 1;
+        voxgi__view(&out->camera, 0, 0, 0, 0.3, 0.2, 1, 90);
+    }
+    b->mesh.positions = b->pos;
+    b->mesh.vertex_count = b->nv;
+    b->mesh.indices = b->idx;
+    b->mesh.index_count = 3 * b->nt;
+    b->mesh.material_ids = b->mat;
+    out->scene.meshes = &b->mesh;
+    out->scene.mesh_count = 1;
+    out->scene.materials = b->materials;
+    out->scene.lights = out->scene.light_count ? b->lights : NULL;
+    out->name = voxgi__builtin_names[which];
+    out->storage = b;
+    return VOXGI_OK;
+}
+
+VOXGI_API void voxgi_builtin_scene_destroy(voxgi_context *ctx, voxgi_builtin_scene *scene)
+{
+    if (!ctx || !scene) return;
+    voxgi__free(ctx, scene->storage);
+    memset(scene, 0, sizeof *scene);
 }
 
 /* ===================================================================== binvox files */

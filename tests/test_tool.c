@@ -54,7 +54,7 @@ static void write_file(const char *name, const char *text, char *path, size_t pa
 static void test_help_everywhere(void)
 {
     static char out[8192];
-    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "svo --help"};
+    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "svo --help", "render --help"};
     size_t i;
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         int rc = run(cmds[i], out, sizeof out);
@@ -197,6 +197,55 @@ static void test_svo_command(void)
     TH_CHECK(run("svo builtin:cube --attributes colour", out, sizeof out) == 2, "unknown attribute accepted");
 }
 
+/* voxgi render: the PFM holds exactly what the library renders with the same settings; the PNG
+   is a well-formed 8-bit RGB image of the same size; bad arguments exit 2. */
+static void test_render_command(void)
+{
+    static char out[8192];
+    char pfm[512], png[512], args[1200];
+    voxgi_context *ctx = NULL;
+    voxgi_desc d;
+    voxgi_builtin_scene bs;
+    voxgi_reference_desc rd;
+    float want[6 * 4 * 3], got[6 * 4 * 3];
+    unsigned char head[33];
+    FILE *f;
+    int rc, w = 0, h = 0;
+    snprintf(pfm, sizeof pfm, "%s/f.pfm", tmpdir);
+    snprintf(png, sizeof png, "%s/f.png", tmpdir);
+    snprintf(args, sizeof args, "render furnace --spp 4 --size 6 4 --bounces -1 --seed 5 --threads 2 --json -o %s", pfm);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 0 && json_number(out, "rays") > 0, "render: %s", out);
+    memset(&d, 0, sizeof d);
+    d.backend = VOXGI_BACKEND_CPU;
+    voxgi_create(&d, &ctx);
+    memset(&rd, 0, sizeof rd);
+    voxgi_builtin_scene_create(ctx, "furnace", &bs);
+    rd.camera = bs.camera;
+    rd.camera.width = 6; rd.camera.height = 4;
+    rd.samples = 4; rd.bounces = -1; rd.seed = 5;
+    TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, want, sizeof want, NULL) == VOXGI_OK, "library render");
+    f = fopen(pfm, "rb");
+    TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 6 && h == 4, "PFM header");
+    if (f) {
+        int y;
+        for (y = 3; y >= 0; y--) TH_CHECK(fread(got + 3 * 6 * y, 4, 18, f) == 18, "PFM rows");
+        fclose(f);
+        TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's render");
+    }
+    snprintf(args, sizeof args, "render cornell-box --spp 1 --size 5 3 -o %s", png);
+    TH_CHECK(run(args, out, sizeof out) == 0, "png render: %s", out);
+    f = fopen(png, "rb");
+    TH_CHECK(f && fread(head, 1, 33, f) == 33 && memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0 && memcmp(head + 12, "IHDR", 4) == 0 &&
+             head[19] == 5 && head[23] == 3 && head[24] == 8 && head[25] == 2, "PNG header");
+    if (f) fclose(f);
+    TH_CHECK(run("render cornell-box -o x.jpg", out, sizeof out) == 2, "a .jpg output accepted");
+    TH_CHECK(run("render no-such-scene -o x.png", out, sizeof out) == 1 && strstr(out, "cornell-box"), "unknown scene: %s", out);
+    TH_CHECK(run("render cornell-box --camera 0 1 0 0 0 0 40 -o x.png", out, sizeof out) == 1 && strstr(out, "+-Y"), "camera along Y: %s", out);
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
 static void test_info_and_bench(void)
 {
     static char out[16384];
@@ -226,6 +275,7 @@ int main(void)
     TH_RUN(test_voxelize_methods);
     TH_RUN(test_info_and_bench);
     TH_RUN(test_svo_command);
+    TH_RUN(test_render_command);
     {
         char cmd[300];
         snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);
