@@ -315,7 +315,8 @@ typedef enum voxgi_attribute {
     VOXGI_ATTRIBUTE_ALBEDO = 1,
     VOXGI_ATTRIBUTE_NORMAL = 2,
     VOXGI_ATTRIBUTE_EMISSION = 4,
-    VOXGI_ATTRIBUTE_OPACITY = 8
+    VOXGI_ATTRIBUTE_OPACITY = 8,
+    VOXGI_ATTRIBUTE_RADIANCE = 16 /* volumes only: the light voxels send out (voxgi_inject_light) */
 } voxgi_attribute;
 
 /* How a voxel combines the values of the triangles (fragments) that set it, per attribute:
@@ -4562,18 +4563,20 @@ static voxgi_result voxgi__reduce_gl(voxgi_context *ctx, const voxgi_voxels *src
    formulas in float, so the two agree to float rounding. */
 #define VOXGI__MAX_LEVELS 17
 
+#define VOXGI__VOLUME_SLOTS 5 /* the four voxel attributes and radiance */
 struct voxgi_volume {
     voxgi_volume_info info;
     int dims[VOXGI__MAX_LEVELS][3];
     size_t first[VOXGI__MAX_LEVELS];   /* voxel offset of each level in a CPU array */
     size_t voxels;                     /* all levels */
-    float *cpu[4][6];                  /* [attribute bit][direction] */
-    unsigned int tex[4][6];
+    float *cpu[VOXGI__VOLUME_SLOTS][6]; /* [attribute bit][direction] */
+    unsigned int tex[VOXGI__VOLUME_SLOTS][6];
 };
 
 static int voxgi__attr_index(voxgi_attribute a)
 {
-    return a == VOXGI_ATTRIBUTE_ALBEDO ? 0 : (a == VOXGI_ATTRIBUTE_NORMAL ? 1 : (a == VOXGI_ATTRIBUTE_EMISSION ? 2 : (a == VOXGI_ATTRIBUTE_OPACITY ? 3 : -1)));
+    return a == VOXGI_ATTRIBUTE_ALBEDO ? 0 : (a == VOXGI_ATTRIBUTE_NORMAL ? 1 : (a == VOXGI_ATTRIBUTE_EMISSION ? 2 :
+           (a == VOXGI_ATTRIBUTE_OPACITY ? 3 : (a == VOXGI_ATTRIBUTE_RADIANCE ? 4 : -1))));
 }
 
 /* A parent's value from its 8 children c[k] (k = x + 2y + 4z; alpha in c[k][3]); dir < 0:
@@ -4630,7 +4633,7 @@ static void voxgi__mip_voxel(const float *src, const int sd[3], float *dst, int 
 }
 
 /* Level 0 of every asked-for attribute, dense, from the voxels' bits and attribute means. */
-static voxgi_result voxgi__volume_base(voxgi_context *ctx, const voxgi_voxels *vx, voxgi_volume *vol, float *base[4])
+static voxgi_result voxgi__volume_base(voxgi_context *ctx, const voxgi_voxels *vx, voxgi_volume *vol, float *base[VOXGI__VOLUME_SLOTS])
 {
     const voxgi_grid *g = &vx->info.grid;
     uint64_t n = voxgi_grid_voxel_count(g), l, slot = 0;
@@ -4670,7 +4673,7 @@ static voxgi_result voxgi__volume_base(voxgi_context *ctx, const voxgi_voxels *v
 }
 
 #ifndef VOXGI_NO_GL
-static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[4]);
+static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS]);
 #endif
 
 /* The volume's levels and sizes, for `attributes` (already checked). */
@@ -4683,7 +4686,7 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
     *out = NULL;
     if ((unsigned)desc->filter > VOXGI_MIPS_ANISOTROPIC || desc->levels < 0 || desc->levels > VOXGI__MAX_LEVELS)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown mip filter %d or levels %d", (int)desc->filter, desc->levels);
-    if (!attributes || (attributes & ~15u)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attributes 0x%x", attributes);
+    if (!attributes || (attributes & ~31u)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attributes 0x%x", attributes);
     vol = (voxgi_volume *)voxgi__alloc_array(ctx, 1, sizeof *vol, 1);
     if (!vol) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the volume");
     vol->info.grid = *g;
@@ -4697,7 +4700,7 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
         vol->info.levels = k + 1;
         if ((desc->levels && k + 1 == desc->levels) || (vol->dims[k][0] == 1 && vol->dims[k][1] == 1 && vol->dims[k][2] == 1)) break;
     }
-    for (a = 0; a < 4; a++)
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++)
         if (attributes & (1u << a)) bytes += (uint64_t)vol->voxels * (a == 3 ? 4u : 16u) * (uint64_t)dirs;
     vol->info.bytes = (size_t)bytes;
     if (ctx->desc.memory_budget && bytes > (uint64_t)ctx->desc.memory_budget) {
@@ -4710,7 +4713,7 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
 }
 
 /* Every level of every volume from the dense base levels. */
-static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, const float *const base[4])
+static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
 {
     voxgi_result r = VOXGI_OK;
     int a, d, k, dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
@@ -4718,7 +4721,7 @@ static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, c
 #ifndef VOXGI_NO_GL
     if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__volume_gl(ctx, vol, base);
 #endif
-    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
         int w = a == 3 ? 1 : 4;
         if (!base[a]) continue;
         for (d = 0; d < dirs && r == VOXGI_OK; d++) {
@@ -4742,7 +4745,7 @@ static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, c
 VOXGI_API voxgi_result voxgi_volume_create(voxgi_context *ctx, const voxgi_voxels *vx, const voxgi_volume_desc *desc, voxgi_volume **out)
 {
     voxgi_volume *vol = NULL;
-    float *base[4] = {NULL, NULL, NULL, NULL};
+    float *base[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
     voxgi_result r;
     double t0 = voxgi__now_ms();
     int a;
@@ -4773,6 +4776,7 @@ VOXGI_API voxgi_result voxgi_volume_create_dense(voxgi_context *ctx, const voxgi
     voxgi_volume *vol = NULL;
     voxgi_result r;
     double t0 = voxgi__now_ms();
+    const float *slots[VOXGI__VOLUME_SLOTS];
     unsigned attributes = 0;
     int a;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
@@ -4780,9 +4784,10 @@ VOXGI_API voxgi_result voxgi_volume_create_dense(voxgi_context *ctx, const voxgi
     *out = NULL;
     if ((r = voxgi_validate_grid(ctx, grid)) != VOXGI_OK) return r;
     for (a = 0; a < 4; a++)
-        if (base[a]) attributes |= 1u << a;
+        if ((slots[a] = base[a]) != NULL) attributes |= 1u << a;
+    slots[4] = NULL;
     r = voxgi__volume_new(ctx, grid, desc, attributes, &vol);
-    if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, base);
+    if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
     if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); return r; }
     vol->info.ms = voxgi__now_ms() - t0;
     *out = vol;
@@ -4793,7 +4798,7 @@ VOXGI_API void voxgi_volume_destroy(voxgi_context *ctx, voxgi_volume *vol)
 {
     int a, d;
     if (!ctx || !vol) return;
-    for (a = 0; a < 4; a++)
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++)
         for (d = 0; d < 6; d++) {
             voxgi__free(ctx, vol->cpu[a][d]);
 #ifndef VOXGI_NO_GL
@@ -4955,7 +4960,7 @@ VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_v
 #ifndef VOXGI_NO_GL
 /* GL: the base level uploaded into every direction's texture, then each level from the one
    below by shaders/volume_mip.glsl. */
-static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[4])
+static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
 {
     voxgi__gl *gl = ctx->gl;
     int a, d, k, dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1, max3d = 0;
@@ -4972,7 +4977,7 @@ static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, cons
         return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d volume texture exceeds GL_MAX_3D_TEXTURE_SIZE %d", vol->info.gl_size[0],
                            vol->info.gl_size[1], vol->info.gl_size[2], max3d);
     gl->UseProgram(p);
-    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
         if (!base[a]) continue;
         for (d = 0; d < dirs; d++) {
             unsigned int t = 0, fmt = a == 3 ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F;
@@ -5001,7 +5006,7 @@ static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, cons
             }
         }
     }
-    for (a = 0; a < 4; a++) /* ready for sampling: trilinear between levels */
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* ready for sampling: trilinear between levels */
         for (d = 0; d < dirs; d++)
             if (vol->tex[a][d]) {
                 gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_LINEAR_MIPMAP_LINEAR);
@@ -6279,25 +6284,70 @@ static void voxgi__basis(const double n[3], double t[3], double b[3])
     b[0] = c; b[1] = sgn + n[1] * n[1] * a; b[2] = -n[1];
 }
 
-typedef struct voxgi__render {
-    voxgi_context *ctx;
+/* What direct light needs: the scene's lights and its emissive triangles, picked by power. */
+typedef struct voxgi__lights {
     const voxgi__tracer *tr;
     const voxgi_scene *scene;
-    const voxgi_reference_desc *desc;
-    double eye[3], right[3], up[3], forward[3], tan_half;
     uint32_t *emitters;           /* BVH-order triangles with emission, front faces */
     double *emitter_cdf;          /* by area x mean emission */
     double *emitter_pdf;          /* per BVH-order triangle: the area density of picking a point on it */
     size_t emitter_count;
-    double *sum;                  /* 3 per pixel */
-    int first_sample, pass_samples;
-    size_t rays;                  /* summed over the workers */
-} voxgi__render;
+} voxgi__lights;
 
 static const voxgi_material *voxgi__prim_material(const voxgi__tracer *tr, uint32_t prim)
 {
     return voxgi__tri_material(&tr->flat, tr->tri[prim]);
 }
+
+static void voxgi__lights_free(voxgi_context *ctx, voxgi__lights *Ls)
+{
+    voxgi__free(ctx, Ls->emitters);
+    voxgi__free(ctx, Ls->emitter_cdf);
+    voxgi__free(ctx, Ls->emitter_pdf);
+    memset(Ls, 0, sizeof *Ls);
+}
+
+static voxgi_result voxgi__lights_build(voxgi_context *ctx, const voxgi_scene *scene, const voxgi__tracer *tr, voxgi__lights *Ls)
+{
+    size_t i, nt = tr->flat.triangle_count;
+    int a;
+    memset(Ls, 0, sizeof *Ls);
+    Ls->tr = tr;
+    Ls->scene = scene;
+    Ls->emitters = (uint32_t *)voxgi__alloc_array(ctx, nt ? nt : 1, 4, 0);
+    Ls->emitter_cdf = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, sizeof(double), 0);
+    Ls->emitter_pdf = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, sizeof(double), 1);
+    if (!Ls->emitters || !Ls->emitter_cdf || !Ls->emitter_pdf) {
+        voxgi__lights_free(ctx, Ls);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the emitter table");
+    }
+    for (i = 0; i < nt; i++) { /* emitters, weighted by area x mean emission */
+        const voxgi_material *m = voxgi__prim_material(tr, (uint32_t)i);
+        const double *v = tr->v + 9 * i;
+        double power = ((double)m->emission[0] + m->emission[1] + m->emission[2]) / 3, c[3], e1[3], e2[3];
+        for (a = 0; a < 3; a++) { e1[a] = v[3 + a] - v[a]; e2[a] = v[6 + a] - v[a]; }
+        for (a = 0; a < 3; a++) c[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+        Ls->emitter_pdf[i] = power; /* / the total power, below: the area density */
+        power *= 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        if (!(power > 0)) { Ls->emitter_pdf[i] = 0; continue; }
+        Ls->emitters[Ls->emitter_count] = (uint32_t)i;
+        Ls->emitter_cdf[Ls->emitter_count] = (Ls->emitter_count ? Ls->emitter_cdf[Ls->emitter_count - 1] : 0) + power;
+        Ls->emitter_count++;
+    }
+    for (i = 0; i < nt; i++) Ls->emitter_pdf[i] /= Ls->emitter_count ? Ls->emitter_cdf[Ls->emitter_count - 1] : 1;
+    return VOXGI_OK;
+}
+
+typedef struct voxgi__render {
+    voxgi_context *ctx;
+    const voxgi__tracer *tr;
+    voxgi__lights lights;
+    const voxgi_reference_desc *desc;
+    double eye[3], right[3], up[3], forward[3], tan_half;
+    double *sum;                  /* 3 per pixel */
+    int first_sample, pass_samples;
+    size_t rays;                  /* summed over the workers */
+} voxgi__render;
 
 /* Nothing between p (leaving triangle skip) and the point dist away along dir? (1e-9 short of
    it, so the light's own triangle does not count) */
@@ -6308,12 +6358,13 @@ static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const doub
     return !voxgi__trace(tr, p, dir, dist * (1 - 1e-9), skip, 1, &h);
 }
 
-/* Irradiance-like sum E at p (unit normal ns facing the arriving ray) from every light and one
-   sampled point on the emissive triangles; the reflected radiance is albedo / pi * E. Emissive
-   triangles are also found by the paths' own bounces: both estimates carry power-heuristic
-   weights (multiple importance sampling), which keeps the variance finite where emitters meet
-   at concave edges. */
-static void voxgi__direct(voxgi__render *R, const double p[3], const double ns[3], uint32_t prim, voxgi__rng *g, uint64_t *rays, double e[3])
+/* Irradiance E at p (unit normal ns facing the arriving ray; leaving triangle prim, or
+   UINT32_MAX) from every light and one sampled point on the emissive triangles; the reflected
+   radiance is albedo / pi * E. With mis, the emitters' share carries the power-heuristic weight
+   against a cosine-sampled bounce finding them (the path tracer's other half), which keeps the
+   variance finite where emitters meet at concave edges. */
+static void voxgi__direct(const voxgi__lights *R, const double p[3], const double ns[3], uint32_t prim, voxgi__rng *g, int mis_weighted,
+                          uint64_t *rays, double e[3])
 {
     const voxgi__tracer *tr = R->tr;
     size_t li;
@@ -6384,7 +6435,7 @@ static void voxgi__direct(voxgi__render *R, const double p[3], const double ns[3
             cos_l = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]);
             if (cos_s > 0 && cos_l > 0 && voxgi__visible(tr, p, dir, dist, prim, rays)) {
                 double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / 3.14159265358979323846; /* per solid angle */
-                double mis = pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf);
+                double mis = mis_weighted ? pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf) : 1;
                 m = voxgi__prim_material(tr, k);
                 for (a = 0; a < 3; a++) e[a] += mis * m->emission[a] * cos_s / pdf_light;
             }
@@ -6410,16 +6461,16 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
         m = voxgi__prim_material(tr, h.prim);
         n = tr->n + 3 * (size_t)h.prim;
         for (a = 0; a < 3; a++) ns[a] = h.front ? n[a] : -n[a];
-        if (h.front && R->emitter_pdf[h.prim] > 0) { /* seen by the camera, or found by a bounce (weighted against the direct light) */
+        if (h.front && R->lights.emitter_pdf[h.prim] > 0) { /* seen by the camera, or found by a bounce (weighted against the direct light) */
             double mis = 1;
             if (depth > 0) {
-                double pdf_light = R->emitter_pdf[h.prim] * h.t * h.t / -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
+                double pdf_light = R->lights.emitter_pdf[h.prim] * h.t * h.t / -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
                 mis = pdf_bsdf * pdf_bsdf / (pdf_bsdf * pdf_bsdf + pdf_light * pdf_light);
             }
             for (a = 0; a < 3; a++) out[a] += T[a] * mis * m->emission[a];
         }
         if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
-        voxgi__direct(R, h.p, ns, h.prim, g, rays, e);
+        voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, rays, e);
         for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / 3.14159265358979323846 * e[a];
         for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
         if (bounces < 0 && depth >= 2) { /* Russian roulette */
@@ -6516,28 +6567,11 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     R.ctx = ctx;
     R.tr = &tr;
-    R.scene = scene;
     R.desc = desc;
     samples = desc->samples ? desc->samples : 16;
     R.sum = (double *)voxgi__alloc_array(ctx, pixels, 3 * sizeof(double), 1);
-    R.emitters = (uint32_t *)voxgi__alloc_array(ctx, tr.flat.triangle_count ? tr.flat.triangle_count : 1, 4, 0);
-    R.emitter_cdf = (double *)voxgi__alloc_array(ctx, tr.flat.triangle_count ? tr.flat.triangle_count : 1, sizeof(double), 0);
-    R.emitter_pdf = (double *)voxgi__alloc_array(ctx, tr.flat.triangle_count ? tr.flat.triangle_count : 1, sizeof(double), 1);
-    if (!R.sum || !R.emitters || !R.emitter_cdf || !R.emitter_pdf) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d render", cam->width, cam->height);
-    for (i = 0; r == VOXGI_OK && i < tr.flat.triangle_count; i++) { /* emitters, weighted by area x mean emission */
-        const voxgi_material *m = voxgi__prim_material(&tr, (uint32_t)i);
-        const double *v = tr.v + 9 * i;
-        double power = ((double)m->emission[0] + m->emission[1] + m->emission[2]) / 3, c[3], e1[3], e2[3];
-        for (a = 0; a < 3; a++) { e1[a] = v[3 + a] - v[a]; e2[a] = v[6 + a] - v[a]; }
-        for (a = 0; a < 3; a++) c[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
-        R.emitter_pdf[i] = power; /* / the total power, below: the area density */
-        power *= 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        if (!(power > 0)) { R.emitter_pdf[i] = 0; continue; }
-        R.emitters[R.emitter_count] = (uint32_t)i;
-        R.emitter_cdf[R.emitter_count] = (R.emitter_count ? R.emitter_cdf[R.emitter_count - 1] : 0) + power;
-        R.emitter_count++;
-    }
-    for (i = 0; r == VOXGI_OK && i < tr.flat.triangle_count; i++) R.emitter_pdf[i] /= R.emitter_count ? R.emitter_cdf[R.emitter_count - 1] : 1;
+    if (!R.sum) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d render", cam->width, cam->height);
+    else r = voxgi__lights_build(ctx, scene, &tr, &R.lights);
     if (info) { info->triangles = tr.flat.triangle_count; info->bvh_nodes = tr.node_count; info->ms_bvh = voxgi__now_ms() - t0; }
     t0 = voxgi__now_ms();
     for (R.first_sample = 0; r == VOXGI_OK && R.first_sample < samples; R.first_sample += R.pass_samples) { /* progressive passes */
@@ -6550,9 +6584,7 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     for (i = 0; r == VOXGI_OK && i < 3 * pixels; i++) rgb[i] = (float)(R.sum[i] / samples);
     if (info) { info->rays = R.rays; info->ms_render = voxgi__now_ms() - t0; }
     voxgi__free(ctx, R.sum);
-    voxgi__free(ctx, R.emitters);
-    voxgi__free(ctx, R.emitter_cdf);
-    voxgi__free(ctx, R.emitter_pdf);
+    voxgi__lights_free(ctx, &R.lights);
     voxgi__tracer_free(ctx, &tr);
     return r;
 }
