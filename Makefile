@@ -8,7 +8,7 @@ B       := build
 ASAN    := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 
 GLSL    := $(sort $(wildcard shaders/*.glsl))
-TESTS   := test_voxelize test_gl_voxelize test_reference test_mesh_io test_headless_gl test_tool
+TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_mesh_io test_headless_gl test_tool
 TOOL_SRC := tools/voxgi.c tools/mesh_io.c
 
 .PHONY: all deps test demo bench bench-anchors clean

@@ -552,6 +552,47 @@ typedef struct voxgi_reference_info {
 VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
                                               size_t rgb_bytes, voxgi_reference_info *info);
 
+/* ===================================================================== light injection and cone tracing */
+/* Light injection: the radiance the voxels send out, for the cone tracer to gather. Per set
+   voxel: L = albedo / pi * E + emission (alpha = opacity, 1 when the voxels hold none), E the
+   irradiance on the voxel's mean normal at its centre moved half a voxel diagonal along that
+   normal (off its own surface), from the scene's lights and emissive triangles through exact
+   shadow rays (CPU); area lights and emitters take `samples` points. The voxels must hold ALBEDO
+   and NORMAL. The result is a volume of the single attribute RADIANCE with desc.volume's mips.
+   Check: a plane under a directional light of irradiance E gets albedo E cos / pi exactly. */
+typedef struct voxgi_inject_desc {
+    voxgi_volume_desc volume;     /* filter and levels (attributes: ignored) */
+    int samples;                  /* points per area light and on the emitters, per voxel; 0 = 16 */
+    uint64_t seed;
+} voxgi_inject_desc;
+VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *voxels,
+                                          const voxgi_inject_desc *desc, voxgi_volume **out);
+
+/* Diffuse cone tracing: the irradiance at points (world positions, unit normals) gathered from a
+   RADIANCE volume, and the ambient occlusion. The cones split the cosine-weighted hemisphere
+   into `cones` equal parts (directions on a Fibonacci spiral of the projected disc, weight
+   pi / cones each; the default half-angle acos(1 - 1/cones) gives each cone its share of the
+   solid angle, so the set leaves no gaps), each marched from `offset` voxels along the normal:
+   at distance t its diameter is d = max(1, 2 t tan(half-angle)) voxels, sampled at lod log2(d)
+   (a cone at angle theta from the normal narrows to tan = cos(theta) / 3, so that no sample
+   reaches back to the surface's own voxels: an open plane occludes nothing)
+   every step * d; a sample's alpha a at level L is read as the coverage of a surface one voxel
+   thick, a 2^L (at most 1), so thin walls do not leak; opacity corrected for the step
+   (a' = 1 - (1 - a)^(step)), composited front to
+   back (c += (1 - A) a' L, A += (1 - A) a') until A reaches 0.99 or max_distance. Anisotropic
+   volumes are sampled along the cone's direction (the three axis volumes weighted by the
+   squared direction components). irradiance: 3 floats per point (sum of pi / cones x the cones'
+   radiance); occlusion: 1 per point (mean A), or NULL. */
+typedef struct voxgi_cone_desc {
+    int cones;                    /* 0 = 16 */
+    float half_angle;             /* radians; 0 = acos(1 - 1 / cones) */
+    float step;                   /* fraction of the diameter per step; 0 = 0.5 */
+    float offset;                 /* start, in voxels along the normal; 0 = 1.5 */
+    float max_distance;           /* in voxels; 0 = the grid's diagonal */
+} voxgi_cone_desc;
+VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, size_t count,
+                                        const float *positions, const float *normals, float *irradiance, float *occlusion);
+
 /* ===================================================================== built-in scenes */
 /* Scenes that need no files, each with its usual view (256 x 256):
    "cornell-box"  the Cornell box (the published geometry in metres, the light 0.1 mm below the
@@ -6587,6 +6628,231 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     voxgi__lights_free(ctx, &R.lights);
     voxgi__tracer_free(ctx, &tr);
     return r;
+}
+
+/* ===================================================================== light injection and cone tracing */
+typedef struct voxgi__inject {
+    const voxgi__lights *lights;
+    const voxgi_grid *g;
+    const voxgi_inject_desc *desc;
+    const uint64_t *index;        /* set voxel i: its linear index */
+    float *const *vals;           /* attribute means, bit order */
+    float *rgba;                  /* level 0 of the radiance volume */
+    size_t rays;
+} voxgi__inject;
+
+static void voxgi__inject_range(void *user, size_t first, size_t end)
+{
+    voxgi__inject *J = (voxgi__inject *)user;
+    const voxgi_grid *g = J->g;
+    int samples = J->desc->samples ? J->desc->samples : 16, s, a;
+    uint64_t rays = 0;
+    size_t i;
+    for (i = first; i < end; i++) {
+        uint64_t l = J->index[i];
+        double c[3], n[3], len, p[3], e[3] = {0, 0, 0}, off = 0.8660254037844386 * g->voxel_size, nl[3];
+        float *o = J->rgba + 4 * l;
+        c[0] = g->origin[0] + ((double)(l % (uint64_t)g->res[0]) + 0.5) * g->voxel_size;
+        c[1] = g->origin[1] + ((double)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]) + 0.5) * g->voxel_size;
+        c[2] = g->origin[2] + ((double)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1])) + 0.5) * g->voxel_size;
+        for (a = 0; a < 3; a++) n[a] = J->vals[1][3 * i + (size_t)a];
+        len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (len > 0) {
+            for (a = 0; a < 3; a++) { nl[a] = n[a] / len; p[a] = c[a] + off * nl[a]; }
+            for (s = 0; s < samples; s++) { /* the lights once per sample: delta lights give the same each time */
+                voxgi__rng rng;
+                double es[3];
+                voxgi__rng_seed(&rng, J->desc->seed, l, (uint64_t)s);
+                voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, &rays, es);
+                for (a = 0; a < 3; a++) e[a] += es[a] / samples;
+            }
+        } /* else: opposite surfaces cancelled the normal; the voxel only emits */
+        for (a = 0; a < 3; a++)
+            o[a] = (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * e[a] + (J->vals[2] ? J->vals[2][3 * i + (size_t)a] : 0.0f));
+        o[3] = J->vals[3] ? J->vals[3][i] : 1.0f;
+    }
+    VOXGI__ATOMIC_ADD_SIZE(&J->rays, (size_t)rays);
+}
+
+VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *vx, const voxgi_inject_desc *desc,
+                                          voxgi_volume **out)
+{
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    voxgi__inject J;
+    voxgi_volume *vol = NULL;
+    float *vals[4] = {NULL, NULL, NULL, NULL}, *rgba = NULL;
+    uint64_t *index = NULL, nvox, l;
+    uint32_t *bits = NULL;
+    size_t need = 0, n, i = 0;
+    const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
+    double t0 = voxgi__now_ms();
+    int a;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vx || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
+    *out = NULL;
+    if ((vx->info.attributes & 3u) != 3u)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light injection needs voxels with ALBEDO and NORMAL (they hold 0x%x)", vx->info.attributes);
+    if (desc->samples < 0) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d", desc->samples);
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    r = voxgi__lights_build(ctx, scene, &tr, &Ls);
+    nvox = voxgi_grid_voxel_count(&vx->info.grid);
+    n = (size_t)vx->info.voxel_count;
+    if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
+    if (r == VOXGI_OK && (!(bits = (uint32_t *)voxgi__alloc(ctx, need)) || !(index = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)) ||
+                          !(rgba = (float *)voxgi__alloc_array(ctx, (size_t)nvox, 16, 1))))
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the radiance of %lu voxels", (unsigned long)n);
+    if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, bits, need, NULL);
+    for (l = 0; r == VOXGI_OK && l < nvox; l++)
+        if (voxgi_bit_get(bits, l)) index[i++] = l;
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+        voxgi_attribute which = (voxgi_attribute)(1 << a);
+        if (!(vx->info.attributes & (unsigned)which)) continue;
+        r = voxgi_voxels_read_attribute(ctx, vx, which, NULL, 0, &need);
+        if (r == VOXGI_OK && !(vals[a] = (float *)voxgi__alloc(ctx, need ? need : 4))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+        if (r == VOXGI_OK) r = voxgi_voxels_read_attribute(ctx, vx, which, vals[a], need, NULL);
+    }
+    if (r == VOXGI_OK) {
+        J.lights = &Ls;
+        J.g = &vx->info.grid;
+        J.desc = desc;
+        J.index = index;
+        J.vals = vals;
+        J.rgba = rgba;
+        J.rays = 0;
+        voxgi__parallel(ctx, n, 256, voxgi__inject_range, &J);
+        slots[4] = rgba;
+        r = voxgi__volume_new(ctx, &vx->info.grid, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &vol);
+        if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
+        if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); vol = NULL; }
+        else vol->info.ms = voxgi__now_ms() - t0;
+    }
+    for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
+    voxgi__free(ctx, bits);
+    voxgi__free(ctx, index);
+    voxgi__free(ctx, rgba);
+    voxgi__lights_free(ctx, &Ls);
+    voxgi__tracer_free(ctx, &tr);
+    *out = vol;
+    return r;
+}
+
+/* Cone k of n: a direction in the frame (t, b, normal), on a Fibonacci spiral of the projected
+   disc (equal cosine-weighted shares). */
+static void voxgi__cone_direction(int k, int n, double d[3])
+{
+    double r = sqrt((k + 0.5) / n), phi = 2.399963229728653 * k; /* the golden angle */
+    d[0] = r * cos(phi);
+    d[1] = r * sin(phi);
+    d[2] = sqrt(VOXGI__MAX(0.0, 1 - r * r));
+}
+
+typedef struct voxgi__cone_job {
+    const voxgi_volume *vol;
+    const voxgi_cone_desc *desc;
+    const float *pos, *nrm;
+    float *irr, *occ;
+    int cones, dirs;
+    double half_tan, step, offset, max_dist;
+} voxgi__cone_job;
+
+/* The radiance volume's sample at p (grid units) and lod along unit direction d. */
+static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], const float p[3], float lod, float out[4])
+{
+    voxgi__volume_source src;
+    int ch, ax;
+    src.vol = J->vol;
+    src.w = 4;
+    if (J->dirs == 1) {
+        src.arr = J->vol->cpu[4][0];
+        voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, 4, J->vol->info.levels, p, lod, out);
+        return;
+    }
+    for (ch = 0; ch < 4; ch++) out[ch] = 0;
+    for (ax = 0; ax < 3; ax++) { /* the travel direction's axis volumes, by squared components */
+        float s[4];
+        double w = d[ax] * d[ax];
+        if (w == 0) continue;
+        src.arr = J->vol->cpu[4][2 * ax + (d[ax] < 0)];
+        voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, 4, J->vol->info.levels, p, lod, s);
+        for (ch = 0; ch < 4; ch++) out[ch] += (float)(w * s[ch]);
+    }
+}
+
+static void voxgi__cone_range(void *user, size_t first, size_t end)
+{
+    voxgi__cone_job *J = (voxgi__cone_job *)user;
+    const voxgi_grid *g = &J->vol->info.grid;
+    size_t i;
+    int k, a;
+    for (i = first; i < end; i++) {
+        double o[3], n[3], t3[3], b3[3], len = 0, e[3] = {0, 0, 0}, occ = 0;
+        for (a = 0; a < 3; a++) { o[a] = (J->pos[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size; n[a] = J->nrm[3 * i + (size_t)a]; len += n[a] * n[a]; }
+        len = sqrt(len);
+        for (a = 0; a < 3; a++) n[a] = len > 0 ? n[a] / len : (a == 1);
+        voxgi__basis(n, t3, b3);
+        for (k = 0; k < J->cones; k++) {
+            double l[3], d[3], t = J->offset, A = 0, C[3] = {0, 0, 0}, tan_k;
+            voxgi__cone_direction(k, J->cones, l);
+            tan_k = VOXGI__MIN(J->half_tan, l[2] / 3); /* low cones narrow: each sample stays 1.5 diameters above the tangent plane */
+            for (a = 0; a < 3; a++) d[a] = l[0] * t3[a] + l[1] * b3[a] + l[2] * n[a];
+            while (t < J->max_dist && A < 0.99) {
+                double diam = VOXGI__MAX(1.0, 2 * t * tan_k), dt = J->step * diam, ap, h = J->offset + (t - J->offset) * l[2];
+                float p[3], s[4];
+                for (a = 0; a < 3; a++) p[a] = (float)(o[a] + J->offset * n[a] + (t - J->offset) * d[a]);
+                /* both levels blended must stay clear of the surface: a level-L voxel holding it reaches 1.5 x 2^L above it */
+                double lod = VOXGI__MIN(VOXGI__MIN(log2(diam), log2(h / 1.5) - 1), J->vol->info.levels - 1.0);
+                voxgi__cone_sample(J, d, p, (float)lod, s);
+                /* a level-L voxel's alpha is the share of its volume that is filled; a surface one voxel thick fills 2^-L of
+                   it yet covers its whole cross-section: the cone sees that coverage, alpha x 2^L (at most 1) */
+                ap = 1 - pow(1 - VOXGI__MIN(1.0, s[3] * exp2(VOXGI__MAX(lod, 0.0))), J->step); /* it holds for one diameter; a step is J->step of it */
+                for (a = 0; a < 3; a++) C[a] += (1 - A) * ap * s[a];
+                A += (1 - A) * ap;
+                t += dt;
+            }
+            for (a = 0; a < 3; a++) e[a] += 3.14159265358979323846 / J->cones * C[a];
+            occ += A / J->cones;
+        }
+        for (a = 0; a < 3; a++) J->irr[3 * i + (size_t)a] = (float)e[a];
+        if (J->occ) J->occ[i] = (float)occ;
+    }
+}
+
+VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count,
+                                        const float *positions, const float *normals, float *irradiance, float *occlusion)
+{
+    voxgi__cone_job J;
+    const voxgi_grid *g;
+    size_t i;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vol || !desc || (count && (!positions || !normals || !irradiance)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, desc, positions, normals or irradiance is NULL");
+    if (!(vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the volume holds no RADIANCE (voxgi_inject_light)");
+    if (!vol->cpu[4][0]) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "cone tracing runs on CPU volumes so far");
+    if (desc->cones < 0 || desc->cones > 1024 || !(desc->half_angle >= 0 && desc->half_angle < 1.5f) || !(desc->step >= 0 && desc->step <= 4) ||
+        !(desc->offset >= 0) || !(desc->max_distance >= 0))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "cones %d (0..1024), half_angle %g (0..1.5), step %g (0..4), offset %g, max_distance %g",
+                           desc->cones, desc->half_angle, desc->step, desc->offset, desc->max_distance);
+    for (i = 0; i < 3 * count; i++)
+        if (!isfinite(positions[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
+    g = &vol->info.grid;
+    J.vol = vol;
+    J.desc = desc;
+    J.pos = positions;
+    J.nrm = normals;
+    J.irr = irradiance;
+    J.occ = occlusion;
+    J.cones = desc->cones ? desc->cones : 16;
+    J.dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
+    J.half_tan = tan(desc->half_angle > 0 ? desc->half_angle : acos(1 - 1.0 / J.cones));
+    J.step = desc->step > 0 ? desc->step : 0.5;
+    J.offset = desc->offset > 0 ? desc->offset : 1.5;
+    J.max_dist = desc->max_distance > 0 ? desc->max_distance
+                                        : sqrt((double)g->res[0] * g->res[0] + (double)g->res[1] * g->res[1] + (double)g->res[2] * g->res[2]);
+    voxgi__parallel(ctx, count, 64, voxgi__cone_range, &J);
+    return VOXGI_OK;
 }
 
 /* ===================================================================== built-in scenes */

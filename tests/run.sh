@@ -64,13 +64,13 @@ if [ -z "$bad" ]; then record exported_symbols_are_prefixed pass; else record ex
 
 # 3. the test programs, then again under AddressSanitizer and UndefinedBehaviorSanitizer
 export VOXGI_REQUIRE_GL=${VOXGI_REQUIRE_GL:-0}  # CI sets 1: there a GL context must exist
-for t in test_voxelize test_gl_voxelize test_reference test_mesh_io test_headless_gl test_tool; do
+for t in test_voxelize test_gl_voxelize test_reference test_vct test_mesh_io test_headless_gl test_tool; do
     run_program "$t" "$B/$t"
 done
 export ASAN_OPTIONS=detect_leaks=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1
-for t in test_voxelize test_gl_voxelize test_reference test_mesh_io test_headless_gl test_tool; do
+for t in test_voxelize test_gl_voxelize test_reference test_vct test_mesh_io test_headless_gl test_tool; do
     run_program "asan/$t" env VOXGI_TOOL="$B/asan/voxgi" TH_EXCLUDE=raster "$B/asan/$t"
 done
 # Mesa 22.3's llvmpipe loses 112 bytes inside the first glDrawArrays of a context (its own
