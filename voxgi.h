@@ -539,6 +539,7 @@ typedef struct voxgi_reference_desc {
     int bounces;                  /* indirect bounces: 0 = direct light only, 1 = one bounce, ...;
                                      -1 = unlimited (Russian roulette ends paths without bias) */
     uint64_t seed;
+    int hide_emitters;            /* 1: leave out the emission the camera sees directly (to compare lighting alone) */
 } voxgi_reference_desc;
 
 typedef struct voxgi_reference_info {
@@ -576,7 +577,8 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
    at distance t its diameter is d = max(1, 2 t tan(half-angle)) voxels, sampled at lod log2(d)
    (a cone at angle theta from the normal narrows to tan = cos(theta) / 3, so that no sample
    reaches back to the surface's own voxels: an open plane occludes nothing)
-   every step * d; a sample's alpha a at level L is read as the coverage of a surface one voxel
+   every step * d (filtering radiance premultiplied by alpha, so that empty space thins a sample
+   without darkening it); a sample's alpha a at level L is read as the coverage of a surface one voxel
    thick, a 2^L (at most 1), so thin walls do not leak; opacity corrected for the step
    (a' = 1 - (1 - a)^(step)), composited front to
    back (c += (1 - A) a' L, A += (1 - A) a') until A reaches 0.99 or max_distance. Anisotropic
@@ -592,6 +594,29 @@ typedef struct voxgi_cone_desc {
 } voxgi_cone_desc;
 VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, size_t count,
                                         const float *positions, const float *normals, float *irradiance, float *occlusion);
+
+/* A cone-traced image (CPU): the scene voxelized (conservative, with attributes) on a grid of
+   `resolution` voxels along its longest side, direct light injected into the voxels (their
+   emission left out: emitters light the pixels directly), the radiance mipmapped, then per
+   pixel: emission + albedo / pi x (direct irradiance through exact shadow rays, `samples`
+   jittered rays per pixel, + the cones' irradiance at the pixel centre's surface). gi = 0 leaves
+   the cones out: the direct light alone, which the reference renderer's bounces = 0 matches. */
+typedef struct voxgi_vct_desc {
+    voxgi_camera camera;
+    int resolution;               /* 0 = 128 */
+    voxgi_mip_filter filter;
+    voxgi_cone_desc cones;
+    int no_gi;                    /* 1: direct light only */
+    int samples;                  /* jittered rays per pixel for the direct light; 0 = 16 */
+    uint64_t seed;
+    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
+} voxgi_vct_desc;
+typedef struct voxgi_vct_info {
+    uint64_t voxels;
+    double ms_voxelize, ms_inject, ms_cones, ms_direct, ms; /* inject: with the mips */
+} voxgi_vct_info;
+VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
+                                        voxgi_vct_info *info);
 
 /* ===================================================================== built-in scenes */
 /* Scenes that need no files, each with its usual view (256 x 256):
@@ -6503,7 +6528,7 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
         n = tr->n + 3 * (size_t)h.prim;
         for (a = 0; a < 3; a++) ns[a] = h.front ? n[a] : -n[a];
         if (h.front && R->lights.emitter_pdf[h.prim] > 0) { /* seen by the camera, or found by a bounce (weighted against the direct light) */
-            double mis = 1;
+            double mis = depth == 0 && R->desc->hide_emitters ? 0 : 1;
             if (depth > 0) {
                 double pdf_light = R->lights.emitter_pdf[h.prim] * h.t * h.t / -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
                 mis = pdf_bsdf * pdf_bsdf / (pdf_bsdf * pdf_bsdf + pdf_light * pdf_light);
@@ -6538,6 +6563,45 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
     }
 }
 
+/* The camera's frame (gluLookAt, up +Y); fails where the view is along +-Y. */
+static voxgi_result voxgi__camera_frame(voxgi_context *ctx, const voxgi_camera *cam, double eye[3], double forward[3], double right[3],
+                                        double up[3], double *tan_half)
+{
+    double len;
+    int a;
+    if (cam->width < 1 || cam->height < 1 || cam->width > 65536 || cam->height > 65536)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d: each side must be 1..65536", cam->width, cam->height);
+    if (!(cam->fovy_degrees > 0 && cam->fovy_degrees < 180)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "fovy %g: it must lie in (0, 180) degrees", cam->fovy_degrees);
+    for (a = 0; a < 3; a++) {
+        if (!isfinite(cam->eye[a]) || !isfinite(cam->target[a])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera is not finite");
+        eye[a] = cam->eye[a];
+        forward[a] = cam->target[a] - cam->eye[a];
+    }
+    len = sqrt(forward[0] * forward[0] + forward[1] * forward[1] + forward[2] * forward[2]);
+    if (!(len > 0) || sqrt(forward[0] * forward[0] + forward[2] * forward[2]) <= 1e-12 * len)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera looks along +-Y or at its own eye: up +Y leaves no view");
+    for (a = 0; a < 3; a++) forward[a] /= len;
+    right[0] = -forward[2]; right[1] = 0; right[2] = forward[0]; /* forward x (0, 1, 0) */
+    len = sqrt(right[0] * right[0] + right[2] * right[2]);
+    right[0] /= len; right[2] /= len;
+    up[0] = right[1] * forward[2] - right[2] * forward[1];
+    up[1] = right[2] * forward[0] - right[0] * forward[2];
+    up[2] = right[0] * forward[1] - right[1] * forward[0];
+    *tan_half = tan(cam->fovy_degrees * 3.14159265358979323846 / 360);
+    return VOXGI_OK;
+}
+
+/* The unit ray direction through image point (sx, sy) in pixels. */
+static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], const double right[3], const double up[3], double tan_half,
+                              double sx, double sy, double d[3])
+{
+    double x = (2 * sx / cam->width - 1) * tan_half * cam->width / cam->height, y = (1 - 2 * sy / cam->height) * tan_half, len;
+    int a;
+    for (a = 0; a < 3; a++) d[a] = forward[a] + x * right[a] + y * up[a];
+    len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (a = 0; a < 3; a++) d[a] /= len;
+}
+
 static void voxgi__render_rows(void *user, size_t first, size_t end)
 {
     voxgi__render *R = (voxgi__render *)user;
@@ -6551,14 +6615,13 @@ static void voxgi__render_rows(void *user, size_t first, size_t end)
             double *acc = R->sum + 3 * pix;
             for (s = R->first_sample; s < R->first_sample + R->pass_samples; s++) {
                 voxgi__rng g;
-                double sx, sy, o[3], d[3], len, L[3];
+                double sx, sy, o[3], d[3], L[3];
                 int a;
                 voxgi__rng_seed(&g, R->desc->seed, pix, (uint64_t)s);
-                sx = (2 * (x + voxgi__rng_unit(&g)) / cam->width - 1) * R->tan_half * cam->width / cam->height;
-                sy = (1 - 2 * ((double)y + voxgi__rng_unit(&g)) / cam->height) * R->tan_half;
-                for (a = 0; a < 3; a++) { o[a] = R->eye[a]; d[a] = R->forward[a] + sx * R->right[a] + sy * R->up[a]; }
-                len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-                for (a = 0; a < 3; a++) d[a] /= len;
+                sx = x + voxgi__rng_unit(&g);
+                sy = (double)y + voxgi__rng_unit(&g);
+                voxgi__camera_ray(cam, R->forward, R->right, R->up, R->tan_half, sx, sy, d);
+                for (a = 0; a < 3; a++) o[a] = R->eye[a];
                 voxgi__path(R, o, d, &g, &rays, L);
                 for (a = 0; a < 3; a++) acc[a] += L[a];
             }
@@ -6573,37 +6636,19 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     voxgi__tracer tr;
     voxgi__render R;
     const voxgi_camera *cam;
-    double t0 = voxgi__now_ms(), len;
+    double t0 = voxgi__now_ms();
     size_t pixels, i;
-    int a, samples;
+    int samples;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
     if (info) memset(info, 0, sizeof *info);
     cam = &desc->camera;
-    if (cam->width < 1 || cam->height < 1 || cam->width > 65536 || cam->height > 65536)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d: each side must be 1..65536", cam->width, cam->height);
+    memset(&R, 0, sizeof R);
+    if ((r = voxgi__camera_frame(ctx, cam, R.eye, R.forward, R.right, R.up, &R.tan_half)) != VOXGI_OK) return r;
     pixels = (size_t)cam->width * (size_t)cam->height;
     if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (!(cam->fovy_degrees > 0 && cam->fovy_degrees < 180)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "fovy %g: it must lie in (0, 180) degrees", cam->fovy_degrees);
     if (desc->samples < 0 || desc->bounces < -1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d", desc->samples, desc->bounces);
-    memset(&R, 0, sizeof R);
-    for (a = 0; a < 3; a++) {
-        if (!isfinite(cam->eye[a]) || !isfinite(cam->target[a])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera is not finite");
-        R.eye[a] = cam->eye[a];
-        R.forward[a] = cam->target[a] - cam->eye[a];
-    }
-    len = sqrt(R.forward[0] * R.forward[0] + R.forward[1] * R.forward[1] + R.forward[2] * R.forward[2]);
-    if (!(len > 0) || sqrt(R.forward[0] * R.forward[0] + R.forward[2] * R.forward[2]) <= 1e-12 * len)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera looks along +-Y or at its own eye: up +Y leaves no view");
-    for (a = 0; a < 3; a++) R.forward[a] /= len;
-    R.right[0] = -R.forward[2]; R.right[1] = 0; R.right[2] = R.forward[0]; /* forward x (0, 1, 0) */
-    len = sqrt(R.right[0] * R.right[0] + R.right[2] * R.right[2]);
-    R.right[0] /= len; R.right[2] /= len;
-    R.up[0] = R.right[1] * R.forward[2] - R.right[2] * R.forward[1];
-    R.up[1] = R.right[2] * R.forward[0] - R.right[0] * R.forward[2];
-    R.up[2] = R.right[0] * R.forward[1] - R.right[1] * R.forward[0];
-    R.tan_half = tan(cam->fovy_degrees * 3.14159265358979323846 / 360);
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     R.ctx = ctx;
@@ -6758,27 +6803,33 @@ typedef struct voxgi__cone_job {
     double half_tan, step, offset, max_dist;
 } voxgi__cone_job;
 
-/* The radiance volume's sample at p (grid units) and lod along unit direction d. */
+/* A voxel's radiance premultiplied by its alpha: filtering premultiplied values lets empty
+   neighbours thin a sample's alpha without also darkening its colour. */
+static int voxgi__volume_fetch_premultiplied(const void *source, int k, const int v[3], float t[4])
+{
+    if (!voxgi__volume_fetch(source, k, v, t)) return 0;
+    t[0] *= t[3]; t[1] *= t[3]; t[2] *= t[3];
+    return 1;
+}
+
+/* The radiance volume's sample at p (grid units) and lod along unit direction d: filtered
+   premultiplied, returned as (radiance, alpha). */
 static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], const float p[3], float lod, float out[4])
 {
     voxgi__volume_source src;
     int ch, ax;
     src.vol = J->vol;
     src.w = 4;
-    if (J->dirs == 1) {
-        src.arr = J->vol->cpu[4][0];
-        voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, 4, J->vol->info.levels, p, lod, out);
-        return;
-    }
     for (ch = 0; ch < 4; ch++) out[ch] = 0;
-    for (ax = 0; ax < 3; ax++) { /* the travel direction's axis volumes, by squared components */
+    for (ax = 0; ax < 3; ax++) { /* isotropic: the one volume; else the travel direction's axis volumes, by squared components */
         float s[4];
-        double w = d[ax] * d[ax];
+        double w = J->dirs == 1 ? (ax == 0) : d[ax] * d[ax];
         if (w == 0) continue;
-        src.arr = J->vol->cpu[4][2 * ax + (d[ax] < 0)];
-        voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, 4, J->vol->info.levels, p, lod, s);
+        src.arr = J->vol->cpu[4][J->dirs == 1 ? 0 : 2 * ax + (d[ax] < 0)];
+        voxgi__sample_lod(voxgi__volume_fetch_premultiplied, NULL, &src, 4, J->vol->info.levels, p, lod, s);
         for (ch = 0; ch < 4; ch++) out[ch] += (float)(w * s[ch]);
     }
+    for (ch = 0; ch < 3; ch++) out[ch] = out[3] > 0 ? out[ch] / out[3] : 0;
 }
 
 static void voxgi__cone_range(void *user, size_t first, size_t end)
@@ -6853,6 +6904,169 @@ VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *
                                         : sqrt((double)g->res[0] * g->res[0] + (double)g->res[1] * g->res[1] + (double)g->res[2] * g->res[2]);
     voxgi__parallel(ctx, count, 64, voxgi__cone_range, &J);
     return VOXGI_OK;
+}
+
+typedef struct voxgi__vct_job {
+    const voxgi_vct_desc *desc;
+    const voxgi__tracer *tr;
+    const voxgi__lights *lights;
+    double eye[3], forward[3], right[3], up[3], tan_half;
+    float *pos, *nrm, *irr;       /* per pixel: the centre ray's surface and the cones' irradiance there */
+    uint32_t *prim;               /* per pixel: that surface's triangle (UINT32_MAX: none) */
+    float *rgb;
+    size_t rays;
+} voxgi__vct_job;
+
+static void voxgi__vct_gbuffer(void *user, size_t first, size_t end)
+{
+    voxgi__vct_job *J = (voxgi__vct_job *)user;
+    const voxgi_camera *cam = &J->desc->camera;
+    size_t y;
+    for (y = first; y < end; y++) {
+        int x, a;
+        for (x = 0; x < cam->width; x++) {
+            size_t pix = y * (size_t)cam->width + (size_t)x;
+            voxgi__hit h;
+            double d[3];
+            voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + 0.5, (double)y + 0.5, d);
+            J->prim[pix] = UINT32_MAX;
+            if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+            J->prim[pix] = h.prim;
+            for (a = 0; a < 3; a++) {
+                double n = J->tr->n[3 * (size_t)h.prim + (size_t)a];
+                J->pos[3 * pix + (size_t)a] = (float)h.p[a];
+                J->nrm[3 * pix + (size_t)a] = (float)(h.front ? n : -n);
+            }
+        }
+    }
+}
+
+static void voxgi__vct_shade(void *user, size_t first, size_t end)
+{
+    voxgi__vct_job *J = (voxgi__vct_job *)user;
+    const voxgi_camera *cam = &J->desc->camera;
+    int samples = J->desc->samples ? J->desc->samples : 16;
+    uint64_t rays = 0;
+    size_t y;
+    for (y = first; y < end; y++) {
+        int x, s, a;
+        for (x = 0; x < cam->width; x++) {
+            size_t pix = y * (size_t)cam->width + (size_t)x;
+            double L[3] = {0, 0, 0};
+            for (s = 0; s < samples; s++) { /* emission and direct light over the pixel's square */
+                voxgi__rng g;
+                voxgi__hit h;
+                double d[3], ns[3], e[3], off;
+                const voxgi_material *m;
+                voxgi__rng_seed(&g, J->desc->seed, pix, (uint64_t)s);
+                voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + voxgi__rng_unit(&g), (double)y + voxgi__rng_unit(&g), d);
+                ++rays;
+                if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+                m = voxgi__prim_material(J->tr, h.prim);
+                for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
+                off = 1e-9 * (1 + J->tr->scale);
+                for (a = 0; a < 3; a++) h.p[a] += off * ns[a];
+                voxgi__direct(J->lights, h.p, ns, h.prim, &g, 0, &rays, e);
+                for (a = 0; a < 3; a++)
+                    L[a] += ((h.front && !J->desc->hide_emitters ? m->emission[a] : 0) + m->albedo[a] / 3.14159265358979323846 * e[a]) / samples;
+            }
+            if (J->prim[pix] != UINT32_MAX) { /* the cones' light at the centre's surface */
+                const voxgi_material *m = voxgi__prim_material(J->tr, J->prim[pix]);
+                for (a = 0; a < 3; a++) L[a] += m->albedo[a] / 3.14159265358979323846 * J->irr[3 * pix + (size_t)a];
+            }
+            for (a = 0; a < 3; a++) J->rgb[3 * pix + (size_t)a] = (float)L[a];
+        }
+    }
+    VOXGI__ATOMIC_ADD_SIZE(&J->rays, (size_t)rays);
+}
+
+VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
+                                        voxgi_vct_info *info)
+{
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    voxgi__vct_job J;
+    voxgi_fit_desc fit;
+    voxgi_voxelize_desc xd;
+    voxgi_inject_desc id;
+    voxgi_voxels *vox = NULL;
+    voxgi_volume *vol = NULL;
+    voxgi_vct_info inf;
+    size_t pixels, i, n = 0;
+    double t0 = voxgi__now_ms(), t1;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
+    memset(&inf, 0, sizeof inf);
+    memset(&J, 0, sizeof J);
+    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
+    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
+    if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096)", desc->samples, desc->resolution);
+    if (ctx->backend != VOXGI_BACKEND_CPU) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "the cone-traced image runs on the CPU backend so far");
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
+    J.desc = desc;
+    J.tr = &tr;
+    J.lights = &Ls;
+    J.rgb = rgb;
+    J.pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    J.nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    J.irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 1);
+    J.prim = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
+    if (!J.pos || !J.nrm || !J.irr || !J.prim) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-pixel image", (unsigned long)pixels);
+    if (r == VOXGI_OK) voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__vct_gbuffer, &J);
+    if (r == VOXGI_OK && !desc->no_gi) {
+        memset(&fit, 0, sizeof fit);
+        memset(&xd, 0, sizeof xd);
+        memset(&id, 0, sizeof id);
+        fit.res = desc->resolution ? desc->resolution : 128;
+        fit.padding = 1;
+        xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+        id.volume.filter = desc->filter;
+        id.samples = desc->samples;
+        id.seed = desc->seed;
+        t1 = voxgi__now_ms();
+        r = voxgi_fit_grid(ctx, scene, &fit, &xd.grid);
+        if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &xd, &vox);
+        inf.ms_voxelize = voxgi__now_ms() - t1;
+        if (r == VOXGI_OK) { /* emission is left out: the pixels take it from the direct light */
+            inf.voxels = vox->info.voxel_count;
+            t1 = voxgi__now_ms();
+            r = voxgi_inject_light(ctx, scene, vox, &id, &vol);
+            inf.ms_inject = voxgi__now_ms() - t1;
+        }
+        for (i = 0; r == VOXGI_OK && i < pixels; i++) /* the surfaces the centre rays found, packed */
+            if (J.prim[i] != UINT32_MAX) {
+                memmove(J.pos + 3 * n, J.pos + 3 * i, 12);
+                memmove(J.nrm + 3 * n, J.nrm + 3 * i, 12);
+                n++;
+            }
+        t1 = voxgi__now_ms();
+        if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, vol, &desc->cones, n, J.pos, J.nrm, J.irr, NULL);
+        inf.ms_cones = voxgi__now_ms() - t1;
+        for (i = pixels; r == VOXGI_OK && i-- > 0;) /* unpack, from the back */
+            if (J.prim[i] != UINT32_MAX) {
+                n--;
+                memmove(J.irr + 3 * i, J.irr + 3 * n, 12);
+            } else J.irr[3 * i] = J.irr[3 * i + 1] = J.irr[3 * i + 2] = 0;
+    }
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK) voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__vct_shade, &J);
+    inf.ms_direct = voxgi__now_ms() - t1;
+    inf.ms = voxgi__now_ms() - t0;
+    if (info) *info = inf;
+    voxgi_volume_destroy(ctx, vol);
+    if (vox) voxgi_voxels_destroy(ctx, vox);
+    voxgi__free(ctx, J.pos);
+    voxgi__free(ctx, J.nrm);
+    voxgi__free(ctx, J.irr);
+    voxgi__free(ctx, J.prim);
+    voxgi__lights_free(ctx, &Ls);
+    voxgi__tracer_free(ctx, &tr);
+    return r;
 }
 
 /* ===================================================================== built-in scenes */

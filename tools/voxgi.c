@@ -944,7 +944,17 @@ static const char *render_help =
     "Kd is the albedo, Ke the emitted radiance) with the reference path tracer on the CPU. A PFM\n"
     "pixel is the mean linear radiance over the pixel's square; a PNG is that times --exposure,\n"
     "clamped and sRGB encoded.\n"
-    "  --method reference       the Monte Carlo path tracer (default)\n"
+    "  --method reference|vct   the Monte Carlo path tracer (default), or voxel cone tracing: direct\n"
+    "                           light through shadow rays plus one bounce gathered by cones from\n"
+    "                           the voxels (CPU)\n"
+    "  --res N                  vct: voxels along the scene's longest side (default 128)\n"
+    "  --cones N                vct: diffuse cones (default 16)\n"
+    "  --step S                 vct: step as a fraction of the cone diameter (default 0.5)\n"
+    "  --anisotropic            vct: six-direction mips (default isotropic)\n"
+    "  --no-gi                  vct: direct light only\n"
+    "  --compare SPP            also render the reference (same bounces) with SPP samples per pixel and\n"
+    "                           print the relative RMSE of the lighting (both without the emitters the\n"
+    "                           camera sees) and both times; the image written is the one with them\n"
     "  --bounces B              indirect bounces: 0 = direct light only, -1 = unlimited (default 1)\n"
     "  --spp S                  samples per pixel (default 64)\n"
     "  --seed N                 random seed (default 1); the same seed gives the same image\n"
@@ -959,7 +969,10 @@ static const char *render_help =
 static int cmd_render(int argc, char **argv)
 {
     const char *what = NULL, *out_path = NULL;
-    int json = 0, threads = 0, i, rc = 1, have_camera = 0, w = 256, h = 256, have_sun = 0;
+    int json = 0, threads = 0, i, rc = 1, have_camera = 0, w = 256, h = 256, have_sun = 0, vct = 0, compare = 0, spp_given = 0;
+    voxgi_vct_desc vd;
+    voxgi_vct_info vinfo;
+    double rmse = -1, ref_ms = 0;
     double cam[7], sun[4], exposure = 1;
     voxgi_reference_desc d;
     voxgi_reference_info info;
@@ -973,6 +986,8 @@ static int cmd_render(int argc, char **argv)
     float *rgb = NULL;
     char why[512] = "";
     memset(&d, 0, sizeof d);
+    memset(&vd, 0, sizeof vd);
+    memset(&vinfo, 0, sizeof vinfo);
     memset(&bs, 0, sizeof bs);
     memset(&tm, 0, sizeof tm);
     d.bounces = 1;
@@ -981,9 +996,25 @@ static int cmd_render(int argc, char **argv)
     for (i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(render_help, stdout); return 0; }
-        else if (strcmp(a, "--method") == 0 && i + 1 < argc) { if (strcmp(argv[++i], "reference") != 0) return bad_arg("render", "--method is reference"); }
+        else if (strcmp(a, "--method") == 0 && i + 1 < argc) {
+            const char *m = argv[++i];
+            if (strcmp(m, "reference") == 0) vct = 0;
+            else if (strcmp(m, "vct") == 0) vct = 1;
+            else return bad_arg("render", "--method is reference or vct");
+        } else if (strcmp(a, "--res") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 4096, &vd.resolution)) return bad_arg("render", "--res needs 1..4096"); }
+        else if (strcmp(a, "--cones") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 1024, &vd.cones.cones)) return bad_arg("render", "--cones needs 1..1024"); }
+        else if (strcmp(a, "--step") == 0 && i + 1 < argc) {
+            double st;
+            if (!parse_double(argv[++i], &st) || !(st > 0 && st <= 4)) return bad_arg("render", "--step needs (0, 4]");
+            vd.cones.step = (float)st;
+        } else if (strcmp(a, "--anisotropic") == 0) vd.filter = VOXGI_MIPS_ANISOTROPIC;
+        else if (strcmp(a, "--no-gi") == 0) vd.no_gi = 1;
+        else if (strcmp(a, "--compare") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 1 << 24, &compare)) return bad_arg("render", "--compare needs 1..16777216"); }
         else if (strcmp(a, "--bounces") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], -1, 1000, &d.bounces)) return bad_arg("render", "--bounces needs -1..1000"); }
-        else if (strcmp(a, "--spp") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 1 << 24, &d.samples)) return bad_arg("render", "--spp needs 1..16777216"); }
+        else if (strcmp(a, "--spp") == 0 && i + 1 < argc) {
+            if (!parse_int(argv[++i], 1, 1 << 24, &d.samples)) return bad_arg("render", "--spp needs 1..16777216");
+            spp_given = 1;
+        }
         else if (strcmp(a, "--seed") == 0 && i + 1 < argc) { int s; if (!parse_int(argv[++i], 0, 2147483647, &s)) return bad_arg("render", "--seed needs 0..2^31-1"); d.seed = (uint64_t)s; }
         else if (strcmp(a, "--camera") == 0 && i + 7 < argc) {
             int k;
@@ -1046,9 +1077,43 @@ static int cmd_render(int argc, char **argv)
     }
     rgb = (float *)malloc((size_t)w * (size_t)h * 12);
     if (!rgb) { fprintf(stderr, "voxgi render: out of memory\n"); goto done; }
-    if (voxgi_reference_render(ctx, scene, &d, rgb, (size_t)w * (size_t)h * 12, &info) != VOXGI_OK) {
+    memset(&info, 0, sizeof info);
+    if (vct) { /* the same view and seed; the direct light takes --spp rays per pixel (default 16) */
+        vd.camera = d.camera;
+        vd.seed = d.seed;
+        vd.samples = spp_given ? d.samples : 16;
+        if (vd.no_gi) d.bounces = 0; /* what it is compared against */
+        else d.bounces = 1;
+    }
+    if (vct ? voxgi_vct_render(ctx, scene, &vd, rgb, (size_t)w * (size_t)h * 12, &vinfo) != VOXGI_OK
+            : voxgi_reference_render(ctx, scene, &d, rgb, (size_t)w * (size_t)h * 12, &info) != VOXGI_OK) {
         fprintf(stderr, "voxgi render: %s\n", voxgi_last_error(ctx));
         goto done;
+    }
+    if (compare) { /* relative RMSE of the lighting: the RMS difference over every pixel and channel / the reference's mean, both
+                      rendered without the emitters the camera sees (the same in both but for the noise at their edges,
+                      which would swamp the lighting) */
+        float *ref = (float *)malloc((size_t)w * (size_t)h * 24), *mine = ref ? ref + (size_t)w * (size_t)h * 3 : NULL;
+        voxgi_reference_desc rd = d;
+        voxgi_reference_info ri;
+        double sq = 0, sum = 0;
+        size_t p;
+        voxgi_vct_desc vh = vd;
+        voxgi_reference_desc dh = d;
+        rd.samples = compare;
+        rd.seed = d.seed + 1000003; /* independent of the image's own noise */
+        rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = 1;
+        if (!ref || voxgi_reference_render(ctx, scene, &rd, ref, (size_t)w * (size_t)h * 12, &ri) != VOXGI_OK ||
+            (vct ? voxgi_vct_render(ctx, scene, &vh, mine, (size_t)w * (size_t)h * 12, NULL)
+                 : voxgi_reference_render(ctx, scene, &dh, mine, (size_t)w * (size_t)h * 12, NULL)) != VOXGI_OK) {
+            fprintf(stderr, "voxgi render: the reference: %s\n", ref ? voxgi_last_error(ctx) : "out of memory");
+            free(ref);
+            goto done;
+        }
+        for (p = 0; p < (size_t)w * (size_t)h * 3; p++) { sq += ((double)mine[p] - ref[p]) * ((double)mine[p] - ref[p]); sum += ref[p]; }
+        rmse = sqrt(sq / ((double)w * h * 3)) / (sum / ((double)w * h * 3));
+        ref_ms = ri.ms_bvh + ri.ms_render;
+        free(ref);
     }
     if ((strstr(out_path, ".pfm") ? vxt_write_pfm(out_path, rgb, w, h) : vxt_write_png(out_path, rgb, w, h, (float)exposure)) != 0) {
         fprintf(stderr, "voxgi render: cannot write %s\n", out_path);
@@ -1059,7 +1124,23 @@ static int cmd_render(int argc, char **argv)
         size_t p;
         for (p = 0; p < (size_t)w * (size_t)h; p++) for (i = 0; i < 3; i++) mean[i] += rgb[3 * p + (size_t)i];
         for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
-        if (json)
+        if (vct) {
+            if (json)
+                printf("{\"scene\":\"%s\",\"method\":\"vct\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
+                       "\"inject_ms\":%.3f,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"rel_rmse\":%.6g,"
+                       "\"reference_ms\":%.3f,\"output\":\"%s\"}\n",
+                       what, w, h, vd.resolution ? vd.resolution : 128, vd.cones.cones ? vd.cones.cones : 16, !vd.no_gi, (unsigned long long)vinfo.voxels,
+                       vinfo.ms_voxelize, vinfo.ms_inject, vinfo.ms_cones, vinfo.ms_direct, vinfo.ms, mean[0], mean[1], mean[2], rmse, ref_ms, out_path);
+            else {
+                printf("%s: %d x %d cone-traced (CPU), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, cones %.1f ms, direct light %.1f ms, "
+                       "total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
+                       what, w, h, (unsigned long long)vinfo.voxels, vinfo.ms_voxelize, vinfo.ms_inject, vinfo.ms_cones, vinfo.ms_direct, vinfo.ms, mean[0],
+                       mean[1], mean[2], out_path);
+                if (compare)
+                    printf("against the reference (%d bounce%s, %d spp, %.1f ms): relative RMSE %.2f%%\n", d.bounces, d.bounces == 1 ? "" : "s",
+                           compare, ref_ms, 100 * rmse);
+            }
+        } else if (json)
             printf("{\"scene\":\"%s\",\"method\":\"reference\",\"size\":[%d,%d],\"spp\":%d,\"bounces\":%d,\"seed\":%llu,\"triangles\":%lu,"
                    "\"bvh_nodes\":%lu,\"rays\":%llu,\"bvh_ms\":%.3f,\"render_ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"output\":\"%s\"}\n",
                    what, w, h, d.samples, d.bounces, (unsigned long long)d.seed, (unsigned long)info.triangles, (unsigned long)info.bvh_nodes,
