@@ -6,3 +6,13 @@ float voxgi_lod_from_footprint(float diameter)
 {
     return diameter > 1.0 ? log2(diameter) : 0.0;
 }
+
+// Sampling an attribute volume: p in grid units of level 0, lod in levels; the texture's base
+// size is `size` (the grid rounded up so GL's mip chain holds every level; the padding is
+// empty), filtering LINEAR_MIPMAP_LINEAR with an empty border: trilinear between voxel centres,
+// linear between levels, as voxgi__sample_level on the CPU.
+vec4 voxgi_sample_volume(sampler3D volume, vec3 p, float lod, vec3 size, float max_lod)
+{
+    return textureLod(volume, p / size, clamp(lod, 0.0, max_lod));
+}
+

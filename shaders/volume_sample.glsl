@@ -1,15 +1,5 @@
-// Sampling an attribute volume (voxgi.h, part "attribute volumes and mipmaps"): the function the
-// lighting passes use, and a compute pass that applies it to a list of points (voxgi_volume_sample
-// on GL). p in grid units of level 0, lod in levels; the texture's base size is u_size (the
-// grid rounded up so GL's mip chain holds every level; the padding is empty), filtering
-// LINEAR_MIPMAP_LINEAR with an empty border: trilinear between voxel centres, linear between
-// levels, as voxgi__sample_level on the CPU.
-vec4 voxgi_sample_volume(sampler3D volume, vec3 p, float lod, vec3 size, float max_lod)
-{
-    return textureLod(volume, p / size, clamp(lod, 0.0, max_lod));
-}
-
-#ifdef VOXGI_COMPUTE
+// voxgi_volume_sample on GL (voxgi.h, part "attribute volumes and mipmaps"): sampling.glsl's
+// voxgi_sample_volume applied to a list of points.
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(binding = 0) uniform sampler3D u_volume;
 layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };  // xyz, lod
@@ -24,4 +14,3 @@ void main()
     if (i >= u_count) return;
     samples[i] = voxgi_sample_volume(u_volume, points[i].xyz, points[i].w, u_size, u_max_lod);
 }
-#endif

@@ -1019,6 +1019,81 @@ static void test_gl_shader_error_mapping(void)
     voxgi_destroy(ctx);
 }
 
+/* Cone tracing on GL (a compute pass, hardware filtering of premultiplied radiance) against the
+   CPU's march over the same voxels: the Cornell box voxelized and lit on each backend (the
+   voxels and the injected light are equal, the mips equal to float rounding), then the same
+   points traced, and the whole cone-traced image rendered on both; isotropic and anisotropic. */
+static void test_gl_cone_tracing_equals_cpu(void)
+{
+    enum { N = 300, W = 20 };
+    voxgi_context *ctx[2];
+    voxgi_builtin_scene bs;
+    float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], *img[2];
+    double worst_irr = 0, worst_occ = 0, worst_img = 0, mean_irr = 0, mean_img = 0;
+    int b, f, i, a;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL);
+    TH_CHECK(voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs) == VOXGI_OK, "scene");
+    srand(5);
+    for (i = 0; i < N; i++) { /* inside the box (0..0.556 m), any direction */
+        double len = 0;
+        for (a = 0; a < 3; a++) {
+            pos[3 * i + a] = (float)(0.03 + 0.5 * rand() / RAND_MAX);
+            nrm[3 * i + a] = (float)(2.0 * rand() / RAND_MAX - 1);
+            len += nrm[3 * i + a] * nrm[3 * i + a];
+        }
+        if (len < 1e-4) nrm[3 * i + 1] = 1;
+    }
+    img[0] = (float *)malloc(W * W * 12);
+    img[1] = (float *)malloc(W * W * 12);
+    for (f = 0; f < 2; f++) {
+        for (b = 0; b < 2; b++) {
+            voxgi_fit_desc fit;
+            voxgi_voxelize_desc xd;
+            voxgi_inject_desc id;
+            voxgi_cone_desc cd;
+            voxgi_vct_desc vd;
+            voxgi_voxels *vx = NULL;
+            voxgi_volume *vol = NULL;
+            memset(&fit, 0, sizeof fit);
+            memset(&xd, 0, sizeof xd);
+            memset(&id, 0, sizeof id);
+            memset(&cd, 0, sizeof cd);
+            memset(&vd, 0, sizeof vd);
+            fit.res = 32;
+            fit.padding = 1;
+            xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+            id.volume.filter = (voxgi_mip_filter)f;
+            id.samples = 4;
+            TH_CHECK(voxgi_fit_grid(ctx[b], &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx[b], &bs.scene, &xd, &vx) == VOXGI_OK &&
+                     voxgi_inject_light(ctx[b], &bs.scene, vx, &id, &vol) == VOXGI_OK &&
+                     voxgi_cone_trace(ctx[b], vol, &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK, "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
+            voxgi_volume_destroy(ctx[b], vol);
+            voxgi_voxels_destroy(ctx[b], vx);
+            vd.camera = bs.camera;
+            vd.camera.width = vd.camera.height = W;
+            vd.resolution = 32;
+            vd.samples = 2;
+            vd.filter = (voxgi_mip_filter)f;
+            TH_CHECK(voxgi_vct_render(ctx[b], &bs.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx[b]));
+        }
+        for (i = 0; i < 3 * N; i++) { worst_irr = fmax(worst_irr, fabs(irr[0][i] - irr[1][i])); mean_irr += irr[0][i] / (6.0 * N); }
+        for (i = 0; i < N; i++) worst_occ = fmax(worst_occ, fabs(occ[0][i] - occ[1][i]));
+        for (i = 0; i < 3 * W * W; i++) { worst_img = fmax(worst_img, fabs(img[0][i] - img[1][i])); mean_img += img[0][i] / (6.0 * W * W); }
+    }
+    printf("    GL cone tracing vs CPU: irradiance within %.3g (mean %.3g), occlusion within %.3g, image within %.3g (mean %.3g)\n", worst_irr,
+           mean_irr, worst_occ, worst_img, mean_img);
+    TH_CHECK(mean_irr > 0.05 && worst_irr <= 1e-3 * mean_irr, "irradiance differs by %g (mean %g)", worst_irr, mean_irr);
+    TH_CHECK(worst_occ <= 1e-3, "occlusion differs by %g", worst_occ);
+    TH_CHECK(worst_img <= 1e-3 * mean_img, "image differs by %g (mean %g)", worst_img, mean_img);
+    free(img[0]);
+    free(img[1]);
+    voxgi_builtin_scene_destroy(ctx[0], &bs);
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
 int main(void)
 {
     vxt_gl_kind kind = VXT_GL_AUTO;
@@ -1039,6 +1114,7 @@ int main(void)
     TH_RUN(test_gl_volume_mips_equal_cpu);
     TH_RUN(test_gl_volume_sampling_equals_cpu);
     TH_RUN(test_gl_svo_equals_cpu);
+    TH_RUN(test_gl_cone_tracing_equals_cpu);
     TH_RUN(test_gl_raster_volume_buffer);
     TH_RUN(test_gl_raster_attributes_equal_cpu);
     TH_RUN(test_gl_interop_and_backends);

@@ -946,7 +946,10 @@ static const char *render_help =
     "clamped and sRGB encoded.\n"
     "  --method reference|vct   the Monte Carlo path tracer (default), or voxel cone tracing: direct\n"
     "                           light through shadow rays plus one bounce gathered by cones from\n"
-    "                           the voxels (CPU)\n"
+    "                           the voxels\n"
+    "  --backend auto|cpu|gl    vct: where voxelization, mips and cones run (default auto: GL when a\n"
+    "                           headless GL 4.5 context works); the reference runs on the CPU\n"
+    "  --gl auto|egl|osmesa     which headless GL to try\n"
     "  --res N                  vct: voxels along the scene's longest side (default 128)\n"
     "  --cones N                vct: diffuse cones (default 16)\n"
     "  --step S                 vct: step as a fraction of the cone diameter (default 0.5)\n"
@@ -970,6 +973,9 @@ static int cmd_render(int argc, char **argv)
 {
     const char *what = NULL, *out_path = NULL;
     int json = 0, threads = 0, i, rc = 1, have_camera = 0, w = 256, h = 256, have_sun = 0, vct = 0, compare = 0, spp_given = 0;
+    voxgi_backend backend = VOXGI_BACKEND_AUTO;
+    vxt_gl_kind kind = VXT_GL_AUTO;
+    voxgi_info ci;
     voxgi_vct_desc vd;
     voxgi_vct_info vinfo;
     double rmse = -1, ref_ms = 0;
@@ -1030,6 +1036,8 @@ static int cmd_render(int argc, char **argv)
         } else if (strcmp(a, "--exposure") == 0 && i + 1 < argc) { if (!parse_double(argv[++i], &exposure) || !(exposure >= 0)) return bad_arg("render", "--exposure needs a number >= 0"); }
         else if (strcmp(a, "--threads") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 256, &threads)) return bad_arg("render", "--threads needs 1..256"); }
         else if (strcmp(a, "--json") == 0) json = 1;
+        else if (strcmp(a, "--backend") == 0 && i + 1 < argc) { if (!parse_backend(argv[++i], &backend)) return bad_arg("render", "--backend is auto, cpu or gl"); }
+        else if (strcmp(a, "--gl") == 0 && i + 1 < argc) { if (vxt_gl_kind_parse(argv[++i], &kind) != 0) return bad_arg("render", "--gl is auto, egl or osmesa"); }
         else if (strcmp(a, "-o") == 0 && i + 1 < argc) out_path = argv[++i];
         else if (a[0] == '-') return bad_arg("render", "unknown option or missing value");
         else if (!what) what = a;
@@ -1037,8 +1045,9 @@ static int cmd_render(int argc, char **argv)
     }
     if (!what) return bad_arg("render", "no scene or mesh given");
     if (!out_path || (!strstr(out_path, ".png") && !strstr(out_path, ".pfm"))) return bad_arg("render", "-o OUT.png or OUT.pfm is needed");
-    ctx = make_context(VOXGI_BACKEND_CPU, VXT_GL_AUTO, threads, !json && isatty(2), &gl, why, sizeof why);
+    ctx = make_context(vct ? backend : VOXGI_BACKEND_CPU, kind, threads, !json && isatty(2), &gl, why, sizeof why);
     if (!ctx) { fprintf(stderr, "voxgi render: %s\n", why); return 1; }
+    voxgi_query_info(ctx, &ci);
     if (strchr(what, '.') == NULL && strncmp(what, "builtin:", 8) != 0) { /* a built-in scene */
         if (voxgi_builtin_scene_create(ctx, what, &bs) != VOXGI_OK) { fprintf(stderr, "voxgi render: %s\n", voxgi_last_error(ctx)); goto done; }
         scene = &bs.scene;
@@ -1126,15 +1135,16 @@ static int cmd_render(int argc, char **argv)
         for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
         if (vct) {
             if (json)
-                printf("{\"scene\":\"%s\",\"method\":\"vct\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
+                printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
                        "\"inject_ms\":%.3f,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"rel_rmse\":%.6g,"
                        "\"reference_ms\":%.3f,\"output\":\"%s\"}\n",
-                       what, w, h, vd.resolution ? vd.resolution : 128, vd.cones.cones ? vd.cones.cones : 16, !vd.no_gi, (unsigned long long)vinfo.voxels,
+                       what, voxgi_backend_name(ci.backend), w, h, vd.resolution ? vd.resolution : 128, vd.cones.cones ? vd.cones.cones : 16, !vd.no_gi, (unsigned long long)vinfo.voxels,
                        vinfo.ms_voxelize, vinfo.ms_inject, vinfo.ms_cones, vinfo.ms_direct, vinfo.ms, mean[0], mean[1], mean[2], rmse, ref_ms, out_path);
             else {
-                printf("%s: %d x %d cone-traced (CPU), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, cones %.1f ms, direct light %.1f ms, "
+                printf("%s: %d x %d cone-traced (%s%s%s), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, cones %.1f ms, direct light %.1f ms, "
                        "total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-                       what, w, h, (unsigned long long)vinfo.voxels, vinfo.ms_voxelize, vinfo.ms_inject, vinfo.ms_cones, vinfo.ms_direct, vinfo.ms, mean[0],
+                       what, w, h, voxgi_backend_name(ci.backend), ci.backend == VOXGI_BACKEND_GL ? ", " : "",
+                       ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "", (unsigned long long)vinfo.voxels, vinfo.ms_voxelize, vinfo.ms_inject, vinfo.ms_cones, vinfo.ms_direct, vinfo.ms, mean[0],
                        mean[1], mean[2], out_path);
                 if (compare)
                     printf("against the reference (%d bounce%s, %d spp, %.1f ms): relative RMSE %.2f%%\n", d.bounces, d.bounces == 1 ? "" : "s",

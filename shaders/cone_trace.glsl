@@ -1,0 +1,67 @@
+// Diffuse cone tracing over a RADIANCE volume (voxgi.h, part "light injection and cone
+// tracing"): voxgi_cone_trace on GL, the march of voxgi__cone_range step for step, with the
+// textures' own filtering (the radiance is stored premultiplied, so linear filtering is right).
+layout(local_size_x = VOXGI_LOCAL_SIZE) in;
+// isotropic: u_rad0; anisotropic: one texture per direction of travel, +x -x +y -y +z -z
+layout(binding = 0) uniform sampler3D u_rad0;
+layout(binding = 1) uniform sampler3D u_rad1;
+layout(binding = 2) uniform sampler3D u_rad2;
+layout(binding = 3) uniform sampler3D u_rad3;
+layout(binding = 4) uniform sampler3D u_rad4;
+layout(binding = 5) uniform sampler3D u_rad5;
+layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };   // 2 per point: position (grid units), unit normal
+layout(std430, binding = 1) writeonly buffer Gathered { vec4 gathered[]; }; // irradiance, occlusion
+uniform uint u_first;
+uniform uint u_count;
+uniform vec3 u_size;      // the textures' base size
+uniform int u_levels;
+uniform int u_anisotropic;
+uniform int u_cones;
+uniform float u_half_tan;
+uniform float u_step;
+uniform float u_offset;
+uniform float u_max_distance;
+
+vec4 cone_sample(vec3 d, vec3 p, float lod)
+{
+    float m = float(u_levels - 1);
+    vec4 s;
+    if (u_anisotropic == 0) s = voxgi_sample_volume(u_rad0, p, lod, u_size, m);
+    else { // the axis volumes along the travel direction, weighted by its squared components
+        vec3 w = d * d;
+        s = w.x * (d.x < 0.0 ? voxgi_sample_volume(u_rad1, p, lod, u_size, m) : voxgi_sample_volume(u_rad0, p, lod, u_size, m)) +
+            w.y * (d.y < 0.0 ? voxgi_sample_volume(u_rad3, p, lod, u_size, m) : voxgi_sample_volume(u_rad2, p, lod, u_size, m)) +
+            w.z * (d.z < 0.0 ? voxgi_sample_volume(u_rad5, p, lod, u_size, m) : voxgi_sample_volume(u_rad4, p, lod, u_size, m));
+    }
+    return vec4(s.a > 0.0 ? s.rgb / s.a : vec3(0.0), s.a);
+}
+
+void main()
+{
+    uint i = u_first + gl_GlobalInvocationID.x;
+    if (i >= u_count) return;
+    vec3 o = points[2u * i].xyz, n = points[2u * i + 1u].xyz;
+    float sgn = n.z >= 0.0 ? 1.0 : -1.0, ba = -1.0 / (sgn + n.z), bc = n.x * n.y * ba; // voxgi__basis
+    vec3 t3 = vec3(1.0 + sgn * n.x * n.x * ba, sgn * bc, -sgn * n.x), b3 = vec3(bc, sgn + n.y * n.y * ba, -n.y);
+    vec3 e = vec3(0.0);
+    float occ = 0.0;
+    for (int k = 0; k < u_cones; k++) {
+        float r = sqrt((float(k) + 0.5) / float(u_cones)), phi = 2.399963229728653 * float(k);
+        vec3 l = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - r * r)));
+        float tan_k = min(u_half_tan, l.z / 3.0), t = u_offset, A = 0.0;
+        vec3 d = l.x * t3 + l.y * b3 + l.z * n, C = vec3(0.0);
+        while (t < u_max_distance && A < 0.99) {
+            float diam = max(1.0, 2.0 * t * tan_k), h = u_offset + (t - u_offset) * l.z;
+            vec3 p = o + u_offset * n + (t - u_offset) * d;
+            float lod = min(min(log2(diam), log2(h / 1.5) - 1.0), float(u_levels - 1));
+            vec4 s = cone_sample(d, p, lod);
+            float ap = 1.0 - pow(1.0 - min(1.0, s.a * exp2(max(lod, 0.0))), u_step);
+            C += (1.0 - A) * ap * s.rgb;
+            A += (1.0 - A) * ap;
+            t += u_step * diam;
+        }
+        e += 3.14159265358979323846 / float(u_cones) * C;
+        occ += A / float(u_cones);
+    }
+    gathered[i] = vec4(e, occ);
+}
