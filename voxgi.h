@@ -6441,9 +6441,10 @@ static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const doub
    UINT32_MAX) from every light and one sampled point on the emissive triangles; the reflected
    radiance is albedo / pi * E. With mis, the emitters' share carries the power-heuristic weight
    against a cosine-sampled bounce finding them (the path tracer's other half), which keeps the
-   variance finite where emitters meet at concave edges. */
+   variance finite where emitters meet at concave edges. xi: a 2D sample in [0,1)^2 for the
+   points on area lights and emitters (stratified callers), or NULL to draw from g. */
 static void voxgi__direct(const voxgi__lights *R, const double p[3], const double ns[3], uint32_t prim, voxgi__rng *g, int mis_weighted,
-                          uint64_t *rays, double e[3])
+                          const double *xi, uint64_t *rays, double e[3])
 {
     const voxgi__tracer *tr = R->tr;
     size_t li;
@@ -6459,7 +6460,7 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
         } else {
             double area = 1, cos_l = 1;
             if (L->type == VOXGI_LIGHT_RECT) {
-                double u = voxgi__rng_unit(g), v = voxgi__rng_unit(g), n[3];
+                double u = xi ? xi[0] : voxgi__rng_unit(g), v = xi ? xi[1] : voxgi__rng_unit(g), n[3];
                 for (a = 0; a < 3; a++) q[a] = L->position[a] + u * L->edge_u[a] + v * L->edge_v[a];
                 for (a = 0; a < 3; a++) n[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
                 area = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -6490,7 +6491,7 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
         for (a = 0; a < 3; a++) e[a] += L->intensity[a] * w * cos_s;
     }
     if (R->emitter_count) { /* one emissive triangle by power, one uniform point on it */
-        double u = voxgi__rng_unit(g) * R->emitter_cdf[R->emitter_count - 1], b1, b2, r1, q[3], dir[3], dist2, dist, cos_s, cos_l;
+        double u = (xi ? xi[0] : voxgi__rng_unit(g)) * R->emitter_cdf[R->emitter_count - 1], b1, b2, r1, q[3], dir[3], dist2, dist, cos_s, cos_l, below;
         size_t lo = 0, hi = R->emitter_count - 1;
         uint32_t k;
         const double *v, *n;
@@ -6499,9 +6500,10 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
         k = R->emitters[lo];
         v = tr->v + 9 * (size_t)k;
         n = tr->n + 3 * (size_t)k;
-        r1 = sqrt(voxgi__rng_unit(g));
+        below = lo ? R->emitter_cdf[lo - 1] : 0; /* with xi, the pick's remainder is the first coordinate on the triangle */
+        r1 = sqrt(xi ? VOXGI__MIN(1.0, VOXGI__MAX(0.0, (u - below) / (R->emitter_cdf[lo] - below))) : voxgi__rng_unit(g));
         b1 = 1 - r1;
-        b2 = r1 * voxgi__rng_unit(g);
+        b2 = r1 * (xi ? xi[1] : voxgi__rng_unit(g));
         for (a = 0; a < 3; a++) {
             q[a] = v[a] + b1 * (v[3 + a] - v[a]) + b2 * (v[6 + a] - v[a]);
             dir[a] = q[a] - p[a];
@@ -6549,7 +6551,7 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
             for (a = 0; a < 3; a++) out[a] += T[a] * mis * m->emission[a];
         }
         if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
-        voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, rays, e);
+        voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, NULL, rays, e);
         for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / 3.14159265358979323846 * e[a];
         for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
         if (bounces < 0 && depth >= 2) { /* Russian roulette */
@@ -6721,7 +6723,7 @@ static void voxgi__inject_range(void *user, size_t first, size_t end)
                 voxgi__rng rng;
                 double es[3];
                 voxgi__rng_seed(&rng, J->desc->seed, l, (uint64_t)s);
-                voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, &rays, es);
+                voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, NULL, &rays, es);
                 for (a = 0; a < 3; a++) e[a] += es[a] / samples;
             }
         } /* else: opposite surfaces cancelled the normal; the voxel only emits */
@@ -7025,20 +7027,27 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
         for (x = 0; x < cam->width; x++) {
             size_t pix = y * (size_t)cam->width + (size_t)x;
             double L[3] = {0, 0, 0};
+            double rot[4];
+            voxgi__rng g;
+            voxgi__rng_seed(&g, J->desc->seed, pix, 0);
+            for (a = 0; a < 4; a++) rot[a] = voxgi__rng_unit(&g);
             for (s = 0; s < samples; s++) { /* emission and direct light over the pixel's square */
-                voxgi__rng g;
                 voxgi__hit h;
-                double d[3], ns[3], e[3], off;
+                double d[3], ns[3], e[3], off, u[4];
                 const voxgi_material *m;
-                voxgi__rng_seed(&g, J->desc->seed, pix, (uint64_t)s);
-                voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + voxgi__rng_unit(&g), (double)y + voxgi__rng_unit(&g), d);
+                for (a = 0; a < 4; a++) { /* stratified: the 4D Kronecker sequence (pixel square x light), randomly shifted per pixel */
+                    static const double alpha[4] = {0.8566748838545029, 0.7338918566271260, 0.6287067210378087, 0.5385972572236101};
+                    u[a] = rot[a] + (s + 1) * alpha[a];
+                    u[a] -= floor(u[a]);
+                }
+                voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + u[0], (double)y + u[1], d);
                 ++rays;
                 if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
                 m = voxgi__prim_material(J->tr, h.prim);
                 for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
                 off = 1e-9 * (1 + J->tr->scale);
                 for (a = 0; a < 3; a++) h.p[a] += off * ns[a];
-                voxgi__direct(J->lights, h.p, ns, h.prim, &g, 0, &rays, e);
+                voxgi__direct(J->lights, h.p, ns, h.prim, &g, 0, u + 2, &rays, e);
                 for (a = 0; a < 3; a++)
                     L[a] += ((h.front && !J->desc->hide_emitters ? m->emission[a] : 0) + m->albedo[a] / 3.14159265358979323846 * e[a]) / samples;
             }
@@ -7312,7 +7321,7 @@ VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char
         voxgi__view(&out->camera, 0, 2.2, -4.5, 0, 0.5, 0.3, 45);
     } else if (which == 2) { /* a closed box, lights and a lit ground outside */
         double lo[3] = {-0.5, 0, -0.5}, hi[3] = {0.5, 1, 0.5}, up[3] = {0, 1, 0};
-        static const double ground[4][3] = {{-20, -0.01, -20}, {20, -0.01, -20}, {20, -0.01, 20}, {-20, -0.01, 20}};
+        static const double ground[4][3] = {{-2, -0.01, -2}, {2, -0.01, -2}, {2, -0.01, 2}, {-2, -0.01, 2}};
         voxgi__material_set(&b->materials[0], 0.8f, 0.8f, 0.8f, 0, 0, 0);
         voxgi__builtin_box(b, lo, hi, 0, 1);
         voxgi__builtin_quad(b, ground, 0, up, 0);

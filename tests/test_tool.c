@@ -54,7 +54,7 @@ static void write_file(const char *name, const char *text, char *path, size_t pa
 static void test_help_everywhere(void)
 {
     static char out[8192];
-    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "svo --help", "render --help"};
+    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "svo --help", "render --help", "report --help", "report vct --help"};
     size_t i;
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         int rc = run(cmds[i], out, sizeof out);
@@ -246,6 +246,71 @@ static void test_render_command(void)
     voxgi_destroy(ctx);
 }
 
+/* voxgi render --method vct writes what voxgi_vct_render gives with the same settings, bit for
+   bit; voxgi report vct writes its table, CSV (a row per configuration, one on the Pareto front
+   at least) and SVG. */
+static void test_vct_and_report_commands(void)
+{
+    static char out[16384];
+    char pfm[512], args[1400], path[600];
+    voxgi_context *ctx = NULL;
+    voxgi_desc d;
+    voxgi_builtin_scene bs;
+    voxgi_vct_desc vd;
+    float want[8 * 8 * 3], got[8 * 8 * 3];
+    FILE *f;
+    int w = 0, h = 0, y, rows = 0, front = 0;
+    snprintf(pfm, sizeof pfm, "%s/v.pfm", tmpdir);
+    snprintf(args, sizeof args, "render cornell-box --method vct --backend cpu --res 16 --cones 6 --size 8 8 --spp 2 --json -o %s", pfm);
+    TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "voxels") > 0 && strstr(out, "\"backend\":\"cpu\""), "vct render: %s", out);
+    memset(&d, 0, sizeof d);
+    d.backend = VOXGI_BACKEND_CPU;
+    voxgi_create(&d, &ctx);
+    voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
+    memset(&vd, 0, sizeof vd);
+    vd.camera = bs.camera;
+    vd.camera.width = vd.camera.height = 8;
+    vd.resolution = 16;
+    vd.cones.cones = 6;
+    vd.samples = 2;
+    vd.seed = 1;
+    TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, want, sizeof want, NULL) == VOXGI_OK, "library vct render");
+    f = fopen(pfm, "rb");
+    TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
+    if (f) {
+        for (y = 7; y >= 0; y--) TH_CHECK(fread(got + 3 * 8 * y, 4, 24, f) == 24, "PFM rows");
+        fclose(f);
+        TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's cone-traced render");
+    }
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+    snprintf(args, sizeof args, "report vct --scenes cornell-box --size 8 --spp 64 --res 8,16 --cones 4 --steps 1 --filters isotropic --backend cpu --out %s/rep", tmpdir);
+    TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "vct.svg"), "report: %s", out);
+    snprintf(path, sizeof path, "%s/rep/vct.csv", tmpdir);
+    if ((f = fopen(path, "r")) != NULL) {
+        char line[1024];
+        while (fgets(line, sizeof line, f)) {
+            size_t n = strlen(line);
+            if (strncmp(line, "cornell-box,", 12) != 0) continue;
+            rows++;
+            front += n > 2 && line[n - 2] == '1';
+        }
+        fclose(f);
+    }
+    TH_CHECK(rows == 2 && front >= 1, "CSV: %d rows, %d on the front", rows, front);
+    snprintf(path, sizeof path, "%s/rep/vct.md", tmpdir);
+    f = fopen(path, "r");
+    TH_CHECK(f && fread(out, 1, sizeof out - 1, f) > 0 && strstr(out, "| 16 | 4 |") && strstr(out, "vct.svg"), "Markdown table");
+    if (f) fclose(f);
+    snprintf(path, sizeof path, "%s/rep/vct.svg", tmpdir);
+    memset(out, 0, 8);
+    f = fopen(path, "r");
+    TH_CHECK(f && fread(out, 1, 4, f) == 4 && memcmp(out, "<svg", 4) == 0, "SVG");
+    if (f) fclose(f);
+    TH_CHECK(run("report vct --res 0", out, sizeof out) == 2 && run("report vct --filters sideways", out, sizeof out) == 2 &&
+             run("report nothing", out, sizeof out) == 2, "bad report arguments accepted");
+}
+
 static void test_info_and_bench(void)
 {
     static char out[16384];
@@ -276,6 +341,7 @@ int main(void)
     TH_RUN(test_info_and_bench);
     TH_RUN(test_svo_command);
     TH_RUN(test_render_command);
+    TH_RUN(test_vct_and_report_commands);
     {
         char cmd[300];
         snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);

@@ -4,7 +4,8 @@
  *   voxgi info [--gl KIND] [--json]
  *   voxgi bench voxelize [MESH ...] [--methods LIST] [--min-res N] [--max-res N] [--runs R] [--csv FILE]
  *   voxgi svo MESH [--res N] [--backend B] [--format F] [--bricks] [--neighbours] [--json]
- *   voxgi render SCENE|MESH [--bounces B] [--spp S] [--camera EX EY EZ TX TY TZ FOVY] [--size W H] -o OUT.png|OUT.pfm
+ *   voxgi render SCENE|MESH [--method reference|vct] [--bounces B] [--spp S] [--camera EX EY EZ TX TY TZ FOVY] [--size W H] -o OUT.png|OUT.pfm
+ *   voxgi report vct [--scenes LIST] [--size N] [--res LIST] [--cones LIST] [--apertures LIST] [--steps LIST] [--out DIR]
  *
  * MESH is an OBJ (+MTL), OFF, STL or PLY file, or a built-in shape: builtin:quad,
  * builtin:subdivided-quad, builtin:cube, builtin:sphere. Every command takes --help. */
@@ -17,6 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include <errno.h>
+#include <sys/stat.h>
 
 /* ------------------------------------------------------------------ meshes */
 typedef struct tool_mesh {
@@ -1179,7 +1182,351 @@ static const char *main_help =
     "  info                version, capabilities, CPU threads and headless GL contexts\n"
     "  bench voxelize ...  timing and voxel-count tables (Buchacher 2014, Tables 1-2)\n"
     "  svo MESH ...        sparse voxel octree: nodes, memory, build time per pass\n"
-    "  render SCENE ...    path-traced reference image of a built-in scene or a mesh (PNG, PFM)\n";
+    "  render SCENE ...    an image of a built-in scene or a mesh (PNG, PFM): the path-traced\n"
+    "                      reference or voxel cone tracing\n"
+    "  report vct ...      cone tracing's error against run time (Markdown, CSV, SVG)\n";
+
+/* ------------------------------------------------------------------ report vct */
+static const char *report_help =
+    "usage: voxgi report vct [options]\n"
+    "Error against run time of voxel cone tracing. For each built-in scene it renders the one-bounce\n"
+    "reference (converged, --spp samples per pixel), then the cone-traced image for every\n"
+    "combination of grid resolution, cone count, aperture, step and mip filter, and measures the\n"
+    "relative RMSE of the lighting (the RMS difference over pixels and channels / the reference's\n"
+    "mean; the emitters the camera sees are left out of both). The reference's own convergence\n"
+    "(4, 16 and 64 spp against the converged image; error ~ 1/sqrt(spp)) gives the time it needs\n"
+    "to reach each error, and so the cone tracer's speed-up. Writes DIR/vct.md (tables),\n"
+    "DIR/vct.csv and DIR/vct.svg (error against time, log scales, the Pareto front marked).\n"
+    "Times are wall clock on this machine; GL times on a software rasteriser are not GPU times.\n"
+    "  --scenes LIST            built-in scenes, comma-separated (default cornell-box,two-spheres)\n"
+    "  --size N                 N x N pixels (default 128)\n"
+    "  --spp S                  samples per pixel of the converged reference (default 1024)\n"
+    "  --direct-spp S           the cone tracer's direct-light rays per pixel (default 16)\n"
+    "  --res LIST               voxels along the longest side (default 32,64,128)\n"
+    "  --cones LIST             diffuse cones (default 8,16,32)\n"
+    "  --apertures LIST         half-angle as a multiple of each cone count's gap-free default (default 1)\n"
+    "  --steps LIST             step as a fraction of the diameter (default 0.5,1)\n"
+    "  --filters LIST           isotropic, anisotropic or both (default isotropic,anisotropic)\n"
+    "  --backend auto|cpu|gl    where the cone tracer runs (default cpu)\n"
+    "  --out DIR                where the files go (default build/report)\n"
+    "  --threads T              CPU worker threads (default: one per core)\n";
+
+typedef struct report_row {
+    const char *scene;
+    int res, cones, anisotropic;
+    double aperture, half_angle_deg, step;
+    voxgi_vct_info info;
+    double rmse, ref_ms, pareto;
+} report_row;
+
+/* Splits a comma-separated list in place into at most max items; the count, or 0 when empty,
+   too long or with an empty item. */
+static int split_list(char *s, char **items, int max)
+{
+    int n = 0;
+    for (;;) {
+        char *comma = strchr(s, ',');
+        if (n == max || *s == 0 || *s == ',') return 0;
+        items[n++] = s;
+        if (!comma) return n;
+        *comma = 0;
+        s = comma + 1;
+    }
+}
+
+/* Comma-separated positive numbers into out[0..max); the count, or 0 on a bad list. */
+static int parse_list(const char *s, double *out, int max)
+{
+    char buf[256], *items[16];
+    int n, i;
+    if (strlen(s) >= sizeof buf || max > 16) return 0;
+    strcpy(buf, s);
+    n = split_list(buf, items, max);
+    for (i = 0; i < n; i++)
+        if (!parse_double(items[i], &out[i]) || !(out[i] > 0)) return 0;
+    return n;
+}
+
+/* Makes a directory and its parents (like mkdir -p); 0 on success. */
+static int make_dirs(const char *path)
+{
+    char buf[1024];
+    size_t i, n = strlen(path);
+    if (n == 0 || n >= sizeof buf) return -1;
+    strcpy(buf, path);
+    for (i = 1; i <= n; i++)
+        if (buf[i] == '/' || buf[i] == 0) {
+            char c = buf[i];
+            buf[i] = 0;
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
+            buf[i] = c;
+        }
+    return 0;
+}
+
+/* RMS difference over every value / mean of the reference. */
+static double rel_rmse(const float *a, const float *ref, size_t n)
+{
+    double sq = 0, sum = 0;
+    size_t i;
+    for (i = 0; i < n; i++) { sq += ((double)a[i] - ref[i]) * ((double)a[i] - ref[i]); sum += ref[i]; }
+    return sum > 0 ? sqrt(sq / (double)n) / (sum / (double)n) : 0;
+}
+
+static void report_svg(FILE *f, const report_row *rows, int n, const char *const *scenes, int scene_count, const double *ref_c,
+                       const double *ref_ms_per_spp, const double *ref_bvh_ms)
+{
+    static const char *colours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd"};
+    double tmin = 1e300, tmax = 0, emin = 1e300, emax = 0;
+    const double W = 720, H = 480, L = 70, R = 20, T = 30, B = 50;
+    int i, s, k;
+#define RX(t) (L + (log10(t) - log10(tmin)) / (log10(tmax) - log10(tmin)) * (W - L - R))
+#define RY(e) (H - B - (log10(e) - log10(emin)) / (log10(emax) - log10(emin)) * (H - T - B))
+    for (i = 0; i < n; i++) {
+        tmin = fmin(tmin, rows[i].info.ms); tmax = fmax(tmax, fmax(rows[i].info.ms, rows[i].ref_ms));
+        emin = fmin(emin, rows[i].rmse); emax = fmax(emax, rows[i].rmse);
+    }
+    tmin = pow(10, floor(log10(tmin))); tmax = pow(10, ceil(log10(tmax)));
+    emin = pow(10, floor(log10(emin))); emax = pow(10, ceil(log10(emax)));
+    if (emax <= emin) emax = emin * 10;
+    if (tmax <= tmin) tmax = tmin * 10;
+    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" font-family=\"sans-serif\" font-size=\"11\">\n", W, H);
+    fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
+    for (k = (int)log10(tmin); k <= (int)log10(tmax); k++)
+        fprintf(f, "<line x1=\"%.1f\" y1=\"%.0f\" x2=\"%.1f\" y2=\"%.0f\" stroke=\"#ddd\"/><text x=\"%.1f\" y=\"%.0f\" text-anchor=\"middle\">%g ms</text>\n",
+                RX(pow(10, k)), T, RX(pow(10, k)), H - B, RX(pow(10, k)), H - B + 15, pow(10, k));
+    for (k = (int)floor(log10(emin) + 0.5); k <= (int)floor(log10(emax) + 0.5); k++)
+        fprintf(f, "<line x1=\"%.0f\" y1=\"%.1f\" x2=\"%.0f\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%.0f\" y=\"%.1f\" text-anchor=\"end\">%g%%</text>\n", L,
+                RY(pow(10, k)), W - R, RY(pow(10, k)), L - 5, RY(pow(10, k)) + 4, 100 * pow(10, k));
+    fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" text-anchor=\"middle\">time per image (wall clock)</text>\n", (L + W - R) / 2, H - 12);
+    fprintf(f, "<text x=\"15\" y=\"%.0f\" transform=\"rotate(-90 15 %.0f)\" text-anchor=\"middle\">relative RMSE against the one-bounce reference</text>\n",
+            (T + H - B) / 2, (T + H - B) / 2);
+    for (s = 0; s < scene_count; s++) {
+        const char *c = colours[s % 4];
+        double prev_t = 0, prev_e = 0;
+        int first = 1;
+        for (k = 0; k <= 40; k++) { /* the reference: error c / sqrt(spp) at time bvh + spp x per-spp */
+            double spp = pow(2, k / 2.0), t = ref_bvh_ms[s] + spp * ref_ms_per_spp[s], e = ref_c[s] / sqrt(spp);
+            if (t < tmin || t > tmax || e < emin || e > emax) continue;
+            if (!first) fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-dasharray=\"4 3\"/>\n", RX(prev_t), RY(prev_e), RX(t), RY(e), c);
+            prev_t = t; prev_e = e; first = 0;
+        }
+        first = 1;
+        for (i = 0; i < n; i++) { /* the Pareto front, in time order (rows are not sorted: find them) */
+            if (strcmp(rows[i].scene, scenes[s]) != 0 || !rows[i].pareto) continue;
+            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\" font-size=\"9\">%d/%d%s</text>\n", RX(rows[i].info.ms) + 4, RY(rows[i].rmse) - 4, c, rows[i].res,
+                    rows[i].cones, rows[i].anisotropic ? "a" : "");
+        }
+        for (i = 0; i < n; i++) {
+            int j, best = -1;
+            if (strcmp(rows[i].scene, scenes[s]) != 0 || !rows[i].pareto) continue;
+            for (j = 0; j < n; j++) /* the next front point in time */
+                if (strcmp(rows[j].scene, scenes[s]) == 0 && rows[j].pareto && rows[j].info.ms > rows[i].info.ms &&
+                    (best < 0 || rows[j].info.ms < rows[best].info.ms))
+                    best = j;
+            if (best >= 0)
+                fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"2\"/>\n", RX(rows[i].info.ms), RY(rows[i].rmse),
+                        RX(rows[best].info.ms), RY(rows[best].rmse), c);
+        }
+        for (i = 0; i < n; i++)
+            if (strcmp(rows[i].scene, scenes[s]) == 0)
+                fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"%s\" fill-opacity=\"%s\" stroke=\"%s\"/>\n", RX(rows[i].info.ms), RY(rows[i].rmse),
+                        rows[i].pareto ? 4 : 3, rows[i].pareto ? c : "white", rows[i].pareto ? "1" : "0", c);
+        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"%s\"/><text x=\"%.0f\" y=\"%.0f\">%s: cone tracing (filled: Pareto front, "
+                   "label res/cones, a = anisotropic); dashed: the reference</text>\n", L + 15, T + 12 + 15.0 * s, c, L + 25, T + 16 + 15.0 * s, scenes[s]);
+    }
+    fprintf(f, "</svg>\n");
+#undef RX
+#undef RY
+}
+
+static int cmd_report(int argc, char **argv)
+{
+    const char *out_dir = "build/report", *scene_list = "cornell-box,two-spheres";
+    double res_l[16] = {32, 64, 128}, cone_l[16] = {8, 16, 32}, ap_l[16] = {1}, step_l[16] = {0.5, 1};
+    int nres = 3, ncone = 3, nap = 1, nstep = 2, filters = 3, size = 128, spp = 1024, direct_spp = 16, threads = 0, i, rc = 1, nrows = 0, s;
+    voxgi_backend backend = VOXGI_BACKEND_CPU;
+    char why[512] = "", path[1024], scenes_buf[256], *scenes[8];
+    int scene_count = 0;
+    double ref_c[8], ref_ms_per_spp[8], ref_bvh_ms[8], ref_floor[8];
+    report_row *rows = NULL;
+    voxgi_context *ctx = NULL;
+    voxgi_info ci;
+    vxt_gl *gl = NULL;
+    float *ref = NULL, *img = NULL;
+    FILE *md = NULL, *csv = NULL, *svg = NULL;
+    if (argc < 1 || strcmp(argv[0], "vct") != 0) {
+        if (argc >= 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) { fputs(report_help, stdout); return 0; }
+        return bad_arg("report", "the report to make is 'vct'");
+    }
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { fputs(report_help, stdout); return 0; }
+        else if (strcmp(a, "--scenes") == 0 && i + 1 < argc) scene_list = argv[++i];
+        else if (strcmp(a, "--size") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 4096, &size)) return bad_arg("report", "--size needs 1..4096"); }
+        else if (strcmp(a, "--spp") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 64, 1 << 20, &spp)) return bad_arg("report", "--spp needs 64..1048576"); }
+        else if (strcmp(a, "--direct-spp") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 65536, &direct_spp)) return bad_arg("report", "--direct-spp needs 1..65536"); }
+        else if (strcmp(a, "--res") == 0 && i + 1 < argc) { if (!(nres = parse_list(argv[++i], res_l, 16))) return bad_arg("report", "--res needs a list of numbers"); }
+        else if (strcmp(a, "--cones") == 0 && i + 1 < argc) { if (!(ncone = parse_list(argv[++i], cone_l, 16))) return bad_arg("report", "--cones needs a list of numbers"); }
+        else if (strcmp(a, "--apertures") == 0 && i + 1 < argc) { if (!(nap = parse_list(argv[++i], ap_l, 16))) return bad_arg("report", "--apertures needs a list of numbers"); }
+        else if (strcmp(a, "--steps") == 0 && i + 1 < argc) { if (!(nstep = parse_list(argv[++i], step_l, 16))) return bad_arg("report", "--steps needs a list of numbers"); }
+        else if (strcmp(a, "--filters") == 0 && i + 1 < argc) {
+            char buf[64], *items[2];
+            int k, n = strlen(argv[++i]) < sizeof buf ? split_list(strcpy(buf, argv[i]), items, 2) : 0;
+            for (filters = 0, k = 0; k < n; k++) filters |= strcmp(items[k], "isotropic") == 0 ? 1 : (strcmp(items[k], "anisotropic") == 0 ? 2 : 4);
+            if (!n || filters > 3) return bad_arg("report", "--filters is isotropic, anisotropic or both");
+        }
+        else if (strcmp(a, "--backend") == 0 && i + 1 < argc) { if (!parse_backend(argv[++i], &backend)) return bad_arg("report", "--backend is auto, cpu or gl"); }
+        else if (strcmp(a, "--out") == 0 && i + 1 < argc) out_dir = argv[++i];
+        else if (strcmp(a, "--threads") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 256, &threads)) return bad_arg("report", "--threads needs 1..256"); }
+        else return bad_arg("report", "unknown option or missing value");
+    }
+    if (strlen(scene_list) >= sizeof scenes_buf) return bad_arg("report", "--scenes is too long");
+    strcpy(scenes_buf, scene_list);
+    if (!(scene_count = split_list(scenes_buf, scenes, 8))) return bad_arg("report", "--scenes needs a list of at most 8 built-in scenes");
+    for (i = 0; i < nres; i++) if (res_l[i] > 4096) return bad_arg("report", "--res values are at most 4096");
+    for (i = 0; i < ncone; i++) if (cone_l[i] > 1024) return bad_arg("report", "--cones values are at most 1024");
+    for (i = 0; i < nstep; i++) if (step_l[i] > 4) return bad_arg("report", "--steps values are at most 4");
+    ctx = make_context(backend, VXT_GL_AUTO, threads, isatty(2), &gl, why, sizeof why);
+    if (!ctx) { fprintf(stderr, "voxgi report: %s\n", why); return 1; }
+    voxgi_query_info(ctx, &ci);
+    rows = (report_row *)calloc((size_t)scene_count * (size_t)(nres * ncone * nap * nstep * 2), sizeof *rows);
+    ref = (float *)malloc((size_t)size * (size_t)size * 12);
+    img = (float *)malloc((size_t)size * (size_t)size * 12);
+    if (!rows || !ref || !img) { fprintf(stderr, "voxgi report: out of memory\n"); goto done; }
+    if (make_dirs(out_dir) != 0) { fprintf(stderr, "voxgi report: cannot make %s\n", out_dir); goto done; }
+    for (s = 0; s < scene_count; s++) {
+        voxgi_builtin_scene bs;
+        voxgi_reference_desc rd;
+        voxgi_reference_info ri;
+        size_t nv = (size_t)size * (size_t)size * 3;
+        int ir, ic, ia, is, f, k, first_row = nrows;
+        double c2 = 0;
+        if (voxgi_builtin_scene_create(ctx, scenes[s], &bs) != VOXGI_OK) { fprintf(stderr, "voxgi report: %s\n", voxgi_last_error(ctx)); goto done; }
+        memset(&rd, 0, sizeof rd);
+        rd.camera = bs.camera;
+        rd.camera.width = rd.camera.height = size;
+        rd.bounces = 1;
+        rd.hide_emitters = 1;
+        rd.samples = spp;
+        rd.seed = 1000;
+        fprintf(stderr, "voxgi report: %s: the reference, %d spp\n", scenes[s], spp);
+        if (voxgi_reference_render(ctx, &bs.scene, &rd, ref, nv * 4, &ri) != VOXGI_OK) {
+            fprintf(stderr, "voxgi report: %s\n", voxgi_last_error(ctx));
+            voxgi_builtin_scene_destroy(ctx, &bs);
+            goto done;
+        }
+        for (k = 4; k <= 64; k *= 4) { /* the reference's convergence: a difference of two independent estimates has variance c^2 (1/k + 1/spp) */
+            rd.samples = k;
+            rd.seed = 7 + (uint64_t)k;
+            if (voxgi_reference_render(ctx, &bs.scene, &rd, img, nv * 4, &ri) != VOXGI_OK) { fprintf(stderr, "voxgi report: %s\n", voxgi_last_error(ctx)); goto done; }
+            c2 += rel_rmse(img, ref, nv) * rel_rmse(img, ref, nv) / (1.0 / k + 1.0 / spp) / 3;
+        }
+        ref_c[s] = sqrt(c2);
+        ref_ms_per_spp[s] = ri.ms_render / 64;
+        ref_bvh_ms[s] = ri.ms_bvh;
+        ref_floor[s] = ref_c[s] / sqrt((double)spp);
+        for (f = 0; f < 2; f++)
+            for (ir = 0; ir < nres; ir++)
+                for (ic = 0; ic < ncone; ic++)
+                    for (ia = 0; ia < nap; ia++)
+                        for (is = 0; is < nstep; is++) {
+                            voxgi_vct_desc vd;
+                            report_row *row = &rows[nrows];
+                            double need;
+                            if (!(filters & (1 << f))) continue;
+                            memset(&vd, 0, sizeof vd);
+                            vd.camera = rd.camera;
+                            vd.resolution = (int)res_l[ir];
+                            vd.filter = f ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
+                            vd.cones.cones = (int)cone_l[ic];
+                            vd.cones.half_angle = (float)(ap_l[ia] * acos(1 - 1.0 / vd.cones.cones));
+                            vd.cones.step = (float)step_l[is];
+                            vd.samples = direct_spp;
+                            vd.seed = 1;
+                            vd.hide_emitters = 1;
+                            if (!(vd.cones.half_angle < 1.5f)) continue;
+                            fprintf(stderr, "voxgi report: %s: %d^3, %d cones x %.2f, step %.2f, %s\n", scenes[s], vd.resolution, vd.cones.cones, ap_l[ia], step_l[is],
+                                    f ? "anisotropic" : "isotropic");
+                            if (voxgi_vct_render(ctx, &bs.scene, &vd, img, nv * 4, &row->info) != VOXGI_OK) {
+                                fprintf(stderr, "voxgi report: %s\n", voxgi_last_error(ctx));
+                                voxgi_builtin_scene_destroy(ctx, &bs);
+                                goto done;
+                            }
+                            row->scene = scenes[s];
+                            row->res = vd.resolution;
+                            row->cones = vd.cones.cones;
+                            row->anisotropic = f;
+                            row->aperture = ap_l[ia];
+                            row->half_angle_deg = vd.cones.half_angle * 180 / 3.14159265358979323846;
+                            row->step = step_l[is];
+                            row->rmse = rel_rmse(img, ref, nv);
+                            need = (ref_c[s] / row->rmse) * (ref_c[s] / row->rmse); /* the reference's spp for the same error */
+                            row->ref_ms = ref_bvh_ms[s] + ref_ms_per_spp[s] * VOXGI__MAX(need, 1.0);
+                            nrows++;
+                        }
+        for (i = first_row; i < nrows; i++) { /* on the front: nothing both faster and closer */
+            int j;
+            rows[i].pareto = 1;
+            for (j = first_row; j < nrows; j++)
+                if (j != i && rows[j].info.ms <= rows[i].info.ms && rows[j].rmse <= rows[i].rmse &&
+                    (rows[j].info.ms < rows[i].info.ms || rows[j].rmse < rows[i].rmse))
+                    rows[i].pareto = 0;
+        }
+        voxgi_builtin_scene_destroy(ctx, &bs);
+    }
+    snprintf(path, sizeof path, "%s/vct.csv", out_dir);
+    if (!(csv = fopen(path, "w"))) { fprintf(stderr, "voxgi report: cannot write %s\n", path); goto done; }
+    fprintf(csv, "scene,res,cones,aperture,half_angle_deg,step,filter,voxels,voxelize_ms,inject_ms,cones_ms,direct_ms,ms,rel_rmse,reference_ms_same_error,speedup,pareto\n");
+    for (i = 0; i < nrows; i++)
+        fprintf(csv, "%s,%d,%d,%g,%.2f,%g,%s,%llu,%.2f,%.2f,%.2f,%.2f,%.2f,%.5f,%.1f,%.2f,%d\n", rows[i].scene, rows[i].res, rows[i].cones, rows[i].aperture,
+                rows[i].half_angle_deg, rows[i].step, rows[i].anisotropic ? "anisotropic" : "isotropic", (unsigned long long)rows[i].info.voxels,
+                rows[i].info.ms_voxelize, rows[i].info.ms_inject, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, rows[i].rmse,
+                rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms, (int)rows[i].pareto);
+    snprintf(path, sizeof path, "%s/vct.md", out_dir);
+    if (!(md = fopen(path, "w"))) { fprintf(stderr, "voxgi report: cannot write %s\n", path); goto done; }
+    fprintf(md, "# Voxel cone tracing: error against run time\n\n%d x %d pixels; cone tracer on %s%s%s, %d direct-light rays per pixel; the "
+                "reference is the one-bounce path tracer (CPU). Error: relative RMSE of the lighting against the converged reference, "
+                "emitters seen by the camera left out. *Reference at the same error*: the time the path tracer needs to reach that "
+                "error (from its measured convergence). Wall clock on this machine%s.\n\n",
+            size, size, voxgi_backend_name(ci.backend), ci.backend == VOXGI_BACKEND_GL ? ", " : "", ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "",
+            direct_spp, ci.backend == VOXGI_BACKEND_GL && strstr(ci.gl_renderer, "llvmpipe") ? " (GL on llvmpipe, a software rasteriser: not GPU timings)" : "");
+    for (s = 0; s < scene_count; s++) {
+        fprintf(md, "## %s\n\nReference: %d spp; its error is %.2f%% / sqrt(spp) (%.3f%% at %d spp: the floor of every error below), %.2f ms per "
+                    "sample per pixel.\n\n| res | cones | half-angle | step | mips | voxels | voxelize ms | inject ms | cones ms | direct ms | total ms | "
+                    "rel. RMSE | reference at the same error | speed-up | Pareto |\n|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n",
+                scenes[s], spp, 100 * ref_c[s], 100 * ref_floor[s], spp, ref_ms_per_spp[s]);
+        for (i = 0; i < nrows; i++)
+            if (rows[i].scene == scenes[s])
+                fprintf(md, "| %d | %d | %.1f° | %g | %s | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f%% | %.0f ms | %.1fx | %s |\n", rows[i].res, rows[i].cones,
+                        rows[i].half_angle_deg, rows[i].step, rows[i].anisotropic ? "aniso" : "iso", (unsigned long long)rows[i].info.voxels,
+                        rows[i].info.ms_voxelize, rows[i].info.ms_inject, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, 100 * rows[i].rmse,
+                        rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms, rows[i].pareto ? "yes" : "");
+        fprintf(md, "\n");
+    }
+    fprintf(md, "![error against time](vct.svg)\n");
+    snprintf(path, sizeof path, "%s/vct.svg", out_dir);
+    if (!(svg = fopen(path, "w"))) { fprintf(stderr, "voxgi report: cannot write %s\n", path); goto done; }
+    report_svg(svg, rows, nrows, (const char *const *)scenes, scene_count, ref_c, ref_ms_per_spp, ref_bvh_ms);
+    for (s = 0; s < scene_count; s++) { /* the front on stdout */
+        printf("%s (reference error %.2f%% / sqrt(spp), %.2f ms per spp; floor %.3f%%)\n", scenes[s], 100 * ref_c[s], ref_ms_per_spp[s], 100 * ref_floor[s]);
+        for (i = 0; i < nrows; i++)
+            if (rows[i].scene == scenes[s] && rows[i].pareto)
+                printf("  %4d^3 %3d cones %5.1f deg step %-4g %-5s %9.1f ms  %6.2f%%  reference %9.0f ms  %6.1fx\n", rows[i].res, rows[i].cones, rows[i].half_angle_deg,
+                       rows[i].step, rows[i].anisotropic ? "aniso" : "iso", rows[i].info.ms, 100 * rows[i].rmse, rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms);
+    }
+    printf("wrote %s/vct.md, %s/vct.csv, %s/vct.svg\n", out_dir, out_dir, out_dir);
+    rc = 0;
+done:
+    if (md) fclose(md);
+    if (csv) fclose(csv);
+    if (svg) fclose(svg);
+    free(rows);
+    free(ref);
+    free(img);
+    if (ctx) close_context(ctx, gl);
+    return rc;
+}
 
 int main(int argc, char **argv)
 {
@@ -1193,6 +1540,7 @@ int main(int argc, char **argv)
     if (strcmp(argv[1], "bench") == 0) return cmd_bench(argc - 2, argv + 2);
     if (strcmp(argv[1], "svo") == 0) return cmd_svo(argc - 2, argv + 2);
     if (strcmp(argv[1], "render") == 0) return cmd_render(argc - 2, argv + 2);
+    if (strcmp(argv[1], "report") == 0) return cmd_report(argc - 2, argv + 2);
     fprintf(stderr, "voxgi: unknown command '%s'\n%s", argv[1], main_help);
     return 2;
 }
