@@ -583,8 +583,11 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
    (a cone at angle theta from the normal narrows to tan = cos(theta) / 3, so that no sample
    reaches back to the surface's own voxels: an open plane occludes nothing)
    every step * d (the radiance is stored premultiplied by alpha, so that empty space thins a
-   sample without darkening it); a sample's alpha a at level L is read as the coverage of a surface one voxel
-   thick, a 2^L (at most 1), so thin walls do not leak; opacity corrected for the step
+   sample without darkening it); a sample's alpha a at level L is read as the coverage of the
+   cone's cross-section: isotropic a 2^L (a surface one voxel thick covers it while filling 2^-L
+   of the voxel), so thin walls do not leak; anisotropic 2 a (its alpha is the coverage along
+   the axis already, so walls parallel to the cone do not stop it; x 2 undoes trilinear
+   filtering's halving of a one-voxel wall), at most 1; opacity corrected for the step
    (a' = 1 - (1 - a)^(step)), composited front to
    back (c += (1 - A) a' L, A += (1 - A) a') until A reaches 0.99 or max_distance. Anisotropic
    volumes are sampled along the cone's direction (the three axis volumes weighted by the
@@ -6863,9 +6866,12 @@ static void voxgi__cone_range(void *user, size_t first, size_t end)
                 /* both levels blended must stay clear of the surface: a level-L voxel holding it reaches 1.5 x 2^L above it */
                 double lod = VOXGI__MIN(VOXGI__MIN(log2(diam), log2(h / 1.5) - 1), J->vol->info.levels - 1.0);
                 voxgi__cone_sample(J, d, p, (float)lod, s);
-                /* a level-L voxel's alpha is the share of its volume that is filled; a surface one voxel thick fills 2^-L of
-                   it yet covers its whole cross-section: the cone sees that coverage, alpha x 2^L (at most 1) */
-                ap = 1 - pow(1 - VOXGI__MIN(1.0, s[3] * exp2(VOXGI__MAX(lod, 0.0))), J->step); /* it holds for one diameter; a step is J->step of it */
+                /* what the cone sees is the coverage of its cross-section. Isotropic: a level-L voxel's alpha is the share
+                   of its volume that is filled; a surface one voxel thick fills 2^-L of it yet may cover its whole
+                   cross-section: alpha x 2^L. Anisotropic: alpha is already the coverage along the axis (composited front
+                   to back), and a surface parallel to the travel covers only its share; only the trilinear filter's
+                   halving of a one-voxel wall between voxel centres is undone: alpha x 2. At most 1 either way. */
+                ap = 1 - pow(1 - VOXGI__MIN(1.0, s[3] * (J->dirs == 6 ? 2.0 : exp2(VOXGI__MAX(lod, 0.0)))), J->step); /* it holds for one diameter; a step is J->step of it */
                 for (a = 0; a < 3; a++) C[a] += (1 - A) * ap * s[a];
                 A += (1 - A) * ap;
                 t += dt;

@@ -55,7 +55,7 @@ void main()
             vec3 p = o + u_offset * n + (t - u_offset) * d;
             float lod = min(min(log2(diam), log2(h / 1.5) - 1.0), float(u_levels - 1));
             vec4 s = cone_sample(d, p, lod);
-            float ap = 1.0 - pow(1.0 - min(1.0, s.a * exp2(max(lod, 0.0))), u_step);
+            float ap = 1.0 - pow(1.0 - min(1.0, s.a * (u_anisotropic != 0 ? 2.0 : exp2(max(lod, 0.0)))), u_step);
             C += (1.0 - A) * ap * s.rgb;
             A += (1.0 - A) * ap;
             t += u_step * diam;
