@@ -559,6 +559,15 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
                                               size_t rgb_bytes, voxgi_reference_info *info);
 
 /* ===================================================================== light injection and cone tracing */
+/* How diffuse cones are traced (voxgi_cone_trace, below). */
+typedef struct voxgi_cone_desc {
+    int cones;                    /* 0 = 16 */
+    float half_angle;             /* radians; 0 = acos(1 - 1 / cones) */
+    float step;                   /* fraction of the diameter per step; 0 = 0.5 */
+    float offset;                 /* start, in voxels along the normal; 0 = 1.5 */
+    float max_distance;           /* in voxels; 0 = the grid's diagonal */
+} voxgi_cone_desc;
+
 /* Light injection: the radiance the voxels send out, for the cone tracer to gather. Per set
    voxel: L = albedo / pi * E + emission (alpha = opacity, 1 when the voxels hold none), E the
    irradiance on the voxel's mean normal at its centre moved half a voxel diagonal along that
@@ -569,7 +578,10 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
    voxels), gathered per voxel with the same analytic irradiance and 3x3 map texels for the
    visibility (a gather: no voxel is missed where texels are sparser than voxels). The voxels must
    hold ALBEDO and NORMAL. The result is a volume of the single attribute RADIANCE with
-   desc.volume's mips. Checks: a plane under a directional light of irradiance E gets albedo E
+   desc.volume's mips. With bounces B > 1 the light then bounces among the voxels: each
+   gathers the irradiance at its centre on its normal from the volume so far (voxgi_cone_trace,
+   on the context's backend) and sends out its direct light plus albedo / pi x that, B - 1
+   times. Checks: a plane under a directional light of irradiance E gets albedo E
    cos / pi exactly; GL and CPU agree in total power within 0.1% (two spheres under the sun) and
    0.2% (the Cornell box's emitter), voxel by voxel to 1e-4 on 88% of the two spheres' voxels
    (the rest lie within a map texel or two of a shadow's edge). */
@@ -578,6 +590,9 @@ typedef struct voxgi_inject_desc {
     int samples;                  /* points per area light and on the emitters (CPU: per voxel); 0 = 16 */
     uint64_t seed;
     int shadow_rays;              /* GL context: 1 = the CPU's exact shadow rays instead of the maps */
+    int bounces;                  /* 0 or 1: direct light; B > 1: B - 1 more bounces, each voxel gathering
+                                     with `gather` cones from the last volume at its centre */
+    voxgi_cone_desc gather;
 } voxgi_inject_desc;
 VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *voxels,
                                           const voxgi_inject_desc *desc, voxgi_volume **out);
@@ -604,13 +619,6 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
    (shaders/cone_trace.glsl, a compute pass with the textures' filtering): on llvmpipe within
    1e-5 of the CPU's irradiance (relative to its mean) and occlusion; a GPU with 8-bit filter
    weights differs by up to about 1%. */
-typedef struct voxgi_cone_desc {
-    int cones;                    /* 0 = 16 */
-    float half_angle;             /* radians; 0 = acos(1 - 1 / cones) */
-    float step;                   /* fraction of the diameter per step; 0 = 0.5 */
-    float offset;                 /* start, in voxels along the normal; 0 = 1.5 */
-    float max_distance;           /* in voxels; 0 = the grid's diagonal */
-} voxgi_cone_desc;
 VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, size_t count,
                                         const float *positions, const float *normals, float *irradiance, float *occlusion);
 
@@ -632,6 +640,8 @@ typedef struct voxgi_vct_desc {
     uint64_t seed;
     int hide_emitters;            /* 1: leave out the emission the camera sees directly */
     int shadow_rays;              /* GL context: inject through exact shadow rays (voxgi_inject_desc) */
+    int bounces;                  /* indirect bounces: 0 or 1 = one (the cones at the pixels); B > 1: the
+                                     light bounces B - 1 times among the voxels first (voxgi_inject_desc) */
 } voxgi_vct_desc;
 typedef struct voxgi_vct_info {
     uint64_t voxels;
@@ -6929,6 +6939,50 @@ static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr
 }
 #endif
 
+/* The light's further bounces among the voxels (desc->bounces > 1): each voxel gathers at its
+   centre from *vol, its radiance becomes direct + alpha albedo / pi x that, and *vol is rebuilt. */
+static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, size_t n, const voxgi_inject_desc *desc, voxgi_volume **vol)
+{
+    const voxgi_grid *g = J->g;
+    float *pos = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0), *nrm = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
+    float *irr = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0), *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
+    const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
+    voxgi_result r = VOXGI_OK;
+    size_t i;
+    int b, a;
+    if (!pos || !nrm || !irr || !direct) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
+    for (i = 0; r == VOXGI_OK && i < n; i++) {
+        double p[3], nl[3];
+        int lit = voxgi__inject_point(J, i, p, nl);
+        for (a = 0; a < 3; a++) {
+            pos[3 * i + (size_t)a] = (float)(p[a] - 0.8660254037844386 * g->voxel_size * nl[a]); /* back to the centre */
+            nrm[3 * i + (size_t)a] = lit ? (float)nl[a] : (a == 1); /* no normal: gathers nothing (albedo x 0), below */
+            direct[3 * i + (size_t)a] = J->rgba[4 * J->index[i] + (size_t)a];
+        }
+    }
+    for (b = 1; r == VOXGI_OK && b < desc->bounces; b++) {
+        voxgi_volume *next = NULL;
+        r = voxgi_cone_trace(ctx, *vol, &desc->gather, n, pos, nrm, irr, NULL);
+        for (i = 0; r == VOXGI_OK && i < n; i++) {
+            float *o = J->rgba + 4 * J->index[i];
+            double p[3], nl[3];
+            int lit = voxgi__inject_point(J, i, p, nl);
+            for (a = 0; a < 3; a++)
+                o[a] = direct[3 * i + (size_t)a] + (lit ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * irr[3 * i + (size_t)a]) : 0.0f);
+        }
+        slots[4] = J->rgba;
+        if (r == VOXGI_OK) r = voxgi__volume_new(ctx, g, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &next);
+        if (r == VOXGI_OK) r = voxgi__volume_build(ctx, next, slots);
+        if (r == VOXGI_OK) { voxgi_volume_destroy(ctx, *vol); *vol = next; }
+        else voxgi_volume_destroy(ctx, next);
+    }
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, nrm);
+    voxgi__free(ctx, irr);
+    voxgi__free(ctx, direct);
+    return r;
+}
+
 VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *vx, const voxgi_inject_desc *desc,
                                           voxgi_volume **out)
 {
@@ -6949,7 +7003,8 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     *out = NULL;
     if ((vx->info.attributes & 3u) != 3u)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light injection needs voxels with ALBEDO and NORMAL (they hold 0x%x)", vx->info.attributes);
-    if (desc->samples < 0) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d", desc->samples);
+    if (desc->samples < 0 || desc->bounces < 0 || desc->bounces > 64)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d (0..64)", desc->samples, desc->bounces);
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     r = voxgi__lights_build(ctx, scene, &tr, &Ls);
@@ -7001,6 +7056,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
         slots[4] = rgba;
         if (r == VOXGI_OK) r = voxgi__volume_new(ctx, &vx->info.grid, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &vol);
         if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
+        if (r == VOXGI_OK && desc->bounces > 1) r = voxgi__inject_bounces(ctx, &J, n, desc, &vol);
         if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); vol = NULL; }
         else vol->info.ms = voxgi__now_ms() - t0;
     }
@@ -7301,8 +7357,9 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
     pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
     if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096)", desc->samples, desc->resolution);
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->bounces < 0 || desc->bounces > 64)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), bounces %d (0..64)", desc->samples, desc->resolution,
+                           desc->bounces);
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
@@ -7327,6 +7384,8 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
         id.samples = desc->samples;
         id.seed = desc->seed;
         id.shadow_rays = desc->shadow_rays;
+        id.bounces = desc->bounces;
+        id.gather = desc->cones;
         t1 = voxgi__now_ms();
         r = voxgi_fit_grid(ctx, scene, &fit, &xd.grid);
         if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &xd, &vox);

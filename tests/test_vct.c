@@ -297,10 +297,48 @@ static void test_leak_box(void)
     voxgi_destroy(ctx);
 }
 
+/* A second bounce among the voxels adds what the path tracer's second bounce adds, in mean
+   (the Cornell box at 32^3, isotropic mips; measured 1.02-1.09 of it per channel). */
+static void test_second_bounce(void)
+{
+    voxgi_context *ctx = make_ctx();
+    voxgi_builtin_scene bs;
+    voxgi_vct_desc vd;
+    voxgi_reference_desc rd;
+    enum { W = 32 };
+    float *img = (float *)malloc(W * W * 12);
+    double mv[2] = {0, 0}, mr[2] = {0, 0};
+    int b, i;
+    voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
+    memset(&vd, 0, sizeof vd);
+    memset(&rd, 0, sizeof rd);
+    vd.camera = bs.camera;
+    vd.camera.width = vd.camera.height = W;
+    vd.resolution = 32;
+    vd.samples = 4;
+    rd.camera = vd.camera;
+    rd.samples = 512;
+    rd.seed = 3;
+    for (b = 0; b < 2; b++) {
+        vd.bounces = rd.bounces = b + 1;
+        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, img, W * W * 12, NULL) == VOXGI_OK, "vct: %s", voxgi_last_error(ctx));
+        for (i = 0; i < W * W * 3; i++) mv[b] += img[i];
+        TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, img, W * W * 12, NULL) == VOXGI_OK, "reference: %s", voxgi_last_error(ctx));
+        for (i = 0; i < W * W * 3; i++) mr[b] += img[i];
+    }
+    printf("    second bounce adds %.4f (cones), %.4f (path tracer): ratio %.3f\n", (mv[1] - mv[0]) / (W * W * 3), (mr[1] - mr[0]) / (W * W * 3),
+           (mv[1] - mv[0]) / (mr[1] - mr[0]));
+    TH_CHECK((mv[1] - mv[0]) / (mr[1] - mr[0]) > 0.85 && (mv[1] - mv[0]) / (mr[1] - mr[0]) < 1.2, "second bounce ratio %.3f", (mv[1] - mv[0]) / (mr[1] - mr[0]));
+    free(img);
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     TH_RUN(test_cornell_box_image);
     TH_RUN(test_leak_box);
+    TH_RUN(test_second_bounce);
     TH_RUN(test_injection_is_exact_on_a_lit_floor);
     TH_RUN(test_ambient_occlusion);
     TH_RUN(test_glowing_ceiling);

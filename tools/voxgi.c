@@ -961,7 +961,8 @@ static const char *render_help =
     "  --compare SPP            also render the reference (same bounces) with SPP samples per pixel and\n"
     "                           print the relative RMSE of the lighting (both without the emitters the\n"
     "                           camera sees) and both times; the image written is the one with them\n"
-    "  --bounces B              indirect bounces: 0 = direct light only, -1 = unlimited (default 1)\n"
+    "  --bounces B              indirect bounces: 0 = direct light only, -1 = unlimited (default 1);\n"
+    "                           vct: B >= 1, the light bouncing B - 1 times among the voxels first\n"
     "  --spp S                  samples per pixel (default 64)\n"
     "  --seed N                 random seed (default 1); the same seed gives the same image\n"
     "  --camera EX EY EZ TX TY TZ FOVY  eye, target (up +Y) and vertical field of view in degrees\n"
@@ -1094,8 +1095,9 @@ static int cmd_render(int argc, char **argv)
         vd.camera = d.camera;
         vd.seed = d.seed;
         vd.samples = spp_given ? d.samples : 16;
+        if (d.bounces < 1 && !vd.no_gi) { fprintf(stderr, "voxgi render: vct needs --bounces 1 or more (or --no-gi)\n"); goto done; }
+        vd.bounces = d.bounces;
         if (vd.no_gi) d.bounces = 0; /* what it is compared against */
-        else d.bounces = 1;
     }
     if (vct ? voxgi_vct_render(ctx, scene, &vd, rgb, (size_t)w * (size_t)h * 12, &vinfo) != VOXGI_OK
             : voxgi_reference_render(ctx, scene, &d, rgb, (size_t)w * (size_t)h * 12, &info) != VOXGI_OK) {
