@@ -617,10 +617,31 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
    squared direction components). irradiance: 3 floats per point (sum of pi / cones x the cones'
    radiance); occlusion: 1 per point (mean A), or NULL. A GL volume is traced on GL
    (shaders/cone_trace.glsl, a compute pass with the textures' filtering): on llvmpipe within
-   1e-5 of the CPU's irradiance (relative to its mean) and occlusion; a GPU with 8-bit filter
+   1e-4 of the CPU's irradiance (relative to its mean) and occlusion; a GPU with 8-bit filter
    weights differs by up to about 1%. */
 VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, size_t count,
                                         const float *positions, const float *normals, float *irradiance, float *occlusion);
+
+/* Single cones, each from its own origin along its own direction: a specular reflection is one
+   cone along the mirror direction with voxgi_specular_half_angle(roughness), a soft shadow one
+   cone toward a light as wide as the light seen from the point (visibility 1 - A). Each is marched
+   as a diffuse cone from a surface of the given normal (from desc->offset voxels along it,
+   narrowed near the surface and kept clear of it, desc->step, coverage and opacity correction
+   as above); radiance_opacity: 4 floats per cone, the composited radiance and the opacity A it
+   gathered. */
+typedef struct voxgi_cone {
+    float origin[3];              /* world position (a surface point: the march starts desc->offset voxels out) */
+    float direction[3];           /* not zero; need not be unit */
+    float normal[3];              /* the surface's normal at the origin, or zero: the direction */
+    float half_angle;             /* radians, in (0, 1.5) */
+    float max_distance;           /* world units; 0 = the grid's diagonal (e.g. the distance to a light) */
+} voxgi_cone;
+VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, size_t count,
+                                         const voxgi_cone *cones, float *radiance_opacity);
+/* The half-angle of a cone covering a glossy lobe of roughness alpha (GGX-style, 0..1): its
+   Phong exponent n = 2 / alpha^2 - 2, the angle where the lobe falls to 0.244 of its peak,
+   acos(0.244^(1 / (n + 1))) (a fit common among voxel cone tracers), at least 0.005. */
+VOXGI_API float voxgi_specular_half_angle(float roughness);
 
 /* A cone-traced image: the scene voxelized (conservative, with attributes) on a grid of
    `resolution` voxels along its longest side, direct light injected into the voxels (their
@@ -7084,6 +7105,7 @@ typedef struct voxgi__cone_job {
     const voxgi_volume *vol;
     const voxgi_cone_desc *desc;
     const float *pos, *nrm;
+    const voxgi_cone *list;       /* single cones, or NULL */
     float *irr, *occ;
     int cones, dirs;
     double half_tan, step, offset, max_dist;
@@ -7110,6 +7132,35 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], cons
     for (ch = 0; ch < 3; ch++) out[ch] = out[3] > 0 ? out[ch] / out[3] : 0;
 }
 
+/* One cone from o (grid units, on a surface of unit normal n) along unit d, whose cosine with n
+   is lz: marched from `offset` voxels along n, narrowing tan_k, up to max_d voxels; its
+   composited radiance C and opacity A. A single cone (voxgi_trace_cones) is the case n = d. */
+static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const double n[3], const double d[3], double lz, double tan_k, double max_d,
+                              double C[3], double *A_out)
+{
+    double t = J->offset, A = 0;
+    int a;
+    C[0] = C[1] = C[2] = 0;
+    while (t < max_d && A < 0.99) {
+        double diam = VOXGI__MAX(1.0, 2 * t * tan_k), dt = J->step * diam, ap, h = J->offset + (t - J->offset) * lz;
+        float p[3], s[4];
+        for (a = 0; a < 3; a++) p[a] = (float)(o[a] + J->offset * n[a] + (t - J->offset) * d[a]);
+        /* both levels blended must stay clear of the surface: a level-L voxel holding it reaches 1.5 x 2^L above it */
+        double lod = VOXGI__MIN(VOXGI__MIN(log2(diam), log2(h / 1.5) - 1), J->vol->info.levels - 1.0);
+        voxgi__cone_sample(J, d, p, (float)lod, s);
+        /* what the cone sees is the coverage of its cross-section. Isotropic: a level-L voxel's alpha is the share
+           of its volume that is filled; a surface one voxel thick fills 2^-L of it yet may cover its whole
+           cross-section: alpha x 2^L. Anisotropic: alpha is already the coverage along the axis (composited front
+           to back), and a surface parallel to the travel covers only its share; only the trilinear filter's
+           halving of a one-voxel wall between voxel centres is undone: alpha x 2. At most 1 either way. */
+        ap = 1 - pow(1 - VOXGI__MIN(1.0, s[3] * (J->dirs == 6 ? 2.0 : exp2(VOXGI__MAX(lod, 0.0)))), J->step); /* it holds for one diameter; a step is J->step of it */
+        for (a = 0; a < 3; a++) C[a] += (1 - A) * ap * s[a];
+        A += (1 - A) * ap;
+        t += dt;
+    }
+    *A_out = A;
+}
+
 static void voxgi__cone_range(void *user, size_t first, size_t end)
 {
     voxgi__cone_job *J = (voxgi__cone_job *)user;
@@ -7123,32 +7174,55 @@ static void voxgi__cone_range(void *user, size_t first, size_t end)
         for (a = 0; a < 3; a++) n[a] = len > 0 ? n[a] / len : (a == 1);
         voxgi__basis(n, t3, b3);
         for (k = 0; k < J->cones; k++) {
-            double l[3], d[3], t = J->offset, A = 0, C[3] = {0, 0, 0}, tan_k;
+            double l[3], d[3], A, C[3];
             voxgi__cone_direction(k, J->cones, l);
-            tan_k = VOXGI__MIN(J->half_tan, l[2] / 3); /* low cones narrow: each sample stays 1.5 diameters above the tangent plane */
             for (a = 0; a < 3; a++) d[a] = l[0] * t3[a] + l[1] * b3[a] + l[2] * n[a];
-            while (t < J->max_dist && A < 0.99) {
-                double diam = VOXGI__MAX(1.0, 2 * t * tan_k), dt = J->step * diam, ap, h = J->offset + (t - J->offset) * l[2];
-                float p[3], s[4];
-                for (a = 0; a < 3; a++) p[a] = (float)(o[a] + J->offset * n[a] + (t - J->offset) * d[a]);
-                /* both levels blended must stay clear of the surface: a level-L voxel holding it reaches 1.5 x 2^L above it */
-                double lod = VOXGI__MIN(VOXGI__MIN(log2(diam), log2(h / 1.5) - 1), J->vol->info.levels - 1.0);
-                voxgi__cone_sample(J, d, p, (float)lod, s);
-                /* what the cone sees is the coverage of its cross-section. Isotropic: a level-L voxel's alpha is the share
-                   of its volume that is filled; a surface one voxel thick fills 2^-L of it yet may cover its whole
-                   cross-section: alpha x 2^L. Anisotropic: alpha is already the coverage along the axis (composited front
-                   to back), and a surface parallel to the travel covers only its share; only the trilinear filter's
-                   halving of a one-voxel wall between voxel centres is undone: alpha x 2. At most 1 either way. */
-                ap = 1 - pow(1 - VOXGI__MIN(1.0, s[3] * (J->dirs == 6 ? 2.0 : exp2(VOXGI__MAX(lod, 0.0)))), J->step); /* it holds for one diameter; a step is J->step of it */
-                for (a = 0; a < 3; a++) C[a] += (1 - A) * ap * s[a];
-                A += (1 - A) * ap;
-                t += dt;
-            }
+            /* low cones narrow: each sample stays 1.5 diameters above the tangent plane */
+            voxgi__cone_march(J, o, n, d, l[2], VOXGI__MIN(J->half_tan, l[2] / 3), J->max_dist, C, &A);
             for (a = 0; a < 3; a++) e[a] += 3.14159265358979323846 / J->cones * C[a];
             occ += A / J->cones;
         }
         for (a = 0; a < 3; a++) J->irr[3 * i + (size_t)a] = (float)e[a];
         if (J->occ) J->occ[i] = (float)occ;
+    }
+}
+
+/* A single cone's origin (grid units), unit direction, unit surface normal (the direction when
+   none is given or it faces away) and their cosine. */
+static void voxgi__cone_frame(const voxgi_cone *c, const voxgi_grid *g, double o[3], double d[3], double n[3], double *lz)
+{
+    double ld = 0, ln = 0;
+    int a;
+    for (a = 0; a < 3; a++) {
+        o[a] = (c->origin[a] - g->origin[a]) / g->voxel_size;
+        d[a] = c->direction[a];
+        n[a] = c->normal[a];
+        ld += d[a] * d[a];
+        ln += n[a] * n[a];
+    }
+    ld = sqrt(ld);
+    ln = sqrt(ln);
+    for (a = 0; a < 3; a++) { d[a] /= ld; n[a] = ln > 0 ? n[a] / ln : 0; }
+    *lz = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    if (!(*lz > 0)) { for (a = 0; a < 3; a++) n[a] = d[a]; *lz = 1; }
+}
+
+/* Single cones (voxgi_trace_cones): J->list in, (C, A) per cone out in J->irr (4 floats each). */
+static void voxgi__cone_each_range(void *user, size_t first, size_t end)
+{
+    voxgi__cone_job *J = (voxgi__cone_job *)user;
+    const voxgi_grid *g = &J->vol->info.grid;
+    size_t i;
+    int a;
+    for (i = first; i < end; i++) {
+        const voxgi_cone *c = &J->list[i];
+        double o[3], d[3], n[3], lz;
+        double A, C[3];
+        voxgi__cone_frame(c, g, o, d, n, &lz);
+        voxgi__cone_march(J, o, n, d, lz, lz < 1 ? VOXGI__MIN(tan((double)c->half_angle), lz / 3) : tan((double)c->half_angle), /* narrowed as diffuse cones */
+                          c->max_distance > 0 ? c->max_distance / g->voxel_size : J->max_dist, C, &A);
+        for (a = 0; a < 3; a++) J->irr[4 * i + (size_t)a] = (float)C[a];
+        J->irr[4 * i + 3] = (float)A;
     }
 }
 
@@ -7166,18 +7240,22 @@ static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_j
     voxgi_result r = voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl", &gl->prog_cone_trace);
     if (r != VOXGI_OK || !count) return r;
     if (count > UINT32_MAX / 2) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
-    if (!(io = (float *)voxgi__alloc_array(ctx, count, 32, 0))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
-    for (i = 0; i < count; i++) {
-        double n[3], len = 0;
-        for (a = 0; a < 3; a++) { n[a] = J->nrm[3 * i + (size_t)a]; len += n[a] * n[a]; }
-        len = sqrt(len);
-        for (a = 0; a < 3; a++) {
-            io[8 * i + (size_t)a] = (float)((J->pos[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size);
-            io[8 * i + 4 + (size_t)a] = (float)(len > 0 ? n[a] / len : (a == 1));
+    if (!(io = (float *)voxgi__alloc_array(ctx, count, 48, 0))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
+    for (i = 0; i < count; i++) { /* points: position, unit normal; single cones: origin and tan, unit direction and reach, normal and cosine */
+        float *v = io + 12 * i;
+        double o[3], d[3], n[3], lz = 0, len = 0;
+        if (J->list) voxgi__cone_frame(&J->list[i], g, o, d, n, &lz);
+        else {
+            for (a = 0; a < 3; a++) { o[a] = (J->pos[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size; d[a] = J->nrm[3 * i + (size_t)a]; len += d[a] * d[a]; }
+            len = sqrt(len);
+            for (a = 0; a < 3; a++) n[a] = d[a] = len > 0 ? d[a] / len : (a == 1);
         }
-        io[8 * i + 3] = io[8 * i + 7] = 0;
+        for (a = 0; a < 3; a++) { v[a] = (float)o[a]; v[4 + a] = (float)d[a]; v[8 + a] = (float)n[a]; }
+        v[3] = J->list ? (float)tan((double)J->list[i].half_angle) : 0.0f;
+        v[7] = J->list ? (float)(J->list[i].max_distance > 0 ? J->list[i].max_distance / g->voxel_size : J->max_dist) : 0.0f;
+        v[11] = (float)lz;
     }
-    bufs[0] = voxgi__gl_buffer(ctx, count * 32, io);
+    bufs[0] = voxgi__gl_buffer(ctx, count * 48, io);
     bufs[1] = voxgi__gl_buffer(ctx, count * 16, NULL);
     p = gl->prog_cone_trace;
     gl->UseProgram(p);
@@ -7189,7 +7267,7 @@ static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_j
                          (float)J->vol->info.gl_size[2]);
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_levels"), J->vol->info.levels);
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_anisotropic"), J->dirs == 6);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_cones"), J->cones);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_cones"), J->list ? 0 : J->cones);
     gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_half_tan"), (float)J->half_tan);
     gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_step"), (float)J->step);
     gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_offset"), (float)J->offset);
@@ -7204,6 +7282,7 @@ static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_j
     voxgi__gl_unbind(gl);
     r = voxgi__gl_read_buffer(ctx, bufs[1], io, count * 16);
     for (i = 0; r == VOXGI_OK && i < count; i++) {
+        if (J->list) { memcpy(J->irr + 4 * i, io + 4 * i, 16); continue; }
         for (a = 0; a < 3; a++) J->irr[3 * i + (size_t)a] = io[4 * i + (size_t)a];
         if (J->occ) J->occ[i] = io[4 * i + 3];
     }
@@ -7215,15 +7294,11 @@ static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_j
 }
 #endif
 
-VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count,
-                                        const float *positions, const float *normals, float *irradiance, float *occlusion)
+/* What voxgi_cone_trace and voxgi_trace_cones share: the checks of the volume and desc, the job. */
+static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, voxgi__cone_job *J)
 {
-    voxgi__cone_job J;
     const voxgi_grid *g;
-    size_t i;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!vol || !desc || (count && (!positions || !normals || !irradiance)))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, desc, positions, normals or irradiance is NULL");
+    memset(J, 0, sizeof *J);
     if (!(vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the volume holds no RADIANCE (voxgi_inject_light)");
     if (vol->info.backend != ctx->backend)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the volume was made on another backend than the context's");
@@ -7231,27 +7306,72 @@ VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *
         !(desc->offset >= 0) || !(desc->max_distance >= 0))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "cones %d (0..1024), half_angle %g (0..1.5), step %g (0..4), offset %g, max_distance %g",
                            desc->cones, desc->half_angle, desc->step, desc->offset, desc->max_distance);
+    g = &vol->info.grid;
+    J->vol = vol;
+    J->desc = desc;
+    J->cones = desc->cones ? desc->cones : 16;
+    J->dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
+    J->half_tan = tan(desc->half_angle > 0 ? desc->half_angle : acos(1 - 1.0 / J->cones));
+    J->step = desc->step > 0 ? desc->step : 0.5;
+    J->offset = desc->offset > 0 ? desc->offset : 1.5;
+    J->max_dist = desc->max_distance > 0 ? desc->max_distance
+                                         : sqrt((double)g->res[0] * g->res[0] + (double)g->res[1] * g->res[1] + (double)g->res[2] * g->res[2]);
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count,
+                                        const float *positions, const float *normals, float *irradiance, float *occlusion)
+{
+    voxgi__cone_job J;
+    size_t i;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vol || !desc || (count && (!positions || !normals || !irradiance)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, desc, positions, normals or irradiance is NULL");
+    if ((r = voxgi__cone_job_init(ctx, vol, desc, &J)) != VOXGI_OK) return r;
     for (i = 0; i < 3 * count; i++)
         if (!isfinite(positions[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
-    g = &vol->info.grid;
-    J.vol = vol;
-    J.desc = desc;
     J.pos = positions;
     J.nrm = normals;
     J.irr = irradiance;
     J.occ = occlusion;
-    J.cones = desc->cones ? desc->cones : 16;
-    J.dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
-    J.half_tan = tan(desc->half_angle > 0 ? desc->half_angle : acos(1 - 1.0 / J.cones));
-    J.step = desc->step > 0 ? desc->step : 0.5;
-    J.offset = desc->offset > 0 ? desc->offset : 1.5;
-    J.max_dist = desc->max_distance > 0 ? desc->max_distance
-                                        : sqrt((double)g->res[0] * g->res[0] + (double)g->res[1] * g->res[1] + (double)g->res[2] * g->res[2]);
 #ifndef VOXGI_NO_GL
     if (vol->info.backend == VOXGI_BACKEND_GL) return voxgi__cone_trace_gl(ctx, &J, count);
 #endif
     voxgi__parallel(ctx, count, 64, voxgi__cone_range, &J);
     return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count, const voxgi_cone *cones,
+                                         float *radiance_opacity)
+{
+    voxgi__cone_job J;
+    size_t i;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vol || !desc || (count && (!cones || !radiance_opacity))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, desc, cones or out is NULL");
+    if ((r = voxgi__cone_job_init(ctx, vol, desc, &J)) != VOXGI_OK) return r;
+    for (i = 0; i < count; i++) {
+        const voxgi_cone *c = &cones[i];
+        double len = (double)c->direction[0] * c->direction[0] + (double)c->direction[1] * c->direction[1] + (double)c->direction[2] * c->direction[2];
+        if (!isfinite(c->origin[0]) || !isfinite(c->origin[1]) || !isfinite(c->origin[2]) || !(len > 0) || !isfinite(len) ||
+            !(c->half_angle > 0 && c->half_angle < 1.5f) || !(c->max_distance >= 0) || !isfinite(c->max_distance))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "cone %lu: origin not finite, direction zero, half_angle %g not in (0, 1.5) or max_distance %g",
+                               (unsigned long)i, c->half_angle, c->max_distance);
+    }
+    J.list = cones;
+    J.irr = radiance_opacity;
+#ifndef VOXGI_NO_GL
+    if (vol->info.backend == VOXGI_BACKEND_GL) return voxgi__cone_trace_gl(ctx, &J, count);
+#endif
+    voxgi__parallel(ctx, count, 64, voxgi__cone_each_range, &J);
+    return VOXGI_OK;
+}
+
+VOXGI_API float voxgi_specular_half_angle(float roughness)
+{
+    double a = VOXGI__MIN(1.0, VOXGI__MAX(0.02, (double)roughness)), n = VOXGI__MAX(0.0, 2 / (a * a) - 2); /* Phong exponent of the lobe */
+    return (float)VOXGI__MAX(0.005, acos(pow(0.244, 1 / (n + 1))));
 }
 
 typedef struct voxgi__vct_job {

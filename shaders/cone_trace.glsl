@@ -9,8 +9,8 @@ layout(binding = 2) uniform sampler3D u_rad2;
 layout(binding = 3) uniform sampler3D u_rad3;
 layout(binding = 4) uniform sampler3D u_rad4;
 layout(binding = 5) uniform sampler3D u_rad5;
-layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };   // 2 per point: position (grid units), unit normal
-layout(std430, binding = 1) writeonly buffer Gathered { vec4 gathered[]; }; // irradiance, occlusion
+layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };   // 3 per point or cone (main, below), grid units
+layout(std430, binding = 1) writeonly buffer Gathered { vec4 gathered[]; }; // irradiance and occlusion, or radiance and opacity
 uniform uint u_first;
 uniform uint u_count;
 uniform vec3 u_size;      // the textures' base size
@@ -36,11 +36,37 @@ vec4 cone_sample(vec3 d, vec3 p, float lod)
     return vec4(s.a > 0.0 ? s.rgb / s.a : vec3(0.0), s.a);
 }
 
+// One cone from o (on a surface of unit normal n) along unit d, at cosine lz with n: marched from
+// u_offset voxels along n, narrowing tan_k, up to max_d; (radiance, opacity). voxgi__cone_march.
+vec4 march(vec3 o, vec3 n, vec3 d, float lz, float tan_k, float max_d)
+{
+    float t = u_offset, A = 0.0;
+    vec3 C = vec3(0.0);
+    while (t < max_d && A < 0.99) {
+        float diam = max(1.0, 2.0 * t * tan_k), h = u_offset + (t - u_offset) * lz;
+        vec3 p = o + u_offset * n + (t - u_offset) * d;
+        float lod = min(min(log2(diam), log2(h / 1.5) - 1.0), float(u_levels - 1));
+        vec4 s = cone_sample(d, p, lod);
+        float ap = 1.0 - pow(1.0 - min(1.0, s.a * (u_anisotropic != 0 ? 2.0 : exp2(max(lod, 0.0)))), u_step);
+        C += (1.0 - A) * ap * s.rgb;
+        A += (1.0 - A) * ap;
+        t += u_step * diam;
+    }
+    return vec4(C, A);
+}
+
+// u_cones > 0: diffuse gathers at points (position, normal); u_cones == 0: single cones
+// (origin and tan of the half-angle, direction and reach), as voxgi__cone_each_range.
 void main()
 {
     uint i = u_first + gl_GlobalInvocationID.x;
     if (i >= u_count) return;
-    vec3 o = points[2u * i].xyz, n = points[2u * i + 1u].xyz;
+    vec4 a = points[3u * i], b = points[3u * i + 1u], c = points[3u * i + 2u];
+    if (u_cones == 0) { // as voxgi__cone_each_range: narrowed near the surface unless it leaves along its normal
+        gathered[i] = march(a.xyz, c.xyz, b.xyz, c.w, c.w > 0.0 && c.w < 1.0 ? min(a.w, c.w / 3.0) : a.w, b.w);
+        return;
+    }
+    vec3 o = a.xyz, n = b.xyz;
     float sgn = n.z >= 0.0 ? 1.0 : -1.0, ba = -1.0 / (sgn + n.z), bc = n.x * n.y * ba; // voxgi__basis
     vec3 t3 = vec3(1.0 + sgn * n.x * n.x * ba, sgn * bc, -sgn * n.x), b3 = vec3(bc, sgn + n.y * n.y * ba, -n.y);
     vec3 e = vec3(0.0);
@@ -48,20 +74,9 @@ void main()
     for (int k = 0; k < u_cones; k++) {
         float r = sqrt((float(k) + 0.5) / float(u_cones)), phi = 2.399963229728653 * float(k);
         vec3 l = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - r * r)));
-        float tan_k = min(u_half_tan, l.z / 3.0), t = u_offset, A = 0.0;
-        vec3 d = l.x * t3 + l.y * b3 + l.z * n, C = vec3(0.0);
-        while (t < u_max_distance && A < 0.99) {
-            float diam = max(1.0, 2.0 * t * tan_k), h = u_offset + (t - u_offset) * l.z;
-            vec3 p = o + u_offset * n + (t - u_offset) * d;
-            float lod = min(min(log2(diam), log2(h / 1.5) - 1.0), float(u_levels - 1));
-            vec4 s = cone_sample(d, p, lod);
-            float ap = 1.0 - pow(1.0 - min(1.0, s.a * (u_anisotropic != 0 ? 2.0 : exp2(max(lod, 0.0)))), u_step);
-            C += (1.0 - A) * ap * s.rgb;
-            A += (1.0 - A) * ap;
-            t += u_step * diam;
-        }
-        e += 3.14159265358979323846 / float(u_cones) * C;
-        occ += A / float(u_cones);
+        vec4 c = march(o, n, l.x * t3 + l.y * b3 + l.z * n, l.z, min(u_half_tan, l.z / 3.0), u_max_distance);
+        e += 3.14159265358979323846 / float(u_cones) * c.rgb;
+        occ += c.a / float(u_cones);
     }
     gathered[i] = vec4(e, occ);
 }

@@ -1128,8 +1128,9 @@ static void test_gl_cone_tracing_equals_cpu(void)
     enum { N = 300, W = 20 };
     voxgi_context *ctx[2];
     voxgi_builtin_scene bs;
-    float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], *img[2];
-    double worst_irr = 0, worst_occ = 0, worst_img = 0, mean_irr = 0, mean_img = 0;
+    float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], *img[2], each[2][4 * N];
+    voxgi_cone single[N];
+    double worst_irr = 0, worst_occ = 0, worst_img = 0, mean_irr = 0, mean_img = 0, worst_each = 0;
     int b, f, i, a;
     if (!have_gl()) return;
     ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
@@ -1144,6 +1145,14 @@ static void test_gl_cone_tracing_equals_cpu(void)
             len += nrm[3 * i + a] * nrm[3 * i + a];
         }
         if (len < 1e-4) nrm[3 * i + 1] = 1;
+        memset(&single[i], 0, sizeof single[i]); /* single cones: the same origins and directions, half of them leaving a surface */
+        for (a = 0; a < 3; a++) {
+            single[i].origin[a] = pos[3 * i + a];
+            single[i].direction[a] = nrm[3 * i + a];
+            single[i].normal[a] = i % 2 ? nrm[3 * ((i + 1) % N) + a] : 0;
+        }
+        single[i].half_angle = (float)(0.03 + 0.6 * rand() / RAND_MAX);
+        single[i].max_distance = i % 3 ? (float)(0.6 * rand() / RAND_MAX) : 0;
     }
     img[0] = (float *)malloc(W * W * 12);
     img[1] = (float *)malloc(W * W * 12);
@@ -1169,7 +1178,8 @@ static void test_gl_cone_tracing_equals_cpu(void)
             id.shadow_rays = 1; /* the same radiance on both */
             TH_CHECK(voxgi_fit_grid(ctx[b], &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx[b], &bs.scene, &xd, &vx) == VOXGI_OK &&
                      voxgi_inject_light(ctx[b], &bs.scene, vx, &id, &vol) == VOXGI_OK &&
-                     voxgi_cone_trace(ctx[b], vol, &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK, "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
+                     voxgi_cone_trace(ctx[b], vol, &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
+                     voxgi_trace_cones(ctx[b], vol, &cd, N, single, each[b]) == VOXGI_OK, "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
             voxgi_volume_destroy(ctx[b], vol);
             voxgi_voxels_destroy(ctx[b], vx);
             vd.camera = bs.camera;
@@ -1182,10 +1192,12 @@ static void test_gl_cone_tracing_equals_cpu(void)
         }
         for (i = 0; i < 3 * N; i++) { worst_irr = fmax(worst_irr, fabs(irr[0][i] - irr[1][i])); mean_irr += irr[0][i] / (6.0 * N); }
         for (i = 0; i < N; i++) worst_occ = fmax(worst_occ, fabs(occ[0][i] - occ[1][i]));
+        for (i = 0; i < 4 * N; i++) worst_each = fmax(worst_each, fabs(each[0][i] - each[1][i]) / (i % 4 == 3 ? 1 : fmax(mean_irr, 1e-3)));
         for (i = 0; i < 3 * W * W; i++) { worst_img = fmax(worst_img, fabs(img[0][i] - img[1][i])); mean_img += img[0][i] / (6.0 * W * W); }
     }
-    printf("    GL cone tracing vs CPU: irradiance within %.3g (mean %.3g), occlusion within %.3g, image within %.3g (mean %.3g)\n", worst_irr,
-           mean_irr, worst_occ, worst_img, mean_img);
+    printf("    GL cone tracing vs CPU: irradiance within %.3g (mean %.3g), occlusion within %.3g, single cones within %.3g (relative), image within %.3g "
+           "(mean %.3g)\n", worst_irr, mean_irr, worst_occ, worst_each, worst_img, mean_img);
+    TH_CHECK(worst_each <= 1e-3, "single cones differ by %g", worst_each);
     TH_CHECK(mean_irr > 0.05 && worst_irr <= 1e-3 * mean_irr, "irradiance differs by %g (mean %g)", worst_irr, mean_irr);
     TH_CHECK(worst_occ <= 1e-3, "occlusion differs by %g", worst_occ);
     TH_CHECK(worst_img <= 1e-3 * mean_img, "image differs by %g (mean %g)", worst_img, mean_img);

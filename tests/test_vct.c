@@ -334,11 +334,67 @@ static void test_second_bounce(void)
     voxgi_destroy(ctx);
 }
 
+/* Single cones under the glowing ceiling (radiance 2, one unit above the floor): a narrow cone
+   up from the floor sees radiance 2 and is fully stopped; a glossy reflection (roughness 0.3)
+   of a view 45 degrees down sees the ceiling too; a shadow cone toward a point half a unit up is
+   not stopped (visibility 1), one toward a point two units up, beyond the ceiling, is (0); a
+   cone between floor and ceiling, parallel to both, escapes. Half-angles from roughness grow
+   with it and match the formula. */
+static void test_single_cones(void)
+{
+    voxgi_context *ctx = make_ctx();
+    voxgi_material mats[2] = {{{0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0}, {{0.5f, 0.5f, 0.5f}, {2, 2, 2}, 0}};
+    float floor_q[12] = {-3, -1, -3, -3, -1, 3, 3, -1, 3, 3, -1, -3}, ceil_q[12] = {-3, 0, -3, 3, 0, -3, 3, 0, 3, -3, 0, 3};
+    quads q;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_grid g;
+    voxgi_volume *vol;
+    voxgi_cone_desc cd;
+    voxgi_cone c[5];
+    float out[5 * 4];
+    int k, filter;
+    q.n = 0;
+    quad(&q, floor_q, 0);
+    quad(&q, ceil_q, 1);
+    scene_of(&sc, &mesh, &q, mats, 2, NULL, 0);
+    grid_of(&g, -3.2, 6.4, 64);
+    memset(&cd, 0, sizeof cd);
+    memset(c, 0, sizeof c);
+    for (k = 0; k < 5; k++) { c[k].origin[0] = 0.01f; c[k].origin[1] = -1; c[k].origin[2] = 0.02f; c[k].direction[1] = 1; c[k].half_angle = 0.1f; }
+    c[1].direction[0] = 0.70710678f; c[1].direction[1] = 0.70710678f; /* the mirror direction of a view travelling (1, -1, 0) / sqrt 2 */
+    c[1].half_angle = voxgi_specular_half_angle(0.3f);
+    c[1].normal[1] = 1; /* from the floor */
+    c[2].max_distance = 0.5f; /* shadow cones: to a point light half a unit up, and two units up */
+    c[3].max_distance = 2;
+    c[4].origin[0] = -2.5f; c[4].origin[1] = -0.5f; c[4].direction[0] = 1; c[4].direction[1] = 0; c[4].half_angle = 0.02f;
+    for (filter = 0; filter < 2; filter++) {
+        vol = inject(ctx, &sc, &g, (voxgi_mip_filter)filter);
+        TH_CHECK(vol && voxgi_trace_cones(ctx, vol, &cd, 5, c, out) == VOXGI_OK, "trace: %s", voxgi_last_error(ctx));
+        printf("    single cones (%s): up %.3f (A %.3f), glossy %.3f (A %.3f), shadow visibility %.3f and %.3f, parallel A %.3f\n",
+               filter ? "anisotropic" : "isotropic", out[0], out[3], out[4], out[7], 1 - out[11], 1 - out[15], out[19]);
+        TH_CHECK(fabs(out[0] / 2 - 1) < 0.05 && out[3] > 0.97, "up: %.3f, A %.3f", out[0], out[3]);
+        TH_CHECK(fabs(out[4] / 2 - 1) < 0.1 && out[7] > 0.9, "glossy: %.3f, A %.3f", out[4], out[7]);
+        TH_CHECK(1 - out[11] > 0.97 && 1 - out[15] < 0.03, "shadow visibilities %.3f %.3f", 1 - out[11], 1 - out[15]);
+        TH_CHECK(out[19] < 0.05, "parallel cone stopped: A %.3f", out[19]);
+        voxgi_volume_destroy(ctx, vol);
+    }
+    TH_CHECK(voxgi_specular_half_angle(0.1f) < voxgi_specular_half_angle(0.5f) && voxgi_specular_half_angle(0.5f) < voxgi_specular_half_angle(1),
+             "half-angles do not grow with roughness");
+    TH_CHECK(fabs(voxgi_specular_half_angle(0.5f) - acos(pow(0.244, 1.0 / 7))) < 1e-6 && fabs(voxgi_specular_half_angle(1) - acos(0.244)) < 1e-6,
+             "half-angle formula");
+    c[0].half_angle = 0;
+    TH_CHECK(voxgi_trace_cones(ctx, vol = inject(ctx, &sc, &g, VOXGI_MIPS_ISOTROPIC), &cd, 1, c, out) == VOXGI_ERR_INVALID_ARGUMENT, "a cone of no angle accepted");
+    voxgi_volume_destroy(ctx, vol);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     TH_RUN(test_cornell_box_image);
     TH_RUN(test_leak_box);
     TH_RUN(test_second_bounce);
+    TH_RUN(test_single_cones);
     TH_RUN(test_injection_is_exact_on_a_lit_floor);
     TH_RUN(test_ambient_occlusion);
     TH_RUN(test_glowing_ceiling);
