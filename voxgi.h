@@ -622,6 +622,19 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
 VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, size_t count,
                                         const float *positions, const float *normals, float *irradiance, float *occlusion);
 
+/* GL: the diffuse gather over the caller's G-buffer textures, written into the caller's texture:
+   positions (world units, rgb of any float 2D texture), normals (rgb, need not be unit; zero:
+   no surface, written 0), optionally albedo (rgb); out (RGBA16F or RGBA32F, width x height):
+   the irradiance and the occlusion in alpha, or with albedo the reflected radiance albedo / pi x
+   irradiance. The same march as voxgi_cone_trace (which takes CPU arrays on either backend). */
+typedef struct voxgi_gl_gbuffer {
+    unsigned int position_texture, normal_texture, albedo_texture; /* albedo: 0 = none */
+    int width, height;
+    unsigned int irradiance_texture;
+    int irradiance_rgba16f;       /* 1: irradiance_texture is RGBA16F; 0: RGBA32F */
+} voxgi_gl_gbuffer;
+VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gbuffer);
+
 /* Single cones, each from its own origin along its own direction: a specular reflection is one
    cone along the mirror direction with voxgi_specular_half_angle(roughness), a soft shadow one
    cone toward a light as wide as the light seen from the point (visibility 1 - A). Each is marched
@@ -1416,6 +1429,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_RED 0x1903
 #define VOXGI__GL_FLOAT 0x1406
 #define VOXGI__GL_RGBA32F 0x8814
+#define VOXGI__GL_RGBA16F 0x881A
 #define VOXGI__GL_R32F 0x822E
 #define VOXGI__GL_TEXTURE_3D 0x806F
 #define VOXGI__GL_TEXTURE_WRAP_S 0x2802
@@ -1551,7 +1565,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(cone_trace) X(light_map_draw) X(inject) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(cone_trace) X(cone_trace_images16) X(cone_trace_images32) X(light_map_draw) X(inject) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -7227,6 +7241,20 @@ static void voxgi__cone_each_range(void *user, size_t first, size_t end)
 }
 
 #ifndef VOXGI_NO_GL
+/* The march's uniforms (shaders/cone_trace.glsl). */
+static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__cone_job *J)
+{
+    gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_size"), (float)J->vol->info.gl_size[0], (float)J->vol->info.gl_size[1],
+                         (float)J->vol->info.gl_size[2]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_levels"), J->vol->info.levels);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_anisotropic"), J->dirs == 6);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_cones"), J->list ? 0 : J->cones);
+    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_half_tan"), (float)J->half_tan);
+    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_step"), (float)J->step);
+    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_offset"), (float)J->offset);
+    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_max_distance"), (float)J->max_dist);
+}
+
 /* The same march on GL (shaders/cone_trace.glsl): points in grid units and unit normals go up,
    (irradiance, occlusion) come back; dispatched in slices so that no one dispatch runs long. */
 static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_job *J, size_t count)
@@ -7237,7 +7265,7 @@ static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_j
     float *io;
     size_t i, first, slice = 16384;
     int a;
-    voxgi_result r = voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl", &gl->prog_cone_trace);
+    voxgi_result r = voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl cone_trace_buffers.glsl", &gl->prog_cone_trace);
     if (r != VOXGI_OK || !count) return r;
     if (count > UINT32_MAX / 2) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
     if (!(io = (float *)voxgi__alloc_array(ctx, count, 48, 0))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
@@ -7259,19 +7287,11 @@ static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_j
     bufs[1] = voxgi__gl_buffer(ctx, count * 16, NULL);
     p = gl->prog_cone_trace;
     gl->UseProgram(p);
+    voxgi__cone_uniforms(gl, p, J);
     for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J->vol->tex[4][J->dirs == 6 ? a : 0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
     gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)count);
-    gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_size"), (float)J->vol->info.gl_size[0], (float)J->vol->info.gl_size[1],
-                         (float)J->vol->info.gl_size[2]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_levels"), J->vol->info.levels);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_anisotropic"), J->dirs == 6);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_cones"), J->list ? 0 : J->cones);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_half_tan"), (float)J->half_tan);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_step"), (float)J->step);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_offset"), (float)J->offset);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_max_distance"), (float)J->max_dist);
     for (first = 0; first < count; first += slice) {
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first);
         gl->DispatchCompute((unsigned)((VOXGI__MIN(slice, count - first) + 63) / 64), 1, 1);
@@ -7366,6 +7386,51 @@ VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume 
 #endif
     voxgi__parallel(ctx, count, 64, voxgi__cone_each_range, &J);
     return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gb)
+{
+#ifdef VOXGI_NO_GL
+    (void)vol; (void)desc; (void)gb;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "G-buffer textures need GL (this build has VOXGI_NO_GL)");
+#else
+    voxgi__gl *gl;
+    voxgi__cone_job J;
+    const voxgi_grid *g;
+    unsigned int p;
+    int a;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vol || !desc || !gb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, desc or gbuffer is NULL");
+    if (ctx->backend != VOXGI_BACKEND_GL || !ctx->gl) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "G-buffer textures need a GL context");
+    if (!gb->position_texture || !gb->normal_texture || !gb->irradiance_texture || gb->width < 1 || gb->height < 1)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "position, normal and irradiance textures and a size (%d x %d) are needed", gb->width, gb->height);
+    if ((r = voxgi__cone_job_init(ctx, vol, desc, &J)) != VOXGI_OK) return r;
+    gl = ctx->gl;
+    g = &vol->info.grid;
+    r = gb->irradiance_rgba16f ? voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl", &gl->prog_cone_trace_images16)
+                               : voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl", &gl->prog_cone_trace_images32);
+    if (r != VOXGI_OK) return r;
+    p = gb->irradiance_rgba16f ? gl->prog_cone_trace_images16 : gl->prog_cone_trace_images32;
+    gl->UseProgram(p);
+    voxgi__cone_uniforms(gl, p, &J);
+    for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J.vol->tex[4][J.dirs == 6 ? a : 0]);
+    gl->BindTextureUnit(6, gb->position_texture);
+    gl->BindTextureUnit(7, gb->normal_texture);
+    gl->BindTextureUnit(8, gb->albedo_texture ? gb->albedo_texture : gb->normal_texture);
+    gl->BindImageTexture(0, gb->irradiance_texture, 0, 0, 0, VOXGI__GL_WRITE_ONLY, gb->irradiance_rgba16f ? VOXGI__GL_RGBA16F : VOXGI__GL_RGBA32F);
+    gl->ProgramUniform2i(p, gl->GetUniformLocation(p, "u_image"), gb->width, gb->height);
+    gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_origin"), (float)g->origin[0], (float)g->origin[1], (float)g->origin[2]);
+    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_voxel_size"), (float)g->voxel_size);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_has_albedo"), gb->albedo_texture != 0);
+    gl->DispatchCompute((unsigned)((gb->width + 7) / 8), (unsigned)((gb->height + 7) / 8), 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT);
+    for (a = 0; a < 9; a++) gl->BindTextureUnit((unsigned)a, 0);
+    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_RGBA32F);
+    voxgi__gl_unbind(gl);
+    return voxgi__gl_check(ctx, "cone tracing a G-buffer");
+#endif
 }
 
 VOXGI_API float voxgi_specular_half_angle(float roughness)

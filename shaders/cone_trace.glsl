@@ -1,7 +1,7 @@
-// Diffuse cone tracing over a RADIANCE volume (voxgi.h, part "light injection and cone
-// tracing"): voxgi_cone_trace on GL, the march of voxgi__cone_range step for step, with the
-// textures' own filtering (the radiance is stored premultiplied, so linear filtering is right).
-layout(local_size_x = VOXGI_LOCAL_SIZE) in;
+// Cone tracing over a RADIANCE volume (voxgi.h, part "light injection and cone tracing"): the
+// march of voxgi__cone_march step for step, with the textures' own filtering (the radiance is
+// stored premultiplied, so linear filtering is right). Its passes: cone_trace_buffers.glsl
+// (points and single cones in storage buffers) and cone_trace_images.glsl (a G-buffer).
 // isotropic: u_rad0; anisotropic: one texture per direction of travel, +x -x +y -y +z -z
 layout(binding = 0) uniform sampler3D u_rad0;
 layout(binding = 1) uniform sampler3D u_rad1;
@@ -9,10 +9,6 @@ layout(binding = 2) uniform sampler3D u_rad2;
 layout(binding = 3) uniform sampler3D u_rad3;
 layout(binding = 4) uniform sampler3D u_rad4;
 layout(binding = 5) uniform sampler3D u_rad5;
-layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };   // 3 per point or cone (main, below), grid units
-layout(std430, binding = 1) writeonly buffer Gathered { vec4 gathered[]; }; // irradiance and occlusion, or radiance and opacity
-uniform uint u_first;
-uniform uint u_count;
 uniform vec3 u_size;      // the textures' base size
 uniform int u_levels;
 uniform int u_anisotropic;
@@ -55,18 +51,9 @@ vec4 march(vec3 o, vec3 n, vec3 d, float lz, float tan_k, float max_d)
     return vec4(C, A);
 }
 
-// u_cones > 0: diffuse gathers at points (position, normal); u_cones == 0: single cones
-// (origin and tan of the half-angle, direction and reach), as voxgi__cone_each_range.
-void main()
+// The diffuse gather at o (grid units) on unit normal n: (irradiance, occlusion).
+vec4 gather(vec3 o, vec3 n)
 {
-    uint i = u_first + gl_GlobalInvocationID.x;
-    if (i >= u_count) return;
-    vec4 a = points[3u * i], b = points[3u * i + 1u], c = points[3u * i + 2u];
-    if (u_cones == 0) { // as voxgi__cone_each_range: narrowed near the surface unless it leaves along its normal
-        gathered[i] = march(a.xyz, c.xyz, b.xyz, c.w, c.w > 0.0 && c.w < 1.0 ? min(a.w, c.w / 3.0) : a.w, b.w);
-        return;
-    }
-    vec3 o = a.xyz, n = b.xyz;
     float sgn = n.z >= 0.0 ? 1.0 : -1.0, ba = -1.0 / (sgn + n.z), bc = n.x * n.y * ba; // voxgi__basis
     vec3 t3 = vec3(1.0 + sgn * n.x * n.x * ba, sgn * bc, -sgn * n.x), b3 = vec3(bc, sgn + n.y * n.y * ba, -n.y);
     vec3 e = vec3(0.0);
@@ -78,5 +65,5 @@ void main()
         e += 3.14159265358979323846 / float(u_cones) * c.rgb;
         occ += c.a / float(u_cones);
     }
-    gathered[i] = vec4(e, occ);
+    return vec4(e, occ);
 }

@@ -1118,6 +1118,105 @@ static void test_gl_raster_leak_box(void)
     voxgi_destroy(ctx);
 }
 
+/* The caller's G-buffer as GL textures (voxgi_cone_trace_gl): positions and normals in RGBA32F
+   textures, the result in the caller's RGBA32F texture equals voxgi_cone_trace on the same
+   points (the positions go to grid units in float on the GPU instead of double: within 1e-4);
+   a pixel without a normal is written 0; with an albedo texture and an RGBA16F target the
+   result is albedo / pi x irradiance within half precision. */
+typedef void (*vx_create_textures)(unsigned int, int, unsigned int *);
+typedef void (*vx_texture_storage_2d)(unsigned int, int, unsigned int, int, int);
+typedef void (*vx_texture_sub_image_2d)(unsigned int, int, int, int, int, int, unsigned int, unsigned int, const void *);
+typedef void (*vx_get_texture_image)(unsigned int, int, unsigned int, unsigned int, int, void *);
+typedef void (*vx_delete_textures)(int, const unsigned int *);
+
+static void test_gl_gbuffer_textures(void)
+{
+    enum { W = 20, H = 15, N = W * H };
+    voxgi_context *ctx;
+    voxgi_builtin_scene bs;
+    voxgi_fit_desc fit;
+    voxgi_voxelize_desc xd;
+    voxgi_inject_desc id;
+    voxgi_cone_desc cd;
+    voxgi_voxels *vx = NULL;
+    voxgi_volume *vol = NULL;
+    voxgi_gl_gbuffer gb;
+    vx_create_textures create;
+    vx_texture_storage_2d storage;
+    vx_texture_sub_image_2d sub;
+    vx_get_texture_image get;
+    vx_delete_textures del;
+    static float pos[3 * N], nrm[3 * N], irr[3 * N], occ[N], tex_in[3][4 * N], out[4 * N];
+    unsigned int tex[5];
+    double worst = 0, worst_occ = 0, worst_albedo = 0, mean = 0;
+    int i, a;
+    if (!have_gl()) return;
+    create = (vx_create_textures)vxt_gl_get_proc("glCreateTextures", g_gl);
+    storage = (vx_texture_storage_2d)vxt_gl_get_proc("glTextureStorage2D", g_gl);
+    sub = (vx_texture_sub_image_2d)vxt_gl_get_proc("glTextureSubImage2D", g_gl);
+    get = (vx_get_texture_image)vxt_gl_get_proc("glGetTextureImage", g_gl);
+    del = (vx_delete_textures)vxt_gl_get_proc("glDeleteTextures", g_gl);
+    TH_CHECK(create && storage && sub && get && del, "GL texture functions");
+    if (!create || !storage || !sub || !get || !del) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL);
+    voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
+    memset(&fit, 0, sizeof fit);
+    memset(&xd, 0, sizeof xd);
+    memset(&id, 0, sizeof id);
+    memset(&cd, 0, sizeof cd);
+    fit.res = 32;
+    fit.padding = 1;
+    xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+    TH_CHECK(voxgi_fit_grid(ctx, &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &bs.scene, &xd, &vx) == VOXGI_OK &&
+             voxgi_inject_light(ctx, &bs.scene, vx, &id, &vol) == VOXGI_OK, "lit voxels: %s", voxgi_last_error(ctx));
+    srand(11);
+    for (i = 0; i < N; i++)
+        for (a = 0; a < 3; a++) {
+            pos[3 * i + a] = (float)(0.03 + 0.5 * rand() / RAND_MAX);
+            nrm[3 * i + a] = i == 0 ? 0.0f : (float)(2.0 * rand() / RAND_MAX - 1);
+            tex_in[0][4 * i + a] = pos[3 * i + a];
+            tex_in[1][4 * i + a] = nrm[3 * i + a];
+            tex_in[2][4 * i + a] = (float)(0.2 + 0.7 * a / 2.0);
+            tex_in[0][4 * i + 3] = tex_in[1][4 * i + 3] = tex_in[2][4 * i + 3] = 1;
+        }
+    TH_CHECK(voxgi_cone_trace(ctx, vol, &cd, N, pos, nrm, irr, occ) == VOXGI_OK, "arrays: %s", voxgi_last_error(ctx));
+    create(0x0DE1, 5, tex); /* GL_TEXTURE_2D */
+    for (i = 0; i < 5; i++) storage(tex[i], 1, i == 4 ? 0x881A : 0x8814, W, H); /* RGBA16F for the last, RGBA32F */
+    for (i = 0; i < 3; i++) sub(tex[i], 0, 0, 0, W, H, 0x1908, 0x1406, tex_in[i]); /* GL_RGBA, GL_FLOAT */
+    memset(&gb, 0, sizeof gb);
+    gb.position_texture = tex[0];
+    gb.normal_texture = tex[1];
+    gb.width = W;
+    gb.height = H;
+    gb.irradiance_texture = tex[3];
+    TH_CHECK(voxgi_cone_trace_gl(ctx, vol, &cd, &gb) == VOXGI_OK, "textures: %s", voxgi_last_error(ctx));
+    get(tex[3], 0, 0x1908, 0x1406, (int)sizeof out, out);
+    for (i = 0; i < 3 * N; i++) mean += irr[i] / (3.0 * N);
+    for (i = 0; i < N; i++) {
+        for (a = 0; a < 3; a++) worst = fmax(worst, fabs(out[4 * i + a] - (i ? irr[3 * i + a] : 0)));
+        worst_occ = fmax(worst_occ, fabs(out[4 * i + 3] - (i ? occ[i] : 0)));
+    }
+    gb.albedo_texture = tex[2];
+    gb.irradiance_texture = tex[4];
+    gb.irradiance_rgba16f = 1;
+    TH_CHECK(voxgi_cone_trace_gl(ctx, vol, &cd, &gb) == VOXGI_OK, "albedo, half: %s", voxgi_last_error(ctx));
+    get(tex[4], 0, 0x1908, 0x1406, (int)sizeof out, out);
+    for (i = 0; i < N; i++)
+        for (a = 0; a < 3; a++)
+            worst_albedo = fmax(worst_albedo, fabs(out[4 * i + a] - (i ? tex_in[2][4 * i + a] / 3.14159265358979323846 * irr[3 * i + a] : 0)) / fmax(mean, 1e-3));
+    printf("    G-buffer textures: irradiance within %.3g (mean %.3g), occlusion within %.3g; with albedo into RGBA16F within %.3g (relative)\n", worst, mean,
+           worst_occ, worst_albedo);
+    TH_CHECK(mean > 0.05 && worst <= 1e-4 * mean && worst_occ <= 1e-4 && worst_albedo <= 2e-3, "G-buffer textures differ");
+    TH_CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0 && out[3] == 0, "the pixel without a normal was written");
+    gb.width = 0;
+    TH_CHECK(voxgi_cone_trace_gl(ctx, vol, &cd, &gb) == VOXGI_ERR_INVALID_ARGUMENT, "an empty G-buffer accepted");
+    del(5, tex);
+    voxgi_volume_destroy(ctx, vol);
+    voxgi_voxels_destroy(ctx, vx);
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
 /* Cone tracing on GL (a compute pass, hardware filtering of premultiplied radiance) against the
    CPU's march over the same voxels: the Cornell box voxelized and lit on each backend (the
    voxels equal, the light injected through the same exact shadow rays, the mips equal to float
@@ -1230,6 +1329,7 @@ int main(void)
     TH_RUN(test_gl_svo_equals_cpu);
     TH_RUN(test_gl_raster_injection_matches_cpu);
     TH_RUN(test_gl_cone_tracing_equals_cpu);
+    TH_RUN(test_gl_gbuffer_textures);
     TH_RUN(test_gl_raster_leak_box);
     TH_RUN(test_gl_raster_volume_buffer);
     TH_RUN(test_gl_raster_attributes_equal_cpu);
