@@ -656,14 +656,24 @@ VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume 
    acos(0.244^(1 / (n + 1))) (a fit common among voxel cone tracers), at least 0.005. */
 VOXGI_API float voxgi_specular_half_angle(float roughness);
 
+/* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
+   pixel's centre meets first: its position (world units), its normal facing the camera, its
+   triangle (in the scene's order: meshes, then triangles; UINT32_MAX and zeros where nothing
+   is). CPU: ray cast, exact. GL: rasterized with a depth test (positions interpolated in float
+   relative to the eye; at shared edges and silhouettes the rasterizer may pick the neighbour).
+   Each output holds width x height entries (positions and normals 3 floats), rows from the top;
+   any may be NULL. */
+VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, float *positions, float *normals,
+                                            uint32_t *triangles);
+
 /* A cone-traced image: the scene voxelized (conservative, with attributes) on a grid of
    `resolution` voxels along its longest side, direct light injected into the voxels (their
    emission left out: emitters light the pixels directly), the radiance mipmapped, then per
    pixel: emission + albedo / pi x (direct irradiance through exact shadow rays, `samples`
    jittered rays per pixel, + the cones' irradiance at the pixel centre's surface). gi = 0 leaves
    the cones out: the direct light alone, which the reference renderer's bounces = 0 matches.
-   On a GL context the voxels, their mips and the cones are GL's; the rays (the pixels'
-   surfaces, the direct light, the injection's shadow rays) are the CPU's. */
+   On a GL context the G-buffer, the voxels, the light injection, the mips and the cones are
+   GL's; the direct light's rays are the CPU's on both. */
 typedef struct voxgi_vct_desc {
     voxgi_camera camera;
     int resolution;               /* 0 = 128 */
@@ -1430,6 +1440,12 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 #define VOXGI__GL_FLOAT 0x1406
 #define VOXGI__GL_RGBA32F 0x8814
 #define VOXGI__GL_RGBA16F 0x881A
+#define VOXGI__GL_DEPTH_COMPONENT32F 0x8CAC
+#define VOXGI__GL_DEPTH_COMPONENT 0x1902
+#define VOXGI__GL_DEPTH_ATTACHMENT 0x8D00
+#define VOXGI__GL_DEPTH_FUNC 0x0B74
+#define VOXGI__GL_DEPTH_WRITEMASK 0x0B72
+#define VOXGI__GL_LESS 0x0201
 #define VOXGI__GL_R32F 0x822E
 #define VOXGI__GL_TEXTURE_3D 0x806F
 #define VOXGI__GL_TEXTURE_WRAP_S 0x2802
@@ -1504,6 +1520,9 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     X(void, ProgramUniform3i, (unsigned int program, int location, int v0, int v1, int v2))              \
     X(void, ProgramUniform1f, (unsigned int program, int location, float v0))                            \
     X(void, ProgramUniform3f, (unsigned int program, int location, float v0, float v1, float v2))        \
+    X(void, ProgramUniform2f, (unsigned int program, int location, float v0, float v1))                  \
+    X(void, DepthFunc, (unsigned int func))                                                              \
+    X(void, DepthMask, (unsigned char flag))                                                             \
     X(void, ProgramUniform2i, (unsigned int program, int location, int v0, int v1))                     \
     X(void, ProgramUniform4i, (unsigned int program, int location, int v0, int v1, int v2, int v3))     \
     X(void, ProgramUniform1d, (unsigned int program, int location, double v0))                           \
@@ -1565,7 +1584,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(cone_trace) X(cone_trace_images16) X(cone_trace_images32) X(light_map_draw) X(inject) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(cone_trace) X(cone_trace_images16) X(cone_trace_images32) X(gbuffer) X(light_map_draw) X(inject) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -7439,6 +7458,190 @@ VOXGI_API float voxgi_specular_half_angle(float roughness)
     return (float)VOXGI__MAX(0.005, acos(pow(0.244, 1 / (n + 1))));
 }
 
+/* ----- the G-buffer of voxgi's own images */
+typedef struct voxgi__gbuffer_job {
+    const voxgi__tracer *tr;
+    const voxgi_camera *cam;
+    double eye[3], forward[3], right[3], up[3], tan_half;
+    float *pos, *nrm;
+    uint32_t *tri;                /* BVH order, UINT32_MAX: none */
+} voxgi__gbuffer_job;
+
+static void voxgi__gbuffer_rows(void *user, size_t first, size_t end)
+{
+    voxgi__gbuffer_job *J = (voxgi__gbuffer_job *)user;
+    size_t y;
+    for (y = first; y < end; y++) {
+        int x, a;
+        for (x = 0; x < J->cam->width; x++) {
+            size_t pix = y * (size_t)J->cam->width + (size_t)x;
+            voxgi__hit h;
+            double d[3];
+            voxgi__camera_ray(J->cam, J->forward, J->right, J->up, J->tan_half, x + 0.5, (double)y + 0.5, d);
+            J->tri[pix] = UINT32_MAX;
+            for (a = 0; a < 3; a++) J->pos[3 * pix + (size_t)a] = J->nrm[3 * pix + (size_t)a] = 0;
+            if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+            J->tri[pix] = h.prim;
+            for (a = 0; a < 3; a++) {
+                double n = J->tr->n[3 * (size_t)h.prim + (size_t)a];
+                J->pos[3 * pix + (size_t)a] = (float)h.p[a];
+                J->nrm[3 * pix + (size_t)a] = (float)(h.front ? n : -n);
+            }
+        }
+    }
+}
+
+#ifndef VOXGI_NO_GL
+/* The same rasterized (shaders/gbuffer.glsl): corners relative to the eye, a 32-bit float depth
+   test, rows flipped to come from the top. */
+static voxgi_result voxgi__gbuffer_gl(voxgi_context *ctx, voxgi__gbuffer_job *J)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi__tracer *tr = J->tr;
+    size_t nt = tr->flat.triangle_count, i, pixels = (size_t)J->cam->width * (size_t)J->cam->height;
+    int w = J->cam->width, h = J->cam->height, a, depth_func = 0, depth_mask = 0, y;
+    unsigned int tex[4] = {0, 0, 0, 0}, bufs[2], fbo = 0, vao = 0, p;
+    const unsigned int draw[3] = {VOXGI__GL_COLOR_ATTACHMENT0, VOXGI__GL_COLOR_ATTACHMENT0 + 1, VOXGI__GL_COLOR_ATTACHMENT0 + 2};
+    const float zeros[4] = {0, 0, 0, 0}, one = 1;
+    const unsigned int none = UINT32_MAX;
+    double far_d = 0;
+    float *buf;
+    voxgi__gl_raster_state state;
+    voxgi_result r = voxgi__gl_build(ctx, 1, "gbuffer.glsl", &gl->prog_gbuffer);
+    if (r != VOXGI_OK) return r;
+    if (!(buf = (float *)voxgi__alloc_array(ctx, VOXGI__MAX(pixels, 3 * nt) + 1, 16, 0)))
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d G-buffer", w, h);
+    for (i = 0; i < 9 * nt; i++) {
+        buf[4 * (i / 3) + i % 3] = (float)(tr->v[i] - J->eye[i % 3]);
+        far_d = VOXGI__MAX(far_d, fabs(tr->v[i] - J->eye[i % 3]));
+    }
+    bufs[0] = voxgi__gl_buffer(ctx, 3 * nt * 16, buf);
+    for (i = 0; i < 3 * nt; i++) buf[4 * (i / 3) + i % 3] = (float)tr->n[i];
+    bufs[1] = voxgi__gl_buffer(ctx, nt * 16, buf);
+    gl->CreateTextures(VOXGI__GL_TEXTURE_2D, 4, tex);
+    gl->TextureStorage2D(tex[0], 1, VOXGI__GL_RGBA32F, w, h);
+    gl->TextureStorage2D(tex[1], 1, VOXGI__GL_RGBA32F, w, h);
+    gl->TextureStorage2D(tex[2], 1, VOXGI__GL_R32UI, w, h);
+    gl->TextureStorage2D(tex[3], 1, VOXGI__GL_DEPTH_COMPONENT32F, w, h);
+    gl->ClearTexImage(tex[0], 0, VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
+    gl->ClearTexImage(tex[1], 0, VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
+    gl->ClearTexImage(tex[2], 0, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &none);
+    gl->ClearTexImage(tex[3], 0, VOXGI__GL_DEPTH_COMPONENT, VOXGI__GL_FLOAT, &one);
+    gl->CreateFramebuffers(1, &fbo);
+    for (a = 0; a < 3; a++) gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)a, tex[a], 0);
+    gl->NamedFramebufferTexture(fbo, VOXGI__GL_DEPTH_ATTACHMENT, tex[3], 0);
+    gl->NamedFramebufferDrawBuffers(fbo, 3, draw);
+    if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE)
+        r = voxgi__fail(ctx, VOXGI_ERR_GL, "the G-buffer framebuffer is incomplete");
+    if (r == VOXGI_OK) {
+        p = gl->prog_gbuffer;
+        voxgi__gl_raster_begin(gl, &state);
+        gl->GetIntegerv(VOXGI__GL_DEPTH_FUNC, &depth_func);
+        gl->GetIntegerv(VOXGI__GL_DEPTH_WRITEMASK, &depth_mask);
+        gl->Enable(VOXGI__GL_DEPTH_TEST);
+        gl->DepthFunc(VOXGI__GL_LESS);
+        gl->DepthMask(1);
+        gl->CreateVertexArrays(1, &vao);
+        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+        gl->BindVertexArray(vao);
+        gl->Viewport(0, 0, w, h);
+        gl->UseProgram(p);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
+        gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_right"), (float)J->right[0], (float)J->right[1], (float)J->right[2]);
+        gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_up"), (float)J->up[0], (float)J->up[1], (float)J->up[2]);
+        gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_forward"), (float)J->forward[0], (float)J->forward[1], (float)J->forward[2]);
+        gl->ProgramUniform2f(p, gl->GetUniformLocation(p, "u_tan"), (float)(J->tan_half * w / h), (float)J->tan_half);
+        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_near"), (float)(1e-4 * VOXGI__MAX(far_d, 1e-30)));
+        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_far"), (float)(2 * VOXGI__MAX(far_d, 1e-30)));
+        gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
+        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+        gl->BindVertexArray(0);
+        gl->DeleteVertexArrays(1, &vao);
+        gl->DepthFunc((unsigned)depth_func);
+        gl->DepthMask((unsigned char)depth_mask);
+        gl->Disable(VOXGI__GL_DEPTH_TEST);
+        voxgi__gl_raster_end(gl, &state);
+        gl->MemoryBarrier(VOXGI__GL_TEXTURE_UPDATE_BARRIER_BIT);
+        gl->GetTextureSubImage(tex[0], 0, 0, 0, 0, w, h, 1, VOXGI__GL_RGBA, VOXGI__GL_FLOAT, (int)(pixels * 16), buf);
+        for (y = 0; y < h; y++) /* GL's rows come from the bottom */
+            for (i = 0; i < (size_t)w; i++)
+                for (a = 0; a < 3; a++) J->pos[3 * ((size_t)y * w + i) + (size_t)a] = (float)(buf[4 * ((size_t)(h - 1 - y) * w + i) + (size_t)a] + J->eye[a]);
+        gl->GetTextureSubImage(tex[1], 0, 0, 0, 0, w, h, 1, VOXGI__GL_RGBA, VOXGI__GL_FLOAT, (int)(pixels * 16), buf);
+        for (y = 0; y < h; y++)
+            for (i = 0; i < (size_t)w; i++)
+                for (a = 0; a < 3; a++) J->nrm[3 * ((size_t)y * w + i) + (size_t)a] = buf[4 * ((size_t)(h - 1 - y) * w + i) + (size_t)a];
+        gl->GetTextureSubImage(tex[2], 0, 0, 0, 0, w, h, 1, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, (int)(pixels * 4), buf);
+        for (y = 0; y < h; y++)
+            for (i = 0; i < (size_t)w; i++) {
+                size_t k = (size_t)y * w + i;
+                memcpy(&J->tri[k], (const uint32_t *)buf + (size_t)(h - 1 - y) * w + i, 4);
+                if (J->tri[k] == UINT32_MAX) for (a = 0; a < 3; a++) J->pos[3 * k + (size_t)a] = 0;
+            }
+        r = voxgi__gl_check(ctx, "the G-buffer");
+    }
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteTextures(4, tex);
+    voxgi__gl_delete_buffer(ctx, bufs[0]);
+    voxgi__gl_delete_buffer(ctx, bufs[1]);
+    voxgi__gl_unbind(gl);
+    voxgi__free(ctx, buf);
+    return r;
+}
+#endif
+
+/* The G-buffer on the context's backend; tri in BVH order. */
+static voxgi_result voxgi__gbuffer(voxgi_context *ctx, const voxgi__tracer *tr, const voxgi_camera *cam, float *pos, float *nrm, uint32_t *tri)
+{
+    voxgi__gbuffer_job J;
+    voxgi_result r;
+    memset(&J, 0, sizeof J);
+    if ((r = voxgi__camera_frame(ctx, cam, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
+    J.tr = tr;
+    J.cam = cam;
+    J.pos = pos;
+    J.nrm = nrm;
+    J.tri = tri;
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__gbuffer_gl(ctx, &J);
+#endif
+    voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__gbuffer_rows, &J);
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, float *positions, float *normals,
+                                            uint32_t *triangles)
+{
+    voxgi__tracer tr;
+    float *pos = NULL, *nrm = NULL;
+    uint32_t *tri = NULL;
+    size_t pixels, i;
+    voxgi_result r;
+    double e[3], f[3], rt[3], u[3], t;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!camera) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "camera is NULL");
+    if ((r = voxgi__camera_frame(ctx, camera, e, f, rt, u, &t)) != VOXGI_OK) return r;
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    pixels = (size_t)camera->width * (size_t)camera->height;
+    pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    tri = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
+    if (!pos || !nrm || !tri) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-pixel G-buffer", (unsigned long)pixels);
+    if (r == VOXGI_OK) r = voxgi__gbuffer(ctx, &tr, camera, pos, nrm, tri);
+    if (r == VOXGI_OK) {
+        if (positions) memcpy(positions, pos, pixels * 12);
+        if (normals) memcpy(normals, nrm, pixels * 12);
+        if (triangles)
+            for (i = 0; i < pixels; i++) triangles[i] = tri[i] == UINT32_MAX ? UINT32_MAX : tr.tri[tri[i]]; /* the scene's order */
+    }
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, nrm);
+    voxgi__free(ctx, tri);
+    voxgi__tracer_free(ctx, &tr);
+    return r;
+}
+
 typedef struct voxgi__vct_job {
     const voxgi_vct_desc *desc;
     const voxgi__tracer *tr;
@@ -7449,30 +7652,6 @@ typedef struct voxgi__vct_job {
     float *rgb;
     size_t rays;
 } voxgi__vct_job;
-
-static void voxgi__vct_gbuffer(void *user, size_t first, size_t end)
-{
-    voxgi__vct_job *J = (voxgi__vct_job *)user;
-    const voxgi_camera *cam = &J->desc->camera;
-    size_t y;
-    for (y = first; y < end; y++) {
-        int x, a;
-        for (x = 0; x < cam->width; x++) {
-            size_t pix = y * (size_t)cam->width + (size_t)x;
-            voxgi__hit h;
-            double d[3];
-            voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + 0.5, (double)y + 0.5, d);
-            J->prim[pix] = UINT32_MAX;
-            if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
-            J->prim[pix] = h.prim;
-            for (a = 0; a < 3; a++) {
-                double n = J->tr->n[3 * (size_t)h.prim + (size_t)a];
-                J->pos[3 * pix + (size_t)a] = (float)h.p[a];
-                J->nrm[3 * pix + (size_t)a] = (float)(h.front ? n : -n);
-            }
-        }
-    }
-}
 
 static void voxgi__vct_shade(void *user, size_t first, size_t end)
 {
@@ -7557,7 +7736,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     J.irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 1);
     J.prim = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
     if (!J.pos || !J.nrm || !J.irr || !J.prim) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-pixel image", (unsigned long)pixels);
-    if (r == VOXGI_OK) voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__vct_gbuffer, &J);
+    if (r == VOXGI_OK) r = voxgi__gbuffer(ctx, &tr, &desc->camera, J.pos, J.nrm, J.prim);
     if (r == VOXGI_OK && !desc->no_gi) {
         memset(&fit, 0, sizeof fit);
         memset(&xd, 0, sizeof xd);

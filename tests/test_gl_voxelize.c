@@ -1129,7 +1129,7 @@ typedef void (*vx_texture_sub_image_2d)(unsigned int, int, int, int, int, int, u
 typedef void (*vx_get_texture_image)(unsigned int, int, unsigned int, unsigned int, int, void *);
 typedef void (*vx_delete_textures)(int, const unsigned int *);
 
-static void test_gl_gbuffer_textures(void)
+static void test_gl_raster_gbuffer_textures(void)
 {
     enum { W = 20, H = 15, N = W * H };
     voxgi_context *ctx;
@@ -1217,12 +1217,52 @@ static void test_gl_gbuffer_textures(void)
     voxgi_destroy(ctx);
 }
 
+/* voxgi's own G-buffer rasterized on GL against the CPU's ray cast (the Cornell box, 64 x 48,
+   the view's aspect stretched): the same triangle at nearly every pixel (a shared edge or a
+   silhouette may go to the neighbour), there the same normal and the position within float
+   interpolation; no surface where the CPU finds none. */
+static void test_gl_raster_gbuffer(void)
+{
+    enum { W = 64, H = 48 };
+    voxgi_context *ctx[2];
+    voxgi_builtin_scene bs;
+    voxgi_camera cam;
+    static float pos[2][3 * W * H], nrm[2][3 * W * H];
+    static uint32_t tri[2][W * H];
+    int b, i, a, same = 0, hits = 0;
+    double worst_p = 0, worst_n = 0;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL);
+    voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs);
+    cam = bs.camera;
+    cam.width = W;
+    cam.height = H;
+    for (b = 0; b < 2; b++)
+        TH_CHECK(voxgi_gbuffer_render(ctx[b], &bs.scene, &cam, pos[b], nrm[b], tri[b]) == VOXGI_OK, "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
+    for (i = 0; i < W * H; i++) {
+        hits += tri[0][i] != UINT32_MAX;
+        if (tri[0][i] != tri[1][i]) continue;
+        same++;
+        for (a = 0; a < 3; a++) {
+            worst_p = fmax(worst_p, fabs(pos[0][3 * i + a] - pos[1][3 * i + a]));
+            worst_n = fmax(worst_n, fabs(nrm[0][3 * i + a] - nrm[1][3 * i + a]));
+        }
+    }
+    printf("    G-buffer: %d of %d pixels on the same triangle (%d surfaces), positions within %.3g m, normals within %.3g\n", same, W * H, hits, worst_p,
+           worst_n);
+    TH_CHECK(hits > W * H / 2 && same >= W * H * 97 / 100 && worst_p < 1e-4 && worst_n < 1e-6, "G-buffers differ");
+    voxgi_builtin_scene_destroy(ctx[0], &bs);
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
 /* Cone tracing on GL (a compute pass, hardware filtering of premultiplied radiance) against the
    CPU's march over the same voxels: the Cornell box voxelized and lit on each backend (the
    voxels equal, the light injected through the same exact shadow rays, the mips equal to float
    rounding), then the same
    points traced, and the whole cone-traced image rendered on both; isotropic and anisotropic. */
-static void test_gl_cone_tracing_equals_cpu(void)
+static void test_gl_raster_cone_tracing_equals_cpu(void)
 {
     enum { N = 300, W = 20 };
     voxgi_context *ctx[2];
@@ -1328,8 +1368,9 @@ int main(void)
     TH_RUN(test_gl_volume_sampling_equals_cpu);
     TH_RUN(test_gl_svo_equals_cpu);
     TH_RUN(test_gl_raster_injection_matches_cpu);
-    TH_RUN(test_gl_cone_tracing_equals_cpu);
-    TH_RUN(test_gl_gbuffer_textures);
+    TH_RUN(test_gl_raster_cone_tracing_equals_cpu);
+    TH_RUN(test_gl_raster_gbuffer_textures);
+    TH_RUN(test_gl_raster_gbuffer);
     TH_RUN(test_gl_raster_leak_box);
     TH_RUN(test_gl_raster_volume_buffer);
     TH_RUN(test_gl_raster_attributes_equal_cpu);
