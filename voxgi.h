@@ -686,9 +686,14 @@ typedef struct voxgi_vct_desc {
     int shadow_rays;              /* GL context: inject through exact shadow rays (voxgi_inject_desc) */
     int bounces;                  /* indirect bounces: 0 or 1 = one (the cones at the pixels); B > 1: the
                                      light bounces B - 1 times among the voxels first (voxgi_inject_desc) */
+    int cone_stride;              /* s > 1: cones at every s-th pixel across and down (and the last row and
+                                     column); a pixel between takes the bilinear mean of the four around it
+                                     that share its surface (normals within 26 degrees, on its plane within a
+                                     voxel), or traces its own where none does. 0 or 1: every pixel */
 } voxgi_vct_desc;
 typedef struct voxgi_vct_info {
     uint64_t voxels;
+    size_t cone_points;           /* pixels whose cones were traced */
     double ms_voxelize, ms_inject, ms_cones, ms_direct, ms; /* inject: with the mips */
 } voxgi_vct_info;
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
@@ -7699,6 +7704,32 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
     VOXGI__ATOMIC_ADD_SIZE(&J->rays, (size_t)rays);
 }
 
+/* The cones' irradiance at the pixels flagged in want, into J->irr (a packed copy is traced);
+   *traced: how many. */
+static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *cd, const voxgi__vct_job *J,
+                                            size_t pixels, const unsigned char *want, size_t *traced)
+{
+    size_t i, n = 0;
+    float *pos, *nrm, *irr;
+    voxgi_result r = VOXGI_OK;
+    for (i = 0; i < pixels; i++) n += want[i];
+    *traced = n;
+    if (!n) return VOXGI_OK;
+    pos = (float *)voxgi__alloc_array(ctx, n, 12, 0);
+    nrm = (float *)voxgi__alloc_array(ctx, n, 12, 0);
+    irr = (float *)voxgi__alloc_array(ctx, n, 12, 0);
+    if (!pos || !nrm || !irr) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu cone points", (unsigned long)n);
+    for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
+        if (want[i]) { memcpy(pos + 3 * n, J->pos + 3 * i, 12); memcpy(nrm + 3 * n, J->nrm + 3 * i, 12); n++; }
+    if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, vol, cd, n, pos, nrm, irr, NULL);
+    for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
+        if (want[i]) { memcpy(J->irr + 3 * i, irr + 3 * n, 12); n++; }
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, nrm);
+    voxgi__free(ctx, irr);
+    return r;
+}
+
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info)
 {
@@ -7712,18 +7743,24 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi_volume *vol = NULL;
     voxgi_vct_info inf;
     size_t pixels, i, n = 0;
+    unsigned char *want = NULL;
     double t0 = voxgi__now_ms(), t1;
+    int w, h, stride;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
+    w = desc->camera.width;
+    h = desc->camera.height;
+    stride = desc->cone_stride > 1 ? desc->cone_stride : 1;
     memset(&inf, 0, sizeof inf);
     memset(&J, 0, sizeof J);
     if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
     pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
     if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->bounces < 0 || desc->bounces > 64)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), bounces %d (0..64)", desc->samples, desc->resolution,
-                           desc->bounces);
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->bounces < 0 || desc->bounces > 64 || desc->cone_stride < 0 ||
+        desc->cone_stride > 64)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), bounces %d (0..64), cone_stride %d (0..64)", desc->samples,
+                           desc->resolution, desc->bounces, desc->cone_stride);
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
@@ -7760,20 +7797,43 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
             r = voxgi_inject_light(ctx, scene, vox, &id, &vol);
             inf.ms_inject = voxgi__now_ms() - t1;
         }
-        for (i = 0; r == VOXGI_OK && i < pixels; i++) /* the surfaces the centre rays found, packed */
-            if (J.prim[i] != UINT32_MAX) {
-                memmove(J.pos + 3 * n, J.pos + 3 * i, 12);
-                memmove(J.nrm + 3 * n, J.nrm + 3 * i, 12);
-                n++;
-            }
         t1 = voxgi__now_ms();
-        if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, vol, &desc->cones, n, J.pos, J.nrm, J.irr, NULL);
+        if (r == VOXGI_OK && !(want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+        for (i = 0; r == VOXGI_OK && i < pixels; i++) { /* every pixel's surface, or with a stride the grid of anchors */
+            int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
+            want[i] = J.prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
+        }
+        if (r == VOXGI_OK) r = voxgi__vct_trace_pixels(ctx, vol, &desc->cones, &J, pixels, want, &n);
+        for (i = 0; r == VOXGI_OK && stride > 1 && i < pixels; i++) { /* the rest between the four anchors around them */
+            int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a;
+            int xs[2], ys[2];
+            double sum = 0, e[3] = {0, 0, 0};
+            if (want[i] || J.prim[i] == UINT32_MAX) { want[i] = 0; continue; }
+            xs[0] = x0; xs[1] = VOXGI__MIN(x0 + stride, w - 1);
+            ys[0] = y0; ys[1] = VOXGI__MIN(y0 + stride, h - 1);
+            for (k = 0; k < 4; k++) {
+                size_t c = (size_t)ys[k >> 1] * (size_t)w + (size_t)xs[k & 1];
+                double wx = xs[1] > xs[0] ? (double)(x - xs[0]) / (xs[1] - xs[0]) : 0, wy = ys[1] > ys[0] ? (double)(y - ys[0]) / (ys[1] - ys[0]) : 0;
+                double wt = ((k & 1) ? wx : 1 - wx) * ((k >> 1) ? wy : 1 - wy), dn = 0, dp = 0;
+                if (J.prim[c] == UINT32_MAX || wt <= 0) continue;
+                for (a = 0; a < 3; a++) {
+                    dn += (double)J.nrm[3 * c + (size_t)a] * J.nrm[3 * i + (size_t)a];
+                    dp += ((double)J.pos[3 * c + (size_t)a] - J.pos[3 * i + (size_t)a]) * J.nrm[3 * i + (size_t)a];
+                }
+                if (dn < 0.9 || fabs(dp) > vox->info.grid.voxel_size) continue; /* another surface: not its light */
+                sum += wt;
+                for (a = 0; a < 3; a++) e[a] += wt * J.irr[3 * c + (size_t)a];
+            }
+            if (sum > 1e-3) for (a = 0; a < 3; a++) J.irr[3 * i + (size_t)a] = (float)(e[a] / sum);
+            else want[i] = 1; /* no anchor shares its surface: its own cones */
+        }
+        if (r == VOXGI_OK && stride > 1) {
+            size_t more = 0;
+            r = voxgi__vct_trace_pixels(ctx, vol, &desc->cones, &J, pixels, want, &more);
+            n += more;
+        }
+        inf.cone_points = n;
         inf.ms_cones = voxgi__now_ms() - t1;
-        for (i = pixels; r == VOXGI_OK && i-- > 0;) /* unpack, from the back */
-            if (J.prim[i] != UINT32_MAX) {
-                n--;
-                memmove(J.irr + 3 * i, J.irr + 3 * n, 12);
-            } else J.irr[3 * i] = J.irr[3 * i + 1] = J.irr[3 * i + 2] = 0;
     }
     t1 = voxgi__now_ms();
     if (r == VOXGI_OK) voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__vct_shade, &J);
@@ -7782,6 +7842,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if (info) *info = inf;
     voxgi_volume_destroy(ctx, vol);
     if (vox) voxgi_voxels_destroy(ctx, vox);
+    voxgi__free(ctx, want);
     voxgi__free(ctx, J.pos);
     voxgi__free(ctx, J.nrm);
     voxgi__free(ctx, J.irr);

@@ -284,7 +284,7 @@ static void test_vct_and_report_commands(void)
     }
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
-    snprintf(args, sizeof args, "report vct --scenes cornell-box --size 8 --spp 64 --res 8,16 --cones 4 --steps 1 --filters isotropic --backend cpu --out %s/rep", tmpdir);
+    snprintf(args, sizeof args, "report vct --scenes cornell-box --size 8 --spp 64 --res 8,16 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --out %s/rep", tmpdir);
     TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "vct.svg"), "report: %s", out);
     snprintf(path, sizeof path, "%s/rep/vct.csv", tmpdir);
     if ((f = fopen(path, "r")) != NULL) {

@@ -957,6 +957,8 @@ static const char *render_help =
     "  --cones N                vct: diffuse cones (default 16)\n"
     "  --step S                 vct: step as a fraction of the cone diameter (default 0.5)\n"
     "  --anisotropic            vct: six-direction mips (default isotropic)\n"
+    "  --cone-stride S          vct: cones at every S-th pixel across and down, the pixels between\n"
+    "                           interpolated where they share a surface (default 1: every pixel)\n"
     "  --no-gi                  vct: direct light only\n"
     "  --compare SPP            also render the reference (same bounces) with SPP samples per pixel and\n"
     "                           print the relative RMSE of the lighting (both without the emitters the\n"
@@ -1040,6 +1042,7 @@ static int cmd_render(int argc, char **argv)
         } else if (strcmp(a, "--exposure") == 0 && i + 1 < argc) { if (!parse_double(argv[++i], &exposure) || !(exposure >= 0)) return bad_arg("render", "--exposure needs a number >= 0"); }
         else if (strcmp(a, "--threads") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 256, &threads)) return bad_arg("render", "--threads needs 1..256"); }
         else if (strcmp(a, "--json") == 0) json = 1;
+        else if (strcmp(a, "--cone-stride") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 64, &vd.cone_stride)) return bad_arg("render", "--cone-stride needs 1..64"); }
         else if (strcmp(a, "--backend") == 0 && i + 1 < argc) { if (!parse_backend(argv[++i], &backend)) return bad_arg("render", "--backend is auto, cpu or gl"); }
         else if (strcmp(a, "--gl") == 0 && i + 1 < argc) { if (vxt_gl_kind_parse(argv[++i], &kind) != 0) return bad_arg("render", "--gl is auto, egl or osmesa"); }
         else if (strcmp(a, "-o") == 0 && i + 1 < argc) out_path = argv[++i];
@@ -1209,13 +1212,14 @@ static const char *report_help =
     "  --apertures LIST         half-angle as a multiple of each cone count's gap-free default (default 1)\n"
     "  --steps LIST             step as a fraction of the diameter (default 0.5,1)\n"
     "  --filters LIST           isotropic, anisotropic or both (default isotropic,anisotropic)\n"
+    "  --strides LIST           cone strides: cones at every S-th pixel, the rest interpolated (default 1,2)\n"
     "  --backend auto|cpu|gl    where the cone tracer runs (default cpu)\n"
     "  --out DIR                where the files go (default build/report)\n"
     "  --threads T              CPU worker threads (default: one per core)\n";
 
 typedef struct report_row {
     const char *scene;
-    int res, cones, anisotropic;
+    int res, cones, anisotropic, stride;
     double aperture, half_angle_deg, step;
     voxgi_vct_info info;
     double rmse, ref_ms, pareto;
@@ -1345,8 +1349,8 @@ static void report_svg(FILE *f, const report_row *rows, int n, const char *const
 static int cmd_report(int argc, char **argv)
 {
     const char *out_dir = "build/report", *scene_list = "cornell-box,two-spheres";
-    double res_l[16] = {32, 64, 128}, cone_l[16] = {8, 16, 32}, ap_l[16] = {1}, step_l[16] = {0.5, 1};
-    int nres = 3, ncone = 3, nap = 1, nstep = 2, filters = 3, size = 128, spp = 1024, direct_spp = 16, threads = 0, i, rc = 1, nrows = 0, s;
+    double res_l[16] = {32, 64, 128}, cone_l[16] = {8, 16, 32}, ap_l[16] = {1}, step_l[16] = {0.5, 1}, stride_l[16] = {1, 2};
+    int nres = 3, ncone = 3, nap = 1, nstep = 2, nstride = 2, ist, filters = 3, size = 128, spp = 1024, direct_spp = 16, threads = 0, i, rc = 1, nrows = 0, s;
     voxgi_backend backend = VOXGI_BACKEND_CPU;
     char why[512] = "", path[1024], scenes_buf[256], *scenes[8];
     int scene_count = 0;
@@ -1372,6 +1376,7 @@ static int cmd_report(int argc, char **argv)
         else if (strcmp(a, "--cones") == 0 && i + 1 < argc) { if (!(ncone = parse_list(argv[++i], cone_l, 16))) return bad_arg("report", "--cones needs a list of numbers"); }
         else if (strcmp(a, "--apertures") == 0 && i + 1 < argc) { if (!(nap = parse_list(argv[++i], ap_l, 16))) return bad_arg("report", "--apertures needs a list of numbers"); }
         else if (strcmp(a, "--steps") == 0 && i + 1 < argc) { if (!(nstep = parse_list(argv[++i], step_l, 16))) return bad_arg("report", "--steps needs a list of numbers"); }
+        else if (strcmp(a, "--strides") == 0 && i + 1 < argc) { if (!(nstride = parse_list(argv[++i], stride_l, 16))) return bad_arg("report", "--strides needs a list of numbers"); }
         else if (strcmp(a, "--filters") == 0 && i + 1 < argc) {
             char buf[64], *items[2];
             int k, n = strlen(argv[++i]) < sizeof buf ? split_list(strcpy(buf, argv[i]), items, 2) : 0;
@@ -1389,10 +1394,11 @@ static int cmd_report(int argc, char **argv)
     for (i = 0; i < nres; i++) if (res_l[i] > 4096) return bad_arg("report", "--res values are at most 4096");
     for (i = 0; i < ncone; i++) if (cone_l[i] > 1024) return bad_arg("report", "--cones values are at most 1024");
     for (i = 0; i < nstep; i++) if (step_l[i] > 4) return bad_arg("report", "--steps values are at most 4");
+    for (i = 0; i < nstride; i++) if (stride_l[i] > 64 || stride_l[i] != floor(stride_l[i])) return bad_arg("report", "--strides are whole numbers up to 64");
     ctx = make_context(backend, VXT_GL_AUTO, threads, isatty(2), &gl, why, sizeof why);
     if (!ctx) { fprintf(stderr, "voxgi report: %s\n", why); return 1; }
     voxgi_query_info(ctx, &ci);
-    rows = (report_row *)calloc((size_t)scene_count * (size_t)(nres * ncone * nap * nstep * 2), sizeof *rows);
+    rows = (report_row *)calloc((size_t)scene_count * (size_t)(nres * ncone * nap * nstep * nstride * 2), sizeof *rows);
     ref = (float *)malloc((size_t)size * (size_t)size * 12);
     img = (float *)malloc((size_t)size * (size_t)size * 12);
     if (!rows || !ref || !img) { fprintf(stderr, "voxgi report: out of memory\n"); goto done; }
@@ -1432,7 +1438,8 @@ static int cmd_report(int argc, char **argv)
             for (ir = 0; ir < nres; ir++)
                 for (ic = 0; ic < ncone; ic++)
                     for (ia = 0; ia < nap; ia++)
-                        for (is = 0; is < nstep; is++) {
+                        for (is = 0; is < nstep; is++)
+                        for (ist = 0; ist < nstride; ist++) {
                             voxgi_vct_desc vd;
                             report_row *row = &rows[nrows];
                             double need;
@@ -1447,9 +1454,10 @@ static int cmd_report(int argc, char **argv)
                             vd.samples = direct_spp;
                             vd.seed = 1;
                             vd.hide_emitters = 1;
+                            vd.cone_stride = (int)stride_l[ist];
                             if (!(vd.cones.half_angle < 1.5f)) continue;
-                            fprintf(stderr, "voxgi report: %s: %d^3, %d cones x %.2f, step %.2f, %s\n", scenes[s], vd.resolution, vd.cones.cones, ap_l[ia], step_l[is],
-                                    f ? "anisotropic" : "isotropic");
+                            fprintf(stderr, "voxgi report: %s: %d^3, %d cones x %.2f, step %.2f, stride %d, %s\n", scenes[s], vd.resolution, vd.cones.cones, ap_l[ia],
+                                    step_l[is], vd.cone_stride, f ? "anisotropic" : "isotropic");
                             if (voxgi_vct_render(ctx, &bs.scene, &vd, img, nv * 4, &row->info) != VOXGI_OK) {
                                 fprintf(stderr, "voxgi report: %s\n", voxgi_last_error(ctx));
                                 voxgi_builtin_scene_destroy(ctx, &bs);
@@ -1462,6 +1470,7 @@ static int cmd_report(int argc, char **argv)
                             row->aperture = ap_l[ia];
                             row->half_angle_deg = vd.cones.half_angle * 180 / 3.14159265358979323846;
                             row->step = step_l[is];
+                            row->stride = vd.cone_stride;
                             row->rmse = rel_rmse(img, ref, nv);
                             need = (ref_c[s] / row->rmse) * (ref_c[s] / row->rmse); /* the reference's spp for the same error */
                             row->ref_ms = ref_bvh_ms[s] + ref_ms_per_spp[s] * VOXGI__MAX(need, 1.0);
@@ -1479,10 +1488,10 @@ static int cmd_report(int argc, char **argv)
     }
     snprintf(path, sizeof path, "%s/vct.csv", out_dir);
     if (!(csv = fopen(path, "w"))) { fprintf(stderr, "voxgi report: cannot write %s\n", path); goto done; }
-    fprintf(csv, "scene,res,cones,aperture,half_angle_deg,step,filter,voxels,voxelize_ms,inject_ms,cones_ms,direct_ms,ms,rel_rmse,reference_ms_same_error,speedup,pareto\n");
+    fprintf(csv, "scene,res,cones,aperture,half_angle_deg,step,stride,filter,voxels,voxelize_ms,inject_ms,cones_ms,direct_ms,ms,rel_rmse,reference_ms_same_error,speedup,pareto\n");
     for (i = 0; i < nrows; i++)
-        fprintf(csv, "%s,%d,%d,%g,%.2f,%g,%s,%llu,%.2f,%.2f,%.2f,%.2f,%.2f,%.5f,%.1f,%.2f,%d\n", rows[i].scene, rows[i].res, rows[i].cones, rows[i].aperture,
-                rows[i].half_angle_deg, rows[i].step, rows[i].anisotropic ? "anisotropic" : "isotropic", (unsigned long long)rows[i].info.voxels,
+        fprintf(csv, "%s,%d,%d,%g,%.2f,%g,%d,%s,%llu,%.2f,%.2f,%.2f,%.2f,%.2f,%.5f,%.1f,%.2f,%d\n", rows[i].scene, rows[i].res, rows[i].cones, rows[i].aperture,
+                rows[i].half_angle_deg, rows[i].step, rows[i].stride, rows[i].anisotropic ? "anisotropic" : "isotropic", (unsigned long long)rows[i].info.voxels,
                 rows[i].info.ms_voxelize, rows[i].info.ms_inject, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, rows[i].rmse,
                 rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms, (int)rows[i].pareto);
     snprintf(path, sizeof path, "%s/vct.md", out_dir);
@@ -1495,13 +1504,13 @@ static int cmd_report(int argc, char **argv)
             direct_spp, ci.backend == VOXGI_BACKEND_GL && strstr(ci.gl_renderer, "llvmpipe") ? " (GL on llvmpipe, a software rasteriser: not GPU timings)" : "");
     for (s = 0; s < scene_count; s++) {
         fprintf(md, "## %s\n\nReference: %d spp; its error is %.2f%% / sqrt(spp) (%.3f%% at %d spp: the floor of every error below), %.2f ms per "
-                    "sample per pixel.\n\n| res | cones | half-angle | step | mips | voxels | voxelize ms | inject ms | cones ms | direct ms | total ms | "
-                    "rel. RMSE | reference at the same error | speed-up | Pareto |\n|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n",
+                    "sample per pixel.\n\n| res | cones | half-angle | step | stride | mips | voxels | voxelize ms | inject ms | cones ms | direct ms | total ms | "
+                    "rel. RMSE | reference at the same error | speed-up | Pareto |\n|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n",
                 scenes[s], spp, 100 * ref_c[s], 100 * ref_floor[s], spp, ref_ms_per_spp[s]);
         for (i = 0; i < nrows; i++)
             if (rows[i].scene == scenes[s])
-                fprintf(md, "| %d | %d | %.1f° | %g | %s | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f%% | %.0f ms | %.1fx | %s |\n", rows[i].res, rows[i].cones,
-                        rows[i].half_angle_deg, rows[i].step, rows[i].anisotropic ? "aniso" : "iso", (unsigned long long)rows[i].info.voxels,
+                fprintf(md, "| %d | %d | %.1f° | %g | %d | %s | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f%% | %.0f ms | %.1fx | %s |\n", rows[i].res, rows[i].cones,
+                        rows[i].half_angle_deg, rows[i].step, rows[i].stride, rows[i].anisotropic ? "aniso" : "iso", (unsigned long long)rows[i].info.voxels,
                         rows[i].info.ms_voxelize, rows[i].info.ms_inject, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, 100 * rows[i].rmse,
                         rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms, rows[i].pareto ? "yes" : "");
         fprintf(md, "\n");
@@ -1514,8 +1523,8 @@ static int cmd_report(int argc, char **argv)
         printf("%s (reference error %.2f%% / sqrt(spp), %.2f ms per spp; floor %.3f%%)\n", scenes[s], 100 * ref_c[s], ref_ms_per_spp[s], 100 * ref_floor[s]);
         for (i = 0; i < nrows; i++)
             if (rows[i].scene == scenes[s] && rows[i].pareto)
-                printf("  %4d^3 %3d cones %5.1f deg step %-4g %-5s %9.1f ms  %6.2f%%  reference %9.0f ms  %6.1fx\n", rows[i].res, rows[i].cones, rows[i].half_angle_deg,
-                       rows[i].step, rows[i].anisotropic ? "aniso" : "iso", rows[i].info.ms, 100 * rows[i].rmse, rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms);
+                printf("  %4d^3 %3d cones %5.1f deg step %-4g stride %d %-5s %9.1f ms  %6.2f%%  reference %9.0f ms  %6.1fx\n", rows[i].res, rows[i].cones,
+                       rows[i].half_angle_deg, rows[i].step, rows[i].stride, rows[i].anisotropic ? "aniso" : "iso", rows[i].info.ms, 100 * rows[i].rmse, rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms);
     }
     printf("wrote %s/vct.md, %s/vct.csv, %s/vct.svg\n", out_dir, out_dir, out_dir);
     rc = 0;
