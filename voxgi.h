@@ -669,9 +669,10 @@ VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scen
 /* A cone-traced image: the scene voxelized (conservative, with attributes) on a grid of
    `resolution` voxels along its longest side, direct light injected into the voxels (their
    emission left out: emitters light the pixels directly), the radiance mipmapped, then per
-   pixel: emission + albedo / pi x (direct irradiance through exact shadow rays, `samples`
-   jittered rays per pixel, + the cones' irradiance at the pixel centre's surface). gi = 0 leaves
-   the cones out: the direct light alone, which the reference renderer's bounces = 0 matches.
+   pixel: emission + albedo / pi x (direct irradiance through exact shadow rays, `samples` rays
+   per pixel stratified over the pixel's square and the light (a randomly shifted 4D Kronecker
+   sequence), + the cones' irradiance at the pixel centre's surface). no_gi leaves the cones out:
+   the direct light alone, which the reference renderer's bounces = 0 matches.
    On a GL context the G-buffer, the voxels, the light injection, the mips and the cones are
    GL's; the direct light's rays are the CPU's on both. */
 typedef struct voxgi_vct_desc {
@@ -6784,7 +6785,7 @@ typedef struct voxgi__inject {
     size_t rays;
 } voxgi__inject;
 
-/* Set voxel i's lookup point: its centre moved half a voxel diagonal along its mean normal
+/* The i-th set voxel's lookup point: its centre moved half a voxel diagonal along its mean normal
    (off its own surface), and that unit normal; 0 when opposite surfaces cancelled the normal. */
 static int voxgi__inject_point(const voxgi__inject *J, size_t i, double p[3], double nl[3])
 {
@@ -6801,7 +6802,7 @@ static int voxgi__inject_point(const voxgi__inject *J, size_t i, double p[3], do
     return len > 0;
 }
 
-/* Set voxel i's radiance from the irradiance e at its lookup point, premultiplied. */
+/* The i-th set voxel's radiance from the irradiance e at its lookup point, premultiplied. */
 static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e[3])
 {
     float *o = J->rgba + 4 * J->index[i];
