@@ -6857,8 +6857,8 @@ static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr
     unsigned int bufs[4] = {0, 0, 0, 0}, maps = 0, fbo = 0, vao = 0;
     int a, layers = 0, size, max_layers = 0, res = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])), f;
     voxgi__gl_raster_state state;
-    voxgi_result r = voxgi__gl_build(ctx, 1, "light_maps.glsl light_map_draw.glsl", &gl->prog_light_map_draw);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "light_maps.glsl inject.glsl", &gl->prog_inject);
+    voxgi_result r = voxgi__gl_build(ctx, 1, "sampling.glsl light_maps.glsl light_map_draw.glsl", &gl->prog_light_map_draw);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "sampling.glsl light_maps.glsl inject.glsl", &gl->prog_inject);
     if (r != VOXGI_OK) return r;
     size = VOXGI__MIN(2048, VOXGI__MAX(64, 2 * res));
     for (a = 0; a < 3; a++) { lo[a] = 0; hi[a] = g->res[a] * vs; } /* the grid and every triangle, relative to the origin */

@@ -54,8 +54,8 @@ vec4 march(vec3 o, vec3 n, vec3 d, float lz, float tan_k, float max_d)
 // The diffuse gather at o (grid units) on unit normal n: (irradiance, occlusion).
 vec4 gather(vec3 o, vec3 n)
 {
-    float sgn = n.z >= 0.0 ? 1.0 : -1.0, ba = -1.0 / (sgn + n.z), bc = n.x * n.y * ba; // voxgi__basis
-    vec3 t3 = vec3(1.0 + sgn * n.x * n.x * ba, sgn * bc, -sgn * n.x), b3 = vec3(bc, sgn + n.y * n.y * ba, -n.y);
+    vec3 t3, b3;
+    voxgi_basis(n, t3, b3);
     vec3 e = vec3(0.0);
     float occ = 0.0;
     for (int k = 0; k < u_cones; k++) {

@@ -41,7 +41,7 @@ void main()
                 vec3 l = -c.dir.xyz, r, u;
                 float cs = dot(l, n);
                 if (cs <= 0.0) continue;
-                light_basis(c.dir.xyz, r, u);
+                voxgi_basis(c.dir.xyz, r, u);
                 vec3 q = p - c.pos.xyz;
                 e += c.power.rgb * cs * visible(first, vec2(dot(q, r), dot(q, u)) / c.dir.w, dot(q, c.dir.xyz), 2.0 * c.dir.w / float(u_size));
                 continue;

@@ -14,7 +14,7 @@ void main()
     vec3 p = corner[gl_VertexID].xyz, f, r, u;
     v_p = p;
     if (u_face < 0) { // orthographic over the scene's bounding sphere
-        light_basis(c.dir.xyz, r, u);
+        voxgi_basis(c.dir.xyz, r, u);
         vec3 q = p - c.pos.xyz;
         gl_Position = vec4(dot(q, r) / c.dir.w, dot(q, u) / c.dir.w, 0.0, 1.0);
     } else { // a 90-degree perspective face; clipped only at the near plane (w >= near)

@@ -13,14 +13,6 @@ struct Caster {
     vec4 param;  // spot: cos of the inner and outer angles
 };
 
-// An orthonormal frame (r, u) around unit f, as voxgi__basis.
-void light_basis(vec3 f, out vec3 r, out vec3 u)
-{
-    float sgn = f.z >= 0.0 ? 1.0 : -1.0, a = -1.0 / (sgn + f.z), b = f.x * f.y * a;
-    r = vec3(1.0 + sgn * f.x * f.x * a, sgn * b, -sgn * f.x);
-    u = vec3(b, sgn + f.y * f.y * a, -f.y);
-}
-
 // Cube face k's forward, right and up.
 void cube_face(int k, out vec3 f, out vec3 r, out vec3 u)
 {

@@ -1019,6 +1019,25 @@ static void test_gl_shader_error_mapping(void)
     voxgi_destroy(ctx);
 }
 
+/* A scene voxelized (albedo, normal) on a fitted grid of res voxels and lit (voxgi_inject_light
+   with id); 1 when it all worked, else the error is printed. */
+static int lit_voxels(voxgi_context *ctx, const voxgi_scene *sc, int res, const voxgi_inject_desc *id, voxgi_voxels **vx, voxgi_volume **vol)
+{
+    voxgi_fit_desc fit;
+    voxgi_voxelize_desc xd;
+    memset(&fit, 0, sizeof fit);
+    memset(&xd, 0, sizeof xd);
+    fit.res = res;
+    fit.padding = 1;
+    xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+    *vx = NULL;
+    *vol = NULL;
+    if (voxgi_fit_grid(ctx, sc, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, sc, &xd, vx) == VOXGI_OK && voxgi_inject_light(ctx, sc, *vx, id, vol) == VOXGI_OK)
+        return 1;
+    printf("    %s\n", voxgi_last_error(ctx));
+    return 0;
+}
+
 /* Light injection on GL (distance maps, a gather per voxel) against the CPU's exact shadow rays
    on the same voxels: where a voxel is lit or dark alike, both are the same analytic irradiance
    (within float rounding); they differ only within a map texel or two of a shadow's edge, and
@@ -1039,20 +1058,12 @@ static void test_gl_raster_injection_matches_cpu(void)
         double power[2] = {0, 0};
         voxgi_builtin_scene_create(ctx[0], scenes[sc], &bs);
         for (b = 0; b < 2; b++) {
-            voxgi_fit_desc fit;
-            voxgi_voxelize_desc xd;
             voxgi_inject_desc id;
-            voxgi_voxels *vx = NULL;
-            voxgi_volume *vol = NULL;
-            memset(&fit, 0, sizeof fit);
-            memset(&xd, 0, sizeof xd);
+            voxgi_voxels *vx;
+            voxgi_volume *vol;
             memset(&id, 0, sizeof id);
-            fit.res = 48;
-            fit.padding = 1;
-            xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
             id.samples = 64;
-            TH_CHECK(voxgi_fit_grid(ctx[b], &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx[b], &bs.scene, &xd, &vx) == VOXGI_OK &&
-                     voxgi_inject_light(ctx[b], &bs.scene, vx, &id, &vol) == VOXGI_OK &&
+            TH_CHECK(lit_voxels(ctx[b], &bs.scene, 48, &id, &vx, &vol) &&
                      voxgi_volume_read(ctx[b], vol, VOXGI_ATTRIBUTE_RADIANCE, VOXGI_DIR_POS_X, 0, NULL, 0, &need) == VOXGI_OK,
                      "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
             rad[b] = (float *)malloc(need ? need : 4);
@@ -1134,8 +1145,6 @@ static void test_gl_raster_gbuffer_textures(void)
     enum { W = 20, H = 15, N = W * H };
     voxgi_context *ctx;
     voxgi_builtin_scene bs;
-    voxgi_fit_desc fit;
-    voxgi_voxelize_desc xd;
     voxgi_inject_desc id;
     voxgi_cone_desc cd;
     voxgi_voxels *vx = NULL;
@@ -1160,15 +1169,9 @@ static void test_gl_raster_gbuffer_textures(void)
     if (!create || !storage || !sub || !get || !del) return;
     ctx = make_ctx(VOXGI_BACKEND_GL);
     voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
-    memset(&fit, 0, sizeof fit);
-    memset(&xd, 0, sizeof xd);
     memset(&id, 0, sizeof id);
     memset(&cd, 0, sizeof cd);
-    fit.res = 32;
-    fit.padding = 1;
-    xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
-    TH_CHECK(voxgi_fit_grid(ctx, &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &bs.scene, &xd, &vx) == VOXGI_OK &&
-             voxgi_inject_light(ctx, &bs.scene, vx, &id, &vol) == VOXGI_OK, "lit voxels: %s", voxgi_last_error(ctx));
+    TH_CHECK(lit_voxels(ctx, &bs.scene, 32, &id, &vx, &vol), "lit voxels");
     srand(11);
     for (i = 0; i < N; i++)
         for (a = 0; a < 3; a++) {
@@ -1297,26 +1300,18 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
     img[1] = (float *)malloc(W * W * 12);
     for (f = 0; f < 2; f++) {
         for (b = 0; b < 2; b++) {
-            voxgi_fit_desc fit;
-            voxgi_voxelize_desc xd;
             voxgi_inject_desc id;
             voxgi_cone_desc cd;
             voxgi_vct_desc vd;
-            voxgi_voxels *vx = NULL;
-            voxgi_volume *vol = NULL;
-            memset(&fit, 0, sizeof fit);
-            memset(&xd, 0, sizeof xd);
+            voxgi_voxels *vx;
+            voxgi_volume *vol;
             memset(&id, 0, sizeof id);
             memset(&cd, 0, sizeof cd);
             memset(&vd, 0, sizeof vd);
-            fit.res = 32;
-            fit.padding = 1;
-            xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
             id.volume.filter = (voxgi_mip_filter)f;
             id.samples = 4;
             id.shadow_rays = 1; /* the same radiance on both */
-            TH_CHECK(voxgi_fit_grid(ctx[b], &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx[b], &bs.scene, &xd, &vx) == VOXGI_OK &&
-                     voxgi_inject_light(ctx[b], &bs.scene, vx, &id, &vol) == VOXGI_OK &&
+            TH_CHECK(lit_voxels(ctx[b], &bs.scene, 32, &id, &vx, &vol) &&
                      voxgi_cone_trace(ctx[b], vol, &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
                      voxgi_trace_cones(ctx[b], vol, &cd, N, single, each[b]) == VOXGI_OK, "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
             voxgi_volume_destroy(ctx[b], vol);
