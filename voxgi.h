@@ -316,7 +316,7 @@ typedef enum voxgi_attribute {
     VOXGI_ATTRIBUTE_NORMAL = 2,
     VOXGI_ATTRIBUTE_EMISSION = 4,
     VOXGI_ATTRIBUTE_OPACITY = 8,
-    VOXGI_ATTRIBUTE_RADIANCE = 16 /* volumes only: the light voxels send out (voxgi_inject_light), stored
+    VOXGI_ATTRIBUTE_RADIANCE = 16 /* volumes and octrees only: the light voxels send out (voxgi_inject_light), stored
                                      premultiplied (radiance x alpha, alpha) so that plain linear
                                      filtering, a GPU's included, is the alpha-weighted mean */
 } voxgi_attribute;
@@ -473,10 +473,14 @@ typedef struct voxgi_svo voxgi_svo;
    values, as a GPU builds the mips of a half-float texture). */
 typedef enum voxgi_svo_format { VOXGI_SVO_FLOAT32 = 0, VOXGI_SVO_FLOAT16 } voxgi_svo_format;
 typedef struct voxgi_svo_desc {
-    unsigned attributes;          /* voxgi_attribute bits (0 = all the voxels hold) */
+    unsigned attributes;          /* voxgi_attribute bits (0 = all the voxels hold; RADIANCE alone: only the radiance) */
     int neighbours;               /* 1: also the six neighbour pointers of every node (24 bytes per node slot) */
     int bricks;                   /* 1: also a brick per inner node (64 values per node) */
     voxgi_svo_format format;
+    const voxgi_volume *radiance; /* a RADIANCE volume on the voxels' grid (voxgi_inject_light), or NULL: the
+                                     octree also holds RADIANCE, premultiplied as in the volume: its level 0 at
+                                     the set voxels, the nodes the plain mean of their children (so sampling
+                                     equals the isotropic volume's), for cone tracing (voxgi_cone_trace_svo) */
 } voxgi_svo_desc;
 typedef struct voxgi_svo_info {
     voxgi_grid grid;
@@ -656,6 +660,16 @@ VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume 
    acos(0.244^(1 / (n + 1))) (a fit common among voxel cone tracers), at least 0.005. */
 VOXGI_API float voxgi_specular_half_angle(float roughness);
 
+/* The same gathers and cones over an octree's RADIANCE (voxgi_svo_desc.radiance) instead of a
+   volume: the octree's isotropic mips (lod 0 = the voxels, up to the root), sampled through its
+   bricks where it has them. The march is the volume's step for step, so a float32 octree gives
+   what the isotropic volume it was built from gives, bit for bit on the CPU; on GL the same
+   march runs over the octree's buffers (shaders/cone_svo.glsl). */
+VOXGI_API voxgi_result voxgi_cone_trace_svo(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
+                                            const float *positions, const float *normals, float *irradiance, float *occlusion);
+VOXGI_API voxgi_result voxgi_trace_cones_svo(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
+                                             const voxgi_cone *cones, float *radiance_opacity);
+
 /* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
    pixel's centre meets first: its position (world units), its normal facing the camera, its
    triangle (in the scene's order: meshes, then triangles; UINT32_MAX and zeros where nothing
@@ -691,11 +705,16 @@ typedef struct voxgi_vct_desc {
                                      column); a pixel between takes the bilinear mean of the four around it
                                      that share its surface (normals within 26 degrees, on its plane within a
                                      voxel), or traces its own where none does. 0 or 1: every pixel */
+    int octree;                   /* 1: the cones gather from a sparse voxel octree of the injected radiance
+                                     (voxgi_cone_trace_svo: isotropic mips, `filter` ignored) instead of the volume */
+    voxgi_svo_format octree_format;
+    int octree_bricks;            /* 1: the octree samples through bricks */
 } voxgi_vct_desc;
 typedef struct voxgi_vct_info {
     uint64_t voxels;
     size_t cone_points;           /* pixels whose cones were traced */
-    double ms_voxelize, ms_inject, ms_cones, ms_direct, ms; /* inject: with the mips */
+    double ms_voxelize, ms_inject, ms_octree, ms_cones, ms_direct, ms; /* inject: with the mips */
+    size_t radiance_bytes;        /* what the cones gather from: the radiance volume, or the octree */
 } voxgi_vct_info;
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info);
@@ -1590,7 +1609,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(cone_trace) X(cone_trace_images16) X(cone_trace_images32) X(gbuffer) X(light_map_draw) X(inject) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(cone_trace) X(cone_trace_svo) X(cone_trace_images16) X(cone_trace_images32) X(gbuffer) X(light_map_draw) X(inject) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -5236,10 +5255,10 @@ struct voxgi_svo {
     voxgi_svo_info info;
     uint32_t *child;                          /* per node slot: 1 + tile index, 0 = none */
     uint32_t *neighbour;                      /* 6 per node slot: slot of the same-level neighbour, 0 = none */
-    unsigned char *node_values[4], *leaf_values[4]; /* per node slot / per leaf slot: slot_bytes[a] in info.format */
-    int slot_bytes[4];
+    unsigned char *node_values[VOXGI__VOLUME_SLOTS], *leaf_values[VOXGI__VOLUME_SLOTS]; /* per node / leaf slot: slot_bytes[a] in info.format */
+    int slot_bytes[VOXGI__VOLUME_SLOTS];
     uint64_t inner_tiles, bricks;             /* bricks: one per inner node, or 0 */
-    unsigned int gl_child, gl_neighbour, gl_node_values[4], gl_leaf_values[4]; /* GL: the same arrays in buffers */
+    unsigned int gl_child, gl_neighbour, gl_node_values[VOXGI__VOLUME_SLOTS], gl_leaf_values[VOXGI__VOLUME_SLOTS]; /* GL: the same arrays in buffers */
 };
 
 /* float -> half, rounded to the nearest, ties to even (finite input; 65520 and beyond: infinity).
@@ -5357,7 +5376,7 @@ static voxgi_result voxgi__svo_size(voxgi_context *ctx, voxgi_svo *svo, uint64_t
     svo->info.structure_bytes = (size_t)(svo->info.nodes * 4);
     svo->info.neighbour_bytes = desc->neighbours ? (size_t)(svo->info.nodes * 24) : 0;
     svo->info.brick_bytes = 0;
-    for (a = 0; a < 4; a++)
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++)
         if (svo->info.attributes & (1u << a)) {
             value_bytes += (svo->info.nodes + svo->info.leaf_slots) * (uint64_t)svo->slot_bytes[a];
             svo->info.brick_bytes += (size_t)(64 * svo->bricks * (uint64_t)svo->slot_bytes[a]);
@@ -5499,7 +5518,7 @@ enum { VOXGI__SVO_FLAG, VOXGI__SVO_ARGS, VOXGI__SVO_ALLOCATE, VOXGI__SVO_INIT, V
 
 /* The GPU build (shaders/svo_build.glsl) from the voxel fragments (x | y << 16, z) and their
    attribute means in the same order. */
-static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size_t n, const uint32_t *packed, float *const vals[4],
+static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size_t n, const uint32_t *packed, float *const vals[VOXGI__VOLUME_SLOTS],
                                         const voxgi_svo_desc *desc)
 {
     voxgi__gl *gl = ctx->gl;
@@ -5564,7 +5583,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
     if (r != VOXGI_OK) goto done;
     svo->info.level_nodes[depth] = n;
     if ((r = voxgi__svo_size(ctx, svo, tiles, desc)) != VOXGI_OK) goto done; /* before the values are allocated */
-    for (a = 0; a < 4; a++) /* each value buffer within one storage block (so word indices stay 32-bit too) */
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* each value buffer within one storage block (so word indices stay 32-bit too) */
         if ((svo->info.attributes & (1u << a)) &&
             ((int64_t)((svo->info.nodes + 64 * svo->bricks) * (uint64_t)svo->slot_bytes[a]) > gl->max_ssbo_bytes ||
              (int64_t)(svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a]) > gl->max_ssbo_bytes || (int64_t)(16 * (uint64_t)n) > gl->max_ssbo_bytes)) {
@@ -5599,7 +5618,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
         t0 = voxgi__now_ms();
     }
     fvals = voxgi__gl_buffer(ctx, n * 16, NULL);
-    for (a = 0; a < 4 && r == VOXGI_OK; a++) { /* leaves from the fragments, then the mips bottom up */
+    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) { /* leaves from the fragments, then the mips bottom up */
         uint64_t node_bytes = svo->info.nodes * (uint64_t)svo->slot_bytes[a], leaf_bytes = svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a];
         unsigned int zero = 0;
         float *v4;
@@ -5607,6 +5626,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
         if (!(svo->info.attributes & (1u << a))) continue;
         if (!(v4 = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the fragment values"); break; }
         for (i = 0; i < n; i++) {
+            if (a == 4) { memcpy(v4 + 4 * i, vals[4] + 4 * i, 16); continue; } /* radiance: as the volume holds it */
             v4[4 * i] = a < 3 ? vals[a][3 * i] : 0;
             v4[4 * i + 1] = a < 3 ? vals[a][3 * i + 1] : 0;
             v4[4 * i + 2] = a < 3 ? vals[a][3 * i + 2] : 0;
@@ -5624,6 +5644,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
         voxgi__gl_dispatch_rows(gl, n);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_MIP);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_premultiplied"), a == 4);
         for (m = depth - 1; m >= 0; m--) {
             gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
             gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first[m]);
@@ -5664,7 +5685,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     size_t count[VOXGI__MAX_LEVELS + 1], need = 0, i, n = 0;
     uint32_t *bits = NULL, *order = NULL, *packed = NULL;
     const uint32_t *leaf_bits = NULL;
-    float *vals[4] = {NULL, NULL, NULL, NULL};
+    float *vals[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL}, *radiance = NULL;
     double t0 = voxgi__now_ms(), t1;
     int depth = 1, lev, a, maxres;
     voxgi_result r = VOXGI_OK;
@@ -5672,14 +5693,22 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     if (!vx || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
     *out = NULL;
     if (!vx->info.attributes) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "these voxels hold no attributes (voxgi_voxelize_desc.attributes)");
-    if (desc->attributes & ~vx->info.attributes)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attributes 0x%x asked for, the voxels hold 0x%x", desc->attributes, vx->info.attributes);
+    if (desc->attributes & ~vx->info.attributes & ~(unsigned)VOXGI_ATTRIBUTE_RADIANCE || ((desc->attributes & VOXGI_ATTRIBUTE_RADIANCE) && !desc->radiance))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attributes 0x%x asked for, the voxels hold 0x%x%s", desc->attributes, vx->info.attributes,
+                           desc->radiance ? "" : " (RADIANCE: from desc.radiance)");
     g = &vx->info.grid;
     maxres = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2]));
     while ((1 << depth) < maxres) depth++;
     if (depth > 16) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "octrees hold grids up to 65536 voxels per axis");
     if (desc->format != VOXGI_SVO_FLOAT32 && desc->format != VOXGI_SVO_FLOAT16)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "octree value format %d", (int)desc->format);
+    if (desc->radiance) {
+        const voxgi_grid *rg = &desc->radiance->info.grid;
+        if (!(desc->radiance->info.attributes & VOXGI_ATTRIBUTE_RADIANCE))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.radiance holds no RADIANCE (voxgi_inject_light)");
+        if (rg->voxel_size != g->voxel_size || memcmp(rg->origin, g->origin, sizeof g->origin) || memcmp(rg->res, g->res, sizeof g->res))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.radiance lies on another grid than the voxels");
+    }
     svo = (voxgi_svo *)voxgi__alloc_array(ctx, 1, sizeof *svo, 1);
     if (!svo) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree");
     memset(codes, 0, sizeof codes);
@@ -5688,7 +5717,8 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     svo->info.attributes = desc->attributes ? desc->attributes : vx->info.attributes;
     svo->info.depth = depth;
     svo->info.format = desc->format;
-    for (a = 0; a < 4; a++) svo->slot_bytes[a] = (a == 3 ? 4 : 16) >> (desc->format == VOXGI_SVO_FLOAT16);
+    if (desc->radiance) svo->info.attributes |= VOXGI_ATTRIBUTE_RADIANCE;
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) svo->slot_bytes[a] = (a == 3 ? 4 : 16) >> (desc->format == VOXGI_SVO_FLOAT16);
     nvox = voxgi_grid_voxel_count(g);
     /* 1. the leaves: Morton codes of the set voxels, with their index in bit order (GL voxels
        are read back; CPU ones are used where they are) */
@@ -5723,6 +5753,17 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
         r = voxgi_voxels_read_attribute(ctx, vx, which, NULL, 0, &need);
         if (r == VOXGI_OK && !(vals[a] = (float *)voxgi__alloc(ctx, need ? need : 4))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
         if (r == VOXGI_OK) r = voxgi_voxels_read_attribute(ctx, vx, which, vals[a], need, NULL);
+    }
+    if (r == VOXGI_OK && desc->radiance) { /* the radiance volume's level 0 at the set voxels, in bit order */
+        r = voxgi_volume_read(ctx, desc->radiance, VOXGI_ATTRIBUTE_RADIANCE, VOXGI_DIR_POS_X, 0, NULL, 0, &need);
+        if (r == VOXGI_OK && (!(radiance = (float *)voxgi__alloc(ctx, need)) || !(vals[4] = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the radiance of %lu voxels", (unsigned long)n);
+        if (r == VOXGI_OK) r = voxgi_volume_read(ctx, desc->radiance, VOXGI_ATTRIBUTE_RADIANCE, VOXGI_DIR_POS_X, 0, radiance, need, NULL);
+        for (l = 0, i = 0; r == VOXGI_OK && l < (nvox + 31) / 32; l++) {
+            uint32_t word = leaf_bits[l];
+            for (; word; word &= word - 1, i++)
+                memcpy(vals[4] + 4 * i, radiance + 4 * (32 * l + (uint64_t)voxgi__popcount32((word & (0u - word)) - 1u)), 16);
+        }
     }
 #ifndef VOXGI_NO_GL
     if (packed) {
@@ -5803,7 +5844,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
         t0 = voxgi__now_ms();
     }
     /* 3. values: the leaves from the attribute means, then every node the isotropic mip of its tile */
-    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
         int b = svo->slot_bytes[a];
         unsigned char *leaf, *node;
         if (!(svo->info.attributes & (1u << a))) continue;
@@ -5817,6 +5858,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
                 float c[4] = {0, 0, 0, 0};
                 c[3] = vals[3] ? vals[3][order[i]] : 1.0f;
                 if (a < 3) memcpy(c, vals[a] + 3 * (size_t)order[i], 3 * sizeof(float));
+                if (a == 4) memcpy(c, vals[4] + 4 * (size_t)order[i], sizeof c);
                 while (codes[depth - 1][parent_rank] != parent) parent_rank++;
                 voxgi__svo_put(svo, a, leaf, 8 * parent_rank + (codes[depth][i] & 7u), c);
             }
@@ -5836,7 +5878,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
                     if (lev == depth - 1) voxgi__svo_get(svo, a, leaf, 8 * tile + (uint64_t)k, c[k]);
                     else voxgi__svo_get(svo, a, node, 1 + 8 * tile + (uint64_t)k, c[k]);
                 }
-                voxgi__mip_combine(c, 4, -1, 0, m);
+                voxgi__mip_combine(c, 4, -1, a == 4, m);
                 voxgi__svo_put(svo, a, node, slot, m);
             }
         }
@@ -5857,7 +5899,8 @@ finish:
 #endif
     voxgi__free(ctx, packed);
     for (lev = 0; lev <= VOXGI__MAX_LEVELS; lev++) voxgi__free(ctx, codes[lev]);
-    for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) voxgi__free(ctx, vals[a]);
+    voxgi__free(ctx, radiance);
     voxgi__free(ctx, bits);
     voxgi__free(ctx, order);
     if (r != VOXGI_OK) { voxgi_svo_destroy(ctx, svo); return r; }
@@ -5872,11 +5915,11 @@ VOXGI_API void voxgi_svo_destroy(voxgi_context *ctx, voxgi_svo *svo)
     if (!ctx || !svo) return;
     voxgi__free(ctx, svo->child);
     voxgi__free(ctx, svo->neighbour);
-    for (a = 0; a < 4; a++) { voxgi__free(ctx, svo->node_values[a]); voxgi__free(ctx, svo->leaf_values[a]); }
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) { voxgi__free(ctx, svo->node_values[a]); voxgi__free(ctx, svo->leaf_values[a]); }
 #ifndef VOXGI_NO_GL
     voxgi__gl_delete_buffer(ctx, svo->gl_child);
     voxgi__gl_delete_buffer(ctx, svo->gl_neighbour);
-    for (a = 0; a < 4; a++) { voxgi__gl_delete_buffer(ctx, svo->gl_node_values[a]); voxgi__gl_delete_buffer(ctx, svo->gl_leaf_values[a]); }
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) { voxgi__gl_delete_buffer(ctx, svo->gl_node_values[a]); voxgi__gl_delete_buffer(ctx, svo->gl_leaf_values[a]); }
 #endif
     voxgi__free(ctx, svo);
 }
@@ -7141,7 +7184,10 @@ static void voxgi__cone_direction(int k, int n, double d[3])
 }
 
 typedef struct voxgi__cone_job {
-    const voxgi_volume *vol;
+    const voxgi_volume *vol;      /* the radiance: a volume, */
+    const voxgi_svo *svo;         /* or an octree */
+    const voxgi_grid *grid;
+    int levels;                   /* mip levels (an octree: depth + 1) */
     const voxgi_cone_desc *desc;
     const float *pos, *nrm;
     const voxgi_cone *list;       /* single cones, or NULL */
@@ -7157,6 +7203,15 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], cons
 {
     voxgi__volume_source src;
     int ch, ax;
+    if (J->svo) { /* the octree's isotropic mips, through its bricks where it has them */
+        voxgi__svo_source os;
+        os.svo = J->svo;
+        os.a = 4;
+        os.w = 4;
+        voxgi__sample_lod(voxgi__svo_fetch, J->svo->bricks ? voxgi__svo_brick_trilinear : NULL, &os, 4, J->levels, p, lod, out);
+        for (ch = 0; ch < 3; ch++) out[ch] = out[3] > 0 ? out[ch] / out[3] : 0;
+        return;
+    }
     src.vol = J->vol;
     src.w = 4;
     for (ch = 0; ch < 4; ch++) out[ch] = 0;
@@ -7165,7 +7220,7 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], cons
         double w = J->dirs == 1 ? (ax == 0) : d[ax] * d[ax];
         if (w == 0) continue;
         src.arr = J->vol->cpu[4][J->dirs == 1 ? 0 : 2 * ax + (d[ax] < 0)];
-        voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, 4, J->vol->info.levels, p, lod, s);
+        voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, 4, J->levels, p, lod, s);
         for (ch = 0; ch < 4; ch++) out[ch] += (float)(w * s[ch]);
     }
     for (ch = 0; ch < 3; ch++) out[ch] = out[3] > 0 ? out[ch] / out[3] : 0;
@@ -7185,7 +7240,7 @@ static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const
         float p[3], s[4];
         for (a = 0; a < 3; a++) p[a] = (float)(o[a] + J->offset * n[a] + (t - J->offset) * d[a]);
         /* both levels blended must stay clear of the surface: a level-L voxel holding it reaches 1.5 x 2^L above it */
-        double lod = VOXGI__MIN(VOXGI__MIN(log2(diam), log2(h / 1.5) - 1), J->vol->info.levels - 1.0);
+        double lod = VOXGI__MIN(VOXGI__MIN(log2(diam), log2(h / 1.5) - 1), J->levels - 1.0);
         voxgi__cone_sample(J, d, p, (float)lod, s);
         /* what the cone sees is the coverage of its cross-section. Isotropic: a level-L voxel's alpha is the share
            of its volume that is filled; a surface one voxel thick fills 2^-L of it yet may cover its whole
@@ -7203,7 +7258,7 @@ static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const
 static void voxgi__cone_range(void *user, size_t first, size_t end)
 {
     voxgi__cone_job *J = (voxgi__cone_job *)user;
-    const voxgi_grid *g = &J->vol->info.grid;
+    const voxgi_grid *g = J->grid;
     size_t i;
     int k, a;
     for (i = first; i < end; i++) {
@@ -7250,7 +7305,7 @@ static void voxgi__cone_frame(const voxgi_cone *c, const voxgi_grid *g, double o
 static void voxgi__cone_each_range(void *user, size_t first, size_t end)
 {
     voxgi__cone_job *J = (voxgi__cone_job *)user;
-    const voxgi_grid *g = &J->vol->info.grid;
+    const voxgi_grid *g = J->grid;
     size_t i;
     int a;
     for (i = first; i < end; i++) {
@@ -7269,9 +7324,10 @@ static void voxgi__cone_each_range(void *user, size_t first, size_t end)
 /* The march's uniforms (shaders/cone_trace.glsl). */
 static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__cone_job *J)
 {
-    gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_size"), (float)J->vol->info.gl_size[0], (float)J->vol->info.gl_size[1],
-                         (float)J->vol->info.gl_size[2]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_levels"), J->vol->info.levels);
+    if (J->vol)
+        gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_size"), (float)J->vol->info.gl_size[0], (float)J->vol->info.gl_size[1],
+                             (float)J->vol->info.gl_size[2]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_levels"), J->levels);
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_anisotropic"), J->dirs == 6);
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_cones"), J->list ? 0 : J->cones);
     gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_half_tan"), (float)J->half_tan);
@@ -7285,12 +7341,13 @@ static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__con
 static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_job *J, size_t count)
 {
     voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &J->vol->info.grid;
+    const voxgi_grid *g = J->grid;
     unsigned int bufs[2] = {0, 0}, p;
     float *io;
     size_t i, first, slice = 16384;
     int a;
-    voxgi_result r = voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl cone_trace_buffers.glsl", &gl->prog_cone_trace);
+    voxgi_result r = J->svo ? voxgi__gl_get_program(ctx, "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl cone_trace_buffers.glsl", &gl->prog_cone_trace_svo)
+                            : voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl cone_trace_buffers.glsl", &gl->prog_cone_trace);
     if (r != VOXGI_OK || !count) return r;
     if (count > UINT32_MAX / 2) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
     if (!(io = (float *)voxgi__alloc_array(ctx, count, 48, 0))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
@@ -7310,12 +7367,13 @@ static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_j
     }
     bufs[0] = voxgi__gl_buffer(ctx, count * 48, io);
     bufs[1] = voxgi__gl_buffer(ctx, count * 16, NULL);
-    p = gl->prog_cone_trace;
+    p = J->svo ? gl->prog_cone_trace_svo : gl->prog_cone_trace;
     gl->UseProgram(p);
     voxgi__cone_uniforms(gl, p, J);
-    for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J->vol->tex[4][J->dirs == 6 ? a : 0]);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
+    if (J->svo) voxgi__svo_gl_bind(ctx, J->svo, p, 4);
+    else for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J->vol->tex[4][J->dirs == 6 ? a : 0]);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, bufs[0]);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, bufs[1]);
     gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)count);
     for (first = 0; first < count; first += slice) {
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first);
@@ -7339,23 +7397,29 @@ static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_j
 }
 #endif
 
-/* What voxgi_cone_trace and voxgi_trace_cones share: the checks of the volume and desc, the job. */
-static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, voxgi__cone_job *J)
+/* What the cone tracers share: the checks of the radiance (a volume, or an octree when vol is
+   NULL) and of desc, the job. */
+static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc, voxgi__cone_job *J)
 {
     const voxgi_grid *g;
+    const char *what = vol ? "volume" : "octree";
     memset(J, 0, sizeof *J);
-    if (!(vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the volume holds no RADIANCE (voxgi_inject_light)");
-    if (vol->info.backend != ctx->backend)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the volume was made on another backend than the context's");
+    if (!((vol ? vol->info.attributes : svo->info.attributes) & VOXGI_ATTRIBUTE_RADIANCE))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the %s holds no RADIANCE (%s)", what, vol ? "voxgi_inject_light" : "voxgi_svo_desc.radiance");
+    if ((vol ? vol->info.backend : svo->info.backend) != ctx->backend)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the %s was made on another backend than the context's", what);
     if (desc->cones < 0 || desc->cones > 1024 || !(desc->half_angle >= 0 && desc->half_angle < 1.5f) || !(desc->step >= 0 && desc->step <= 4) ||
         !(desc->offset >= 0) || !(desc->max_distance >= 0))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "cones %d (0..1024), half_angle %g (0..1.5), step %g (0..4), offset %g, max_distance %g",
                            desc->cones, desc->half_angle, desc->step, desc->offset, desc->max_distance);
-    g = &vol->info.grid;
+    g = vol ? &vol->info.grid : &svo->info.grid;
     J->vol = vol;
+    J->svo = vol ? NULL : svo;
+    J->grid = g;
+    J->levels = vol ? vol->info.levels : svo->info.depth + 1;
     J->desc = desc;
     J->cones = desc->cones ? desc->cones : 16;
-    J->dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
+    J->dirs = vol && vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
     J->half_tan = tan(desc->half_angle > 0 ? desc->half_angle : acos(1 - 1.0 / J->cones));
     J->step = desc->step > 0 ? desc->step : 0.5;
     J->offset = desc->offset > 0 ? desc->offset : 1.5;
@@ -7364,16 +7428,16 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_volume 
     return VOXGI_OK;
 }
 
-VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count,
-                                        const float *positions, const float *normals, float *irradiance, float *occlusion)
+static voxgi_result voxgi__cone_trace_points(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
+                                             const float *positions, const float *normals, float *irradiance, float *occlusion)
 {
     voxgi__cone_job J;
     size_t i;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!vol || !desc || (count && (!positions || !normals || !irradiance)))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, desc, positions, normals or irradiance is NULL");
-    if ((r = voxgi__cone_job_init(ctx, vol, desc, &J)) != VOXGI_OK) return r;
+    if ((!vol && !svo) || !desc || (count && (!positions || !normals || !irradiance)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance, desc, positions, normals or irradiance is NULL");
+    if ((r = voxgi__cone_job_init(ctx, vol, svo, desc, &J)) != VOXGI_OK) return r;
     for (i = 0; i < 3 * count; i++)
         if (!isfinite(positions[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
     J.pos = positions;
@@ -7381,21 +7445,22 @@ VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *
     J.irr = irradiance;
     J.occ = occlusion;
 #ifndef VOXGI_NO_GL
-    if (vol->info.backend == VOXGI_BACKEND_GL) return voxgi__cone_trace_gl(ctx, &J, count);
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__cone_trace_gl(ctx, &J, count);
 #endif
     voxgi__parallel(ctx, count, 64, voxgi__cone_range, &J);
     return VOXGI_OK;
 }
 
-VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count, const voxgi_cone *cones,
-                                         float *radiance_opacity)
+static voxgi_result voxgi__cone_trace_list(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
+                                           const voxgi_cone *cones, float *radiance_opacity)
 {
     voxgi__cone_job J;
     size_t i;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!vol || !desc || (count && (!cones || !radiance_opacity))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, desc, cones or out is NULL");
-    if ((r = voxgi__cone_job_init(ctx, vol, desc, &J)) != VOXGI_OK) return r;
+    if ((!vol && !svo) || !desc || (count && (!cones || !radiance_opacity)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance, desc, cones or out is NULL");
+    if ((r = voxgi__cone_job_init(ctx, vol, svo, desc, &J)) != VOXGI_OK) return r;
     for (i = 0; i < count; i++) {
         const voxgi_cone *c = &cones[i];
         double len = (double)c->direction[0] * c->direction[0] + (double)c->direction[1] * c->direction[1] + (double)c->direction[2] * c->direction[2];
@@ -7407,10 +7472,34 @@ VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume 
     J.list = cones;
     J.irr = radiance_opacity;
 #ifndef VOXGI_NO_GL
-    if (vol->info.backend == VOXGI_BACKEND_GL) return voxgi__cone_trace_gl(ctx, &J, count);
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__cone_trace_gl(ctx, &J, count);
 #endif
     voxgi__parallel(ctx, count, 64, voxgi__cone_each_range, &J);
     return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count,
+                                        const float *positions, const float *normals, float *irradiance, float *occlusion)
+{
+    return voxgi__cone_trace_points(ctx, vol, NULL, desc, count, positions, normals, irradiance, occlusion);
+}
+
+VOXGI_API voxgi_result voxgi_cone_trace_svo(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
+                                            const float *positions, const float *normals, float *irradiance, float *occlusion)
+{
+    return voxgi__cone_trace_points(ctx, NULL, svo, desc, count, positions, normals, irradiance, occlusion);
+}
+
+VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count, const voxgi_cone *cones,
+                                         float *radiance_opacity)
+{
+    return voxgi__cone_trace_list(ctx, vol, NULL, desc, count, cones, radiance_opacity);
+}
+
+VOXGI_API voxgi_result voxgi_trace_cones_svo(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count, const voxgi_cone *cones,
+                                             float *radiance_opacity)
+{
+    return voxgi__cone_trace_list(ctx, NULL, svo, desc, count, cones, radiance_opacity);
 }
 
 VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gb)
@@ -7431,7 +7520,7 @@ VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volum
     if (ctx->backend != VOXGI_BACKEND_GL || !ctx->gl) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "G-buffer textures need a GL context");
     if (!gb->position_texture || !gb->normal_texture || !gb->irradiance_texture || gb->width < 1 || gb->height < 1)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "position, normal and irradiance textures and a size (%d x %d) are needed", gb->width, gb->height);
-    if ((r = voxgi__cone_job_init(ctx, vol, desc, &J)) != VOXGI_OK) return r;
+    if ((r = voxgi__cone_job_init(ctx, vol, NULL, desc, &J)) != VOXGI_OK) return r;
     gl = ctx->gl;
     g = &vol->info.grid;
     r = gb->irradiance_rgba16f ? voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl", &gl->prog_cone_trace_images16)
@@ -7707,8 +7796,8 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
 
 /* The cones' irradiance at the pixels flagged in want, into J->irr (a packed copy is traced);
    *traced: how many. */
-static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *cd, const voxgi__vct_job *J,
-                                            size_t pixels, const unsigned char *want, size_t *traced)
+static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *cd,
+                                            const voxgi__vct_job *J, size_t pixels, const unsigned char *want, size_t *traced)
 {
     size_t i, n = 0;
     float *pos, *nrm, *irr;
@@ -7722,7 +7811,7 @@ static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_volu
     if (!pos || !nrm || !irr) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu cone points", (unsigned long)n);
     for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
         if (want[i]) { memcpy(pos + 3 * n, J->pos + 3 * i, 12); memcpy(nrm + 3 * n, J->nrm + 3 * i, 12); n++; }
-    if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, vol, cd, n, pos, nrm, irr, NULL);
+    if (r == VOXGI_OK) r = svo ? voxgi_cone_trace_svo(ctx, svo, cd, n, pos, nrm, irr, NULL) : voxgi_cone_trace(ctx, vol, cd, n, pos, nrm, irr, NULL);
     for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
         if (want[i]) { memcpy(J->irr + 3 * i, irr + 3 * n, 12); n++; }
     voxgi__free(ctx, pos);
@@ -7742,6 +7831,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi_inject_desc id;
     voxgi_voxels *vox = NULL;
     voxgi_volume *vol = NULL;
+    voxgi_svo *svo = NULL;
     voxgi_vct_info inf;
     size_t pixels, i, n = 0;
     unsigned char *want = NULL;
@@ -7798,13 +7888,32 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
             r = voxgi_inject_light(ctx, scene, vox, &id, &vol);
             inf.ms_inject = voxgi__now_ms() - t1;
         }
+        if (r == VOXGI_OK && desc->octree) { /* the radiance moves into an octree; the volume goes */
+            voxgi_svo_desc sd;
+            voxgi_svo_info si;
+            memset(&sd, 0, sizeof sd);
+            sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
+            sd.radiance = vol;
+            sd.format = desc->octree_format;
+            sd.bricks = desc->octree_bricks;
+            t1 = voxgi__now_ms();
+            r = voxgi_svo_create(ctx, vox, &sd, &svo);
+            inf.ms_octree = voxgi__now_ms() - t1;
+            voxgi_volume_destroy(ctx, vol);
+            vol = NULL;
+            if (r == VOXGI_OK) { voxgi_svo_query(svo, &si); inf.radiance_bytes = si.bytes; }
+        } else if (vol) {
+            voxgi_volume_info vi;
+            voxgi_volume_query(vol, &vi);
+            inf.radiance_bytes = vi.bytes;
+        }
         t1 = voxgi__now_ms();
         if (r == VOXGI_OK && !(want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
         for (i = 0; r == VOXGI_OK && i < pixels; i++) { /* every pixel's surface, or with a stride the grid of anchors */
             int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
             want[i] = J.prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
         }
-        if (r == VOXGI_OK) r = voxgi__vct_trace_pixels(ctx, vol, &desc->cones, &J, pixels, want, &n);
+        if (r == VOXGI_OK) r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, &J, pixels, want, &n);
         for (i = 0; r == VOXGI_OK && stride > 1 && i < pixels; i++) { /* the rest between the four anchors around them */
             int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a;
             int xs[2], ys[2];
@@ -7830,7 +7939,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
         }
         if (r == VOXGI_OK && stride > 1) {
             size_t more = 0;
-            r = voxgi__vct_trace_pixels(ctx, vol, &desc->cones, &J, pixels, want, &more);
+            r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, &J, pixels, want, &more);
             n += more;
         }
         inf.cone_points = n;
@@ -7842,6 +7951,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;
     voxgi_volume_destroy(ctx, vol);
+    voxgi_svo_destroy(ctx, svo);
     if (vox) voxgi_voxels_destroy(ctx, vox);
     voxgi__free(ctx, want);
     voxgi__free(ctx, J.pos);

@@ -1,7 +1,9 @@
 // Cone tracing over a RADIANCE volume (voxgi.h, part "light injection and cone tracing"): the
 // march of voxgi__cone_march step for step, with the textures' own filtering (the radiance is
-// stored premultiplied, so linear filtering is right). Its passes: cone_trace_buffers.glsl
+// stored premultiplied, so linear filtering is right), or over an octree's RADIANCE where
+// cone_svo.glsl defines VOXGI_CONE_SVO (after svo.glsl). Its passes: cone_trace_buffers.glsl
 // (points and single cones in storage buffers) and cone_trace_images.glsl (a G-buffer).
+#ifndef VOXGI_CONE_SVO
 // isotropic: u_rad0; anisotropic: one texture per direction of travel, +x -x +y -y +z -z
 layout(binding = 0) uniform sampler3D u_rad0;
 layout(binding = 1) uniform sampler3D u_rad1;
@@ -9,8 +11,9 @@ layout(binding = 2) uniform sampler3D u_rad2;
 layout(binding = 3) uniform sampler3D u_rad3;
 layout(binding = 4) uniform sampler3D u_rad4;
 layout(binding = 5) uniform sampler3D u_rad5;
+#endif
 uniform vec3 u_size;      // the textures' base size
-uniform int u_levels;
+uniform int u_levels;     // mip levels (an octree: depth + 1)
 uniform int u_anisotropic;
 uniform int u_cones;
 uniform float u_half_tan;
@@ -22,6 +25,9 @@ vec4 cone_sample(vec3 d, vec3 p, float lod)
 {
     float m = float(u_levels - 1);
     vec4 s;
+#ifdef VOXGI_CONE_SVO
+    s = voxgi_sample_svo(p, clamp(lod, 0.0, m));
+#else
     if (u_anisotropic == 0) s = voxgi_sample_volume(u_rad0, p, lod, u_size, m);
     else { // the axis volumes along the travel direction, weighted by its squared components
         vec3 w = d * d;
@@ -29,6 +35,7 @@ vec4 cone_sample(vec3 d, vec3 p, float lod)
             w.y * (d.y < 0.0 ? voxgi_sample_volume(u_rad3, p, lod, u_size, m) : voxgi_sample_volume(u_rad2, p, lod, u_size, m)) +
             w.z * (d.z < 0.0 ? voxgi_sample_volume(u_rad5, p, lod, u_size, m) : voxgi_sample_volume(u_rad4, p, lod, u_size, m));
     }
+#endif
     return vec4(s.a > 0.0 ? s.rgb / s.a : vec3(0.0), s.a);
 }
 

@@ -1,8 +1,9 @@
 // voxgi_cone_trace and voxgi_trace_cones on GL (after cone_trace.glsl): points or cones from a
-// storage buffer, results into another, one invocation each.
+// storage buffer, results into another, one invocation each (bindings 3 and 4: an octree's
+// buffers take 0 to 2).
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
-layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };   // 3 per point or cone, grid units
-layout(std430, binding = 1) writeonly buffer Gathered { vec4 gathered[]; }; // irradiance and occlusion, or radiance and opacity
+layout(std430, binding = 3) readonly buffer Points { vec4 points[]; };   // 3 per point or cone, grid units
+layout(std430, binding = 4) writeonly buffer Gathered { vec4 gathered[]; }; // irradiance and occlusion, or radiance and opacity
 uniform uint u_first;
 uniform uint u_count;
 

@@ -11,6 +11,7 @@ layout(std430, binding = 5) buffer Counters { uint counters[]; };
 layout(std430, binding = 6) buffer Neighbours { uint svo_neighbour[]; };
 layout(std430, binding = 7) readonly buffer FragmentValues { vec4 fragment_values[]; };
 uniform int u_pass;
+uniform int u_premultiplied; // mip: the values are stored premultiplied by alpha (RADIANCE): their plain mean
 uniform int u_level;   // the level being built (flag, allocate), mipped or linked
 uniform uint u_count;  // items of a directly sized pass
 uniform uint u_first;  // its first node list entry
@@ -125,9 +126,10 @@ void main()
         for (uint k = 0u; k < 8u; k++) {
             vec4 c = voxgi_svo_load(leaves, (leaves ? 0u : 1u) + 8u * tile + k);
             asum += c.a;
-            vsum += c.rgb * c.a;
+            vsum += u_premultiplied != 0 ? c.rgb : c.rgb * c.a;
         }
-        voxgi_svo_store(false, node.x, vec4(asum > 0.0 ? vsum / asum : vec3(0.0), asum / 8.0));
+        if (u_premultiplied != 0) voxgi_svo_store(false, node.x, vec4(vsum / 8.0, asum / 8.0));
+        else voxgi_svo_store(false, node.x, vec4(asum > 0.0 ? vsum / asum : vec3(0.0), asum / 8.0));
         return;
     }
     if (u_pass == VOXGI_PASS_NEIGHBOURS) { // per node of u_level: the slots one step away, 0 = none

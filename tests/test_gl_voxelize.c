@@ -1342,6 +1342,74 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
     voxgi_destroy(ctx[1]);
 }
 
+/* Cone tracing over an octree of the radiance on GL (the march over the octree's buffers,
+   shaders/cone_svo.glsl) against the CPU's over the CPU's octree of the same radiance: float32
+   and float16, with and without bricks, diffuse gathers and single cones. */
+static void test_gl_octree_cones_equal_cpu(void)
+{
+    enum { N = 200 };
+    voxgi_context *ctx[2];
+    voxgi_builtin_scene bs;
+    float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], each[2][4 * N];
+    voxgi_cone single[N];
+    double worst_irr = 0, worst_occ = 0, worst_each = 0, mean = 0;
+    int b, k, i, a;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL);
+    TH_CHECK(voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs) == VOXGI_OK, "scene");
+    srand(7);
+    for (i = 0; i < N; i++) {
+        double len = 0;
+        for (a = 0; a < 3; a++) {
+            pos[3 * i + a] = (float)(0.03 + 0.5 * rand() / RAND_MAX);
+            nrm[3 * i + a] = (float)(2.0 * rand() / RAND_MAX - 1);
+            len += nrm[3 * i + a] * nrm[3 * i + a];
+        }
+        if (len < 1e-4) nrm[3 * i + 1] = 1;
+        memset(&single[i], 0, sizeof single[i]);
+        for (a = 0; a < 3; a++) { single[i].origin[a] = pos[3 * i + a]; single[i].direction[a] = nrm[3 * i + a]; }
+        single[i].half_angle = (float)(0.03 + 0.6 * rand() / RAND_MAX);
+    }
+    for (k = 0; k < 3; k++) { /* float32, float32 with bricks, float16 */
+        for (b = 0; b < 2; b++) {
+            voxgi_inject_desc id;
+            voxgi_cone_desc cd;
+            voxgi_svo_desc sd;
+            voxgi_voxels *vx;
+            voxgi_volume *vol;
+            voxgi_svo *svo = NULL;
+            memset(&id, 0, sizeof id);
+            memset(&cd, 0, sizeof cd);
+            memset(&sd, 0, sizeof sd);
+            id.samples = 4;
+            id.shadow_rays = 1; /* the same radiance on both */
+            sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
+            sd.bricks = k == 1;
+            sd.format = k == 2 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
+            TH_CHECK(lit_voxels(ctx[b], &bs.scene, 24, &id, &vx, &vol), "lit voxels");
+            sd.radiance = vol;
+            TH_CHECK(voxgi_svo_create(ctx[b], vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace_svo(ctx[b], svo, &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
+                     voxgi_trace_cones_svo(ctx[b], svo, &cd, N, single, each[b]) == VOXGI_OK, "%s octree: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
+            voxgi_svo_destroy(ctx[b], svo);
+            voxgi_volume_destroy(ctx[b], vol);
+            voxgi_voxels_destroy(ctx[b], vx);
+        }
+        if (!k) for (i = 0; i < 3 * N; i++) mean += irr[0][i] / (3.0 * N);
+        for (i = 0; i < 3 * N; i++) worst_irr = fmax(worst_irr, fabs(irr[0][i] - irr[1][i]));
+        for (i = 0; i < N; i++) worst_occ = fmax(worst_occ, fabs(occ[0][i] - occ[1][i]));
+        for (i = 0; i < 4 * N; i++) worst_each = fmax(worst_each, fabs(each[0][i] - each[1][i]) / (i % 4 == 3 ? 1 : fmax(mean, 1e-3)));
+    }
+    printf("    GL octree cones vs CPU: irradiance within %.3g (mean %.3g), occlusion within %.3g, single cones within %.3g (relative)\n", worst_irr, mean,
+           worst_occ, worst_each);
+    TH_CHECK(mean > 0.05 && worst_irr <= 1e-3 * mean, "irradiance differs by %g (mean %g)", worst_irr, mean);
+    TH_CHECK(worst_occ <= 1e-3, "occlusion differs by %g", worst_occ);
+    TH_CHECK(worst_each <= 1e-3, "single cones differ by %g", worst_each);
+    voxgi_builtin_scene_destroy(ctx[0], &bs);
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
 int main(void)
 {
     vxt_gl_kind kind = VXT_GL_AUTO;
@@ -1364,6 +1432,7 @@ int main(void)
     TH_RUN(test_gl_svo_equals_cpu);
     TH_RUN(test_gl_raster_injection_matches_cpu);
     TH_RUN(test_gl_raster_cone_tracing_equals_cpu);
+    TH_RUN(test_gl_octree_cones_equal_cpu);
     TH_RUN(test_gl_raster_gbuffer_textures);
     TH_RUN(test_gl_raster_gbuffer);
     TH_RUN(test_gl_raster_leak_box);

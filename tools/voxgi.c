@@ -959,6 +959,9 @@ static const char *render_help =
     "  --anisotropic            vct: six-direction mips (default isotropic)\n"
     "  --cone-stride S          vct: cones at every S-th pixel across and down, the pixels between\n"
     "                           interpolated where they share a surface (default 1: every pixel)\n"
+    "  --octree [float32|float16]  vct: the cones gather from a sparse voxel octree of the radiance\n"
+    "                           (isotropic mips) instead of the volume (default float32)\n"
+    "  --bricks                 vct with --octree: sample the octree through its bricks\n"
     "  --no-gi                  vct: direct light only\n"
     "  --compare SPP            also render the reference (same bounces) with SPP samples per pixel and\n"
     "                           print the relative RMSE of the lighting (both without the emitters the\n"
@@ -1043,6 +1046,11 @@ static int cmd_render(int argc, char **argv)
         else if (strcmp(a, "--threads") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 256, &threads)) return bad_arg("render", "--threads needs 1..256"); }
         else if (strcmp(a, "--json") == 0) json = 1;
         else if (strcmp(a, "--cone-stride") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 64, &vd.cone_stride)) return bad_arg("render", "--cone-stride needs 1..64"); }
+        else if (strcmp(a, "--octree") == 0) {
+            vd.octree = 1;
+            if (i + 1 < argc && (strcmp(argv[i + 1], "float32") == 0 || strcmp(argv[i + 1], "float16") == 0))
+                vd.octree_format = strcmp(argv[++i], "float16") == 0 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
+        } else if (strcmp(a, "--bricks") == 0) vd.octree_bricks = 1;
         else if (strcmp(a, "--backend") == 0 && i + 1 < argc) { if (!parse_backend(argv[++i], &backend)) return bad_arg("render", "--backend is auto, cpu or gl"); }
         else if (strcmp(a, "--gl") == 0 && i + 1 < argc) { if (vxt_gl_kind_parse(argv[++i], &kind) != 0) return bad_arg("render", "--gl is auto, egl or osmesa"); }
         else if (strcmp(a, "-o") == 0 && i + 1 < argc) out_path = argv[++i];
@@ -1144,16 +1152,17 @@ static int cmd_render(int argc, char **argv)
         if (vct) {
             if (json)
                 printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
-                       "\"inject_ms\":%.3f,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"rel_rmse\":%.6g,"
+                       "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"rel_rmse\":%.6g,"
                        "\"reference_ms\":%.3f,\"output\":\"%s\"}\n",
                        what, voxgi_backend_name(ci.backend), w, h, vd.resolution ? vd.resolution : 128, vd.cones.cones ? vd.cones.cones : 16, !vd.no_gi, (unsigned long long)vinfo.voxels,
-                       vinfo.ms_voxelize, vinfo.ms_inject, vinfo.ms_cones, vinfo.ms_direct, vinfo.ms, mean[0], mean[1], mean[2], rmse, ref_ms, out_path);
+                       vinfo.ms_voxelize, vinfo.ms_inject, vinfo.ms_octree, (unsigned long long)vinfo.radiance_bytes, vinfo.ms_cones, vinfo.ms_direct, vinfo.ms, mean[0], mean[1], mean[2], rmse, ref_ms, out_path);
             else {
-                printf("%s: %d x %d cone-traced (%s%s%s), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, cones %.1f ms, direct light %.1f ms, "
-                       "total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-                       what, w, h, voxgi_backend_name(ci.backend), ci.backend == VOXGI_BACKEND_GL ? ", " : "",
-                       ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "", (unsigned long long)vinfo.voxels, vinfo.ms_voxelize, vinfo.ms_inject, vinfo.ms_cones, vinfo.ms_direct, vinfo.ms, mean[0],
-                       mean[1], mean[2], out_path);
+                printf("%s: %d x %d cone-traced (%s%s%s), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, ", what, w, h, voxgi_backend_name(ci.backend),
+                       ci.backend == VOXGI_BACKEND_GL ? ", " : "", ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "", (unsigned long long)vinfo.voxels,
+                       vinfo.ms_voxelize, vinfo.ms_inject);
+                if (vd.octree) printf("octree %.1f ms, ", vinfo.ms_octree);
+                printf("cones %.1f ms (over %.1f MB of %s), direct light %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n", vinfo.ms_cones,
+                       vinfo.radiance_bytes / 1e6, vd.octree ? "octree" : "volume", vinfo.ms_direct, vinfo.ms, mean[0], mean[1], mean[2], out_path);
                 if (compare)
                     printf("against the reference (%d bounce%s, %d spp, %.1f ms): relative RMSE %.2f%%\n", d.bounces, d.bounces == 1 ? "" : "s",
                            compare, ref_ms, 100 * rmse);
