@@ -576,7 +576,8 @@ typedef struct voxgi_cone_desc {
    voxel: L = albedo / pi * E + emission (alpha = opacity, 1 when the voxels hold none), E the
    irradiance on the voxel's mean normal at its centre moved half a voxel diagonal along that
    normal (off its own surface), from the scene's lights and emissive triangles; area lights and
-   emitters take `samples` points. CPU: exact shadow rays, random points per voxel. GL: distance
+   emitters take `samples` points. CPU: exact shadow rays, the points stratified per voxel (a 2D
+   Kronecker sequence, randomly shifted). GL: distance
    maps drawn from each light (one orthographic layer for a directional light, six cube faces for
    every point, spot, and stratified point on an area light or emitter: the same points for all
    voxels), gathered per voxel with the same analytic irradiance and 3x3 map texels for the
@@ -696,6 +697,7 @@ typedef struct voxgi_vct_desc {
     voxgi_cone_desc cones;
     int no_gi;                    /* 1: direct light only */
     int samples;                  /* jittered rays per pixel for the direct light; 0 = 16 */
+    int inject_samples;           /* points per area light and on the emitters for each voxel's light; 0 = samples */
     uint64_t seed;
     int hide_emitters;            /* 1: leave out the emission the camera sees directly */
     int shadow_rays;              /* GL context: inject through exact shadow rays (voxgi_inject_desc) */
@@ -4748,7 +4750,8 @@ struct voxgi_volume {
     int dims[VOXGI__MAX_LEVELS][3];
     size_t first[VOXGI__MAX_LEVELS];   /* voxel offset of each level in a CPU array */
     size_t voxels;                     /* all levels */
-    float *cpu[VOXGI__VOLUME_SLOTS][6]; /* [attribute bit][direction] */
+    float *cpu[VOXGI__VOLUME_SLOTS][6]; /* [attribute bit][direction]: direction 0 every level, the others (anisotropic)
+                                           levels 1.. only: level 0 is the same in every direction and kept once */
     unsigned int tex[VOXGI__VOLUME_SLOTS][6];
 };
 
@@ -4756,6 +4759,13 @@ static int voxgi__attr_index(voxgi_attribute a)
 {
     return a == VOXGI_ATTRIBUTE_ALBEDO ? 0 : (a == VOXGI_ATTRIBUTE_NORMAL ? 1 : (a == VOXGI_ATTRIBUTE_EMISSION ? 2 :
            (a == VOXGI_ATTRIBUTE_OPACITY ? 3 : (a == VOXGI_ATTRIBUTE_RADIANCE ? 4 : -1))));
+}
+
+/* Level k of attribute slot a, direction d, of a CPU volume. */
+static float *voxgi__volume_level(const voxgi_volume *vol, int a, int d, int k)
+{
+    size_t w = a == 3 ? 1u : 4u;
+    return k == 0 || d == 0 ? vol->cpu[a][0] + vol->first[k] * w : vol->cpu[a][d] + (vol->first[k] - vol->first[1]) * w;
 }
 
 /* A parent's value from its 8 children c[k] (k = x + 2y + 4z; alpha in c[k][3]); dir < 0:
@@ -4863,6 +4873,7 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
 {
     voxgi_volume *vol;
     uint64_t bytes = 0;
+    size_t base_voxels;
     int a, k, dirs = desc->filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
     *out = NULL;
     if ((unsigned)desc->filter > VOXGI_MIPS_ANISOTROPIC || desc->levels < 0 || desc->levels > VOXGI__MAX_LEVELS)
@@ -4881,8 +4892,11 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
         vol->info.levels = k + 1;
         if ((desc->levels && k + 1 == desc->levels) || (vol->dims[k][0] == 1 && vol->dims[k][1] == 1 && vol->dims[k][2] == 1)) break;
     }
-    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++)
-        if (attributes & (1u << a)) bytes += (uint64_t)vol->voxels * (a == 3 ? 4u : 16u) * (uint64_t)dirs;
+    base_voxels = (size_t)g->res[0] * (size_t)g->res[1] * (size_t)g->res[2];
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* CPU: level 0 once; GL: a full texture per direction */
+        if (attributes & (1u << a))
+            bytes += ((uint64_t)vol->voxels * (ctx->backend == VOXGI_BACKEND_GL ? (uint64_t)dirs : 1u) +
+                      (ctx->backend == VOXGI_BACKEND_GL ? 0u : (uint64_t)(dirs - 1) * (vol->voxels - base_voxels))) * (a == 3 ? 4u : 16u);
     vol->info.bytes = (size_t)bytes;
     if (ctx->desc.memory_budget && bytes > (uint64_t)ctx->desc.memory_budget) {
         voxgi__free(ctx, vol);
@@ -4893,7 +4907,24 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
     return VOXGI_OK;
 }
 
-/* Every level of every volume from the dense base levels. */
+typedef struct voxgi__mip_job { const voxgi_volume *vol; const float *src; float *dst; int w, dir, premultiplied, k; } voxgi__mip_job;
+
+/* Rows [first, end) (y + dims.y z) of level k from level k - 1. */
+static void voxgi__mip_rows(void *user, size_t first, size_t end)
+{
+    const voxgi__mip_job *M = (const voxgi__mip_job *)user;
+    const int *dk = M->vol->dims[M->k];
+    size_t row;
+    for (row = first; row < end; row++) {
+        int p[3];
+        p[1] = (int)(row % (size_t)dk[1]);
+        p[2] = (int)(row / (size_t)dk[1]);
+        for (p[0] = 0; p[0] < dk[0]; p[0]++)
+            voxgi__mip_voxel(M->src, M->vol->dims[M->k - 1], M->dst + ((size_t)p[0] + (size_t)dk[0] * row) * (size_t)M->w, M->w, M->dir, M->premultiplied, p);
+    }
+}
+
+/* Every level of every volume from the dense base levels (each level's rows on the workers). */
 static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
 {
     voxgi_result r = VOXGI_OK;
@@ -4906,18 +4937,22 @@ static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, c
         int w = a == 3 ? 1 : 4;
         if (!base[a]) continue;
         for (d = 0; d < dirs && r == VOXGI_OK; d++) {
-            float *arr = (float *)voxgi__alloc_array(ctx, vol->voxels, (size_t)w * 4, 1);
-            int p[3];
+            size_t held = d ? vol->voxels - base_voxels : vol->voxels; /* every voxel of every level it holds is written */
+            float *arr = (float *)voxgi__alloc_array(ctx, held ? held : 1, (size_t)w * 4, 0);
+            voxgi__mip_job M;
             if (!arr) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the mip chain"); break; }
             vol->cpu[a][d] = arr;
-            memcpy(arr, base[a], base_voxels * (size_t)w * 4);
-            for (k = 1; k < vol->info.levels; k++)
-                for (p[2] = 0; p[2] < vol->dims[k][2]; p[2]++)
-                    for (p[1] = 0; p[1] < vol->dims[k][1]; p[1]++)
-                        for (p[0] = 0; p[0] < vol->dims[k][0]; p[0]++) {
-                            size_t at = vol->first[k] + (size_t)p[0] + (size_t)vol->dims[k][0] * ((size_t)p[1] + (size_t)vol->dims[k][1] * (size_t)p[2]);
-                            voxgi__mip_voxel(arr + vol->first[k - 1] * (size_t)w, vol->dims[k - 1], arr + at * (size_t)w, w, dirs == 6 ? d : -1, a == 4, p);
-                        }
+            if (!d) memcpy(arr, base[a], base_voxels * (size_t)w * 4);
+            M.vol = vol;
+            M.w = w;
+            M.dir = dirs == 6 ? d : -1;
+            M.premultiplied = a == 4;
+            for (k = 1; k < vol->info.levels; k++) {
+                M.k = k;
+                M.src = voxgi__volume_level(vol, a, d, k - 1);
+                M.dst = voxgi__volume_level(vol, a, d, k);
+                voxgi__parallel(ctx, (size_t)vol->dims[k][1] * (size_t)vol->dims[k][2], 16, voxgi__mip_rows, &M);
+            }
         }
     }
     return r;
@@ -5022,7 +5057,7 @@ VOXGI_API voxgi_result voxgi_volume_read(voxgi_context *ctx, const voxgi_volume 
     if (needed) *needed = bytes;
     if (!dst) return needed ? VOXGI_OK : voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "dst and needed are both NULL");
     if (dst_bytes < bytes) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "level %d needs %lu bytes, dst has %lu", level, (unsigned long)bytes, (unsigned long)dst_bytes);
-    if (vol->cpu[a][d]) { memcpy(dst, vol->cpu[a][d] + vol->first[level] * (a == 3 ? 1u : 4u), bytes); return VOXGI_OK; }
+    if (vol->cpu[a][0]) { memcpy(dst, voxgi__volume_level(vol, a, d, level), bytes); return VOXGI_OK; }
 #ifndef VOXGI_NO_GL
     if (vol->tex[a][d]) {
         ctx->gl->MemoryBarrier(VOXGI__GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -5082,14 +5117,14 @@ VOXGI_API float voxgi_lod_from_footprint(float diameter)
     return diameter > 1 ? log2f(diameter) : 0.0f; /* NaN: 0 */
 }
 
-typedef struct voxgi__volume_source { const voxgi_volume *vol; const float *arr; int w; } voxgi__volume_source;
+typedef struct voxgi__volume_source { const voxgi_volume *vol; int a, d, w; } voxgi__volume_source;
 
 static int voxgi__volume_fetch(const void *source, int k, const int v[3], float t[4])
 {
     const voxgi__volume_source *s = (const voxgi__volume_source *)source;
     const int *d = s->vol->dims[k];
     if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= d[0] || v[1] >= d[1] || v[2] >= d[2]) return 0;
-    memcpy(t, s->arr + (s->vol->first[k] + (size_t)v[0] + (size_t)d[0] * ((size_t)v[1] + (size_t)d[1] * (size_t)v[2])) * (size_t)s->w,
+    memcpy(t, voxgi__volume_level(s->vol, s->a, s->d, k) + ((size_t)v[0] + (size_t)d[0] * ((size_t)v[1] + (size_t)d[1] * (size_t)v[2])) * (size_t)s->w,
            (size_t)s->w * sizeof(float));
     return 1;
 }
@@ -5117,7 +5152,8 @@ VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volum
     {
         voxgi__volume_source src;
         src.vol = vol;
-        src.arr = vol->cpu[a][d];
+        src.a = a;
+        src.d = d;
         src.w = a == 3 ? 1 : 4;
         for (i = 0; i < count; i++)
             voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, src.w, vol->info.levels, pos + 3 * i, lods[i], out + (size_t)src.w * i);
@@ -6863,14 +6899,23 @@ static void voxgi__inject_range(void *user, size_t first, size_t end)
     size_t i;
     for (i = first; i < end; i++) {
         double p[3], nl[3], e[3] = {0, 0, 0};
-        if (voxgi__inject_point(J, i, p, nl))
-            for (s = 0; s < samples; s++) { /* the lights once per sample: delta lights give the same each time */
-                voxgi__rng rng;
-                double es[3];
-                voxgi__rng_seed(&rng, J->desc->seed, J->index[i], (uint64_t)s);
-                voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, NULL, &rays, es);
+        if (voxgi__inject_point(J, i, p, nl)) {
+            voxgi__rng rng;
+            double rot[2];
+            voxgi__rng_seed(&rng, J->desc->seed, J->index[i], 0);
+            rot[0] = voxgi__rng_unit(&rng);
+            rot[1] = voxgi__rng_unit(&rng);
+            for (s = 0; s < samples; s++) { /* the lights once per sample (delta lights give the same each time), the points on
+                                               area lights and emitters stratified: a 2D Kronecker sequence shifted per voxel */
+                double es[3], u[2];
+                u[0] = rot[0] + (s + 1) * 0.7548776662466927;
+                u[1] = rot[1] + (s + 1) * 0.5698402909980532;
+                u[0] -= floor(u[0]);
+                u[1] -= floor(u[1]);
+                voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, u, &rays, es);
                 for (a = 0; a < 3; a++) e[a] += es[a] / samples;
             }
+        }
         voxgi__inject_store(J, i, e); /* no normal: the voxel only emits */
     }
     VOXGI__ATOMIC_ADD_SIZE(&J->rays, (size_t)rays);
@@ -7196,32 +7241,72 @@ typedef struct voxgi__cone_job {
     double half_tan, step, offset, max_dist;
 } voxgi__cone_job;
 
+/* The 8 corners of a trilinear sample of level k at p, as voxgi__trilinear visits them: their
+   voxel offsets within the level (-1: beyond the grid, or of weight 0) and weights. */
+static void voxgi__cone_corners(const voxgi_volume *vol, int k, const float p[3], ptrdiff_t at[8], double wt[8])
+{
+    const int *dm = vol->dims[k];
+    double c[3], f[3];
+    int i0[3], a, corner;
+    for (a = 0; a < 3; a++) {
+        c[a] = (double)p[a] / (double)(1 << k) - 0.5;
+        i0[a] = (int)floor(c[a]);
+        f[a] = c[a] - i0[a];
+    }
+    for (corner = 0; corner < 8; corner++) {
+        int v[3], inside = 1;
+        double w = 1;
+        for (a = 0; a < 3; a++) {
+            int hi = (corner >> a) & 1;
+            v[a] = i0[a] + hi;
+            w *= hi ? f[a] : 1 - f[a];
+            inside &= v[a] >= 0 && v[a] < dm[a];
+        }
+        wt[corner] = w;
+        at[corner] = inside && w != 0 ? (ptrdiff_t)((size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])) : -1;
+    }
+}
+
 /* The radiance volume's sample at p (grid units) and lod along unit direction d, returned as
    (radiance, alpha): the stored values are premultiplied, so empty space thins a sample's alpha
-   without darkening its colour. */
-static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], const float p[3], float lod, float out[4])
+   without darkening its colour. The sums of voxgi__sample_lod over voxgi__volume_fetch, in the
+   same order (so the same bits), with the corners found once for the three axis volumes. */
+static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], const float p[3], float lod_in, float out[4])
 {
-    voxgi__volume_source src;
-    int ch, ax;
+    const voxgi_volume *vol = J->vol;
+    ptrdiff_t at[2][8];
+    double wt[2][8];
+    float lod, t;
+    int ch, ax, k0, lev, corner;
+    for (ch = 0; ch < 4; ch++) out[ch] = 0;
     if (J->svo) { /* the octree's isotropic mips, through its bricks where it has them */
         voxgi__svo_source os;
         os.svo = J->svo;
         os.a = 4;
         os.w = 4;
-        voxgi__sample_lod(voxgi__svo_fetch, J->svo->bricks ? voxgi__svo_brick_trilinear : NULL, &os, 4, J->levels, p, lod, out);
+        voxgi__sample_lod(voxgi__svo_fetch, J->svo->bricks ? voxgi__svo_brick_trilinear : NULL, &os, 4, J->levels, p, lod_in, out);
         for (ch = 0; ch < 3; ch++) out[ch] = out[3] > 0 ? out[ch] / out[3] : 0;
         return;
     }
-    src.vol = J->vol;
-    src.w = 4;
-    for (ch = 0; ch < 4; ch++) out[ch] = 0;
+    lod = lod_in < 0 ? 0 : (lod_in > (float)(J->levels - 1) ? (float)(J->levels - 1) : lod_in);
+    k0 = (int)floor(lod);
+    t = lod - (float)k0;
+    voxgi__cone_corners(vol, k0, p, at[0], wt[0]);
+    if (t > 0) voxgi__cone_corners(vol, k0 + 1, p, at[1], wt[1]);
     for (ax = 0; ax < 3; ax++) { /* isotropic: the one volume; else the travel direction's axis volumes, by squared components */
-        float s[4];
+        float s[2][4] = {{0, 0, 0, 0}, {0, 0, 0, 0}};
         double w = J->dirs == 1 ? (ax == 0) : d[ax] * d[ax];
+        int dir = J->dirs == 1 ? 0 : 2 * ax + (d[ax] < 0);
         if (w == 0) continue;
-        src.arr = J->vol->cpu[4][J->dirs == 1 ? 0 : 2 * ax + (d[ax] < 0)];
-        voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, 4, J->levels, p, lod, s);
-        for (ch = 0; ch < 4; ch++) out[ch] += (float)(w * s[ch]);
+        for (lev = 0; lev < (t > 0 ? 2 : 1); lev++) {
+            const float *arr = voxgi__volume_level(vol, 4, dir, k0 + lev);
+            for (corner = 0; corner < 8; corner++)
+                if (at[lev][corner] >= 0) {
+                    const float *v = arr + 4 * at[lev][corner];
+                    for (ch = 0; ch < 4; ch++) s[lev][ch] += (float)(wt[lev][corner] * v[ch]);
+                }
+        }
+        for (ch = 0; ch < 4; ch++) out[ch] += (float)(w * (t > 0 ? s[0][ch] + t * (s[1][ch] - s[0][ch]) : s[0][ch]));
     }
     for (ch = 0; ch < 3; ch++) out[ch] = out[3] > 0 ? out[ch] / out[3] : 0;
 }
@@ -7848,9 +7933,9 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
     pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
     if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->bounces < 0 || desc->bounces > 64 || desc->cone_stride < 0 ||
+    if (desc->samples < 0 || desc->inject_samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->bounces < 0 || desc->bounces > 64 || desc->cone_stride < 0 ||
         desc->cone_stride > 64)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), bounces %d (0..64), cone_stride %d (0..64)", desc->samples,
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, inject_samples %d, resolution %d (0..4096), bounces %d (0..64), cone_stride %d (0..64)", desc->samples, desc->inject_samples,
                            desc->resolution, desc->bounces, desc->cone_stride);
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
@@ -7873,7 +7958,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
         fit.padding = 1;
         xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
         id.volume.filter = desc->filter;
-        id.samples = desc->samples;
+        id.samples = desc->inject_samples ? desc->inject_samples : desc->samples;
         id.seed = desc->seed;
         id.shadow_rays = desc->shadow_rays;
         id.bounces = desc->bounces;
