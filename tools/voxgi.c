@@ -962,6 +962,8 @@ static const char *render_help =
     "  --octree [float32|float16]  vct: the cones gather from a sparse voxel octree of the radiance\n"
     "                           (isotropic mips) instead of the volume (default float32)\n"
     "  --bricks                 vct with --octree: sample the octree through its bricks\n"
+    "  --inject-samples N       vct: points on each area light and emitter per voxel's light\n"
+    "                           (default 4 on the CPU, 16 on GL)\n"
     "  --no-gi                  vct: direct light only\n"
     "  --compare SPP            also render the reference (same bounces) with SPP samples per pixel and\n"
     "                           print the relative RMSE of the lighting (both without the emitters the\n"
@@ -1024,6 +1026,9 @@ static int cmd_render(int argc, char **argv)
             vd.cones.step = (float)st;
         } else if (strcmp(a, "--anisotropic") == 0) vd.filter = VOXGI_MIPS_ANISOTROPIC;
         else if (strcmp(a, "--no-gi") == 0) vd.no_gi = 1;
+        else if (strcmp(a, "--inject-samples") == 0 && i + 1 < argc) {
+            if (!parse_int(argv[++i], 1, 4096, &vd.inject_samples)) return bad_arg("render", "--inject-samples needs 1..4096");
+        }
         else if (strcmp(a, "--compare") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], 1, 1 << 24, &compare)) return bad_arg("render", "--compare needs 1..16777216"); }
         else if (strcmp(a, "--bounces") == 0 && i + 1 < argc) { if (!parse_int(argv[++i], -1, 1000, &d.bounces)) return bad_arg("render", "--bounces needs -1..1000"); }
         else if (strcmp(a, "--spp") == 0 && i + 1 < argc) {
@@ -1220,15 +1225,19 @@ static const char *report_help =
     "  --cones LIST             diffuse cones (default 8,16,32)\n"
     "  --apertures LIST         half-angle as a multiple of each cone count's gap-free default (default 1)\n"
     "  --steps LIST             step as a fraction of the diameter (default 0.5,1)\n"
-    "  --filters LIST           isotropic, anisotropic or both (default isotropic,anisotropic)\n"
+    "  --filters LIST           isotropic, anisotropic (dense mips) and/or octree (an octree of the\n"
+    "                           radiance, isotropic mips) (default isotropic,anisotropic)\n"
     "  --strides LIST           cone strides: cones at every S-th pixel, the rest interpolated (default 1,2)\n"
     "  --backend auto|cpu|gl    where the cone tracer runs (default cpu)\n"
     "  --out DIR                where the files go (default build/report)\n"
     "  --threads T              CPU worker threads (default: one per core)\n";
 
+static const char *const mips_names[3] = {"isotropic", "anisotropic", "octree"}, *const mips_short[3] = {"iso", "aniso", "octree"},
+                         *const mips_mark[3] = {"", "a", "o"};
+
 typedef struct report_row {
     const char *scene;
-    int res, cones, anisotropic, stride;
+    int res, cones, mips, stride; /* mips: 0 isotropic, 1 anisotropic, 2 octree */
     double aperture, half_angle_deg, step;
     voxgi_vct_info info;
     double rmse, ref_ms, pareto;
@@ -1330,7 +1339,7 @@ static void report_svg(FILE *f, const report_row *rows, int n, const char *const
         for (i = 0; i < n; i++) { /* the Pareto front, in time order (rows are not sorted: find them) */
             if (strcmp(rows[i].scene, scenes[s]) != 0 || !rows[i].pareto) continue;
             fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\" font-size=\"9\">%d/%d%s</text>\n", RX(rows[i].info.ms) + 4, RY(rows[i].rmse) - 4, c, rows[i].res,
-                    rows[i].cones, rows[i].anisotropic ? "a" : "");
+                    rows[i].cones, mips_mark[rows[i].mips]);
         }
         for (i = 0; i < n; i++) {
             int j, best = -1;
@@ -1348,7 +1357,7 @@ static void report_svg(FILE *f, const report_row *rows, int n, const char *const
                 fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"%s\" fill-opacity=\"%s\" stroke=\"%s\"/>\n", RX(rows[i].info.ms), RY(rows[i].rmse),
                         rows[i].pareto ? 4 : 3, rows[i].pareto ? c : "white", rows[i].pareto ? "1" : "0", c);
         fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"%s\"/><text x=\"%.0f\" y=\"%.0f\">%s: cone tracing (filled: Pareto front, "
-                   "label res/cones, a = anisotropic); dashed: the reference</text>\n", L + 15, T + 12 + 15.0 * s, c, L + 25, T + 16 + 15.0 * s, scenes[s]);
+                   "label res/cones, a = anisotropic, o = octree); dashed: the reference</text>\n", L + 15, T + 12 + 15.0 * s, c, L + 25, T + 16 + 15.0 * s, scenes[s]);
     }
     fprintf(f, "</svg>\n");
 #undef RX
@@ -1387,10 +1396,11 @@ static int cmd_report(int argc, char **argv)
         else if (strcmp(a, "--steps") == 0 && i + 1 < argc) { if (!(nstep = parse_list(argv[++i], step_l, 16))) return bad_arg("report", "--steps needs a list of numbers"); }
         else if (strcmp(a, "--strides") == 0 && i + 1 < argc) { if (!(nstride = parse_list(argv[++i], stride_l, 16))) return bad_arg("report", "--strides needs a list of numbers"); }
         else if (strcmp(a, "--filters") == 0 && i + 1 < argc) {
-            char buf[64], *items[2];
-            int k, n = strlen(argv[++i]) < sizeof buf ? split_list(strcpy(buf, argv[i]), items, 2) : 0;
-            for (filters = 0, k = 0; k < n; k++) filters |= strcmp(items[k], "isotropic") == 0 ? 1 : (strcmp(items[k], "anisotropic") == 0 ? 2 : 4);
-            if (!n || filters > 3) return bad_arg("report", "--filters is isotropic, anisotropic or both");
+            char buf[64], *items[3];
+            int k, n = strlen(argv[++i]) < sizeof buf ? split_list(strcpy(buf, argv[i]), items, 3) : 0;
+            for (filters = 0, k = 0; k < n; k++)
+                filters |= strcmp(items[k], "isotropic") == 0 ? 1 : (strcmp(items[k], "anisotropic") == 0 ? 2 : (strcmp(items[k], "octree") == 0 ? 4 : 8));
+            if (!n || filters > 7) return bad_arg("report", "--filters is a list of isotropic, anisotropic, octree");
         }
         else if (strcmp(a, "--backend") == 0 && i + 1 < argc) { if (!parse_backend(argv[++i], &backend)) return bad_arg("report", "--backend is auto, cpu or gl"); }
         else if (strcmp(a, "--out") == 0 && i + 1 < argc) out_dir = argv[++i];
@@ -1407,7 +1417,7 @@ static int cmd_report(int argc, char **argv)
     ctx = make_context(backend, VXT_GL_AUTO, threads, isatty(2), &gl, why, sizeof why);
     if (!ctx) { fprintf(stderr, "voxgi report: %s\n", why); return 1; }
     voxgi_query_info(ctx, &ci);
-    rows = (report_row *)calloc((size_t)scene_count * (size_t)(nres * ncone * nap * nstep * nstride * 2), sizeof *rows);
+    rows = (report_row *)calloc((size_t)scene_count * (size_t)(nres * ncone * nap * nstep * nstride * 3), sizeof *rows);
     ref = (float *)malloc((size_t)size * (size_t)size * 12);
     img = (float *)malloc((size_t)size * (size_t)size * 12);
     if (!rows || !ref || !img) { fprintf(stderr, "voxgi report: out of memory\n"); goto done; }
@@ -1443,7 +1453,7 @@ static int cmd_report(int argc, char **argv)
         ref_ms_per_spp[s] = ri.ms_render / 64;
         ref_bvh_ms[s] = ri.ms_bvh;
         ref_floor[s] = ref_c[s] / sqrt((double)spp);
-        for (f = 0; f < 2; f++)
+        for (f = 0; f < 3; f++)
             for (ir = 0; ir < nres; ir++)
                 for (ic = 0; ic < ncone; ic++)
                     for (ia = 0; ia < nap; ia++)
@@ -1456,7 +1466,8 @@ static int cmd_report(int argc, char **argv)
                             memset(&vd, 0, sizeof vd);
                             vd.camera = rd.camera;
                             vd.resolution = (int)res_l[ir];
-                            vd.filter = f ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
+                            vd.filter = f == 1 ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
+                            vd.octree = f == 2;
                             vd.cones.cones = (int)cone_l[ic];
                             vd.cones.half_angle = (float)(ap_l[ia] * acos(1 - 1.0 / vd.cones.cones));
                             vd.cones.step = (float)step_l[is];
@@ -1466,7 +1477,7 @@ static int cmd_report(int argc, char **argv)
                             vd.cone_stride = (int)stride_l[ist];
                             if (!(vd.cones.half_angle < 1.5f)) continue;
                             fprintf(stderr, "voxgi report: %s: %d^3, %d cones x %.2f, step %.2f, stride %d, %s\n", scenes[s], vd.resolution, vd.cones.cones, ap_l[ia],
-                                    step_l[is], vd.cone_stride, f ? "anisotropic" : "isotropic");
+                                    step_l[is], vd.cone_stride, mips_names[f]);
                             if (voxgi_vct_render(ctx, &bs.scene, &vd, img, nv * 4, &row->info) != VOXGI_OK) {
                                 fprintf(stderr, "voxgi report: %s\n", voxgi_last_error(ctx));
                                 voxgi_builtin_scene_destroy(ctx, &bs);
@@ -1475,7 +1486,7 @@ static int cmd_report(int argc, char **argv)
                             row->scene = scenes[s];
                             row->res = vd.resolution;
                             row->cones = vd.cones.cones;
-                            row->anisotropic = f;
+                            row->mips = f;
                             row->aperture = ap_l[ia];
                             row->half_angle_deg = vd.cones.half_angle * 180 / 3.14159265358979323846;
                             row->step = step_l[is];
@@ -1500,7 +1511,7 @@ static int cmd_report(int argc, char **argv)
     fprintf(csv, "scene,res,cones,aperture,half_angle_deg,step,stride,filter,voxels,voxelize_ms,inject_ms,cones_ms,direct_ms,ms,rel_rmse,reference_ms_same_error,speedup,pareto\n");
     for (i = 0; i < nrows; i++)
         fprintf(csv, "%s,%d,%d,%g,%.2f,%g,%d,%s,%llu,%.2f,%.2f,%.2f,%.2f,%.2f,%.5f,%.1f,%.2f,%d\n", rows[i].scene, rows[i].res, rows[i].cones, rows[i].aperture,
-                rows[i].half_angle_deg, rows[i].step, rows[i].stride, rows[i].anisotropic ? "anisotropic" : "isotropic", (unsigned long long)rows[i].info.voxels,
+                rows[i].half_angle_deg, rows[i].step, rows[i].stride, mips_names[rows[i].mips], (unsigned long long)rows[i].info.voxels,
                 rows[i].info.ms_voxelize, rows[i].info.ms_inject, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, rows[i].rmse,
                 rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms, (int)rows[i].pareto);
     snprintf(path, sizeof path, "%s/vct.md", out_dir);
@@ -1519,7 +1530,7 @@ static int cmd_report(int argc, char **argv)
         for (i = 0; i < nrows; i++)
             if (rows[i].scene == scenes[s])
                 fprintf(md, "| %d | %d | %.1f° | %g | %d | %s | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f%% | %.0f ms | %.1fx | %s |\n", rows[i].res, rows[i].cones,
-                        rows[i].half_angle_deg, rows[i].step, rows[i].stride, rows[i].anisotropic ? "aniso" : "iso", (unsigned long long)rows[i].info.voxels,
+                        rows[i].half_angle_deg, rows[i].step, rows[i].stride, mips_short[rows[i].mips], (unsigned long long)rows[i].info.voxels,
                         rows[i].info.ms_voxelize, rows[i].info.ms_inject, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, 100 * rows[i].rmse,
                         rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms, rows[i].pareto ? "yes" : "");
         fprintf(md, "\n");
@@ -1533,7 +1544,7 @@ static int cmd_report(int argc, char **argv)
         for (i = 0; i < nrows; i++)
             if (rows[i].scene == scenes[s] && rows[i].pareto)
                 printf("  %4d^3 %3d cones %5.1f deg step %-4g stride %d %-5s %9.1f ms  %6.2f%%  reference %9.0f ms  %6.1fx\n", rows[i].res, rows[i].cones,
-                       rows[i].half_angle_deg, rows[i].step, rows[i].stride, rows[i].anisotropic ? "aniso" : "iso", rows[i].info.ms, 100 * rows[i].rmse, rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms);
+                       rows[i].half_angle_deg, rows[i].step, rows[i].stride, mips_short[rows[i].mips], rows[i].info.ms, 100 * rows[i].rmse, rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms);
     }
     printf("wrote %s/vct.md, %s/vct.csv, %s/vct.svg\n", out_dir, out_dir, out_dir);
     rc = 0;
