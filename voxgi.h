@@ -670,6 +670,7 @@ VOXGI_API voxgi_result voxgi_cone_trace_svo(voxgi_context *ctx, const voxgi_svo 
                                             const float *positions, const float *normals, float *irradiance, float *occlusion);
 VOXGI_API voxgi_result voxgi_trace_cones_svo(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
                                              const voxgi_cone *cones, float *radiance_opacity);
+VOXGI_API voxgi_result voxgi_cone_trace_svo_gl(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gbuffer);
 
 /* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
    pixel's centre meets first: its position (world units), its normal facing the camera, its
@@ -1614,7 +1615,7 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
 
 #define VOXGI__GL_PROGRAMS(X) \
     X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(cone_trace) X(cone_trace_svo) X(cone_trace_images16) X(cone_trace_images32) X(gbuffer) X(light_map_draw) X(inject) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(cone_trace) X(cone_trace_svo) X(cone_trace_images16) X(cone_trace_images32) X(cone_trace_svo_images16) X(cone_trace_svo_images32) X(gbuffer) X(light_map_draw) X(inject) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
@@ -7590,34 +7591,45 @@ VOXGI_API voxgi_result voxgi_trace_cones_svo(voxgi_context *ctx, const voxgi_svo
     return voxgi__cone_trace_list(ctx, NULL, svo, desc, count, cones, radiance_opacity);
 }
 
-VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gb)
+/* voxgi_cone_trace_gl and voxgi_cone_trace_svo_gl: the gather over the caller's G-buffer
+   textures from a volume or (vol NULL) an octree. */
+static voxgi_result voxgi__cone_trace_textures(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc,
+                                               const voxgi_gl_gbuffer *gb)
 {
 #ifdef VOXGI_NO_GL
-    (void)vol; (void)desc; (void)gb;
+    (void)vol; (void)svo; (void)desc; (void)gb;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "G-buffer textures need GL (this build has VOXGI_NO_GL)");
 #else
     voxgi__gl *gl;
     voxgi__cone_job J;
     const voxgi_grid *g;
-    unsigned int p;
+    unsigned int p, *prog;
     int a;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!vol || !desc || !gb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, desc or gbuffer is NULL");
+    if ((!vol && !svo) || !desc || !gb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "%s, desc or gbuffer is NULL", vol ? "volume" : "octree");
     if (ctx->backend != VOXGI_BACKEND_GL || !ctx->gl) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "G-buffer textures need a GL context");
     if (!gb->position_texture || !gb->normal_texture || !gb->irradiance_texture || gb->width < 1 || gb->height < 1)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "position, normal and irradiance textures and a size (%d x %d) are needed", gb->width, gb->height);
-    if ((r = voxgi__cone_job_init(ctx, vol, NULL, desc, &J)) != VOXGI_OK) return r;
+    if ((r = voxgi__cone_job_init(ctx, vol, svo, desc, &J)) != VOXGI_OK) return r;
     gl = ctx->gl;
-    g = &vol->info.grid;
-    r = gb->irradiance_rgba16f ? voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl", &gl->prog_cone_trace_images16)
-                               : voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl", &gl->prog_cone_trace_images32);
+    g = J.grid;
+    if (J.svo) {
+        prog = gb->irradiance_rgba16f ? &gl->prog_cone_trace_svo_images16 : &gl->prog_cone_trace_svo_images32;
+        r = voxgi__gl_get_program(ctx, gb->irradiance_rgba16f ? "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl"
+                                                              : "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl", prog);
+    } else {
+        prog = gb->irradiance_rgba16f ? &gl->prog_cone_trace_images16 : &gl->prog_cone_trace_images32;
+        r = voxgi__gl_get_program(ctx, gb->irradiance_rgba16f ? "sampling.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl"
+                                                              : "sampling.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl", prog);
+    }
     if (r != VOXGI_OK) return r;
-    p = gb->irradiance_rgba16f ? gl->prog_cone_trace_images16 : gl->prog_cone_trace_images32;
+    p = *prog;
     gl->UseProgram(p);
     voxgi__cone_uniforms(gl, p, &J);
-    for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J.vol->tex[4][J.dirs == 6 ? a : 0]);
+    if (J.svo) voxgi__svo_gl_bind(ctx, J.svo, p, 4);
+    else for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J.vol->tex[4][J.dirs == 6 ? a : 0]);
     gl->BindTextureUnit(6, gb->position_texture);
     gl->BindTextureUnit(7, gb->normal_texture);
     gl->BindTextureUnit(8, gb->albedo_texture ? gb->albedo_texture : gb->normal_texture);
@@ -7633,6 +7645,16 @@ VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volum
     voxgi__gl_unbind(gl);
     return voxgi__gl_check(ctx, "cone tracing a G-buffer");
 #endif
+}
+
+VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gb)
+{
+    return voxgi__cone_trace_textures(ctx, vol, NULL, desc, gb);
+}
+
+VOXGI_API voxgi_result voxgi_cone_trace_svo_gl(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gb)
+{
+    return voxgi__cone_trace_textures(ctx, NULL, svo, desc, gb);
 }
 
 VOXGI_API float voxgi_specular_half_angle(float roughness)

@@ -1211,6 +1211,28 @@ static void test_gl_raster_gbuffer_textures(void)
            worst_occ, worst_albedo);
     TH_CHECK(mean > 0.05 && worst <= 1e-4 * mean && worst_occ <= 1e-4 && worst_albedo <= 2e-3, "G-buffer textures differ");
     TH_CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0 && out[3] == 0, "the pixel without a normal was written");
+    { /* the same over an octree of the radiance */
+        voxgi_svo_desc sd;
+        voxgi_svo *svo = NULL;
+        double worst_svo = 0;
+        memset(&sd, 0, sizeof sd);
+        sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
+        sd.radiance = vol;
+        TH_CHECK(voxgi_svo_create(ctx, vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace_svo(ctx, svo, &cd, N, pos, nrm, irr, occ) == VOXGI_OK,
+                 "octree arrays: %s", voxgi_last_error(ctx));
+        gb.albedo_texture = 0;
+        gb.irradiance_texture = tex[3];
+        gb.irradiance_rgba16f = 0;
+        TH_CHECK(voxgi_cone_trace_svo_gl(ctx, svo, &cd, &gb) == VOXGI_OK, "octree textures: %s", voxgi_last_error(ctx));
+        get(tex[3], 0, 0x1908, 0x1406, (int)sizeof out, out);
+        for (i = 0; i < N; i++) {
+            for (a = 0; a < 3; a++) worst_svo = fmax(worst_svo, fabs(out[4 * i + a] - (i ? irr[3 * i + a] : 0)) / fmax(mean, 1e-3));
+            worst_svo = fmax(worst_svo, fabs(out[4 * i + 3] - (i ? occ[i] : 0)));
+        }
+        printf("    G-buffer textures over the octree: within %.3g of its array path\n", worst_svo);
+        TH_CHECK(worst_svo <= 1e-4, "octree G-buffer textures differ by %g", worst_svo);
+        voxgi_svo_destroy(ctx, svo);
+    }
     gb.width = 0;
     TH_CHECK(voxgi_cone_trace_gl(ctx, vol, &cd, &gb) == VOXGI_ERR_INVALID_ARGUMENT, "an empty G-buffer accepted");
     del(5, tex);
