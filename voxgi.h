@@ -698,6 +698,9 @@ typedef struct voxgi_vct_desc {
     voxgi_cone_desc cones;
     int no_gi;                    /* 1: direct light only */
     int samples;                  /* jittered rays per pixel for the direct light; 0 = 16 */
+    int sampled_direct;           /* 1: the area lights' and emitters' direct light from the rays alone. 0: where the
+                                     scene has up to 64 emissive triangles, their and the rect lights' unshadowed
+                                     irradiance exactly (Lambert's polygon formula) times the rays' visible share */
     int inject_samples;           /* points per area light and on the emitters for each voxel's light. 0: on the CPU 4,
                                      stratified per voxel (the mips average their noise: 4 and 16 give the same image
                                      error on the Cornell box); on GL 16, the same points for every voxel (4 leave
@@ -6609,9 +6612,11 @@ static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const doub
    radiance is albedo / pi * E. With mis, the emitters' share carries the power-heuristic weight
    against a cosine-sampled bounce finding them (the path tracer's other half), which keeps the
    variance finite where emitters meet at concave edges. xi: a 2D sample in [0,1)^2 for the
-   points on area lights and emitters (stratified callers), or NULL to draw from g. */
+   points on area lights and emitters (stratified callers), or NULL to draw from g. area (or
+   NULL): the rect lights' and emitters' share of e in area[0..2], and what it would be without
+   the shadow rays in area[3..5] (their visible share, for voxgi__area_irradiance). */
 static void voxgi__direct(const voxgi__lights *R, const double p[3], const double ns[3], uint32_t prim, voxgi__rng *g, int mis_weighted,
-                          const double *xi, uint64_t *rays, double e[3])
+                          const double *xi, uint64_t *rays, double e[3], double *area_share)
 {
     const voxgi__tracer *tr = R->tr;
     size_t li;
@@ -6654,8 +6659,13 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
             w = cos_l * area / (dist * dist);
         }
         cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
-        if (cos_s <= 0 || !voxgi__visible(tr, p, dir, dist, prim, rays)) continue;
-        for (a = 0; a < 3; a++) e[a] += L->intensity[a] * w * cos_s;
+        if (cos_s <= 0) continue;
+        if (area_share && L->type == VOXGI_LIGHT_RECT) for (a = 0; a < 3; a++) area_share[3 + a] += L->intensity[a] * w * cos_s;
+        if (!voxgi__visible(tr, p, dir, dist, prim, rays)) continue;
+        for (a = 0; a < 3; a++) {
+            e[a] += L->intensity[a] * w * cos_s;
+            if (area_share && L->type == VOXGI_LIGHT_RECT) area_share[a] += L->intensity[a] * w * cos_s;
+        }
     }
     if (R->emitter_count) { /* one emissive triangle by power, one uniform point on it */
         double u = (xi ? xi[0] : voxgi__rng_unit(g)) * R->emitter_cdf[R->emitter_count - 1], b1, b2, r1, q[3], dir[3], dist2, dist, cos_s, cos_l, below;
@@ -6681,13 +6691,101 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
             for (a = 0; a < 3; a++) dir[a] /= dist;
             cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
             cos_l = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]);
-            if (cos_s > 0 && cos_l > 0 && voxgi__visible(tr, p, dir, dist, prim, rays)) {
+            if (cos_s > 0 && cos_l > 0) {
                 double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / 3.14159265358979323846; /* per solid angle */
                 double mis = mis_weighted ? pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf) : 1;
+                int seen = voxgi__visible(tr, p, dir, dist, prim, rays);
                 m = voxgi__prim_material(tr, k);
-                for (a = 0; a < 3; a++) e[a] += mis * m->emission[a] * cos_s / pdf_light;
+                for (a = 0; a < 3; a++) {
+                    double c = mis * m->emission[a] * cos_s / pdf_light;
+                    if (area_share) area_share[3 + a] += c;
+                    if (!seen) continue;
+                    e[a] += c;
+                    if (area_share) area_share[a] += c;
+                }
             }
         }
+    }
+}
+
+/* Lambert's formula: the irradiance at p on unit normal n from a convex polygon q[0..nq-1]
+   (nq <= 4) of radiance 1 whose front (the side fn faces) p sees, clipped to p's upper
+   half-space: half the sum over its edges of the angle each subtends at p times the cosine
+   between n and the normal of the plane through p and the edge. Unoccluded, exact. */
+static double voxgi__polygon_irradiance(const double q[][3], int nq, const double fn[3], const double p[3], const double n[3])
+{
+    double c[6][3], d[4], side = 0, sum = 0;
+    int k, m = 0, a;
+    for (a = 0; a < 3; a++) side += (p[a] - q[0][a]) * fn[a];
+    if (!(side > 0)) return 0; /* behind it: emitters shine from their fronts */
+    for (k = 0; k < nq; k++) {
+        d[k] = 0;
+        for (a = 0; a < 3; a++) d[k] += (q[k][a] - p[a]) * n[a];
+    }
+    for (k = 0; k < nq; k++) { /* clipped against n.(x - p) >= 0 (Sutherland-Hodgman), relative to p */
+        int j = (k + 1) % nq;
+        if (d[k] >= 0) { for (a = 0; a < 3; a++) c[m][a] = q[k][a] - p[a]; m++; }
+        if ((d[k] >= 0) != (d[j] >= 0)) {
+            double t = d[k] / (d[k] - d[j]);
+            for (a = 0; a < 3; a++) c[m][a] = q[k][a] - p[a] + t * (q[j][a] - q[k][a]);
+            m++;
+        }
+    }
+    for (k = 0; k < m; k++) {
+        double len = sqrt(c[k][0] * c[k][0] + c[k][1] * c[k][1] + c[k][2] * c[k][2]);
+        if (!(len > 0)) return 0; /* p on the polygon */
+        for (a = 0; a < 3; a++) c[k][a] /= len;
+    }
+    for (k = 0; m >= 3 && k < m; k++) {
+        const double *u = c[k], *v = c[(k + 1) % m];
+        double x[3], len;
+        x[0] = u[1] * v[2] - u[2] * v[1];
+        x[1] = u[2] * v[0] - u[0] * v[2];
+        x[2] = u[0] * v[1] - u[1] * v[0];
+        len = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        if (len > 0) sum += atan2(len, u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) * (x[0] * n[0] + x[1] * n[1] + x[2] * n[2]) / len;
+    }
+    return fabs(sum) / 2;
+}
+
+/* At most this many emissive triangles are summed analytically per shading point. */
+#define VOXGI__ANALYTIC_EMITTERS 64
+
+/* The unshadowed irradiance at p (unit normal ns, on triangle prim or UINT32_MAX) from the rect
+   lights and the emissive triangles, exactly (voxgi__polygon_irradiance): what voxgi__direct's
+   area[3..5] estimates. Times the shadow rays' visible share area[0..2] / area[3..5], the
+   shadowed irradiance without the noise of where on the lights the rays went (the ratio
+   estimator of Heitz et al. 2018): exact wherever a point sees all or none of the lights. */
+static void voxgi__area_irradiance(const voxgi__lights *R, const double p[3], const double ns[3], uint32_t prim, double e[3])
+{
+    const voxgi__tracer *tr = R->tr;
+    size_t i;
+    int a, k;
+    e[0] = e[1] = e[2] = 0;
+    for (i = 0; i < R->scene->light_count; i++) {
+        const voxgi_light *L = &R->scene->lights[i];
+        double q[4][3], fn[3], f;
+        if (L->type != VOXGI_LIGHT_RECT) continue;
+        for (a = 0; a < 3; a++) {
+            q[0][a] = L->position[a];
+            q[1][a] = (double)L->position[a] + L->edge_u[a];
+            q[2][a] = (double)L->position[a] + L->edge_u[a] + L->edge_v[a];
+            q[3][a] = (double)L->position[a] + L->edge_v[a];
+            fn[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
+        }
+        f = voxgi__polygon_irradiance((const double(*)[3])q, 4, fn, p, ns);
+        for (a = 0; a < 3; a++) e[a] += L->intensity[a] * f;
+    }
+    for (i = 0; i < R->emitter_count; i++) {
+        uint32_t t = R->emitters[i];
+        double q[3][3], f;
+        const voxgi_material *m;
+        if (t == prim) continue;
+        for (k = 0; k < 3; k++)
+            for (a = 0; a < 3; a++) q[k][a] = tr->v[9 * (size_t)t + 3 * (size_t)k + (size_t)a];
+        f = voxgi__polygon_irradiance((const double(*)[3])q, 3, tr->n + 3 * (size_t)t, p, ns);
+        m = voxgi__prim_material(tr, t);
+        for (a = 0; a < 3; a++) e[a] += m->emission[a] * f;
     }
 }
 
@@ -6718,7 +6816,7 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
             for (a = 0; a < 3; a++) out[a] += T[a] * mis * m->emission[a];
         }
         if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
-        voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, NULL, rays, e);
+        voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, NULL, rays, e, NULL);
         for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / 3.14159265358979323846 * e[a];
         for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
         if (bounces < 0 && depth >= 2) { /* Russian roulette */
@@ -6916,7 +7014,7 @@ static void voxgi__inject_range(void *user, size_t first, size_t end)
                 u[1] = rot[1] + (s + 1) * 0.5698402909980532;
                 u[0] -= floor(u[0]);
                 u[1] -= floor(u[1]);
-                voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, u, &rays, es);
+                voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, u, &rays, es, NULL);
                 for (a = 0; a < 3; a++) e[a] += es[a] / samples;
             }
         }
@@ -7856,6 +7954,7 @@ typedef struct voxgi__vct_job {
     uint32_t *prim;               /* per pixel: that surface's triangle (UINT32_MAX: none) */
     float *rgb;
     size_t rays;
+    int analytic;                 /* the rect lights and emitters analytically, shadowed by the rays' visible share */
 } voxgi__vct_job;
 
 static void voxgi__vct_shade(void *user, size_t first, size_t end)
@@ -7869,14 +7968,14 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
         int x, s, a;
         for (x = 0; x < cam->width; x++) {
             size_t pix = y * (size_t)cam->width + (size_t)x;
-            double L[3] = {0, 0, 0};
+            double L[3] = {0, 0, 0}, shadowed[3] = {0, 0, 0}, unshadowed[3] = {0, 0, 0}, exact[3] = {0, 0, 0}; /* area lights, albedo / pi x E */
             double rot[4];
             voxgi__rng g;
             voxgi__rng_seed(&g, J->desc->seed, pix, 0);
             for (a = 0; a < 4; a++) rot[a] = voxgi__rng_unit(&g);
             for (s = 0; s < samples; s++) { /* emission and direct light over the pixel's square */
                 voxgi__hit h;
-                double d[3], ns[3], e[3], off, u[4];
+                double d[3], ns[3], e[3], off, u[4], area[6] = {0, 0, 0, 0, 0, 0}, ea[3];
                 const voxgi_material *m;
                 for (a = 0; a < 4; a++) { /* stratified: the 4D Kronecker sequence (pixel square x light), randomly shifted per pixel */
                     static const double alpha[4] = {0.8566748838545029, 0.7338918566271260, 0.6287067210378087, 0.5385972572236101};
@@ -7890,10 +7989,17 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                 for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
                 off = 1e-9 * (1 + J->tr->scale);
                 for (a = 0; a < 3; a++) h.p[a] += off * ns[a];
-                voxgi__direct(J->lights, h.p, ns, h.prim, &g, 0, u + 2, &rays, e);
-                for (a = 0; a < 3; a++)
-                    L[a] += ((h.front && !J->desc->hide_emitters ? m->emission[a] : 0) + m->albedo[a] / 3.14159265358979323846 * e[a]) / samples;
+                voxgi__direct(J->lights, h.p, ns, h.prim, &g, 0, u + 2, &rays, e, J->analytic ? area : NULL);
+                if (J->analytic) voxgi__area_irradiance(J->lights, h.p, ns, h.prim, ea);
+                for (a = 0; a < 3; a++) {
+                    double k = m->albedo[a] / 3.14159265358979323846 / samples;
+                    L[a] += (h.front && !J->desc->hide_emitters ? m->emission[a] : 0) / samples + k * (e[a] - area[a]);
+                    shadowed[a] += k * area[a];
+                    unshadowed[a] += k * area[3 + a];
+                    if (J->analytic) exact[a] += k * ea[a];
+                }
             }
+            for (a = 0; a < 3; a++) L[a] += J->analytic && unshadowed[a] > 0 ? exact[a] * (shadowed[a] / unshadowed[a]) : shadowed[a];
             if (J->prim[pix] != UINT32_MAX) { /* the cones' light at the centre's surface */
                 const voxgi_material *m = voxgi__prim_material(J->tr, J->prim[pix]);
                 for (a = 0; a < 3; a++) L[a] += m->albedo[a] / 3.14159265358979323846 * J->irr[3 * pix + (size_t)a];
@@ -7969,6 +8075,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     J.tr = &tr;
     J.lights = &Ls;
     J.rgb = rgb;
+    J.analytic = !desc->sampled_direct && Ls.emitter_count <= VOXGI__ANALYTIC_EMITTERS;
     J.pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
     J.nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
     J.irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 1);
