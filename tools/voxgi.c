@@ -1508,11 +1508,12 @@ static int cmd_report(int argc, char **argv)
     }
     snprintf(path, sizeof path, "%s/vct.csv", out_dir);
     if (!(csv = fopen(path, "w"))) { fprintf(stderr, "voxgi report: cannot write %s\n", path); goto done; }
-    fprintf(csv, "scene,res,cones,aperture,half_angle_deg,step,stride,filter,voxels,voxelize_ms,inject_ms,cones_ms,direct_ms,ms,rel_rmse,reference_ms_same_error,speedup,pareto\n");
+    fprintf(csv, "scene,res,cones,aperture,half_angle_deg,step,stride,filter,voxels,radiance_bytes,voxelize_ms,inject_ms,octree_ms,cones_ms,direct_ms,ms,rel_rmse,"
+                 "reference_ms_same_error,speedup,pareto\n");
     for (i = 0; i < nrows; i++)
-        fprintf(csv, "%s,%d,%d,%g,%.2f,%g,%d,%s,%llu,%.2f,%.2f,%.2f,%.2f,%.2f,%.5f,%.1f,%.2f,%d\n", rows[i].scene, rows[i].res, rows[i].cones, rows[i].aperture,
+        fprintf(csv, "%s,%d,%d,%g,%.2f,%g,%d,%s,%llu,%llu,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.5f,%.1f,%.2f,%d\n", rows[i].scene, rows[i].res, rows[i].cones, rows[i].aperture,
                 rows[i].half_angle_deg, rows[i].step, rows[i].stride, mips_names[rows[i].mips], (unsigned long long)rows[i].info.voxels,
-                rows[i].info.ms_voxelize, rows[i].info.ms_inject, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, rows[i].rmse,
+                (unsigned long long)rows[i].info.radiance_bytes, rows[i].info.ms_voxelize, rows[i].info.ms_inject, rows[i].info.ms_octree, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, rows[i].rmse,
                 rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms, (int)rows[i].pareto);
     snprintf(path, sizeof path, "%s/vct.md", out_dir);
     if (!(md = fopen(path, "w"))) { fprintf(stderr, "voxgi report: cannot write %s\n", path); goto done; }
@@ -1524,14 +1525,16 @@ static int cmd_report(int argc, char **argv)
             direct_spp, ci.backend == VOXGI_BACKEND_GL && strstr(ci.gl_renderer, "llvmpipe") ? " (GL on llvmpipe, a software rasteriser: not GPU timings)" : "");
     for (s = 0; s < scene_count; s++) {
         fprintf(md, "## %s\n\nReference: %d spp; its error is %.2f%% / sqrt(spp) (%.3f%% at %d spp: the floor of every error below), %.2f ms per "
-                    "sample per pixel.\n\n| res | cones | half-angle | step | stride | mips | voxels | voxelize ms | inject ms | cones ms | direct ms | total ms | "
-                    "rel. RMSE | reference at the same error | speed-up | Pareto |\n|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n",
+                    "sample per pixel.\n\n| res | cones | half-angle | step | stride | mips | voxels | radiance MB | voxelize ms | inject ms | octree ms | cones ms | "
+                    "direct ms | total ms | rel. RMSE | reference at the same error | speed-up | Pareto |\n"
+                    "|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n",
                 scenes[s], spp, 100 * ref_c[s], 100 * ref_floor[s], spp, ref_ms_per_spp[s]);
         for (i = 0; i < nrows; i++)
             if (rows[i].scene == scenes[s])
-                fprintf(md, "| %d | %d | %.1f° | %g | %d | %s | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f%% | %.0f ms | %.1fx | %s |\n", rows[i].res, rows[i].cones,
-                        rows[i].half_angle_deg, rows[i].step, rows[i].stride, mips_short[rows[i].mips], (unsigned long long)rows[i].info.voxels,
-                        rows[i].info.ms_voxelize, rows[i].info.ms_inject, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, 100 * rows[i].rmse,
+                fprintf(md, "| %d | %d | %.1f° | %g | %d | %s | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f%% | %.0f ms | %.1fx | %s |\n",
+                        rows[i].res, rows[i].cones, rows[i].half_angle_deg, rows[i].step, rows[i].stride, mips_short[rows[i].mips],
+                        (unsigned long long)rows[i].info.voxels, rows[i].info.radiance_bytes / 1e6, rows[i].info.ms_voxelize, rows[i].info.ms_inject,
+                        rows[i].info.ms_octree, rows[i].info.ms_cones, rows[i].info.ms_direct, rows[i].info.ms, 100 * rows[i].rmse,
                         rows[i].ref_ms, rows[i].ref_ms / rows[i].info.ms, rows[i].pareto ? "yes" : "");
         fprintf(md, "\n");
     }
