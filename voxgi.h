@@ -1,6 +1,6 @@
-/* voxgi.h - v0.1.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
+/* voxgi.h - v0.4.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
 
-   voxgi voxelizes triangle scenes and (in later parts) computes voxel-based lighting. Every GPU
+   voxgi voxelizes triangle scenes and computes voxel-based lighting from them. Every GPU
    pass has a CPU twin that computes the same result, so the library works where no GL 4.5
    context exists, and the CPU twin is the oracle the GPU pass is tested against.
 
@@ -38,7 +38,13 @@
    shader), volume buffer (M1, M2); see voxgi_method. Conservative, thin, geometry and volume
    buffer also blend per-voxel attributes (voxgi_attribute, voxgi_blend). voxgi_voxels_reduce
    builds OR mipmaps; voxgi_volume_create builds attribute volumes with mipmaps,
-   voxgi_volume_sample samples them.
+   voxgi_volume_sample samples them; voxgi_svo_create builds sparse voxel octrees.
+
+   LIGHTING: voxgi_inject_light puts the direct light into the voxels (a RADIANCE volume);
+   voxgi_cone_trace / voxgi_trace_cones gather it with diffuse, glossy and shadow cones over the
+   volume's mips (CPU arrays or, on GL, voxgi_cone_trace_gl over the caller's G-buffer textures),
+   voxgi_cone_trace_svo and friends over an octree of it; voxgi_vct_render makes whole images;
+   voxgi_reference_render is the path tracer they are measured against.
 
    SEMANTICS (exact; see the part banners below for each capability)
      Grid: origin o (double[3]), voxel size s (double > 0), resolution n (int[3]). Voxel (i,j,k) is
@@ -75,6 +81,10 @@
             sampling; materials validated.
      0.3.0  sparse voxel octree on the CPU and GL (float32 or float16 values, neighbour
             pointers, bricks), GLSL octree sampling, footprint lods, octree progress.
+     0.4.0  reference path tracer, built-in scenes, light injection (shadow rays; GL distance
+            maps), cone tracing (diffuse, occlusion, glossy and shadow cones, more bounces) over
+            dense mips and octrees on the CPU and GL, the caller's G-buffer textures, voxgi's own
+            G-buffer, cone-traced images with exact unshadowed area light.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -84,10 +94,10 @@
 #include <stdio.h>
 
 #define VOXGI_VERSION_MAJOR 0
-#define VOXGI_VERSION_MINOR 3
+#define VOXGI_VERSION_MINOR 4
 #define VOXGI_VERSION_PATCH 0
 #define VOXGI_VERSION (VOXGI_VERSION_MAJOR * 10000 + VOXGI_VERSION_MINOR * 100 + VOXGI_VERSION_PATCH)
-#define VOXGI_VERSION_STRING "0.3.0"
+#define VOXGI_VERSION_STRING "0.4.0"
 
 #ifndef VOXGI_API
 #ifdef VOXGI_STATIC
@@ -7969,10 +7979,15 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
         for (x = 0; x < cam->width; x++) {
             size_t pix = y * (size_t)cam->width + (size_t)x;
             double L[3] = {0, 0, 0}, shadowed[3] = {0, 0, 0}, unshadowed[3] = {0, 0, 0}, exact[3] = {0, 0, 0}; /* area lights, albedo / pi x E */
-            double rot[4];
+            double rot[4], centre[3] = {0, 0, 0}; /* the exact unshadowed light at the pixel centre's surface */
             voxgi__rng g;
             voxgi__rng_seed(&g, J->desc->seed, pix, 0);
             for (a = 0; a < 4; a++) rot[a] = voxgi__rng_unit(&g);
+            if (J->analytic && J->prim[pix] != UINT32_MAX) {
+                double p[3], n[3];
+                for (a = 0; a < 3; a++) { p[a] = J->pos[3 * pix + (size_t)a]; n[a] = J->nrm[3 * pix + (size_t)a]; }
+                voxgi__area_irradiance(J->lights, p, n, J->prim[pix], centre);
+            }
             for (s = 0; s < samples; s++) { /* emission and direct light over the pixel's square */
                 voxgi__hit h;
                 double d[3], ns[3], e[3], off, u[4], area[6] = {0, 0, 0, 0, 0, 0}, ea[3];
@@ -7990,7 +8005,8 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                 off = 1e-9 * (1 + J->tr->scale);
                 for (a = 0; a < 3; a++) h.p[a] += off * ns[a];
                 voxgi__direct(J->lights, h.p, ns, h.prim, &g, 0, u + 2, &rays, e, J->analytic ? area : NULL);
-                if (J->analytic) voxgi__area_irradiance(J->lights, h.p, ns, h.prim, ea);
+                if (J->analytic && h.prim == J->prim[pix]) memcpy(ea, centre, sizeof ea); /* the same surface: smooth across a pixel */
+                else if (J->analytic) voxgi__area_irradiance(J->lights, h.p, ns, h.prim, ea);
                 for (a = 0; a < 3; a++) {
                     double k = m->albedo[a] / 3.14159265358979323846 / samples;
                     L[a] += (h.front && !J->desc->hide_emitters ? m->emission[a] : 0) / samples + k * (e[a] - area[a]);
