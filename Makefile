@@ -40,9 +40,9 @@ $(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/ha
 $(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
 
-$(B)/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tools/shapes.h shaders.h | $(B)
+$(B)/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tests/cone_points.h tools/shapes.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
-$(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tools/shapes.h shaders.h | $(B)/asan
+$(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tests/cone_points.h tools/shapes.h shaders.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(LDLIBS)
 
 $(B)/asan/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h tools/image_io.h voxgi.h shaders.h | $(B)/asan

@@ -8,6 +8,7 @@
 #include "harness.h"
 #include "../tools/shapes.h"
 #include "svo_checks.h"
+#include "cone_points.h"
 #include <stdlib.h>
 #include <math.h>
 
@@ -1300,22 +1301,9 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
     ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
     ctx[1] = make_ctx(VOXGI_BACKEND_GL);
     TH_CHECK(voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs) == VOXGI_OK, "scene");
-    srand(5);
-    for (i = 0; i < N; i++) { /* inside the box (0..0.556 m), any direction */
-        double len = 0;
-        for (a = 0; a < 3; a++) {
-            pos[3 * i + a] = (float)(0.03 + 0.5 * rand() / RAND_MAX);
-            nrm[3 * i + a] = (float)(2.0 * rand() / RAND_MAX - 1);
-            len += nrm[3 * i + a] * nrm[3 * i + a];
-        }
-        if (len < 1e-4) nrm[3 * i + 1] = 1;
-        memset(&single[i], 0, sizeof single[i]); /* single cones: the same origins and directions, half of them leaving a surface */
-        for (a = 0; a < 3; a++) {
-            single[i].origin[a] = pos[3 * i + a];
-            single[i].direction[a] = nrm[3 * i + a];
-            single[i].normal[a] = i % 2 ? nrm[3 * ((i + 1) % N) + a] : 0;
-        }
-        single[i].half_angle = (float)(0.03 + 0.6 * rand() / RAND_MAX);
+    cornell_cone_points(5, N, pos, nrm, single);
+    for (i = 0; i < N; i++) { /* half of the single cones leave a surface; some have a reach */
+        for (a = 0; a < 3; a++) single[i].normal[a] = i % 2 ? nrm[3 * ((i + 1) % N) + a] : 0;
         single[i].max_distance = i % 3 ? (float)(0.6 * rand() / RAND_MAX) : 0;
     }
     img[0] = (float *)malloc(W * W * 12);
@@ -1375,24 +1363,12 @@ static void test_gl_octree_cones_equal_cpu(void)
     float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], each[2][4 * N];
     voxgi_cone single[N];
     double worst_irr = 0, worst_occ = 0, worst_each = 0, mean = 0;
-    int b, k, i, a;
+    int b, k, i;
     if (!have_gl()) return;
     ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
     ctx[1] = make_ctx(VOXGI_BACKEND_GL);
     TH_CHECK(voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs) == VOXGI_OK, "scene");
-    srand(7);
-    for (i = 0; i < N; i++) {
-        double len = 0;
-        for (a = 0; a < 3; a++) {
-            pos[3 * i + a] = (float)(0.03 + 0.5 * rand() / RAND_MAX);
-            nrm[3 * i + a] = (float)(2.0 * rand() / RAND_MAX - 1);
-            len += nrm[3 * i + a] * nrm[3 * i + a];
-        }
-        if (len < 1e-4) nrm[3 * i + 1] = 1;
-        memset(&single[i], 0, sizeof single[i]);
-        for (a = 0; a < 3; a++) { single[i].origin[a] = pos[3 * i + a]; single[i].direction[a] = nrm[3 * i + a]; }
-        single[i].half_angle = (float)(0.03 + 0.6 * rand() / RAND_MAX);
-    }
+    cornell_cone_points(7, N, pos, nrm, single);
     for (k = 0; k < 3; k++) { /* float32, float32 with bricks, float16 */
         for (b = 0; b < 2; b++) {
             voxgi_inject_desc id;

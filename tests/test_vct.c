@@ -7,6 +7,7 @@
 #define VOXGI_IMPLEMENTATION
 #include "../voxgi.h"
 #include "harness.h"
+#include "cone_points.h"
 #include <math.h>
 #include <stdlib.h>
 
@@ -452,7 +453,7 @@ static void test_octree_cones(void)
     voxgi_cone single[N];
     float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], each[2][4 * N], *img[2];
     double mean = 0, worst16 = 0;
-    int i, a, k;
+    int i, k;
     voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
     memset(&fit, 0, sizeof fit);
     memset(&xd, 0, sizeof xd);
@@ -464,19 +465,7 @@ static void test_octree_cones(void)
     id.samples = 4;
     TH_CHECK(voxgi_fit_grid(ctx, &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &bs.scene, &xd, &vox) == VOXGI_OK &&
              voxgi_inject_light(ctx, &bs.scene, vox, &id, &vol) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    srand(11);
-    for (i = 0; i < N; i++) { /* inside the box, any direction; single cones from the same points */
-        double len = 0;
-        for (a = 0; a < 3; a++) {
-            pos[3 * i + a] = (float)(0.03 + 0.5 * rand() / RAND_MAX);
-            nrm[3 * i + a] = (float)(2.0 * rand() / RAND_MAX - 1);
-            len += nrm[3 * i + a] * nrm[3 * i + a];
-        }
-        if (len < 1e-4) nrm[3 * i + 1] = 1;
-        memset(&single[i], 0, sizeof single[i]);
-        for (a = 0; a < 3; a++) { single[i].origin[a] = pos[3 * i + a]; single[i].direction[a] = nrm[3 * i + a]; }
-        single[i].half_angle = (float)(0.03 + 0.6 * rand() / RAND_MAX);
-    }
+    cornell_cone_points(11, N, pos, nrm, single);
     TH_CHECK(voxgi_cone_trace(ctx, vol, &cd, N, pos, nrm, irr[0], occ[0]) == VOXGI_OK && voxgi_trace_cones(ctx, vol, &cd, N, single, each[0]) == VOXGI_OK,
              "volume: %s", voxgi_last_error(ctx));
     for (i = 0; i < 3 * N; i++) mean += irr[0][i] / (3.0 * N);
