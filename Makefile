@@ -56,6 +56,7 @@ demo: all
 	$(B)/voxgi svo builtin:sphere --res 256 --format float16
 	$(B)/voxgi render cornell-box --spp 64 --bounces -1 -o $(B)/cornell-box.png
 	$(B)/voxgi render cornell-box --method vct --res 128 --anisotropic --cones 32 --cone-stride 2 --size 128 128 --compare 256 -o $(B)/cornell-box-vct.png
+	$(B)/voxgi render cornell-box --method vct --res 128 --octree --cones 32 --cone-stride 2 --size 128 128 --compare 256 -o $(B)/cornell-box-vct-octree.png
 
 bench: all
 	$(B)/voxgi bench voxelize --methods conservative,thin,geometry,solid,solid-vote,solid-flood,slicemap,slicemap-atomic,atlas,atlas-compute,volume-buffer,volume-buffer-m1 --csv $(B)/bench.csv
