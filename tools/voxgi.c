@@ -1210,7 +1210,7 @@ static const char *report_help =
     "usage: voxgi report vct [options]\n"
     "Error against run time of voxel cone tracing. For each built-in scene it renders the one-bounce\n"
     "reference (converged, --spp samples per pixel), then the cone-traced image for every\n"
-    "combination of grid resolution, cone count, aperture, step and mip filter, and measures the\n"
+    "combination of grid resolution, cone count, aperture, step, cone stride and mips, and measures the\n"
     "relative RMSE of the lighting (the RMS difference over pixels and channels / the reference's\n"
     "mean; the emitters the camera sees are left out of both). The reference's own convergence\n"
     "(4, 16 and 64 spp against the converged image; error ~ 1/sqrt(spp)) gives the time it needs\n"
