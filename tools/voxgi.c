@@ -1298,7 +1298,7 @@ static double rel_rmse(const float *a, const float *ref, size_t n)
 }
 
 static void report_svg(FILE *f, const report_row *rows, int n, const char *const *scenes, int scene_count, const double *ref_c,
-                       const double *ref_ms_per_spp, const double *ref_bvh_ms)
+                       const double *ref_floor, const double *ref_ms_per_spp, const double *ref_bvh_ms)
 {
     static const char *colours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd"};
     double tmin = 1e300, tmax = 0, emin = 1e300, emax = 0;
@@ -1329,8 +1329,8 @@ static void report_svg(FILE *f, const report_row *rows, int n, const char *const
         const char *c = colours[s % 4];
         double prev_t = 0, prev_e = 0;
         int first = 1;
-        for (k = 0; k <= 40; k++) { /* the reference: error c / sqrt(spp) at time bvh + spp x per-spp */
-            double spp = pow(2, k / 2.0), t = ref_bvh_ms[s] + spp * ref_ms_per_spp[s], e = ref_c[s] / sqrt(spp);
+        for (k = 0; k <= 40; k++) { /* the path tracer at spp k: its error c / sqrt(k) measured against the reference (with its floor), at time bvh + k x per-spp */
+            double spp = pow(2, k / 2.0), t = ref_bvh_ms[s] + spp * ref_ms_per_spp[s], e = sqrt(ref_c[s] * ref_c[s] / spp + ref_floor[s] * ref_floor[s]);
             if (t < tmin || t > tmax || e < emin || e > emax) continue;
             if (!first) fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-dasharray=\"4 3\"/>\n", RX(prev_t), RY(prev_e), RX(t), RY(e), c);
             prev_t = t; prev_e = e; first = 0;
@@ -1492,7 +1492,11 @@ static int cmd_report(int argc, char **argv)
                             row->step = step_l[is];
                             row->stride = vd.cone_stride;
                             row->rmse = rel_rmse(img, ref, nv);
-                            need = (ref_c[s] / row->rmse) * (ref_c[s] / row->rmse); /* the reference's spp for the same error */
+                            { /* the path tracer's spp k whose image measures the same error against the same reference:
+                                 c^2 (1/k + 1/spp) = rmse^2 (the reference's own noise is in both) */
+                                double inv = row->rmse * row->rmse / (ref_c[s] * ref_c[s]) - 1.0 / spp;
+                                need = inv > 1.0 / (1024.0 * spp) ? 1 / inv : 1024.0 * spp;
+                            }
                             row->ref_ms = ref_bvh_ms[s] + ref_ms_per_spp[s] * VOXGI__MAX(need, 1.0);
                             nrows++;
                         }
@@ -1519,8 +1523,8 @@ static int cmd_report(int argc, char **argv)
     if (!(md = fopen(path, "w"))) { fprintf(stderr, "voxgi report: cannot write %s\n", path); goto done; }
     fprintf(md, "# Voxel cone tracing: error against run time\n\n%d x %d pixels; cone tracer on %s%s%s, %d direct-light rays per pixel; the "
                 "reference is the one-bounce path tracer (CPU). Error: relative RMSE of the lighting against the converged reference, "
-                "emitters seen by the camera left out. *Reference at the same error*: the time the path tracer needs to reach that "
-                "error (from its measured convergence). Wall clock on this machine%s.\n\n",
+                "emitters seen by the camera left out. *Reference at the same error*: the time the path tracer needs for an image that "
+                "measures that error against the same reference (from its measured convergence, the reference's own noise in both). Wall clock on this machine%s.\n\n",
             size, size, voxgi_backend_name(ci.backend), ci.backend == VOXGI_BACKEND_GL ? ", " : "", ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "",
             direct_spp, ci.backend == VOXGI_BACKEND_GL && strstr(ci.gl_renderer, "llvmpipe") ? " (GL on llvmpipe, a software rasteriser: not GPU timings)" : "");
     for (s = 0; s < scene_count; s++) {
@@ -1541,7 +1545,7 @@ static int cmd_report(int argc, char **argv)
     fprintf(md, "![error against time](vct.svg)\n");
     snprintf(path, sizeof path, "%s/vct.svg", out_dir);
     if (!(svg = fopen(path, "w"))) { fprintf(stderr, "voxgi report: cannot write %s\n", path); goto done; }
-    report_svg(svg, rows, nrows, (const char *const *)scenes, scene_count, ref_c, ref_ms_per_spp, ref_bvh_ms);
+    report_svg(svg, rows, nrows, (const char *const *)scenes, scene_count, ref_c, ref_floor, ref_ms_per_spp, ref_bvh_ms);
     for (s = 0; s < scene_count; s++) { /* the front on stdout */
         printf("%s (reference error %.2f%% / sqrt(spp), %.2f ms per spp; floor %.3f%%)\n", scenes[s], 100 * ref_c[s], ref_ms_per_spp[s], 100 * ref_floor[s]);
         for (i = 0; i < nrows; i++)
