@@ -697,7 +697,9 @@ VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scen
    emission left out: emitters light the pixels directly), the radiance mipmapped, then per
    pixel: emission + albedo / pi x (direct irradiance through exact shadow rays, `samples` rays
    per pixel stratified over the pixel's square and the light (a randomly shifted 4D Kronecker
-   sequence), + the cones' irradiance at the pixel centre's surface). no_gi leaves the cones out:
+   sequence), + the cones' irradiance at the surface the ray met: the one gathered at the
+   nearest of the 3 x 3 pixels whose centre lies on it, so that a pixel across an edge mixes
+   its sides' indirect light as it mixes their direct light). no_gi leaves the cones out:
    the direct light alone, which the reference renderer's bounces = 0 matches.
    On a GL context the G-buffer, the voxels, the light injection, the mips and the cones are
    GL's; the direct light's rays are the CPU's on both. */
@@ -7973,7 +7975,37 @@ typedef struct voxgi__vct_job {
     float *rgb;
     size_t rays;
     int analytic;                 /* the rect lights and emitters analytically, shadowed by the rays' visible share */
+    double voxel_size;            /* world units: how far off its plane a neighbour's surface may lie and still be it */
 } voxgi__vct_job;
+
+/* The cones' irradiance for a ray through pixel (x, y) at sub-pixel (sx, sy) that met surface (p, n):
+   the nearest of the 3 x 3 pixels whose centre's surface is that one (normal within 26 degrees, on
+   its plane within a voxel), so that a pixel across an edge takes each side's light in proportion;
+   the pixel's own where none is. */
+static const float *voxgi__vct_ray_irradiance(const voxgi__vct_job *J, int x, int y, double sx, double sy, const double p[3], const double n[3])
+{
+    const voxgi_camera *cam = &J->desc->camera;
+    const float *best = J->irr + 3 * ((size_t)y * (size_t)cam->width + (size_t)x);
+    double best_d = DBL_MAX;
+    int dx, dy, a;
+    for (dy = -1; dy <= 1; dy++)
+        for (dx = -1; dx <= 1; dx++) {
+            int xx = x + dx, yy = y + dy;
+            size_t c;
+            double dn = 0, dp = 0, d2;
+            if (xx < 0 || yy < 0 || xx >= cam->width || yy >= cam->height) continue;
+            c = (size_t)yy * (size_t)cam->width + (size_t)xx;
+            if (J->prim[c] == UINT32_MAX) continue;
+            for (a = 0; a < 3; a++) {
+                dn += (double)J->nrm[3 * c + (size_t)a] * n[a];
+                dp += ((double)J->pos[3 * c + (size_t)a] - p[a]) * n[a];
+            }
+            if (dn < 0.9 || fabs(dp) > J->voxel_size) continue;
+            d2 = (xx + 0.5 - sx) * (xx + 0.5 - sx) + (yy + 0.5 - sy) * (yy + 0.5 - sy);
+            if (d2 < best_d) { best_d = d2; best = J->irr + 3 * c; }
+        }
+    return best;
+}
 
 static void voxgi__vct_shade(void *user, size_t first, size_t end)
 {
@@ -7987,6 +8019,7 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
         for (x = 0; x < cam->width; x++) {
             size_t pix = y * (size_t)cam->width + (size_t)x;
             double L[3] = {0, 0, 0}, shadowed[3] = {0, 0, 0}, unshadowed[3] = {0, 0, 0}, exact[3] = {0, 0, 0}; /* area lights, albedo / pi x E */
+            double indirect[3] = {0, 0, 0}; /* albedo / pi x the cones' irradiance, per ray */
             double rot[4], centre[3] = {0, 0, 0}; /* the exact unshadowed light at the pixel centre's surface */
             int used = 0, uniform = 1, lit = -1; /* uniform: every ray so far met the centre's triangle, with all or none of the lights */
             voxgi__rng g;
@@ -8020,6 +8053,10 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                 else if (J->analytic) voxgi__area_irradiance(J->lights, h.p, ns, h.prim, ea);
                 if (h.prim != J->prim[pix] || (area[7] > 0 && area[7] < area[6]) || (lit >= 0 && lit != (area[7] == 0))) uniform = 0;
                 lit = area[7] == 0;
+                if (!J->desc->no_gi) {
+                    const float *irr = h.prim == J->prim[pix] ? J->irr + 3 * pix : voxgi__vct_ray_irradiance(J, x, (int)y, x + u[0], (double)y + u[1], h.p, ns);
+                    for (a = 0; a < 3; a++) indirect[a] += m->albedo[a] / 3.14159265358979323846 * irr[a];
+                }
                 for (a = 0; a < 3; a++) {
                     double k = m->albedo[a] / 3.14159265358979323846;
                     L[a] += (h.front && !J->desc->hide_emitters ? m->emission[a] : 0) + k * (e[a] - area[a]);
@@ -8028,11 +8065,8 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                     if (J->analytic) exact[a] += k * ea[a];
                 }
             }
-            for (a = 0; a < 3; a++) L[a] = (L[a] + (J->analytic && unshadowed[a] > 0 ? exact[a] * (shadowed[a] / unshadowed[a]) : shadowed[a])) / VOXGI__MAX(used, 1);
-            if (J->prim[pix] != UINT32_MAX) { /* the cones' light at the centre's surface */
-                const voxgi_material *m = voxgi__prim_material(J->tr, J->prim[pix]);
-                for (a = 0; a < 3; a++) L[a] += m->albedo[a] / 3.14159265358979323846 * J->irr[3 * pix + (size_t)a];
-            }
+            for (a = 0; a < 3; a++)
+                L[a] = (L[a] + indirect[a] + (J->analytic && unshadowed[a] > 0 ? exact[a] * (shadowed[a] / unshadowed[a]) : shadowed[a])) / VOXGI__MAX(used, 1);
             for (a = 0; a < 3; a++) J->rgb[3 * pix + (size_t)a] = (float)L[a];
         }
     }
@@ -8130,6 +8164,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
         inf.ms_voxelize = voxgi__now_ms() - t1;
         if (r == VOXGI_OK) { /* emission is left out: the pixels take it from the direct light */
             inf.voxels = vox->info.voxel_count;
+            J.voxel_size = vox->info.grid.voxel_size;
             t1 = voxgi__now_ms();
             r = voxgi_inject_light(ctx, scene, vox, &id, &vol);
             inf.ms_inject = voxgi__now_ms() - t1;

@@ -663,6 +663,63 @@ static void test_exact_area_light_image(void)
     voxgi_destroy(ctx);
 }
 
+/* A sunlit floor whose edge runs slantwise through the pixels, a lit wall behind it: a pixel across the floor's edge
+   sees the floor with a share c of its rays. The sun's light is the same all over the floor, so
+   c is the pixel's direct light over its inner neighbour's; its indirect light (GI on minus GI
+   off, the same rays) must be about the same share of the neighbour's (the cones' light varies
+   by up to 20% from pixel to pixel here), since each ray takes the cones' light of the nearest
+   pixel on its own surface. Taking the light at the pixel's centre instead gives a pixel with
+   20-60% of the floor all of it (the centre on the floor) or none: off by 0.2 or more. */
+static void test_indirect_across_edges(void)
+{
+    enum { W = 32 };
+    voxgi_context *ctx = make_ctx();
+    voxgi_material mat = {{0.7f, 0.7f, 0.7f}, {0, 0, 0}, 0};
+    float floor_q[12] = {-1, 0, -1, -1, 0, 1, 0.35f, 0, 1, 0.75f, 0, -1}, wall_q[12] = {-1, 0, -1, 0.75f, 0, -1, 0.75f, 1, -1, -1, 1, -1};
+    voxgi_light sun;
+    quads q;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_vct_desc vd;
+    static float img[2][W * W * 3];
+    double worst = 0, mean = 0;
+    int x, y, k, edges = 0;
+    q.n = 0;
+    quad(&q, floor_q, 0);
+    quad(&q, wall_q, 0);
+    memset(&sun, 0, sizeof sun);
+    sun.type = VOXGI_LIGHT_DIRECTIONAL;
+    sun.direction[0] = 0.2f; sun.direction[1] = -1; sun.direction[2] = -0.7f;
+    sun.intensity[0] = sun.intensity[1] = sun.intensity[2] = 3;
+    scene_of(&sc, &mesh, &q, &mat, 1, &sun, 1);
+    memset(&vd, 0, sizeof vd);
+    vd.camera.eye[0] = 0; vd.camera.eye[1] = 3; vd.camera.eye[2] = 0.4;
+    vd.camera.target[2] = 0.1;
+    vd.camera.fovy_degrees = 40;
+    vd.camera.width = vd.camera.height = W;
+    vd.resolution = 48;
+    for (k = 0; k < 2; k++) {
+        vd.no_gi = k;
+        TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, img[k], sizeof img[k], NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+    }
+    for (y = W / 2; y < W; y++) /* the floor's near half, away from the wall */
+        for (x = 2; x < W; x++) {
+            size_t i = 3 * ((size_t)y * W + (size_t)x), in = i - 3, in2 = i - 6;
+            double c, c_ind, ind_in = img[0][in] - img[1][in];
+            if (!(img[1][in2] > 0) || fabs(img[1][in] / img[1][in2] - 1) > 1e-3 || !(ind_in > 0)) continue; /* the inner neighbour: wholly floor */
+            c = img[1][i] / img[1][in];
+            if (c < 0.2 || c > 0.6) continue;
+            c_ind = (img[0][i] - img[1][i]) / ind_in;
+            worst = fmax(worst, fabs(c_ind - c));
+            mean += fabs(c_ind - c);
+            edges++;
+        }
+    mean /= edges > 0 ? edges : 1;
+    printf("    %d pixels with 20-60%% of a floor: their indirect share of the inner neighbour's is their direct share within %.3f (mean %.3f)\n", edges, worst, mean);
+    TH_CHECK(edges >= 4 && worst < 0.12 && mean < 0.05, "%d edge pixels, shares apart by up to %.3f (mean %.3f)", edges, worst, mean);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     TH_RUN(test_cornell_box_image);
@@ -673,6 +730,7 @@ int main(void)
     TH_RUN(test_octree_cones);
     TH_RUN(test_polygon_irradiance);
     TH_RUN(test_exact_area_light_image);
+    TH_RUN(test_indirect_across_edges);
     TH_RUN(test_injection_is_exact_on_a_lit_floor);
     TH_RUN(test_ambient_occlusion);
     TH_RUN(test_glowing_ceiling);
