@@ -4830,18 +4830,29 @@ static void voxgi__mip_load(const float *s, int w, float c[4])
     else for (ch = 0; ch < 4; ch++) c[ch] = s[ch];
 }
 
-/* Parent p of level l from level l - 1 of the same direction's array; w: floats per voxel (4 or 1). */
-static void voxgi__mip_voxel(const float *src, const int sd[3], float *dst, int w, int dir, int premultiplied, const int p[3])
+/* Parent p of level l from level l - 1 of the same direction's array; w: floats per voxel (4 or 1).
+   dir -2: all six directions at once from a level 0 they share, into dst6[0..5]. Empty children
+   give an empty parent without the filter. */
+static void voxgi__mip_voxel(const float *src, const int sd[3], float *dst, float *const *dst6, int w, int dir, int premultiplied, const int p[3])
 {
     float c[8][4];
-    int k;
+    int k, any = 0;
     for (k = 0; k < 8; k++) { /* children in x-fastest order; beyond the grid: empty */
         int v[3], a;
         v[0] = 2 * p[0] + (k & 1); v[1] = 2 * p[1] + ((k >> 1) & 1); v[2] = 2 * p[2] + ((k >> 2) & 1);
         for (a = 0; a < 3 && v[a] < sd[a]; a++) {}
         voxgi__mip_load(a == 3 ? src + ((size_t)v[0] + (size_t)sd[0] * ((size_t)v[1] + (size_t)sd[1] * (size_t)v[2])) * (size_t)w : NULL, w, c[k]);
+        any |= c[k][0] != 0 || c[k][1] != 0 || c[k][2] != 0 || c[k][3] != 0;
     }
-    voxgi__mip_combine(c, w, dir, premultiplied, dst);
+    if (dir != -2) {
+        if (any) voxgi__mip_combine(c, w, dir, premultiplied, dst);
+        else memset(dst, 0, (size_t)w * sizeof(float));
+        return;
+    }
+    for (k = 0; k < 6; k++) {
+        if (any) voxgi__mip_combine(c, w, k, premultiplied, dst6[k]);
+        else memset(dst6[k], 0, (size_t)w * sizeof(float));
+    }
 }
 
 /* Level 0 of every asked-for attribute, dense, from the voxels' bits and attribute means. */
@@ -4928,7 +4939,7 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
     return VOXGI_OK;
 }
 
-typedef struct voxgi__mip_job { const voxgi_volume *vol; const float *src; float *dst; int w, dir, premultiplied, k; } voxgi__mip_job;
+typedef struct voxgi__mip_job { const voxgi_volume *vol; const float *src; float *dst, *dst6[6]; int w, dir, premultiplied, k; } voxgi__mip_job;
 
 /* Rows [first, end) (y + dims.y z) of level k from level k - 1. */
 static void voxgi__mip_rows(void *user, size_t first, size_t end)
@@ -4940,8 +4951,13 @@ static void voxgi__mip_rows(void *user, size_t first, size_t end)
         int p[3];
         p[1] = (int)(row % (size_t)dk[1]);
         p[2] = (int)(row / (size_t)dk[1]);
-        for (p[0] = 0; p[0] < dk[0]; p[0]++)
-            voxgi__mip_voxel(M->src, M->vol->dims[M->k - 1], M->dst + ((size_t)p[0] + (size_t)dk[0] * row) * (size_t)M->w, M->w, M->dir, M->premultiplied, p);
+        for (p[0] = 0; p[0] < dk[0]; p[0]++) {
+            size_t at = ((size_t)p[0] + (size_t)dk[0] * row) * (size_t)M->w;
+            float *dst6[6];
+            int d;
+            for (d = 0; d < 6 && M->dir == -2; d++) dst6[d] = M->dst6[d] + at;
+            voxgi__mip_voxel(M->src, M->vol->dims[M->k - 1], M->dst ? M->dst + at : NULL, dst6, M->w, M->dir, M->premultiplied, p);
+        }
     }
 }
 
@@ -4956,19 +4972,29 @@ static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, c
 #endif
     for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
         int w = a == 3 ? 1 : 4;
+        voxgi__mip_job M;
         if (!base[a]) continue;
+        memset(&M, 0, sizeof M);
+        M.vol = vol;
+        M.w = w;
+        M.premultiplied = a == 4;
         for (d = 0; d < dirs && r == VOXGI_OK; d++) {
             size_t held = d ? vol->voxels - base_voxels : vol->voxels; /* every voxel of every level it holds is written */
-            float *arr = (float *)voxgi__alloc_array(ctx, held ? held : 1, (size_t)w * 4, 0);
-            voxgi__mip_job M;
+            float *arr = !d && vol->cpu[a][0] ? vol->cpu[a][0] : (float *)voxgi__alloc_array(ctx, held ? held : 1, (size_t)w * 4, 0);
             if (!arr) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the mip chain"); break; }
             vol->cpu[a][d] = arr;
-            if (!d) memcpy(arr, base[a], base_voxels * (size_t)w * 4);
-            M.vol = vol;
-            M.w = w;
+            if (!d && base[a] != arr) memcpy(arr, base[a], base_voxels * (size_t)w * 4); /* or the caller wrote level 0 in place */
+        }
+        if (r == VOXGI_OK && dirs == 6 && vol->info.levels > 1) { /* level 1 of all six directions in one pass over level 0 */
+            M.k = 1;
+            M.dir = -2;
+            M.src = vol->cpu[a][0];
+            for (d = 0; d < 6; d++) M.dst6[d] = voxgi__volume_level(vol, a, d, 1);
+            voxgi__parallel(ctx, (size_t)vol->dims[1][1] * (size_t)vol->dims[1][2], 16, voxgi__mip_rows, &M);
+        }
+        for (d = 0; d < dirs && r == VOXGI_OK; d++) {
             M.dir = dirs == 6 ? d : -1;
-            M.premultiplied = a == 4;
-            for (k = 1; k < vol->info.levels; k++) {
+            for (k = dirs == 6 ? 2 : 1; k < vol->info.levels; k++) {
                 M.k = k;
                 M.src = voxgi__volume_level(vol, a, d, k - 1);
                 M.dst = voxgi__volume_level(vol, a, d, k);
@@ -7260,7 +7286,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     voxgi__lights Ls;
     voxgi__inject J;
     voxgi_volume *vol = NULL;
-    float *vals[4] = {NULL, NULL, NULL, NULL}, *rgba = NULL;
+    float *vals[4] = {NULL, NULL, NULL, NULL}, *rgba = NULL, *own_rgba = NULL;
     uint64_t *index = NULL, nvox, l;
     uint32_t *bits = NULL;
     size_t need = 0, n, i = 0;
@@ -7281,8 +7307,13 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     nvox = voxgi_grid_voxel_count(&vx->info.grid);
     n = (size_t)vx->info.voxel_count;
     if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
-    if (r == VOXGI_OK && (!(bits = (uint32_t *)voxgi__alloc(ctx, need)) || !(index = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)) ||
-                          !(rgba = (float *)voxgi__alloc_array(ctx, (size_t)nvox, 16, 1))))
+    if (r == VOXGI_OK) r = voxgi__volume_new(ctx, &vx->info.grid, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &vol);
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU && desc->bounces <= 1) { /* level 0 written in place, the mips after it */
+        if ((vol->cpu[4][0] = (float *)voxgi__alloc_array(ctx, vol->voxels, 16, 0)) != NULL) memset(vol->cpu[4][0], 0, (size_t)nvox * 16);
+        rgba = vol->cpu[4][0];
+    } else if (r == VOXGI_OK) /* GL uploads it; the bounces rewrite it for each new volume */
+        own_rgba = rgba = (float *)voxgi__alloc_array(ctx, (size_t)nvox, 16, 1);
+    if (r == VOXGI_OK && (!rgba || !(bits = (uint32_t *)voxgi__alloc(ctx, need)) || !(index = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0))))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the radiance of %lu voxels", (unsigned long)n);
     if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, bits, need, NULL);
     for (l = 0; r == VOXGI_OK && l < nvox; l++)
@@ -7324,16 +7355,15 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
 #endif
             voxgi__parallel(ctx, n, 256, voxgi__inject_range, &J);
         slots[4] = rgba;
-        if (r == VOXGI_OK) r = voxgi__volume_new(ctx, &vx->info.grid, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &vol);
         if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
         if (r == VOXGI_OK && desc->bounces > 1) r = voxgi__inject_bounces(ctx, &J, n, desc, &vol);
-        if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); vol = NULL; }
-        else vol->info.ms = voxgi__now_ms() - t0;
+        if (r == VOXGI_OK) vol->info.ms = voxgi__now_ms() - t0;
     }
+    if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); vol = NULL; }
     for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
     voxgi__free(ctx, bits);
     voxgi__free(ctx, index);
-    voxgi__free(ctx, rgba);
+    voxgi__free(ctx, own_rgba);
     voxgi__lights_free(ctx, &Ls);
     voxgi__tracer_free(ctx, &tr);
     *out = vol;
