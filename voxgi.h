@@ -85,6 +85,8 @@
             maps), cone tracing (diffuse, occlusion, glossy and shadow cones, more bounces) over
             dense mips and octrees on the CPU and GL, the caller's G-buffer textures, voxgi's own
             G-buffer, cone-traced images with exact unshadowed area light.
+     0.4.1  cone-traced images: each ray takes the indirect light of its own surface (edges);
+            CPU injection writes its volume's level 0 in place, six-direction level 1 in one pass.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -95,9 +97,9 @@
 
 #define VOXGI_VERSION_MAJOR 0
 #define VOXGI_VERSION_MINOR 4
-#define VOXGI_VERSION_PATCH 0
+#define VOXGI_VERSION_PATCH 1
 #define VOXGI_VERSION (VOXGI_VERSION_MAJOR * 10000 + VOXGI_VERSION_MINOR * 100 + VOXGI_VERSION_PATCH)
-#define VOXGI_VERSION_STRING "0.4.0"
+#define VOXGI_VERSION_STRING "0.4.1"
 
 #ifndef VOXGI_API
 #ifdef VOXGI_STATIC
