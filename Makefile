@@ -9,7 +9,8 @@ ASAN    := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -
 
 GLSL    := $(sort $(wildcard shaders/*.glsl))
 TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_mesh_io test_headless_gl test_tool
-TOOL_SRC := tools/voxgi.c tools/mesh_io.c
+TOOL_SRC := tools/voxgi.c $(wildcard tools/cli*.c tools/cmd_*.c) tools/mesh_io.c
+TOOL_H   := $(wildcard tools/*.h)
 
 .PHONY: all deps test demo bench bench-anchors clean
 all: deps $(B)/voxgi $(B)/example_voxelize
@@ -29,8 +30,14 @@ $(B)/embed_shaders: tools/embed_shaders.c | $(B)
 shaders.h: $(GLSL) $(B)/embed_shaders
 	$(B)/embed_shaders $@ $(GLSL)
 
-$(B)/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h tools/image_io.h voxgi.h shaders.h | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $(TOOL_SRC) $(LDLIBS)
+# The implementation, compiled once per configuration; the tool and the tests link it.
+$(B)/voxgi_impl.o: tools/voxgi_impl.c voxgi.h shaders.h | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -c -o $@ $<
+$(B)/asan/voxgi_impl.o: tools/voxgi_impl.c voxgi.h shaders.h | $(B)/asan
+	$(CC) -std=c99 $(ASAN) $(WARN) -c -o $@ $<
+
+$(B)/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/voxgi_impl.o | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $(TOOL_SRC) $(B)/voxgi_impl.o $(LDLIBS)
 
 $(B)/example_voxelize: examples/voxelize.c voxgi.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
@@ -45,8 +52,8 @@ $(B)/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tests/con
 $(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tests/cone_points.h tools/shapes.h shaders.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(LDLIBS)
 
-$(B)/asan/voxgi: $(TOOL_SRC) tools/mesh_io.h tools/headless_gl.h tools/image_io.h voxgi.h shaders.h | $(B)/asan
-	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(LDLIBS)
+$(B)/asan/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/asan/voxgi_impl.o | $(B)/asan
+	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(B)/asan/voxgi_impl.o $(LDLIBS)
 
 test: deps $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(addprefix $(B)/asan/,$(TESTS))
 	@bash tests/run.sh

@@ -9,7 +9,6 @@
  *
  * MESH is an OBJ (+MTL), OFF, STL or PLY file, or a built-in shape: builtin:quad,
  * builtin:subdivided-quad, builtin:cube, builtin:sphere. Every command takes --help. */
-#define VOXGI_IMPLEMENTATION
 #include "../voxgi.h"
 #include "headless_gl.h"
 #include "image_io.h"
@@ -1497,7 +1496,7 @@ static int cmd_report(int argc, char **argv)
                                 double inv = row->rmse * row->rmse / (ref_c[s] * ref_c[s]) - 1.0 / spp;
                                 need = inv > 1.0 / (1024.0 * spp) ? 1 / inv : 1024.0 * spp;
                             }
-                            row->ref_ms = ref_bvh_ms[s] + ref_ms_per_spp[s] * VOXGI__MAX(need, 1.0);
+                            row->ref_ms = ref_bvh_ms[s] + ref_ms_per_spp[s] * (need > 1.0 ? need : 1.0);
                             nrows++;
                         }
         for (i = first_row; i < nrows; i++) { /* on the front: nothing both faster and closer */
