@@ -47,15 +47,21 @@ $(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/ha
 $(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
 
-$(B)/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tests/cone_points.h tools/shapes.h shaders.h | $(B)
+TEST_H  := tests/harness.h tests/svo_checks.h tests/cone_points.h tools/shapes.h tools/headless_gl.h
+
+$(B)/test_%: tests/test_%.c voxgi.h $(TEST_H) shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
-$(B)/asan/test_%: tests/test_%.c voxgi.h tests/harness.h tests/svo_checks.h tests/cone_points.h tools/shapes.h shaders.h | $(B)/asan
+$(B)/asan/test_%: tests/test_%.c voxgi.h $(TEST_H) shaders.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(LDLIBS)
 
 $(B)/asan/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/asan/voxgi_impl.o | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(B)/asan/voxgi_impl.o $(LDLIBS)
 
-test: deps $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(addprefix $(B)/asan/,$(TESTS))
+# Leaks on purpose: tests/run.sh checks that the leak checks report it.
+$(B)/asan/leak_canary: tests/leak_canary.c tools/headless_gl.h $(B)/asan/voxgi_impl.o | $(B)/asan
+	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(B)/asan/voxgi_impl.o $(LDLIBS)
+
+test: deps $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(addprefix $(B)/asan/,$(TESTS)) $(B)/asan/leak_canary
 	@bash tests/run.sh
 
 demo: all

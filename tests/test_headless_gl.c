@@ -15,15 +15,6 @@
 #include <stddef.h>
 #include <stdlib.h>
 
-/* Mesa 22.3's OSMesa leaks a few hundred bytes of its own per context (what
- * OSMesaMakeCurrent allocates is never freed). LeakSanitizer, in a sanitised build, asks
- * this hook what to ignore. */
-#ifdef __cplusplus
-extern "C"
-#endif
-const char *__lsan_default_suppressions(void);
-const char *__lsan_default_suppressions(void) { return "leak:libOSMesa.so\n"; }
-
 /* The GL entry points the test uses, resolved per context through vxt_gl_get_proc. */
 #define TGL_FUNCS(X)                                                                          \
     X(const unsigned char *, GetString, (unsigned name))                                      \

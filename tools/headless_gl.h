@@ -178,9 +178,35 @@ static inline int vxt_gl__check_current(vxt_gl *gl, const char *who, char *err, 
     return 1;
 }
 
+/* Keeps every shared library mapped now (the GL driver and what it loaded: LLVM, the DRI
+ * driver, the EGL vendor) loaded for the rest of the process. Mesa unloads its driver when the
+ * last context goes, and a leak checker that runs at exit can then neither name a driver's
+ * frames nor match a suppression by library: the driver's own lost bytes would be reported as
+ * ours. Pinning changes nothing else: NOLOAD opens only what is already mapped. Linux only (it
+ * reads /proc/self/maps); elsewhere it does nothing. */
+static inline void vxt_gl__pin_loaded_libraries(void)
+{
+    char line[4096], last[4096] = "";
+    FILE *maps = fopen("/proc/self/maps", "r");
+    if (!maps) return;
+    while (fgets(line, sizeof line, maps)) {
+        char *path = strchr(line, '/'), *end;
+        void *lib;
+        if (!path || !strstr(path, ".so")) continue;
+        end = path + strcspn(path, "\n");
+        *end = '\0';
+        if (strcmp(path, last) == 0) continue; /* a library spans several consecutive mappings */
+        snprintf(last, sizeof last, "%s", path);
+        lib = dlopen(path, RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+        if (lib) dlclose(lib); /* the reference NOLOAD took; NODELETE stays */
+    }
+    fclose(maps);
+}
+
 static inline void vxt_gl_destroy(vxt_gl *gl)
 {
     if (!gl) return;
+    vxt_gl__pin_loaded_libraries();
     if (gl->context) {
         gl->egl_make_current(gl->display, NULL, NULL, NULL);
         gl->egl_destroy_context(gl->display, gl->context);
