@@ -1,4 +1,4 @@
-/* voxgi.h - v0.4.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
+/* voxgi.h - v0.4.1 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
 
    voxgi voxelizes triangle scenes and computes voxel-based lighting from them. Every GPU
    pass has a CPU twin that computes the same result, so the library works where no GL 4.5
@@ -32,6 +32,31 @@
          voxgi_voxels_destroy(ctx, vox);
      } else fprintf(stderr, "%s\n", voxgi_last_error(ctx));
      voxgi_destroy(ctx);
+
+   CONTENTS
+     The header reads top to bottom in layers: each part uses only the parts above it. The
+     declarations and the implementation follow the same numbered parts (a part with nothing
+     public has no banner among the declarations). A helper that two parts need moves down
+     into the lower one; inside a part the CPU twin comes first and its GL twin right after it.
+       1. config          version, linkage; allocator, assertion, thread and atomic macros
+       2. core            results, the context, memory, logging, progress; numbers (bit counts,
+                          half floats, Morton codes, random numbers, frames); exact arithmetic;
+                          the worker pool
+       3. scene           validation and flattening, materials per triangle, grids, the BVH and
+                          ray casting, lights and direct light, cameras
+       4. GL core         GL types and the loader table, programs from the embedded shaders,
+                          buffers, dispatches, raster state (absent with VOXGI_NO_GL)
+       5. voxelization    exact triangle tests, attributes, one sub-part per method (CPU, then
+                          GL), running a voxelization, OR mipmaps
+       6. volumes and mips    dense attribute volumes, isotropic and anisotropic mips, sampling
+       7. octree          the sparse voxel octree: build, lookups, bricks, sampling
+       8. cone tracing    cones gathering from a radiance volume or octree (below injection,
+                          whose further bounces gather with cones)
+       9. light injection the direct light into the voxels, and its bounces among them
+          (lighting passes to come: light-space, screen-space and line-space, one part each)
+      10. images          voxgi's own G-buffer and cone-traced images
+      11. reference renderer  the path tracer every image is measured against
+      12. built-in scenes and files
 
    METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
    (raster), atlas and atlas-compute (texture atlas points), geometry (conservative by geometry
@@ -95,6 +120,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+/* ===================================================================== 1. config */
 #define VOXGI_VERSION_MAJOR 0
 #define VOXGI_VERSION_MINOR 4
 #define VOXGI_VERSION_PATCH 1
@@ -117,7 +143,8 @@
 extern "C" {
 #endif
 
-/* ===================================================================== results */
+/* ===================================================================== 2. core */
+
 typedef enum voxgi_result {
     VOXGI_OK = 0,
     VOXGI_ERR_INVALID_ARGUMENT,    /* NULL where an object is needed, unknown enum value, ... */
@@ -141,7 +168,6 @@ typedef enum voxgi_result {
 typedef enum voxgi_backend { VOXGI_BACKEND_AUTO = 0, VOXGI_BACKEND_CPU, VOXGI_BACKEND_GL } voxgi_backend;
 typedef enum voxgi_log_level { VOXGI_LOG_ERROR = 0, VOXGI_LOG_WARNING, VOXGI_LOG_INFO, VOXGI_LOG_DEBUG } voxgi_log_level;
 
-/* ===================================================================== context */
 typedef struct voxgi_context voxgi_context;
 typedef void (*voxgi_gl_proc)(void);
 typedef voxgi_gl_proc (*voxgi_gl_loader)(const char *name);
@@ -193,7 +219,8 @@ VOXGI_API const char *voxgi_backend_name(voxgi_backend b);
 /* Detail of the last failed call on ctx (which input was bad and why, GLSL log, ...); "" if none. */
 VOXGI_API const char *voxgi_last_error(const voxgi_context *ctx);
 
-/* ===================================================================== scenes */
+/* ===================================================================== 3. scene */
+
 typedef struct voxgi_material {
     float albedo[3];        /* Lambertian reflectance */
     float emission[3];      /* emitted radiance, front face only */
@@ -243,7 +270,15 @@ typedef struct voxgi_scene {
 /* Checks a scene; the message names the mesh, triangle and what is wrong. */
 VOXGI_API voxgi_result voxgi_validate_scene(voxgi_context *ctx, const voxgi_scene *scene);
 
-/* ===================================================================== grids */
+/* A camera for the renderers and images (gluLookAt, up +Y). */
+
+typedef struct voxgi_camera {
+    double eye[3], target[3];     /* gluLookAt with up +Y */
+    double fovy_degrees;          /* vertical field of view */
+    int width, height;            /* pixels */
+} voxgi_camera;
+
+/* ----- grids */
 typedef struct voxgi_grid {
     double origin[3];       /* world position of voxel (0,0,0)'s minimum corner */
     double voxel_size;      /* edge length of the cubic voxels */
@@ -262,7 +297,8 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
                                       const voxgi_fit_desc *fit, voxgi_grid *out);
 VOXGI_API uint64_t voxgi_grid_voxel_count(const voxgi_grid *grid);
 
-/* ===================================================================== voxelization */
+/* ===================================================================== 5. voxelization */
+
 typedef enum voxgi_method {
     VOXGI_METHOD_CONSERVATIVE = 0,  /* voxel set <=> closed box meets closed triangle (26-separating) */
     VOXGI_METHOD_THIN,              /* 6-separating (Schwarz & Seidel 2010): every test of the
@@ -402,7 +438,8 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
 static inline int voxgi_bit_get(const uint32_t *bits, uint64_t index)
 { return (int)((bits[index >> 5] >> (index & 31u)) & 1u); }
 
-/* ===================================================================== attribute volumes and mipmaps */
+/* ===================================================================== 6. volumes and mips */
+
 /* Dense volumes of the attributes a voxelization averaged, with a mip chain, for the lighting
    passes to sample. Every voxel holds (value, alpha): alpha is the voxel's opacity when the
    voxels hold OPACITY, else 1 for set voxels; empty voxels are all zero. ALBEDO, NORMAL and
@@ -469,7 +506,8 @@ VOXGI_API float voxgi_lod_from_footprint(float diameter);
 VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_volume *volume, voxgi_attribute which,
                                                voxgi_direction direction, unsigned int *gl_texture_name);
 
-/* ===================================================================== sparse voxel octree */
+/* ===================================================================== 7. octree */
+
 /* The voxels of a grid in an octree over the cube of 2^depth voxels (depth = ceil(log2 of the
    largest resolution), at least 1). Levels 0..depth: level 0 is the root, level depth the voxels
    themselves; a node at level l covers 2^(depth - l) voxels per axis. Children come in tiles of
@@ -538,43 +576,8 @@ VOXGI_API voxgi_result voxgi_svo_brick(voxgi_context *ctx, const voxgi_svo *svo,
 VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
                                         const float *positions, const float *lods, float *out);
 
-/* ===================================================================== reference renderer */
-/* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, over a
-   BVH with watertight ray-triangle tests in double. Surfaces are Lambertian (albedo) and emit
-   their material's emission from their front faces; the scene's lights add point, spot,
-   directional and rectangular light; there is no environment (misses are black) and
-   transparency is ignored (every surface is opaque). Paths gather direct light at every vertex
-   (next-event estimation towards the lights and the emissive triangles) and count emission seen
-   directly from the camera. A pixel is the mean radiance over its square (uniformly jittered
-   samples). Sample s of pixel p draws its random numbers from (seed, p, s) alone, so the image
-   is the same for any thread count; the progress callback sees each pass and may cancel. */
-typedef struct voxgi_camera {
-    double eye[3], target[3];     /* gluLookAt with up +Y */
-    double fovy_degrees;          /* vertical field of view */
-    int width, height;            /* pixels */
-} voxgi_camera;
+/* ===================================================================== 8. cone tracing */
 
-typedef struct voxgi_reference_desc {
-    voxgi_camera camera;
-    int samples;                  /* per pixel; 0 = 16 */
-    int bounces;                  /* indirect bounces: 0 = direct light only, 1 = one bounce, ...;
-                                     -1 = unlimited (Russian roulette ends paths without bias) */
-    uint64_t seed;
-    int hide_emitters;            /* 1: leave out the emission the camera sees directly (to compare lighting alone) */
-} voxgi_reference_desc;
-
-typedef struct voxgi_reference_info {
-    size_t triangles, bvh_nodes;
-    uint64_t rays;                /* camera, bounce and shadow rays */
-    double ms_bvh, ms_render;
-} voxgi_reference_info;
-
-/* Renders into rgb (3 floats per pixel, linear radiance, rows from the top, width * height * 12
-   bytes); info may be NULL. */
-VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
-                                              size_t rgb_bytes, voxgi_reference_info *info);
-
-/* ===================================================================== light injection and cone tracing */
 /* How diffuse cones are traced (voxgi_cone_trace, below). */
 typedef struct voxgi_cone_desc {
     int cones;                    /* 0 = 16 */
@@ -583,36 +586,6 @@ typedef struct voxgi_cone_desc {
     float offset;                 /* start, in voxels along the normal; 0 = 1.5 */
     float max_distance;           /* in voxels; 0 = the grid's diagonal */
 } voxgi_cone_desc;
-
-/* Light injection: the radiance the voxels send out, for the cone tracer to gather. Per set
-   voxel: L = albedo / pi * E + emission (alpha = opacity, 1 when the voxels hold none), E the
-   irradiance on the voxel's mean normal at its centre moved half a voxel diagonal along that
-   normal (off its own surface), from the scene's lights and emissive triangles; area lights and
-   emitters take `samples` points. CPU: exact shadow rays, the points stratified per voxel (a 2D
-   Kronecker sequence, randomly shifted). GL: distance
-   maps drawn from each light (one orthographic layer for a directional light, six cube faces for
-   every point, spot, and stratified point on an area light or emitter: the same points for all
-   voxels), gathered per voxel with the same analytic irradiance and 3x3 map texels for the
-   visibility (a gather: no voxel is missed where texels are sparser than voxels). The voxels must
-   hold ALBEDO and NORMAL. The result is a volume of the single attribute RADIANCE with
-   desc.volume's mips. With bounces B > 1 the light then bounces among the voxels: each
-   gathers the irradiance at its centre on its normal from the volume so far (voxgi_cone_trace,
-   on the context's backend) and sends out its direct light plus albedo / pi x that, B - 1
-   times. Checks: a plane under a directional light of irradiance E gets albedo E
-   cos / pi exactly; GL and CPU agree in total power within 0.1% (two spheres under the sun) and
-   0.2% (the Cornell box's emitter), voxel by voxel to 1e-4 on 88% of the two spheres' voxels
-   (the rest lie within a map texel or two of a shadow's edge). */
-typedef struct voxgi_inject_desc {
-    voxgi_volume_desc volume;     /* filter and levels (attributes: ignored) */
-    int samples;                  /* points per area light and on the emitters (CPU: per voxel); 0 = 16 */
-    uint64_t seed;
-    int shadow_rays;              /* GL context: 1 = the CPU's exact shadow rays instead of the maps */
-    int bounces;                  /* 0 or 1: direct light; B > 1: B - 1 more bounces, each voxel gathering
-                                     with `gather` cones from the last volume at its centre */
-    voxgi_cone_desc gather;
-} voxgi_inject_desc;
-VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *voxels,
-                                          const voxgi_inject_desc *desc, voxgi_volume **out);
 
 /* Diffuse cone tracing: the irradiance at points (world positions, unit normals) gathered from a
    RADIANCE volume, and the ambient occlusion. The cones split the cosine-weighted hemisphere
@@ -684,6 +657,40 @@ VOXGI_API voxgi_result voxgi_trace_cones_svo(voxgi_context *ctx, const voxgi_svo
                                              const voxgi_cone *cones, float *radiance_opacity);
 VOXGI_API voxgi_result voxgi_cone_trace_svo_gl(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gbuffer);
 
+/* ===================================================================== 9. light injection */
+
+/* Light injection: the radiance the voxels send out, for the cone tracer to gather. Per set
+   voxel: L = albedo / pi * E + emission (alpha = opacity, 1 when the voxels hold none), E the
+   irradiance on the voxel's mean normal at its centre moved half a voxel diagonal along that
+   normal (off its own surface), from the scene's lights and emissive triangles; area lights and
+   emitters take `samples` points. CPU: exact shadow rays, the points stratified per voxel (a 2D
+   Kronecker sequence, randomly shifted). GL: distance
+   maps drawn from each light (one orthographic layer for a directional light, six cube faces for
+   every point, spot, and stratified point on an area light or emitter: the same points for all
+   voxels), gathered per voxel with the same analytic irradiance and 3x3 map texels for the
+   visibility (a gather: no voxel is missed where texels are sparser than voxels). The voxels must
+   hold ALBEDO and NORMAL. The result is a volume of the single attribute RADIANCE with
+   desc.volume's mips. With bounces B > 1 the light then bounces among the voxels: each
+   gathers the irradiance at its centre on its normal from the volume so far (voxgi_cone_trace,
+   on the context's backend) and sends out its direct light plus albedo / pi x that, B - 1
+   times. Checks: a plane under a directional light of irradiance E gets albedo E
+   cos / pi exactly; GL and CPU agree in total power within 0.1% (two spheres under the sun) and
+   0.2% (the Cornell box's emitter), voxel by voxel to 1e-4 on 88% of the two spheres' voxels
+   (the rest lie within a map texel or two of a shadow's edge). */
+typedef struct voxgi_inject_desc {
+    voxgi_volume_desc volume;     /* filter and levels (attributes: ignored) */
+    int samples;                  /* points per area light and on the emitters (CPU: per voxel); 0 = 16 */
+    uint64_t seed;
+    int shadow_rays;              /* GL context: 1 = the CPU's exact shadow rays instead of the maps */
+    int bounces;                  /* 0 or 1: direct light; B > 1: B - 1 more bounces, each voxel gathering
+                                     with `gather` cones from the last volume at its centre */
+    voxgi_cone_desc gather;
+} voxgi_inject_desc;
+VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *voxels,
+                                          const voxgi_inject_desc *desc, voxgi_volume **out);
+
+/* ===================================================================== 10. images */
+
 /* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
    pixel's centre meets first: its position (world units), its normal facing the camera, its
    triangle (in the scene's order: meshes, then triangles; UINT32_MAX and zeros where nothing
@@ -744,7 +751,40 @@ typedef struct voxgi_vct_info {
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info);
 
-/* ===================================================================== built-in scenes */
+/* ===================================================================== 11. reference renderer */
+
+/* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, over a
+   BVH with watertight ray-triangle tests in double. Surfaces are Lambertian (albedo) and emit
+   their material's emission from their front faces; the scene's lights add point, spot,
+   directional and rectangular light; there is no environment (misses are black) and
+   transparency is ignored (every surface is opaque). Paths gather direct light at every vertex
+   (next-event estimation towards the lights and the emissive triangles) and count emission seen
+   directly from the camera. A pixel is the mean radiance over its square (uniformly jittered
+   samples). Sample s of pixel p draws its random numbers from (seed, p, s) alone, so the image
+   is the same for any thread count; the progress callback sees each pass and may cancel. */
+
+typedef struct voxgi_reference_desc {
+    voxgi_camera camera;
+    int samples;                  /* per pixel; 0 = 16 */
+    int bounces;                  /* indirect bounces: 0 = direct light only, 1 = one bounce, ...;
+                                     -1 = unlimited (Russian roulette ends paths without bias) */
+    uint64_t seed;
+    int hide_emitters;            /* 1: leave out the emission the camera sees directly (to compare lighting alone) */
+} voxgi_reference_desc;
+
+typedef struct voxgi_reference_info {
+    size_t triangles, bvh_nodes;
+    uint64_t rays;                /* camera, bounce and shadow rays */
+    double ms_bvh, ms_render;
+} voxgi_reference_info;
+
+/* Renders into rgb (3 floats per pixel, linear radiance, rows from the top, width * height * 12
+   bytes); info may be NULL. */
+VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
+                                              size_t rgb_bytes, voxgi_reference_info *info);
+
+/* ===================================================================== 12. built-in scenes and files */
+
 /* Scenes that need no files, each with its usual view (256 x 256):
    "cornell-box"  the Cornell box (the published geometry in metres, the light 0.1 mm below the
                   ceiling; albedos white 0.725 0.71 0.68, red 0.63 0.065 0.05, green 0.14 0.45
@@ -765,7 +805,7 @@ VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char
 VOXGI_API void voxgi_builtin_scene_destroy(voxgi_context *ctx, voxgi_builtin_scene *scene);
 VOXGI_API const char *voxgi_builtin_scene_names(void); /* space separated */
 
-/* ===================================================================== binvox files */
+/* ----- binvox files */
 /* binvox: "dim" lists x z y extents (binvox's depth, height, width), data runs with y fastest,
    then z, then x; translate = grid origin, scale = voxel_size * max(res). */
 VOXGI_API voxgi_result voxgi_binvox_write(FILE *f, const voxgi_grid *grid, const uint32_t *bits);
@@ -784,7 +824,6 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #ifdef VOXGI_IMPLEMENTATION
 #ifndef VOXGI__IMPLEMENTED
 #define VOXGI__IMPLEMENTED
-
 #if defined(__FAST_MATH__)
 #error "voxgi: the implementation needs IEEE double arithmetic; compile it without -ffast-math"
 #endif
@@ -796,7 +835,8 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #include <float.h>
 #include <limits.h>
 
-/* ===================================================================== config defaults */
+/* ===================================================================== 1. config */
+
 #if defined(VOXGI_MALLOC) != defined(VOXGI_FREE)
 #error "voxgi: define both VOXGI_MALLOC and VOXGI_FREE, or neither"
 #endif
@@ -846,7 +886,10 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #define VOXGI__MIN(a, b) ((a) < (b) ? (a) : (b))
 #define VOXGI__MAX(a, b) ((a) > (b) ? (a) : (b))
 
-/* ===================================================================== context, errors, memory */
+/* ===================================================================== 2. core */
+
+/* ----- 2.1 the context, errors and memory */
+
 #ifndef VOXGI_NO_GL
 typedef struct voxgi__gl voxgi__gl;
 static voxgi_result voxgi__gl_init(voxgi_context *ctx);
@@ -972,22 +1015,6 @@ VOXGI_API const char *voxgi_backend_name(voxgi_backend b)
     return "unknown";
 }
 
-VOXGI_API const char *voxgi_method_name(voxgi_method m)
-{
-    switch (m) {
-    case VOXGI_METHOD_CONSERVATIVE: return "conservative";
-    case VOXGI_METHOD_THIN: return "thin";
-    case VOXGI_METHOD_SOLID: return "solid";
-    case VOXGI_METHOD_SLICEMAP: return "slicemap";
-    case VOXGI_METHOD_ATLAS: return "atlas";
-    case VOXGI_METHOD_ATLAS_COMPUTE: return "atlas-compute";
-    case VOXGI_METHOD_GEOMETRY: return "geometry";
-    case VOXGI_METHOD_VOLUME_BUFFER: return "volume-buffer";
-    case VOXGI_METHOD_COUNT_: break;
-    }
-    return "unknown";
-}
-
 VOXGI_API voxgi_result voxgi_create(const voxgi_desc *desc, voxgi_context **out)
 {
     voxgi_desc d;
@@ -1068,7 +1095,132 @@ VOXGI_API void voxgi_query_info(const voxgi_context *ctx, voxgi_info *out)
 
 VOXGI_API const char *voxgi_last_error(const voxgi_context *ctx) { return ctx ? ctx->error : ""; }
 
-/* ===================================================================== exact arithmetic
+/* ----- 2.2 numbers: bit counts, half floats, Morton codes, random numbers, frames */
+
+static uint32_t voxgi__popcount32(uint32_t x)
+{
+    x = x - ((x >> 1) & 0x55555555u);
+    x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+    return (((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
+}
+
+/* float -> half, rounded to the nearest, ties to even (finite input; 65520 and beyond: infinity).
+   Integer steps only, so shaders/svo.glsl rounds exactly alike. */
+static uint16_t voxgi__half_from_float(float f)
+{
+    uint32_t x, ax, sign, h;
+    memcpy(&x, &f, 4);
+    sign = (x >> 16) & 0x8000u;
+    ax = x & 0x7FFFFFFFu;
+    if (ax >= 0x47800000u) return (uint16_t)(sign | 0x7C00u);
+    if (ax < 0x38800000u) { /* below 2^-14: a subnormal half, |f| * 2^24 rounded (the scaling is exact) */
+        float v = fabsf(f) * 16777216.0f, frac;
+        h = (uint32_t)v;
+        frac = v - (float)h;
+        h += frac > 0.5f || (frac == 0.5f && (h & 1u));
+        return (uint16_t)(sign | h);
+    }
+    ax += 0x0FFFu + ((ax >> 13) & 1u); /* round the 13 dropped bits; a carry moves into the exponent */
+    h = (ax >> 13) - (112u << 10);
+    return (uint16_t)(sign | (h > 0x7C00u ? 0x7C00u : h));
+}
+
+static float voxgi__float_from_half(uint16_t h)
+{
+    uint32_t e = (h >> 10) & 31u, m = h & 1023u;
+    float v = e == 0 ? (float)m / 16777216.0f : (e == 31 ? (m ? NAN : INFINITY) : ldexpf((float)(m | 1024u), (int)e - 25));
+    return (h & 0x8000u) ? -v : v;
+}
+
+/* Spreads the low 21 bits of v to every third bit. */
+static uint64_t voxgi__spread3(uint64_t v)
+{
+    v &= 0x1FFFFFu;
+    v = (v | v << 32) & 0x1F00000000FFFFull;
+    v = (v | v << 16) & 0x1F0000FF0000FFull;
+    v = (v | v << 8) & 0x100F00F00F00F00Full;
+    v = (v | v << 4) & 0x10C30C30C30C30C3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+}
+
+/* The Morton code: x in bit 0 of every octal digit, y in bit 1, z in bit 2. */
+static uint64_t voxgi__morton(uint32_t x, uint32_t y, uint32_t z)
+{
+    return voxgi__spread3(x) | voxgi__spread3(y) << 1 | voxgi__spread3(z) << 2;
+}
+
+/* Sorts codes (with their payloads) ascending: LSD radix over the bytes the codes use. */
+static voxgi_result voxgi__sort_codes(voxgi_context *ctx, uint64_t *code, uint32_t *payload, size_t n, int bits)
+{
+    uint64_t *c2 = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof *c2, 0);
+    uint32_t *p2 = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof *p2, 0);
+    size_t i, count[256];
+    int shift;
+    if (!c2 || !p2) { voxgi__free(ctx, c2); voxgi__free(ctx, p2); return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to sort"); }
+    for (shift = 0; shift < bits; shift += 8) {
+        size_t sum = 0;
+        memset(count, 0, sizeof count);
+        for (i = 0; i < n; i++) count[(code[i] >> shift) & 255u]++;
+        for (i = 0; i < 256; i++) { size_t k = count[i]; count[i] = sum; sum += k; }
+        for (i = 0; i < n; i++) {
+            size_t at = count[(code[i] >> shift) & 255u]++;
+            c2[at] = code[i];
+            p2[at] = payload[i];
+        }
+        memcpy(code, c2, n * sizeof *code);
+        memcpy(payload, p2, n * sizeof *payload);
+    }
+    voxgi__free(ctx, c2);
+    voxgi__free(ctx, p2);
+    return VOXGI_OK;
+}
+
+/* Random numbers: one PCG32 stream per (seed, pixel, sample), seeded through splitmix64. */
+typedef struct voxgi__rng { uint64_t state, inc; } voxgi__rng;
+
+static uint64_t voxgi__splitmix(uint64_t *x)
+{
+    uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+static void voxgi__rng_seed(voxgi__rng *g, uint64_t seed, uint64_t pixel, uint64_t sample)
+{
+    uint64_t x = seed ^ voxgi__splitmix(&pixel) ^ (voxgi__splitmix(&sample) << 1);
+    g->state = voxgi__splitmix(&x);
+    g->inc = voxgi__splitmix(&x) | 1u;
+}
+
+static uint32_t voxgi__rng_u32(voxgi__rng *g)
+{
+    uint64_t old = g->state;
+    uint32_t xs, rot;
+    g->state = old * 6364136223846793005ull + g->inc;
+    xs = (uint32_t)(((old >> 18) ^ old) >> 27);
+    rot = (uint32_t)(old >> 59);
+    return (xs >> rot) | (xs << ((32u - rot) & 31u));
+}
+
+static double voxgi__rng_unit(voxgi__rng *g) /* [0, 1) with 53 bits */
+{
+    uint64_t hi = voxgi__rng_u32(g) >> 5, lo = voxgi__rng_u32(g) >> 6;
+    return (double)(hi * 67108864u + lo) / 9007199254740992.0;
+}
+
+/* An orthonormal basis (t, b) around unit n. */
+static void voxgi__basis(const double n[3], double t[3], double b[3])
+{
+    double sgn = n[2] >= 0 ? 1.0 : -1.0, a = -1.0 / (sgn + n[2]), c = n[0] * n[1] * a;
+    t[0] = 1 + sgn * n[0] * n[0] * a; t[1] = sgn * c; t[2] = -sgn * n[0];
+    b[0] = c; b[1] = sgn + n[1] * n[1] * a; b[2] = -n[1];
+}
+
+/* ----- 2.3 exact arithmetic */
+
+/* exact arithmetic
    Floating-point expansions (Priest; Shewchuk 1997): a real number held exactly as a sum of
    non-overlapping doubles, smallest first. Sums and products of a few float coordinates and the
    double grid are exact in this form, so the rare tests the double filter cannot decide are
@@ -1163,7 +1315,58 @@ static void voxgi__xp_plane_minus(voxgi__xp *x, double o, double k, double s, do
     voxgi__xp_add1(x, x, -w);
 }
 
-/* ===================================================================== scene validation */
+/* ----- 2.4 the worker pool: a parallel loop on the calling thread and helpers */
+
+/* ----- a parallel loop over items [0, count) in chunks, on the calling thread and
+   (thread_count - 1) helpers; fn must be safe to run concurrently on disjoint ranges. */
+typedef void (*voxgi__range_fn)(void *user, size_t first, size_t end);
+typedef struct voxgi__loop { voxgi__range_fn fn; void *user; size_t count, chunk, next; } voxgi__loop;
+
+static void *voxgi__loop_work(void *p)
+{
+    voxgi__loop *l = (voxgi__loop *)p;
+    for (;;) {
+        size_t first = VOXGI__ATOMIC_ADD_SIZE(&l->next, l->chunk);
+        if (first >= l->count) break;
+        l->fn(l->user, first, VOXGI__MIN(first + l->chunk, l->count));
+    }
+    return NULL;
+}
+
+static void voxgi__parallel(voxgi_context *ctx, size_t count, size_t chunk, voxgi__range_fn fn, void *user)
+{
+    voxgi__loop l;
+    int started = 0;
+#ifndef VOXGI_NO_THREADS
+    pthread_t threads[256];
+    int i, want = ctx->desc.thread_count - 1;
+    if ((size_t)want > count / chunk) want = (int)(count / chunk);
+#else
+    (void)ctx;
+#endif
+    l.fn = fn;
+    l.user = user;
+    l.count = count;
+    l.chunk = chunk ? chunk : 1;
+    l.next = 0;
+#ifndef VOXGI_NO_THREADS
+    for (i = 0; i < want && i < 256; i++) {
+        if (pthread_create(&threads[i], NULL, voxgi__loop_work, &l) != 0) break;
+        started++;
+    }
+#endif
+    voxgi__loop_work(&l);
+#ifndef VOXGI_NO_THREADS
+    for (i = 0; i < started; i++) pthread_join(threads[i], NULL);
+#else
+    (void)started;
+#endif
+}
+
+/* ===================================================================== 3. scene */
+
+/* ----- 3.1 validation and flattening */
+
 static const float *voxgi__vertex(const voxgi_mesh *m, size_t i)
 {
     size_t stride = m->position_stride ? m->position_stride : 3 * sizeof(float);
@@ -1358,7 +1561,28 @@ static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene,
     return VOXGI_OK;
 }
 
-/* ===================================================================== grids */
+/* Triangle t's material (material 0 without a table: albedo 0.8, no emission, opaque). */
+static const voxgi_material *voxgi__tri_material(const voxgi__flat *f, size_t t)
+{
+    static const voxgi_material fallback = {{0.8f, 0.8f, 0.8f}, {0, 0, 0}, 0};
+    return f->material_count ? &f->materials[f->mat[t]] : &fallback;
+}
+
+/* Triangle t's unit geometric normal (counter-clockwise front), in double from the float
+   vertices; zero for a degenerate triangle. */
+static void voxgi__tri_unit_normal(const voxgi__flat *f, size_t t, double n[3])
+{
+    const float *p0 = f->pos + 3 * (size_t)f->tri[3 * t], *p1 = f->pos + 3 * (size_t)f->tri[3 * t + 1], *p2 = f->pos + 3 * (size_t)f->tri[3 * t + 2];
+    double e[3], g[3], len;
+    int a;
+    for (a = 0; a < 3; a++) { e[a] = (double)p1[a] - p0[a]; g[a] = (double)p2[a] - p0[a]; }
+    for (a = 0; a < 3; a++) n[a] = e[(a + 1) % 3] * g[(a + 2) % 3] - e[(a + 2) % 3] * g[(a + 1) % 3];
+    len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (a = 0; a < 3; a++) n[a] = len > 0 ? n[a] / len : 0;
+}
+
+/* ----- 3.2 grids */
+
 VOXGI_API uint64_t voxgi_grid_voxel_count(const voxgi_grid *g)
 {
     if (!g || g->res[0] < 1 || g->res[1] < 1 || g->res[2] < 1) return 0;
@@ -1440,8 +1664,564 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     return voxgi_validate_grid(ctx, out);
 }
 
+/* ----- 3.3 BVH and ray casting */
+
+/* reference renderer
+   A BVH (binned surface area heuristic, float boxes that hold the float vertices exactly) over
+   the triangles in double; the ray-triangle test is Woop, Benthin and Wald's watertight one (2013)
+   in double, so rays never slip between triangles that share an edge. A ray leaving a surface
+   skips the triangle it left and starts a hair off it. */
+#define VOXGI__BVH_DEPTH 200 /* deeper ranges stay leaves, so traversal stacks are bounded */
+typedef struct voxgi__bvh_node {
+    float lo[3], hi[3];
+    uint32_t first, count;        /* leaf: triangles [first, first + count) of the order; inner
+                                     (count 0): left child next in the array, right child at first */
+} voxgi__bvh_node;
+
+typedef struct voxgi__tracer {
+    voxgi__flat flat;
+    double *v;                    /* 9 per triangle, in BVH order */
+    double *n;                    /* unit geometric normal (front: counter-clockwise) per triangle */
+    uint32_t *tri;                /* BVH order -> flat triangle */
+    voxgi__bvh_node *nodes;
+    size_t node_count;
+    double scale;                 /* largest coordinate magnitude: sets the offset off surfaces */
+} voxgi__tracer;
+
+typedef struct voxgi__hit { double t, p[3]; uint32_t prim; int front; } voxgi__hit;
+
+static void voxgi__tracer_free(voxgi_context *ctx, voxgi__tracer *tr)
+{
+    voxgi__flat_free(ctx, &tr->flat);
+    voxgi__free(ctx, tr->v);
+    voxgi__free(ctx, tr->n);
+    voxgi__free(ctx, tr->tri);
+    voxgi__free(ctx, tr->nodes);
+    memset(tr, 0, sizeof *tr);
+}
+
+typedef struct voxgi__bvh_build {
+    const float *cmin, *cmax;     /* per flat triangle: its box */
+    uint32_t *order;
+    voxgi__bvh_node *nodes;
+    size_t count;
+} voxgi__bvh_build;
+
+static void voxgi__box_area(const float lo[3], const float hi[3], double *area)
+{
+    double d[3];
+    int a;
+    for (a = 0; a < 3; a++) d[a] = hi[a] > lo[a] ? (double)hi[a] - lo[a] : 0;
+    *area = 2 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+}
+
+static void voxgi__bvh_split(voxgi__bvh_build *b, size_t node, size_t first, size_t end, int depth)
+{
+    enum { BINS = 12 };
+    voxgi__bvh_node *nd = &b->nodes[node];
+    float clo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, chi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+    size_t i, n = end - first, mid;
+    int a, axis = 0, best_bin = -1;
+    double best = DBL_MAX, leaf_area;
+    for (a = 0; a < 3; a++) { nd->lo[a] = FLT_MAX; nd->hi[a] = -FLT_MAX; }
+    for (i = first; i < end; i++) {
+        uint32_t t = b->order[i];
+        for (a = 0; a < 3; a++) {
+            float c = 0.5f * (b->cmin[3 * t + a] + b->cmax[3 * t + a]);
+            nd->lo[a] = VOXGI__MIN(nd->lo[a], b->cmin[3 * t + a]);
+            nd->hi[a] = VOXGI__MAX(nd->hi[a], b->cmax[3 * t + a]);
+            clo[a] = VOXGI__MIN(clo[a], c);
+            chi[a] = VOXGI__MAX(chi[a], c);
+        }
+    }
+    for (a = 1; a < 3; a++)
+        if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
+    nd->first = (uint32_t)first;
+    nd->count = (uint32_t)n;
+    if (n <= 2 || !(chi[axis] > clo[axis]) || depth >= VOXGI__BVH_DEPTH) return; /* a leaf */
+    {   /* binned SAH along the widest centroid axis */
+        size_t cnt[BINS];
+        float blo[BINS][3], bhi[BINS][3];
+        double scale = BINS / ((double)chi[axis] - clo[axis]);
+        int k;
+        for (k = 0; k < BINS; k++) { cnt[k] = 0; for (a = 0; a < 3; a++) { blo[k][a] = FLT_MAX; bhi[k][a] = -FLT_MAX; } }
+        for (i = first; i < end; i++) {
+            uint32_t t = b->order[i];
+            double c = 0.5 * ((double)b->cmin[3 * t + axis] + b->cmax[3 * t + axis]);
+            k = VOXGI__MIN((int)((c - clo[axis]) * scale), BINS - 1);
+            cnt[k]++;
+            for (a = 0; a < 3; a++) { blo[k][a] = VOXGI__MIN(blo[k][a], b->cmin[3 * t + a]); bhi[k][a] = VOXGI__MAX(bhi[k][a], b->cmax[3 * t + a]); }
+        }
+        for (k = 1; k < BINS; k++) { /* split between bins k - 1 and k */
+            float llo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, lhi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX}, rlo[3] = {FLT_MAX, FLT_MAX, FLT_MAX},
+                  rhi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+            size_t nl = 0, nr = 0;
+            double al, ar, cost;
+            int j;
+            for (j = 0; j < BINS; j++) {
+                float *lo = j < k ? llo : rlo, *hi = j < k ? lhi : rhi;
+                if (!cnt[j]) continue;
+                if (j < k) nl += cnt[j]; else nr += cnt[j];
+                for (a = 0; a < 3; a++) { lo[a] = VOXGI__MIN(lo[a], blo[j][a]); hi[a] = VOXGI__MAX(hi[a], bhi[j][a]); }
+            }
+            if (!nl || !nr) continue;
+            voxgi__box_area(llo, lhi, &al);
+            voxgi__box_area(rlo, rhi, &ar);
+            cost = al * (double)nl + ar * (double)nr;
+            if (cost < best) { best = cost; best_bin = k; }
+        }
+        voxgi__box_area(nd->lo, nd->hi, &leaf_area);
+        if (best_bin < 0 || (n <= 8 && best >= leaf_area * (double)(n - 1))) return; /* splitting does not pay */
+        for (i = mid = first; i < end; i++) { /* partition */
+            uint32_t t = b->order[i];
+            double c = 0.5 * ((double)b->cmin[3 * t + axis] + b->cmax[3 * t + axis]);
+            if (VOXGI__MIN((int)((c - clo[axis]) * scale), BINS - 1) < best_bin) { b->order[i] = b->order[mid]; b->order[mid++] = t; }
+        }
+    }
+    nd->count = 0;
+    {   /* the left child is the next node, the right one follows its subtree */
+        size_t left = b->count++, right;
+        voxgi__bvh_split(b, left, first, mid, depth + 1);
+        right = b->count++;
+        b->nodes[node].first = (uint32_t)right;
+        voxgi__bvh_split(b, right, mid, end, depth + 1);
+    }
+}
+
+static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *scene, voxgi__tracer *tr)
+{
+    voxgi__bvh_build b;
+    float *boxes = NULL;
+    size_t t, nt;
+    voxgi_result r;
+    memset(tr, 0, sizeof *tr);
+    if ((r = voxgi__flatten(ctx, scene, 0, 1, &tr->flat)) != VOXGI_OK) return r;
+    nt = tr->flat.triangle_count;
+    if (nt > (size_t)UINT32_MAX / 2) { voxgi__tracer_free(ctx, tr); return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)nt); }
+    tr->v = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, 9 * sizeof(double), 0);
+    tr->n = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, 3 * sizeof(double), 0);
+    tr->tri = (uint32_t *)voxgi__alloc_array(ctx, nt ? nt : 1, 4, 0);
+    tr->nodes = (voxgi__bvh_node *)voxgi__alloc_array(ctx, 2 * nt + 1, sizeof *tr->nodes, 1);
+    boxes = (float *)voxgi__alloc_array(ctx, nt ? nt : 1, 6 * sizeof(float), 0);
+    if (!tr->v || !tr->n || !tr->tri || !tr->nodes || !boxes) {
+        voxgi__free(ctx, boxes);
+        voxgi__tracer_free(ctx, tr);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the BVH of %lu triangles", (unsigned long)nt);
+    }
+    for (t = 0; t < nt; t++) {
+        int a, k;
+        tr->tri[t] = (uint32_t)t;
+        for (a = 0; a < 3; a++) {
+            boxes[3 * t + a] = FLT_MAX;
+            boxes[3 * nt + 3 * t + a] = -FLT_MAX;
+            for (k = 0; k < 3; k++) {
+                float c = tr->flat.pos[3 * (size_t)tr->flat.tri[3 * t + (size_t)k] + (size_t)a];
+                boxes[3 * t + a] = VOXGI__MIN(boxes[3 * t + a], c);
+                boxes[3 * nt + 3 * t + a] = VOXGI__MAX(boxes[3 * nt + 3 * t + a], c);
+                tr->scale = VOXGI__MAX(tr->scale, fabs((double)c));
+            }
+        }
+    }
+    b.cmin = boxes;
+    b.cmax = boxes + 3 * nt;
+    b.order = tr->tri;
+    b.nodes = tr->nodes;
+    b.count = 1;
+    if (nt) voxgi__bvh_split(&b, 0, 0, nt, 0);
+    else { int a; for (a = 0; a < 3; a++) { tr->nodes[0].lo[a] = 1; tr->nodes[0].hi[a] = -1; } } /* an empty box: nothing is hit */
+    tr->node_count = b.count;
+    for (t = 0; t < nt; t++) { /* vertices and normals in BVH order */
+        uint32_t src = tr->tri[t];
+        int k, a;
+        double e1[3], e2[3], len;
+        for (k = 0; k < 3; k++)
+            for (a = 0; a < 3; a++) tr->v[9 * t + 3 * (size_t)k + (size_t)a] = tr->flat.pos[3 * (size_t)tr->flat.tri[3 * (size_t)src + (size_t)k] + (size_t)a];
+        for (a = 0; a < 3; a++) { e1[a] = tr->v[9 * t + 3 + (size_t)a] - tr->v[9 * t + (size_t)a]; e2[a] = tr->v[9 * t + 6 + (size_t)a] - tr->v[9 * t + (size_t)a]; }
+        for (a = 0; a < 3; a++) tr->n[3 * t + (size_t)a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+        len = sqrt(tr->n[3 * t] * tr->n[3 * t] + tr->n[3 * t + 1] * tr->n[3 * t + 1] + tr->n[3 * t + 2] * tr->n[3 * t + 2]);
+        for (a = 0; a < 3; a++) tr->n[3 * t + (size_t)a] = len > 0 ? tr->n[3 * t + (size_t)a] / len : 0;
+    }
+    voxgi__free(ctx, boxes);
+    return VOXGI_OK;
+}
+
+/* The watertight test of ray (o, d) against triangle t for a hit in (0, tmax): its t, or -1. */
+static double voxgi__ray_triangle(const voxgi__tracer *tr, size_t t, const double o[3], const double d[3], int kx, int ky, int kz,
+                                  const double s[3], double tmax)
+{
+    const double *v = tr->v + 9 * t;
+    double ax = v[kx] - o[kx], ay = v[ky] - o[ky], az = v[kz] - o[kz];
+    double bx = v[3 + kx] - o[kx], by = v[3 + ky] - o[ky], bz = v[3 + kz] - o[kz];
+    double cx = v[6 + kx] - o[kx], cy = v[6 + ky] - o[ky], cz = v[6 + kz] - o[kz];
+    double u, w, x, det, tt;
+    (void)d;
+    ax -= s[0] * az; ay -= s[1] * az;
+    bx -= s[0] * bz; by -= s[1] * bz;
+    cx -= s[0] * cz; cy -= s[1] * cz;
+    u = cx * by - cy * bx;
+    w = ax * cy - ay * cx;
+    x = bx * ay - by * ax;
+    if ((u < 0 || w < 0 || x < 0) && (u > 0 || w > 0 || x > 0)) return -1;
+    det = u + w + x;
+    if (det == 0) return -1;
+    tt = (u * s[2] * az + w * s[2] * bz + x * s[2] * cz) / det;
+    return tt > 0 && tt < tmax ? tt : -1;
+}
+
+/* The nearest hit of ray (o, d) before tmax, skipping triangle `skip` (BVH order; UINT32_MAX:
+   none); any = 1 stops at the first hit (shadow rays). */
+static int voxgi__trace(const voxgi__tracer *tr, const double o[3], const double d[3], double tmax, uint32_t skip, int any, voxgi__hit *hit)
+{
+    uint32_t stack[VOXGI__BVH_DEPTH + 8];
+    int sp = 0, kz = 0, kx, ky, a, found = 0;
+    double inv[3], s[3];
+    size_t node = 0;
+    for (a = 1; a < 3; a++)
+        if (fabs(d[a]) > fabs(d[kz])) kz = a;
+    kx = (kz + 1) % 3;
+    ky = (kx + 1) % 3;
+    if (d[kz] < 0) { int tmp = kx; kx = ky; ky = tmp; }
+    s[0] = d[kx] / d[kz]; s[1] = d[ky] / d[kz]; s[2] = 1.0 / d[kz];
+    for (a = 0; a < 3; a++) inv[a] = 1.0 / d[a];
+    for (;;) {
+        const voxgi__bvh_node *nd = &tr->nodes[node];
+        double t0 = 0, t1 = tmax;
+        for (a = 0; a < 3 && t0 <= t1; a++) { /* slabs; the box is widened by a relative hair against rounding */
+            double lo = (nd->lo[a] - o[a]) * inv[a], hi = (nd->hi[a] - o[a]) * inv[a];
+            if (lo > hi) { double tmp = lo; lo = hi; hi = tmp; }
+            if (isnan(lo)) lo = -DBL_MAX; /* a zero direction inside the slab's plane */
+            if (isnan(hi)) hi = DBL_MAX;
+            t0 = VOXGI__MAX(t0, lo);
+            t1 = VOXGI__MIN(t1, hi * (1 + 4 * DBL_EPSILON));
+        }
+        if (t0 <= t1) {
+            if (nd->count) {
+                uint32_t i;
+                for (i = nd->first; i < nd->first + nd->count; i++) {
+                    double t;
+                    if (i == skip || (t = voxgi__ray_triangle(tr, i, o, d, kx, ky, kz, s, tmax)) < 0) continue;
+                    tmax = t;
+                    found = 1;
+                    hit->t = t;
+                    hit->prim = i;
+                    if (any) return 1;
+                }
+            } else {
+                stack[sp++] = nd->first;
+                node++;
+                continue;
+            }
+        }
+        if (!sp) break;
+        node = stack[--sp];
+    }
+    if (found) {
+        const double *n = tr->n + 3 * (size_t)hit->prim;
+        for (a = 0; a < 3; a++) hit->p[a] = o[a] + hit->t * d[a];
+        hit->front = n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0;
+    }
+    return found;
+}
+
+/* ----- 3.4 lights: direct light and the exact area light */
+
+/* What direct light needs: the scene's lights and its emissive triangles, picked by power. */
+typedef struct voxgi__lights {
+    const voxgi__tracer *tr;
+    const voxgi_scene *scene;
+    uint32_t *emitters;           /* BVH-order triangles with emission, front faces */
+    double *emitter_cdf;          /* by area x mean emission */
+    double *emitter_pdf;          /* per BVH-order triangle: the area density of picking a point on it */
+    size_t emitter_count;
+} voxgi__lights;
+
+static const voxgi_material *voxgi__prim_material(const voxgi__tracer *tr, uint32_t prim)
+{
+    return voxgi__tri_material(&tr->flat, tr->tri[prim]);
+}
+
+static void voxgi__lights_free(voxgi_context *ctx, voxgi__lights *Ls)
+{
+    voxgi__free(ctx, Ls->emitters);
+    voxgi__free(ctx, Ls->emitter_cdf);
+    voxgi__free(ctx, Ls->emitter_pdf);
+    memset(Ls, 0, sizeof *Ls);
+}
+
+static voxgi_result voxgi__lights_build(voxgi_context *ctx, const voxgi_scene *scene, const voxgi__tracer *tr, voxgi__lights *Ls)
+{
+    size_t i, nt = tr->flat.triangle_count;
+    int a;
+    memset(Ls, 0, sizeof *Ls);
+    Ls->tr = tr;
+    Ls->scene = scene;
+    Ls->emitters = (uint32_t *)voxgi__alloc_array(ctx, nt ? nt : 1, 4, 0);
+    Ls->emitter_cdf = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, sizeof(double), 0);
+    Ls->emitter_pdf = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, sizeof(double), 1);
+    if (!Ls->emitters || !Ls->emitter_cdf || !Ls->emitter_pdf) {
+        voxgi__lights_free(ctx, Ls);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the emitter table");
+    }
+    for (i = 0; i < nt; i++) { /* emitters, weighted by area x mean emission */
+        const voxgi_material *m = voxgi__prim_material(tr, (uint32_t)i);
+        const double *v = tr->v + 9 * i;
+        double power = ((double)m->emission[0] + m->emission[1] + m->emission[2]) / 3, c[3], e1[3], e2[3];
+        for (a = 0; a < 3; a++) { e1[a] = v[3 + a] - v[a]; e2[a] = v[6 + a] - v[a]; }
+        for (a = 0; a < 3; a++) c[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+        Ls->emitter_pdf[i] = power; /* / the total power, below: the area density */
+        power *= 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        if (!(power > 0)) { Ls->emitter_pdf[i] = 0; continue; }
+        Ls->emitters[Ls->emitter_count] = (uint32_t)i;
+        Ls->emitter_cdf[Ls->emitter_count] = (Ls->emitter_count ? Ls->emitter_cdf[Ls->emitter_count - 1] : 0) + power;
+        Ls->emitter_count++;
+    }
+    for (i = 0; i < nt; i++) Ls->emitter_pdf[i] /= Ls->emitter_count ? Ls->emitter_cdf[Ls->emitter_count - 1] : 1;
+    return VOXGI_OK;
+}
+
+/* Nothing between p (leaving triangle skip) and the point dist away along dir? (1e-9 short of
+   it, so the light's own triangle does not count) */
+static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const double dir[3], double dist, uint32_t skip, uint64_t *rays)
+{
+    voxgi__hit h;
+    ++*rays;
+    return !voxgi__trace(tr, p, dir, dist * (1 - 1e-9), skip, 1, &h);
+}
+
+/* Irradiance E at p (unit normal ns facing the arriving ray; leaving triangle prim, or
+   UINT32_MAX) from every light and one sampled point on the emissive triangles; the reflected
+   radiance is albedo / pi * E. With mis, the emitters' share carries the power-heuristic weight
+   against a cosine-sampled bounce finding them (the path tracer's other half), which keeps the
+   variance finite where emitters meet at concave edges. xi: a 2D sample in [0,1)^2 for the
+   points on area lights and emitters (stratified callers), or NULL to draw from g. area (or
+   NULL): the rect lights' and emitters' share of e in area[0..2], what it would be without
+   the shadow rays in area[3..5] (their visible share, for voxgi__area_irradiance), and the
+   shadow rays traced and blocked added to area[6] and area[7]. */
+static void voxgi__direct(const voxgi__lights *R, const double p[3], const double ns[3], uint32_t prim, voxgi__rng *g, int mis_weighted,
+                          const double *xi, uint64_t *rays, double e[3], double *area_share)
+{
+    const voxgi__tracer *tr = R->tr;
+    size_t li;
+    int a;
+    e[0] = e[1] = e[2] = 0;
+    for (li = 0; li < R->scene->light_count; li++) {
+        const voxgi_light *L = &R->scene->lights[li];
+        double dir[3], dist = DBL_MAX, cos_s, w = 0, q[3];
+        if (L->type == VOXGI_LIGHT_DIRECTIONAL) {
+            double len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
+            for (a = 0; a < 3; a++) dir[a] = -L->direction[a] / len;
+            w = 1;
+        } else {
+            double area = 1, cos_l = 1;
+            if (L->type == VOXGI_LIGHT_RECT) {
+                double u = xi ? xi[0] : voxgi__rng_unit(g), v = xi ? xi[1] : voxgi__rng_unit(g), n[3];
+                for (a = 0; a < 3; a++) q[a] = L->position[a] + u * L->edge_u[a] + v * L->edge_v[a];
+                for (a = 0; a < 3; a++) n[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
+                area = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+                for (a = 0; a < 3; a++) dir[a] = q[a] - p[a];
+                dist = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+                if (dist <= 0) continue;
+                for (a = 0; a < 3; a++) dir[a] /= dist;
+                cos_l = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]) / area;
+                if (cos_l <= 0) continue;
+            } else {
+                for (a = 0; a < 3; a++) { q[a] = L->position[a]; dir[a] = q[a] - p[a]; }
+                dist = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+                if (dist <= 0) continue;
+                for (a = 0; a < 3; a++) dir[a] /= dist;
+                if (L->type == VOXGI_LIGHT_SPOT) { /* smoothstep from the outer to the inner cone */
+                    double len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
+                    double c = -(dir[0] * L->direction[0] + dir[1] * L->direction[1] + dir[2] * L->direction[2]) / len;
+                    double ci = cos((double)L->spot_inner), co = cos((double)L->spot_outer), x = ci > co ? (c - co) / (ci - co) : (c >= ci ? 1 : 0);
+                    x = x < 0 ? 0 : (x > 1 ? 1 : x);
+                    cos_l = x * x * (3 - 2 * x);
+                    if (cos_l <= 0) continue;
+                }
+            }
+            w = cos_l * area / (dist * dist);
+        }
+        cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
+        if (cos_s <= 0) continue;
+        if (area_share && L->type == VOXGI_LIGHT_RECT) for (a = 0; a < 3; a++) area_share[3 + a] += L->intensity[a] * w * cos_s;
+        if (area_share) area_share[6] += 1;
+        if (!voxgi__visible(tr, p, dir, dist, prim, rays)) {
+            if (area_share) area_share[7] += 1;
+            continue;
+        }
+        for (a = 0; a < 3; a++) {
+            e[a] += L->intensity[a] * w * cos_s;
+            if (area_share && L->type == VOXGI_LIGHT_RECT) area_share[a] += L->intensity[a] * w * cos_s;
+        }
+    }
+    if (R->emitter_count) { /* one emissive triangle by power, one uniform point on it */
+        double u = (xi ? xi[0] : voxgi__rng_unit(g)) * R->emitter_cdf[R->emitter_count - 1], b1, b2, r1, q[3], dir[3], dist2, dist, cos_s, cos_l, below;
+        size_t lo = 0, hi = R->emitter_count - 1;
+        uint32_t k;
+        const double *v, *n;
+        const voxgi_material *m;
+        while (lo < hi) { size_t mid = (lo + hi) / 2; if (R->emitter_cdf[mid] <= u) lo = mid + 1; else hi = mid; }
+        k = R->emitters[lo];
+        v = tr->v + 9 * (size_t)k;
+        n = tr->n + 3 * (size_t)k;
+        below = lo ? R->emitter_cdf[lo - 1] : 0; /* with xi, the pick's remainder is the first coordinate on the triangle */
+        r1 = sqrt(xi ? VOXGI__MIN(1.0, VOXGI__MAX(0.0, (u - below) / (R->emitter_cdf[lo] - below))) : voxgi__rng_unit(g));
+        b1 = 1 - r1;
+        b2 = r1 * (xi ? xi[1] : voxgi__rng_unit(g));
+        for (a = 0; a < 3; a++) {
+            q[a] = v[a] + b1 * (v[3 + a] - v[a]) + b2 * (v[6 + a] - v[a]);
+            dir[a] = q[a] - p[a];
+        }
+        dist2 = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
+        dist = sqrt(dist2);
+        if (dist > 0 && k != prim) {
+            for (a = 0; a < 3; a++) dir[a] /= dist;
+            cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
+            cos_l = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]);
+            if (cos_s > 0 && cos_l > 0) {
+                double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / 3.14159265358979323846; /* per solid angle */
+                double mis = mis_weighted ? pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf) : 1;
+                int seen = voxgi__visible(tr, p, dir, dist, prim, rays);
+                if (area_share) { area_share[6] += 1; area_share[7] += !seen; }
+                m = voxgi__prim_material(tr, k);
+                for (a = 0; a < 3; a++) {
+                    double c = mis * m->emission[a] * cos_s / pdf_light;
+                    if (area_share) area_share[3 + a] += c;
+                    if (!seen) continue;
+                    e[a] += c;
+                    if (area_share) area_share[a] += c;
+                }
+            }
+        }
+    }
+}
+
+/* Lambert's formula: the irradiance at p on unit normal n from a convex polygon q[0..nq-1]
+   (nq <= 4) of radiance 1 whose front (the side fn faces) p sees, clipped to p's upper
+   half-space: half the sum over its edges of the angle each subtends at p times the cosine
+   between n and the normal of the plane through p and the edge. Unoccluded, exact. */
+static double voxgi__polygon_irradiance(const double q[][3], int nq, const double fn[3], const double p[3], const double n[3])
+{
+    double c[6][3], d[4], side = 0, sum = 0;
+    int k, m = 0, a;
+    for (a = 0; a < 3; a++) side += (p[a] - q[0][a]) * fn[a];
+    if (!(side > 0)) return 0; /* behind it: emitters shine from their fronts */
+    for (k = 0; k < nq; k++) {
+        d[k] = 0;
+        for (a = 0; a < 3; a++) d[k] += (q[k][a] - p[a]) * n[a];
+    }
+    for (k = 0; k < nq; k++) { /* clipped against n.(x - p) >= 0 (Sutherland-Hodgman), relative to p */
+        int j = (k + 1) % nq;
+        if (d[k] >= 0) { for (a = 0; a < 3; a++) c[m][a] = q[k][a] - p[a]; m++; }
+        if ((d[k] >= 0) != (d[j] >= 0)) {
+            double t = d[k] / (d[k] - d[j]);
+            for (a = 0; a < 3; a++) c[m][a] = q[k][a] - p[a] + t * (q[j][a] - q[k][a]);
+            m++;
+        }
+    }
+    for (k = 0; k < m; k++) {
+        double len = sqrt(c[k][0] * c[k][0] + c[k][1] * c[k][1] + c[k][2] * c[k][2]);
+        if (!(len > 0)) return 0; /* p on the polygon */
+        for (a = 0; a < 3; a++) c[k][a] /= len;
+    }
+    for (k = 0; m >= 3 && k < m; k++) {
+        const double *u = c[k], *v = c[(k + 1) % m];
+        double x[3], len;
+        x[0] = u[1] * v[2] - u[2] * v[1];
+        x[1] = u[2] * v[0] - u[0] * v[2];
+        x[2] = u[0] * v[1] - u[1] * v[0];
+        len = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        if (len > 0) sum += atan2(len, u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) * (x[0] * n[0] + x[1] * n[1] + x[2] * n[2]) / len;
+    }
+    return fabs(sum) / 2;
+}
+
+/* At most this many emissive triangles are summed analytically per shading point. */
+#define VOXGI__ANALYTIC_EMITTERS 64
+
+/* The unshadowed irradiance at p (unit normal ns, on triangle prim or UINT32_MAX) from the rect
+   lights and the emissive triangles, exactly (voxgi__polygon_irradiance): what voxgi__direct's
+   area[3..5] estimates. Times the shadow rays' visible share area[0..2] / area[3..5], the
+   shadowed irradiance without the noise of where on the lights the rays went (the ratio
+   estimator of Heitz et al. 2018): exact wherever a point sees all or none of the lights. */
+static void voxgi__area_irradiance(const voxgi__lights *R, const double p[3], const double ns[3], uint32_t prim, double e[3])
+{
+    const voxgi__tracer *tr = R->tr;
+    size_t i;
+    int a, k;
+    e[0] = e[1] = e[2] = 0;
+    for (i = 0; i < R->scene->light_count; i++) {
+        const voxgi_light *L = &R->scene->lights[i];
+        double q[4][3], fn[3], f;
+        if (L->type != VOXGI_LIGHT_RECT) continue;
+        for (a = 0; a < 3; a++) {
+            q[0][a] = L->position[a];
+            q[1][a] = (double)L->position[a] + L->edge_u[a];
+            q[2][a] = (double)L->position[a] + L->edge_u[a] + L->edge_v[a];
+            q[3][a] = (double)L->position[a] + L->edge_v[a];
+            fn[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
+        }
+        f = voxgi__polygon_irradiance((const double(*)[3])q, 4, fn, p, ns);
+        for (a = 0; a < 3; a++) e[a] += L->intensity[a] * f;
+    }
+    for (i = 0; i < R->emitter_count; i++) {
+        uint32_t t = R->emitters[i];
+        double q[3][3], f;
+        const voxgi_material *m;
+        if (t == prim) continue;
+        for (k = 0; k < 3; k++)
+            for (a = 0; a < 3; a++) q[k][a] = tr->v[9 * (size_t)t + 3 * (size_t)k + (size_t)a];
+        f = voxgi__polygon_irradiance((const double(*)[3])q, 3, tr->n + 3 * (size_t)t, p, ns);
+        m = voxgi__prim_material(tr, t);
+        for (a = 0; a < 3; a++) e[a] += m->emission[a] * f;
+    }
+}
+
+/* ----- 3.5 cameras */
+
+/* The camera's frame (gluLookAt, up +Y); fails where the view is along +-Y. */
+static voxgi_result voxgi__camera_frame(voxgi_context *ctx, const voxgi_camera *cam, double eye[3], double forward[3], double right[3],
+                                        double up[3], double *tan_half)
+{
+    double len;
+    int a;
+    if (cam->width < 1 || cam->height < 1 || cam->width > 65536 || cam->height > 65536)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d: each side must be 1..65536", cam->width, cam->height);
+    if (!(cam->fovy_degrees > 0 && cam->fovy_degrees < 180)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "fovy %g: it must lie in (0, 180) degrees", cam->fovy_degrees);
+    for (a = 0; a < 3; a++) {
+        if (!isfinite(cam->eye[a]) || !isfinite(cam->target[a])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera is not finite");
+        eye[a] = cam->eye[a];
+        forward[a] = cam->target[a] - cam->eye[a];
+    }
+    len = sqrt(forward[0] * forward[0] + forward[1] * forward[1] + forward[2] * forward[2]);
+    if (!(len > 0) || sqrt(forward[0] * forward[0] + forward[2] * forward[2]) <= 1e-12 * len)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera looks along +-Y or at its own eye: up +Y leaves no view");
+    for (a = 0; a < 3; a++) forward[a] /= len;
+    right[0] = -forward[2]; right[1] = 0; right[2] = forward[0]; /* forward x (0, 1, 0) */
+    len = sqrt(right[0] * right[0] + right[2] * right[2]);
+    right[0] /= len; right[2] /= len;
+    up[0] = right[1] * forward[2] - right[2] * forward[1];
+    up[1] = right[2] * forward[0] - right[0] * forward[2];
+    up[2] = right[0] * forward[1] - right[1] * forward[0];
+    *tan_half = tan(cam->fovy_degrees * 3.14159265358979323846 / 360);
+    return VOXGI_OK;
+}
+
+/* The unit ray direction through image point (sx, sy) in pixels. */
+static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], const double right[3], const double up[3], double tan_half,
+                              double sx, double sy, double d[3])
+{
+    double x = (2 * sx / cam->width - 1) * tan_half * cam->width / cam->height, y = (1 - 2 * sy / cam->height) * tan_half, len;
+    int a;
+    for (a = 0; a < 3; a++) d[a] = forward[a] + x * right[a] + y * up[a];
+    len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (a = 0; a < 3; a++) d[a] /= len;
+}
+
+/* ===================================================================== 4. GL core */
+
 #ifndef VOXGI_NO_GL
-/* ===================================================================== GL loader and shaders
+
+/* GL loader and shaders
    voxgi's own GL types and enums (no GL header needed, none can clash) and a table of exactly
    the functions voxgi calls, filled from the caller's loader; the first missing name is
    reported. voxgi binds programs, shader storage buffers 0..7, the dispatch-indirect buffer,
@@ -1861,9 +2641,88 @@ static voxgi_result voxgi__gl_read_buffer(voxgi_context *ctx, unsigned int buffe
     ctx->gl->GetNamedBufferSubData(buffer, 0, (ptrdiff_t)bytes, dst);
     return voxgi__gl_check(ctx, "reading a buffer back");
 }
+
+static void voxgi__gl_unbind(voxgi__gl *gl)
+{
+    int i;
+    gl->UseProgram(0);
+    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
+    for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, 0);
+}
+
+/* A zeroed buffer of the grid's words. */
+static unsigned int voxgi__gl_grid_buffer(voxgi_context *ctx, size_t bytes)
+{
+    unsigned int b = voxgi__gl_buffer(ctx, bytes, NULL), zero = 0;
+    ctx->gl->ClearNamedBufferData(b, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+    return b;
+}
+
+/* Runs `program` with one invocation per item (grid-sized dispatch in slices of 65535 groups is
+   not needed: callers keep items below 65535 * 64). */
+static void voxgi__gl_dispatch_items(voxgi__gl *gl, uint64_t items)
+{
+    gl->DispatchCompute((unsigned)((items + 63) / 64), 1, 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+/* One invocation per item, in rows of at most 65535 work groups (the shaders' item index is
+   x + y * the row's invocations); the barrier covers storage and indirect commands. */
+static void voxgi__gl_dispatch_rows(voxgi__gl *gl, uint64_t items)
+{
+    uint64_t groups = (items + 63) / 64;
+    if (groups) gl->DispatchCompute((unsigned)VOXGI__MIN(groups, (uint64_t)65535), (unsigned)((groups + 65534) / 65535), 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+}
+
+/* The GL state a raster pass changes (capabilities off, the viewport), saved by begin and given
+   back to the caller by end. */
+static const unsigned int voxgi__gl_raster_caps[9] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST,
+                                                      VOXGI__GL_CULL_FACE, VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE,
+                                                      VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP, VOXGI__GL_PROGRAM_POINT_SIZE};
+typedef struct voxgi__gl_raster_state { unsigned char enabled[9]; int viewport[4]; } voxgi__gl_raster_state;
+
+static void voxgi__gl_raster_begin(voxgi__gl *gl, voxgi__gl_raster_state *st)
+{
+    int i;
+    gl->GetIntegerv(VOXGI__GL_VIEWPORT, st->viewport);
+    for (i = 0; i < 9; i++) {
+        st->enabled[i] = gl->IsEnabled(voxgi__gl_raster_caps[i]);
+        gl->Disable(voxgi__gl_raster_caps[i]);
+    }
+}
+
+static void voxgi__gl_raster_end(voxgi__gl *gl, const voxgi__gl_raster_state *st)
+{
+    int i;
+    gl->Viewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
+    for (i = 0; i < 9; i++)
+        if (st->enabled[i]) gl->Enable(voxgi__gl_raster_caps[i]);
+        else gl->Disable(voxgi__gl_raster_caps[i]);
+}
 #endif /* VOXGI_NO_GL */
 
-/* ===================================================================== voxelization: exact triangle tests
+/* ===================================================================== 5. voxelization */
+
+VOXGI_API const char *voxgi_method_name(voxgi_method m)
+{
+    switch (m) {
+    case VOXGI_METHOD_CONSERVATIVE: return "conservative";
+    case VOXGI_METHOD_THIN: return "thin";
+    case VOXGI_METHOD_SOLID: return "solid";
+    case VOXGI_METHOD_SLICEMAP: return "slicemap";
+    case VOXGI_METHOD_ATLAS: return "atlas";
+    case VOXGI_METHOD_ATLAS_COMPUTE: return "atlas-compute";
+    case VOXGI_METHOD_GEOMETRY: return "geometry";
+    case VOXGI_METHOD_VOLUME_BUFFER: return "volume-buffer";
+    case VOXGI_METHOD_COUNT_: break;
+    }
+    return "unknown";
+}
+
+/* ----- 5.1 exact triangle tests */
+
+/* voxelization: exact triangle tests
    Conservative: a voxel is set exactly when its closed box meets the closed triangle. The test
    is Schwarz and Seidel's (2010): bounding ranges, the triangle's plane against the box, and
    the triangle's three axis-aligned projections against the box's squares, each an
@@ -1990,13 +2849,6 @@ typedef struct voxgi__attr {
     uint32_t *count;                    /* per set voxel: triangles added */
     uint64_t *sum;                      /* channels per set voxel */
 } voxgi__attr;
-
-static uint32_t voxgi__popcount32(uint32_t x)
-{
-    x = x - ((x >> 1) & 0x55555555u);
-    x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
-    return (((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
-}
 
 /* Adds triangle t's values to set voxel idx. */
 static void voxgi__attr_add(const voxgi__attr *at, const uint32_t *bits, uint64_t idx, uint32_t t)
@@ -2379,6 +3231,134 @@ static int voxgi__test_voxel(const voxgi__vox_shared *vs, const voxgi__tri *t, c
 }
 #endif
 
+/* ----- 5.2 voxels and their attributes */
+
+struct voxgi_voxels {
+    voxgi_voxels_info info;
+    uint32_t *bits;            /* CPU backend */
+    unsigned int gl_buffer;    /* GL backend */
+    voxgi__attr attr;          /* with attributes: counts and sums per set voxel (on the CPU for both backends) */
+};
+
+/* Each triangle's attribute values in fixed point, channels in the order albedo, normal,
+   emission, opacity (those asked for). */
+static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f, unsigned mask, const voxgi_blend blend[4],
+                                        voxgi__attr *at)
+{
+    double emax = 0, erange = 1, v[VOXGI__MAX_CHANNELS];
+    size_t t;
+    int c;
+    memset(at, 0, sizeof *at);
+    at->channels = (mask & VOXGI_ATTRIBUTE_ALBEDO ? 3 : 0) + (mask & VOXGI_ATTRIBUTE_NORMAL ? 3 : 0) +
+                   (mask & VOXGI_ATTRIBUTE_EMISSION ? 3 : 0) + (mask & VOXGI_ATTRIBUTE_OPACITY ? 1 : 0);
+    for (t = 0; t < f->triangle_count; t++)
+        for (c = 0; c < 3; c++) emax = VOXGI__MAX(emax, (double)voxgi__tri_material(f, t)->emission[c]);
+    while (erange < emax) erange *= 2;
+    while (erange / 2 >= emax && emax > 0) erange /= 2;
+    for (c = 0; c < 4; c++) at->blend[c] = blend[c];
+    {   /* channel -> attribute: the channels of each asked-for attribute in order */
+        int k = 0, a, n;
+        for (a = 0; a < 4; a++) {
+            if (!(mask & (1u << a))) continue;
+            for (n = 0; n < (a == 3 ? 1 : 3); n++) at->max_op[k++] = (unsigned char)(blend[a] == VOXGI_BLEND_MAX);
+        }
+    }
+    at->rec = (uint32_t *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, (size_t)at->channels * 4, 0);
+    if (!at->rec) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' attributes");
+    for (t = 0; t < f->triangle_count; t++) {
+        const voxgi_material *m = voxgi__tri_material(f, t);
+        double step[VOXGI__MAX_CHANNELS]; /* v / step is the fixed-point value: v in [0,1], normals n + 1 in [0,2] */
+        int k = 0, a;
+        if (mask & VOXGI_ATTRIBUTE_ALBEDO)
+            for (a = 0; a < 3; a++, k++) { v[k] = m->albedo[a]; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = step[k]; }
+        if (mask & VOXGI_ATTRIBUTE_NORMAL) {
+            double n[3];
+            voxgi__tri_unit_normal(f, t, n);
+            for (a = 0; a < 3; a++, k++) { v[k] = n[a] + 1; step[k] = ldexp(1.0, -23); at->zero[k] = -1; at->unit[k] = step[k]; }
+        }
+        if (mask & VOXGI_ATTRIBUTE_EMISSION)
+            for (a = 0; a < 3; a++, k++) { v[k] = m->emission[a] / erange; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = erange * step[k]; }
+        if (mask & VOXGI_ATTRIBUTE_OPACITY) { v[k] = 1.0 - m->transparency; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = step[k]; k++; }
+        for (c = 0; c < k; c++) /* round to nearest: no truncation bias */
+            at->rec[t * (size_t)at->channels + (size_t)c] = (uint32_t)floor(VOXGI__MIN(VOXGI__MAX(v[c], 0.0), 2.0) / step[c] + 0.5);
+    }
+    return VOXGI_OK;
+}
+
+/* After the bits are final: ranks, counts and sums for the attribute pass. */
+static voxgi_result voxgi__attr_alloc(voxgi_context *ctx, voxgi__attr *at, const uint32_t *bits, uint64_t words, uint64_t voxels)
+{
+    uint64_t w, before = 0;
+    uint64_t need = voxels * (4u + 8u * (uint64_t)at->channels) + words * 4u;
+    if (voxels > (uint64_t)UINT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "attributes hold at most 2^32 voxels");
+    if (ctx->desc.memory_budget && need > (uint64_t)ctx->desc.memory_budget)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the attributes of %llu voxels need %llu bytes, more than the memory budget %llu",
+                           (unsigned long long)voxels, (unsigned long long)need, (unsigned long long)ctx->desc.memory_budget);
+    at->rank = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0);
+    at->count = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), 4, 1);
+    at->sum = (uint64_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), (size_t)at->channels * 8, 1);
+    if (!at->rank || !at->count || !at->sum)
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attributes of %llu voxels", (unsigned long long)voxels);
+    for (w = 0; w < words; w++) {
+        at->rank[w] = (uint32_t)before;
+        before += voxgi__popcount32(bits[w]);
+    }
+    return VOXGI_OK;
+}
+
+static void voxgi__attr_free(voxgi_context *ctx, voxgi__attr *at)
+{
+    voxgi__free(ctx, at->rec);
+    voxgi__free(ctx, at->rank);
+    voxgi__free(ctx, at->count);
+    voxgi__free(ctx, at->sum);
+    voxgi__free(ctx, at->values);
+    memset(at, 0, sizeof *at);
+}
+
+VOXGI_API voxgi_result voxgi_voxels_read_attribute(voxgi_context *ctx, const voxgi_voxels *v, voxgi_attribute which, float *dst,
+                                                   size_t dst_bytes, size_t *needed)
+{
+    int first = 0, width = which == VOXGI_ATTRIBUTE_OPACITY ? 1 : 3, c;
+    voxgi_blend blend;
+    uint64_t i, n;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!v) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels is NULL");
+    if ((which != VOXGI_ATTRIBUTE_ALBEDO && which != VOXGI_ATTRIBUTE_NORMAL && which != VOXGI_ATTRIBUTE_EMISSION &&
+         which != VOXGI_ATTRIBUTE_OPACITY) || !(v->info.attributes & (unsigned)which))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attribute %d was not voxelized (held: 0x%x)", (int)which, v->info.attributes);
+    n = v->info.voxel_count;
+    if (needed) *needed = (size_t)(n * (uint64_t)width * 4);
+    if (!dst) return needed ? VOXGI_OK : voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "dst and needed are both NULL");
+    if (dst_bytes < n * (uint64_t)width * 4)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "the attribute needs %llu bytes, dst has %lu",
+                           (unsigned long long)(n * (uint64_t)width * 4), (unsigned long)dst_bytes);
+    if ((unsigned)which > VOXGI_ATTRIBUTE_ALBEDO && (v->info.attributes & VOXGI_ATTRIBUTE_ALBEDO)) first += 3;
+    if ((unsigned)which > VOXGI_ATTRIBUTE_NORMAL && (v->info.attributes & VOXGI_ATTRIBUTE_NORMAL)) first += 3;
+    if ((unsigned)which > VOXGI_ATTRIBUTE_EMISSION && (v->info.attributes & VOXGI_ATTRIBUTE_EMISSION)) first += 3;
+    blend = v->attr.blend[which == VOXGI_ATTRIBUTE_ALBEDO ? 0 : (which == VOXGI_ATTRIBUTE_NORMAL ? 1 : (which == VOXGI_ATTRIBUTE_EMISSION ? 2 : 3))];
+    for (i = 0; i < n; i++)
+        for (c = 0; c < width; c++) {
+            int ch = first + c;
+            double q = (double)v->attr.sum[i * (uint64_t)v->attr.channels + (uint64_t)ch], k = (double)v->attr.count[i], out;
+            if (v->attr.values) out = v->attr.values[i * (uint64_t)v->attr.channels + (uint64_t)ch];
+            else if (blend == VOXGI_BLEND_AVERAGE) out = v->attr.zero[ch] + q / k * v->attr.unit[ch];
+            else if (blend == VOXGI_BLEND_ADD) out = k * v->attr.zero[ch] + q * v->attr.unit[ch];
+            else out = v->attr.zero[ch] + q * v->attr.unit[ch];
+            dst[i * (uint64_t)width + (uint64_t)c] = (float)out;
+        }
+    return VOXGI_OK;
+}
+
+VOXGI_API void voxgi_voxels_query(const voxgi_voxels *v, voxgi_voxels_info *out)
+{
+    if (!out) return;
+    if (!v) { memset(out, 0, sizeof *out); return; }
+    *out = v->info;
+}
+
+/* ----- 5.3 conservative, thin and solid (the GL triangle pass serves all three): CPU, then GL */
+
 /* ----- CPU conservative voxelizer */
 static void voxgi__set_voxel(const voxgi__vox_shared *vs, voxgi__stats *st, int64_t i, int64_t j, int64_t k)
 {
@@ -2727,6 +3707,525 @@ static void voxgi__prefix_xor(uint32_t *bits, const voxgi_grid *g, int A)
     }
 }
 
+static uint64_t voxgi__popcount_words(const uint32_t *w, uint64_t n)
+{
+    uint64_t i, c = 0;
+    for (i = 0; i < n; i++) {
+        uint32_t x = w[i];
+        x = x - ((x >> 1) & 0x55555555u);
+        x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+        c += (((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
+    }
+    return c;
+}
+
+/* Flood fill from the grid's boundary through empty voxels (6-connected), by sweeps along
+   every line of each axis in both directions until nothing changes; returns the solid: what the
+   flood does not reach. Lines run in parallel (a bit set by another line late is seen by the
+   next sweep; the fixed point does not depend on the order). */
+typedef struct voxgi__flood_job {
+    const voxgi_grid *g;
+    const uint32_t *bits;
+    uint32_t *out;
+    int axis, changed;
+} voxgi__flood_job;
+
+#define VOXGI__GET(b, l) (((b)[(l) >> 5] >> ((l) & 31)) & 1u)
+
+static void voxgi__flood_lines(void *user, size_t first, size_t end)
+{
+    voxgi__flood_job *job = (voxgi__flood_job *)user;
+    uint64_t n[3], len, stride, line, t;
+    int axis = job->axis, changed = 0, d;
+    n[0] = (uint64_t)job->g->res[0]; n[1] = (uint64_t)job->g->res[1]; n[2] = (uint64_t)job->g->res[2];
+    len = n[axis];
+    stride = axis == 0 ? 1 : (axis == 1 ? n[0] : n[0] * n[1]);
+    for (line = first; line < end; line++) {
+        uint64_t c[3], base;
+        c[axis] = 0;
+        c[(axis + 1) % 3] = line % n[(axis + 1) % 3];
+        c[(axis + 2) % 3] = line / n[(axis + 1) % 3];
+        base = c[0] + n[0] * (c[1] + n[1] * c[2]);
+        for (d = 0; d < 2; d++) {
+            int reach = 0;
+            for (t = 0; t < len; t++) {
+                uint64_t l = base + stride * (d ? len - 1 - t : t);
+                if (VOXGI__GET(job->bits, l)) reach = 0;
+                else if ((VOXGI__ATOMIC_LOAD_U32(&job->out[l >> 5]) >> (l & 31)) & 1u) reach = 1;
+                else if (reach) { VOXGI__ATOMIC_OR_U32(&job->out[l >> 5], 1u << (l & 31)); changed = 1; }
+            }
+        }
+    }
+    if (changed) VOXGI__ATOMIC_STORE_INT(&job->changed, 1);
+}
+
+static voxgi_result voxgi__flood_solid(voxgi_context *ctx, const voxgi_grid *g, uint32_t *bits)
+{
+    uint64_t nx = (uint64_t)g->res[0], ny = (uint64_t)g->res[1], nz = (uint64_t)g->res[2], words = voxgi__grid_words(g);
+    uint64_t i, j, k;
+    voxgi__flood_job job;
+    if (!(job.out = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 1))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the flood fill");
+    job.g = g;
+    job.bits = bits;
+    /* seeds: empty voxels on the boundary */
+    for (k = 0; k < nz; k++)
+        for (j = 0; j < ny; j++)
+            for (i = 0; i < nx; i++) {
+                uint64_t l = i + nx * (j + ny * k);
+                if ((i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) && !VOXGI__GET(bits, l))
+                    job.out[l >> 5] |= 1u << (l & 31);
+            }
+    do {
+        job.changed = 0;
+        for (job.axis = 0; job.axis < 3; job.axis++) {
+            uint64_t n[3];
+            n[0] = nx; n[1] = ny; n[2] = nz;
+            voxgi__parallel(ctx, (size_t)(n[(job.axis + 1) % 3] * n[(job.axis + 2) % 3]), 64, voxgi__flood_lines, &job);
+        }
+    } while (job.changed);
+    for (i = 0; i < words; i++) bits[i] = ~job.out[i];
+    if (voxgi_grid_voxel_count(g) % 32) bits[words - 1] &= (1u << (voxgi_grid_voxel_count(g) % 32)) - 1u;
+    voxgi__free(ctx, job.out);
+    return VOXGI_OK;
+}
+#undef VOXGI__GET
+
+#ifndef VOXGI_NO_GL
+
+/* GL voxelizers
+   The twins of the CPU parts above, one GL pass per method (GLSL in shaders/). The CPU prepares
+   each vertex (voxel coordinates and exact ranges, O(vertices)); the GPU does everything per
+   triangle, fragment and voxel; what an exact pass's filter cannot decide comes back here and is
+   decided exactly, so the bits equal the CPU's. */
+typedef struct voxgi__gl_vprep { double q[4]; int32_t lo[4], hi[4]; float w[4], pad[4]; } voxgi__gl_vprep; /* std430 */
+
+#define VOXGI__GL_PAIR_CAPACITY 65536u
+
+/* Uploads the prepared vertices (binding 0) and the triangles (binding 1). */
+static void voxgi__gl_scene_buffers(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp, unsigned int *verts,
+                                    unsigned int *tris, voxgi_result *r)
+{
+    voxgi__gl_vprep *gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
+    size_t v;
+    int i;
+    *verts = *tris = 0;
+    if (!gv) { *r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count); return; }
+    for (v = 0; v < f->vertex_count; v++)
+        for (i = 0; i < 3; i++) gv[v].q[i] = vp[v].q[i];
+    *verts = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
+    *tris = voxgi__gl_buffer(ctx, f->triangle_count * 3 * sizeof(uint32_t), f->tri);
+    voxgi__free(ctx, gv);
+    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, *verts);
+    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *tris);
+}
+
+/* Pass 0 over all triangles (in slices of at most 65535 work groups), then pass 1 over the big
+   ones it listed, sized on the GPU; the program's other uniforms are set by the caller. */
+static void voxgi__gl_run_triangles(voxgi__gl *gl, unsigned int p, size_t nt, unsigned int control)
+{
+    size_t t0;
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+    for (t0 = 0; t0 < nt; t0 += 65535u * 64u) {
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_offset"), (unsigned)t0);
+        gl->DispatchCompute((unsigned)VOXGI__MIN((nt - t0 + 63) / 64, (size_t)65535), 1, 1);
+    }
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, control);
+    gl->DispatchComputeIndirect(0);
+    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/* The geometry-shader voxelizer's draw: every triangle once into an attachment-less
+   framebuffer of view x view pixels (voxel columns); the caller's GL state is restored. */
+static void voxgi__gl_draw_geometry(voxgi__gl *gl, unsigned int p, size_t nt, int view)
+{
+    voxgi__gl_raster_state state;
+    unsigned int fbo = 0, vao = 0;
+    voxgi__gl_raster_begin(gl, &state);
+    gl->CreateVertexArrays(1, &vao);
+    gl->CreateFramebuffers(1, &fbo);
+    gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, view);
+    gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, view);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+    gl->BindVertexArray(vao);
+    gl->Viewport(0, 0, view, view);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_view"), view);
+    gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+    gl->BindVertexArray(0);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    voxgi__gl_raster_end(gl, &state);
+}
+
+/* Runs the conservative tests of every triangle: compute dispatches, or the geometry draw. */
+static void voxgi__gl_run(voxgi__gl *gl, const voxgi_voxelize_desc *d, unsigned int p, size_t nt, unsigned int control)
+{
+    if (d->method == VOXGI_METHOD_GEOMETRY)
+        voxgi__gl_draw_geometry(gl, p, nt, VOXGI__MAX(d->grid.res[0], VOXGI__MAX(d->grid.res[1], d->grid.res[2])));
+    else voxgi__gl_run_triangles(gl, p, nt, control);
+}
+
+/* The attribute pass after the conservative (or thin) bits are final in buf[2]: the same
+   triangles again, each set voxel receiving its triangles' values on the GPU; the triangles the
+   bit pass flagged (buf[5]) and the pairs its filter could not decide are added here, exactly.
+   pair_capacity: the bit pass's pair count, which this pass cannot exceed. */
+static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                             const voxgi_voxelize_desc *d, const unsigned int *buf, uint32_t pair_capacity,
+                                             voxgi__attr *attr)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    uint64_t words = voxgi__grid_words(g), voxels = 0, w, stride = 1 + 2 * (uint64_t)attr->channels, s;
+    size_t nt = f->triangle_count, flag_words = (nt + 31) / 32, k;
+    unsigned int control_buf = 0, pairs_buf = 0, rank_buf = 0, rec_buf = 0, sums_buf = 0, zero = 0;
+    unsigned int p = d->method == VOXGI_METHOD_GEOMETRY ? gl->prog_voxelize_geometry : gl->prog_voxelize_conservative;
+    uint32_t control[8], *bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0), *sums = NULL, *flags = NULL, *pairs = NULL;
+    voxgi_result r = VOXGI_OK;
+    if (!bits) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attribute pass");
+    r = voxgi__gl_read_buffer(ctx, buf[2], bits, (size_t)words * 4);
+    for (w = 0; w < words; w++) voxels += voxgi__popcount32(bits[w]);
+    if (r == VOXGI_OK && voxels * stride * 4 > (uint64_t)gl->max_ssbo_bytes)
+        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the attribute sums of %llu voxels exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE; "
+                        "use the CPU backend", (unsigned long long)voxels);
+    if (r == VOXGI_OK) r = voxgi__attr_alloc(ctx, attr, bits, words, voxels);
+    if (r == VOXGI_OK) {
+        memset(control, 0, sizeof control);
+        control[1] = control[2] = 1;
+        control_buf = voxgi__gl_buffer(ctx, sizeof control, control);
+        pairs_buf = voxgi__gl_buffer(ctx, (size_t)VOXGI__MAX(pair_capacity, 1u) * 16, NULL);
+        rank_buf = voxgi__gl_buffer(ctx, (size_t)words * 4, attr->rank);
+        rec_buf = voxgi__gl_buffer(ctx, nt * (size_t)attr->channels * 4, attr->rec);
+        sums_buf = voxgi__gl_buffer(ctx, (size_t)(voxels * stride * 4), NULL);
+        gl->ClearNamedBufferData(sums_buf, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        r = voxgi__gl_check(ctx, "allocating the attribute buffers");
+    }
+    if (r == VOXGI_OK) {
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, control_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, pairs_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, rank_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 8, rec_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 9, sums_buf);
+        gl->UseProgram(p);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), pair_capacity);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 1);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr->channels);
+        {
+            unsigned int max_channels = 0;
+            int c;
+            for (c = 0; c < attr->channels; c++) max_channels |= (unsigned)attr->max_op[c] << c;
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_max_channels"), max_channels);
+        }
+        voxgi__gl_run(gl, d, p, nt, control_buf);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
+        for (k = 7; k < 10; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, 0);
+        r = voxgi__gl_read_buffer(ctx, control_buf, control, sizeof control);
+        if (r == VOXGI_OK && control[4] > pair_capacity)
+            r = voxgi__fail(ctx, VOXGI_ERR_GL, "the attribute pass found %u undecided pairs, the bit pass %u", control[4], pair_capacity);
+    }
+    if (r == VOXGI_OK) { /* the GPU's sums, then the CPU's share */
+        sums = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels * stride : 1), 4, 0);
+        flags = (uint32_t *)voxgi__alloc_array(ctx, flag_words ? flag_words : 1, 4, 0);
+        pairs = (uint32_t *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(control[4], 1u), 16, 0);
+        if (!sums || !flags || !pairs) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to read the attribute sums");
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, sums_buf, sums, (size_t)(voxels * stride * 4));
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[5], flags, flag_words * 4);
+        if (r == VOXGI_OK && control[4]) r = voxgi__gl_read_buffer(ctx, pairs_buf, pairs, (size_t)control[4] * 16);
+    }
+    if (r == VOXGI_OK) {
+        voxgi__vox_shared vs;
+        voxgi__stats st = {0, 0, 0};
+        int c, i;
+        for (s = 0; s < voxels; s++) {
+            attr->count[s] = sums[s * stride];
+            for (c = 0; c < attr->channels; c++)
+                attr->sum[s * (uint64_t)attr->channels + (uint64_t)c] =
+                    (uint64_t)sums[s * stride + 1 + 2 * (uint64_t)c] | ((uint64_t)sums[s * stride + 2 + 2 * (uint64_t)c] << 32);
+        }
+        voxgi__vox_shared_init(&vs, g, f, vp, d->method, bits);
+        vs.attr = attr;
+        for (k = 0; k < nt; k++)
+            if (flags[k >> 5] & (1u << (k & 31u))) {
+                st.tri = (uint32_t)k;
+                voxgi__voxelize_triangle(&vs, k, &st);
+            }
+        for (k = 0; k < control[4]; k++) {
+            voxgi__tri t;
+            const uint32_t *pr = pairs + 4 * k;
+            int32_t rel[3];
+            st.tri = pr[0];
+            if (!voxgi__tri_setup(&vs, pr[0], &t)) continue;
+            voxgi__tri_resolve_signs(&vs, &t, &st);
+            voxgi__tri_forms(&t);
+            for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
+            if (voxgi__test_voxel(&vs, &t, rel, &st)) voxgi__emit(&vs, &st, &t, rel);
+        }
+    }
+    voxgi__gl_delete_buffer(ctx, control_buf);
+    voxgi__gl_delete_buffer(ctx, pairs_buf);
+    voxgi__gl_delete_buffer(ctx, rank_buf);
+    voxgi__gl_delete_buffer(ctx, rec_buf);
+    voxgi__gl_delete_buffer(ctx, sums_buf);
+    voxgi__free(ctx, bits);
+    voxgi__free(ctx, sums);
+    voxgi__free(ctx, flags);
+    voxgi__free(ctx, pairs);
+    return r;
+}
+
+/* The triangle pass: conservative/thin voxels (solid_axis < 0) or solid toggles along
+   solid_axis, into a new buffer *bits_out. What the GPU's filter cannot decide is decided here
+   exactly and written back. */
+
+static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                            const voxgi_voxelize_desc *d, int solid_axis, unsigned int *bits_out,
+                                            voxgi_voxels_info *info, voxgi__attr *attr)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    size_t bytes = (size_t)voxgi__grid_words(g) * 4, v, nt = f->triangle_count, flag_words = (nt + 31) / 32;
+    unsigned int buf[7] = {0, 0, 0, 0, 0, 0, 0}, zero = 0, capacity = VOXGI__GL_PAIR_CAPACITY;
+    uint32_t control[8];
+    voxgi__gl_vprep *gv;
+    uint32_t *copy = NULL, *flags = NULL, *pairs = NULL;
+    unsigned int p = solid_axis >= 0 ? gl->prog_voxelize_solid
+                     : (d->method == VOXGI_METHOD_GEOMETRY ? gl->prog_voxelize_geometry : gl->prog_voxelize_conservative);
+    voxgi_result r;
+    int i, attempt;
+    gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
+    if (!gv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
+    for (v = 0; v < f->vertex_count; v++) {
+        for (i = 0; i < 3; i++) {
+            gv[v].q[i] = vp[v].q[i];
+            gv[v].lo[i] = vp[v].lo[i];
+            gv[v].hi[i] = vp[v].hi[i];
+            gv[v].w[i] = f->pos[3 * v + (size_t)i];
+        }
+        gv[v].q[3] = vp[v].frac_bits;
+        gv[v].lo[3] = vp[v].exact_axes;
+    }
+    buf[0] = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
+    buf[1] = voxgi__gl_buffer(ctx, nt * 3 * sizeof(uint32_t), f->tri);
+    buf[6] = voxgi__gl_buffer(ctx, nt * 4, NULL);
+    voxgi__free(ctx, gv);
+    /* a solid pass whose pair list overflowed runs again with room for all of them: toggles
+       cannot be patched the way set bits can */
+    for (attempt = 0; attempt < 2; attempt++) {
+        memset(control, 0, sizeof control);
+        control[1] = 1; /* work groups per big triangle: raised by pass 0 */
+        control[2] = 1;
+        buf[2] = voxgi__gl_grid_buffer(ctx, bytes);
+        buf[3] = voxgi__gl_buffer(ctx, sizeof control, control);
+        buf[4] = voxgi__gl_buffer(ctx, (size_t)capacity * 16, NULL);
+        buf[5] = voxgi__gl_buffer(ctx, flag_words * 4, NULL);
+        gl->ClearNamedBufferData(buf[5], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        r = voxgi__gl_check(ctx, "allocating the voxelization buffers");
+        if (r != VOXGI_OK) break;
+        for (i = 0; i < 7; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i]);
+        gl->UseProgram(p);
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_count"), (unsigned)nt);
+        gl->ProgramUniform1d(p, gl->GetUniformLocation(p, "u_inv_s"), 1.0 / g->voxel_size);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), capacity);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_solid_axis"), solid_axis);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_thin"), d->method == VOXGI_METHOD_THIN);
+        if (solid_axis < 0) gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
+        voxgi__gl_run(gl, d, p, nt, buf[3]);
+        r = voxgi__gl_read_buffer(ctx, buf[3], control, sizeof control);
+        if (r != VOXGI_OK || solid_axis < 0 || control[4] <= capacity) break;
+        capacity = control[4];
+        for (i = 2; i < 6; i++) { voxgi__gl_delete_buffer(ctx, buf[i]); buf[i] = 0; }
+    }
+    /* the undecided: control[4] pairs, control[5] flagged triangles */
+    if (r == VOXGI_OK && (control[4] || control[5])) {
+        size_t np = VOXGI__MIN((size_t)control[4], (size_t)capacity), k;
+        copy = (uint32_t *)voxgi__alloc(ctx, bytes);
+        flags = (uint32_t *)voxgi__alloc_array(ctx, flag_words, 4, 0);
+        pairs = (uint32_t *)voxgi__alloc_array(ctx, np, 16, 0);
+        if (!copy || !flags || !pairs) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to resolve the GL pass's undecided tests");
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[2], copy, bytes);
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[5], flags, flag_words * 4);
+        if (r == VOXGI_OK && np) r = voxgi__gl_read_buffer(ctx, buf[4], pairs, np * 16);
+        if (r == VOXGI_OK) {
+            voxgi__vox_shared vs;
+            voxgi__stats st = {0, 0, 0};
+            voxgi__vox_shared_init(&vs, g, f, vp, d->method, copy);
+            vs.solid_axis = solid_axis;
+            for (k = 0; k < nt; k++)
+                if (flags[k >> 5] & (1u << (k & 31u))) {
+                    if (solid_axis >= 0) voxgi__solid_triangle(&vs, k, &st);
+                    else voxgi__voxelize_triangle(&vs, k, &st);
+                    info->exact_triangles++;
+                }
+            for (k = 0; k < np; k++) {
+                voxgi__tri t;
+                const uint32_t *pr = pairs + 4 * k;
+                int32_t rel[3];
+                if (solid_axis >= 0) {
+                    if (!voxgi__solid_setup(&vs, pr[0], &t, &st)) continue;
+                    for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
+                    voxgi__solid_column(&vs, &t, rel, &st);
+                } else if (voxgi__tri_setup(&vs, pr[0], &t)) {
+                    voxgi__tri_resolve_signs(&vs, &t, &st);
+                    voxgi__tri_forms(&t);
+                    for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
+                    if (voxgi__test_voxel(&vs, &t, rel, &st)) voxgi__emit(&vs, &st, &t, rel);
+                }
+            }
+            info->exact_tests += st.exact_tests;
+            gl->NamedBufferSubData(buf[2], 0, (ptrdiff_t)bytes, copy);
+            r = voxgi__gl_check(ctx, "uploading the exact decisions");
+        }
+    }
+    if (r == VOXGI_OK && attr) r = voxgi__gl_attribute_pass(ctx, f, vp, d, buf, control[4], attr);
+    voxgi__gl_unbind(gl);
+    for (i = 0; i < 7; i++)
+        if (i != 2) voxgi__gl_delete_buffer(ctx, buf[i]);
+    voxgi__free(ctx, copy);
+    voxgi__free(ctx, flags);
+    voxgi__free(ctx, pairs);
+    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, buf[2]); return r; }
+    *bits_out = buf[2];
+    return VOXGI_OK;
+}
+
+/* Counts the set bits of a grid buffer on the GPU. */
+static voxgi_result voxgi__gl_popcount(voxgi_context *ctx, unsigned int buffer, uint64_t words, uint64_t *count)
+{
+    voxgi__gl *gl = ctx->gl;
+    unsigned int p, count_buf;
+    uint32_t c = 0;
+    voxgi_result r = voxgi__gl_get_program(ctx, "popcount.glsl", &gl->prog_popcount);
+    if (r != VOXGI_OK) return r;
+    p = gl->prog_popcount;
+    count_buf = voxgi__gl_buffer(ctx, 4, &c);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, buffer);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, count_buf);
+    gl->UseProgram(p);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
+    gl->DispatchCompute((unsigned)VOXGI__MIN((words + 63) / 64, (uint64_t)1024), 1, 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+    voxgi__gl_unbind(gl);
+    r = voxgi__gl_read_buffer(ctx, count_buf, &c, 4);
+    voxgi__gl_delete_buffer(ctx, count_buf);
+    *count = c;
+    return r;
+}
+
+/* Solid parity along axis A: toggles, then one walk per line. */
+static voxgi_result voxgi__gl_solid_parity(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                           const voxgi_voxelize_desc *d, int A, unsigned int *solid, voxgi_voxels_info *info)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    unsigned int toggles = 0, p = gl->prog_solid_prefix;
+    voxgi_result r = voxgi__gl_triangle_pass(ctx, f, vp, d, A, &toggles, info, NULL);
+    if (r != VOXGI_OK) return r;
+    *solid = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, toggles);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *solid);
+    gl->UseProgram(p);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
+    voxgi__gl_dispatch_items(gl, (uint64_t)g->res[(A + 1) % 3] * (uint64_t)g->res[(A + 2) % 3]);
+    voxgi__gl_unbind(gl);
+    voxgi__gl_delete_buffer(ctx, toggles);
+    return voxgi__gl_check(ctx, "the solid parity pass");
+}
+
+/* Solid by flooding the outside of the conservative surface, sweeping until nothing grows. */
+static voxgi_result voxgi__gl_solid_flood(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                          const voxgi_voxelize_desc *d, unsigned int *solid, voxgi_voxels_info *info)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    voxgi_voxelize_desc cd = *d;
+    size_t bytes = (size_t)voxgi__grid_words(g) * 4;
+    unsigned int surface = 0, outside, changed_buf, p = gl->prog_flood;
+    uint32_t changed = 1;
+    voxgi_result r;
+    int axis;
+    cd.method = VOXGI_METHOD_CONSERVATIVE;
+    r = voxgi__gl_triangle_pass(ctx, f, vp, &cd, -1, &surface, info, NULL);
+    if (r != VOXGI_OK) return r;
+    outside = voxgi__gl_grid_buffer(ctx, bytes);
+    changed_buf = voxgi__gl_buffer(ctx, 4, &changed);
+    *solid = voxgi__gl_grid_buffer(ctx, bytes);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, surface);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, outside);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, changed_buf);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, *solid);
+    gl->UseProgram(p);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)(bytes / 4));
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 0);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), 2);
+    voxgi__gl_dispatch_items(gl, (uint64_t)g->res[0] * (uint64_t)g->res[1]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 1);
+    while (changed && r == VOXGI_OK) {
+        changed = 0;
+        gl->NamedBufferSubData(changed_buf, 0, 4, &changed);
+        for (axis = 0; axis < 3; axis++) {
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), axis);
+            voxgi__gl_dispatch_items(gl, (uint64_t)g->res[(axis + 1) % 3] * (uint64_t)g->res[(axis + 2) % 3]);
+        }
+        r = voxgi__gl_read_buffer(ctx, changed_buf, &changed, 4);
+    }
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 2);
+    voxgi__gl_dispatch_items(gl, bytes / 4);
+    voxgi__gl_unbind(gl);
+    voxgi__gl_delete_buffer(ctx, surface);
+    voxgi__gl_delete_buffer(ctx, outside);
+    voxgi__gl_delete_buffer(ctx, changed_buf);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the flood fill");
+    if (r != VOXGI_OK) voxgi__gl_delete_buffer(ctx, *solid);
+    return r;
+}
+#endif /* VOXGI_NO_GL */
+
+/* ----- 5.4 the rasterizer's coverage and the raster slicemap: CPU, then GL */
+
+/* Rounds to the rasterizer's subpixel grid (1/256 pixel), half up. */
+static double voxgi__snap256(double x) { return floor(x * 256.0 + 0.5) / 256.0; }
+
+/* ----- the rasterizer's coverage, exactly: every pixel centre (i + 1/2, j + 1/2) in [0,w)x[0,h)
+   that a triangle with corners on the 1/256 subpixel grid covers: strictly inside, or on an
+   edge the fill rule gives it (Mesa's, measured: the CCW edge direction d has d_y < 0, or
+   d_y == 0 and d_x > 0). Exact in double while coordinates stay below 2^17 pixels. */
+typedef void (*voxgi__pixel_fn)(void *user, uint32_t tri, int i, int j);
+
+static void voxgi__raster_centres(const double xin[3], const double yin[3], int w, int h, voxgi__pixel_fn fn, void *user,
+                                  uint32_t tri)
+{
+    double x[3], y[3], area;
+    int k, i0, i1, j0, j1, i, j;
+    for (k = 0; k < 3; k++) { x[k] = xin[k]; y[k] = yin[k]; }
+    area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
+    if (area == 0) return; /* no fragments */
+    if (area < 0) { /* make it CCW: the fill rule speaks of CCW edges */
+        double tx = x[1], ty = y[1];
+        x[1] = x[2]; y[1] = y[2]; x[2] = tx; y[2] = ty;
+    }
+    i0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(x[0], VOXGI__MIN(x[1], x[2])) - 0.5), 0.0);
+    i1 = (int)VOXGI__MIN(floor(VOXGI__MAX(x[0], VOXGI__MAX(x[1], x[2])) - 0.5), (double)w - 1);
+    j0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(y[0], VOXGI__MIN(y[1], y[2])) - 0.5), 0.0);
+    j1 = (int)VOXGI__MIN(floor(VOXGI__MAX(y[0], VOXGI__MAX(y[1], y[2])) - 0.5), (double)h - 1);
+    for (j = j0; j <= j1; j++)
+        for (i = i0; i <= i1; i++) {
+            double px = i + 0.5, py = j + 0.5;
+            int inside = 1;
+            for (k = 0; k < 3 && inside; k++) {
+                double dx = x[(k + 1) % 3] - x[k], dy = y[(k + 1) % 3] - y[k];
+                double e = dx * (py - y[k]) - dy * (px - x[k]);
+                inside = e > 0 || (e == 0 && (dy < 0 || (dy == 0 && dx > 0)));
+            }
+            if (inside) fn(user, tri, i, j);
+        }
+}
+
 /* ----- CPU raster slicemap: the rasterizer's sampling, exactly. A pixel centre is covered when
    strictly inside the projected triangle, or on an edge the fill rule gives it (the rule of
    Mesa's rasterizer, measured: an edge whose CCW direction d has d_b < 0, or d_b == 0 and
@@ -2783,44 +4282,115 @@ static void voxgi__slicemap_triangle(const voxgi__vox_shared *vs, size_t ti, vox
     }
 }
 
-/* ===================================================================== voxelization: rasterizer coverage, Volume Buffer */
-/* Rounds to the rasterizer's subpixel grid (1/256 pixel), half up. */
-static double voxgi__snap256(double x) { return floor(x * 256.0 + 0.5) / 256.0; }
+#ifndef VOXGI_NO_GL
 
-/* ----- the rasterizer's coverage, exactly: every pixel centre (i + 1/2, j + 1/2) in [0,w)x[0,h)
-   that a triangle with corners on the 1/256 subpixel grid covers: strictly inside, or on an
-   edge the fill rule gives it (Mesa's, measured: the CCW edge direction d has d_y < 0, or
-   d_y == 0 and d_x > 0). Exact in double while coordinates stay below 2^17 pixels. */
-typedef void (*voxgi__pixel_fn)(void *user, uint32_t tri, int i, int j);
-
-static void voxgi__raster_centres(const double xin[3], const double yin[3], int w, int h, voxgi__pixel_fn fn, void *user,
-                                  uint32_t tri)
+/* Draws `count` vertices as `mode` with `program` (its buffers bound by the caller) into
+   slicemap textures along axis A (128 slices per RGBA32UI layer, up to 8 layers per draw
+   through MRT, ORed by the logic op; or 32 slices per R32UI layer with imageAtomicOr), then
+   unpacks them into a new bit grid *bits_out. The caller's GL state is restored. */
+static voxgi_result voxgi__gl_slice_raster(voxgi_context *ctx, const voxgi_grid *g, int A, int atomic, unsigned int p,
+                                           unsigned int mode, uint64_t count, unsigned int *bits_out)
 {
-    double x[3], y[3], area;
-    int k, i0, i1, j0, j1, i, j;
-    for (k = 0; k < 3; k++) { x[k] = xin[k]; y[k] = yin[k]; }
-    area = (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]);
-    if (area == 0) return; /* no fragments */
-    if (area < 0) { /* make it CCW: the fill rule speaks of CCW edges */
-        double tx = x[1], ty = y[1];
-        x[1] = x[2]; y[1] = y[2]; x[2] = tx; y[2] = ty;
-    }
-    i0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(x[0], VOXGI__MIN(x[1], x[2])) - 0.5), 0.0);
-    i1 = (int)VOXGI__MIN(floor(VOXGI__MAX(x[0], VOXGI__MAX(x[1], x[2])) - 0.5), (double)w - 1);
-    j0 = (int)VOXGI__MAX(ceil(VOXGI__MIN(y[0], VOXGI__MIN(y[1], y[2])) - 0.5), 0.0);
-    j1 = (int)VOXGI__MIN(floor(VOXGI__MAX(y[0], VOXGI__MAX(y[1], y[2])) - 0.5), (double)h - 1);
-    for (j = j0; j <= j1; j++)
-        for (i = i0; i <= i1; i++) {
-            double px = i + 0.5, py = j + 0.5;
-            int inside = 1;
-            for (k = 0; k < 3 && inside; k++) {
-                double dx = x[(k + 1) % 3] - x[k], dy = y[(k + 1) % 3] - y[k];
-                double e = dx * (py - y[k]) - dy * (px - x[k]);
-                inside = e > 0 || (e == 0 && (dy < 0 || (dy == 0 && dx > 0)));
+    voxgi__gl *gl = ctx->gl;
+    voxgi__gl_raster_state state;
+    int a = (A + 1) % 3, b = (A + 2) % 3, per_layer = atomic ? 32 : 128;
+    int layers = (g->res[A] + per_layer - 1) / per_layer, max_targets = 1, max_size = 0, i, first;
+    unsigned int tex = 0, fbo = 0, vao = 0, zero[4] = {0, 0, 0, 0};
+    size_t bytes = (size_t)voxgi__grid_words(g) * 4;
+    voxgi_result r = voxgi__gl_get_program(ctx, "slicemap_unpack.glsl", &gl->prog_slicemap_unpack);
+    *bits_out = 0;
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_DRAW_BUFFERS, &max_targets);
+    gl->GetIntegerv(VOXGI__GL_MAX_TEXTURE_SIZE, &max_size);
+    max_targets = VOXGI__MIN(max_targets, 8);
+    if (g->res[a] > max_size || g->res[b] > max_size)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d slicemap exceeds GL_MAX_TEXTURE_SIZE %d", g->res[a], g->res[b], max_size);
+    if (count > (uint64_t)INT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%llu vertices exceed one draw", (unsigned long long)count);
+    gl->CreateTextures(VOXGI__GL_TEXTURE_2D_ARRAY, 1, &tex);
+    gl->TextureStorage3D(tex, 1, atomic ? VOXGI__GL_R32UI : VOXGI__GL_RGBA32UI, g->res[a], g->res[b], layers);
+    /* integer textures are incomplete with the default linear filters: texelFetch would read 0 */
+    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
+    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
+    gl->ClearTexImage(tex, 0, atomic ? VOXGI__GL_RED_INTEGER : VOXGI__GL_RGBA_INTEGER, VOXGI__GL_UNSIGNED_INT, zero);
+    gl->CreateVertexArrays(1, &vao);
+    gl->CreateFramebuffers(1, &fbo);
+    voxgi__gl_raster_begin(gl, &state);
+    gl->Enable(VOXGI__GL_PROGRAM_POINT_SIZE); /* points are one pixel whatever glPointSize says */
+    gl->UseProgram(p);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_atomic"), atomic);
+    gl->BindVertexArray(vao);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+    gl->Viewport(0, 0, g->res[a], g->res[b]);
+    if (atomic) { /* no colour outputs: an attachment-less framebuffer of the slicemap's size */
+        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, g->res[a]);
+        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, g->res[b]);
+        gl->BindImageTexture(0, tex, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), 0);
+        gl->DrawArrays(mode, 0, (int)count);
+    } else {
+        gl->Enable(VOXGI__GL_COLOR_LOGIC_OP);
+        gl->LogicOp(VOXGI__GL_OR);
+        for (first = 0; first < layers && r == VOXGI_OK; first += max_targets) {
+            unsigned int bufs[8];
+            int n = VOXGI__MIN(max_targets, layers - first);
+            for (i = 0; i < 8; i++) {
+                gl->NamedFramebufferTextureLayer(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)i, i < n ? tex : 0, 0, i < n ? first + i : 0);
+                bufs[i] = i < n ? VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)i : 0;
             }
-            if (inside) fn(user, tri, i, j);
+            gl->NamedFramebufferDrawBuffers(fbo, 8, bufs);
+            if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE)
+                r = voxgi__fail(ctx, VOXGI_ERR_GL, "the slicemap framebuffer is incomplete");
+            else {
+                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), first * per_layer);
+                gl->DrawArrays(mode, 0, (int)count);
+            }
         }
+    }
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+    gl->BindVertexArray(0);
+    voxgi__gl_raster_end(gl, &state);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT);
+    if (r == VOXGI_OK) { /* slicemap columns -> the linear bit grid */
+        *bits_out = voxgi__gl_grid_buffer(ctx, bytes);
+        p = gl->prog_slicemap_unpack;
+        gl->UseProgram(p);
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_per_layer"), per_layer);
+        gl->BindTextureUnit(0, tex);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, *bits_out);
+        voxgi__gl_dispatch_items(gl, (uint64_t)g->res[a] * (uint64_t)g->res[b]);
+        gl->BindTextureUnit(0, 0);
+    }
+    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
+    voxgi__gl_unbind(gl);
+    gl->DeleteTextures(1, &tex);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the raster slicemap");
+    if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
+    return r;
 }
+
+/* The raster slicemap: the triangles drawn along the axis. */
+static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                       const voxgi_voxelize_desc *d, unsigned int *bits_out)
+{
+    unsigned int verts = 0, tris = 0;
+    voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl slice_targets.glsl slicemap.glsl", &ctx->gl->prog_slicemap);
+    if (r == VOXGI_OK) voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
+    if (r == VOXGI_OK)
+        r = voxgi__gl_slice_raster(ctx, &d->grid, d->axis ? (int)d->axis - 1 : 2, d->atomic, ctx->gl->prog_slicemap,
+                                   VOXGI__GL_TRIANGLES, 3 * (uint64_t)f->triangle_count, bits_out);
+    voxgi__gl_delete_buffer(ctx, verts);
+    voxgi__gl_delete_buffer(ctx, tris);
+    return r;
+}
+#endif /* VOXGI_NO_GL */
+
+/* ----- 5.5 Volume Buffer: CPU, then GL */
 
 /* ----- CPU Volume Buffer (Gaitatzes et al. 2011): each triangle along its dominant axis c
    (largest |normal| component of (q1-q0)x(q2-q0) in double, the lowest axis on ties), its
@@ -2873,196 +4443,209 @@ static void voxgi__vb_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__st
     voxgi__raster_centres(x, y, vs->grid->res[a], vs->grid->res[b], voxgi__vb_pixel, &job, (uint32_t)ti);
 }
 
-/* ===================================================================== voxelization: CPU worker pool */
-/* Phase 1 hands out triangles in chunks and lists the big ones (more than
-   VOXGI__BIG_COLUMNS columns); phase 2 hands out blocks of their rows, so a few huge triangles
-   keep every core busy too. OR is order-free: the bits do not depend on threads or schedule. */
-#define VOXGI__CHUNK 64
-#define VOXGI__BIG_COLUMNS 4096
-#define VOXGI__ROWS_PER_ITEM 8
+#ifndef VOXGI_NO_GL
 
-typedef struct voxgi__vox_job {
-    const voxgi__vox_shared *vs;
-    size_t triangle_count, next;
-    int phase, cancel;
-    uint64_t exact_tests, voxels;
-    uint32_t *big;             /* phase 1 output: big triangles */
-    size_t big_count;
-    size_t *big_first_item;    /* phase 2: prefix sums of row blocks, big_count + 1 entries */
-} voxgi__vox_job;
-
-static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress)
+/* The Volume Buffer: three layered draws (one per sweep axis, each triangle in the sweep of its
+   dominant axis) into float 3D targets blended per attribute, then merged into the bit grid and,
+   with attributes, each set voxel's values (on the CPU afterwards, as floats). */
+static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                            const voxgi_voxelize_desc *d, unsigned int *bits_out, voxgi__attr *attr,
+                                            voxgi_voxels_info *info)
 {
-    voxgi__stats st = {0, 0, 0};
-    voxgi__prepared P;
-    for (;;) {
-        size_t first = VOXGI__ATOMIC_ADD_SIZE(&job->next, job->phase ? (size_t)1 : (size_t)VOXGI__CHUNK), t, end;
-        double fraction;
-        if (VOXGI__ATOMIC_LOAD_INT(&job->cancel)) break;
-        if (job->phase == 0) {
-            if (first >= job->triangle_count) break;
-            end = VOXGI__MIN(first + VOXGI__CHUNK, job->triangle_count);
-            for (t = first; t < end; t++) {
-                st.tri = (uint32_t)t;
-                if (job->vs->solid_axis >= 0) { voxgi__solid_triangle(job->vs, t, &st); continue; }
-                if (job->vs->slice_axis >= 0) { voxgi__slicemap_triangle(job->vs, t, &st); continue; }
-                if (job->vs->volume_buffer) { voxgi__vb_triangle(job->vs, t, &st); continue; }
-                if (!voxgi__tri_prepare(job->vs, t, &P, &st)) continue;
-                if ((int64_t)P.ext[(P.c + 1) % 3] * P.ext[(P.c + 2) % 3] > VOXGI__BIG_COLUMNS)
-                    job->big[VOXGI__ATOMIC_ADD_SIZE(&job->big_count, (size_t)1)] = (uint32_t)t;
-                else voxgi__tri_rows(job->vs, &P, 0, P.ext[(P.c + 2) % 3] - 1, &st);
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    voxgi__gl_raster_state state;
+    unsigned int attrs = d->attributes, tex[3][3], fbo = 0, vao = 0, verts = 0, tris = 0, values_buf = 0, lost_buf = 0, p, zero = 0;
+    unsigned char blend_was[3];
+    int saved[3][6], max3d = 0, c, k, i, targets = 1 + ((attrs & 10u) ? 1 : 0) + ((attrs & 4u) ? 1 : 0);
+    uint64_t words = voxgi__grid_words(g), nvox = voxgi_grid_voxel_count(g), bytes_per_voxel = attrs ? 16u * (uint64_t)targets : 4u;
+    float *tv;
+    size_t t;
+    voxgi_result r = voxgi__gl_build(ctx, 2, "scene.glsl volume_buffer.glsl", &gl->prog_volume_buffer);
+    if (r == VOXGI_OK) r = voxgi__gl_build(ctx, 2, "scene.glsl volume_buffer_big.glsl volume_buffer.glsl", &gl->prog_volume_buffer_big);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl volume_merge.glsl", &gl->prog_volume_merge);
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
+    if (g->res[0] > max3d || g->res[1] > max3d || g->res[2] > max3d)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's 3D targets stop at GL_MAX_3D_TEXTURE_SIZE %d", max3d);
+    if (3 * nvox * bytes_per_voxel > ((uint64_t)1 << 30))
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's three %dx%dx%d sweeps need %llu MiB of float targets "
+                           "(at most 1024 here); ask for fewer attributes or a smaller grid", g->res[0], g->res[1], g->res[2],
+                           (unsigned long long)(3 * nvox * bytes_per_voxel >> 20));
+    /* each triangle's values as the targets take them */
+    tv = (float *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, 10 * sizeof(float), 1);
+    if (!tv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' values");
+    for (t = 0; t < f->triangle_count && attrs; t++) {
+        const voxgi_material *m = voxgi__tri_material(f, t);
+        double n[3];
+        voxgi__tri_unit_normal(f, t, n);
+        for (k = 0; k < 3; k++) {
+            tv[10 * t + (size_t)k] = m->albedo[k];
+            tv[10 * t + 3 + (size_t)k] = (float)(d->blend[1] == VOXGI_BLEND_MAX ? n[k] * 0.5 + 0.5 : n[k]);
+            tv[10 * t + 6 + (size_t)k] = m->emission[k];
+        }
+        tv[10 * t + 9] = 1.0f - m->transparency;
+    }
+    voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
+    values_buf = voxgi__gl_buffer(ctx, f->triangle_count * 10 * sizeof(float), tv);
+    lost_buf = voxgi__gl_buffer(ctx, 8 + 4 * f->triangle_count, NULL); /* lost, big_count, big_list */
+    gl->ClearNamedBufferData(lost_buf, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+    voxgi__free(ctx, tv);
+    memset(tex, 0, sizeof tex);
+    gl->CreateVertexArrays(1, &vao);
+    gl->CreateFramebuffers(1, &fbo);
+    for (i = 0; i < 3; i++) { /* the blend state of draw buffers 0-2, saved first: it is restored last */
+        static const unsigned int names[6] = {VOXGI__GL_BLEND_SRC_RGB, VOXGI__GL_BLEND_DST_RGB, VOXGI__GL_BLEND_SRC_ALPHA,
+                                              VOXGI__GL_BLEND_DST_ALPHA, VOXGI__GL_BLEND_EQUATION_RGB, VOXGI__GL_BLEND_EQUATION_ALPHA};
+        blend_was[i] = gl->IsEnabledi(VOXGI__GL_BLEND, (unsigned)i);
+        for (k = 0; k < 6; k++) gl->GetIntegeri_v(names[k], (unsigned)i, &saved[i][k]);
+    }
+    voxgi__gl_raster_begin(gl, &state);
+    for (i = 0; i < 3; i++) {
+        gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
+        gl->BlendFuncSeparatei((unsigned)i, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE);
+    }
+    {   /* per target: rgb and alpha by their attributes' blend mode (the fragment count always adds) */
+        unsigned int eq[3][2];
+        eq[0][0] = d->blend[0] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+        eq[0][1] = VOXGI__GL_FUNC_ADD;
+        eq[1][0] = d->blend[1] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+        eq[1][1] = d->blend[3] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+        eq[2][0] = d->blend[2] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+        eq[2][1] = VOXGI__GL_FUNC_ADD;
+        for (i = 0; i < 3; i++) gl->BlendEquationSeparatei((unsigned)i, eq[i][0], eq[i][1]);
+    }
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, values_buf);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, lost_buf);
+    for (i = 0; i < 2; i++) {
+        p = i ? gl->prog_volume_buffer_big : gl->prog_volume_buffer;
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_slicing"), d->volume_slicing == 1 ? 1 : 2);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_with_values"), attrs != 0);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_big"), i);
+    }
+    gl->BindVertexArray(vao);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+    for (c = 0; c < 3 && r == VOXGI_OK; c++) {
+        int a = (c + 1) % 3, b = (c + 2) % 3, vw = 1, vh = 1;
+        unsigned int bufs[3];
+        float zeros[4] = {0, 0, 0, 0};
+        for (k = 0; k < 3; k++) {
+            bufs[k] = 0;
+            if (k == 1 && !(attrs & 10u)) continue;
+            if (k == 2 && !(attrs & 4u)) continue;
+            gl->CreateTextures(VOXGI__GL_TEXTURE_3D, 1, &tex[c][k]);
+            gl->TextureStorage3D(tex[c][k], 1, k == 0 && !attrs ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F, g->res[a], g->res[b], g->res[c]);
+            gl->TextureParameteri(tex[c][k], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
+            gl->TextureParameteri(tex[c][k], VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
+            gl->ClearTexImage(tex[c][k], 0, k == 0 && !attrs ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
+            gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)k, tex[c][k], 0);
+            bufs[k] = VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)k;
+        }
+        for (k = 0; k < 3; k++)
+            if (!bufs[k]) gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)k, 0, 0);
+        gl->NamedFramebufferDrawBuffers(fbo, 3, bufs);
+        if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE) {
+            r = voxgi__fail(ctx, VOXGI_ERR_GL, "the Volume Buffer's framebuffer is incomplete");
+            break;
+        }
+        while (vw < g->res[a]) vw *= 2;
+        while (vh < g->res[b]) vh *= 2;
+        gl->Viewport(0, 0, vw, vh);
+        for (i = 0; i < 2 && r == VOXGI_OK; i++) { /* every triangle; then the listed ones spanning many layers */
+            uint32_t big = 0;
+            p = i ? gl->prog_volume_buffer_big : gl->prog_volume_buffer;
+            gl->UseProgram(p);
+            gl->ProgramUniform2i(p, gl->GetUniformLocation(p, "u_view"), vw, vh);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), c);
+            if (i == 0) gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+            else {
+                gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+                gl->GetNamedBufferSubData(lost_buf, 4, 4, &big);
+                if (big) gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * big));
+                gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+                gl->NamedBufferSubData(lost_buf, 4, 4, &zero);
+                info->big_triangles += big;
             }
-            fraction = (double)end / (double)job->triangle_count;
-        } else {
-            size_t lo = 0, hi = job->big_count, item = first;
-            int32_t row0;
-            if (item >= job->big_first_item[job->big_count]) break;
-            while (hi - lo > 1) { /* the big triangle whose blocks hold this item */
-                size_t mid = (lo + hi) / 2;
-                if (job->big_first_item[mid] <= item) lo = mid;
-                else hi = mid;
-            }
-            st.tri = job->big[lo];
-            voxgi__tri_prepare(job->vs, job->big[lo], &P, &st);
-            row0 = (int32_t)(item - job->big_first_item[lo]) * VOXGI__ROWS_PER_ITEM;
-            voxgi__tri_rows(job->vs, &P, row0, VOXGI__MIN(row0 + VOXGI__ROWS_PER_ITEM, P.ext[(P.c + 2) % 3]) - 1, &st);
-            fraction = (double)(item + 1) / (double)job->big_first_item[job->big_count];
-            if (item % 64) continue;
         }
-        if (ctx_for_progress && (job->phase || (first / VOXGI__CHUNK) % 64 == 0) &&
-            voxgi__progress(ctx_for_progress, fraction, job->phase ? "voxelize large triangles" : "voxelize"))
-            VOXGI__ATOMIC_STORE_INT(&job->cancel, 1);
     }
-    VOXGI__ATOMIC_ADD_SIZE(&job->exact_tests, st.exact_tests);
-    VOXGI__ATOMIC_ADD_SIZE(&job->voxels, st.voxels);
-}
-
-#ifndef VOXGI_NO_THREADS
-static void *voxgi__vox_thread(void *p)
-{
-    voxgi__vox_work((voxgi__vox_job *)p, NULL);
-    return NULL;
-}
-#endif
-
-/* Runs one phase of the job on the calling thread and (thread_count - 1) helpers. */
-static void voxgi__vox_phase(voxgi_context *ctx, voxgi__vox_job *job, size_t items)
-{
-    int started = 0;
-#ifndef VOXGI_NO_THREADS
-    pthread_t threads[256];
-    int i, want = ctx->desc.thread_count - 1;
-    if ((size_t)want > items) want = (int)items;
-    for (i = 0; i < want && i < 256; i++) {
-        if (pthread_create(&threads[i], NULL, voxgi__vox_thread, job) != 0) break;
-        started++;
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+    gl->BindVertexArray(0);
+    voxgi__gl_raster_end(gl, &state);
+    for (i = 0; i < 3; i++) {
+        gl->BlendFuncSeparatei((unsigned)i, (unsigned)saved[i][0], (unsigned)saved[i][1], (unsigned)saved[i][2], (unsigned)saved[i][3]);
+        gl->BlendEquationSeparatei((unsigned)i, (unsigned)saved[i][4], (unsigned)saved[i][5]);
+        if (blend_was[i]) gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
+        else gl->Disablei(VOXGI__GL_BLEND, (unsigned)i);
     }
-#else
-    (void)items;
-#endif
-    voxgi__vox_work(job, ctx); /* the calling thread works too, and reports progress */
-#ifndef VOXGI_NO_THREADS
-    for (i = 0; i < started; i++) pthread_join(threads[i], NULL);
-#else
-    (void)started;
-#endif
-}
-
-/* Runs the CPU voxelizer over all triangles into vs->bits (which the caller zeroed). */
-static voxgi_result voxgi__voxelize_cpu_run(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
-                                            voxgi__stats *st)
-{
-    voxgi__vox_job job;
-    size_t i;
-    memset(&job, 0, sizeof job);
-    job.vs = vs;
-    job.triangle_count = triangle_count;
-    job.big = (uint32_t *)voxgi__alloc_array(ctx, triangle_count, sizeof *job.big, 0);
-    if (!job.big) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)triangle_count);
-    voxgi__vox_phase(ctx, &job, triangle_count / VOXGI__CHUNK);
-    if (job.big_count && !job.cancel) {
-        job.big_first_item = (size_t *)voxgi__alloc_array(ctx, job.big_count + 1, sizeof(size_t), 0);
-        if (!job.big_first_item) {
-            voxgi__free(ctx, job.big);
-            return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the large-triangle list");
+    gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT | VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+    if (r == VOXGI_OK) {
+        uint32_t lost = 0;
+        r = voxgi__gl_read_buffer(ctx, lost_buf, &lost, 4);
+        info->lost_slices = lost;
+    }
+    if (r == VOXGI_OK) { /* merge: the bits */
+        *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)words * 4);
+        p = gl->prog_volume_merge;
+        gl->UseProgram(p);
+        for (c = 0; c < 3; c++)
+            for (k = 0; k < 3; k++) gl->BindTextureUnit((unsigned)(3 * k + c), tex[c][k]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_attributes"), attrs);
+        gl->ProgramUniform4i(p, gl->GetUniformLocation(p, "u_blend"), (int)d->blend[0], (int)d->blend[1], (int)d->blend[2], (int)d->blend[3]);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr ? attr->channels : 0);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+        voxgi__gl_dispatch_rows(gl, nvox);
+        r = voxgi__gl_check(ctx, "the Volume Buffer");
+    }
+    if (r == VOXGI_OK && attr) { /* merge: each set voxel's values at its rank */
+        uint32_t *bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0);
+        unsigned int rank_buf = 0, out_buf = 0, count_buf = 0;
+        uint64_t voxels = 0, w;
+        if (!bits) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the Volume Buffer's merge");
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, *bits_out, bits, (size_t)words * 4);
+        for (w = 0; r == VOXGI_OK && w < words; w++) voxels += voxgi__popcount32(bits[w]);
+        if (r == VOXGI_OK) r = voxgi__attr_alloc(ctx, attr, bits, words, voxels);
+        if (r == VOXGI_OK && !(attr->values = (float *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), (size_t)attr->channels * 4, 0)))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attributes of %llu voxels", (unsigned long long)voxels);
+        if (r == VOXGI_OK) {
+            rank_buf = voxgi__gl_buffer(ctx, (size_t)words * 4, attr->rank);
+            out_buf = voxgi__gl_buffer(ctx, (size_t)voxels * (size_t)attr->channels * 4, NULL);
+            count_buf = voxgi__gl_buffer(ctx, (size_t)voxels * 4, NULL);
+            gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, rank_buf);
+            gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 8, out_buf);
+            gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 9, count_buf);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+            voxgi__gl_dispatch_rows(gl, nvox);
+            r = voxgi__gl_read_buffer(ctx, out_buf, attr->values, (size_t)voxels * (size_t)attr->channels * 4);
+            if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, count_buf, attr->count, (size_t)voxels * 4);
         }
-        job.big_first_item[0] = 0;
-        for (i = 0; i < job.big_count; i++) {
-            voxgi__prepared P;
-            voxgi__stats unused = {0, 0, 0};
-            voxgi__tri_prepare(vs, job.big[i], &P, &unused);
-            job.big_first_item[i + 1] = job.big_first_item[i] +
-                                        (size_t)(P.ext[(P.c + 2) % 3] + VOXGI__ROWS_PER_ITEM - 1) / VOXGI__ROWS_PER_ITEM;
-        }
-        job.phase = 1;
-        job.next = 0;
-        voxgi__vox_phase(ctx, &job, job.big_first_item[job.big_count]);
+        voxgi__gl_delete_buffer(ctx, rank_buf);
+        voxgi__gl_delete_buffer(ctx, out_buf);
+        voxgi__gl_delete_buffer(ctx, count_buf);
+        voxgi__free(ctx, bits);
     }
-    voxgi__free(ctx, job.big);
-    voxgi__free(ctx, job.big_first_item);
-    st->exact_tests += job.exact_tests;
-    st->voxels += job.voxels;
-    if (job.cancel) return voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "voxelization cancelled by the progress callback");
-    return VOXGI_OK;
+    for (i = 0; i < 9; i++) gl->BindTextureUnit((unsigned)i, 0);
+    voxgi__gl_unbind(gl);
+    for (c = 0; c < 3; c++)
+        for (k = 0; k < 3; k++)
+            if (tex[c][k]) gl->DeleteTextures(1, &tex[c][k]);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    voxgi__gl_delete_buffer(ctx, verts);
+    voxgi__gl_delete_buffer(ctx, tris);
+    voxgi__gl_delete_buffer(ctx, values_buf);
+    voxgi__gl_delete_buffer(ctx, lost_buf);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the Volume Buffer");
+    if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
+    return r;
 }
+#endif /* VOXGI_NO_GL */
 
-static voxgi_result voxgi__prep_vertices(voxgi_context *ctx, const voxgi__flat *f, const voxgi_grid *g, voxgi__vprep **out)
-{
-    size_t v;
-    voxgi__vprep *vp = (voxgi__vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *vp, 0);
-    *out = vp;
-    if (!vp) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
-    for (v = 0; v < f->vertex_count; v++) voxgi__prep_vertex(f->pos + 3 * v, g, &vp[v]);
-    return VOXGI_OK;
-}
+/* ----- 5.6 texture atlas: CPU, then GL */
 
-/* ----- a parallel loop over items [0, count) in chunks, on the calling thread and
-   (thread_count - 1) helpers; fn must be safe to run concurrently on disjoint ranges. */
-typedef void (*voxgi__range_fn)(void *user, size_t first, size_t end);
-typedef struct voxgi__loop { voxgi__range_fn fn; void *user; size_t count, chunk, next; } voxgi__loop;
-
-static void *voxgi__loop_work(void *p)
-{
-    voxgi__loop *l = (voxgi__loop *)p;
-    for (;;) {
-        size_t first = VOXGI__ATOMIC_ADD_SIZE(&l->next, l->chunk);
-        if (first >= l->count) break;
-        l->fn(l->user, first, VOXGI__MIN(first + l->chunk, l->count));
-    }
-    return NULL;
-}
-
-static void voxgi__parallel(voxgi_context *ctx, size_t count, size_t chunk, voxgi__range_fn fn, void *user)
-{
-    voxgi__loop l;
-    int started = 0;
-#ifndef VOXGI_NO_THREADS
-    pthread_t threads[256];
-    int i, want = ctx->desc.thread_count - 1;
-    if ((size_t)want > count / chunk) want = (int)(count / chunk);
-#else
-    (void)ctx;
-#endif
-    l.fn = fn;
-    l.user = user;
-    l.count = count;
-    l.chunk = chunk ? chunk : 1;
-    l.next = 0;
-#ifndef VOXGI_NO_THREADS
-    for (i = 0; i < want && i < 256; i++) {
-        if (pthread_create(&threads[i], NULL, voxgi__loop_work, &l) != 0) break;
-        started++;
-    }
-#endif
-    voxgi__loop_work(&l);
-#ifndef VOXGI_NO_THREADS
-    for (i = 0; i < started; i++) pthread_join(threads[i], NULL);
-#else
-    (void)started;
-#endif
-}
-
-/* ===================================================================== voxelization: texture atlas
+/* voxelization: texture atlas
    Thiedemann et al. 2011, Buchacher's methods B (atlas points drawn as GL points) and D (one
    compute invocation per point). The atlas is rasterized once: each texel whose centre a chart
    covers (the GL fill rule: strictly inside, or on an edge whose CCW direction d has d_y < 0, or
@@ -3368,239 +4951,256 @@ static voxgi_result voxgi__atlas_cpu(voxgi_context *ctx, const voxgi__vox_shared
     return VOXGI_OK;
 }
 
-/* ===================================================================== voxel results */
-struct voxgi_voxels {
-    voxgi_voxels_info info;
-    uint32_t *bits;            /* CPU backend */
-    unsigned int gl_buffer;    /* GL backend */
-    voxgi__attr attr;          /* with attributes: counts and sums per set voxel (on the CPU for both backends) */
-};
-
-/* ===================================================================== attributes */
-/* Triangle t's material (material 0 without a table: albedo 0.8, no emission, opaque). */
-static const voxgi_material *voxgi__tri_material(const voxgi__flat *f, size_t t)
-{
-    static const voxgi_material fallback = {{0.8f, 0.8f, 0.8f}, {0, 0, 0}, 0};
-    return f->material_count ? &f->materials[f->mat[t]] : &fallback;
-}
-
-/* Triangle t's unit geometric normal (counter-clockwise front), in double from the float
-   vertices; zero for a degenerate triangle. */
-static void voxgi__tri_unit_normal(const voxgi__flat *f, size_t t, double n[3])
-{
-    const float *p0 = f->pos + 3 * (size_t)f->tri[3 * t], *p1 = f->pos + 3 * (size_t)f->tri[3 * t + 1], *p2 = f->pos + 3 * (size_t)f->tri[3 * t + 2];
-    double e[3], g[3], len;
-    int a;
-    for (a = 0; a < 3; a++) { e[a] = (double)p1[a] - p0[a]; g[a] = (double)p2[a] - p0[a]; }
-    for (a = 0; a < 3; a++) n[a] = e[(a + 1) % 3] * g[(a + 2) % 3] - e[(a + 2) % 3] * g[(a + 1) % 3];
-    len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (a = 0; a < 3; a++) n[a] = len > 0 ? n[a] / len : 0;
-}
-
-/* Each triangle's attribute values in fixed point, channels in the order albedo, normal,
-   emission, opacity (those asked for). */
-static voxgi_result voxgi__attr_prepare(voxgi_context *ctx, const voxgi__flat *f, unsigned mask, const voxgi_blend blend[4],
-                                        voxgi__attr *at)
-{
-    double emax = 0, erange = 1, v[VOXGI__MAX_CHANNELS];
-    size_t t;
-    int c;
-    memset(at, 0, sizeof *at);
-    at->channels = (mask & VOXGI_ATTRIBUTE_ALBEDO ? 3 : 0) + (mask & VOXGI_ATTRIBUTE_NORMAL ? 3 : 0) +
-                   (mask & VOXGI_ATTRIBUTE_EMISSION ? 3 : 0) + (mask & VOXGI_ATTRIBUTE_OPACITY ? 1 : 0);
-    for (t = 0; t < f->triangle_count; t++)
-        for (c = 0; c < 3; c++) emax = VOXGI__MAX(emax, (double)voxgi__tri_material(f, t)->emission[c]);
-    while (erange < emax) erange *= 2;
-    while (erange / 2 >= emax && emax > 0) erange /= 2;
-    for (c = 0; c < 4; c++) at->blend[c] = blend[c];
-    {   /* channel -> attribute: the channels of each asked-for attribute in order */
-        int k = 0, a, n;
-        for (a = 0; a < 4; a++) {
-            if (!(mask & (1u << a))) continue;
-            for (n = 0; n < (a == 3 ? 1 : 3); n++) at->max_op[k++] = (unsigned char)(blend[a] == VOXGI_BLEND_MAX);
-        }
-    }
-    at->rec = (uint32_t *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, (size_t)at->channels * 4, 0);
-    if (!at->rec) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' attributes");
-    for (t = 0; t < f->triangle_count; t++) {
-        const voxgi_material *m = voxgi__tri_material(f, t);
-        double step[VOXGI__MAX_CHANNELS]; /* v / step is the fixed-point value: v in [0,1], normals n + 1 in [0,2] */
-        int k = 0, a;
-        if (mask & VOXGI_ATTRIBUTE_ALBEDO)
-            for (a = 0; a < 3; a++, k++) { v[k] = m->albedo[a]; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = step[k]; }
-        if (mask & VOXGI_ATTRIBUTE_NORMAL) {
-            double n[3];
-            voxgi__tri_unit_normal(f, t, n);
-            for (a = 0; a < 3; a++, k++) { v[k] = n[a] + 1; step[k] = ldexp(1.0, -23); at->zero[k] = -1; at->unit[k] = step[k]; }
-        }
-        if (mask & VOXGI_ATTRIBUTE_EMISSION)
-            for (a = 0; a < 3; a++, k++) { v[k] = m->emission[a] / erange; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = erange * step[k]; }
-        if (mask & VOXGI_ATTRIBUTE_OPACITY) { v[k] = 1.0 - m->transparency; step[k] = ldexp(1.0, -24); at->zero[k] = 0; at->unit[k] = step[k]; k++; }
-        for (c = 0; c < k; c++) /* round to nearest: no truncation bias */
-            at->rec[t * (size_t)at->channels + (size_t)c] = (uint32_t)floor(VOXGI__MIN(VOXGI__MAX(v[c], 0.0), 2.0) / step[c] + 0.5);
-    }
-    return VOXGI_OK;
-}
-
-/* After the bits are final: ranks, counts and sums for the attribute pass. */
-static voxgi_result voxgi__attr_alloc(voxgi_context *ctx, voxgi__attr *at, const uint32_t *bits, uint64_t words, uint64_t voxels)
-{
-    uint64_t w, before = 0;
-    uint64_t need = voxels * (4u + 8u * (uint64_t)at->channels) + words * 4u;
-    if (voxels > (uint64_t)UINT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "attributes hold at most 2^32 voxels");
-    if (ctx->desc.memory_budget && need > (uint64_t)ctx->desc.memory_budget)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the attributes of %llu voxels need %llu bytes, more than the memory budget %llu",
-                           (unsigned long long)voxels, (unsigned long long)need, (unsigned long long)ctx->desc.memory_budget);
-    at->rank = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0);
-    at->count = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), 4, 1);
-    at->sum = (uint64_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), (size_t)at->channels * 8, 1);
-    if (!at->rank || !at->count || !at->sum)
-        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attributes of %llu voxels", (unsigned long long)voxels);
-    for (w = 0; w < words; w++) {
-        at->rank[w] = (uint32_t)before;
-        before += voxgi__popcount32(bits[w]);
-    }
-    return VOXGI_OK;
-}
-
-static void voxgi__attr_free(voxgi_context *ctx, voxgi__attr *at)
-{
-    voxgi__free(ctx, at->rec);
-    voxgi__free(ctx, at->rank);
-    voxgi__free(ctx, at->count);
-    voxgi__free(ctx, at->sum);
-    voxgi__free(ctx, at->values);
-    memset(at, 0, sizeof *at);
-}
-
-VOXGI_API voxgi_result voxgi_voxels_read_attribute(voxgi_context *ctx, const voxgi_voxels *v, voxgi_attribute which, float *dst,
-                                                   size_t dst_bytes, size_t *needed)
-{
-    int first = 0, width = which == VOXGI_ATTRIBUTE_OPACITY ? 1 : 3, c;
-    voxgi_blend blend;
-    uint64_t i, n;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!v) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels is NULL");
-    if ((which != VOXGI_ATTRIBUTE_ALBEDO && which != VOXGI_ATTRIBUTE_NORMAL && which != VOXGI_ATTRIBUTE_EMISSION &&
-         which != VOXGI_ATTRIBUTE_OPACITY) || !(v->info.attributes & (unsigned)which))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attribute %d was not voxelized (held: 0x%x)", (int)which, v->info.attributes);
-    n = v->info.voxel_count;
-    if (needed) *needed = (size_t)(n * (uint64_t)width * 4);
-    if (!dst) return needed ? VOXGI_OK : voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "dst and needed are both NULL");
-    if (dst_bytes < n * (uint64_t)width * 4)
-        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "the attribute needs %llu bytes, dst has %lu",
-                           (unsigned long long)(n * (uint64_t)width * 4), (unsigned long)dst_bytes);
-    if ((unsigned)which > VOXGI_ATTRIBUTE_ALBEDO && (v->info.attributes & VOXGI_ATTRIBUTE_ALBEDO)) first += 3;
-    if ((unsigned)which > VOXGI_ATTRIBUTE_NORMAL && (v->info.attributes & VOXGI_ATTRIBUTE_NORMAL)) first += 3;
-    if ((unsigned)which > VOXGI_ATTRIBUTE_EMISSION && (v->info.attributes & VOXGI_ATTRIBUTE_EMISSION)) first += 3;
-    blend = v->attr.blend[which == VOXGI_ATTRIBUTE_ALBEDO ? 0 : (which == VOXGI_ATTRIBUTE_NORMAL ? 1 : (which == VOXGI_ATTRIBUTE_EMISSION ? 2 : 3))];
-    for (i = 0; i < n; i++)
-        for (c = 0; c < width; c++) {
-            int ch = first + c;
-            double q = (double)v->attr.sum[i * (uint64_t)v->attr.channels + (uint64_t)ch], k = (double)v->attr.count[i], out;
-            if (v->attr.values) out = v->attr.values[i * (uint64_t)v->attr.channels + (uint64_t)ch];
-            else if (blend == VOXGI_BLEND_AVERAGE) out = v->attr.zero[ch] + q / k * v->attr.unit[ch];
-            else if (blend == VOXGI_BLEND_ADD) out = k * v->attr.zero[ch] + q * v->attr.unit[ch];
-            else out = v->attr.zero[ch] + q * v->attr.unit[ch];
-            dst[i * (uint64_t)width + (uint64_t)c] = (float)out;
-        }
-    return VOXGI_OK;
-}
-
-VOXGI_API void voxgi_voxels_query(const voxgi_voxels *v, voxgi_voxels_info *out)
-{
-    if (!out) return;
-    if (!v) { memset(out, 0, sizeof *out); return; }
-    *out = v->info;
-}
-
 #ifndef VOXGI_NO_GL
-static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                       const voxgi_voxelize_desc *d, const voxgi__atlas *atlas, voxgi_voxels *out);
+
+/* The texture atlas: the charts drawn into an R32UI atlas, its covered texels listed as
+   points, then the points either drawn into slicemap targets (ATLAS) or each set by one
+   compute invocation (ATLAS_COMPUTE). */
+static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                    const voxgi_voxelize_desc *d, const voxgi__atlas *at, unsigned int *bits_out,
+                                    voxgi_voxels_info *info)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    voxgi__gl_raster_state state;
+    unsigned int verts = 0, tris = 0, charts = 0, points = 0, tex = 0, fbo = 0, vao = 0, zero = 0, p, drawbuf = VOXGI__GL_COLOR_ATTACHMENT0;
+    uint32_t count = 0;
+    int max_size = 0;
+    uint64_t texels = (uint64_t)at->size * (uint64_t)at->size;
+    voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl atlas.glsl atlas_fill.glsl", &gl->prog_atlas_fill);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl atlas.glsl atlas_list.glsl", &gl->prog_atlas_list);
+    if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS)
+        r = voxgi__gl_build(ctx, 1, "scene.glsl atlas.glsl slice_targets.glsl atlas_points.glsl", &gl->prog_atlas_points);
+    if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS_COMPUTE)
+        r = voxgi__gl_get_program(ctx, "scene.glsl atlas.glsl atlas_compute.glsl", &gl->prog_atlas_compute);
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_TEXTURE_SIZE, &max_size);
+    if (at->view > max_size)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d atlas (viewport %d) exceeds GL_MAX_TEXTURE_SIZE %d", at->size, at->size,
+                           at->view, max_size);
+    voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
+    if (r != VOXGI_OK) return r;
+    charts = voxgi__gl_buffer(ctx, f->triangle_count * 6 * sizeof(float), at->uv);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, charts);
+    /* 1. the charts into the atlas */
+    gl->CreateTextures(VOXGI__GL_TEXTURE_2D, 1, &tex);
+    gl->TextureStorage2D(tex, 1, VOXGI__GL_R32UI, at->size, at->size);
+    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
+    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
+    gl->ClearTexImage(tex, 0, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+    gl->CreateFramebuffers(1, &fbo);
+    gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0, tex, 0);
+    gl->NamedFramebufferDrawBuffers(fbo, 1, &drawbuf);
+    gl->CreateVertexArrays(1, &vao);
+    voxgi__gl_raster_begin(gl, &state);
+    if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE)
+        r = voxgi__fail(ctx, VOXGI_ERR_GL, "the atlas framebuffer is incomplete");
+    else {
+        p = gl->prog_atlas_fill;
+        gl->UseProgram(p);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_view"), at->view);
+        gl->BindVertexArray(vao);
+        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+        gl->Viewport(0, 0, at->view, at->view); /* beyond the atlas: the corners map to window coordinates exactly */
+        gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
+        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+        gl->BindVertexArray(0);
+    }
+    voxgi__gl_raster_end(gl, &state);
+    gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT);
+    /* 2. the covered texels: count, then list */
+    if (r == VOXGI_OK) {
+        points = voxgi__gl_buffer(ctx, 8, NULL);
+        gl->ClearNamedBufferData(points, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, points);
+        gl->BindTextureUnit(0, tex);
+        p = gl->prog_atlas_list;
+        gl->UseProgram(p);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_size"), at->size);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+        voxgi__gl_dispatch_rows(gl, texels);
+        r = voxgi__gl_read_buffer(ctx, points, &count, 4);
+    }
+    if (r == VOXGI_OK) {
+        voxgi__gl_delete_buffer(ctx, points);
+        points = voxgi__gl_buffer(ctx, 8 + 8 * (size_t)count, NULL);
+        gl->ClearNamedBufferData(points, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, points);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+        voxgi__gl_dispatch_rows(gl, texels);
+        gl->BindTextureUnit(0, 0);
+        info->atlas_points = count;
+        r = voxgi__gl_check(ctx, "the atlas");
+    }
+    gl->DeleteTextures(1, &tex);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    /* 3. the points into voxels */
+    if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS)
+        r = voxgi__gl_slice_raster(ctx, g, d->axis ? (int)d->axis - 1 : 2, d->atomic, gl->prog_atlas_points, VOXGI__GL_POINTS,
+                                   count, bits_out);
+    else if (r == VOXGI_OK) {
+        *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
+        p = gl->prog_atlas_compute;
+        gl->UseProgram(p);
+        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        voxgi__gl_dispatch_rows(gl, count);
+        r = voxgi__gl_check(ctx, "the atlas points");
+    }
+    voxgi__gl_unbind(gl);
+    voxgi__gl_delete_buffer(ctx, verts);
+    voxgi__gl_delete_buffer(ctx, tris);
+    voxgi__gl_delete_buffer(ctx, charts);
+    voxgi__gl_delete_buffer(ctx, points);
+    if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
+    return r;
+}
+#endif /* VOXGI_NO_GL */
+
+/* ----- 5.7 running a voxelization: the CPU workers, the GL passes, the API */
+
+/* Phase 1 hands out triangles in chunks and lists the big ones (more than
+   VOXGI__BIG_COLUMNS columns); phase 2 hands out blocks of their rows, so a few huge triangles
+   keep every core busy too. OR is order-free: the bits do not depend on threads or schedule. */
+#define VOXGI__CHUNK 64
+#define VOXGI__BIG_COLUMNS 4096
+#define VOXGI__ROWS_PER_ITEM 8
+
+typedef struct voxgi__vox_job {
+    const voxgi__vox_shared *vs;
+    size_t triangle_count, next;
+    int phase, cancel;
+    uint64_t exact_tests, voxels;
+    uint32_t *big;             /* phase 1 output: big triangles */
+    size_t big_count;
+    size_t *big_first_item;    /* phase 2: prefix sums of row blocks, big_count + 1 entries */
+} voxgi__vox_job;
+
+static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress)
+{
+    voxgi__stats st = {0, 0, 0};
+    voxgi__prepared P;
+    for (;;) {
+        size_t first = VOXGI__ATOMIC_ADD_SIZE(&job->next, job->phase ? (size_t)1 : (size_t)VOXGI__CHUNK), t, end;
+        double fraction;
+        if (VOXGI__ATOMIC_LOAD_INT(&job->cancel)) break;
+        if (job->phase == 0) {
+            if (first >= job->triangle_count) break;
+            end = VOXGI__MIN(first + VOXGI__CHUNK, job->triangle_count);
+            for (t = first; t < end; t++) {
+                st.tri = (uint32_t)t;
+                if (job->vs->solid_axis >= 0) { voxgi__solid_triangle(job->vs, t, &st); continue; }
+                if (job->vs->slice_axis >= 0) { voxgi__slicemap_triangle(job->vs, t, &st); continue; }
+                if (job->vs->volume_buffer) { voxgi__vb_triangle(job->vs, t, &st); continue; }
+                if (!voxgi__tri_prepare(job->vs, t, &P, &st)) continue;
+                if ((int64_t)P.ext[(P.c + 1) % 3] * P.ext[(P.c + 2) % 3] > VOXGI__BIG_COLUMNS)
+                    job->big[VOXGI__ATOMIC_ADD_SIZE(&job->big_count, (size_t)1)] = (uint32_t)t;
+                else voxgi__tri_rows(job->vs, &P, 0, P.ext[(P.c + 2) % 3] - 1, &st);
+            }
+            fraction = (double)end / (double)job->triangle_count;
+        } else {
+            size_t lo = 0, hi = job->big_count, item = first;
+            int32_t row0;
+            if (item >= job->big_first_item[job->big_count]) break;
+            while (hi - lo > 1) { /* the big triangle whose blocks hold this item */
+                size_t mid = (lo + hi) / 2;
+                if (job->big_first_item[mid] <= item) lo = mid;
+                else hi = mid;
+            }
+            st.tri = job->big[lo];
+            voxgi__tri_prepare(job->vs, job->big[lo], &P, &st);
+            row0 = (int32_t)(item - job->big_first_item[lo]) * VOXGI__ROWS_PER_ITEM;
+            voxgi__tri_rows(job->vs, &P, row0, VOXGI__MIN(row0 + VOXGI__ROWS_PER_ITEM, P.ext[(P.c + 2) % 3]) - 1, &st);
+            fraction = (double)(item + 1) / (double)job->big_first_item[job->big_count];
+            if (item % 64) continue;
+        }
+        if (ctx_for_progress && (job->phase || (first / VOXGI__CHUNK) % 64 == 0) &&
+            voxgi__progress(ctx_for_progress, fraction, job->phase ? "voxelize large triangles" : "voxelize"))
+            VOXGI__ATOMIC_STORE_INT(&job->cancel, 1);
+    }
+    VOXGI__ATOMIC_ADD_SIZE(&job->exact_tests, st.exact_tests);
+    VOXGI__ATOMIC_ADD_SIZE(&job->voxels, st.voxels);
+}
+
+#ifndef VOXGI_NO_THREADS
+static void *voxgi__vox_thread(void *p)
+{
+    voxgi__vox_work((voxgi__vox_job *)p, NULL);
+    return NULL;
+}
 #endif
 
-static uint64_t voxgi__popcount_words(const uint32_t *w, uint64_t n)
+/* Runs one phase of the job on the calling thread and (thread_count - 1) helpers. */
+static void voxgi__vox_phase(voxgi_context *ctx, voxgi__vox_job *job, size_t items)
 {
-    uint64_t i, c = 0;
-    for (i = 0; i < n; i++) {
-        uint32_t x = w[i];
-        x = x - ((x >> 1) & 0x55555555u);
-        x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
-        c += (((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
+    int started = 0;
+#ifndef VOXGI_NO_THREADS
+    pthread_t threads[256];
+    int i, want = ctx->desc.thread_count - 1;
+    if ((size_t)want > items) want = (int)items;
+    for (i = 0; i < want && i < 256; i++) {
+        if (pthread_create(&threads[i], NULL, voxgi__vox_thread, job) != 0) break;
+        started++;
     }
-    return c;
+#else
+    (void)items;
+#endif
+    voxgi__vox_work(job, ctx); /* the calling thread works too, and reports progress */
+#ifndef VOXGI_NO_THREADS
+    for (i = 0; i < started; i++) pthread_join(threads[i], NULL);
+#else
+    (void)started;
+#endif
 }
 
-/* Flood fill from the grid's boundary through empty voxels (6-connected), by sweeps along
-   every line of each axis in both directions until nothing changes; returns the solid: what the
-   flood does not reach. Lines run in parallel (a bit set by another line late is seen by the
-   next sweep; the fixed point does not depend on the order). */
-typedef struct voxgi__flood_job {
-    const voxgi_grid *g;
-    const uint32_t *bits;
-    uint32_t *out;
-    int axis, changed;
-} voxgi__flood_job;
-
-#define VOXGI__GET(b, l) (((b)[(l) >> 5] >> ((l) & 31)) & 1u)
-
-static void voxgi__flood_lines(void *user, size_t first, size_t end)
+/* Runs the CPU voxelizer over all triangles into vs->bits (which the caller zeroed). */
+static voxgi_result voxgi__voxelize_cpu_run(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
+                                            voxgi__stats *st)
 {
-    voxgi__flood_job *job = (voxgi__flood_job *)user;
-    uint64_t n[3], len, stride, line, t;
-    int axis = job->axis, changed = 0, d;
-    n[0] = (uint64_t)job->g->res[0]; n[1] = (uint64_t)job->g->res[1]; n[2] = (uint64_t)job->g->res[2];
-    len = n[axis];
-    stride = axis == 0 ? 1 : (axis == 1 ? n[0] : n[0] * n[1]);
-    for (line = first; line < end; line++) {
-        uint64_t c[3], base;
-        c[axis] = 0;
-        c[(axis + 1) % 3] = line % n[(axis + 1) % 3];
-        c[(axis + 2) % 3] = line / n[(axis + 1) % 3];
-        base = c[0] + n[0] * (c[1] + n[1] * c[2]);
-        for (d = 0; d < 2; d++) {
-            int reach = 0;
-            for (t = 0; t < len; t++) {
-                uint64_t l = base + stride * (d ? len - 1 - t : t);
-                if (VOXGI__GET(job->bits, l)) reach = 0;
-                else if ((VOXGI__ATOMIC_LOAD_U32(&job->out[l >> 5]) >> (l & 31)) & 1u) reach = 1;
-                else if (reach) { VOXGI__ATOMIC_OR_U32(&job->out[l >> 5], 1u << (l & 31)); changed = 1; }
-            }
+    voxgi__vox_job job;
+    size_t i;
+    memset(&job, 0, sizeof job);
+    job.vs = vs;
+    job.triangle_count = triangle_count;
+    job.big = (uint32_t *)voxgi__alloc_array(ctx, triangle_count, sizeof *job.big, 0);
+    if (!job.big) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)triangle_count);
+    voxgi__vox_phase(ctx, &job, triangle_count / VOXGI__CHUNK);
+    if (job.big_count && !job.cancel) {
+        job.big_first_item = (size_t *)voxgi__alloc_array(ctx, job.big_count + 1, sizeof(size_t), 0);
+        if (!job.big_first_item) {
+            voxgi__free(ctx, job.big);
+            return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the large-triangle list");
         }
+        job.big_first_item[0] = 0;
+        for (i = 0; i < job.big_count; i++) {
+            voxgi__prepared P;
+            voxgi__stats unused = {0, 0, 0};
+            voxgi__tri_prepare(vs, job.big[i], &P, &unused);
+            job.big_first_item[i + 1] = job.big_first_item[i] +
+                                        (size_t)(P.ext[(P.c + 2) % 3] + VOXGI__ROWS_PER_ITEM - 1) / VOXGI__ROWS_PER_ITEM;
+        }
+        job.phase = 1;
+        job.next = 0;
+        voxgi__vox_phase(ctx, &job, job.big_first_item[job.big_count]);
     }
-    if (changed) VOXGI__ATOMIC_STORE_INT(&job->changed, 1);
-}
-
-static voxgi_result voxgi__flood_solid(voxgi_context *ctx, const voxgi_grid *g, uint32_t *bits)
-{
-    uint64_t nx = (uint64_t)g->res[0], ny = (uint64_t)g->res[1], nz = (uint64_t)g->res[2], words = voxgi__grid_words(g);
-    uint64_t i, j, k;
-    voxgi__flood_job job;
-    if (!(job.out = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 1))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the flood fill");
-    job.g = g;
-    job.bits = bits;
-    /* seeds: empty voxels on the boundary */
-    for (k = 0; k < nz; k++)
-        for (j = 0; j < ny; j++)
-            for (i = 0; i < nx; i++) {
-                uint64_t l = i + nx * (j + ny * k);
-                if ((i == 0 || j == 0 || k == 0 || i == nx - 1 || j == ny - 1 || k == nz - 1) && !VOXGI__GET(bits, l))
-                    job.out[l >> 5] |= 1u << (l & 31);
-            }
-    do {
-        job.changed = 0;
-        for (job.axis = 0; job.axis < 3; job.axis++) {
-            uint64_t n[3];
-            n[0] = nx; n[1] = ny; n[2] = nz;
-            voxgi__parallel(ctx, (size_t)(n[(job.axis + 1) % 3] * n[(job.axis + 2) % 3]), 64, voxgi__flood_lines, &job);
-        }
-    } while (job.changed);
-    for (i = 0; i < words; i++) bits[i] = ~job.out[i];
-    if (voxgi_grid_voxel_count(g) % 32) bits[words - 1] &= (1u << (voxgi_grid_voxel_count(g) % 32)) - 1u;
-    voxgi__free(ctx, job.out);
+    voxgi__free(ctx, job.big);
+    voxgi__free(ctx, job.big_first_item);
+    st->exact_tests += job.exact_tests;
+    st->voxels += job.voxels;
+    if (job.cancel) return voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "voxelization cancelled by the progress callback");
     return VOXGI_OK;
 }
-#undef VOXGI__GET
+
+static voxgi_result voxgi__prep_vertices(voxgi_context *ctx, const voxgi__flat *f, const voxgi_grid *g, voxgi__vprep **out)
+{
+    size_t v;
+    voxgi__vprep *vp = (voxgi__vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *vp, 0);
+    *out = vp;
+    if (!vp) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
+    for (v = 0; v < f->vertex_count; v++) voxgi__prep_vertex(f->pos + 3 * v, g, &vp[v]);
+    return VOXGI_OK;
+}
 
 /* The CPU twin of every method, into vox->bits. */
 static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *flat, const voxgi__vprep *vp,
@@ -3656,6 +5256,73 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
     vox->info.voxel_count = solid || atlas ? voxgi__popcount_words(vox->bits, words) : st.voxels;
     return r;
 }
+
+#ifndef VOXGI_NO_GL
+
+static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                       const voxgi_voxelize_desc *d, const voxgi__atlas *atlas, voxgi_voxels *out)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    uint64_t nvox = voxgi_grid_voxel_count(g), words = voxgi__grid_words(g);
+    size_t bytes = (size_t)words * 4;
+    unsigned int result = 0;
+    voxgi_result r;
+    if (nvox > (uint64_t)UINT32_MAX)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grids hold at most 2^32 voxels (32-bit bit indices in GLSL); "
+                           "%dx%dx%d needs the CPU backend", g->res[0], g->res[1], g->res[2]);
+    if ((int64_t)bytes > gl->max_ssbo_bytes)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d bit grid needs %lu bytes, more than this GL's "
+                           "GL_MAX_SHADER_STORAGE_BLOCK_SIZE (%lld); use the CPU backend", g->res[0], g->res[1], g->res[2],
+                           (unsigned long)bytes, (long long)gl->max_ssbo_bytes);
+    if ((uint64_t)g->res[0] * g->res[1] > 65535u * 64u || (uint64_t)g->res[1] * g->res[2] > 65535u * 64u ||
+        (uint64_t)g->res[0] * g->res[2] > 65535u * 64u)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grid slices hold at most 65535*64 lines; use the CPU backend");
+    r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl conservative.glsl voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl voxelize_solid.glsl", &gl->prog_voxelize_solid);
+    if (r == VOXGI_OK && d->method == VOXGI_METHOD_GEOMETRY) {
+        int max_view = 0;
+        gl->GetIntegerv(VOXGI__GL_MAX_FRAMEBUFFER_WIDTH, &max_view);
+        if (VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])) > max_view)
+            return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the geometry voxelizer draws into %d pixels, more than this GL's "
+                               "GL_MAX_FRAMEBUFFER_WIDTH %d", VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])), max_view);
+        r = voxgi__gl_build(ctx, 2, "scene.glsl triangle.glsl conservative.glsl voxelize_geometry.glsl", &gl->prog_voxelize_geometry);
+    }
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "solid_prefix.glsl", &gl->prog_solid_prefix);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "flood.glsl", &gl->prog_flood);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "bits_majority.glsl", &gl->prog_bits_majority);
+    if (r != VOXGI_OK) return r;
+    if (d->method == VOXGI_METHOD_SLICEMAP) r = voxgi__gl_slicemap(ctx, f, vp, d, &result);
+    else if (atlas) r = voxgi__gl_atlas(ctx, f, vp, d, atlas, &result, &out->info);
+    else if (d->method == VOXGI_METHOD_VOLUME_BUFFER)
+        r = voxgi__gl_volume_buffer(ctx, f, vp, d, &result, out->attr.rec ? &out->attr : NULL, &out->info);
+    else if (d->method != VOXGI_METHOD_SOLID)
+        r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info, out->attr.rec ? &out->attr : NULL);
+    else if (d->solid_mode == VOXGI_SOLID_PARITY)
+        r = voxgi__gl_solid_parity(ctx, f, vp, d, d->axis ? (int)d->axis - 1 : 2, &result, &out->info);
+    else if (d->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__gl_solid_flood(ctx, f, vp, d, &result, &out->info);
+    else { /* vote: parity along x, y and z, then the majority into the last */
+        unsigned int axes[3] = {0, 0, 0}, p = gl->prog_bits_majority;
+        int a;
+        for (a = 0; a < 3 && r == VOXGI_OK; a++) r = voxgi__gl_solid_parity(ctx, f, vp, d, a, &axes[a], &out->info);
+        if (r == VOXGI_OK) {
+            for (a = 0; a < 3; a++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)a, axes[a]);
+            gl->UseProgram(p);
+            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
+            voxgi__gl_dispatch_items(gl, words);
+            voxgi__gl_unbind(gl);
+            result = axes[2];
+            axes[2] = 0;
+        }
+        for (a = 0; a < 3; a++) voxgi__gl_delete_buffer(ctx, axes[a]);
+    }
+    if (r != VOXGI_OK) return r;
+    r = voxgi__gl_popcount(ctx, result, words, &out->info.voxel_count); /* count the set voxels on the GPU */
+    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, result); return r; }
+    out->gl_buffer = result;
+    return voxgi__gl_check(ctx, "voxelization");
+}
+#endif /* VOXGI_NO_GL */
 
 VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxelize_desc *desc,
                                       voxgi_voxels **out)
@@ -3763,9 +5430,35 @@ VOXGI_API voxgi_result voxgi_voxels_gl_buffer(voxgi_context *ctx, const voxgi_vo
     return VOXGI_OK;
 }
 
+/* ----- 5.8 OR mipmaps: GL, then the API */
+
 #ifndef VOXGI_NO_GL
-static voxgi_result voxgi__reduce_gl(voxgi_context *ctx, const voxgi_voxels *src, const int f[3], voxgi_voxels *dst);
-#endif
+
+static voxgi_result voxgi__reduce_gl(voxgi_context *ctx, const voxgi_voxels *src, const int f[3], voxgi_voxels *dst)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *sg = &src->info.grid, *dg = &dst->info.grid;
+    unsigned int p, out;
+    voxgi_result r = voxgi__gl_get_program(ctx, "reduce.glsl", &gl->prog_reduce);
+    if (r != VOXGI_OK) return r;
+    p = gl->prog_reduce;
+    out = voxgi__gl_grid_buffer(ctx, dst->info.bytes);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, src->gl_buffer);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, out);
+    gl->UseProgram(p);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_src_res"), sg->res[0], sg->res[1], sg->res[2]);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_dst_res"), dg->res[0], dg->res[1], dg->res[2]);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_factor"), f[0], f[1], f[2]);
+    /* one invocation per destination line along x, in work-group slices */
+    gl->DispatchCompute((unsigned)(((uint64_t)dg->res[1] * (uint64_t)dg->res[2] + 63) / 64), 1, 1);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+    voxgi__gl_unbind(gl);
+    dst->gl_buffer = out;
+    r = voxgi__gl_check(ctx, "the OR reduction");
+    if (r == VOXGI_OK) r = voxgi__gl_popcount(ctx, out, dst->info.bytes / 4, &dst->info.voxel_count);
+    return r;
+}
+#endif /* VOXGI_NO_GL */
 
 VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxels *src, const int factor[3], voxgi_voxels **out)
 {
@@ -3812,956 +5505,9 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
     return VOXGI_OK;
 }
 
-#ifndef VOXGI_NO_GL
-/* ===================================================================== GL voxelizers
-   The twins of the CPU parts above, one GL pass per method (GLSL in shaders/). The CPU prepares
-   each vertex (voxel coordinates and exact ranges, O(vertices)); the GPU does everything per
-   triangle, fragment and voxel; what an exact pass's filter cannot decide comes back here and is
-   decided exactly, so the bits equal the CPU's. */
-typedef struct voxgi__gl_vprep { double q[4]; int32_t lo[4], hi[4]; float w[4], pad[4]; } voxgi__gl_vprep; /* std430 */
+/* ===================================================================== 6. volumes and mips */
 
-#define VOXGI__GL_PAIR_CAPACITY 65536u
-
-static void voxgi__gl_unbind(voxgi__gl *gl)
-{
-    int i;
-    gl->UseProgram(0);
-    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
-    for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, 0);
-}
-
-/* A zeroed buffer of the grid's words. */
-static unsigned int voxgi__gl_grid_buffer(voxgi_context *ctx, size_t bytes)
-{
-    unsigned int b = voxgi__gl_buffer(ctx, bytes, NULL), zero = 0;
-    ctx->gl->ClearNamedBufferData(b, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-    return b;
-}
-
-/* Runs `program` with one invocation per item (grid-sized dispatch in slices of 65535 groups is
-   not needed: callers keep items below 65535 * 64). */
-static void voxgi__gl_dispatch_items(voxgi__gl *gl, uint64_t items)
-{
-    gl->DispatchCompute((unsigned)((items + 63) / 64), 1, 1);
-    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
-}
-
-/* One invocation per item, in rows of at most 65535 work groups (the shaders' item index is
-   x + y * the row's invocations); the barrier covers storage and indirect commands. */
-static void voxgi__gl_dispatch_rows(voxgi__gl *gl, uint64_t items)
-{
-    uint64_t groups = (items + 63) / 64;
-    if (groups) gl->DispatchCompute((unsigned)VOXGI__MIN(groups, (uint64_t)65535), (unsigned)((groups + 65534) / 65535), 1);
-    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
-}
-
-/* The triangle pass: conservative/thin voxels (solid_axis < 0) or solid toggles along
-   solid_axis, into a new buffer *bits_out. What the GPU's filter cannot decide is decided here
-   exactly and written back. */
-/* The GL state a raster pass changes (capabilities off, the viewport), saved by begin and given
-   back to the caller by end. */
-static const unsigned int voxgi__gl_raster_caps[9] = {VOXGI__GL_DEPTH_TEST, VOXGI__GL_STENCIL_TEST, VOXGI__GL_SCISSOR_TEST,
-                                                      VOXGI__GL_CULL_FACE, VOXGI__GL_BLEND, VOXGI__GL_MULTISAMPLE,
-                                                      VOXGI__GL_RASTERIZER_DISCARD, VOXGI__GL_COLOR_LOGIC_OP, VOXGI__GL_PROGRAM_POINT_SIZE};
-typedef struct voxgi__gl_raster_state { unsigned char enabled[9]; int viewport[4]; } voxgi__gl_raster_state;
-
-static void voxgi__gl_raster_begin(voxgi__gl *gl, voxgi__gl_raster_state *st)
-{
-    int i;
-    gl->GetIntegerv(VOXGI__GL_VIEWPORT, st->viewport);
-    for (i = 0; i < 9; i++) {
-        st->enabled[i] = gl->IsEnabled(voxgi__gl_raster_caps[i]);
-        gl->Disable(voxgi__gl_raster_caps[i]);
-    }
-}
-
-static void voxgi__gl_raster_end(voxgi__gl *gl, const voxgi__gl_raster_state *st)
-{
-    int i;
-    gl->Viewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
-    for (i = 0; i < 9; i++)
-        if (st->enabled[i]) gl->Enable(voxgi__gl_raster_caps[i]);
-        else gl->Disable(voxgi__gl_raster_caps[i]);
-}
-
-
-/* Pass 0 over all triangles (in slices of at most 65535 work groups), then pass 1 over the big
-   ones it listed, sized on the GPU; the program's other uniforms are set by the caller. */
-static void voxgi__gl_run_triangles(voxgi__gl *gl, unsigned int p, size_t nt, unsigned int control)
-{
-    size_t t0;
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
-    for (t0 = 0; t0 < nt; t0 += 65535u * 64u) {
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_offset"), (unsigned)t0);
-        gl->DispatchCompute((unsigned)VOXGI__MIN((nt - t0 + 63) / 64, (size_t)65535), 1, 1);
-    }
-    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
-    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, control);
-    gl->DispatchComputeIndirect(0);
-    gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
-    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
-}
-
-/* The geometry-shader voxelizer's draw: every triangle once into an attachment-less
-   framebuffer of view x view pixels (voxel columns); the caller's GL state is restored. */
-static void voxgi__gl_draw_geometry(voxgi__gl *gl, unsigned int p, size_t nt, int view)
-{
-    voxgi__gl_raster_state state;
-    unsigned int fbo = 0, vao = 0;
-    voxgi__gl_raster_begin(gl, &state);
-    gl->CreateVertexArrays(1, &vao);
-    gl->CreateFramebuffers(1, &fbo);
-    gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, view);
-    gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, view);
-    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
-    gl->BindVertexArray(vao);
-    gl->Viewport(0, 0, view, view);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_view"), view);
-    gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
-    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
-    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
-    gl->BindVertexArray(0);
-    gl->DeleteFramebuffers(1, &fbo);
-    gl->DeleteVertexArrays(1, &vao);
-    voxgi__gl_raster_end(gl, &state);
-}
-
-/* Runs the conservative tests of every triangle: compute dispatches, or the geometry draw. */
-static void voxgi__gl_run(voxgi__gl *gl, const voxgi_voxelize_desc *d, unsigned int p, size_t nt, unsigned int control)
-{
-    if (d->method == VOXGI_METHOD_GEOMETRY)
-        voxgi__gl_draw_geometry(gl, p, nt, VOXGI__MAX(d->grid.res[0], VOXGI__MAX(d->grid.res[1], d->grid.res[2])));
-    else voxgi__gl_run_triangles(gl, p, nt, control);
-}
-
-/* The attribute pass after the conservative (or thin) bits are final in buf[2]: the same
-   triangles again, each set voxel receiving its triangles' values on the GPU; the triangles the
-   bit pass flagged (buf[5]) and the pairs its filter could not decide are added here, exactly.
-   pair_capacity: the bit pass's pair count, which this pass cannot exceed. */
-static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                             const voxgi_voxelize_desc *d, const unsigned int *buf, uint32_t pair_capacity,
-                                             voxgi__attr *attr)
-{
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &d->grid;
-    uint64_t words = voxgi__grid_words(g), voxels = 0, w, stride = 1 + 2 * (uint64_t)attr->channels, s;
-    size_t nt = f->triangle_count, flag_words = (nt + 31) / 32, k;
-    unsigned int control_buf = 0, pairs_buf = 0, rank_buf = 0, rec_buf = 0, sums_buf = 0, zero = 0;
-    unsigned int p = d->method == VOXGI_METHOD_GEOMETRY ? gl->prog_voxelize_geometry : gl->prog_voxelize_conservative;
-    uint32_t control[8], *bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0), *sums = NULL, *flags = NULL, *pairs = NULL;
-    voxgi_result r = VOXGI_OK;
-    if (!bits) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attribute pass");
-    r = voxgi__gl_read_buffer(ctx, buf[2], bits, (size_t)words * 4);
-    for (w = 0; w < words; w++) voxels += voxgi__popcount32(bits[w]);
-    if (r == VOXGI_OK && voxels * stride * 4 > (uint64_t)gl->max_ssbo_bytes)
-        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the attribute sums of %llu voxels exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE; "
-                        "use the CPU backend", (unsigned long long)voxels);
-    if (r == VOXGI_OK) r = voxgi__attr_alloc(ctx, attr, bits, words, voxels);
-    if (r == VOXGI_OK) {
-        memset(control, 0, sizeof control);
-        control[1] = control[2] = 1;
-        control_buf = voxgi__gl_buffer(ctx, sizeof control, control);
-        pairs_buf = voxgi__gl_buffer(ctx, (size_t)VOXGI__MAX(pair_capacity, 1u) * 16, NULL);
-        rank_buf = voxgi__gl_buffer(ctx, (size_t)words * 4, attr->rank);
-        rec_buf = voxgi__gl_buffer(ctx, nt * (size_t)attr->channels * 4, attr->rec);
-        sums_buf = voxgi__gl_buffer(ctx, (size_t)(voxels * stride * 4), NULL);
-        gl->ClearNamedBufferData(sums_buf, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-        r = voxgi__gl_check(ctx, "allocating the attribute buffers");
-    }
-    if (r == VOXGI_OK) {
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, control_buf);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, pairs_buf);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, rank_buf);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 8, rec_buf);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 9, sums_buf);
-        gl->UseProgram(p);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), pair_capacity);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 1);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr->channels);
-        {
-            unsigned int max_channels = 0;
-            int c;
-            for (c = 0; c < attr->channels; c++) max_channels |= (unsigned)attr->max_op[c] << c;
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_max_channels"), max_channels);
-        }
-        voxgi__gl_run(gl, d, p, nt, control_buf);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
-        for (k = 7; k < 10; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, 0);
-        r = voxgi__gl_read_buffer(ctx, control_buf, control, sizeof control);
-        if (r == VOXGI_OK && control[4] > pair_capacity)
-            r = voxgi__fail(ctx, VOXGI_ERR_GL, "the attribute pass found %u undecided pairs, the bit pass %u", control[4], pair_capacity);
-    }
-    if (r == VOXGI_OK) { /* the GPU's sums, then the CPU's share */
-        sums = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels * stride : 1), 4, 0);
-        flags = (uint32_t *)voxgi__alloc_array(ctx, flag_words ? flag_words : 1, 4, 0);
-        pairs = (uint32_t *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(control[4], 1u), 16, 0);
-        if (!sums || !flags || !pairs) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to read the attribute sums");
-        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, sums_buf, sums, (size_t)(voxels * stride * 4));
-        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[5], flags, flag_words * 4);
-        if (r == VOXGI_OK && control[4]) r = voxgi__gl_read_buffer(ctx, pairs_buf, pairs, (size_t)control[4] * 16);
-    }
-    if (r == VOXGI_OK) {
-        voxgi__vox_shared vs;
-        voxgi__stats st = {0, 0, 0};
-        int c, i;
-        for (s = 0; s < voxels; s++) {
-            attr->count[s] = sums[s * stride];
-            for (c = 0; c < attr->channels; c++)
-                attr->sum[s * (uint64_t)attr->channels + (uint64_t)c] =
-                    (uint64_t)sums[s * stride + 1 + 2 * (uint64_t)c] | ((uint64_t)sums[s * stride + 2 + 2 * (uint64_t)c] << 32);
-        }
-        voxgi__vox_shared_init(&vs, g, f, vp, d->method, bits);
-        vs.attr = attr;
-        for (k = 0; k < nt; k++)
-            if (flags[k >> 5] & (1u << (k & 31u))) {
-                st.tri = (uint32_t)k;
-                voxgi__voxelize_triangle(&vs, k, &st);
-            }
-        for (k = 0; k < control[4]; k++) {
-            voxgi__tri t;
-            const uint32_t *pr = pairs + 4 * k;
-            int32_t rel[3];
-            st.tri = pr[0];
-            if (!voxgi__tri_setup(&vs, pr[0], &t)) continue;
-            voxgi__tri_resolve_signs(&vs, &t, &st);
-            voxgi__tri_forms(&t);
-            for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
-            if (voxgi__test_voxel(&vs, &t, rel, &st)) voxgi__emit(&vs, &st, &t, rel);
-        }
-    }
-    voxgi__gl_delete_buffer(ctx, control_buf);
-    voxgi__gl_delete_buffer(ctx, pairs_buf);
-    voxgi__gl_delete_buffer(ctx, rank_buf);
-    voxgi__gl_delete_buffer(ctx, rec_buf);
-    voxgi__gl_delete_buffer(ctx, sums_buf);
-    voxgi__free(ctx, bits);
-    voxgi__free(ctx, sums);
-    voxgi__free(ctx, flags);
-    voxgi__free(ctx, pairs);
-    return r;
-}
-
-static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                            const voxgi_voxelize_desc *d, int solid_axis, unsigned int *bits_out,
-                                            voxgi_voxels_info *info, voxgi__attr *attr)
-{
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &d->grid;
-    size_t bytes = (size_t)voxgi__grid_words(g) * 4, v, nt = f->triangle_count, flag_words = (nt + 31) / 32;
-    unsigned int buf[7] = {0, 0, 0, 0, 0, 0, 0}, zero = 0, capacity = VOXGI__GL_PAIR_CAPACITY;
-    uint32_t control[8];
-    voxgi__gl_vprep *gv;
-    uint32_t *copy = NULL, *flags = NULL, *pairs = NULL;
-    unsigned int p = solid_axis >= 0 ? gl->prog_voxelize_solid
-                     : (d->method == VOXGI_METHOD_GEOMETRY ? gl->prog_voxelize_geometry : gl->prog_voxelize_conservative);
-    voxgi_result r;
-    int i, attempt;
-    gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
-    if (!gv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
-    for (v = 0; v < f->vertex_count; v++) {
-        for (i = 0; i < 3; i++) {
-            gv[v].q[i] = vp[v].q[i];
-            gv[v].lo[i] = vp[v].lo[i];
-            gv[v].hi[i] = vp[v].hi[i];
-            gv[v].w[i] = f->pos[3 * v + (size_t)i];
-        }
-        gv[v].q[3] = vp[v].frac_bits;
-        gv[v].lo[3] = vp[v].exact_axes;
-    }
-    buf[0] = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
-    buf[1] = voxgi__gl_buffer(ctx, nt * 3 * sizeof(uint32_t), f->tri);
-    buf[6] = voxgi__gl_buffer(ctx, nt * 4, NULL);
-    voxgi__free(ctx, gv);
-    /* a solid pass whose pair list overflowed runs again with room for all of them: toggles
-       cannot be patched the way set bits can */
-    for (attempt = 0; attempt < 2; attempt++) {
-        memset(control, 0, sizeof control);
-        control[1] = 1; /* work groups per big triangle: raised by pass 0 */
-        control[2] = 1;
-        buf[2] = voxgi__gl_grid_buffer(ctx, bytes);
-        buf[3] = voxgi__gl_buffer(ctx, sizeof control, control);
-        buf[4] = voxgi__gl_buffer(ctx, (size_t)capacity * 16, NULL);
-        buf[5] = voxgi__gl_buffer(ctx, flag_words * 4, NULL);
-        gl->ClearNamedBufferData(buf[5], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-        r = voxgi__gl_check(ctx, "allocating the voxelization buffers");
-        if (r != VOXGI_OK) break;
-        for (i = 0; i < 7; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i]);
-        gl->UseProgram(p);
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_count"), (unsigned)nt);
-        gl->ProgramUniform1d(p, gl->GetUniformLocation(p, "u_inv_s"), 1.0 / g->voxel_size);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), capacity);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_solid_axis"), solid_axis);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_thin"), d->method == VOXGI_METHOD_THIN);
-        if (solid_axis < 0) gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
-        voxgi__gl_run(gl, d, p, nt, buf[3]);
-        r = voxgi__gl_read_buffer(ctx, buf[3], control, sizeof control);
-        if (r != VOXGI_OK || solid_axis < 0 || control[4] <= capacity) break;
-        capacity = control[4];
-        for (i = 2; i < 6; i++) { voxgi__gl_delete_buffer(ctx, buf[i]); buf[i] = 0; }
-    }
-    /* the undecided: control[4] pairs, control[5] flagged triangles */
-    if (r == VOXGI_OK && (control[4] || control[5])) {
-        size_t np = VOXGI__MIN((size_t)control[4], (size_t)capacity), k;
-        copy = (uint32_t *)voxgi__alloc(ctx, bytes);
-        flags = (uint32_t *)voxgi__alloc_array(ctx, flag_words, 4, 0);
-        pairs = (uint32_t *)voxgi__alloc_array(ctx, np, 16, 0);
-        if (!copy || !flags || !pairs) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to resolve the GL pass's undecided tests");
-        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[2], copy, bytes);
-        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[5], flags, flag_words * 4);
-        if (r == VOXGI_OK && np) r = voxgi__gl_read_buffer(ctx, buf[4], pairs, np * 16);
-        if (r == VOXGI_OK) {
-            voxgi__vox_shared vs;
-            voxgi__stats st = {0, 0, 0};
-            voxgi__vox_shared_init(&vs, g, f, vp, d->method, copy);
-            vs.solid_axis = solid_axis;
-            for (k = 0; k < nt; k++)
-                if (flags[k >> 5] & (1u << (k & 31u))) {
-                    if (solid_axis >= 0) voxgi__solid_triangle(&vs, k, &st);
-                    else voxgi__voxelize_triangle(&vs, k, &st);
-                    info->exact_triangles++;
-                }
-            for (k = 0; k < np; k++) {
-                voxgi__tri t;
-                const uint32_t *pr = pairs + 4 * k;
-                int32_t rel[3];
-                if (solid_axis >= 0) {
-                    if (!voxgi__solid_setup(&vs, pr[0], &t, &st)) continue;
-                    for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
-                    voxgi__solid_column(&vs, &t, rel, &st);
-                } else if (voxgi__tri_setup(&vs, pr[0], &t)) {
-                    voxgi__tri_resolve_signs(&vs, &t, &st);
-                    voxgi__tri_forms(&t);
-                    for (i = 0; i < 3; i++) rel[i] = (int32_t)pr[1 + i] - t.lo[i];
-                    if (voxgi__test_voxel(&vs, &t, rel, &st)) voxgi__emit(&vs, &st, &t, rel);
-                }
-            }
-            info->exact_tests += st.exact_tests;
-            gl->NamedBufferSubData(buf[2], 0, (ptrdiff_t)bytes, copy);
-            r = voxgi__gl_check(ctx, "uploading the exact decisions");
-        }
-    }
-    if (r == VOXGI_OK && attr) r = voxgi__gl_attribute_pass(ctx, f, vp, d, buf, control[4], attr);
-    voxgi__gl_unbind(gl);
-    for (i = 0; i < 7; i++)
-        if (i != 2) voxgi__gl_delete_buffer(ctx, buf[i]);
-    voxgi__free(ctx, copy);
-    voxgi__free(ctx, flags);
-    voxgi__free(ctx, pairs);
-    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, buf[2]); return r; }
-    *bits_out = buf[2];
-    return VOXGI_OK;
-}
-
-/* Counts the set bits of a grid buffer on the GPU. */
-static voxgi_result voxgi__gl_popcount(voxgi_context *ctx, unsigned int buffer, uint64_t words, uint64_t *count)
-{
-    voxgi__gl *gl = ctx->gl;
-    unsigned int p, count_buf;
-    uint32_t c = 0;
-    voxgi_result r = voxgi__gl_get_program(ctx, "popcount.glsl", &gl->prog_popcount);
-    if (r != VOXGI_OK) return r;
-    p = gl->prog_popcount;
-    count_buf = voxgi__gl_buffer(ctx, 4, &c);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, buffer);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, count_buf);
-    gl->UseProgram(p);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
-    gl->DispatchCompute((unsigned)VOXGI__MIN((words + 63) / 64, (uint64_t)1024), 1, 1);
-    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
-    voxgi__gl_unbind(gl);
-    r = voxgi__gl_read_buffer(ctx, count_buf, &c, 4);
-    voxgi__gl_delete_buffer(ctx, count_buf);
-    *count = c;
-    return r;
-}
-
-/* Solid parity along axis A: toggles, then one walk per line. */
-static voxgi_result voxgi__gl_solid_parity(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                           const voxgi_voxelize_desc *d, int A, unsigned int *solid, voxgi_voxels_info *info)
-{
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &d->grid;
-    unsigned int toggles = 0, p = gl->prog_solid_prefix;
-    voxgi_result r = voxgi__gl_triangle_pass(ctx, f, vp, d, A, &toggles, info, NULL);
-    if (r != VOXGI_OK) return r;
-    *solid = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, toggles);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *solid);
-    gl->UseProgram(p);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
-    voxgi__gl_dispatch_items(gl, (uint64_t)g->res[(A + 1) % 3] * (uint64_t)g->res[(A + 2) % 3]);
-    voxgi__gl_unbind(gl);
-    voxgi__gl_delete_buffer(ctx, toggles);
-    return voxgi__gl_check(ctx, "the solid parity pass");
-}
-
-/* Solid by flooding the outside of the conservative surface, sweeping until nothing grows. */
-static voxgi_result voxgi__gl_solid_flood(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                          const voxgi_voxelize_desc *d, unsigned int *solid, voxgi_voxels_info *info)
-{
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &d->grid;
-    voxgi_voxelize_desc cd = *d;
-    size_t bytes = (size_t)voxgi__grid_words(g) * 4;
-    unsigned int surface = 0, outside, changed_buf, p = gl->prog_flood;
-    uint32_t changed = 1;
-    voxgi_result r;
-    int axis;
-    cd.method = VOXGI_METHOD_CONSERVATIVE;
-    r = voxgi__gl_triangle_pass(ctx, f, vp, &cd, -1, &surface, info, NULL);
-    if (r != VOXGI_OK) return r;
-    outside = voxgi__gl_grid_buffer(ctx, bytes);
-    changed_buf = voxgi__gl_buffer(ctx, 4, &changed);
-    *solid = voxgi__gl_grid_buffer(ctx, bytes);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, surface);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, outside);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, changed_buf);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, *solid);
-    gl->UseProgram(p);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)(bytes / 4));
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 0);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), 2);
-    voxgi__gl_dispatch_items(gl, (uint64_t)g->res[0] * (uint64_t)g->res[1]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 1);
-    while (changed && r == VOXGI_OK) {
-        changed = 0;
-        gl->NamedBufferSubData(changed_buf, 0, 4, &changed);
-        for (axis = 0; axis < 3; axis++) {
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), axis);
-            voxgi__gl_dispatch_items(gl, (uint64_t)g->res[(axis + 1) % 3] * (uint64_t)g->res[(axis + 2) % 3]);
-        }
-        r = voxgi__gl_read_buffer(ctx, changed_buf, &changed, 4);
-    }
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 2);
-    voxgi__gl_dispatch_items(gl, bytes / 4);
-    voxgi__gl_unbind(gl);
-    voxgi__gl_delete_buffer(ctx, surface);
-    voxgi__gl_delete_buffer(ctx, outside);
-    voxgi__gl_delete_buffer(ctx, changed_buf);
-    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the flood fill");
-    if (r != VOXGI_OK) voxgi__gl_delete_buffer(ctx, *solid);
-    return r;
-}
-
-/* Uploads the prepared vertices (binding 0) and the triangles (binding 1). */
-static void voxgi__gl_scene_buffers(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp, unsigned int *verts,
-                                    unsigned int *tris, voxgi_result *r)
-{
-    voxgi__gl_vprep *gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
-    size_t v;
-    int i;
-    *verts = *tris = 0;
-    if (!gv) { *r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count); return; }
-    for (v = 0; v < f->vertex_count; v++)
-        for (i = 0; i < 3; i++) gv[v].q[i] = vp[v].q[i];
-    *verts = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
-    *tris = voxgi__gl_buffer(ctx, f->triangle_count * 3 * sizeof(uint32_t), f->tri);
-    voxgi__free(ctx, gv);
-    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, *verts);
-    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *tris);
-}
-
-/* Draws `count` vertices as `mode` with `program` (its buffers bound by the caller) into
-   slicemap textures along axis A (128 slices per RGBA32UI layer, up to 8 layers per draw
-   through MRT, ORed by the logic op; or 32 slices per R32UI layer with imageAtomicOr), then
-   unpacks them into a new bit grid *bits_out. The caller's GL state is restored. */
-static voxgi_result voxgi__gl_slice_raster(voxgi_context *ctx, const voxgi_grid *g, int A, int atomic, unsigned int p,
-                                           unsigned int mode, uint64_t count, unsigned int *bits_out)
-{
-    voxgi__gl *gl = ctx->gl;
-    voxgi__gl_raster_state state;
-    int a = (A + 1) % 3, b = (A + 2) % 3, per_layer = atomic ? 32 : 128;
-    int layers = (g->res[A] + per_layer - 1) / per_layer, max_targets = 1, max_size = 0, i, first;
-    unsigned int tex = 0, fbo = 0, vao = 0, zero[4] = {0, 0, 0, 0};
-    size_t bytes = (size_t)voxgi__grid_words(g) * 4;
-    voxgi_result r = voxgi__gl_get_program(ctx, "slicemap_unpack.glsl", &gl->prog_slicemap_unpack);
-    *bits_out = 0;
-    if (r != VOXGI_OK) return r;
-    gl->GetIntegerv(VOXGI__GL_MAX_DRAW_BUFFERS, &max_targets);
-    gl->GetIntegerv(VOXGI__GL_MAX_TEXTURE_SIZE, &max_size);
-    max_targets = VOXGI__MIN(max_targets, 8);
-    if (g->res[a] > max_size || g->res[b] > max_size)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d slicemap exceeds GL_MAX_TEXTURE_SIZE %d", g->res[a], g->res[b], max_size);
-    if (count > (uint64_t)INT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%llu vertices exceed one draw", (unsigned long long)count);
-    gl->CreateTextures(VOXGI__GL_TEXTURE_2D_ARRAY, 1, &tex);
-    gl->TextureStorage3D(tex, 1, atomic ? VOXGI__GL_R32UI : VOXGI__GL_RGBA32UI, g->res[a], g->res[b], layers);
-    /* integer textures are incomplete with the default linear filters: texelFetch would read 0 */
-    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
-    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
-    gl->ClearTexImage(tex, 0, atomic ? VOXGI__GL_RED_INTEGER : VOXGI__GL_RGBA_INTEGER, VOXGI__GL_UNSIGNED_INT, zero);
-    gl->CreateVertexArrays(1, &vao);
-    gl->CreateFramebuffers(1, &fbo);
-    voxgi__gl_raster_begin(gl, &state);
-    gl->Enable(VOXGI__GL_PROGRAM_POINT_SIZE); /* points are one pixel whatever glPointSize says */
-    gl->UseProgram(p);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_atomic"), atomic);
-    gl->BindVertexArray(vao);
-    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
-    gl->Viewport(0, 0, g->res[a], g->res[b]);
-    if (atomic) { /* no colour outputs: an attachment-less framebuffer of the slicemap's size */
-        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, g->res[a]);
-        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, g->res[b]);
-        gl->BindImageTexture(0, tex, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), 0);
-        gl->DrawArrays(mode, 0, (int)count);
-    } else {
-        gl->Enable(VOXGI__GL_COLOR_LOGIC_OP);
-        gl->LogicOp(VOXGI__GL_OR);
-        for (first = 0; first < layers && r == VOXGI_OK; first += max_targets) {
-            unsigned int bufs[8];
-            int n = VOXGI__MIN(max_targets, layers - first);
-            for (i = 0; i < 8; i++) {
-                gl->NamedFramebufferTextureLayer(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)i, i < n ? tex : 0, 0, i < n ? first + i : 0);
-                bufs[i] = i < n ? VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)i : 0;
-            }
-            gl->NamedFramebufferDrawBuffers(fbo, 8, bufs);
-            if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE)
-                r = voxgi__fail(ctx, VOXGI_ERR_GL, "the slicemap framebuffer is incomplete");
-            else {
-                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), first * per_layer);
-                gl->DrawArrays(mode, 0, (int)count);
-            }
-        }
-    }
-    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
-    gl->BindVertexArray(0);
-    voxgi__gl_raster_end(gl, &state);
-    gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT);
-    if (r == VOXGI_OK) { /* slicemap columns -> the linear bit grid */
-        *bits_out = voxgi__gl_grid_buffer(ctx, bytes);
-        p = gl->prog_slicemap_unpack;
-        gl->UseProgram(p);
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_per_layer"), per_layer);
-        gl->BindTextureUnit(0, tex);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, *bits_out);
-        voxgi__gl_dispatch_items(gl, (uint64_t)g->res[a] * (uint64_t)g->res[b]);
-        gl->BindTextureUnit(0, 0);
-    }
-    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
-    voxgi__gl_unbind(gl);
-    gl->DeleteTextures(1, &tex);
-    gl->DeleteFramebuffers(1, &fbo);
-    gl->DeleteVertexArrays(1, &vao);
-    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the raster slicemap");
-    if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
-    return r;
-}
-
-/* The raster slicemap: the triangles drawn along the axis. */
-static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                       const voxgi_voxelize_desc *d, unsigned int *bits_out)
-{
-    unsigned int verts = 0, tris = 0;
-    voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl slice_targets.glsl slicemap.glsl", &ctx->gl->prog_slicemap);
-    if (r == VOXGI_OK) voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
-    if (r == VOXGI_OK)
-        r = voxgi__gl_slice_raster(ctx, &d->grid, d->axis ? (int)d->axis - 1 : 2, d->atomic, ctx->gl->prog_slicemap,
-                                   VOXGI__GL_TRIANGLES, 3 * (uint64_t)f->triangle_count, bits_out);
-    voxgi__gl_delete_buffer(ctx, verts);
-    voxgi__gl_delete_buffer(ctx, tris);
-    return r;
-}
-
-/* The texture atlas: the charts drawn into an R32UI atlas, its covered texels listed as
-   points, then the points either drawn into slicemap targets (ATLAS) or each set by one
-   compute invocation (ATLAS_COMPUTE). */
-static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                    const voxgi_voxelize_desc *d, const voxgi__atlas *at, unsigned int *bits_out,
-                                    voxgi_voxels_info *info)
-{
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &d->grid;
-    voxgi__gl_raster_state state;
-    unsigned int verts = 0, tris = 0, charts = 0, points = 0, tex = 0, fbo = 0, vao = 0, zero = 0, p, drawbuf = VOXGI__GL_COLOR_ATTACHMENT0;
-    uint32_t count = 0;
-    int max_size = 0;
-    uint64_t texels = (uint64_t)at->size * (uint64_t)at->size;
-    voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl atlas.glsl atlas_fill.glsl", &gl->prog_atlas_fill);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl atlas.glsl atlas_list.glsl", &gl->prog_atlas_list);
-    if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS)
-        r = voxgi__gl_build(ctx, 1, "scene.glsl atlas.glsl slice_targets.glsl atlas_points.glsl", &gl->prog_atlas_points);
-    if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS_COMPUTE)
-        r = voxgi__gl_get_program(ctx, "scene.glsl atlas.glsl atlas_compute.glsl", &gl->prog_atlas_compute);
-    if (r != VOXGI_OK) return r;
-    gl->GetIntegerv(VOXGI__GL_MAX_TEXTURE_SIZE, &max_size);
-    if (at->view > max_size)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d atlas (viewport %d) exceeds GL_MAX_TEXTURE_SIZE %d", at->size, at->size,
-                           at->view, max_size);
-    voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
-    if (r != VOXGI_OK) return r;
-    charts = voxgi__gl_buffer(ctx, f->triangle_count * 6 * sizeof(float), at->uv);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, charts);
-    /* 1. the charts into the atlas */
-    gl->CreateTextures(VOXGI__GL_TEXTURE_2D, 1, &tex);
-    gl->TextureStorage2D(tex, 1, VOXGI__GL_R32UI, at->size, at->size);
-    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
-    gl->TextureParameteri(tex, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
-    gl->ClearTexImage(tex, 0, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-    gl->CreateFramebuffers(1, &fbo);
-    gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0, tex, 0);
-    gl->NamedFramebufferDrawBuffers(fbo, 1, &drawbuf);
-    gl->CreateVertexArrays(1, &vao);
-    voxgi__gl_raster_begin(gl, &state);
-    if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE)
-        r = voxgi__fail(ctx, VOXGI_ERR_GL, "the atlas framebuffer is incomplete");
-    else {
-        p = gl->prog_atlas_fill;
-        gl->UseProgram(p);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_view"), at->view);
-        gl->BindVertexArray(vao);
-        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
-        gl->Viewport(0, 0, at->view, at->view); /* beyond the atlas: the corners map to window coordinates exactly */
-        gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
-        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
-        gl->BindVertexArray(0);
-    }
-    voxgi__gl_raster_end(gl, &state);
-    gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT);
-    /* 2. the covered texels: count, then list */
-    if (r == VOXGI_OK) {
-        points = voxgi__gl_buffer(ctx, 8, NULL);
-        gl->ClearNamedBufferData(points, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, points);
-        gl->BindTextureUnit(0, tex);
-        p = gl->prog_atlas_list;
-        gl->UseProgram(p);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_size"), at->size);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
-        voxgi__gl_dispatch_rows(gl, texels);
-        r = voxgi__gl_read_buffer(ctx, points, &count, 4);
-    }
-    if (r == VOXGI_OK) {
-        voxgi__gl_delete_buffer(ctx, points);
-        points = voxgi__gl_buffer(ctx, 8 + 8 * (size_t)count, NULL);
-        gl->ClearNamedBufferData(points, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, points);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
-        voxgi__gl_dispatch_rows(gl, texels);
-        gl->BindTextureUnit(0, 0);
-        info->atlas_points = count;
-        r = voxgi__gl_check(ctx, "the atlas");
-    }
-    gl->DeleteTextures(1, &tex);
-    gl->DeleteFramebuffers(1, &fbo);
-    gl->DeleteVertexArrays(1, &vao);
-    /* 3. the points into voxels */
-    if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS)
-        r = voxgi__gl_slice_raster(ctx, g, d->axis ? (int)d->axis - 1 : 2, d->atomic, gl->prog_atlas_points, VOXGI__GL_POINTS,
-                                   count, bits_out);
-    else if (r == VOXGI_OK) {
-        *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
-        p = gl->prog_atlas_compute;
-        gl->UseProgram(p);
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        voxgi__gl_dispatch_rows(gl, count);
-        r = voxgi__gl_check(ctx, "the atlas points");
-    }
-    voxgi__gl_unbind(gl);
-    voxgi__gl_delete_buffer(ctx, verts);
-    voxgi__gl_delete_buffer(ctx, tris);
-    voxgi__gl_delete_buffer(ctx, charts);
-    voxgi__gl_delete_buffer(ctx, points);
-    if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
-    return r;
-}
-
-/* The Volume Buffer: three layered draws (one per sweep axis, each triangle in the sweep of its
-   dominant axis) into float 3D targets blended per attribute, then merged into the bit grid and,
-   with attributes, each set voxel's values (on the CPU afterwards, as floats). */
-static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                            const voxgi_voxelize_desc *d, unsigned int *bits_out, voxgi__attr *attr,
-                                            voxgi_voxels_info *info)
-{
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &d->grid;
-    voxgi__gl_raster_state state;
-    unsigned int attrs = d->attributes, tex[3][3], fbo = 0, vao = 0, verts = 0, tris = 0, values_buf = 0, lost_buf = 0, p, zero = 0;
-    unsigned char blend_was[3];
-    int saved[3][6], max3d = 0, c, k, i, targets = 1 + ((attrs & 10u) ? 1 : 0) + ((attrs & 4u) ? 1 : 0);
-    uint64_t words = voxgi__grid_words(g), nvox = voxgi_grid_voxel_count(g), bytes_per_voxel = attrs ? 16u * (uint64_t)targets : 4u;
-    float *tv;
-    size_t t;
-    voxgi_result r = voxgi__gl_build(ctx, 2, "scene.glsl volume_buffer.glsl", &gl->prog_volume_buffer);
-    if (r == VOXGI_OK) r = voxgi__gl_build(ctx, 2, "scene.glsl volume_buffer_big.glsl volume_buffer.glsl", &gl->prog_volume_buffer_big);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl volume_merge.glsl", &gl->prog_volume_merge);
-    if (r != VOXGI_OK) return r;
-    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
-    if (g->res[0] > max3d || g->res[1] > max3d || g->res[2] > max3d)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's 3D targets stop at GL_MAX_3D_TEXTURE_SIZE %d", max3d);
-    if (3 * nvox * bytes_per_voxel > ((uint64_t)1 << 30))
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's three %dx%dx%d sweeps need %llu MiB of float targets "
-                           "(at most 1024 here); ask for fewer attributes or a smaller grid", g->res[0], g->res[1], g->res[2],
-                           (unsigned long long)(3 * nvox * bytes_per_voxel >> 20));
-    /* each triangle's values as the targets take them */
-    tv = (float *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, 10 * sizeof(float), 1);
-    if (!tv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' values");
-    for (t = 0; t < f->triangle_count && attrs; t++) {
-        const voxgi_material *m = voxgi__tri_material(f, t);
-        double n[3];
-        voxgi__tri_unit_normal(f, t, n);
-        for (k = 0; k < 3; k++) {
-            tv[10 * t + (size_t)k] = m->albedo[k];
-            tv[10 * t + 3 + (size_t)k] = (float)(d->blend[1] == VOXGI_BLEND_MAX ? n[k] * 0.5 + 0.5 : n[k]);
-            tv[10 * t + 6 + (size_t)k] = m->emission[k];
-        }
-        tv[10 * t + 9] = 1.0f - m->transparency;
-    }
-    voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
-    values_buf = voxgi__gl_buffer(ctx, f->triangle_count * 10 * sizeof(float), tv);
-    lost_buf = voxgi__gl_buffer(ctx, 8 + 4 * f->triangle_count, NULL); /* lost, big_count, big_list */
-    gl->ClearNamedBufferData(lost_buf, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-    voxgi__free(ctx, tv);
-    memset(tex, 0, sizeof tex);
-    gl->CreateVertexArrays(1, &vao);
-    gl->CreateFramebuffers(1, &fbo);
-    for (i = 0; i < 3; i++) { /* the blend state of draw buffers 0-2, saved first: it is restored last */
-        static const unsigned int names[6] = {VOXGI__GL_BLEND_SRC_RGB, VOXGI__GL_BLEND_DST_RGB, VOXGI__GL_BLEND_SRC_ALPHA,
-                                              VOXGI__GL_BLEND_DST_ALPHA, VOXGI__GL_BLEND_EQUATION_RGB, VOXGI__GL_BLEND_EQUATION_ALPHA};
-        blend_was[i] = gl->IsEnabledi(VOXGI__GL_BLEND, (unsigned)i);
-        for (k = 0; k < 6; k++) gl->GetIntegeri_v(names[k], (unsigned)i, &saved[i][k]);
-    }
-    voxgi__gl_raster_begin(gl, &state);
-    for (i = 0; i < 3; i++) {
-        gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
-        gl->BlendFuncSeparatei((unsigned)i, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE);
-    }
-    {   /* per target: rgb and alpha by their attributes' blend mode (the fragment count always adds) */
-        unsigned int eq[3][2];
-        eq[0][0] = d->blend[0] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
-        eq[0][1] = VOXGI__GL_FUNC_ADD;
-        eq[1][0] = d->blend[1] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
-        eq[1][1] = d->blend[3] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
-        eq[2][0] = d->blend[2] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
-        eq[2][1] = VOXGI__GL_FUNC_ADD;
-        for (i = 0; i < 3; i++) gl->BlendEquationSeparatei((unsigned)i, eq[i][0], eq[i][1]);
-    }
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, values_buf);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, lost_buf);
-    for (i = 0; i < 2; i++) {
-        p = i ? gl->prog_volume_buffer_big : gl->prog_volume_buffer;
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_slicing"), d->volume_slicing == 1 ? 1 : 2);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_with_values"), attrs != 0);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_big"), i);
-    }
-    gl->BindVertexArray(vao);
-    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
-    for (c = 0; c < 3 && r == VOXGI_OK; c++) {
-        int a = (c + 1) % 3, b = (c + 2) % 3, vw = 1, vh = 1;
-        unsigned int bufs[3];
-        float zeros[4] = {0, 0, 0, 0};
-        for (k = 0; k < 3; k++) {
-            bufs[k] = 0;
-            if (k == 1 && !(attrs & 10u)) continue;
-            if (k == 2 && !(attrs & 4u)) continue;
-            gl->CreateTextures(VOXGI__GL_TEXTURE_3D, 1, &tex[c][k]);
-            gl->TextureStorage3D(tex[c][k], 1, k == 0 && !attrs ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F, g->res[a], g->res[b], g->res[c]);
-            gl->TextureParameteri(tex[c][k], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
-            gl->TextureParameteri(tex[c][k], VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
-            gl->ClearTexImage(tex[c][k], 0, k == 0 && !attrs ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
-            gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)k, tex[c][k], 0);
-            bufs[k] = VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)k;
-        }
-        for (k = 0; k < 3; k++)
-            if (!bufs[k]) gl->NamedFramebufferTexture(fbo, VOXGI__GL_COLOR_ATTACHMENT0 + (unsigned)k, 0, 0);
-        gl->NamedFramebufferDrawBuffers(fbo, 3, bufs);
-        if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE) {
-            r = voxgi__fail(ctx, VOXGI_ERR_GL, "the Volume Buffer's framebuffer is incomplete");
-            break;
-        }
-        while (vw < g->res[a]) vw *= 2;
-        while (vh < g->res[b]) vh *= 2;
-        gl->Viewport(0, 0, vw, vh);
-        for (i = 0; i < 2 && r == VOXGI_OK; i++) { /* every triangle; then the listed ones spanning many layers */
-            uint32_t big = 0;
-            p = i ? gl->prog_volume_buffer_big : gl->prog_volume_buffer;
-            gl->UseProgram(p);
-            gl->ProgramUniform2i(p, gl->GetUniformLocation(p, "u_view"), vw, vh);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), c);
-            if (i == 0) gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
-            else {
-                gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
-                gl->GetNamedBufferSubData(lost_buf, 4, 4, &big);
-                if (big) gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * big));
-                gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
-                gl->NamedBufferSubData(lost_buf, 4, 4, &zero);
-                info->big_triangles += big;
-            }
-        }
-    }
-    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
-    gl->BindVertexArray(0);
-    voxgi__gl_raster_end(gl, &state);
-    for (i = 0; i < 3; i++) {
-        gl->BlendFuncSeparatei((unsigned)i, (unsigned)saved[i][0], (unsigned)saved[i][1], (unsigned)saved[i][2], (unsigned)saved[i][3]);
-        gl->BlendEquationSeparatei((unsigned)i, (unsigned)saved[i][4], (unsigned)saved[i][5]);
-        if (blend_was[i]) gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
-        else gl->Disablei(VOXGI__GL_BLEND, (unsigned)i);
-    }
-    gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT | VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
-    if (r == VOXGI_OK) {
-        uint32_t lost = 0;
-        r = voxgi__gl_read_buffer(ctx, lost_buf, &lost, 4);
-        info->lost_slices = lost;
-    }
-    if (r == VOXGI_OK) { /* merge: the bits */
-        *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)words * 4);
-        p = gl->prog_volume_merge;
-        gl->UseProgram(p);
-        for (c = 0; c < 3; c++)
-            for (k = 0; k < 3; k++) gl->BindTextureUnit((unsigned)(3 * k + c), tex[c][k]);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_attributes"), attrs);
-        gl->ProgramUniform4i(p, gl->GetUniformLocation(p, "u_blend"), (int)d->blend[0], (int)d->blend[1], (int)d->blend[2], (int)d->blend[3]);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr ? attr->channels : 0);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
-        voxgi__gl_dispatch_rows(gl, nvox);
-        r = voxgi__gl_check(ctx, "the Volume Buffer");
-    }
-    if (r == VOXGI_OK && attr) { /* merge: each set voxel's values at its rank */
-        uint32_t *bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0);
-        unsigned int rank_buf = 0, out_buf = 0, count_buf = 0;
-        uint64_t voxels = 0, w;
-        if (!bits) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the Volume Buffer's merge");
-        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, *bits_out, bits, (size_t)words * 4);
-        for (w = 0; r == VOXGI_OK && w < words; w++) voxels += voxgi__popcount32(bits[w]);
-        if (r == VOXGI_OK) r = voxgi__attr_alloc(ctx, attr, bits, words, voxels);
-        if (r == VOXGI_OK && !(attr->values = (float *)voxgi__alloc_array(ctx, (size_t)(voxels ? voxels : 1), (size_t)attr->channels * 4, 0)))
-            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attributes of %llu voxels", (unsigned long long)voxels);
-        if (r == VOXGI_OK) {
-            rank_buf = voxgi__gl_buffer(ctx, (size_t)words * 4, attr->rank);
-            out_buf = voxgi__gl_buffer(ctx, (size_t)voxels * (size_t)attr->channels * 4, NULL);
-            count_buf = voxgi__gl_buffer(ctx, (size_t)voxels * 4, NULL);
-            gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, rank_buf);
-            gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 8, out_buf);
-            gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 9, count_buf);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
-            voxgi__gl_dispatch_rows(gl, nvox);
-            r = voxgi__gl_read_buffer(ctx, out_buf, attr->values, (size_t)voxels * (size_t)attr->channels * 4);
-            if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, count_buf, attr->count, (size_t)voxels * 4);
-        }
-        voxgi__gl_delete_buffer(ctx, rank_buf);
-        voxgi__gl_delete_buffer(ctx, out_buf);
-        voxgi__gl_delete_buffer(ctx, count_buf);
-        voxgi__free(ctx, bits);
-    }
-    for (i = 0; i < 9; i++) gl->BindTextureUnit((unsigned)i, 0);
-    voxgi__gl_unbind(gl);
-    for (c = 0; c < 3; c++)
-        for (k = 0; k < 3; k++)
-            if (tex[c][k]) gl->DeleteTextures(1, &tex[c][k]);
-    gl->DeleteFramebuffers(1, &fbo);
-    gl->DeleteVertexArrays(1, &vao);
-    voxgi__gl_delete_buffer(ctx, verts);
-    voxgi__gl_delete_buffer(ctx, tris);
-    voxgi__gl_delete_buffer(ctx, values_buf);
-    voxgi__gl_delete_buffer(ctx, lost_buf);
-    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the Volume Buffer");
-    if (r != VOXGI_OK && *bits_out) { voxgi__gl_delete_buffer(ctx, *bits_out); *bits_out = 0; }
-    return r;
-}
-
-static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                       const voxgi_voxelize_desc *d, const voxgi__atlas *atlas, voxgi_voxels *out)
-{
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &d->grid;
-    uint64_t nvox = voxgi_grid_voxel_count(g), words = voxgi__grid_words(g);
-    size_t bytes = (size_t)words * 4;
-    unsigned int result = 0;
-    voxgi_result r;
-    if (nvox > (uint64_t)UINT32_MAX)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grids hold at most 2^32 voxels (32-bit bit indices in GLSL); "
-                           "%dx%dx%d needs the CPU backend", g->res[0], g->res[1], g->res[2]);
-    if ((int64_t)bytes > gl->max_ssbo_bytes)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d bit grid needs %lu bytes, more than this GL's "
-                           "GL_MAX_SHADER_STORAGE_BLOCK_SIZE (%lld); use the CPU backend", g->res[0], g->res[1], g->res[2],
-                           (unsigned long)bytes, (long long)gl->max_ssbo_bytes);
-    if ((uint64_t)g->res[0] * g->res[1] > 65535u * 64u || (uint64_t)g->res[1] * g->res[2] > 65535u * 64u ||
-        (uint64_t)g->res[0] * g->res[2] > 65535u * 64u)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grid slices hold at most 65535*64 lines; use the CPU backend");
-    r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl conservative.glsl voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl voxelize_solid.glsl", &gl->prog_voxelize_solid);
-    if (r == VOXGI_OK && d->method == VOXGI_METHOD_GEOMETRY) {
-        int max_view = 0;
-        gl->GetIntegerv(VOXGI__GL_MAX_FRAMEBUFFER_WIDTH, &max_view);
-        if (VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])) > max_view)
-            return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the geometry voxelizer draws into %d pixels, more than this GL's "
-                               "GL_MAX_FRAMEBUFFER_WIDTH %d", VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])), max_view);
-        r = voxgi__gl_build(ctx, 2, "scene.glsl triangle.glsl conservative.glsl voxelize_geometry.glsl", &gl->prog_voxelize_geometry);
-    }
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "solid_prefix.glsl", &gl->prog_solid_prefix);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "flood.glsl", &gl->prog_flood);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "bits_majority.glsl", &gl->prog_bits_majority);
-    if (r != VOXGI_OK) return r;
-    if (d->method == VOXGI_METHOD_SLICEMAP) r = voxgi__gl_slicemap(ctx, f, vp, d, &result);
-    else if (atlas) r = voxgi__gl_atlas(ctx, f, vp, d, atlas, &result, &out->info);
-    else if (d->method == VOXGI_METHOD_VOLUME_BUFFER)
-        r = voxgi__gl_volume_buffer(ctx, f, vp, d, &result, out->attr.rec ? &out->attr : NULL, &out->info);
-    else if (d->method != VOXGI_METHOD_SOLID)
-        r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info, out->attr.rec ? &out->attr : NULL);
-    else if (d->solid_mode == VOXGI_SOLID_PARITY)
-        r = voxgi__gl_solid_parity(ctx, f, vp, d, d->axis ? (int)d->axis - 1 : 2, &result, &out->info);
-    else if (d->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__gl_solid_flood(ctx, f, vp, d, &result, &out->info);
-    else { /* vote: parity along x, y and z, then the majority into the last */
-        unsigned int axes[3] = {0, 0, 0}, p = gl->prog_bits_majority;
-        int a;
-        for (a = 0; a < 3 && r == VOXGI_OK; a++) r = voxgi__gl_solid_parity(ctx, f, vp, d, a, &axes[a], &out->info);
-        if (r == VOXGI_OK) {
-            for (a = 0; a < 3; a++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)a, axes[a]);
-            gl->UseProgram(p);
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
-            voxgi__gl_dispatch_items(gl, words);
-            voxgi__gl_unbind(gl);
-            result = axes[2];
-            axes[2] = 0;
-        }
-        for (a = 0; a < 3; a++) voxgi__gl_delete_buffer(ctx, axes[a]);
-    }
-    if (r != VOXGI_OK) return r;
-    r = voxgi__gl_popcount(ctx, result, words, &out->info.voxel_count); /* count the set voxels on the GPU */
-    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, result); return r; }
-    out->gl_buffer = result;
-    return voxgi__gl_check(ctx, "voxelization");
-}
-
-static voxgi_result voxgi__reduce_gl(voxgi_context *ctx, const voxgi_voxels *src, const int f[3], voxgi_voxels *dst)
-{
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *sg = &src->info.grid, *dg = &dst->info.grid;
-    unsigned int p, out;
-    voxgi_result r = voxgi__gl_get_program(ctx, "reduce.glsl", &gl->prog_reduce);
-    if (r != VOXGI_OK) return r;
-    p = gl->prog_reduce;
-    out = voxgi__gl_grid_buffer(ctx, dst->info.bytes);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, src->gl_buffer);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, out);
-    gl->UseProgram(p);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_src_res"), sg->res[0], sg->res[1], sg->res[2]);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_dst_res"), dg->res[0], dg->res[1], dg->res[2]);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_factor"), f[0], f[1], f[2]);
-    /* one invocation per destination line along x, in work-group slices */
-    gl->DispatchCompute((unsigned)(((uint64_t)dg->res[1] * (uint64_t)dg->res[2] + 63) / 64), 1, 1);
-    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
-    voxgi__gl_unbind(gl);
-    dst->gl_buffer = out;
-    r = voxgi__gl_check(ctx, "the OR reduction");
-    if (r == VOXGI_OK) r = voxgi__gl_popcount(ctx, out, dst->info.bytes / 4, &dst->info.voxel_count);
-    return r;
-}
-#endif
-
-/* ===================================================================== attribute volumes and mipmaps
+/* attribute volumes and mipmaps
    CPU: float arrays, level after level; GL: 3D textures whose base level is uploaded from the
    same dense data and whose levels a compute pass builds (shaders/volume_mip.glsl) with the same
    formulas in float, so the two agree to float rounding. */
@@ -4897,10 +5643,6 @@ static voxgi_result voxgi__volume_base(voxgi_context *ctx, const voxgi_voxels *v
     return r;
 }
 
-#ifndef VOXGI_NO_GL
-static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS]);
-#endif
-
 /* The volume's levels and sizes, for `attributes` (already checked). */
 static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, const voxgi_volume_desc *desc, unsigned attributes,
                                       voxgi_volume **out)
@@ -4940,6 +5682,71 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
     *out = vol;
     return VOXGI_OK;
 }
+
+#ifndef VOXGI_NO_GL
+
+/* GL: the base level uploaded into every direction's texture, then each level from the one
+   below by shaders/volume_mip.glsl. */
+static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
+{
+    voxgi__gl *gl = ctx->gl;
+    int a, d, k, dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1, max3d = 0;
+    const float zeros[4] = {0, 0, 0, 0};
+    voxgi_result r = voxgi__gl_get_program(ctx, "volume_mip.glsl", &gl->prog_volume_mip);
+    unsigned int p = gl->prog_volume_mip;
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
+    for (a = 0; a < 3; a++) { /* GL halves sizes rounding down: pad so that its chain holds ours */
+        int m = 1 << (vol->info.levels - 1);
+        vol->info.gl_size[a] = (vol->dims[0][a] + m - 1) / m * m;
+    }
+    if (vol->info.gl_size[0] > max3d || vol->info.gl_size[1] > max3d || vol->info.gl_size[2] > max3d)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d volume texture exceeds GL_MAX_3D_TEXTURE_SIZE %d", vol->info.gl_size[0],
+                           vol->info.gl_size[1], vol->info.gl_size[2], max3d);
+    gl->UseProgram(p);
+    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
+        if (!base[a]) continue;
+        for (d = 0; d < dirs; d++) {
+            unsigned int t = 0, fmt = a == 3 ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F;
+            gl->CreateTextures(VOXGI__GL_TEXTURE_3D, 1, &t);
+            vol->tex[a][d] = t;
+            gl->TextureStorage3D(t, vol->info.levels, fmt, vol->info.gl_size[0], vol->info.gl_size[1], vol->info.gl_size[2]);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
+            for (k = 0; k < vol->info.levels; k++) gl->ClearTexImage(t, k, a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_S, VOXGI__GL_CLAMP_TO_BORDER);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_T, VOXGI__GL_CLAMP_TO_BORDER);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_R, VOXGI__GL_CLAMP_TO_BORDER);
+            gl->TextureParameterfv(t, VOXGI__GL_TEXTURE_BORDER_COLOR, zeros);
+            gl->TextureSubImage3D(t, 0, 0, 0, 0, vol->dims[0][0], vol->dims[0][1], vol->dims[0][2], a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA,
+                                  VOXGI__GL_FLOAT, base[a]);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_single"), a == 3);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_dir"), dirs == 6 ? d : -1);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_premultiplied"), a == 4);
+            for (k = 1; k < vol->info.levels; k++) {
+                gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_src_dims"), vol->dims[k - 1][0], vol->dims[k - 1][1], vol->dims[k - 1][2]);
+                gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_dst_dims"), vol->dims[k][0], vol->dims[k][1], vol->dims[k][2]);
+                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_src_level"), k - 1);
+                gl->BindTextureUnit(0, t);
+                gl->BindImageTexture(a == 3 ? 1 : 0, t, k, 1, 0, VOXGI__GL_WRITE_ONLY, fmt);
+                gl->DispatchCompute((unsigned)((vol->dims[k][0] + 3) / 4), (unsigned)((vol->dims[k][1] + 3) / 4), (unsigned)((vol->dims[k][2] + 3) / 4));
+                gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            }
+        }
+    }
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* ready for sampling: trilinear between levels */
+        for (d = 0; d < dirs; d++)
+            if (vol->tex[a][d]) {
+                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_LINEAR_MIPMAP_LINEAR);
+                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_LINEAR);
+            }
+    gl->BindTextureUnit(0, 0);
+    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_RGBA32F);
+    gl->BindImageTexture(1, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32F);
+    voxgi__gl_unbind(gl);
+    return voxgi__gl_check(ctx, "the volume mipmaps");
+}
+#endif /* VOXGI_NO_GL */
 
 typedef struct voxgi__mip_job { const voxgi_volume *vol; const float *src; float *dst, *dst6[6]; int w, dir, premultiplied, k; } voxgi__mip_job;
 
@@ -5179,112 +5986,6 @@ static int voxgi__volume_fetch(const void *source, int k, const int v[3], float 
 }
 
 #ifndef VOXGI_NO_GL
-static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volume *vol, int a, int d, size_t count, const float *pos,
-                                            const float *lods, float *out);
-#endif
-
-VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir,
-                                           size_t count, const float *pos, const float *lods, float *out)
-{
-    int a, d;
-    size_t i;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!vol || (count && (!pos || !lods || !out))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, positions, lods or out is NULL");
-    if ((r = voxgi__volume_pick(ctx, vol, which, dir, &a, &d)) != VOXGI_OK) return r;
-    for (i = 0; i < count; i++)
-        if (!isfinite(pos[3 * i]) || !isfinite(pos[3 * i + 1]) || !isfinite(pos[3 * i + 2]) || !isfinite(lods[i]))
-            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)i);
-#ifndef VOXGI_NO_GL
-    if (vol->tex[a][d]) return voxgi__volume_sample_gl(ctx, vol, a, d, count, pos, lods, out);
-#endif
-    {
-        voxgi__volume_source src;
-        src.vol = vol;
-        src.a = a;
-        src.d = d;
-        src.w = a == 3 ? 1 : 4;
-        for (i = 0; i < count; i++)
-            voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, src.w, vol->info.levels, pos + 3 * i, lods[i], out + (size_t)src.w * i);
-    }
-    return VOXGI_OK;
-}
-
-VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir,
-                                               unsigned int *name)
-{
-    int a, d;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!vol || !name) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume or name is NULL");
-    if ((r = voxgi__volume_pick(ctx, vol, which, dir, &a, &d)) != VOXGI_OK) return r;
-    if (!vol->tex[a][d]) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "this volume lives on the CPU, not in a GL texture");
-    *name = vol->tex[a][d];
-    return VOXGI_OK;
-}
-
-#ifndef VOXGI_NO_GL
-/* GL: the base level uploaded into every direction's texture, then each level from the one
-   below by shaders/volume_mip.glsl. */
-static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
-{
-    voxgi__gl *gl = ctx->gl;
-    int a, d, k, dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1, max3d = 0;
-    const float zeros[4] = {0, 0, 0, 0};
-    voxgi_result r = voxgi__gl_get_program(ctx, "volume_mip.glsl", &gl->prog_volume_mip);
-    unsigned int p = gl->prog_volume_mip;
-    if (r != VOXGI_OK) return r;
-    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
-    for (a = 0; a < 3; a++) { /* GL halves sizes rounding down: pad so that its chain holds ours */
-        int m = 1 << (vol->info.levels - 1);
-        vol->info.gl_size[a] = (vol->dims[0][a] + m - 1) / m * m;
-    }
-    if (vol->info.gl_size[0] > max3d || vol->info.gl_size[1] > max3d || vol->info.gl_size[2] > max3d)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d volume texture exceeds GL_MAX_3D_TEXTURE_SIZE %d", vol->info.gl_size[0],
-                           vol->info.gl_size[1], vol->info.gl_size[2], max3d);
-    gl->UseProgram(p);
-    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
-        if (!base[a]) continue;
-        for (d = 0; d < dirs; d++) {
-            unsigned int t = 0, fmt = a == 3 ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F;
-            gl->CreateTextures(VOXGI__GL_TEXTURE_3D, 1, &t);
-            vol->tex[a][d] = t;
-            gl->TextureStorage3D(t, vol->info.levels, fmt, vol->info.gl_size[0], vol->info.gl_size[1], vol->info.gl_size[2]);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
-            for (k = 0; k < vol->info.levels; k++) gl->ClearTexImage(t, k, a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_S, VOXGI__GL_CLAMP_TO_BORDER);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_T, VOXGI__GL_CLAMP_TO_BORDER);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_R, VOXGI__GL_CLAMP_TO_BORDER);
-            gl->TextureParameterfv(t, VOXGI__GL_TEXTURE_BORDER_COLOR, zeros);
-            gl->TextureSubImage3D(t, 0, 0, 0, 0, vol->dims[0][0], vol->dims[0][1], vol->dims[0][2], a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA,
-                                  VOXGI__GL_FLOAT, base[a]);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_single"), a == 3);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_dir"), dirs == 6 ? d : -1);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_premultiplied"), a == 4);
-            for (k = 1; k < vol->info.levels; k++) {
-                gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_src_dims"), vol->dims[k - 1][0], vol->dims[k - 1][1], vol->dims[k - 1][2]);
-                gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_dst_dims"), vol->dims[k][0], vol->dims[k][1], vol->dims[k][2]);
-                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_src_level"), k - 1);
-                gl->BindTextureUnit(0, t);
-                gl->BindImageTexture(a == 3 ? 1 : 0, t, k, 1, 0, VOXGI__GL_WRITE_ONLY, fmt);
-                gl->DispatchCompute((unsigned)((vol->dims[k][0] + 3) / 4), (unsigned)((vol->dims[k][1] + 3) / 4), (unsigned)((vol->dims[k][2] + 3) / 4));
-                gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            }
-        }
-    }
-    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* ready for sampling: trilinear between levels */
-        for (d = 0; d < dirs; d++)
-            if (vol->tex[a][d]) {
-                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_LINEAR_MIPMAP_LINEAR);
-                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_LINEAR);
-            }
-    gl->BindTextureUnit(0, 0);
-    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_RGBA32F);
-    gl->BindImageTexture(1, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32F);
-    voxgi__gl_unbind(gl);
-    return voxgi__gl_check(ctx, "the volume mipmaps");
-}
 
 /* The GLSL sampler over a batch of points (shaders/volume_sample.glsl). */
 static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volume *vol, int a, int d, size_t count, const float *pos,
@@ -5330,9 +6031,51 @@ static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volu
     if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "sampling a volume");
     return r;
 }
-#endif
+#endif /* VOXGI_NO_GL */
 
-/* ===================================================================== sparse voxel octree
+VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir,
+                                           size_t count, const float *pos, const float *lods, float *out)
+{
+    int a, d;
+    size_t i;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vol || (count && (!pos || !lods || !out))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume, positions, lods or out is NULL");
+    if ((r = voxgi__volume_pick(ctx, vol, which, dir, &a, &d)) != VOXGI_OK) return r;
+    for (i = 0; i < count; i++)
+        if (!isfinite(pos[3 * i]) || !isfinite(pos[3 * i + 1]) || !isfinite(pos[3 * i + 2]) || !isfinite(lods[i]))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)i);
+#ifndef VOXGI_NO_GL
+    if (vol->tex[a][d]) return voxgi__volume_sample_gl(ctx, vol, a, d, count, pos, lods, out);
+#endif
+    {
+        voxgi__volume_source src;
+        src.vol = vol;
+        src.a = a;
+        src.d = d;
+        src.w = a == 3 ? 1 : 4;
+        for (i = 0; i < count; i++)
+            voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, src.w, vol->info.levels, pos + 3 * i, lods[i], out + (size_t)src.w * i);
+    }
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir,
+                                               unsigned int *name)
+{
+    int a, d;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vol || !name) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "volume or name is NULL");
+    if ((r = voxgi__volume_pick(ctx, vol, which, dir, &a, &d)) != VOXGI_OK) return r;
+    if (!vol->tex[a][d]) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "this volume lives on the CPU, not in a GL texture");
+    *name = vol->tex[a][d];
+    return VOXGI_OK;
+}
+
+/* ===================================================================== 7. octree */
+
+/* sparse voxel octree
    CPU build, linear in the voxels: their Morton codes radix-sorted; the nodes of level l are the
    distinct codes >> 3 (depth - l) in Morton order, so each level's tiles are contiguous and a
    node's tile is numbered by the rank of its parent; values from the leaves up. */
@@ -5345,34 +6088,6 @@ struct voxgi_svo {
     uint64_t inner_tiles, bricks;             /* bricks: one per inner node, or 0 */
     unsigned int gl_child, gl_neighbour, gl_node_values[VOXGI__VOLUME_SLOTS], gl_leaf_values[VOXGI__VOLUME_SLOTS]; /* GL: the same arrays in buffers */
 };
-
-/* float -> half, rounded to the nearest, ties to even (finite input; 65520 and beyond: infinity).
-   Integer steps only, so shaders/svo.glsl rounds exactly alike. */
-static uint16_t voxgi__half_from_float(float f)
-{
-    uint32_t x, ax, sign, h;
-    memcpy(&x, &f, 4);
-    sign = (x >> 16) & 0x8000u;
-    ax = x & 0x7FFFFFFFu;
-    if (ax >= 0x47800000u) return (uint16_t)(sign | 0x7C00u);
-    if (ax < 0x38800000u) { /* below 2^-14: a subnormal half, |f| * 2^24 rounded (the scaling is exact) */
-        float v = fabsf(f) * 16777216.0f, frac;
-        h = (uint32_t)v;
-        frac = v - (float)h;
-        h += frac > 0.5f || (frac == 0.5f && (h & 1u));
-        return (uint16_t)(sign | h);
-    }
-    ax += 0x0FFFu + ((ax >> 13) & 1u); /* round the 13 dropped bits; a carry moves into the exponent */
-    h = (ax >> 13) - (112u << 10);
-    return (uint16_t)(sign | (h > 0x7C00u ? 0x7C00u : h));
-}
-
-static float voxgi__float_from_half(uint16_t h)
-{
-    uint32_t e = (h >> 10) & 31u, m = h & 1023u;
-    float v = e == 0 ? (float)m / 16777216.0f : (e == 31 ? (m ? NAN : INFINITY) : ldexpf((float)(m | 1024u), (int)e - 25));
-    return (h & 0x8000u) ? -v : v;
-}
 
 /* Stores c (value, alpha) into a slot of an attribute array (opacity: alpha alone). */
 static void voxgi__svo_put(const voxgi_svo *svo, int a, unsigned char *base, uint64_t slot, const float c[4])
@@ -5400,50 +6115,6 @@ static void voxgi__svo_get(const voxgi_svo *svo, int a, const unsigned char *bas
     } else memcpy(f, s, (size_t)svo->slot_bytes[a]);
     if (w == 1) { c[0] = c[1] = c[2] = 0; c[3] = f[0]; }
     else for (ch = 0; ch < 4; ch++) c[ch] = f[ch];
-}
-
-/* Spreads the low 21 bits of v to every third bit. */
-static uint64_t voxgi__spread3(uint64_t v)
-{
-    v &= 0x1FFFFFu;
-    v = (v | v << 32) & 0x1F00000000FFFFull;
-    v = (v | v << 16) & 0x1F0000FF0000FFull;
-    v = (v | v << 8) & 0x100F00F00F00F00Full;
-    v = (v | v << 4) & 0x10C30C30C30C30C3ull;
-    v = (v | v << 2) & 0x1249249249249249ull;
-    return v;
-}
-
-/* The Morton code: x in bit 0 of every octal digit, y in bit 1, z in bit 2. */
-static uint64_t voxgi__morton(uint32_t x, uint32_t y, uint32_t z)
-{
-    return voxgi__spread3(x) | voxgi__spread3(y) << 1 | voxgi__spread3(z) << 2;
-}
-
-/* Sorts codes (with their payloads) ascending: LSD radix over the bytes the codes use. */
-static voxgi_result voxgi__sort_codes(voxgi_context *ctx, uint64_t *code, uint32_t *payload, size_t n, int bits)
-{
-    uint64_t *c2 = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof *c2, 0);
-    uint32_t *p2 = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof *p2, 0);
-    size_t i, count[256];
-    int shift;
-    if (!c2 || !p2) { voxgi__free(ctx, c2); voxgi__free(ctx, p2); return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to sort"); }
-    for (shift = 0; shift < bits; shift += 8) {
-        size_t sum = 0;
-        memset(count, 0, sizeof count);
-        for (i = 0; i < n; i++) count[(code[i] >> shift) & 255u]++;
-        for (i = 0; i < 256; i++) { size_t k = count[i]; count[i] = sum; sum += k; }
-        for (i = 0; i < n; i++) {
-            size_t at = count[(code[i] >> shift) & 255u]++;
-            c2[at] = code[i];
-            p2[at] = payload[i];
-        }
-        memcpy(code, c2, n * sizeof *code);
-        memcpy(payload, p2, n * sizeof *payload);
-    }
-    voxgi__free(ctx, c2);
-    voxgi__free(ctx, p2);
-    return VOXGI_OK;
 }
 
 /* The octree's sizes from its inner tiles and info.level_nodes, and the refusals that come
@@ -6276,1101 +6947,7 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
     return VOXGI_OK;
 }
 
-/* ===================================================================== reference renderer
-   A BVH (binned surface area heuristic, float boxes that hold the float vertices exactly) over
-   the triangles in double; the ray-triangle test is Woop, Benthin and Wald's watertight one (2013)
-   in double, so rays never slip between triangles that share an edge. A ray leaving a surface
-   skips the triangle it left and starts a hair off it. */
-#define VOXGI__BVH_DEPTH 200 /* deeper ranges stay leaves, so traversal stacks are bounded */
-typedef struct voxgi__bvh_node {
-    float lo[3], hi[3];
-    uint32_t first, count;        /* leaf: triangles [first, first + count) of the order; inner
-                                     (count 0): left child next in the array, right child at first */
-} voxgi__bvh_node;
-
-typedef struct voxgi__tracer {
-    voxgi__flat flat;
-    double *v;                    /* 9 per triangle, in BVH order */
-    double *n;                    /* unit geometric normal (front: counter-clockwise) per triangle */
-    uint32_t *tri;                /* BVH order -> flat triangle */
-    voxgi__bvh_node *nodes;
-    size_t node_count;
-    double scale;                 /* largest coordinate magnitude: sets the offset off surfaces */
-} voxgi__tracer;
-
-typedef struct voxgi__hit { double t, p[3]; uint32_t prim; int front; } voxgi__hit;
-
-static void voxgi__tracer_free(voxgi_context *ctx, voxgi__tracer *tr)
-{
-    voxgi__flat_free(ctx, &tr->flat);
-    voxgi__free(ctx, tr->v);
-    voxgi__free(ctx, tr->n);
-    voxgi__free(ctx, tr->tri);
-    voxgi__free(ctx, tr->nodes);
-    memset(tr, 0, sizeof *tr);
-}
-
-typedef struct voxgi__bvh_build {
-    const float *cmin, *cmax;     /* per flat triangle: its box */
-    uint32_t *order;
-    voxgi__bvh_node *nodes;
-    size_t count;
-} voxgi__bvh_build;
-
-static void voxgi__box_area(const float lo[3], const float hi[3], double *area)
-{
-    double d[3];
-    int a;
-    for (a = 0; a < 3; a++) d[a] = hi[a] > lo[a] ? (double)hi[a] - lo[a] : 0;
-    *area = 2 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
-}
-
-static void voxgi__bvh_split(voxgi__bvh_build *b, size_t node, size_t first, size_t end, int depth)
-{
-    enum { BINS = 12 };
-    voxgi__bvh_node *nd = &b->nodes[node];
-    float clo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, chi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-    size_t i, n = end - first, mid;
-    int a, axis = 0, best_bin = -1;
-    double best = DBL_MAX, leaf_area;
-    for (a = 0; a < 3; a++) { nd->lo[a] = FLT_MAX; nd->hi[a] = -FLT_MAX; }
-    for (i = first; i < end; i++) {
-        uint32_t t = b->order[i];
-        for (a = 0; a < 3; a++) {
-            float c = 0.5f * (b->cmin[3 * t + a] + b->cmax[3 * t + a]);
-            nd->lo[a] = VOXGI__MIN(nd->lo[a], b->cmin[3 * t + a]);
-            nd->hi[a] = VOXGI__MAX(nd->hi[a], b->cmax[3 * t + a]);
-            clo[a] = VOXGI__MIN(clo[a], c);
-            chi[a] = VOXGI__MAX(chi[a], c);
-        }
-    }
-    for (a = 1; a < 3; a++)
-        if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
-    nd->first = (uint32_t)first;
-    nd->count = (uint32_t)n;
-    if (n <= 2 || !(chi[axis] > clo[axis]) || depth >= VOXGI__BVH_DEPTH) return; /* a leaf */
-    {   /* binned SAH along the widest centroid axis */
-        size_t cnt[BINS];
-        float blo[BINS][3], bhi[BINS][3];
-        double scale = BINS / ((double)chi[axis] - clo[axis]);
-        int k;
-        for (k = 0; k < BINS; k++) { cnt[k] = 0; for (a = 0; a < 3; a++) { blo[k][a] = FLT_MAX; bhi[k][a] = -FLT_MAX; } }
-        for (i = first; i < end; i++) {
-            uint32_t t = b->order[i];
-            double c = 0.5 * ((double)b->cmin[3 * t + axis] + b->cmax[3 * t + axis]);
-            k = VOXGI__MIN((int)((c - clo[axis]) * scale), BINS - 1);
-            cnt[k]++;
-            for (a = 0; a < 3; a++) { blo[k][a] = VOXGI__MIN(blo[k][a], b->cmin[3 * t + a]); bhi[k][a] = VOXGI__MAX(bhi[k][a], b->cmax[3 * t + a]); }
-        }
-        for (k = 1; k < BINS; k++) { /* split between bins k - 1 and k */
-            float llo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, lhi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX}, rlo[3] = {FLT_MAX, FLT_MAX, FLT_MAX},
-                  rhi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
-            size_t nl = 0, nr = 0;
-            double al, ar, cost;
-            int j;
-            for (j = 0; j < BINS; j++) {
-                float *lo = j < k ? llo : rlo, *hi = j < k ? lhi : rhi;
-                if (!cnt[j]) continue;
-                if (j < k) nl += cnt[j]; else nr += cnt[j];
-                for (a = 0; a < 3; a++) { lo[a] = VOXGI__MIN(lo[a], blo[j][a]); hi[a] = VOXGI__MAX(hi[a], bhi[j][a]); }
-            }
-            if (!nl || !nr) continue;
-            voxgi__box_area(llo, lhi, &al);
-            voxgi__box_area(rlo, rhi, &ar);
-            cost = al * (double)nl + ar * (double)nr;
-            if (cost < best) { best = cost; best_bin = k; }
-        }
-        voxgi__box_area(nd->lo, nd->hi, &leaf_area);
-        if (best_bin < 0 || (n <= 8 && best >= leaf_area * (double)(n - 1))) return; /* splitting does not pay */
-        for (i = mid = first; i < end; i++) { /* partition */
-            uint32_t t = b->order[i];
-            double c = 0.5 * ((double)b->cmin[3 * t + axis] + b->cmax[3 * t + axis]);
-            if (VOXGI__MIN((int)((c - clo[axis]) * scale), BINS - 1) < best_bin) { b->order[i] = b->order[mid]; b->order[mid++] = t; }
-        }
-    }
-    nd->count = 0;
-    {   /* the left child is the next node, the right one follows its subtree */
-        size_t left = b->count++, right;
-        voxgi__bvh_split(b, left, first, mid, depth + 1);
-        right = b->count++;
-        b->nodes[node].first = (uint32_t)right;
-        voxgi__bvh_split(b, right, mid, end, depth + 1);
-    }
-}
-
-static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *scene, voxgi__tracer *tr)
-{
-    voxgi__bvh_build b;
-    float *boxes = NULL;
-    size_t t, nt;
-    voxgi_result r;
-    memset(tr, 0, sizeof *tr);
-    if ((r = voxgi__flatten(ctx, scene, 0, 1, &tr->flat)) != VOXGI_OK) return r;
-    nt = tr->flat.triangle_count;
-    if (nt > (size_t)UINT32_MAX / 2) { voxgi__tracer_free(ctx, tr); return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)nt); }
-    tr->v = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, 9 * sizeof(double), 0);
-    tr->n = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, 3 * sizeof(double), 0);
-    tr->tri = (uint32_t *)voxgi__alloc_array(ctx, nt ? nt : 1, 4, 0);
-    tr->nodes = (voxgi__bvh_node *)voxgi__alloc_array(ctx, 2 * nt + 1, sizeof *tr->nodes, 1);
-    boxes = (float *)voxgi__alloc_array(ctx, nt ? nt : 1, 6 * sizeof(float), 0);
-    if (!tr->v || !tr->n || !tr->tri || !tr->nodes || !boxes) {
-        voxgi__free(ctx, boxes);
-        voxgi__tracer_free(ctx, tr);
-        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the BVH of %lu triangles", (unsigned long)nt);
-    }
-    for (t = 0; t < nt; t++) {
-        int a, k;
-        tr->tri[t] = (uint32_t)t;
-        for (a = 0; a < 3; a++) {
-            boxes[3 * t + a] = FLT_MAX;
-            boxes[3 * nt + 3 * t + a] = -FLT_MAX;
-            for (k = 0; k < 3; k++) {
-                float c = tr->flat.pos[3 * (size_t)tr->flat.tri[3 * t + (size_t)k] + (size_t)a];
-                boxes[3 * t + a] = VOXGI__MIN(boxes[3 * t + a], c);
-                boxes[3 * nt + 3 * t + a] = VOXGI__MAX(boxes[3 * nt + 3 * t + a], c);
-                tr->scale = VOXGI__MAX(tr->scale, fabs((double)c));
-            }
-        }
-    }
-    b.cmin = boxes;
-    b.cmax = boxes + 3 * nt;
-    b.order = tr->tri;
-    b.nodes = tr->nodes;
-    b.count = 1;
-    if (nt) voxgi__bvh_split(&b, 0, 0, nt, 0);
-    else { int a; for (a = 0; a < 3; a++) { tr->nodes[0].lo[a] = 1; tr->nodes[0].hi[a] = -1; } } /* an empty box: nothing is hit */
-    tr->node_count = b.count;
-    for (t = 0; t < nt; t++) { /* vertices and normals in BVH order */
-        uint32_t src = tr->tri[t];
-        int k, a;
-        double e1[3], e2[3], len;
-        for (k = 0; k < 3; k++)
-            for (a = 0; a < 3; a++) tr->v[9 * t + 3 * (size_t)k + (size_t)a] = tr->flat.pos[3 * (size_t)tr->flat.tri[3 * (size_t)src + (size_t)k] + (size_t)a];
-        for (a = 0; a < 3; a++) { e1[a] = tr->v[9 * t + 3 + (size_t)a] - tr->v[9 * t + (size_t)a]; e2[a] = tr->v[9 * t + 6 + (size_t)a] - tr->v[9 * t + (size_t)a]; }
-        for (a = 0; a < 3; a++) tr->n[3 * t + (size_t)a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
-        len = sqrt(tr->n[3 * t] * tr->n[3 * t] + tr->n[3 * t + 1] * tr->n[3 * t + 1] + tr->n[3 * t + 2] * tr->n[3 * t + 2]);
-        for (a = 0; a < 3; a++) tr->n[3 * t + (size_t)a] = len > 0 ? tr->n[3 * t + (size_t)a] / len : 0;
-    }
-    voxgi__free(ctx, boxes);
-    return VOXGI_OK;
-}
-
-/* The watertight test of ray (o, d) against triangle t for a hit in (0, tmax): its t, or -1. */
-static double voxgi__ray_triangle(const voxgi__tracer *tr, size_t t, const double o[3], const double d[3], int kx, int ky, int kz,
-                                  const double s[3], double tmax)
-{
-    const double *v = tr->v + 9 * t;
-    double ax = v[kx] - o[kx], ay = v[ky] - o[ky], az = v[kz] - o[kz];
-    double bx = v[3 + kx] - o[kx], by = v[3 + ky] - o[ky], bz = v[3 + kz] - o[kz];
-    double cx = v[6 + kx] - o[kx], cy = v[6 + ky] - o[ky], cz = v[6 + kz] - o[kz];
-    double u, w, x, det, tt;
-    (void)d;
-    ax -= s[0] * az; ay -= s[1] * az;
-    bx -= s[0] * bz; by -= s[1] * bz;
-    cx -= s[0] * cz; cy -= s[1] * cz;
-    u = cx * by - cy * bx;
-    w = ax * cy - ay * cx;
-    x = bx * ay - by * ax;
-    if ((u < 0 || w < 0 || x < 0) && (u > 0 || w > 0 || x > 0)) return -1;
-    det = u + w + x;
-    if (det == 0) return -1;
-    tt = (u * s[2] * az + w * s[2] * bz + x * s[2] * cz) / det;
-    return tt > 0 && tt < tmax ? tt : -1;
-}
-
-/* The nearest hit of ray (o, d) before tmax, skipping triangle `skip` (BVH order; UINT32_MAX:
-   none); any = 1 stops at the first hit (shadow rays). */
-static int voxgi__trace(const voxgi__tracer *tr, const double o[3], const double d[3], double tmax, uint32_t skip, int any, voxgi__hit *hit)
-{
-    uint32_t stack[VOXGI__BVH_DEPTH + 8];
-    int sp = 0, kz = 0, kx, ky, a, found = 0;
-    double inv[3], s[3];
-    size_t node = 0;
-    for (a = 1; a < 3; a++)
-        if (fabs(d[a]) > fabs(d[kz])) kz = a;
-    kx = (kz + 1) % 3;
-    ky = (kx + 1) % 3;
-    if (d[kz] < 0) { int tmp = kx; kx = ky; ky = tmp; }
-    s[0] = d[kx] / d[kz]; s[1] = d[ky] / d[kz]; s[2] = 1.0 / d[kz];
-    for (a = 0; a < 3; a++) inv[a] = 1.0 / d[a];
-    for (;;) {
-        const voxgi__bvh_node *nd = &tr->nodes[node];
-        double t0 = 0, t1 = tmax;
-        for (a = 0; a < 3 && t0 <= t1; a++) { /* slabs; the box is widened by a relative hair against rounding */
-            double lo = (nd->lo[a] - o[a]) * inv[a], hi = (nd->hi[a] - o[a]) * inv[a];
-            if (lo > hi) { double tmp = lo; lo = hi; hi = tmp; }
-            if (isnan(lo)) lo = -DBL_MAX; /* a zero direction inside the slab's plane */
-            if (isnan(hi)) hi = DBL_MAX;
-            t0 = VOXGI__MAX(t0, lo);
-            t1 = VOXGI__MIN(t1, hi * (1 + 4 * DBL_EPSILON));
-        }
-        if (t0 <= t1) {
-            if (nd->count) {
-                uint32_t i;
-                for (i = nd->first; i < nd->first + nd->count; i++) {
-                    double t;
-                    if (i == skip || (t = voxgi__ray_triangle(tr, i, o, d, kx, ky, kz, s, tmax)) < 0) continue;
-                    tmax = t;
-                    found = 1;
-                    hit->t = t;
-                    hit->prim = i;
-                    if (any) return 1;
-                }
-            } else {
-                stack[sp++] = nd->first;
-                node++;
-                continue;
-            }
-        }
-        if (!sp) break;
-        node = stack[--sp];
-    }
-    if (found) {
-        const double *n = tr->n + 3 * (size_t)hit->prim;
-        for (a = 0; a < 3; a++) hit->p[a] = o[a] + hit->t * d[a];
-        hit->front = n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0;
-    }
-    return found;
-}
-
-/* Random numbers: one PCG32 stream per (seed, pixel, sample), seeded through splitmix64. */
-typedef struct voxgi__rng { uint64_t state, inc; } voxgi__rng;
-
-static uint64_t voxgi__splitmix(uint64_t *x)
-{
-    uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-static void voxgi__rng_seed(voxgi__rng *g, uint64_t seed, uint64_t pixel, uint64_t sample)
-{
-    uint64_t x = seed ^ voxgi__splitmix(&pixel) ^ (voxgi__splitmix(&sample) << 1);
-    g->state = voxgi__splitmix(&x);
-    g->inc = voxgi__splitmix(&x) | 1u;
-}
-
-static uint32_t voxgi__rng_u32(voxgi__rng *g)
-{
-    uint64_t old = g->state;
-    uint32_t xs, rot;
-    g->state = old * 6364136223846793005ull + g->inc;
-    xs = (uint32_t)(((old >> 18) ^ old) >> 27);
-    rot = (uint32_t)(old >> 59);
-    return (xs >> rot) | (xs << ((32u - rot) & 31u));
-}
-
-static double voxgi__rng_unit(voxgi__rng *g) /* [0, 1) with 53 bits */
-{
-    uint64_t hi = voxgi__rng_u32(g) >> 5, lo = voxgi__rng_u32(g) >> 6;
-    return (double)(hi * 67108864u + lo) / 9007199254740992.0;
-}
-
-/* An orthonormal basis (t, b) around unit n. */
-static void voxgi__basis(const double n[3], double t[3], double b[3])
-{
-    double sgn = n[2] >= 0 ? 1.0 : -1.0, a = -1.0 / (sgn + n[2]), c = n[0] * n[1] * a;
-    t[0] = 1 + sgn * n[0] * n[0] * a; t[1] = sgn * c; t[2] = -sgn * n[0];
-    b[0] = c; b[1] = sgn + n[1] * n[1] * a; b[2] = -n[1];
-}
-
-/* What direct light needs: the scene's lights and its emissive triangles, picked by power. */
-typedef struct voxgi__lights {
-    const voxgi__tracer *tr;
-    const voxgi_scene *scene;
-    uint32_t *emitters;           /* BVH-order triangles with emission, front faces */
-    double *emitter_cdf;          /* by area x mean emission */
-    double *emitter_pdf;          /* per BVH-order triangle: the area density of picking a point on it */
-    size_t emitter_count;
-} voxgi__lights;
-
-static const voxgi_material *voxgi__prim_material(const voxgi__tracer *tr, uint32_t prim)
-{
-    return voxgi__tri_material(&tr->flat, tr->tri[prim]);
-}
-
-static void voxgi__lights_free(voxgi_context *ctx, voxgi__lights *Ls)
-{
-    voxgi__free(ctx, Ls->emitters);
-    voxgi__free(ctx, Ls->emitter_cdf);
-    voxgi__free(ctx, Ls->emitter_pdf);
-    memset(Ls, 0, sizeof *Ls);
-}
-
-static voxgi_result voxgi__lights_build(voxgi_context *ctx, const voxgi_scene *scene, const voxgi__tracer *tr, voxgi__lights *Ls)
-{
-    size_t i, nt = tr->flat.triangle_count;
-    int a;
-    memset(Ls, 0, sizeof *Ls);
-    Ls->tr = tr;
-    Ls->scene = scene;
-    Ls->emitters = (uint32_t *)voxgi__alloc_array(ctx, nt ? nt : 1, 4, 0);
-    Ls->emitter_cdf = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, sizeof(double), 0);
-    Ls->emitter_pdf = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, sizeof(double), 1);
-    if (!Ls->emitters || !Ls->emitter_cdf || !Ls->emitter_pdf) {
-        voxgi__lights_free(ctx, Ls);
-        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the emitter table");
-    }
-    for (i = 0; i < nt; i++) { /* emitters, weighted by area x mean emission */
-        const voxgi_material *m = voxgi__prim_material(tr, (uint32_t)i);
-        const double *v = tr->v + 9 * i;
-        double power = ((double)m->emission[0] + m->emission[1] + m->emission[2]) / 3, c[3], e1[3], e2[3];
-        for (a = 0; a < 3; a++) { e1[a] = v[3 + a] - v[a]; e2[a] = v[6 + a] - v[a]; }
-        for (a = 0; a < 3; a++) c[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
-        Ls->emitter_pdf[i] = power; /* / the total power, below: the area density */
-        power *= 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        if (!(power > 0)) { Ls->emitter_pdf[i] = 0; continue; }
-        Ls->emitters[Ls->emitter_count] = (uint32_t)i;
-        Ls->emitter_cdf[Ls->emitter_count] = (Ls->emitter_count ? Ls->emitter_cdf[Ls->emitter_count - 1] : 0) + power;
-        Ls->emitter_count++;
-    }
-    for (i = 0; i < nt; i++) Ls->emitter_pdf[i] /= Ls->emitter_count ? Ls->emitter_cdf[Ls->emitter_count - 1] : 1;
-    return VOXGI_OK;
-}
-
-typedef struct voxgi__render {
-    voxgi_context *ctx;
-    const voxgi__tracer *tr;
-    voxgi__lights lights;
-    const voxgi_reference_desc *desc;
-    double eye[3], right[3], up[3], forward[3], tan_half;
-    double *sum;                  /* 3 per pixel */
-    int first_sample, pass_samples;
-    size_t rays;                  /* summed over the workers */
-} voxgi__render;
-
-/* Nothing between p (leaving triangle skip) and the point dist away along dir? (1e-9 short of
-   it, so the light's own triangle does not count) */
-static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const double dir[3], double dist, uint32_t skip, uint64_t *rays)
-{
-    voxgi__hit h;
-    ++*rays;
-    return !voxgi__trace(tr, p, dir, dist * (1 - 1e-9), skip, 1, &h);
-}
-
-/* Irradiance E at p (unit normal ns facing the arriving ray; leaving triangle prim, or
-   UINT32_MAX) from every light and one sampled point on the emissive triangles; the reflected
-   radiance is albedo / pi * E. With mis, the emitters' share carries the power-heuristic weight
-   against a cosine-sampled bounce finding them (the path tracer's other half), which keeps the
-   variance finite where emitters meet at concave edges. xi: a 2D sample in [0,1)^2 for the
-   points on area lights and emitters (stratified callers), or NULL to draw from g. area (or
-   NULL): the rect lights' and emitters' share of e in area[0..2], what it would be without
-   the shadow rays in area[3..5] (their visible share, for voxgi__area_irradiance), and the
-   shadow rays traced and blocked added to area[6] and area[7]. */
-static void voxgi__direct(const voxgi__lights *R, const double p[3], const double ns[3], uint32_t prim, voxgi__rng *g, int mis_weighted,
-                          const double *xi, uint64_t *rays, double e[3], double *area_share)
-{
-    const voxgi__tracer *tr = R->tr;
-    size_t li;
-    int a;
-    e[0] = e[1] = e[2] = 0;
-    for (li = 0; li < R->scene->light_count; li++) {
-        const voxgi_light *L = &R->scene->lights[li];
-        double dir[3], dist = DBL_MAX, cos_s, w = 0, q[3];
-        if (L->type == VOXGI_LIGHT_DIRECTIONAL) {
-            double len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
-            for (a = 0; a < 3; a++) dir[a] = -L->direction[a] / len;
-            w = 1;
-        } else {
-            double area = 1, cos_l = 1;
-            if (L->type == VOXGI_LIGHT_RECT) {
-                double u = xi ? xi[0] : voxgi__rng_unit(g), v = xi ? xi[1] : voxgi__rng_unit(g), n[3];
-                for (a = 0; a < 3; a++) q[a] = L->position[a] + u * L->edge_u[a] + v * L->edge_v[a];
-                for (a = 0; a < 3; a++) n[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
-                area = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-                for (a = 0; a < 3; a++) dir[a] = q[a] - p[a];
-                dist = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-                if (dist <= 0) continue;
-                for (a = 0; a < 3; a++) dir[a] /= dist;
-                cos_l = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]) / area;
-                if (cos_l <= 0) continue;
-            } else {
-                for (a = 0; a < 3; a++) { q[a] = L->position[a]; dir[a] = q[a] - p[a]; }
-                dist = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-                if (dist <= 0) continue;
-                for (a = 0; a < 3; a++) dir[a] /= dist;
-                if (L->type == VOXGI_LIGHT_SPOT) { /* smoothstep from the outer to the inner cone */
-                    double len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
-                    double c = -(dir[0] * L->direction[0] + dir[1] * L->direction[1] + dir[2] * L->direction[2]) / len;
-                    double ci = cos((double)L->spot_inner), co = cos((double)L->spot_outer), x = ci > co ? (c - co) / (ci - co) : (c >= ci ? 1 : 0);
-                    x = x < 0 ? 0 : (x > 1 ? 1 : x);
-                    cos_l = x * x * (3 - 2 * x);
-                    if (cos_l <= 0) continue;
-                }
-            }
-            w = cos_l * area / (dist * dist);
-        }
-        cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
-        if (cos_s <= 0) continue;
-        if (area_share && L->type == VOXGI_LIGHT_RECT) for (a = 0; a < 3; a++) area_share[3 + a] += L->intensity[a] * w * cos_s;
-        if (area_share) area_share[6] += 1;
-        if (!voxgi__visible(tr, p, dir, dist, prim, rays)) {
-            if (area_share) area_share[7] += 1;
-            continue;
-        }
-        for (a = 0; a < 3; a++) {
-            e[a] += L->intensity[a] * w * cos_s;
-            if (area_share && L->type == VOXGI_LIGHT_RECT) area_share[a] += L->intensity[a] * w * cos_s;
-        }
-    }
-    if (R->emitter_count) { /* one emissive triangle by power, one uniform point on it */
-        double u = (xi ? xi[0] : voxgi__rng_unit(g)) * R->emitter_cdf[R->emitter_count - 1], b1, b2, r1, q[3], dir[3], dist2, dist, cos_s, cos_l, below;
-        size_t lo = 0, hi = R->emitter_count - 1;
-        uint32_t k;
-        const double *v, *n;
-        const voxgi_material *m;
-        while (lo < hi) { size_t mid = (lo + hi) / 2; if (R->emitter_cdf[mid] <= u) lo = mid + 1; else hi = mid; }
-        k = R->emitters[lo];
-        v = tr->v + 9 * (size_t)k;
-        n = tr->n + 3 * (size_t)k;
-        below = lo ? R->emitter_cdf[lo - 1] : 0; /* with xi, the pick's remainder is the first coordinate on the triangle */
-        r1 = sqrt(xi ? VOXGI__MIN(1.0, VOXGI__MAX(0.0, (u - below) / (R->emitter_cdf[lo] - below))) : voxgi__rng_unit(g));
-        b1 = 1 - r1;
-        b2 = r1 * (xi ? xi[1] : voxgi__rng_unit(g));
-        for (a = 0; a < 3; a++) {
-            q[a] = v[a] + b1 * (v[3 + a] - v[a]) + b2 * (v[6 + a] - v[a]);
-            dir[a] = q[a] - p[a];
-        }
-        dist2 = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
-        dist = sqrt(dist2);
-        if (dist > 0 && k != prim) {
-            for (a = 0; a < 3; a++) dir[a] /= dist;
-            cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
-            cos_l = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]);
-            if (cos_s > 0 && cos_l > 0) {
-                double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / 3.14159265358979323846; /* per solid angle */
-                double mis = mis_weighted ? pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf) : 1;
-                int seen = voxgi__visible(tr, p, dir, dist, prim, rays);
-                if (area_share) { area_share[6] += 1; area_share[7] += !seen; }
-                m = voxgi__prim_material(tr, k);
-                for (a = 0; a < 3; a++) {
-                    double c = mis * m->emission[a] * cos_s / pdf_light;
-                    if (area_share) area_share[3 + a] += c;
-                    if (!seen) continue;
-                    e[a] += c;
-                    if (area_share) area_share[a] += c;
-                }
-            }
-        }
-    }
-}
-
-/* Lambert's formula: the irradiance at p on unit normal n from a convex polygon q[0..nq-1]
-   (nq <= 4) of radiance 1 whose front (the side fn faces) p sees, clipped to p's upper
-   half-space: half the sum over its edges of the angle each subtends at p times the cosine
-   between n and the normal of the plane through p and the edge. Unoccluded, exact. */
-static double voxgi__polygon_irradiance(const double q[][3], int nq, const double fn[3], const double p[3], const double n[3])
-{
-    double c[6][3], d[4], side = 0, sum = 0;
-    int k, m = 0, a;
-    for (a = 0; a < 3; a++) side += (p[a] - q[0][a]) * fn[a];
-    if (!(side > 0)) return 0; /* behind it: emitters shine from their fronts */
-    for (k = 0; k < nq; k++) {
-        d[k] = 0;
-        for (a = 0; a < 3; a++) d[k] += (q[k][a] - p[a]) * n[a];
-    }
-    for (k = 0; k < nq; k++) { /* clipped against n.(x - p) >= 0 (Sutherland-Hodgman), relative to p */
-        int j = (k + 1) % nq;
-        if (d[k] >= 0) { for (a = 0; a < 3; a++) c[m][a] = q[k][a] - p[a]; m++; }
-        if ((d[k] >= 0) != (d[j] >= 0)) {
-            double t = d[k] / (d[k] - d[j]);
-            for (a = 0; a < 3; a++) c[m][a] = q[k][a] - p[a] + t * (q[j][a] - q[k][a]);
-            m++;
-        }
-    }
-    for (k = 0; k < m; k++) {
-        double len = sqrt(c[k][0] * c[k][0] + c[k][1] * c[k][1] + c[k][2] * c[k][2]);
-        if (!(len > 0)) return 0; /* p on the polygon */
-        for (a = 0; a < 3; a++) c[k][a] /= len;
-    }
-    for (k = 0; m >= 3 && k < m; k++) {
-        const double *u = c[k], *v = c[(k + 1) % m];
-        double x[3], len;
-        x[0] = u[1] * v[2] - u[2] * v[1];
-        x[1] = u[2] * v[0] - u[0] * v[2];
-        x[2] = u[0] * v[1] - u[1] * v[0];
-        len = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-        if (len > 0) sum += atan2(len, u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) * (x[0] * n[0] + x[1] * n[1] + x[2] * n[2]) / len;
-    }
-    return fabs(sum) / 2;
-}
-
-/* At most this many emissive triangles are summed analytically per shading point. */
-#define VOXGI__ANALYTIC_EMITTERS 64
-
-/* The unshadowed irradiance at p (unit normal ns, on triangle prim or UINT32_MAX) from the rect
-   lights and the emissive triangles, exactly (voxgi__polygon_irradiance): what voxgi__direct's
-   area[3..5] estimates. Times the shadow rays' visible share area[0..2] / area[3..5], the
-   shadowed irradiance without the noise of where on the lights the rays went (the ratio
-   estimator of Heitz et al. 2018): exact wherever a point sees all or none of the lights. */
-static void voxgi__area_irradiance(const voxgi__lights *R, const double p[3], const double ns[3], uint32_t prim, double e[3])
-{
-    const voxgi__tracer *tr = R->tr;
-    size_t i;
-    int a, k;
-    e[0] = e[1] = e[2] = 0;
-    for (i = 0; i < R->scene->light_count; i++) {
-        const voxgi_light *L = &R->scene->lights[i];
-        double q[4][3], fn[3], f;
-        if (L->type != VOXGI_LIGHT_RECT) continue;
-        for (a = 0; a < 3; a++) {
-            q[0][a] = L->position[a];
-            q[1][a] = (double)L->position[a] + L->edge_u[a];
-            q[2][a] = (double)L->position[a] + L->edge_u[a] + L->edge_v[a];
-            q[3][a] = (double)L->position[a] + L->edge_v[a];
-            fn[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
-        }
-        f = voxgi__polygon_irradiance((const double(*)[3])q, 4, fn, p, ns);
-        for (a = 0; a < 3; a++) e[a] += L->intensity[a] * f;
-    }
-    for (i = 0; i < R->emitter_count; i++) {
-        uint32_t t = R->emitters[i];
-        double q[3][3], f;
-        const voxgi_material *m;
-        if (t == prim) continue;
-        for (k = 0; k < 3; k++)
-            for (a = 0; a < 3; a++) q[k][a] = tr->v[9 * (size_t)t + 3 * (size_t)k + (size_t)a];
-        f = voxgi__polygon_irradiance((const double(*)[3])q, 3, tr->n + 3 * (size_t)t, p, ns);
-        m = voxgi__prim_material(tr, t);
-        for (a = 0; a < 3; a++) e[a] += m->emission[a] * f;
-    }
-}
-
-/* One path's radiance through the camera ray (o, d). */
-static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *g, uint64_t *rays, double out[3])
-{
-    const voxgi__tracer *tr = R->tr;
-    double T[3] = {1, 1, 1}, pdf_bsdf = 0; /* the density (per solid angle) of the bounce that led here */
-    uint32_t skip = UINT32_MAX;
-    int depth, a, bounces = R->desc->bounces;
-    out[0] = out[1] = out[2] = 0;
-    for (depth = 0;; depth++) {
-        voxgi__hit h;
-        double ns[3], e[3], t[3], b[3], r1, phi, lx, ly, lz, off;
-        const voxgi_material *m;
-        const double *n;
-        ++*rays;
-        if (!voxgi__trace(tr, o, d, DBL_MAX, skip, 0, &h)) break;
-        m = voxgi__prim_material(tr, h.prim);
-        n = tr->n + 3 * (size_t)h.prim;
-        for (a = 0; a < 3; a++) ns[a] = h.front ? n[a] : -n[a];
-        if (h.front && R->lights.emitter_pdf[h.prim] > 0) { /* seen by the camera, or found by a bounce (weighted against the direct light) */
-            double mis = depth == 0 && R->desc->hide_emitters ? 0 : 1;
-            if (depth > 0) {
-                double pdf_light = R->lights.emitter_pdf[h.prim] * h.t * h.t / -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
-                mis = pdf_bsdf * pdf_bsdf / (pdf_bsdf * pdf_bsdf + pdf_light * pdf_light);
-            }
-            for (a = 0; a < 3; a++) out[a] += T[a] * mis * m->emission[a];
-        }
-        if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
-        voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, NULL, rays, e, NULL);
-        for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / 3.14159265358979323846 * e[a];
-        for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
-        if (bounces < 0 && depth >= 2) { /* Russian roulette */
-            double q = VOXGI__MAX(T[0], VOXGI__MAX(T[1], T[2]));
-            if (q < 1) {
-                if (voxgi__rng_unit(g) >= q) break;
-                for (a = 0; a < 3; a++) T[a] /= q;
-            }
-        }
-        if (T[0] == 0 && T[1] == 0 && T[2] == 0) break;
-        voxgi__basis(ns, t, b);
-        r1 = voxgi__rng_unit(g);
-        phi = 2 * 3.14159265358979323846 * voxgi__rng_unit(g);
-        lx = sqrt(r1) * cos(phi);
-        ly = sqrt(r1) * sin(phi);
-        lz = sqrt(1 - r1);
-        off = 1e-9 * (1 + tr->scale);
-        for (a = 0; a < 3; a++) {
-            d[a] = lx * t[a] + ly * b[a] + lz * ns[a];
-            o[a] = h.p[a] + off * ns[a];
-        }
-        pdf_bsdf = lz / 3.14159265358979323846;
-        skip = h.prim;
-    }
-}
-
-/* The camera's frame (gluLookAt, up +Y); fails where the view is along +-Y. */
-static voxgi_result voxgi__camera_frame(voxgi_context *ctx, const voxgi_camera *cam, double eye[3], double forward[3], double right[3],
-                                        double up[3], double *tan_half)
-{
-    double len;
-    int a;
-    if (cam->width < 1 || cam->height < 1 || cam->width > 65536 || cam->height > 65536)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d: each side must be 1..65536", cam->width, cam->height);
-    if (!(cam->fovy_degrees > 0 && cam->fovy_degrees < 180)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "fovy %g: it must lie in (0, 180) degrees", cam->fovy_degrees);
-    for (a = 0; a < 3; a++) {
-        if (!isfinite(cam->eye[a]) || !isfinite(cam->target[a])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera is not finite");
-        eye[a] = cam->eye[a];
-        forward[a] = cam->target[a] - cam->eye[a];
-    }
-    len = sqrt(forward[0] * forward[0] + forward[1] * forward[1] + forward[2] * forward[2]);
-    if (!(len > 0) || sqrt(forward[0] * forward[0] + forward[2] * forward[2]) <= 1e-12 * len)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the camera looks along +-Y or at its own eye: up +Y leaves no view");
-    for (a = 0; a < 3; a++) forward[a] /= len;
-    right[0] = -forward[2]; right[1] = 0; right[2] = forward[0]; /* forward x (0, 1, 0) */
-    len = sqrt(right[0] * right[0] + right[2] * right[2]);
-    right[0] /= len; right[2] /= len;
-    up[0] = right[1] * forward[2] - right[2] * forward[1];
-    up[1] = right[2] * forward[0] - right[0] * forward[2];
-    up[2] = right[0] * forward[1] - right[1] * forward[0];
-    *tan_half = tan(cam->fovy_degrees * 3.14159265358979323846 / 360);
-    return VOXGI_OK;
-}
-
-/* The unit ray direction through image point (sx, sy) in pixels. */
-static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], const double right[3], const double up[3], double tan_half,
-                              double sx, double sy, double d[3])
-{
-    double x = (2 * sx / cam->width - 1) * tan_half * cam->width / cam->height, y = (1 - 2 * sy / cam->height) * tan_half, len;
-    int a;
-    for (a = 0; a < 3; a++) d[a] = forward[a] + x * right[a] + y * up[a];
-    len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (a = 0; a < 3; a++) d[a] /= len;
-}
-
-static void voxgi__render_rows(void *user, size_t first, size_t end)
-{
-    voxgi__render *R = (voxgi__render *)user;
-    const voxgi_camera *cam = &R->desc->camera;
-    uint64_t rays = 0;
-    size_t y;
-    for (y = first; y < end; y++) {
-        int x, s;
-        for (x = 0; x < cam->width; x++) {
-            size_t pix = y * (size_t)cam->width + (size_t)x;
-            double *acc = R->sum + 3 * pix;
-            for (s = R->first_sample; s < R->first_sample + R->pass_samples; s++) {
-                voxgi__rng g;
-                double sx, sy, o[3], d[3], L[3];
-                int a;
-                voxgi__rng_seed(&g, R->desc->seed, pix, (uint64_t)s);
-                sx = x + voxgi__rng_unit(&g);
-                sy = (double)y + voxgi__rng_unit(&g);
-                voxgi__camera_ray(cam, R->forward, R->right, R->up, R->tan_half, sx, sy, d);
-                for (a = 0; a < 3; a++) o[a] = R->eye[a];
-                voxgi__path(R, o, d, &g, &rays, L);
-                for (a = 0; a < 3; a++) acc[a] += L[a];
-            }
-        }
-    }
-    VOXGI__ATOMIC_ADD_SIZE(&R->rays, (size_t)rays);
-}
-
-VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
-                                              size_t rgb_bytes, voxgi_reference_info *info)
-{
-    voxgi__tracer tr;
-    voxgi__render R;
-    const voxgi_camera *cam;
-    double t0 = voxgi__now_ms();
-    size_t pixels, i;
-    int samples;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
-    if (info) memset(info, 0, sizeof *info);
-    cam = &desc->camera;
-    memset(&R, 0, sizeof R);
-    if ((r = voxgi__camera_frame(ctx, cam, R.eye, R.forward, R.right, R.up, &R.tan_half)) != VOXGI_OK) return r;
-    pixels = (size_t)cam->width * (size_t)cam->height;
-    if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (desc->samples < 0 || desc->bounces < -1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d", desc->samples, desc->bounces);
-    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
-    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    R.ctx = ctx;
-    R.tr = &tr;
-    R.desc = desc;
-    samples = desc->samples ? desc->samples : 16;
-    R.sum = (double *)voxgi__alloc_array(ctx, pixels, 3 * sizeof(double), 1);
-    if (!R.sum) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d render", cam->width, cam->height);
-    else r = voxgi__lights_build(ctx, scene, &tr, &R.lights);
-    if (info) { info->triangles = tr.flat.triangle_count; info->bvh_nodes = tr.node_count; info->ms_bvh = voxgi__now_ms() - t0; }
-    t0 = voxgi__now_ms();
-    for (R.first_sample = 0; r == VOXGI_OK && R.first_sample < samples; R.first_sample += R.pass_samples) { /* progressive passes */
-        R.pass_samples = VOXGI__MIN(VOXGI__MAX(1, samples / 16), samples - R.first_sample);
-        voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__render_rows, &R);
-        if (voxgi__progress(ctx, (double)(R.first_sample + R.pass_samples) / samples, "reference render"))
-            r = voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "reference render cancelled by the progress callback after %d samples per pixel",
-                            R.first_sample + R.pass_samples);
-    }
-    for (i = 0; r == VOXGI_OK && i < 3 * pixels; i++) rgb[i] = (float)(R.sum[i] / samples);
-    if (info) { info->rays = R.rays; info->ms_render = voxgi__now_ms() - t0; }
-    voxgi__free(ctx, R.sum);
-    voxgi__lights_free(ctx, &R.lights);
-    voxgi__tracer_free(ctx, &tr);
-    return r;
-}
-
-/* ===================================================================== light injection and cone tracing */
-typedef struct voxgi__inject {
-    const voxgi__lights *lights;
-    const voxgi_grid *g;
-    const voxgi_inject_desc *desc;
-    const uint64_t *index;        /* set voxel i: its linear index */
-    float *const *vals;           /* attribute means, bit order */
-    float *rgba;                  /* level 0 of the radiance volume */
-    size_t rays;
-} voxgi__inject;
-
-/* The i-th set voxel's lookup point: its centre moved half a voxel diagonal along its mean normal
-   (off its own surface), and that unit normal; 0 when opposite surfaces cancelled the normal. */
-static int voxgi__inject_point(const voxgi__inject *J, size_t i, double p[3], double nl[3])
-{
-    const voxgi_grid *g = J->g;
-    uint64_t l = J->index[i];
-    double c[3], len = 0, off = 0.8660254037844386 * g->voxel_size;
-    int a;
-    c[0] = g->origin[0] + ((double)(l % (uint64_t)g->res[0]) + 0.5) * g->voxel_size;
-    c[1] = g->origin[1] + ((double)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]) + 0.5) * g->voxel_size;
-    c[2] = g->origin[2] + ((double)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1])) + 0.5) * g->voxel_size;
-    for (a = 0; a < 3; a++) { nl[a] = J->vals[1][3 * i + (size_t)a]; len += nl[a] * nl[a]; }
-    len = sqrt(len);
-    for (a = 0; a < 3; a++) { nl[a] = len > 0 ? nl[a] / len : 0; p[a] = c[a] + off * nl[a]; }
-    return len > 0;
-}
-
-/* The i-th set voxel's radiance from the irradiance e at its lookup point, premultiplied. */
-static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e[3])
-{
-    float *o = J->rgba + 4 * J->index[i];
-    int a;
-    o[3] = J->vals[3] ? J->vals[3][i] : 1.0f;
-    for (a = 0; a < 3; a++)
-        o[a] = o[3] * (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * e[a] + (J->vals[2] ? J->vals[2][3 * i + (size_t)a] : 0.0f));
-}
-
-static void voxgi__inject_range(void *user, size_t first, size_t end)
-{
-    voxgi__inject *J = (voxgi__inject *)user;
-    int samples = J->desc->samples ? J->desc->samples : 16, s, a;
-    uint64_t rays = 0;
-    size_t i;
-    for (i = first; i < end; i++) {
-        double p[3], nl[3], e[3] = {0, 0, 0};
-        if (voxgi__inject_point(J, i, p, nl)) {
-            voxgi__rng rng;
-            double rot[2];
-            voxgi__rng_seed(&rng, J->desc->seed, J->index[i], 0);
-            rot[0] = voxgi__rng_unit(&rng);
-            rot[1] = voxgi__rng_unit(&rng);
-            for (s = 0; s < samples; s++) { /* the lights once per sample (delta lights give the same each time), the points on
-                                               area lights and emitters stratified: a 2D Kronecker sequence shifted per voxel */
-                double es[3], u[2];
-                u[0] = rot[0] + (s + 1) * 0.7548776662466927;
-                u[1] = rot[1] + (s + 1) * 0.5698402909980532;
-                u[0] -= floor(u[0]);
-                u[1] -= floor(u[1]);
-                voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, u, &rays, es, NULL);
-                for (a = 0; a < 3; a++) e[a] += es[a] / samples;
-            }
-        }
-        voxgi__inject_store(J, i, e); /* no normal: the voxel only emits */
-    }
-    VOXGI__ATOMIC_ADD_SIZE(&J->rays, (size_t)rays);
-}
-
-#ifndef VOXGI_NO_GL
-/* Light injection on GL from distance maps (shaders/light_maps.glsl, light_map_draw.glsl,
-   inject.glsl). Each light becomes casters with maps: a directional light one orthographic
-   layer, a point or spot light six cube faces, a rectangular light or the emitters `samples`
-   stratified points with six faces each (their surface's cosine, area over samples). The maps
-   are drawn, then every voxel gathers the irradiance at the same lookup point as the CPU's,
-   visibility from 3x3 map texels instead of a shadow ray (a gather per voxel: no voxel is missed
-   where the map's texels are sparser than the voxels, and the energy per voxel is the analytic
-   irradiance times the visible share, so it is right wherever nothing shadows). Out: 4 floats
-   per voxel, irradiance in xyz. */
-typedef struct voxgi__caster { float pos[4], dir[4], power[4], param[4]; } voxgi__caster; /* std430, as Caster */
-
-static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr, const voxgi__lights *Ls, const voxgi_grid *g,
-                                     int samples, size_t n, const float *pts, float *irr)
-{
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_scene *scene = Ls->scene;
-    size_t nt = tr->flat.triangle_count, i, nc = 0, cap;
-    voxgi__caster *cs = NULL;
-    float *corners = NULL;
-    double lo[3], hi[3], centre[3], radius = 0, vs = g->voxel_size;
-    unsigned int bufs[4] = {0, 0, 0, 0}, maps = 0, fbo = 0, vao = 0;
-    int a, layers = 0, size, max_layers = 0, res = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])), f;
-    voxgi__gl_raster_state state;
-    voxgi_result r = voxgi__gl_build(ctx, 1, "sampling.glsl light_maps.glsl light_map_draw.glsl", &gl->prog_light_map_draw);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "sampling.glsl light_maps.glsl inject.glsl", &gl->prog_inject);
-    if (r != VOXGI_OK) return r;
-    size = VOXGI__MIN(2048, VOXGI__MAX(64, 2 * res));
-    for (a = 0; a < 3; a++) { lo[a] = 0; hi[a] = g->res[a] * vs; } /* the grid and every triangle, relative to the origin */
-    for (i = 0; i < 9 * nt; i++) {
-        double c = tr->v[i] - g->origin[i % 3];
-        lo[i % 3] = VOXGI__MIN(lo[i % 3], c);
-        hi[i % 3] = VOXGI__MAX(hi[i % 3], c);
-    }
-    for (a = 0; a < 3; a++) { centre[a] = (lo[a] + hi[a]) / 2; radius += (hi[a] - lo[a]) * (hi[a] - lo[a]) / 4; }
-    radius = 1.01 * sqrt(radius) + vs;
-    cap = scene->light_count + (size_t)samples * (scene->light_count + 1);
-    cs = (voxgi__caster *)voxgi__alloc_array(ctx, cap, sizeof *cs, 1);
-    corners = (float *)voxgi__alloc_array(ctx, nt ? 3 * nt : 1, 16, 1);
-    if (!cs || !corners) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the light maps");
-    for (i = 0; r == VOXGI_OK && i < scene->light_count; i++) {
-        const voxgi_light *L = &scene->lights[i];
-        double d[3], len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
-        int k, count = L->type == VOXGI_LIGHT_RECT ? samples : 1;
-        for (a = 0; a < 3; a++) d[a] = len > 0 ? L->direction[a] / len : 0;
-        for (k = 0; k < count; k++) {
-            voxgi__caster *c = &cs[nc++];
-            for (a = 0; a < 3; a++) {
-                c->pos[a] = (float)(L->position[a] - g->origin[a]);
-                c->dir[a] = (float)d[a];
-                c->power[a] = L->intensity[a];
-            }
-            c->pos[3] = L->type == VOXGI_LIGHT_DIRECTIONAL ? 0.0f : (L->type == VOXGI_LIGHT_POINT ? 1.0f : (L->type == VOXGI_LIGHT_SPOT ? 2.0f : 3.0f));
-            c->power[3] = (float)layers;
-            layers += L->type == VOXGI_LIGHT_DIRECTIONAL ? 1 : 6;
-            if (L->type == VOXGI_LIGHT_DIRECTIONAL) {
-                for (a = 0; a < 3; a++) c->pos[a] = (float)(centre[a] - radius * d[a]);
-                c->dir[3] = (float)radius;
-            } else if (L->type == VOXGI_LIGHT_SPOT) {
-                c->param[0] = (float)cos((double)L->spot_inner);
-                c->param[1] = (float)cos((double)L->spot_outer);
-            } else if (L->type == VOXGI_LIGHT_RECT) { /* a stratified point (Kronecker sequence), the area's share */
-                double u = fmod(0.5 + (k + 1) * 0.7548776662466927, 1.0), v = fmod(0.5 + (k + 1) * 0.5698402909980532, 1.0), nn[3], area;
-                for (a = 0; a < 3; a++) nn[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
-                area = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
-                for (a = 0; a < 3; a++) {
-                    c->pos[a] = (float)(L->position[a] + u * L->edge_u[a] + v * L->edge_v[a] - g->origin[a]);
-                    c->dir[a] = (float)(area > 0 ? nn[a] / area : 0);
-                    c->power[a] = (float)(L->intensity[a] * area / samples);
-                }
-            }
-        }
-    }
-    for (f = 0; r == VOXGI_OK && Ls->emitter_count && f < samples; f++) { /* points on the emitters by power, stratified */
-        voxgi__caster *c = &cs[nc++];
-        double total = Ls->emitter_cdf[Ls->emitter_count - 1], u = fmod(0.5 + (f + 1) * 0.7548776662466927, 1.0) * total;
-        double v2 = fmod(0.5 + (f + 1) * 0.5698402909980532, 1.0), below, r1, b1, b2;
-        size_t lo_i = 0, hi_i = Ls->emitter_count - 1;
-        const double *v, *nrm;
-        const voxgi_material *m;
-        uint32_t k;
-        while (lo_i < hi_i) { size_t mid = (lo_i + hi_i) / 2; if (Ls->emitter_cdf[mid] <= u) lo_i = mid + 1; else hi_i = mid; }
-        k = Ls->emitters[lo_i];
-        below = lo_i ? Ls->emitter_cdf[lo_i - 1] : 0;
-        r1 = sqrt(VOXGI__MIN(1.0, VOXGI__MAX(0.0, (u - below) / (Ls->emitter_cdf[lo_i] - below))));
-        b1 = 1 - r1;
-        b2 = r1 * v2;
-        v = tr->v + 9 * (size_t)k;
-        nrm = tr->n + 3 * (size_t)k;
-        m = voxgi__prim_material(tr, k);
-        for (a = 0; a < 3; a++) {
-            c->pos[a] = (float)(v[a] + b1 * (v[3 + a] - v[a]) + b2 * (v[6 + a] - v[a]) + 1e-3 * vs * nrm[a] - g->origin[a]); /* just off its own triangle */
-            c->dir[a] = (float)nrm[a];
-            c->power[a] = (float)(m->emission[a] / (Ls->emitter_pdf[k] * samples));
-        }
-        c->pos[3] = 3;
-        c->power[3] = (float)layers;
-        layers += 6;
-    }
-    gl->GetIntegerv(VOXGI__GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
-    if (r == VOXGI_OK && layers > max_layers)
-        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%d light map layers, GL_MAX_ARRAY_TEXTURE_LAYERS is %d (fewer samples or lights)", layers, max_layers);
-    if (r == VOXGI_OK && (double)size * size * 4 * layers > (ctx->desc.memory_budget ? (double)ctx->desc.memory_budget : 4e9))
-        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%d light maps of %d^2 texels", layers, size);
-    if (r == VOXGI_OK && layers > 0) { /* the maps */
-        const unsigned int far_bits = 0x7F7FFFFFu; /* FLT_MAX: nothing there */
-        unsigned int p = gl->prog_light_map_draw;
-        for (i = 0; i < 9 * nt; i++) corners[4 * (i / 3) + i % 3] = (float)(tr->v[i] - g->origin[i % 3]);
-        bufs[0] = voxgi__gl_buffer(ctx, 3 * nt * 16, corners);
-        bufs[1] = voxgi__gl_buffer(ctx, nc * sizeof *cs, cs);
-        gl->CreateTextures(VOXGI__GL_TEXTURE_2D_ARRAY, 1, &maps);
-        gl->TextureStorage3D(maps, 1, VOXGI__GL_R32UI, size, size, layers);
-        gl->ClearTexImage(maps, 0, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &far_bits);
-        voxgi__gl_raster_begin(gl, &state);
-        gl->CreateVertexArrays(1, &vao);
-        gl->CreateFramebuffers(1, &fbo);
-        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, size);
-        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, size);
-        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
-        gl->BindVertexArray(vao);
-        gl->Viewport(0, 0, size, size);
-        gl->UseProgram(p);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
-        gl->BindImageTexture(0, maps, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
-        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_near"), (float)(1e-4 * vs));
-        for (i = 0; i < nc; i++)
-            for (f = cs[i].pos[3] == 0 ? -1 : 0; f < (cs[i].pos[3] == 0 ? 0 : 6); f++) {
-                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_caster"), (int)i);
-                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_face"), f);
-                gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
-            }
-        gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
-        gl->BindVertexArray(0);
-        gl->DeleteFramebuffers(1, &fbo);
-        gl->DeleteVertexArrays(1, &vao);
-        voxgi__gl_raster_end(gl, &state);
-    }
-    if (r == VOXGI_OK && n) { /* the gather */
-        unsigned int p = gl->prog_inject;
-        bufs[2] = voxgi__gl_buffer(ctx, n * 32, pts);
-        bufs[3] = voxgi__gl_buffer(ctx, n * 16, NULL);
-        gl->UseProgram(p);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[2]);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1] ? bufs[1] : bufs[3]);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, bufs[3]);
-        if (maps) gl->BindImageTexture(0, maps, 0, 1, 0, VOXGI__GL_READ_ONLY, VOXGI__GL_R32UI);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_casters"), layers > 0 ? (int)nc : 0);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_size"), size);
-        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_bias"), (float)(0.25 * vs));
-        voxgi__gl_dispatch_rows(gl, n);
-        r = voxgi__gl_read_buffer(ctx, bufs[3], irr, n * 16);
-    }
-    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
-    voxgi__gl_unbind(gl);
-    for (a = 0; a < 4; a++) voxgi__gl_delete_buffer(ctx, bufs[a]);
-    if (maps) gl->DeleteTextures(1, &maps);
-    voxgi__free(ctx, cs);
-    voxgi__free(ctx, corners);
-    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "light injection");
-    return r;
-}
-#endif
-
-/* The light's further bounces among the voxels (desc->bounces > 1): each voxel gathers at its
-   centre from *vol, its radiance becomes direct + alpha albedo / pi x that, and *vol is rebuilt. */
-static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, size_t n, const voxgi_inject_desc *desc, voxgi_volume **vol)
-{
-    const voxgi_grid *g = J->g;
-    float *pos = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0), *nrm = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
-    float *irr = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0), *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
-    const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
-    voxgi_result r = VOXGI_OK;
-    size_t i;
-    int b, a;
-    if (!pos || !nrm || !irr || !direct) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
-    for (i = 0; r == VOXGI_OK && i < n; i++) {
-        double p[3], nl[3];
-        int lit = voxgi__inject_point(J, i, p, nl);
-        for (a = 0; a < 3; a++) {
-            pos[3 * i + (size_t)a] = (float)(p[a] - 0.8660254037844386 * g->voxel_size * nl[a]); /* back to the centre */
-            nrm[3 * i + (size_t)a] = lit ? (float)nl[a] : (a == 1); /* no normal: gathers nothing (albedo x 0), below */
-            direct[3 * i + (size_t)a] = J->rgba[4 * J->index[i] + (size_t)a];
-        }
-    }
-    for (b = 1; r == VOXGI_OK && b < desc->bounces; b++) {
-        voxgi_volume *next = NULL;
-        r = voxgi_cone_trace(ctx, *vol, &desc->gather, n, pos, nrm, irr, NULL);
-        for (i = 0; r == VOXGI_OK && i < n; i++) {
-            float *o = J->rgba + 4 * J->index[i];
-            double p[3], nl[3];
-            int lit = voxgi__inject_point(J, i, p, nl);
-            for (a = 0; a < 3; a++)
-                o[a] = direct[3 * i + (size_t)a] + (lit ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * irr[3 * i + (size_t)a]) : 0.0f);
-        }
-        slots[4] = J->rgba;
-        if (r == VOXGI_OK) r = voxgi__volume_new(ctx, g, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &next);
-        if (r == VOXGI_OK) r = voxgi__volume_build(ctx, next, slots);
-        if (r == VOXGI_OK) { voxgi_volume_destroy(ctx, *vol); *vol = next; }
-        else voxgi_volume_destroy(ctx, next);
-    }
-    voxgi__free(ctx, pos);
-    voxgi__free(ctx, nrm);
-    voxgi__free(ctx, irr);
-    voxgi__free(ctx, direct);
-    return r;
-}
-
-VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *vx, const voxgi_inject_desc *desc,
-                                          voxgi_volume **out)
-{
-    voxgi__tracer tr;
-    voxgi__lights Ls;
-    voxgi__inject J;
-    voxgi_volume *vol = NULL;
-    float *vals[4] = {NULL, NULL, NULL, NULL}, *rgba = NULL, *own_rgba = NULL;
-    uint64_t *index = NULL, nvox, l;
-    uint32_t *bits = NULL;
-    size_t need = 0, n, i = 0;
-    const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
-    double t0 = voxgi__now_ms();
-    int a;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!vx || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
-    *out = NULL;
-    if ((vx->info.attributes & 3u) != 3u)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light injection needs voxels with ALBEDO and NORMAL (they hold 0x%x)", vx->info.attributes);
-    if (desc->samples < 0 || desc->bounces < 0 || desc->bounces > 64)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d (0..64)", desc->samples, desc->bounces);
-    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
-    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    r = voxgi__lights_build(ctx, scene, &tr, &Ls);
-    nvox = voxgi_grid_voxel_count(&vx->info.grid);
-    n = (size_t)vx->info.voxel_count;
-    if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
-    if (r == VOXGI_OK) r = voxgi__volume_new(ctx, &vx->info.grid, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &vol);
-    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU && desc->bounces <= 1) { /* level 0 written in place, the mips after it */
-        if ((vol->cpu[4][0] = (float *)voxgi__alloc_array(ctx, vol->voxels, 16, 0)) != NULL) memset(vol->cpu[4][0], 0, (size_t)nvox * 16);
-        rgba = vol->cpu[4][0];
-    } else if (r == VOXGI_OK) /* GL uploads it; the bounces rewrite it for each new volume */
-        own_rgba = rgba = (float *)voxgi__alloc_array(ctx, (size_t)nvox, 16, 1);
-    if (r == VOXGI_OK && (!rgba || !(bits = (uint32_t *)voxgi__alloc(ctx, need)) || !(index = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0))))
-        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the radiance of %lu voxels", (unsigned long)n);
-    if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, bits, need, NULL);
-    for (l = 0; r == VOXGI_OK && l < nvox; l++)
-        if (voxgi_bit_get(bits, l)) index[i++] = l;
-    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
-        voxgi_attribute which = (voxgi_attribute)(1 << a);
-        if (!(vx->info.attributes & (unsigned)which)) continue;
-        r = voxgi_voxels_read_attribute(ctx, vx, which, NULL, 0, &need);
-        if (r == VOXGI_OK && !(vals[a] = (float *)voxgi__alloc(ctx, need ? need : 4))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
-        if (r == VOXGI_OK) r = voxgi_voxels_read_attribute(ctx, vx, which, vals[a], need, NULL);
-    }
-    if (r == VOXGI_OK) {
-        memset(&J, 0, sizeof J);
-        J.lights = &Ls;
-        J.g = &vx->info.grid;
-        J.desc = desc;
-        J.index = index;
-        J.vals = vals;
-        J.rgba = rgba;
-        J.rays = 0;
-#ifndef VOXGI_NO_GL
-        if (ctx->backend == VOXGI_BACKEND_GL && !desc->shadow_rays) { /* lookup points up, irradiance down, the rest as on the CPU */
-            float *io = (float *)voxgi__alloc_array(ctx, n ? n : 1, 32, 0);
-            if (!io) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu lookup points", (unsigned long)n);
-            for (i = 0; r == VOXGI_OK && i < n; i++) {
-                double p[3], nl[3];
-                io[8 * i + 7] = (float)voxgi__inject_point(&J, i, p, nl);
-                for (a = 0; a < 3; a++) { io[8 * i + (size_t)a] = (float)(p[a] - J.g->origin[a]); io[8 * i + 4 + (size_t)a] = (float)nl[a]; }
-                io[8 * i + 3] = 0;
-            }
-            if (r == VOXGI_OK) r = voxgi__inject_gl(ctx, &tr, &Ls, J.g, desc->samples ? desc->samples : 16, n, io, io);
-            for (i = 0; r == VOXGI_OK && i < n; i++) {
-                double e[3];
-                for (a = 0; a < 3; a++) e[a] = io[4 * i + (size_t)a];
-                voxgi__inject_store(&J, i, e);
-            }
-            voxgi__free(ctx, io);
-        } else
-#endif
-            voxgi__parallel(ctx, n, 256, voxgi__inject_range, &J);
-        slots[4] = rgba;
-        if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
-        if (r == VOXGI_OK && desc->bounces > 1) r = voxgi__inject_bounces(ctx, &J, n, desc, &vol);
-        if (r == VOXGI_OK) vol->info.ms = voxgi__now_ms() - t0;
-    }
-    if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); vol = NULL; }
-    for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
-    voxgi__free(ctx, bits);
-    voxgi__free(ctx, index);
-    voxgi__free(ctx, own_rgba);
-    voxgi__lights_free(ctx, &Ls);
-    voxgi__tracer_free(ctx, &tr);
-    *out = vol;
-    return r;
-}
+/* ===================================================================== 8. cone tracing */
 
 /* Cone k of n: a direction in the frame (t, b, normal), on a Fibonacci spiral of the projected
    disc (equal cosine-weighted shares). */
@@ -7812,6 +7389,378 @@ VOXGI_API float voxgi_specular_half_angle(float roughness)
     double a = VOXGI__MIN(1.0, VOXGI__MAX(0.02, (double)roughness)), n = VOXGI__MAX(0.0, 2 / (a * a) - 2); /* Phong exponent of the lobe */
     return (float)VOXGI__MAX(0.005, acos(pow(0.244, 1 / (n + 1))));
 }
+
+/* ===================================================================== 9. light injection */
+
+typedef struct voxgi__inject {
+    const voxgi__lights *lights;
+    const voxgi_grid *g;
+    const voxgi_inject_desc *desc;
+    const uint64_t *index;        /* set voxel i: its linear index */
+    float *const *vals;           /* attribute means, bit order */
+    float *rgba;                  /* level 0 of the radiance volume */
+    size_t rays;
+} voxgi__inject;
+
+/* The i-th set voxel's lookup point: its centre moved half a voxel diagonal along its mean normal
+   (off its own surface), and that unit normal; 0 when opposite surfaces cancelled the normal. */
+static int voxgi__inject_point(const voxgi__inject *J, size_t i, double p[3], double nl[3])
+{
+    const voxgi_grid *g = J->g;
+    uint64_t l = J->index[i];
+    double c[3], len = 0, off = 0.8660254037844386 * g->voxel_size;
+    int a;
+    c[0] = g->origin[0] + ((double)(l % (uint64_t)g->res[0]) + 0.5) * g->voxel_size;
+    c[1] = g->origin[1] + ((double)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]) + 0.5) * g->voxel_size;
+    c[2] = g->origin[2] + ((double)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1])) + 0.5) * g->voxel_size;
+    for (a = 0; a < 3; a++) { nl[a] = J->vals[1][3 * i + (size_t)a]; len += nl[a] * nl[a]; }
+    len = sqrt(len);
+    for (a = 0; a < 3; a++) { nl[a] = len > 0 ? nl[a] / len : 0; p[a] = c[a] + off * nl[a]; }
+    return len > 0;
+}
+
+/* The i-th set voxel's radiance from the irradiance e at its lookup point, premultiplied. */
+static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e[3])
+{
+    float *o = J->rgba + 4 * J->index[i];
+    int a;
+    o[3] = J->vals[3] ? J->vals[3][i] : 1.0f;
+    for (a = 0; a < 3; a++)
+        o[a] = o[3] * (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * e[a] + (J->vals[2] ? J->vals[2][3 * i + (size_t)a] : 0.0f));
+}
+
+static void voxgi__inject_range(void *user, size_t first, size_t end)
+{
+    voxgi__inject *J = (voxgi__inject *)user;
+    int samples = J->desc->samples ? J->desc->samples : 16, s, a;
+    uint64_t rays = 0;
+    size_t i;
+    for (i = first; i < end; i++) {
+        double p[3], nl[3], e[3] = {0, 0, 0};
+        if (voxgi__inject_point(J, i, p, nl)) {
+            voxgi__rng rng;
+            double rot[2];
+            voxgi__rng_seed(&rng, J->desc->seed, J->index[i], 0);
+            rot[0] = voxgi__rng_unit(&rng);
+            rot[1] = voxgi__rng_unit(&rng);
+            for (s = 0; s < samples; s++) { /* the lights once per sample (delta lights give the same each time), the points on
+                                               area lights and emitters stratified: a 2D Kronecker sequence shifted per voxel */
+                double es[3], u[2];
+                u[0] = rot[0] + (s + 1) * 0.7548776662466927;
+                u[1] = rot[1] + (s + 1) * 0.5698402909980532;
+                u[0] -= floor(u[0]);
+                u[1] -= floor(u[1]);
+                voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, u, &rays, es, NULL);
+                for (a = 0; a < 3; a++) e[a] += es[a] / samples;
+            }
+        }
+        voxgi__inject_store(J, i, e); /* no normal: the voxel only emits */
+    }
+    VOXGI__ATOMIC_ADD_SIZE(&J->rays, (size_t)rays);
+}
+
+#ifndef VOXGI_NO_GL
+/* Light injection on GL from distance maps (shaders/light_maps.glsl, light_map_draw.glsl,
+   inject.glsl). Each light becomes casters with maps: a directional light one orthographic
+   layer, a point or spot light six cube faces, a rectangular light or the emitters `samples`
+   stratified points with six faces each (their surface's cosine, area over samples). The maps
+   are drawn, then every voxel gathers the irradiance at the same lookup point as the CPU's,
+   visibility from 3x3 map texels instead of a shadow ray (a gather per voxel: no voxel is missed
+   where the map's texels are sparser than the voxels, and the energy per voxel is the analytic
+   irradiance times the visible share, so it is right wherever nothing shadows). Out: 4 floats
+   per voxel, irradiance in xyz. */
+typedef struct voxgi__caster { float pos[4], dir[4], power[4], param[4]; } voxgi__caster; /* std430, as Caster */
+
+static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr, const voxgi__lights *Ls, const voxgi_grid *g,
+                                     int samples, size_t n, const float *pts, float *irr)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_scene *scene = Ls->scene;
+    size_t nt = tr->flat.triangle_count, i, nc = 0, cap;
+    voxgi__caster *cs = NULL;
+    float *corners = NULL;
+    double lo[3], hi[3], centre[3], radius = 0, vs = g->voxel_size;
+    unsigned int bufs[4] = {0, 0, 0, 0}, maps = 0, fbo = 0, vao = 0;
+    int a, layers = 0, size, max_layers = 0, res = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])), f;
+    voxgi__gl_raster_state state;
+    voxgi_result r = voxgi__gl_build(ctx, 1, "sampling.glsl light_maps.glsl light_map_draw.glsl", &gl->prog_light_map_draw);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "sampling.glsl light_maps.glsl inject.glsl", &gl->prog_inject);
+    if (r != VOXGI_OK) return r;
+    size = VOXGI__MIN(2048, VOXGI__MAX(64, 2 * res));
+    for (a = 0; a < 3; a++) { lo[a] = 0; hi[a] = g->res[a] * vs; } /* the grid and every triangle, relative to the origin */
+    for (i = 0; i < 9 * nt; i++) {
+        double c = tr->v[i] - g->origin[i % 3];
+        lo[i % 3] = VOXGI__MIN(lo[i % 3], c);
+        hi[i % 3] = VOXGI__MAX(hi[i % 3], c);
+    }
+    for (a = 0; a < 3; a++) { centre[a] = (lo[a] + hi[a]) / 2; radius += (hi[a] - lo[a]) * (hi[a] - lo[a]) / 4; }
+    radius = 1.01 * sqrt(radius) + vs;
+    cap = scene->light_count + (size_t)samples * (scene->light_count + 1);
+    cs = (voxgi__caster *)voxgi__alloc_array(ctx, cap, sizeof *cs, 1);
+    corners = (float *)voxgi__alloc_array(ctx, nt ? 3 * nt : 1, 16, 1);
+    if (!cs || !corners) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the light maps");
+    for (i = 0; r == VOXGI_OK && i < scene->light_count; i++) {
+        const voxgi_light *L = &scene->lights[i];
+        double d[3], len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
+        int k, count = L->type == VOXGI_LIGHT_RECT ? samples : 1;
+        for (a = 0; a < 3; a++) d[a] = len > 0 ? L->direction[a] / len : 0;
+        for (k = 0; k < count; k++) {
+            voxgi__caster *c = &cs[nc++];
+            for (a = 0; a < 3; a++) {
+                c->pos[a] = (float)(L->position[a] - g->origin[a]);
+                c->dir[a] = (float)d[a];
+                c->power[a] = L->intensity[a];
+            }
+            c->pos[3] = L->type == VOXGI_LIGHT_DIRECTIONAL ? 0.0f : (L->type == VOXGI_LIGHT_POINT ? 1.0f : (L->type == VOXGI_LIGHT_SPOT ? 2.0f : 3.0f));
+            c->power[3] = (float)layers;
+            layers += L->type == VOXGI_LIGHT_DIRECTIONAL ? 1 : 6;
+            if (L->type == VOXGI_LIGHT_DIRECTIONAL) {
+                for (a = 0; a < 3; a++) c->pos[a] = (float)(centre[a] - radius * d[a]);
+                c->dir[3] = (float)radius;
+            } else if (L->type == VOXGI_LIGHT_SPOT) {
+                c->param[0] = (float)cos((double)L->spot_inner);
+                c->param[1] = (float)cos((double)L->spot_outer);
+            } else if (L->type == VOXGI_LIGHT_RECT) { /* a stratified point (Kronecker sequence), the area's share */
+                double u = fmod(0.5 + (k + 1) * 0.7548776662466927, 1.0), v = fmod(0.5 + (k + 1) * 0.5698402909980532, 1.0), nn[3], area;
+                for (a = 0; a < 3; a++) nn[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
+                area = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+                for (a = 0; a < 3; a++) {
+                    c->pos[a] = (float)(L->position[a] + u * L->edge_u[a] + v * L->edge_v[a] - g->origin[a]);
+                    c->dir[a] = (float)(area > 0 ? nn[a] / area : 0);
+                    c->power[a] = (float)(L->intensity[a] * area / samples);
+                }
+            }
+        }
+    }
+    for (f = 0; r == VOXGI_OK && Ls->emitter_count && f < samples; f++) { /* points on the emitters by power, stratified */
+        voxgi__caster *c = &cs[nc++];
+        double total = Ls->emitter_cdf[Ls->emitter_count - 1], u = fmod(0.5 + (f + 1) * 0.7548776662466927, 1.0) * total;
+        double v2 = fmod(0.5 + (f + 1) * 0.5698402909980532, 1.0), below, r1, b1, b2;
+        size_t lo_i = 0, hi_i = Ls->emitter_count - 1;
+        const double *v, *nrm;
+        const voxgi_material *m;
+        uint32_t k;
+        while (lo_i < hi_i) { size_t mid = (lo_i + hi_i) / 2; if (Ls->emitter_cdf[mid] <= u) lo_i = mid + 1; else hi_i = mid; }
+        k = Ls->emitters[lo_i];
+        below = lo_i ? Ls->emitter_cdf[lo_i - 1] : 0;
+        r1 = sqrt(VOXGI__MIN(1.0, VOXGI__MAX(0.0, (u - below) / (Ls->emitter_cdf[lo_i] - below))));
+        b1 = 1 - r1;
+        b2 = r1 * v2;
+        v = tr->v + 9 * (size_t)k;
+        nrm = tr->n + 3 * (size_t)k;
+        m = voxgi__prim_material(tr, k);
+        for (a = 0; a < 3; a++) {
+            c->pos[a] = (float)(v[a] + b1 * (v[3 + a] - v[a]) + b2 * (v[6 + a] - v[a]) + 1e-3 * vs * nrm[a] - g->origin[a]); /* just off its own triangle */
+            c->dir[a] = (float)nrm[a];
+            c->power[a] = (float)(m->emission[a] / (Ls->emitter_pdf[k] * samples));
+        }
+        c->pos[3] = 3;
+        c->power[3] = (float)layers;
+        layers += 6;
+    }
+    gl->GetIntegerv(VOXGI__GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+    if (r == VOXGI_OK && layers > max_layers)
+        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%d light map layers, GL_MAX_ARRAY_TEXTURE_LAYERS is %d (fewer samples or lights)", layers, max_layers);
+    if (r == VOXGI_OK && (double)size * size * 4 * layers > (ctx->desc.memory_budget ? (double)ctx->desc.memory_budget : 4e9))
+        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%d light maps of %d^2 texels", layers, size);
+    if (r == VOXGI_OK && layers > 0) { /* the maps */
+        const unsigned int far_bits = 0x7F7FFFFFu; /* FLT_MAX: nothing there */
+        unsigned int p = gl->prog_light_map_draw;
+        for (i = 0; i < 9 * nt; i++) corners[4 * (i / 3) + i % 3] = (float)(tr->v[i] - g->origin[i % 3]);
+        bufs[0] = voxgi__gl_buffer(ctx, 3 * nt * 16, corners);
+        bufs[1] = voxgi__gl_buffer(ctx, nc * sizeof *cs, cs);
+        gl->CreateTextures(VOXGI__GL_TEXTURE_2D_ARRAY, 1, &maps);
+        gl->TextureStorage3D(maps, 1, VOXGI__GL_R32UI, size, size, layers);
+        gl->ClearTexImage(maps, 0, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &far_bits);
+        voxgi__gl_raster_begin(gl, &state);
+        gl->CreateVertexArrays(1, &vao);
+        gl->CreateFramebuffers(1, &fbo);
+        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, size);
+        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, size);
+        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+        gl->BindVertexArray(vao);
+        gl->Viewport(0, 0, size, size);
+        gl->UseProgram(p);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
+        gl->BindImageTexture(0, maps, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
+        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_near"), (float)(1e-4 * vs));
+        for (i = 0; i < nc; i++)
+            for (f = cs[i].pos[3] == 0 ? -1 : 0; f < (cs[i].pos[3] == 0 ? 0 : 6); f++) {
+                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_caster"), (int)i);
+                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_face"), f);
+                gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
+            }
+        gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+        gl->BindVertexArray(0);
+        gl->DeleteFramebuffers(1, &fbo);
+        gl->DeleteVertexArrays(1, &vao);
+        voxgi__gl_raster_end(gl, &state);
+    }
+    if (r == VOXGI_OK && n) { /* the gather */
+        unsigned int p = gl->prog_inject;
+        bufs[2] = voxgi__gl_buffer(ctx, n * 32, pts);
+        bufs[3] = voxgi__gl_buffer(ctx, n * 16, NULL);
+        gl->UseProgram(p);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[2]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1] ? bufs[1] : bufs[3]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, bufs[3]);
+        if (maps) gl->BindImageTexture(0, maps, 0, 1, 0, VOXGI__GL_READ_ONLY, VOXGI__GL_R32UI);
+        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_casters"), layers > 0 ? (int)nc : 0);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_size"), size);
+        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_bias"), (float)(0.25 * vs));
+        voxgi__gl_dispatch_rows(gl, n);
+        r = voxgi__gl_read_buffer(ctx, bufs[3], irr, n * 16);
+    }
+    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
+    voxgi__gl_unbind(gl);
+    for (a = 0; a < 4; a++) voxgi__gl_delete_buffer(ctx, bufs[a]);
+    if (maps) gl->DeleteTextures(1, &maps);
+    voxgi__free(ctx, cs);
+    voxgi__free(ctx, corners);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "light injection");
+    return r;
+}
+#endif
+
+/* The light's further bounces among the voxels (desc->bounces > 1): each voxel gathers at its
+   centre from *vol, its radiance becomes direct + alpha albedo / pi x that, and *vol is rebuilt. */
+static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, size_t n, const voxgi_inject_desc *desc, voxgi_volume **vol)
+{
+    const voxgi_grid *g = J->g;
+    float *pos = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0), *nrm = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
+    float *irr = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0), *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
+    const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
+    voxgi_result r = VOXGI_OK;
+    size_t i;
+    int b, a;
+    if (!pos || !nrm || !irr || !direct) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
+    for (i = 0; r == VOXGI_OK && i < n; i++) {
+        double p[3], nl[3];
+        int lit = voxgi__inject_point(J, i, p, nl);
+        for (a = 0; a < 3; a++) {
+            pos[3 * i + (size_t)a] = (float)(p[a] - 0.8660254037844386 * g->voxel_size * nl[a]); /* back to the centre */
+            nrm[3 * i + (size_t)a] = lit ? (float)nl[a] : (a == 1); /* no normal: gathers nothing (albedo x 0), below */
+            direct[3 * i + (size_t)a] = J->rgba[4 * J->index[i] + (size_t)a];
+        }
+    }
+    for (b = 1; r == VOXGI_OK && b < desc->bounces; b++) {
+        voxgi_volume *next = NULL;
+        r = voxgi_cone_trace(ctx, *vol, &desc->gather, n, pos, nrm, irr, NULL);
+        for (i = 0; r == VOXGI_OK && i < n; i++) {
+            float *o = J->rgba + 4 * J->index[i];
+            double p[3], nl[3];
+            int lit = voxgi__inject_point(J, i, p, nl);
+            for (a = 0; a < 3; a++)
+                o[a] = direct[3 * i + (size_t)a] + (lit ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * irr[3 * i + (size_t)a]) : 0.0f);
+        }
+        slots[4] = J->rgba;
+        if (r == VOXGI_OK) r = voxgi__volume_new(ctx, g, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &next);
+        if (r == VOXGI_OK) r = voxgi__volume_build(ctx, next, slots);
+        if (r == VOXGI_OK) { voxgi_volume_destroy(ctx, *vol); *vol = next; }
+        else voxgi_volume_destroy(ctx, next);
+    }
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, nrm);
+    voxgi__free(ctx, irr);
+    voxgi__free(ctx, direct);
+    return r;
+}
+
+VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *vx, const voxgi_inject_desc *desc,
+                                          voxgi_volume **out)
+{
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    voxgi__inject J;
+    voxgi_volume *vol = NULL;
+    float *vals[4] = {NULL, NULL, NULL, NULL}, *rgba = NULL, *own_rgba = NULL;
+    uint64_t *index = NULL, nvox, l;
+    uint32_t *bits = NULL;
+    size_t need = 0, n, i = 0;
+    const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
+    double t0 = voxgi__now_ms();
+    int a;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vx || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
+    *out = NULL;
+    if ((vx->info.attributes & 3u) != 3u)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light injection needs voxels with ALBEDO and NORMAL (they hold 0x%x)", vx->info.attributes);
+    if (desc->samples < 0 || desc->bounces < 0 || desc->bounces > 64)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d (0..64)", desc->samples, desc->bounces);
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    r = voxgi__lights_build(ctx, scene, &tr, &Ls);
+    nvox = voxgi_grid_voxel_count(&vx->info.grid);
+    n = (size_t)vx->info.voxel_count;
+    if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
+    if (r == VOXGI_OK) r = voxgi__volume_new(ctx, &vx->info.grid, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &vol);
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU && desc->bounces <= 1) { /* level 0 written in place, the mips after it */
+        if ((vol->cpu[4][0] = (float *)voxgi__alloc_array(ctx, vol->voxels, 16, 0)) != NULL) memset(vol->cpu[4][0], 0, (size_t)nvox * 16);
+        rgba = vol->cpu[4][0];
+    } else if (r == VOXGI_OK) /* GL uploads it; the bounces rewrite it for each new volume */
+        own_rgba = rgba = (float *)voxgi__alloc_array(ctx, (size_t)nvox, 16, 1);
+    if (r == VOXGI_OK && (!rgba || !(bits = (uint32_t *)voxgi__alloc(ctx, need)) || !(index = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0))))
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the radiance of %lu voxels", (unsigned long)n);
+    if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, bits, need, NULL);
+    for (l = 0; r == VOXGI_OK && l < nvox; l++)
+        if (voxgi_bit_get(bits, l)) index[i++] = l;
+    for (a = 0; a < 4 && r == VOXGI_OK; a++) {
+        voxgi_attribute which = (voxgi_attribute)(1 << a);
+        if (!(vx->info.attributes & (unsigned)which)) continue;
+        r = voxgi_voxels_read_attribute(ctx, vx, which, NULL, 0, &need);
+        if (r == VOXGI_OK && !(vals[a] = (float *)voxgi__alloc(ctx, need ? need : 4))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+        if (r == VOXGI_OK) r = voxgi_voxels_read_attribute(ctx, vx, which, vals[a], need, NULL);
+    }
+    if (r == VOXGI_OK) {
+        memset(&J, 0, sizeof J);
+        J.lights = &Ls;
+        J.g = &vx->info.grid;
+        J.desc = desc;
+        J.index = index;
+        J.vals = vals;
+        J.rgba = rgba;
+        J.rays = 0;
+#ifndef VOXGI_NO_GL
+        if (ctx->backend == VOXGI_BACKEND_GL && !desc->shadow_rays) { /* lookup points up, irradiance down, the rest as on the CPU */
+            float *io = (float *)voxgi__alloc_array(ctx, n ? n : 1, 32, 0);
+            if (!io) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu lookup points", (unsigned long)n);
+            for (i = 0; r == VOXGI_OK && i < n; i++) {
+                double p[3], nl[3];
+                io[8 * i + 7] = (float)voxgi__inject_point(&J, i, p, nl);
+                for (a = 0; a < 3; a++) { io[8 * i + (size_t)a] = (float)(p[a] - J.g->origin[a]); io[8 * i + 4 + (size_t)a] = (float)nl[a]; }
+                io[8 * i + 3] = 0;
+            }
+            if (r == VOXGI_OK) r = voxgi__inject_gl(ctx, &tr, &Ls, J.g, desc->samples ? desc->samples : 16, n, io, io);
+            for (i = 0; r == VOXGI_OK && i < n; i++) {
+                double e[3];
+                for (a = 0; a < 3; a++) e[a] = io[4 * i + (size_t)a];
+                voxgi__inject_store(&J, i, e);
+            }
+            voxgi__free(ctx, io);
+        } else
+#endif
+            voxgi__parallel(ctx, n, 256, voxgi__inject_range, &J);
+        slots[4] = rgba;
+        if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
+        if (r == VOXGI_OK && desc->bounces > 1) r = voxgi__inject_bounces(ctx, &J, n, desc, &vol);
+        if (r == VOXGI_OK) vol->info.ms = voxgi__now_ms() - t0;
+    }
+    if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); vol = NULL; }
+    for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
+    voxgi__free(ctx, bits);
+    voxgi__free(ctx, index);
+    voxgi__free(ctx, own_rgba);
+    voxgi__lights_free(ctx, &Ls);
+    voxgi__tracer_free(ctx, &tr);
+    *out = vol;
+    return r;
+}
+
+/* ===================================================================== 10. images */
 
 /* ----- the G-buffer of voxgi's own images */
 typedef struct voxgi__gbuffer_job {
@@ -8276,7 +8225,148 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     return r;
 }
 
-/* ===================================================================== built-in scenes */
+/* ===================================================================== 11. reference renderer */
+
+typedef struct voxgi__render {
+    voxgi_context *ctx;
+    const voxgi__tracer *tr;
+    voxgi__lights lights;
+    const voxgi_reference_desc *desc;
+    double eye[3], right[3], up[3], forward[3], tan_half;
+    double *sum;                  /* 3 per pixel */
+    int first_sample, pass_samples;
+    size_t rays;                  /* summed over the workers */
+} voxgi__render;
+
+/* One path's radiance through the camera ray (o, d). */
+static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *g, uint64_t *rays, double out[3])
+{
+    const voxgi__tracer *tr = R->tr;
+    double T[3] = {1, 1, 1}, pdf_bsdf = 0; /* the density (per solid angle) of the bounce that led here */
+    uint32_t skip = UINT32_MAX;
+    int depth, a, bounces = R->desc->bounces;
+    out[0] = out[1] = out[2] = 0;
+    for (depth = 0;; depth++) {
+        voxgi__hit h;
+        double ns[3], e[3], t[3], b[3], r1, phi, lx, ly, lz, off;
+        const voxgi_material *m;
+        const double *n;
+        ++*rays;
+        if (!voxgi__trace(tr, o, d, DBL_MAX, skip, 0, &h)) break;
+        m = voxgi__prim_material(tr, h.prim);
+        n = tr->n + 3 * (size_t)h.prim;
+        for (a = 0; a < 3; a++) ns[a] = h.front ? n[a] : -n[a];
+        if (h.front && R->lights.emitter_pdf[h.prim] > 0) { /* seen by the camera, or found by a bounce (weighted against the direct light) */
+            double mis = depth == 0 && R->desc->hide_emitters ? 0 : 1;
+            if (depth > 0) {
+                double pdf_light = R->lights.emitter_pdf[h.prim] * h.t * h.t / -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
+                mis = pdf_bsdf * pdf_bsdf / (pdf_bsdf * pdf_bsdf + pdf_light * pdf_light);
+            }
+            for (a = 0; a < 3; a++) out[a] += T[a] * mis * m->emission[a];
+        }
+        if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
+        voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, NULL, rays, e, NULL);
+        for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / 3.14159265358979323846 * e[a];
+        for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
+        if (bounces < 0 && depth >= 2) { /* Russian roulette */
+            double q = VOXGI__MAX(T[0], VOXGI__MAX(T[1], T[2]));
+            if (q < 1) {
+                if (voxgi__rng_unit(g) >= q) break;
+                for (a = 0; a < 3; a++) T[a] /= q;
+            }
+        }
+        if (T[0] == 0 && T[1] == 0 && T[2] == 0) break;
+        voxgi__basis(ns, t, b);
+        r1 = voxgi__rng_unit(g);
+        phi = 2 * 3.14159265358979323846 * voxgi__rng_unit(g);
+        lx = sqrt(r1) * cos(phi);
+        ly = sqrt(r1) * sin(phi);
+        lz = sqrt(1 - r1);
+        off = 1e-9 * (1 + tr->scale);
+        for (a = 0; a < 3; a++) {
+            d[a] = lx * t[a] + ly * b[a] + lz * ns[a];
+            o[a] = h.p[a] + off * ns[a];
+        }
+        pdf_bsdf = lz / 3.14159265358979323846;
+        skip = h.prim;
+    }
+}
+
+static void voxgi__render_rows(void *user, size_t first, size_t end)
+{
+    voxgi__render *R = (voxgi__render *)user;
+    const voxgi_camera *cam = &R->desc->camera;
+    uint64_t rays = 0;
+    size_t y;
+    for (y = first; y < end; y++) {
+        int x, s;
+        for (x = 0; x < cam->width; x++) {
+            size_t pix = y * (size_t)cam->width + (size_t)x;
+            double *acc = R->sum + 3 * pix;
+            for (s = R->first_sample; s < R->first_sample + R->pass_samples; s++) {
+                voxgi__rng g;
+                double sx, sy, o[3], d[3], L[3];
+                int a;
+                voxgi__rng_seed(&g, R->desc->seed, pix, (uint64_t)s);
+                sx = x + voxgi__rng_unit(&g);
+                sy = (double)y + voxgi__rng_unit(&g);
+                voxgi__camera_ray(cam, R->forward, R->right, R->up, R->tan_half, sx, sy, d);
+                for (a = 0; a < 3; a++) o[a] = R->eye[a];
+                voxgi__path(R, o, d, &g, &rays, L);
+                for (a = 0; a < 3; a++) acc[a] += L[a];
+            }
+        }
+    }
+    VOXGI__ATOMIC_ADD_SIZE(&R->rays, (size_t)rays);
+}
+
+VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
+                                              size_t rgb_bytes, voxgi_reference_info *info)
+{
+    voxgi__tracer tr;
+    voxgi__render R;
+    const voxgi_camera *cam;
+    double t0 = voxgi__now_ms();
+    size_t pixels, i;
+    int samples;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
+    if (info) memset(info, 0, sizeof *info);
+    cam = &desc->camera;
+    memset(&R, 0, sizeof R);
+    if ((r = voxgi__camera_frame(ctx, cam, R.eye, R.forward, R.right, R.up, &R.tan_half)) != VOXGI_OK) return r;
+    pixels = (size_t)cam->width * (size_t)cam->height;
+    if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
+    if (desc->samples < 0 || desc->bounces < -1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d", desc->samples, desc->bounces);
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    R.ctx = ctx;
+    R.tr = &tr;
+    R.desc = desc;
+    samples = desc->samples ? desc->samples : 16;
+    R.sum = (double *)voxgi__alloc_array(ctx, pixels, 3 * sizeof(double), 1);
+    if (!R.sum) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d render", cam->width, cam->height);
+    else r = voxgi__lights_build(ctx, scene, &tr, &R.lights);
+    if (info) { info->triangles = tr.flat.triangle_count; info->bvh_nodes = tr.node_count; info->ms_bvh = voxgi__now_ms() - t0; }
+    t0 = voxgi__now_ms();
+    for (R.first_sample = 0; r == VOXGI_OK && R.first_sample < samples; R.first_sample += R.pass_samples) { /* progressive passes */
+        R.pass_samples = VOXGI__MIN(VOXGI__MAX(1, samples / 16), samples - R.first_sample);
+        voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__render_rows, &R);
+        if (voxgi__progress(ctx, (double)(R.first_sample + R.pass_samples) / samples, "reference render"))
+            r = voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "reference render cancelled by the progress callback after %d samples per pixel",
+                            R.first_sample + R.pass_samples);
+    }
+    for (i = 0; r == VOXGI_OK && i < 3 * pixels; i++) rgb[i] = (float)(R.sum[i] / samples);
+    if (info) { info->rays = R.rays; info->ms_render = voxgi__now_ms() - t0; }
+    voxgi__free(ctx, R.sum);
+    voxgi__lights_free(ctx, &R.lights);
+    voxgi__tracer_free(ctx, &tr);
+    return r;
+}
+
+/* ===================================================================== 12. built-in scenes and files */
+
 #define VOXGI__BUILTIN_VERTICES 6144
 #define VOXGI__BUILTIN_TRIANGLES 6144
 typedef struct voxgi__builtin {
@@ -8489,7 +8579,7 @@ VOXGI_API void voxgi_builtin_scene_destroy(voxgi_context *ctx, voxgi_builtin_sce
     memset(scene, 0, sizeof *scene);
 }
 
-/* ===================================================================== binvox files */
+/* ----- binvox files */
 VOXGI_API voxgi_result voxgi_binvox_write(FILE *f, const voxgi_grid *g, const uint32_t *bits)
 {
     int x, y, z, dmax;
@@ -8562,6 +8652,7 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *g, uint32_t *bits,
     }
     return VOXGI_OK;
 }
+
 
 #endif /* VOXGI__IMPLEMENTED */
 #endif /* VOXGI_IMPLEMENTATION */
