@@ -3553,7 +3553,7 @@ static void voxgi__tri_rows(const voxgi__vox_shared *vs, const voxgi__prepared *
 
 #ifndef VOXGI_NO_GL
 /* One whole triangle on the calling thread: the GL pass's referee for triangles it hands over. */
-static void voxgi__voxelize_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
+static void voxgi__vox_conservative_cpu(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
 {
     voxgi__prepared P;
     if (voxgi__tri_prepare(vs, ti, &P, st)) voxgi__tri_rows(vs, &P, 0, P.ext[(P.c + 2) % 3] - 1, st);
@@ -3656,7 +3656,7 @@ static int voxgi__solid_setup(const voxgi__vox_shared *vs, size_t ti, voxgi__tri
     return 1;
 }
 
-static void voxgi__solid_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
+static void voxgi__vox_solid_cpu(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
 {
     voxgi__tri t;
     int A = vs->solid_axis, a = (A + 1) % 3, b = (A + 2) % 3;
@@ -3707,7 +3707,7 @@ static void voxgi__prefix_xor(uint32_t *bits, const voxgi_grid *g, int A)
     }
 }
 
-static uint64_t voxgi__popcount_words(const uint32_t *w, uint64_t n)
+static uint64_t voxgi__vox_count_cpu(const uint32_t *w, uint64_t n)
 {
     uint64_t i, c = 0;
     for (i = 0; i < n; i++) {
@@ -3759,7 +3759,7 @@ static void voxgi__flood_lines(void *user, size_t first, size_t end)
     if (changed) VOXGI__ATOMIC_STORE_INT(&job->changed, 1);
 }
 
-static voxgi_result voxgi__flood_solid(voxgi_context *ctx, const voxgi_grid *g, uint32_t *bits)
+static voxgi_result voxgi__vox_flood_cpu(voxgi_context *ctx, const voxgi_grid *g, uint32_t *bits)
 {
     uint64_t nx = (uint64_t)g->res[0], ny = (uint64_t)g->res[1], nz = (uint64_t)g->res[2], words = voxgi__grid_words(g);
     uint64_t i, j, k;
@@ -3797,15 +3797,15 @@ static voxgi_result voxgi__flood_solid(voxgi_context *ctx, const voxgi_grid *g, 
    each vertex (voxel coordinates and exact ranges, O(vertices)); the GPU does everything per
    triangle, fragment and voxel; what an exact pass's filter cannot decide comes back here and is
    decided exactly, so the bits equal the CPU's. */
-typedef struct voxgi__gl_vprep { double q[4]; int32_t lo[4], hi[4]; float w[4], pad[4]; } voxgi__gl_vprep; /* std430 */
+typedef struct voxgi__vox_vprep_gl { double q[4]; int32_t lo[4], hi[4]; float w[4], pad[4]; } voxgi__vox_vprep_gl; /* std430 */
 
 #define VOXGI__GL_PAIR_CAPACITY 65536u
 
 /* Uploads the prepared vertices (binding 0) and the triangles (binding 1). */
-static void voxgi__gl_scene_buffers(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp, unsigned int *verts,
+static void voxgi__vox_scene_buffers_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp, unsigned int *verts,
                                     unsigned int *tris, voxgi_result *r)
 {
-    voxgi__gl_vprep *gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
+    voxgi__vox_vprep_gl *gv = (voxgi__vox_vprep_gl *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
     size_t v;
     int i;
     *verts = *tris = 0;
@@ -3821,7 +3821,7 @@ static void voxgi__gl_scene_buffers(voxgi_context *ctx, const voxgi__flat *f, co
 
 /* Pass 0 over all triangles (in slices of at most 65535 work groups), then pass 1 over the big
    ones it listed, sized on the GPU; the program's other uniforms are set by the caller. */
-static void voxgi__gl_run_triangles(voxgi__gl *gl, unsigned int p, size_t nt, unsigned int control)
+static void voxgi__vox_dispatch_triangles_gl(voxgi__gl *gl, unsigned int p, size_t nt, unsigned int control)
 {
     size_t t0;
     gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
@@ -3839,7 +3839,7 @@ static void voxgi__gl_run_triangles(voxgi__gl *gl, unsigned int p, size_t nt, un
 
 /* The geometry-shader voxelizer's draw: every triangle once into an attachment-less
    framebuffer of view x view pixels (voxel columns); the caller's GL state is restored. */
-static void voxgi__gl_draw_geometry(voxgi__gl *gl, unsigned int p, size_t nt, int view)
+static void voxgi__vox_draw_geometry_gl(voxgi__gl *gl, unsigned int p, size_t nt, int view)
 {
     voxgi__gl_raster_state state;
     unsigned int fbo = 0, vao = 0;
@@ -3862,18 +3862,18 @@ static void voxgi__gl_draw_geometry(voxgi__gl *gl, unsigned int p, size_t nt, in
 }
 
 /* Runs the conservative tests of every triangle: compute dispatches, or the geometry draw. */
-static void voxgi__gl_run(voxgi__gl *gl, const voxgi_voxelize_desc *d, unsigned int p, size_t nt, unsigned int control)
+static void voxgi__vox_conservative_gl(voxgi__gl *gl, const voxgi_voxelize_desc *d, unsigned int p, size_t nt, unsigned int control)
 {
     if (d->method == VOXGI_METHOD_GEOMETRY)
-        voxgi__gl_draw_geometry(gl, p, nt, VOXGI__MAX(d->grid.res[0], VOXGI__MAX(d->grid.res[1], d->grid.res[2])));
-    else voxgi__gl_run_triangles(gl, p, nt, control);
+        voxgi__vox_draw_geometry_gl(gl, p, nt, VOXGI__MAX(d->grid.res[0], VOXGI__MAX(d->grid.res[1], d->grid.res[2])));
+    else voxgi__vox_dispatch_triangles_gl(gl, p, nt, control);
 }
 
 /* The attribute pass after the conservative (or thin) bits are final in buf[2]: the same
    triangles again, each set voxel receiving its triangles' values on the GPU; the triangles the
    bit pass flagged (buf[5]) and the pairs its filter could not decide are added here, exactly.
    pair_capacity: the bit pass's pair count, which this pass cannot exceed. */
-static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+static voxgi_result voxgi__vox_attributes_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                              const voxgi_voxelize_desc *d, const unsigned int *buf, uint32_t pair_capacity,
                                              voxgi__attr *attr)
 {
@@ -3919,7 +3919,7 @@ static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__fl
             for (c = 0; c < attr->channels; c++) max_channels |= (unsigned)attr->max_op[c] << c;
             gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_max_channels"), max_channels);
         }
-        voxgi__gl_run(gl, d, p, nt, control_buf);
+        voxgi__vox_conservative_gl(gl, d, p, nt, control_buf);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
         for (k = 7; k < 10; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, 0);
         r = voxgi__gl_read_buffer(ctx, control_buf, control, sizeof control);
@@ -3950,7 +3950,7 @@ static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__fl
         for (k = 0; k < nt; k++)
             if (flags[k >> 5] & (1u << (k & 31u))) {
                 st.tri = (uint32_t)k;
-                voxgi__voxelize_triangle(&vs, k, &st);
+                voxgi__vox_conservative_cpu(&vs, k, &st);
             }
         for (k = 0; k < control[4]; k++) {
             voxgi__tri t;
@@ -3980,7 +3980,7 @@ static voxgi_result voxgi__gl_attribute_pass(voxgi_context *ctx, const voxgi__fl
    solid_axis, into a new buffer *bits_out. What the GPU's filter cannot decide is decided here
    exactly and written back. */
 
-static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+static voxgi_result voxgi__vox_triangles_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                             const voxgi_voxelize_desc *d, int solid_axis, unsigned int *bits_out,
                                             voxgi_voxels_info *info, voxgi__attr *attr)
 {
@@ -3989,13 +3989,13 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
     size_t bytes = (size_t)voxgi__grid_words(g) * 4, v, nt = f->triangle_count, flag_words = (nt + 31) / 32;
     unsigned int buf[7] = {0, 0, 0, 0, 0, 0, 0}, zero = 0, capacity = VOXGI__GL_PAIR_CAPACITY;
     uint32_t control[8];
-    voxgi__gl_vprep *gv;
+    voxgi__vox_vprep_gl *gv;
     uint32_t *copy = NULL, *flags = NULL, *pairs = NULL;
     unsigned int p = solid_axis >= 0 ? gl->prog_voxelize_solid
                      : (d->method == VOXGI_METHOD_GEOMETRY ? gl->prog_voxelize_geometry : gl->prog_voxelize_conservative);
     voxgi_result r;
     int i, attempt;
-    gv = (voxgi__gl_vprep *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
+    gv = (voxgi__vox_vprep_gl *)voxgi__alloc_array(ctx, f->vertex_count, sizeof *gv, 1);
     if (!gv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu vertices", (unsigned long)f->vertex_count);
     for (v = 0; v < f->vertex_count; v++) {
         for (i = 0; i < 3; i++) {
@@ -4033,7 +4033,7 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_solid_axis"), solid_axis);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_thin"), d->method == VOXGI_METHOD_THIN);
         if (solid_axis < 0) gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
-        voxgi__gl_run(gl, d, p, nt, buf[3]);
+        voxgi__vox_conservative_gl(gl, d, p, nt, buf[3]);
         r = voxgi__gl_read_buffer(ctx, buf[3], control, sizeof control);
         if (r != VOXGI_OK || solid_axis < 0 || control[4] <= capacity) break;
         capacity = control[4];
@@ -4056,8 +4056,8 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
             vs.solid_axis = solid_axis;
             for (k = 0; k < nt; k++)
                 if (flags[k >> 5] & (1u << (k & 31u))) {
-                    if (solid_axis >= 0) voxgi__solid_triangle(&vs, k, &st);
-                    else voxgi__voxelize_triangle(&vs, k, &st);
+                    if (solid_axis >= 0) voxgi__vox_solid_cpu(&vs, k, &st);
+                    else voxgi__vox_conservative_cpu(&vs, k, &st);
                     info->exact_triangles++;
                 }
             for (k = 0; k < np; k++) {
@@ -4080,7 +4080,7 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
             r = voxgi__gl_check(ctx, "uploading the exact decisions");
         }
     }
-    if (r == VOXGI_OK && attr) r = voxgi__gl_attribute_pass(ctx, f, vp, d, buf, control[4], attr);
+    if (r == VOXGI_OK && attr) r = voxgi__vox_attributes_gl(ctx, f, vp, d, buf, control[4], attr);
     voxgi__gl_unbind(gl);
     for (i = 0; i < 7; i++)
         if (i != 2) voxgi__gl_delete_buffer(ctx, buf[i]);
@@ -4093,7 +4093,7 @@ static voxgi_result voxgi__gl_triangle_pass(voxgi_context *ctx, const voxgi__fla
 }
 
 /* Counts the set bits of a grid buffer on the GPU. */
-static voxgi_result voxgi__gl_popcount(voxgi_context *ctx, unsigned int buffer, uint64_t words, uint64_t *count)
+static voxgi_result voxgi__vox_count_gl(voxgi_context *ctx, unsigned int buffer, uint64_t words, uint64_t *count)
 {
     voxgi__gl *gl = ctx->gl;
     unsigned int p, count_buf;
@@ -4116,13 +4116,13 @@ static voxgi_result voxgi__gl_popcount(voxgi_context *ctx, unsigned int buffer, 
 }
 
 /* Solid parity along axis A: toggles, then one walk per line. */
-static voxgi_result voxgi__gl_solid_parity(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+static voxgi_result voxgi__vox_solid_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                            const voxgi_voxelize_desc *d, int A, unsigned int *solid, voxgi_voxels_info *info)
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = &d->grid;
     unsigned int toggles = 0, p = gl->prog_solid_prefix;
-    voxgi_result r = voxgi__gl_triangle_pass(ctx, f, vp, d, A, &toggles, info, NULL);
+    voxgi_result r = voxgi__vox_triangles_gl(ctx, f, vp, d, A, &toggles, info, NULL);
     if (r != VOXGI_OK) return r;
     *solid = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, toggles);
@@ -4137,7 +4137,7 @@ static voxgi_result voxgi__gl_solid_parity(voxgi_context *ctx, const voxgi__flat
 }
 
 /* Solid by flooding the outside of the conservative surface, sweeping until nothing grows. */
-static voxgi_result voxgi__gl_solid_flood(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+static voxgi_result voxgi__vox_flood_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                           const voxgi_voxelize_desc *d, unsigned int *solid, voxgi_voxels_info *info)
 {
     voxgi__gl *gl = ctx->gl;
@@ -4149,7 +4149,7 @@ static voxgi_result voxgi__gl_solid_flood(voxgi_context *ctx, const voxgi__flat 
     voxgi_result r;
     int axis;
     cd.method = VOXGI_METHOD_CONSERVATIVE;
-    r = voxgi__gl_triangle_pass(ctx, f, vp, &cd, -1, &surface, info, NULL);
+    r = voxgi__vox_triangles_gl(ctx, f, vp, &cd, -1, &surface, info, NULL);
     if (r != VOXGI_OK) return r;
     outside = voxgi__gl_grid_buffer(ctx, bytes);
     changed_buf = voxgi__gl_buffer(ctx, 4, &changed);
@@ -4197,7 +4197,7 @@ static double voxgi__snap256(double x) { return floor(x * 256.0 + 0.5) / 256.0; 
    d_y == 0 and d_x > 0). Exact in double while coordinates stay below 2^17 pixels. */
 typedef void (*voxgi__pixel_fn)(void *user, uint32_t tri, int i, int j);
 
-static void voxgi__raster_centres(const double xin[3], const double yin[3], int w, int h, voxgi__pixel_fn fn, void *user,
+static void voxgi__vox_raster_cpu(const double xin[3], const double yin[3], int w, int h, voxgi__pixel_fn fn, void *user,
                                   uint32_t tri)
 {
     double x[3], y[3], area;
@@ -4242,7 +4242,7 @@ static double voxgi__slicemap_depth(const double q0[3], const double q1[3], cons
     return q0[A] - (na * (ca - q0[a]) + nb * (cb - q0[b])) / nA;
 }
 
-static void voxgi__slicemap_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
+static void voxgi__vox_slicemap_cpu(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
 {
     static const double centre[3] = {0.5, 0.5, 0.5};
     voxgi__tri t;
@@ -4288,7 +4288,7 @@ static void voxgi__slicemap_triangle(const voxgi__vox_shared *vs, size_t ti, vox
    slicemap textures along axis A (128 slices per RGBA32UI layer, up to 8 layers per draw
    through MRT, ORed by the logic op; or 32 slices per R32UI layer with imageAtomicOr), then
    unpacks them into a new bit grid *bits_out. The caller's GL state is restored. */
-static voxgi_result voxgi__gl_slice_raster(voxgi_context *ctx, const voxgi_grid *g, int A, int atomic, unsigned int p,
+static voxgi_result voxgi__vox_raster_gl(voxgi_context *ctx, const voxgi_grid *g, int A, int atomic, unsigned int p,
                                            unsigned int mode, uint64_t count, unsigned int *bits_out)
 {
     voxgi__gl *gl = ctx->gl;
@@ -4375,14 +4375,14 @@ static voxgi_result voxgi__gl_slice_raster(voxgi_context *ctx, const voxgi_grid 
 }
 
 /* The raster slicemap: the triangles drawn along the axis. */
-static voxgi_result voxgi__gl_slicemap(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+static voxgi_result voxgi__vox_slicemap_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                        const voxgi_voxelize_desc *d, unsigned int *bits_out)
 {
     unsigned int verts = 0, tris = 0;
     voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl slice_targets.glsl slicemap.glsl", &ctx->gl->prog_slicemap);
-    if (r == VOXGI_OK) voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
+    if (r == VOXGI_OK) voxgi__vox_scene_buffers_gl(ctx, f, vp, &verts, &tris, &r);
     if (r == VOXGI_OK)
-        r = voxgi__gl_slice_raster(ctx, &d->grid, d->axis ? (int)d->axis - 1 : 2, d->atomic, ctx->gl->prog_slicemap,
+        r = voxgi__vox_raster_gl(ctx, &d->grid, d->axis ? (int)d->axis - 1 : 2, d->atomic, ctx->gl->prog_slicemap,
                                    VOXGI__GL_TRIANGLES, 3 * (uint64_t)f->triangle_count, bits_out);
     voxgi__gl_delete_buffer(ctx, verts);
     voxgi__gl_delete_buffer(ctx, tris);
@@ -4410,11 +4410,11 @@ static int voxgi__dominant_axis(const double *q0, const double *q1, const double
     return c;
 }
 
-typedef struct voxgi__vb_job { const voxgi__vox_shared *vs; voxgi__stats *st; const double *q[3]; int c; } voxgi__vb_job;
+typedef struct voxgi__vox_volume_buffer_job { const voxgi__vox_shared *vs; voxgi__stats *st; const double *q[3]; int c; } voxgi__vox_volume_buffer_job;
 
-static void voxgi__vb_pixel(void *user, uint32_t tri, int i, int j)
+static void voxgi__vox_volume_buffer_pixel(void *user, uint32_t tri, int i, int j)
 {
-    voxgi__vb_job *job = (voxgi__vb_job *)user;
+    voxgi__vox_volume_buffer_job *job = (voxgi__vox_volume_buffer_job *)user;
     int c = job->c, a = (c + 1) % 3, b = (c + 2) % 3;
     double z = floor(voxgi__slicemap_depth(job->q[0], job->q[1], job->q[2], c, (double)i + 0.5, (double)j + 0.5));
     (void)tri;
@@ -4427,9 +4427,9 @@ static void voxgi__vb_pixel(void *user, uint32_t tri, int i, int j)
     }
 }
 
-static void voxgi__vb_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
+static void voxgi__vox_volume_buffer_cpu(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
 {
-    voxgi__vb_job job;
+    voxgi__vox_volume_buffer_job job;
     double n[3], x[3], y[3];
     int k, a, b;
     for (k = 0; k < 3; k++) job.q[k] = vs->vp[vs->tri[3 * ti + (size_t)k]].q;
@@ -4440,7 +4440,7 @@ static void voxgi__vb_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__st
     a = (job.c + 1) % 3;
     b = (job.c + 2) % 3;
     for (k = 0; k < 3; k++) { x[k] = voxgi__snap256(job.q[k][a]); y[k] = voxgi__snap256(job.q[k][b]); }
-    voxgi__raster_centres(x, y, vs->grid->res[a], vs->grid->res[b], voxgi__vb_pixel, &job, (uint32_t)ti);
+    voxgi__vox_raster_cpu(x, y, vs->grid->res[a], vs->grid->res[b], voxgi__vox_volume_buffer_pixel, &job, (uint32_t)ti);
 }
 
 #ifndef VOXGI_NO_GL
@@ -4448,7 +4448,7 @@ static void voxgi__vb_triangle(const voxgi__vox_shared *vs, size_t ti, voxgi__st
 /* The Volume Buffer: three layered draws (one per sweep axis, each triangle in the sweep of its
    dominant axis) into float 3D targets blended per attribute, then merged into the bit grid and,
    with attributes, each set voxel's values (on the CPU afterwards, as floats). */
-static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+static voxgi_result voxgi__vox_volume_buffer_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                             const voxgi_voxelize_desc *d, unsigned int *bits_out, voxgi__attr *attr,
                                             voxgi_voxels_info *info)
 {
@@ -4486,7 +4486,7 @@ static voxgi_result voxgi__gl_volume_buffer(voxgi_context *ctx, const voxgi__fla
         }
         tv[10 * t + 9] = 1.0f - m->transparency;
     }
-    voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
+    voxgi__vox_scene_buffers_gl(ctx, f, vp, &verts, &tris, &r);
     values_buf = voxgi__gl_buffer(ctx, f->triangle_count * 10 * sizeof(float), tv);
     lost_buf = voxgi__gl_buffer(ctx, 8 + 4 * f->triangle_count, NULL); /* lost, big_count, big_list */
     gl->ClearNamedBufferData(lost_buf, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
@@ -4893,7 +4893,7 @@ static void voxgi__atlas_raster(void *user, size_t first, size_t end)
         double x[3], y[3];
         int k;
         for (k = 0; k < 3; k++) { x[k] = c[2 * k]; y[k] = c[2 * k + 1]; }
-        voxgi__raster_centres(x, y, job->at->size, job->at->size, voxgi__atlas_texel, job, (uint32_t)t);
+        voxgi__vox_raster_cpu(x, y, job->at->size, job->at->size, voxgi__atlas_texel, job, (uint32_t)t);
     }
 }
 
@@ -4935,7 +4935,7 @@ static void voxgi__atlas_points(void *user, size_t first, size_t end)
 }
 
 /* The CPU twin of both atlas methods. */
-static voxgi_result voxgi__atlas_cpu(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
+static voxgi_result voxgi__vox_atlas_cpu(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
                                      const voxgi__atlas *at, uint64_t *points)
 {
     voxgi__atlas_job job;
@@ -4956,7 +4956,7 @@ static voxgi_result voxgi__atlas_cpu(voxgi_context *ctx, const voxgi__vox_shared
 /* The texture atlas: the charts drawn into an R32UI atlas, its covered texels listed as
    points, then the points either drawn into slicemap targets (ATLAS) or each set by one
    compute invocation (ATLAS_COMPUTE). */
-static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+static voxgi_result voxgi__vox_atlas_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                     const voxgi_voxelize_desc *d, const voxgi__atlas *at, unsigned int *bits_out,
                                     voxgi_voxels_info *info)
 {
@@ -4978,7 +4978,7 @@ static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, co
     if (at->view > max_size)
         return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%d atlas (viewport %d) exceeds GL_MAX_TEXTURE_SIZE %d", at->size, at->size,
                            at->view, max_size);
-    voxgi__gl_scene_buffers(ctx, f, vp, &verts, &tris, &r);
+    voxgi__vox_scene_buffers_gl(ctx, f, vp, &verts, &tris, &r);
     if (r != VOXGI_OK) return r;
     charts = voxgi__gl_buffer(ctx, f->triangle_count * 6 * sizeof(float), at->uv);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, charts);
@@ -5037,7 +5037,7 @@ static voxgi_result voxgi__gl_atlas(voxgi_context *ctx, const voxgi__flat *f, co
     gl->DeleteVertexArrays(1, &vao);
     /* 3. the points into voxels */
     if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS)
-        r = voxgi__gl_slice_raster(ctx, g, d->axis ? (int)d->axis - 1 : 2, d->atomic, gl->prog_atlas_points, VOXGI__GL_POINTS,
+        r = voxgi__vox_raster_gl(ctx, g, d->axis ? (int)d->axis - 1 : 2, d->atomic, gl->prog_atlas_points, VOXGI__GL_POINTS,
                                    count, bits_out);
     else if (r == VOXGI_OK) {
         *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
@@ -5090,9 +5090,9 @@ static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress
             end = VOXGI__MIN(first + VOXGI__CHUNK, job->triangle_count);
             for (t = first; t < end; t++) {
                 st.tri = (uint32_t)t;
-                if (job->vs->solid_axis >= 0) { voxgi__solid_triangle(job->vs, t, &st); continue; }
-                if (job->vs->slice_axis >= 0) { voxgi__slicemap_triangle(job->vs, t, &st); continue; }
-                if (job->vs->volume_buffer) { voxgi__vb_triangle(job->vs, t, &st); continue; }
+                if (job->vs->solid_axis >= 0) { voxgi__vox_solid_cpu(job->vs, t, &st); continue; }
+                if (job->vs->slice_axis >= 0) { voxgi__vox_slicemap_cpu(job->vs, t, &st); continue; }
+                if (job->vs->volume_buffer) { voxgi__vox_volume_buffer_cpu(job->vs, t, &st); continue; }
                 if (!voxgi__tri_prepare(job->vs, t, &P, &st)) continue;
                 if ((int64_t)P.ext[(P.c + 1) % 3] * P.ext[(P.c + 2) % 3] > VOXGI__BIG_COLUMNS)
                     job->big[VOXGI__ATOMIC_ADD_SIZE(&job->big_count, (size_t)1)] = (uint32_t)t;
@@ -5155,7 +5155,7 @@ static void voxgi__vox_phase(voxgi_context *ctx, voxgi__vox_job *job, size_t ite
 }
 
 /* Runs the CPU voxelizer over all triangles into vs->bits (which the caller zeroed). */
-static voxgi_result voxgi__voxelize_cpu_run(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
+static voxgi_result voxgi__vox_workers_cpu(voxgi_context *ctx, const voxgi__vox_shared *vs, size_t triangle_count,
                                             voxgi__stats *st)
 {
     voxgi__vox_job job;
@@ -5203,7 +5203,7 @@ static voxgi_result voxgi__prep_vertices(voxgi_context *ctx, const voxgi__flat *
 }
 
 /* The CPU twin of every method, into vox->bits. */
-static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *flat, const voxgi__vprep *vp,
+static voxgi_result voxgi__vox_run_cpu(voxgi_context *ctx, const voxgi__flat *flat, const voxgi__vprep *vp,
                                        const voxgi_voxelize_desc *desc, const voxgi__atlas *atlas, voxgi_voxels *vox)
 {
     voxgi__vox_shared vs;
@@ -5226,7 +5226,7 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
     vs.volume_buffer = desc->method == VOXGI_METHOD_VOLUME_BUFFER;
     if (atlas) {
         vs.bits = vox->bits;
-        r = voxgi__atlas_cpu(ctx, &vs, flat->triangle_count, atlas, &vox->info.atlas_points);
+        r = voxgi__vox_atlas_cpu(ctx, &vs, flat->triangle_count, atlas, &vox->info.atlas_points);
         passes = 0;
     }
     for (pass = 0; pass < passes && r == VOXGI_OK; pass++) {
@@ -5234,7 +5234,7 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
         vs.solid_axis = -1;
         if (solid && desc->solid_mode != VOXGI_SOLID_FLOOD)
             vs.solid_axis = passes == 3 ? pass : (desc->axis ? (int)desc->axis - 1 : 2);
-        r = voxgi__voxelize_cpu_run(ctx, &vs, flat->triangle_count, &st);
+        r = voxgi__vox_workers_cpu(ctx, &vs, flat->triangle_count, &st);
         if (r == VOXGI_OK && vs.solid_axis >= 0) voxgi__prefix_xor(vs.bits, &desc->grid, vs.solid_axis);
     }
     if (r == VOXGI_OK && passes == 3) /* majority of three */
@@ -5242,24 +5242,24 @@ static voxgi_result voxgi__voxelize_cpu(voxgi_context *ctx, const voxgi__flat *f
             uint32_t x = vox->bits[i], y = extra[0][i], z = extra[1][i];
             vox->bits[i] = (x & y) | (y & z) | (x & z);
         }
-    if (r == VOXGI_OK && solid && desc->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__flood_solid(ctx, &desc->grid, vox->bits);
+    if (r == VOXGI_OK && solid && desc->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__vox_flood_cpu(ctx, &desc->grid, vox->bits);
     if (r == VOXGI_OK && vox->attr.rec) { /* the attribute pass: the same tests again, now adding to the set voxels */
         voxgi__stats ast = {0, 0, 0};
         r = voxgi__attr_alloc(ctx, &vox->attr, vox->bits, words, st.voxels);
         vs.bits = vox->bits;
         vs.attr = &vox->attr;
-        if (r == VOXGI_OK) r = voxgi__voxelize_cpu_run(ctx, &vs, flat->triangle_count, &ast);
+        if (r == VOXGI_OK) r = voxgi__vox_workers_cpu(ctx, &vs, flat->triangle_count, &ast);
     }
     voxgi__free(ctx, extra[0]);
     voxgi__free(ctx, extra[1]);
     vox->info.exact_tests = st.exact_tests;
-    vox->info.voxel_count = solid || atlas ? voxgi__popcount_words(vox->bits, words) : st.voxels;
+    vox->info.voxel_count = solid || atlas ? voxgi__vox_count_cpu(vox->bits, words) : st.voxels;
     return r;
 }
 
 #ifndef VOXGI_NO_GL
 
-static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+static voxgi_result voxgi__vox_run_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                        const voxgi_voxelize_desc *d, const voxgi__atlas *atlas, voxgi_voxels *out)
 {
     voxgi__gl *gl = ctx->gl;
@@ -5292,19 +5292,19 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "flood.glsl", &gl->prog_flood);
     if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "bits_majority.glsl", &gl->prog_bits_majority);
     if (r != VOXGI_OK) return r;
-    if (d->method == VOXGI_METHOD_SLICEMAP) r = voxgi__gl_slicemap(ctx, f, vp, d, &result);
-    else if (atlas) r = voxgi__gl_atlas(ctx, f, vp, d, atlas, &result, &out->info);
+    if (d->method == VOXGI_METHOD_SLICEMAP) r = voxgi__vox_slicemap_gl(ctx, f, vp, d, &result);
+    else if (atlas) r = voxgi__vox_atlas_gl(ctx, f, vp, d, atlas, &result, &out->info);
     else if (d->method == VOXGI_METHOD_VOLUME_BUFFER)
-        r = voxgi__gl_volume_buffer(ctx, f, vp, d, &result, out->attr.rec ? &out->attr : NULL, &out->info);
+        r = voxgi__vox_volume_buffer_gl(ctx, f, vp, d, &result, out->attr.rec ? &out->attr : NULL, &out->info);
     else if (d->method != VOXGI_METHOD_SOLID)
-        r = voxgi__gl_triangle_pass(ctx, f, vp, d, -1, &result, &out->info, out->attr.rec ? &out->attr : NULL);
+        r = voxgi__vox_triangles_gl(ctx, f, vp, d, -1, &result, &out->info, out->attr.rec ? &out->attr : NULL);
     else if (d->solid_mode == VOXGI_SOLID_PARITY)
-        r = voxgi__gl_solid_parity(ctx, f, vp, d, d->axis ? (int)d->axis - 1 : 2, &result, &out->info);
-    else if (d->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__gl_solid_flood(ctx, f, vp, d, &result, &out->info);
+        r = voxgi__vox_solid_gl(ctx, f, vp, d, d->axis ? (int)d->axis - 1 : 2, &result, &out->info);
+    else if (d->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__vox_flood_gl(ctx, f, vp, d, &result, &out->info);
     else { /* vote: parity along x, y and z, then the majority into the last */
         unsigned int axes[3] = {0, 0, 0}, p = gl->prog_bits_majority;
         int a;
-        for (a = 0; a < 3 && r == VOXGI_OK; a++) r = voxgi__gl_solid_parity(ctx, f, vp, d, a, &axes[a], &out->info);
+        for (a = 0; a < 3 && r == VOXGI_OK; a++) r = voxgi__vox_solid_gl(ctx, f, vp, d, a, &axes[a], &out->info);
         if (r == VOXGI_OK) {
             for (a = 0; a < 3; a++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)a, axes[a]);
             gl->UseProgram(p);
@@ -5317,7 +5317,7 @@ static voxgi_result voxgi__voxelize_gl(voxgi_context *ctx, const voxgi__flat *f,
         for (a = 0; a < 3; a++) voxgi__gl_delete_buffer(ctx, axes[a]);
     }
     if (r != VOXGI_OK) return r;
-    r = voxgi__gl_popcount(ctx, result, words, &out->info.voxel_count); /* count the set voxels on the GPU */
+    r = voxgi__vox_count_gl(ctx, result, words, &out->info.voxel_count); /* count the set voxels on the GPU */
     if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, result); return r; }
     out->gl_buffer = result;
     return voxgi__gl_check(ctx, "voxelization");
@@ -5373,9 +5373,9 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
         vox->info.atlas_scale = atlas.scale;
     }
     if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU)
-        r = voxgi__voxelize_cpu(ctx, &flat, vp, desc, voxgi__is_atlas(desc->method) ? &atlas : NULL, vox);
+        r = voxgi__vox_run_cpu(ctx, &flat, vp, desc, voxgi__is_atlas(desc->method) ? &atlas : NULL, vox);
 #ifndef VOXGI_NO_GL
-    else if (r == VOXGI_OK) r = voxgi__voxelize_gl(ctx, &flat, vp, desc, voxgi__is_atlas(desc->method) ? &atlas : NULL, vox);
+    else if (r == VOXGI_OK) r = voxgi__vox_run_gl(ctx, &flat, vp, desc, voxgi__is_atlas(desc->method) ? &atlas : NULL, vox);
 #endif
     voxgi__free(ctx, atlas.uv);
     voxgi__free(ctx, vp);
@@ -5434,7 +5434,7 @@ VOXGI_API voxgi_result voxgi_voxels_gl_buffer(voxgi_context *ctx, const voxgi_vo
 
 #ifndef VOXGI_NO_GL
 
-static voxgi_result voxgi__reduce_gl(voxgi_context *ctx, const voxgi_voxels *src, const int f[3], voxgi_voxels *dst)
+static voxgi_result voxgi__vox_reduce_gl(voxgi_context *ctx, const voxgi_voxels *src, const int f[3], voxgi_voxels *dst)
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *sg = &src->info.grid, *dg = &dst->info.grid;
@@ -5455,7 +5455,7 @@ static voxgi_result voxgi__reduce_gl(voxgi_context *ctx, const voxgi_voxels *src
     voxgi__gl_unbind(gl);
     dst->gl_buffer = out;
     r = voxgi__gl_check(ctx, "the OR reduction");
-    if (r == VOXGI_OK) r = voxgi__gl_popcount(ctx, out, dst->info.bytes / 4, &dst->info.voxel_count);
+    if (r == VOXGI_OK) r = voxgi__vox_count_gl(ctx, out, dst->info.bytes / 4, &dst->info.voxel_count);
     return r;
 }
 #endif /* VOXGI_NO_GL */
@@ -5494,10 +5494,10 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
                         d = i / (uint64_t)factor[0] + (uint64_t)dg->res[0] * (j / (uint64_t)factor[1] + (uint64_t)dg->res[1] * (k / (uint64_t)factor[2]));
                         dst->bits[d >> 5] |= 1u << (d & 31u);
                     }
-        if (r == VOXGI_OK) dst->info.voxel_count = voxgi__popcount_words(dst->bits, dst->info.bytes / 4);
+        if (r == VOXGI_OK) dst->info.voxel_count = voxgi__vox_count_cpu(dst->bits, dst->info.bytes / 4);
     }
 #ifndef VOXGI_NO_GL
-    else r = voxgi__reduce_gl(ctx, src, factor, dst);
+    else r = voxgi__vox_reduce_gl(ctx, src, factor, dst);
 #endif
     if (r != VOXGI_OK) { voxgi_voxels_destroy(ctx, dst); return r; }
     dst->info.ms = voxgi__now_ms() - t0;
@@ -5687,7 +5687,7 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
 
 /* GL: the base level uploaded into every direction's texture, then each level from the one
    below by shaders/volume_mip.glsl. */
-static voxgi_result voxgi__volume_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
+static voxgi_result voxgi__volume_build_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
 {
     voxgi__gl *gl = ctx->gl;
     int a, d, k, dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1, max3d = 0;
@@ -5777,7 +5777,7 @@ static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, c
     int a, d, k, dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
     size_t base_voxels = (size_t)vol->dims[0][0] * (size_t)vol->dims[0][1] * (size_t)vol->dims[0][2];
 #ifndef VOXGI_NO_GL
-    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__volume_gl(ctx, vol, base);
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__volume_build_gl(ctx, vol, base);
 #endif
     for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
         int w = a == 3 ? 1 : 4;
@@ -6234,7 +6234,7 @@ static void voxgi__svo_fill_brick(voxgi_context *ctx, voxgi_svo *svo, int a, int
 #ifndef VOXGI_NO_GL
 /* GL: the octree's buffers grow level by level to the size the flag pass counted (a 4-byte
    read per level), never beyond the memory budget or the largest storage buffer. */
-static voxgi_result voxgi__svo_gl_grow(voxgi_context *ctx, unsigned int *buf, uint64_t *cap, uint64_t need, const char *what)
+static voxgi_result voxgi__svo_grow_gl(voxgi_context *ctx, unsigned int *buf, uint64_t *cap, uint64_t need, const char *what)
 {
     voxgi__gl *gl = ctx->gl;
     uint64_t bytes;
@@ -6256,7 +6256,7 @@ static voxgi_result voxgi__svo_gl_grow(voxgi_context *ctx, unsigned int *buf, ui
 }
 
 /* Binds an octree's child and value buffers of attribute a for shaders/svo.glsl. */
-static void voxgi__svo_gl_bind(voxgi_context *ctx, const voxgi_svo *svo, unsigned int p, int a)
+static void voxgi__svo_bind_gl(voxgi_context *ctx, const voxgi_svo *svo, unsigned int p, int a)
 {
     voxgi__gl *gl = ctx->gl;
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, svo->gl_child);
@@ -6274,7 +6274,7 @@ enum { VOXGI__SVO_FLAG, VOXGI__SVO_ARGS, VOXGI__SVO_ALLOCATE, VOXGI__SVO_INIT, V
 
 /* The GPU build (shaders/svo_build.glsl) from the voxel fragments (x | y << 16, z) and their
    attribute means in the same order. */
-static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size_t n, const uint32_t *packed, float *const vals[VOXGI__VOLUME_SLOTS],
+static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size_t n, const uint32_t *packed, float *const vals[VOXGI__VOLUME_SLOTS],
                                         const voxgi_svo_desc *desc)
 {
     voxgi__gl *gl = ctx->gl;
@@ -6293,15 +6293,15 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
     init[0] = depth > 1 ? 1u : 0u;
     init[1] = depth > 1 ? 0u : 1u;
     init[3] = 1; /* the node list holds the root */
-    r = voxgi__svo_gl_grow(ctx, &svo->gl_child, &child_cap, depth > 1 ? 36 : 4, "child pointers");
-    if (r == VOXGI_OK) r = voxgi__svo_gl_grow(ctx, &list, &list_cap, 16, "node list");
+    r = voxgi__svo_grow_gl(ctx, &svo->gl_child, &child_cap, depth > 1 ? 36 : 4, "child pointers");
+    if (r == VOXGI_OK) r = voxgi__svo_grow_gl(ctx, &list, &list_cap, 16, "node list");
     if (r != VOXGI_OK) goto done;
     gl->NamedBufferSubData(svo->gl_child, 0, depth > 1 ? 36 : 4, root_tile);
     gl->NamedBufferSubData(list, 0, 16, init + 4); /* slot 0 at (0, 0, 0) */
     counters = voxgi__gl_buffer(ctx, sizeof init, init);
     frag = voxgi__gl_buffer(ctx, n * 8, packed);
     gl->UseProgram(p);
-    voxgi__svo_gl_bind(ctx, svo, p, -1);
+    voxgi__svo_bind_gl(ctx, svo, p, -1);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, frag);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, counters);
@@ -6319,8 +6319,8 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
         entries += flagged;
         if (m < depth - 1) tiles += flagged;
         if (voxgi__svo_cancelled(ctx, 0.5 * m / depth, "octree: nodes")) { r = VOXGI_ERR_CANCELLED; break; }
-        r = voxgi__svo_gl_grow(ctx, &svo->gl_child, &child_cap, 4 * (1 + 8 * tiles), "child pointers");
-        if (r == VOXGI_OK) r = voxgi__svo_gl_grow(ctx, &list, &list_cap, 16 * entries, "node list");
+        r = voxgi__svo_grow_gl(ctx, &svo->gl_child, &child_cap, 4 * (1 + 8 * tiles), "child pointers");
+        if (r == VOXGI_OK) r = voxgi__svo_grow_gl(ctx, &list, &list_cap, 16 * entries, "node list");
         if (r != VOXGI_OK) break;
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, svo->gl_child);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
@@ -6360,7 +6360,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
         unsigned int zero = 0;
         svo->gl_neighbour = voxgi__gl_buffer(ctx, (size_t)svo->info.nodes * 24, NULL);
         gl->ClearNamedBufferData(svo->gl_neighbour, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-        voxgi__svo_gl_bind(ctx, svo, p, -1);
+        voxgi__svo_bind_gl(ctx, svo, p, -1);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 6, svo->gl_neighbour);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_NEIGHBOURS);
         for (m = 1; m < depth; m++) {
@@ -6394,7 +6394,7 @@ static voxgi_result voxgi__svo_gl_build(voxgi_context *ctx, voxgi_svo *svo, size
         svo->gl_leaf_values[a] = voxgi__gl_buffer(ctx, (size_t)((leaf_bytes + 3) / 4 * 4), NULL);
         gl->ClearNamedBufferData(svo->gl_node_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
         gl->ClearNamedBufferData(svo->gl_leaf_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-        voxgi__svo_gl_bind(ctx, svo, p, a);
+        voxgi__svo_bind_gl(ctx, svo, p, a);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, fvals);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_LEAVES);
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
@@ -6524,7 +6524,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
 #ifndef VOXGI_NO_GL
     if (packed) {
         svo->info.ms_sort = voxgi__now_ms() - t0;
-        if (r == VOXGI_OK) r = voxgi__svo_gl_build(ctx, svo, n, packed, vals, desc);
+        if (r == VOXGI_OK) r = voxgi__svo_build_gl(ctx, svo, n, packed, vals, desc);
         goto finish;
     }
 #endif
@@ -6690,7 +6690,7 @@ VOXGI_API void voxgi_svo_query(const voxgi_svo *svo, voxgi_svo_info *out)
 #ifndef VOXGI_NO_GL
 /* GL: lookups (lookup = 1; points hold the coordinates' and the level's bits) or samples (xyz,
    lod) of attribute a at `count` points by shaders/svo_sample.glsl. */
-static voxgi_result voxgi__svo_gl_points(voxgi_context *ctx, const voxgi_svo *svo, int a, int lookup, size_t count, const float *points,
+static voxgi_result voxgi__svo_points_gl(voxgi_context *ctx, const voxgi_svo *svo, int a, int lookup, size_t count, const float *points,
                                          float *out)
 {
     voxgi__gl *gl = ctx->gl;
@@ -6706,7 +6706,7 @@ static voxgi_result voxgi__svo_gl_points(voxgi_context *ctx, const voxgi_svo *sv
     bufs[1] = voxgi__gl_buffer(ctx, count * 16, NULL);
     p = gl->prog_svo_sample;
     gl->UseProgram(p);
-    voxgi__svo_gl_bind(ctx, svo, p, a);
+    voxgi__svo_bind_gl(ctx, svo, p, a);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, bufs[0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, bufs[1]);
     gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)count);
@@ -6744,7 +6744,7 @@ VOXGI_API voxgi_result voxgi_svo_lookup(voxgi_context *ctx, const voxgi_svo *svo
             for (ch = 0; ch < 3; ch++) points[4 * i + (size_t)ch] = out_of_cube ? 0xFFFFFFFFu : coords[3 * i + (size_t)ch];
             points[4 * i + 3] = (uint32_t)level;
         }
-        r = voxgi__svo_gl_points(ctx, svo, a, 1, count, (const float *)(const void *)points, out);
+        r = voxgi__svo_points_gl(ctx, svo, a, 1, count, (const float *)(const void *)points, out);
         voxgi__free(ctx, points);
         return r;
     }
@@ -6937,7 +6937,7 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
         voxgi_result r;
         if (!points) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
         for (i = 0; i < count; i++) { memcpy(points + 4 * i, pos + 3 * i, 3 * sizeof(float)); points[4 * i + 3] = lods[i]; }
-        r = voxgi__svo_gl_points(ctx, svo, src.a, 0, count, points, out);
+        r = voxgi__svo_points_gl(ctx, svo, src.a, 0, count, points, out);
         voxgi__free(ctx, points);
         return r;
     }
@@ -7071,7 +7071,7 @@ static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const
     *A_out = A;
 }
 
-static void voxgi__cone_range(void *user, size_t first, size_t end)
+static void voxgi__cone_march_cpu(void *user, size_t first, size_t end)
 {
     voxgi__cone_job *J = (voxgi__cone_job *)user;
     const voxgi_grid *g = J->grid;
@@ -7118,7 +7118,7 @@ static void voxgi__cone_frame(const voxgi_cone *c, const voxgi_grid *g, double o
 }
 
 /* Single cones (voxgi_trace_cones): J->list in, (C, A) per cone out in J->irr (4 floats each). */
-static void voxgi__cone_each_range(void *user, size_t first, size_t end)
+static void voxgi__cone_each_cpu(void *user, size_t first, size_t end)
 {
     voxgi__cone_job *J = (voxgi__cone_job *)user;
     const voxgi_grid *g = J->grid;
@@ -7154,7 +7154,7 @@ static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__con
 
 /* The same march on GL (shaders/cone_trace.glsl): points in grid units and unit normals go up,
    (irradiance, occlusion) come back; dispatched in slices so that no one dispatch runs long. */
-static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_job *J, size_t count)
+static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_job *J, size_t count)
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = J->grid;
@@ -7186,7 +7186,7 @@ static voxgi_result voxgi__cone_trace_gl(voxgi_context *ctx, const voxgi__cone_j
     p = J->svo ? gl->prog_cone_trace_svo : gl->prog_cone_trace;
     gl->UseProgram(p);
     voxgi__cone_uniforms(gl, p, J);
-    if (J->svo) voxgi__svo_gl_bind(ctx, J->svo, p, 4);
+    if (J->svo) voxgi__svo_bind_gl(ctx, J->svo, p, 4);
     else for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J->vol->tex[4][J->dirs == 6 ? a : 0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, bufs[0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, bufs[1]);
@@ -7261,9 +7261,9 @@ static voxgi_result voxgi__cone_trace_points(voxgi_context *ctx, const voxgi_vol
     J.irr = irradiance;
     J.occ = occlusion;
 #ifndef VOXGI_NO_GL
-    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__cone_trace_gl(ctx, &J, count);
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__cone_march_gl(ctx, &J, count);
 #endif
-    voxgi__parallel(ctx, count, 64, voxgi__cone_range, &J);
+    voxgi__parallel(ctx, count, 64, voxgi__cone_march_cpu, &J);
     return VOXGI_OK;
 }
 
@@ -7288,9 +7288,9 @@ static voxgi_result voxgi__cone_trace_list(voxgi_context *ctx, const voxgi_volum
     J.list = cones;
     J.irr = radiance_opacity;
 #ifndef VOXGI_NO_GL
-    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__cone_trace_gl(ctx, &J, count);
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__cone_march_gl(ctx, &J, count);
 #endif
-    voxgi__parallel(ctx, count, 64, voxgi__cone_each_range, &J);
+    voxgi__parallel(ctx, count, 64, voxgi__cone_each_cpu, &J);
     return VOXGI_OK;
 }
 
@@ -7320,7 +7320,7 @@ VOXGI_API voxgi_result voxgi_trace_cones_svo(voxgi_context *ctx, const voxgi_svo
 
 /* voxgi_cone_trace_gl and voxgi_cone_trace_svo_gl: the gather over the caller's G-buffer
    textures from a volume or (vol NULL) an octree. */
-static voxgi_result voxgi__cone_trace_textures(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc,
+static voxgi_result voxgi__cone_gbuffer_gl(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc,
                                                const voxgi_gl_gbuffer *gb)
 {
 #ifdef VOXGI_NO_GL
@@ -7355,7 +7355,7 @@ static voxgi_result voxgi__cone_trace_textures(voxgi_context *ctx, const voxgi_v
     p = *prog;
     gl->UseProgram(p);
     voxgi__cone_uniforms(gl, p, &J);
-    if (J.svo) voxgi__svo_gl_bind(ctx, J.svo, p, 4);
+    if (J.svo) voxgi__svo_bind_gl(ctx, J.svo, p, 4);
     else for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J.vol->tex[4][J.dirs == 6 ? a : 0]);
     gl->BindTextureUnit(6, gb->position_texture);
     gl->BindTextureUnit(7, gb->normal_texture);
@@ -7376,12 +7376,12 @@ static voxgi_result voxgi__cone_trace_textures(voxgi_context *ctx, const voxgi_v
 
 VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gb)
 {
-    return voxgi__cone_trace_textures(ctx, vol, NULL, desc, gb);
+    return voxgi__cone_gbuffer_gl(ctx, vol, NULL, desc, gb);
 }
 
 VOXGI_API voxgi_result voxgi_cone_trace_svo_gl(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gb)
 {
-    return voxgi__cone_trace_textures(ctx, NULL, svo, desc, gb);
+    return voxgi__cone_gbuffer_gl(ctx, NULL, svo, desc, gb);
 }
 
 VOXGI_API float voxgi_specular_half_angle(float roughness)
@@ -7429,7 +7429,7 @@ static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e
         o[a] = o[3] * (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * e[a] + (J->vals[2] ? J->vals[2][3 * i + (size_t)a] : 0.0f));
 }
 
-static void voxgi__inject_range(void *user, size_t first, size_t end)
+static void voxgi__inject_cpu(void *user, size_t first, size_t end)
 {
     voxgi__inject *J = (voxgi__inject *)user;
     int samples = J->desc->samples ? J->desc->samples : 16, s, a;
@@ -7743,7 +7743,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
             voxgi__free(ctx, io);
         } else
 #endif
-            voxgi__parallel(ctx, n, 256, voxgi__inject_range, &J);
+            voxgi__parallel(ctx, n, 256, voxgi__inject_cpu, &J);
         slots[4] = rgba;
         if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
         if (r == VOXGI_OK && desc->bounces > 1) r = voxgi__inject_bounces(ctx, &J, n, desc, &vol);
@@ -7771,7 +7771,7 @@ typedef struct voxgi__gbuffer_job {
     uint32_t *tri;                /* BVH order, UINT32_MAX: none */
 } voxgi__gbuffer_job;
 
-static void voxgi__gbuffer_rows(void *user, size_t first, size_t end)
+static void voxgi__gbuffer_cpu(void *user, size_t first, size_t end)
 {
     voxgi__gbuffer_job *J = (voxgi__gbuffer_job *)user;
     size_t y;
@@ -7909,7 +7909,7 @@ static voxgi_result voxgi__gbuffer(voxgi_context *ctx, const voxgi__tracer *tr, 
 #ifndef VOXGI_NO_GL
     if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__gbuffer_gl(ctx, &J);
 #endif
-    voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__gbuffer_rows, &J);
+    voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__gbuffer_cpu, &J);
     return VOXGI_OK;
 }
 
