@@ -66,9 +66,9 @@
    voxgi_volume_sample samples them; voxgi_svo_create builds sparse voxel octrees.
 
    LIGHTING: voxgi_inject_light puts the direct light into the voxels (a RADIANCE volume);
-   voxgi_cone_trace / voxgi_trace_cones gather it with diffuse, glossy and shadow cones over the
-   volume's mips (CPU arrays or, on GL, voxgi_cone_trace_gl over the caller's G-buffer textures),
-   voxgi_cone_trace_svo and friends over an octree of it; voxgi_vct_render makes whole images;
+   voxgi_cone_trace (diffuse gathers at points), voxgi_cone_trace_each (single glossy or shadow
+   cones) and voxgi_cone_trace_gl (the caller's G-buffer textures) gather it from a radiance
+   source: the volume's mips or an octree of it; voxgi_vct_render makes whole images;
    voxgi_reference_render is the path tracer they are measured against.
 
    SEMANTICS (exact; see the part banners below for each capability)
@@ -530,7 +530,7 @@ typedef struct voxgi_svo_desc {
     const voxgi_volume *radiance; /* a RADIANCE volume on the voxels' grid (voxgi_inject_light), or NULL: the
                                      octree also holds RADIANCE, premultiplied as in the volume: its level 0 at
                                      the set voxels, the nodes the plain mean of their children (so sampling
-                                     equals the isotropic volume's), for cone tracing (voxgi_cone_trace_svo) */
+                                     equals the isotropic volume's), for cone tracing (voxgi_radiance_source) */
 } voxgi_svo_desc;
 typedef struct voxgi_svo_info {
     voxgi_grid grid;
@@ -578,7 +578,18 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
 
 /* ===================================================================== 8. cone tracing */
 
-/* How diffuse cones are traced (voxgi_cone_trace, below). */
+/* Where cones gather from: the RADIANCE of a volume (voxgi_inject_light) or of an octree
+   (voxgi_svo_desc.radiance), made on the context's backend; exactly one of the two is set. An
+   octree is marched step for step as the volume is, over its isotropic mips (lod 0 = the voxels,
+   up to the root), through its bricks where it has them: a float32 octree gives what the
+   isotropic volume it was built from gives, bit for bit on the CPU; on GL the march runs over
+   the octree's buffers (shaders/cone_svo.glsl). */
+typedef struct voxgi_radiance_source {
+    const voxgi_volume *volume;
+    const voxgi_svo *octree;
+} voxgi_radiance_source;
+
+/* How cones are traced (voxgi_cone_trace and its relatives, below). */
 typedef struct voxgi_cone_desc {
     int cones;                    /* 0 = 16 */
     float half_angle;             /* radians; 0 = acos(1 - 1 / cones) */
@@ -588,7 +599,7 @@ typedef struct voxgi_cone_desc {
 } voxgi_cone_desc;
 
 /* Diffuse cone tracing: the irradiance at points (world positions, unit normals) gathered from a
-   RADIANCE volume, and the ambient occlusion. The cones split the cosine-weighted hemisphere
+   radiance source, and the ambient occlusion. The cones split the cosine-weighted hemisphere
    into `cones` equal parts (directions on a Fibonacci spiral of the projected disc, weight
    pi / cones each; the default half-angle acos(1 - 1/cones) gives each cone its share of the
    solid angle, so the set leaves no gaps), each marched from `offset` voxels along the normal:
@@ -605,12 +616,13 @@ typedef struct voxgi_cone_desc {
    back (c += (1 - A) a' L, A += (1 - A) a') until A reaches 0.99 or max_distance. Anisotropic
    volumes are sampled along the cone's direction (the three axis volumes weighted by the
    squared direction components). irradiance: 3 floats per point (sum of pi / cones x the cones'
-   radiance); occlusion: 1 per point (mean A), or NULL. A GL volume is traced on GL
+   radiance); occlusion: 1 per point (mean A), or NULL. A GL source is traced on GL
    (shaders/cone_trace.glsl, a compute pass with the textures' filtering): on llvmpipe within
    1e-4 of the CPU's irradiance (relative to its mean) and occlusion; a GPU with 8-bit filter
    weights differs by up to about 1%. */
-VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, size_t count,
-                                        const float *positions, const float *normals, float *irradiance, float *occlusion);
+VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *desc,
+                                        size_t count, const float *positions, const float *normals, float *irradiance,
+                                        float *occlusion);
 
 /* GL: the diffuse gather over the caller's G-buffer textures, written into the caller's texture:
    positions (world units, rgb of any float 2D texture), normals (rgb, need not be unit; zero:
@@ -623,7 +635,8 @@ typedef struct voxgi_gl_gbuffer {
     unsigned int irradiance_texture;
     int irradiance_rgba16f;       /* 1: irradiance_texture is RGBA16F; 0: RGBA32F */
 } voxgi_gl_gbuffer;
-VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gbuffer);
+VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *desc,
+                                           const voxgi_gl_gbuffer *gbuffer);
 
 /* Single cones, each from its own origin along its own direction: a specular reflection is one
    cone along the mirror direction with voxgi_specular_half_angle(roughness), a soft shadow one
@@ -639,23 +652,13 @@ typedef struct voxgi_cone {
     float half_angle;             /* radians, in (0, 1.5) */
     float max_distance;           /* world units; 0 = the grid's diagonal (e.g. the distance to a light) */
 } voxgi_cone;
-VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume *radiance, const voxgi_cone_desc *desc, size_t count,
-                                         const voxgi_cone *cones, float *radiance_opacity);
+VOXGI_API voxgi_result voxgi_cone_trace_each(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *desc,
+                                             size_t count, const voxgi_cone *cones, float *radiance_opacity);
 /* The half-angle of a cone covering a glossy lobe of roughness alpha (GGX-style, 0..1): its
    Phong exponent n = 2 / alpha^2 - 2, the angle where the lobe falls to 0.244 of its peak,
    acos(0.244^(1 / (n + 1))) (a fit common among voxel cone tracers), at least 0.005. */
 VOXGI_API float voxgi_specular_half_angle(float roughness);
 
-/* The same gathers and cones over an octree's RADIANCE (voxgi_svo_desc.radiance) instead of a
-   volume: the octree's isotropic mips (lod 0 = the voxels, up to the root), sampled through its
-   bricks where it has them. The march is the volume's step for step, so a float32 octree gives
-   what the isotropic volume it was built from gives, bit for bit on the CPU; on GL the same
-   march runs over the octree's buffers (shaders/cone_svo.glsl). */
-VOXGI_API voxgi_result voxgi_cone_trace_svo(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
-                                            const float *positions, const float *normals, float *irradiance, float *occlusion);
-VOXGI_API voxgi_result voxgi_trace_cones_svo(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
-                                             const voxgi_cone *cones, float *radiance_opacity);
-VOXGI_API voxgi_result voxgi_cone_trace_svo_gl(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gbuffer);
 
 /* ===================================================================== 9. light injection */
 
@@ -738,7 +741,7 @@ typedef struct voxgi_vct_desc {
                                      that share its surface (normals within 26 degrees, on its plane within a
                                      voxel), or traces its own where none does. 0 or 1: every pixel */
     int octree;                   /* 1: the cones gather from a sparse voxel octree of the injected radiance
-                                     (voxgi_cone_trace_svo: isotropic mips, `filter` ignored) instead of the volume */
+                                     (isotropic mips, `filter` ignored) instead of the volume */
     voxgi_svo_format octree_format;
     int octree_bricks;            /* 1: the octree samples through bricks */
 } voxgi_vct_desc;
@@ -1619,18 +1622,28 @@ VOXGI_API voxgi_result voxgi_validate_grid(voxgi_context *ctx, const voxgi_grid 
     return VOXGI_OK;
 }
 
-VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_fit_desc *fit,
+/* Every default of a voxgi_fit_desc: zero res is 64. */
+static voxgi_fit_desc voxgi__fit_defaults(const voxgi_fit_desc *in)
+{
+    voxgi_fit_desc d = *in;
+    if (!d.res) d.res = 64;
+    return d;
+}
+
+VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_fit_desc *fit_in,
                                       voxgi_grid *out)
 {
+    voxgi_fit_desc resolved, *fit = &resolved;
     double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, ext = 0, s, pad;
     size_t mi, t;
     int a, res;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!fit || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "fit or out is NULL");
+    if (!fit_in || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "fit or out is NULL");
     r = voxgi__validate(ctx, scene, NULL, NULL);
     if (r != VOXGI_OK) return r;
-    res = fit->res ? fit->res : 64;
+    resolved = voxgi__fit_defaults(fit_in);
+    res = fit->res;
     pad = fit->padding;
     if (res < 1 || res > VOXGI_MAX_RES || !(pad >= 0) || 2 * pad >= res)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_GRID, "fit: res %d with padding %g leaves no room for the scene", res, pad);
@@ -2224,11 +2237,11 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
 /* GL loader and shaders
    voxgi's own GL types and enums (no GL header needed, none can clash) and a table of exactly
    the functions voxgi calls, filled from the caller's loader; the first missing name is
-   reported. voxgi binds programs, shader storage buffers 0..7, the dispatch-indirect buffer,
-   texture and image unit 0, a vertex array and a framebuffer while it works and leaves all of
-   them unbound (0) afterwards; the raster slicemap also sets the viewport and turns off depth,
-   stencil and scissor tests, culling, blending, multisampling and rasterizer discard, and
-   restores each of them. It assumes the default polygon mode (fill) and colour masks. */
+   reported. voxgi binds programs, shader storage buffers 0..VOXGI__GL_STORAGE_BINDINGS-1, the
+   dispatch-indirect buffer, texture units 0..8, image units 0..1, a vertex array and a
+   framebuffer while it works and leaves all of them unbound (0) afterwards; the raster passes
+   also set the viewport and turn off depth, stencil and scissor tests, culling, blending,
+   multisampling and rasterizer discard, and restore each of them. It assumes the default polygon mode (fill) and colour masks. */
 #if defined(_WIN32) && !defined(_WIN64) && !defined(__MINGW64__)
 #define VOXGI__APIENTRY __stdcall
 #else
@@ -2412,15 +2425,56 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
     X(void, LogicOp, (unsigned int opcode))                                                              \
     X(void, DrawArrays, (unsigned int mode, int first, int count))
 
-#define VOXGI__GL_PROGRAMS(X) \
-    X(voxelize_conservative) X(voxelize_solid) X(solid_prefix) X(flood) X(bits_majority) X(popcount) X(reduce) \
-    X(voxelize_geometry) X(volume_buffer) X(volume_buffer_big) X(volume_merge) X(volume_mip) X(volume_sample) X(cone_trace) X(cone_trace_svo) X(cone_trace_images16) X(cone_trace_images32) X(cone_trace_svo_images16) X(cone_trace_svo_images32) X(gbuffer) X(light_map_draw) X(inject) X(svo_build) X(svo_sample) X(slicemap) X(slicemap_unpack) X(atlas_fill) X(atlas_list) X(atlas_points) X(atlas_compute)
+/* Every program voxgi builds: X(name, stages, its embedded shader files in order). Stages:
+   COMPUTE; RASTER (vertex + fragment); GEOMETRY (vertex + geometry + fragment). Each file is
+   compiled once per stage, with VOXGI_COMPUTE, VOXGI_VERTEX, ... defined for the stage. */
+#define VOXGI__GL_PROGRAMS(X)                                                                                        \
+    X(voxelize_conservative, COMPUTE, "scene.glsl triangle.glsl conservative.glsl voxelize_conservative.glsl")      \
+    X(voxelize_geometry, GEOMETRY, "scene.glsl triangle.glsl conservative.glsl voxelize_geometry.glsl")            \
+    X(voxelize_solid, COMPUTE, "scene.glsl triangle.glsl voxelize_solid.glsl")                                     \
+    X(solid_prefix, COMPUTE, "solid_prefix.glsl")                                                                  \
+    X(flood, COMPUTE, "flood.glsl")                                                                                \
+    X(bits_majority, COMPUTE, "bits_majority.glsl")                                                                \
+    X(popcount, COMPUTE, "popcount.glsl")                                                                          \
+    X(slicemap, RASTER, "scene.glsl slice_targets.glsl slicemap.glsl")                                             \
+    X(slicemap_unpack, COMPUTE, "slicemap_unpack.glsl")                                                            \
+    X(volume_buffer, GEOMETRY, "scene.glsl volume_buffer.glsl")                                                    \
+    X(volume_buffer_big, GEOMETRY, "scene.glsl volume_buffer_big.glsl volume_buffer.glsl")                         \
+    X(volume_merge, COMPUTE, "scene.glsl volume_merge.glsl")                                                       \
+    X(atlas_fill, RASTER, "scene.glsl atlas.glsl atlas_fill.glsl")                                                 \
+    X(atlas_list, COMPUTE, "scene.glsl atlas.glsl atlas_list.glsl")                                                \
+    X(atlas_points, RASTER, "scene.glsl atlas.glsl slice_targets.glsl atlas_points.glsl")                          \
+    X(atlas_compute, COMPUTE, "scene.glsl atlas.glsl atlas_compute.glsl")                                          \
+    X(reduce, COMPUTE, "reduce.glsl")                                                                              \
+    X(volume_mip, COMPUTE, "volume_mip.glsl")                                                                      \
+    X(volume_sample, COMPUTE, "sampling.glsl volume_sample.glsl")                                                  \
+    X(svo_build, COMPUTE, "svo.glsl svo_build.glsl")                                                               \
+    X(svo_sample, COMPUTE, "sampling.glsl svo.glsl svo_sample.glsl")                                               \
+    X(cone_trace, COMPUTE, "sampling.glsl cone_trace.glsl cone_trace_buffers.glsl")                                \
+    X(cone_trace_svo, COMPUTE, "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl cone_trace_buffers.glsl")     \
+    X(cone_trace_images16, COMPUTE, "sampling.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl")       \
+    X(cone_trace_images32, COMPUTE, "sampling.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl")       \
+    X(cone_trace_svo_images16, COMPUTE,                                                                            \
+      "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl")              \
+    X(cone_trace_svo_images32, COMPUTE,                                                                            \
+      "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl")              \
+    X(light_map_draw, RASTER, "sampling.glsl light_maps.glsl light_map_draw.glsl")                                 \
+    X(inject, COMPUTE, "sampling.glsl light_maps.glsl inject.glsl")                                                \
+    X(gbuffer, RASTER, "gbuffer.glsl")
+
+enum { VOXGI__GL_COMPUTE = 0, VOXGI__GL_RASTER = 1, VOXGI__GL_GEOMETRY = 2 };
+typedef enum voxgi__gl_program_id {
+#define VOXGI__GL_PROGRAM_ID(name, stages, files) VOXGI__GL_PROGRAM_##name,
+    VOXGI__GL_PROGRAMS(VOXGI__GL_PROGRAM_ID)
+#undef VOXGI__GL_PROGRAM_ID
+    VOXGI__GL_PROGRAM_COUNT
+} voxgi__gl_program_id;
 
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
     VOXGI__GL_FUNCS(VOXGI__GL_MEMBER)
 #undef VOXGI__GL_MEMBER
-#define VOXGI__GL_PROGRAM_MEMBER(name) unsigned int prog_##name;
+#define VOXGI__GL_PROGRAM_MEMBER(name, stages, files) unsigned int prog_##name;
     VOXGI__GL_PROGRAMS(VOXGI__GL_PROGRAM_MEMBER)
 #undef VOXGI__GL_PROGRAM_MEMBER
     int64_t max_ssbo_bytes;
@@ -2469,7 +2523,7 @@ static void voxgi__gl_shutdown(voxgi_context *ctx)
     voxgi__gl *gl = ctx->gl;
     if (!gl) return;
     if (gl->DeleteProgram) {
-#define VOXGI__GL_PROGRAM_DELETE(name) if (gl->prog_##name) gl->DeleteProgram(gl->prog_##name);
+#define VOXGI__GL_PROGRAM_DELETE(name, stages, files) if (gl->prog_##name) gl->DeleteProgram(gl->prog_##name);
         VOXGI__GL_PROGRAMS(VOXGI__GL_PROGRAM_DELETE)
 #undef VOXGI__GL_PROGRAM_DELETE
     }
@@ -2581,14 +2635,20 @@ static voxgi_result voxgi__gl_program(voxgi_context *ctx, int graphics, int coun
     return VOXGI_OK;
 }
 
-/* The program of embedded shader files ("a.glsl b.glsl": in that order), compiled on first
-   use; graphics: 1 = vertex + fragment, 2 = vertex + geometry + fragment, 0 = compute. */
-static voxgi_result voxgi__gl_build(voxgi_context *ctx, int graphics, const char *file_list, unsigned int *prog)
+/* Program `id` of the table, compiled and linked on first use (the name is kept in the
+   context's prog_<name>, which the passes then read). */
+static voxgi_result voxgi__gl_get_program(voxgi_context *ctx, voxgi__gl_program_id id)
 {
+    static const struct { int stages; const char *files; size_t member; } table[VOXGI__GL_PROGRAM_COUNT] = {
+#define VOXGI__GL_PROGRAM_ROW(name, stages, files) {VOXGI__GL_##stages, files, offsetof(voxgi__gl, prog_##name)},
+        VOXGI__GL_PROGRAMS(VOXGI__GL_PROGRAM_ROW)
+#undef VOXGI__GL_PROGRAM_ROW
+    };
+    unsigned int *prog = (unsigned int *)(void *)((char *)ctx->gl + table[id].member);
     const char *files[8], *texts[8];
     char names[8][64];
     int count = 0, i;
-    const char *p = file_list;
+    const char *p = table[id].files;
     if (*prog) return VOXGI_OK;
     while (*p && count < 8) {
         size_t len = strcspn(p, " ");
@@ -2605,12 +2665,7 @@ static voxgi_result voxgi__gl_build(voxgi_context *ctx, int graphics, const char
         p += strcspn(p, " ");
         while (*p == ' ') p++;
     }
-    return voxgi__gl_program(ctx, graphics, count, files, texts, prog);
-}
-
-static voxgi_result voxgi__gl_get_program(voxgi_context *ctx, const char *file_list, unsigned int *prog)
-{
-    return voxgi__gl_build(ctx, 0, file_list, prog);
+    return voxgi__gl_program(ctx, table[id].stages, count, files, texts, prog);
 }
 
 static unsigned int voxgi__gl_buffer(voxgi_context *ctx, size_t bytes, const void *data)
@@ -2642,12 +2697,16 @@ static voxgi_result voxgi__gl_read_buffer(voxgi_context *ctx, unsigned int buffe
     return voxgi__gl_check(ctx, "reading a buffer back");
 }
 
+/* The shader storage bindings the passes use (the attribute pass and the volume merge use 8
+   and 9); voxgi__gl_unbind clears them all. */
+#define VOXGI__GL_STORAGE_BINDINGS 10
+
 static void voxgi__gl_unbind(voxgi__gl *gl)
 {
     int i;
     gl->UseProgram(0);
     gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
-    for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, 0);
+    for (i = 0; i < VOXGI__GL_STORAGE_BINDINGS; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, 0);
 }
 
 /* A zeroed buffer of the grid's words. */
@@ -3239,6 +3298,9 @@ struct voxgi_voxels {
     unsigned int gl_buffer;    /* GL backend */
     voxgi__attr attr;          /* with attributes: counts and sums per set voxel (on the CPU for both backends) */
 };
+
+/* The attributes a voxelization blends (RADIANCE comes later, from light injection). */
+#define VOXGI__VOXEL_ATTRIBUTES (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL | VOXGI_ATTRIBUTE_EMISSION | VOXGI_ATTRIBUTE_OPACITY)
 
 /* Each triangle's attribute values in fixed point, channels in the order albedo, normal,
    emission, opacity (those asked for). */
@@ -4098,7 +4160,7 @@ static voxgi_result voxgi__vox_count_gl(voxgi_context *ctx, unsigned int buffer,
     voxgi__gl *gl = ctx->gl;
     unsigned int p, count_buf;
     uint32_t c = 0;
-    voxgi_result r = voxgi__gl_get_program(ctx, "popcount.glsl", &gl->prog_popcount);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_popcount);
     if (r != VOXGI_OK) return r;
     p = gl->prog_popcount;
     count_buf = voxgi__gl_buffer(ctx, 4, &c);
@@ -4297,7 +4359,7 @@ static voxgi_result voxgi__vox_raster_gl(voxgi_context *ctx, const voxgi_grid *g
     int layers = (g->res[A] + per_layer - 1) / per_layer, max_targets = 1, max_size = 0, i, first;
     unsigned int tex = 0, fbo = 0, vao = 0, zero[4] = {0, 0, 0, 0};
     size_t bytes = (size_t)voxgi__grid_words(g) * 4;
-    voxgi_result r = voxgi__gl_get_program(ctx, "slicemap_unpack.glsl", &gl->prog_slicemap_unpack);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_slicemap_unpack);
     *bits_out = 0;
     if (r != VOXGI_OK) return r;
     gl->GetIntegerv(VOXGI__GL_MAX_DRAW_BUFFERS, &max_targets);
@@ -4379,10 +4441,10 @@ static voxgi_result voxgi__vox_slicemap_gl(voxgi_context *ctx, const voxgi__flat
                                        const voxgi_voxelize_desc *d, unsigned int *bits_out)
 {
     unsigned int verts = 0, tris = 0;
-    voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl slice_targets.glsl slicemap.glsl", &ctx->gl->prog_slicemap);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_slicemap);
     if (r == VOXGI_OK) voxgi__vox_scene_buffers_gl(ctx, f, vp, &verts, &tris, &r);
     if (r == VOXGI_OK)
-        r = voxgi__vox_raster_gl(ctx, &d->grid, d->axis ? (int)d->axis - 1 : 2, d->atomic, ctx->gl->prog_slicemap,
+        r = voxgi__vox_raster_gl(ctx, &d->grid, (int)d->axis - 1, d->atomic, ctx->gl->prog_slicemap,
                                    VOXGI__GL_TRIANGLES, 3 * (uint64_t)f->triangle_count, bits_out);
     voxgi__gl_delete_buffer(ctx, verts);
     voxgi__gl_delete_buffer(ctx, tris);
@@ -4457,13 +4519,14 @@ static voxgi_result voxgi__vox_volume_buffer_gl(voxgi_context *ctx, const voxgi_
     voxgi__gl_raster_state state;
     unsigned int attrs = d->attributes, tex[3][3], fbo = 0, vao = 0, verts = 0, tris = 0, values_buf = 0, lost_buf = 0, p, zero = 0;
     unsigned char blend_was[3];
-    int saved[3][6], max3d = 0, c, k, i, targets = 1 + ((attrs & 10u) ? 1 : 0) + ((attrs & 4u) ? 1 : 0);
+    int saved[3][6], max3d = 0, c, k, i, targets = 1 + ((attrs & (VOXGI_ATTRIBUTE_NORMAL | VOXGI_ATTRIBUTE_OPACITY)) ? 1 : 0) +
+                                                              ((attrs & VOXGI_ATTRIBUTE_EMISSION) ? 1 : 0);
     uint64_t words = voxgi__grid_words(g), nvox = voxgi_grid_voxel_count(g), bytes_per_voxel = attrs ? 16u * (uint64_t)targets : 4u;
     float *tv;
     size_t t;
-    voxgi_result r = voxgi__gl_build(ctx, 2, "scene.glsl volume_buffer.glsl", &gl->prog_volume_buffer);
-    if (r == VOXGI_OK) r = voxgi__gl_build(ctx, 2, "scene.glsl volume_buffer_big.glsl volume_buffer.glsl", &gl->prog_volume_buffer_big);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl volume_merge.glsl", &gl->prog_volume_merge);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_buffer);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_buffer_big);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_merge);
     if (r != VOXGI_OK) return r;
     gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
     if (g->res[0] > max3d || g->res[1] > max3d || g->res[2] > max3d)
@@ -4520,7 +4583,7 @@ static voxgi_result voxgi__vox_volume_buffer_gl(voxgi_context *ctx, const voxgi_
     for (i = 0; i < 2; i++) {
         p = i ? gl->prog_volume_buffer_big : gl->prog_volume_buffer;
         gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_slicing"), d->volume_slicing == 1 ? 1 : 2);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_slicing"), d->volume_slicing);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_with_values"), attrs != 0);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_big"), i);
     }
@@ -4532,8 +4595,8 @@ static voxgi_result voxgi__vox_volume_buffer_gl(voxgi_context *ctx, const voxgi_
         float zeros[4] = {0, 0, 0, 0};
         for (k = 0; k < 3; k++) {
             bufs[k] = 0;
-            if (k == 1 && !(attrs & 10u)) continue;
-            if (k == 2 && !(attrs & 4u)) continue;
+            if (k == 1 && !(attrs & (VOXGI_ATTRIBUTE_NORMAL | VOXGI_ATTRIBUTE_OPACITY))) continue;
+            if (k == 2 && !(attrs & VOXGI_ATTRIBUTE_EMISSION)) continue;
             gl->CreateTextures(VOXGI__GL_TEXTURE_3D, 1, &tex[c][k]);
             gl->TextureStorage3D(tex[c][k], 1, k == 0 && !attrs ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F, g->res[a], g->res[b], g->res[c]);
             gl->TextureParameteri(tex[c][k], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
@@ -4967,12 +5030,12 @@ static voxgi_result voxgi__vox_atlas_gl(voxgi_context *ctx, const voxgi__flat *f
     uint32_t count = 0;
     int max_size = 0;
     uint64_t texels = (uint64_t)at->size * (uint64_t)at->size;
-    voxgi_result r = voxgi__gl_build(ctx, 1, "scene.glsl atlas.glsl atlas_fill.glsl", &gl->prog_atlas_fill);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl atlas.glsl atlas_list.glsl", &gl->prog_atlas_list);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_atlas_fill);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_atlas_list);
     if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS)
-        r = voxgi__gl_build(ctx, 1, "scene.glsl atlas.glsl slice_targets.glsl atlas_points.glsl", &gl->prog_atlas_points);
+        r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_atlas_points);
     if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS_COMPUTE)
-        r = voxgi__gl_get_program(ctx, "scene.glsl atlas.glsl atlas_compute.glsl", &gl->prog_atlas_compute);
+        r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_atlas_compute);
     if (r != VOXGI_OK) return r;
     gl->GetIntegerv(VOXGI__GL_MAX_TEXTURE_SIZE, &max_size);
     if (at->view > max_size)
@@ -5037,7 +5100,7 @@ static voxgi_result voxgi__vox_atlas_gl(voxgi_context *ctx, const voxgi__flat *f
     gl->DeleteVertexArrays(1, &vao);
     /* 3. the points into voxels */
     if (r == VOXGI_OK && d->method == VOXGI_METHOD_ATLAS)
-        r = voxgi__vox_raster_gl(ctx, g, d->axis ? (int)d->axis - 1 : 2, d->atomic, gl->prog_atlas_points, VOXGI__GL_POINTS,
+        r = voxgi__vox_raster_gl(ctx, g, (int)d->axis - 1, d->atomic, gl->prog_atlas_points, VOXGI__GL_POINTS,
                                    count, bits_out);
     else if (r == VOXGI_OK) {
         *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)voxgi__grid_words(g) * 4);
@@ -5222,7 +5285,7 @@ static voxgi_result voxgi__vox_run_cpu(voxgi_context *ctx, const voxgi__flat *fl
             if (!(extra[i] = (uint32_t *)voxgi__alloc_array(ctx, words, 4, 1))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the vote");
     }
     voxgi__vox_shared_init(&vs, &desc->grid, flat, vp, desc->method, vox->bits);
-    vs.slice_axis = desc->method == VOXGI_METHOD_SLICEMAP ? (desc->axis ? (int)desc->axis - 1 : 2) : -1;
+    vs.slice_axis = desc->method == VOXGI_METHOD_SLICEMAP ? ((int)desc->axis - 1) : -1;
     vs.volume_buffer = desc->method == VOXGI_METHOD_VOLUME_BUFFER;
     if (atlas) {
         vs.bits = vox->bits;
@@ -5233,7 +5296,7 @@ static voxgi_result voxgi__vox_run_cpu(voxgi_context *ctx, const voxgi__flat *fl
         vs.bits = pass ? extra[pass - 1] : vox->bits;
         vs.solid_axis = -1;
         if (solid && desc->solid_mode != VOXGI_SOLID_FLOOD)
-            vs.solid_axis = passes == 3 ? pass : (desc->axis ? (int)desc->axis - 1 : 2);
+            vs.solid_axis = passes == 3 ? pass : ((int)desc->axis - 1);
         r = voxgi__vox_workers_cpu(ctx, &vs, flat->triangle_count, &st);
         if (r == VOXGI_OK && vs.solid_axis >= 0) voxgi__prefix_xor(vs.bits, &desc->grid, vs.solid_axis);
     }
@@ -5278,19 +5341,19 @@ static voxgi_result voxgi__vox_run_gl(voxgi_context *ctx, const voxgi__flat *f, 
     if ((uint64_t)g->res[0] * g->res[1] > 65535u * 64u || (uint64_t)g->res[1] * g->res[2] > 65535u * 64u ||
         (uint64_t)g->res[0] * g->res[2] > 65535u * 64u)
         return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "GL grid slices hold at most 65535*64 lines; use the CPU backend");
-    r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl conservative.glsl voxelize_conservative.glsl", &gl->prog_voxelize_conservative);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "scene.glsl triangle.glsl voxelize_solid.glsl", &gl->prog_voxelize_solid);
+    r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_voxelize_conservative);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_voxelize_solid);
     if (r == VOXGI_OK && d->method == VOXGI_METHOD_GEOMETRY) {
         int max_view = 0;
         gl->GetIntegerv(VOXGI__GL_MAX_FRAMEBUFFER_WIDTH, &max_view);
         if (VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])) > max_view)
             return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the geometry voxelizer draws into %d pixels, more than this GL's "
                                "GL_MAX_FRAMEBUFFER_WIDTH %d", VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])), max_view);
-        r = voxgi__gl_build(ctx, 2, "scene.glsl triangle.glsl conservative.glsl voxelize_geometry.glsl", &gl->prog_voxelize_geometry);
+        r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_voxelize_geometry);
     }
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "solid_prefix.glsl", &gl->prog_solid_prefix);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "flood.glsl", &gl->prog_flood);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "bits_majority.glsl", &gl->prog_bits_majority);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_solid_prefix);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_flood);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_bits_majority);
     if (r != VOXGI_OK) return r;
     if (d->method == VOXGI_METHOD_SLICEMAP) r = voxgi__vox_slicemap_gl(ctx, f, vp, d, &result);
     else if (atlas) r = voxgi__vox_atlas_gl(ctx, f, vp, d, atlas, &result, &out->info);
@@ -5299,7 +5362,7 @@ static voxgi_result voxgi__vox_run_gl(voxgi_context *ctx, const voxgi__flat *f, 
     else if (d->method != VOXGI_METHOD_SOLID)
         r = voxgi__vox_triangles_gl(ctx, f, vp, d, -1, &result, &out->info, out->attr.rec ? &out->attr : NULL);
     else if (d->solid_mode == VOXGI_SOLID_PARITY)
-        r = voxgi__vox_solid_gl(ctx, f, vp, d, d->axis ? (int)d->axis - 1 : 2, &result, &out->info);
+        r = voxgi__vox_solid_gl(ctx, f, vp, d, (int)d->axis - 1, &result, &out->info);
     else if (d->solid_mode == VOXGI_SOLID_FLOOD) r = voxgi__vox_flood_gl(ctx, f, vp, d, &result, &out->info);
     else { /* vote: parity along x, y and z, then the majority into the last */
         unsigned int axes[3] = {0, 0, 0}, p = gl->prog_bits_majority;
@@ -5324,9 +5387,21 @@ static voxgi_result voxgi__vox_run_gl(voxgi_context *ctx, const voxgi__flat *f, 
 }
 #endif /* VOXGI_NO_GL */
 
-VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxelize_desc *desc,
+/* Every default of a voxgi_voxelize_desc the twins read: the axis (z) and the Volume Buffer's
+   slicing (M2). The atlas size left at 0 is sized from the grid by voxgi__atlas_build. */
+static voxgi_voxelize_desc voxgi__voxelize_defaults(const voxgi_voxelize_desc *in)
+{
+    voxgi_voxelize_desc d = *in;
+    if (d.axis == VOXGI_AXIS_DEFAULT) d.axis = VOXGI_AXIS_Z;
+    if (!d.volume_slicing) d.volume_slicing = 2;
+    return d;
+}
+
+VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxelize_desc *desc_in,
                                       voxgi_voxels **out)
 {
+    voxgi_voxelize_desc resolved;
+    const voxgi_voxelize_desc *desc = desc_in;
     voxgi__flat flat;
     voxgi__vprep *vp = NULL;
     voxgi__atlas atlas;
@@ -5340,8 +5415,8 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown voxelization method %d", (int)desc->method);
     if ((unsigned)desc->axis > (unsigned)VOXGI_AXIS_Z || (unsigned)desc->solid_mode > (unsigned)VOXGI_SOLID_FLOOD)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown axis %d or solid mode %d", (int)desc->axis, (int)desc->solid_mode);
-    if (desc->attributes & ~15u)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown attribute bits 0x%x", desc->attributes & ~15u);
+    if (desc->attributes & ~VOXGI__VOXEL_ATTRIBUTES)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown attribute bits 0x%x", desc->attributes & ~VOXGI__VOXEL_ATTRIBUTES);
     if ((unsigned)desc->blend[0] > VOXGI_BLEND_ADD || (unsigned)desc->blend[1] > VOXGI_BLEND_ADD ||
         (unsigned)desc->blend[2] > VOXGI_BLEND_ADD || (unsigned)desc->blend[3] > VOXGI_BLEND_ADD ||
         desc->volume_slicing < 0 || desc->volume_slicing > 2)
@@ -5350,6 +5425,8 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
         desc->method != VOXGI_METHOD_GEOMETRY && desc->method != VOXGI_METHOD_VOLUME_BUFFER)
         return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "attributes come from the conservative, thin, geometry and volume-buffer methods, not %s",
                            voxgi_method_name(desc->method));
+    resolved = voxgi__voxelize_defaults(desc_in);
+    desc = &resolved;
     r = voxgi_validate_grid(ctx, &desc->grid);
     if (r != VOXGI_OK) return r;
     r = voxgi__flatten(ctx, scene, voxgi__is_atlas(desc->method) && desc->atlas_uv == VOXGI_ATLAS_MESH, desc->attributes != 0, &flat);
@@ -5439,7 +5516,7 @@ static voxgi_result voxgi__vox_reduce_gl(voxgi_context *ctx, const voxgi_voxels 
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *sg = &src->info.grid, *dg = &dst->info.grid;
     unsigned int p, out;
-    voxgi_result r = voxgi__gl_get_program(ctx, "reduce.glsl", &gl->prog_reduce);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_reduce);
     if (r != VOXGI_OK) return r;
     p = gl->prog_reduce;
     out = voxgi__gl_grid_buffer(ctx, dst->info.bytes);
@@ -5514,6 +5591,7 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
 #define VOXGI__MAX_LEVELS 17
 
 #define VOXGI__VOLUME_SLOTS 5 /* the four voxel attributes and radiance */
+#define VOXGI__RADIANCE_SLOT 4 /* voxgi__attr_index(VOXGI_ATTRIBUTE_RADIANCE) */
 struct voxgi_volume {
     voxgi_volume_info info;
     int dims[VOXGI__MAX_LEVELS][3];
@@ -5692,7 +5770,7 @@ static voxgi_result voxgi__volume_build_gl(voxgi_context *ctx, voxgi_volume *vol
     voxgi__gl *gl = ctx->gl;
     int a, d, k, dirs = vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1, max3d = 0;
     const float zeros[4] = {0, 0, 0, 0};
-    voxgi_result r = voxgi__gl_get_program(ctx, "volume_mip.glsl", &gl->prog_volume_mip);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_mip);
     unsigned int p = gl->prog_volume_mip;
     if (r != VOXGI_OK) return r;
     gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
@@ -5722,7 +5800,7 @@ static voxgi_result voxgi__volume_build_gl(voxgi_context *ctx, voxgi_volume *vol
                                   VOXGI__GL_FLOAT, base[a]);
             gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_single"), a == 3);
             gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_dir"), dirs == 6 ? d : -1);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_premultiplied"), a == 4);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_premultiplied"), a == VOXGI__RADIANCE_SLOT);
             for (k = 1; k < vol->info.levels; k++) {
                 gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_src_dims"), vol->dims[k - 1][0], vol->dims[k - 1][1], vol->dims[k - 1][2]);
                 gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_dst_dims"), vol->dims[k][0], vol->dims[k][1], vol->dims[k][2]);
@@ -5786,7 +5864,7 @@ static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, c
         memset(&M, 0, sizeof M);
         M.vol = vol;
         M.w = w;
-        M.premultiplied = a == 4;
+        M.premultiplied = a == VOXGI__RADIANCE_SLOT;
         for (d = 0; d < dirs && r == VOXGI_OK; d++) {
             size_t held = d ? vol->voxels - base_voxels : vol->voxels; /* every voxel of every level it holds is written */
             float *arr = !d && vol->cpu[a][0] ? vol->cpu[a][0] : (float *)voxgi__alloc_array(ctx, held ? held : 1, (size_t)w * 4, 0);
@@ -5857,7 +5935,7 @@ VOXGI_API voxgi_result voxgi_volume_create_dense(voxgi_context *ctx, const voxgi
     if ((r = voxgi_validate_grid(ctx, grid)) != VOXGI_OK) return r;
     for (a = 0; a < 4; a++)
         if ((slots[a] = base[a]) != NULL) attributes |= 1u << a;
-    slots[4] = NULL;
+    slots[VOXGI__RADIANCE_SLOT] = NULL;
     r = voxgi__volume_new(ctx, grid, desc, attributes, &vol);
     if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
     if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); return r; }
@@ -5996,7 +6074,7 @@ static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volu
     float *packed;
     size_t i;
     int w = a == 3 ? 1 : 4;
-    voxgi_result r = voxgi__gl_get_program(ctx, "sampling.glsl volume_sample.glsl", &gl->prog_volume_sample);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_sample);
     if (r != VOXGI_OK) return r;
     if (!count) return VOXGI_OK;
     if (count > (size_t)65535 * 64 * 64) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
@@ -6283,7 +6361,7 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
     uint64_t child_cap = 0, list_cap = 0, tiles = depth > 1 ? 1 : 0, entries = 1, first[VOXGI__MAX_LEVELS + 1];
     uint32_t init[16], root_tile[9];
     double t0;
-    voxgi_result r = voxgi__gl_get_program(ctx, "svo.glsl svo_build.glsl", &gl->prog_svo_build);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_svo_build);
     if (r != VOXGI_OK) return r;
     t0 = voxgi__now_ms();
     p = gl->prog_svo_build;
@@ -6382,7 +6460,7 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         if (!(svo->info.attributes & (1u << a))) continue;
         if (!(v4 = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the fragment values"); break; }
         for (i = 0; i < n; i++) {
-            if (a == 4) { memcpy(v4 + 4 * i, vals[4] + 4 * i, 16); continue; } /* radiance: as the volume holds it */
+            if (a == VOXGI__RADIANCE_SLOT) { memcpy(v4 + 4 * i, vals[VOXGI__RADIANCE_SLOT] + 4 * i, 16); continue; } /* radiance: as the volume holds it */
             v4[4 * i] = a < 3 ? vals[a][3 * i] : 0;
             v4[4 * i + 1] = a < 3 ? vals[a][3 * i + 1] : 0;
             v4[4 * i + 2] = a < 3 ? vals[a][3 * i + 2] : 0;
@@ -6400,7 +6478,7 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
         voxgi__gl_dispatch_rows(gl, n);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_MIP);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_premultiplied"), a == 4);
+        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_premultiplied"), a == VOXGI__RADIANCE_SLOT);
         for (m = depth - 1; m >= 0; m--) {
             gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
             gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first[m]);
@@ -6433,27 +6511,24 @@ done:
 }
 #endif
 
-VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *vx, const voxgi_svo_desc *desc, voxgi_svo **out)
+/* The CPU build's levels: each level's node codes (Morton order, distinct) and counts, the
+   inner tiles before each level, and each leaf's index in bit order. */
+typedef struct voxgi__svo_levels {
+    uint64_t *codes[VOXGI__MAX_LEVELS + 1];
+    size_t count[VOXGI__MAX_LEVELS + 1];
+    uint64_t tiles_before[VOXGI__MAX_LEVELS + 1];
+    uint32_t *order;
+} voxgi__svo_levels;
+
+/* The refusals of voxgi_svo_create, and the octree's depth. */
+static voxgi_result voxgi__svo_check(voxgi_context *ctx, const voxgi_voxels *vx, const voxgi_svo_desc *desc, int *depth_out)
 {
-    voxgi_svo *svo;
-    const voxgi_grid *g;
-    uint64_t *codes[VOXGI__MAX_LEVELS + 1], nvox, l, tiles_before[VOXGI__MAX_LEVELS + 1];
-    size_t count[VOXGI__MAX_LEVELS + 1], need = 0, i, n = 0;
-    uint32_t *bits = NULL, *order = NULL, *packed = NULL;
-    const uint32_t *leaf_bits = NULL;
-    float *vals[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL}, *radiance = NULL;
-    double t0 = voxgi__now_ms(), t1;
-    int depth = 1, lev, a, maxres;
-    voxgi_result r = VOXGI_OK;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!vx || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
-    *out = NULL;
+    const voxgi_grid *g = &vx->info.grid;
+    int depth = 1, maxres = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2]));
     if (!vx->info.attributes) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "these voxels hold no attributes (voxgi_voxelize_desc.attributes)");
     if (desc->attributes & ~vx->info.attributes & ~(unsigned)VOXGI_ATTRIBUTE_RADIANCE || ((desc->attributes & VOXGI_ATTRIBUTE_RADIANCE) && !desc->radiance))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attributes 0x%x asked for, the voxels hold 0x%x%s", desc->attributes, vx->info.attributes,
                            desc->radiance ? "" : " (RADIANCE: from desc.radiance)");
-    g = &vx->info.grid;
-    maxres = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2]));
     while ((1 << depth) < maxres) depth++;
     if (depth > 16) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "octrees hold grids up to 65536 voxels per axis");
     if (desc->format != VOXGI_SVO_FLOAT32 && desc->format != VOXGI_SVO_FLOAT16)
@@ -6465,32 +6540,35 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
         if (rg->voxel_size != g->voxel_size || memcmp(rg->origin, g->origin, sizeof g->origin) || memcmp(rg->res, g->res, sizeof g->res))
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.radiance lies on another grid than the voxels");
     }
-    svo = (voxgi_svo *)voxgi__alloc_array(ctx, 1, sizeof *svo, 1);
-    if (!svo) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree");
-    memset(codes, 0, sizeof codes);
-    svo->info.grid = *g;
-    svo->info.backend = ctx->backend;
-    svo->info.attributes = desc->attributes ? desc->attributes : vx->info.attributes;
-    svo->info.depth = depth;
-    svo->info.format = desc->format;
-    if (desc->radiance) svo->info.attributes |= VOXGI_ATTRIBUTE_RADIANCE;
-    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) svo->slot_bytes[a] = (a == 3 ? 4 : 16) >> (desc->format == VOXGI_SVO_FLOAT16);
-    nvox = voxgi_grid_voxel_count(g);
-    /* 1. the leaves: Morton codes of the set voxels, with their index in bit order (GL voxels
-       are read back; CPU ones are used where they are) */
-    if (vx->bits) leaf_bits = vx->bits;
-    else {
+    *depth_out = depth;
+    return VOXGI_OK;
+}
+
+/* 1. The leaves: the set voxels in bit order, as Morton codes with their index (CPU) or as
+   the GPU's fragment list x | y << 16, z (GL: *packed), and their values per slot: the
+   attribute means and the radiance volume's level 0. */
+static voxgi_result voxgi__svo_leaves(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_voxels *vx, const voxgi_svo_desc *desc,
+                                      voxgi__svo_levels *L, uint32_t **packed_out, float *vals[VOXGI__VOLUME_SLOTS])
+{
+    const voxgi_grid *g = &vx->info.grid;
+    uint64_t nvox = voxgi_grid_voxel_count(g), l;
+    size_t need = 0, i, n = (size_t)vx->info.voxel_count;
+    uint32_t *bits = NULL, *packed = NULL;
+    const uint32_t *leaf_bits = vx->bits; /* CPU voxels are used where they are, GL ones read back */
+    float *radiance = NULL;
+    int depth = svo->info.depth, a;
+    voxgi_result r = VOXGI_OK;
+    if (!leaf_bits) {
         r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
         if (r == VOXGI_OK && !(bits = (uint32_t *)voxgi__alloc(ctx, need))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bits");
         if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, bits, need, NULL);
         leaf_bits = bits;
     }
-    n = (size_t)vx->info.voxel_count;
-    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_GL) { /* the GPU's voxel fragment list: x | y << 16, z */
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_GL) {
         if (!(packed = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)))
             r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu voxel fragments", (unsigned long)n);
-    } else if (r == VOXGI_OK && (!(codes[depth] = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)) ||
-                                 !(order = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 4, 0))))
+    } else if (r == VOXGI_OK && (!(L->codes[depth] = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0)) ||
+                                 !(L->order = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 4, 0))))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu leaves", (unsigned long)n);
     for (l = 0, i = 0; r == VOXGI_OK && l < (nvox + 31) / 32; l++) { /* word by word: empty space costs little */
         uint32_t word = leaf_bits[l];
@@ -6499,7 +6577,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
             uint32_t x = (uint32_t)(v % (uint64_t)g->res[0]), y = (uint32_t)(v / (uint64_t)g->res[0] % (uint64_t)g->res[1]),
                      z = (uint32_t)(v / ((uint64_t)g->res[0] * (uint64_t)g->res[1]));
             if (packed) { packed[2 * i] = x | y << 16; packed[2 * i + 1] = z; }
-            else { codes[depth][i] = voxgi__morton(x, y, z); order[i] = (uint32_t)i; }
+            else { L->codes[depth][i] = voxgi__morton(x, y, z); L->order[i] = (uint32_t)i; }
             i++;
         }
     }
@@ -6512,153 +6590,203 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     }
     if (r == VOXGI_OK && desc->radiance) { /* the radiance volume's level 0 at the set voxels, in bit order */
         r = voxgi_volume_read(ctx, desc->radiance, VOXGI_ATTRIBUTE_RADIANCE, VOXGI_DIR_POS_X, 0, NULL, 0, &need);
-        if (r == VOXGI_OK && (!(radiance = (float *)voxgi__alloc(ctx, need)) || !(vals[4] = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))))
+        if (r == VOXGI_OK && (!(radiance = (float *)voxgi__alloc(ctx, need)) || !(vals[VOXGI__RADIANCE_SLOT] = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))))
             r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the radiance of %lu voxels", (unsigned long)n);
         if (r == VOXGI_OK) r = voxgi_volume_read(ctx, desc->radiance, VOXGI_ATTRIBUTE_RADIANCE, VOXGI_DIR_POS_X, 0, radiance, need, NULL);
         for (l = 0, i = 0; r == VOXGI_OK && l < (nvox + 31) / 32; l++) {
             uint32_t word = leaf_bits[l];
             for (; word; word &= word - 1, i++)
-                memcpy(vals[4] + 4 * i, radiance + 4 * (32 * l + (uint64_t)voxgi__popcount32((word & (0u - word)) - 1u)), 16);
+                memcpy(vals[VOXGI__RADIANCE_SLOT] + 4 * i, radiance + 4 * (32 * l + (uint64_t)voxgi__popcount32((word & (0u - word)) - 1u)), 16);
         }
     }
-#ifndef VOXGI_NO_GL
-    if (packed) {
-        svo->info.ms_sort = voxgi__now_ms() - t0;
-        if (r == VOXGI_OK) r = voxgi__svo_build_gl(ctx, svo, n, packed, vals, desc);
-        goto finish;
-    }
-#endif
-    if (r == VOXGI_OK) r = voxgi__sort_codes(ctx, codes[depth], order, n, 3 * depth);
-    if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.3, "octree: voxels sorted")) r = VOXGI_ERR_CANCELLED;
-    t1 = voxgi__now_ms();
-    svo->info.ms_sort = t1 - t0;
-    /* 2. each level's nodes: the distinct parent codes; tiles numbered level by level */
-    count[depth] = n;
-    for (lev = depth - 1; lev >= 0 && r == VOXGI_OK; lev--) {
+    voxgi__free(ctx, radiance);
+    voxgi__free(ctx, bits);
+    *packed_out = packed;
+    return r;
+}
+
+/* 2. Each level's nodes, the distinct parent codes of the level below, tiles numbered level by
+   level; the octree's sizes; child pointers: node (lev, rank) -> 1 + its tile one level down. */
+static voxgi_result voxgi__svo_nodes_cpu(voxgi_context *ctx, voxgi_svo *svo, const voxgi_svo_desc *desc, size_t n, voxgi__svo_levels *L)
+{
+    int depth = svo->info.depth, lev;
+    uint64_t tiles = 0;
+    size_t i;
+    voxgi_result r;
+    L->count[depth] = n;
+    for (lev = depth - 1; lev >= 0; lev--) {
         size_t m = 0;
-        if (!(codes[lev] = (uint64_t *)voxgi__alloc_array(ctx, count[lev + 1] ? count[lev + 1] : 1, 8, 0))) {
-            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's levels");
-            break;
+        if (!(L->codes[lev] = (uint64_t *)voxgi__alloc_array(ctx, L->count[lev + 1] ? L->count[lev + 1] : 1, 8, 0)))
+            return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's levels");
+        for (i = 0; i < L->count[lev + 1]; i++)
+            if (!m || L->codes[lev][m - 1] != L->codes[lev + 1][i] >> 3) L->codes[lev][m++] = L->codes[lev + 1][i] >> 3;
+        if (!n && lev == 0) L->codes[0][m++] = 0; /* an empty octree still has its root */
+        L->count[lev] = m;
+    }
+    for (lev = 1; lev < depth; lev++) { L->tiles_before[lev] = tiles; tiles += L->count[lev - 1]; } /* inner tiles: one per node above */
+    for (lev = 0; lev <= depth; lev++) svo->info.level_nodes[lev] = L->count[lev];
+    if ((r = voxgi__svo_size(ctx, svo, tiles, desc)) != VOXGI_OK) return r;
+    if (!(svo->child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 4, 1)))
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %llu nodes", (unsigned long long)svo->info.nodes);
+    for (lev = 0; lev < depth; lev++) {
+        size_t parent_rank = 0; /* both levels are in Morton order: the parent only moves forward */
+        for (i = 0; i < L->count[lev]; i++) {
+            uint64_t slot = 0;
+            if (lev > 0) { /* the node's slot: its parent's tile, at its digit */
+                while (L->codes[lev - 1][parent_rank] != L->codes[lev][i] >> 3) parent_rank++;
+                slot = 1 + 8 * (L->tiles_before[lev] + parent_rank) + (L->codes[lev][i] & 7u);
+            }
+            svo->child[slot] = (uint32_t)(1 + (lev == depth - 1 ? i : L->tiles_before[lev + 1] + i));
         }
-        for (i = 0; i < count[lev + 1]; i++)
-            if (!m || codes[lev][m - 1] != codes[lev + 1][i] >> 3) codes[lev][m++] = codes[lev + 1][i] >> 3;
-        if (!n && lev == 0) codes[0][m++] = 0; /* an empty octree still has its root */
-        count[lev] = m;
     }
-    if (r == VOXGI_OK) { /* inner tiles: level 1 .. depth-1, one per node of the level above */
-        uint64_t tiles = 0;
-        for (lev = 1; lev < depth; lev++) { tiles_before[lev] = tiles; tiles += count[lev - 1]; }
-        for (lev = 0; lev <= depth; lev++) svo->info.level_nodes[lev] = count[lev];
-        r = voxgi__svo_size(ctx, svo, tiles, desc);
-        if (r == VOXGI_OK && !(svo->child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 4, 1)))
-            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %llu nodes", (unsigned long long)svo->info.nodes);
-    }
-    if (r == VOXGI_OK) { /* child pointers: node (lev, rank) -> 1 + its tile one level down */
-        for (lev = 0; lev < depth; lev++) {
-            size_t parent_rank = 0; /* both levels are in Morton order: the parent only moves forward */
-            for (i = 0; i < count[lev]; i++) {
-                uint64_t slot = 0;
-                if (lev > 0) { /* the node's slot: its parent's tile, at its digit */
-                    while (codes[lev - 1][parent_rank] != codes[lev][i] >> 3) parent_rank++;
-                    slot = 1 + 8 * (tiles_before[lev] + parent_rank) + (codes[lev][i] & 7u);
-                }
-                svo->child[slot] = (uint32_t)(1 + (lev == depth - 1 ? i : tiles_before[lev + 1] + i));
+    return VOXGI_OK;
+}
+
+/* Each inner node's same-level neighbours, by binary search in the level's codes. */
+static voxgi_result voxgi__svo_neighbours_cpu(voxgi_context *ctx, voxgi_svo *svo, const voxgi__svo_levels *L)
+{
+    int depth = svo->info.depth, lev;
+    size_t i;
+    if (!(svo->neighbour = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 6 * 4, 1)))
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the neighbour pointers");
+    for (lev = 1; lev < depth; lev++) {
+        size_t parent_rank = 0;
+        for (i = 0; i < L->count[lev]; i++) {
+            uint64_t slot, code = L->codes[lev][i];
+            int64_t at[3];
+            int dir;
+            while (L->codes[lev - 1][parent_rank] != code >> 3) parent_rank++;
+            slot = 1 + 8 * (L->tiles_before[lev] + parent_rank) + (code & 7u);
+            voxgi__svo_coords(code, lev, at);
+            for (dir = 0; dir < 6; dir++) {
+                int64_t c[3];
+                uint64_t ncode;
+                size_t lo = 0, hi = L->count[lev], plo = 0, phi = L->count[lev - 1];
+                memcpy(c, at, sizeof c);
+                c[dir / 2] += (dir & 1) ? -1 : 1;
+                if (c[dir / 2] < 0 || c[dir / 2] >= ((int64_t)1 << lev)) continue;
+                ncode = voxgi__morton((uint32_t)c[0], (uint32_t)c[1], (uint32_t)c[2]);
+                while (hi - lo > 1) { size_t mid = (lo + hi) / 2; if (L->codes[lev][mid] <= ncode) lo = mid; else hi = mid; }
+                if (L->codes[lev][lo] != ncode) continue;
+                while (phi - plo > 1) { size_t mid = (plo + phi) / 2; if (L->codes[lev - 1][mid] <= ncode >> 3) plo = mid; else phi = mid; }
+                svo->neighbour[6 * slot + (uint64_t)dir] = (uint32_t)(1 + 8 * (L->tiles_before[lev] + plo) + (ncode & 7u));
             }
         }
     }
-    if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.5, "octree: nodes")) r = VOXGI_ERR_CANCELLED;
-    t0 = voxgi__now_ms();
-    svo->info.ms_nodes = t0 - t1;
-    if (r == VOXGI_OK && desc->neighbours) { /* each inner node's same-level neighbours, by binary search in the level's codes */
-        if (!(svo->neighbour = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 6 * 4, 1)))
-            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the neighbour pointers");
-        for (lev = 1; lev < depth && r == VOXGI_OK; lev++) {
-            size_t parent_rank = 0;
-            for (i = 0; i < count[lev]; i++) {
-                uint64_t slot, code = codes[lev][i];
-                int64_t at[3];
-                int dir;
-                while (codes[lev - 1][parent_rank] != code >> 3) parent_rank++;
-                slot = 1 + 8 * (tiles_before[lev] + parent_rank) + (code & 7u);
-                voxgi__svo_coords(code, lev, at);
-                for (dir = 0; dir < 6; dir++) {
-                    int64_t c[3];
-                    uint64_t ncode;
-                    size_t lo = 0, hi = count[lev], plo = 0, phi = count[lev - 1];
-                    memcpy(c, at, sizeof c);
-                    c[dir / 2] += (dir & 1) ? -1 : 1;
-                    if (c[dir / 2] < 0 || c[dir / 2] >= ((int64_t)1 << lev)) continue;
-                    ncode = voxgi__morton((uint32_t)c[0], (uint32_t)c[1], (uint32_t)c[2]);
-                    while (hi - lo > 1) { size_t mid = (lo + hi) / 2; if (codes[lev][mid] <= ncode) lo = mid; else hi = mid; }
-                    if (codes[lev][lo] != ncode) continue;
-                    while (phi - plo > 1) { size_t mid = (plo + phi) / 2; if (codes[lev - 1][mid] <= ncode >> 3) plo = mid; else phi = mid; }
-                    svo->neighbour[6 * slot + (uint64_t)dir] = (uint32_t)(1 + 8 * (tiles_before[lev] + plo) + (ncode & 7u));
-                }
-            }
-        }
-        svo->info.ms_neighbours = voxgi__now_ms() - t0;
-        t0 = voxgi__now_ms();
-    }
-    /* 3. values: the leaves from the attribute means, then every node the isotropic mip of its tile */
-    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
+    return VOXGI_OK;
+}
+
+/* 3. Values: the leaves from the attribute means, then every node the isotropic mip of its
+   tile, bottom up from the stored values; 4. bricks from the finished values. */
+static voxgi_result voxgi__svo_values_cpu(voxgi_context *ctx, voxgi_svo *svo, const voxgi__svo_levels *L, size_t n,
+                                          float *const vals[VOXGI__VOLUME_SLOTS])
+{
+    int depth = svo->info.depth, lev, a;
+    uint64_t nvox = voxgi_grid_voxel_count(&svo->info.grid);
+    size_t i;
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) {
         int b = svo->slot_bytes[a];
         unsigned char *leaf, *node;
+        size_t parent_rank = 0;
         if (!(svo->info.attributes & (1u << a))) continue;
         leaf = svo->leaf_values[a] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)(svo->info.leaf_slots ? svo->info.leaf_slots : 1), (size_t)b, 1);
         node = svo->node_values[a] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)(svo->info.nodes + 64 * svo->bricks), (size_t)b, 1);
-        if (!leaf || !node) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's values"); break; }
-        {   /* leaves: slot 8 * rank(parent) + digit */
-            size_t parent_rank = 0;
-            for (i = 0; i < n; i++) {
-                uint64_t parent = codes[depth][i] >> 3;
-                float c[4] = {0, 0, 0, 0};
-                c[3] = vals[3] ? vals[3][order[i]] : 1.0f;
-                if (a < 3) memcpy(c, vals[a] + 3 * (size_t)order[i], 3 * sizeof(float));
-                if (a == 4) memcpy(c, vals[4] + 4 * (size_t)order[i], sizeof c);
-                while (codes[depth - 1][parent_rank] != parent) parent_rank++;
-                voxgi__svo_put(svo, a, leaf, 8 * parent_rank + (codes[depth][i] & 7u), c);
-            }
+        if (!leaf || !node) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's values");
+        for (i = 0; i < n; i++) { /* leaves: slot 8 * rank(parent) + digit */
+            uint64_t parent = L->codes[depth][i] >> 3;
+            float c[4] = {0, 0, 0, 0};
+            c[3] = vals[3] ? vals[3][L->order[i]] : 1.0f;
+            if (a < 3) memcpy(c, vals[a] + 3 * (size_t)L->order[i], 3 * sizeof(float));
+            if (a == VOXGI__RADIANCE_SLOT) memcpy(c, vals[VOXGI__RADIANCE_SLOT] + 4 * (size_t)L->order[i], sizeof c);
+            while (L->codes[depth - 1][parent_rank] != parent) parent_rank++;
+            voxgi__svo_put(svo, a, leaf, 8 * parent_rank + (L->codes[depth][i] & 7u), c);
         }
         for (lev = depth - 1; lev >= 0; lev--) { /* nodes bottom up, from the stored values of their children */
-            size_t parent_rank = 0;
-            for (i = 0; i < count[lev]; i++) {
+            parent_rank = 0;
+            for (i = 0; i < L->count[lev]; i++) {
                 uint64_t slot = 0, tile;
                 float c[8][4], m[4];
                 int k;
                 if (lev > 0) {
-                    while (codes[lev - 1][parent_rank] != codes[lev][i] >> 3) parent_rank++;
-                    slot = 1 + 8 * (tiles_before[lev] + parent_rank) + (codes[lev][i] & 7u);
+                    while (L->codes[lev - 1][parent_rank] != L->codes[lev][i] >> 3) parent_rank++;
+                    slot = 1 + 8 * (L->tiles_before[lev] + parent_rank) + (L->codes[lev][i] & 7u);
                 }
                 tile = svo->child[slot] - 1;
                 for (k = 0; k < 8; k++) {
                     if (lev == depth - 1) voxgi__svo_get(svo, a, leaf, 8 * tile + (uint64_t)k, c[k]);
                     else voxgi__svo_get(svo, a, node, 1 + 8 * tile + (uint64_t)k, c[k]);
                 }
-                voxgi__mip_combine(c, 4, -1, a == 4, m);
+                voxgi__mip_combine(c, 4, -1, a == VOXGI__RADIANCE_SLOT, m);
                 voxgi__svo_put(svo, a, node, slot, m);
             }
         }
-        for (lev = 0; lev < depth && svo->bricks; lev++) /* 4. bricks, from the finished values */
-            for (i = 0; i < count[lev]; i++) {
+        for (lev = 0; lev < depth && svo->bricks; lev++)
+            for (i = 0; i < L->count[lev]; i++) {
                 int64_t c[3];
-                voxgi__svo_coords(codes[lev][i], lev, c);
+                voxgi__svo_coords(L->codes[lev][i], lev, c);
                 voxgi__svo_fill_brick(ctx, svo, a, lev, c, voxgi__svo_ptr_at(ctx, svo, lev, c));
             }
         svo->info.bytes += (size_t)((svo->info.nodes + svo->info.leaf_slots) * (uint64_t)b);
         svo->info.dense_bytes += (size_t)(nvox * (uint64_t)b);
-        if (voxgi__svo_cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree: values")) r = VOXGI_ERR_CANCELLED;
+        if (voxgi__svo_cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree: values")) return VOXGI_ERR_CANCELLED;
     }
-    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
-    svo->info.ms_values = voxgi__now_ms() - t0;
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *vx, const voxgi_svo_desc *desc, voxgi_svo **out)
+{
+    voxgi_svo *svo;
+    voxgi__svo_levels L;
+    uint32_t *packed = NULL;
+    float *vals[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
+    size_t n;
+    double t0 = voxgi__now_ms(), t1;
+    int depth = 1, lev, a;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!vx || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
+    *out = NULL;
+    if ((r = voxgi__svo_check(ctx, vx, desc, &depth)) != VOXGI_OK) return r;
+    svo = (voxgi_svo *)voxgi__alloc_array(ctx, 1, sizeof *svo, 1);
+    if (!svo) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree");
+    memset(&L, 0, sizeof L);
+    svo->info.grid = vx->info.grid;
+    svo->info.backend = ctx->backend;
+    svo->info.attributes = desc->attributes ? desc->attributes : vx->info.attributes;
+    svo->info.depth = depth;
+    svo->info.format = desc->format;
+    if (desc->radiance) svo->info.attributes |= VOXGI_ATTRIBUTE_RADIANCE;
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) svo->slot_bytes[a] = (a == 3 ? 4 : 16) >> (desc->format == VOXGI_SVO_FLOAT16);
+    n = (size_t)vx->info.voxel_count;
+    r = voxgi__svo_leaves(ctx, svo, vx, desc, &L, &packed, vals);
 #ifndef VOXGI_NO_GL
-finish:
+    if (packed) {
+        svo->info.ms_sort = voxgi__now_ms() - t0;
+        if (r == VOXGI_OK) r = voxgi__svo_build_gl(ctx, svo, n, packed, vals, desc);
+    } else
 #endif
+    {
+        if (r == VOXGI_OK) r = voxgi__sort_codes(ctx, L.codes[depth], L.order, n, 3 * depth);
+        if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.3, "octree: voxels sorted")) r = VOXGI_ERR_CANCELLED;
+        t1 = voxgi__now_ms();
+        svo->info.ms_sort = t1 - t0;
+        if (r == VOXGI_OK) r = voxgi__svo_nodes_cpu(ctx, svo, desc, n, &L);
+        if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.5, "octree: nodes")) r = VOXGI_ERR_CANCELLED;
+        t0 = voxgi__now_ms();
+        svo->info.ms_nodes = t0 - t1;
+        if (r == VOXGI_OK && desc->neighbours) {
+            r = voxgi__svo_neighbours_cpu(ctx, svo, &L);
+            svo->info.ms_neighbours = voxgi__now_ms() - t0;
+            t0 = voxgi__now_ms();
+        }
+        if (r == VOXGI_OK) r = voxgi__svo_values_cpu(ctx, svo, &L, n, vals);
+        svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
+        svo->info.ms_values = voxgi__now_ms() - t0;
+    }
     voxgi__free(ctx, packed);
-    for (lev = 0; lev <= VOXGI__MAX_LEVELS; lev++) voxgi__free(ctx, codes[lev]);
+    for (lev = 0; lev <= VOXGI__MAX_LEVELS; lev++) voxgi__free(ctx, L.codes[lev]);
     for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) voxgi__free(ctx, vals[a]);
-    voxgi__free(ctx, radiance);
-    voxgi__free(ctx, bits);
-    voxgi__free(ctx, order);
+    voxgi__free(ctx, L.order);
     if (r != VOXGI_OK) { voxgi_svo_destroy(ctx, svo); return r; }
     svo->info.ms = svo->info.ms_sort + svo->info.ms_nodes + svo->info.ms_neighbours + svo->info.ms_values;
     *out = svo;
@@ -6698,7 +6826,7 @@ static voxgi_result voxgi__svo_points_gl(voxgi_context *ctx, const voxgi_svo *sv
     float *got;
     size_t i;
     int w = a == 3 ? 1 : 4;
-    voxgi_result r = voxgi__gl_get_program(ctx, "sampling.glsl svo.glsl svo_sample.glsl", &gl->prog_svo_sample);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_svo_sample);
     if (r != VOXGI_OK || !count) return r;
     if (count > (size_t)65535 * 65535 * 64) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
     if (!(got = (float *)voxgi__alloc_array(ctx, count, 16, 0))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu samples", (unsigned long)count);
@@ -7044,7 +7172,7 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], cons
 
 /* One cone from o (grid units, on a surface of unit normal n) along unit d, whose cosine with n
    is lz: marched from `offset` voxels along n, narrowing tan_k, up to max_d voxels; its
-   composited radiance C and opacity A. A single cone (voxgi_trace_cones) is the case n = d. */
+   composited radiance C and opacity A. A single cone (voxgi_cone_trace_each) is the case n = d. */
 static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const double n[3], const double d[3], double lz, double tan_k, double max_d,
                               double C[3], double *A_out)
 {
@@ -7117,7 +7245,7 @@ static void voxgi__cone_frame(const voxgi_cone *c, const voxgi_grid *g, double o
     if (!(*lz > 0)) { for (a = 0; a < 3; a++) n[a] = d[a]; *lz = 1; }
 }
 
-/* Single cones (voxgi_trace_cones): J->list in, (C, A) per cone out in J->irr (4 floats each). */
+/* Single cones (voxgi_cone_trace_each): J->list in, (C, A) per cone out in J->irr (4 floats each). */
 static void voxgi__cone_each_cpu(void *user, size_t first, size_t end)
 {
     voxgi__cone_job *J = (voxgi__cone_job *)user;
@@ -7162,8 +7290,7 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
     float *io;
     size_t i, first, slice = 16384;
     int a;
-    voxgi_result r = J->svo ? voxgi__gl_get_program(ctx, "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl cone_trace_buffers.glsl", &gl->prog_cone_trace_svo)
-                            : voxgi__gl_get_program(ctx, "sampling.glsl cone_trace.glsl cone_trace_buffers.glsl", &gl->prog_cone_trace);
+    voxgi_result r = voxgi__gl_get_program(ctx, J->svo ? VOXGI__GL_PROGRAM_cone_trace_svo : VOXGI__GL_PROGRAM_cone_trace);
     if (r != VOXGI_OK || !count) return r;
     if (count > UINT32_MAX / 2) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
     if (!(io = (float *)voxgi__alloc_array(ctx, count, 48, 0))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
@@ -7187,7 +7314,7 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
     gl->UseProgram(p);
     voxgi__cone_uniforms(gl, p, J);
     if (J->svo) voxgi__svo_bind_gl(ctx, J->svo, p, 4);
-    else for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J->vol->tex[4][J->dirs == 6 ? a : 0]);
+    else for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J->vol->tex[VOXGI__RADIANCE_SLOT][J->dirs == 6 ? a : 0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, bufs[0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, bufs[1]);
     gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)count);
@@ -7215,11 +7342,17 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
 
 /* What the cone tracers share: the checks of the radiance (a volume, or an octree when vol is
    NULL) and of desc, the job. */
-static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc, voxgi__cone_job *J)
+static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *desc,
+                                         voxgi__cone_job *J)
 {
     const voxgi_grid *g;
+    const voxgi_volume *vol = source->volume;
+    const voxgi_svo *svo = source->octree;
     const char *what = vol ? "volume" : "octree";
     memset(J, 0, sizeof *J);
+    if (!vol == !svo)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance source sets %s: exactly one of volume and octree is needed",
+                           vol ? "both a volume and an octree" : "neither a volume nor an octree");
     if (!((vol ? vol->info.attributes : svo->info.attributes) & VOXGI_ATTRIBUTE_RADIANCE))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the %s holds no RADIANCE (%s)", what, vol ? "voxgi_inject_light" : "voxgi_svo_desc.radiance");
     if ((vol ? vol->info.backend : svo->info.backend) != ctx->backend)
@@ -7244,16 +7377,17 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_volume 
     return VOXGI_OK;
 }
 
-static voxgi_result voxgi__cone_trace_points(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
-                                             const float *positions, const float *normals, float *irradiance, float *occlusion)
+VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *desc,
+                                        size_t count, const float *positions, const float *normals, float *irradiance,
+                                        float *occlusion)
 {
     voxgi__cone_job J;
     size_t i;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if ((!vol && !svo) || !desc || (count && (!positions || !normals || !irradiance)))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance, desc, positions, normals or irradiance is NULL");
-    if ((r = voxgi__cone_job_init(ctx, vol, svo, desc, &J)) != VOXGI_OK) return r;
+    if (!source || !desc || (count && (!positions || !normals || !irradiance)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance source, desc, positions, normals or irradiance is NULL");
+    if ((r = voxgi__cone_job_init(ctx, source, desc, &J)) != VOXGI_OK) return r;
     for (i = 0; i < 3 * count; i++)
         if (!isfinite(positions[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
     J.pos = positions;
@@ -7267,16 +7401,16 @@ static voxgi_result voxgi__cone_trace_points(voxgi_context *ctx, const voxgi_vol
     return VOXGI_OK;
 }
 
-static voxgi_result voxgi__cone_trace_list(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
-                                           const voxgi_cone *cones, float *radiance_opacity)
+VOXGI_API voxgi_result voxgi_cone_trace_each(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *desc,
+                                             size_t count, const voxgi_cone *cones, float *radiance_opacity)
 {
     voxgi__cone_job J;
     size_t i;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if ((!vol && !svo) || !desc || (count && (!cones || !radiance_opacity)))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance, desc, cones or out is NULL");
-    if ((r = voxgi__cone_job_init(ctx, vol, svo, desc, &J)) != VOXGI_OK) return r;
+    if (!source || !desc || (count && (!cones || !radiance_opacity)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance source, desc, cones or out is NULL");
+    if ((r = voxgi__cone_job_init(ctx, source, desc, &J)) != VOXGI_OK) return r;
     for (i = 0; i < count; i++) {
         const voxgi_cone *c = &cones[i];
         double len = (double)c->direction[0] * c->direction[0] + (double)c->direction[1] * c->direction[1] + (double)c->direction[2] * c->direction[2];
@@ -7294,37 +7428,12 @@ static voxgi_result voxgi__cone_trace_list(voxgi_context *ctx, const voxgi_volum
     return VOXGI_OK;
 }
 
-VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count,
-                                        const float *positions, const float *normals, float *irradiance, float *occlusion)
-{
-    return voxgi__cone_trace_points(ctx, vol, NULL, desc, count, positions, normals, irradiance, occlusion);
-}
-
-VOXGI_API voxgi_result voxgi_cone_trace_svo(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count,
-                                            const float *positions, const float *normals, float *irradiance, float *occlusion)
-{
-    return voxgi__cone_trace_points(ctx, NULL, svo, desc, count, positions, normals, irradiance, occlusion);
-}
-
-VOXGI_API voxgi_result voxgi_trace_cones(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, size_t count, const voxgi_cone *cones,
-                                         float *radiance_opacity)
-{
-    return voxgi__cone_trace_list(ctx, vol, NULL, desc, count, cones, radiance_opacity);
-}
-
-VOXGI_API voxgi_result voxgi_trace_cones_svo(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, size_t count, const voxgi_cone *cones,
-                                             float *radiance_opacity)
-{
-    return voxgi__cone_trace_list(ctx, NULL, svo, desc, count, cones, radiance_opacity);
-}
-
-/* voxgi_cone_trace_gl and voxgi_cone_trace_svo_gl: the gather over the caller's G-buffer
-   textures from a volume or (vol NULL) an octree. */
-static voxgi_result voxgi__cone_gbuffer_gl(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *desc,
-                                               const voxgi_gl_gbuffer *gb)
+/* The gather over the caller's G-buffer textures. */
+VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *desc,
+                                           const voxgi_gl_gbuffer *gb)
 {
 #ifdef VOXGI_NO_GL
-    (void)vol; (void)svo; (void)desc; (void)gb;
+    (void)source; (void)desc; (void)gb;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "G-buffer textures need GL (this build has VOXGI_NO_GL)");
 #else
@@ -7335,28 +7444,26 @@ static voxgi_result voxgi__cone_gbuffer_gl(voxgi_context *ctx, const voxgi_volum
     int a;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if ((!vol && !svo) || !desc || !gb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "%s, desc or gbuffer is NULL", vol ? "volume" : "octree");
+    if (!source || !desc || !gb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance source, desc or gbuffer is NULL");
     if (ctx->backend != VOXGI_BACKEND_GL || !ctx->gl) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "G-buffer textures need a GL context");
     if (!gb->position_texture || !gb->normal_texture || !gb->irradiance_texture || gb->width < 1 || gb->height < 1)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "position, normal and irradiance textures and a size (%d x %d) are needed", gb->width, gb->height);
-    if ((r = voxgi__cone_job_init(ctx, vol, svo, desc, &J)) != VOXGI_OK) return r;
+    if ((r = voxgi__cone_job_init(ctx, source, desc, &J)) != VOXGI_OK) return r;
     gl = ctx->gl;
     g = J.grid;
     if (J.svo) {
         prog = gb->irradiance_rgba16f ? &gl->prog_cone_trace_svo_images16 : &gl->prog_cone_trace_svo_images32;
-        r = voxgi__gl_get_program(ctx, gb->irradiance_rgba16f ? "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl"
-                                                              : "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl", prog);
+        r = voxgi__gl_get_program(ctx, gb->irradiance_rgba16f ? VOXGI__GL_PROGRAM_cone_trace_svo_images16 : VOXGI__GL_PROGRAM_cone_trace_svo_images32);
     } else {
         prog = gb->irradiance_rgba16f ? &gl->prog_cone_trace_images16 : &gl->prog_cone_trace_images32;
-        r = voxgi__gl_get_program(ctx, gb->irradiance_rgba16f ? "sampling.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl"
-                                                              : "sampling.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl", prog);
+        r = voxgi__gl_get_program(ctx, gb->irradiance_rgba16f ? VOXGI__GL_PROGRAM_cone_trace_images16 : VOXGI__GL_PROGRAM_cone_trace_images32);
     }
     if (r != VOXGI_OK) return r;
     p = *prog;
     gl->UseProgram(p);
     voxgi__cone_uniforms(gl, p, &J);
     if (J.svo) voxgi__svo_bind_gl(ctx, J.svo, p, 4);
-    else for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J.vol->tex[4][J.dirs == 6 ? a : 0]);
+    else for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J.vol->tex[VOXGI__RADIANCE_SLOT][J.dirs == 6 ? a : 0]);
     gl->BindTextureUnit(6, gb->position_texture);
     gl->BindTextureUnit(7, gb->normal_texture);
     gl->BindTextureUnit(8, gb->albedo_texture ? gb->albedo_texture : gb->normal_texture);
@@ -7372,16 +7479,6 @@ static voxgi_result voxgi__cone_gbuffer_gl(voxgi_context *ctx, const voxgi_volum
     voxgi__gl_unbind(gl);
     return voxgi__gl_check(ctx, "cone tracing a G-buffer");
 #endif
-}
-
-VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gb)
-{
-    return voxgi__cone_gbuffer_gl(ctx, vol, NULL, desc, gb);
-}
-
-VOXGI_API voxgi_result voxgi_cone_trace_svo_gl(voxgi_context *ctx, const voxgi_svo *svo, const voxgi_cone_desc *desc, const voxgi_gl_gbuffer *gb)
-{
-    return voxgi__cone_gbuffer_gl(ctx, NULL, svo, desc, gb);
 }
 
 VOXGI_API float voxgi_specular_half_angle(float roughness)
@@ -7432,7 +7529,7 @@ static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e
 static void voxgi__inject_cpu(void *user, size_t first, size_t end)
 {
     voxgi__inject *J = (voxgi__inject *)user;
-    int samples = J->desc->samples ? J->desc->samples : 16, s, a;
+    int samples = J->desc->samples, s, a;
     uint64_t rays = 0;
     size_t i;
     for (i = first; i < end; i++) {
@@ -7471,22 +7568,20 @@ static void voxgi__inject_cpu(void *user, size_t first, size_t end)
    per voxel, irradiance in xyz. */
 typedef struct voxgi__caster { float pos[4], dir[4], power[4], param[4]; } voxgi__caster; /* std430, as Caster */
 
-static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr, const voxgi__lights *Ls, const voxgi_grid *g,
-                                     int samples, size_t n, const float *pts, float *irr)
+/* The casters of a scene's light, each with its map layers (power[3]: the first layer): a
+   directional light one orthographic layer over a sphere around the grid and the scene, a
+   point or spot light six cube faces, a rectangular light and the emitters `samples` stratified
+   points with six faces each. Positions relative to the grid's origin. What light-space passes
+   draw maps from. */
+static voxgi_result voxgi__light_casters(voxgi_context *ctx, const voxgi__tracer *tr, const voxgi__lights *Ls, const voxgi_grid *g,
+                                         int samples, voxgi__caster **out, size_t *count, int *layer_count)
 {
-    voxgi__gl *gl = ctx->gl;
     const voxgi_scene *scene = Ls->scene;
     size_t nt = tr->flat.triangle_count, i, nc = 0, cap;
-    voxgi__caster *cs = NULL;
-    float *corners = NULL;
+    voxgi__caster *cs;
     double lo[3], hi[3], centre[3], radius = 0, vs = g->voxel_size;
-    unsigned int bufs[4] = {0, 0, 0, 0}, maps = 0, fbo = 0, vao = 0;
-    int a, layers = 0, size, max_layers = 0, res = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2])), f;
-    voxgi__gl_raster_state state;
-    voxgi_result r = voxgi__gl_build(ctx, 1, "sampling.glsl light_maps.glsl light_map_draw.glsl", &gl->prog_light_map_draw);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, "sampling.glsl light_maps.glsl inject.glsl", &gl->prog_inject);
-    if (r != VOXGI_OK) return r;
-    size = VOXGI__MIN(2048, VOXGI__MAX(64, 2 * res));
+    int a, layers = 0, f;
+    voxgi_result r = VOXGI_OK;
     for (a = 0; a < 3; a++) { lo[a] = 0; hi[a] = g->res[a] * vs; } /* the grid and every triangle, relative to the origin */
     for (i = 0; i < 9 * nt; i++) {
         double c = tr->v[i] - g->origin[i % 3];
@@ -7497,8 +7592,7 @@ static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr
     radius = 1.01 * sqrt(radius) + vs;
     cap = scene->light_count + (size_t)samples * (scene->light_count + 1);
     cs = (voxgi__caster *)voxgi__alloc_array(ctx, cap, sizeof *cs, 1);
-    corners = (float *)voxgi__alloc_array(ctx, nt ? 3 * nt : 1, 16, 1);
-    if (!cs || !corners) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the light maps");
+    if (!cs) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the light maps");
     for (i = 0; r == VOXGI_OK && i < scene->light_count; i++) {
         const voxgi_light *L = &scene->lights[i];
         double d[3], len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
@@ -7558,68 +7652,110 @@ static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr
         c->power[3] = (float)layers;
         layers += 6;
     }
+    if (r != VOXGI_OK) { voxgi__free(ctx, cs); cs = NULL; nc = 0; }
+    *out = cs;
+    *count = nc;
+    *layer_count = layers;
+    return r;
+}
+
+/* Draws the casters' distance maps (shaders/light_map_draw.glsl) into a new R32UI array
+   texture of `layers` size x size layers; *caster_buffer keeps the casters for the gather. */
+static voxgi_result voxgi__light_maps_gl(voxgi_context *ctx, const voxgi__tracer *tr, const voxgi_grid *g, const voxgi__caster *cs,
+                                         size_t nc, int layers, int size, unsigned int *caster_buffer, unsigned int *maps_out)
+{
+    voxgi__gl *gl = ctx->gl;
+    size_t nt = tr->flat.triangle_count, i;
+    float *corners;
+    double vs = g->voxel_size;
+    unsigned int corner_buffer, maps = 0, fbo = 0, vao = 0;
+    int f, max_layers = 0;
+    voxgi__gl_raster_state state;
+    const unsigned int far_bits = 0x7F7FFFFFu; /* FLT_MAX: nothing there */
+    unsigned int p = gl->prog_light_map_draw;
     gl->GetIntegerv(VOXGI__GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
-    if (r == VOXGI_OK && layers > max_layers)
-        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%d light map layers, GL_MAX_ARRAY_TEXTURE_LAYERS is %d (fewer samples or lights)", layers, max_layers);
-    if (r == VOXGI_OK && (double)size * size * 4 * layers > (ctx->desc.memory_budget ? (double)ctx->desc.memory_budget : 4e9))
-        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%d light maps of %d^2 texels", layers, size);
-    if (r == VOXGI_OK && layers > 0) { /* the maps */
-        const unsigned int far_bits = 0x7F7FFFFFu; /* FLT_MAX: nothing there */
-        unsigned int p = gl->prog_light_map_draw;
-        for (i = 0; i < 9 * nt; i++) corners[4 * (i / 3) + i % 3] = (float)(tr->v[i] - g->origin[i % 3]);
-        bufs[0] = voxgi__gl_buffer(ctx, 3 * nt * 16, corners);
-        bufs[1] = voxgi__gl_buffer(ctx, nc * sizeof *cs, cs);
-        gl->CreateTextures(VOXGI__GL_TEXTURE_2D_ARRAY, 1, &maps);
-        gl->TextureStorage3D(maps, 1, VOXGI__GL_R32UI, size, size, layers);
-        gl->ClearTexImage(maps, 0, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &far_bits);
-        voxgi__gl_raster_begin(gl, &state);
-        gl->CreateVertexArrays(1, &vao);
-        gl->CreateFramebuffers(1, &fbo);
-        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, size);
-        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, size);
-        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
-        gl->BindVertexArray(vao);
-        gl->Viewport(0, 0, size, size);
-        gl->UseProgram(p);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
-        gl->BindImageTexture(0, maps, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
-        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_near"), (float)(1e-4 * vs));
-        for (i = 0; i < nc; i++)
-            for (f = cs[i].pos[3] == 0 ? -1 : 0; f < (cs[i].pos[3] == 0 ? 0 : 6); f++) {
-                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_caster"), (int)i);
-                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_face"), f);
-                gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
-            }
-        gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
-        gl->BindVertexArray(0);
-        gl->DeleteFramebuffers(1, &fbo);
-        gl->DeleteVertexArrays(1, &vao);
-        voxgi__gl_raster_end(gl, &state);
-    }
+    if (layers > max_layers)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%d light map layers, GL_MAX_ARRAY_TEXTURE_LAYERS is %d (fewer samples or lights)", layers, max_layers);
+    if ((double)size * size * 4 * layers > (ctx->desc.memory_budget ? (double)ctx->desc.memory_budget : 4e9))
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%d light maps of %d^2 texels", layers, size);
+    if (!(corners = (float *)voxgi__alloc_array(ctx, nt ? 3 * nt : 1, 16, 1)))
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the light maps");
+    for (i = 0; i < 9 * nt; i++) corners[4 * (i / 3) + i % 3] = (float)(tr->v[i] - g->origin[i % 3]);
+    corner_buffer = voxgi__gl_buffer(ctx, 3 * nt * 16, corners);
+    *caster_buffer = voxgi__gl_buffer(ctx, nc * sizeof *cs, cs);
+    gl->CreateTextures(VOXGI__GL_TEXTURE_2D_ARRAY, 1, &maps);
+    gl->TextureStorage3D(maps, 1, VOXGI__GL_R32UI, size, size, layers);
+    gl->ClearTexImage(maps, 0, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &far_bits);
+    voxgi__gl_raster_begin(gl, &state);
+    gl->CreateVertexArrays(1, &vao);
+    gl->CreateFramebuffers(1, &fbo);
+    gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, size);
+    gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, size);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
+    gl->BindVertexArray(vao);
+    gl->Viewport(0, 0, size, size);
+    gl->UseProgram(p);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, corner_buffer);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *caster_buffer);
+    gl->BindImageTexture(0, maps, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
+    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_near"), (float)(1e-4 * vs));
+    for (i = 0; i < nc; i++)
+        for (f = cs[i].pos[3] == 0 ? -1 : 0; f < (cs[i].pos[3] == 0 ? 0 : 6); f++) {
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_caster"), (int)i);
+            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_face"), f);
+            gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
+        }
+    gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
+    gl->BindVertexArray(0);
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    voxgi__gl_raster_end(gl, &state);
+    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
+    voxgi__gl_unbind(gl);
+    voxgi__gl_delete_buffer(ctx, corner_buffer);
+    voxgi__free(ctx, corners);
+    *maps_out = maps;
+    return VOXGI_OK;
+}
+
+static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr, const voxgi__lights *Ls, const voxgi_grid *g,
+                                     int samples, size_t n, const float *pts, float *irr)
+{
+    voxgi__gl *gl = ctx->gl;
+    size_t nc = 0;
+    voxgi__caster *cs = NULL;
+    double vs = g->voxel_size;
+    unsigned int bufs[2] = {0, 0}, casters = 0, maps = 0;
+    int a, layers = 0, size, res = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2]));
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_light_map_draw);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_inject);
+    if (r != VOXGI_OK) return r;
+    size = VOXGI__MIN(2048, VOXGI__MAX(64, 2 * res));
+    r = voxgi__light_casters(ctx, tr, Ls, g, samples, &cs, &nc, &layers);
+    if (r == VOXGI_OK && layers > 0) r = voxgi__light_maps_gl(ctx, tr, g, cs, nc, layers, size, &casters, &maps);
     if (r == VOXGI_OK && n) { /* the gather */
         unsigned int p = gl->prog_inject;
-        bufs[2] = voxgi__gl_buffer(ctx, n * 32, pts);
-        bufs[3] = voxgi__gl_buffer(ctx, n * 16, NULL);
+        bufs[0] = voxgi__gl_buffer(ctx, n * 32, pts);
+        bufs[1] = voxgi__gl_buffer(ctx, n * 16, NULL);
         gl->UseProgram(p);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[2]);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1] ? bufs[1] : bufs[3]);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, bufs[3]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, casters ? casters : bufs[1]);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, bufs[1]);
         if (maps) gl->BindImageTexture(0, maps, 0, 1, 0, VOXGI__GL_READ_ONLY, VOXGI__GL_R32UI);
         gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_casters"), layers > 0 ? (int)nc : 0);
         gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_size"), size);
         gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_bias"), (float)(0.25 * vs));
         voxgi__gl_dispatch_rows(gl, n);
-        r = voxgi__gl_read_buffer(ctx, bufs[3], irr, n * 16);
+        r = voxgi__gl_read_buffer(ctx, bufs[1], irr, n * 16);
     }
     gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
     voxgi__gl_unbind(gl);
-    for (a = 0; a < 4; a++) voxgi__gl_delete_buffer(ctx, bufs[a]);
+    for (a = 0; a < 2; a++) voxgi__gl_delete_buffer(ctx, bufs[a]);
+    voxgi__gl_delete_buffer(ctx, casters);
     if (maps) gl->DeleteTextures(1, &maps);
     voxgi__free(ctx, cs);
-    voxgi__free(ctx, corners);
     if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "light injection");
     return r;
 }
@@ -7648,7 +7784,9 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
     }
     for (b = 1; r == VOXGI_OK && b < desc->bounces; b++) {
         voxgi_volume *next = NULL;
-        r = voxgi_cone_trace(ctx, *vol, &desc->gather, n, pos, nrm, irr, NULL);
+        voxgi_radiance_source source = {NULL, NULL};
+        source.volume = *vol;
+        r = voxgi_cone_trace(ctx, &source, &desc->gather, n, pos, nrm, irr, NULL);
         for (i = 0; r == VOXGI_OK && i < n; i++) {
             float *o = J->rgba + 4 * J->index[i];
             double p[3], nl[3];
@@ -7656,7 +7794,7 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
             for (a = 0; a < 3; a++)
                 o[a] = direct[3 * i + (size_t)a] + (lit ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * irr[3 * i + (size_t)a]) : 0.0f);
         }
-        slots[4] = J->rgba;
+        slots[VOXGI__RADIANCE_SLOT] = J->rgba;
         if (r == VOXGI_OK) r = voxgi__volume_new(ctx, g, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &next);
         if (r == VOXGI_OK) r = voxgi__volume_build(ctx, next, slots);
         if (r == VOXGI_OK) { voxgi_volume_destroy(ctx, *vol); *vol = next; }
@@ -7669,9 +7807,19 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
     return r;
 }
 
-VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *vx, const voxgi_inject_desc *desc,
+/* Every default of a voxgi_inject_desc: 16 points per area light and on the emitters. */
+static voxgi_inject_desc voxgi__inject_defaults(const voxgi_inject_desc *in)
+{
+    voxgi_inject_desc d = *in;
+    if (!d.samples) d.samples = 16;
+    return d;
+}
+
+VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *vx, const voxgi_inject_desc *desc_in,
                                           voxgi_volume **out)
 {
+    voxgi_inject_desc resolved;
+    const voxgi_inject_desc *desc = &resolved;
     voxgi__tracer tr;
     voxgi__lights Ls;
     voxgi__inject J;
@@ -7685,9 +7833,10 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     int a;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!vx || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
+    if (!vx || !desc_in || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, desc or out is NULL");
     *out = NULL;
-    if ((vx->info.attributes & 3u) != 3u)
+    resolved = voxgi__inject_defaults(desc_in);
+    if ((vx->info.attributes & (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL)) != (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light injection needs voxels with ALBEDO and NORMAL (they hold 0x%x)", vx->info.attributes);
     if (desc->samples < 0 || desc->bounces < 0 || desc->bounces > 64)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d (0..64)", desc->samples, desc->bounces);
@@ -7699,8 +7848,8 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
     if (r == VOXGI_OK) r = voxgi__volume_new(ctx, &vx->info.grid, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &vol);
     if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU && desc->bounces <= 1) { /* level 0 written in place, the mips after it */
-        if ((vol->cpu[4][0] = (float *)voxgi__alloc_array(ctx, vol->voxels, 16, 0)) != NULL) memset(vol->cpu[4][0], 0, (size_t)nvox * 16);
-        rgba = vol->cpu[4][0];
+        if ((vol->cpu[VOXGI__RADIANCE_SLOT][0] = (float *)voxgi__alloc_array(ctx, vol->voxels, 16, 0)) != NULL) memset(vol->cpu[VOXGI__RADIANCE_SLOT][0], 0, (size_t)nvox * 16);
+        rgba = vol->cpu[VOXGI__RADIANCE_SLOT][0];
     } else if (r == VOXGI_OK) /* GL uploads it; the bounces rewrite it for each new volume */
         own_rgba = rgba = (float *)voxgi__alloc_array(ctx, (size_t)nvox, 16, 1);
     if (r == VOXGI_OK && (!rgba || !(bits = (uint32_t *)voxgi__alloc(ctx, need)) || !(index = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0))))
@@ -7734,7 +7883,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
                 for (a = 0; a < 3; a++) { io[8 * i + (size_t)a] = (float)(p[a] - J.g->origin[a]); io[8 * i + 4 + (size_t)a] = (float)nl[a]; }
                 io[8 * i + 3] = 0;
             }
-            if (r == VOXGI_OK) r = voxgi__inject_gl(ctx, &tr, &Ls, J.g, desc->samples ? desc->samples : 16, n, io, io);
+            if (r == VOXGI_OK) r = voxgi__inject_gl(ctx, &tr, &Ls, J.g, desc->samples, n, io, io);
             for (i = 0; r == VOXGI_OK && i < n; i++) {
                 double e[3];
                 for (a = 0; a < 3; a++) e[a] = io[4 * i + (size_t)a];
@@ -7744,7 +7893,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
         } else
 #endif
             voxgi__parallel(ctx, n, 256, voxgi__inject_cpu, &J);
-        slots[4] = rgba;
+        slots[VOXGI__RADIANCE_SLOT] = rgba;
         if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
         if (r == VOXGI_OK && desc->bounces > 1) r = voxgi__inject_bounces(ctx, &J, n, desc, &vol);
         if (r == VOXGI_OK) vol->info.ms = voxgi__now_ms() - t0;
@@ -7811,7 +7960,7 @@ static voxgi_result voxgi__gbuffer_gl(voxgi_context *ctx, voxgi__gbuffer_job *J)
     double far_d = 0;
     float *buf;
     voxgi__gl_raster_state state;
-    voxgi_result r = voxgi__gl_build(ctx, 1, "gbuffer.glsl", &gl->prog_gbuffer);
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_gbuffer);
     if (r != VOXGI_OK) return r;
     if (!(buf = (float *)voxgi__alloc_array(ctx, VOXGI__MAX(pixels, 3 * nt) + 1, 16, 0)))
         return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d G-buffer", w, h);
@@ -7992,7 +8141,7 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
 {
     voxgi__vct_job *J = (voxgi__vct_job *)user;
     const voxgi_camera *cam = &J->desc->camera;
-    int samples = J->desc->samples ? J->desc->samples : 16;
+    int samples = J->desc->samples;
     uint64_t rays = 0;
     size_t y;
     for (y = first; y < end; y++) {
@@ -8061,6 +8210,7 @@ static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_volu
 {
     size_t i, n = 0;
     float *pos, *nrm, *irr;
+    voxgi_radiance_source source;
     voxgi_result r = VOXGI_OK;
     for (i = 0; i < pixels; i++) n += want[i];
     *traced = n;
@@ -8071,7 +8221,9 @@ static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_volu
     if (!pos || !nrm || !irr) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu cone points", (unsigned long)n);
     for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
         if (want[i]) { memcpy(pos + 3 * n, J->pos + 3 * i, 12); memcpy(nrm + 3 * n, J->nrm + 3 * i, 12); n++; }
-    if (r == VOXGI_OK) r = svo ? voxgi_cone_trace_svo(ctx, svo, cd, n, pos, nrm, irr, NULL) : voxgi_cone_trace(ctx, vol, cd, n, pos, nrm, irr, NULL);
+    source.volume = svo ? NULL : vol;
+    source.octree = svo;
+    if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, &source, cd, n, pos, nrm, irr, NULL);
     for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
         if (want[i]) { memcpy(J->irr + 3 * i, irr + 3 * n, 12); n++; }
     voxgi__free(ctx, pos);
@@ -8080,9 +8232,24 @@ static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_volu
     return r;
 }
 
-VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
+/* Every default of a voxgi_vct_desc: 128 voxels, 16 rays per pixel, cones at every pixel, and
+   the injection's points: 16 shared by every voxel on GL's maps, 4 stratified per voxel on the
+   CPU's shadow rays. */
+static voxgi_vct_desc voxgi__vct_defaults(const voxgi_context *ctx, const voxgi_vct_desc *in)
+{
+    voxgi_vct_desc d = *in;
+    if (!d.resolution) d.resolution = 128;
+    if (!d.samples) d.samples = 16;
+    if (!d.inject_samples) d.inject_samples = ctx->backend == VOXGI_BACKEND_GL && !d.shadow_rays ? 16 : 4;
+    if (d.cone_stride < 1) d.cone_stride = 1;
+    return d;
+}
+
+VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc_in, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info)
 {
+    voxgi_vct_desc resolved;
+    const voxgi_vct_desc *desc = desc_in;
     voxgi__tracer tr;
     voxgi__lights Ls;
     voxgi__vct_job J;
@@ -8102,7 +8269,6 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
     w = desc->camera.width;
     h = desc->camera.height;
-    stride = desc->cone_stride > 1 ? desc->cone_stride : 1;
     memset(&inf, 0, sizeof inf);
     memset(&J, 0, sizeof J);
     if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
@@ -8112,6 +8278,9 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
         desc->cone_stride > 64)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, inject_samples %d, resolution %d (0..4096), bounces %d (0..64), cone_stride %d (0..64)", desc->samples, desc->inject_samples,
                            desc->resolution, desc->bounces, desc->cone_stride);
+    resolved = voxgi__vct_defaults(ctx, desc_in);
+    desc = &resolved;
+    stride = desc->cone_stride;
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
@@ -8130,11 +8299,11 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
         memset(&fit, 0, sizeof fit);
         memset(&xd, 0, sizeof xd);
         memset(&id, 0, sizeof id);
-        fit.res = desc->resolution ? desc->resolution : 128;
+        fit.res = desc->resolution;
         fit.padding = 1;
         xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
         id.volume.filter = desc->filter;
-        id.samples = desc->inject_samples ? desc->inject_samples : (ctx->backend == VOXGI_BACKEND_GL && !desc->shadow_rays ? 16 : 4);
+        id.samples = desc->inject_samples;
         id.seed = desc->seed;
         id.shadow_rays = desc->shadow_rays;
         id.bounces = desc->bounces;
@@ -8320,9 +8489,19 @@ static void voxgi__render_rows(void *user, size_t first, size_t end)
     VOXGI__ATOMIC_ADD_SIZE(&R->rays, (size_t)rays);
 }
 
-VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
+/* Every default of a voxgi_reference_desc: 16 samples per pixel. */
+static voxgi_reference_desc voxgi__reference_defaults(const voxgi_reference_desc *in)
+{
+    voxgi_reference_desc d = *in;
+    if (!d.samples) d.samples = 16;
+    return d;
+}
+
+VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc_in, float *rgb,
                                               size_t rgb_bytes, voxgi_reference_info *info)
 {
+    voxgi_reference_desc resolved;
+    const voxgi_reference_desc *desc = desc_in;
     voxgi__tracer tr;
     voxgi__render R;
     const voxgi_camera *cam;
@@ -8339,12 +8518,14 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     pixels = (size_t)cam->width * (size_t)cam->height;
     if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
     if (desc->samples < 0 || desc->bounces < -1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d", desc->samples, desc->bounces);
+    resolved = voxgi__reference_defaults(desc_in);
+    desc = &resolved;
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     R.ctx = ctx;
     R.tr = &tr;
     R.desc = desc;
-    samples = desc->samples ? desc->samples : 16;
+    samples = desc->samples;
     R.sum = (double *)voxgi__alloc_array(ctx, pixels, 3 * sizeof(double), 1);
     if (!R.sum) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d render", cam->width, cam->height);
     else r = voxgi__lights_build(ctx, scene, &tr, &R.lights);
