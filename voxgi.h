@@ -975,6 +975,14 @@ static int voxgi__progress(voxgi_context *ctx, double fraction, const char *stag
     return ctx->desc.progress.func ? ctx->desc.progress.func(fraction, stage, ctx->desc.progress.user) : 0;
 }
 
+/* Reports progress at `stage`; non-zero when the caller cancelled (the error then says where). */
+static int voxgi__cancelled(voxgi_context *ctx, double fraction, const char *what, const char *stage)
+{
+    if (!voxgi__progress(ctx, fraction, stage)) return 0;
+    voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "%s cancelled by the progress callback (%s)", what, stage);
+    return 1;
+}
+
 static int voxgi__core_count(void)
 {
 #if !defined(VOXGI_NO_THREADS) && defined(_SC_NPROCESSORS_ONLN)
@@ -6225,14 +6233,6 @@ static voxgi_result voxgi__svo_size(voxgi_context *ctx, voxgi_svo *svo, uint64_t
     return VOXGI_OK;
 }
 
-/* Reports octree progress; non-zero: the caller cancelled (the error is set). */
-static int voxgi__svo_cancelled(voxgi_context *ctx, double fraction, const char *stage)
-{
-    if (!voxgi__progress(ctx, fraction, stage)) return 0;
-    voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "octree build cancelled by the progress callback (%s)", stage);
-    return 1;
-}
-
 /* A node's coordinates at its level from its Morton code. */
 static void voxgi__svo_coords(uint64_t code, int lev, int64_t c[3])
 {
@@ -6396,7 +6396,7 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         first[m] = entries;
         entries += flagged;
         if (m < depth - 1) tiles += flagged;
-        if (voxgi__svo_cancelled(ctx, 0.5 * m / depth, "octree: nodes")) { r = VOXGI_ERR_CANCELLED; break; }
+        if (voxgi__cancelled(ctx, 0.5 * m / depth, "octree build", "octree: nodes")) { r = VOXGI_ERR_CANCELLED; break; }
         r = voxgi__svo_grow_gl(ctx, &svo->gl_child, &child_cap, 4 * (1 + 8 * tiles), "child pointers");
         if (r == VOXGI_OK) r = voxgi__svo_grow_gl(ctx, &list, &list_cap, 16 * entries, "node list");
         if (r != VOXGI_OK) break;
@@ -6495,7 +6495,7 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         svo->info.bytes += (size_t)(node_bytes + leaf_bytes);
         svo->info.dense_bytes += (size_t)(voxgi_grid_voxel_count(&svo->info.grid) * (uint64_t)svo->slot_bytes[a]);
         r = voxgi__gl_check(ctx, "the octree's values");
-        if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree: values")) r = VOXGI_ERR_CANCELLED;
+        if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree build", "octree: values")) r = VOXGI_ERR_CANCELLED;
     }
     svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
     gl->Finish();
@@ -6728,7 +6728,7 @@ static voxgi_result voxgi__svo_values_cpu(voxgi_context *ctx, voxgi_svo *svo, co
             }
         svo->info.bytes += (size_t)((svo->info.nodes + svo->info.leaf_slots) * (uint64_t)b);
         svo->info.dense_bytes += (size_t)(nvox * (uint64_t)b);
-        if (voxgi__svo_cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree: values")) return VOXGI_ERR_CANCELLED;
+        if (voxgi__cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree build", "octree: values")) return VOXGI_ERR_CANCELLED;
     }
     return VOXGI_OK;
 }
@@ -6767,11 +6767,11 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
 #endif
     {
         if (r == VOXGI_OK) r = voxgi__sort_codes(ctx, L.codes[depth], L.order, n, 3 * depth);
-        if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.3, "octree: voxels sorted")) r = VOXGI_ERR_CANCELLED;
+        if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.3, "octree build", "octree: voxels sorted")) r = VOXGI_ERR_CANCELLED;
         t1 = voxgi__now_ms();
         svo->info.ms_sort = t1 - t0;
         if (r == VOXGI_OK) r = voxgi__svo_nodes_cpu(ctx, svo, desc, n, &L);
-        if (r == VOXGI_OK && voxgi__svo_cancelled(ctx, 0.5, "octree: nodes")) r = VOXGI_ERR_CANCELLED;
+        if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.5, "octree build", "octree: nodes")) r = VOXGI_ERR_CANCELLED;
         t0 = voxgi__now_ms();
         svo->info.ms_nodes = t0 - t1;
         if (r == VOXGI_OK && desc->neighbours) {
@@ -8245,6 +8245,108 @@ static voxgi_vct_desc voxgi__vct_defaults(const voxgi_context *ctx, const voxgi_
     return d;
 }
 
+/* The radiance the cones gather: the scene voxelized on a grid of desc->resolution voxels
+   along its longest side (albedo and normal), the direct light injected (and bounced), in a
+   volume or, with desc->octree, moved into an octree. */
+static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, voxgi_vct_info *inf,
+                                        voxgi_voxels **vox, voxgi_volume **vol, voxgi_svo **svo)
+{
+    voxgi_fit_desc fit;
+    voxgi_voxelize_desc xd;
+    voxgi_inject_desc id;
+    double t1;
+    voxgi_result r;
+    memset(&fit, 0, sizeof fit);
+    memset(&xd, 0, sizeof xd);
+    memset(&id, 0, sizeof id);
+    fit.res = desc->resolution;
+    fit.padding = 1;
+    xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+    id.volume.filter = desc->filter;
+    id.samples = desc->inject_samples;
+    id.seed = desc->seed;
+    id.shadow_rays = desc->shadow_rays;
+    id.bounces = desc->bounces;
+    id.gather = desc->cones;
+    t1 = voxgi__now_ms();
+    r = voxgi_fit_grid(ctx, scene, &fit, &xd.grid);
+    if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &xd, vox);
+    inf->ms_voxelize = voxgi__now_ms() - t1;
+    if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.1, "cone-traced image", "vct: light injection")) r = VOXGI_ERR_CANCELLED;
+    if (r == VOXGI_OK) { /* emission is left out: the pixels take it from the direct light */
+        inf->voxels = (*vox)->info.voxel_count;
+        t1 = voxgi__now_ms();
+        r = voxgi_inject_light(ctx, scene, *vox, &id, vol);
+        inf->ms_inject = voxgi__now_ms() - t1;
+    }
+    if (r == VOXGI_OK && desc->octree) { /* the radiance moves into an octree; the volume goes */
+        voxgi_svo_desc sd;
+        voxgi_svo_info si;
+        memset(&sd, 0, sizeof sd);
+        sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
+        sd.radiance = *vol;
+        sd.format = desc->octree_format;
+        sd.bricks = desc->octree_bricks;
+        t1 = voxgi__now_ms();
+        r = voxgi_svo_create(ctx, *vox, &sd, svo);
+        inf->ms_octree = voxgi__now_ms() - t1;
+        voxgi_volume_destroy(ctx, *vol);
+        *vol = NULL;
+        if (r == VOXGI_OK) { voxgi_svo_query(*svo, &si); inf->radiance_bytes = si.bytes; }
+    } else if (*vol) {
+        voxgi_volume_info vi;
+        voxgi_volume_query(*vol, &vi);
+        inf->radiance_bytes = vi.bytes;
+    }
+    return r;
+}
+
+/* The cones' irradiance at every pixel's surface (J->irr), or with a cone stride s > 1 at every
+   s-th pixel across and down (and the last row and column), the pixels between taking the
+   bilinear mean of the four around them that share their surface, or tracing their own where
+   none does. */
+static voxgi_result voxgi__vct_cones(voxgi_context *ctx, const voxgi_vct_desc *desc, voxgi__vct_job *J, const voxgi_volume *vol,
+                                     const voxgi_svo *svo, double voxel_size, size_t *traced)
+{
+    int w = desc->camera.width, h = desc->camera.height, stride = desc->cone_stride;
+    size_t pixels = (size_t)w * (size_t)h, i, n = 0, more = 0;
+    unsigned char *want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
+    voxgi_result r = VOXGI_OK;
+    if (!want) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    for (i = 0; i < pixels; i++) { /* every pixel's surface, or with a stride the grid of anchors */
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
+        want[i] = J->prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
+    }
+    r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, J, pixels, want, &n);
+    for (i = 0; r == VOXGI_OK && stride > 1 && i < pixels; i++) { /* the rest between the four anchors around them */
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a;
+        int xs[2], ys[2];
+        double sum = 0, e[3] = {0, 0, 0};
+        if (want[i] || J->prim[i] == UINT32_MAX) { want[i] = 0; continue; }
+        xs[0] = x0; xs[1] = VOXGI__MIN(x0 + stride, w - 1);
+        ys[0] = y0; ys[1] = VOXGI__MIN(y0 + stride, h - 1);
+        for (k = 0; k < 4; k++) {
+            size_t c = (size_t)ys[k >> 1] * (size_t)w + (size_t)xs[k & 1];
+            double wx = xs[1] > xs[0] ? (double)(x - xs[0]) / (xs[1] - xs[0]) : 0, wy = ys[1] > ys[0] ? (double)(y - ys[0]) / (ys[1] - ys[0]) : 0;
+            double wt = ((k & 1) ? wx : 1 - wx) * ((k >> 1) ? wy : 1 - wy), dn = 0, dp = 0;
+            if (J->prim[c] == UINT32_MAX || wt <= 0) continue;
+            for (a = 0; a < 3; a++) {
+                dn += (double)J->nrm[3 * c + (size_t)a] * J->nrm[3 * i + (size_t)a];
+                dp += ((double)J->pos[3 * c + (size_t)a] - J->pos[3 * i + (size_t)a]) * J->nrm[3 * i + (size_t)a];
+            }
+            if (dn < 0.9 || fabs(dp) > voxel_size) continue; /* another surface: not its light */
+            sum += wt;
+            for (a = 0; a < 3; a++) e[a] += wt * J->irr[3 * c + (size_t)a];
+        }
+        if (sum > 1e-3) for (a = 0; a < 3; a++) J->irr[3 * i + (size_t)a] = (float)(e[a] / sum);
+        else want[i] = 1; /* no anchor shares its surface: its own cones */
+    }
+    if (r == VOXGI_OK && stride > 1) r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, J, pixels, want, &more);
+    *traced = n + more;
+    voxgi__free(ctx, want);
+    return r;
+}
+
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc_in, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info)
 {
@@ -8253,22 +8355,15 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi__tracer tr;
     voxgi__lights Ls;
     voxgi__vct_job J;
-    voxgi_fit_desc fit;
-    voxgi_voxelize_desc xd;
-    voxgi_inject_desc id;
     voxgi_voxels *vox = NULL;
     voxgi_volume *vol = NULL;
     voxgi_svo *svo = NULL;
     voxgi_vct_info inf;
-    size_t pixels, i, n = 0;
-    unsigned char *want = NULL;
+    size_t pixels;
     double t0 = voxgi__now_ms(), t1;
-    int w, h, stride;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
-    w = desc->camera.width;
-    h = desc->camera.height;
     memset(&inf, 0, sizeof inf);
     memset(&J, 0, sizeof J);
     if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
@@ -8280,7 +8375,6 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
                            desc->resolution, desc->bounces, desc->cone_stride);
     resolved = voxgi__vct_defaults(ctx, desc_in);
     desc = &resolved;
-    stride = desc->cone_stride;
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
@@ -8296,95 +8390,26 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if (!J.pos || !J.nrm || !J.irr || !J.prim) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-pixel image", (unsigned long)pixels);
     if (r == VOXGI_OK) r = voxgi__gbuffer(ctx, &tr, &desc->camera, J.pos, J.nrm, J.prim);
     if (r == VOXGI_OK && !desc->no_gi) {
-        memset(&fit, 0, sizeof fit);
-        memset(&xd, 0, sizeof xd);
-        memset(&id, 0, sizeof id);
-        fit.res = desc->resolution;
-        fit.padding = 1;
-        xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
-        id.volume.filter = desc->filter;
-        id.samples = desc->inject_samples;
-        id.seed = desc->seed;
-        id.shadow_rays = desc->shadow_rays;
-        id.bounces = desc->bounces;
-        id.gather = desc->cones;
+        if (voxgi__cancelled(ctx, 0.0, "cone-traced image", "vct: voxelization")) r = VOXGI_ERR_CANCELLED;
+        if (r == VOXGI_OK) r = voxgi__vct_radiance(ctx, scene, desc, &inf, &vox, &vol, &svo);
+        if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.4, "cone-traced image", "vct: cones")) r = VOXGI_ERR_CANCELLED;
         t1 = voxgi__now_ms();
-        r = voxgi_fit_grid(ctx, scene, &fit, &xd.grid);
-        if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &xd, &vox);
-        inf.ms_voxelize = voxgi__now_ms() - t1;
-        if (r == VOXGI_OK) { /* emission is left out: the pixels take it from the direct light */
-            inf.voxels = vox->info.voxel_count;
+        if (r == VOXGI_OK) {
             J.voxel_size = vox->info.grid.voxel_size;
-            t1 = voxgi__now_ms();
-            r = voxgi_inject_light(ctx, scene, vox, &id, &vol);
-            inf.ms_inject = voxgi__now_ms() - t1;
+            r = voxgi__vct_cones(ctx, desc, &J, vol, svo, vox->info.grid.voxel_size, &inf.cone_points);
         }
-        if (r == VOXGI_OK && desc->octree) { /* the radiance moves into an octree; the volume goes */
-            voxgi_svo_desc sd;
-            voxgi_svo_info si;
-            memset(&sd, 0, sizeof sd);
-            sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
-            sd.radiance = vol;
-            sd.format = desc->octree_format;
-            sd.bricks = desc->octree_bricks;
-            t1 = voxgi__now_ms();
-            r = voxgi_svo_create(ctx, vox, &sd, &svo);
-            inf.ms_octree = voxgi__now_ms() - t1;
-            voxgi_volume_destroy(ctx, vol);
-            vol = NULL;
-            if (r == VOXGI_OK) { voxgi_svo_query(svo, &si); inf.radiance_bytes = si.bytes; }
-        } else if (vol) {
-            voxgi_volume_info vi;
-            voxgi_volume_query(vol, &vi);
-            inf.radiance_bytes = vi.bytes;
-        }
-        t1 = voxgi__now_ms();
-        if (r == VOXGI_OK && !(want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
-        for (i = 0; r == VOXGI_OK && i < pixels; i++) { /* every pixel's surface, or with a stride the grid of anchors */
-            int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
-            want[i] = J.prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
-        }
-        if (r == VOXGI_OK) r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, &J, pixels, want, &n);
-        for (i = 0; r == VOXGI_OK && stride > 1 && i < pixels; i++) { /* the rest between the four anchors around them */
-            int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a;
-            int xs[2], ys[2];
-            double sum = 0, e[3] = {0, 0, 0};
-            if (want[i] || J.prim[i] == UINT32_MAX) { want[i] = 0; continue; }
-            xs[0] = x0; xs[1] = VOXGI__MIN(x0 + stride, w - 1);
-            ys[0] = y0; ys[1] = VOXGI__MIN(y0 + stride, h - 1);
-            for (k = 0; k < 4; k++) {
-                size_t c = (size_t)ys[k >> 1] * (size_t)w + (size_t)xs[k & 1];
-                double wx = xs[1] > xs[0] ? (double)(x - xs[0]) / (xs[1] - xs[0]) : 0, wy = ys[1] > ys[0] ? (double)(y - ys[0]) / (ys[1] - ys[0]) : 0;
-                double wt = ((k & 1) ? wx : 1 - wx) * ((k >> 1) ? wy : 1 - wy), dn = 0, dp = 0;
-                if (J.prim[c] == UINT32_MAX || wt <= 0) continue;
-                for (a = 0; a < 3; a++) {
-                    dn += (double)J.nrm[3 * c + (size_t)a] * J.nrm[3 * i + (size_t)a];
-                    dp += ((double)J.pos[3 * c + (size_t)a] - J.pos[3 * i + (size_t)a]) * J.nrm[3 * i + (size_t)a];
-                }
-                if (dn < 0.9 || fabs(dp) > vox->info.grid.voxel_size) continue; /* another surface: not its light */
-                sum += wt;
-                for (a = 0; a < 3; a++) e[a] += wt * J.irr[3 * c + (size_t)a];
-            }
-            if (sum > 1e-3) for (a = 0; a < 3; a++) J.irr[3 * i + (size_t)a] = (float)(e[a] / sum);
-            else want[i] = 1; /* no anchor shares its surface: its own cones */
-        }
-        if (r == VOXGI_OK && stride > 1) {
-            size_t more = 0;
-            r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, &J, pixels, want, &more);
-            n += more;
-        }
-        inf.cone_points = n;
         inf.ms_cones = voxgi__now_ms() - t1;
     }
+    if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.8, "cone-traced image", "vct: direct light")) r = VOXGI_ERR_CANCELLED;
     t1 = voxgi__now_ms();
     if (r == VOXGI_OK) voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__vct_shade, &J);
     inf.ms_direct = voxgi__now_ms() - t1;
     inf.ms = voxgi__now_ms() - t0;
+    if (r == VOXGI_OK) voxgi__progress(ctx, 1.0, "vct: done");
     if (info) *info = inf;
     voxgi_volume_destroy(ctx, vol);
     voxgi_svo_destroy(ctx, svo);
     if (vox) voxgi_voxels_destroy(ctx, vox);
-    voxgi__free(ctx, want);
     voxgi__free(ctx, J.pos);
     voxgi__free(ctx, J.nrm);
     voxgi__free(ctx, J.irr);
