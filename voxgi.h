@@ -4518,34 +4518,16 @@ static void voxgi__vox_volume_buffer_cpu(const voxgi__vox_shared *vs, size_t ti,
 /* The Volume Buffer: three layered draws (one per sweep axis, each triangle in the sweep of its
    dominant axis) into float 3D targets blended per attribute, then merged into the bit grid and,
    with attributes, each set voxel's values (on the CPU afterwards, as floats). */
-static voxgi_result voxgi__vox_volume_buffer_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
-                                            const voxgi_voxelize_desc *d, unsigned int *bits_out, voxgi__attr *attr,
-                                            voxgi_voxels_info *info)
+/* Each triangle's values as the Volume Buffer's targets take them: albedo, normal (stored as
+   n / 2 + 1/2 under MAX blending, so that the maximum of the stored values is the component
+   wise maximum), emission, opacity; 10 floats per triangle. */
+static float *voxgi__vox_volume_buffer_values(voxgi_context *ctx, const voxgi__flat *f, const voxgi_voxelize_desc *d)
 {
-    voxgi__gl *gl = ctx->gl;
-    const voxgi_grid *g = &d->grid;
-    voxgi__gl_raster_state state;
-    unsigned int attrs = d->attributes, tex[3][3], fbo = 0, vao = 0, verts = 0, tris = 0, values_buf = 0, lost_buf = 0, p, zero = 0;
-    unsigned char blend_was[3];
-    int saved[3][6], max3d = 0, c, k, i, targets = 1 + ((attrs & (VOXGI_ATTRIBUTE_NORMAL | VOXGI_ATTRIBUTE_OPACITY)) ? 1 : 0) +
-                                                              ((attrs & VOXGI_ATTRIBUTE_EMISSION) ? 1 : 0);
-    uint64_t words = voxgi__grid_words(g), nvox = voxgi_grid_voxel_count(g), bytes_per_voxel = attrs ? 16u * (uint64_t)targets : 4u;
-    float *tv;
+    float *tv = (float *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, 10 * sizeof(float), 1);
+    unsigned int attrs = d->attributes;
     size_t t;
-    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_buffer);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_buffer_big);
-    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_merge);
-    if (r != VOXGI_OK) return r;
-    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
-    if (g->res[0] > max3d || g->res[1] > max3d || g->res[2] > max3d)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's 3D targets stop at GL_MAX_3D_TEXTURE_SIZE %d", max3d);
-    if (3 * nvox * bytes_per_voxel > ((uint64_t)1 << 30))
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's three %dx%dx%d sweeps need %llu MiB of float targets "
-                           "(at most 1024 here); ask for fewer attributes or a smaller grid", g->res[0], g->res[1], g->res[2],
-                           (unsigned long long)(3 * nvox * bytes_per_voxel >> 20));
-    /* each triangle's values as the targets take them */
-    tv = (float *)voxgi__alloc_array(ctx, f->triangle_count ? f->triangle_count : 1, 10 * sizeof(float), 1);
-    if (!tv) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' values");
+    int k;
+    if (!tv) return NULL;
     for (t = 0; t < f->triangle_count && attrs; t++) {
         const voxgi_material *m = voxgi__tri_material(f, t);
         double n[3];
@@ -4557,34 +4539,46 @@ static voxgi_result voxgi__vox_volume_buffer_gl(voxgi_context *ctx, const voxgi_
         }
         tv[10 * t + 9] = 1.0f - m->transparency;
     }
-    voxgi__vox_scene_buffers_gl(ctx, f, vp, &verts, &tris, &r);
-    values_buf = voxgi__gl_buffer(ctx, f->triangle_count * 10 * sizeof(float), tv);
-    lost_buf = voxgi__gl_buffer(ctx, 8 + 4 * f->triangle_count, NULL); /* lost, big_count, big_list */
-    gl->ClearNamedBufferData(lost_buf, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-    voxgi__free(ctx, tv);
-    memset(tex, 0, sizeof tex);
+    return tv;
+}
+
+/* The GL blend state of draw buffers 0-2, which the Volume Buffer's sweeps change. */
+typedef struct voxgi__gl_blend_state { unsigned char enabled[3]; int value[3][6]; } voxgi__gl_blend_state;
+static const unsigned int voxgi__gl_blend_names[6] = {VOXGI__GL_BLEND_SRC_RGB, VOXGI__GL_BLEND_DST_RGB, VOXGI__GL_BLEND_SRC_ALPHA,
+                                                      VOXGI__GL_BLEND_DST_ALPHA, VOXGI__GL_BLEND_EQUATION_RGB, VOXGI__GL_BLEND_EQUATION_ALPHA};
+
+/* The three sweeps (one per axis c, into 3D targets tex[c][0..2]: the fragment count and
+   albedo, normal and opacity, emission), each triangle drawn once with the small program, then
+   the ones the geometry shader listed as spanning many slices with the big one. */
+static voxgi_result voxgi__vox_volume_buffer_sweeps_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi_voxelize_desc *d,
+                                                       unsigned int tex[3][3], unsigned int values_buf, unsigned int lost_buf,
+                                                       voxgi_voxels_info *info)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    voxgi__gl_raster_state state;
+    voxgi__gl_blend_state blend;
+    unsigned int attrs = d->attributes, fbo = 0, vao = 0, p, zero = 0, eq[3][2];
+    int c, k, i;
+    voxgi_result r = VOXGI_OK;
     gl->CreateVertexArrays(1, &vao);
     gl->CreateFramebuffers(1, &fbo);
-    for (i = 0; i < 3; i++) { /* the blend state of draw buffers 0-2, saved first: it is restored last */
-        static const unsigned int names[6] = {VOXGI__GL_BLEND_SRC_RGB, VOXGI__GL_BLEND_DST_RGB, VOXGI__GL_BLEND_SRC_ALPHA,
-                                              VOXGI__GL_BLEND_DST_ALPHA, VOXGI__GL_BLEND_EQUATION_RGB, VOXGI__GL_BLEND_EQUATION_ALPHA};
-        blend_was[i] = gl->IsEnabledi(VOXGI__GL_BLEND, (unsigned)i);
-        for (k = 0; k < 6; k++) gl->GetIntegeri_v(names[k], (unsigned)i, &saved[i][k]);
+    for (i = 0; i < 3; i++) { /* saved first: restored last */
+        blend.enabled[i] = gl->IsEnabledi(VOXGI__GL_BLEND, (unsigned)i);
+        for (k = 0; k < 6; k++) gl->GetIntegeri_v(voxgi__gl_blend_names[k], (unsigned)i, &blend.value[i][k]);
     }
     voxgi__gl_raster_begin(gl, &state);
+    /* per target: rgb and alpha by their attributes' blend mode (the fragment count always adds) */
+    eq[0][0] = d->blend[0] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+    eq[0][1] = VOXGI__GL_FUNC_ADD;
+    eq[1][0] = d->blend[1] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+    eq[1][1] = d->blend[3] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+    eq[2][0] = d->blend[2] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
+    eq[2][1] = VOXGI__GL_FUNC_ADD;
     for (i = 0; i < 3; i++) {
         gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
         gl->BlendFuncSeparatei((unsigned)i, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE, VOXGI__GL_ONE);
-    }
-    {   /* per target: rgb and alpha by their attributes' blend mode (the fragment count always adds) */
-        unsigned int eq[3][2];
-        eq[0][0] = d->blend[0] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
-        eq[0][1] = VOXGI__GL_FUNC_ADD;
-        eq[1][0] = d->blend[1] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
-        eq[1][1] = d->blend[3] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
-        eq[2][0] = d->blend[2] == VOXGI_BLEND_MAX ? VOXGI__GL_MAX : VOXGI__GL_FUNC_ADD;
-        eq[2][1] = VOXGI__GL_FUNC_ADD;
-        for (i = 0; i < 3; i++) gl->BlendEquationSeparatei((unsigned)i, eq[i][0], eq[i][1]);
+        gl->BlendEquationSeparatei((unsigned)i, eq[i][0], eq[i][1]);
     }
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, values_buf);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, lost_buf);
@@ -4644,33 +4638,41 @@ static voxgi_result voxgi__vox_volume_buffer_gl(voxgi_context *ctx, const voxgi_
     gl->BindVertexArray(0);
     voxgi__gl_raster_end(gl, &state);
     for (i = 0; i < 3; i++) {
-        gl->BlendFuncSeparatei((unsigned)i, (unsigned)saved[i][0], (unsigned)saved[i][1], (unsigned)saved[i][2], (unsigned)saved[i][3]);
-        gl->BlendEquationSeparatei((unsigned)i, (unsigned)saved[i][4], (unsigned)saved[i][5]);
-        if (blend_was[i]) gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
+        gl->BlendFuncSeparatei((unsigned)i, (unsigned)blend.value[i][0], (unsigned)blend.value[i][1], (unsigned)blend.value[i][2],
+                               (unsigned)blend.value[i][3]);
+        gl->BlendEquationSeparatei((unsigned)i, (unsigned)blend.value[i][4], (unsigned)blend.value[i][5]);
+        if (blend.enabled[i]) gl->Enablei(VOXGI__GL_BLEND, (unsigned)i);
         else gl->Disablei(VOXGI__GL_BLEND, (unsigned)i);
     }
-    gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT | VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
-    if (r == VOXGI_OK) {
-        uint32_t lost = 0;
-        r = voxgi__gl_read_buffer(ctx, lost_buf, &lost, 4);
-        info->lost_slices = lost;
-    }
-    if (r == VOXGI_OK) { /* merge: the bits */
-        *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)words * 4);
-        p = gl->prog_volume_merge;
-        gl->UseProgram(p);
-        for (c = 0; c < 3; c++)
-            for (k = 0; k < 3; k++) gl->BindTextureUnit((unsigned)(3 * k + c), tex[c][k]);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_attributes"), attrs);
-        gl->ProgramUniform4i(p, gl->GetUniformLocation(p, "u_blend"), (int)d->blend[0], (int)d->blend[1], (int)d->blend[2], (int)d->blend[3]);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr ? attr->channels : 0);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
-        voxgi__gl_dispatch_rows(gl, nvox);
-        r = voxgi__gl_check(ctx, "the Volume Buffer");
-    }
-    if (r == VOXGI_OK && attr) { /* merge: each set voxel's values at its rank */
+    gl->DeleteFramebuffers(1, &fbo);
+    gl->DeleteVertexArrays(1, &vao);
+    return r;
+}
+
+/* The merge (shaders/volume_merge.glsl): a voxel is set where any sweep's target counted a
+   fragment; with attributes, each set voxel's values at its rank, blended over the sweeps. */
+static voxgi_result voxgi__vox_volume_buffer_merge_gl(voxgi_context *ctx, const voxgi_voxelize_desc *d, unsigned int tex[3][3],
+                                                      unsigned int *bits_out, voxgi__attr *attr)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    unsigned int attrs = d->attributes, p = gl->prog_volume_merge;
+    uint64_t words = voxgi__grid_words(g), nvox = voxgi_grid_voxel_count(g);
+    int c, k;
+    voxgi_result r;
+    *bits_out = voxgi__gl_grid_buffer(ctx, (size_t)words * 4);
+    gl->UseProgram(p);
+    for (c = 0; c < 3; c++)
+        for (k = 0; k < 3; k++) gl->BindTextureUnit((unsigned)(3 * k + c), tex[c][k]);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
+    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_attributes"), attrs);
+    gl->ProgramUniform4i(p, gl->GetUniformLocation(p, "u_blend"), (int)d->blend[0], (int)d->blend[1], (int)d->blend[2], (int)d->blend[3]);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr ? attr->channels : 0);
+    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+    voxgi__gl_dispatch_rows(gl, nvox);
+    r = voxgi__gl_check(ctx, "the Volume Buffer");
+    if (r == VOXGI_OK && attr) {
         uint32_t *bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0);
         unsigned int rank_buf = 0, out_buf = 0, count_buf = 0;
         uint64_t voxels = 0, w;
@@ -4697,13 +4699,51 @@ static voxgi_result voxgi__vox_volume_buffer_gl(voxgi_context *ctx, const voxgi_
         voxgi__gl_delete_buffer(ctx, count_buf);
         voxgi__free(ctx, bits);
     }
+    return r;
+}
+
+static voxgi_result voxgi__vox_volume_buffer_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
+                                                const voxgi_voxelize_desc *d, unsigned int *bits_out, voxgi__attr *attr,
+                                                voxgi_voxels_info *info)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_grid *g = &d->grid;
+    unsigned int attrs = d->attributes, tex[3][3], verts = 0, tris = 0, values_buf = 0, lost_buf = 0, zero = 0;
+    int max3d = 0, c, k, i, targets = 1 + ((attrs & (VOXGI_ATTRIBUTE_NORMAL | VOXGI_ATTRIBUTE_OPACITY)) ? 1 : 0) +
+                                      ((attrs & VOXGI_ATTRIBUTE_EMISSION) ? 1 : 0);
+    uint64_t nvox = voxgi_grid_voxel_count(g), bytes_per_voxel = attrs ? 16u * (uint64_t)targets : 4u;
+    float *tv;
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_buffer);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_buffer_big);
+    if (r == VOXGI_OK) r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_merge);
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
+    if (g->res[0] > max3d || g->res[1] > max3d || g->res[2] > max3d)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's 3D targets stop at GL_MAX_3D_TEXTURE_SIZE %d", max3d);
+    if (3 * nvox * bytes_per_voxel > ((uint64_t)1 << 30))
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the Volume Buffer's three %dx%dx%d sweeps need %llu MiB of float targets "
+                           "(at most 1024 here); ask for fewer attributes or a smaller grid", g->res[0], g->res[1], g->res[2],
+                           (unsigned long long)(3 * nvox * bytes_per_voxel >> 20));
+    if (!(tv = voxgi__vox_volume_buffer_values(ctx, f, d))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles' values");
+    voxgi__vox_scene_buffers_gl(ctx, f, vp, &verts, &tris, &r);
+    values_buf = voxgi__gl_buffer(ctx, f->triangle_count * 10 * sizeof(float), tv);
+    lost_buf = voxgi__gl_buffer(ctx, 8 + 4 * f->triangle_count, NULL); /* lost, big_count, big_list */
+    gl->ClearNamedBufferData(lost_buf, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+    voxgi__free(ctx, tv);
+    memset(tex, 0, sizeof tex);
+    if (r == VOXGI_OK) r = voxgi__vox_volume_buffer_sweeps_gl(ctx, f, d, tex, values_buf, lost_buf, info);
+    gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_FRAMEBUFFER_BARRIER_BIT | VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+    if (r == VOXGI_OK) {
+        uint32_t lost = 0;
+        r = voxgi__gl_read_buffer(ctx, lost_buf, &lost, 4);
+        info->lost_slices = lost;
+    }
+    if (r == VOXGI_OK) r = voxgi__vox_volume_buffer_merge_gl(ctx, d, tex, bits_out, attr);
     for (i = 0; i < 9; i++) gl->BindTextureUnit((unsigned)i, 0);
     voxgi__gl_unbind(gl);
     for (c = 0; c < 3; c++)
         for (k = 0; k < 3; k++)
             if (tex[c][k]) gl->DeleteTextures(1, &tex[c][k]);
-    gl->DeleteFramebuffers(1, &fbo);
-    gl->DeleteVertexArrays(1, &vao);
     voxgi__gl_delete_buffer(ctx, verts);
     voxgi__gl_delete_buffer(ctx, tris);
     voxgi__gl_delete_buffer(ctx, values_buf);
