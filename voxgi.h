@@ -1,4 +1,4 @@
-/* voxgi.h - v0.4.1 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
+/* voxgi.h - v0.5.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
 
    voxgi voxelizes triangle scenes and computes voxel-based lighting from them. Every GPU
    pass has a CPU twin that computes the same result, so the library works where no GL 4.5
@@ -112,6 +112,11 @@
             G-buffer, cone-traced images with exact unshadowed area light.
      0.4.1  cone-traced images: each ray takes the indirect light of its own surface (edges);
             CPU injection writes its volume's level 0 in place, six-direction level 1 in one pass.
+     0.5.0  the header in numbered layers with a table of contents. Cone tracing is one API over a
+            radiance source (voxgi_radiance_source: a volume or an octree): voxgi_cone_trace,
+            voxgi_cone_trace_each (was voxgi_trace_cones) and voxgi_cone_trace_gl replace the six
+            entry points (voxgi_cone_trace_svo, voxgi_trace_cones_svo and voxgi_cone_trace_svo_gl
+            are gone: set source.octree). Cone-traced images report progress at each stage.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -122,10 +127,10 @@
 
 /* ===================================================================== 1. config */
 #define VOXGI_VERSION_MAJOR 0
-#define VOXGI_VERSION_MINOR 4
-#define VOXGI_VERSION_PATCH 1
+#define VOXGI_VERSION_MINOR 5
+#define VOXGI_VERSION_PATCH 0
 #define VOXGI_VERSION (VOXGI_VERSION_MAJOR * 10000 + VOXGI_VERSION_MINOR * 100 + VOXGI_VERSION_PATCH)
-#define VOXGI_VERSION_STRING "0.4.1"
+#define VOXGI_VERSION_STRING "0.5.0"
 
 #ifndef VOXGI_API
 #ifdef VOXGI_STATIC
