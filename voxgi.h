@@ -2370,7 +2370,6 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
     X(void, DeleteShader, (unsigned int shader))                                                         \
     X(void, DeleteProgram, (unsigned int program))                                                       \
     X(void, UseProgram, (unsigned int program))                                                          \
-    X(int, GetUniformLocation, (unsigned int program, const char *name))                                 \
     X(void, ProgramUniform1i, (unsigned int program, int location, int v0))                              \
     X(void, ProgramUniform1ui, (unsigned int program, int location, unsigned int v0))                    \
     X(void, ProgramUniform3i, (unsigned int program, int location, int v0, int v1, int v2))              \
@@ -2483,6 +2482,25 @@ typedef enum voxgi__gl_program_id {
     VOXGI__GL_PROGRAM_COUNT
 } voxgi__gl_program_id;
 
+/* Every uniform a shader declares, by name: its location is its place in this list, the same
+   in every program (explicit locations, GL 4.3), given to the shaders as VOXGI_LOC_<name> in the
+   prelude, so that no location is looked up by name at run time. */
+#define VOXGI__GL_UNIFORMS(X) \
+    X(u_anisotropic) X(u_atomic) X(u_attr) X(u_attributes) X(u_axis) X(u_bias) X(u_big) X(u_blend) X(u_caster)   \
+    X(u_casters) X(u_channels) X(u_cones) X(u_count) X(u_dir) X(u_dst_dims) X(u_dst_res) X(u_face) X(u_factor)   \
+    X(u_far) X(u_first) X(u_first_slice) X(u_forward) X(u_half_tan) X(u_has_albedo) X(u_image) X(u_inv_s)        \
+    X(u_level) X(u_levels) X(u_lookup) X(u_max_channels) X(u_max_distance) X(u_max_lod) X(u_near) X(u_offset)    \
+    X(u_op) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_premultiplied) X(u_res) X(u_right)       \
+    X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) X(u_src_level) X(u_src_res) X(u_step)       \
+    X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_nodes) X(u_svo_single) X(u_tan)  \
+    X(u_thin) X(u_tri_count) X(u_tri_offset) X(u_up) X(u_view) X(u_voxel_size) X(u_with_values) X(u_words)
+enum {
+#define VOXGI__GL_UNIFORM_LOCATION(name) VOXGI__LOC_##name,
+    VOXGI__GL_UNIFORMS(VOXGI__GL_UNIFORM_LOCATION)
+#undef VOXGI__GL_UNIFORM_LOCATION
+    VOXGI__GL_UNIFORM_COUNT
+};
+
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
     VOXGI__GL_FUNCS(VOXGI__GL_MEMBER)
@@ -2491,6 +2509,7 @@ struct voxgi__gl {
     VOXGI__GL_PROGRAMS(VOXGI__GL_PROGRAM_MEMBER)
 #undef VOXGI__GL_PROGRAM_MEMBER
     int64_t max_ssbo_bytes;
+    char uniform_locations[VOXGI__GL_UNIFORM_COUNT * 48]; /* "#define VOXGI_LOC_<name> <location>" lines for the prelude */
 };
 
 #include "shaders.h"
@@ -2503,8 +2522,14 @@ static voxgi_gl_proc voxgi__gl_lookup(voxgi_context *ctx, const char *name)
 
 static voxgi_result voxgi__gl_init(voxgi_context *ctx)
 {
+    static const char *const uniforms[VOXGI__GL_UNIFORM_COUNT] = {
+#define VOXGI__GL_UNIFORM_NAME(name) #name,
+        VOXGI__GL_UNIFORMS(VOXGI__GL_UNIFORM_NAME)
+#undef VOXGI__GL_UNIFORM_NAME
+    };
     voxgi__gl *gl;
-    int major = 0, minor = 0;
+    int major = 0, minor = 0, u;
+    size_t at = 0;
     const char *s;
     if (!ctx->desc.gl_get_proc_address && !ctx->desc.gl_get_proc_address_user)
         return voxgi__fail(ctx, VOXGI_ERR_GL_UNAVAILABLE, "no GL loader given (desc.gl_get_proc_address)");
@@ -2526,6 +2551,8 @@ static voxgi_result voxgi__gl_init(voxgi_context *ctx)
     if (major * 10 + minor < 45)
         return voxgi__fail(ctx, VOXGI_ERR_GL_UNAVAILABLE, "GL %d.%d is current, voxgi needs 4.5 (%s)", major, minor, ctx->gl_version);
     gl->GetInteger64v(VOXGI__GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &gl->max_ssbo_bytes);
+    for (u = 0; u < VOXGI__GL_UNIFORM_COUNT; u++)
+        at += (size_t)snprintf(gl->uniform_locations + at, sizeof gl->uniform_locations - at, "#define VOXGI_LOC_%s %d\n", uniforms[u], u);
     while (gl->GetError() != 0) {}
     voxgi__log(ctx, VOXGI_LOG_INFO, "GL backend: %s, %s", ctx->gl_version, ctx->gl_renderer);
     return VOXGI_OK;
@@ -2588,21 +2615,22 @@ static voxgi_result voxgi__gl_stage(voxgi_context *ctx, unsigned int prog, unsig
                                     const char *const *files, const char *const *texts)
 {
     voxgi__gl *gl = ctx->gl;
-    const char *src[2 * 8 + 2];
+    const char *src[2 * 8 + 3];
     char lines[8][32];
     unsigned int sh;
     int ok = 0, len = 0, k;
     src[0] = "#version 450 core\n"
              "#define VOXGI_LOCAL_SIZE 64\n"
              "#define VOXGI_SMALL_COLUMNS 64\n"; /* columns one invocation handles alone */
-    src[1] = define;
+    src[1] = gl->uniform_locations;
+    src[2] = define;
     for (k = 0; k < count; k++) {
         snprintf(lines[k], sizeof lines[k], "\n#line %d\n", (k + 1) * VOXGI__GL_LINES_PER_FILE + 1);
-        src[2 + 2 * k] = lines[k];
-        src[3 + 2 * k] = texts[k];
+        src[3 + 2 * k] = lines[k];
+        src[4 + 2 * k] = texts[k];
     }
     sh = gl->CreateShader(type);
-    gl->ShaderSource(sh, 2 + 2 * count, src, NULL);
+    gl->ShaderSource(sh, 3 + 2 * count, src, NULL);
     gl->CompileShader(sh);
     gl->GetShaderiv(sh, VOXGI__GL_COMPILE_STATUS, &ok);
     if (!ok) {
@@ -3899,13 +3927,13 @@ static void voxgi__vox_scene_buffers_gl(voxgi_context *ctx, const voxgi__flat *f
 static void voxgi__vox_dispatch_triangles_gl(voxgi__gl *gl, unsigned int p, size_t nt, unsigned int control)
 {
     size_t t0;
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, 0);
     for (t0 = 0; t0 < nt; t0 += 65535u * 64u) {
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_offset"), (unsigned)t0);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_tri_offset, (unsigned)t0);
         gl->DispatchCompute((unsigned)VOXGI__MIN((nt - t0 + 63) / 64, (size_t)65535), 1, 1);
     }
     gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, 1);
     gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, control);
     gl->DispatchComputeIndirect(0);
     gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -3926,7 +3954,7 @@ static void voxgi__vox_draw_geometry_gl(voxgi__gl *gl, unsigned int p, size_t nt
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
     gl->BindVertexArray(vao);
     gl->Viewport(0, 0, view, view);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_view"), view);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_view, view);
     gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
     gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
@@ -3985,17 +4013,17 @@ static voxgi_result voxgi__vox_attributes_gl(voxgi_context *ctx, const voxgi__fl
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 8, rec_buf);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 9, sums_buf);
         gl->UseProgram(p);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), pair_capacity);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 1);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr->channels);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_pair_capacity, pair_capacity);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_attr, 1);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_channels, attr->channels);
         {
             unsigned int max_channels = 0;
             int c;
             for (c = 0; c < attr->channels; c++) max_channels |= (unsigned)attr->max_op[c] << c;
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_max_channels"), max_channels);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_max_channels, max_channels);
         }
         voxgi__vox_conservative_gl(gl, d, p, nt, control_buf);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_attr, 0);
         for (k = 7; k < 10; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, 0);
         r = voxgi__gl_read_buffer(ctx, control_buf, control, sizeof control);
         if (r == VOXGI_OK && control[4] > pair_capacity)
@@ -4101,13 +4129,15 @@ static voxgi_result voxgi__vox_triangles_gl(voxgi_context *ctx, const voxgi__fla
         if (r != VOXGI_OK) break;
         for (i = 0; i < 7; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i]);
         gl->UseProgram(p);
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_tri_count"), (unsigned)nt);
-        gl->ProgramUniform1d(p, gl->GetUniformLocation(p, "u_inv_s"), 1.0 / g->voxel_size);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_pair_capacity"), capacity);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_solid_axis"), solid_axis);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_thin"), d->method == VOXGI_METHOD_THIN);
-        if (solid_axis < 0) gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_attr"), 0);
+        gl->ProgramUniform3i(p, VOXGI__LOC_u_res, g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_tri_count, (unsigned)nt);
+        gl->ProgramUniform1d(p, VOXGI__LOC_u_inv_s, 1.0 / g->voxel_size);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_pair_capacity, capacity);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_solid_axis, solid_axis);
+        if (solid_axis < 0) { /* the solid program has no thin test and no attributes */
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_thin, d->method == VOXGI_METHOD_THIN);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_attr, 0);
+        }
         voxgi__vox_conservative_gl(gl, d, p, nt, buf[3]);
         r = voxgi__gl_read_buffer(ctx, buf[3], control, sizeof control);
         if (r != VOXGI_OK || solid_axis < 0 || control[4] <= capacity) break;
@@ -4180,7 +4210,7 @@ static voxgi_result voxgi__vox_count_gl(voxgi_context *ctx, unsigned int buffer,
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, buffer);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, count_buf);
     gl->UseProgram(p);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_words, (unsigned)words);
     gl->DispatchCompute((unsigned)VOXGI__MIN((words + 63) / 64, (uint64_t)1024), 1, 1);
     gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
     voxgi__gl_unbind(gl);
@@ -4203,8 +4233,8 @@ static voxgi_result voxgi__vox_solid_gl(voxgi_context *ctx, const voxgi__flat *f
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, toggles);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *solid);
     gl->UseProgram(p);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
+    gl->ProgramUniform3i(p, VOXGI__LOC_u_res, g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_axis, A);
     voxgi__gl_dispatch_items(gl, (uint64_t)g->res[(A + 1) % 3] * (uint64_t)g->res[(A + 2) % 3]);
     voxgi__gl_unbind(gl);
     voxgi__gl_delete_buffer(ctx, toggles);
@@ -4234,22 +4264,22 @@ static voxgi_result voxgi__vox_flood_gl(voxgi_context *ctx, const voxgi__flat *f
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, changed_buf);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, *solid);
     gl->UseProgram(p);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)(bytes / 4));
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 0);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), 2);
+    gl->ProgramUniform3i(p, VOXGI__LOC_u_res, g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_words, (unsigned)(bytes / 4));
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_op, 0);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_axis, 2);
     voxgi__gl_dispatch_items(gl, (uint64_t)g->res[0] * (uint64_t)g->res[1]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 1);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_op, 1);
     while (changed && r == VOXGI_OK) {
         changed = 0;
         gl->NamedBufferSubData(changed_buf, 0, 4, &changed);
         for (axis = 0; axis < 3; axis++) {
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), axis);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_axis, axis);
             voxgi__gl_dispatch_items(gl, (uint64_t)g->res[(axis + 1) % 3] * (uint64_t)g->res[(axis + 2) % 3]);
         }
         r = voxgi__gl_read_buffer(ctx, changed_buf, &changed, 4);
     }
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_op"), 2);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_op, 2);
     voxgi__gl_dispatch_items(gl, bytes / 4);
     voxgi__gl_unbind(gl);
     voxgi__gl_delete_buffer(ctx, surface);
@@ -4392,9 +4422,9 @@ static voxgi_result voxgi__vox_raster_gl(voxgi_context *ctx, const voxgi_grid *g
     voxgi__gl_raster_begin(gl, &state);
     gl->Enable(VOXGI__GL_PROGRAM_POINT_SIZE); /* points are one pixel whatever glPointSize says */
     gl->UseProgram(p);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_atomic"), atomic);
+    gl->ProgramUniform3i(p, VOXGI__LOC_u_res, g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_axis, A);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_atomic, atomic);
     gl->BindVertexArray(vao);
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
     gl->Viewport(0, 0, g->res[a], g->res[b]);
@@ -4402,7 +4432,7 @@ static voxgi_result voxgi__vox_raster_gl(voxgi_context *ctx, const voxgi_grid *g
         gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, g->res[a]);
         gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, g->res[b]);
         gl->BindImageTexture(0, tex, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), 0);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_first_slice, 0);
         gl->DrawArrays(mode, 0, (int)count);
     } else {
         gl->Enable(VOXGI__GL_COLOR_LOGIC_OP);
@@ -4418,7 +4448,7 @@ static voxgi_result voxgi__vox_raster_gl(voxgi_context *ctx, const voxgi_grid *g
             if (gl->CheckNamedFramebufferStatus(fbo, VOXGI__GL_FRAMEBUFFER) != VOXGI__GL_FRAMEBUFFER_COMPLETE)
                 r = voxgi__fail(ctx, VOXGI_ERR_GL, "the slicemap framebuffer is incomplete");
             else {
-                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_first_slice"), first * per_layer);
+                gl->ProgramUniform1i(p, VOXGI__LOC_u_first_slice, first * per_layer);
                 gl->DrawArrays(mode, 0, (int)count);
             }
         }
@@ -4431,9 +4461,9 @@ static voxgi_result voxgi__vox_raster_gl(voxgi_context *ctx, const voxgi_grid *g
         *bits_out = voxgi__gl_grid_buffer(ctx, bytes);
         p = gl->prog_slicemap_unpack;
         gl->UseProgram(p);
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), A);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_per_layer"), per_layer);
+        gl->ProgramUniform3i(p, VOXGI__LOC_u_res, g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_axis, A);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_per_layer, per_layer);
         gl->BindTextureUnit(0, tex);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, *bits_out);
         voxgi__gl_dispatch_items(gl, (uint64_t)g->res[a] * (uint64_t)g->res[b]);
@@ -4589,10 +4619,10 @@ static voxgi_result voxgi__vox_volume_buffer_sweeps_gl(voxgi_context *ctx, const
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, lost_buf);
     for (i = 0; i < 2; i++) {
         p = i ? gl->prog_volume_buffer_big : gl->prog_volume_buffer;
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_slicing"), d->volume_slicing);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_with_values"), attrs != 0);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_big"), i);
+        gl->ProgramUniform3i(p, VOXGI__LOC_u_res, g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_slicing, d->volume_slicing);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_with_values, attrs != 0);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_big, i);
     }
     gl->BindVertexArray(vao);
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
@@ -4626,8 +4656,8 @@ static voxgi_result voxgi__vox_volume_buffer_sweeps_gl(voxgi_context *ctx, const
             uint32_t big = 0;
             p = i ? gl->prog_volume_buffer_big : gl->prog_volume_buffer;
             gl->UseProgram(p);
-            gl->ProgramUniform2i(p, gl->GetUniformLocation(p, "u_view"), vw, vh);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_axis"), c);
+            gl->ProgramUniform2i(p, VOXGI__LOC_u_view, vw, vh);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_axis, c);
             if (i == 0) gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * f->triangle_count));
             else {
                 gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -4670,11 +4700,11 @@ static voxgi_result voxgi__vox_volume_buffer_merge_gl(voxgi_context *ctx, const 
     for (c = 0; c < 3; c++)
         for (k = 0; k < 3; k++) gl->BindTextureUnit((unsigned)(3 * k + c), tex[c][k]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_attributes"), attrs);
-    gl->ProgramUniform4i(p, gl->GetUniformLocation(p, "u_blend"), (int)d->blend[0], (int)d->blend[1], (int)d->blend[2], (int)d->blend[3]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_channels"), attr ? attr->channels : 0);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+    gl->ProgramUniform3i(p, VOXGI__LOC_u_res, g->res[0], g->res[1], g->res[2]);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_attributes, attrs);
+    gl->ProgramUniform4i(p, VOXGI__LOC_u_blend, (int)d->blend[0], (int)d->blend[1], (int)d->blend[2], (int)d->blend[3]);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_channels, attr ? attr->channels : 0);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, 0);
     voxgi__gl_dispatch_rows(gl, nvox);
     r = voxgi__gl_check(ctx, "the Volume Buffer");
     if (r == VOXGI_OK && attr) {
@@ -4694,7 +4724,7 @@ static voxgi_result voxgi__vox_volume_buffer_merge_gl(voxgi_context *ctx, const 
             gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, rank_buf);
             gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 8, out_buf);
             gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 9, count_buf);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, 1);
             voxgi__gl_dispatch_rows(gl, nvox);
             r = voxgi__gl_read_buffer(ctx, out_buf, attr->values, (size_t)voxels * (size_t)attr->channels * 4);
             if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, count_buf, attr->count, (size_t)voxels * 4);
@@ -5114,7 +5144,7 @@ static voxgi_result voxgi__vox_atlas_gl(voxgi_context *ctx, const voxgi__flat *f
     else {
         p = gl->prog_atlas_fill;
         gl->UseProgram(p);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_view"), at->view);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_view, at->view);
         gl->BindVertexArray(vao);
         gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
         gl->Viewport(0, 0, at->view, at->view); /* beyond the atlas: the corners map to window coordinates exactly */
@@ -5132,8 +5162,8 @@ static voxgi_result voxgi__vox_atlas_gl(voxgi_context *ctx, const voxgi__flat *f
         gl->BindTextureUnit(0, tex);
         p = gl->prog_atlas_list;
         gl->UseProgram(p);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_size"), at->size);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 0);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_size, at->size);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, 0);
         voxgi__gl_dispatch_rows(gl, texels);
         r = voxgi__gl_read_buffer(ctx, points, &count, 4);
     }
@@ -5142,7 +5172,7 @@ static voxgi_result voxgi__vox_atlas_gl(voxgi_context *ctx, const voxgi__flat *f
         points = voxgi__gl_buffer(ctx, 8 + 8 * (size_t)count, NULL);
         gl->ClearNamedBufferData(points, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, points);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), 1);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, 1);
         voxgi__gl_dispatch_rows(gl, texels);
         gl->BindTextureUnit(0, 0);
         info->atlas_points = count;
@@ -5160,7 +5190,7 @@ static voxgi_result voxgi__vox_atlas_gl(voxgi_context *ctx, const voxgi__flat *f
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, *bits_out);
         p = gl->prog_atlas_compute;
         gl->UseProgram(p);
-        gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_res"), g->res[0], g->res[1], g->res[2]);
+        gl->ProgramUniform3i(p, VOXGI__LOC_u_res, g->res[0], g->res[1], g->res[2]);
         voxgi__gl_dispatch_rows(gl, count);
         r = voxgi__gl_check(ctx, "the atlas points");
     }
@@ -5424,7 +5454,7 @@ static voxgi_result voxgi__vox_run_gl(voxgi_context *ctx, const voxgi__flat *f, 
         if (r == VOXGI_OK) {
             for (a = 0; a < 3; a++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)a, axes[a]);
             gl->UseProgram(p);
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_words"), (unsigned)words);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_words, (unsigned)words);
             voxgi__gl_dispatch_items(gl, words);
             voxgi__gl_unbind(gl);
             result = axes[2];
@@ -5576,9 +5606,9 @@ static voxgi_result voxgi__vox_reduce_gl(voxgi_context *ctx, const voxgi_voxels 
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, src->gl_buffer);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, out);
     gl->UseProgram(p);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_src_res"), sg->res[0], sg->res[1], sg->res[2]);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_dst_res"), dg->res[0], dg->res[1], dg->res[2]);
-    gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_factor"), f[0], f[1], f[2]);
+    gl->ProgramUniform3i(p, VOXGI__LOC_u_src_res, sg->res[0], sg->res[1], sg->res[2]);
+    gl->ProgramUniform3i(p, VOXGI__LOC_u_dst_res, dg->res[0], dg->res[1], dg->res[2]);
+    gl->ProgramUniform3i(p, VOXGI__LOC_u_factor, f[0], f[1], f[2]);
     /* one invocation per destination line along x, in work-group slices */
     gl->DispatchCompute((unsigned)(((uint64_t)dg->res[1] * (uint64_t)dg->res[2] + 63) / 64), 1, 1);
     gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
@@ -5851,13 +5881,13 @@ static voxgi_result voxgi__volume_build_gl(voxgi_context *ctx, voxgi_volume *vol
             gl->TextureParameterfv(t, VOXGI__GL_TEXTURE_BORDER_COLOR, zeros);
             gl->TextureSubImage3D(t, 0, 0, 0, 0, vol->dims[0][0], vol->dims[0][1], vol->dims[0][2], a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA,
                                   VOXGI__GL_FLOAT, base[a]);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_single"), a == 3);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_dir"), dirs == 6 ? d : -1);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_premultiplied"), a == VOXGI__RADIANCE_SLOT);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_single, a == 3);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_dir, dirs == 6 ? d : -1);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_premultiplied, a == VOXGI__RADIANCE_SLOT);
             for (k = 1; k < vol->info.levels; k++) {
-                gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_src_dims"), vol->dims[k - 1][0], vol->dims[k - 1][1], vol->dims[k - 1][2]);
-                gl->ProgramUniform3i(p, gl->GetUniformLocation(p, "u_dst_dims"), vol->dims[k][0], vol->dims[k][1], vol->dims[k][2]);
-                gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_src_level"), k - 1);
+                gl->ProgramUniform3i(p, VOXGI__LOC_u_src_dims, vol->dims[k - 1][0], vol->dims[k - 1][1], vol->dims[k - 1][2]);
+                gl->ProgramUniform3i(p, VOXGI__LOC_u_dst_dims, vol->dims[k][0], vol->dims[k][1], vol->dims[k][2]);
+                gl->ProgramUniform1i(p, VOXGI__LOC_u_src_level, k - 1);
                 gl->BindTextureUnit(0, t);
                 gl->BindImageTexture(a == 3 ? 1 : 0, t, k, 1, 0, VOXGI__GL_WRITE_ONLY, fmt);
                 gl->DispatchCompute((unsigned)((vol->dims[k][0] + 3) / 4), (unsigned)((vol->dims[k][1] + 3) / 4), (unsigned)((vol->dims[k][2] + 3) / 4));
@@ -6145,9 +6175,9 @@ static voxgi_result voxgi__volume_sample_gl(voxgi_context *ctx, const voxgi_volu
     gl->BindTextureUnit(0, vol->tex[a][d]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)count);
-    gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_size"), (float)vol->info.gl_size[0], (float)vol->info.gl_size[1], (float)vol->info.gl_size[2]);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_max_lod"), (float)(vol->info.levels - 1));
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)count);
+    gl->ProgramUniform3f(p, VOXGI__LOC_u_size, (float)vol->info.gl_size[0], (float)vol->info.gl_size[1], (float)vol->info.gl_size[2]);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_max_lod, (float)(vol->info.levels - 1));
     gl->DispatchCompute((unsigned)VOXGI__MIN((count + 63) / 64, (size_t)65535), (unsigned)((count + 65535 * 64 - 1) / (65535 * 64)), 1);
     gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
     gl->BindTextureUnit(0, 0);
@@ -6385,12 +6415,12 @@ static void voxgi__svo_bind_gl(voxgi_context *ctx, const voxgi_svo *svo, unsigne
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, svo->gl_child);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, a >= 0 ? svo->gl_node_values[a] : 0);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, a >= 0 ? svo->gl_leaf_values[a] : 0);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_depth"), svo->info.depth);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_format"), (int)svo->info.format);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_single"), a == 3);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_svo_nodes"), (unsigned)svo->info.nodes);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_svo_inner_tiles"), (unsigned)svo->inner_tiles);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_svo_bricks"), svo->bricks != 0);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_depth, svo->info.depth);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_format, (int)svo->info.format);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_single, a == 3);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_svo_nodes, (unsigned)svo->info.nodes);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_svo_inner_tiles, (unsigned)svo->inner_tiles);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_bricks, svo->bricks != 0);
 }
 
 enum { VOXGI__SVO_FLAG, VOXGI__SVO_ARGS, VOXGI__SVO_ALLOCATE, VOXGI__SVO_INIT, VOXGI__SVO_LEAVES, VOXGI__SVO_MIP, VOXGI__SVO_NEIGHBOURS, VOXGI__SVO_BRICKS };
@@ -6428,13 +6458,13 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, frag);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, counters);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)n);
     svo->info.level_nodes[0] = 1;
     first[0] = 0;
     for (m = 1; m < depth && r == VOXGI_OK; m++) { /* level m's nodes and their tiles */
         uint32_t flagged = 0;
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_FLAG);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_FLAG);
         voxgi__gl_dispatch_rows(gl, n);
         gl->GetNamedBufferSubData(counters, 8, 4, &flagged);
         svo->info.level_nodes[m] = flagged;
@@ -6447,14 +6477,14 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         if (r != VOXGI_OK) break;
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, svo->gl_child);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_ARGS);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_ARGS);
         gl->DispatchCompute(1, 1, 1);
         gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
         gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, counters);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_ALLOCATE);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_ALLOCATE);
         gl->DispatchComputeIndirect(16);
         gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_INIT);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_INIT);
         gl->DispatchComputeIndirect(32);
         gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
         gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -6485,11 +6515,11 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         gl->ClearNamedBufferData(svo->gl_neighbour, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
         voxgi__svo_bind_gl(ctx, svo, p, -1);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 6, svo->gl_neighbour);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_NEIGHBOURS);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_NEIGHBOURS);
         for (m = 1; m < depth; m++) {
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first[m]);
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)svo->info.level_nodes[m]);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)svo->info.level_nodes[m]);
             voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
         }
         gl->Finish();
@@ -6519,22 +6549,22 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         gl->ClearNamedBufferData(svo->gl_leaf_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
         voxgi__svo_bind_gl(ctx, svo, p, a);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, fvals);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_LEAVES);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_LEAVES);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)n);
         voxgi__gl_dispatch_rows(gl, n);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_MIP);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_premultiplied"), a == VOXGI__RADIANCE_SLOT);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_MIP);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_premultiplied, a == VOXGI__RADIANCE_SLOT);
         for (m = depth - 1; m >= 0; m--) {
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first[m]);
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)svo->info.level_nodes[m]);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)svo->info.level_nodes[m]);
             voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
         }
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_pass"), VOXGI__SVO_BRICKS);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_BRICKS);
         for (m = 0; m < depth && svo->bricks; m++) { /* 64 texels per node, from the finished values */
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_level"), m);
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first[m]);
-            gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)(64 * svo->info.level_nodes[m]));
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)(64 * svo->info.level_nodes[m]));
             voxgi__gl_dispatch_rows(gl, 64 * svo->info.level_nodes[m]);
         }
         svo->info.bytes += (size_t)(node_bytes + leaf_bytes);
@@ -6882,8 +6912,8 @@ static voxgi_result voxgi__svo_points_gl(voxgi_context *ctx, const voxgi_svo *sv
     voxgi__svo_bind_gl(ctx, svo, p, a);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, bufs[0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, bufs[1]);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)count);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_lookup"), lookup);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)count);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_lookup, lookup);
     voxgi__gl_dispatch_rows(gl, count);
     voxgi__gl_unbind(gl);
     r = voxgi__gl_read_buffer(ctx, bufs[1], got, count * 16);
@@ -7314,15 +7344,15 @@ static void voxgi__cone_each_cpu(void *user, size_t first, size_t end)
 static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__cone_job *J)
 {
     if (J->vol)
-        gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_size"), (float)J->vol->info.gl_size[0], (float)J->vol->info.gl_size[1],
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_size, (float)J->vol->info.gl_size[0], (float)J->vol->info.gl_size[1],
                              (float)J->vol->info.gl_size[2]);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_levels"), J->levels);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_anisotropic"), J->dirs == 6);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_cones"), J->list ? 0 : J->cones);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_half_tan"), (float)J->half_tan);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_step"), (float)J->step);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_offset"), (float)J->offset);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_max_distance"), (float)J->max_dist);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, J->levels);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_anisotropic, J->dirs == 6);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_cones, J->list ? 0 : J->cones);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_half_tan, (float)J->half_tan);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_step, (float)J->step);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_offset, (float)J->offset);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_max_distance, (float)J->max_dist);
 }
 
 /* The same march on GL (shaders/cone_trace.glsl): points in grid units and unit normals go up,
@@ -7362,9 +7392,9 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
     else for (a = 0; a < 6; a++) gl->BindTextureUnit((unsigned)a, J->vol->tex[VOXGI__RADIANCE_SLOT][J->dirs == 6 ? a : 0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, bufs[0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, bufs[1]);
-    gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)count);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)count);
     for (first = 0; first < count; first += slice) {
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_first"), (unsigned)first);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first);
         gl->DispatchCompute((unsigned)((VOXGI__MIN(slice, count - first) + 63) / 64), 1, 1);
         gl->Finish();
     }
@@ -7513,10 +7543,10 @@ VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_radia
     gl->BindTextureUnit(7, gb->normal_texture);
     gl->BindTextureUnit(8, gb->albedo_texture ? gb->albedo_texture : gb->normal_texture);
     gl->BindImageTexture(0, gb->irradiance_texture, 0, 0, 0, VOXGI__GL_WRITE_ONLY, gb->irradiance_rgba16f ? VOXGI__GL_RGBA16F : VOXGI__GL_RGBA32F);
-    gl->ProgramUniform2i(p, gl->GetUniformLocation(p, "u_image"), gb->width, gb->height);
-    gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_origin"), (float)g->origin[0], (float)g->origin[1], (float)g->origin[2]);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_voxel_size"), (float)g->voxel_size);
-    gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_has_albedo"), gb->albedo_texture != 0);
+    gl->ProgramUniform2i(p, VOXGI__LOC_u_image, gb->width, gb->height);
+    gl->ProgramUniform3f(p, VOXGI__LOC_u_origin, (float)g->origin[0], (float)g->origin[1], (float)g->origin[2]);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_voxel_size, (float)g->voxel_size);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_has_albedo, gb->albedo_texture != 0);
     gl->DispatchCompute((unsigned)((gb->width + 7) / 8), (unsigned)((gb->height + 7) / 8), 1);
     gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT);
     for (a = 0; a < 9; a++) gl->BindTextureUnit((unsigned)a, 0);
@@ -7743,11 +7773,11 @@ static voxgi_result voxgi__light_maps_gl(voxgi_context *ctx, const voxgi__tracer
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, corner_buffer);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *caster_buffer);
     gl->BindImageTexture(0, maps, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
-    gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_near"), (float)(1e-4 * vs));
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_near, (float)(1e-4 * vs));
     for (i = 0; i < nc; i++)
         for (f = cs[i].pos[3] == 0 ? -1 : 0; f < (cs[i].pos[3] == 0 ? 0 : 6); f++) {
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_caster"), (int)i);
-            gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_face"), f);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_caster, (int)i);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_face, f);
             gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
         }
     gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -7788,10 +7818,10 @@ static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, casters ? casters : bufs[1]);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, bufs[1]);
         if (maps) gl->BindImageTexture(0, maps, 0, 1, 0, VOXGI__GL_READ_ONLY, VOXGI__GL_R32UI);
-        gl->ProgramUniform1ui(p, gl->GetUniformLocation(p, "u_count"), (unsigned)n);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_casters"), layers > 0 ? (int)nc : 0);
-        gl->ProgramUniform1i(p, gl->GetUniformLocation(p, "u_size"), size);
-        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_bias"), (float)(0.25 * vs));
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)n);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_casters, layers > 0 ? (int)nc : 0);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_size, size);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_bias, (float)(0.25 * vs));
         voxgi__gl_dispatch_rows(gl, n);
         r = voxgi__gl_read_buffer(ctx, bufs[1], irr, n * 16);
     }
@@ -8046,12 +8076,12 @@ static voxgi_result voxgi__gbuffer_gl(voxgi_context *ctx, voxgi__gbuffer_job *J)
         gl->UseProgram(p);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
-        gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_right"), (float)J->right[0], (float)J->right[1], (float)J->right[2]);
-        gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_up"), (float)J->up[0], (float)J->up[1], (float)J->up[2]);
-        gl->ProgramUniform3f(p, gl->GetUniformLocation(p, "u_forward"), (float)J->forward[0], (float)J->forward[1], (float)J->forward[2]);
-        gl->ProgramUniform2f(p, gl->GetUniformLocation(p, "u_tan"), (float)(J->tan_half * w / h), (float)J->tan_half);
-        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_near"), (float)(1e-4 * VOXGI__MAX(far_d, 1e-30)));
-        gl->ProgramUniform1f(p, gl->GetUniformLocation(p, "u_far"), (float)(2 * VOXGI__MAX(far_d, 1e-30)));
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_right, (float)J->right[0], (float)J->right[1], (float)J->right[2]);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_up, (float)J->up[0], (float)J->up[1], (float)J->up[2]);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_forward, (float)J->forward[0], (float)J->forward[1], (float)J->forward[2]);
+        gl->ProgramUniform2f(p, VOXGI__LOC_u_tan, (float)(J->tan_half * w / h), (float)J->tan_half);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_near, (float)(1e-4 * VOXGI__MAX(far_d, 1e-30)));
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_far, (float)(2 * VOXGI__MAX(far_d, 1e-30)));
         gl->DrawArrays(VOXGI__GL_TRIANGLES, 0, (int)(3 * nt));
         gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, 0);
         gl->BindVertexArray(0);

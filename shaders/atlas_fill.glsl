@@ -1,7 +1,7 @@
 // Texture atlas fill, after scene.glsl and atlas.glsl: every chart drawn into an R32UI atlas,
 // which keeps triangle + 1 per covered texel centre (primitive order: the last chart drawn wins).
 // The viewport is u_view texels, a power of two, so the corners reach the rasterizer unrounded.
-uniform int u_view;
+layout(location = VOXGI_LOC_u_view) uniform int u_view;
 
 #ifdef VOXGI_VERTEX
 flat out uint v_tri;

@@ -2,8 +2,8 @@
 // listed as points (u_pass 1); one invocation per texel.
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(binding = 0) uniform usampler2D u_atlas;
-uniform int u_size;
-uniform int u_pass;
+layout(location = VOXGI_LOC_u_size) uniform int u_size;
+layout(location = VOXGI_LOC_u_pass) uniform int u_pass;
 
 void main()
 {

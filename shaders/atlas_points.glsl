@@ -1,7 +1,7 @@
 // Texture atlas drawn as points (Buchacher's method B), after scene.glsl, atlas.glsl and
 // slice_targets.glsl: each point goes to its voxel's column, at the exact pixel centre, and
 // sets its slice along u_axis.
-uniform int u_axis;
+layout(location = VOXGI_LOC_u_axis) uniform int u_axis;
 
 #ifdef VOXGI_VERTEX
 flat out int v_slice;

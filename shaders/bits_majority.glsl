@@ -3,7 +3,7 @@ layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer A { uint ga[]; };
 layout(std430, binding = 1) readonly buffer B { uint gb[]; };
 layout(std430, binding = 2) buffer C { uint gc[]; };
-uniform uint u_words;
+layout(location = VOXGI_LOC_u_words) uniform uint u_words;
 
 void main()
 {

@@ -12,14 +12,14 @@ layout(binding = 3) uniform sampler3D u_rad3;
 layout(binding = 4) uniform sampler3D u_rad4;
 layout(binding = 5) uniform sampler3D u_rad5;
 #endif
-uniform vec3 u_size;      // the textures' base size
-uniform int u_levels;     // mip levels (an octree: depth + 1)
-uniform int u_anisotropic;
-uniform int u_cones;
-uniform float u_half_tan;
-uniform float u_step;
-uniform float u_offset;
-uniform float u_max_distance;
+layout(location = VOXGI_LOC_u_size) uniform vec3 u_size;      // the textures' base size
+layout(location = VOXGI_LOC_u_levels) uniform int u_levels;     // mip levels (an octree: depth + 1)
+layout(location = VOXGI_LOC_u_anisotropic) uniform int u_anisotropic;
+layout(location = VOXGI_LOC_u_cones) uniform int u_cones;
+layout(location = VOXGI_LOC_u_half_tan) uniform float u_half_tan;
+layout(location = VOXGI_LOC_u_step) uniform float u_step;
+layout(location = VOXGI_LOC_u_offset) uniform float u_offset;
+layout(location = VOXGI_LOC_u_max_distance) uniform float u_max_distance;
 
 vec4 cone_sample(vec3 d, vec3 p, float lod)
 {

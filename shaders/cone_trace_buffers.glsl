@@ -4,8 +4,8 @@
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 3) readonly buffer Points { vec4 points[]; };   // 3 per point or cone, grid units
 layout(std430, binding = 4) writeonly buffer Gathered { vec4 gathered[]; }; // irradiance and occlusion, or radiance and opacity
-uniform uint u_first;
-uniform uint u_count;
+layout(location = VOXGI_LOC_u_first) uniform uint u_first;
+layout(location = VOXGI_LOC_u_count) uniform uint u_count;
 
 // u_cones > 0: diffuse gathers at points (position, normal); u_cones == 0: single cones
 // (origin and tan of the half-angle, direction and reach, normal and its cosine with the

@@ -7,10 +7,10 @@ layout(binding = 6) uniform sampler2D u_positions;
 layout(binding = 7) uniform sampler2D u_normals;
 layout(binding = 8) uniform sampler2D u_albedo;
 layout(binding = 0, VOXGI_OUT_FORMAT) uniform writeonly image2D u_out;
-uniform ivec2 u_image;
-uniform vec3 u_origin;    // the grid's origin and voxel size: world -> grid units
-uniform float u_voxel_size;
-uniform int u_has_albedo;
+layout(location = VOXGI_LOC_u_image) uniform ivec2 u_image;
+layout(location = VOXGI_LOC_u_origin) uniform vec3 u_origin;    // the grid's origin and voxel size: world -> grid units
+layout(location = VOXGI_LOC_u_voxel_size) uniform float u_voxel_size;
+layout(location = VOXGI_LOC_u_has_albedo) uniform int u_has_albedo;
 
 void main()
 {

@@ -5,7 +5,7 @@
 // single voxels as (triangle, voxel) pairs, whole triangles through a flag bit.
 
 layout(std430, binding = 2) buffer Bits { uint bits[]; };
-uniform int u_thin;        // 1: the thin (6-separating) tests too
+layout(location = VOXGI_LOC_u_thin) uniform int u_thin;        // 1: the thin (6-separating) tests too
 
 // The attribute pass (u_attr 1): the bits are final; a voxel the tests set receives its
 // triangle's fixed-point values, added to 64-bit sums (low word, then the carry into the high
@@ -13,9 +13,9 @@ uniform int u_thin;        // 1: the thin (6-separating) tests too
 layout(std430, binding = 7) readonly buffer Rank { uint rank[]; };
 layout(std430, binding = 8) readonly buffer Rec { uint rec[]; };
 layout(std430, binding = 9) buffer Sums { uint sums[]; };
-uniform int u_attr;
-uniform int u_channels;
-uniform uint u_max_channels; // bit c: channel c keeps the maximum (in the low word), else the sum
+layout(location = VOXGI_LOC_u_attr) uniform int u_attr;
+layout(location = VOXGI_LOC_u_channels) uniform int u_channels;
+layout(location = VOXGI_LOC_u_max_channels) uniform uint u_max_channels; // bit c: channel c keeps the maximum (in the low word), else the sum
 
 void add_attributes(uint idx)
 {

@@ -7,10 +7,10 @@ layout(std430, binding = 0) readonly buffer Surface { uint surface[]; };
 layout(std430, binding = 1) buffer Outside { uint outside[]; };
 layout(std430, binding = 2) buffer Changed { uint changed; };
 layout(std430, binding = 3) buffer Solid { uint solid[]; };
-uniform ivec3 u_res;
-uniform int u_axis;
-uniform int u_op;
-uniform uint u_words;
+layout(location = VOXGI_LOC_u_res) uniform ivec3 u_res;
+layout(location = VOXGI_LOC_u_axis) uniform int u_axis;
+layout(location = VOXGI_LOC_u_op) uniform int u_op;
+layout(location = VOXGI_LOC_u_words) uniform uint u_words;
 
 uint voxel_index(ivec3 v) { return uint(v.x) + uint(u_res.x) * (uint(v.y) + uint(u_res.y) * uint(v.z)); }
 bool bit(uint idx) { return ((surface[idx >> 5] >> (idx & 31u)) & 1u) != 0u; }

@@ -4,9 +4,12 @@
 // triangles' corners (3 vec4 per triangle, relative to the eye).
 layout(std430, binding = 0) readonly buffer Corners { vec4 corner[]; };
 layout(std430, binding = 1) readonly buffer Normals { vec4 tri_normal[]; };
-uniform vec3 u_right, u_up, u_forward; // the camera's frame
-uniform vec2 u_tan;                    // tan of the half field of view, across and up
-uniform float u_near, u_far;
+layout(location = VOXGI_LOC_u_right) uniform vec3 u_right; // the camera's frame
+layout(location = VOXGI_LOC_u_up) uniform vec3 u_up;
+layout(location = VOXGI_LOC_u_forward) uniform vec3 u_forward;
+layout(location = VOXGI_LOC_u_tan) uniform vec2 u_tan;                    // tan of the half field of view, across and up
+layout(location = VOXGI_LOC_u_near) uniform float u_near;
+layout(location = VOXGI_LOC_u_far) uniform float u_far;
 
 #ifdef VOXGI_VERTEX
 out vec3 v_p;

@@ -8,10 +8,10 @@ layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };   // 2 pe
 layout(std430, binding = 1) readonly buffer Casters { Caster casters[]; };
 layout(std430, binding = 2) writeonly buffer Irradiance { vec4 irradiance[]; };
 layout(binding = 0, r32ui) uniform readonly uimage2DArray u_maps;
-uniform uint u_count;
-uniform int u_casters;
-uniform int u_size;      // texels per map side
-uniform float u_bias;
+layout(location = VOXGI_LOC_u_count) uniform uint u_count;
+layout(location = VOXGI_LOC_u_casters) uniform int u_casters;
+layout(location = VOXGI_LOC_u_size) uniform int u_size;      // texels per map side
+layout(location = VOXGI_LOC_u_bias) uniform float u_bias;
 
 float visible(int layer, vec2 uv, float d, float texel)
 {

@@ -2,9 +2,9 @@
 // fragment stages over the triangles' corners (3 vec4 per triangle, relative to the grid origin).
 layout(std430, binding = 0) readonly buffer Corners { vec4 corner[]; };
 layout(std430, binding = 1) readonly buffer Casters { Caster casters[]; };
-uniform int u_caster;
-uniform int u_face;      // cube face, or -1 for a directional light's one layer
-uniform float u_near;
+layout(location = VOXGI_LOC_u_caster) uniform int u_caster;
+layout(location = VOXGI_LOC_u_face) uniform int u_face;      // cube face, or -1 for a directional light's one layer
+layout(location = VOXGI_LOC_u_near) uniform float u_near;
 
 #ifdef VOXGI_VERTEX
 out vec3 v_p;

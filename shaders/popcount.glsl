@@ -2,7 +2,7 @@
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Bits { uint bits[]; };
 layout(std430, binding = 1) buffer Count { uint count; };
-uniform uint u_words;
+layout(location = VOXGI_LOC_u_words) uniform uint u_words;
 
 void main()
 {

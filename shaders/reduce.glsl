@@ -3,9 +3,9 @@
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Src { uint src[]; };
 layout(std430, binding = 1) buffer Dst { uint dst[]; };
-uniform ivec3 u_src_res;
-uniform ivec3 u_dst_res;
-uniform ivec3 u_factor;
+layout(location = VOXGI_LOC_u_src_res) uniform ivec3 u_src_res;
+layout(location = VOXGI_LOC_u_dst_res) uniform ivec3 u_dst_res;
+layout(location = VOXGI_LOC_u_factor) uniform ivec3 u_factor;
 
 void main()
 {

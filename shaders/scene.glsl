@@ -9,4 +9,4 @@ struct VPrep {
 };
 layout(std430, binding = 0) readonly buffer Verts { VPrep vp[]; };
 layout(std430, binding = 1) readonly buffer Tris { uint tri_index[]; };
-uniform ivec3 u_res;
+layout(location = VOXGI_LOC_u_res) uniform ivec3 u_res;

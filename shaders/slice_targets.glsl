@@ -2,8 +2,8 @@
 // Logic-op variant: a fragment writes its slice's bit into one of up to eight RGBA32UI targets
 // (128 slices each, from u_first_slice), ORed by GL_COLOR_LOGIC_OP. Atomic variant:
 // imageAtomicOr into an R32UI array, 32 slices per layer.
-uniform int u_first_slice;
-uniform int u_atomic;
+layout(location = VOXGI_LOC_u_first_slice) uniform int u_first_slice;
+layout(location = VOXGI_LOC_u_atomic) uniform int u_atomic;
 
 #ifdef VOXGI_FRAGMENT
 layout(binding = 0, r32ui) uniform coherent uimage2DArray u_slices;

@@ -3,7 +3,7 @@
 // depth of each fragment is not the rasterizer's but the triangle's plane at the pixel centre,
 // in double, in the same order as voxgi__slicemap_depth, so only the rasterizer's coverage
 // differs from the CPU twin.
-uniform int u_axis;
+layout(location = VOXGI_LOC_u_axis) uniform int u_axis;
 
 #ifdef VOXGI_VERTEX
 flat out int v_tri;

@@ -3,9 +3,9 @@
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(binding = 0) uniform usampler2DArray u_slices;
 layout(std430, binding = 0) buffer Bits { uint bits[]; };
-uniform ivec3 u_res;
-uniform int u_axis;
-uniform int u_per_layer;
+layout(location = VOXGI_LOC_u_res) uniform ivec3 u_res;
+layout(location = VOXGI_LOC_u_axis) uniform int u_axis;
+layout(location = VOXGI_LOC_u_per_layer) uniform int u_per_layer;
 
 void main()
 {

@@ -3,8 +3,8 @@
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Toggles { uint toggles[]; };
 layout(std430, binding = 1) buffer Solid { uint solid[]; };
-uniform ivec3 u_res;
-uniform int u_axis;
+layout(location = VOXGI_LOC_u_res) uniform ivec3 u_res;
+layout(location = VOXGI_LOC_u_axis) uniform int u_axis;
 
 void main()
 {

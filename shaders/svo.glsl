@@ -7,12 +7,12 @@
 layout(std430, binding = 0) buffer SvoChild { uint svo_child[]; };
 layout(std430, binding = 1) buffer SvoNodeValues { uint svo_node_words[]; };
 layout(std430, binding = 2) buffer SvoLeafValues { uint svo_leaf_words[]; };
-uniform int u_svo_depth;   // leaves at level depth
-uniform int u_svo_format;  // 0: float32, 1: float16
-uniform int u_svo_single;  // 1: the attribute is opacity (alpha alone)
-uniform int u_svo_bricks;  // 1: every inner node has a brick (4x4x4 values of its children's level)
-uniform uint u_svo_nodes;  // node slots; brick b's texels follow them at u_svo_nodes + 64 b
-uniform uint u_svo_inner_tiles; // bricks of nodes with inner tiles come first, then those with leaf tiles
+layout(location = VOXGI_LOC_u_svo_depth) uniform int u_svo_depth;   // leaves at level depth
+layout(location = VOXGI_LOC_u_svo_format) uniform int u_svo_format;  // 0: float32, 1: float16
+layout(location = VOXGI_LOC_u_svo_single) uniform int u_svo_single;  // 1: the attribute is opacity (alpha alone)
+layout(location = VOXGI_LOC_u_svo_bricks) uniform int u_svo_bricks;  // 1: every inner node has a brick (4x4x4 values of its children's level)
+layout(location = VOXGI_LOC_u_svo_nodes) uniform uint u_svo_nodes;  // node slots; brick b's texels follow them at u_svo_nodes + 64 b
+layout(location = VOXGI_LOC_u_svo_inner_tiles) uniform uint u_svo_inner_tiles; // bricks of nodes with inner tiles come first, then those with leaf tiles
 
 // float -> half, nearest, ties to even; integer steps as voxgi__half_from_float.
 uint voxgi_half_from_float(float f)

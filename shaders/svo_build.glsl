@@ -10,11 +10,11 @@ layout(std430, binding = 4) buffer NodeList { uvec4 node_list[]; };           //
 layout(std430, binding = 5) buffer Counters { uint counters[]; };
 layout(std430, binding = 6) buffer Neighbours { uint svo_neighbour[]; };
 layout(std430, binding = 7) readonly buffer FragmentValues { vec4 fragment_values[]; };
-uniform int u_pass;
-uniform int u_premultiplied; // mip: the values are stored premultiplied by alpha (RADIANCE): their plain mean
-uniform int u_level;   // the level being built (flag, allocate), mipped or linked
-uniform uint u_count;  // items of a directly sized pass
-uniform uint u_first;  // its first node list entry
+layout(location = VOXGI_LOC_u_pass) uniform int u_pass;
+layout(location = VOXGI_LOC_u_premultiplied) uniform int u_premultiplied; // mip: the values are stored premultiplied by alpha (RADIANCE): their plain mean
+layout(location = VOXGI_LOC_u_level) uniform int u_level;   // the level being built (flag, allocate), mipped or linked
+layout(location = VOXGI_LOC_u_count) uniform uint u_count;  // items of a directly sized pass
+layout(location = VOXGI_LOC_u_first) uniform uint u_first;  // its first node list entry
 
 #define VOXGI_PASS_FLAG 0
 #define VOXGI_PASS_ARGS 1

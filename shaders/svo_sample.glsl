@@ -4,8 +4,8 @@
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 3) readonly buffer Points { vec4 points[]; };  // lookups: uvec3 bits, level; samples: xyz, lod
 layout(std430, binding = 4) writeonly buffer Samples { vec4 samples[]; };
-uniform uint u_count;
-uniform int u_lookup;  // 1: point lookups at level points[i].w; 2: the lod of footprint points[i].w; else samples
+layout(location = VOXGI_LOC_u_count) uniform uint u_count;
+layout(location = VOXGI_LOC_u_lookup) uniform int u_lookup;  // 1: point lookups at level points[i].w; 2: the lod of footprint points[i].w; else samples
 
 void main()
 {

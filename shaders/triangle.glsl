@@ -9,12 +9,12 @@ layout(std430, binding = 5) buffer Flags { uint tri_flags[]; };
 layout(std430, binding = 6) buffer Big { uint big_list[]; };
 
 
-uniform uint u_tri_count;
-uniform uint u_tri_offset;
-uniform double u_inv_s;
-uniform uint u_pair_capacity;
-uniform int u_pass;
-uniform int u_solid_axis;  // solid parity: keep triangles below the grid on this axis, else -1
+layout(location = VOXGI_LOC_u_tri_count) uniform uint u_tri_count;
+layout(location = VOXGI_LOC_u_tri_offset) uniform uint u_tri_offset;
+layout(location = VOXGI_LOC_u_inv_s) uniform double u_inv_s;
+layout(location = VOXGI_LOC_u_pair_capacity) uniform uint u_pair_capacity;
+layout(location = VOXGI_LOC_u_pass) uniform int u_pass;
+layout(location = VOXGI_LOC_u_solid_axis) uniform int u_solid_axis;  // solid parity: keep triangles below the grid on this axis, else -1
 
 const double U = 1.1102230246251565404e-16LF; // 2^-53
 const int UNKNOWN = 2;

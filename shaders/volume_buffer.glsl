@@ -19,11 +19,11 @@
 #endif
 layout(std430, binding = 2) readonly buffer Values { float values[]; }; // 10 per triangle
 layout(std430, binding = 3) buffer Lost { uint lost; uint big_count; uint big_list[]; };
-uniform int u_big;       // 1: this draw goes over big_list
-uniform int u_axis;
-uniform ivec2 u_view;    // viewport, powers of two: window = clip exactly
-uniform int u_slicing;
-uniform int u_with_values; // 0: target 0 is R32F and counts fragments in red
+layout(location = VOXGI_LOC_u_big) uniform int u_big;       // 1: this draw goes over big_list
+layout(location = VOXGI_LOC_u_axis) uniform int u_axis;
+layout(location = VOXGI_LOC_u_view) uniform ivec2 u_view;    // viewport, powers of two: window = clip exactly
+layout(location = VOXGI_LOC_u_slicing) uniform int u_slicing;
+layout(location = VOXGI_LOC_u_with_values) uniform int u_with_values; // 0: target 0 is R32F and counts fragments in red
 
 #ifdef VOXGI_VERTEX
 void main() { gl_Position = vec4(0.0); } // the geometry stage reads the vertices itself

@@ -10,10 +10,10 @@ layout(std430, binding = 4) buffer Bits { uint bits[]; };
 layout(std430, binding = 7) readonly buffer Rank { uint rank[]; };
 layout(std430, binding = 8) writeonly buffer Out { float merged[]; };
 layout(std430, binding = 9) writeonly buffer Counts { uint counts[]; };
-uniform int u_pass;
-uniform uint u_attributes; // voxgi_attribute bits
-uniform ivec4 u_blend;     // per attribute: 0 AVERAGE, 1 MAX, 2 ADD
-uniform int u_channels;
+layout(location = VOXGI_LOC_u_pass) uniform int u_pass;
+layout(location = VOXGI_LOC_u_attributes) uniform uint u_attributes; // voxgi_attribute bits
+layout(location = VOXGI_LOC_u_blend) uniform ivec4 u_blend;     // per attribute: 0 AVERAGE, 1 MAX, 2 ADD
+layout(location = VOXGI_LOC_u_channels) uniform int u_channels;
 
 void main()
 {

@@ -8,12 +8,12 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = 0) uniform sampler3D u_src;
 layout(binding = 0, rgba32f) uniform writeonly image3D u_dst;
 layout(binding = 1, r32f) uniform writeonly image3D u_dst_single;
-uniform ivec3 u_src_dims;
-uniform ivec3 u_dst_dims;
-uniform int u_src_level;
-uniform int u_dir;
-uniform int u_single;
-uniform int u_premultiplied;
+layout(location = VOXGI_LOC_u_src_dims) uniform ivec3 u_src_dims;
+layout(location = VOXGI_LOC_u_dst_dims) uniform ivec3 u_dst_dims;
+layout(location = VOXGI_LOC_u_src_level) uniform int u_src_level;
+layout(location = VOXGI_LOC_u_dir) uniform int u_dir;
+layout(location = VOXGI_LOC_u_single) uniform int u_single;
+layout(location = VOXGI_LOC_u_premultiplied) uniform int u_premultiplied;
 
 void main()
 {

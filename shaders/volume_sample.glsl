@@ -4,9 +4,9 @@ layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(binding = 0) uniform sampler3D u_volume;
 layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };  // xyz, lod
 layout(std430, binding = 1) writeonly buffer Samples { vec4 samples[]; };
-uniform uint u_count;
-uniform vec3 u_size;
-uniform float u_max_lod;
+layout(location = VOXGI_LOC_u_count) uniform uint u_count;
+layout(location = VOXGI_LOC_u_size) uniform vec3 u_size;
+layout(location = VOXGI_LOC_u_max_lod) uniform float u_max_lod;
 
 void main()
 {

@@ -8,7 +8,7 @@
 // the compute voxelizer for its column, clipped to the triangle's exact voxel range (the
 // bounding-box clip), so the set is the exact conservative one and each (triangle, voxel) pair
 // is visited once: the attribute pass adds every pair exactly once.
-uniform int u_view;
+layout(location = VOXGI_LOC_u_view) uniform int u_view;
 
 #ifdef VOXGI_VERTEX
 void main() { gl_Position = vec4(0.0); } // the geometry stage reads the vertices itself
