@@ -2501,6 +2501,19 @@ enum {
     VOXGI__GL_UNIFORM_COUNT
 };
 
+/* The storage bindings of the shader snippets several programs share (scene.glsl, triangle.glsl,
+   conservative.glsl, svo.glsl), by role: given to the shaders as VOXGI_BINDING_<role> in the
+   prelude, used by name in C. A program's own buffers are numbered in its file, clear of these. */
+#define VOXGI__GL_BINDINGS(X)                                                                                 \
+    X(VERTICES, 0) X(TRIANGLES, 1) X(BITS, 2) X(CONTROL, 3) X(PAIRS, 4) X(FLAGS, 5) X(BIG, 6)                  \
+    X(RANK, 7) X(RECORDS, 8) X(SUMS, 9) X(SVO_CHILD, 0) X(SVO_NODE_VALUES, 1) X(SVO_LEAF_VALUES, 2)
+enum {
+#define VOXGI__GL_BINDING_NUMBER(role, number) VOXGI__BINDING_##role = number,
+    VOXGI__GL_BINDINGS(VOXGI__GL_BINDING_NUMBER)
+#undef VOXGI__GL_BINDING_NUMBER
+    VOXGI__GL_BINDING_ROLES_END
+};
+
 struct voxgi__gl {
 #define VOXGI__GL_MEMBER(ret, name, args) ret(VOXGI__APIENTRY *name) args;
     VOXGI__GL_FUNCS(VOXGI__GL_MEMBER)
@@ -2509,7 +2522,8 @@ struct voxgi__gl {
     VOXGI__GL_PROGRAMS(VOXGI__GL_PROGRAM_MEMBER)
 #undef VOXGI__GL_PROGRAM_MEMBER
     int64_t max_ssbo_bytes;
-    char uniform_locations[VOXGI__GL_UNIFORM_COUNT * 48]; /* "#define VOXGI_LOC_<name> <location>" lines for the prelude */
+    char prelude_names[VOXGI__GL_UNIFORM_COUNT * 48 + 1024]; /* "#define VOXGI_LOC_<uniform> <location>" and
+                                                               "#define VOXGI_BINDING_<role> <binding>" lines */
 };
 
 #include "shaders.h"
@@ -2552,7 +2566,11 @@ static voxgi_result voxgi__gl_init(voxgi_context *ctx)
         return voxgi__fail(ctx, VOXGI_ERR_GL_UNAVAILABLE, "GL %d.%d is current, voxgi needs 4.5 (%s)", major, minor, ctx->gl_version);
     gl->GetInteger64v(VOXGI__GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &gl->max_ssbo_bytes);
     for (u = 0; u < VOXGI__GL_UNIFORM_COUNT; u++)
-        at += (size_t)snprintf(gl->uniform_locations + at, sizeof gl->uniform_locations - at, "#define VOXGI_LOC_%s %d\n", uniforms[u], u);
+        at += (size_t)snprintf(gl->prelude_names + at, sizeof gl->prelude_names - at, "#define VOXGI_LOC_%s %d\n", uniforms[u], u);
+#define VOXGI__GL_BINDING_DEFINE(role, number) \
+    at += (size_t)snprintf(gl->prelude_names + at, sizeof gl->prelude_names - at, "#define VOXGI_BINDING_" #role " %d\n", number);
+    VOXGI__GL_BINDINGS(VOXGI__GL_BINDING_DEFINE)
+#undef VOXGI__GL_BINDING_DEFINE
     while (gl->GetError() != 0) {}
     voxgi__log(ctx, VOXGI_LOG_INFO, "GL backend: %s, %s", ctx->gl_version, ctx->gl_renderer);
     return VOXGI_OK;
@@ -2622,7 +2640,7 @@ static voxgi_result voxgi__gl_stage(voxgi_context *ctx, unsigned int prog, unsig
     src[0] = "#version 450 core\n"
              "#define VOXGI_LOCAL_SIZE 64\n"
              "#define VOXGI_SMALL_COLUMNS 64\n"; /* columns one invocation handles alone */
-    src[1] = gl->uniform_locations;
+    src[1] = gl->prelude_names;
     src[2] = define;
     for (k = 0; k < count; k++) {
         snprintf(lines[k], sizeof lines[k], "\n#line %d\n", (k + 1) * VOXGI__GL_LINES_PER_FILE + 1);
@@ -2739,8 +2757,8 @@ static voxgi_result voxgi__gl_read_buffer(voxgi_context *ctx, unsigned int buffe
 }
 
 /* The shader storage bindings the passes use (the attribute pass and the volume merge use 8
-   and 9); voxgi__gl_unbind clears them all. */
-#define VOXGI__GL_STORAGE_BINDINGS 10
+   and 9: VOXGI__BINDING_SUMS is the highest); voxgi__gl_unbind clears them all. */
+#define VOXGI__GL_STORAGE_BINDINGS (VOXGI__BINDING_SUMS + 1)
 
 static void voxgi__gl_unbind(voxgi__gl *gl)
 {
@@ -3918,8 +3936,8 @@ static void voxgi__vox_scene_buffers_gl(voxgi_context *ctx, const voxgi__flat *f
     *verts = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
     *tris = voxgi__gl_buffer(ctx, f->triangle_count * 3 * sizeof(uint32_t), f->tri);
     voxgi__free(ctx, gv);
-    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, *verts);
-    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, *tris);
+    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_VERTICES, *verts);
+    ctx->gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_TRIANGLES, *tris);
 }
 
 /* Pass 0 over all triangles (in slices of at most 65535 work groups), then pass 1 over the big
@@ -3972,9 +3990,9 @@ static void voxgi__vox_conservative_gl(voxgi__gl *gl, const voxgi_voxelize_desc 
     else voxgi__vox_dispatch_triangles_gl(gl, p, nt, control);
 }
 
-/* The attribute pass after the conservative (or thin) bits are final in buf[2]: the same
+/* The attribute pass after the conservative (or thin) bits are final in buf[VOXGI__BINDING_BITS]: the same
    triangles again, each set voxel receiving its triangles' values on the GPU; the triangles the
-   bit pass flagged (buf[5]) and the pairs its filter could not decide are added here, exactly.
+   bit pass flagged (buf[VOXGI__BINDING_FLAGS]) and the pairs its filter could not decide are added here, exactly.
    pair_capacity: the bit pass's pair count, which this pass cannot exceed. */
 static voxgi_result voxgi__vox_attributes_gl(voxgi_context *ctx, const voxgi__flat *f, const voxgi__vprep *vp,
                                              const voxgi_voxelize_desc *d, const unsigned int *buf, uint32_t pair_capacity,
@@ -3989,7 +4007,7 @@ static voxgi_result voxgi__vox_attributes_gl(voxgi_context *ctx, const voxgi__fl
     uint32_t control[8], *bits = (uint32_t *)voxgi__alloc_array(ctx, (size_t)words, 4, 0), *sums = NULL, *flags = NULL, *pairs = NULL;
     voxgi_result r = VOXGI_OK;
     if (!bits) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the attribute pass");
-    r = voxgi__gl_read_buffer(ctx, buf[2], bits, (size_t)words * 4);
+    r = voxgi__gl_read_buffer(ctx, buf[VOXGI__BINDING_BITS], bits, (size_t)words * 4);
     for (w = 0; w < words; w++) voxels += voxgi__popcount32(bits[w]);
     if (r == VOXGI_OK && voxels * stride * 4 > (uint64_t)gl->max_ssbo_bytes)
         r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the attribute sums of %llu voxels exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE; "
@@ -4007,11 +4025,11 @@ static voxgi_result voxgi__vox_attributes_gl(voxgi_context *ctx, const voxgi__fl
         r = voxgi__gl_check(ctx, "allocating the attribute buffers");
     }
     if (r == VOXGI_OK) {
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, control_buf);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, pairs_buf);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, rank_buf);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 8, rec_buf);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 9, sums_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_CONTROL, control_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_PAIRS, pairs_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_RANK, rank_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_RECORDS, rec_buf);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SUMS, sums_buf);
         gl->UseProgram(p);
         gl->ProgramUniform1ui(p, VOXGI__LOC_u_pair_capacity, pair_capacity);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_attr, 1);
@@ -4024,7 +4042,7 @@ static voxgi_result voxgi__vox_attributes_gl(voxgi_context *ctx, const voxgi__fl
         }
         voxgi__vox_conservative_gl(gl, d, p, nt, control_buf);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_attr, 0);
-        for (k = 7; k < 10; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, 0);
+        for (k = VOXGI__BINDING_RANK; k <= VOXGI__BINDING_SUMS; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, 0);
         r = voxgi__gl_read_buffer(ctx, control_buf, control, sizeof control);
         if (r == VOXGI_OK && control[4] > pair_capacity)
             r = voxgi__fail(ctx, VOXGI_ERR_GL, "the attribute pass found %u undecided pairs, the bit pass %u", control[4], pair_capacity);
@@ -4035,7 +4053,7 @@ static voxgi_result voxgi__vox_attributes_gl(voxgi_context *ctx, const voxgi__fl
         pairs = (uint32_t *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(control[4], 1u), 16, 0);
         if (!sums || !flags || !pairs) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to read the attribute sums");
         if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, sums_buf, sums, (size_t)(voxels * stride * 4));
-        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[5], flags, flag_words * 4);
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[VOXGI__BINDING_FLAGS], flags, flag_words * 4);
         if (r == VOXGI_OK && control[4]) r = voxgi__gl_read_buffer(ctx, pairs_buf, pairs, (size_t)control[4] * 16);
     }
     if (r == VOXGI_OK) {
@@ -4090,7 +4108,7 @@ static voxgi_result voxgi__vox_triangles_gl(voxgi_context *ctx, const voxgi__fla
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = &d->grid;
     size_t bytes = (size_t)voxgi__grid_words(g) * 4, v, nt = f->triangle_count, flag_words = (nt + 31) / 32;
-    unsigned int buf[7] = {0, 0, 0, 0, 0, 0, 0}, zero = 0, capacity = VOXGI__GL_PAIR_CAPACITY;
+    unsigned int buf[VOXGI__BINDING_BIG + 1] = {0, 0, 0, 0, 0, 0, 0}, zero = 0, capacity = VOXGI__GL_PAIR_CAPACITY; /* by binding */
     uint32_t control[8];
     voxgi__vox_vprep_gl *gv;
     uint32_t *copy = NULL, *flags = NULL, *pairs = NULL;
@@ -4110,9 +4128,9 @@ static voxgi_result voxgi__vox_triangles_gl(voxgi_context *ctx, const voxgi__fla
         gv[v].q[3] = vp[v].frac_bits;
         gv[v].lo[3] = vp[v].exact_axes;
     }
-    buf[0] = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
-    buf[1] = voxgi__gl_buffer(ctx, nt * 3 * sizeof(uint32_t), f->tri);
-    buf[6] = voxgi__gl_buffer(ctx, nt * 4, NULL);
+    buf[VOXGI__BINDING_VERTICES] = voxgi__gl_buffer(ctx, f->vertex_count * sizeof *gv, gv);
+    buf[VOXGI__BINDING_TRIANGLES] = voxgi__gl_buffer(ctx, nt * 3 * sizeof(uint32_t), f->tri);
+    buf[VOXGI__BINDING_BIG] = voxgi__gl_buffer(ctx, nt * 4, NULL);
     voxgi__free(ctx, gv);
     /* a solid pass whose pair list overflowed runs again with room for all of them: toggles
        cannot be patched the way set bits can */
@@ -4120,14 +4138,14 @@ static voxgi_result voxgi__vox_triangles_gl(voxgi_context *ctx, const voxgi__fla
         memset(control, 0, sizeof control);
         control[1] = 1; /* work groups per big triangle: raised by pass 0 */
         control[2] = 1;
-        buf[2] = voxgi__gl_grid_buffer(ctx, bytes);
-        buf[3] = voxgi__gl_buffer(ctx, sizeof control, control);
-        buf[4] = voxgi__gl_buffer(ctx, (size_t)capacity * 16, NULL);
-        buf[5] = voxgi__gl_buffer(ctx, flag_words * 4, NULL);
-        gl->ClearNamedBufferData(buf[5], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        buf[VOXGI__BINDING_BITS] = voxgi__gl_grid_buffer(ctx, bytes);
+        buf[VOXGI__BINDING_CONTROL] = voxgi__gl_buffer(ctx, sizeof control, control);
+        buf[VOXGI__BINDING_PAIRS] = voxgi__gl_buffer(ctx, (size_t)capacity * 16, NULL);
+        buf[VOXGI__BINDING_FLAGS] = voxgi__gl_buffer(ctx, flag_words * 4, NULL);
+        gl->ClearNamedBufferData(buf[VOXGI__BINDING_FLAGS], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
         r = voxgi__gl_check(ctx, "allocating the voxelization buffers");
         if (r != VOXGI_OK) break;
-        for (i = 0; i < 7; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i]);
+        for (i = 0; i <= VOXGI__BINDING_BIG; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i]);
         gl->UseProgram(p);
         gl->ProgramUniform3i(p, VOXGI__LOC_u_res, g->res[0], g->res[1], g->res[2]);
         gl->ProgramUniform1ui(p, VOXGI__LOC_u_tri_count, (unsigned)nt);
@@ -4138,8 +4156,8 @@ static voxgi_result voxgi__vox_triangles_gl(voxgi_context *ctx, const voxgi__fla
             gl->ProgramUniform1i(p, VOXGI__LOC_u_thin, d->method == VOXGI_METHOD_THIN);
             gl->ProgramUniform1i(p, VOXGI__LOC_u_attr, 0);
         }
-        voxgi__vox_conservative_gl(gl, d, p, nt, buf[3]);
-        r = voxgi__gl_read_buffer(ctx, buf[3], control, sizeof control);
+        voxgi__vox_conservative_gl(gl, d, p, nt, buf[VOXGI__BINDING_CONTROL]);
+        r = voxgi__gl_read_buffer(ctx, buf[VOXGI__BINDING_CONTROL], control, sizeof control);
         if (r != VOXGI_OK || solid_axis < 0 || control[4] <= capacity) break;
         capacity = control[4];
         for (i = 2; i < 6; i++) { voxgi__gl_delete_buffer(ctx, buf[i]); buf[i] = 0; }
@@ -4151,9 +4169,9 @@ static voxgi_result voxgi__vox_triangles_gl(voxgi_context *ctx, const voxgi__fla
         flags = (uint32_t *)voxgi__alloc_array(ctx, flag_words, 4, 0);
         pairs = (uint32_t *)voxgi__alloc_array(ctx, np, 16, 0);
         if (!copy || !flags || !pairs) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to resolve the GL pass's undecided tests");
-        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[2], copy, bytes);
-        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[5], flags, flag_words * 4);
-        if (r == VOXGI_OK && np) r = voxgi__gl_read_buffer(ctx, buf[4], pairs, np * 16);
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[VOXGI__BINDING_BITS], copy, bytes);
+        if (r == VOXGI_OK) r = voxgi__gl_read_buffer(ctx, buf[VOXGI__BINDING_FLAGS], flags, flag_words * 4);
+        if (r == VOXGI_OK && np) r = voxgi__gl_read_buffer(ctx, buf[VOXGI__BINDING_PAIRS], pairs, np * 16);
         if (r == VOXGI_OK) {
             voxgi__vox_shared vs;
             voxgi__stats st = {0, 0, 0};
@@ -4181,7 +4199,7 @@ static voxgi_result voxgi__vox_triangles_gl(voxgi_context *ctx, const voxgi__fla
                 }
             }
             info->exact_tests += st.exact_tests;
-            gl->NamedBufferSubData(buf[2], 0, (ptrdiff_t)bytes, copy);
+            gl->NamedBufferSubData(buf[VOXGI__BINDING_BITS], 0, (ptrdiff_t)bytes, copy);
             r = voxgi__gl_check(ctx, "uploading the exact decisions");
         }
     }
@@ -4192,8 +4210,8 @@ static voxgi_result voxgi__vox_triangles_gl(voxgi_context *ctx, const voxgi__fla
     voxgi__free(ctx, copy);
     voxgi__free(ctx, flags);
     voxgi__free(ctx, pairs);
-    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, buf[2]); return r; }
-    *bits_out = buf[2];
+    if (r != VOXGI_OK) { voxgi__gl_delete_buffer(ctx, buf[VOXGI__BINDING_BITS]); return r; }
+    *bits_out = buf[VOXGI__BINDING_BITS];
     return VOXGI_OK;
 }
 
@@ -6412,9 +6430,9 @@ static voxgi_result voxgi__svo_grow_gl(voxgi_context *ctx, unsigned int *buf, ui
 static void voxgi__svo_bind_gl(voxgi_context *ctx, const voxgi_svo *svo, unsigned int p, int a)
 {
     voxgi__gl *gl = ctx->gl;
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, svo->gl_child);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, a >= 0 ? svo->gl_node_values[a] : 0);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, a >= 0 ? svo->gl_leaf_values[a] : 0);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_CHILD, svo->gl_child);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_NODE_VALUES, a >= 0 ? svo->gl_node_values[a] : 0);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_LEAF_VALUES, a >= 0 ? svo->gl_leaf_values[a] : 0);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_depth, svo->info.depth);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_format, (int)svo->info.format);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_single, a == 3);

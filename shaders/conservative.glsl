@@ -4,15 +4,15 @@
 // (voxelize_geometry.glsl). Every sign the double filter cannot certify is handed to the CPU:
 // single voxels as (triangle, voxel) pairs, whole triangles through a flag bit.
 
-layout(std430, binding = 2) buffer Bits { uint bits[]; };
+layout(std430, binding = VOXGI_BINDING_BITS) buffer Bits { uint bits[]; };
 layout(location = VOXGI_LOC_u_thin) uniform int u_thin;        // 1: the thin (6-separating) tests too
 
 // The attribute pass (u_attr 1): the bits are final; a voxel the tests set receives its
 // triangle's fixed-point values, added to 64-bit sums (low word, then the carry into the high
 // word: the total is exact whatever the order) after a count, at the voxel's rank.
-layout(std430, binding = 7) readonly buffer Rank { uint rank[]; };
-layout(std430, binding = 8) readonly buffer Rec { uint rec[]; };
-layout(std430, binding = 9) buffer Sums { uint sums[]; };
+layout(std430, binding = VOXGI_BINDING_RANK) readonly buffer Rank { uint rank[]; };
+layout(std430, binding = VOXGI_BINDING_RECORDS) readonly buffer Rec { uint rec[]; };
+layout(std430, binding = VOXGI_BINDING_SUMS) buffer Sums { uint sums[]; };
 layout(location = VOXGI_LOC_u_attr) uniform int u_attr;
 layout(location = VOXGI_LOC_u_channels) uniform int u_channels;
 layout(location = VOXGI_LOC_u_max_channels) uniform uint u_max_channels; // bit c: channel c keeps the maximum (in the low word), else the sum

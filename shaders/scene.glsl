@@ -7,6 +7,6 @@ struct VPrep {
     vec4 w;    // the float vertex
     vec4 pad;
 };
-layout(std430, binding = 0) readonly buffer Verts { VPrep vp[]; };
-layout(std430, binding = 1) readonly buffer Tris { uint tri_index[]; };
+layout(std430, binding = VOXGI_BINDING_VERTICES) readonly buffer Verts { VPrep vp[]; };
+layout(std430, binding = VOXGI_BINDING_TRIANGLES) readonly buffer Tris { uint tri_index[]; };
 layout(location = VOXGI_LOC_u_res) uniform ivec3 u_res;

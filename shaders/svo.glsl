@@ -4,9 +4,9 @@
 // index of the slot's child tile (0: none); inner tile t holds slots 1 + 8t .. 8 + 8t, leaf tile t
 // the leaf slots 8t .. 7 + 8t; values per slot RGBA32F / R32F (u_svo_format 0) or RGBA16F / R16F
 // (1, two halves per word, the first in the low bits), (value, alpha), opacity alpha alone.
-layout(std430, binding = 0) buffer SvoChild { uint svo_child[]; };
-layout(std430, binding = 1) buffer SvoNodeValues { uint svo_node_words[]; };
-layout(std430, binding = 2) buffer SvoLeafValues { uint svo_leaf_words[]; };
+layout(std430, binding = VOXGI_BINDING_SVO_CHILD) buffer SvoChild { uint svo_child[]; };
+layout(std430, binding = VOXGI_BINDING_SVO_NODE_VALUES) buffer SvoNodeValues { uint svo_node_words[]; };
+layout(std430, binding = VOXGI_BINDING_SVO_LEAF_VALUES) buffer SvoLeafValues { uint svo_leaf_words[]; };
 layout(location = VOXGI_LOC_u_svo_depth) uniform int u_svo_depth;   // leaves at level depth
 layout(location = VOXGI_LOC_u_svo_format) uniform int u_svo_format;  // 0: float32, 1: float16
 layout(location = VOXGI_LOC_u_svo_single) uniform int u_svo_single;  // 1: the attribute is opacity (alpha alone)

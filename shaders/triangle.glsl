@@ -3,10 +3,10 @@
 // the same arithmetic in double.
 
 // dispatch (x, y, z) for pass 1, then counters
-layout(std430, binding = 3) buffer Control { uint big_dispatch; uint split_y; uint split_z; uint big_count; uint pair_count; uint flagged_count; };
-layout(std430, binding = 4) buffer Pairs { uvec4 pairs[]; };
-layout(std430, binding = 5) buffer Flags { uint tri_flags[]; };
-layout(std430, binding = 6) buffer Big { uint big_list[]; };
+layout(std430, binding = VOXGI_BINDING_CONTROL) buffer Control { uint big_dispatch; uint split_y; uint split_z; uint big_count; uint pair_count; uint flagged_count; };
+layout(std430, binding = VOXGI_BINDING_PAIRS) buffer Pairs { uvec4 pairs[]; };
+layout(std430, binding = VOXGI_BINDING_FLAGS) buffer Flags { uint tri_flags[]; };
+layout(std430, binding = VOXGI_BINDING_BIG) buffer Big { uint big_list[]; };
 
 
 layout(location = VOXGI_LOC_u_tri_count) uniform uint u_tri_count;

@@ -6,7 +6,7 @@
 // flagged before any of its toggles are written.
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 
-layout(std430, binding = 2) buffer Toggles { uint toggles[]; };
+layout(std430, binding = VOXGI_BINDING_BITS) buffer Toggles { uint toggles[]; };
 
 // Sign of form L at the centre of voxel rel, with the per-voxel bound (see voxgi__form_sign).
 int centre_sign(Lin L, ivec3 rel)
