@@ -338,6 +338,138 @@ static void test_info_and_bench(void)
              strstr(out, "| builtin:quad | solid-vote | 0.00% (") && !strstr(out, "| builtin:quad | solid | 0.00% ("), "bench solid: %s", out);
 }
 
+static int count_of(const char *hay, const char *needle)
+{
+    int n = 0;
+    for (; (hay = strstr(hay, needle)) != NULL; hay += strlen(needle)) n++;
+    return n;
+}
+
+/* Every command parses its options from one table: an unknown option, a missing value and a bad
+   value are each named, in one line, with exit status 2 and a pointer to the command's --help. */
+static void test_usage_errors_named(void)
+{
+    static char out[8192];
+    const char *cmds[] = {"voxelize builtin:cube", "info", "bench voxelize", "svo builtin:cube", "render cornell-box -o x.png", "report vct"};
+    const char *names[] = {"voxelize", "info", "bench", "svo", "render", "report"};
+    char args[256], want[128];
+    size_t i;
+    int rc;
+    for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
+        snprintf(args, sizeof args, "%s --foo", cmds[i]);
+        rc = run(args, out, sizeof out);
+        snprintf(want, sizeof want, "voxgi %s: unknown option '--foo' (see 'voxgi %s --help')\n", names[i], names[i]);
+        TH_CHECK(rc == 2 && strcmp(out, want) == 0, "'%s': exit %d: %s", args, rc, out);
+    }
+    rc = run("render cornell-box -o x.png --res", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--res needs a value") && count_of(out, "\n") == 1, "missing value: exit %d: %s", rc, out);
+    rc = run("render cornell-box --res x -o x.png", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--res needs 1..4096, got 'x'") && count_of(out, "\n") == 1, "bad value: exit %d: %s", rc, out);
+    rc = run("render cornell-box -o x.png --size 8", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--size needs 2 values"), "missing second value: exit %d: %s", rc, out);
+    rc = run("voxelize builtin:cube --grid 0 0 0 1 4 4", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--grid needs 7 values"), "short --grid: exit %d: %s", rc, out);
+    rc = run("svo builtin:cube --threads 0", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--threads needs 1..256, got '0'"), "--threads 0: exit %d: %s", rc, out);
+    rc = run("voxelize builtin:cube --backend vulkan", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--backend needs one of auto, cpu, gl, got 'vulkan'"), "--backend: exit %d: %s", rc, out);
+    rc = run("voxelize builtin:cube --blend max,add", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--blend needs 4 comma-separated values"), "--blend: exit %d: %s", rc, out);
+    rc = run("render cornell-box --bounces -1 --spp 1 --size 2 2 --json -o /nonexistent/dir/x.pfm", out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "cannot write"), "a value starting with '-' is a value: exit %d: %s", rc, out);
+    rc = run("voxelize", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "no mesh given"), "no mesh: exit %d: %s", rc, out);
+    rc = run("info extra", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "unexpected argument 'extra'"), "operand to info: exit %d: %s", rc, out);
+}
+
+/* -o by its extension, in any case: voxelize writes binvox only (.vox refused), render PNG and
+   PFM only, and a refused name stops the command before any work. */
+static void test_output_extensions(void)
+{
+    static char out[8192];
+    char path[512], args[1024];
+    FILE *f;
+    int rc;
+    snprintf(path, sizeof path, "%s/out.vox", tmpdir);
+    snprintf(args, sizeof args, "voxelize builtin:cube --res 8 --backend cpu -o %s", path);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, ".vox format is not supported") && strstr(out, "binvox"), ".vox: exit %d: %s", rc, out);
+    f = fopen(path, "rb");
+    TH_CHECK(f == NULL, "a refused .vox was written");
+    if (f) fclose(f);
+    rc = run("voxelize builtin:nothing -o out.txt", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "out.txt") && strstr(out, ".binvox") && !strstr(out, "built-in"), ".txt, before the mesh: exit %d: %s", rc, out);
+    snprintf(path, sizeof path, "%s/UPPER.BINVOX", tmpdir);
+    snprintf(args, sizeof args, "voxelize builtin:cube --res 8 --backend cpu -o %s", path);
+    rc = run(args, out, sizeof out);
+    f = fopen(path, "rb");
+    TH_CHECK(rc == 0 && f != NULL, ".BINVOX: exit %d: %s", rc, out);
+    if (f) fclose(f);
+    /* the scene is looked up by the library, after the check: a .jpg must be refused first */
+    rc = run("render no-such-scene --spp 16777216 -o x.jpg", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "x.jpg") && strstr(out, ".png or .pfm") && !strstr(out, "no-such-scene"), ".jpg before work: exit %d: %s", rc, out);
+    rc = run("render cornell-box -o x.png.txt", out, sizeof out);
+    TH_CHECK(rc == 2, "x.png.txt accepted: exit %d: %s", rc, out);
+    rc = run("render cornell-box", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "-o"), "no -o: exit %d: %s", rc, out);
+    snprintf(path, sizeof path, "%s/CAPS.PFM", tmpdir);
+    snprintf(args, sizeof args, "render cornell-box --spp 1 --size 3 2 -o %s", path);
+    rc = run(args, out, sizeof out);
+    f = fopen(path, "rb");
+    TH_CHECK(rc == 0 && f && fread(out, 1, 3, f) == 3 && memcmp(out, "PF\n", 3) == 0, ".PFM is written as PFM: exit %d", rc);
+    if (f) fclose(f);
+}
+
+static void test_version_and_exit_codes_documented(void)
+{
+    static char out[8192];
+    int rc = run("--version", out, sizeof out);
+    TH_CHECK(rc == 0 && strcmp(out, "voxgi " VOXGI_VERSION_STRING "\n") == 0, "--version: exit %d: %s", rc, out);
+    rc = run("--help", out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "--version") && strstr(out, "Exit status") && strstr(out, "  0  success") &&
+             strstr(out, "  1  failure while running") && strstr(out, "  2  usage error"), "--help: %s", out);
+}
+
+/* A failed library call is said once, in one line (the log callback does not repeat it). */
+static void test_library_error_once(void)
+{
+    static char out[8192];
+    int rc = run("voxelize builtin:cube --method atlas --atlas-uv mesh --backend cpu", out, sizeof out);
+    TH_CHECK(rc == 1 && count_of(out, "has no uvs") == 1 && count_of(out, "\n") == 1 && strncmp(out, "voxgi voxelize: builtin:cube: ", 30) == 0,
+             "exit %d: %s", rc, out);
+    rc = run("voxelize builtin:cube --grid 0 0 0 -1 4 4 4 --backend cpu", out, sizeof out);
+    TH_CHECK(rc == 1 && count_of(out, "voxel size") == 1 && count_of(out, "\n") == 1, "bad grid: exit %d: %s", rc, out);
+    rc = run("render no-such-scene -o x.png", out, sizeof out);
+    TH_CHECK(rc == 1 && count_of(out, "no-such-scene") == 1 && count_of(out, "\n") == 1, "unknown scene: exit %d: %s", rc, out);
+    rc = run("svo builtin:cube --res 8 --backend cpu --attributes albedo --format float16 --json", out, sizeof out);
+    TH_CHECK(rc == 0 && count_of(out, "\n") == 1 && out[0] == '{', "svo: nothing but the JSON: %s", out);
+}
+
+/* Exit status: 0 success, 1 a failure while running, 2 a usage error; for every command. */
+static void test_exit_codes(void)
+{
+    static char out[16384];
+    char args[1024];
+    int rc;
+    TH_CHECK(run("svo builtin:cube --res 8 --backend cpu", out, sizeof out) == 0, "svo: %s", out);
+    /* a combination of options no render can honour is a usage error too, found before any work */
+    rc = run("render no-such-scene --method vct --bounces 0 -o x.png", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--bounces 1 or more") && !strstr(out, "no-such-scene"), "vct without bounces: exit %d: %s", rc, out);
+    TH_CHECK(run("svo /nonexistent/mesh.obj --backend cpu", out, sizeof out) == 1, "svo, missing mesh: %s", out);
+    TH_CHECK(run("svo builtin:cube --res 8 --backend cpu --format float64", out, sizeof out) == 2, "svo, bad format: %s", out);
+    /* bench opens every mesh before measuring anything */
+    rc = run("bench voxelize /nonexistent/mesh.obj --min-res 8 --max-res 8 --runs 1 --no-gl", out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "/nonexistent/mesh.obj") && !strstr(out, "Table 1"), "bench, missing mesh: exit %d: %s", rc, out);
+    TH_CHECK(run("bench voxelize --min-res 64 --max-res 32", out, sizeof out) == 2, "bench, empty range: %s", out);
+    TH_CHECK(run("bench", out, sizeof out) == 2, "bench without a benchmark: %s", out);
+    snprintf(args, sizeof args, "report vct --scenes nowhere --size 8 --spp 64 --res 8 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --out %s/r2", tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 1 && count_of(out, "no built-in scene") == 1, "report, unknown scene: exit %d: %s", rc, out);
+    TH_CHECK(run("report vct --scenes a,b,c,d,e,f,g,h,i", out, sizeof out) == 2, "report, nine scenes: %s", out);
+    TH_CHECK(run("report", out, sizeof out) == 2, "report without a report: %s", out);
+}
+
 int main(void)
 {
     snprintf(tmpdir, sizeof tmpdir, "%s/voxgi_tool_XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
@@ -351,6 +483,11 @@ int main(void)
     TH_RUN(test_svo_command);
     TH_RUN(test_render_command);
     TH_RUN(test_vct_and_report_commands);
+    TH_RUN(test_usage_errors_named);
+    TH_RUN(test_output_extensions);
+    TH_RUN(test_version_and_exit_codes_documented);
+    TH_RUN(test_library_error_once);
+    TH_RUN(test_exit_codes);
     {
         char cmd[300];
         snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);

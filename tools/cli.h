@@ -1,0 +1,188 @@
+/* tools/cli.h - what every command of the voxgi tool shares: exit codes, one table-driven
+ * option parser (which also writes each command's option help), messages on stderr that never
+ * land after a half-written progress line, voxgi contexts with headless GL, and meshes.
+ *
+ * A command describes its options in a table of cli_option (name, kind of value, where it goes,
+ * help) and calls cli_parse; the parser names an unknown option, a missing value and a bad value
+ * separately. Every message goes through a cli_session, which the library's log and progress
+ * callbacks also write to: no state lives in globals. */
+#ifndef VXT_CLI_H
+#define VXT_CLI_H
+#include "../voxgi.h"
+#include "headless_gl.h"
+#include "mesh_io.h"
+#include "shapes.h"
+#include <math.h>
+#include <stdio.h>
+
+#if defined(__GNUC__) || defined(__clang__)
+#define CLI_PRINTF(f, a) __attribute__((format(printf, f, a)))
+#else
+#define CLI_PRINTF(f, a)
+#endif
+
+/* The exit status of every command, as 'voxgi --help' documents it. */
+enum { CLI_EXIT_OK = 0, CLI_EXIT_FAILURE = 1, CLI_EXIT_USAGE = 2 };
+#define CLI_CONTINUE (-1) /* cli_parse: the arguments are good, run the command */
+#define CLI_MAX_ITEMS 64  /* the longest list a SET, ENUMS or NUMBERS option takes */
+
+/* ------------------------------------------------------------------ options */
+typedef enum cli_kind {
+    CLI_FLAG,    /* no value: *(int *)dst = 1 */
+    CLI_INT,     /* `count` whole numbers in lo..hi into (int *)dst */
+    CLI_DOUBLE,  /* `count` numbers in [lo, hi] ((lo, hi] with lo_open) into (double *)dst; with
+                    lo = -HUGE_VAL and hi = HUGE_VAL any number strtod reads */
+    CLI_STRING,  /* the value as given into (const char **)dst */
+    CLI_ENUM,    /* one of `names` into (int *)dst: values[i], or i without values */
+    CLI_SET,     /* comma-separated names: the OR of their values into (unsigned *)dst */
+    CLI_ENUMS,   /* min_items..max_items comma-separated names into (int *)dst as ENUM does, the count into *items */
+    CLI_NUMBERS, /* min_items..max_items comma-separated numbers in range (whole ones if `whole`) into
+                    (double *)dst, the count into *items */
+    CLI_CUSTOM   /* `count` values handed to parse() */
+} cli_kind;
+
+typedef struct cli_option cli_option;
+struct cli_option {
+    const char *name;          /* "--res" */
+    const char *arg;           /* the value(s) in help and messages: "N", "W H"; NULL for a flag */
+    cli_kind kind;
+    void *dst;
+    int count;                 /* INT, DOUBLE, CUSTOM: values after the name (0 means 1) */
+    double lo, hi;             /* INT, DOUBLE, NUMBERS: the range */
+    int lo_open, whole;        /* DOUBLE, NUMBERS: lo itself excluded; NUMBERS: whole numbers only */
+    const char *const *names;  /* ENUM, SET, ENUMS: the words, NULL-terminated */
+    const int *values;         /* their values (NULL: the index; SET needs them) */
+    int min_items, max_items;  /* ENUMS, NUMBERS */
+    int *items;                /* ENUMS, NUMBERS: how many were given */
+    int optional;              /* ENUM: the value may be left out (dst keeps its value) */
+    int *given;                /* when not NULL, set to 1 when the option appears */
+    /* CUSTOM: stores args[0..count); returns -1, or the index of the bad value with *need saying what it needs */
+    int (*parse)(const cli_option *o, char **args, const char **need);
+    const char *synopsis;      /* help's left column when it is not "name arg" */
+    const char *help;          /* its lines after the first are indented to the column; NULL: not listed */
+};
+
+typedef struct cli_command {
+    const char *name;          /* "render": every message starts "voxgi render: " */
+    const char *help;          /* usage line and description, printed before the option lines */
+    int column;                /* where the option help text starts */
+    const cli_option *options;
+    int option_count;
+    const char *operand;       /* what the operands are ("mesh"), for messages; NULL: none taken */
+    const char **operands;     /* they go here, at most max_operands, at least min_operands */
+    int min_operands, max_operands;
+    int *operand_count;
+} cli_command;
+
+#define CLI_COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
+
+/* Parses argv[0..argc): CLI_CONTINUE when the command should run, else the exit status (0 after
+   --help, CLI_EXIT_USAGE after the message naming what is wrong). Options and values are taken in
+   order; a value may start with '-' (--bounces -1). */
+int cli_parse(const cli_command *cmd, int argc, char **argv);
+void cli_help(const cli_command *cmd, FILE *f);
+/* "voxgi NAME: message (see 'voxgi NAME --help')" on stderr; returns CLI_EXIT_USAGE. */
+int cli_usage(const char *name, const char *fmt, ...) CLI_PRINTF(2, 3);
+int cli_parse_int(const char *s, int lo, int hi, int *out);
+int cli_parse_double(const char *s, double *out);
+/* The next comma-separated item of *list into buf: 1, or 0 at the end, or -1 for an empty or too long item. */
+int cli_next_item(const char **list, char *buf, size_t size);
+/* Whether path ends in ext (".png"), in any case. */
+int cli_has_extension(const char *path, const char *ext);
+
+/* The options most commands share, each defined once here; a command lists the ones it takes
+   with its own help text (what --backend decides differs between commands). */
+typedef struct cli_common {
+    int backend;  /* voxgi_backend */
+    int gl;       /* vxt_gl_kind */
+    int threads;  /* 0: one per core */
+    int json;
+} cli_common;
+extern const char *const cli_backend_names[], *const cli_gl_names[], *const cli_svo_format_names[], *const cli_attribute_names[];
+extern const int cli_attribute_values[];
+#define CLI_OPT_BACKEND(c, text) \
+    {.name = "--backend", .arg = "auto|cpu|gl", .kind = CLI_ENUM, .dst = &(c)->backend, .names = cli_backend_names, .help = (text)}
+#define CLI_OPT_GL(c, text) \
+    {.name = "--gl", .arg = "auto|egl|osmesa", .kind = CLI_ENUM, .dst = &(c)->gl, .names = cli_gl_names, .help = (text)}
+#define CLI_OPT_THREADS(c) \
+    {.name = "--threads", .arg = "T", .kind = CLI_INT, .dst = &(c)->threads, .lo = 1, .hi = 256, \
+     .help = "CPU worker threads (default: one per core)"}
+#define CLI_OPT_JSON(c, text) {.name = "--json", .kind = CLI_FLAG, .dst = &(c)->json, .help = (text)}
+/* albedo,normal,emission,opacity or all -> voxgi_attribute bits */
+#define CLI_OPT_ATTRIBUTES(dst_, text) \
+    {.name = "--attributes", .arg = "LIST", .kind = CLI_SET, .dst = (dst_), .names = cli_attribute_names, \
+     .values = cli_attribute_values, .help = (text)}
+
+/* ------------------------------------------------------------------ messages */
+typedef struct cli_session {
+    const char *name;     /* the command: the prefix of every message */
+    int interactive;      /* stderr is a terminal: progress lines are worth writing */
+    int status_width;     /* characters of the progress line on stderr now; 0: none */
+    char error[1024];     /* the last error the library logged, or why a context could not be made */
+} cli_session;
+
+void cli_session_init(cli_session *s, const char *name);
+/* A transient line on stderr (progress), replacing the previous one. */
+void cli_status(cli_session *s, const char *fmt, ...) CLI_PRINTF(2, 3);
+/* Erases the progress line, if one is shown: before results, errors and the end. */
+void cli_status_clear(cli_session *s);
+/* "voxgi NAME: message" on stderr. */
+void cli_note(cli_session *s, const char *fmt, ...) CLI_PRINTF(2, 3);
+/* The same for a failure; returns CLI_EXIT_FAILURE. */
+int cli_fail(cli_session *s, const char *fmt, ...) CLI_PRINTF(2, 3);
+/* A failed library call on ctx, said once: "voxgi NAME: what: the library's reason" (what may be NULL). */
+int cli_fail_lib(cli_session *s, const voxgi_context *ctx, const char *what);
+
+/* ------------------------------------------------------------------ contexts */
+typedef struct cli_context {
+    voxgi_context *vx;
+    vxt_gl *gl; /* the headless GL context vx uses, or NULL */
+} cli_context;
+
+/* Makes a voxgi context logging to s (errors are kept for the command to report, once; warnings
+   printed) and, with progress, showing the stages the library reports. For GL (or AUTO) it first
+   makes a headless GL context of `kind`. 0 on success; else 1 with the reason in s->error and
+   nothing printed. */
+int cli_context_try(cli_session *s, cli_context *c, voxgi_backend backend, vxt_gl_kind kind, int threads, int progress);
+/* The same, saying "cannot use backend B: why" when it fails. */
+int cli_context_open(cli_session *s, cli_context *c, voxgi_backend backend, vxt_gl_kind kind, int threads, int progress);
+/* The context the shared options ask for: --backend, --gl, --threads, and progress on a terminal unless --json. */
+int cli_context_open_options(cli_session *s, cli_context *c, const cli_common *o);
+void cli_context_close(cli_session *s, cli_context *c);
+
+/* ------------------------------------------------------------------ meshes */
+typedef struct cli_mesh {
+    char name[256];
+    vxt_mesh m;            /* file meshes */
+    vxt_shape shape;       /* built-in shapes */
+    voxgi_mesh vm;
+    voxgi_scene scene;
+    voxgi_material *materials;
+} cli_mesh;
+
+/* Loads a file (OBJ+MTL, OFF, STL, PLY) or built-in shape into a one-mesh scene; 0 on success,
+   else says why and returns 1. */
+int cli_mesh_open(cli_session *s, const char *path, cli_mesh *t);
+void cli_mesh_close(cli_mesh *t);
+size_t cli_mesh_triangles(const cli_mesh *t);
+/* What voxelize and svo start with: the mesh (first: a bad file fails fast) and the context the options ask for. */
+int cli_open_mesh_and_context(cli_session *s, const char *path, const cli_common *o, cli_mesh *t, cli_context *c);
+void cli_close_mesh_and_context(cli_session *s, cli_mesh *t, cli_context *c);
+
+/* ------------------------------------------------------------------ numbers */
+/* The median of v[0..n) (sorts v). */
+double cli_median(double *v, int n);
+/* The RMS difference of a and ref over every value, and ref's mean: the relative RMSE is their
+   quotient (render prints it even for a black reference, the report 0 then). */
+double cli_rms_difference(const float *a, const float *ref, size_t n, double *ref_mean);
+/* A grid of res^3 voxels (per_axis: only as long as the scene needs) fitted around the scene. */
+voxgi_result cli_fit_grid(voxgi_context *ctx, const voxgi_scene *scene, int res, int per_axis, double pad, voxgi_grid *out);
+
+/* ------------------------------------------------------------------ commands, one file each */
+int cmd_voxelize(int argc, char **argv);
+int cmd_info(int argc, char **argv);
+int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" */
+int cmd_svo(int argc, char **argv);
+int cmd_render(int argc, char **argv);
+int cmd_report(int argc, char **argv); /* argv[0] is "vct" */
+#endif

@@ -1,0 +1,300 @@
+/* tools/cmd_render.c - voxgi render: an image of a built-in scene or a mesh, path-traced or cone-traced. */
+#include "cli.h"
+#include "image_io.h"
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const render_methods[] = {"reference", "vct", NULL};
+
+static const char *const render_help =
+    "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
+    "Renders a built-in scene (cornell-box, two-spheres, leak-box, furnace) or a mesh file (OBJ+MTL:\n"
+    "Kd is the albedo, Ke the emitted radiance) with the reference path tracer on the CPU. A PFM\n"
+    "pixel is the mean linear radiance over the pixel's square; a PNG is that times --exposure,\n"
+    "clamped and sRGB encoded.\n";
+
+typedef struct render_args {
+    cli_common common;
+    const char *what, *out;
+    int vct, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
+    int octree, octree_format, bricks, have_camera, have_sun;
+    double step, camera[7], sun[4], exposure;
+} render_args;
+
+/* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
+typedef struct render_scene {
+    voxgi_builtin_scene bs;
+    cli_mesh tm;
+    voxgi_scene with_sun;
+    voxgi_light *lights;
+    const voxgi_scene *scene;
+} render_scene;
+
+/* The view of a mesh: its bounds' centre from behind and a little above. */
+static void mesh_camera(const cli_mesh *tm, voxgi_camera *cam)
+{
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    size_t v;
+    double c[3], r = 0;
+    int a;
+    for (v = 0; v < tm->vm.vertex_count; v++)
+        for (a = 0; a < 3; a++) { lo[a] = fminf(lo[a], tm->vm.positions[3 * v + a]); hi[a] = fmaxf(hi[a], tm->vm.positions[3 * v + a]); }
+    for (a = 0; a < 3; a++) { c[a] = 0.5 * ((double)lo[a] + hi[a]); r = fmax(r, 0.5 * ((double)hi[a] - lo[a])); }
+    cam->eye[0] = c[0]; cam->eye[1] = c[1] + 0.6 * r; cam->eye[2] = c[2] - 3.2 * r;
+    memcpy(cam->target, c, sizeof c);
+    cam->fovy_degrees = 40;
+}
+
+/* Sets up rs and the camera d->camera; 0, or says why and returns 1. */
+static int scene_open(cli_session *s, voxgi_context *ctx, const render_args *a, render_scene *rs, voxgi_reference_desc *d)
+{
+    int i;
+    if (strchr(a->what, '.') == NULL && strncmp(a->what, "builtin:", 8) != 0) { /* a built-in scene */
+        if (voxgi_builtin_scene_create(ctx, a->what, &rs->bs) != VOXGI_OK) return cli_fail_lib(s, ctx, NULL);
+        rs->scene = &rs->bs.scene;
+        d->camera = rs->bs.camera;
+    } else {
+        if (cli_mesh_open(s, a->what, &rs->tm)) return CLI_EXIT_FAILURE;
+        rs->scene = &rs->tm.scene;
+        mesh_camera(&rs->tm, &d->camera);
+    }
+    if (a->have_camera) {
+        memcpy(d->camera.eye, a->camera, 3 * sizeof(double));
+        memcpy(d->camera.target, a->camera + 3, 3 * sizeof(double));
+        d->camera.fovy_degrees = a->camera[6];
+    }
+    d->camera.width = a->size[0];
+    d->camera.height = a->size[1];
+    if (a->have_sun) { /* the scene's lights and one more */
+        const voxgi_scene *scene = rs->scene;
+        rs->with_sun = *scene;
+        rs->lights = (voxgi_light *)calloc(scene->light_count + 1, sizeof *rs->lights);
+        if (!rs->lights) return cli_fail(s, "out of memory");
+        if (scene->light_count) memcpy(rs->lights, scene->lights, scene->light_count * sizeof *rs->lights);
+        rs->lights[scene->light_count].type = VOXGI_LIGHT_DIRECTIONAL;
+        for (i = 0; i < 3; i++) {
+            rs->lights[scene->light_count].direction[i] = (float)a->sun[i];
+            rs->lights[scene->light_count].intensity[i] = (float)a->sun[3];
+        }
+        rs->with_sun.lights = rs->lights;
+        rs->with_sun.light_count = scene->light_count + 1;
+        rs->scene = &rs->with_sun;
+    }
+    return 0;
+}
+
+static void scene_close(voxgi_context *ctx, render_scene *rs)
+{
+    free(rs->lights);
+    voxgi_builtin_scene_destroy(ctx, &rs->bs);
+    if (rs->tm.name[0]) cli_mesh_close(&rs->tm);
+}
+
+/* --compare: the relative RMSE of the lighting against the reference with `compare` spp (rendered
+   with an independent seed), both without the emitters the camera sees (the same in both but for
+   the noise at their edges, which would swamp the lighting). */
+static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene,
+                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, double *rmse, double *ref_ms)
+{
+    size_t n = (size_t)a->size[0] * (size_t)a->size[1] * 3;
+    float *ref = (float *)malloc(n * 8), *mine = ref ? ref + n : NULL;
+    voxgi_reference_desc rd = *d, dh = *d;
+    voxgi_vct_desc vh = *vd;
+    voxgi_reference_info ri;
+    rd.samples = a->compare;
+    rd.seed = d->seed + 1000003; /* independent of the image's own noise */
+    rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = 1;
+    if (!ref || voxgi_reference_render(ctx, scene, &rd, ref, n * 4, &ri) != VOXGI_OK ||
+        (a->vct ? voxgi_vct_render(ctx, scene, &vh, mine, n * 4, NULL) : voxgi_reference_render(ctx, scene, &dh, mine, n * 4, NULL)) != VOXGI_OK) {
+        free(ref);
+        return ref ? cli_fail_lib(s, ctx, "the reference") : cli_fail(s, "the reference: out of memory");
+    }
+    {
+        double mean, rms = cli_rms_difference(mine, ref, n, &mean);
+        *rmse = rms / mean;
+    }
+    *ref_ms = ri.ms_bvh + ri.ms_render;
+    free(ref);
+    return 0;
+}
+
+static void print_result(const render_args *a, const voxgi_info *ci, const float *rgb, const voxgi_reference_desc *d,
+                         const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, double rmse, double ref_ms)
+{
+    double mean[3] = {0, 0, 0};
+    size_t p;
+    int i, w = a->size[0], h = a->size[1];
+    for (p = 0; p < (size_t)w * (size_t)h; p++)
+        for (i = 0; i < 3; i++) mean[i] += rgb[3 * p + (size_t)i];
+    for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
+    if (a->vct && a->common.json)
+        printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
+               "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"rel_rmse\":%.6g,"
+               "\"reference_ms\":%.3f,\"output\":\"%s\"}\n",
+               a->what, voxgi_backend_name(ci->backend), w, h, vd->resolution ? vd->resolution : 128, vd->cones.cones ? vd->cones.cones : 16, !vd->no_gi,
+               (unsigned long long)vinfo->voxels, vinfo->ms_voxelize, vinfo->ms_inject, vinfo->ms_octree, (unsigned long long)vinfo->radiance_bytes,
+               vinfo->ms_cones, vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2], rmse, ref_ms, a->out);
+    else if (a->vct) {
+        printf("%s: %d x %d cone-traced (%s%s%s), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, ", a->what, w, h, voxgi_backend_name(ci->backend),
+               ci->backend == VOXGI_BACKEND_GL ? ", " : "", ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "", (unsigned long long)vinfo->voxels,
+               vinfo->ms_voxelize, vinfo->ms_inject);
+        if (vd->octree) printf("octree %.1f ms, ", vinfo->ms_octree);
+        printf("cones %.1f ms (over %.1f MB of %s), direct light %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n", vinfo->ms_cones,
+               vinfo->radiance_bytes / 1e6, vd->octree ? "octree" : "volume", vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2], a->out);
+        if (a->compare)
+            printf("against the reference (%d bounce%s, %d spp, %.1f ms): relative RMSE %.2f%%\n", d->bounces, d->bounces == 1 ? "" : "s", a->compare,
+                   ref_ms, 100 * rmse);
+    } else if (a->common.json)
+        printf("{\"scene\":\"%s\",\"method\":\"reference\",\"size\":[%d,%d],\"spp\":%d,\"bounces\":%d,\"seed\":%llu,\"triangles\":%lu,"
+               "\"bvh_nodes\":%lu,\"rays\":%llu,\"bvh_ms\":%.3f,\"render_ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"output\":\"%s\"}\n",
+               a->what, w, h, d->samples, d->bounces, (unsigned long long)d->seed, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes,
+               (unsigned long long)info->rays, info->ms_bvh, info->ms_render, mean[0], mean[1], mean[2], a->out);
+    else
+        printf("%s: %d x %d, %d spp, bounces %d: %lu triangles, BVH %lu nodes in %.1f ms, %llu rays in %.1f ms (%.2f Mrays/s, CPU); "
+               "mean radiance %.4g %.4g %.4g -> %s\n",
+               a->what, w, h, d->samples, d->bounces, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes, info->ms_bvh,
+               (unsigned long long)info->rays, info->ms_render, info->ms_render > 0 ? (double)info->rays / info->ms_render / 1000 : 0.0, mean[0],
+               mean[1], mean[2], a->out);
+}
+
+static int render_run(cli_session *s, const render_args *a)
+{
+    voxgi_reference_desc d;
+    voxgi_reference_info info;
+    voxgi_vct_desc vd;
+    voxgi_vct_info vinfo;
+    voxgi_info ci;
+    render_scene rs;
+    cli_context c;
+    cli_common options = a->common;
+    float *rgb = NULL;
+    size_t bytes = (size_t)a->size[0] * (size_t)a->size[1] * 12;
+    double rmse = -1, ref_ms = 0;
+    int rc = CLI_EXIT_FAILURE;
+    memset(&d, 0, sizeof d);
+    memset(&info, 0, sizeof info);
+    memset(&vd, 0, sizeof vd);
+    memset(&vinfo, 0, sizeof vinfo);
+    memset(&rs, 0, sizeof rs);
+    d.bounces = a->bounces;
+    d.samples = a->spp;
+    d.seed = (uint64_t)a->seed;
+    vd.resolution = a->res;
+    vd.cones.cones = a->cones;
+    vd.cones.step = (float)a->step;
+    vd.filter = a->anisotropic ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
+    vd.no_gi = a->no_gi;
+    vd.inject_samples = a->inject_samples;
+    vd.cone_stride = a->cone_stride;
+    vd.octree = a->octree;
+    vd.octree_format = (voxgi_svo_format)a->octree_format;
+    vd.octree_bricks = a->bricks;
+    if (!a->vct) options.backend = VOXGI_BACKEND_CPU; /* the path tracer runs on the CPU */
+    if (cli_context_open_options(s, &c, &options)) return CLI_EXIT_FAILURE;
+    voxgi_query_info(c.vx, &ci);
+    if (scene_open(s, c.vx, a, &rs, &d)) goto done;
+    if (!(rgb = (float *)malloc(bytes))) {
+        cli_fail(s, "out of memory");
+        goto done;
+    }
+    if (a->vct) { /* the same view and seed; the direct light takes --spp rays per pixel (default 16) */
+        vd.camera = d.camera;
+        vd.seed = d.seed;
+        vd.samples = a->spp_given ? d.samples : 16;
+        vd.bounces = d.bounces;
+        if (vd.no_gi) d.bounces = 0; /* what it is compared against */
+    }
+    if (a->vct ? voxgi_vct_render(c.vx, rs.scene, &vd, rgb, bytes, &vinfo) != VOXGI_OK
+               : voxgi_reference_render(c.vx, rs.scene, &d, rgb, bytes, &info) != VOXGI_OK) {
+        cli_fail_lib(s, c.vx, NULL);
+        goto done;
+    }
+    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &rmse, &ref_ms)) goto done;
+    if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
+                                           : vxt_write_png(a->out, rgb, a->size[0], a->size[1], (float)a->exposure)) != 0) {
+        cli_fail(s, "cannot write %s", a->out);
+        goto done;
+    }
+    cli_status_clear(s);
+    print_result(a, &ci, rgb, &d, &info, &vd, &vinfo, rmse, ref_ms);
+    rc = CLI_EXIT_OK;
+done:
+    free(rgb);
+    scene_close(c.vx, &rs);
+    cli_context_close(s, &c);
+    return rc;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_args a;
+    cli_session s;
+    int rc;
+    memset(&a, 0, sizeof a);
+    a.bounces = 1;
+    a.spp = 64;
+    a.seed = 1;
+    a.size[0] = a.size[1] = 256;
+    a.exposure = 1;
+    {
+        const cli_option options[] = {
+            {.name = "--method", .arg = "reference|vct", .kind = CLI_ENUM, .dst = &a.vct, .names = render_methods,
+             .help = "the Monte Carlo path tracer (default), or voxel cone tracing: direct\n"
+                     "light through shadow rays plus one bounce gathered by cones from\n"
+                     "the voxels"},
+            CLI_OPT_BACKEND(&a.common, "vct: where voxelization, mips and cones run (default auto: GL when a\n"
+                                       "headless GL 4.5 context works); the reference runs on the CPU"),
+            CLI_OPT_GL(&a.common, "which headless GL to try"),
+            {.name = "--res", .arg = "N", .kind = CLI_INT, .dst = &a.res, .lo = 1, .hi = 4096,
+             .help = "vct: voxels along the scene's longest side (default 128)"},
+            {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 16)"},
+            {.name = "--step", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.step, .lo = 0, .lo_open = 1, .hi = 4,
+             .help = "vct: step as a fraction of the cone diameter (default 0.5)"},
+            {.name = "--anisotropic", .kind = CLI_FLAG, .dst = &a.anisotropic, .help = "vct: six-direction mips (default isotropic)"},
+            {.name = "--cone-stride", .arg = "S", .kind = CLI_INT, .dst = &a.cone_stride, .lo = 1, .hi = 64,
+             .help = "vct: cones at every S-th pixel across and down, the pixels between\n"
+                     "interpolated where they share a surface (default 1: every pixel)"},
+            {.name = "--octree", .arg = "[float32|float16]", .kind = CLI_ENUM, .optional = 1, .dst = &a.octree_format, .names = cli_svo_format_names,
+             .given = &a.octree,
+             .help = "vct: the cones gather from a sparse voxel octree of the radiance\n"
+                     "(isotropic mips) instead of the volume (default float32)"},
+            {.name = "--bricks", .kind = CLI_FLAG, .dst = &a.bricks, .help = "vct with --octree: sample the octree through its bricks"},
+            {.name = "--inject-samples", .arg = "N", .kind = CLI_INT, .dst = &a.inject_samples, .lo = 1, .hi = 4096,
+             .help = "vct: points on each area light and emitter per voxel's light\n(default 4 on the CPU, 16 on GL)"},
+            {.name = "--no-gi", .kind = CLI_FLAG, .dst = &a.no_gi, .help = "vct: direct light only"},
+            {.name = "--compare", .arg = "SPP", .kind = CLI_INT, .dst = &a.compare, .lo = 1, .hi = 1 << 24,
+             .help = "also render the reference (same bounces) with SPP samples per pixel and\n"
+                     "print the relative RMSE of the lighting (both without the emitters the\n"
+                     "camera sees) and both times; the image written is the one with them"},
+            {.name = "--bounces", .arg = "B", .kind = CLI_INT, .dst = &a.bounces, .lo = -1, .hi = 1000,
+             .help = "indirect bounces: 0 = direct light only, -1 = unlimited (default 1);\n"
+                     "vct: B >= 1, the light bouncing B - 1 times among the voxels first"},
+            {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 1, .hi = 1 << 24, .given = &a.spp_given,
+             .help = "samples per pixel (default 64)"},
+            {.name = "--seed", .arg = "N", .kind = CLI_INT, .dst = &a.seed, .lo = 0, .hi = 2147483647,
+             .help = "random seed (default 1); the same seed gives the same image"},
+            {.name = "--camera", .arg = "EX EY EZ TX TY TZ FOVY", .kind = CLI_DOUBLE, .count = 7, .dst = a.camera, .lo = -HUGE_VAL, .hi = HUGE_VAL,
+             .given = &a.have_camera,
+             .help = "eye, target (up +Y) and vertical field of view in degrees\n"
+                     "(default: the scene's view; for a mesh, a view of its bounds)"},
+            {.name = "--size", .arg = "W H", .kind = CLI_INT, .count = 2, .dst = a.size, .lo = 1, .hi = 16384, .help = "image size (default 256 256)"},
+            {.name = "--sun", .arg = "DX DY DZ E", .kind = CLI_DOUBLE, .count = 4, .dst = a.sun, .lo = -HUGE_VAL, .hi = HUGE_VAL, .given = &a.have_sun,
+             .help = "add a directional light travelling along D with irradiance E"},
+            {.name = "--exposure", .arg = "X", .kind = CLI_DOUBLE, .dst = &a.exposure, .lo = 0, .hi = HUGE_VAL,
+             .help = "PNG only: scale before clamping (default 1)"},
+            CLI_OPT_THREADS(&a.common),
+            CLI_OPT_JSON(&a.common, "print one JSON object (timings, rays, mean radiance) instead of text"),
+            {.name = "-o", .arg = "OUT.png|OUT.pfm", .kind = CLI_STRING, .dst = &a.out,
+             .help = "the image (required): PNG, 8-bit sRGB, or PFM, linear float radiance"}};
+        const cli_command cmd = {.name = "render", .help = render_help, .column = 27, .options = options, .option_count = CLI_COUNT(options),
+                                 .operand = "scene or mesh", .operands = &a.what, .min_operands = 1, .max_operands = 1};
+        if ((rc = cli_parse(&cmd, argc, argv)) != CLI_CONTINUE) return rc;
+    }
+    /* the file type is checked before any work: a typo must not cost a long render */
+    if (!a.out) return cli_usage("render", "-o OUT.png or OUT.pfm is needed");
+    if (!cli_has_extension(a.out, ".png") && !cli_has_extension(a.out, ".pfm"))
+        return cli_usage("render", "-o %s: render writes .png or .pfm images only", a.out);
+    if (a.vct && a.bounces < 1 && !a.no_gi) return cli_usage("render", "--method vct needs --bounces 1 or more (or --no-gi)");
+    cli_session_init(&s, "render");
+    return render_run(&s, &a);
+}

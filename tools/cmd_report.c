@@ -1,0 +1,409 @@
+/* tools/cmd_report.c - voxgi report vct: the cone tracer's error against run time, as Markdown, CSV and SVG. */
+#include "cli.h"
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static const char *const report_help =
+    "usage: voxgi report vct [options]\n"
+    "Error against run time of voxel cone tracing. For each built-in scene it renders the one-bounce\n"
+    "reference (converged, --spp samples per pixel), then the cone-traced image for every\n"
+    "combination of grid resolution, cone count, aperture, step, cone stride and mips, and measures the\n"
+    "relative RMSE of the lighting (the RMS difference over pixels and channels / the reference's\n"
+    "mean; the emitters the camera sees are left out of both). The reference's own convergence\n"
+    "(4, 16 and 64 spp against the converged image; error ~ 1/sqrt(spp)) gives the time it needs\n"
+    "to reach each error, and so the cone tracer's speed-up. Writes DIR/vct.md (tables),\n"
+    "DIR/vct.csv and DIR/vct.svg (error against time, log scales, the Pareto front marked).\n"
+    "Times are wall clock on this machine; GL times on a software rasteriser are not GPU times.\n";
+
+/* mips: 0 isotropic, 1 anisotropic, 2 octree (the --filters bits 1, 2, 4) */
+static const char *const mips_names[] = {"isotropic", "anisotropic", "octree", NULL}, *const mips_short[3] = {"iso", "aniso", "octree"},
+                         *const mips_mark[3] = {"", "a", "o"};
+static const int mips_bits[3] = {1, 2, 4};
+
+#define REPORT_MAX_SCENES 8
+#define REPORT_MAX_LIST 16
+
+typedef struct report_args {
+    cli_common common; /* --backend, --threads */
+    const char *out_dir, *scene_list;
+    double res[REPORT_MAX_LIST], cones[REPORT_MAX_LIST], apertures[REPORT_MAX_LIST], steps[REPORT_MAX_LIST], strides[REPORT_MAX_LIST];
+    int nres, ncones, naps, nsteps, nstrides, size, spp, direct_spp;
+    unsigned filters;
+} report_args;
+
+typedef struct report_row {
+    const char *scene;
+    int res, cones, mips, stride;
+    double aperture, half_angle_deg, step;
+    voxgi_vct_info info;
+    double rmse, ref_ms, pareto;
+} report_row;
+
+/* The measurements: per scene the reference's convergence, and a row per configuration. */
+typedef struct report {
+    char scene_buf[REPORT_MAX_SCENES][64];
+    const char *scenes[REPORT_MAX_SCENES];
+    int scene_count, nrows;
+    double ref_c[REPORT_MAX_SCENES], ref_ms_per_spp[REPORT_MAX_SCENES], ref_bvh_ms[REPORT_MAX_SCENES], ref_floor[REPORT_MAX_SCENES];
+    report_row *rows;
+    voxgi_info ci;
+    const report_args *args;
+} report;
+
+/* RMS difference over every value / the mean of the reference; 0 for a black reference. */
+static double rel_rmse(const float *a, const float *ref, size_t n)
+{
+    double mean, rms = cli_rms_difference(a, ref, n, &mean);
+    return mean > 0 ? rms / mean : 0;
+}
+
+/* Makes a directory and its parents (like mkdir -p); 0 on success. */
+static int make_dirs(const char *path)
+{
+    char buf[1024];
+    size_t i, n = strlen(path);
+    if (n == 0 || n >= sizeof buf) return -1;
+    strcpy(buf, path);
+    for (i = 1; i <= n; i++)
+        if (buf[i] == '/' || buf[i] == 0) {
+            char c = buf[i];
+            buf[i] = 0;
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
+            buf[i] = c;
+        }
+    return 0;
+}
+
+/* Error against time, log scales: every configuration, the Pareto front joined, the reference dashed. */
+static void report_svg(FILE *f, const report *rep)
+{
+    const report_row *rows = rep->rows;
+    const char *const *scenes = rep->scenes;
+    const double *ref_c = rep->ref_c, *ref_floor = rep->ref_floor, *ref_ms_per_spp = rep->ref_ms_per_spp, *ref_bvh_ms = rep->ref_bvh_ms;
+    int n = rep->nrows, scene_count = rep->scene_count;
+    static const char *const colours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd"};
+    double tmin = 1e300, tmax = 0, emin = 1e300, emax = 0;
+    const double W = 720, H = 480, L = 70, R = 20, T = 30, B = 50;
+    int i, s, k;
+#define RX(t) (L + (log10(t) - log10(tmin)) / (log10(tmax) - log10(tmin)) * (W - L - R))
+#define RY(e) (H - B - (log10(e) - log10(emin)) / (log10(emax) - log10(emin)) * (H - T - B))
+    for (i = 0; i < n; i++) {
+        tmin = fmin(tmin, rows[i].info.ms); tmax = fmax(tmax, fmax(rows[i].info.ms, rows[i].ref_ms));
+        emin = fmin(emin, rows[i].rmse); emax = fmax(emax, rows[i].rmse);
+    }
+    tmin = pow(10, floor(log10(tmin))); tmax = pow(10, ceil(log10(tmax)));
+    emin = pow(10, floor(log10(emin))); emax = pow(10, ceil(log10(emax)));
+    if (emax <= emin) emax = emin * 10;
+    if (tmax <= tmin) tmax = tmin * 10;
+    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" font-family=\"sans-serif\" font-size=\"11\">\n", W, H);
+    fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
+    for (k = (int)log10(tmin); k <= (int)log10(tmax); k++)
+        fprintf(f, "<line x1=\"%.1f\" y1=\"%.0f\" x2=\"%.1f\" y2=\"%.0f\" stroke=\"#ddd\"/><text x=\"%.1f\" y=\"%.0f\" text-anchor=\"middle\">%g ms</text>\n",
+                RX(pow(10, k)), T, RX(pow(10, k)), H - B, RX(pow(10, k)), H - B + 15, pow(10, k));
+    for (k = (int)floor(log10(emin) + 0.5); k <= (int)floor(log10(emax) + 0.5); k++)
+        fprintf(f, "<line x1=\"%.0f\" y1=\"%.1f\" x2=\"%.0f\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%.0f\" y=\"%.1f\" text-anchor=\"end\">%g%%</text>\n", L,
+                RY(pow(10, k)), W - R, RY(pow(10, k)), L - 5, RY(pow(10, k)) + 4, 100 * pow(10, k));
+    fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" text-anchor=\"middle\">time per image (wall clock)</text>\n", (L + W - R) / 2, H - 12);
+    fprintf(f, "<text x=\"15\" y=\"%.0f\" transform=\"rotate(-90 15 %.0f)\" text-anchor=\"middle\">relative RMSE against the one-bounce reference</text>\n",
+            (T + H - B) / 2, (T + H - B) / 2);
+    for (s = 0; s < scene_count; s++) {
+        const char *c = colours[s % 4];
+        double prev_t = 0, prev_e = 0;
+        int first = 1;
+        for (k = 0; k <= 40; k++) { /* the path tracer at spp k: its error c / sqrt(k) measured against the reference (with its floor), at time bvh + k x per-spp */
+            double spp = pow(2, k / 2.0), t = ref_bvh_ms[s] + spp * ref_ms_per_spp[s], e = sqrt(ref_c[s] * ref_c[s] / spp + ref_floor[s] * ref_floor[s]);
+            if (t < tmin || t > tmax || e < emin || e > emax) continue;
+            if (!first) fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-dasharray=\"4 3\"/>\n", RX(prev_t), RY(prev_e), RX(t), RY(e), c);
+            prev_t = t; prev_e = e; first = 0;
+        }
+        first = 1;
+        for (i = 0; i < n; i++) { /* the Pareto front, in time order (rows are not sorted: find them) */
+            if (strcmp(rows[i].scene, scenes[s]) != 0 || !rows[i].pareto) continue;
+            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\" font-size=\"9\">%d/%d%s</text>\n", RX(rows[i].info.ms) + 4, RY(rows[i].rmse) - 4, c, rows[i].res,
+                    rows[i].cones, mips_mark[rows[i].mips]);
+        }
+        for (i = 0; i < n; i++) {
+            int j, best = -1;
+            if (strcmp(rows[i].scene, scenes[s]) != 0 || !rows[i].pareto) continue;
+            for (j = 0; j < n; j++) /* the next front point in time */
+                if (strcmp(rows[j].scene, scenes[s]) == 0 && rows[j].pareto && rows[j].info.ms > rows[i].info.ms &&
+                    (best < 0 || rows[j].info.ms < rows[best].info.ms))
+                    best = j;
+            if (best >= 0)
+                fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"2\"/>\n", RX(rows[i].info.ms), RY(rows[i].rmse),
+                        RX(rows[best].info.ms), RY(rows[best].rmse), c);
+        }
+        for (i = 0; i < n; i++)
+            if (strcmp(rows[i].scene, scenes[s]) == 0)
+                fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"%s\" fill-opacity=\"%s\" stroke=\"%s\"/>\n", RX(rows[i].info.ms), RY(rows[i].rmse),
+                        rows[i].pareto ? 4 : 3, rows[i].pareto ? c : "white", rows[i].pareto ? "1" : "0", c);
+        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"%s\"/><text x=\"%.0f\" y=\"%.0f\">%s: cone tracing (filled: Pareto front, "
+                   "label res/cones, a = anisotropic, o = octree); dashed: the reference</text>\n", L + 15, T + 12 + 15.0 * s, c, L + 25, T + 16 + 15.0 * s, scenes[s]);
+    }
+    fprintf(f, "</svg>\n");
+#undef RX
+#undef RY
+}
+
+/* One scene: the converged reference into ref and its convergence, then a row per configuration
+   (img: scratch); 0, or says why and returns 1. */
+static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a, report *rep, int si, float *ref, float *img)
+{
+    voxgi_builtin_scene bs;
+    voxgi_reference_desc rd;
+    voxgi_reference_info ri;
+    size_t nv = (size_t)a->size * (size_t)a->size * 3;
+    const char *name = rep->scenes[si];
+    int ir, ic, ia, is, ist, f, k, i, first_row = rep->nrows, rc = CLI_EXIT_FAILURE;
+    double c2 = 0;
+    if (voxgi_builtin_scene_create(ctx, name, &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, NULL);
+    memset(&rd, 0, sizeof rd);
+    rd.camera = bs.camera;
+    rd.camera.width = rd.camera.height = a->size;
+    rd.bounces = 1;
+    rd.hide_emitters = 1;
+    rd.samples = a->spp;
+    rd.seed = 1000;
+    cli_note(s, "%s: the reference, %d spp", name, a->spp);
+    if (voxgi_reference_render(ctx, &bs.scene, &rd, ref, nv * 4, &ri) != VOXGI_OK) {
+        cli_fail_lib(s, ctx, NULL);
+        goto done;
+    }
+    for (k = 4; k <= 64; k *= 4) { /* the reference's convergence: a difference of two independent estimates has variance c^2 (1/k + 1/spp) */
+        rd.samples = k;
+        rd.seed = 7 + (uint64_t)k;
+        if (voxgi_reference_render(ctx, &bs.scene, &rd, img, nv * 4, &ri) != VOXGI_OK) {
+            cli_fail_lib(s, ctx, NULL);
+            goto done;
+        }
+        c2 += rel_rmse(img, ref, nv) * rel_rmse(img, ref, nv) / (1.0 / k + 1.0 / a->spp) / 3;
+    }
+    rep->ref_c[si] = sqrt(c2);
+    rep->ref_ms_per_spp[si] = ri.ms_render / 64;
+    rep->ref_bvh_ms[si] = ri.ms_bvh;
+    rep->ref_floor[si] = rep->ref_c[si] / sqrt((double)a->spp);
+    for (f = 0; f < 3; f++)
+        for (ir = 0; ir < a->nres; ir++)
+            for (ic = 0; ic < a->ncones; ic++)
+                for (ia = 0; ia < a->naps; ia++)
+                    for (is = 0; is < a->nsteps; is++)
+                        for (ist = 0; ist < a->nstrides; ist++) {
+                            voxgi_vct_desc vd;
+                            report_row *row = &rep->rows[rep->nrows];
+                            double need, inv;
+                            if (!(a->filters & (1u << f))) continue;
+                            memset(&vd, 0, sizeof vd);
+                            vd.camera = rd.camera;
+                            vd.resolution = (int)a->res[ir];
+                            vd.filter = f == 1 ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
+                            vd.octree = f == 2;
+                            vd.cones.cones = (int)a->cones[ic];
+                            vd.cones.half_angle = (float)(a->apertures[ia] * acos(1 - 1.0 / vd.cones.cones));
+                            vd.cones.step = (float)a->steps[is];
+                            vd.samples = a->direct_spp;
+                            vd.seed = 1;
+                            vd.hide_emitters = 1;
+                            vd.cone_stride = (int)a->strides[ist];
+                            if (!(vd.cones.half_angle < 1.5f)) continue;
+                            cli_note(s, "%s: %d^3, %d cones x %.2f, step %.2f, stride %d, %s", name, vd.resolution, vd.cones.cones, a->apertures[ia],
+                                     a->steps[is], vd.cone_stride, mips_names[f]);
+                            if (voxgi_vct_render(ctx, &bs.scene, &vd, img, nv * 4, &row->info) != VOXGI_OK) {
+                                cli_fail_lib(s, ctx, NULL);
+                                goto done;
+                            }
+                            row->scene = name;
+                            row->res = vd.resolution;
+                            row->cones = vd.cones.cones;
+                            row->mips = f;
+                            row->aperture = a->apertures[ia];
+                            row->half_angle_deg = vd.cones.half_angle * 180 / 3.14159265358979323846;
+                            row->step = a->steps[is];
+                            row->stride = vd.cone_stride;
+                            row->rmse = rel_rmse(img, ref, nv);
+                            /* the path tracer's spp k whose image measures the same error against the same reference:
+                               c^2 (1/k + 1/spp) = rmse^2 (the reference's own noise is in both) */
+                            inv = row->rmse * row->rmse / (rep->ref_c[si] * rep->ref_c[si]) - 1.0 / a->spp;
+                            need = inv > 1.0 / (1024.0 * a->spp) ? 1 / inv : 1024.0 * a->spp;
+                            row->ref_ms = rep->ref_bvh_ms[si] + rep->ref_ms_per_spp[si] * (need > 1.0 ? need : 1.0);
+                            rep->nrows++;
+                        }
+    for (i = first_row; i < rep->nrows; i++) { /* on the front: nothing both faster and closer */
+        report_row *p = &rep->rows[i];
+        int j;
+        p->pareto = 1;
+        for (j = first_row; j < rep->nrows; j++) {
+            const report_row *q = &rep->rows[j];
+            if (j != i && q->info.ms <= p->info.ms && q->rmse <= p->rmse && (q->info.ms < p->info.ms || q->rmse < p->rmse)) p->pareto = 0;
+        }
+    }
+    rc = CLI_EXIT_OK;
+done:
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    return rc;
+}
+
+static void write_csv(FILE *csv, const report *rep)
+{
+    int i;
+    fprintf(csv, "scene,res,cones,aperture,half_angle_deg,step,stride,filter,voxels,radiance_bytes,voxelize_ms,inject_ms,octree_ms,cones_ms,direct_ms,ms,rel_rmse,"
+                 "reference_ms_same_error,speedup,pareto\n");
+    for (i = 0; i < rep->nrows; i++) {
+        const report_row *r = &rep->rows[i];
+        fprintf(csv, "%s,%d,%d,%g,%.2f,%g,%d,%s,%llu,%llu,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.5f,%.1f,%.2f,%d\n", r->scene, r->res, r->cones, r->aperture,
+                r->half_angle_deg, r->step, r->stride, mips_names[r->mips], (unsigned long long)r->info.voxels, (unsigned long long)r->info.radiance_bytes,
+                r->info.ms_voxelize, r->info.ms_inject, r->info.ms_octree, r->info.ms_cones, r->info.ms_direct, r->info.ms, r->rmse, r->ref_ms,
+                r->ref_ms / r->info.ms, (int)r->pareto);
+    }
+}
+
+static void write_markdown(FILE *md, const report *rep)
+{
+    const report_args *a = rep->args;
+    const voxgi_info *ci = &rep->ci;
+    int i, s;
+    fprintf(md, "# Voxel cone tracing: error against run time\n\n%d x %d pixels; cone tracer on %s%s%s, %d direct-light rays per pixel; the "
+                "reference is the one-bounce path tracer (CPU). Error: relative RMSE of the lighting against the converged reference, "
+                "emitters seen by the camera left out. *Reference at the same error*: the time the path tracer needs for an image that "
+                "measures that error against the same reference (from its measured convergence, the reference's own noise in both). Wall clock on this machine%s.\n\n",
+            a->size, a->size, voxgi_backend_name(ci->backend), ci->backend == VOXGI_BACKEND_GL ? ", " : "", ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "",
+            a->direct_spp, ci->backend == VOXGI_BACKEND_GL && strstr(ci->gl_renderer, "llvmpipe") ? " (GL on llvmpipe, a software rasteriser: not GPU timings)" : "");
+    for (s = 0; s < rep->scene_count; s++) {
+        fprintf(md, "## %s\n\nReference: %d spp; its error is %.2f%% / sqrt(spp) (%.3f%% at %d spp: the floor of every error below), %.2f ms per "
+                    "sample per pixel.\n\n| res | cones | half-angle | step | stride | mips | voxels | radiance MB | voxelize ms | inject ms | octree ms | cones ms | "
+                    "direct ms | total ms | rel. RMSE | reference at the same error | speed-up | Pareto |\n"
+                    "|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n",
+                rep->scenes[s], a->spp, 100 * rep->ref_c[s], 100 * rep->ref_floor[s], a->spp, rep->ref_ms_per_spp[s]);
+        for (i = 0; i < rep->nrows; i++) {
+            const report_row *r = &rep->rows[i];
+            if (r->scene == rep->scenes[s])
+                fprintf(md, "| %d | %d | %.1f° | %g | %d | %s | %llu | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f%% | %.0f ms | %.1fx | %s |\n", r->res,
+                        r->cones, r->half_angle_deg, r->step, r->stride, mips_short[r->mips], (unsigned long long)r->info.voxels,
+                        r->info.radiance_bytes / 1e6, r->info.ms_voxelize, r->info.ms_inject, r->info.ms_octree, r->info.ms_cones, r->info.ms_direct,
+                        r->info.ms, 100 * r->rmse, r->ref_ms, r->ref_ms / r->info.ms, r->pareto ? "yes" : "");
+        }
+        fprintf(md, "\n");
+    }
+    fprintf(md, "![error against time](vct.svg)\n");
+}
+
+/* DIR/NAME, written by fn; 0, or says why and returns 1. */
+static int write_file(cli_session *s, const report *rep, const char *name, void (*fn)(FILE *, const report *))
+{
+    char path[1024];
+    FILE *f;
+    snprintf(path, sizeof path, "%s/%s", rep->args->out_dir, name);
+    if (!(f = fopen(path, "w"))) return cli_fail(s, "cannot write %s", path);
+    fn(f, rep);
+    if (fclose(f) != 0) return cli_fail(s, "cannot write %s", path);
+    return 0;
+}
+
+static int report_run(cli_session *s, const report_args *a, report *rep)
+{
+    cli_context c;
+    float *ref = NULL, *img = NULL;
+    int i, si, rc = CLI_EXIT_FAILURE;
+    if (cli_context_open_options(s, &c, &a->common)) return CLI_EXIT_FAILURE;
+    voxgi_query_info(c.vx, &rep->ci);
+    rep->rows = (report_row *)calloc((size_t)rep->scene_count * (size_t)(a->nres * a->ncones * a->naps * a->nsteps * a->nstrides * 3), sizeof *rep->rows);
+    ref = (float *)malloc((size_t)a->size * (size_t)a->size * 12);
+    img = (float *)malloc((size_t)a->size * (size_t)a->size * 12);
+    if (!rep->rows || !ref || !img) {
+        cli_fail(s, "out of memory");
+        goto done;
+    }
+    if (make_dirs(a->out_dir) != 0) {
+        cli_fail(s, "cannot make %s", a->out_dir);
+        goto done;
+    }
+    for (si = 0; si < rep->scene_count; si++)
+        if (report_scene(s, c.vx, a, rep, si, ref, img)) goto done;
+    if (write_file(s, rep, "vct.csv", write_csv) || write_file(s, rep, "vct.md", write_markdown) || write_file(s, rep, "vct.svg", report_svg)) goto done;
+    cli_status_clear(s);
+    for (si = 0; si < rep->scene_count; si++) { /* the front on stdout */
+        printf("%s (reference error %.2f%% / sqrt(spp), %.2f ms per spp; floor %.3f%%)\n", rep->scenes[si], 100 * rep->ref_c[si], rep->ref_ms_per_spp[si],
+               100 * rep->ref_floor[si]);
+        for (i = 0; i < rep->nrows; i++) {
+            const report_row *r = &rep->rows[i];
+            if (r->scene == rep->scenes[si] && r->pareto)
+                printf("  %4d^3 %3d cones %5.1f deg step %-4g stride %d %-5s %9.1f ms  %6.2f%%  reference %9.0f ms  %6.1fx\n", r->res, r->cones,
+                       r->half_angle_deg, r->step, r->stride, mips_short[r->mips], r->info.ms, 100 * r->rmse, r->ref_ms, r->ref_ms / r->info.ms);
+        }
+    }
+    printf("wrote %s/vct.md, %s/vct.csv, %s/vct.svg\n", a->out_dir, a->out_dir, a->out_dir);
+    rc = CLI_EXIT_OK;
+done:
+    free(rep->rows);
+    free(ref);
+    free(img);
+    cli_context_close(s, &c);
+    return rc;
+}
+
+int cmd_report(int argc, char **argv)
+{
+    static const double res[] = {32, 64, 128}, cones[] = {8, 16, 32}, steps[] = {0.5, 1}, strides[] = {1, 2};
+    report_args a;
+    report rep;
+    cli_session s;
+    const char *list;
+    int r, rc;
+    memset(&a, 0, sizeof a);
+    memset(&rep, 0, sizeof rep);
+    a.common.backend = VOXGI_BACKEND_CPU;
+    a.out_dir = "build/report";
+    a.scene_list = "cornell-box,two-spheres";
+    a.size = 128;
+    a.spp = 1024;
+    a.direct_spp = 16;
+    a.filters = 3;
+    memcpy(a.res, res, sizeof res);
+    memcpy(a.cones, cones, sizeof cones);
+    memcpy(a.steps, steps, sizeof steps);
+    memcpy(a.strides, strides, sizeof strides);
+    a.apertures[0] = 1;
+    a.nres = a.ncones = 3;
+    a.nsteps = a.nstrides = 2;
+    a.naps = 1;
+    {
+#define LIST(opt, field, count, top, is_whole, text) \
+    {.name = opt, .arg = "LIST", .kind = CLI_NUMBERS, .dst = a.field, .items = &a.count, .min_items = 1, .max_items = REPORT_MAX_LIST, \
+     .lo = 0, .lo_open = 1, .hi = top, .whole = is_whole, .help = text}
+        const cli_option options[] = {
+            {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list,
+             .help = "built-in scenes, comma-separated (default cornell-box,two-spheres)"},
+            {.name = "--size", .arg = "N", .kind = CLI_INT, .dst = &a.size, .lo = 1, .hi = 4096, .help = "N x N pixels (default 128)"},
+            {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 64, .hi = 1 << 20,
+             .help = "samples per pixel of the converged reference (default 1024)"},
+            {.name = "--direct-spp", .arg = "S", .kind = CLI_INT, .dst = &a.direct_spp, .lo = 1, .hi = 65536,
+             .help = "the cone tracer's direct-light rays per pixel (default 16)"},
+            LIST("--res", res, nres, 4096, 0, "voxels along the longest side (default 32,64,128)"),
+            LIST("--cones", cones, ncones, 1024, 0, "diffuse cones (default 8,16,32)"),
+            LIST("--apertures", apertures, naps, HUGE_VAL, 0, "half-angle as a multiple of each cone count's gap-free default (default 1)"),
+            LIST("--steps", steps, nsteps, 4, 0, "step as a fraction of the diameter (default 0.5,1)"),
+            {.name = "--filters", .arg = "LIST", .kind = CLI_SET, .dst = &a.filters, .names = mips_names, .values = mips_bits,
+             .help = "isotropic, anisotropic (dense mips) and/or octree (an octree of the\n"
+                     "radiance, isotropic mips) (default isotropic,anisotropic)"},
+            LIST("--strides", strides, nstrides, 64, 1, "cone strides: cones at every S-th pixel, the rest interpolated (default 1,2)"),
+            CLI_OPT_BACKEND(&a.common, "where the cone tracer runs (default cpu)"),
+            {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
+            CLI_OPT_THREADS(&a.common)};
+#undef LIST
+        const cli_command cmd = {.name = "report", .help = report_help, .column = 27, .options = options, .option_count = CLI_COUNT(options)};
+        if (argc >= 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
+            cli_help(&cmd, stdout);
+            return CLI_EXIT_OK;
+        }
+        if (argc < 1 || strcmp(argv[0], "vct") != 0) return cli_usage("report", "the report to make is 'vct'");
+        if ((rc = cli_parse(&cmd, argc - 1, argv + 1)) != CLI_CONTINUE) return rc;
+    }
+    for (list = a.scene_list; (r = cli_next_item(&list, rep.scene_buf[rep.scene_count], sizeof rep.scene_buf[0])) != 0; rep.scene_count++)
+        if (r < 0 || rep.scene_count == REPORT_MAX_SCENES)
+            return cli_usage("report", "--scenes needs 1 to %d comma-separated built-in scenes, got '%s'", REPORT_MAX_SCENES, a.scene_list);
+    for (r = 0; r < rep.scene_count; r++) rep.scenes[r] = rep.scene_buf[r];
+    rep.args = &a;
+    cli_session_init(&s, "report");
+    return report_run(&s, &a, &rep);
+}
