@@ -10,9 +10,10 @@
 #   libgl1-mesa-dri  the llvmpipe software rasteriser behind EGL
 #   libosmesa6       libOSMesa.so.8, the fallback when EGL is unusable
 #   libosmesa6-dev, libegl-dev   osmesa.h, EGL/egl.h and the libraries to link against
+# and the C++ compiler the tests build the header with (g++; the C compiler comes with it).
 set -euo pipefail
 
-packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev)
+packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev g++)
 
 missing=()
 for p in "${packages[@]}"; do
