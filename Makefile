@@ -8,7 +8,11 @@ B       := build
 ASAN    := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 
 GLSL    := $(sort $(wildcard shaders/*.glsl))
-TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_mesh_io test_headless_gl test_tool
+TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool
+# The test programs that link the implementation object (they include voxgi.h for the declarations
+# only); test_internals (private helpers) compiles the implementation itself.
+LINKED_TESTS := test_voxelize test_gl_voxelize test_reference test_vct test_tool
+NPROC   := $(shell nproc 2>/dev/null || echo 2)
 TOOL_SRC := tools/voxgi.c $(wildcard tools/cli*.c tools/cmd_*.c) tools/mesh_io.c
 TOOL_H   := $(wildcard tools/*.h)
 
@@ -39,7 +43,7 @@ $(B)/asan/voxgi_impl.o: tools/voxgi_impl.c voxgi.h shaders.h | $(B)/asan
 $(B)/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/voxgi_impl.o | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $(TOOL_SRC) $(B)/voxgi_impl.o $(LDLIBS)
 
-$(B)/example_voxelize: examples/voxelize.c voxgi.h | $(B)
+$(B)/example_voxelize: examples/voxelize.c voxgi.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
 
 $(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)
@@ -47,22 +51,34 @@ $(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/ha
 $(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
 
-TEST_H  := tests/harness.h tests/svo_checks.h tests/cone_points.h tools/shapes.h tools/headless_gl.h
+TEST_H  := $(wildcard tests/*.h) $(TOOL_H)
 
-$(B)/test_%: tests/test_%.c voxgi.h $(TEST_H) shaders.h | $(B)
+$(addprefix $(B)/,$(LINKED_TESTS)): $(B)/%: tests/%.c voxgi.h $(TEST_H) $(B)/voxgi_impl.o | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS)
+$(addprefix $(B)/asan/,$(LINKED_TESTS)): $(B)/asan/%: tests/%.c voxgi.h $(TEST_H) $(B)/asan/voxgi_impl.o | $(B)/asan
+	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(B)/asan/voxgi_impl.o $(LDLIBS)
+
+# The rest are whole programs: test_internals with the implementation inside,
+# test_headless_gl with tools/embed_shaders.c inside.
+$(B)/test_%: tests/test_%.c voxgi.h $(TEST_H) shaders.h tools/embed_shaders.c | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
-$(B)/asan/test_%: tests/test_%.c voxgi.h $(TEST_H) shaders.h | $(B)/asan
+$(B)/asan/test_%: tests/test_%.c voxgi.h $(TEST_H) shaders.h tools/embed_shaders.c | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(LDLIBS)
 
 $(B)/asan/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/asan/voxgi_impl.o | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(B)/asan/voxgi_impl.o $(LDLIBS)
 
 # Leaks on purpose: tests/run.sh checks that the leak checks report it.
-$(B)/asan/leak_canary: tests/leak_canary.c tools/headless_gl.h $(B)/asan/voxgi_impl.o | $(B)/asan
+$(B)/asan/leak_canary: tests/leak_canary.c voxgi.h tools/headless_gl.h $(B)/asan/voxgi_impl.o | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(B)/asan/voxgi_impl.o $(LDLIBS)
 
-test: deps $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(addprefix $(B)/asan/,$(TESTS)) $(B)/asan/leak_canary
-	@bash tests/run.sh
+# Builds everything the tests run, in parallel (one job per processor unless make was given -j),
+# then runs them (tests/run.sh, in parallel too).
+TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) \
+              $(addprefix $(B)/asan/,$(TESTS)) $(B)/asan/leak_canary
+test: deps
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(NPROC)) $(TEST_BUILD)
+	@VOXGI_BUILD=$(B) bash tests/run.sh
 
 demo: all
 	$(B)/voxgi bench voxelize

@@ -1,9 +1,17 @@
 #!/usr/bin/env bash
 # Runs every test of voxgi and prints "N passed, N failed" last (skips are listed, never passed).
-# Expects `make test` to have built build/ (the normal and the ASan+UBSan test programs).
+# Expects `make test` to have built build/ ($VOXGI_BUILD when set: `make B=dir test` sets it), the
+# normal and the ASan+UBSan test programs.
+#
+# The checks run in parallel, at most one per processor at once (VOXGI_TEST_JOBS=n: n at once).
+# Each check's output is kept apart and printed whole, in the order the checks are listed below
+# (the compile matrix, the programs, the ASan programs, the leak canary, the README), so the log
+# and the tallies are the same whatever finishes first. No two checks share a file: each has its
+# own files under one temporary directory, and the test programs make their own (mkdtemp,
+# tmpfile).
 set -u
 cd "$(dirname "$0")/.."
-B=build
+B=${VOXGI_BUILD:-build}
 passed=0; failed=0; skipped=0
 
 record() { # name status [detail]
@@ -14,11 +22,10 @@ record() { # name status [detail]
     esac
 }
 
-run_program() { # label command...
-    local label=$1 out rc line
-    shift
+# A test program's report: its output less the RESULT line, whose tallies it adds.
+report_program() { # label output exit-status
+    local label=$1 out=$2 rc=$3 line
     echo "== $label"
-    out=$("$@" 2>&1); rc=$?
     printf '%s\n' "$out" | grep -v '^RESULT '
     line=$(printf '%s\n' "$out" | grep '^RESULT ' | tail -n 1)
     if [ -z "$line" ]; then
@@ -30,9 +37,53 @@ run_program() { # label command...
     [ "$rc" -ne 0 ] && [ "$3" -eq 0 ] && record "$label" fail "exit status $rc"
 }
 
-# 1. shaders.h, as built and as committed, must be what tools/embed_shaders.c makes of shaders/*.glsl
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+
+# ---------------------------------------------------------------- the checks, queued
+# check NAME KIND COMMAND...: queues check number N (from 0). Its command runs later, in the
+# background, with its output in $tmp/N.out and its exit status in $tmp/N.rc; report_KIND prints
+# its result. KIND:
+#   program  a test program (its lines, and the tallies of its RESULT line)
+#   status   a function, given N last, that writes "pass", or "fail" and the reason, to $tmp/N.status
+#   canary, readme   the leak canary, tests/readme_snippet.sh
+# heading TEXT: a line the next check's report starts with.
+n=0
+names=(); kinds=(); heads=(); cmds=()
+head_next=
+check() {
+    names[n]=$1; kinds[n]=$2; heads[n]=$head_next
+    head_next=
+    if [ "$2" = status ]; then shift 2; set -- "$@" "$n"; else shift 2; fi
+    cmds[n]=$(printf '%q ' "$@")
+    n=$((n + 1))
+}
+heading() { head_next=$1; }
+
+# One entry of the compile matrix: pass, or fail and the compiler's first 600 bytes. The C99
+# entries are optimised, so that every configuration also meets the warnings only the optimiser's
+# flow analysis gives (the code paths are the same in every standard); the rest build at -O0.
+matrix_entry() { # std variant N
+    local std=$1 variant=$2 bin=$tmp/matrix$3 comp opt=-O0
+    case $std in c++*) comp="${CXX:-c++} -x c++";; *) comp="${CC:-cc} -x c";; esac
+    [ "$std" = c99 ] && opt=-O1
+    if $comp -std=$std -Wall -Wextra -pedantic -Werror $variant $opt -o "$bin" \
+            tests/compile/tu_impl.c tests/compile/tu_use.c -lm -lpthread 2>"$bin.err" && "$bin"; then
+        echo pass > "$tmp/$3.status"
+    else
+        { echo fail; head -c 600 "$bin.err"; } > "$tmp/$3.status"
+    fi
+}
+
+# Every exported symbol of the implementation (the object the tests link) is voxgi_.
+exported_symbols() { # N
+    local bad
+    bad=$(nm -g --defined-only "$B/voxgi_impl.o" | awk '{print $3}' | grep -v -e '^voxgi_' || true)
+    if [ -z "$bad" ]; then echo pass; else echo fail; echo "$bad"; fi > "$tmp/$1.status"
+}
+
+# 1. shaders.h, as built and as committed, must be what tools/embed_shaders.c makes of shaders/*.glsl
+# (at once: it takes no time)
 if ! "$B/embed_shaders" "$tmp/shaders.h" shaders/*.glsl || ! cmp -s "$tmp/shaders.h" shaders.h; then
     record shaders_h_is_fresh fail "shaders.h differs from shaders/*.glsl: run 'make shaders.h'"
 elif ! git rev-parse --verify -q HEAD >/dev/null 2>&1; then
@@ -44,45 +95,108 @@ else
 fi
 
 # 2. the compile matrix: C and C++ standards, two translation units, static, without GL, without threads
-echo "== compile matrix"
+heading "== compile matrix"
 for std in c99 c11 c++11 c++17; do
     for variant in "" "-DVOXGI_STATIC" "-DVOXGI_NO_GL" "-DVOXGI_NO_THREADS" "-DVOXGI_NO_GL -DVOXGI_STATIC"; do
         name="compile_${std}${variant:+_$(echo "$variant" | tr -d ' -' | tr 'A-Z' 'a-z')}"
-        case $std in c++*) comp="${CXX:-c++} -x c++";; *) comp="${CC:-cc} -x c";; esac
-        if $comp -std=$std -Wall -Wextra -pedantic -Werror $variant -O1 -o "$tmp/matrix" \
-                tests/compile/tu_impl.c tests/compile/tu_use.c -lm -lpthread 2>"$tmp/err" && "$tmp/matrix"; then
-            record "$name" pass
-        else
-            record "$name" fail "$(head -c 600 "$tmp/err")"
-        fi
+        check "$name" status matrix_entry "$std" "$variant"
     done
 done
-# every exported symbol of the implementation is voxgi_
-${CC:-cc} -std=c99 -c -o "$tmp/impl.o" tests/compile/tu_impl.c
-bad=$(nm -g --defined-only "$tmp/impl.o" | awk '{print $3}' | grep -v -e '^voxgi_' -e '^tu_impl_version$' || true)
-if [ -z "$bad" ]; then record exported_symbols_are_prefixed pass; else record exported_symbols_are_prefixed fail "$bad"; fi
+check exported_symbols_are_prefixed status exported_symbols
 
 # 3. the test programs, then again under AddressSanitizer and UndefinedBehaviorSanitizer
+programs="test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool"
 export VOXGI_REQUIRE_GL=${VOXGI_REQUIRE_GL:-0}  # CI sets 1: there a GL context must exist
-for t in test_voxelize test_gl_voxelize test_reference test_vct test_mesh_io test_headless_gl test_tool; do
-    run_program "$t" "$B/$t"
+for t in $programs; do
+    check "$t" program env VOXGI_TOOL="$B/voxgi" "$B/$t"
 done
+# (every check starts after these lines, so all see the settings; only the ASan programs read them)
 export ASAN_OPTIONS=detect_leaks=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1
-for t in test_voxelize test_gl_voxelize test_reference test_vct test_mesh_io test_headless_gl test_tool; do
-    run_program "asan/$t" env VOXGI_TOOL="$B/asan/voxgi" "$B/asan/$t"
+for t in $programs; do
+    check "asan/$t" program env VOXGI_TOOL="$B/asan/voxgi" "$B/asan/$t"
 done
 # The leak checks above must still catch a leak of voxgi's: a program that leaks its voxels on
 # purpose (on GL when a context exists) has to be reported, with voxgi_voxelize in the trace.
-echo "== leak canary"
-canary=$("$B/asan/leak_canary" 2>&1); rc=$?
-if [ "$rc" -ne 0 ] && printf '%s\n' "$canary" | grep -q 'LeakSanitizer' \
-        && printf '%s\n' "$canary" | grep -q 'voxgi_voxelize'; then
-    record leak_checks_catch_a_voxgi_leak pass
-else
-    record leak_checks_catch_a_voxgi_leak fail "exit $rc: $(printf '%s\n' "$canary" | head -c 600)"
-fi
+check leak_checks_catch_a_voxgi_leak canary "$B/asan/leak_canary"
+
+# 4. the README's quickstart compiles, runs and prints what the README says
+check readme_snippet readme bash tests/readme_snippet.sh
+
+# ---------------------------------------------------------------- the reports
+report_status() { # N: what the check printed, then its status
+    local status
+    cat "$tmp/$1.out"
+    status=$(head -n 1 "$tmp/$1.status" 2>/dev/null)
+    record "${names[$1]}" "${status:-fail}" "$(tail -n +2 "$tmp/$1.status" 2>/dev/null)"
+}
+report_canary() { # N
+    local canary rc
+    echo "== leak canary"
+    canary=$(cat "$tmp/$1.out"); rc=$(cat "$tmp/$1.rc")
+    if [ "$rc" -ne 0 ] && printf '%s\n' "$canary" | grep -q 'LeakSanitizer' \
+            && printf '%s\n' "$canary" | grep -q 'voxgi_voxelize'; then
+        record leak_checks_catch_a_voxgi_leak pass
+    else
+        record leak_checks_catch_a_voxgi_leak fail "exit $rc: $(printf '%s\n' "$canary" | head -c 600)"
+    fi
+}
+report_readme() { # N: tests/readme_snippet.sh prints "PASS readme_snippet" or "FAIL readme_snippet: why"
+    local out rc
+    out=$(cat "$tmp/$1.out"); rc=$(cat "$tmp/$1.rc")
+    printf '%s\n' "$out" | grep -v -e '^PASS readme_snippet$' -e '^FAIL readme_snippet' || true
+    if [ "$rc" -eq 0 ] && printf '%s\n' "$out" | grep -qx 'PASS readme_snippet'; then
+        record readme_snippet pass
+    else
+        record readme_snippet fail "$(printf '%s\n' "$out" | sed -n 's/^FAIL readme_snippet: //p' | head -c 600)"
+    fi
+}
+report() { # N
+    [ -n "${heads[$1]}" ] && echo "${heads[$1]}"
+    case ${kinds[$1]} in
+        program) report_program "${names[$1]}" "$(cat "$tmp/$1.out")" "$(cat "$tmp/$1.rc")" ;;
+        status) report_status "$1" ;;
+        canary) report_canary "$1" ;;
+        readme) report_readme "$1" ;;
+    esac
+}
+
+# ---------------------------------------------------------------- running them
+# The longest checks start first: the ASan programs, then the other programs, then the rest as
+# queued (each compilation is short). Reports are printed in the queued order, each as soon as
+# it and all before it are done.
+max=${VOXGI_TEST_JOBS:-$(nproc 2>/dev/null || echo 2)}
+[ "$max" -ge 1 ] 2>/dev/null || max=1
+order=()
+for ((i = 0; i < n; i++)); do [ "${kinds[i]}" = program ] && [ "${names[i]#asan/}" != "${names[i]}" ] && order+=("$i"); done
+for ((i = 0; i < n; i++)); do [ "${kinds[i]}" = program ] && [ "${names[i]#asan/}" = "${names[i]}" ] && order+=("$i"); done
+for ((i = 0; i < n; i++)); do [ "${kinds[i]}" != program ] && order+=("$i"); done
+
+printed=0
+print_finished() {
+    while [ "$printed" -lt "$n" ] && [ -e "$tmp/$printed.rc" ]; do
+        report "$printed"
+        printed=$((printed + 1))
+    done
+}
+
+# A check is done when its N.rc is there (written last); the running ones are those started less those done.
+started=0
+running() { local done=0 i; for ((i = 0; i < started; i++)); do [ -e "$tmp/${order[i]}.rc" ] && done=$((done + 1)); done; echo $((started - done)); }
+for i in "${order[@]}"; do
+    while [ "$(running)" -ge "$max" ]; do
+        wait -n 2>/dev/null || sleep 0.1
+        print_finished
+    done
+    ( eval "${cmds[i]}" > "$tmp/$i.out" 2>&1; echo $? > "$tmp/$i.rc.part"; mv "$tmp/$i.rc.part" "$tmp/$i.rc" ) &
+    started=$((started + 1))
+done
+while [ "$printed" -lt "$n" ]; do
+    wait -n 2>/dev/null || sleep 0.1
+    print_finished
+done
+wait
 
 echo
 [ "$skipped" -gt 0 ] && echo "$skipped skipped (see SKIP lines above; a skip is not a pass)"

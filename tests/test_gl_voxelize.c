@@ -1,40 +1,11 @@
 /* The GL conservative voxelizer equals the CPU voxelizer bit for bit, on a real headless GL 4.5
-   context (EGL surfaceless or OSMesa, llvmpipe). Also: the loader table, backend choice and
-   shader error reporting. Skips (loudly) only when no GL 4.5 context can be made;
+   context (EGL surfaceless or OSMesa, llvmpipe). Also: the loader table and backend choice
+   (shader error reporting and the GPU-built octree, which call private helpers, are tested in
+   tests/test_internals.c). Skips (loudly) only when no GL 4.5 context can be made;
    VOXGI_TEST_GL=egl|osmesa picks the kind, VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
-#define VOXGI_IMPLEMENTATION
 #include "../voxgi.h"
-#include "../tools/headless_gl.h"
-#include "harness.h"
-#include "../tools/shapes.h"
-#include "svo_checks.h"
+#include "fixtures.h"
 #include "cone_points.h"
-#include <stdlib.h>
-#include <math.h>
-
-static vxt_gl *g_gl;
-static char g_gl_error[512];
-
-static int have_gl(void)
-{
-    if (g_gl) return 1;
-    if (getenv("VOXGI_REQUIRE_GL") && atoi(getenv("VOXGI_REQUIRE_GL")))
-        TH_CHECK(0, "no GL 4.5 context: %s", g_gl_error);
-    else th_skip("no GL 4.5 context could be made: %s", g_gl_error);
-    return 0;
-}
-
-static voxgi_context *make_ctx(voxgi_backend b)
-{
-    voxgi_desc d;
-    voxgi_context *ctx = NULL;
-    memset(&d, 0, sizeof d);
-    d.backend = b;
-    d.gl_get_proc_address_user = vxt_gl_get_proc;
-    d.gl_user = g_gl;
-    if (voxgi_create(&d, &ctx) != VOXGI_OK) return NULL;
-    return ctx;
-}
 
 static voxgi_method g_method; /* what compare() runs */
 static voxgi_solid_mode g_solid_mode;
@@ -46,17 +17,8 @@ static const float *g_uvs;
 
 static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g, voxgi_voxels_info *info)
 {
-    voxgi_mesh mesh;
-    voxgi_scene sc;
     voxgi_voxelize_desc vd;
-    voxgi_voxels *vox = NULL;
-    uint32_t *bits;
-    size_t need = 0;
-    memset(&mesh, 0, sizeof mesh);
-    memset(&sc, 0, sizeof sc);
     memset(&vd, 0, sizeof vd);
-    mesh.positions = m->pos; mesh.vertex_count = m->vertex_count; mesh.indices = m->idx; mesh.index_count = 3 * m->triangle_count;
-    sc.meshes = &mesh; sc.mesh_count = 1;
     vd.grid = *g;
     vd.method = g_method;
     vd.solid_mode = g_solid_mode;
@@ -64,20 +26,13 @@ static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g
     vd.atomic = g_atomic;
     vd.atlas_size = g_atlas_size;
     vd.atlas_uv = g_atlas_uv;
-    mesh.uvs = g_uvs;
-    if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) { printf("    voxelize: %s\n", voxgi_last_error(ctx)); return NULL; }
-    voxgi_voxels_read(ctx, vox, NULL, 0, &need);
-    bits = (uint32_t *)malloc(need);
-    if (voxgi_voxels_read(ctx, vox, bits, need, NULL) != VOXGI_OK) { printf("    read: %s\n", voxgi_last_error(ctx)); free(bits); bits = NULL; }
-    voxgi_voxels_query(vox, info);
-    voxgi_voxels_destroy(ctx, vox);
-    return bits;
+    return shape_bits(ctx, m, g_uvs, &vd, info);
 }
 
 /* GL and CPU bits must be identical, and the GL count must equal the CPU popcount. */
 static void compare_method(const vxt_shape *m, const voxgi_grid *g, const char *what)
 {
-    voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
+    voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU, 0), *gl = make_ctx(VOXGI_BACKEND_GL, 0);
     voxgi_voxels_info ic, ig;
     uint32_t *a, *b;
     size_t bytes = (size_t)((voxgi_grid_voxel_count(g) + 31) / 32 * 4);
@@ -133,6 +88,15 @@ static void compare_solid(const vxt_shape *m, const voxgi_grid *g, const char *w
     g_method = VOXGI_METHOD_CONSERVATIVE;
 }
 
+/* The grid of vxt_shape_box_and_tilted's ties: half voxels from -1, every integer coordinate on
+   a voxel boundary; 51 x 50 x nz. */
+static void half_voxel_grid(voxgi_grid *g, int nz)
+{
+    g->origin[0] = g->origin[1] = g->origin[2] = -1;
+    g->voxel_size = 0.5;
+    g->res[0] = 51; g->res[1] = 50; g->res[2] = nz;
+}
+
 static void test_gl_equals_cpu_solid(void)
 {
     vxt_shape m, big;
@@ -145,9 +109,7 @@ static void test_gl_equals_cpu_solid(void)
     compare_solid(&m, &g, "sphere");
     vxt_shape_free(&m);
     vxt_shape_box_and_tilted(&m); /* ties: lattice box, and an open quad */
-    g.origin[0] = g.origin[1] = g.origin[2] = -1;
-    g.voxel_size = 0.5;
-    g.res[0] = 51; g.res[1] = 50; g.res[2] = 52;
+    half_voxel_grid(&g, 52);
     compare_solid(&m, &g, "box and quad");
     vxt_shape_free(&m);
     {   /* a box far larger than a few triangles' worth of columns: the big-triangle pass */
@@ -160,13 +122,6 @@ static void test_gl_equals_cpu_solid(void)
         compare_solid(&big, &g, "big box");
         vxt_shape_free(&big);
     }
-}
-
-static void cubic(voxgi_grid *g, double lo, double size, int n)
-{
-    g->origin[0] = g->origin[1] = g->origin[2] = lo;
-    g->voxel_size = size / n;
-    g->res[0] = g->res[1] = g->res[2] = n;
 }
 
 static void test_gl_equals_cpu_sphere(void)
@@ -194,8 +149,7 @@ static void test_gl_equals_cpu_ties(void)
     g.voxel_size = 1.5;
     g.res[0] = 19; g.res[1] = 18; g.res[2] = 17;
     compare(&m, &g, "box on voxel faces");
-    g.voxel_size = 0.5; /* every integer coordinate on a boundary */
-    g.res[0] = 51; g.res[1] = 50; g.res[2] = 52;
+    half_voxel_grid(&g, 52); /* every integer coordinate on a boundary */
     compare(&m, &g, "box at half voxels");
     g.origin[0] = -1.1; g.origin[1] = -0.9; g.origin[2] = -1.05; /* generic: filter with exact fallbacks */
     g.voxel_size = 0.3;
@@ -267,15 +221,9 @@ static void test_gl_reduce_equals_cpu(void)
     voxgi_voxels *cur[2] = {NULL, NULL};
     int b, level, variant;
     if (!have_gl()) return;
-    ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
-    ctx[1] = make_ctx(VOXGI_BACKEND_GL);
-    vxt_shape_sphere(&m, 30, 20, 1.0, 0.1, 0.0, -0.05);
-    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
-    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
-    sc.meshes = &mesh; sc.mesh_count = 1;
-    vd.grid.origin[0] = -1.2; vd.grid.origin[1] = -1.1; vd.grid.origin[2] = -1.3;
-    vd.grid.voxel_size = 0.05;
-    vd.grid.res[0] = 45; vd.grid.res[1] = 37; vd.grid.res[2] = 50;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 0);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
+    reduce_scene(&m, &sc, &mesh, &vd);
     for (variant = 0; variant < 2; variant++) {
         const int f[3] = {2, 2, variant ? 1 : 2};
         for (b = 0; b < 2; b++) TH_CHECK(voxgi_voxelize(ctx[b], &sc, &vd, &cur[b]) == VOXGI_OK, "voxelize");
@@ -356,12 +304,12 @@ static void test_gl_raster_slicemap_equals_cpu(void)
     for (sh = 0; sh < 3; sh++)
         for (axis = VOXGI_AXIS_X; axis <= VOXGI_AXIS_Z; axis++)
             for (variant = 0; variant < 2 && (sh < 2 || axis == VOXGI_AXIS_Z); variant++) { /* the square faces z */
-                voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
+                voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU, 0), *gl = make_ctx(VOXGI_BACKEND_GL, 0);
                 voxgi_voxels_info ic, ig;
                 uint32_t *c, *q;
                 uint64_t l, n, diff = 0, untied = 0;
                 if (sh == 0) { cubic(&g, -1.1, 2.2, 64); g.res[2] = 300; /* > 256 slices: several MRT layers */ }
-                else if (sh == 1) { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 52; }
+                else if (sh == 1) half_voxel_grid(&g, 52);
                 else cubic(&g, 0, 8, 8);
                 g_method = VOXGI_METHOD_SLICEMAP;
                 g_axis = (voxgi_axis)axis;
@@ -418,7 +366,7 @@ static void test_gl_raster_atlas_equals_cpu(void)
     for (c = 0; c < 180; c++) uv[c] = (float)((double)rand() / RAND_MAX);
     for (sh = 0; sh < 3; sh++) {
         cubic(&g, -1.1, 2.2, sh == 1 ? 40 : 64);
-        if (sh == 1) { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 300; }
+        if (sh == 1) half_voxel_grid(&g, 300);
         for (g_method = VOXGI_METHOD_ATLAS; g_method <= VOXGI_METHOD_ATLAS_COMPUTE; g_method = (voxgi_method)(g_method + 1)) {
             if (sh == 2) { g_uvs = uv; g_atlas_uv = VOXGI_ATLAS_MESH; g_atlas_size = 300; }
             compare_method(&shapes[sh], &g, sh == 0 ? "sphere, default atlas" : (sh == 1 ? "box and tilted box, 300 slices" : "random triangles, mesh uvs"));
@@ -440,6 +388,20 @@ static void test_gl_raster_atlas_equals_cpu(void)
     for (sh = 0; sh < 3; sh++) vxt_shape_free(&shapes[sh]);
 }
 
+/* Attribute `which` of the CPU's voxels vox[0] and the GL's vox[1]: *a and *c (malloc'd with 4
+   bytes to spare: free them), *na and *nb bytes. */
+static void read_attribute_twins(voxgi_context *cpu, voxgi_context *gl, voxgi_voxels *const vox[2], voxgi_attribute which, float **a, size_t *na,
+                                 float **c, size_t *nb)
+{
+    *na = *nb = 0;
+    voxgi_voxels_read_attribute(cpu, vox[0], which, NULL, 0, na);
+    voxgi_voxels_read_attribute(gl, vox[1], which, NULL, 0, nb);
+    *a = (float *)malloc(*na + 4);
+    *c = (float *)malloc(*nb + 4);
+    voxgi_voxels_read_attribute(cpu, vox[0], which, *a, *na, NULL);
+    voxgi_voxels_read_attribute(gl, vox[1], which, *c, *nb, NULL);
+}
+
 /* Attribute averages: GL (sums on the GPU, undecided pairs and flagged triangles on the CPU)
    equals the CPU bit for bit, since both add the same fixed-point integers. */
 static void test_gl_raster_attributes_equal_cpu(void)
@@ -457,36 +419,28 @@ static void test_gl_raster_attributes_equal_cpu(void)
     for (sh = 0; sh < 3; sh++)
         for (method = 0; method < 3; method++) {
             static const voxgi_method methods[3] = {VOXGI_METHOD_CONSERVATIVE, VOXGI_METHOD_THIN, VOXGI_METHOD_GEOMETRY};
-            voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
+            voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU, 0), *gl = make_ctx(VOXGI_BACKEND_GL, 0);
             voxgi_voxels *vox[2] = {NULL, NULL};
-            uint32_t *ids = (uint32_t *)malloc(shapes[sh].triangle_count * 4);
+            uint32_t *ids = material_ids_in_turn(&shapes[sh], 3);
             voxgi_grid g;
-            size_t t;
             int b, k, same = 1;
-            for (t = 0; t < shapes[sh].triangle_count; t++) ids[t] = (uint32_t)(t % 3);
             if (sh == 0) cubic(&g, -1.1, 2.2, 48);
-            else if (sh == 1) { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 52; }
+            else if (sh == 1) half_voxel_grid(&g, 52);
             else cubic(&g, 0, 3, 3);
             for (b = 0; b < 2; b++) {
                 voxgi_mesh mesh;
                 voxgi_scene sc;
                 voxgi_voxelize_desc vd;
-                memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
-                mesh.positions = shapes[sh].pos; mesh.vertex_count = shapes[sh].vertex_count; mesh.indices = shapes[sh].idx;
-                mesh.index_count = 3 * shapes[sh].triangle_count; mesh.material_ids = ids;
-                sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 3;
+                scene_of_materials(&sc, &mesh, &shapes[sh], ids, mats, 3);
+                memset(&vd, 0, sizeof vd);
                 vd.grid = g; vd.method = methods[method]; vd.attributes = 15;
                 if (voxgi_voxelize(b ? gl : cpu, &sc, &vd, &vox[b]) != VOXGI_OK) printf("    %s\n", voxgi_last_error(b ? gl : cpu));
             }
             TH_CHECK(vox[0] && vox[1], "shape %d: attribute voxelization failed", sh);
             for (k = 0; k < 4 && vox[0] && vox[1]; k++) {
-                size_t na = 0, nb = 0;
+                size_t na, nb;
                 float *a, *c;
-                voxgi_voxels_read_attribute(cpu, vox[0], kinds[k], NULL, 0, &na);
-                voxgi_voxels_read_attribute(gl, vox[1], kinds[k], NULL, 0, &nb);
-                a = (float *)malloc(na + 4); c = (float *)malloc(nb + 4);
-                voxgi_voxels_read_attribute(cpu, vox[0], kinds[k], a, na, NULL);
-                voxgi_voxels_read_attribute(gl, vox[1], kinds[k], c, nb, NULL);
+                read_attribute_twins(cpu, gl, vox, kinds[k], &a, &na, &c, &nb);
                 same = same && na == nb && na > 0 && memcmp(a, c, na) == 0;
                 free(a); free(c);
             }
@@ -529,28 +483,25 @@ static void test_gl_raster_volume_buffer(void)
     memcpy(shapes[2].idx, tilted_idx, sizeof tilted_idx);
     for (sh = 0; sh < 3; sh++)
         for (variant = 0; variant < 3; variant++) { /* M2 mean, M2 max/add, M1 mean */
-            voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU), *gl = make_ctx(VOXGI_BACKEND_GL);
+            voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU, 0), *gl = make_ctx(VOXGI_BACKEND_GL, 0);
             voxgi_voxels *vox[2] = {NULL, NULL};
-            uint32_t *ids = (uint32_t *)malloc(shapes[sh].triangle_count * 4), *bits[2] = {NULL, NULL};
+            uint32_t *ids = material_ids_in_turn(&shapes[sh], 3), *bits[2] = {NULL, NULL};
             voxgi_voxels_info info[2];
             voxgi_grid g;
-            size_t t, need = 0;
+            size_t need = 0;
             uint64_t l, n, diff = 0, far = 0;
             int b, k;
             double worst = 0;
-            for (t = 0; t < shapes[sh].triangle_count; t++) ids[t] = (uint32_t)(t % 3);
             if (sh == 0) cubic(&g, -1.1, 2.2, 48);
-            else if (sh == 1) { g.origin[0] = g.origin[1] = g.origin[2] = -1; g.voxel_size = 0.5; g.res[0] = 51; g.res[1] = 50; g.res[2] = 52; }
+            else if (sh == 1) half_voxel_grid(&g, 52);
             else cubic(&g, 0, 100, 100);
             n = voxgi_grid_voxel_count(&g);
             for (b = 0; b < 2; b++) {
                 voxgi_mesh mesh;
                 voxgi_scene sc;
                 voxgi_voxelize_desc vd;
-                memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
-                mesh.positions = shapes[sh].pos; mesh.vertex_count = shapes[sh].vertex_count; mesh.indices = shapes[sh].idx;
-                mesh.index_count = 3 * shapes[sh].triangle_count; mesh.material_ids = ids;
-                sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 3;
+                scene_of_materials(&sc, &mesh, &shapes[sh], ids, mats, 3);
+                memset(&vd, 0, sizeof vd);
                 vd.grid = g; vd.method = VOXGI_METHOD_VOLUME_BUFFER; vd.attributes = 15;
                 vd.volume_slicing = variant == 2 ? 1 : 2;
                 memcpy(vd.blend, blends[variant == 1], sizeof vd.blend);
@@ -582,13 +533,9 @@ static void test_gl_raster_volume_buffer(void)
             else TH_CHECK(far == 0 && diff * 100 <= info[0].voxel_count, "shape %d: M1 differs in %llu voxels, %llu not next to a CPU voxel",
                           sh, (unsigned long long)diff, (unsigned long long)far);
             for (k = 0; k < 4 && variant < 2; k++) {
-                size_t na = 0, nb = 0, i;
+                size_t na, nb, i;
                 float *a, *c;
-                voxgi_voxels_read_attribute(cpu, vox[0], kinds[k], NULL, 0, &na);
-                voxgi_voxels_read_attribute(gl, vox[1], kinds[k], NULL, 0, &nb);
-                a = (float *)malloc(na + 4); c = (float *)malloc(nb + 4);
-                voxgi_voxels_read_attribute(cpu, vox[0], kinds[k], a, na, NULL);
-                voxgi_voxels_read_attribute(gl, vox[1], kinds[k], c, nb, NULL);
+                read_attribute_twins(cpu, gl, vox, kinds[k], &a, &na, &c, &nb);
                 TH_CHECK(na == nb && na > 0, "attribute sizes %lu vs %lu", (unsigned long)na, (unsigned long)nb);
                 for (i = 0; na == nb && i < na / 4; i++) { /* relative to the larger of 1 and the value */
                     double e = fabs((double)a[i] - c[i]) / (fabs(a[i]) > 1 ? fabs(a[i]) : 1);
@@ -620,30 +567,20 @@ static void test_gl_raster_volume_buffer(void)
 static void test_gl_volume_mips_equal_cpu(void)
 {
     static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
-    voxgi_material mats[2] = {{{0.9f, 0.1f, 0.2f}, {3, 2, 1}, 0.5f}, {{0.3f, 0.7f, 0.5f}, {0, 0, 0}, 0.0f}};
     voxgi_context *cpu, *gl;
-    vxt_shape m;
-    voxgi_mesh mesh;
-    voxgi_scene sc;
+    material_sphere s;
     voxgi_voxelize_desc xd;
     voxgi_voxels *vox[2] = {NULL, NULL};
-    uint32_t *ids;
-    size_t t;
     int filter, b;
     double worst = 0;
     if (!have_gl()) return;
-    cpu = make_ctx(VOXGI_BACKEND_CPU);
-    gl = make_ctx(VOXGI_BACKEND_GL);
-    vxt_shape_sphere(&m, 30, 15, 1.0, 0.013, -0.021, 0.007);
-    ids = (uint32_t *)malloc(m.triangle_count * 4);
-    for (t = 0; t < m.triangle_count; t++) ids[t] = (uint32_t)(t % 2);
-    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&xd, 0, sizeof xd);
-    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
-    mesh.material_ids = ids;
-    sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 2;
+    cpu = make_ctx(VOXGI_BACKEND_CPU, 0);
+    gl = make_ctx(VOXGI_BACKEND_GL, 0);
+    material_sphere_make(&s);
+    memset(&xd, 0, sizeof xd);
     cubic(&xd.grid, -1.1, 2.2, 27); /* odd: incomplete parents at the far faces */
     xd.attributes = 15;
-    for (b = 0; b < 2; b++) voxgi_voxelize(b ? gl : cpu, &sc, &xd, &vox[b]);
+    for (b = 0; b < 2; b++) voxgi_voxelize(b ? gl : cpu, &s.scene, &xd, &vox[b]);
     TH_CHECK(vox[0] && vox[1], "voxelization failed");
     for (filter = 0; filter < 2 && vox[0] && vox[1]; filter++) {
         voxgi_volume_desc vd;
@@ -682,8 +619,7 @@ static void test_gl_volume_mips_equal_cpu(void)
     }
     TH_CHECK(worst <= 1e-6, "GL mips differ from the CPU's by %g", worst);
     for (b = 0; b < 2; b++) voxgi_voxels_destroy(b ? gl : cpu, vox[b]);
-    free(ids);
-    vxt_shape_free(&m);
+    material_sphere_free(&s);
     voxgi_destroy(cpu);
     voxgi_destroy(gl);
 }
@@ -703,8 +639,8 @@ static void test_gl_volume_sampling_equals_cpu(void)
     int b, f;
     double worst = 0;
     if (!have_gl()) return;
-    cpu = make_ctx(VOXGI_BACKEND_CPU);
-    gl = make_ctx(VOXGI_BACKEND_GL);
+    cpu = make_ctx(VOXGI_BACKEND_CPU, 0);
+    gl = make_ctx(VOXGI_BACKEND_GL, 0);
     g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1;
     g.res[0] = 21; g.res[1] = 13; g.res[2] = 10;
     n = (size_t)voxgi_grid_voxel_count(&g);
@@ -745,170 +681,6 @@ static void test_gl_volume_sampling_equals_cpu(void)
     voxgi_destroy(gl);
 }
 
-/* The GPU-built octree against the CPU's, through lookups (allocation order differs, so the
-   slots do, the values at every place do not): the same nodes per level, point lookups at every
-   level bit for bit, samples within float rounding, neighbour pointers right, in both value
-   formats; grids 27^3 (odd: incomplete parents), 2 (depth 1) and an empty one. */
-static void test_gl_svo_equals_cpu(void)
-{
-    voxgi_material mats[2] = {{{0.9f, 0.1f, 0.2f}, {3, 2, 1}, 0.5f}, {{0.3f, 0.7f, 0.5f}, {0, 0, 0}, 0.0f}};
-    voxgi_context *cpu, *gl;
-    vxt_shape m;
-    voxgi_mesh mesh;
-    voxgi_scene sc;
-    uint32_t *ids;
-    size_t t;
-    int res_i, b;
-    double worst_sample = 0;
-    if (!have_gl()) return;
-    cpu = make_ctx(VOXGI_BACKEND_CPU);
-    gl = make_ctx(VOXGI_BACKEND_GL);
-    vxt_shape_sphere(&m, 30, 15, 1.0, 0.013, -0.021, 0.007);
-    ids = (uint32_t *)malloc(m.triangle_count * 4);
-    for (t = 0; t < m.triangle_count; t++) ids[t] = (uint32_t)(t % 2);
-    memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc);
-    mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
-    mesh.material_ids = ids;
-    sc.meshes = &mesh; sc.mesh_count = 1; sc.materials = mats; sc.material_count = 2;
-    for (res_i = 0; res_i < 3; res_i++) {
-        voxgi_voxelize_desc xd;
-        voxgi_voxels *vox[2] = {NULL, NULL};
-        int fmt;
-        memset(&xd, 0, sizeof xd);
-        if (res_i == 2) cubic(&xd.grid, 5, 1, 4); /* far from the sphere: no voxels */
-        else cubic(&xd.grid, -1.1, 2.2, res_i == 0 ? 27 : 2);
-        xd.attributes = 15;
-        for (b = 0; b < 2; b++) voxgi_voxelize(b ? gl : cpu, &sc, &xd, &vox[b]);
-        TH_CHECK(vox[0] && vox[1], "voxelization failed");
-        for (fmt = 0; fmt < 2 && vox[0] && vox[1]; fmt++) {
-            voxgi_svo_desc sd;
-            voxgi_svo *svo[2] = {NULL, NULL};
-            voxgi_svo_info info[2];
-            int lev, a, diff = 0, nodes = 0, wrong;
-            memset(&sd, 0, sizeof sd);
-            sd.neighbours = 1;
-            sd.format = (voxgi_svo_format)fmt;
-            sd.bricks = fmt; /* half floats with bricks, floats without */
-            for (b = 0; b < 2; b++) {
-                if (voxgi_svo_create(b ? gl : cpu, vox[b], &sd, &svo[b]) != VOXGI_OK) printf("    %s\n", voxgi_last_error(b ? gl : cpu));
-                voxgi_svo_query(svo[b], &info[b]);
-            }
-            TH_CHECK(svo[0] && svo[1] && info[1].backend == VOXGI_BACKEND_GL, "octree creation failed");
-            if (!svo[0] || !svo[1]) continue;
-            TH_CHECK(info[0].nodes == info[1].nodes && info[0].leaf_slots == info[1].leaf_slots && info[0].bytes == info[1].bytes &&
-                     info[0].depth == info[1].depth && info[0].leaf_voxels == info[1].leaf_voxels &&
-                     memcmp(info[0].level_nodes, info[1].level_nodes, sizeof info[0].level_nodes) == 0,
-                     "res %d: GL octree %llu nodes, %llu leaf slots; CPU %llu, %llu", xd.grid.res[0], (unsigned long long)info[1].nodes,
-                     (unsigned long long)info[1].leaf_slots, (unsigned long long)info[0].nodes, (unsigned long long)info[0].leaf_slots);
-            for (lev = 0; lev <= info[0].depth; lev++) { /* every node place at every level, and a place outside the cube */
-                uint32_t n = 1u << lev, sh = (uint32_t)(info[0].depth - lev), q = 0, x, y, z;
-                uint32_t *coords = (uint32_t *)malloc(((size_t)n * n * n + 1) * 12);
-                float *got[2];
-                got[0] = (float *)malloc(((size_t)n * n * n + 1) * 16);
-                got[1] = (float *)malloc(((size_t)n * n * n + 1) * 16);
-                for (z = 0; z < n; z++)
-                    for (y = 0; y < n; y++)
-                        for (x = 0; x < n; x++, q++) { coords[3 * q] = x << sh; coords[3 * q + 1] = y << sh; coords[3 * q + 2] = z << sh; }
-                coords[3 * q] = 1u << info[0].depth; coords[3 * q + 1] = coords[3 * q + 2] = 0; q++;
-                for (a = 0; a < 4; a++) {
-                    voxgi_attribute which = (voxgi_attribute)(1 << a);
-                    for (b = 0; b < 2; b++)
-                        TH_CHECK(voxgi_svo_lookup(b ? gl : cpu, svo[b], which, lev, q, coords, got[b]) == VOXGI_OK, "lookup: %s",
-                                 voxgi_last_error(b ? gl : cpu));
-                    diff += memcmp(got[0], got[1], (size_t)q * (a == 3 ? 4u : 16u)) != 0;
-                }
-                free(coords); free(got[0]); free(got[1]);
-            }
-            TH_CHECK(diff == 0, "res %d format %d: GL and CPU lookups differ at %d level/attribute pairs", xd.grid.res[0], fmt, diff);
-            for (lev = 0; lev < info[0].depth && sd.bricks; lev++) { /* every brick, texel for texel */
-                uint32_t n = 1u << lev, sh = (uint32_t)(info[0].depth - lev), x, y, z;
-                for (z = 0; z < n; z++)
-                    for (y = 0; y < n; y++)
-                        for (x = 0; x < n; x++) {
-                            uint32_t c[3];
-                            float br[2][64 * 4];
-                            c[0] = x << sh; c[1] = y << sh; c[2] = z << sh;
-                            for (a = 0; a < 4; a++) {
-                                for (b = 0; b < 2; b++) voxgi_svo_brick(b ? gl : cpu, svo[b], (voxgi_attribute)(1 << a), lev, c, br[b]);
-                                diff += memcmp(br[0], br[1], (size_t)(a == 3 ? 64 * 4 : 64 * 16)) != 0;
-                            }
-                        }
-            }
-            TH_CHECK(diff == 0 && info[1].brick_bytes == info[0].brick_bytes, "res %d: %d GL bricks differ from the CPU's", xd.grid.res[0], diff);
-            {   /* samples: float weights on GL, double on the CPU */
-                float pos[3 * 400], lods[400], out[2][4 * 400];
-                int i;
-                for (i = 0; i < 400; i++) {
-                    pos[3 * i] = (float)(-2 + 31 * ((double)rand() / RAND_MAX));
-                    pos[3 * i + 1] = (float)(-2 + 31 * ((double)rand() / RAND_MAX));
-                    pos[3 * i + 2] = (float)(-2 + 31 * ((double)rand() / RAND_MAX));
-                    lods[i] = (float)(-0.5 + 6.5 * ((double)rand() / RAND_MAX));
-                }
-                for (a = 0; a < 4; a++) {
-                    for (b = 0; b < 2; b++)
-                        TH_CHECK(voxgi_svo_sample(b ? gl : cpu, svo[b], (voxgi_attribute)(1 << a), 400, pos, lods, out[b]) == VOXGI_OK,
-                                 "sampling: %s", voxgi_last_error(b ? gl : cpu));
-                    for (i = 0; i < 400 * (a == 3 ? 1 : 4); i++) {
-                        double e = fabs((double)out[0][i] - out[1][i]) / fmax(1, fabs(out[0][i]));
-                        if (e > worst_sample) worst_sample = e;
-                    }
-                }
-            }
-            wrong = svo_wrong_neighbours(gl, svo[1], info[1].depth, &nodes);
-            for (lev = 1; lev < info[1].depth; lev++) nodes -= (int)info[1].level_nodes[lev];
-            TH_CHECK(wrong == 0 && nodes == 0, "%d wrong GL neighbour pointers, %d nodes unaccounted for", wrong, nodes);
-            if (res_i == 0 && fmt == 0) { /* a memory budget below the octree: a clean refusal; the exact size: built */
-                voxgi_desc d;
-                voxgi_context *small = NULL;
-                voxgi_svo *none = NULL;
-                memset(&d, 0, sizeof d);
-                d.backend = VOXGI_BACKEND_GL;
-                d.gl_get_proc_address_user = vxt_gl_get_proc;
-                d.gl_user = g_gl;
-                d.memory_budget = info[1].bytes - 1;
-                voxgi_create(&d, &small);
-                TH_CHECK(small && voxgi_svo_create(small, vox[1], &sd, &none) == VOXGI_ERR_TOO_LARGE && !none, "budget %lu: %s",
-                         (unsigned long)d.memory_budget, small ? voxgi_last_error(small) : "no context");
-                voxgi_destroy(small);
-                d.memory_budget = info[1].bytes;
-                voxgi_create(&d, &small);
-                TH_CHECK(small && voxgi_svo_create(small, vox[1], &sd, &none) == VOXGI_OK && none, "the exact budget refused");
-                voxgi_svo_destroy(small, none);
-                voxgi_destroy(small);
-            }
-            for (b = 0; b < 2; b++) voxgi_svo_destroy(b ? gl : cpu, svo[b]);
-        }
-        for (b = 0; b < 2; b++) voxgi_voxels_destroy(b ? gl : cpu, vox[b]);
-    }
-    {   /* footprint -> lod: the GLSL function and the C one agree (log2 within an ulp), 0 below a voxel */
-        static const float d[8] = {0.0f, 0.25f, 1.0f, 1.5f, 2.0f, 8.0f, 1000.0f, 65536.0f};
-        float pts[8 * 4], lod[8 * 4];
-        voxgi_svo_desc sd;
-        voxgi_svo *one = NULL;
-        voxgi_voxels *v = NULL;
-        voxgi_voxelize_desc xd;
-        int i, bad = 0;
-        memset(&xd, 0, sizeof xd); memset(&sd, 0, sizeof sd); memset(pts, 0, sizeof pts);
-        cubic(&xd.grid, -1.1, 2.2, 4);
-        xd.attributes = VOXGI_ATTRIBUTE_ALBEDO;
-        voxgi_voxelize(gl, &sc, &xd, &v);
-        if (v) voxgi_svo_create(gl, v, &sd, &one);
-        for (i = 0; i < 8; i++) pts[4 * i + 3] = d[i];
-        TH_CHECK(one && voxgi__svo_gl_points(gl, one, 0, 2, 8, pts, lod) == VOXGI_OK, "footprints on GL");
-        for (i = 0; i < 8 && one; i++) bad += fabsf(lod[4 * i] - voxgi_lod_from_footprint(d[i])) > 1e-6f * fmaxf(1, lod[4 * i]);
-        TH_CHECK(bad == 0 && voxgi_lod_from_footprint(8) == 3 && voxgi_lod_from_footprint(0.5f) == 0 && voxgi_lod_from_footprint(1) == 0,
-                 "footprint lods: %d differ", bad);
-        voxgi_svo_destroy(gl, one);
-        voxgi_voxels_destroy(gl, v);
-    }
-    printf("    GL octree samples within %.3g (relative) of the CPU's\n", worst_sample);
-    TH_CHECK(worst_sample <= 1e-6, "GL octree samples differ from the CPU's by %g", worst_sample);
-    free(ids);
-    vxt_shape_free(&m);
-    voxgi_destroy(cpu);
-    voxgi_destroy(gl);
-}
-
 /* The geometry-shader voxelizer on every shape of the compute tests: bit for bit the CPU's. */
 static void test_gl_raster_geometry_equals_cpu(void)
 {
@@ -925,7 +697,7 @@ static void test_gl_interop_and_backends(void)
     voxgi_context *ctx;
     voxgi_info info;
     if (!have_gl()) return;
-    ctx = make_ctx(VOXGI_BACKEND_AUTO);
+    ctx = make_ctx(VOXGI_BACKEND_AUTO, 0);
     voxgi_query_info(ctx, &info);
     TH_CHECK(info.backend == VOXGI_BACKEND_GL, "AUTO with a GL 4.5 context picked %s", voxgi_backend_name(info.backend));
     TH_CHECK(strstr(info.gl_version, "4.") != NULL, "GL version '%s'", info.gl_version);
@@ -937,9 +709,8 @@ static void test_gl_interop_and_backends(void)
         voxgi_voxels *vox = NULL;
         unsigned name = 0;
         vxt_shape_sphere(&m, 8, 6, 1.0, 0, 0, 0);
-        memset(&mesh, 0, sizeof mesh); memset(&sc, 0, sizeof sc); memset(&vd, 0, sizeof vd);
-        mesh.positions = m.pos; mesh.vertex_count = m.vertex_count; mesh.indices = m.idx; mesh.index_count = 3 * m.triangle_count;
-        sc.meshes = &mesh; sc.mesh_count = 1;
+        scene_of_shape(&sc, &mesh, &m);
+        memset(&vd, 0, sizeof vd);
         cubic(&vd.grid, -1.2, 2.4, 16);
         TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "GL voxelize failed");
         TH_CHECK(voxgi_voxels_gl_buffer(ctx, vox, &name) == VOXGI_OK && name != 0, "no GL buffer name");
@@ -1005,21 +776,6 @@ static void test_gl_missing_function_and_fallback(void)
     voxgi_destroy(ctx);
 }
 
-/* A shader that fails to compile gives VOXGI_ERR_GL_SHADER with the log mapped to file:line. */
-static void test_gl_shader_error_mapping(void)
-{
-    voxgi_context *ctx;
-    unsigned int prog = 0;
-    const char *files[2] = {"good.glsl", "broken.glsl"};
-    const char *texts[2] = {"layout(local_size_x = 1) in;\nint one() { return 1; }\n",
-                            "void main()\n{\n    undefined_thing = one();\n}\n"};
-    if (!have_gl()) return;
-    ctx = make_ctx(VOXGI_BACKEND_GL);
-    TH_CHECK(voxgi__gl_program(ctx, 0, 2, files, texts, &prog) == VOXGI_ERR_GL_SHADER, "broken shader compiled");
-    TH_CHECK(strstr(voxgi_last_error(ctx), "broken.glsl:3") != NULL, "log not mapped to broken.glsl:3: %s", voxgi_last_error(ctx));
-    voxgi_destroy(ctx);
-}
-
 /* A scene voxelized (albedo, normal) on a fitted grid of res voxels and lit (voxgi_inject_light
    with id); 1 when it all worked, else the error is printed. */
 static int lit_voxels(voxgi_context *ctx, const voxgi_scene *sc, int res, const voxgi_inject_desc *id, voxgi_voxels **vx, voxgi_volume **vol)
@@ -1050,8 +806,8 @@ static void test_gl_raster_injection_matches_cpu(void)
     voxgi_context *ctx[2];
     int sc, b;
     if (!have_gl()) return;
-    ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
-    ctx[1] = make_ctx(VOXGI_BACKEND_GL);
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 0);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
     for (sc = 0; sc < 2; sc++) {
         voxgi_builtin_scene bs;
         float *rad[2] = {NULL, NULL};
@@ -1113,12 +869,10 @@ static void test_gl_raster_leak_box(void)
     double mean = 0, ground;
     int i;
     if (!have_gl()) return;
-    ctx = make_ctx(VOXGI_BACKEND_GL);
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
     voxgi_builtin_scene_create(ctx, "leak-box", &bs);
     ground = 0.8 / 3.14159265358979323846 * bs.scene.lights[0].intensity[0] / sqrt(1 + 0.3 * 0.3 + 0.4 * 0.4); /* the sun: (-0.3, -1, 0.4) */
-    memset(&vd, 0, sizeof vd);
-    vd.camera = bs.camera;
-    vd.camera.width = vd.camera.height = 16;
+    vct_view(&vd, &bs, 16);
     vd.resolution = 64;
     vd.samples = 1;
     vd.filter = VOXGI_MIPS_ANISOTROPIC;
@@ -1168,7 +922,7 @@ static void test_gl_raster_gbuffer_textures(void)
     del = (vx_delete_textures)vxt_gl_get_proc("glDeleteTextures", g_gl);
     TH_CHECK(create && storage && sub && get && del, "GL texture functions");
     if (!create || !storage || !sub || !get || !del) return;
-    ctx = make_ctx(VOXGI_BACKEND_GL);
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
     voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
     memset(&id, 0, sizeof id);
     memset(&cd, 0, sizeof cd);
@@ -1183,7 +937,7 @@ static void test_gl_raster_gbuffer_textures(void)
             tex_in[2][4 * i + a] = (float)(0.2 + 0.7 * a / 2.0);
             tex_in[0][4 * i + 3] = tex_in[1][4 * i + 3] = tex_in[2][4 * i + 3] = 1;
         }
-    TH_CHECK(voxgi_cone_trace(ctx, vol, &cd, N, pos, nrm, irr, occ) == VOXGI_OK, "arrays: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, N, pos, nrm, irr, occ) == VOXGI_OK, "arrays: %s", voxgi_last_error(ctx));
     create(0x0DE1, 5, tex); /* GL_TEXTURE_2D */
     for (i = 0; i < 5; i++) storage(tex[i], 1, i == 4 ? 0x881A : 0x8814, W, H); /* RGBA16F for the last, RGBA32F */
     for (i = 0; i < 3; i++) sub(tex[i], 0, 0, 0, W, H, 0x1908, 0x1406, tex_in[i]); /* GL_RGBA, GL_FLOAT */
@@ -1193,7 +947,7 @@ static void test_gl_raster_gbuffer_textures(void)
     gb.width = W;
     gb.height = H;
     gb.irradiance_texture = tex[3];
-    TH_CHECK(voxgi_cone_trace_gl(ctx, vol, &cd, &gb) == VOXGI_OK, "textures: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_cone_trace_gl(ctx, VOLUME_SOURCE(vol), &cd, &gb) == VOXGI_OK, "textures: %s", voxgi_last_error(ctx));
     get(tex[3], 0, 0x1908, 0x1406, (int)sizeof out, out);
     for (i = 0; i < 3 * N; i++) mean += irr[i] / (3.0 * N);
     for (i = 0; i < N; i++) {
@@ -1203,7 +957,7 @@ static void test_gl_raster_gbuffer_textures(void)
     gb.albedo_texture = tex[2];
     gb.irradiance_texture = tex[4];
     gb.irradiance_rgba16f = 1;
-    TH_CHECK(voxgi_cone_trace_gl(ctx, vol, &cd, &gb) == VOXGI_OK, "albedo, half: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_cone_trace_gl(ctx, VOLUME_SOURCE(vol), &cd, &gb) == VOXGI_OK, "albedo, half: %s", voxgi_last_error(ctx));
     get(tex[4], 0, 0x1908, 0x1406, (int)sizeof out, out);
     for (i = 0; i < N; i++)
         for (a = 0; a < 3; a++)
@@ -1219,12 +973,12 @@ static void test_gl_raster_gbuffer_textures(void)
         memset(&sd, 0, sizeof sd);
         sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
         sd.radiance = vol;
-        TH_CHECK(voxgi_svo_create(ctx, vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace_svo(ctx, svo, &cd, N, pos, nrm, irr, occ) == VOXGI_OK,
+        TH_CHECK(voxgi_svo_create(ctx, vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr, occ) == VOXGI_OK,
                  "octree arrays: %s", voxgi_last_error(ctx));
         gb.albedo_texture = 0;
         gb.irradiance_texture = tex[3];
         gb.irradiance_rgba16f = 0;
-        TH_CHECK(voxgi_cone_trace_svo_gl(ctx, svo, &cd, &gb) == VOXGI_OK, "octree textures: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_cone_trace_gl(ctx, OCTREE_SOURCE(svo), &cd, &gb) == VOXGI_OK, "octree textures: %s", voxgi_last_error(ctx));
         get(tex[3], 0, 0x1908, 0x1406, (int)sizeof out, out);
         for (i = 0; i < N; i++) {
             for (a = 0; a < 3; a++) worst_svo = fmax(worst_svo, fabs(out[4 * i + a] - (i ? irr[3 * i + a] : 0)) / fmax(mean, 1e-3));
@@ -1235,7 +989,7 @@ static void test_gl_raster_gbuffer_textures(void)
         voxgi_svo_destroy(ctx, svo);
     }
     gb.width = 0;
-    TH_CHECK(voxgi_cone_trace_gl(ctx, vol, &cd, &gb) == VOXGI_ERR_INVALID_ARGUMENT, "an empty G-buffer accepted");
+    TH_CHECK(voxgi_cone_trace_gl(ctx, VOLUME_SOURCE(vol), &cd, &gb) == VOXGI_ERR_INVALID_ARGUMENT, "an empty G-buffer accepted");
     del(5, tex);
     voxgi_volume_destroy(ctx, vol);
     voxgi_voxels_destroy(ctx, vx);
@@ -1258,8 +1012,8 @@ static void test_gl_raster_gbuffer(void)
     int b, i, a, same = 0, hits = 0;
     double worst_p = 0, worst_n = 0;
     if (!have_gl()) return;
-    ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
-    ctx[1] = make_ctx(VOXGI_BACKEND_GL);
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 0);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
     voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs);
     cam = bs.camera;
     cam.width = W;
@@ -1298,8 +1052,8 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
     double worst_irr = 0, worst_occ = 0, worst_img = 0, mean_irr = 0, mean_img = 0, worst_each = 0;
     int b, f, i, a;
     if (!have_gl()) return;
-    ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
-    ctx[1] = make_ctx(VOXGI_BACKEND_GL);
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 0);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
     TH_CHECK(voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs) == VOXGI_OK, "scene");
     cornell_cone_points(5, N, pos, nrm, single);
     for (i = 0; i < N; i++) { /* half of the single cones leave a surface; some have a reach */
@@ -1317,17 +1071,15 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
             voxgi_volume *vol;
             memset(&id, 0, sizeof id);
             memset(&cd, 0, sizeof cd);
-            memset(&vd, 0, sizeof vd);
+            vct_view(&vd, &bs, W);
             id.volume.filter = (voxgi_mip_filter)f;
             id.samples = 4;
             id.shadow_rays = 1; /* the same radiance on both */
             TH_CHECK(lit_voxels(ctx[b], &bs.scene, 32, &id, &vx, &vol) &&
-                     voxgi_cone_trace(ctx[b], vol, &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
-                     voxgi_trace_cones(ctx[b], vol, &cd, N, single, each[b]) == VOXGI_OK, "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
+                     voxgi_cone_trace(ctx[b], VOLUME_SOURCE(vol), &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
+                     voxgi_cone_trace_each(ctx[b], VOLUME_SOURCE(vol), &cd, N, single, each[b]) == VOXGI_OK, "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
             voxgi_volume_destroy(ctx[b], vol);
             voxgi_voxels_destroy(ctx[b], vx);
-            vd.camera = bs.camera;
-            vd.camera.width = vd.camera.height = W;
             vd.resolution = 32;
             vd.samples = 2;
             vd.filter = (voxgi_mip_filter)f;
@@ -1365,8 +1117,8 @@ static void test_gl_octree_cones_equal_cpu(void)
     double worst_irr = 0, worst_occ = 0, worst_each = 0, mean = 0;
     int b, k, i;
     if (!have_gl()) return;
-    ctx[0] = make_ctx(VOXGI_BACKEND_CPU);
-    ctx[1] = make_ctx(VOXGI_BACKEND_GL);
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 0);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
     TH_CHECK(voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs) == VOXGI_OK, "scene");
     cornell_cone_points(7, N, pos, nrm, single);
     for (k = 0; k < 3; k++) { /* float32, float32 with bricks, float16 */
@@ -1387,8 +1139,8 @@ static void test_gl_octree_cones_equal_cpu(void)
             sd.format = k == 2 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
             TH_CHECK(lit_voxels(ctx[b], &bs.scene, 24, &id, &vx, &vol), "lit voxels");
             sd.radiance = vol;
-            TH_CHECK(voxgi_svo_create(ctx[b], vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace_svo(ctx[b], svo, &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
-                     voxgi_trace_cones_svo(ctx[b], svo, &cd, N, single, each[b]) == VOXGI_OK, "%s octree: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
+            TH_CHECK(voxgi_svo_create(ctx[b], vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx[b], OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
+                     voxgi_cone_trace_each(ctx[b], OCTREE_SOURCE(svo), &cd, N, single, each[b]) == VOXGI_OK, "%s octree: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
             voxgi_svo_destroy(ctx[b], svo);
             voxgi_volume_destroy(ctx[b], vol);
             voxgi_voxels_destroy(ctx[b], vx);
@@ -1410,12 +1162,7 @@ static void test_gl_octree_cones_equal_cpu(void)
 
 int main(void)
 {
-    vxt_gl_kind kind = VXT_GL_AUTO;
-    const char *want = getenv("VOXGI_TEST_GL");
-    if (want && vxt_gl_kind_parse(want, &kind) != 0) kind = VXT_GL_AUTO;
-    g_gl = vxt_gl_create(kind, g_gl_error, sizeof g_gl_error);
-    if (g_gl) printf("GL context: %s, %s\n", vxt_gl_kind_name(g_gl), vxt_gl_renderer(g_gl));
-    else printf("NO GL CONTEXT: %s\n", g_gl_error);
+    gl_open();
     TH_RUN(test_gl_equals_cpu_sphere);
     TH_RUN(test_gl_equals_cpu_ties);
     TH_RUN(test_gl_equals_cpu_quads_and_huge);
@@ -1427,7 +1174,6 @@ int main(void)
     TH_RUN(test_gl_raster_geometry_equals_cpu);
     TH_RUN(test_gl_volume_mips_equal_cpu);
     TH_RUN(test_gl_volume_sampling_equals_cpu);
-    TH_RUN(test_gl_svo_equals_cpu);
     TH_RUN(test_gl_raster_injection_matches_cpu);
     TH_RUN(test_gl_raster_cone_tracing_equals_cpu);
     TH_RUN(test_gl_octree_cones_equal_cpu);
@@ -1439,7 +1185,6 @@ int main(void)
     TH_RUN(test_gl_interop_and_backends);
     TH_RUN(test_gl_plain_loader);
     TH_RUN(test_gl_missing_function_and_fallback);
-    TH_RUN(test_gl_shader_error_mapping);
-    if (g_gl) vxt_gl_destroy(g_gl);
+    gl_close();
     return th_finish();
 }

@@ -3,25 +3,8 @@
    bounces), planes lit by directional, point, spot and rectangular lights against the analytic
    radiance, no ray slipping through a closed mesh, error falling as 1/sqrt(samples), the same
    image for any thread count, and clean refusals. */
-#define VOXGI_IMPLEMENTATION
 #include "../voxgi.h"
-#include "harness.h"
-#include "../tools/shapes.h"
-#include <math.h>
-#include <stdlib.h>
-
-#define PI 3.14159265358979323846
-
-static voxgi_context *make_ctx(int threads)
-{
-    voxgi_desc d;
-    voxgi_context *ctx = NULL;
-    memset(&d, 0, sizeof d);
-    d.backend = VOXGI_BACKEND_CPU;
-    d.thread_count = threads;
-    if (voxgi_create(&d, &ctx) != VOXGI_OK) return NULL;
-    return ctx;
-}
+#include "fixtures.h"
 
 /* A closed UV sphere of radius 1 around the origin facing inwards (front faces inside). */
 static void inward_sphere(vxt_shape *m, int slices, int stacks)
@@ -35,13 +18,11 @@ static void inward_sphere(vxt_shape *m, int slices, int stacks)
     }
 }
 
+/* The shape as one mesh of one material, lit by the lights. */
 static void scene_of(voxgi_scene *sc, voxgi_mesh *mesh, const vxt_shape *m, const voxgi_material *mat, const voxgi_light *lights, size_t nl)
 {
-    memset(sc, 0, sizeof *sc);
-    memset(mesh, 0, sizeof *mesh);
-    mesh->positions = m->pos; mesh->vertex_count = m->vertex_count; mesh->indices = m->idx; mesh->index_count = 3 * m->triangle_count;
-    sc->meshes = mesh; sc->mesh_count = 1; sc->materials = mat; sc->material_count = 1;
-    sc->lights = lights; sc->light_count = nl;
+    scene_of_shape(sc, mesh, m);
+    scene_lighting(sc, mat, 1, lights, nl);
 }
 
 static void camera(voxgi_reference_desc *d, double ex, double ey, double ez, double tx, double ty, double tz, double fovy, int w, int h)
@@ -63,7 +44,7 @@ static double mean_channel(const float *rgb, size_t pixels, int ch)
 
 static void test_furnace(void)
 {
-    voxgi_context *ctx = make_ctx(0);
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     vxt_shape m;
     voxgi_mesh mesh;
     voxgi_scene sc;
@@ -155,7 +136,7 @@ static double point_radiance(const double p[3], const void *u)
 
 static void test_lit_floor(void)
 {
-    voxgi_context *ctx = make_ctx(2);
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
     float pos[12] = {-10, 0, -10, 10, 0, -10, 10, 0, 10, -10, 0, 10};
     uint32_t idx[6] = {0, 2, 1, 0, 3, 2}; /* counter-clockwise seen from above */
     vxt_shape m;
@@ -223,7 +204,7 @@ static void test_lit_floor(void)
         TH_CHECK(fabs(sum_got / sum_want - 1) < 0.005 && sqrt(sq / 384) < 0.02, "light kind %d off the analytic radiance", kind);
     }
     {   /* the same image for 1 and 2 threads; another seed gives another */
-        voxgi_context *one = make_ctx(1);
+        voxgi_context *one = make_ctx(VOXGI_BACKEND_CPU, 1);
         TH_CHECK(voxgi_reference_render(one, &sc, &d, rgb2, sizeof rgb2, NULL) == VOXGI_OK && memcmp(rgb, rgb2, sizeof rgb) == 0,
                  "1 and 2 threads differ");
         d.seed = 99;
@@ -237,7 +218,7 @@ static void test_lit_floor(void)
 /* RMS error of the furnace image (one bounce: E (1 + rho + rho^2)) as samples grow 4x: it halves. */
 static void test_convergence(void)
 {
-    voxgi_context *ctx = make_ctx(0);
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     vxt_shape m;
     voxgi_mesh mesh;
     voxgi_scene sc;
@@ -274,7 +255,7 @@ static int cancel_reference(double fraction, const char *stage, void *user)
 
 static void test_refusals_and_cancel(void)
 {
-    voxgi_context *ctx = make_ctx(1);
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 1);
     voxgi_desc dd;
     float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, rgb[4 * 4 * 3];
     vxt_shape m;
@@ -301,8 +282,7 @@ static void test_refusals_and_cancel(void)
     TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_SCENE, "negative intensity accepted");
     sc.lights = NULL; sc.light_count = 0;
     voxgi_destroy(ctx);
-    memset(&dd, 0, sizeof dd);
-    dd.backend = VOXGI_BACKEND_CPU;
+    ctx_desc(&dd, VOXGI_BACKEND_CPU);
     dd.progress.func = cancel_reference;
     voxgi_create(&dd, &ctx);
     d.samples = 64;
@@ -314,7 +294,7 @@ static void test_refusals_and_cancel(void)
    Cornell box's light seen at its radiance, the room lit. */
 static void test_builtin_scenes(void)
 {
-    voxgi_context *ctx = make_ctx(0);
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     const char *names = voxgi_builtin_scene_names();
     voxgi_builtin_scene bs;
     voxgi_reference_desc d;

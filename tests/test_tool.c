@@ -2,8 +2,6 @@
    backends, and bad files and arguments (clear message, non-zero exit, never a crash).
    VOXGI_TOOL names the binary (default build/voxgi). */
 #define _POSIX_C_SOURCE 200809L
-#define VOXGI_IMPLEMENTATION
-#define VOXGI_NO_GL
 #include "../voxgi.h"
 #include "harness.h"
 #include <stdlib.h>

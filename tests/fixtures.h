@@ -1,0 +1,229 @@
+/* tests/fixtures.h - what the test programs set up alike: voxgi contexts, the program's headless
+ * GL context, one-mesh scenes (of a shape, of quads, the two-material sphere) and cubic grids.
+ *
+ * Include it after voxgi.h (tests/test_internals.c defines VOXGI_IMPLEMENTATION first; every
+ * other program links the implementation). Every function is static inline, so a program may
+ * use any subset of them without unused-function warnings. A program that needs GL calls
+ * gl_open() at the start of main() and gl_close() at the end; its tests begin with have_gl(). */
+#ifndef VOXGI_TESTS_FIXTURES_H
+#define VOXGI_TESTS_FIXTURES_H
+#include "../voxgi.h"
+#include "../tools/headless_gl.h"
+#include "../tools/shapes.h"
+#include "harness.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+/* ---------------------------------------------------------------- GL and voxgi contexts */
+/* The program's GL 4.5 context: NULL until gl_open(), and when none could be made (g_gl_error says why). */
+static vxt_gl *g_gl;
+static char g_gl_error[512];
+
+/* Makes the program's GL context: the kind VOXGI_TEST_GL names (egl or osmesa), else the first
+   that works; prints which, or why there is none. */
+static inline void gl_open(void)
+{
+    vxt_gl_kind kind = VXT_GL_AUTO;
+    const char *want = getenv("VOXGI_TEST_GL");
+    if (want && vxt_gl_kind_parse(want, &kind) != 0) kind = VXT_GL_AUTO;
+    g_gl = vxt_gl_create(kind, g_gl_error, sizeof g_gl_error);
+    if (g_gl) printf("GL context: %s, %s\n", vxt_gl_kind_name(g_gl), vxt_gl_renderer(g_gl));
+    else printf("NO GL CONTEXT: %s\n", g_gl_error);
+}
+
+static inline void gl_close(void)
+{
+    if (g_gl) vxt_gl_destroy(g_gl);
+    g_gl = NULL;
+}
+
+/* 1 when the program has its GL context. Else 0, and the running test is skipped (loudly), or
+   fails when VOXGI_REQUIRE_GL=1 (CI, where a GL context must exist). */
+static inline int have_gl(void)
+{
+    if (g_gl) return 1;
+    if (getenv("VOXGI_REQUIRE_GL") && atoi(getenv("VOXGI_REQUIRE_GL")))
+        TH_CHECK(0, "no GL 4.5 context: %s", g_gl_error);
+    else th_skip("no GL 4.5 context could be made: %s", g_gl_error);
+    return 0;
+}
+
+/* A context description for backend, all else zero; with the program's GL context as the GL
+   loader when there is one. */
+static inline void ctx_desc(voxgi_desc *d, voxgi_backend backend)
+{
+    memset(d, 0, sizeof *d);
+    d->backend = backend;
+    if (g_gl) {
+        d->gl_get_proc_address_user = vxt_gl_get_proc;
+        d->gl_user = g_gl;
+    }
+}
+
+/* A voxgi context on backend with threads worker threads (0: the default), or NULL. */
+static inline voxgi_context *make_ctx(voxgi_backend backend, int threads)
+{
+    voxgi_desc d;
+    voxgi_context *ctx = NULL;
+    ctx_desc(&d, backend);
+    d.thread_count = threads;
+    if (voxgi_create(&d, &ctx) != VOXGI_OK) return NULL;
+    return ctx;
+}
+
+/* ---------------------------------------------------------------- scenes */
+/* sc: one mesh, *mesh, of the given triangles (idx NULL: unindexed, ntri 0); nothing else set. */
+static inline void scene_of_triangles(voxgi_scene *sc, voxgi_mesh *mesh, const float *pos, size_t nv, const uint32_t *idx, size_t ntri)
+{
+    memset(sc, 0, sizeof *sc);
+    memset(mesh, 0, sizeof *mesh);
+    mesh->positions = pos;
+    mesh->vertex_count = nv;
+    mesh->indices = idx;
+    mesh->index_count = 3 * ntri;
+    sc->meshes = mesh;
+    sc->mesh_count = 1;
+}
+
+/* sc: one mesh, *mesh, of the shape's triangles; nothing else set. */
+static inline void scene_of_shape(voxgi_scene *sc, voxgi_mesh *mesh, const vxt_shape *m)
+{
+    scene_of_triangles(sc, mesh, m->pos, m->vertex_count, m->idx, m->triangle_count);
+}
+
+/* The scene's materials and lights. */
+static inline void scene_lighting(voxgi_scene *sc, const voxgi_material *mats, size_t nm, const voxgi_light *lights, size_t nl)
+{
+    sc->materials = mats;
+    sc->material_count = nm;
+    sc->lights = lights;
+    sc->light_count = nl;
+}
+
+/* Material ids for a shape's triangles, 0, 1, ..., n - 1 in turn (malloc'd: free them). */
+static inline uint32_t *material_ids_in_turn(const vxt_shape *m, uint32_t n)
+{
+    uint32_t *ids = (uint32_t *)malloc(m->triangle_count * 4);
+    size_t t;
+    for (t = 0; t < m->triangle_count; t++) ids[t] = (uint32_t)(t % n);
+    return ids;
+}
+
+/* sc: one mesh, *mesh, of the shape's triangles, each with its material id (ids) into mats. */
+static inline void scene_of_materials(voxgi_scene *sc, voxgi_mesh *mesh, const vxt_shape *m, const uint32_t *ids, const voxgi_material *mats,
+                                      size_t nm)
+{
+    scene_of_shape(sc, mesh, m);
+    mesh->material_ids = ids;
+    scene_lighting(sc, mats, nm, NULL, 0);
+}
+
+/* Quads (4 corners each, counter-clockwise seen from the front) into one mesh: start with n = 0. */
+typedef struct quads { float pos[12 * 16]; uint32_t idx[6 * 16], mat[2 * 16]; int n; } quads;
+
+static inline void quad(quads *q, const float c[12], uint32_t mat)
+{
+    int k;
+    memcpy(q->pos + 12 * q->n, c, 12 * sizeof(float));
+    for (k = 0; k < 6; k++) q->idx[6 * q->n + k] = (uint32_t)(4 * q->n) + (uint32_t)"\0\1\2\0\2\3"[k];
+    q->mat[2 * q->n] = q->mat[2 * q->n + 1] = mat;
+    q->n++;
+}
+
+/* sc: the quads as one mesh, *mesh, with their materials, and the lights. */
+static inline void scene_of_quads(voxgi_scene *sc, voxgi_mesh *mesh, quads *q, const voxgi_material *mats, size_t nm, const voxgi_light *lights,
+                                  size_t nl)
+{
+    scene_of_triangles(sc, mesh, q->pos, (size_t)(4 * q->n), q->idx, (size_t)(2 * q->n));
+    mesh->material_ids = q->mat;
+    scene_lighting(sc, mats, nm, lights, nl);
+}
+
+/* The octree and volume tests' scene: a UV sphere of radius 1 (30 x 15) just off the origin, its
+   triangles taking two materials in turn (the first emits). Free it with material_sphere_free. */
+typedef struct material_sphere {
+    vxt_shape shape;
+    uint32_t *ids;
+    voxgi_material mats[2];
+    voxgi_mesh mesh;
+    voxgi_scene scene;
+} material_sphere;
+
+static inline void material_sphere_make(material_sphere *s)
+{
+    static const voxgi_material mats[2] = {{{0.9f, 0.1f, 0.2f}, {3, 2, 1}, 0.5f}, {{0.3f, 0.7f, 0.5f}, {0, 0, 0}, 0.0f}};
+    vxt_shape_sphere(&s->shape, 30, 15, 1.0, 0.013, -0.021, 0.007);
+    s->ids = material_ids_in_turn(&s->shape, 2);
+    memcpy(s->mats, mats, sizeof mats);
+    scene_of_materials(&s->scene, &s->mesh, &s->shape, s->ids, s->mats, 2);
+}
+
+static inline void material_sphere_free(material_sphere *s)
+{
+    free(s->ids);
+    vxt_shape_free(&s->shape);
+}
+
+/* The OR-reduction tests' scene: a sphere (30 x 20) on a 45 x 37 x 50 grid of 0.05 (vd: that
+   grid, all else zero). Free m with vxt_shape_free. */
+static inline void reduce_scene(vxt_shape *m, voxgi_scene *sc, voxgi_mesh *mesh, voxgi_voxelize_desc *vd)
+{
+    vxt_shape_sphere(m, 30, 20, 1.0, 0.1, 0.0, -0.05);
+    scene_of_shape(sc, mesh, m);
+    memset(vd, 0, sizeof *vd);
+    vd->grid.origin[0] = -1.2; vd->grid.origin[1] = -1.1; vd->grid.origin[2] = -1.3;
+    vd->grid.voxel_size = 0.05;
+    vd->grid.res[0] = 45; vd->grid.res[1] = 37; vd->grid.res[2] = 50;
+}
+
+/* ---------------------------------------------------------------- runs */
+/* Voxelizes sc with vd on ctx: the bits (malloc'd: free them; *info filled when info is not
+   NULL), or NULL with the error printed. */
+static inline uint32_t *voxelized_bits(voxgi_context *ctx, const voxgi_scene *sc, const voxgi_voxelize_desc *vd, voxgi_voxels_info *info)
+{
+    voxgi_voxels *vox = NULL;
+    uint32_t *bits;
+    size_t need = 0;
+    if (voxgi_voxelize(ctx, sc, vd, &vox) != VOXGI_OK) { printf("    voxelize: %s\n", voxgi_last_error(ctx)); return NULL; }
+    voxgi_voxels_read(ctx, vox, NULL, 0, &need);
+    bits = (uint32_t *)malloc(need);
+    if (voxgi_voxels_read(ctx, vox, bits, need, NULL) != VOXGI_OK) { printf("    read: %s\n", voxgi_last_error(ctx)); free(bits); bits = NULL; }
+    if (info) voxgi_voxels_query(vox, info);
+    voxgi_voxels_destroy(ctx, vox);
+    return bits;
+}
+
+/* The shape voxelized with vd (its grid, method and all) on ctx, with uvs unless NULL: as voxelized_bits. */
+static inline uint32_t *shape_bits(voxgi_context *ctx, const vxt_shape *m, const float *uvs, const voxgi_voxelize_desc *vd, voxgi_voxels_info *info)
+{
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    scene_of_shape(&sc, &mesh, m);
+    mesh.uvs = uvs;
+    return voxelized_bits(ctx, &sc, vd, info);
+}
+
+/* vd: a w x w view through the built-in scene's camera, all else zero. */
+static inline void vct_view(voxgi_vct_desc *vd, const voxgi_builtin_scene *bs, int w)
+{
+    memset(vd, 0, sizeof *vd);
+    vd->camera = bs->camera;
+    vd->camera.width = vd->camera.height = w;
+}
+
+/* Where cones gather from: a volume's radiance, or an octree's. */
+#define VOLUME_SOURCE(vol) (&(const voxgi_radiance_source){.volume = (vol)})
+#define OCTREE_SOURCE(svo) (&(const voxgi_radiance_source){.octree = (svo)})
+
+/* ---------------------------------------------------------------- grids */
+/* n^3 voxels over the cube from lo to lo + size on each axis. */
+static inline void cubic(voxgi_grid *g, double lo, double size, int n)
+{
+    g->origin[0] = g->origin[1] = g->origin[2] = lo;
+    g->voxel_size = size / n;
+    g->res[0] = g->res[1] = g->res[2] = n;
+}
+#endif
