@@ -457,6 +457,14 @@ static void test_octree_cones(void)
     TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     TH_CHECK(voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr[1], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "an octree without radiance traced");
     TH_CHECK(voxgi_cone_trace(ctx, OCTREE_SOURCE(NULL), &cd, N, pos, nrm, irr[1], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a NULL octree traced");
+    { /* a source names exactly one of a volume and an octree */
+        voxgi_radiance_source both;
+        both.volume = vol;
+        both.octree = svo;
+        TH_CHECK(voxgi_cone_trace(ctx, &both, &cd, N, pos, nrm, irr[1], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a source of both traced");
+        TH_CHECK(voxgi_cone_trace_each(ctx, &both, &cd, 0, NULL, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "single cones from both");
+        TH_CHECK(voxgi_cone_trace(ctx, NULL, &cd, N, pos, nrm, irr[1], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a NULL source traced");
+    }
     voxgi_svo_destroy(ctx, svo);
     voxgi_volume_destroy(ctx, albedo);
     voxgi_volume_destroy(ctx, vol);
