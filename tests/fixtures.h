@@ -17,6 +17,20 @@
 
 #define PI 3.14159265358979323846
 
+/* 1 in the AddressSanitizer build. Every test runs in both builds; an oracle sweep that costs
+   seconds there (a winding number at every voxel centre, a 4000^2 atlas in llvmpipe) runs whole
+   in the optimised build and on a share of its cases under ASan, whose job is memory errors. */
+#if defined(__SANITIZE_ADDRESS__)
+#define FX_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define FX_UNDER_ASAN 1
+#endif
+#endif
+#ifndef FX_UNDER_ASAN
+#define FX_UNDER_ASAN 0
+#endif
+
 /* ---------------------------------------------------------------- GL and voxgi contexts */
 /* The program's GL 4.5 context: NULL until gl_open(), and when none could be made (g_gl_error says why). */
 static vxt_gl *g_gl;

@@ -39,7 +39,7 @@ typedef struct bench_args {
     cli_common common; /* --gl */
     const char *meshes[BENCH_MAX_MESHES];
     const char *csv_path;
-    int nmesh, min_res, max_res, runs, no_gl, atlas_size, chosen[BENCH_METHOD_COUNT], nchosen;
+    int nmesh, min_res, max_res, runs, no_gl, atlas_size, inside_samples, chosen[BENCH_METHOD_COUNT], nchosen;
 } bench_args;
 
 typedef struct bench_cell { double ms[3], wrong; uint64_t voxels[3], missed, extra; int ok[3], sampled; } bench_cell;
@@ -48,6 +48,7 @@ typedef struct bench_cell { double ms[3], wrong; uint64_t voxels[3], missed, ext
 typedef struct bench_state {
     cli_session *s;
     int atlas_size; /* --atlas-size: one atlas for every N (0: each grid's default) */
+    int inside_samples; /* --inside-samples: centres per grid for Table 4 (0: the budget below) */
     int ncols, cols[16], nchosen;
     bench_cell *cells;
 } bench_state;
@@ -87,7 +88,7 @@ static double winding_number(const voxgi_mesh *m, const double p[3])
 /* Sampled voxel centres of the n^3 fitted grid (a fixed sequence) and whether each is inside. */
 typedef struct bench_inside { uint64_t *voxel; unsigned char *inside; int count; } bench_inside;
 
-static void bench_inside_sample(const cli_mesh *tm, voxgi_context *ctx, int n, bench_inside *bi)
+static void bench_inside_sample(const cli_mesh *tm, voxgi_context *ctx, int n, int samples, bench_inside *bi)
 {
     voxgi_grid g;
     size_t nt = cli_mesh_triangles(tm);
@@ -99,6 +100,7 @@ static void bench_inside_sample(const cli_mesh *tm, voxgi_context *ctx, int n, b
     /* about 2e8 solid angles per grid: 20000 centres for small meshes, fewer for big ones */
     bi->count = (int)(nt ? (2e8 / (double)nt < 20000 ? 2e8 / (double)nt : 20000) : 0);
     if (bi->count < 500) bi->count = 500;
+    if (samples) bi->count = samples;
     bi->voxel = (uint64_t *)malloc((size_t)bi->count * sizeof *bi->voxel);
     bi->inside = (unsigned char *)malloc((size_t)bi->count);
     if (!bi->voxel || !bi->inside) {
@@ -196,7 +198,7 @@ static void bench_mesh_at(bench_state *b, const bench_args *a, cli_context *ctx,
         }
         if (bits && r) { /* solid: against the winding-number inside test at sampled centres */
             int i, wrong = 0;
-            if (inside.count < 0) bench_inside_sample(tm, ctx[1].vx, b->cols[n], &inside);
+            if (inside.count < 0) bench_inside_sample(tm, ctx[1].vx, b->cols[n], b->inside_samples, &inside);
             for (i = 0; i < inside.count; i++) wrong += ((bits[inside.voxel[i] >> 5] >> (inside.voxel[i] & 31)) & 1u) != inside.inside[i];
             c->sampled = inside.count;
             c->wrong = inside.count ? 100.0 * wrong / inside.count : 0;
@@ -283,6 +285,7 @@ static int bench_run(cli_session *s, const bench_args *a)
     memset(ctx, 0, sizeof ctx);
     b.s = s;
     b.atlas_size = a->atlas_size;
+    b.inside_samples = a->inside_samples;
     b.nchosen = a->nchosen;
     for (n = a->min_res; n <= a->max_res && b.ncols < 16; n *= 2) b.cols[b.ncols++] = n;
     /* every mesh first: a bad one fails now, not after the others' measurements */
@@ -367,7 +370,9 @@ int cmd_bench(int argc, char **argv)
             CLI_OPT_GL(&a.common, "headless GL context kind"),
             {.name = "--csv", .arg = "FILE", .kind = CLI_STRING, .dst = &a.csv_path, .help = "also write every measurement as CSV"},
             {.name = "--atlas-size", .arg = "N", .kind = CLI_INT, .dst = &a.atlas_size, .lo = 1, .hi = 16384,
-             .help = "atlas methods: this atlas for every N (the documents' fixed 512^2),\ninstead of one sized from each grid"}};
+             .help = "atlas methods: this atlas for every N (the documents' fixed 512^2),\ninstead of one sized from each grid"},
+            {.name = "--inside-samples", .arg = "S", .kind = CLI_INT, .dst = &a.inside_samples, .lo = 1, .hi = 1000000,
+             .help = "solid methods: voxel centres per grid checked against the winding number\n(default: 20000, fewer for big meshes, about 2e8 solid angles per grid)"}};
         const cli_command cmd = {.name = "bench", .help = bench_help, .column = 30, .options = options, .option_count = CLI_COUNT(options),
                                  .operand = "mesh", .operands = a.meshes + a.nmesh, .max_operands = BENCH_MAX_MESHES - 3, .operand_count = &ngiven};
         if (argc >= 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
