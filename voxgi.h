@@ -38,6 +38,7 @@
      declarations and the implementation follow the same numbered parts (a part with nothing
      public has no banner among the declarations). A helper that two parts need moves down
      into the lower one; inside a part the CPU twin comes first and its GL twin right after it.
+     One exception, declared where it is used: creating a context (2) sets up the GL core (4).
        1. config          version, linkage; allocator, assertion, thread and atomic macros
        2. core            results, the context, memory, logging, progress; numbers (bit counts,
                           half floats, Morton codes, random numbers, frames); exact arithmetic;
@@ -900,6 +901,7 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 
 #ifndef VOXGI_NO_GL
 typedef struct voxgi__gl voxgi__gl;
+/* The one reach upward: a context on GL sets up the GL core (part 4) when it is created. */
 static voxgi_result voxgi__gl_init(voxgi_context *ctx);
 static void voxgi__gl_shutdown(voxgi_context *ctx);
 #endif
