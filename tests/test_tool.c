@@ -343,6 +343,19 @@ static int count_of(const char *hay, const char *needle)
     return n;
 }
 
+/* --compare against a black reference (the leak box: every light outside a closed box) has no
+   relative error: the JSON says null, never inf, and gives the RMS difference instead. */
+static void test_compare_black_reference(void)
+{
+    static char out[8192];
+    char pfm[512], args[1000];
+    int rc;
+    snprintf(pfm, sizeof pfm, "%s/leak.pfm", tmpdir);
+    snprintf(args, sizeof args, "render leak-box --method vct --backend cpu --res 16 --compare 4 --size 8 8 --spp 2 --json -o %s", pfm);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "\"rel_rmse\":null,\"rms\":") && !strstr(out, "inf"), "leak box: %s", out);
+}
+
 /* Every command parses its options from one table: an unknown option, a missing value and a bad
    value are each named, in one line, with exit status 2 and a pointer to the command's --help. */
 static void test_usage_errors_named(void)
@@ -481,6 +494,7 @@ int main(void)
     TH_RUN(test_svo_command);
     TH_RUN(test_render_command);
     TH_RUN(test_vct_and_report_commands);
+    TH_RUN(test_compare_black_reference);
     TH_RUN(test_usage_errors_named);
     TH_RUN(test_output_extensions);
     TH_RUN(test_version_and_exit_codes_documented);

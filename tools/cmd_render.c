@@ -94,7 +94,7 @@ static void scene_close(voxgi_context *ctx, render_scene *rs)
    with an independent seed), both without the emitters the camera sees (the same in both but for
    the noise at their edges, which would swamp the lighting). */
 static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene,
-                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, double *rmse, double *ref_ms)
+                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, double *rmse, double *rms_out, double *ref_ms)
 {
     size_t n = (size_t)a->size[0] * (size_t)a->size[1] * 3;
     float *ref = (float *)malloc(n * 8), *mine = ref ? ref + n : NULL;
@@ -111,7 +111,8 @@ static int compare_with_reference(cli_session *s, voxgi_context *ctx, const rend
     }
     {
         double mean, rms = cli_rms_difference(mine, ref, n, &mean);
-        *rmse = rms / mean;
+        *rmse = mean > 0 ? rms / mean : NAN; /* a black reference (the leak box): no relative error, the RMS says it */
+        *rms_out = rms;
     }
     *ref_ms = ri.ms_bvh + ri.ms_render;
     free(ref);
@@ -119,7 +120,8 @@ static int compare_with_reference(cli_session *s, voxgi_context *ctx, const rend
 }
 
 static void print_result(const render_args *a, const voxgi_info *ci, const float *rgb, const voxgi_reference_desc *d,
-                         const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, double rmse, double ref_ms)
+                         const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, double rmse, double rms,
+                         double ref_ms)
 {
     double mean[3] = {0, 0, 0};
     size_t p;
@@ -127,23 +129,29 @@ static void print_result(const render_args *a, const voxgi_info *ci, const float
     for (p = 0; p < (size_t)w * (size_t)h; p++)
         for (i = 0; i < 3; i++) mean[i] += rgb[3 * p + (size_t)i];
     for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
-    if (a->vct && a->common.json)
+    if (a->vct && a->common.json) {
+        char rel[32];
+        if (isfinite(rmse)) snprintf(rel, sizeof rel, "%.6g", rmse);
+        else snprintf(rel, sizeof rel, "null");
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
-               "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"rel_rmse\":%.6g,"
-               "\"reference_ms\":%.3f,\"output\":\"%s\"}\n",
+               "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"rel_rmse\":%s,"
+               "\"rms\":%.6g,\"reference_ms\":%.3f,\"output\":\"%s\"}\n",
                a->what, voxgi_backend_name(ci->backend), w, h, vd->resolution ? vd->resolution : 128, vd->cones.cones ? vd->cones.cones : 16, !vd->no_gi,
                (unsigned long long)vinfo->voxels, vinfo->ms_voxelize, vinfo->ms_inject, vinfo->ms_octree, (unsigned long long)vinfo->radiance_bytes,
-               vinfo->ms_cones, vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2], rmse, ref_ms, a->out);
-    else if (a->vct) {
+               vinfo->ms_cones, vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2], rel, rms, ref_ms, a->out);
+    } else if (a->vct) {
         printf("%s: %d x %d cone-traced (%s%s%s), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, ", a->what, w, h, voxgi_backend_name(ci->backend),
                ci->backend == VOXGI_BACKEND_GL ? ", " : "", ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "", (unsigned long long)vinfo->voxels,
                vinfo->ms_voxelize, vinfo->ms_inject);
         if (vd->octree) printf("octree %.1f ms, ", vinfo->ms_octree);
         printf("cones %.1f ms (over %.1f MB of %s), direct light %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n", vinfo->ms_cones,
                vinfo->radiance_bytes / 1e6, vd->octree ? "octree" : "volume", vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2], a->out);
-        if (a->compare)
+        if (a->compare && isfinite(rmse))
             printf("against the reference (%d bounce%s, %d spp, %.1f ms): relative RMSE %.2f%%\n", d->bounces, d->bounces == 1 ? "" : "s", a->compare,
                    ref_ms, 100 * rmse);
+        else if (a->compare)
+            printf("against the reference (%d bounce%s, %d spp, %.1f ms): the reference is black, RMS difference %.4g\n", d->bounces,
+                   d->bounces == 1 ? "" : "s", a->compare, ref_ms, rms);
     } else if (a->common.json)
         printf("{\"scene\":\"%s\",\"method\":\"reference\",\"size\":[%d,%d],\"spp\":%d,\"bounces\":%d,\"seed\":%llu,\"triangles\":%lu,"
                "\"bvh_nodes\":%lu,\"rays\":%llu,\"bvh_ms\":%.3f,\"render_ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"output\":\"%s\"}\n",
@@ -169,7 +177,7 @@ static int render_run(cli_session *s, const render_args *a)
     cli_common options = a->common;
     float *rgb = NULL;
     size_t bytes = (size_t)a->size[0] * (size_t)a->size[1] * 12;
-    double rmse = -1, ref_ms = 0;
+    double rmse = -1, rms = 0, ref_ms = 0;
     int rc = CLI_EXIT_FAILURE;
     memset(&d, 0, sizeof d);
     memset(&info, 0, sizeof info);
@@ -209,14 +217,14 @@ static int render_run(cli_session *s, const render_args *a)
         cli_fail_lib(s, c.vx, NULL);
         goto done;
     }
-    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &rmse, &ref_ms)) goto done;
+    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &rmse, &rms, &ref_ms)) goto done;
     if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
                                            : vxt_write_png(a->out, rgb, a->size[0], a->size[1], (float)a->exposure)) != 0) {
         cli_fail(s, "cannot write %s", a->out);
         goto done;
     }
     cli_status_clear(s);
-    print_result(a, &ci, rgb, &d, &info, &vd, &vinfo, rmse, ref_ms);
+    print_result(a, &ci, rgb, &d, &info, &vd, &vinfo, rmse, rms, ref_ms);
     rc = CLI_EXIT_OK;
 done:
     free(rgb);
