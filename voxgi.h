@@ -894,6 +894,7 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 
 #define VOXGI__MIN(a, b) ((a) < (b) ? (a) : (b))
 #define VOXGI__MAX(a, b) ((a) > (b) ? (a) : (b))
+#define VOXGI__PI 3.14159265358979323846
 
 /* ===================================================================== 2. core */
 
@@ -1226,6 +1227,21 @@ static double voxgi__rng_unit(voxgi__rng *g) /* [0, 1) with 53 bits */
 {
     uint64_t hi = voxgi__rng_u32(g) >> 5, lo = voxgi__rng_u32(g) >> 6;
     return (double)(hi * 67108864u + lo) / 9007199254740992.0;
+}
+
+/* Point k (from 0) of the 2D or 4D Kronecker sequence shifted by rot: frac(rot + (k + 1) alpha),
+   alpha the powers of 1 / phi_d (phi_d the root of x^(d+1) = x + 1), evenly spread in any prefix:
+   the stratified samples of light injection, light casters and images. */
+static void voxgi__kronecker(int dims, int k, const double *rot, double *u)
+{
+    static const double alpha2[2] = {0.7548776662466927, 0.5698402909980532};
+    static const double alpha4[4] = {0.8566748838545029, 0.7338918566271260, 0.6287067210378087, 0.5385972572236101};
+    const double *alpha = dims == 2 ? alpha2 : alpha4;
+    int a;
+    for (a = 0; a < dims; a++) {
+        u[a] = rot[a] + (k + 1) * alpha[a];
+        u[a] -= floor(u[a]);
+    }
 }
 
 /* An orthonormal basis (t, b) around unit n. */
@@ -2106,7 +2122,7 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
             cos_s = dir[0] * ns[0] + dir[1] * ns[1] + dir[2] * ns[2];
             cos_l = -(dir[0] * n[0] + dir[1] * n[1] + dir[2] * n[2]);
             if (cos_s > 0 && cos_l > 0) {
-                double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / 3.14159265358979323846; /* per solid angle */
+                double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / VOXGI__PI; /* per solid angle */
                 double mis = mis_weighted ? pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf) : 1;
                 int seen = voxgi__visible(tr, p, dir, dist, prim, rays);
                 if (area_share) { area_share[6] += 1; area_share[7] += !seen; }
@@ -2230,7 +2246,7 @@ static voxgi_result voxgi__camera_frame(voxgi_context *ctx, const voxgi_camera *
     up[0] = right[1] * forward[2] - right[2] * forward[1];
     up[1] = right[2] * forward[0] - right[0] * forward[2];
     up[2] = right[0] * forward[1] - right[1] * forward[0];
-    *tan_half = tan(cam->fovy_degrees * 3.14159265358979323846 / 360);
+    *tan_half = tan(cam->fovy_degrees * VOXGI__PI / 360);
     return VOXGI_OK;
 }
 
@@ -7312,7 +7328,7 @@ static void voxgi__cone_march_cpu(void *user, size_t first, size_t end)
             for (a = 0; a < 3; a++) d[a] = l[0] * t3[a] + l[1] * b3[a] + l[2] * n[a];
             /* low cones narrow: each sample stays 1.5 diameters above the tangent plane */
             voxgi__cone_march(J, o, n, d, l[2], VOXGI__MIN(J->half_tan, l[2] / 3), J->max_dist, C, &A);
-            for (a = 0; a < 3; a++) e[a] += 3.14159265358979323846 / J->cones * C[a];
+            for (a = 0; a < 3; a++) e[a] += VOXGI__PI / J->cones * C[a];
             occ += A / J->cones;
         }
         for (a = 0; a < 3; a++) J->irr[3 * i + (size_t)a] = (float)e[a];
@@ -7618,7 +7634,7 @@ static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e
     int a;
     o[3] = J->vals[3] ? J->vals[3][i] : 1.0f;
     for (a = 0; a < 3; a++)
-        o[a] = o[3] * (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * e[a] + (J->vals[2] ? J->vals[2][3 * i + (size_t)a] : 0.0f));
+        o[a] = o[3] * (float)(J->vals[0][3 * i + (size_t)a] / VOXGI__PI * e[a] + (J->vals[2] ? J->vals[2][3 * i + (size_t)a] : 0.0f));
 }
 
 static void voxgi__inject_cpu(void *user, size_t first, size_t end)
@@ -7638,10 +7654,7 @@ static void voxgi__inject_cpu(void *user, size_t first, size_t end)
             for (s = 0; s < samples; s++) { /* the lights once per sample (delta lights give the same each time), the points on
                                                area lights and emitters stratified: a 2D Kronecker sequence shifted per voxel */
                 double es[3], u[2];
-                u[0] = rot[0] + (s + 1) * 0.7548776662466927;
-                u[1] = rot[1] + (s + 1) * 0.5698402909980532;
-                u[0] -= floor(u[0]);
-                u[1] -= floor(u[1]);
+                voxgi__kronecker(2, s, rot, u);
                 voxgi__direct(J->lights, p, nl, UINT32_MAX, &rng, 0, u, &rays, es, NULL);
                 for (a = 0; a < 3; a++) e[a] += es[a] / samples;
             }
@@ -7674,6 +7687,7 @@ static voxgi_result voxgi__light_casters(voxgi_context *ctx, const voxgi__tracer
     const voxgi_scene *scene = Ls->scene;
     size_t nt = tr->flat.triangle_count, i, nc = 0, cap;
     voxgi__caster *cs;
+    const double unshifted[2] = {0.5, 0.5}; /* the same points for every voxel */
     double lo[3], hi[3], centre[3], radius = 0, vs = g->voxel_size;
     int a, layers = 0, f;
     voxgi_result r = VOXGI_OK;
@@ -7710,7 +7724,10 @@ static voxgi_result voxgi__light_casters(voxgi_context *ctx, const voxgi__tracer
                 c->param[0] = (float)cos((double)L->spot_inner);
                 c->param[1] = (float)cos((double)L->spot_outer);
             } else if (L->type == VOXGI_LIGHT_RECT) { /* a stratified point (Kronecker sequence), the area's share */
-                double u = fmod(0.5 + (k + 1) * 0.7548776662466927, 1.0), v = fmod(0.5 + (k + 1) * 0.5698402909980532, 1.0), nn[3], area;
+                double uv[2], nn[3], area, u, v;
+                voxgi__kronecker(2, k, unshifted, uv);
+                u = uv[0];
+                v = uv[1];
                 for (a = 0; a < 3; a++) nn[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
                 area = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
                 for (a = 0; a < 3; a++) {
@@ -7723,12 +7740,14 @@ static voxgi_result voxgi__light_casters(voxgi_context *ctx, const voxgi__tracer
     }
     for (f = 0; r == VOXGI_OK && Ls->emitter_count && f < samples; f++) { /* points on the emitters by power, stratified */
         voxgi__caster *c = &cs[nc++];
-        double total = Ls->emitter_cdf[Ls->emitter_count - 1], u = fmod(0.5 + (f + 1) * 0.7548776662466927, 1.0) * total;
-        double v2 = fmod(0.5 + (f + 1) * 0.5698402909980532, 1.0), below, r1, b1, b2;
+        double total = Ls->emitter_cdf[Ls->emitter_count - 1], uv[2], u, v2, below, r1, b1, b2;
         size_t lo_i = 0, hi_i = Ls->emitter_count - 1;
         const double *v, *nrm;
         const voxgi_material *m;
         uint32_t k;
+        voxgi__kronecker(2, f, unshifted, uv);
+        u = uv[0] * total;
+        v2 = uv[1];
         while (lo_i < hi_i) { size_t mid = (lo_i + hi_i) / 2; if (Ls->emitter_cdf[mid] <= u) lo_i = mid + 1; else hi_i = mid; }
         k = Ls->emitters[lo_i];
         below = lo_i ? Ls->emitter_cdf[lo_i - 1] : 0;
@@ -7887,7 +7906,7 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
             double p[3], nl[3];
             int lit = voxgi__inject_point(J, i, p, nl);
             for (a = 0; a < 3; a++)
-                o[a] = direct[3 * i + (size_t)a] + (lit ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / 3.14159265358979323846 * irr[3 * i + (size_t)a]) : 0.0f);
+                o[a] = direct[3 * i + (size_t)a] + (lit ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / VOXGI__PI * irr[3 * i + (size_t)a]) : 0.0f);
         }
         slots[VOXGI__RADIANCE_SLOT] = J->rgba;
         if (r == VOXGI_OK) r = voxgi__volume_new(ctx, g, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &next);
@@ -8260,11 +8279,7 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                 double d[3], ns[3], e[3], off, u[4], area[8] = {0, 0, 0, 0, 0, 0, 0, 0}, ea[3];
                 const voxgi_material *m;
                 if (J->analytic && uniform && s >= 4 && s == samples / 2) break; /* the first half agree: one surface, lit alike; the exact light needs no more */
-                for (a = 0; a < 4; a++) { /* stratified: the 4D Kronecker sequence (pixel square x light), randomly shifted per pixel */
-                    static const double alpha[4] = {0.8566748838545029, 0.7338918566271260, 0.6287067210378087, 0.5385972572236101};
-                    u[a] = rot[a] + (s + 1) * alpha[a];
-                    u[a] -= floor(u[a]);
-                }
+                voxgi__kronecker(4, s, rot, u); /* stratified over the pixel's square x the light, shifted per pixel */
                 voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + u[0], (double)y + u[1], d);
                 ++rays;
                 ++used;
@@ -8280,10 +8295,10 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                 lit = area[7] == 0;
                 if (!J->desc->no_gi) {
                     const float *irr = h.prim == J->prim[pix] ? J->irr + 3 * pix : voxgi__vct_ray_irradiance(J, x, (int)y, x + u[0], (double)y + u[1], h.p, ns);
-                    for (a = 0; a < 3; a++) indirect[a] += m->albedo[a] / 3.14159265358979323846 * irr[a];
+                    for (a = 0; a < 3; a++) indirect[a] += m->albedo[a] / VOXGI__PI * irr[a];
                 }
                 for (a = 0; a < 3; a++) {
-                    double k = m->albedo[a] / 3.14159265358979323846;
+                    double k = m->albedo[a] / VOXGI__PI;
                     L[a] += (h.front && !J->desc->hide_emitters ? m->emission[a] : 0) + k * (e[a] - area[a]);
                     shadowed[a] += k * area[a];
                     unshadowed[a] += k * area[3 + a];
@@ -8555,7 +8570,7 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
         }
         if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
         voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, NULL, rays, e, NULL);
-        for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / 3.14159265358979323846 * e[a];
+        for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / VOXGI__PI * e[a];
         for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
         if (bounces < 0 && depth >= 2) { /* Russian roulette */
             double q = VOXGI__MAX(T[0], VOXGI__MAX(T[1], T[2]));
@@ -8567,7 +8582,7 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
         if (T[0] == 0 && T[1] == 0 && T[2] == 0) break;
         voxgi__basis(ns, t, b);
         r1 = voxgi__rng_unit(g);
-        phi = 2 * 3.14159265358979323846 * voxgi__rng_unit(g);
+        phi = 2 * VOXGI__PI * voxgi__rng_unit(g);
         lx = sqrt(r1) * cos(phi);
         ly = sqrt(r1) * sin(phi);
         lz = sqrt(1 - r1);
@@ -8576,7 +8591,7 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
             d[a] = lx * t[a] + ly * b[a] + lz * ns[a];
             o[a] = h.p[a] + off * ns[a];
         }
-        pdf_bsdf = lz / 3.14159265358979323846;
+        pdf_bsdf = lz / VOXGI__PI;
         skip = h.prim;
     }
 }
@@ -8723,7 +8738,7 @@ static void voxgi__builtin_sphere(voxgi__builtin *b, const double c[3], double r
     int i, j;
     for (j = 0; j <= stacks; j++)
         for (i = 0; i <= slices; i++) {
-            double th = 3.14159265358979323846 * j / stacks, ph = 2 * 3.14159265358979323846 * i / slices;
+            double th = VOXGI__PI * j / stacks, ph = 2 * VOXGI__PI * i / slices;
             b->pos[3 * b->nv] = (float)(c[0] + r * sin(th) * cos(ph));
             b->pos[3 * b->nv + 1] = (float)(c[1] + r * cos(th));
             b->pos[3 * b->nv + 2] = (float)(c[2] + r * sin(th) * sin(ph));
