@@ -31,10 +31,28 @@
 #define FX_UNDER_ASAN 0
 #endif
 
+/* ---------------------------------------------------------------- random numbers
+   The tests' one generator (SplitMix64): seeded explicitly, so every test draws the same numbers
+   on every C library and in any test order (rand() gives neither). */
+typedef struct fx_rng { uint64_t state; } fx_rng;
+static inline fx_rng fx_rng_seeded(uint64_t seed) { fx_rng g; g.state = seed; return g; }
+static inline uint64_t fx_rng_u64(fx_rng *g)
+{
+    uint64_t z = (g->state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+/* Uniform in [0, 1), 53 bits. */
+static inline double fx_rng_unit(fx_rng *g) { return (double)(fx_rng_u64(g) >> 11) * (1.0 / 9007199254740992.0); }
+/* Uniform in [lo, hi). */
+static inline double fx_rng_range(fx_rng *g, double lo, double hi) { return lo + (hi - lo) * fx_rng_unit(g); }
+
 /* ---------------------------------------------------------------- GL and voxgi contexts */
 /* The program's GL 4.5 context: NULL until gl_open(), and when none could be made (g_gl_error says why). */
 static vxt_gl *g_gl;
 static char g_gl_error[512];
+static int g_gl_bad_kind; /* VOXGI_TEST_GL names no kind: every GL test fails */
 
 /* Makes the program's GL context: the kind VOXGI_TEST_GL names (egl or osmesa), else the first
    that works; prints which, or why there is none. */
@@ -42,7 +60,12 @@ static inline void gl_open(void)
 {
     vxt_gl_kind kind = VXT_GL_AUTO;
     const char *want = getenv("VOXGI_TEST_GL");
-    if (want && vxt_gl_kind_parse(want, &kind) != 0) kind = VXT_GL_AUTO;
+    if (want && *want && vxt_gl_kind_parse(want, &kind) != 0) { /* a typo must not test another kind */
+        g_gl_bad_kind = 1;
+        snprintf(g_gl_error, sizeof g_gl_error, "VOXGI_TEST_GL=%s is not egl, osmesa or auto", want);
+        printf("NO GL CONTEXT: %s\n", g_gl_error);
+        return;
+    }
     g_gl = vxt_gl_create(kind, g_gl_error, sizeof g_gl_error);
     if (g_gl) printf("GL context: %s, %s\n", vxt_gl_kind_name(g_gl), vxt_gl_renderer(g_gl));
     else printf("NO GL CONTEXT: %s\n", g_gl_error);
@@ -55,11 +78,11 @@ static inline void gl_close(void)
 }
 
 /* 1 when the program has its GL context. Else 0, and the running test is skipped (loudly), or
-   fails when VOXGI_REQUIRE_GL=1 (CI, where a GL context must exist). */
+   fails when VOXGI_REQUIRE_GL=1 (CI, where a GL context must exist) or VOXGI_TEST_GL is a typo. */
 static inline int have_gl(void)
 {
     if (g_gl) return 1;
-    if (getenv("VOXGI_REQUIRE_GL") && atoi(getenv("VOXGI_REQUIRE_GL")))
+    if (th_gl_required() || g_gl_bad_kind)
         TH_CHECK(0, "no GL 4.5 context: %s", g_gl_error);
     else th_skip("no GL 4.5 context could be made: %s", g_gl_error);
     return 0;

@@ -40,6 +40,15 @@ static inline void th_skip(const char *fmt, ...)
     printf("\n");
 }
 
+/* Whether a GL 4.5 context must exist (VOXGI_REQUIRE_GL=1, as in CI): then a test that finds
+   none fails instead of skipping. Unset, empty or 0: it skips. Any other value is a typo that
+   must not quietly turn the requirement off, so it counts as required. */
+static inline int th_gl_required(void)
+{
+    const char *v = getenv("VOXGI_REQUIRE_GL");
+    return v && *v && strcmp(v, "0") != 0;
+}
+
 #define TH_CHECK(cond, ...) do { if (!(cond)) th_fail_(__FILE__, __LINE__, __VA_ARGS__); } while (0)
 /* TH_ONLY=substring runs only the tests whose name contains it, TH_EXCLUDE=substring all others. */
 #define TH_RUN(fn) do {                                                       \

@@ -4,7 +4,8 @@
  *
  *     cc -std=c99 tests/test_headless_gl.c -o test_headless_gl -ldl -lm
  *
- * tools/deps.sh installs what the GL tests need; a kind that cannot start is skipped. */
+ * tools/deps.sh installs what the GL tests need; a kind that cannot start is skipped, or fails
+ * when VOXGI_REQUIRE_GL=1 (CI, which installs both kinds). */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include "harness.h"
 #include "../tools/headless_gl.h"
@@ -140,7 +141,8 @@ static void check_kind(vxt_gl_kind kind, const char *name)
     vxt_gl *gl = vxt_gl_create(kind, err, sizeof err);
 
     if (!gl) {
-        th_skip("NO %s CONTEXT, nothing ran: %s", name, err);
+        if (th_gl_required()) TH_CHECK(0, "no %s context, and VOXGI_REQUIRE_GL is set: %s", name, err);
+        else th_skip("NO %s CONTEXT, nothing ran: %s", name, err);
         return;
     }
     TH_CHECK(strcmp(vxt_gl_kind_name(gl), name) == 0, "kind name %s, want %s", vxt_gl_kind_name(gl), name);
@@ -167,7 +169,8 @@ static void test_auto_picks_a_kind(void)
     char err[1024];
     vxt_gl *gl = vxt_gl_create(VXT_GL_AUTO, err, sizeof err);
     if (!gl) {
-        th_skip("NO GL CONTEXT AT ALL: %s", err);
+        if (th_gl_required()) TH_CHECK(0, "no GL context at all, and VOXGI_REQUIRE_GL is set: %s", err);
+        else th_skip("NO GL CONTEXT AT ALL: %s", err);
         return;
     }
     TH_CHECK(strcmp(vxt_gl_kind_name(gl), "egl") == 0 || strcmp(vxt_gl_kind_name(gl), "osmesa") == 0,

@@ -1,20 +1,36 @@
 /* The voxgi command-line tool, run as a user runs it: help, exact grids, JSON, binvox output,
    backends, and bad files and arguments (clear message, non-zero exit, never a crash).
-   VOXGI_TOOL names the binary (default build/voxgi). */
-#define _POSIX_C_SOURCE 200809L
+   VOXGI_TOOL names the binary (default: the voxgi beside this program, which the Makefile builds
+   there). Works from any directory: the tests run in their own temporary directory. */
+#define _XOPEN_SOURCE 700 /* popen, mkdtemp, realpath */
 #include "../voxgi.h"
 #include "harness.h"
 #include <stdlib.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-static const char *tool(void) { return getenv("VOXGI_TOOL") ? getenv("VOXGI_TOOL") : "build/voxgi"; }
-static char tmpdir[256];
+static char tool_path[4096], tmpdir[256];
+static const char *tool(void) { return tool_path; }
+
+/* The tool's absolute path, before the tests leave the starting directory: VOXGI_TOOL, else the
+   voxgi next to this program. */
+static int find_tool(const char *argv0)
+{
+    char here[4096];
+    const char *given = getenv("VOXGI_TOOL");
+    ssize_t n;
+    if (given && *given) return realpath(given, tool_path) != NULL;
+    n = readlink("/proc/self/exe", here, sizeof here - 1);
+    if (n > 0) here[n] = 0;
+    else if (!realpath(argv0, here)) return 0;
+    if (strrchr(here, '/')) *strrchr(here, '/') = 0;
+    return snprintf(tool_path, sizeof tool_path, "%s/voxgi", here) < (int)sizeof tool_path && access(tool_path, X_OK) == 0;
+}
 
 /* Runs "voxgi ARGS" and captures stdout+stderr; returns the exit status (-1 if it died). */
 static int run(const char *args, char *out, size_t out_size)
 {
-    char cmd[2048];
+    char cmd[8192];
     FILE *p;
     size_t n = 0;
     int st;
@@ -112,7 +128,7 @@ static void test_voxelize_backends_agree(void)
     TH_CHECK(rc == 0, "cpu: %s", cpu);
     rc = run("voxelize builtin:sphere --res 48 --backend gl --json", gl, sizeof gl);
     if (rc != 0 && strstr(gl, "cannot use backend gl")) {
-        if (getenv("VOXGI_REQUIRE_GL") && atoi(getenv("VOXGI_REQUIRE_GL"))) TH_CHECK(0, "no GL: %s", gl);
+        if (th_gl_required()) TH_CHECK(0, "no GL: %s", gl);
         else th_skip("no GL context: %s", gl);
         return;
     }
@@ -481,10 +497,16 @@ static void test_exit_codes(void)
     TH_CHECK(run("report", out, sizeof out) == 2, "report without a report: %s", out);
 }
 
-int main(void)
+int main(int argc, char **argv)
 {
-    snprintf(tmpdir, sizeof tmpdir, "%s/voxgi_tool_XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+    (void)argc;
+    if (!find_tool(argv[0])) {
+        printf("no voxgi tool found (VOXGI_TOOL=%s); build it first\n", getenv("VOXGI_TOOL") ? getenv("VOXGI_TOOL") : "");
+        return 1;
+    }
+    snprintf(tmpdir, sizeof tmpdir, "%s/voxgi_tool_XXXXXX", getenv("TMPDIR") && *getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
     if (!mkdtemp(tmpdir)) { perror("mkdtemp"); return 1; }
+    if (chdir(tmpdir) != 0) { perror("chdir"); return 1; } /* whatever a command writes lands here */
     TH_RUN(test_help_everywhere);
     TH_RUN(test_voxelize_exact_grid_json_binvox);
     TH_RUN(test_voxelize_backends_agree);

@@ -58,6 +58,9 @@ static void vec_free(vec *v)
 typedef struct id_map { uint64_t *slots; size_t cap, count; } id_map;
 typedef int (*same_key_fn)(const void *keys, uint32_t id, const void *key);
 
+static unsigned long long probes; /* slots visited by id_map_get_or_add, over the program's loads */
+unsigned long long vxt_mesh_io_probes(void) { return probes; }
+
 static uint32_t hash_bytes(const void *data, size_t n)
 {
     const unsigned char *b = (const unsigned char *)data;
@@ -92,6 +95,7 @@ static uint32_t id_map_get_or_add(id_map *m, uint32_t hash, const void *key, sam
     if ((m->count + 1) * 2 > m->cap && !id_map_grow(m)) return NO_INDEX;
     for (i = hash & (m->cap - 1); m->slots[i]; i = (i + 1) & (m->cap - 1)) {
         uint32_t id = (uint32_t)m->slots[i] - 1;
+        probes++;
         if ((uint32_t)(m->slots[i] >> 32) == hash && same(keys, id, key)) return id;
     }
     m->slots[i] = (uint64_t)hash << 32 | ((uint64_t)new_id + 1);

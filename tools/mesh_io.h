@@ -40,6 +40,10 @@ int  vxt_mesh_load(const char *path, vxt_mesh *out, char *err, size_t err_size);
 /* Frees what vxt_mesh_load allocated and zeroes *m; safe on an empty or zeroed mesh. */
 void vxt_mesh_free(vxt_mesh *m);
 
+/* Hash-map slots visited by every load so far (the loader's work, for tests and benchmarks: a
+   load visits a few slots per face corner; a search that degrades to a scan visits thousands). */
+unsigned long long vxt_mesh_io_probes(void);
+
 #ifdef __cplusplus
 }
 #endif
