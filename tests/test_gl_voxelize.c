@@ -51,6 +51,17 @@ static uint64_t undecidable_normals(const vxt_shape *m)
     return count;
 }
 
+/* How far GL cones may be from the CPU's, relative to the mean irradiance (occlusion: absolute).
+   Both march in float32 (2^-24 per operation; GLSL's exp2 and log2 within 3 ulp), at most a few
+   hundred samples of some ten operations each on these grids: S * 30 * 2^-24 < 1e-4 for S < 300.
+   That holds where the texture filter computes in float, as llvmpipe's does; a GPU may quantise
+   its filter weights to 8 bits, which moves each lerp by up to 2^-9 of its two values' difference:
+   there 2^-8 of the mean. */
+static double cone_tolerance(void)
+{
+    return g_gl && strstr(vxt_gl_renderer(g_gl), "llvmpipe") ? 1e-4 : 1.0 / 256;
+}
+
 /* GL and CPU bits must be identical, and the GL count must equal the CPU popcount. */
 static void compare_method(const vxt_shape *m, const voxgi_grid *g, const char *what)
 {
@@ -1124,10 +1135,10 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
     }
     printf("    GL cone tracing vs CPU: irradiance within %.3g (mean %.3g), occlusion within %.3g, single cones within %.3g (relative), image within %.3g "
            "(mean %.3g)\n", worst_irr, mean_irr, worst_occ, worst_each, worst_img, mean_img);
-    TH_CHECK(worst_each <= 1e-3, "single cones differ by %g", worst_each);
-    TH_CHECK(mean_irr > 0.05 && worst_irr <= 1e-3 * mean_irr, "irradiance differs by %g (mean %g)", worst_irr, mean_irr);
-    TH_CHECK(worst_occ <= 1e-3, "occlusion differs by %g", worst_occ);
-    TH_CHECK(worst_img <= 1e-3 * mean_img, "image differs by %g (mean %g)", worst_img, mean_img);
+    TH_CHECK(worst_each <= cone_tolerance(), "single cones differ by %g", worst_each);
+    TH_CHECK(mean_irr > 0.05 && worst_irr <= cone_tolerance() * mean_irr, "irradiance differs by %g (mean %g)", worst_irr, mean_irr);
+    TH_CHECK(worst_occ <= cone_tolerance(), "occlusion differs by %g", worst_occ);
+    TH_CHECK(worst_img <= cone_tolerance() * mean_img, "image differs by %g (mean %g)", worst_img, mean_img);
     free(img[0]);
     free(img[1]);
     voxgi_builtin_scene_destroy(ctx[0], &bs);
@@ -1183,9 +1194,10 @@ static void test_gl_octree_cones_equal_cpu(void)
     }
     printf("    GL octree cones vs CPU: irradiance within %.3g (mean %.3g), occlusion within %.3g, single cones within %.3g (relative)\n", worst_irr, mean,
            worst_occ, worst_each);
-    TH_CHECK(mean > 0.05 && worst_irr <= 1e-3 * mean, "irradiance differs by %g (mean %g)", worst_irr, mean);
-    TH_CHECK(worst_occ <= 1e-3, "occlusion differs by %g", worst_occ);
-    TH_CHECK(worst_each <= 1e-3, "single cones differ by %g", worst_each);
+    /* the octree's samples are filtered in the shader's own float arithmetic, on any GPU */
+    TH_CHECK(mean > 0.05 && worst_irr <= 1e-4 * mean, "irradiance differs by %g (mean %g)", worst_irr, mean);
+    TH_CHECK(worst_occ <= 1e-4, "occlusion differs by %g", worst_occ);
+    TH_CHECK(worst_each <= 1e-4, "single cones differ by %g", worst_each);
     voxgi_builtin_scene_destroy(ctx[0], &bs);
     voxgi_destroy(ctx[0]);
     voxgi_destroy(ctx[1]);
