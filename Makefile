@@ -8,15 +8,17 @@ B       := build
 ASAN    := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 
 GLSL    := $(sort $(wildcard shaders/*.glsl))
-TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool
+TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact
 # The test programs that link the implementation object (they include voxgi.h for the declarations
 # only); test_internals (private helpers) compiles the implementation itself.
-LINKED_TESTS := test_voxelize test_gl_voxelize test_reference test_vct test_tool
+LINKED_TESTS := test_voxelize test_gl_voxelize test_reference test_vct test_tool test_exact
+# test_exact's oracle computes in GMP rationals (libgmp-dev, a test-only dependency).
+$(B)/test_exact $(B)/asan/test_exact: LDLIBS += -lgmp
 NPROC   := $(shell nproc 2>/dev/null || echo 2)
 TOOL_SRC := tools/voxgi.c $(wildcard tools/cli*.c tools/cmd_*.c) tools/mesh_io.c
 TOOL_H   := $(wildcard tools/*.h)
 
-.PHONY: all deps test demo bench bench-anchors clean
+.PHONY: all deps test demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
 all: deps $(B)/voxgi $(B)/example_voxelize
 
 # Installs missing system packages (headless GL) with apt-get; silent when all is there.
@@ -76,9 +78,16 @@ $(B)/asan/leak_canary: tests/leak_canary.c voxgi.h tools/headless_gl.h $(B)/asan
 # then runs them (tests/run.sh, in parallel too).
 TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) \
               $(addprefix $(B)/asan/,$(TESTS)) $(B)/asan/leak_canary
+# CI (VOXGI_CI=1) also builds the tool and the test programs at -O0, -O1 and -O3 (the main build is
+# -O2), in $(B)/O<level>, and tests/run.sh runs them: no test may depend on the optimiser's mood.
+OPT_LEVELS := 0 1 3
 test: deps
-	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(NPROC)) $(TEST_BUILD)
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(NPROC)) $(TEST_BUILD) \
+	    $(if $(filter 1,$(VOXGI_CI)),$(addprefix opt-level-,$(OPT_LEVELS)))
 	@VOXGI_BUILD=$(B) bash tests/run.sh
+
+opt-level-%:
+	@$(MAKE) --no-print-directory B=$(B)/O$* CFLAGS="-O$* -g" $(addprefix $(B)/O$*/,voxgi $(TESTS))
 
 demo: all
 	$(B)/voxgi bench voxelize

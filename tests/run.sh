@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test of voxgi and prints "N passed, N failed" last (skips are listed, never passed).
 # Expects `make test` to have built build/ ($VOXGI_BUILD when set: `make B=dir test` sets it), the
-# normal and the ASan+UBSan test programs.
+# normal and the ASan+UBSan test programs. VOXGI_CI=1 (CI): also the programs built at -O0, -O1 and
+# -O3, and any skip fails the run.
 #
 # The checks run in parallel, at most one per processor at once (VOXGI_TEST_JOBS=n: n at once).
 # Each check's output is kept apart and printed whole, in the order the checks are listed below
@@ -105,11 +106,19 @@ done
 check exported_symbols_are_prefixed status exported_symbols
 
 # 3. the test programs, then again under AddressSanitizer and UndefinedBehaviorSanitizer
-programs="test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool"
+programs="test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact"
 export VOXGI_REQUIRE_GL=${VOXGI_REQUIRE_GL:-0}  # CI sets 1: there a GL context must exist
 for t in $programs; do
     check "$t" program env VOXGI_TOOL="$B/voxgi" "$B/$t"
 done
+# CI (VOXGI_CI=1): the same programs built at the other optimisation levels (the Makefile builds them)
+if [ "${VOXGI_CI:-0}" = 1 ]; then
+    for level in 0 1 3; do
+        for t in $programs; do
+            check "O$level/$t" program env VOXGI_TOOL="$B/O$level/voxgi" "$B/O$level/$t"
+        done
+    done
+fi
 # (every check starts after these lines, so all see the settings; only the ASan programs read them)
 export ASAN_OPTIONS=detect_leaks=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
@@ -200,5 +209,9 @@ wait
 
 echo
 [ "$skipped" -gt 0 ] && echo "$skipped skipped (see SKIP lines above; a skip is not a pass)"
+# In CI everything can run, so a skip means something is missing: it fails the run.
+if [ "${VOXGI_CI:-0}" = 1 ] && [ "$skipped" -gt 0 ]; then
+    record no_skips_in_ci fail "$skipped checks skipped; CI installs all they need"
+fi
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

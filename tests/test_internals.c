@@ -1,6 +1,9 @@
 /* tests/test_internals.c - the tests of voxgi's private helpers (voxgi__*): half-float rounding,
-   the cone set's directions, Lambert's polygon formula against the lights' own samples, the exact
-   area light of cone-traced images, GL octree footprints and shader error mapping.
+   the volume mip filters against parents worked out by hand (one parent, one level, a whole
+   chain on the CPU and on GL), the diffuse cone set (directions, distribution, weights),
+   Lambert's polygon formula against the lights' own samples, the exact area light of
+   cone-traced images, GL octree footprints and shader error mapping. Random numbers come from
+   fixtures.h's fx_rng, one generator seeded in each test.
 
    They live here, apart, because those helpers are static inside the implementation: this program
    defines VOXGI_IMPLEMENTATION and compiles the implementation itself, while every other test
@@ -44,23 +47,418 @@ static void test_half_rounding(void)
              "tiny and huge values");
 }
 
+/* ---------------------------------------------------------------- volume mips, by hand */
+/* The mip filters against parents worked out by hand from their definition (voxgi.h, part 6,
+   "volumes and mips"; docs/volumes-and-octrees.md): children k = x + 2y + 4z, each (value,
+   alpha), empty ones all zero.
+   ISOTROPIC: alpha = the mean of the 8 alphas; value = the alpha-weighted mean, sum(v a) / sum(a).
+   ANISOTROPIC, per direction of travel (+x -x +y -y +z -z): the 4 pairs of children along the
+   axis composited front to back (the near child is the one the travel meets first: low x for
+   +x), premultiplied c = v_n a_n + (1 - a_n) v_f a_f, a = a_n + (1 - a_n) a_f; alpha = the mean
+   of the 4 pair alphas, value = sum(c) / sum(a) (un-premultiplied).
+   RADIANCE is stored premultiplied (v a, a) and filtered alike without the un-premultiplying:
+   value = sum(premultiplied values) / 8 (isotropic) or sum(c) / 4 (anisotropic).
+   Each case below gives the children and, by hand, per filter (isotropic, +x, -x, +y, -y, +z,
+   -z), C = the sum of the premultiplied reds (sum(r a), or sum(c) over the pairs) and A = the
+   sum of alphas (sum(a), or sum(a_n + (1 - a_n) a_f)); the parent is then, with m = 8
+   (isotropic) or 4: stored plainly (C / A, 1, 0, A / m) (green is 1 and blue 0 in every
+   occupied child, so green stays 1, empty children not darkening it), premultiplied
+   (C / m, A / m, 0, A / m), alpha alone A / m. */
+typedef struct mip_case {
+    const char *name;
+    float c[8][4];
+    double C[7], A[7];
+} mip_case;
+
+static const mip_case mip_cases[] = {
+    {"mixed: opaque, half-opaque, quarter and three-quarter children, two empty ones",
+     {{1, 1, 0, 1}, {0.5f, 1, 0, 0.5f}, {0, 0, 0, 0}, {0.25f, 1, 0, 0.5f}, {0.75f, 1, 0, 0.25f}, {0, 0, 0, 0}, {0, 1, 0, 1}, {1, 1, 0, 0.75f}},
+     {/* isotropic: k0 + k1 + k3 + k4 + k6 + k7 (k2, k5 empty) */
+      1 * 1 + 0.5 * 0.5 + 0.25 * 0.5 + 0.75 * 0.25 + 0 * 1 + 1 * 0.75,
+      /* +x: pairs (near, far) = (k0 k1) (k2 k3) (k4 k5) (k6 k7) */
+      (1 * 1 + 0 * 0.5 * 0.5) + (0 + 1 * 0.25 * 0.5) + (0.75 * 0.25 + 0.75 * 0) + (0 * 1 + 0 * 1 * 0.75),
+      /* -x: (k1 k0) (k3 k2) (k5 k4) (k7 k6) */
+      (0.5 * 0.5 + 0.5 * 1 * 1) + (0.25 * 0.5 + 0.5 * 0) + (0 + 1 * 0.75 * 0.25) + (1 * 0.75 + 0.25 * 0 * 1),
+      /* +y: (k0 k2) (k1 k3) (k4 k6) (k5 k7) */
+      (1 * 1 + 0 * 0) + (0.5 * 0.5 + 0.5 * 0.25 * 0.5) + (0.75 * 0.25 + 0.75 * 0 * 1) + (0 + 1 * 1 * 0.75),
+      /* -y: (k2 k0) (k3 k1) (k6 k4) (k7 k5) */
+      (0 + 1 * 1 * 1) + (0.25 * 0.5 + 0.5 * 0.5 * 0.5) + (0 * 1 + 0 * 0.75 * 0.25) + (1 * 0.75 + 0.25 * 0),
+      /* +z: (k0 k4) (k1 k5) (k2 k6) (k3 k7) */
+      (1 * 1 + 0 * 0.75 * 0.25) + (0.5 * 0.5 + 0.5 * 0) + (0 + 1 * 0 * 1) + (0.25 * 0.5 + 0.5 * 1 * 0.75),
+      /* -z: (k4 k0) (k5 k1) (k6 k2) (k7 k3) */
+      (0.75 * 0.25 + 0.75 * 1 * 1) + (0 + 1 * 0.5 * 0.5) + (0 * 1 + 0 * 0) + (1 * 0.75 + 0.25 * 0.25 * 0.5)},
+     {1 + 0.5 + 0 + 0.5 + 0.25 + 0 + 1 + 0.75,
+      (1 + 0 * 0.5) + (0 + 1 * 0.5) + (0.25 + 0.75 * 0) + (1 + 0 * 0.75),
+      (0.5 + 0.5 * 1) + (0.5 + 0.5 * 0) + (0 + 1 * 0.25) + (0.75 + 0.25 * 1),
+      (1 + 0 * 0) + (0.5 + 0.5 * 0.5) + (0.25 + 0.75 * 1) + (0 + 1 * 0.75),
+      (0 + 1 * 1) + (0.5 + 0.5 * 0.5) + (1 + 0 * 0.25) + (0.75 + 0.25 * 0),
+      (1 + 0 * 0.25) + (0.5 + 0.5 * 0) + (0 + 1 * 1) + (0.5 + 0.5 * 0.75),
+      (0.25 + 0.75 * 1) + (0 + 1 * 0.5) + (1 + 0 * 0) + (0.75 + 0.25 * 0.5)}},
+    {"opaque: red k / 8, the near child hides the far one",
+     {{0, 1, 0, 1}, {0.125f, 1, 0, 1}, {0.25f, 1, 0, 1}, {0.375f, 1, 0, 1}, {0.5f, 1, 0, 1}, {0.625f, 1, 0, 1}, {0.75f, 1, 0, 1}, {0.875f, 1, 0, 1}},
+     {0 + 0.125 + 0.25 + 0.375 + 0.5 + 0.625 + 0.75 + 0.875,
+      0 + 0.25 + 0.5 + 0.75,      /* +x: the near reds k0 k2 k4 k6 */
+      0.125 + 0.375 + 0.625 + 0.875, /* -x: k1 k3 k5 k7 */
+      0 + 0.125 + 0.5 + 0.625,    /* +y: k0 k1 k4 k5 */
+      0.25 + 0.375 + 0.75 + 0.875, /* -y: k2 k3 k6 k7 */
+      0 + 0.125 + 0.25 + 0.375,   /* +z: k0..k3 */
+      0.5 + 0.625 + 0.75 + 0.875}, /* -z: k4..k7 */
+     {8, 4, 4, 4, 4, 4, 4}},
+    {"half-opaque: red 1 at x = 0, 0 at x = 1, every alpha 0.5",
+     {{1, 1, 0, 0.5f}, {0, 1, 0, 0.5f}, {1, 1, 0, 0.5f}, {0, 1, 0, 0.5f}, {1, 1, 0, 0.5f}, {0, 1, 0, 0.5f}, {1, 1, 0, 0.5f}, {0, 1, 0, 0.5f}},
+     {4 * (1 * 0.5),
+      4 * (1 * 0.5 + 0.5 * 0 * 0.5),                 /* +x: red 1 in front */
+      4 * (0 * 0.5 + 0.5 * 1 * 0.5),                 /* -x: red 0 in front, red 1 seen through it */
+      2 * (1 * 0.5 + 0.5 * 1 * 0.5) + 2 * 0, 2 * (1 * 0.5 + 0.5 * 1 * 0.5) + 2 * 0, /* y and z: pairs of equal reds */
+      2 * (1 * 0.5 + 0.5 * 1 * 0.5) + 2 * 0, 2 * (1 * 0.5 + 0.5 * 1 * 0.5) + 2 * 0},
+     {8 * 0.5, 4 * (0.5 + 0.5 * 0.5), 4 * (0.5 + 0.5 * 0.5), 4 * (0.5 + 0.5 * 0.5), 4 * (0.5 + 0.5 * 0.5), 4 * (0.5 + 0.5 * 0.5),
+      4 * (0.5 + 0.5 * 0.5)}},
+    {"lone: only k5 set (red 0.375, alpha 0.625), it keeps its colour",
+     {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0.375f, 1, 0, 0.625f}, {0, 0, 0, 0}, {0, 0, 0, 0}},
+     {0.375 * 0.625, 0 + 1 * 0.375 * 0.625, 0.375 * 0.625 + 0.375 * 0, 0.375 * 0.625 + 0.375 * 0, 0.375 * 0.625 + 0.375 * 0,
+      0 + 1 * 0.375 * 0.625, 0.375 * 0.625 + 0.375 * 0},
+     {0.625, 0.625, 0.625, 0.625, 0.625, 0.625, 0.625}},
+    {"empty", {{0}}, {0, 0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0}},
+};
+
+/* Filter f (0 isotropic, 1 + d for direction d) of one case: the parent by hand (4 floats, or 1
+   for alpha alone: w), stored plainly or premultiplied. */
+static void mip_expected(const double C, const double A, int f, int w, int premultiplied, double out[4])
+{
+    double m = f ? 4 : 8;
+    if (w == 1) { out[0] = A / m; return; }
+    out[0] = premultiplied ? C / m : (A > 0 ? C / A : 0);
+    out[1] = premultiplied ? A / m : (A > 0 ? 1 : 0);
+    out[2] = 0;
+    out[3] = A / m;
+}
+
+/* The case's children as the volume stores them: plainly, premultiplied (v a, a), or alpha alone. */
+static void mip_stored(const mip_case *mc, int w, int premultiplied, float c[8][4])
+{
+    int k, ch;
+    for (k = 0; k < 8; k++)
+        for (ch = 0; ch < 4; ch++)
+            c[k][ch] = w == 1 ? (ch == 3 ? mc->c[k][3] : 0) : (premultiplied && ch < 3 ? mc->c[k][ch] * mc->c[k][3] : mc->c[k][ch]);
+}
+
+static const char *mip_filter_name(int f) { return f ? "+x\0-x\0+y\0-y\0+z\0-z" + 3 * (f - 1) : "isotropic"; }
+static const char *mip_storage_name(int mode) { return mode == 0 ? "plain" : (mode == 1 ? "premultiplied" : "alpha alone"); }
+
+/* 1 when got is not want (to float rounding; NaN is never near). */
+static int mip_off(double got, double want) { return !(fabs(got - want) <= 1e-6 * fmax(1, fabs(want))); }
+
+/* voxgi__mip_combine, each case, each filter, stored plainly, premultiplied and alpha alone. */
+static void test_mip_combine_by_hand(void)
+{
+    int i, f, mode, ch, bad = 0, checked = 0;
+    for (i = 0; i < (int)(sizeof mip_cases / sizeof mip_cases[0]); i++)
+        for (mode = 0; mode < 3; mode++) { /* 0 plain, 1 premultiplied, 2 alpha alone */
+            int w = mode == 2 ? 1 : 4, pre = mode == 1;
+            for (f = 0; f < 7; f++) {
+                float c[8][4], dst[4] = {-7, -7, -7, -7};
+                double want[4];
+                mip_stored(&mip_cases[i], w, pre, c);
+                mip_expected(mip_cases[i].C[f], mip_cases[i].A[f], f, w, pre, want);
+                voxgi__mip_combine(c, w, f - 1, pre, dst);
+                for (ch = 0; ch < w; ch++, checked++)
+                    if (mip_off(dst[ch], want[ch])) {
+                        bad++;
+                        TH_CHECK(0, "%s, %s, %s: channel %d is %.9g, by hand %.9g", mip_cases[i].name, mip_filter_name(f), mip_storage_name(mode), ch,
+                                 dst[ch], want[ch]);
+                    }
+            }
+        }
+    printf("    %d parent values of %d cases x 7 filters x 3 storages as worked out by hand, %d wrong\n", checked,
+           (int)(sizeof mip_cases / sizeof mip_cases[0]), bad);
+}
+
+/* voxgi__mip_voxel (with voxgi__mip_load): a parent from a level stored x fastest, its children
+   beyond the level's edge empty. A 3 x 2 x 2 level, its x = 0..1 half the mixed case above,
+   x = 2 an opaque red-1 voxel at (2,0,0) and a half-opaque red-0.5 one at (2,1,1): parent (0,0,0)
+   is the mixed case's in every filter (one direction at a time, and the six at once, dir -2);
+   parent (1,0,0) has children k0 (opaque) and k6 (half) and nothing else (x = 3 is beyond the
+   edge), so in every filter C = 1 * 1 + 0.5 * 0.5 (each a pair's near child, or far behind an
+   empty one) and A = 1 + 0.5; an edge clamped instead of empty would double both. */
+static void test_mip_voxel_by_hand(void)
+{
+    static const int sd[3] = {3, 2, 2};
+    float lvl[12 * 4], alpha[12], six[6][4], *dst6[6];
+    int mode, f, k, ch, q, p[3] = {0, 0, 0}, bad = 0;
+    memset(lvl, 0, sizeof lvl);
+    for (k = 0; k < 8; k++) {
+        int at = (k & 1) + 3 * (((k >> 1) & 1) + 2 * (k >> 2));
+        memcpy(lvl + 4 * at, mip_cases[0].c[k], 4 * sizeof(float));
+    }
+    lvl[4 * 2 + 0] = 1; lvl[4 * 2 + 1] = 1; lvl[4 * 2 + 3] = 1;                     /* (2,0,0) */
+    lvl[4 * 11 + 0] = 0.5f; lvl[4 * 11 + 1] = 1; lvl[4 * 11 + 3] = 0.5f;            /* (2,1,1) */
+    for (k = 0; k < 12; k++) alpha[k] = lvl[4 * k + 3];
+    for (k = 0; k < 6; k++) dst6[k] = six[k];
+    for (mode = 0; mode < 3; mode++) { /* plain, premultiplied, alpha alone */
+        int w = mode == 2 ? 1 : 4, pre = mode == 1;
+        float src[12 * 4];
+        for (k = 0; k < 12 * 4; k++) src[k] = mode == 2 ? (k < 12 ? alpha[k] : 0) : (pre && k % 4 != 3 ? lvl[k] * lvl[k - k % 4 + 3] : lvl[k]);
+        for (f = 0; f < 7; f++) {
+            float got[2][4] = {{-7, -7, -7, -7}, {-7, -7, -7, -7}};
+            double want[2][4];
+            p[0] = 0;
+            voxgi__mip_voxel(src, sd, got[0], NULL, w, f - 1, pre, p);
+            p[0] = 1;
+            voxgi__mip_voxel(src, sd, got[1], NULL, w, f - 1, pre, p);
+            mip_expected(mip_cases[0].C[f], mip_cases[0].A[f], f, w, pre, want[0]);
+            mip_expected(1 * 1 + 0.5 * 0.5, 1 + 0.5, f, w, pre, want[1]);
+            for (q = 0; q < 2; q++)
+                for (ch = 0; ch < w; ch++)
+                    if (mip_off(got[q][ch], want[q][ch])) {
+                        bad++;
+                        TH_CHECK(0, "parent (%d,0,0), %s, %s: channel %d is %.9g, by hand %.9g", q, mip_filter_name(f), mip_storage_name(mode), ch,
+                                 got[q][ch], want[q][ch]);
+                    }
+        }
+        for (q = 0; q < 2; q++) { /* all six directions at once */
+            p[0] = q;
+            for (k = 0; k < 6; k++) for (ch = 0; ch < 4; ch++) six[k][ch] = -7;
+            voxgi__mip_voxel(src, sd, NULL, dst6, w, -2, pre, p);
+            for (k = 0; k < 6; k++) {
+                double want[4];
+                if (q == 0) mip_expected(mip_cases[0].C[1 + k], mip_cases[0].A[1 + k], 1 + k, w, pre, want);
+                else mip_expected(1 * 1 + 0.5 * 0.5, 1 + 0.5, 1 + k, w, pre, want);
+                for (ch = 0; ch < w; ch++)
+                    if (mip_off(six[k][ch], want[ch])) {
+                        bad++;
+                        TH_CHECK(0, "six at once, parent (%d,0,0), %s, %s: channel %d is %.9g, by hand %.9g", q, mip_filter_name(1 + k),
+                                 mip_storage_name(mode), ch, six[k][ch], want[ch]);
+                    }
+            }
+        }
+    }
+    printf("    parents (0,0,0) and (1,0,0) of a 3 x 2 x 2 level in 7 filters x 3 storages (and the six directions at once): %d wrong\n", bad);
+}
+
+/* A RADIANCE volume of a grid from its level 0 (premultiplied RGBA, x fastest), built as
+   voxgi_inject_light builds its own: by the volume's level and mip builders. */
+static voxgi_volume *radiance_volume(voxgi_context *ctx, const voxgi_grid *g, voxgi_mip_filter filter, const float *rgba)
+{
+    voxgi_volume_desc vd;
+    const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
+    voxgi_volume *vol = NULL;
+    memset(&vd, 0, sizeof vd);
+    vd.filter = filter;
+    slots[VOXGI__RADIANCE_SLOT] = rgba;
+    if (voxgi__volume_new(ctx, g, &vd, VOXGI_ATTRIBUTE_RADIANCE, &vol) != VOXGI_OK) return NULL;
+    if (voxgi__volume_build(ctx, vol, slots) != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); return NULL; }
+    return vol;
+}
+
+/* A 4^3 volume's whole mip chain (4, 2, 1 voxels per axis) against the hand-worked parents:
+   level 0 empty but for two blocks of 2x2x2 children, the opaque case's (becoming level-1 voxel
+   (0,0,1)) and the mixed case's (level-1 voxel (1,0,1)); every other level-1 voxel empty. Level
+   2 is the parent of those two level-1 voxels (children k4 and k5), each filtered in its own
+   direction from its own direction's level 1. By hand, from the two cases' level-1 parents
+   (opaque: C = 3.5, 1.5, 2, 1.25, 2.25, 0.75, 2.75 over A = 8, 4, ...; mixed: C = 2.3125,
+   1.3125, 1.8125, 2.25, 2, 1.75, 1.96875 over A = 4, 2.75, 2.75, 3.5, 3.5, 3.375, 3.375; a
+   parent's premultiplied red is C / m, its alpha A / m): */
+static const double mip_level2_C[7] = {
+    3.5 / 8 + 2.3125 / 8,                        /* isotropic: k4 + k5, premultiplied reds */
+    1.5 / 4 + (1 - 1) * (1.3125 / 4),            /* +x: k4 (opaque) in front of k5 */
+    1.8125 / 4 + (1 - 2.75 / 4) * (2.0 / 4),     /* -x: k5 in front of k4 */
+    1.25 / 4 + 2.25 / 4,                         /* +y: k4, k5 each in front of an empty child */
+    2.25 / 4 + 2.0 / 4,                          /* -y: each behind an empty one */
+    0.75 / 4 + 1.75 / 4,                         /* +z: behind empty ones */
+    2.75 / 4 + 1.96875 / 4};                     /* -z: in front of empty ones */
+static const double mip_level2_A[7] = {1 + 4.0 / 8, 1 + (1 - 1) * (2.75 / 4), 2.75 / 4 + (1 - 2.75 / 4) * 1, 1 + 3.5 / 4, 1 + 3.5 / 4,
+                                       1 + 3.375 / 4, 1 + 3.375 / 4};
+
+/* The 4^3 chain on ctx, through voxgi_volume_create_dense (ALBEDO stored plainly, OPACITY alpha
+   alone) and a RADIANCE volume (premultiplied), read back with voxgi_volume_read: the number of
+   values that differ from the hand-worked ones (each printed), -1 when a volume could not be made. */
+static int mip_chain_wrong(voxgi_context *ctx, const char *label)
+{
+    float albedo[64 * 4], opacity[64], radiance[64 * 4];
+    const float *base[4];
+    voxgi_grid g;
+    int filter, bad = 0, k, ch, b, v;
+    memset(albedo, 0, sizeof albedo); memset(opacity, 0, sizeof opacity); memset(radiance, 0, sizeof radiance);
+    cubic(&g, 0, 1, 4);
+    for (b = 0; b < 2; b++) /* block b (level-1 voxel (b,0,1)) holds case 1 - b: opaque, then mixed */
+        for (k = 0; k < 8; k++) {
+            int at = 2 * b + (k & 1) + 4 * (((k >> 1) & 1) + 4 * (2 + (k >> 2)));
+            const float *c = mip_cases[1 - b].c[k];
+            for (ch = 0; ch < 4; ch++) {
+                albedo[4 * at + ch] = c[ch];
+                radiance[4 * at + ch] = ch < 3 ? c[ch] * c[3] : c[3];
+            }
+            opacity[at] = c[3];
+        }
+    base[0] = albedo; base[1] = base[2] = NULL; base[3] = opacity;
+    for (filter = 0; filter < 2; filter++) {
+        voxgi_volume_desc vd;
+        voxgi_volume *vol[2] = {NULL, NULL}; /* albedo and opacity; radiance */
+        voxgi_volume_info info;
+        int dirs = filter ? 6 : 1, d, lev;
+        memset(&vd, 0, sizeof vd);
+        vd.filter = (voxgi_mip_filter)filter;
+        if (voxgi_volume_create_dense(ctx, &g, &vd, base, &vol[0]) != VOXGI_OK || !(vol[1] = radiance_volume(ctx, &g, vd.filter, radiance))) {
+            printf("    %s: %s\n", label, voxgi_last_error(ctx));
+            voxgi_volume_destroy(ctx, vol[0]);
+            return -1;
+        }
+        voxgi_volume_query(vol[0], &info);
+        if (info.levels != 3) { printf("    %s: %d levels, not 3\n", label, info.levels); bad++; }
+        for (d = 0; d < dirs; d++)
+            for (lev = 0; lev < 3 && lev < info.levels; lev++)
+                for (v = 0; v < 3; v++) { /* 0 albedo (plain), 1 radiance (premultiplied), 2 opacity (alpha alone) */
+                    int w = v == 2 ? 1 : 4, n = 4 >> lev, f = filter ? 1 + d : 0, i;
+                    float got[64 * 4];
+                    voxgi_attribute which = v == 0 ? VOXGI_ATTRIBUTE_ALBEDO : (v == 1 ? VOXGI_ATTRIBUTE_RADIANCE : VOXGI_ATTRIBUTE_OPACITY);
+                    if (voxgi_volume_read(ctx, vol[v == 1], which, (voxgi_direction)d, lev, got, sizeof got, NULL) != VOXGI_OK) {
+                        printf("    %s: %s\n", label, voxgi_last_error(ctx));
+                        bad++;
+                        continue;
+                    }
+                    for (i = 0; i < n * n * n; i++) {
+                        double want[4] = {0, 0, 0, 0};
+                        const float *in = v == 0 ? albedo : (v == 1 ? radiance : opacity);
+                        if (lev == 0) for (ch = 0; ch < w; ch++) want[ch] = in[w * i + ch]; /* the same in every direction */
+                        else if (lev == 1 && (i == 0 + 2 * (0 + 2 * 1) || i == 1 + 2 * (0 + 2 * 1))) {
+                            const mip_case *mc = &mip_cases[i == 4 ? 1 : 0];
+                            mip_expected(mc->C[f], mc->A[f], f, w, v == 1, want);
+                        } else if (lev == 2) mip_expected(mip_level2_C[f], mip_level2_A[f], f, w, v == 1, want);
+                        for (ch = 0; ch < w; ch++)
+                            if (mip_off(got[w * i + ch], want[ch])) {
+                                bad++;
+                                TH_CHECK(0, "%s, %s volume, %s, level %d voxel %d channel %d: %.9g, by hand %.9g", label, mip_storage_name(v),
+                                         mip_filter_name(f), lev, i, ch, got[w * i + ch], want[ch]);
+                            }
+                    }
+                }
+        voxgi_volume_destroy(ctx, vol[0]);
+        voxgi_volume_destroy(ctx, vol[1]);
+    }
+    return bad;
+}
+
+static void test_volume_mips_by_hand(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    int bad = mip_chain_wrong(ctx, "CPU");
+    printf("    a 4^3 chain, isotropic and anisotropic, albedo, radiance and opacity, every level: %d values wrong\n", bad);
+    TH_CHECK(bad == 0, "%d volume values differ from the hand-worked ones", bad);
+    voxgi_destroy(ctx);
+}
+
 /* ---------------------------------------------------------------- cone tracing and light */
-/* The cone set's directions: unit, in the upper hemisphere, their cosine-weighted shares equal
-   (the projected radii split the disc evenly), and the half-angles cover the hemisphere's solid
-   angle exactly. */
+/* qsort's order of doubles. */
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The diffuse cone set: n directions (voxgi__cone_direction, in the frame whose z is the normal)
+   that split the cosine-weighted hemisphere into n equal shares, each cone weighted pi / n in the
+   irradiance, with the default half-angle acos(1 - 1/n). What that promises, tested as such:
+   - unit directions in the upper hemisphere;
+   - cosine-distributed: projected onto the disc (x, y) a cosine-distributed direction is uniform
+     over the unit disc (Malley), so r^2 = sin^2(theta) is uniform on [0, 1]: the largest gap
+     between the share of the set with r^2 <= t and t (Kolmogorov-Smirnov) is at most 1 / (2n),
+     the least n points can have (one per equal share); and over the disc, every polar box of an
+     8 x 8 grid of equal-area cells (r^2 and the azimuth in eighths) holds its area's share of the
+     points within 4 / n (low discrepancy; a random set is off by about 1 / sqrt(n));
+   - the set's mean of f, (1/n) sum f(d_k), is a quadrature of the cosine-weighted mean
+     (1/pi) int f cos(theta) dw; by hand, with dw = sin(theta) dtheta dphi and s = sin(theta):
+     f = 1: 1; cos(theta): 2 int cos^2 sin = 2/3; cos^2: 2 int cos^3 sin = 1/2; x^2 = s^2 cos^2(phi):
+     (1/pi) pi int s^3 ds = 1/4, y^2 the same; x, y, xy: 0 (odd in phi); x^2 y^2: (1/pi) (pi/4)
+     int s^5 ds = 1/24. Each within 1 / n of it from n = 8 on, so converging as n grows;
+   - the weights sum to 1: under a uniform opaque radiance L every cone sees L, and
+     voxgi_cone_trace gives pi L and occlusion 1 for any n, isotropic or anisotropic;
+   - the default half-angle gives each cone 1/n of the hemisphere's solid angle: n 2 pi (1 - cos) = 2 pi. */
 static void test_cone_set(void)
 {
-    int n, k, bad = 0;
-    for (n = 1; n <= 64; n *= 2) {
-        double half = acos(1 - 1.0 / n), covered = n * 2 * PI * (1 - cos(half));
+    static const int ns[] = {1, 2, 3, 5, 8, 16, 64, 256, 1024};
+    static const double exact[9] = {1, 2.0 / 3, 0.5, 0.25, 0.25, 0, 0, 0, 1.0 / 24};
+    static const char *fname[9] = {"1", "cos", "cos^2", "x^2", "y^2", "x", "y", "xy", "x^2 y^2"};
+    static double u[1024];
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    double worst_err[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, worst_ks = 0, worst_box = 0, worst_irr = 0, worst_cover = 0;
+    float rad[64 * 4], pos[3] = {0.625f, 0.625f, 0.25f}, nrm[3] = {0, 0, 1};
+    voxgi_grid g;
+    int i, k, f, bad = 0, filter;
+    for (i = 0; i < (int)(sizeof ns / sizeof ns[0]); i++) {
+        int n = ns[i], cell[8][8], a, b, c, e;
+        double mean[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        memset(cell, 0, sizeof cell);
         for (k = 0; k < n; k++) {
-            double d[3];
+            double d[3], x, y, z, phi;
             voxgi__cone_direction(k, n, d);
-            bad += fabs(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - 1) > 1e-12 || d[2] <= 0;
+            x = d[0]; y = d[1]; z = d[2];
+            bad += fabs(x * x + y * y + z * z - 1) > 1e-12 || !(z > 0);
+            u[k] = x * x + y * y;
+            phi = atan2(y, x) / (2 * PI);
+            if (phi < 0) phi += 1;
+            a = (int)(u[k] * 8); b = (int)(phi * 8);
+            cell[a > 7 ? 7 : a][b > 7 ? 7 : b]++;
+            mean[0] += 1.0 / n; mean[1] += z / n; mean[2] += z * z / n; mean[3] += x * x / n; mean[4] += y * y / n;
+            mean[5] += x / n; mean[6] += y / n; mean[7] += x * y / n; mean[8] += x * x * y * y / n;
         }
-        bad += fabs(covered - 2 * PI) > 1e-9;
+        qsort(u, (size_t)n, sizeof u[0], cmp_double);
+        for (k = 0; k < n; k++) { /* the empirical distribution of r^2 against the uniform one, both sides of each step */
+            double ks = fmax(fabs((k + 1.0) / n - u[k]), fabs((double)k / n - u[k]));
+            if (ks > 0.5 / n + 1e-12) bad++;
+            worst_ks = fmax(worst_ks, ks * n);
+        }
+        for (a = 0; a < 8 && n >= 16; a++) /* every box [a, b) x [c, e) of cells */
+            for (b = a + 1; b <= 8; b++)
+                for (c = 0; c < 8; c++)
+                    for (e = c + 1; e <= 8; e++) {
+                        int cnt = 0, r, s;
+                        double off;
+                        for (r = a; r < b; r++) for (s = c; s < e; s++) cnt += cell[r][s];
+                        off = fabs((double)cnt / n - (b - a) * (e - c) / 64.0) * n;
+                        worst_box = fmax(worst_box, off);
+                        bad += off > 4;
+                    }
+        for (f = 0; f < 9 && n >= 8; f++) {
+            double err = fabs(mean[f] - exact[f]);
+            worst_err[f] = fmax(worst_err[f], err * n);
+            if (err > 1.0 / n) { bad++; printf("    n %d: the mean of %s is %.6f, not %.6f\n", n, fname[f], mean[f], exact[f]); }
+        }
     }
-    TH_CHECK(bad == 0, "%d bad cone directions or coverages", bad);
+    printf("    n up to 1024: r^2 within %.3f / n of uniform, polar boxes within %.2f / n of their share; "
+           "means within n x (1 %.2g, cos %.2g, cos^2 %.2g, x^2 %.2g, y^2 %.2g, x %.2g, y %.2g, xy %.2g, x^2y^2 %.2g) / n\n",
+           worst_ks, worst_box, worst_err[0], worst_err[1], worst_err[2], worst_err[3], worst_err[4], worst_err[5], worst_err[6], worst_err[7],
+           worst_err[8]);
+    TH_CHECK(bad == 0, "%d failures of the cone set's directions or distribution", bad);
+    /* the weights and the default half-angle, through the library: a 4^3 radiance volume, opaque and
+       uniform, L = (0.5, 1, 2); a point whose first samples (1.5 voxels along the normal) fall on a
+       voxel centre, (2.5, 2.5, 2.5) in grid units */
+    cubic(&g, 0, 1, 4);
+    for (k = 0; k < 64; k++) { rad[4 * k] = 0.5f; rad[4 * k + 1] = 1; rad[4 * k + 2] = 2; rad[4 * k + 3] = 1; }
+    for (filter = 0; filter < 2; filter++) {
+        voxgi_volume *vol = radiance_volume(ctx, &g, (voxgi_mip_filter)filter, rad);
+        static const int cones[5] = {1, 2, 7, 0, 64}; /* 0: the default, 16 */
+        TH_CHECK(vol != NULL, "radiance volume: %s", voxgi_last_error(ctx));
+        for (i = 0; i < 5 && vol; i++) {
+            voxgi_cone_desc cd;
+            voxgi__cone_job J;
+            float irr[3] = {0, 0, 0}, occ = 0;
+            int a;
+            memset(&cd, 0, sizeof cd);
+            cd.cones = cones[i];
+            TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, 1, pos, nrm, irr, &occ) == VOXGI_OK && voxgi__cone_job_init(ctx, VOLUME_SOURCE(vol), &cd, &J) == VOXGI_OK,
+                     "cone trace: %s", voxgi_last_error(ctx));
+            for (a = 0; a < 3; a++) worst_irr = fmax(worst_irr, fabs(irr[a] / (PI * rad[a]) - 1));
+            worst_irr = fmax(worst_irr, fabs(occ - 1));
+            worst_cover = fmax(worst_cover, fabs(J.cones * 2 * PI * (1 - cos(atan(J.half_tan))) / (2 * PI) - 1));
+            TH_CHECK(J.cones == (cones[i] ? cones[i] : 16), "%d cones asked for, %d traced", cones[i], J.cones);
+        }
+        voxgi_volume_destroy(ctx, vol);
+    }
+    printf("    under uniform opaque radiance: irradiance / (pi L) and occlusion within %.2g of 1; default half-angles cover the hemisphere within %.2g\n",
+           worst_irr, worst_cover);
+    TH_CHECK(worst_irr < 1e-6, "the cone weights do not sum to 1: off by %.3g", worst_irr);
+    TH_CHECK(worst_cover < 1e-9, "the default half-angles cover the hemisphere's solid angle only to %.3g", worst_cover);
+    voxgi_destroy(ctx);
 }
 
 /* Lambert's polygon formula (the cone-traced image's exact unshadowed light from rect lights and
@@ -83,6 +481,7 @@ static void test_polygon_irradiance(void)
     voxgi__tracer tr;
     voxgi__lights Ls;
     int i, k, a;
+    fx_rng rng = fx_rng_seeded(3);
     double f = voxgi__polygon_irradiance((const double(*)[3])big, 4, down, o, up);
     printf("    huge square overhead: irradiance %.9f (pi %.9f)\n", f, 3.14159265358979323846);
     TH_CHECK(fabs(f / 3.14159265358979323846 - 1) < 1e-6, "huge square: %.9f", f);
@@ -100,13 +499,12 @@ static void test_polygon_irradiance(void)
     rect.intensity[0] = 1; rect.intensity[1] = 4; rect.intensity[2] = 2;
     scene_of_quads(&sc, &mesh, &q, mats, 2, &rect, 1);
     TH_CHECK(voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK && voxgi__lights_build(ctx, &sc, &tr, &Ls) == VOXGI_OK, "lights");
-    srand(3);
     for (i = 0; i < 40; i++) {
         double p[3], n[3], len = 0, exact[3], mean[6] = {0, 0, 0, 0, 0, 0}, e[3];
         uint64_t rays = 0;
         voxgi__rng g;
-        for (a = 0; a < 3; a++) { p[a] = 1.6 * rand() / RAND_MAX - 0.8; n[a] = 2.0 * rand() / RAND_MAX - 1; len += n[a] * n[a]; }
-        p[1] = 0.7 * rand() / RAND_MAX - 0.5;
+        for (a = 0; a < 3; a++) { p[a] = fx_rng_range(&rng, -0.8, 0.8); n[a] = fx_rng_range(&rng, -1, 1); len += n[a] * n[a]; }
+        p[1] = fx_rng_range(&rng, -0.5, 0.2);
         len = sqrt(len);
         for (a = 0; a < 3; a++) n[a] /= len;
         voxgi__area_irradiance(&Ls, p, n, UINT32_MAX, exact);
@@ -202,6 +600,7 @@ static void test_gl_svo_equals_cpu(void)
     material_sphere s;
     int res_i, b;
     double worst_sample = 0;
+    fx_rng rng = fx_rng_seeded(11); /* the sample points of every grid and format, in turn */
     if (!have_gl()) return;
     cpu = make_ctx(VOXGI_BACKEND_CPU, 0);
     gl = make_ctx(VOXGI_BACKEND_GL, 0);
@@ -275,10 +674,10 @@ static void test_gl_svo_equals_cpu(void)
                 float pos[3 * 400], lods[400], out[2][4 * 400];
                 int i;
                 for (i = 0; i < 400; i++) {
-                    pos[3 * i] = (float)(-2 + 31 * ((double)rand() / RAND_MAX));
-                    pos[3 * i + 1] = (float)(-2 + 31 * ((double)rand() / RAND_MAX));
-                    pos[3 * i + 2] = (float)(-2 + 31 * ((double)rand() / RAND_MAX));
-                    lods[i] = (float)(-0.5 + 6.5 * ((double)rand() / RAND_MAX));
+                    pos[3 * i] = (float)fx_rng_range(&rng, -2, 29);
+                    pos[3 * i + 1] = (float)fx_rng_range(&rng, -2, 29);
+                    pos[3 * i + 2] = (float)fx_rng_range(&rng, -2, 29);
+                    lods[i] = (float)fx_rng_range(&rng, -0.5, 6);
                 }
                 for (a = 0; a < 4; a++) {
                     for (b = 0; b < 2; b++)
@@ -341,6 +740,20 @@ static void test_gl_svo_equals_cpu(void)
     voxgi_destroy(gl);
 }
 
+/* The GL volumes' compute pass (shaders/volume_mip.glsl) against the same hand-worked 4^3 chain
+   as the CPU's (test_volume_mips_by_hand). */
+static void test_gl_volume_mips_by_hand(void)
+{
+    voxgi_context *ctx;
+    int bad;
+    if (!have_gl()) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
+    bad = mip_chain_wrong(ctx, "GL");
+    printf("    GL: a 4^3 chain, isotropic and anisotropic, albedo, radiance and opacity, every level: %d values wrong\n", bad);
+    TH_CHECK(bad == 0, "%d GL volume values differ from the hand-worked ones", bad);
+    voxgi_destroy(ctx);
+}
+
 /* A shader that fails to compile gives VOXGI_ERR_GL_SHADER with the log mapped to file:line. */
 static void test_gl_shader_error_mapping(void)
 {
@@ -360,10 +773,14 @@ int main(void)
 {
     gl_open();
     TH_RUN(test_half_rounding);
+    TH_RUN(test_mip_combine_by_hand);
+    TH_RUN(test_mip_voxel_by_hand);
+    TH_RUN(test_volume_mips_by_hand);
     TH_RUN(test_polygon_irradiance);
     TH_RUN(test_exact_area_light_image);
     TH_RUN(test_cone_set);
     TH_RUN(test_gl_svo_equals_cpu);
+    TH_RUN(test_gl_volume_mips_by_hand);
     TH_RUN(test_gl_shader_error_mapping);
     gl_close();
     return th_finish();

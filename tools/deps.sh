@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages voxgi's tests, tools and examples need to get a headless
-# OpenGL 4.5 context. Idempotent and silent when everything is already there.
+# OpenGL 4.5 context, and what the tests build with. Idempotent and silent when everything is
+# already there.
 #
 # Our programs load EGL and OSMesa at run time (tools/headless_gl.h), so the runtime
 # libraries are what they need; the -dev packages add the headers and link names for
@@ -10,10 +11,11 @@
 #   libgl1-mesa-dri  the llvmpipe software rasteriser behind EGL
 #   libosmesa6       libOSMesa.so.8, the fallback when EGL is unusable
 #   libosmesa6-dev, libegl-dev   osmesa.h, EGL/egl.h and the libraries to link against
-# and the C++ compiler the tests build the header with (g++; the C compiler comes with it).
+# the C++ compiler the tests build the header with (g++; the C compiler comes with it), and
+#   libgmp-dev       GMP's rationals, in which tests/test_exact.c's oracle decides exactly
 set -euo pipefail
 
-packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev g++)
+packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev g++ libgmp-dev)
 
 missing=()
 for p in "${packages[@]}"; do
