@@ -18,7 +18,7 @@ NPROC   := $(shell nproc 2>/dev/null || echo 2)
 TOOL_SRC := tools/voxgi.c $(wildcard tools/cli*.c tools/cmd_*.c) tools/mesh_io.c
 TOOL_H   := $(wildcard tools/*.h)
 
-.PHONY: all deps test demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
+.PHONY: all deps test mutate demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
 all: deps $(B)/voxgi $(B)/example_voxelize
 
 # Installs missing system packages (headless GL) with apt-get; silent when all is there.
@@ -88,6 +88,11 @@ test: deps
 
 opt-level-%:
 	@$(MAKE) --no-print-directory B=$(B)/O$* CFLAGS="-O$* -g" $(addprefix $(B)/O$*/,voxgi $(TESTS))
+
+# Plants each bug of tests/mutations.txt in a copy of the sources and runs the tests that must
+# notice it; prints the survivors (minutes, not part of `make test`). MUTATE_ARGS: e.g. --only ID.
+mutate: deps
+	@bash tests/mutate.sh $(MUTATE_ARGS)
 
 demo: all
 	$(B)/voxgi bench voxelize

@@ -160,6 +160,17 @@ static void test_gl_equals_cpu_solid(void)
         compare_solid(&big, &g, "big box");
         vxt_shape_free(&big);
     }
+    {   /* ties: faces on planes of centres, edges and face diagonals through columns' centres */
+        const float lo[3] = {2, 2, 2}, hi[3] = {6, 6, 6}, lo2[3] = {1, 3, 2}, hi2[3] = {9, 5, 8};
+        vxt_shape_alloc(&big, 16, 24);
+        vxt_shape_put_box(&big, 0, 0, lo, hi);
+        vxt_shape_put_box(&big, 8, 12, lo2, hi2);
+        g.origin[0] = g.origin[1] = g.origin[2] = -0.5;
+        g.voxel_size = 1;
+        g.res[0] = g.res[1] = g.res[2] = 11;
+        compare_solid(&big, &g, "boxes on centre planes");
+        vxt_shape_free(&big);
+    }
 }
 
 static void test_gl_equals_cpu_sphere(void)

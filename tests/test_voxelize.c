@@ -857,6 +857,54 @@ static void test_solid_box_exact(void)
     voxgi_destroy(ctx);
 }
 
+/* Solid parity at ties: boxes whose faces lie on planes of voxel centres, whose edges run through
+   columns' centres, and whose faces' diagonals (each face is two triangles) cross centres. Any
+   consistent tie rule puts a centre on a face on exactly one side of it, so whatever the rule,
+   each axis's parity holds exactly as many voxels as the box has volume in voxels, every centre
+   strictly inside and none strictly outside, and the three axes agree (the rule belongs to the
+   point, not to the counting direction). */
+static void test_solid_ties(void)
+{
+    static const float boxes[3][2][3] = {{{2, 2, 2}, {7, 6, 5}}, {{2, 2, 2}, {6, 6, 6}}, {{1, 3, 2}, {9, 5, 8}}};
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
+    voxgi_grid g;
+    int box;
+    g.origin[0] = g.origin[1] = g.origin[2] = -0.5; /* centres on the integers */
+    g.voxel_size = 1;
+    g.res[0] = g.res[1] = g.res[2] = 11;
+    for (box = 0; box < 3; box++) {
+        const float *lo = boxes[box][0], *hi = boxes[box][1];
+        uint64_t volume = (uint64_t)((hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2])), count[3] = {0, 0, 0}, wrong = 0, differ = 0, v;
+        uint32_t *b[3];
+        vxt_shape m;
+        int axis;
+        vxt_shape_alloc(&m, 8, 12);
+        vxt_shape_put_box(&m, 0, 0, lo, hi);
+        for (axis = 0; axis < 3; axis++) b[axis] = solid_bits(ctx, &m, &g, VOXGI_SOLID_PARITY, (voxgi_axis)(VOXGI_AXIS_X + axis));
+        for (v = 0; v < 11 * 11 * 11; v++) {
+            int c[3], a, inside = 1, outside = 0;
+            c[0] = (int)(v % 11); c[1] = (int)(v / 11 % 11); c[2] = (int)(v / 121);
+            for (a = 0; a < 3; a++) {
+                inside &= c[a] > lo[a] && c[a] < hi[a];
+                outside |= c[a] < lo[a] || c[a] > hi[a];
+            }
+            for (axis = 0; axis < 3; axis++) {
+                int set = b[axis] && voxgi_bit_get(b[axis], v);
+                count[axis] += (uint64_t)set;
+                wrong += (uint64_t)((inside && !set) || (outside && set));
+                differ += (uint64_t)(axis && b[0] && b[axis] && set != voxgi_bit_get(b[0], v));
+            }
+        }
+        TH_CHECK(count[0] == volume && count[1] == volume && count[2] == volume && wrong == 0 && differ == 0,
+                 "box %d: %llu / %llu / %llu voxels along x / y / z (volume %llu), %llu on the wrong side of a face, %llu where the axes disagree", box,
+                 (unsigned long long)count[0], (unsigned long long)count[1], (unsigned long long)count[2], (unsigned long long)volume,
+                 (unsigned long long)wrong, (unsigned long long)differ);
+        for (axis = 0; axis < 3; axis++) free(b[axis]);
+        vxt_shape_free(&m);
+    }
+    voxgi_destroy(ctx);
+}
+
 /* Open meshes: a box without its bottom face is filled by the vote (x and y still see it
    closed); a box whose bottom face leaves a gap thinner than a voxel is filled by the flood. */
 static void test_solid_open_mesh_robust_modes(void)
@@ -2182,6 +2230,7 @@ int main(void)
     TH_RUN(test_thin_vs_oracle);
     TH_RUN(test_solid_closed_vs_inside_test);
     TH_RUN(test_solid_box_exact);
+    TH_RUN(test_solid_ties);
     TH_RUN(test_solid_open_mesh_robust_modes);
     TH_RUN(test_or_mips);
     TH_RUN(test_slicemap_vs_oracle_and_relations);
