@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Mutation testing: do the tests notice a plausible bug? Each mutant of tests/mutations.txt (one
-# small change to voxgi.h or a shader) is applied to a copy of the sources, built, and run
+# small change to voxgi.h, a shader or a tool source) is applied to a copy of the sources, built, and run
 # against the tests its entry names. CAUGHT: a test failed (or crashed, or hung); SURVIVED: the
 # tests passed with the bug in place, so they miss that kind of bug. Run by hand (it takes
 # minutes); `make test` does not run it. See usage() below.
