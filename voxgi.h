@@ -195,7 +195,9 @@ typedef struct voxgi_progress {
 } voxgi_progress;
 
 typedef struct voxgi_desc {
-    voxgi_backend backend;                     /* AUTO: GL when usable, else CPU (logged) */
+    voxgi_backend backend;                     /* AUTO: GL when usable and not a software
+                                                  rasterizer (voxgi_info.gl_software), else
+                                                  CPU (logged) */
     voxgi_gl_loader gl_get_proc_address;       /* GL loader, or ... */
     voxgi_gl_loader_user gl_get_proc_address_user; /* ... one that takes gl_user */
     void *gl_user;
@@ -210,7 +212,9 @@ typedef struct voxgi_info {
     voxgi_backend backend;     /* the backend in use */
     int thread_count;          /* resolved CPU worker count */
     const char *gl_version;    /* GL_VERSION / GL_RENDERER of the current context, or "" */
-    const char *gl_renderer;
+    const char *gl_renderer;   /* (also when AUTO turned that GL down for the CPU) */
+    int gl_software;           /* non-zero: gl_renderer rasterizes on the CPU's own cores
+                                  (llvmpipe, SwiftShader, ...), so AUTO picked the CPU */
     const char *capabilities;  /* compiled-in capabilities, space separated */
 } voxgi_info;
 
@@ -692,8 +696,13 @@ typedef struct voxgi_inject_desc {
     uint64_t seed;
     int shadow_rays;              /* GL context: 1 = the CPU's exact shadow rays instead of the maps */
     int bounces;                  /* 0 or 1: direct light; B > 1: B - 1 more bounces, each voxel gathering
-                                     with `gather` cones from the last volume at its centre */
-    voxgi_cone_desc gather;
+                                     with `gather` cones from the last volume */
+    voxgi_cone_desc gather;       /* cones 0 = 4: the bounces' light is smooth, and more cones do not
+                                     change the image (docs/cone-tracing.md) */
+    int gather_block;             /* the bounces gather once per group of voxels: those in one block of
+                                     gather_block^3 voxels whose normals face the same way (the same
+                                     dominant axis and sign), at their mean centre on their mean normal;
+                                     0 = 4; 1 = every voxel on its own */
 } voxgi_inject_desc;
 VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *voxels,
                                           const voxgi_inject_desc *desc, voxgi_volume **out);
@@ -742,6 +751,9 @@ typedef struct voxgi_vct_desc {
     int shadow_rays;              /* GL context: inject through exact shadow rays (voxgi_inject_desc) */
     int bounces;                  /* indirect bounces: 0 or 1 = one (the cones at the pixels); B > 1: the
                                      light bounces B - 1 times among the voxels first (voxgi_inject_desc) */
+    voxgi_cone_desc bounce_cones; /* the bounces' gathers among the voxels (voxgi_inject_desc.gather) */
+    int bounce_block;             /* the bounces gather once per block of this many voxels a side
+                                     (voxgi_inject_desc.gather_block); 0 = 4 */
     int cone_stride;              /* s > 1: cones at every s-th pixel across and down (and the last row and
                                      column); a pixel between takes the bilinear mean of the four around it
                                      that share its surface (normals within 26 degrees, on its plane within a
@@ -912,6 +924,7 @@ struct voxgi_context {
     voxgi_backend backend;
     char error[4096];
     char gl_version[160], gl_renderer[160];
+    int gl_software;               /* voxgi__gl_is_software(gl_renderer) */
 #ifndef VOXGI_NO_GL
     voxgi__gl *gl;
 #endif
@@ -1059,8 +1072,14 @@ VOXGI_API voxgi_result voxgi_create(const voxgi_desc *desc, voxgi_context **out)
         voxgi__log(ctx, VOXGI_LOG_INFO, "backend auto: CPU, because GL is compiled out (VOXGI_NO_GL)");
 #else
         voxgi_result r = voxgi__gl_init(ctx);
-        if (r == VOXGI_OK) {
+        if (r == VOXGI_OK && d.backend == VOXGI_BACKEND_AUTO && ctx->gl_software) {
+            voxgi__gl_shutdown(ctx); /* gl_version and gl_renderer stay, for voxgi_query_info */
+            voxgi__log(ctx, VOXGI_LOG_INFO, "backend auto: CPU, because the GL renderer %s is a software rasterizer on "
+                       "the CPU's own cores, where the CPU backend is faster (VOXGI_BACKEND_GL uses it anyway)", ctx->gl_renderer);
+        } else if (r == VOXGI_OK) {
             ctx->backend = VOXGI_BACKEND_GL;
+            voxgi__log(ctx, VOXGI_LOG_INFO, "backend %s: GL, %s, %s%s", voxgi_backend_name(d.backend), ctx->gl_version, ctx->gl_renderer,
+                       ctx->gl_software ? " (a software rasterizer on the CPU's own cores: VOXGI_BACKEND_CPU is usually faster)" : "");
         } else if (d.backend == VOXGI_BACKEND_GL) {
             voxgi_destroy(ctx);
             return r;
@@ -1108,6 +1127,7 @@ VOXGI_API void voxgi_query_info(const voxgi_context *ctx, voxgi_info *out)
     out->gl_version = ctx ? ctx->gl_version : "";
     out->gl_renderer = ctx ? ctx->gl_renderer : "";
     if (!ctx) return;
+    out->gl_software = ctx->gl_software;
     out->backend = ctx->backend;
     out->thread_count = ctx->desc.thread_count;
 }
@@ -2552,6 +2572,27 @@ static voxgi_gl_proc voxgi__gl_lookup(voxgi_context *ctx, const char *name)
     return ctx->desc.gl_get_proc_address(name);
 }
 
+/* 1 when a GL_RENDERER string names a software rasterizer: one that runs on the CPU's own cores,
+   where voxgi's CPU backend does the same work several times faster (AUTO then picks the CPU).
+   Matched case-insensitively anywhere in the string: Mesa's llvmpipe, softpipe and swrast
+   ("Software Rasterizer"), Google's SwiftShader, and WARP ("Microsoft Basic Render Driver",
+   e.g. under Mesa's D3D12 driver). GL_VENDOR adds nothing: these vendors also ship GPUs. */
+static int voxgi__gl_is_software(const char *renderer)
+{
+    static const char *const names[] = {"llvmpipe", "softpipe", "swrast", "software rasterizer", "swiftshader",
+                                        "microsoft basic render driver"};
+    size_t k, i, j;
+    for (k = 0; k < sizeof names / sizeof names[0]; k++)
+        for (i = 0; renderer[i]; i++) {
+            for (j = 0; names[k][j]; j++) {
+                char c = renderer[i + j]; /* ASCII lower case, whatever the locale */
+                if ((c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c) != names[k][j]) break;
+            }
+            if (!names[k][j]) return 1;
+        }
+    return 0;
+}
+
 static voxgi_result voxgi__gl_init(voxgi_context *ctx)
 {
     static const char *const uniforms[VOXGI__GL_UNIFORM_COUNT] = {
@@ -2578,6 +2619,7 @@ static voxgi_result voxgi__gl_init(voxgi_context *ctx)
     snprintf(ctx->gl_version, sizeof ctx->gl_version, "%s", s);
     s = (const char *)gl->GetString(VOXGI__GL_RENDERER);
     snprintf(ctx->gl_renderer, sizeof ctx->gl_renderer, "%s", s ? s : "");
+    ctx->gl_software = voxgi__gl_is_software(ctx->gl_renderer);
     gl->GetIntegerv(VOXGI__GL_MAJOR_VERSION, &major);
     gl->GetIntegerv(VOXGI__GL_MINOR_VERSION, &minor);
     if (major * 10 + minor < 45)
@@ -2590,8 +2632,7 @@ static voxgi_result voxgi__gl_init(voxgi_context *ctx)
     VOXGI__GL_BINDINGS(VOXGI__GL_BINDING_DEFINE)
 #undef VOXGI__GL_BINDING_DEFINE
     while (gl->GetError() != 0) {}
-    voxgi__log(ctx, VOXGI_LOG_INFO, "GL backend: %s, %s", ctx->gl_version, ctx->gl_renderer);
-    return VOXGI_OK;
+    return VOXGI_OK; /* voxgi_create logs the backend it picks */
 }
 
 static void voxgi__gl_shutdown(voxgi_context *ctx)
@@ -7493,7 +7534,7 @@ VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_radiance
                                         float *occlusion)
 {
     voxgi__cone_job J;
-    size_t i;
+    size_t i, first, chunk = count < 4096 ? count : (count + 15) / 16;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!source || !desc || (count && (!positions || !normals || !irradiance)))
@@ -7501,15 +7542,20 @@ VOXGI_API voxgi_result voxgi_cone_trace(voxgi_context *ctx, const voxgi_radiance
     if ((r = voxgi__cone_job_init(ctx, source, desc, &J)) != VOXGI_OK) return r;
     for (i = 0; i < 3 * count; i++)
         if (!isfinite(positions[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
-    J.pos = positions;
-    J.nrm = normals;
-    J.irr = irradiance;
-    J.occ = occlusion;
+    for (first = 0; r == VOXGI_OK && first < count; first += chunk) { /* in 16 parts: progress, and a cancel between them */
+        size_t m = VOXGI__MIN(chunk, count - first);
+        J.pos = positions + 3 * first;
+        J.nrm = normals + 3 * first;
+        J.irr = irradiance + 3 * first;
+        J.occ = occlusion ? occlusion + first : NULL;
 #ifndef VOXGI_NO_GL
-    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__cone_march_gl(ctx, &J, count);
+        if (ctx->backend == VOXGI_BACKEND_GL) r = voxgi__cone_march_gl(ctx, &J, m);
+        else
 #endif
-    voxgi__parallel(ctx, count, 64, voxgi__cone_march_cpu, &J);
-    return VOXGI_OK;
+            voxgi__parallel(ctx, m, 64, voxgi__cone_march_cpu, &J);
+        if (r == VOXGI_OK && voxgi__cancelled(ctx, (double)(first + m) / (double)count, "cone tracing", "cones")) r = VOXGI_ERR_CANCELLED;
+    }
+    return r;
 }
 
 VOXGI_API voxgi_result voxgi_cone_trace_each(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *desc,
@@ -7875,38 +7921,91 @@ static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr
 }
 #endif
 
-/* The light's further bounces among the voxels (desc->bounces > 1): each voxel gathers at its
-   centre from *vol, its radiance becomes direct + alpha albedo / pi x that, and *vol is rebuilt. */
+/* The bounces' gather points: the set voxels that have a normal, in groups of those in one block
+   of `block`^3 voxels whose normals share their dominant axis and its sign (a wall's voxels in a
+   block, apart from a floor's meeting it there). A group gathers once, at its members' mean
+   centre on their mean normal; indirect light varies slowly over a block, and a block of a
+   plane holds about block^2 voxels, so the bounces cost that much less. group[i]: voxel i's
+   group, or SIZE_MAX without a normal. */
+static voxgi_result voxgi__bounce_groups(voxgi_context *ctx, const voxgi__inject *J, size_t n, int block, size_t *group, float **pos_out,
+                                         float **nrm_out, size_t *count)
+{
+    const double off = 0.8660254037844386 * J->g->voxel_size;
+    uint64_t *code = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0);
+    uint32_t *order = (uint32_t *)voxgi__alloc_array(ctx, n ? n : 1, 4, 0);
+    float *pos = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0), *nrm = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
+    size_t i, lit = 0, ng = 0, k;
+    voxgi_result r = VOXGI_OK;
+    int a;
+    if (!code || !order || !pos || !nrm) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
+    for (i = 0; r == VOXGI_OK && i < n; i++) {
+        const voxgi_grid *g = J->g;
+        uint64_t l = J->index[i];
+        uint32_t x = (uint32_t)(l % (uint64_t)g->res[0]), y = (uint32_t)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]),
+                 z = (uint32_t)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1]));
+        double p[3], nl[3];
+        int axis = 0;
+        group[i] = SIZE_MAX;
+        if (!voxgi__inject_point(J, i, p, nl)) continue;
+        for (a = 1; a < 3; a++)
+            if (fabs(nl[a]) > fabs(nl[axis])) axis = a;
+        code[lit] = voxgi__morton(x / (uint32_t)block, y / (uint32_t)block, z / (uint32_t)block) << 3 | (uint64_t)(2 * axis + (nl[axis] < 0));
+        order[lit++] = (uint32_t)i;
+    }
+    if (r == VOXGI_OK) r = voxgi__sort_codes(ctx, code, order, lit, 64);
+    for (k = 0; r == VOXGI_OK && k < lit; ng++) { /* a run of equal codes is a group: its sums, in sorted order */
+        double c[3] = {0, 0, 0}, nsum[3] = {0, 0, 0}, len = 0;
+        size_t first = k;
+        for (; k < lit && code[k] == code[first]; k++) {
+            double p[3], nl[3];
+            voxgi__inject_point(J, order[k], p, nl);
+            for (a = 0; a < 3; a++) { c[a] += p[a] - off * nl[a]; nsum[a] += nl[a]; }
+            group[order[k]] = ng;
+        }
+        for (a = 0; a < 3; a++) len += nsum[a] * nsum[a];
+        len = sqrt(len);
+        for (a = 0; a < 3; a++) {
+            pos[3 * ng + (size_t)a] = (float)(c[a] / (double)(k - first));
+            nrm[3 * ng + (size_t)a] = len > 0 ? (float)(nsum[a] / len) : (float)(a == 1); /* opposite normals sharing a class cannot cancel */
+        }
+    }
+    voxgi__free(ctx, code);
+    voxgi__free(ctx, order);
+    if (r != VOXGI_OK) { voxgi__free(ctx, pos); voxgi__free(ctx, nrm); pos = nrm = NULL; ng = 0; }
+    *pos_out = pos;
+    *nrm_out = nrm;
+    *count = ng;
+    return r;
+}
+
+/* The light's further bounces among the voxels (desc->bounces > 1): each group of voxels
+   (voxgi__bounce_groups) gathers from *vol, its voxels' radiance becomes direct + alpha albedo /
+   pi x that, and *vol is rebuilt. */
 static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, size_t n, const voxgi_inject_desc *desc, voxgi_volume **vol)
 {
     const voxgi_grid *g = J->g;
-    float *pos = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0), *nrm = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
-    float *irr = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0), *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
+    size_t *group = (size_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof(size_t), 0), ng = 0, i;
+    float *pos = NULL, *nrm = NULL, *irr = NULL, *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12, 0);
     const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL};
     voxgi_result r = VOXGI_OK;
-    size_t i;
     int b, a;
-    if (!pos || !nrm || !irr || !direct) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
-    for (i = 0; r == VOXGI_OK && i < n; i++) {
-        double p[3], nl[3];
-        int lit = voxgi__inject_point(J, i, p, nl);
-        for (a = 0; a < 3; a++) {
-            pos[3 * i + (size_t)a] = (float)(p[a] - 0.8660254037844386 * g->voxel_size * nl[a]); /* back to the centre */
-            nrm[3 * i + (size_t)a] = lit ? (float)nl[a] : (a == 1); /* no normal: gathers nothing (albedo x 0), below */
-            direct[3 * i + (size_t)a] = J->rgba[4 * J->index[i] + (size_t)a];
-        }
-    }
+    if (!group || !direct) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
+    if (r == VOXGI_OK) r = voxgi__bounce_groups(ctx, J, n, desc->gather_block, group, &pos, &nrm, &ng);
+    if (r == VOXGI_OK && !(irr = (float *)voxgi__alloc_array(ctx, ng ? ng : 1, 12, 0)))
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
+    for (i = 0; r == VOXGI_OK && i < n; i++)
+        for (a = 0; a < 3; a++) direct[3 * i + (size_t)a] = J->rgba[4 * J->index[i] + (size_t)a];
     for (b = 1; r == VOXGI_OK && b < desc->bounces; b++) {
         voxgi_volume *next = NULL;
         voxgi_radiance_source source = {NULL, NULL};
         source.volume = *vol;
-        r = voxgi_cone_trace(ctx, &source, &desc->gather, n, pos, nrm, irr, NULL);
-        for (i = 0; r == VOXGI_OK && i < n; i++) {
+        if (voxgi__cancelled(ctx, (double)(b - 1) / (desc->bounces - 1), "light injection", "bounces among the voxels")) r = VOXGI_ERR_CANCELLED;
+        if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, &source, &desc->gather, ng, pos, nrm, irr, NULL);
+        for (i = 0; r == VOXGI_OK && i < n; i++) { /* a voxel without a normal only emits: it keeps its direct light */
             float *o = J->rgba + 4 * J->index[i];
-            double p[3], nl[3];
-            int lit = voxgi__inject_point(J, i, p, nl);
             for (a = 0; a < 3; a++)
-                o[a] = direct[3 * i + (size_t)a] + (lit ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / VOXGI__PI * irr[3 * i + (size_t)a]) : 0.0f);
+                o[a] = direct[3 * i + (size_t)a] +
+                       (group[i] != SIZE_MAX ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / VOXGI__PI * irr[3 * group[i] + (size_t)a]) : 0.0f);
         }
         slots[VOXGI__RADIANCE_SLOT] = J->rgba;
         if (r == VOXGI_OK) r = voxgi__volume_new(ctx, g, &desc->volume, VOXGI_ATTRIBUTE_RADIANCE, &next);
@@ -7914,6 +8013,7 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
         if (r == VOXGI_OK) { voxgi_volume_destroy(ctx, *vol); *vol = next; }
         else voxgi_volume_destroy(ctx, next);
     }
+    voxgi__free(ctx, group);
     voxgi__free(ctx, pos);
     voxgi__free(ctx, nrm);
     voxgi__free(ctx, irr);
@@ -7921,11 +8021,14 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
     return r;
 }
 
-/* Every default of a voxgi_inject_desc: 16 points per area light and on the emitters. */
+/* Every default of a voxgi_inject_desc: 16 points per area light and on the emitters, bounces
+   gathered with 4 cones per 4^3 block. */
 static voxgi_inject_desc voxgi__inject_defaults(const voxgi_inject_desc *in)
 {
     voxgi_inject_desc d = *in;
     if (!d.samples) d.samples = 16;
+    if (!d.gather_block) d.gather_block = 4;
+    if (!d.gather.cones) d.gather.cones = 4;
     return d;
 }
 
@@ -7952,8 +8055,9 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     resolved = voxgi__inject_defaults(desc_in);
     if ((vx->info.attributes & (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL)) != (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light injection needs voxels with ALBEDO and NORMAL (they hold 0x%x)", vx->info.attributes);
-    if (desc->samples < 0 || desc->bounces < 0 || desc->bounces > 64)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d (0..64)", desc->samples, desc->bounces);
+    if (desc->samples < 0 || desc->bounces < 0 || desc->bounces > 64 || desc->gather_block < 1 || desc->gather_block > 64)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d (0..64), gather block %d (1..64)", desc->samples, desc->bounces,
+                           desc->gather_block);
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     r = voxgi__lights_build(ctx, scene, &tr, &Ls);
@@ -8377,7 +8481,8 @@ static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *s
     id.seed = desc->seed;
     id.shadow_rays = desc->shadow_rays;
     id.bounces = desc->bounces;
-    id.gather = desc->cones;
+    id.gather = desc->bounce_cones;
+    id.gather_block = desc->bounce_block;
     t1 = voxgi__now_ms();
     r = voxgi_fit_grid(ctx, scene, &fit, &xd.grid);
     if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &xd, vox);

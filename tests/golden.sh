@@ -21,13 +21,14 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 out=$tmp/sums
 
-# JSON with the machine-dependent values removed: timings (*ms), threads, renderer, file names.
+# JSON with the machine-dependent values removed: timings (ms, *_ms), threads, renderer, file names
+# (the errors, rel_rmse and rms, stay).
 strip_json() {
-    sed -E -e 's/"[a-z_]*ms":[-0-9.e+]+,?//g' -e 's/"(threads|renderer|output)":("[^"]*"|[0-9]+),?//g'
+    sed -E -e 's/"([a-z_]*_)?ms":[-0-9.e+]+,?//g' -e 's/"(threads|renderer|output)":("[^"]*"|[0-9]+),?//g'
 }
 # report CSVs without the columns that hold or derive from timings.
 strip_csv() {
-    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) keep[i] = ($i !~ /ms|speedup|pareto/) }
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) keep[i] = ($i !~ /(^|_)ms($|_)|speedup|pareto/) }
              { line = ""; for (i = 1; i <= NF; i++) if (keep[i]) line = line $i ","; print line }'
 }
 sum() { sha256sum | cut -c1-64; }

@@ -6,6 +6,7 @@
 #include "../voxgi.h"
 #include "fixtures.h"
 #include "cone_points.h"
+#include <ctype.h>
 
 static voxgi_method g_method; /* what compare() runs */
 static voxgi_solid_mode g_solid_mode;
@@ -744,14 +745,18 @@ static void test_gl_raster_geometry_equals_cpu(void)
     g_geometry = 0;
 }
 
+/* The GL backend's buffer hand-over and its storage limit (which backend AUTO picks:
+   test_gl_auto_backend). */
 static void test_gl_interop_and_backends(void)
 {
     voxgi_context *ctx;
     voxgi_info info;
     if (!have_gl()) return;
-    ctx = make_ctx(VOXGI_BACKEND_AUTO, 0);
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
+    TH_CHECK(ctx != NULL, "GL refused a GL 4.5 context");
+    if (!ctx) return;
     voxgi_query_info(ctx, &info);
-    TH_CHECK(info.backend == VOXGI_BACKEND_GL, "AUTO with a GL 4.5 context picked %s", voxgi_backend_name(info.backend));
+    TH_CHECK(info.backend == VOXGI_BACKEND_GL, "GL asked for, %s given", voxgi_backend_name(info.backend));
     TH_CHECK(strstr(info.gl_version, "4.") != NULL, "GL version '%s'", info.gl_version);
     {
         vxt_shape m;
@@ -800,6 +805,103 @@ static void test_gl_plain_loader(void)
     voxgi_query_info(ctx, &info);
     TH_CHECK(info.backend == VOXGI_BACKEND_GL && info.gl_renderer[0], "plain loader: backend %s", voxgi_backend_name(info.backend));
     voxgi_destroy(ctx);
+}
+
+/* A loader whose glGetString names g_fake_renderer as GL_RENDERER (0x1F01): AUTO's choice
+   on a renderer this machine does not have. */
+static const char *g_fake_renderer;
+static vxt_gl__get_string_fn g_real_get_string;
+static const unsigned char *fake_get_string(unsigned name)
+{
+    return name == 0x1F01 ? (const unsigned char *)g_fake_renderer : g_real_get_string(name);
+}
+static voxgi_gl_proc loader_fake_renderer(const char *name, void *user)
+{
+    if (strcmp(name, "glGetString") == 0) return (voxgi_gl_proc)fake_get_string;
+    return vxt_gl_get_proc(name, user);
+}
+
+/* 1 when s contains what, ignoring ASCII case. */
+static int contains_nocase(const char *s, const char *what)
+{
+    size_t i, j;
+    for (i = 0; s[i]; i++) {
+        for (j = 0; what[j] && tolower((unsigned char)s[i + j]) == tolower((unsigned char)what[j]); j++) {}
+        if (!what[j]) return 1;
+    }
+    return 0;
+}
+
+/* AUTO takes GL unless its renderer is a software rasterizer on the CPU's own cores (llvmpipe
+   here), where the CPU backend is faster: then it picks the CPU and its log says why. GL asked
+   for is GL all the same, and says it is software. */
+static void test_gl_auto_backend(void)
+{
+    const char *renderer;
+    voxgi_desc d;
+    voxgi_context *ctx = NULL;
+    voxgi_info info;
+    int software;
+    if (!have_gl()) return;
+    renderer = vxt_gl_renderer(g_gl);
+    software = contains_nocase(renderer, "llvmpipe") || contains_nocase(renderer, "softpipe") || contains_nocase(renderer, "swiftshader") ||
+               contains_nocase(renderer, "software rasterizer") || contains_nocase(renderer, "basic render driver");
+    ctx_desc(&d, VOXGI_BACKEND_GL);
+    d.logger.func = keep_log;
+    TH_CHECK(voxgi_create(&d, &ctx) == VOXGI_OK, "GL refused %s", renderer);
+    voxgi_query_info(ctx, &info);
+    TH_CHECK(info.backend == VOXGI_BACKEND_GL && strcmp(info.gl_renderer, renderer) == 0 && info.gl_software == software,
+             "GL: backend %s, renderer '%s', software %d", voxgi_backend_name(info.backend), info.gl_renderer, info.gl_software);
+    TH_CHECK(strstr(g_log, "backend gl: GL") && (!software || strstr(g_log, "software rasterizer")), "GL log: %s", g_log);
+    voxgi_destroy(ctx);
+
+    d.backend = VOXGI_BACKEND_AUTO;
+    TH_CHECK(voxgi_create(&d, &ctx) == VOXGI_OK, "AUTO failed");
+    voxgi_query_info(ctx, &info);
+    TH_CHECK(info.backend == (software ? VOXGI_BACKEND_CPU : VOXGI_BACKEND_GL), "AUTO on %s picked %s", renderer, voxgi_backend_name(info.backend));
+    TH_CHECK(strcmp(info.gl_renderer, renderer) == 0 && strstr(info.gl_version, "4.") && info.gl_software == software,
+             "AUTO: renderer '%s', version '%s', software %d", info.gl_renderer, info.gl_version, info.gl_software);
+    if (software)
+        TH_CHECK(strstr(g_log, "backend auto: CPU") && strstr(g_log, renderer) && strstr(g_log, "software rasterizer") && strstr(g_log, "VOXGI_BACKEND_GL"),
+                 "AUTO's log does not say why: %s", g_log);
+    else TH_CHECK(strstr(g_log, "backend auto: GL"), "AUTO's log: %s", g_log);
+    if (info.backend == VOXGI_BACKEND_CPU) { /* and the CPU it picked works, with the GL context still current */
+        vxt_shape m;
+        voxgi_mesh mesh;
+        voxgi_scene sc;
+        voxgi_voxelize_desc vd;
+        voxgi_voxels *vox = NULL;
+        unsigned name = 0;
+        vxt_shape_sphere(&m, 8, 6, 1.0, 0, 0, 0);
+        scene_of_shape(&sc, &mesh, &m);
+        memset(&vd, 0, sizeof vd);
+        cubic(&vd.grid, -1.2, 2.4, 16);
+        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "AUTO (CPU) voxelize: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_voxels_gl_buffer(ctx, vox, &name) != VOXGI_OK, "CPU voxels gave a GL buffer");
+        voxgi_voxels_destroy(ctx, vox);
+        vxt_shape_free(&m);
+    }
+    voxgi_destroy(ctx);
+
+    /* renderers this machine may not have, through a loader that renames its own */
+    {
+        static const struct { const char *renderer; int software; } cases[] = {
+            {"SwiftShader Device (Subzero)", 1}, {"D3D12 (Microsoft Basic Render Driver)", 1}, {"A Test GPU (hardware)", 0}};
+        size_t k;
+        g_real_get_string = (vxt_gl__get_string_fn)vxt_gl_get_proc("glGetString", g_gl);
+        for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+            ctx_desc(&d, VOXGI_BACKEND_AUTO);
+            d.gl_get_proc_address_user = loader_fake_renderer;
+            d.logger.func = keep_log;
+            g_fake_renderer = cases[k].renderer;
+            TH_CHECK(voxgi_create(&d, &ctx) == VOXGI_OK, "AUTO on '%s' failed", cases[k].renderer);
+            voxgi_query_info(ctx, &info);
+            TH_CHECK(info.backend == (cases[k].software ? VOXGI_BACKEND_CPU : VOXGI_BACKEND_GL) && info.gl_software == cases[k].software &&
+                         strcmp(info.gl_renderer, cases[k].renderer) == 0 && strstr(g_log, cases[k].renderer),
+                     "AUTO on '%s': backend %s, software %d, log %s", cases[k].renderer, voxgi_backend_name(info.backend), info.gl_software, g_log);
+            voxgi_destroy(ctx);
+        }
+    }
 }
 
 static void test_gl_missing_function_and_fallback(void)
@@ -1238,6 +1340,7 @@ int main(void)
     TH_RUN(test_gl_raster_attributes_equal_cpu);
     TH_RUN(test_gl_interop_and_backends);
     TH_RUN(test_gl_plain_loader);
+    TH_RUN(test_gl_auto_backend);
     TH_RUN(test_gl_missing_function_and_fallback);
     gl_close();
     return th_finish();

@@ -2,8 +2,9 @@
    the volume mip filters against parents worked out by hand (one parent, one level, a whole
    chain on the CPU and on GL), the diffuse cone set (directions, distribution, weights),
    Lambert's polygon formula against the lights' own samples, the exact area light of
-   cone-traced images, GL octree footprints and shader error mapping. Random numbers come from
-   fixtures.h's fx_rng, one generator seeded in each test.
+   cone-traced images, GL octree footprints, shader error mapping and which GL renderers are
+   software rasterizers. Random numbers come from fixtures.h's fx_rng, one generator seeded in
+   each test.
 
    They live here, apart, because those helpers are static inside the implementation: this program
    defines VOXGI_IMPLEMENTATION and compiles the implementation itself, while every other test
@@ -769,6 +770,24 @@ static void test_gl_shader_error_mapping(void)
     voxgi_destroy(ctx);
 }
 
+/* Which GL renderers AUTO turns down for the CPU: the software rasterizers, by name in any case,
+   and nothing else (real renderer strings of GPUs, and look-alikes). */
+static void test_gl_software_renderers(void)
+{
+    static const char *const software[] = {"llvmpipe (LLVM 15.0.6, 256 bits)", "LLVMPIPE", "softpipe", "Gallium 0.4 on softpipe",
+                                           "Software Rasterizer", "Mesa X11 swrast", "Google SwiftShader", "SwiftShader Device (Subzero)",
+                                           "ANGLE (Google, Vulkan 1.3.0 (SwiftShader Device (Subzero) (0x0000C0DE)), SwiftShader driver)",
+                                           "D3D12 (Microsoft Basic Render Driver)", "microsoft basic render driver"};
+    static const char *const hardware[] = {"", "NVIDIA GeForce RTX 3080/PCIe/SSE2", "AMD Radeon RX 6800 XT (radeonsi, navi21, LLVM 15.0.7, DRM 3.49)",
+                                           "Mesa Intel(R) UHD Graphics 620 (KBL GT2)", "Apple M1", "D3D12 (NVIDIA GeForce RTX 3060)",
+                                           "virgl (Mesa Intel(R) Xe Graphics)", "llvm pipe", "Soft Rasterizer", "swift shader"};
+    size_t k;
+    for (k = 0; k < sizeof software / sizeof software[0]; k++)
+        TH_CHECK(voxgi__gl_is_software(software[k]), "'%s' not taken for a software rasterizer", software[k]);
+    for (k = 0; k < sizeof hardware / sizeof hardware[0]; k++)
+        TH_CHECK(!voxgi__gl_is_software(hardware[k]), "'%s' taken for a software rasterizer", hardware[k]);
+}
+
 int main(void)
 {
     gl_open();
@@ -782,6 +801,7 @@ int main(void)
     TH_RUN(test_gl_svo_equals_cpu);
     TH_RUN(test_gl_volume_mips_by_hand);
     TH_RUN(test_gl_shader_error_mapping);
+    TH_RUN(test_gl_software_renderers);
     gl_close();
     return th_finish();
 }

@@ -5,6 +5,7 @@
 #define _XOPEN_SOURCE 700 /* popen, mkdtemp, realpath */
 #include "../voxgi.h"
 #include "harness.h"
+#include <math.h>
 #include <stdlib.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -372,6 +373,157 @@ static void test_compare_black_reference(void)
     TH_CHECK(rc == 0 && strstr(out, "\"rel_rmse\":null,\"rms\":") && !strstr(out, "inf"), "leak box: %s", out);
 }
 
+/* A PFM of w x h pixels into rgb (rows from the top, as the tool's images are); 1 on success. */
+static int read_pfm(const char *path, int w, int h, float *rgb)
+{
+    FILE *f = fopen(path, "rb");
+    int fw = 0, fh = 0, y, ok;
+    if (!f) return 0;
+    ok = fscanf(f, "PF %d %d -1.0", &fw, &fh) == 2 && fgetc(f) == '\n' && fw == w && fh == h;
+    for (y = h - 1; ok && y >= 0; y--) ok = fread(rgb + 3 * (size_t)w * (size_t)y, 4, 3 * (size_t)w, f) == 3 * (size_t)w;
+    fclose(f);
+    return ok;
+}
+
+/* The JSON's "mean":[r,g,b]; 1 when found. */
+static int json_mean(const char *json, double mean[3])
+{
+    const char *at = strstr(json, "\"mean\":[");
+    char *end;
+    int i;
+    if (!at) return 0;
+    at += 8;
+    for (i = 0; i < 3; i++) {
+        mean[i] = strtod(at, &end);
+        if (end == at) return 0;
+        at = end + 1;
+    }
+    return 1;
+}
+
+/* --compare's error leaves out every pixel within 3 (Chebyshev) of a pixel whose centre sees an
+   emitter: masked_pixels is the count of the test's own dilation of the library's G-buffer (the
+   Cornell box's light), 0 where the camera sees no emitter (two-spheres), and rel_rmse is the
+   test's own relative RMSE over the kept pixels of the written image and of the reference rendered
+   alone with the seed --compare uses (the image's seed + 1000003). Outside the mask neither
+   holds any of the emission the camera sees, so the images with it give the same error there. */
+static void test_compare_masks_emitters(void)
+{
+    enum { W = 64, H = 64 };
+    static char out[8192];
+    static float img[W * H * 3], ref[W * H * 3];
+    static uint32_t tri[W * H];
+    static unsigned char sees[W * H], masked[W * H];
+    char pfm[512], rpfm[512], args[1200];
+    voxgi_context *ctx = NULL;
+    voxgi_desc d;
+    voxgi_builtin_scene bs;
+    voxgi_camera cam;
+    double sq = 0, sum = 0, sq_all = 0, sum_all = 0, mine, all, theirs;
+    int x, y, dx, dy, count = 0, kept = 0, c;
+    snprintf(pfm, sizeof pfm, "%s/m.pfm", tmpdir);
+    snprintf(rpfm, sizeof rpfm, "%s/mref.pfm", tmpdir);
+    snprintf(args, sizeof args, "render cornell-box --method vct --backend cpu --res 16 --cones 6 --size %d %d --spp 2 --compare 8 --json -o %s", W, H, pfm);
+    TH_CHECK(run(args, out, sizeof out) == 0, "vct --compare: %s", out);
+    theirs = json_number(out, "rel_rmse");
+    TH_CHECK(json_number(out, "masked_pixels") > 0, "no pixel masked on the Cornell box: %s", out);
+    memset(&d, 0, sizeof d);
+    d.backend = VOXGI_BACKEND_CPU;
+    voxgi_create(&d, &ctx);
+    voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
+    cam = bs.camera;
+    cam.width = W;
+    cam.height = H;
+    TH_CHECK(voxgi_gbuffer_render(ctx, &bs.scene, &cam, NULL, NULL, tri) == VOXGI_OK, "G-buffer");
+    for (x = 0; x < W * H; x++) { /* the built-in box is one mesh: its triangle ids are the scene's */
+        const voxgi_mesh *m = &bs.scene.meshes[0];
+        const float *e = tri[x] == UINT32_MAX ? NULL : bs.scene.materials[m->material_ids ? m->material_ids[tri[x]] : m->material].emission;
+        sees[x] = e && (e[0] > 0 || e[1] > 0 || e[2] > 0);
+    }
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            masked[y * W + x] = 0;
+            for (dy = -3; dy <= 3; dy++)
+                for (dx = -3; dx <= 3; dx++)
+                    if (y + dy >= 0 && y + dy < H && x + dx >= 0 && x + dx < W && sees[(y + dy) * W + x + dx]) masked[y * W + x] = 1;
+            count += masked[y * W + x];
+        }
+    TH_CHECK(count > 0 && count < W * H && json_number(out, "masked_pixels") == count, "masked_pixels %g, the test's own dilation %d: %s",
+             json_number(out, "masked_pixels"), count, out);
+    snprintf(args, sizeof args, "render cornell-box --size %d %d --spp 8 --seed 1000004 --json -o %s", W, H, rpfm);
+    TH_CHECK(run(args, out, sizeof out) == 0, "reference: %s", out);
+    TH_CHECK(read_pfm(pfm, W, H, img) && read_pfm(rpfm, W, H, ref), "PFMs");
+    for (x = 0; x < W * H; x++)
+        for (c = 0; c < 3; c++) {
+            double dd = (double)img[3 * x + c] - ref[3 * x + c];
+            sq_all += dd * dd;
+            sum_all += ref[3 * x + c];
+            if (masked[x]) continue;
+            sq += dd * dd;
+            sum += ref[3 * x + c];
+            kept += c == 0;
+        }
+    mine = sqrt(sq / (3.0 * kept)) / (sum / (3.0 * kept));
+    all = sqrt(sq_all / (3.0 * W * H)) / (sum_all / (3.0 * W * H));
+    TH_CHECK(fabs(theirs - mine) <= 1e-5 * mine, "rel_rmse %.6g, the test's own over the kept pixels %.6g (over every pixel %.6g)", theirs, mine, all);
+    TH_CHECK(fabs(all - mine) > 0.1 * mine, "the mask makes no difference here (%.6g with it, %.6g without): the test proves nothing", mine, all);
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+    snprintf(args, sizeof args, "render two-spheres --method vct --backend cpu --res 16 --cones 6 --size 32 32 --spp 2 --compare 4 --json -o %s", pfm);
+    TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "\"masked_pixels\":0,") && json_number(out, "rel_rmse") > 0,
+             "two-spheres: no emitter in view, nothing masked: %s", out);
+    /* the report measures by the same rule: its table says how many pixels it left out */
+    snprintf(args, sizeof args, "report vct --scenes cornell-box --size %d --spp 64 --res 8 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --out %s/rm",
+             W, tmpdir);
+    TH_CHECK(run(args, out, sizeof out) == 0, "report: %s", out);
+    snprintf(args, sizeof args, "%d of %d pixels near an emitter left out", count, W * H);
+    TH_CHECK(strstr(out, args) != NULL, "the report's mask is not render's (%s): %s", args, out);
+}
+
+/* --cornell-mesh: the Cornell box with a mesh for its tall block (its 10 triangles out, the mesh's
+   in), rendered by both methods with a mean radiance close to the box's own; a scene other than
+   cornell-box is a usage error, a mesh that cannot be read a failure; the report adds the scene. */
+static void test_cornell_mesh(void)
+{
+    static char out[16384];
+    char pfm[512], args[1200], path[600];
+    double box[3], with[3];
+    FILE *f;
+    int i, rc, rows = 0;
+    snprintf(pfm, sizeof pfm, "%s/cm.pfm", tmpdir);
+    snprintf(args, sizeof args, "render cornell-box --size 16 16 --spp 32 --json -o %s", pfm);
+    TH_CHECK(run(args, out, sizeof out) == 0 && json_mean(out, box), "box: %s", out);
+    snprintf(args, sizeof args, "render cornell-box --cornell-mesh builtin:sphere --size 16 16 --spp 32 --json -o %s", pfm);
+    rc = run(args, out, sizeof out);
+    /* the box's 32 triangles less the tall block's 10, and the sphere's 96 x 64 x 2 */
+    TH_CHECK(rc == 0 && json_number(out, "triangles") == 22 + 96 * 64 * 2 && strstr(out, "\"scene\":\"cornell-box+builtin:sphere\""), "sphere: exit %d: %s", rc, out);
+    TH_CHECK(json_mean(out, with), "mean: %s", out);
+    for (i = 0; i < 3; i++)
+        TH_CHECK(with[i] > 0.8 * box[i] && with[i] < 1.25 * box[i], "channel %d: mean %g with the sphere, %g with the block", i, with[i], box[i]);
+    snprintf(args, sizeof args, "render cornell-box --cornell-mesh builtin:sphere --method vct --backend cpu --res 16 --cones 6 --size 16 16 --spp 2 --json -o %s", pfm);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 0 && json_mean(out, with) && json_number(out, "voxels") > 0, "vct: exit %d: %s", rc, out);
+    for (i = 0; i < 3; i++) TH_CHECK(with[i] > 0.5 * box[i] && with[i] < 2 * box[i], "vct channel %d: mean %g, the box's %g", i, with[i], box[i]);
+    rc = run("render two-spheres --cornell-mesh builtin:sphere -o x.png", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--cornell-mesh") && count_of(out, "\n") == 1, "another scene: exit %d: %s", rc, out);
+    rc = run("render builtin:cube --cornell-mesh builtin:sphere -o x.png", out, sizeof out);
+    TH_CHECK(rc == 2, "a mesh scene: exit %d: %s", rc, out);
+    rc = run("render cornell-box --cornell-mesh /nonexistent/mesh.obj -o x.png", out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "/nonexistent/mesh.obj") && count_of(out, "\n") == 1, "missing mesh: exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "report vct --scenes two-spheres --cornell-mesh builtin:nothing --size 8 --spp 64 --res 8 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --out %s/rc", tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "builtin:nothing") && !strstr(out, "two-spheres ("), "report, unknown shape (before any work): exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "report vct --scenes two-spheres --cornell-mesh builtin:sphere --size 8 --spp 64 --res 8 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --out %s/rc", tmpdir);
+    TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "cornell-box+builtin:sphere ("), "report: %s", out);
+    snprintf(path, sizeof path, "%s/rc/vct.csv", tmpdir);
+    if ((f = fopen(path, "r")) != NULL) {
+        char line[1024];
+        while (fgets(line, sizeof line, f)) rows += strncmp(line, "cornell-box+builtin:sphere,", 27) == 0;
+        fclose(f);
+    }
+    TH_CHECK(rows == 1, "the report's CSV has %d rows of the Cornell box with the sphere", rows);
+}
+
 /* Every command parses its options from one table: an unknown option, a missing value and a bad
    value are each named, in one line, with exit status 2 and a pointer to the command's --help. */
 static void test_usage_errors_named(void)
@@ -517,6 +669,8 @@ int main(int argc, char **argv)
     TH_RUN(test_render_command);
     TH_RUN(test_vct_and_report_commands);
     TH_RUN(test_compare_black_reference);
+    TH_RUN(test_compare_masks_emitters);
+    TH_RUN(test_cornell_mesh);
     TH_RUN(test_usage_errors_named);
     TH_RUN(test_output_extensions);
     TH_RUN(test_version_and_exit_codes_documented);

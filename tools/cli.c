@@ -459,15 +459,6 @@ double cli_median(double *v, int n)
     return v[n / 2];
 }
 
-double cli_rms_difference(const float *a, const float *ref, size_t n, double *ref_mean)
-{
-    double sq = 0, sum = 0;
-    size_t i;
-    for (i = 0; i < n; i++) { sq += ((double)a[i] - ref[i]) * ((double)a[i] - ref[i]); sum += ref[i]; }
-    *ref_mean = sum / (double)n;
-    return sqrt(sq / (double)n);
-}
-
 voxgi_result cli_fit_grid(voxgi_context *ctx, const voxgi_scene *scene, int res, int per_axis, double pad, voxgi_grid *out)
 {
     voxgi_fit_desc fit;

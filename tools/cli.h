@@ -172,11 +172,49 @@ void cli_close_mesh_and_context(cli_session *s, cli_mesh *t, cli_context *c);
 /* ------------------------------------------------------------------ numbers */
 /* The median of v[0..n) (sorts v). */
 double cli_median(double *v, int n);
-/* The RMS difference of a and ref over every value, and ref's mean: the relative RMSE is their
-   quotient (render prints it even for a black reference, the report 0 then). */
-double cli_rms_difference(const float *a, const float *ref, size_t n, double *ref_mean);
 /* A grid of res^3 voxels (per_axis: only as long as the scene needs) fitted around the scene. */
 voxgi_result cli_fit_grid(voxgi_context *ctx, const voxgi_scene *scene, int res, int per_axis, double pad, voxgi_grid *out);
+
+/* ------------------------------------------------------------------ what render --compare and report vct measure (cli_measure.c) */
+/* The one rule for an image's error against a reference: the relative RMSE (the RMS difference
+   over pixels and channels / the reference's mean over the same) over the pixels farther than
+   CLI_EMITTER_MARGIN pixels (Chebyshev distance: outside the 7 x 7 square around) from any pixel
+   whose centre sees an emitter, both images rendered without the emission the camera sees
+   (hide_emitters = 1). The anti-aliased edges of the emitters would otherwise carry most of the
+   squared error. "Sees an emitter": the CPU's G-buffer (voxgi_gbuffer_render, the same camera)
+   names a triangle whose material has emission > 0, on any backend. */
+#define CLI_EMITTER_MARGIN 3
+typedef struct cli_error_mask {
+    unsigned char *masked;    /* width x height, rows from the top; 1: left out */
+    int width, height;
+    size_t masked_pixels;
+} cli_error_mask;
+/* The mask of scene seen by camera; 0, or says why and returns 1. */
+int cli_error_mask_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, cli_error_mask *m);
+void cli_error_mask_free(cli_error_mask *m);
+/* The relative RMSE of img against ref (3 floats per pixel) over the pixels m keeps; NaN when no
+   pixel is kept or the reference is black there. rms and ref_mean (may be NULL): its parts. */
+double cli_masked_error(const cli_error_mask *m, const float *img, const float *ref, double *rms, double *ref_mean);
+
+/* The built-in Cornell box with a mesh in place of its tall block: the box's triangles but the
+   block's (found by geometry: the triangles that do not emit and lie inside the room, the highest
+   of them), and the mesh (file or built-in shape, +Y up as it comes) scaled uniformly and moved
+   so that its bounding box fits inside the block's (width, depth and height) and stands on the
+   floor at the centre of the block's footprint, in the block's material. Its view is the box's. */
+typedef struct cli_cornell_mesh {
+    voxgi_scene scene;        /* two meshes: the box without the block, the mesh */
+    voxgi_builtin_scene bs;
+    cli_mesh mesh;
+    char name[288];           /* "cornell-box+NAME", NAME the file's name without directory and extension */
+    double scale, block_lo[3], block_hi[3];
+    uint32_t material;        /* the block's */
+    voxgi_mesh meshes[2];
+    float *positions;
+    uint32_t *box_indices, *box_materials;
+} cli_cornell_mesh;
+/* 0, or says why and returns 1. */
+int cli_cornell_mesh_open(cli_session *s, voxgi_context *ctx, const char *mesh, cli_cornell_mesh *c);
+void cli_cornell_mesh_close(voxgi_context *ctx, cli_cornell_mesh *c);
 
 /* ------------------------------------------------------------------ commands, one file each */
 int cmd_voxelize(int argc, char **argv);

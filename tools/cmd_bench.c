@@ -314,7 +314,7 @@ static int bench_run(cli_session *s, const bench_args *a)
     printf("Voxelization, N^3 grids fitted to each mesh; median of %d runs; CPU nT = %d threads.\n", a->runs, ci.thread_count);
     if (ctx[2].vx) {
         voxgi_query_info(ctx[2].vx, &ci);
-        printf("GL: %s, %s%s\n", ci.gl_version, ci.gl_renderer, strstr(ci.gl_renderer, "llvmpipe") ? " - a software rasteriser on the CPU: not GPU timings" : "");
+        printf("GL: %s, %s%s\n", ci.gl_version, ci.gl_renderer, ci.gl_software ? " - a software rasteriser on the CPU: not GPU timings" : "");
     }
     if (csv) fprintf(csv, "mesh,triangles,n,method,backend,ms,voxels,reference,missed,extra,inside_wrong_percent\n");
     if (!(b.cells = (bench_cell *)calloc((size_t)a->nmesh * (size_t)b.ncols * (size_t)a->nchosen, sizeof *b.cells))) {

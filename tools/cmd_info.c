@@ -5,7 +5,9 @@
 static const char *const info_help =
     "usage: voxgi info [--gl auto|egl|osmesa] [--json]\n"
     "Prints the version, the compiled-in capabilities, the CPU threads and, for each way of making\n"
-    "a headless GL context, whether a GL 4.5 context works and which renderer it has.\n";
+    "a headless GL context, whether a GL 4.5 context works and which renderer it has. A software\n"
+    "rasteriser (llvmpipe, SwiftShader, ...) runs on the CPU's own cores: --backend auto then\n"
+    "picks the CPU, which is faster there.\n";
 
 /* s as the inside of a JSON string: why a context failed may quote a driver or a shader log */
 static void json_text(const char *s)
@@ -46,13 +48,13 @@ int cmd_info(int argc, char **argv)
         ok = cli_context_try(&s, &c, VOXGI_BACKEND_GL, kinds[k], 0, 0) == 0;
         if (ok) voxgi_query_info(c.vx, &ci);
         if (common.json) {
-            printf("%s{\"context\":\"%s\",\"ok\":%s,\"version\":\"%s\",\"renderer\":\"%s\",\"error\":\"", listed++ ? "," : "", k ? "osmesa" : "egl",
-                   ok ? "true" : "false", ok ? ci.gl_version : "", ok ? ci.gl_renderer : "");
+            printf("%s{\"context\":\"%s\",\"ok\":%s,\"version\":\"%s\",\"renderer\":\"%s\",\"software\":%s,\"error\":\"", listed++ ? "," : "",
+                   k ? "osmesa" : "egl", ok ? "true" : "false", ok ? ci.gl_version : "", ok ? ci.gl_renderer : "", ok && ci.gl_software ? "true" : "false");
             json_text(ok ? "" : s.error);
             printf("\"}");
         } else if (ok)
             printf("gl (%s): %s, %s%s\n", k ? "osmesa" : "egl", ci.gl_version, ci.gl_renderer,
-                   strstr(ci.gl_renderer, "llvmpipe") ? " (software rasteriser: timings are not GPU timings)" : "");
+                   ci.gl_software ? " (software rasteriser on the CPU's cores: --backend auto picks the CPU; GL timings are not GPU timings)" : "");
         else printf("gl (%s): not available: %s\n", k ? "osmesa" : "egl", s.error);
         if (ok) cli_context_close(&s, &c);
     }

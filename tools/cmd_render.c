@@ -11,20 +11,25 @@ static const char *const render_help =
     "Renders a built-in scene (cornell-box, two-spheres, leak-box, furnace) or a mesh file (OBJ+MTL:\n"
     "Kd is the albedo, Ke the emitted radiance) with the reference path tracer on the CPU. A PFM\n"
     "pixel is the mean linear radiance over the pixel's square; a PNG is that times --exposure,\n"
-    "clamped and sRGB encoded.\n";
+    "clamped and sRGB encoded. --compare's error: the relative RMSE over the pixels farther than 3\n"
+    "pixels from any pixel whose centre sees an emitter, both images without the emission the\n"
+    "camera sees.\n";
 
 typedef struct render_args {
     cli_common common;
-    const char *what, *out;
+    const char *what, *out, *cornell_mesh;
     int vct, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
+    int bounce_cones, bounce_block;
     int octree, octree_format, bricks, have_camera, have_sun;
     double step, camera[7], sun[4], exposure;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
 typedef struct render_scene {
+    const char *name;             /* in what is printed */
     voxgi_builtin_scene bs;
     cli_mesh tm;
+    cli_cornell_mesh cm;
     voxgi_scene with_sun;
     voxgi_light *lights;
     const voxgi_scene *scene;
@@ -49,7 +54,13 @@ static void mesh_camera(const cli_mesh *tm, voxgi_camera *cam)
 static int scene_open(cli_session *s, voxgi_context *ctx, const render_args *a, render_scene *rs, voxgi_reference_desc *d)
 {
     int i;
-    if (strchr(a->what, '.') == NULL && strncmp(a->what, "builtin:", 8) != 0) { /* a built-in scene */
+    rs->name = a->what;
+    if (a->cornell_mesh) { /* the Cornell box with the mesh for its tall block */
+        if (cli_cornell_mesh_open(s, ctx, a->cornell_mesh, &rs->cm)) return CLI_EXIT_FAILURE;
+        rs->scene = &rs->cm.scene;
+        rs->name = rs->cm.name;
+        d->camera = rs->cm.bs.camera;
+    } else if (strchr(a->what, '.') == NULL && strncmp(a->what, "builtin:", 8) != 0) { /* a built-in scene */
         if (voxgi_builtin_scene_create(ctx, a->what, &rs->bs) != VOXGI_OK) return cli_fail_lib(s, ctx, NULL);
         rs->scene = &rs->bs.scene;
         d->camera = rs->bs.camera;
@@ -88,19 +99,29 @@ static void scene_close(voxgi_context *ctx, render_scene *rs)
     free(rs->lights);
     voxgi_builtin_scene_destroy(ctx, &rs->bs);
     if (rs->tm.name[0]) cli_mesh_close(&rs->tm);
+    if (rs->cm.name[0]) cli_cornell_mesh_close(ctx, &rs->cm);
 }
 
+/* What --compare measured. */
+typedef struct render_compare {
+    double rmse;                  /* NaN: nothing to relate to (a black reference, or every pixel masked) */
+    double rms, ref_ms;
+    size_t masked, pixels;        /* pixels left out of the error, of all */
+} render_compare;
+
 /* --compare: the relative RMSE of the lighting against the reference with `compare` spp (rendered
-   with an independent seed), both without the emitters the camera sees (the same in both but for
-   the noise at their edges, which would swamp the lighting). */
+   with an independent seed) by the tools' one rule (cli_masked_error): both without the emission
+   the camera sees, and the pixels within 3 of one whose centre sees an emitter left out (the
+   noise at the emitters' edges would swamp the lighting). */
 static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene,
-                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, double *rmse, double *rms_out, double *ref_ms)
+                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, render_compare *cmp)
 {
     size_t n = (size_t)a->size[0] * (size_t)a->size[1] * 3;
     float *ref = (float *)malloc(n * 8), *mine = ref ? ref + n : NULL;
     voxgi_reference_desc rd = *d, dh = *d;
     voxgi_vct_desc vh = *vd;
     voxgi_reference_info ri;
+    cli_error_mask mask;
     rd.samples = a->compare;
     rd.seed = d->seed + 1000003; /* independent of the image's own noise */
     rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = 1;
@@ -109,19 +130,45 @@ static int compare_with_reference(cli_session *s, voxgi_context *ctx, const rend
         free(ref);
         return ref ? cli_fail_lib(s, ctx, "the reference") : cli_fail(s, "the reference: out of memory");
     }
-    {
-        double mean, rms = cli_rms_difference(mine, ref, n, &mean);
-        *rmse = mean > 0 ? rms / mean : NAN; /* a black reference (the leak box): no relative error, the RMS says it */
-        *rms_out = rms;
+    if (cli_error_mask_make(s, ctx, scene, &d->camera, &mask)) {
+        free(ref);
+        return CLI_EXIT_FAILURE;
     }
-    *ref_ms = ri.ms_bvh + ri.ms_render;
+    cmp->rmse = cli_masked_error(&mask, mine, ref, &cmp->rms, NULL); /* a black reference (the leak box): NaN, the RMS says it */
+    cmp->masked = mask.masked_pixels;
+    cmp->pixels = (size_t)a->size[0] * (size_t)a->size[1];
+    cmp->ref_ms = ri.ms_bvh + ri.ms_render;
+    cli_error_mask_free(&mask);
     free(ref);
     return 0;
 }
 
-static void print_result(const render_args *a, const voxgi_info *ci, const float *rgb, const voxgi_reference_desc *d,
-                         const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, double rmse, double rms,
-                         double ref_ms)
+/* The --compare line of the text output. */
+static void print_compare(const render_args *a, const voxgi_reference_desc *d, const render_compare *cmp)
+{
+    printf("against the reference (%d bounce%s, %d spp, %.1f ms): ", d->bounces, d->bounces == 1 ? "" : "s", a->compare, cmp->ref_ms);
+    if (cmp->masked == cmp->pixels) {
+        printf("no error measured: all %lu pixels are within %d of one that sees an emitter\n", (unsigned long)cmp->pixels, CLI_EMITTER_MARGIN);
+        return;
+    }
+    if (isfinite(cmp->rmse)) printf("relative RMSE %.2f%%", 100 * cmp->rmse);
+    else printf("the reference is black, RMS difference %.4g", cmp->rms);
+    printf(" (%lu of %lu pixels, those within %d of one that sees an emitter, left out)\n", (unsigned long)cmp->masked, (unsigned long)cmp->pixels,
+           CLI_EMITTER_MARGIN);
+}
+
+/* The --compare fields of the JSON output (rel_rmse null without a relative error). */
+static void print_compare_json(const render_compare *cmp)
+{
+    if (isfinite(cmp->rmse)) printf("\"rel_rmse\":%.6g,", cmp->rmse);
+    else printf("\"rel_rmse\":null,");
+    if (isfinite(cmp->rms)) printf("\"rms\":%.6g,", cmp->rms);
+    else printf("\"rms\":null,");
+    printf("\"masked_pixels\":%lu,\"reference_ms\":%.3f,", (unsigned long)cmp->masked, cmp->ref_ms);
+}
+
+static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const voxgi_reference_desc *d,
+                         const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, const render_compare *cmp)
 {
     double mean[3] = {0, 0, 0};
     size_t p;
@@ -130,39 +177,37 @@ static void print_result(const render_args *a, const voxgi_info *ci, const float
         for (i = 0; i < 3; i++) mean[i] += rgb[3 * p + (size_t)i];
     for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
     if (a->vct && a->common.json) {
-        char rel[32];
-        if (isfinite(rmse)) snprintf(rel, sizeof rel, "%.6g", rmse);
-        else snprintf(rel, sizeof rel, "null");
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
-               "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"rel_rmse\":%s,"
-               "\"rms\":%.6g,\"reference_ms\":%.3f,\"output\":\"%s\"}\n",
-               a->what, voxgi_backend_name(ci->backend), w, h, vd->resolution ? vd->resolution : 128, vd->cones.cones ? vd->cones.cones : 16, !vd->no_gi,
+               "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
+               name, voxgi_backend_name(ci->backend), w, h, vd->resolution ? vd->resolution : 128, vd->cones.cones ? vd->cones.cones : 16, !vd->no_gi,
                (unsigned long long)vinfo->voxels, vinfo->ms_voxelize, vinfo->ms_inject, vinfo->ms_octree, (unsigned long long)vinfo->radiance_bytes,
-               vinfo->ms_cones, vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2], rel, rms, ref_ms, a->out);
+               vinfo->ms_cones, vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2]);
+        if (a->compare) print_compare_json(cmp);
+        else printf("\"rel_rmse\":-1,\"rms\":0,\"reference_ms\":0.000,"); /* nothing compared */
+        printf("\"output\":\"%s\"}\n", a->out);
     } else if (a->vct) {
-        printf("%s: %d x %d cone-traced (%s%s%s), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, ", a->what, w, h, voxgi_backend_name(ci->backend),
+        printf("%s: %d x %d cone-traced (%s%s%s), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, ", name, w, h, voxgi_backend_name(ci->backend),
                ci->backend == VOXGI_BACKEND_GL ? ", " : "", ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "", (unsigned long long)vinfo->voxels,
                vinfo->ms_voxelize, vinfo->ms_inject);
         if (vd->octree) printf("octree %.1f ms, ", vinfo->ms_octree);
         printf("cones %.1f ms (over %.1f MB of %s), direct light %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n", vinfo->ms_cones,
                vinfo->radiance_bytes / 1e6, vd->octree ? "octree" : "volume", vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2], a->out);
-        if (a->compare && isfinite(rmse))
-            printf("against the reference (%d bounce%s, %d spp, %.1f ms): relative RMSE %.2f%%\n", d->bounces, d->bounces == 1 ? "" : "s", a->compare,
-                   ref_ms, 100 * rmse);
-        else if (a->compare)
-            printf("against the reference (%d bounce%s, %d spp, %.1f ms): the reference is black, RMS difference %.4g\n", d->bounces,
-                   d->bounces == 1 ? "" : "s", a->compare, ref_ms, rms);
-    } else if (a->common.json)
+        if (a->compare) print_compare(a, d, cmp);
+    } else if (a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"reference\",\"size\":[%d,%d],\"spp\":%d,\"bounces\":%d,\"seed\":%llu,\"triangles\":%lu,"
-               "\"bvh_nodes\":%lu,\"rays\":%llu,\"bvh_ms\":%.3f,\"render_ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],\"output\":\"%s\"}\n",
-               a->what, w, h, d->samples, d->bounces, (unsigned long long)d->seed, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes,
-               (unsigned long long)info->rays, info->ms_bvh, info->ms_render, mean[0], mean[1], mean[2], a->out);
-    else
+               "\"bvh_nodes\":%lu,\"rays\":%llu,\"bvh_ms\":%.3f,\"render_ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
+               name, w, h, d->samples, d->bounces, (unsigned long long)d->seed, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes,
+               (unsigned long long)info->rays, info->ms_bvh, info->ms_render, mean[0], mean[1], mean[2]);
+        if (a->compare) print_compare_json(cmp);
+        printf("\"output\":\"%s\"}\n", a->out);
+    } else {
         printf("%s: %d x %d, %d spp, bounces %d: %lu triangles, BVH %lu nodes in %.1f ms, %llu rays in %.1f ms (%.2f Mrays/s, CPU); "
                "mean radiance %.4g %.4g %.4g -> %s\n",
-               a->what, w, h, d->samples, d->bounces, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes, info->ms_bvh,
+               name, w, h, d->samples, d->bounces, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes, info->ms_bvh,
                (unsigned long long)info->rays, info->ms_render, info->ms_render > 0 ? (double)info->rays / info->ms_render / 1000 : 0.0, mean[0],
                mean[1], mean[2], a->out);
+        if (a->compare) print_compare(a, d, cmp);
+    }
 }
 
 static int render_run(cli_session *s, const render_args *a)
@@ -177,13 +222,14 @@ static int render_run(cli_session *s, const render_args *a)
     cli_common options = a->common;
     float *rgb = NULL;
     size_t bytes = (size_t)a->size[0] * (size_t)a->size[1] * 12;
-    double rmse = -1, rms = 0, ref_ms = 0;
+    render_compare cmp;
     int rc = CLI_EXIT_FAILURE;
     memset(&d, 0, sizeof d);
     memset(&info, 0, sizeof info);
     memset(&vd, 0, sizeof vd);
     memset(&vinfo, 0, sizeof vinfo);
     memset(&rs, 0, sizeof rs);
+    memset(&cmp, 0, sizeof cmp);
     d.bounces = a->bounces;
     d.samples = a->spp;
     d.seed = (uint64_t)a->seed;
@@ -194,6 +240,8 @@ static int render_run(cli_session *s, const render_args *a)
     vd.no_gi = a->no_gi;
     vd.inject_samples = a->inject_samples;
     vd.cone_stride = a->cone_stride;
+    vd.bounce_cones.cones = a->bounce_cones;
+    vd.bounce_block = a->bounce_block;
     vd.octree = a->octree;
     vd.octree_format = (voxgi_svo_format)a->octree_format;
     vd.octree_bricks = a->bricks;
@@ -217,14 +265,14 @@ static int render_run(cli_session *s, const render_args *a)
         cli_fail_lib(s, c.vx, NULL);
         goto done;
     }
-    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &rmse, &rms, &ref_ms)) goto done;
+    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &cmp)) goto done;
     if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
                                            : vxt_write_png(a->out, rgb, a->size[0], a->size[1], (float)a->exposure)) != 0) {
         cli_fail(s, "cannot write %s", a->out);
         goto done;
     }
     cli_status_clear(s);
-    print_result(a, &ci, rgb, &d, &info, &vd, &vinfo, rmse, rms, ref_ms);
+    print_result(a, rs.name, &ci, rgb, &d, &info, &vd, &vinfo, &cmp);
     rc = CLI_EXIT_OK;
 done:
     free(rgb);
@@ -272,11 +320,22 @@ int cmd_render(int argc, char **argv)
             {.name = "--no-gi", .kind = CLI_FLAG, .dst = &a.no_gi, .help = "vct: direct light only"},
             {.name = "--compare", .arg = "SPP", .kind = CLI_INT, .dst = &a.compare, .lo = 1, .hi = 1 << 24,
              .help = "also render the reference (same bounces) with SPP samples per pixel and\n"
-                     "print the relative RMSE of the lighting (both without the emitters the\n"
-                     "camera sees) and both times; the image written is the one with them"},
+                     "print the relative RMSE of the lighting over the pixels farther than 3\n"
+                     "pixels from any pixel whose centre sees an emitter, both images without\n"
+                     "the emission the camera sees; the pixels left out (JSON masked_pixels)\n"
+                     "and both times; the image written is the one with the emission"},
+            {.name = "--cornell-mesh", .arg = "MESH", .kind = CLI_STRING, .dst = &a.cornell_mesh,
+             .help = "scene cornell-box only: the mesh (a file or builtin:NAME) in place of\n"
+                     "the tall block, scaled uniformly to fit inside its bounding box, on\n"
+                     "the floor at its centre, in its white; named cornell-box+NAME"},
             {.name = "--bounces", .arg = "B", .kind = CLI_INT, .dst = &a.bounces, .lo = -1, .hi = 1000,
              .help = "indirect bounces: 0 = direct light only, -1 = unlimited (default 1);\n"
                      "vct: B >= 1, the light bouncing B - 1 times among the voxels first"},
+            {.name = "--bounce-cones", .arg = "N", .kind = CLI_INT, .dst = &a.bounce_cones, .lo = 1, .hi = 1024,
+             .help = "vct with --bounces B > 1: cones per gather among the voxels (default 4)"},
+            {.name = "--bounce-block", .arg = "N", .kind = CLI_INT, .dst = &a.bounce_block, .lo = 1, .hi = 64,
+             .help = "vct with --bounces B > 1: the voxels gather once per block of N^3 of them\n"
+                     "facing the same way (default 4; 1: every voxel)"},
             {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 1, .hi = 1 << 24, .given = &a.spp_given,
              .help = "samples per pixel (default 64)"},
             {.name = "--seed", .arg = "N", .kind = CLI_INT, .dst = &a.seed, .lo = 0, .hi = 2147483647,
@@ -303,6 +362,8 @@ int cmd_render(int argc, char **argv)
     if (!cli_has_extension(a.out, ".png") && !cli_has_extension(a.out, ".pfm"))
         return cli_usage("render", "-o %s: render writes .png or .pfm images only", a.out);
     if (a.vct && a.bounces < 1 && !a.no_gi) return cli_usage("render", "--method vct needs --bounces 1 or more (or --no-gi)");
+    if (a.cornell_mesh && strcmp(a.what, "cornell-box") != 0)
+        return cli_usage("render", "--cornell-mesh replaces the tall block of the scene cornell-box, not of '%s'", a.what);
     cli_session_init(&s, "render");
     return render_run(&s, &a);
 }

@@ -11,7 +11,8 @@ static const char *const report_help =
     "reference (converged, --spp samples per pixel), then the cone-traced image for every\n"
     "combination of grid resolution, cone count, aperture, step, cone stride and mips, and measures the\n"
     "relative RMSE of the lighting (the RMS difference over pixels and channels / the reference's\n"
-    "mean; the emitters the camera sees are left out of both). The reference's own convergence\n"
+    "mean) over the pixels farther than 3 pixels from any pixel whose centre sees an emitter, both\n"
+    "images without the emission the camera sees. The reference's own convergence\n"
     "(4, 16 and 64 spp against the converged image; error ~ 1/sqrt(spp)) gives the time it needs\n"
     "to reach each error, and so the cone tracer's speed-up. Writes DIR/vct.md (tables),\n"
     "DIR/vct.csv and DIR/vct.svg (error against time, log scales, the Pareto front marked).\n"
@@ -22,12 +23,12 @@ static const char *const mips_names[] = {"isotropic", "anisotropic", "octree", N
                          *const mips_mark[3] = {"", "a", "o"};
 static const int mips_bits[3] = {1, 2, 4};
 
-#define REPORT_MAX_SCENES 8
+#define REPORT_MAX_SCENES 9 /* 8 of --scenes and --cornell-mesh's */
 #define REPORT_MAX_LIST 16
 
 typedef struct report_args {
     cli_common common; /* --backend, --threads */
-    const char *out_dir, *scene_list;
+    const char *out_dir, *scene_list, *cornell_mesh;
     double res[REPORT_MAX_LIST], cones[REPORT_MAX_LIST], apertures[REPORT_MAX_LIST], steps[REPORT_MAX_LIST], strides[REPORT_MAX_LIST];
     int nres, ncones, naps, nsteps, nstrides, size, spp, direct_spp;
     unsigned filters;
@@ -46,17 +47,19 @@ typedef struct report {
     char scene_buf[REPORT_MAX_SCENES][64];
     const char *scenes[REPORT_MAX_SCENES];
     int scene_count, nrows;
+    int cornell_mesh_scene;       /* the index of --cornell-mesh's scene, or -1 */
+    size_t masked[REPORT_MAX_SCENES]; /* pixels left out of each scene's errors */
     double ref_c[REPORT_MAX_SCENES], ref_ms_per_spp[REPORT_MAX_SCENES], ref_bvh_ms[REPORT_MAX_SCENES], ref_floor[REPORT_MAX_SCENES];
     report_row *rows;
     voxgi_info ci;
     const report_args *args;
 } report;
 
-/* RMS difference over every value / the mean of the reference; 0 for a black reference. */
-static double rel_rmse(const float *a, const float *ref, size_t n)
+/* The tools' one rule (cli_masked_error); 0 for a black reference. */
+static double rel_rmse(const cli_error_mask *m, const float *a, const float *ref)
 {
-    double mean, rms = cli_rms_difference(a, ref, n, &mean);
-    return mean > 0 ? rms / mean : 0;
+    double e = cli_masked_error(m, a, ref, NULL, NULL);
+    return isfinite(e) ? e : 0;
 }
 
 /* Makes a directory and its parents (like mkdir -p); 0 on success. */
@@ -147,38 +150,55 @@ static void report_svg(FILE *f, const report *rep)
 #undef RY
 }
 
-/* One scene: the converged reference into ref and its convergence, then a row per configuration
-   (img: scratch); 0, or says why and returns 1. */
-static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a, report *rep, int si, float *ref, float *img)
+/* One scene (cm: its scene when it is --cornell-mesh's): the converged reference into ref and its
+   convergence, then a row per configuration (img: scratch); 0, or says why and returns 1. */
+static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a, report *rep, int si, const cli_cornell_mesh *cm, float *ref,
+                        float *img)
 {
     voxgi_builtin_scene bs;
+    const voxgi_scene *scene;
+    cli_error_mask mask;
     voxgi_reference_desc rd;
     voxgi_reference_info ri;
     size_t nv = (size_t)a->size * (size_t)a->size * 3;
     const char *name = rep->scenes[si];
     int ir, ic, ia, is, ist, f, k, i, first_row = rep->nrows, rc = CLI_EXIT_FAILURE;
     double c2 = 0;
-    if (voxgi_builtin_scene_create(ctx, name, &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, NULL);
+    memset(&bs, 0, sizeof bs);
+    memset(&mask, 0, sizeof mask);
     memset(&rd, 0, sizeof rd);
-    rd.camera = bs.camera;
+    if (cm) {
+        scene = &cm->scene;
+        rd.camera = cm->bs.camera;
+    } else {
+        if (voxgi_builtin_scene_create(ctx, name, &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, NULL);
+        scene = &bs.scene;
+        rd.camera = bs.camera;
+    }
     rd.camera.width = rd.camera.height = a->size;
+    if (cli_error_mask_make(s, ctx, scene, &rd.camera, &mask)) goto done;
+    if (mask.masked_pixels == (size_t)a->size * (size_t)a->size) {
+        cli_fail(s, "%s: every pixel is within %d pixels of one that sees an emitter: no error to measure", name, CLI_EMITTER_MARGIN);
+        goto done;
+    }
+    rep->masked[si] = mask.masked_pixels;
     rd.bounces = 1;
     rd.hide_emitters = 1;
     rd.samples = a->spp;
     rd.seed = 1000;
     cli_note(s, "%s: the reference, %d spp", name, a->spp);
-    if (voxgi_reference_render(ctx, &bs.scene, &rd, ref, nv * 4, &ri) != VOXGI_OK) {
+    if (voxgi_reference_render(ctx, scene, &rd, ref, nv * 4, &ri) != VOXGI_OK) {
         cli_fail_lib(s, ctx, NULL);
         goto done;
     }
     for (k = 4; k <= 64; k *= 4) { /* the reference's convergence: a difference of two independent estimates has variance c^2 (1/k + 1/spp) */
         rd.samples = k;
         rd.seed = 7 + (uint64_t)k;
-        if (voxgi_reference_render(ctx, &bs.scene, &rd, img, nv * 4, &ri) != VOXGI_OK) {
+        if (voxgi_reference_render(ctx, scene, &rd, img, nv * 4, &ri) != VOXGI_OK) {
             cli_fail_lib(s, ctx, NULL);
             goto done;
         }
-        c2 += rel_rmse(img, ref, nv) * rel_rmse(img, ref, nv) / (1.0 / k + 1.0 / a->spp) / 3;
+        c2 += rel_rmse(&mask, img, ref) * rel_rmse(&mask, img, ref) / (1.0 / k + 1.0 / a->spp) / 3;
     }
     rep->ref_c[si] = sqrt(c2);
     rep->ref_ms_per_spp[si] = ri.ms_render / 64;
@@ -209,7 +229,7 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
                             if (!(vd.cones.half_angle < 1.5f)) continue;
                             cli_note(s, "%s: %d^3, %d cones x %.2f, step %.2f, stride %d, %s", name, vd.resolution, vd.cones.cones, a->apertures[ia],
                                      a->steps[is], vd.cone_stride, mips_names[f]);
-                            if (voxgi_vct_render(ctx, &bs.scene, &vd, img, nv * 4, &row->info) != VOXGI_OK) {
+                            if (voxgi_vct_render(ctx, scene, &vd, img, nv * 4, &row->info) != VOXGI_OK) {
                                 cli_fail_lib(s, ctx, NULL);
                                 goto done;
                             }
@@ -221,7 +241,7 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
                             row->half_angle_deg = vd.cones.half_angle * 180 / 3.14159265358979323846;
                             row->step = a->steps[is];
                             row->stride = vd.cone_stride;
-                            row->rmse = rel_rmse(img, ref, nv);
+                            row->rmse = rel_rmse(&mask, img, ref);
                             /* the path tracer's spp k whose image measures the same error against the same reference:
                                c^2 (1/k + 1/spp) = rmse^2 (the reference's own noise is in both) */
                             inv = row->rmse * row->rmse / (rep->ref_c[si] * rep->ref_c[si]) - 1.0 / a->spp;
@@ -240,6 +260,7 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
     }
     rc = CLI_EXIT_OK;
 done:
+    cli_error_mask_free(&mask);
     voxgi_builtin_scene_destroy(ctx, &bs);
     return rc;
 }
@@ -264,17 +285,19 @@ static void write_markdown(FILE *md, const report *rep)
     const voxgi_info *ci = &rep->ci;
     int i, s;
     fprintf(md, "# Voxel cone tracing: error against run time\n\n%d x %d pixels; cone tracer on %s%s%s, %d direct-light rays per pixel; the "
-                "reference is the one-bounce path tracer (CPU). Error: relative RMSE of the lighting against the converged reference, "
-                "emitters seen by the camera left out. *Reference at the same error*: the time the path tracer needs for an image that "
+                "reference is the one-bounce path tracer (CPU). Error: relative RMSE of the lighting against the converged reference "
+                "over the pixels farther than %d pixels from any pixel whose centre sees an emitter, both images without the emission the "
+                "camera sees. *Reference at the same error*: the time the path tracer needs for an image that "
                 "measures that error against the same reference (from its measured convergence, the reference's own noise in both). Wall clock on this machine%s.\n\n",
             a->size, a->size, voxgi_backend_name(ci->backend), ci->backend == VOXGI_BACKEND_GL ? ", " : "", ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "",
-            a->direct_spp, ci->backend == VOXGI_BACKEND_GL && strstr(ci->gl_renderer, "llvmpipe") ? " (GL on llvmpipe, a software rasteriser: not GPU timings)" : "");
+            a->direct_spp, CLI_EMITTER_MARGIN, ci->backend == VOXGI_BACKEND_GL && ci->gl_software ? " (GL on a software rasteriser: not GPU timings)" : "");
     for (s = 0; s < rep->scene_count; s++) {
         fprintf(md, "## %s\n\nReference: %d spp; its error is %.2f%% / sqrt(spp) (%.3f%% at %d spp: the floor of every error below), %.2f ms per "
-                    "sample per pixel.\n\n| res | cones | half-angle | step | stride | mips | voxels | radiance MB | voxelize ms | inject ms | octree ms | cones ms | "
+                    "sample per pixel. Pixels left out of the errors (near an emitter the camera sees): %lu of %d.\n\n| res | cones | half-angle | step | stride | mips | voxels | radiance MB | voxelize ms | inject ms | octree ms | cones ms | "
                     "direct ms | total ms | rel. RMSE | reference at the same error | speed-up | Pareto |\n"
                     "|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n",
-                rep->scenes[s], a->spp, 100 * rep->ref_c[s], 100 * rep->ref_floor[s], a->spp, rep->ref_ms_per_spp[s]);
+                rep->scenes[s], a->spp, 100 * rep->ref_c[s], 100 * rep->ref_floor[s], a->spp, rep->ref_ms_per_spp[s], (unsigned long)rep->masked[s],
+                a->size * a->size);
         for (i = 0; i < rep->nrows; i++) {
             const report_row *r = &rep->rows[i];
             if (r->scene == rep->scenes[s])
@@ -303,10 +326,17 @@ static int write_file(cli_session *s, const report *rep, const char *name, void 
 static int report_run(cli_session *s, const report_args *a, report *rep)
 {
     cli_context c;
+    cli_cornell_mesh cm;
     float *ref = NULL, *img = NULL;
     int i, si, rc = CLI_EXIT_FAILURE;
+    memset(&cm, 0, sizeof cm);
     if (cli_context_open_options(s, &c, &a->common)) return CLI_EXIT_FAILURE;
     voxgi_query_info(c.vx, &rep->ci);
+    if (a->cornell_mesh) { /* first: a bad mesh fails before any rendering */
+        if (cli_cornell_mesh_open(s, c.vx, a->cornell_mesh, &cm)) goto done;
+        rep->cornell_mesh_scene = rep->scene_count++;
+        rep->scenes[rep->cornell_mesh_scene] = cm.name;
+    }
     rep->rows = (report_row *)calloc((size_t)rep->scene_count * (size_t)(a->nres * a->ncones * a->naps * a->nsteps * a->nstrides * 3), sizeof *rep->rows);
     ref = (float *)malloc((size_t)a->size * (size_t)a->size * 12);
     img = (float *)malloc((size_t)a->size * (size_t)a->size * 12);
@@ -319,12 +349,12 @@ static int report_run(cli_session *s, const report_args *a, report *rep)
         goto done;
     }
     for (si = 0; si < rep->scene_count; si++)
-        if (report_scene(s, c.vx, a, rep, si, ref, img)) goto done;
+        if (report_scene(s, c.vx, a, rep, si, si == rep->cornell_mesh_scene ? &cm : NULL, ref, img)) goto done;
     if (write_file(s, rep, "vct.csv", write_csv) || write_file(s, rep, "vct.md", write_markdown) || write_file(s, rep, "vct.svg", report_svg)) goto done;
     cli_status_clear(s);
     for (si = 0; si < rep->scene_count; si++) { /* the front on stdout */
-        printf("%s (reference error %.2f%% / sqrt(spp), %.2f ms per spp; floor %.3f%%)\n", rep->scenes[si], 100 * rep->ref_c[si], rep->ref_ms_per_spp[si],
-               100 * rep->ref_floor[si]);
+        printf("%s (reference error %.2f%% / sqrt(spp), %.2f ms per spp; floor %.3f%%; %lu of %d pixels near an emitter left out)\n", rep->scenes[si],
+               100 * rep->ref_c[si], rep->ref_ms_per_spp[si], 100 * rep->ref_floor[si], (unsigned long)rep->masked[si], a->size * a->size);
         for (i = 0; i < rep->nrows; i++) {
             const report_row *r = &rep->rows[i];
             if (r->scene == rep->scenes[si] && r->pareto)
@@ -338,6 +368,7 @@ done:
     free(rep->rows);
     free(ref);
     free(img);
+    if (cm.name[0]) cli_cornell_mesh_close(c.vx, &cm);
     cli_context_close(s, &c);
     return rc;
 }
@@ -374,6 +405,10 @@ int cmd_report(int argc, char **argv)
         const cli_option options[] = {
             {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list,
              .help = "built-in scenes, comma-separated (default cornell-box,two-spheres)"},
+            {.name = "--cornell-mesh", .arg = "MESH", .kind = CLI_STRING, .dst = &a.cornell_mesh,
+             .help = "also the Cornell box with MESH (a file or builtin:NAME) in place of its\n"
+                     "tall block (scaled uniformly to fit inside the block's bounding box, on\n"
+                     "the floor at its centre, white), named cornell-box+NAME"},
             {.name = "--size", .arg = "N", .kind = CLI_INT, .dst = &a.size, .lo = 1, .hi = 4096, .help = "N x N pixels (default 128)"},
             {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 64, .hi = 1 << 20,
              .help = "samples per pixel of the converged reference (default 1024)"},
@@ -400,8 +435,9 @@ int cmd_report(int argc, char **argv)
         if ((rc = cli_parse(&cmd, argc - 1, argv + 1)) != CLI_CONTINUE) return rc;
     }
     for (list = a.scene_list; (r = cli_next_item(&list, rep.scene_buf[rep.scene_count], sizeof rep.scene_buf[0])) != 0; rep.scene_count++)
-        if (r < 0 || rep.scene_count == REPORT_MAX_SCENES)
-            return cli_usage("report", "--scenes needs 1 to %d comma-separated built-in scenes, got '%s'", REPORT_MAX_SCENES, a.scene_list);
+        if (r < 0 || rep.scene_count == REPORT_MAX_SCENES - 1)
+            return cli_usage("report", "--scenes needs 1 to %d comma-separated built-in scenes, got '%s'", REPORT_MAX_SCENES - 1, a.scene_list);
+    rep.cornell_mesh_scene = -1;
     for (r = 0; r < rep.scene_count; r++) rep.scenes[r] = rep.scene_buf[r];
     rep.args = &a;
     cli_session_init(&s, "report");
