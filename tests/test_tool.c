@@ -289,6 +289,8 @@ static void test_vct_and_report_commands(void)
     vd.cones.cones = 6;
     vd.samples = 2;
     vd.seed = 1;
+    vd.filter = VOXGI_MIPS_ANISOTROPIC; /* the tool's defaults, which are not the library's zeros */
+    vd.cone_stride = 4;
     TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, want, sizeof want, NULL) == VOXGI_OK, "library vct render");
     f = fopen(pfm, "rb");
     TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
@@ -635,6 +637,8 @@ static void test_exit_codes(void)
     /* a combination of options no render can honour is a usage error too, found before any work */
     rc = run("render no-such-scene --method vct --bounces 0 -o x.png", out, sizeof out);
     TH_CHECK(rc == 2 && strstr(out, "--bounces 1 or more") && !strstr(out, "no-such-scene"), "vct without bounces: exit %d: %s", rc, out);
+    rc = run("render cornell-box --method vct --isotropic --anisotropic -o x.png", out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "one or the other"), "both mips: exit %d: %s", rc, out);
     TH_CHECK(run("svo /nonexistent/mesh.obj --backend cpu", out, sizeof out) == 1, "svo, missing mesh: %s", out);
     TH_CHECK(run("svo builtin:cube --res 8 --backend cpu --format float64", out, sizeof out) == 2, "svo, bad format: %s", out);
     /* bench opens every mesh before measuring anything */

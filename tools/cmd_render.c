@@ -19,7 +19,7 @@ typedef struct render_args {
     cli_common common;
     const char *what, *out, *cornell_mesh;
     int vct, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
-    int bounce_cones, bounce_block;
+    int bounce_cones, bounce_block, isotropic;
     int octree, octree_format, bricks, have_camera, have_sun;
     double step, camera[7], sun[4], exposure;
 } render_args;
@@ -236,7 +236,7 @@ static int render_run(cli_session *s, const render_args *a)
     vd.resolution = a->res;
     vd.cones.cones = a->cones;
     vd.cones.step = (float)a->step;
-    vd.filter = a->anisotropic ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
+    vd.filter = a->isotropic ? VOXGI_MIPS_ISOTROPIC : VOXGI_MIPS_ANISOTROPIC;
     vd.no_gi = a->no_gi;
     vd.inject_samples = a->inject_samples;
     vd.cone_stride = a->cone_stride;
@@ -292,6 +292,8 @@ int cmd_render(int argc, char **argv)
     a.seed = 1;
     a.size[0] = a.size[1] = 256;
     a.exposure = 1;
+    a.cones = 32; /* vct: the defaults sit on the Pareto front of `voxgi report vct` (docs/cone-tracing.md) */
+    a.cone_stride = 4;
     {
         const cli_option options[] = {
             {.name = "--method", .arg = "reference|vct", .kind = CLI_ENUM, .dst = &a.vct, .names = render_methods,
@@ -303,13 +305,15 @@ int cmd_render(int argc, char **argv)
             CLI_OPT_GL(&a.common, "which headless GL to try"),
             {.name = "--res", .arg = "N", .kind = CLI_INT, .dst = &a.res, .lo = 1, .hi = 4096,
              .help = "vct: voxels along the scene's longest side (default 128)"},
-            {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 16)"},
+            {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 32)"},
             {.name = "--step", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.step, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "vct: step as a fraction of the cone diameter (default 0.5)"},
-            {.name = "--anisotropic", .kind = CLI_FLAG, .dst = &a.anisotropic, .help = "vct: six-direction mips (default isotropic)"},
+            {.name = "--anisotropic", .kind = CLI_FLAG, .dst = &a.anisotropic, .help = "vct: six-direction mips (the default)"},
+            {.name = "--isotropic", .kind = CLI_FLAG, .dst = &a.isotropic,
+             .help = "vct: one mip chain (less memory, more light through thin walls)"},
             {.name = "--cone-stride", .arg = "S", .kind = CLI_INT, .dst = &a.cone_stride, .lo = 1, .hi = 64,
              .help = "vct: cones at every S-th pixel across and down, the pixels between\n"
-                     "interpolated where they share a surface (default 1: every pixel)"},
+                     "interpolated where they share a surface (default 4; 1: every pixel)"},
             {.name = "--octree", .arg = "[float32|float16]", .kind = CLI_ENUM, .optional = 1, .dst = &a.octree_format, .names = cli_svo_format_names,
              .given = &a.octree,
              .help = "vct: the cones gather from a sparse voxel octree of the radiance\n"
@@ -362,6 +366,7 @@ int cmd_render(int argc, char **argv)
     if (!cli_has_extension(a.out, ".png") && !cli_has_extension(a.out, ".pfm"))
         return cli_usage("render", "-o %s: render writes .png or .pfm images only", a.out);
     if (a.vct && a.bounces < 1 && !a.no_gi) return cli_usage("render", "--method vct needs --bounces 1 or more (or --no-gi)");
+    if (a.anisotropic && a.isotropic) return cli_usage("render", "--anisotropic and --isotropic: one or the other");
     if (a.cornell_mesh && strcmp(a.what, "cornell-box") != 0)
         return cli_usage("render", "--cornell-mesh replaces the tall block of the scene cornell-box, not of '%s'", a.what);
     cli_session_init(&s, "render");
