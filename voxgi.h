@@ -814,6 +814,10 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
                   them, lit by a directional light (Buchacher 2014's visibility test scene);
    "leak-box"     a closed box with the camera inside and every light outside: the exact image
                   is black, so anything else is light leaking through the walls;
+   "leak-room"    a closed room (2 m, walls facing in, albedo 0.5) with a closed box of
+                  zero-thickness faces (0.6 x 0.5 x 0.6 m, albedo 0.5) on its floor and a 0.4 m
+                  square lamp (radiance 10) 1.45 m above the box's top, the camera inside the
+                  box: black again, with the light bouncing around the box's outer faces;
    "furnace"      a closed sphere of albedo 0.5 and emission 1 seen from inside: radiance 2
                   everywhere (E / (1 - albedo)). */
 typedef struct voxgi_builtin_scene {
@@ -8878,11 +8882,11 @@ static void voxgi__view(voxgi_camera *c, double ex, double ey, double ez, double
     c->width = c->height = 256;
 }
 
-static const char *const voxgi__builtin_names[4] = {"cornell-box", "two-spheres", "leak-box", "furnace"};
+static const char *const voxgi__builtin_names[5] = {"cornell-box", "two-spheres", "leak-box", "furnace", "leak-room"};
 
 VOXGI_API const char *voxgi_builtin_scene_names(void)
 {
-    return "cornell-box two-spheres leak-box furnace";
+    return "cornell-box two-spheres leak-box furnace leak-room";
 }
 
 VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char *name, voxgi_builtin_scene *out)
@@ -8892,8 +8896,8 @@ VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!name || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "name or out is NULL");
     memset(out, 0, sizeof *out);
-    for (which = 0; which < 4 && strcmp(name, voxgi__builtin_names[which]) != 0; which++) {}
-    if (which == 4) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "no built-in scene \"%s\" (there are: %s)", name, voxgi_builtin_scene_names());
+    for (which = 0; which < 5 && strcmp(name, voxgi__builtin_names[which]) != 0; which++) {}
+    if (which == 5) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "no built-in scene \"%s\" (there are: %s)", name, voxgi_builtin_scene_names());
     if (!(b = (voxgi__builtin *)voxgi__alloc_array(ctx, 1, sizeof *b, 1))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a scene");
     if (which == 0) { /* the Cornell box, millimetres / 1000 */
         static const double walls[5][4][3] = {
@@ -8972,6 +8976,16 @@ VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char
         out->scene.material_count = 1;
         out->scene.light_count = 2;
         voxgi__view(&out->camera, 0.3, 0.5, -0.4, -0.1, 0.35, 0.5, 90);
+    } else if (which == 4) { /* a closed box in a closed room, lit by a lamp under the ceiling */
+        double room_lo[3] = {-1, 0, -1}, room_hi[3] = {1, 2, 1}, box_lo[3] = {-0.3, 0, -0.3}, box_hi[3] = {0.3, 0.5, 0.3}, below[3] = {0, 0, 0};
+        static const double lamp[4][3] = {{-0.2, 1.95, -0.2}, {0.2, 1.95, -0.2}, {0.2, 1.95, 0.2}, {-0.2, 1.95, 0.2}};
+        voxgi__material_set(&b->materials[0], 0.5f, 0.5f, 0.5f, 0, 0, 0);
+        voxgi__material_set(&b->materials[1], 0.5f, 0.5f, 0.5f, 10, 10, 10);
+        voxgi__builtin_box(b, room_lo, room_hi, 0, 1);
+        voxgi__builtin_box(b, box_lo, box_hi, 0, 0);
+        voxgi__builtin_quad(b, lamp, 1, below, 0);
+        out->scene.material_count = 2;
+        voxgi__view(&out->camera, 0.15, 0.3, -0.2, -0.1, 0.15, 0.25, 90);
     } else { /* the furnace */
         double c[3] = {0, 0, 0};
         voxgi__material_set(&b->materials[0], 0.5f, 0.5f, 0.5f, 1, 1, 1);

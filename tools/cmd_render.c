@@ -8,12 +8,12 @@ static const char *const render_methods[] = {"reference", "vct", NULL};
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
-    "Renders a built-in scene (cornell-box, two-spheres, leak-box, furnace) or a mesh file (OBJ+MTL:\n"
-    "Kd is the albedo, Ke the emitted radiance) with the reference path tracer on the CPU. A PFM\n"
-    "pixel is the mean linear radiance over the pixel's square; a PNG is that times --exposure,\n"
-    "clamped and sRGB encoded. --compare's error: the relative RMSE over the pixels farther than 3\n"
-    "pixels from any pixel whose centre sees an emitter, both images without the emission the\n"
-    "camera sees.\n";
+    "Renders a built-in scene (cornell-box, two-spheres, leak-box, furnace, leak-room) or a mesh\n"
+    "file (OBJ+MTL: Kd is the albedo, Ke the emitted radiance) with the reference path tracer on\n"
+    "the CPU. A PFM pixel is the mean linear radiance over the pixel's square; a PNG is that\n"
+    "times --exposure, clamped and sRGB encoded. --compare's error: the relative RMSE over the\n"
+    "pixels farther than 3 pixels from any pixel whose centre sees an emitter, both images\n"
+    "without the emission the camera sees.\n";
 
 typedef struct render_args {
     cli_common common;
