@@ -255,6 +255,28 @@ static inline void vct_view(voxgi_vct_desc *vd, const voxgi_builtin_scene *bs, i
 #define VOLUME_SOURCE(vol) (&(const voxgi_radiance_source){.volume = (vol)})
 #define OCTREE_SOURCE(svo) (&(const voxgi_radiance_source){.octree = (svo)})
 
+/* ---------------------------------------------------------------- cameras
+   Where the ray through image point (sx, sy) (pixels from the top left, continuous) meets the
+   floor y = 0, with the camera's frame rebuilt here (gluLookAt, up +Y), independent of the
+   library's: the tests' own camera for analytic images of a floor. The ray must go down. */
+static inline void fx_floor_point(const voxgi_camera *c, double sx, double sy, double p[3])
+{
+    double f[3], r[3], u[3], d[3], len, th = tan(c->fovy_degrees * PI / 360), x, y, t;
+    int a;
+    for (a = 0; a < 3; a++) f[a] = c->target[a] - c->eye[a];
+    len = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    for (a = 0; a < 3; a++) f[a] /= len;
+    r[0] = -f[2]; r[1] = 0; r[2] = f[0];
+    len = sqrt(r[0] * r[0] + r[2] * r[2]);
+    r[0] /= len; r[2] /= len;
+    u[0] = r[1] * f[2] - r[2] * f[1]; u[1] = r[2] * f[0] - r[0] * f[2]; u[2] = r[0] * f[1] - r[1] * f[0];
+    x = (2 * sx / c->width - 1) * th * c->width / c->height;
+    y = (1 - 2 * sy / c->height) * th;
+    for (a = 0; a < 3; a++) d[a] = f[a] + x * r[a] + y * u[a];
+    t = -c->eye[1] / d[1];
+    for (a = 0; a < 3; a++) p[a] = c->eye[a] + t * d[a];
+}
+
 /* ---------------------------------------------------------------- grids */
 /* n^3 voxels over the cube from lo to lo + size on each axis. */
 static inline void cubic(voxgi_grid *g, double lo, double size, int n)

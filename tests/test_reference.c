@@ -258,26 +258,15 @@ static void test_integrating_sphere(void)
 }
 
 /* A 20 x 20 floor at y = 0 facing up, seen from above: each pixel's mean radiance against the
-   analytic radiance averaged over the same pixel square (the camera rebuilt here). */
+   analytic radiance averaged over the same pixel square (the camera rebuilt by fx_floor_point). */
 static double floor_pixel_oracle(const voxgi_reference_desc *d, int px, int py, double (*radiance)(const double p[3], const void *), const void *u)
 {
-    const voxgi_camera *c = &d->camera;
-    double f[3], r[3], up[3], len, th = tan(c->fovy_degrees * PI / 360), sum = 0;
-    int a, i, j, n = 8;
-    for (a = 0; a < 3; a++) f[a] = c->target[a] - c->eye[a];
-    len = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-    for (a = 0; a < 3; a++) f[a] /= len;
-    r[0] = -f[2]; r[1] = 0; r[2] = f[0];
-    len = sqrt(r[0] * r[0] + r[2] * r[2]);
-    r[0] /= len; r[2] /= len;
-    up[0] = r[1] * f[2] - r[2] * f[1]; up[1] = r[2] * f[0] - r[0] * f[2]; up[2] = r[0] * f[1] - r[1] * f[0];
+    double sum = 0;
+    int i, j, n = 8;
     for (j = 0; j < n; j++)
         for (i = 0; i < n; i++) {
-            double sx = (2 * (px + (i + 0.5) / n) / c->width - 1) * th * c->width / c->height, sy = (1 - 2 * (py + (j + 0.5) / n) / c->height) * th;
-            double dir[3], t, p[3];
-            for (a = 0; a < 3; a++) dir[a] = f[a] + sx * r[a] + sy * up[a];
-            t = -c->eye[1] / dir[1];
-            for (a = 0; a < 3; a++) p[a] = c->eye[a] + t * dir[a];
+            double p[3];
+            fx_floor_point(&d->camera, px + (i + 0.5) / n, py + (j + 0.5) / n, p);
             sum += radiance(p, u);
         }
     return sum / (n * n);

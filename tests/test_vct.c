@@ -658,26 +658,6 @@ static double dl_irradiance(const double p[3], int shadowed)
     return fmax(0, e - polygon_irradiance((const double(*)[3])q, 4, p, up));
 }
 
-/* Where the ray through image point (sx, sy) (pixels; the camera's frame rebuilt here: gluLookAt,
-   up +Y) meets the floor y = 0, which it must (looking down). */
-static void dl_floor_point(const voxgi_camera *c, double sx, double sy, double p[3])
-{
-    double f[3], r[3], u[3], d[3], len, th = tan(c->fovy_degrees * PI / 360), x, y, t;
-    int a;
-    for (a = 0; a < 3; a++) f[a] = c->target[a] - c->eye[a];
-    len = sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
-    for (a = 0; a < 3; a++) f[a] /= len;
-    r[0] = -f[2]; r[1] = 0; r[2] = f[0];
-    len = sqrt(r[0] * r[0] + r[2] * r[2]);
-    r[0] /= len; r[2] /= len;
-    u[0] = r[1] * f[2] - r[2] * f[1]; u[1] = r[2] * f[0] - r[0] * f[2]; u[2] = r[0] * f[1] - r[1] * f[0];
-    x = (2 * sx / c->width - 1) * th * c->width / c->height;
-    y = (1 - 2 * sy / c->height) * th;
-    for (a = 0; a < 3; a++) d[a] = f[a] + x * r[a] + y * u[a];
-    t = -c->eye[1] / d[1];
-    for (a = 0; a < 3; a++) p[a] = c->eye[a] + t * d[a];
-}
-
 /* 1 when the convex quadrilateral q (x, z corners in order) and the rectangle [lo, hi] do not
    overlap: a separating axis among the rectangle's two and the quadrilateral's edge normals. */
 static int dl_quad_misses_rect(const double q[4][2], const double lo[2], const double hi[2])
@@ -775,26 +755,26 @@ static void test_direct_light_analytic(void)
             int i, j, in_umbra = 1, kind;
             for (i = 0; i < 4; i++) { /* the footprint: the corners' rays */
                 double p[3];
-                dl_floor_point(&vd.camera, x + (i == 1 || i == 2), y + (i >= 2), p);
+                fx_floor_point(&vd.camera, x + (i == 1 || i == 2), y + (i >= 2), p);
                 foot[i][0] = p[0];
                 foot[i][1] = p[2];
                 for (a = 0; a < 2; a++) in_umbra &= foot[i][a] > umb_lo[a] && foot[i][a] < umb_hi[a];
             }
             kind = dl_quad_misses_rect((const double(*)[2])foot, aff_lo, aff_hi) ? 0 : in_umbra ? 1 : 2; /* lit, umbra, penumbra */
-            dl_floor_point(&vd.camera, x + 0.5, y + 0.5, pc);
+            fx_floor_point(&vd.camera, x + 0.5, y + 0.5, pc);
             e_c = dl_irradiance(pc, 1);
             e_c_full = dl_irradiance(pc, 0);
             for (j = 0; j < 8; j++) /* the pixel's mean on 8 x 8 and 4 x 4 midpoints */
                 for (i = 0; i < 8; i++) {
                     double p[3];
-                    dl_floor_point(&vd.camera, x + (i + 0.5) / 8, y + (j + 0.5) / 8, p);
+                    fx_floor_point(&vd.camera, x + (i + 0.5) / 8, y + (j + 0.5) / 8, p);
                     e8 += dl_irradiance(p, 1) / 64;
                     e8_full += dl_irradiance(p, 0) / 64;
                 }
             for (j = 0; j < 4; j++)
                 for (i = 0; i < 4; i++) {
                     double p[3];
-                    dl_floor_point(&vd.camera, x + (i + 0.5) / 4, y + (j + 0.5) / 4, p);
+                    fx_floor_point(&vd.camera, x + (i + 0.5) / 4, y + (j + 0.5) / 4, p);
                     e4 += dl_irradiance(p, 1) / 16;
                 }
             for (a = 0; a < 3; a++) len += pc[a] * pc[a];
