@@ -7941,7 +7941,8 @@ static voxgi_result voxgi__bounce_groups(voxgi_context *ctx, const voxgi__inject
     size_t i, lit = 0, ng = 0, k;
     voxgi_result r = VOXGI_OK;
     int a;
-    if (!code || !order || !pos || !nrm) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
+    if ((uint64_t)n > UINT32_MAX) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu voxels: the bounces sort at most 2^32 of them", (unsigned long)n);
+    else if (!code || !order || !pos || !nrm) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
     for (i = 0; r == VOXGI_OK && i < n; i++) {
         const voxgi_grid *g = J->g;
         uint64_t l = J->index[i];
