@@ -403,6 +403,73 @@ static int json_mean(const char *json, double mean[3])
     return 1;
 }
 
+/* --reference: the error against a PFM rendered before, by --compare's rule. The image itself
+   gives 0 exactly; another seed gives the error with the same pixels masked as --compare's; a
+   big-endian copy of the reference reads the same; a reference of another size, a truncated one
+   and --compare with it are refused. */
+static void test_reference_file(void)
+{
+    static char out[8192];
+    char args[1600], ref[512], big[512], cut[512], img[512];
+    FILE *f, *g;
+    int rc, c;
+    long at = 0;
+    snprintf(ref, sizeof ref, "%s/ref.pfm", tmpdir);
+    snprintf(big, sizeof big, "%s/big.pfm", tmpdir);
+    snprintf(cut, sizeof cut, "%s/cut.pfm", tmpdir);
+    snprintf(img, sizeof img, "%s/img.pfm", tmpdir);
+    snprintf(args, sizeof args, "render cornell-box --size 24 24 --spp 8 -o %s", ref);
+    TH_CHECK(run(args, out, sizeof out) == 0, "reference: %s", out);
+    snprintf(args, sizeof args, "render cornell-box --size 24 24 --spp 8 --reference %s --json -o %s", ref, img);
+    TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "rel_rmse") == 0 && json_number(out, "masked_pixels") > 0, "itself: %s", out);
+    snprintf(args, sizeof args, "render cornell-box --size 24 24 --spp 8 --seed 2 --reference %s --json -o %s", ref, img);
+    TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "rel_rmse") > 0.05, "another seed: %s", out);
+    {
+        double masked = json_number(out, "masked_pixels");
+        snprintf(args, sizeof args, "render cornell-box --size 24 24 --spp 8 --compare 4 --json -o %s", img);
+        TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "masked_pixels") == masked, "--compare masks %g, --reference %g: %s",
+                 json_number(out, "masked_pixels"), masked, out);
+    }
+    f = fopen(ref, "rb"); /* the same image big endian (scale +1), and cut short */
+    g = fopen(big, "wb");
+    TH_CHECK(f && g, "cannot copy the PFM");
+    if (f && g) {
+        char head[64];
+        int lines = 0, k = 0;
+        while (lines < 3 && (c = fgetc(f)) != EOF) { head[k++] = (char)c; lines += c == '\n'; }
+        head[k] = 0;
+        fputs("PF\n24 24\n1.0\n", g);
+        at = ftell(f);
+        for (;;) {
+            unsigned char b[4];
+            if (fread(b, 1, 4, f) != 4) break;
+            fputc(b[3], g); fputc(b[2], g); fputc(b[1], g); fputc(b[0], g);
+        }
+        TH_CHECK(strncmp(head, "PF\n24 24\n-1", 11) == 0, "header %s", head);
+    }
+    if (f) fclose(f);
+    if (g) fclose(g);
+    snprintf(args, sizeof args, "render cornell-box --size 24 24 --spp 8 --reference %s --json -o %s", big, img);
+    TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "rel_rmse") == 0, "big endian: %s", out);
+    f = fopen(ref, "rb");
+    g = fopen(cut, "wb");
+    if (f && g) {
+        long k;
+        for (k = 0; k < at + 100 && (c = fgetc(f)) != EOF; k++) fputc(c, g);
+    }
+    if (f) fclose(f);
+    if (g) fclose(g);
+    snprintf(args, sizeof args, "render cornell-box --size 24 24 --spp 8 --reference %s -o %s", cut, img);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "fewer pixels"), "truncated: exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "render cornell-box --size 16 16 --spp 8 --reference %s -o %s", ref, img);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "24 x 24, the image 16 x 16"), "another size: exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "render cornell-box --size 24 24 --compare 4 --reference %s -o %s", ref, img);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "one or the other"), "both: exit %d: %s", rc, out);
+}
+
 /* --compare's error leaves out every pixel within 3 (Chebyshev) of a pixel whose centre sees an
    emitter: masked_pixels is the count of the test's own dilation of the library's G-buffer (the
    Cornell box's light), 0 where the camera sees no emitter (two-spheres), and rel_rmse is the
@@ -674,6 +741,7 @@ int main(int argc, char **argv)
     TH_RUN(test_vct_and_report_commands);
     TH_RUN(test_compare_black_reference);
     TH_RUN(test_compare_masks_emitters);
+    TH_RUN(test_reference_file);
     TH_RUN(test_cornell_mesh);
     TH_RUN(test_usage_errors_named);
     TH_RUN(test_output_extensions);

@@ -17,7 +17,7 @@ static const char *const render_help =
 
 typedef struct render_args {
     cli_common common;
-    const char *what, *out, *cornell_mesh;
+    const char *what, *out, *cornell_mesh, *reference;
     int vct, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
     int bounce_cones, bounce_block, isotropic;
     int octree, octree_format, bricks, have_camera, have_sun;
@@ -143,10 +143,40 @@ static int compare_with_reference(cli_session *s, voxgi_context *ctx, const rend
     return 0;
 }
 
-/* The --compare line of the text output. */
+/* --reference: the same error against an image the caller rendered before (a converged reference
+   of the same view and size, e.g. `voxgi render SCENE --spp 4096 -o ref.pfm`). Both images hold
+   the emission the camera sees, which the mask leaves out with its ring. */
+static int compare_with_file(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene, const voxgi_camera *camera,
+                             const float *mine, render_compare *cmp)
+{
+    float *ref = NULL;
+    int w = 0, h = 0;
+    cli_error_mask mask;
+    char err[600];
+    if (vxt_read_pfm(a->reference, &ref, &w, &h, err, sizeof err)) return cli_fail(s, "--reference %s", err);
+    if (w != a->size[0] || h != a->size[1]) {
+        free(ref);
+        return cli_fail(s, "--reference %s is %d x %d, the image %d x %d (render it with the same --size and view)", a->reference, w, h, a->size[0],
+                        a->size[1]);
+    }
+    if (cli_error_mask_make(s, ctx, scene, camera, &mask)) {
+        free(ref);
+        return CLI_EXIT_FAILURE;
+    }
+    cmp->rmse = cli_masked_error(&mask, mine, ref, &cmp->rms, NULL);
+    cmp->masked = mask.masked_pixels;
+    cmp->pixels = (size_t)w * (size_t)h;
+    cmp->ref_ms = 0;
+    cli_error_mask_free(&mask);
+    free(ref);
+    return 0;
+}
+
+/* The --compare (or --reference) line of the text output. */
 static void print_compare(const render_args *a, const voxgi_reference_desc *d, const render_compare *cmp)
 {
-    printf("against the reference (%d bounce%s, %d spp, %.1f ms): ", d->bounces, d->bounces == 1 ? "" : "s", a->compare, cmp->ref_ms);
+    if (a->reference) printf("against %s: ", a->reference);
+    else printf("against the reference (%d bounce%s, %d spp, %.1f ms): ", d->bounces, d->bounces == 1 ? "" : "s", a->compare, cmp->ref_ms);
     if (cmp->masked == cmp->pixels) {
         printf("no error measured: all %lu pixels are within %d of one that sees an emitter\n", (unsigned long)cmp->pixels, CLI_EMITTER_MARGIN);
         return;
@@ -182,7 +212,7 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
                name, voxgi_backend_name(ci->backend), w, h, vd->resolution ? vd->resolution : 128, vd->cones.cones ? vd->cones.cones : 16, !vd->no_gi,
                (unsigned long long)vinfo->voxels, vinfo->ms_voxelize, vinfo->ms_inject, vinfo->ms_octree, (unsigned long long)vinfo->radiance_bytes,
                vinfo->ms_cones, vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2]);
-        if (a->compare) print_compare_json(cmp);
+        if (a->compare || a->reference) print_compare_json(cmp);
         else printf("\"rel_rmse\":-1,\"rms\":0,\"reference_ms\":0.000,"); /* nothing compared */
         printf("\"output\":\"%s\"}\n", a->out);
     } else if (a->vct) {
@@ -192,13 +222,13 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
         if (vd->octree) printf("octree %.1f ms, ", vinfo->ms_octree);
         printf("cones %.1f ms (over %.1f MB of %s), direct light %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n", vinfo->ms_cones,
                vinfo->radiance_bytes / 1e6, vd->octree ? "octree" : "volume", vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2], a->out);
-        if (a->compare) print_compare(a, d, cmp);
+        if (a->compare || a->reference) print_compare(a, d, cmp);
     } else if (a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"reference\",\"size\":[%d,%d],\"spp\":%d,\"bounces\":%d,\"seed\":%llu,\"triangles\":%lu,"
                "\"bvh_nodes\":%lu,\"rays\":%llu,\"bvh_ms\":%.3f,\"render_ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
                name, w, h, d->samples, d->bounces, (unsigned long long)d->seed, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes,
                (unsigned long long)info->rays, info->ms_bvh, info->ms_render, mean[0], mean[1], mean[2]);
-        if (a->compare) print_compare_json(cmp);
+        if (a->compare || a->reference) print_compare_json(cmp);
         printf("\"output\":\"%s\"}\n", a->out);
     } else {
         printf("%s: %d x %d, %d spp, bounces %d: %lu triangles, BVH %lu nodes in %.1f ms, %llu rays in %.1f ms (%.2f Mrays/s, CPU); "
@@ -206,7 +236,7 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
                name, w, h, d->samples, d->bounces, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes, info->ms_bvh,
                (unsigned long long)info->rays, info->ms_render, info->ms_render > 0 ? (double)info->rays / info->ms_render / 1000 : 0.0, mean[0],
                mean[1], mean[2], a->out);
-        if (a->compare) print_compare(a, d, cmp);
+        if (a->compare || a->reference) print_compare(a, d, cmp);
     }
 }
 
@@ -266,6 +296,7 @@ static int render_run(cli_session *s, const render_args *a)
         goto done;
     }
     if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &cmp)) goto done;
+    if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &d.camera, rgb, &cmp)) goto done;
     if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
                                            : vxt_write_png(a->out, rgb, a->size[0], a->size[1], (float)a->exposure)) != 0) {
         cli_fail(s, "cannot write %s", a->out);
@@ -322,6 +353,9 @@ int cmd_render(int argc, char **argv)
             {.name = "--inject-samples", .arg = "N", .kind = CLI_INT, .dst = &a.inject_samples, .lo = 1, .hi = 4096,
              .help = "vct: points on each area light and emitter per voxel's light\n(default 4 on the CPU, 16 on GL)"},
             {.name = "--no-gi", .kind = CLI_FLAG, .dst = &a.no_gi, .help = "vct: direct light only"},
+            {.name = "--reference", .arg = "REF.pfm", .kind = CLI_STRING, .dst = &a.reference,
+             .help = "print the error by --compare's rule against an image rendered before\n"
+                     "(same view and --size, e.g. a converged `render SCENE --spp 4096 -o REF.pfm`)"},
             {.name = "--compare", .arg = "SPP", .kind = CLI_INT, .dst = &a.compare, .lo = 1, .hi = 1 << 24,
              .help = "also render the reference (same bounces) with SPP samples per pixel and\n"
                      "print the relative RMSE of the lighting over the pixels farther than 3\n"
@@ -367,6 +401,7 @@ int cmd_render(int argc, char **argv)
         return cli_usage("render", "-o %s: render writes .png or .pfm images only", a.out);
     if (a.vct && a.bounces < 1 && !a.no_gi) return cli_usage("render", "--method vct needs --bounces 1 or more (or --no-gi)");
     if (a.anisotropic && a.isotropic) return cli_usage("render", "--anisotropic and --isotropic: one or the other");
+    if (a.compare && a.reference) return cli_usage("render", "--compare and --reference: one or the other");
     if (a.cornell_mesh && strcmp(a.what, "cornell-box") != 0)
         return cli_usage("render", "--cornell-mesh replaces the tall block of the scene cornell-box, not of '%s'", a.what);
     cli_session_init(&s, "render");

@@ -1,4 +1,5 @@
-/* tools/image_io.h - writes linear RGB float images as PFM (exact) or PNG (8-bit sRGB). */
+/* tools/image_io.h - writes linear RGB float images as PFM (exact) or PNG (8-bit sRGB), and reads
+   PFM back. */
 #ifndef VXT_IMAGE_IO_H
 #define VXT_IMAGE_IO_H
 #include <math.h>
@@ -22,6 +23,51 @@ static inline int vxt_write_pfm(const char *path, const float *rgb, int w, int h
         ok = fwrite(rgb + (size_t)3 * (size_t)w * (size_t)y, sizeof(float), (size_t)3 * (size_t)w, f) == (size_t)3 * (size_t)w;
     }
     return fclose(f) == 0 && ok ? 0 : -1;
+}
+
+/* Reads a colour PFM ("PF", either byte order) into *rgb (rows from the top; free() it). 0 on
+   success; else -1 with why in err (a missing file, another format, a short or bad header,
+   missing pixels, values that are not finite). */
+static inline int vxt_read_pfm(const char *path, float **rgb, int *w, int *h, char *err, size_t err_size)
+{
+    FILE *f = fopen(path, "rb");
+    char magic[3] = {0, 0, 0};
+    double scale = 0;
+    size_t n = 0, i;
+    float *px = NULL;
+    int y, little, ok = 0;
+    const unsigned char probe[4] = {1, 0, 0, 0};
+    uint32_t one;
+    *rgb = NULL;
+    memcpy(&one, probe, 4);
+    if (!f) { snprintf(err, err_size, "%s: cannot open it", path); return -1; }
+    if (fread(magic, 1, 2, f) != 2 || strcmp(magic, "PF") != 0) snprintf(err, err_size, "%s: not a colour PFM (no \"PF\")", path);
+    else if (fscanf(f, "%d %d %lf", w, h, &scale) != 3 || *w < 1 || *h < 1 || *w > 65536 || *h > 65536 || scale == 0 || !isfinite(scale) ||
+             fgetc(f) == EOF)
+        snprintf(err, err_size, "%s: a PFM header needs a width and a height (1..65536) and a non-zero scale", path);
+    else if (!(px = (float *)malloc((n = (size_t)3 * (size_t)*w * (size_t)*h) * sizeof(float))))
+        snprintf(err, err_size, "%s: no memory for %d x %d pixels", path, *w, *h);
+    else {
+        little = scale < 0;
+        ok = 1;
+        for (y = *h - 1; y >= 0 && ok; y--) /* rows from the bottom in the file */
+            ok = fread(px + (size_t)3 * (size_t)*w * (size_t)y, sizeof(float), (size_t)3 * (size_t)*w, f) == (size_t)3 * (size_t)*w;
+        if (!ok) snprintf(err, err_size, "%s: fewer pixels than its %d x %d header says", path, *w, *h);
+        for (i = 0; ok && i < n; i++) {
+            if ((one == 1) != little) { /* the other byte order */
+                unsigned char b[4], t;
+                memcpy(b, px + i, 4);
+                t = b[0]; b[0] = b[3]; b[3] = t;
+                t = b[1]; b[1] = b[2]; b[2] = t;
+                memcpy(px + i, b, 4);
+            }
+            if (!isfinite(px[i])) { ok = 0; snprintf(err, err_size, "%s: pixel %lu is not finite", path, (unsigned long)(i / 3)); }
+        }
+    }
+    fclose(f);
+    if (!ok) { free(px); return -1; }
+    *rgb = px;
+    return 0;
 }
 
 static inline uint32_t vxt_crc32(uint32_t crc, const unsigned char *p, size_t n)
