@@ -283,10 +283,10 @@ static int render_run(cli_session *s, const render_args *a)
         cli_fail(s, "out of memory");
         goto done;
     }
-    if (a->vct) { /* the same view and seed; the direct light takes --spp rays per pixel (default 16) */
+    if (a->vct) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
         vd.camera = d.camera;
         vd.seed = d.seed;
-        vd.samples = a->spp_given ? d.samples : 16;
+        vd.samples = a->spp_given ? d.samples : 24;
         vd.bounces = d.bounces;
         if (vd.no_gi) d.bounces = 0; /* what it is compared against */
     }
@@ -375,7 +375,8 @@ int cmd_render(int argc, char **argv)
              .help = "vct with --bounces B > 1: the voxels gather once per block of N^3 of them\n"
                      "facing the same way (default 4; 1: every voxel)"},
             {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 1, .hi = 1 << 24, .given = &a.spp_given,
-             .help = "samples per pixel (default 64)"},
+             .help = "samples per pixel (default 64); vct: the direct light's rays per pixel\n"
+                     "(default 24)"},
             {.name = "--seed", .arg = "N", .kind = CLI_INT, .dst = &a.seed, .lo = 0, .hi = 2147483647,
              .help = "random seed (default 1); the same seed gives the same image"},
             {.name = "--camera", .arg = "EX EY EZ TX TY TZ FOVY", .kind = CLI_DOUBLE, .count = 7, .dst = a.camera, .lo = -HUGE_VAL, .hi = HUGE_VAL,
