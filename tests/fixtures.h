@@ -251,6 +251,56 @@ static inline void vct_view(voxgi_vct_desc *vd, const voxgi_builtin_scene *bs, i
     vd->camera.width = vd->camera.height = w;
 }
 
+/* The leak-room scene (a closed box of zero-thickness faces on the floor of a closed room with a
+   lamp) cone traced at res^3 from inside the box, where the exact image is black, and from the
+   room: the mean and largest radiance inside over the room view's mean (emitters hidden). With
+   rect = 1 a rectangular light under the lamp lights the room instead (the lights' path of the
+   injection, not the emitters'). 0 on success. */
+static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter filter, int rect, double *mean_ratio, double *max_ratio)
+{
+    enum { W = 24 };
+    voxgi_builtin_scene bs;
+    voxgi_vct_desc vd;
+    voxgi_light lamp;
+    float img[W * W * 3];
+    double mean[2] = {0, 0}, top = 0;
+    int v, i, bad = 0;
+    if (voxgi_builtin_scene_create(ctx, "leak-room", &bs) != VOXGI_OK) return 1;
+    memset(&lamp, 0, sizeof lamp);
+    lamp.type = VOXGI_LIGHT_RECT;
+    lamp.position[0] = -0.2f; lamp.position[1] = 1.94f; lamp.position[2] = -0.2f;
+    lamp.edge_u[0] = 0.4f; lamp.edge_v[2] = 0.4f; /* facing down */
+    lamp.intensity[0] = lamp.intensity[1] = lamp.intensity[2] = 10;
+    if (rect) { /* the light in place of the lamp's emission (the struct owns its materials) */
+        voxgi_material *lamp_material = (voxgi_material *)(uintptr_t)&bs.scene.materials[1];
+        lamp_material->emission[0] = lamp_material->emission[1] = lamp_material->emission[2] = 0;
+        bs.scene.lights = &lamp;
+        bs.scene.light_count = 1;
+    }
+    for (v = 0; v < 2 && !bad; v++) { /* inside the box, then the room from a corner */
+        vct_view(&vd, &bs, W);
+        vd.resolution = res;
+        vd.filter = filter;
+        vd.samples = 1;
+        vd.hide_emitters = 1;
+        if (v) {
+            vd.camera.eye[0] = 0.85; vd.camera.eye[1] = 1.6; vd.camera.eye[2] = -0.85;
+            vd.camera.target[0] = 0; vd.camera.target[1] = 0.4; vd.camera.target[2] = 0;
+            vd.camera.fovy_degrees = 75;
+        }
+        bad = voxgi_vct_render(ctx, &bs.scene, &vd, img, sizeof img, NULL) != VOXGI_OK;
+        for (i = 0; i < W * W && !bad; i++) {
+            double px = (img[3 * i] + img[3 * i + 1] + img[3 * i + 2]) / 3;
+            mean[v] += px / (W * W);
+            if (!v && px > top) top = px;
+        }
+    }
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    *mean_ratio = mean[1] > 0 ? mean[0] / mean[1] : 1;
+    *max_ratio = mean[1] > 0 ? top / mean[1] : 1;
+    return bad;
+}
+
 /* Where cones gather from: a volume's radiance, or an octree's. */
 #define VOLUME_SOURCE(vol) (&(const voxgi_radiance_source){.volume = (vol)})
 #define OCTREE_SOURCE(svo) (&(const voxgi_radiance_source){.octree = (svo)})

@@ -305,9 +305,10 @@ static void test_vct_and_report_commands(void)
              tmpdir);
     TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "vct.svg"), "report: %s", out);
     snprintf(path, sizeof path, "%s/rep/vct.csv", tmpdir);
-    if ((f = fopen(path, "r")) != NULL) { /* the octree's rows have the isotropic volume's error: the same image */
+    if ((f = fopen(path, "r")) != NULL) { /* the octree's rows measured (an octree is one-sided, the volume two-sided: test_vct
+                                              holds the octree to a one-sided volume bit for bit) */
         char line[1024], err[2][2][32];
-        int same = 0;
+        int measured = 0;
         memset(err, 0, sizeof err);
         while (fgets(line, sizeof line, f)) {
             size_t n = strlen(line);
@@ -320,8 +321,8 @@ static void test_vct_and_report_commands(void)
             if (k == 20) snprintf(err[strcmp(field[1], "16") == 0][strcmp(field[7], "octree") == 0], 32, "%s", field[16]);
         }
         fclose(f);
-        same = err[0][0][0] && !strcmp(err[0][0], err[0][1]) && err[1][0][0] && !strcmp(err[1][0], err[1][1]);
-        TH_CHECK(same, "octree rows' errors %s %s differ from the isotropic volume's %s %s", err[0][1], err[1][1], err[0][0], err[1][0]);
+        measured = atof(err[0][0]) > 0 && atof(err[0][1]) > 0 && atof(err[1][0]) > 0 && atof(err[1][1]) > 0 && atof(err[0][1]) < 1 && atof(err[1][1]) < 1;
+        TH_CHECK(measured, "octree rows' errors %s %s, the isotropic volume's %s %s", err[0][1], err[1][1], err[0][0], err[1][0]);
     }
     TH_CHECK(rows == 4 && front >= 1, "CSV: %d rows, %d on the front", rows, front);
     snprintf(path, sizeof path, "%s/rep/vct.md", tmpdir);
