@@ -2549,7 +2549,7 @@ typedef enum voxgi__gl_program_id {
     X(u_face) X(u_factor) X(u_far) X(u_first) X(u_first_slice) X(u_forward) X(u_half_tan) X(u_has_albedo)        \
     X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_lookup) X(u_max_channels) X(u_max_distance) X(u_max_lod)    \
     X(u_near) X(u_offset) X(u_op) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_premultiplied)     \
-    X(u_res) X(u_right) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) X(u_src_level)          \
+    X(u_regions) X(u_res) X(u_right) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) X(u_src_level)          \
     X(u_src_res) X(u_step) X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_nodes)     \
     X(u_svo_single) X(u_tan) X(u_thin) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) X(u_view)          \
     X(u_voxel_size) X(u_with_values) X(u_words)
@@ -5783,6 +5783,10 @@ struct voxgi_volume {
     float *cpu[VOXGI__VOLUME_SLOTS][6]; /* [attribute bit][direction]: direction 0 every level, the others (anisotropic)
                                            levels 1.. only: level 0 is the same in every direction and kept once */
     unsigned int tex[VOXGI__VOLUME_SLOTS][6];
+    uint32_t *regions;                 /* two-sided radiance: the empty space's regions, level after level, */
+    uint32_t *region_boxes;            /* and their bounds (voxgi__volume_regions) */
+    size_t region_count;               /* labels, 0 and OPEN included */
+    unsigned int region_buffer;        /* GL: both in one storage buffer */
 };
 
 static int voxgi__attr_index(voxgi_attribute a)
@@ -6042,13 +6046,182 @@ static void voxgi__mip_rows(void *user, size_t first, size_t end)
 }
 
 /* Every level of every volume from the dense base levels (each level's rows on the workers). */
+/* regions of empty space
+   A two-sided radiance volume also labels the empty voxels of level 0 by the region they
+   belong to (6-connected; the surfaces' voxels separate them): VOXGI__REGION_OPEN for every
+   region that reaches the grid's faces, 2, 3, ... for the enclosed ones, 0 on the surfaces.
+   Nothing outside an enclosed region reaches a point in it but through what lies inside it, so a
+   cone from there ends where it enters a region that is not inside its own, and samples no level
+   whose voxels reach into one (voxgi__cone_march). Region b lies inside region a when a is open
+   or b's bounds (level-0 voxels) lie within a's: a pocket such as a closed box on a room's floor
+   lies inside the room, the room not inside the box. Level k > 0 holds its children's outermost
+   region where one holds all the others, VOXGI__REGION_MIXED where none does, 0 where they have
+   none; a region no surface beside it lights counts as none there. A surface's voxel of level 0
+   that borders one lit region alone holds VOXGI__REGION_BORDER | that region: a cone from a
+   region that is not it, nor outside it, leaves the voxel out of its samples of level 0 (the outer
+   of two voxels a wall on a voxel boundary fills, or the ground beside a box's corner). The labels, then each enclosed region's bounds (6 per label, from label 0), are kept
+   while they fit the storage buffer every GL 4.5 has (2^27 bytes: a 300^3 grid), on both
+   backends alike. */
+#define VOXGI__REGION_OPEN 1u
+#define VOXGI__REGION_MIXED 0xFFFFFFFFu
+#define VOXGI__REGION_BORDER 0x80000000u
+#define VOXGI__REGION_BYTES ((size_t)1 << 27)
+
+/* Whether region b lies inside region a (box: the bounds, 6 per label). */
+static int voxgi__region_inside(const uint32_t *box, uint32_t a, uint32_t b)
+{
+    const uint32_t *pa = box + 6 * (size_t)a, *pb = box + 6 * (size_t)b;
+    if (a == VOXGI__REGION_OPEN) return 1;
+    if (b == VOXGI__REGION_OPEN || a == VOXGI__REGION_MIXED || b == VOXGI__REGION_MIXED) return 0;
+    return pb[0] >= pa[0] && pb[1] >= pa[1] && pb[2] >= pa[2] && pb[3] <= pa[3] && pb[4] <= pa[4] && pb[5] <= pa[5];
+}
+
+static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
+{
+    const float *radiance0 = base[VOXGI__RADIANCE_SLOT], *back0 = base[VOXGI__BACK_SLOT], *side0 = base[VOXGI__SIDE_SLOT];
+    const int *dm = vol->dims[0];
+    size_t nx = (size_t)dm[0], nxy = nx * (size_t)dm[1], n = nxy * (size_t)dm[2], i, top, next = 2, kept;
+    uint32_t *lab, *stack = NULL, *rename = NULL, *box;
+    unsigned char *open_flags = NULL, *lit;
+    int k, a;
+    if (!radiance0 || !back0 || !side0) return VOXGI_OK;
+    if (!(lab = (uint32_t *)voxgi__alloc_array(ctx, vol->voxels, 4, 1)) || !(stack = (uint32_t *)voxgi__alloc_array(ctx, n, 4, 0))) {
+        voxgi__free(ctx, lab);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
+    }
+    for (i = 0; i < n && next < VOXGI__REGION_BORDER; i++) { /* provisional labels 2, 3, ...: a fill from each unlabelled empty voxel */
+        if (lab[i] || radiance0[4 * i + 3] > 0) continue;
+        lab[i] = (uint32_t)next;
+        stack[0] = (uint32_t)i;
+        for (top = 1; top;) {
+            size_t c = stack[--top], x = c % nx, y = c / nx % (size_t)dm[1], z = c / nxy, nb[6];
+            int m = 0, q;
+            if (x > 0) nb[m++] = c - 1;
+            if (x + 1 < nx) nb[m++] = c + 1;
+            if (y > 0) nb[m++] = c - nx;
+            if (y + 1 < (size_t)dm[1]) nb[m++] = c + nx;
+            if (z > 0) nb[m++] = c - nxy;
+            if (z + 1 < (size_t)dm[2]) nb[m++] = c + nxy;
+            for (q = 0; q < m; q++)
+                if (!lab[nb[q]] && !(radiance0[4 * nb[q] + 3] > 0)) { lab[nb[q]] = (uint32_t)next; stack[top++] = (uint32_t)nb[q]; }
+        }
+        next++;
+    }
+    voxgi__free(ctx, stack);
+    if (!(rename = (uint32_t *)voxgi__alloc_array(ctx, next, 4, 0)) || !(open_flags = (unsigned char *)voxgi__alloc_array(ctx, next, 1, 1))) {
+        voxgi__free(ctx, lab);
+        voxgi__free(ctx, rename);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
+    }
+    for (i = 0; i < n; i++) { /* a region with a voxel on the grid's faces is open */
+        size_t x = i % nx, y = i / nx % (size_t)dm[1], z = i / nxy;
+        if (x == 0 || x + 1 == nx || y == 0 || y + 1 == (size_t)dm[1] || z == 0 || z + 1 == (size_t)dm[2]) open_flags[lab[i]] = 1;
+    }
+    for (i = 2, kept = 2; i < next; i++) rename[i] = open_flags[i] ? VOXGI__REGION_OPEN : (uint32_t)kept++; /* the enclosed ones 2, 3, ... */
+    voxgi__free(ctx, open_flags);
+    if ((vol->voxels + 6 * kept) * 4 > VOXGI__REGION_BYTES) { voxgi__free(ctx, lab); voxgi__free(ctx, rename); return VOXGI_OK; }
+    if (!(box = (uint32_t *)voxgi__alloc_array(ctx, 6 * kept, 4, 0))) {
+        voxgi__free(ctx, lab);
+        voxgi__free(ctx, rename);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
+    }
+    for (i = 0; i < kept; i++)
+        for (a = 0; a < 3; a++) { box[6 * i + (size_t)a] = UINT32_MAX; box[6 * i + 3 + (size_t)a] = 0; }
+    for (i = 0; i < n; i++) {
+        uint32_t v[3];
+        if (!lab[i]) continue;
+        lab[i] = rename[lab[i]];
+        v[0] = (uint32_t)(i % nx); v[1] = (uint32_t)(i / nx % (size_t)dm[1]); v[2] = (uint32_t)(i / nxy);
+        for (a = 0; a < 3; a++) {
+            box[6 * lab[i] + (size_t)a] = VOXGI__MIN(box[6 * lab[i] + (size_t)a], v[a]);
+            box[6 * lab[i] + 3 + (size_t)a] = VOXGI__MAX(box[6 * lab[i] + 3 + (size_t)a], v[a]);
+        }
+    }
+    voxgi__free(ctx, rename);
+    if (!(lit = (unsigned char *)voxgi__alloc_array(ctx, kept, 1, 1))) {
+        voxgi__free(ctx, lab);
+        voxgi__free(ctx, box);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
+    }
+    for (i = 0; i < n; i++) { /* a region is lit where a surface beside it sends light its way: by the side facing it */
+        size_t c[3];
+        int q;
+        c[0] = i % nx; c[1] = i / nx % (size_t)dm[1]; c[2] = i / nxy;
+        if (lab[i] || !(radiance0[4 * i + 3] > 0)) continue;
+        for (q = 0; q < 6; q++) {
+            int ax = q >> 1, up = q & 1;
+            size_t j = ax == 0 ? 1 : (ax == 1 ? nx : nxy);
+            const float *rad;
+            if (up ? c[ax] + 1 == (size_t)dm[ax] : c[ax] == 0) continue;
+            j = up ? i + j : i - j;
+            if (!lab[j] || lit[lab[j]] || side0[4 * i + (size_t)ax] == 0) continue; /* a neighbour along the surface: on neither side */
+            rad = (up ? side0[4 * i + (size_t)ax] : -side0[4 * i + (size_t)ax]) > 0 ? radiance0 : back0;
+            lit[lab[j]] = rad[4 * i] > 0 || rad[4 * i + 1] > 0 || rad[4 * i + 2] > 0;
+        }
+    }
+    for (i = 0; i < n; i++) { /* a surface's voxel beside one lit region alone: that region, marked */
+        size_t c[3];
+        uint32_t only = 0;
+        int q;
+        c[0] = i % nx; c[1] = i / nx % (size_t)dm[1]; c[2] = i / nxy;
+        if (lab[i] || !(radiance0[4 * i + 3] > 0)) continue;
+        for (q = 0; q < 6 && only != VOXGI__REGION_MIXED; q++) {
+            int ax = q >> 1, up = q & 1;
+            size_t j = ax == 0 ? 1 : (ax == 1 ? nx : nxy);
+            if (up ? c[ax] + 1 == (size_t)dm[ax] : c[ax] == 0) continue;
+            j = up ? i + j : i - j;
+            if (lab[j] && !(lab[j] & VOXGI__REGION_BORDER) && lit[lab[j]] && lab[j] != only) only = only ? VOXGI__REGION_MIXED : lab[j];
+        }
+        if (only && only != VOXGI__REGION_MIXED) lab[i] = VOXGI__REGION_BORDER | only;
+    }
+    for (k = 1; k < vol->info.levels; k++) { /* each level from its children: the outermost region */
+        const int *pd = vol->dims[k - 1], *cd = vol->dims[k];
+        const uint32_t *src = lab + vol->first[k - 1];
+        uint32_t *dst = lab + vol->first[k];
+        int x, y, z, c;
+        for (z = 0; z < cd[2]; z++)
+            for (y = 0; y < cd[1]; y++)
+                for (x = 0; x < cd[0]; x++) {
+                    uint32_t v = 0;
+                    for (c = 0; c < 8; c++) {
+                        int cx = 2 * x + (c & 1), cy = 2 * y + (c >> 1 & 1), cz = 2 * z + (c >> 2);
+                        uint32_t w;
+                        if (cx >= pd[0] || cy >= pd[1] || cz >= pd[2]) continue;
+                        w = src[(size_t)cx + (size_t)pd[0] * ((size_t)cy + (size_t)pd[1] * (size_t)cz)];
+                        if (k == 1 && (w & VOXGI__REGION_BORDER ? 1 : !lit[w])) w = 0; /* nothing to leak from a dark region */
+                        if (!w || w == v) continue;
+                        v = !v || voxgi__region_inside(box, w, v) ? w : (voxgi__region_inside(box, v, w) ? v : VOXGI__REGION_MIXED);
+                    }
+                    dst[(size_t)x + (size_t)cd[0] * ((size_t)y + (size_t)cd[1] * (size_t)z)] = v;
+                }
+    }
+    voxgi__free(ctx, lit);
+    vol->regions = lab;
+    vol->region_boxes = box;
+    vol->region_count = kept;
+    vol->info.bytes += (vol->voxels + 6 * kept) * 4;
+    return VOXGI_OK;
+}
+
 static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
 {
     voxgi_result r = VOXGI_OK;
     int a, d, k;
     size_t base_voxels = (size_t)vol->dims[0][0] * (size_t)vol->dims[0][1] * (size_t)vol->dims[0][2];
+    if (vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_SIDE) r = voxgi__volume_regions(ctx, vol, base);
 #ifndef VOXGI_NO_GL
-    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__volume_build_gl(ctx, vol, base);
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_GL) {
+        if (vol->regions) { /* the labels, then the bounds, in one buffer; the CPU's copy is not needed */
+            size_t labels = vol->voxels * 4, bounds = vol->region_count * 24;
+            vol->region_buffer = voxgi__gl_buffer(ctx, labels + bounds, NULL);
+            ctx->gl->NamedBufferSubData(vol->region_buffer, 0, (ptrdiff_t)labels, vol->regions);
+            ctx->gl->NamedBufferSubData(vol->region_buffer, (ptrdiff_t)labels, (ptrdiff_t)bounds, vol->region_boxes);
+            voxgi__free(ctx, vol->regions);
+            voxgi__free(ctx, vol->region_boxes);
+            vol->regions = vol->region_boxes = NULL;
+        }
+        return voxgi__volume_build_gl(ctx, vol, base);
+    }
 #endif
     for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
         int w = a == 3 ? 1 : 4, dirs = voxgi__slot_dirs(vol, a);
@@ -6147,6 +6320,11 @@ VOXGI_API void voxgi_volume_destroy(voxgi_context *ctx, voxgi_volume *vol)
             if (vol->tex[a][d] && ctx->gl) ctx->gl->DeleteTextures(1, &vol->tex[a][d]);
 #endif
         }
+    voxgi__free(ctx, vol->regions);
+    voxgi__free(ctx, vol->region_boxes);
+#ifndef VOXGI_NO_GL
+    if (vol->region_buffer && ctx->gl) voxgi__gl_delete_buffer(ctx, vol->region_buffer);
+#endif
     voxgi__free(ctx, vol);
 }
 
@@ -7282,6 +7460,8 @@ typedef struct voxgi__cone_job {
     float *irr, *occ;
     int cones, dirs;
     int two_sided;                /* the volume holds RADIANCE_BACK and RADIANCE_SIDE */
+    int enclosed;                 /* and its empty space has enclosed regions (voxgi__volume_regions), */
+    const uint32_t *regions;      /* on the CPU these */
     double half_tan, step, offset, max_dist;
 } voxgi__cone_job;
 
@@ -7356,7 +7536,8 @@ static float voxgi__back_share(const float side[4], const double o[3])
    without darkening its colour. Per level, linear between the two around lod. Two-sided: each
    level mixes the front and the back by the back share seen from the cone's origin o, the back's
    alpha VOXGI__BACK_COVERAGE times its own. */
-static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], const float p[3], float lod_in, const double o[3], float out[4])
+static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], const float p[3], float lod_in, const double o[3], uint32_t home,
+                               float out[4])
 {
     const voxgi_volume *vol = J->vol;
     ptrdiff_t at[8];
@@ -7379,6 +7560,11 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], cons
     for (lev = 0; lev < (t > 0 ? 2 : 1); lev++) {
         float back = 0, b[4];
         voxgi__cone_corners(vol, k0 + lev, p, at, wt);
+        if (home && k0 + lev == 0)
+            for (ch = 0; ch < 8; ch++) { /* a surface's voxel lit from another region only is not seen from this one */
+                uint32_t r = at[ch] >= 0 ? J->regions[at[ch]] : 0;
+                if ((r & VOXGI__REGION_BORDER) && (r &= ~VOXGI__REGION_BORDER) != home && !voxgi__region_inside(vol->region_boxes, home, r)) at[ch] = -1;
+            }
         if (J->two_sided) {
             voxgi__cone_level(J, VOXGI__SIDE_SLOT, d, k0 + lev, at, wt, b);
             back = voxgi__back_share(b, o);
@@ -7394,23 +7580,123 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], cons
     for (ch = 0; ch < 3; ch++) out[ch] = out[3] > 0 ? out[ch] / out[3] : 0;
 }
 
+/* The region of level k's voxel holding p (grid units of level 0), 0 beyond the grid. */
+static uint32_t voxgi__region_at(const voxgi__cone_job *J, int k, const float p[3])
+{
+    const int *dm = J->vol->dims[k];
+    int v[3], a;
+    for (a = 0; a < 3; a++) {
+        float c = p[a] / (float)(1 << k);
+        if (!(c >= 0 && c < (float)dm[a])) return 0;
+        v[a] = (int)c;
+    }
+    return J->regions[J->vol->first[k] + (size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])];
+}
+
+/* The region of the first empty voxel along unit normal n from o within 4 voxels (in float, as
+   GL finds it), 0 if there is none. */
+static uint32_t voxgi__home_along(const voxgi__cone_job *J, const double o[3], const double n[3])
+{
+    int s, a;
+    for (s = 0; s < 4; s++) {
+        float q[3];
+        uint32_t r;
+        for (a = 0; a < 3; a++) q[a] = (float)o[a] + (0.5f + (float)s) * (float)n[a];
+        r = voxgi__region_at(J, 0, q);
+        if (r && !(r & VOXGI__REGION_BORDER)) return r;
+    }
+    return 0;
+}
+
+/* The enclosed region the cones from o on unit normal n start in: voxgi__home_along's; where
+   there is none (o near a corner, the other wall's voxels all along n), that of the nearest empty
+   voxel within 2 voxels of q = o + n/4 which no surface's plane in the voxels around q separates
+   from q. 0 where that region is open or there is none. */
+static uint32_t voxgi__home_region(const voxgi__cone_job *J, const double o[3], const double n[3])
+{
+    const int *dm = J->vol->dims[0];
+    const float *side = J->vol->cpu[VOXGI__SIDE_SLOT][0];
+    float q[3], best_d2 = 1e30f;
+    uint32_t best = voxgi__home_along(J, o, n);
+    int a, c[3], e[3], v[3];
+    if (best) return best == VOXGI__REGION_OPEN ? 0 : best;
+    for (a = 0; a < 3; a++) {
+        q[a] = (float)o[a] + 0.25f * (float)n[a];
+        c[a] = (int)floorf(q[a]);
+    }
+    for (e[2] = c[2] - 2; e[2] <= c[2] + 2; e[2]++)
+        for (e[1] = c[1] - 2; e[1] <= c[1] + 2; e[1]++)
+            for (e[0] = c[0] - 2; e[0] <= c[0] + 2; e[0]++) {
+                float ec[3], d2 = 0;
+                uint32_t r;
+                int ok = 1;
+                if (e[0] < 0 || e[1] < 0 || e[2] < 0 || e[0] >= dm[0] || e[1] >= dm[1] || e[2] >= dm[2]) continue;
+                r = J->regions[(size_t)e[0] + (size_t)dm[0] * ((size_t)e[1] + (size_t)dm[1] * (size_t)e[2])];
+                if (!r || (r & VOXGI__REGION_BORDER)) continue;
+                for (a = 0; a < 3; a++) { ec[a] = (float)e[a] + 0.5f; d2 += (ec[a] - q[a]) * (ec[a] - q[a]); }
+                if (!(d2 < best_d2)) continue;
+                for (v[2] = c[2] - 1; ok && v[2] <= c[2] + 1; v[2]++)
+                    for (v[1] = c[1] - 1; ok && v[1] <= c[1] + 1; v[1]++)
+                        for (v[0] = c[0] - 1; ok && v[0] <= c[0] + 1; v[0]++) {
+                            const float *pl;
+                            float at_q, at_e;
+                            if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= dm[0] || v[1] >= dm[1] || v[2] >= dm[2]) continue;
+                            pl = side + 4 * ((size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2]));
+                            at_q = pl[0] * q[0] + pl[1] * q[1] + pl[2] * q[2] - pl[3];
+                            at_e = pl[0] * ec[0] + pl[1] * ec[1] + pl[2] * ec[2] - pl[3];
+                            ok = !((at_q > 0 && at_e < 0) || (at_q < 0 && at_e > 0));
+                        }
+                if (ok) { best = r; best_d2 = d2; }
+            }
+    return best == VOXGI__REGION_OPEN ? 0 : best;
+}
+
+/* Whether level k's trilinear sample at p reads no region but home's and those inside it. */
+static int voxgi__region_clear(const voxgi__cone_job *J, int k, const float p[3], uint32_t home)
+{
+    ptrdiff_t at[8];
+    double wt[8];
+    int corner;
+    voxgi__cone_corners(J->vol, k, p, at, wt);
+    for (corner = 0; corner < 8; corner++) {
+        uint32_t r = at[corner] >= 0 ? J->regions[J->vol->first[k] + (size_t)at[corner]] : 0;
+        if (r && r != home && !voxgi__region_inside(J->vol->region_boxes, home, r)) return 0;
+    }
+    return 1;
+}
+
 /* One cone from o (grid units, on a surface of unit normal n) along unit d, whose cosine with n
    is lz: marched from `offset` voxels along n, narrowing tan_k, up to max_d voxels; its
-   composited radiance C and opacity A. A single cone (voxgi_cone_trace_each) is the case n = d. */
+   composited radiance C and opacity A. A single cone (voxgi_cone_trace_each) is the case n = d.
+   From an enclosed region home (voxgi__home_region; 0: none) it ends where it leaves it and
+   samples no level that reaches beyond it, nor strides wider than that level's voxels. */
 static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const double n[3], const double d[3], double lz, double tan_k, double max_d,
-                              double C[3], double *A_out)
+                              uint32_t home, double C[3], double *A_out)
 {
     double t = J->offset, A = 0, start[3];
+    float last[4] = {0, 0, 0, 0};
     int a;
     C[0] = C[1] = C[2] = 0;
     for (a = 0; a < 3; a++) start[a] = o[a] + J->offset * n[a]; /* where a sample's side is seen from */
     while (t < max_d && A < 0.99) {
-        double diam = VOXGI__MAX(1.0, 2 * t * tan_k), dt = J->step * diam, ap, h = J->offset + (t - J->offset) * lz;
+        double diam = VOXGI__MAX(1.0, 2 * t * tan_k), ap, h = J->offset + (t - J->offset) * lz;
         float p[3], s[4];
         for (a = 0; a < 3; a++) p[a] = (float)(o[a] + J->offset * n[a] + (t - J->offset) * d[a]);
         /* both levels blended must stay clear of the surface: a level-L voxel holding it reaches 1.5 x 2^L above it */
         double lod = VOXGI__MIN(VOXGI__MIN(log2(diam), log2(h / 1.5) - 1), J->levels - 1.0);
-        voxgi__cone_sample(J, d, p, (float)lod, start, s);
+        if (home) {
+            uint32_t here = voxgi__region_at(J, 0, p);
+            int k;
+            if (here && !(here & VOXGI__REGION_BORDER) && here != home && !voxgi__region_inside(J->vol->region_boxes, home, here)) {
+                for (a = 0; a < 3; a++) C[a] += (1 - A) * last[a]; /* the rest of the cone ends on the enclosure, as last seen */
+                A = 1;
+                break;
+            }
+            for (k = (int)ceil(lod); k > 0 && !voxgi__region_clear(J, k, p, home); k--) {}
+            if (k < lod) diam = exp2(lod = k);
+        }
+        voxgi__cone_sample(J, d, p, (float)lod, start, home, s);
+        if (s[3] > 0) memcpy(last, s, sizeof last);
         /* what the cone sees is the coverage of its cross-section. Isotropic: a level-L voxel's alpha is the share
            of its volume that is filled; a surface one voxel thick fills 2^-L of it yet may cover its whole
            cross-section: alpha x 2^L. Anisotropic: alpha is already the coverage along the axis (composited front
@@ -7419,7 +7705,7 @@ static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const
         ap = 1 - pow(1 - VOXGI__MIN(1.0, s[3] * (J->dirs == 6 ? 2.0 : exp2(VOXGI__MAX(lod, 0.0)))), J->step); /* it holds for one diameter; a step is J->step of it */
         for (a = 0; a < 3; a++) C[a] += (1 - A) * ap * s[a];
         A += (1 - A) * ap;
-        t += dt;
+        t += J->step * diam;
     }
     *A_out = A;
 }
@@ -7432,16 +7718,18 @@ static void voxgi__cone_march_cpu(void *user, size_t first, size_t end)
     int k, a;
     for (i = first; i < end; i++) {
         double o[3], n[3], t3[3], b3[3], len = 0, e[3] = {0, 0, 0}, occ = 0;
+        uint32_t home;
         for (a = 0; a < 3; a++) { o[a] = (J->pos[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size; n[a] = J->nrm[3 * i + (size_t)a]; len += n[a] * n[a]; }
         len = sqrt(len);
         for (a = 0; a < 3; a++) n[a] = len > 0 ? n[a] / len : (a == 1);
         voxgi__basis(n, t3, b3);
+        home = J->regions ? voxgi__home_region(J, o, n) : 0;
         for (k = 0; k < J->cones; k++) {
             double l[3], d[3], A, C[3];
             voxgi__cone_direction(k, J->cones, l);
             for (a = 0; a < 3; a++) d[a] = l[0] * t3[a] + l[1] * b3[a] + l[2] * n[a];
             /* low cones narrow: each sample stays 1.5 diameters above the tangent plane */
-            voxgi__cone_march(J, o, n, d, l[2], VOXGI__MIN(J->half_tan, l[2] / 3), J->max_dist, C, &A);
+            voxgi__cone_march(J, o, n, d, l[2], VOXGI__MIN(J->half_tan, l[2] / 3), J->max_dist, home, C, &A);
             for (a = 0; a < 3; a++) e[a] += VOXGI__PI / J->cones * C[a];
             occ += A / J->cones;
         }
@@ -7483,7 +7771,7 @@ static void voxgi__cone_each_cpu(void *user, size_t first, size_t end)
         double A, C[3];
         voxgi__cone_frame(c, g, o, d, n, &lz);
         voxgi__cone_march(J, o, n, d, lz, lz < 1 ? VOXGI__MIN(tan((double)c->half_angle), lz / 3) : tan((double)c->half_angle), /* narrowed as diffuse cones */
-                          c->max_distance > 0 ? c->max_distance / g->voxel_size : J->max_dist, C, &A);
+                          c->max_distance > 0 ? c->max_distance / g->voxel_size : J->max_dist, J->regions ? voxgi__home_region(J, o, n) : 0, C, &A);
         for (a = 0; a < 3; a++) J->irr[4 * i + (size_t)a] = (float)C[a];
         J->irr[4 * i + 3] = (float)A;
     }
@@ -7499,6 +7787,10 @@ static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__con
     gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, J->levels);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_anisotropic, J->dirs == 6);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_two_sided, J->two_sided);
+    if (J->vol) { /* the regions: where their bounds start (0: no enclosed region), level 0's size */
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_regions, J->enclosed ? (unsigned)J->vol->voxels : 0u);
+        gl->ProgramUniform3i(p, VOXGI__LOC_u_res, J->vol->dims[0][0], J->vol->dims[0][1], J->vol->dims[0][2]);
+    }
     gl->ProgramUniform1f(p, VOXGI__LOC_u_back_coverage, VOXGI__BACK_COVERAGE);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_cones, J->list ? 0 : J->cones);
     gl->ProgramUniform1f(p, VOXGI__LOC_u_half_tan, (float)J->half_tan);
@@ -7507,10 +7799,12 @@ static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__con
     gl->ProgramUniform1f(p, VOXGI__LOC_u_max_distance, (float)J->max_dist);
 }
 
-/* The radiance textures on units 0-5 (front), 9-14 (back) and 15 (side), or 0 to unbind. */
+/* The radiance textures on units 0-5 (front), 9-14 (back) and 15 (side), the regions on
+   storage binding 5, or 0 to unbind. */
 static void voxgi__cone_bind_gl(voxgi__gl *gl, const voxgi__cone_job *J, int bind)
 {
     int a;
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, bind && J->enclosed ? J->vol->region_buffer : 0u);
     for (a = 0; a < 6; a++) {
         int d = J->dirs == 6 ? a : 0;
         gl->BindTextureUnit((unsigned)a, bind ? J->vol->tex[VOXGI__RADIANCE_SLOT][d] : 0);
@@ -7609,6 +7903,8 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radianc
     J->cones = desc->cones ? desc->cones : 16;
     J->dirs = vol && vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
     J->two_sided = vol && (vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_BACK) && (vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_SIDE);
+    J->enclosed = J->two_sided && vol->region_count > 2;
+    J->regions = J->enclosed ? vol->regions : NULL;
     J->half_tan = tan(desc->half_angle > 0 ? desc->half_angle : acos(1 - 1.0 / J->cones));
     J->step = desc->step > 0 ? desc->step : 0.5;
     J->offset = desc->offset > 0 ? desc->offset : 1.5;

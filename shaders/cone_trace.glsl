@@ -19,6 +19,11 @@ layout(binding = 12) uniform sampler3D u_back3;
 layout(binding = 13) uniform sampler3D u_back4;
 layout(binding = 14) uniform sampler3D u_back5;
 layout(binding = 15) uniform sampler3D u_side;
+// the regions of its empty space (voxgi__volume_regions): the labels level after level, then 6
+// bounds per label from u_regions on (0: no enclosed region); level 0 is u_res voxels
+layout(std430, binding = 5) readonly buffer Regions { uint regions[]; };
+layout(location = VOXGI_LOC_u_regions) uniform uint u_regions;
+layout(location = VOXGI_LOC_u_res) uniform ivec3 u_res;
 #endif
 layout(location = VOXGI_LOC_u_size) uniform vec3 u_size;      // the textures' base size
 layout(location = VOXGI_LOC_u_levels) uniform int u_levels;     // mip levels (an octree: depth + 1)
@@ -55,8 +60,153 @@ float back_share(vec4 side, vec3 o)
 }
 #endif
 
-// The sample at p and lod along d, seen from the cone's origin o: voxgi__cone_sample.
-vec4 cone_sample(vec3 d, vec3 p, float lod, vec3 o)
+#ifndef VOXGI_CONE_SVO
+const uint REGION_OPEN = 1u, REGION_MIXED = 0xFFFFFFFFu, REGION_BORDER = 0x80000000u;
+
+// Where level k's labels start, and its size.
+uint region_level(int k, out ivec3 dk)
+{
+    uint first = 0u;
+    dk = u_res;
+    for (int j = 0; j < k; j++) {
+        first += uint(dk.x) * uint(dk.y) * uint(dk.z);
+        dk = (dk + 1) / 2;
+    }
+    return first;
+}
+
+// Whether region b lies inside region a: voxgi__region_inside.
+bool region_inside(uint a, uint b)
+{
+    if (a == REGION_OPEN) return true;
+    if (b == REGION_OPEN || a == REGION_MIXED || b == REGION_MIXED) return false;
+    uint pa = u_regions + 6u * a, pb = u_regions + 6u * b;
+    return regions[pb] >= regions[pa] && regions[pb + 1u] >= regions[pa + 1u] && regions[pb + 2u] >= regions[pa + 2u] &&
+           regions[pb + 3u] <= regions[pa + 3u] && regions[pb + 4u] <= regions[pa + 4u] && regions[pb + 5u] <= regions[pa + 5u];
+}
+
+// The label of level 0's voxel v, 0 beyond the grid.
+uint region_of(ivec3 v)
+{
+    if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, u_res))) return 0u;
+    return regions[uint(v.x) + uint(u_res.x) * (uint(v.y) + uint(u_res.y) * uint(v.z))];
+}
+
+// The region of level k's voxel holding p: voxgi__region_at.
+uint region_at(int k, vec3 p)
+{
+    ivec3 dk;
+    uint first = region_level(k, dk);
+    vec3 c = p / float(1 << k);
+    if (!(all(greaterThanEqual(c, vec3(0.0))) && all(lessThan(c, vec3(dk))))) return 0u;
+    ivec3 v = ivec3(c);
+    return regions[first + uint(v.x) + uint(dk.x) * (uint(v.y) + uint(dk.y) * uint(v.z))];
+}
+
+// The enclosed region the cones from o on unit normal n start in: voxgi__home_region.
+uint home_region(vec3 o, vec3 n)
+{
+    for (int s = 0; s < 4; s++) {
+        uint r = region_at(0, o + (0.5 + float(s)) * n);
+        if (r != 0u && (r & REGION_BORDER) == 0u) return r == REGION_OPEN ? 0u : r;
+    }
+    vec3 q = o + 0.25 * n;
+    ivec3 c = ivec3(floor(q));
+    uint best = 0u;
+    float best_d2 = 1e30;
+    for (int ez = c.z - 2; ez <= c.z + 2; ez++)
+        for (int ey = c.y - 2; ey <= c.y + 2; ey++)
+            for (int ex = c.x - 2; ex <= c.x + 2; ex++) {
+                ivec3 e = ivec3(ex, ey, ez);
+                if (any(lessThan(e, ivec3(0))) || any(greaterThanEqual(e, u_res))) continue;
+                uint r = region_of(e);
+                if (r == 0u || (r & REGION_BORDER) != 0u) continue;
+                vec3 ec = vec3(e) + 0.5;
+                float d2 = (ec.x - q.x) * (ec.x - q.x) + (ec.y - q.y) * (ec.y - q.y) + (ec.z - q.z) * (ec.z - q.z);
+                if (!(d2 < best_d2)) continue;
+                bool ok = true;
+                for (int vz = c.z - 1; ok && vz <= c.z + 1; vz++)
+                    for (int vy = c.y - 1; ok && vy <= c.y + 1; vy++)
+                        for (int vx = c.x - 1; ok && vx <= c.x + 1; vx++) {
+                            ivec3 v = ivec3(vx, vy, vz);
+                            if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, u_res))) continue;
+                            vec4 pl = texelFetch(u_side, v, 0);
+                            float at_q = pl.x * q.x + pl.y * q.y + pl.z * q.z - pl.w, at_e = pl.x * ec.x + pl.y * ec.y + pl.z * ec.z - pl.w;
+                            ok = !((at_q > 0.0 && at_e < 0.0) || (at_q < 0.0 && at_e > 0.0));
+                        }
+                if (ok) { best = r; best_d2 = d2; }
+            }
+    return best == REGION_OPEN ? 0u : best;
+}
+
+// Corner `corner` of level k's trilinear sample at p (voxgi__cone_corners): its voxel, and its
+// weight (0 beyond the level's size dk). No arrays: llvmpipe keeps those in memory.
+float region_corner(int k, vec3 p, ivec3 dk, int corner, out ivec3 v)
+{
+    vec3 c = p / float(1 << k) - 0.5, f = c - floor(c);
+    ivec3 hi = ivec3(corner & 1, (corner >> 1) & 1, corner >> 2);
+    v = ivec3(floor(c)) + hi;
+    if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, dk))) return 0.0;
+    return (hi.x != 0 ? f.x : 1.0 - f.x) * (hi.y != 0 ? f.y : 1.0 - f.y) * (hi.z != 0 ? f.z : 1.0 - f.z);
+}
+
+// Whether level k's trilinear sample at p reads no region but home's and those inside it: voxgi__region_clear.
+bool region_clear(int k, vec3 p, uint home)
+{
+    ivec3 dk, v;
+    uint first = region_level(k, dk);
+    for (int corner = 0; corner < 8; corner++) {
+        if (region_corner(k, p, dk, corner, v) == 0.0) continue;
+        uint r = regions[first + uint(v.x) + uint(dk.x) * (uint(v.y) + uint(dk.y) * uint(v.z))];
+        if (r != 0u && r != home && !region_inside(home, r)) return false;
+    }
+    return true;
+}
+
+// Whether level 0's voxel v is a surface's lit from a region neither home nor inside it.
+bool region_left_out(ivec3 v, uint home)
+{
+    uint r = region_of(v);
+    return (r & REGION_BORDER) != 0u && (r & ~REGION_BORDER) != home && !region_inside(home, r & ~REGION_BORDER);
+}
+
+// Level 0 at p without the surfaces' voxels lit from a region that is neither home nor inside it
+// (voxgi__cone_sample): false where it leaves none out (the textures' own filter serves);
+// else the side, the front and the back filtered by hand from the rest.
+bool level0_without(vec3 p, uint home, out vec4 side, out vec4 front, out vec4 back)
+{
+    ivec3 v;
+    bool any_out = false;
+    side = front = back = vec4(0.0);
+    for (int corner = 0; corner < 8; corner++)
+        if (region_corner(0, p, u_res, corner, v) != 0.0 && region_left_out(v, home)) any_out = true;
+    if (!any_out) return false;
+    for (int corner = 0; corner < 8; corner++) {
+        float w = region_corner(0, p, u_res, corner, v);
+        if (w == 0.0 || region_left_out(v, home)) continue;
+        side += w * texelFetch(u_side, v, 0);
+        front += w * texelFetch(u_rad0, v, 0);
+        back += w * texelFetch(u_back0, v, 0);
+    }
+    return true;
+}
+#endif
+
+#ifndef VOXGI_CONE_SVO
+// Level k of a two-sided volume at texture coordinates uv along d: the front and the back mixed
+// by the back share seen from o.
+vec4 two_sided_level(vec3 d, vec3 uv, float k, vec3 o)
+{
+    float back = back_share(textureLod(u_side, uv, k), o);
+    vec4 f = back < 1.0 ? cone_level(false, d, uv, k) : vec4(0.0);
+    if (back > 0.0) f = (1.0 - back) * f + back * u_back_coverage * cone_level(true, d, uv, k);
+    return f;
+}
+#endif
+
+// The sample at p and lod along d, seen from the cone's origin o, from region home (0: none):
+// voxgi__cone_sample.
+vec4 cone_sample(vec3 d, vec3 p, float lod, vec3 o, uint home)
 {
     float m = float(u_levels - 1);
     vec4 s;
@@ -66,14 +216,13 @@ vec4 cone_sample(vec3 d, vec3 p, float lod, vec3 o)
     if (u_two_sided != 0) { // each level on its own: the front and the back mixed by the back share
         float l = clamp(lod, 0.0, m), k0 = floor(l), t = l - k0;
         vec3 uv = p / u_size;
-        vec4 v[2];
-        for (int lev = 0; lev < (t > 0.0 ? 2 : 1); lev++) {
-            float k = k0 + float(lev), back = back_share(textureLod(u_side, uv, k), o);
-            vec4 f = back < 1.0 ? cone_level(false, d, uv, k) : vec4(0.0);
-            if (back > 0.0) f = (1.0 - back) * f + back * u_back_coverage * cone_level(true, d, uv, k);
-            v[lev] = f;
-        }
-        s = t > 0.0 ? v[0] + t * (v[1] - v[0]) : v[0];
+        vec4 v0, side, front, behind;
+        if (home != 0u && k0 == 0.0 && level0_without(p, home, side, front, behind)) {
+            float back = back_share(side, o);
+            v0 = (1.0 - back) * front + back * u_back_coverage * behind;
+        } else
+            v0 = two_sided_level(d, uv, k0, o);
+        s = t > 0.0 ? v0 + t * (two_sided_level(d, uv, k0 + 1.0, o) - v0) : v0;
     } else if (u_anisotropic == 0) s = voxgi_sample_volume(u_rad0, p, lod, u_size, m);
     else { // the axis volumes along the travel direction, weighted by its squared components
         vec3 w = d * d;
@@ -85,17 +234,41 @@ vec4 cone_sample(vec3 d, vec3 p, float lod, vec3 o)
     return vec4(s.a > 0.0 ? s.rgb / s.a : vec3(0.0), s.a);
 }
 
+// The cones' region from o on unit normal n: home_region where the volume has regions, else 0.
+uint home_of(vec3 o, vec3 n)
+{
+#ifdef VOXGI_CONE_SVO
+    return 0u;
+#else
+    return u_regions != 0u ? home_region(o, n) : 0u;
+#endif
+}
+
 // One cone from o (on a surface of unit normal n) along unit d, at cosine lz with n: marched from
 // u_offset voxels along n, narrowing tan_k, up to max_d; (radiance, opacity). voxgi__cone_march.
-vec4 march(vec3 o, vec3 n, vec3 d, float lz, float tan_k, float max_d)
+vec4 march(vec3 o, vec3 n, vec3 d, float lz, float tan_k, float max_d, uint home)
 {
     float t = u_offset, A = 0.0;
-    vec3 C = vec3(0.0), start = o + u_offset * n; // where a sample's side is seen from
+    vec3 C = vec3(0.0), start = o + u_offset * n, last = vec3(0.0); // where a sample's side is seen from; the last colour seen
     while (t < max_d && A < 0.99) {
         float diam = max(1.0, 2.0 * t * tan_k), h = u_offset + (t - u_offset) * lz;
         vec3 p = o + u_offset * n + (t - u_offset) * d;
         float lod = min(min(log2(diam), log2(h / 1.5) - 1.0), float(u_levels - 1));
-        vec4 s = cone_sample(d, p, lod, start);
+#ifndef VOXGI_CONE_SVO
+        if (home != 0u) { // out of an enclosed region: ended where it leaves it, no level reaching beyond it
+            uint here = region_at(0, p);
+            if (here != 0u && (here & REGION_BORDER) == 0u && here != home && !region_inside(home, here)) {
+                C += (1.0 - A) * last; // the rest of the cone ends on the enclosure, as last seen
+                A = 1.0;
+                break;
+            }
+            int k = int(ceil(lod));
+            while (k > 0 && !region_clear(k, p, home)) k--;
+            if (float(k) < lod) { lod = float(k); diam = exp2(lod); }
+        }
+#endif
+        vec4 s = cone_sample(d, p, lod, start, home);
+        if (s.a > 0.0) last = s.rgb;
         float ap = 1.0 - pow(1.0 - min(1.0, s.a * (u_anisotropic != 0 ? 2.0 : exp2(max(lod, 0.0)))), u_step);
         C += (1.0 - A) * ap * s.rgb;
         A += (1.0 - A) * ap;
@@ -111,10 +284,11 @@ vec4 gather(vec3 o, vec3 n)
     voxgi_basis(n, t3, b3);
     vec3 e = vec3(0.0);
     float occ = 0.0;
+    uint home = home_of(o, n);
     for (int k = 0; k < u_cones; k++) {
         float r = sqrt((float(k) + 0.5) / float(u_cones)), phi = 2.399963229728653 * float(k);
         vec3 l = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - r * r)));
-        vec4 c = march(o, n, l.x * t3 + l.y * b3 + l.z * n, l.z, min(u_half_tan, l.z / 3.0), u_max_distance);
+        vec4 c = march(o, n, l.x * t3 + l.y * b3 + l.z * n, l.z, min(u_half_tan, l.z / 3.0), u_max_distance, home);
         e += 3.14159265358979323846 / float(u_cones) * c.rgb;
         occ += c.a / float(u_cones);
     }

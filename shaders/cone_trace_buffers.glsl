@@ -16,6 +16,6 @@ void main()
     if (i >= u_count) return;
     vec4 a = points[3u * i], b = points[3u * i + 1u], c = points[3u * i + 2u];
     if (u_cones == 0) // narrowed near the surface unless it leaves along its normal
-        gathered[i] = march(a.xyz, c.xyz, b.xyz, c.w, c.w > 0.0 && c.w < 1.0 ? min(a.w, c.w / 3.0) : a.w, b.w);
+        gathered[i] = march(a.xyz, c.xyz, b.xyz, c.w, c.w > 0.0 && c.w < 1.0 ? min(a.w, c.w / 3.0) : a.w, b.w, home_of(a.xyz, c.xyz));
     else gathered[i] = gather(a.xyz, b.xyz);
 }

@@ -16,15 +16,9 @@ layout(location = VOXGI_LOC_u_bias) uniform float u_bias;
 float visible(int layer, vec2 uv, float d, float texel)
 {
     vec2 t = (uv * 0.5 + 0.5) * float(u_size);
-    ivec2 c = ivec2(floor(t));
-    float lit = 0.0;
-    for (int y = -1; y <= 1; y++)
-        for (int x = -1; x <= 1; x++) {
-            ivec2 s = clamp(c + ivec2(x, y), ivec2(0), ivec2(u_size - 1));
-            float m = uintBitsToFloat(imageLoad(u_maps, ivec3(s, layer)).r);
-            lit += d <= m + u_bias + texel ? 1.0 : 0.0;
-        }
-    return lit / 9.0;
+    ivec2 c = clamp(ivec2(floor(t)), ivec2(0), ivec2(u_size - 1));
+    float m = uintBitsToFloat(imageLoad(u_maps, ivec3(c, layer)).r);
+    return d <= m + u_bias + 0.5 * texel ? 1.0 : 0.0;
 }
 
 void main()

@@ -301,6 +301,49 @@ static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter
     return bad;
 }
 
+/* The leak-box scene (a closed box of zero-thickness faces on sunlit ground, a point light
+   beside it; with area = 1 a rectangular light there instead) cone traced at res^3 from inside,
+   where the exact image is black: the mean and largest radiance inside over the lit ground's
+   (albedo / pi x the sun's irradiance). 0 on success. */
+static inline int leak_box_ratios(voxgi_context *ctx, int res, voxgi_mip_filter filter, int area, double *mean_ratio, double *max_ratio)
+{
+    enum { W = 24 };
+    voxgi_builtin_scene bs;
+    voxgi_vct_desc vd;
+    voxgi_light lights[2];
+    float img[W * W * 3];
+    double mean = 0, top = 0, ground;
+    int i, bad;
+    if (voxgi_builtin_scene_create(ctx, "leak-box", &bs) != VOXGI_OK) return 1;
+    memcpy(lights, bs.scene.lights, sizeof lights);
+    { /* the ground under the sun */
+        const float *d = lights[0].direction;
+        ground = 0.8 / PI * lights[0].intensity[0] * -d[1] / sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2]);
+    }
+    if (area) { /* 0.6 m square, 1 m off the box's -z face, facing it */
+        memset(&lights[1], 0, sizeof lights[1]);
+        lights[1].type = VOXGI_LIGHT_RECT;
+        lights[1].position[0] = -0.3f; lights[1].position[1] = 0.2f; lights[1].position[2] = -1.5f;
+        lights[1].edge_u[0] = 0.6f; lights[1].edge_v[1] = 0.6f;
+        lights[1].intensity[0] = lights[1].intensity[1] = lights[1].intensity[2] = 20;
+    }
+    bs.scene.lights = lights;
+    vct_view(&vd, &bs, W);
+    vd.resolution = res;
+    vd.filter = filter;
+    vd.samples = 1;
+    bad = voxgi_vct_render(ctx, &bs.scene, &vd, img, sizeof img, NULL) != VOXGI_OK;
+    for (i = 0; i < W * W && !bad; i++) {
+        double px = (img[3 * i] + img[3 * i + 1] + img[3 * i + 2]) / 3;
+        mean += px / (W * W);
+        top = fmax(top, px);
+    }
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    *mean_ratio = mean / ground;
+    *max_ratio = top / ground;
+    return bad;
+}
+
 /* Where cones gather from: a volume's radiance, or an octree's. */
 #define VOLUME_SOURCE(vol) (&(const voxgi_radiance_source){.volume = (vol)})
 #define OCTREE_SOURCE(svo) (&(const voxgi_radiance_source){.octree = (svo)})
