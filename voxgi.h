@@ -688,8 +688,8 @@ VOXGI_API float voxgi_specular_half_angle(float roughness);
    Kronecker sequence, randomly shifted). GL: distance
    maps drawn from each light (one orthographic layer for a directional light, six cube faces for
    every point, spot, and stratified point on an area light or emitter: the same points for all
-   voxels), gathered per voxel with the same analytic irradiance and 3x3 map texels for the
-   visibility (a gather: no voxel is missed where texels are sparser than voxels). The voxels must
+   voxels), gathered per voxel with the same analytic irradiance and the point's map texel for
+   the visibility (a gather: no voxel is missed where texels are sparser than voxels). The voxels must
    hold ALBEDO and NORMAL. Both sides of a surface are lit on their own: a voxel's back side
    (RADIANCE_BACK) gathers at the mirror point behind it, c - off n, on the normal -n, and emits
    nothing (an emitter's light leaves its front), so the inner face of a closed box's wall lit
@@ -702,13 +702,17 @@ VOXGI_API float voxgi_specular_half_angle(float roughness);
    cos / pi exactly; GL and CPU agree in total power within 0.1% (two spheres under the sun) and
    0.2% (the Cornell box's emitter), voxel by voxel to 1e-4 on 88% of the two spheres' voxels
    (the rest lie within a map texel or two of a shadow's edge). */
+/* bounces = -1 stops at the bounce adding less than this share of the voxels' light (the
+   Cornell box: 7 bounces, docs/cone-tracing.md). */
+#define VOXGI_CONVERGED_BOUNCE 0.01
 typedef struct voxgi_inject_desc {
     voxgi_volume_desc volume;     /* filter and levels (attributes: ignored) */
     int samples;                  /* points per area light and on the emitters (CPU: per voxel); 0 = 16 */
     uint64_t seed;
     int shadow_rays;              /* GL context: 1 = the CPU's exact shadow rays instead of the maps */
     int bounces;                  /* 0 or 1: direct light; B > 1: B - 1 more bounces, each voxel gathering
-                                     with `gather` cones from the last volume */
+                                     with `gather` cones from the last volume; -1: full global illumination,
+                                     bounces until one adds less than VOXGI_CONVERGED_BOUNCE of the light (at most 63) */
     voxgi_cone_desc gather;       /* cones 0 = 4: the bounces' light is smooth, and more cones do not
                                      change the image (docs/cone-tracing.md) */
     int gather_block;             /* the bounces gather once per group of voxels: those in one block of
@@ -765,7 +769,8 @@ typedef struct voxgi_vct_desc {
     int hide_emitters;            /* 1: leave out the emission the camera sees directly */
     int shadow_rays;              /* GL context: inject through exact shadow rays (voxgi_inject_desc) */
     int bounces;                  /* indirect bounces: 0 or 1 = one (the cones at the pixels); B > 1: the
-                                     light bounces B - 1 times among the voxels first (voxgi_inject_desc) */
+                                     light bounces B - 1 times among the voxels first (voxgi_inject_desc);
+                                     -1: full global illumination (bounces until they converge) */
     voxgi_cone_desc bounce_cones; /* the bounces' gathers among the voxels (voxgi_inject_desc.gather) */
     int bounce_block;             /* the bounces gather once per block of this many voxels a side
                                      (voxgi_inject_desc.gather_block); 0 = 4 */
@@ -8167,7 +8172,7 @@ static void voxgi__inject_cpu(void *user, size_t first, size_t end)
    layer, a point or spot light six cube faces, a rectangular light or the emitters `samples`
    stratified points with six faces each (their surface's cosine, area over samples). The maps
    are drawn, then every voxel gathers the irradiance at the same lookup point as the CPU's,
-   visibility from 3x3 map texels instead of a shadow ray (a gather per voxel: no voxel is missed
+   visibility from its map texel instead of a shadow ray (a gather per voxel: no voxel is missed
    where the map's texels are sparser than the voxels, and the energy per voxel is the analytic
    irradiance times the visible share, so it is right wherever nothing shadows). Out: 4 floats
    per voxel, irradiance in xyz. */
@@ -8435,14 +8440,15 @@ static voxgi_result voxgi__bounce_groups(voxgi_context *ctx, const voxgi__inject
     return r;
 }
 
-/* The light's further bounces among the voxels (desc->bounces > 1): each group of voxels
-   (voxgi__bounce_groups) gathers from *vol, on its normal for the front and on the reverse for
-   the back, its voxels' radiance becomes direct + alpha albedo / pi x that, and *vol is rebuilt. */
+/* The light's further bounces among the voxels (desc->bounces > 1, or -1: until one adds less
+   than VOXGI_CONVERGED_BOUNCE of the light): each group of voxels (voxgi__bounce_groups) gathers
+   from *vol, on its normal for the front and on the reverse for the back, its voxels' radiance
+   becomes direct + alpha albedo / pi x that, and *vol is rebuilt. */
 static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, size_t n, const voxgi_inject_desc *desc, voxgi_volume **vol)
 {
     const voxgi_grid *g = J->g;
     size_t *group = (size_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof(size_t), 0), ng = 0, i, k;
-    int sides = J->back ? 2 : 1, b, a, sd;
+    int sides = J->back ? 2 : 1, b, a, sd, converged = 0;
     float *pos = NULL, *nrm = NULL, *irr = NULL, *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12 * (size_t)sides, 0);
     const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     voxgi_result r = VOXGI_OK;
@@ -8455,21 +8461,28 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
             direct[3 * i + (size_t)a] = J->rgba[4 * J->index[i] + (size_t)a];
             if (sides == 2) direct[3 * (n + i) + (size_t)a] = J->back[4 * J->index[i] + (size_t)a];
         }
-    for (b = 1; r == VOXGI_OK && b < desc->bounces; b++) {
+    for (b = 1; r == VOXGI_OK && b < (desc->bounces < 0 ? 64 : desc->bounces) && !converged; b++) {
         voxgi_volume *next = NULL;
         voxgi_radiance_source source = {NULL, NULL};
+        double before = 0, after = 0;
         source.volume = *vol;
-        if (voxgi__cancelled(ctx, (double)(b - 1) / (desc->bounces - 1), "light injection", "bounces among the voxels")) r = VOXGI_ERR_CANCELLED;
+        if (voxgi__cancelled(ctx, desc->bounces < 0 ? 0.0 : (double)(b - 1) / (desc->bounces - 1), "light injection", "bounces among the voxels"))
+            r = VOXGI_ERR_CANCELLED;
         if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, &source, &desc->gather, ng * (size_t)sides, pos, nrm, irr, NULL);
         for (sd = 0; r == VOXGI_OK && sd < sides; sd++) /* a voxel without a normal only emits: it keeps its direct light */
             for (i = 0; i < n; i++) {
                 float *o = (sd ? J->back : J->rgba) + 4 * J->index[i];
                 for (a = 0; a < 3; a++) {
                     k = 3 * ((size_t)sd * ng + group[i]) + (size_t)a;
+                    before += o[a];
                     o[a] = direct[3 * ((size_t)sd * n + i) + (size_t)a] +
                            (group[i] != SIZE_MAX ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / VOXGI__PI * irr[k]) : 0.0f);
+                    after += o[a];
                 }
             }
+        converged = desc->bounces < 0 && !(after - before > VOXGI_CONVERGED_BOUNCE * after);
+        if (converged) voxgi__log(ctx, VOXGI_LOG_INFO, "light injection: bounce %d added %.2g%% of the light: %d bounces", b + 1,
+                                  after > 0 ? 100 * (after - before) / after : 0.0, b + 1);
         slots[VOXGI__RADIANCE_SLOT] = J->rgba;
         slots[VOXGI__BACK_SLOT] = J->back;
         slots[VOXGI__SIDE_SLOT] = J->side;
@@ -8520,8 +8533,8 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     resolved = voxgi__inject_defaults(desc_in);
     if ((vx->info.attributes & (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL)) != (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light injection needs voxels with ALBEDO and NORMAL (they hold 0x%x)", vx->info.attributes);
-    if (desc->samples < 0 || desc->bounces < 0 || desc->bounces > 64 || desc->gather_block < 1 || desc->gather_block > 64)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d (0..64), gather block %d (1..64)", desc->samples, desc->bounces,
+    if (desc->samples < 0 || desc->bounces < -1 || desc->bounces > 64 || desc->gather_block < 1 || desc->gather_block > 64)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d (-1..64), gather block %d (1..64)", desc->samples, desc->bounces,
                            desc->gather_block);
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
@@ -8534,7 +8547,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
         r = voxgi__volume_new(ctx, &vx->info.grid, &desc->volume,
                               VOXGI_ATTRIBUTE_RADIANCE | (sides == 2 ? VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE : 0u), &vol);
     for (a = 0; a < (sides == 2 ? 3 : 1) && r == VOXGI_OK; a++) {
-        if (ctx->backend == VOXGI_BACKEND_CPU && desc->bounces <= 1) { /* level 0 written in place, the mips after it */
+        if (ctx->backend == VOXGI_BACKEND_CPU && desc->bounces >= 0 && desc->bounces <= 1) { /* level 0 written in place, the mips after it */
             if ((vol->cpu[VOXGI__RADIANCE_SLOT + a][0] = (float *)voxgi__alloc_array(ctx, vol->voxels, 16, 0)) != NULL)
                 memset(vol->cpu[VOXGI__RADIANCE_SLOT + a][0], 0, (size_t)nvox * 16);
             level0[a] = vol->cpu[VOXGI__RADIANCE_SLOT + a][0];
@@ -8596,7 +8609,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
             voxgi__parallel(ctx, n, 256, voxgi__inject_cpu, &J);
         for (a = 0; a < 3; a++) slots[VOXGI__RADIANCE_SLOT + a] = level0[a];
         if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
-        if (r == VOXGI_OK && desc->bounces > 1) r = voxgi__inject_bounces(ctx, &J, n, desc, &vol);
+        if (r == VOXGI_OK && (desc->bounces > 1 || desc->bounces < 0)) r = voxgi__inject_bounces(ctx, &J, n, desc, &vol);
         if (r == VOXGI_OK) vol->info.ms = voxgi__now_ms() - t0;
     }
     if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); vol = NULL; }
@@ -9068,9 +9081,9 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
     pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
     if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (desc->samples < 0 || desc->inject_samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->bounces < 0 || desc->bounces > 64 || desc->cone_stride < 0 ||
+    if (desc->samples < 0 || desc->inject_samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->bounces < -1 || desc->bounces > 64 || desc->cone_stride < 0 ||
         desc->cone_stride > 64)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, inject_samples %d, resolution %d (0..4096), bounces %d (0..64), cone_stride %d (0..64)", desc->samples, desc->inject_samples,
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, inject_samples %d, resolution %d (0..4096), bounces %d (-1..64), cone_stride %d (0..64)", desc->samples, desc->inject_samples,
                            desc->resolution, desc->bounces, desc->cone_stride);
     resolved = voxgi__vct_defaults(ctx, desc_in);
     desc = &resolved;

@@ -1,8 +1,9 @@
 // Light injection on GL (after light_maps.glsl): the irradiance at each voxel's lookup point
 // (its centre moved off its surface, relative to the grid origin) on its unit normal, from every
-// caster, each seen through its distance map: the share of the 3x3 texels around the point's
-// texel whose nearest surface is not nearer than the point (less u_bias, plus one texel's
-// width for slopes). voxgi__inject_range is the CPU's twin with exact shadow rays.
+// caster, each seen through its distance map: lit where the nearest surface in the point's own
+// texel is not nearer than the point, less u_bias and half a texel's width for slopes (a filter
+// over neighbouring texels would see past the foot of a wall that shadows a point beside it).
+// voxgi__inject_range is the CPU's twin with exact shadow rays.
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };   // 2 per voxel: lookup point, unit normal (w = 0: none)
 layout(std430, binding = 1) readonly buffer Casters { Caster casters[]; };

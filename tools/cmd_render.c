@@ -368,7 +368,8 @@ int cmd_render(int argc, char **argv)
                      "the floor at its centre, in its white; named cornell-box+NAME"},
             {.name = "--bounces", .arg = "B", .kind = CLI_INT, .dst = &a.bounces, .lo = -1, .hi = 1000,
              .help = "indirect bounces: 0 = direct light only, -1 = unlimited (default 1);\n"
-                     "vct: B >= 1, the light bouncing B - 1 times among the voxels first"},
+                     "vct: B >= 1, the light bouncing B - 1 times among the voxels first;\n"
+                     "-1, until a bounce adds less than 1% of the light"},
             {.name = "--bounce-cones", .arg = "N", .kind = CLI_INT, .dst = &a.bounce_cones, .lo = 1, .hi = 1024,
              .help = "vct with --bounces B > 1: cones per gather among the voxels (default 4)"},
             {.name = "--bounce-block", .arg = "N", .kind = CLI_INT, .dst = &a.bounce_block, .lo = 1, .hi = 64,
@@ -400,7 +401,8 @@ int cmd_render(int argc, char **argv)
     if (!a.out) return cli_usage("render", "-o OUT.png or OUT.pfm is needed");
     if (!cli_has_extension(a.out, ".png") && !cli_has_extension(a.out, ".pfm"))
         return cli_usage("render", "-o %s: render writes .png or .pfm images only", a.out);
-    if (a.vct && a.bounces < 1 && !a.no_gi) return cli_usage("render", "--method vct needs --bounces 1 or more (or --no-gi)");
+    if (a.vct && a.bounces == 0 && !a.no_gi) return cli_usage("render", "--method vct needs --bounces 1 or more, or -1 (or --no-gi)");
+    if (a.vct && a.bounces > 64) return cli_usage("render", "--method vct: --bounces %d, at most 64", a.bounces);
     if (a.anisotropic && a.isotropic) return cli_usage("render", "--anisotropic and --isotropic: one or the other");
     if (a.compare && a.reference) return cli_usage("render", "--compare and --reference: one or the other");
     if (a.cornell_mesh && strcmp(a.what, "cornell-box") != 0)
