@@ -633,7 +633,10 @@ typedef struct voxgi_cone_desc {
    (a' = 1 - (1 - a)^(step)), composited front to
    back (c += (1 - A) a' L, A += (1 - A) a') until A reaches 0.99 or max_distance. Anisotropic
    volumes are sampled along the cone's direction (the three axis volumes weighted by the
-   squared direction components). irradiance: 3 floats per point (sum of pi / cones x the cones'
+   squared direction components). A two-sided volume (voxgi_inject_light) gives each level's side
+   facing the cone's origin, and a cone from an enclosed region of its empty space keeps to that
+   region: nothing from outside a closed room reaches into it (docs/cone-tracing.md#light-leaking).
+   irradiance: 3 floats per point (sum of pi / cones x the cones'
    radiance); occlusion: 1 per point (mean A), or NULL. A GL source is traced on GL
    (shaders/cone_trace.glsl, a compute pass with the textures' filtering): on llvmpipe within
    1e-4 of the CPU's irradiance (relative to its mean) and occlusion; a GPU with 8-bit filter
@@ -695,7 +698,8 @@ VOXGI_API float voxgi_specular_half_angle(float roughness);
    nothing (an emitter's light leaves its front), so the inner face of a closed box's wall lit
    from outside stays dark; RADIANCE_SIDE tells a cone which side it sees. A voxel without a
    normal sends its front's light both ways. The result is a volume of RADIANCE, RADIANCE_BACK
-   and RADIANCE_SIDE (RADIANCE alone with one_sided) with desc.volume's mips. With bounces B > 1 the light then bounces among the voxels: each
+   and RADIANCE_SIDE (RADIANCE alone with one_sided) with desc.volume's mips, and the regions of
+   its empty space for the cones (4 bytes a voxel over all levels). With bounces B > 1 the light then bounces among the voxels: each
    gathers the irradiance at its centre on its normal from the volume so far (voxgi_cone_trace,
    on the context's backend) and sends out its direct light plus albedo / pi x that, B - 1
    times, each side gathering on its own normal. Checks: a plane under a directional light of irradiance E gets albedo E
@@ -712,7 +716,7 @@ typedef struct voxgi_inject_desc {
     int shadow_rays;              /* GL context: 1 = the CPU's exact shadow rays instead of the maps */
     int bounces;                  /* 0 or 1: direct light; B > 1: B - 1 more bounces, each voxel gathering
                                      with `gather` cones from the last volume; -1: full global illumination,
-                                     bounces until one adds less than VOXGI_CONVERGED_BOUNCE of the light (at most 63) */
+                                     bounces until one adds less than VOXGI_CONVERGED_BOUNCE of the light (at most 64) */
     voxgi_cone_desc gather;       /* cones 0 = 4: the bounces' light is smooth, and more cones do not
                                      change the image (docs/cone-tracing.md) */
     int gather_block;             /* the bounces gather once per group of voxels: those in one block of
@@ -6064,9 +6068,9 @@ static void voxgi__mip_rows(void *user, size_t first, size_t end)
    none; a region no surface beside it lights counts as none there. A surface's voxel of level 0
    that borders one lit region alone holds VOXGI__REGION_BORDER | that region: a cone from a
    region that is not it, nor outside it, leaves the voxel out of its samples of level 0 (the outer
-   of two voxels a wall on a voxel boundary fills, or the ground beside a box's corner). The labels, then each enclosed region's bounds (6 per label, from label 0), are kept
-   while they fit the storage buffer every GL 4.5 has (2^27 bytes: a 300^3 grid), on both
-   backends alike. */
+   of two voxels a wall on a voxel boundary fills, or the ground beside a box's corner). The
+   labels, then each enclosed region's bounds (6 per label, from label 0), are kept while they
+   fit the storage buffer every GL 4.5 has (2^27 bytes: a 300^3 grid), on both backends alike. */
 #define VOXGI__REGION_OPEN 1u
 #define VOXGI__REGION_MIXED 0xFFFFFFFFu
 #define VOXGI__REGION_BORDER 0x80000000u
@@ -6081,109 +6085,103 @@ static int voxgi__region_inside(const uint32_t *box, uint32_t a, uint32_t b)
     return pb[0] >= pa[0] && pb[1] >= pa[1] && pb[2] >= pa[2] && pb[3] <= pa[3] && pb[4] <= pa[4] && pb[5] <= pa[5];
 }
 
+/* The root of provisional label l (union-find, halving the path as it goes). */
+static uint32_t voxgi__region_root(uint32_t *parent, uint32_t l)
+{
+    while (parent[l] != l) l = parent[l] = parent[parent[l]];
+    return l;
+}
+
+/* One region of the two labels' (the smaller root holds both); that root. */
+static uint32_t voxgi__region_unite(uint32_t *parent, uint32_t a, uint32_t b)
+{
+    a = voxgi__region_root(parent, a);
+    b = voxgi__region_root(parent, b);
+    if (a < b) parent[b] = a;
+    else parent[a] = b;
+    return a < b ? a : b;
+}
+
 static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
 {
     const float *radiance0 = base[VOXGI__RADIANCE_SLOT], *back0 = base[VOXGI__BACK_SLOT], *side0 = base[VOXGI__SIDE_SLOT];
     const int *dm = vol->dims[0];
-    size_t nx = (size_t)dm[0], nxy = nx * (size_t)dm[1], n = nxy * (size_t)dm[2], i, top, next = 2, kept;
-    uint32_t *lab, *stack = NULL, *rename = NULL, *box;
-    unsigned char *open_flags = NULL, *lit;
-    int k, a;
-    if (!radiance0 || !back0 || !side0) return VOXGI_OK;
-    if (!(lab = (uint32_t *)voxgi__alloc_array(ctx, vol->voxels, 4, 1)) || !(stack = (uint32_t *)voxgi__alloc_array(ctx, n, 4, 0))) {
-        voxgi__free(ctx, lab);
-        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
-    }
-    for (i = 0; i < n && next < VOXGI__REGION_BORDER; i++) { /* provisional labels 2, 3, ...: a fill from each unlabelled empty voxel */
-        if (lab[i] || radiance0[4 * i + 3] > 0) continue;
-        lab[i] = (uint32_t)next;
-        stack[0] = (uint32_t)i;
-        for (top = 1; top;) {
-            size_t c = stack[--top], x = c % nx, y = c / nx % (size_t)dm[1], z = c / nxy, nb[6];
-            int m = 0, q;
-            if (x > 0) nb[m++] = c - 1;
-            if (x + 1 < nx) nb[m++] = c + 1;
-            if (y > 0) nb[m++] = c - nx;
-            if (y + 1 < (size_t)dm[1]) nb[m++] = c + nx;
-            if (z > 0) nb[m++] = c - nxy;
-            if (z + 1 < (size_t)dm[2]) nb[m++] = c + nxy;
-            for (q = 0; q < m; q++)
-                if (!lab[nb[q]] && !(radiance0[4 * nb[q] + 3] > 0)) { lab[nb[q]] = (uint32_t)next; stack[top++] = (uint32_t)nb[q]; }
-        }
-        next++;
-    }
-    voxgi__free(ctx, stack);
-    if (!(rename = (uint32_t *)voxgi__alloc_array(ctx, next, 4, 0)) || !(open_flags = (unsigned char *)voxgi__alloc_array(ctx, next, 1, 1))) {
-        voxgi__free(ctx, lab);
-        voxgi__free(ctx, rename);
-        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
-    }
-    for (i = 0; i < n; i++) { /* a region with a voxel on the grid's faces is open */
-        size_t x = i % nx, y = i / nx % (size_t)dm[1], z = i / nxy;
-        if (x == 0 || x + 1 == nx || y == 0 || y + 1 == (size_t)dm[1] || z == 0 || z + 1 == (size_t)dm[2]) open_flags[lab[i]] = 1;
-    }
-    for (i = 2, kept = 2; i < next; i++) rename[i] = open_flags[i] ? VOXGI__REGION_OPEN : (uint32_t)kept++; /* the enclosed ones 2, 3, ... */
+    size_t nx = (size_t)dm[0], nxy = nx * (size_t)dm[1], n = nxy * (size_t)dm[2], i, kept = 2;
+    uint32_t *lab, *parent = NULL, *box = NULL, next = 2, l;
+    unsigned char *open_flags = NULL, *lit = NULL;
+    int x, y, z, k, a, q;
+    if (!radiance0 || !back0 || !side0 || vol->voxels > VOXGI__REGION_BYTES / 4) return VOXGI_OK;
+    lab = (uint32_t *)voxgi__alloc_array(ctx, vol->voxels, 4, 1);
+    parent = (uint32_t *)voxgi__alloc_array(ctx, n + 2, 4, 0);
+    open_flags = (unsigned char *)voxgi__alloc_array(ctx, n + 2, 1, 1);
+    if (!lab || !parent || !open_flags) goto no_memory;
+    for (z = 0, i = 0; z < dm[2]; z++) /* provisional labels in one pass, joined where they meet (-x, -y, -z) */
+        for (y = 0; y < dm[1]; y++)
+            for (x = 0; x < dm[0]; x++, i++) {
+                if (radiance0[4 * i + 3] > 0) continue;
+                l = x > 0 ? lab[i - 1] : 0;
+                if (y > 0 && lab[i - nx]) l = l ? voxgi__region_unite(parent, l, lab[i - nx]) : lab[i - nx];
+                if (z > 0 && lab[i - nxy]) l = l ? voxgi__region_unite(parent, l, lab[i - nxy]) : lab[i - nxy];
+                if (!l) { l = next++; parent[l] = l; }
+                lab[i] = l;
+            }
+    for (z = 0, i = 0; z < dm[2]; z++) /* each voxel its region's root; a region with a voxel on the grid's faces is open */
+        for (y = 0; y < dm[1]; y++)
+            for (x = 0; x < dm[0]; x++, i++)
+                if (lab[i]) {
+                    lab[i] = voxgi__region_root(parent, lab[i]);
+                    if (x == 0 || x + 1 == dm[0] || y == 0 || y + 1 == dm[1] || z == 0 || z + 1 == dm[2]) open_flags[lab[i]] = 1;
+                }
+    for (l = 2; l < next; l++) /* the roots renumbered, in the order the scan met them: open 1, enclosed 2, 3, ... */
+        if (parent[l] == l) parent[l] = open_flags[l] ? VOXGI__REGION_OPEN : (uint32_t)kept++;
     voxgi__free(ctx, open_flags);
-    if ((vol->voxels + 6 * kept) * 4 > VOXGI__REGION_BYTES) { voxgi__free(ctx, lab); voxgi__free(ctx, rename); return VOXGI_OK; }
-    if (!(box = (uint32_t *)voxgi__alloc_array(ctx, 6 * kept, 4, 0))) {
-        voxgi__free(ctx, lab);
-        voxgi__free(ctx, rename);
-        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
-    }
+    open_flags = NULL;
+    if ((vol->voxels + 6 * kept) * 4 > VOXGI__REGION_BYTES) { voxgi__free(ctx, lab); voxgi__free(ctx, parent); return VOXGI_OK; }
+    if (!(box = (uint32_t *)voxgi__alloc_array(ctx, 6 * kept, 4, 0)) || !(lit = (unsigned char *)voxgi__alloc_array(ctx, kept, 1, 1))) goto no_memory;
     for (i = 0; i < kept; i++)
         for (a = 0; a < 3; a++) { box[6 * i + (size_t)a] = UINT32_MAX; box[6 * i + 3 + (size_t)a] = 0; }
-    for (i = 0; i < n; i++) {
-        uint32_t v[3];
-        if (!lab[i]) continue;
-        lab[i] = rename[lab[i]];
-        v[0] = (uint32_t)(i % nx); v[1] = (uint32_t)(i / nx % (size_t)dm[1]); v[2] = (uint32_t)(i / nxy);
-        for (a = 0; a < 3; a++) {
-            box[6 * lab[i] + (size_t)a] = VOXGI__MIN(box[6 * lab[i] + (size_t)a], v[a]);
-            box[6 * lab[i] + 3 + (size_t)a] = VOXGI__MAX(box[6 * lab[i] + 3 + (size_t)a], v[a]);
-        }
-    }
-    voxgi__free(ctx, rename);
-    if (!(lit = (unsigned char *)voxgi__alloc_array(ctx, kept, 1, 1))) {
-        voxgi__free(ctx, lab);
-        voxgi__free(ctx, box);
-        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
-    }
-    for (i = 0; i < n; i++) { /* a region is lit where a surface beside it sends light its way: by the side facing it */
-        size_t c[3];
-        int q;
-        c[0] = i % nx; c[1] = i / nx % (size_t)dm[1]; c[2] = i / nxy;
-        if (lab[i] || !(radiance0[4 * i + 3] > 0)) continue;
-        for (q = 0; q < 6; q++) {
-            int ax = q >> 1, up = q & 1;
-            size_t j = ax == 0 ? 1 : (ax == 1 ? nx : nxy);
-            const float *rad;
-            if (up ? c[ax] + 1 == (size_t)dm[ax] : c[ax] == 0) continue;
-            j = up ? i + j : i - j;
-            if (!lab[j] || lit[lab[j]] || side0[4 * i + (size_t)ax] == 0) continue; /* a neighbour along the surface: on neither side */
-            rad = (up ? side0[4 * i + (size_t)ax] : -side0[4 * i + (size_t)ax]) > 0 ? radiance0 : back0;
-            lit[lab[j]] = rad[4 * i] > 0 || rad[4 * i + 1] > 0 || rad[4 * i + 2] > 0;
-        }
-    }
-    for (i = 0; i < n; i++) { /* a surface's voxel beside one lit region alone: that region, marked */
-        size_t c[3];
-        uint32_t only = 0;
-        int q;
-        c[0] = i % nx; c[1] = i / nx % (size_t)dm[1]; c[2] = i / nxy;
-        if (lab[i] || !(radiance0[4 * i + 3] > 0)) continue;
-        for (q = 0; q < 6 && only != VOXGI__REGION_MIXED; q++) {
-            int ax = q >> 1, up = q & 1;
-            size_t j = ax == 0 ? 1 : (ax == 1 ? nx : nxy);
-            if (up ? c[ax] + 1 == (size_t)dm[ax] : c[ax] == 0) continue;
-            j = up ? i + j : i - j;
-            if (lab[j] && !(lab[j] & VOXGI__REGION_BORDER) && lit[lab[j]] && lab[j] != only) only = only ? VOXGI__REGION_MIXED : lab[j];
-        }
-        if (only && only != VOXGI__REGION_MIXED) lab[i] = VOXGI__REGION_BORDER | only;
-    }
+    for (z = 0, i = 0; z < dm[2]; z++) /* the final labels and the enclosed regions' bounds */
+        for (y = 0; y < dm[1]; y++)
+            for (x = 0; x < dm[0]; x++, i++) {
+                uint32_t v[3];
+                if (!lab[i]) continue;
+                l = lab[i] = parent[lab[i]];
+                v[0] = (uint32_t)x; v[1] = (uint32_t)y; v[2] = (uint32_t)z;
+                for (a = 0; a < 3; a++) {
+                    box[6 * l + (size_t)a] = VOXGI__MIN(box[6 * l + (size_t)a], v[a]);
+                    box[6 * l + 3 + (size_t)a] = VOXGI__MAX(box[6 * l + 3 + (size_t)a], v[a]);
+                }
+            }
+    voxgi__free(ctx, parent);
+    parent = NULL;
+    for (k = 0; k < 2; k++) /* 0: a region is lit where a surface beside it sends light its way (by the side facing it);
+                               1: a surface's voxel beside one lit region alone takes that region, marked */
+        for (z = 0, i = 0; z < dm[2]; z++)
+            for (y = 0; y < dm[1]; y++)
+                for (x = 0; x < dm[0]; x++, i++) {
+                    int c[3];
+                    uint32_t only = 0;
+                    if (lab[i] || !(radiance0[4 * i + 3] > 0)) continue;
+                    c[0] = x; c[1] = y; c[2] = z;
+                    for (q = 0; q < 6; q++) {
+                        int ax = q >> 1, up = q & 1;
+                        size_t j = ax == 0 ? 1 : (ax == 1 ? nx : nxy);
+                        float facing = up ? side0[4 * i + (size_t)ax] : -side0[4 * i + (size_t)ax];
+                        const float *rad = facing > 0 ? radiance0 : back0;
+                        if (up ? c[ax] + 1 == dm[ax] : c[ax] == 0) continue;
+                        j = up ? i + j : i - j;
+                        if (!lab[j] || (lab[j] & VOXGI__REGION_BORDER)) continue;
+                        if (k == 0 && !lit[lab[j]] && facing != 0) /* a neighbour along the surface is on neither side */
+                            lit[lab[j]] = rad[4 * i] > 0 || rad[4 * i + 1] > 0 || rad[4 * i + 2] > 0;
+                        if (k == 1 && lit[lab[j]] && lab[j] != only) only = only ? VOXGI__REGION_MIXED : lab[j];
+                    }
+                    if (k == 1 && only && only != VOXGI__REGION_MIXED) lab[i] = VOXGI__REGION_BORDER | only;
+                }
     for (k = 1; k < vol->info.levels; k++) { /* each level from its children: the outermost region */
         const int *pd = vol->dims[k - 1], *cd = vol->dims[k];
         const uint32_t *src = lab + vol->first[k - 1];
         uint32_t *dst = lab + vol->first[k];
-        int x, y, z, c;
+        int c;
         for (z = 0; z < cd[2]; z++)
             for (y = 0; y < cd[1]; y++)
                 for (x = 0; x < cd[0]; x++) {
@@ -6206,6 +6204,13 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
     vol->region_count = kept;
     vol->info.bytes += (vol->voxels + 6 * kept) * 4;
     return VOXGI_OK;
+no_memory:
+    voxgi__free(ctx, lab);
+    voxgi__free(ctx, parent);
+    voxgi__free(ctx, open_flags);
+    voxgi__free(ctx, box);
+    voxgi__free(ctx, lit);
+    return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
 }
 
 static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])

@@ -307,7 +307,7 @@ static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter
    (albedo / pi x the sun's irradiance). 0 on success. */
 static inline int leak_box_ratios(voxgi_context *ctx, int res, voxgi_mip_filter filter, int area, double *mean_ratio, double *max_ratio)
 {
-    enum { W = 24 };
+    enum { W = 64 }; /* fine enough to meet the box's corners, where a point's region is hardest to find */
     voxgi_builtin_scene bs;
     voxgi_vct_desc vd;
     voxgi_light lights[2];

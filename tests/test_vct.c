@@ -26,6 +26,8 @@ static voxgi_volume *inject(voxgi_context *ctx, const voxgi_scene *sc, const vox
     return vol;
 }
 
+/* A floor under a sun: its voxels' radiance is exactly albedo E cos / pi; their back sides see
+   no light, and their side plane is the floor's. */
 static void test_injection_is_exact_on_a_lit_floor(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -62,6 +64,23 @@ static void test_injection_is_exact_on_a_lit_floor(void)
         }
         printf("    %d floor voxels, radiance within %.2g of albedo E cos / pi\n", set, worst);
         TH_CHECK(set == 22 * 22 && worst < 1e-6, "%d voxels, %.3g off", set, worst);
+        { /* the other side: unlit; the side plane through the floor itself (11.87 voxels up), not the voxels' centres (11.5) */
+            float *back = (float *)malloc(24 * 24 * 24 * 16), *side = (float *)malloc(24 * 24 * 24 * 16);
+            double back_max = 0, plane_off = 0;
+            TH_CHECK(voxgi_volume_read(ctx, vol, VOXGI_ATTRIBUTE_RADIANCE_BACK, 0, 0, back, 24 * 24 * 24 * 16, NULL) == VOXGI_OK &&
+                     voxgi_volume_read(ctx, vol, VOXGI_ATTRIBUTE_RADIANCE_SIDE, 0, 0, side, 24 * 24 * 24 * 16, NULL) == VOXGI_OK, "read: %s", voxgi_last_error(ctx));
+            for (i = 0; i < 24 * 24 * 24; i++) {
+                int x = i % 24, z = i / (24 * 24);
+                if (rgba[4 * i + 3] == 0) continue;
+                back_max = fmax(back_max, fmax(back[4 * i], fmax(back[4 * i + 1], back[4 * i + 2])));
+                if (x >= 2 && x <= 21 && z >= 2 && z <= 21) /* the voxels whose centre's vertical meets the floor */
+                    plane_off = fmax(plane_off, fabs(side[4 * i + 3] / side[4 * i + 1] - (1.2 - 0.013) / 0.1) + fabs(side[4 * i]) + fabs(side[4 * i + 2]));
+            }
+            printf("    their undersides: radiance at most %.3g; their side planes within %.2g voxels of the floor\n", back_max, plane_off);
+            TH_CHECK(back_max == 0 && plane_off < 1e-4, "undersides %.3g, side planes %.3g voxels off", back_max, plane_off);
+            free(back);
+            free(side);
+        }
         free(rgba);
     }
     voxgi_volume_destroy(ctx, vol);
