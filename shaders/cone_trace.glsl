@@ -190,9 +190,7 @@ bool level0_without(vec3 p, uint home, out vec4 side, out vec4 front, out vec4 b
     }
     return true;
 }
-#endif
 
-#ifndef VOXGI_CONE_SVO
 // Level k of a two-sided volume at texture coordinates uv along d: the front and the back mixed
 // by the back share seen from o.
 vec4 two_sided_level(vec3 d, vec3 uv, float k, vec3 o)
