@@ -8454,6 +8454,7 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
     const voxgi_grid *g = J->g;
     size_t *group = (size_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof(size_t), 0), ng = 0, i, k;
     int sides = J->back ? 2 : 1, b, a, sd, converged = 0;
+    double share = 1;
     float *pos = NULL, *nrm = NULL, *irr = NULL, *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12 * (size_t)sides, 0);
     const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     voxgi_result r = VOXGI_OK;
@@ -8471,7 +8472,10 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
         voxgi_radiance_source source = {NULL, NULL};
         double before = 0, after = 0;
         source.volume = *vol;
-        if (voxgi__cancelled(ctx, desc->bounces < 0 ? 0.0 : (double)(b - 1) / (desc->bounces - 1), "light injection", "bounces among the voxels"))
+        /* until convergence: how far the last bounce's share of the light has come down towards the bar */
+        if (voxgi__cancelled(ctx, desc->bounces >= 0 ? (double)(b - 1) / (desc->bounces - 1)
+                                                     : VOXGI__MIN(0.99, VOXGI__MAX(0.0, log(share) / log(VOXGI_CONVERGED_BOUNCE))),
+                             "light injection", "bounces among the voxels"))
             r = VOXGI_ERR_CANCELLED;
         if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, &source, &desc->gather, ng * (size_t)sides, pos, nrm, irr, NULL);
         for (sd = 0; r == VOXGI_OK && sd < sides; sd++) /* a voxel without a normal only emits: it keeps its direct light */
@@ -8485,9 +8489,9 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
                     after += o[a];
                 }
             }
-        converged = desc->bounces < 0 && !(after - before > VOXGI_CONVERGED_BOUNCE * after);
-        if (converged) voxgi__log(ctx, VOXGI_LOG_INFO, "light injection: bounce %d added %.2g%% of the light: %d bounces", b + 1,
-                                  after > 0 ? 100 * (after - before) / after : 0.0, b + 1);
+        share = after > 0 ? (after - before) / after : 0;
+        converged = desc->bounces < 0 && !(share > VOXGI_CONVERGED_BOUNCE);
+        if (converged) voxgi__log(ctx, VOXGI_LOG_INFO, "light injection: bounce %d added %.2g%% of the light: %d bounces", b + 1, 100 * share, b + 1);
         slots[VOXGI__RADIANCE_SLOT] = J->rgba;
         slots[VOXGI__BACK_SLOT] = J->back;
         slots[VOXGI__SIDE_SLOT] = J->side;
