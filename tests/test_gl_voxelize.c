@@ -745,6 +745,15 @@ static void test_gl_raster_geometry_equals_cpu(void)
     g_geometry = 0;
 }
 
+/* A small sphere (8 x 6 facets, radius 1) as a scene, and a 16^3 grid around it. */
+static void small_sphere(vxt_shape *m, voxgi_mesh *mesh, voxgi_scene *sc, voxgi_voxelize_desc *vd)
+{
+    vxt_shape_sphere(m, 8, 6, 1.0, 0, 0, 0);
+    scene_of_shape(sc, mesh, m);
+    memset(vd, 0, sizeof *vd);
+    cubic(&vd->grid, -1.2, 2.4, 16);
+}
+
 /* The GL backend's buffer hand-over and its storage limit (which backend AUTO picks:
    test_gl_auto_backend). */
 static void test_gl_interop_and_backends(void)
@@ -765,10 +774,7 @@ static void test_gl_interop_and_backends(void)
         voxgi_voxelize_desc vd;
         voxgi_voxels *vox = NULL;
         unsigned name = 0;
-        vxt_shape_sphere(&m, 8, 6, 1.0, 0, 0, 0);
-        scene_of_shape(&sc, &mesh, &m);
-        memset(&vd, 0, sizeof vd);
-        cubic(&vd.grid, -1.2, 2.4, 16);
+        small_sphere(&m, &mesh, &sc, &vd);
         TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "GL voxelize failed");
         TH_CHECK(voxgi_voxels_gl_buffer(ctx, vox, &name) == VOXGI_OK && name != 0, "no GL buffer name");
         voxgi_voxels_destroy(ctx, vox);
@@ -872,10 +878,7 @@ static void test_gl_auto_backend(void)
         voxgi_voxelize_desc vd;
         voxgi_voxels *vox = NULL;
         unsigned name = 0;
-        vxt_shape_sphere(&m, 8, 6, 1.0, 0, 0, 0);
-        scene_of_shape(&sc, &mesh, &m);
-        memset(&vd, 0, sizeof vd);
-        cubic(&vd.grid, -1.2, 2.4, 16);
+        small_sphere(&m, &mesh, &sc, &vd);
         TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "AUTO (CPU) voxelize: %s", voxgi_last_error(ctx));
         TH_CHECK(voxgi_voxels_gl_buffer(ctx, vox, &name) != VOXGI_OK, "CPU voxels gave a GL buffer");
         voxgi_voxels_destroy(ctx, vox);
