@@ -5784,6 +5784,7 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
 #define VOXGI__RADIANCE_SLOT 4 /* voxgi__attr_index(VOXGI_ATTRIBUTE_RADIANCE) */
 #define VOXGI__BACK_SLOT 5
 #define VOXGI__SIDE_SLOT 6
+#define VOXGI__RADIANCE_FAMILY ((unsigned)(VOXGI_ATTRIBUTE_RADIANCE | VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE))
 struct voxgi_volume {
     voxgi_volume_info info;
     int dims[VOXGI__MAX_LEVELS][3];
@@ -5794,6 +5795,7 @@ struct voxgi_volume {
     unsigned int tex[VOXGI__VOLUME_SLOTS][6];
     uint32_t *regions;                 /* two-sided radiance: the empty space's regions, level after level, */
     uint32_t *region_boxes;            /* and their bounds (voxgi__volume_regions) */
+    unsigned char *region_lit;         /* and whether a surface beside them lights them (kept on GL too, for octrees) */
     size_t region_count;               /* labels, 0 and OPEN included */
     unsigned int region_buffer;        /* GL: both in one storage buffer */
 };
@@ -6198,11 +6200,11 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
                     dst[(size_t)x + (size_t)cd[0] * ((size_t)y + (size_t)cd[1] * (size_t)z)] = v;
                 }
     }
-    voxgi__free(ctx, lit);
     vol->regions = lab;
     vol->region_boxes = box;
+    vol->region_lit = lit;
     vol->region_count = kept;
-    vol->info.bytes += (vol->voxels + 6 * kept) * 4;
+    vol->info.bytes += (vol->voxels + 6 * kept) * 4 + kept;
     return VOXGI_OK;
 no_memory:
     voxgi__free(ctx, lab);
@@ -6332,6 +6334,7 @@ VOXGI_API void voxgi_volume_destroy(voxgi_context *ctx, voxgi_volume *vol)
         }
     voxgi__free(ctx, vol->regions);
     voxgi__free(ctx, vol->region_boxes);
+    voxgi__free(ctx, vol->region_lit);
 #ifndef VOXGI_NO_GL
     if (vol->region_buffer && ctx->gl) voxgi__gl_delete_buffer(ctx, vol->region_buffer);
 #endif
@@ -6545,6 +6548,10 @@ struct voxgi_svo {
     int slot_bytes[VOXGI__VOLUME_SLOTS];
     uint64_t inner_tiles, bricks;             /* bricks: one per inner node, or 0 */
     unsigned int gl_child, gl_neighbour, gl_node_values[VOXGI__VOLUME_SLOTS], gl_leaf_values[VOXGI__VOLUME_SLOTS]; /* GL: the same arrays in buffers */
+    uint32_t *regions;                        /* two-sided radiance with enclosed regions: a label per node slot, then per leaf
+                                                 slot, then the bounds (voxgi__svo_regions) */
+    size_t region_count;                      /* labels, 0 and OPEN included (0: no regions) */
+    unsigned int gl_regions;                  /* GL: the same array in a buffer */
 };
 
 /* Stores c (value, alpha) into a slot of an attribute array (opacity: alpha alone). */
@@ -6832,7 +6839,7 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         if (!(svo->info.attributes & (1u << a))) continue;
         if (!(v4 = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the fragment values"); break; }
         for (i = 0; i < n; i++) {
-            if (a == VOXGI__RADIANCE_SLOT) { memcpy(v4 + 4 * i, vals[VOXGI__RADIANCE_SLOT] + 4 * i, 16); continue; } /* radiance: as the volume holds it */
+            if (a >= VOXGI__RADIANCE_SLOT) { memcpy(v4 + 4 * i, vals[a] + 4 * i, 16); continue; } /* radiance: as the volume holds it */
             v4[4 * i] = a < 3 ? vals[a][3 * i] : 0;
             v4[4 * i + 1] = a < 3 ? vals[a][3 * i + 1] : 0;
             v4[4 * i + 2] = a < 3 ? vals[a][3 * i + 2] : 0;
@@ -6850,7 +6857,7 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)n);
         voxgi__gl_dispatch_rows(gl, n);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_MIP);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_premultiplied, a == VOXGI__RADIANCE_SLOT);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_premultiplied, a >= VOXGI__RADIANCE_SLOT);
         for (m = depth - 1; m >= 0; m--) {
             gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
             gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
@@ -6898,9 +6905,10 @@ static voxgi_result voxgi__svo_check(voxgi_context *ctx, const voxgi_voxels *vx,
     const voxgi_grid *g = &vx->info.grid;
     int depth = 1, maxres = VOXGI__MAX(g->res[0], VOXGI__MAX(g->res[1], g->res[2]));
     if (!vx->info.attributes) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "these voxels hold no attributes (voxgi_voxelize_desc.attributes)");
-    if (desc->attributes & ~vx->info.attributes & ~(unsigned)VOXGI_ATTRIBUTE_RADIANCE || ((desc->attributes & VOXGI_ATTRIBUTE_RADIANCE) && !desc->radiance))
+    if (desc->attributes & ~vx->info.attributes & ~VOXGI__RADIANCE_FAMILY ||
+        ((desc->attributes & VOXGI__RADIANCE_FAMILY) && (!desc->radiance || (desc->attributes & ~desc->radiance->info.attributes & VOXGI__RADIANCE_FAMILY))))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "attributes 0x%x asked for, the voxels hold 0x%x%s", desc->attributes, vx->info.attributes,
-                           desc->radiance ? "" : " (RADIANCE: from desc.radiance)");
+                           desc->radiance ? ", desc.radiance the front's alone" : " (RADIANCE: from desc.radiance)");
     while ((1 << depth) < maxres) depth++;
     if (depth > 16) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "octrees hold grids up to 65536 voxels per axis");
     if (desc->format != VOXGI_SVO_FLOAT32 && desc->format != VOXGI_SVO_FLOAT16)
@@ -6960,18 +6968,21 @@ static voxgi_result voxgi__svo_leaves(voxgi_context *ctx, const voxgi_svo *svo, 
         if (r == VOXGI_OK && !(vals[a] = (float *)voxgi__alloc(ctx, need ? need : 4))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
         if (r == VOXGI_OK) r = voxgi_voxels_read_attribute(ctx, vx, which, vals[a], need, NULL);
     }
-    if (r == VOXGI_OK && desc->radiance) { /* the radiance volume's level 0 at the set voxels, in bit order */
-        r = voxgi_volume_read(ctx, desc->radiance, VOXGI_ATTRIBUTE_RADIANCE, VOXGI_DIR_POS_X, 0, NULL, 0, &need);
-        if (r == VOXGI_OK && (!(radiance = (float *)voxgi__alloc(ctx, need)) || !(vals[VOXGI__RADIANCE_SLOT] = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))))
+    for (a = VOXGI__RADIANCE_SLOT; a <= VOXGI__SIDE_SLOT && r == VOXGI_OK; a++) { /* the radiance volume's level 0 at the set voxels, in bit order */
+        voxgi_attribute which = (voxgi_attribute)(1 << a);
+        if (!(svo->info.attributes & (unsigned)which)) continue;
+        r = voxgi_volume_read(ctx, desc->radiance, which, VOXGI_DIR_POS_X, 0, NULL, 0, &need);
+        if (r == VOXGI_OK && (!(radiance = (float *)voxgi__alloc(ctx, need)) || !(vals[a] = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))))
             r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the radiance of %lu voxels", (unsigned long)n);
-        if (r == VOXGI_OK) r = voxgi_volume_read(ctx, desc->radiance, VOXGI_ATTRIBUTE_RADIANCE, VOXGI_DIR_POS_X, 0, radiance, need, NULL);
+        if (r == VOXGI_OK) r = voxgi_volume_read(ctx, desc->radiance, which, VOXGI_DIR_POS_X, 0, radiance, need, NULL);
         for (l = 0, i = 0; r == VOXGI_OK && l < (nvox + 31) / 32; l++) {
             uint32_t word = leaf_bits[l];
             for (; word; word &= word - 1, i++)
-                memcpy(vals[VOXGI__RADIANCE_SLOT] + 4 * i, radiance + 4 * (32 * l + (uint64_t)voxgi__popcount32((word & (0u - word)) - 1u)), 16);
+                memcpy(vals[a] + 4 * i, radiance + 4 * (32 * l + (uint64_t)voxgi__popcount32((word & (0u - word)) - 1u)), 16);
         }
+        voxgi__free(ctx, radiance);
+        radiance = NULL;
     }
-    voxgi__free(ctx, radiance);
     voxgi__free(ctx, bits);
     *packed_out = packed;
     return r;
@@ -7069,7 +7080,7 @@ static voxgi_result voxgi__svo_values_cpu(voxgi_context *ctx, voxgi_svo *svo, co
             float c[4] = {0, 0, 0, 0};
             c[3] = vals[3] ? vals[3][L->order[i]] : 1.0f;
             if (a < 3) memcpy(c, vals[a] + 3 * (size_t)L->order[i], 3 * sizeof(float));
-            if (a == VOXGI__RADIANCE_SLOT) memcpy(c, vals[VOXGI__RADIANCE_SLOT] + 4 * (size_t)L->order[i], sizeof c);
+            if (a >= VOXGI__RADIANCE_SLOT) memcpy(c, vals[a] + 4 * (size_t)L->order[i], sizeof c);
             while (L->codes[depth - 1][parent_rank] != parent) parent_rank++;
             voxgi__svo_put(svo, a, leaf, 8 * parent_rank + (L->codes[depth][i] & 7u), c);
         }
@@ -7088,7 +7099,7 @@ static voxgi_result voxgi__svo_values_cpu(voxgi_context *ctx, voxgi_svo *svo, co
                     if (lev == depth - 1) voxgi__svo_get(svo, a, leaf, 8 * tile + (uint64_t)k, c[k]);
                     else voxgi__svo_get(svo, a, node, 1 + 8 * tile + (uint64_t)k, c[k]);
                 }
-                voxgi__mip_combine(c, 4, -1, a == VOXGI__RADIANCE_SLOT, m);
+                voxgi__mip_combine(c, 4, -1, a >= VOXGI__RADIANCE_SLOT, m);
                 voxgi__svo_put(svo, a, node, slot, m);
             }
         }
@@ -7103,6 +7114,100 @@ static voxgi_result voxgi__svo_values_cpu(voxgi_context *ctx, voxgi_svo *svo, co
         if (voxgi__cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree build", "octree: values")) return VOXGI_ERR_CANCELLED;
     }
     return VOXGI_OK;
+}
+
+/* 5. Regions (a two-sided radiance volume with enclosed regions, voxgi__volume_regions): every
+   slot's label as the volume's level holds it, so that cones keep to their region alike. A leaf
+   slot holds level 0's label; a node the outermost of its children's (the same rule); an empty
+   slot, which stands for every level below it, the region of its cube's voxels, marked DARK where
+   no surface lights it (above level 0 such a region counts as none). The bounds follow. */
+#define VOXGI__REGION_DARK 0x40000000u
+typedef struct voxgi__svo_region_walk {
+    const voxgi_svo *svo;
+    const uint32_t *child, *level0, *box; /* the child pointers, the volume's level-0 labels and bounds */
+    const unsigned char *lit;
+    uint32_t *out;
+} voxgi__svo_region_walk;
+
+/* Labels slot (of level lev, at c in that level's coordinates) and the slots below it; returns
+   its label as its level holds it. */
+static uint32_t voxgi__svo_region_slot(const voxgi__svo_region_walk *W, int lev, uint64_t slot, const int64_t c[3])
+{
+    const voxgi_svo *svo = W->svo;
+    const int *res = svo->info.grid.res;
+    int depth = svo->info.depth, k = depth - lev, d;
+    uint32_t ptr, v = 0;
+    if (lev == depth || !W->child[slot]) { /* a voxel, or an empty cube: the label of its first voxel */
+        uint32_t r = c[0] << k < res[0] && c[1] << k < res[1] && c[2] << k < res[2]
+                         ? W->level0[(size_t)(c[0] << k) + (size_t)res[0] * ((size_t)(c[1] << k) + (size_t)res[1] * (size_t)(c[2] << k))]
+                         : 0;
+        if (lev == depth) return W->out[svo->info.nodes + slot] = r;
+        W->out[slot] = r && !W->lit[r] ? r | VOXGI__REGION_DARK : r;
+        return r && W->lit[r] ? r : 0;
+    }
+    ptr = W->child[slot];
+    for (d = 0; d < 8; d++) {
+        int64_t cc[3];
+        uint32_t w;
+        cc[0] = 2 * c[0] + (d & 1); cc[1] = 2 * c[1] + (d >> 1 & 1); cc[2] = 2 * c[2] + (d >> 2);
+        w = voxgi__svo_region_slot(W, lev + 1, (lev + 1 == depth ? 0u : 1u) + 8 * (uint64_t)(ptr - 1) + (uint64_t)d, cc);
+        if (k == 1 && (w & VOXGI__REGION_BORDER ? 1 : !W->lit[w])) w = 0; /* as voxgi__volume_regions */
+        if (!w || w == v) continue;
+        v = !v || voxgi__region_inside(W->box, w, v) ? w : (voxgi__region_inside(W->box, v, w) ? v : VOXGI__REGION_MIXED);
+    }
+    return W->out[slot] = v;
+}
+
+static voxgi_result voxgi__svo_regions(voxgi_context *ctx, voxgi_svo *svo, const voxgi_volume *vol)
+{
+    voxgi__svo_region_walk W;
+    size_t labels = (size_t)(svo->info.nodes + svo->info.leaf_slots), level0 = (size_t)voxgi_grid_voxel_count(&svo->info.grid);
+    uint32_t *child = NULL, *read = NULL;
+    int64_t root[3] = {0, 0, 0};
+    voxgi_result r = VOXGI_OK;
+    if (!vol || vol->region_count <= 2 || (labels + 6 * vol->region_count) * 4 > VOXGI__REGION_BYTES) return VOXGI_OK; /* nothing enclosed, or too big: none */
+    if (!(svo->regions = (uint32_t *)voxgi__alloc_array(ctx, labels + 6 * vol->region_count, 4, 1)))
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's regions");
+    W.svo = svo;
+    W.child = svo->child;
+    W.level0 = vol->regions;
+    W.box = vol->region_boxes;
+    W.lit = vol->region_lit;
+    W.out = svo->regions;
+#ifndef VOXGI_NO_GL
+    if (!vol->regions) { /* a GL volume's and octree's: read back for the walk */
+        voxgi__gl *gl = ctx->gl;
+        if (!(child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 4, 0)) ||
+            !(read = (uint32_t *)voxgi__alloc_array(ctx, level0 + 6 * vol->region_count, 4, 0)))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's regions");
+        if (r == VOXGI_OK) {
+            gl->MemoryBarrier(VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+            gl->GetNamedBufferSubData(svo->gl_child, 0, (ptrdiff_t)(svo->info.nodes * 4), child);
+            gl->GetNamedBufferSubData(vol->region_buffer, 0, (ptrdiff_t)(level0 * 4), read);
+            gl->GetNamedBufferSubData(vol->region_buffer, (ptrdiff_t)(vol->voxels * 4), (ptrdiff_t)(vol->region_count * 24), read + level0);
+            r = voxgi__gl_check(ctx, "reading the regions");
+        }
+        W.child = child;
+        W.level0 = read;
+        W.box = read + level0;
+    }
+#endif
+    if (r == VOXGI_OK) {
+        voxgi__svo_region_slot(&W, 0, 0, root);
+        memcpy(svo->regions + labels, W.box, vol->region_count * 24);
+        svo->region_count = vol->region_count;
+        svo->info.bytes += (labels + 6 * vol->region_count) * 4;
+    }
+#ifndef VOXGI_NO_GL
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_GL) { /* the buffer alone */
+        svo->gl_regions = voxgi__gl_buffer(ctx, (labels + 6 * vol->region_count) * 4, svo->regions);
+        voxgi__free(ctx, svo->regions);
+        svo->regions = NULL;
+    }
+#endif
+    voxgi__free(ctx, child);
+    voxgi__free(ctx, read);
+    return r;
 }
 
 VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *vx, const voxgi_svo_desc *desc, voxgi_svo **out)
@@ -7127,7 +7232,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     svo->info.attributes = desc->attributes ? desc->attributes : vx->info.attributes;
     svo->info.depth = depth;
     svo->info.format = desc->format;
-    if (desc->radiance) svo->info.attributes |= VOXGI_ATTRIBUTE_RADIANCE;
+    if (desc->radiance) svo->info.attributes |= desc->radiance->info.attributes & VOXGI__RADIANCE_FAMILY;
     for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) svo->slot_bytes[a] = (a == 3 ? 4 : 16) >> (desc->format == VOXGI_SVO_FLOAT16);
     n = (size_t)vx->info.voxel_count;
     r = voxgi__svo_leaves(ctx, svo, vx, desc, &L, &packed, vals);
@@ -7159,6 +7264,7 @@ VOXGI_API voxgi_result voxgi_svo_create(voxgi_context *ctx, const voxgi_voxels *
     for (lev = 0; lev <= VOXGI__MAX_LEVELS; lev++) voxgi__free(ctx, L.codes[lev]);
     for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) voxgi__free(ctx, vals[a]);
     voxgi__free(ctx, L.order);
+    if (r == VOXGI_OK && (svo->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_SIDE)) r = voxgi__svo_regions(ctx, svo, desc->radiance);
     if (r != VOXGI_OK) { voxgi_svo_destroy(ctx, svo); return r; }
     svo->info.ms = svo->info.ms_sort + svo->info.ms_nodes + svo->info.ms_neighbours + svo->info.ms_values;
     *out = svo;
@@ -7171,10 +7277,12 @@ VOXGI_API void voxgi_svo_destroy(voxgi_context *ctx, voxgi_svo *svo)
     if (!ctx || !svo) return;
     voxgi__free(ctx, svo->child);
     voxgi__free(ctx, svo->neighbour);
+    voxgi__free(ctx, svo->regions);
     for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) { voxgi__free(ctx, svo->node_values[a]); voxgi__free(ctx, svo->leaf_values[a]); }
 #ifndef VOXGI_NO_GL
     voxgi__gl_delete_buffer(ctx, svo->gl_child);
     voxgi__gl_delete_buffer(ctx, svo->gl_neighbour);
+    voxgi__gl_delete_buffer(ctx, svo->gl_regions);
     for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) { voxgi__gl_delete_buffer(ctx, svo->gl_node_values[a]); voxgi__gl_delete_buffer(ctx, svo->gl_leaf_values[a]); }
 #endif
     voxgi__free(ctx, svo);
@@ -7469,9 +7577,11 @@ typedef struct voxgi__cone_job {
     const voxgi_cone *list;       /* single cones, or NULL */
     float *irr, *occ;
     int cones, dirs;
-    int two_sided;                /* the volume holds RADIANCE_BACK and RADIANCE_SIDE */
+    int two_sided;                /* the source holds RADIANCE_BACK and RADIANCE_SIDE */
     int enclosed;                 /* and its empty space has enclosed regions (voxgi__volume_regions), */
-    const uint32_t *regions;      /* on the CPU these */
+    const uint32_t *regions;      /* on the CPU these labels (a volume's or an octree's), */
+    const uint32_t *boxes;        /* with these bounds */
+    int dims[VOXGI__MAX_LEVELS][3]; /* each level's size */
     double half_tan, step, offset, max_dist;
 } voxgi__cone_job;
 
@@ -7480,11 +7590,25 @@ typedef struct voxgi__cone_job {
    a coarse level's share of a thin wall would let it through (docs/cone-tracing.md). */
 #define VOXGI__BACK_COVERAGE 2.0f
 
-/* The 8 corners of a trilinear sample of level k at p, as voxgi__trilinear visits them: their
-   voxel offsets within the level (-1: beyond the grid, or of weight 0) and weights. */
-static void voxgi__cone_corners(const voxgi_volume *vol, int k, const float p[3], ptrdiff_t at[8], double wt[8])
+/* The slot of an octree's node of level-k voxel v (a leaf slot at k = 0), -1 where there is none. */
+static ptrdiff_t voxgi__svo_slot_at(const voxgi_svo *svo, int k, const int v[3])
 {
-    const int *dm = vol->dims[k];
+    int depth = svo->info.depth, level = depth - k, m;
+    uint64_t node = 0;
+    for (m = 1; m <= level; m++) {
+        uint32_t ptr = svo->child[node], digit = (uint32_t)(((v[0] >> (level - m)) & 1) | (((v[1] >> (level - m)) & 1) << 1) | (((v[2] >> (level - m)) & 1) << 2));
+        if (!ptr) return -1;
+        node = (m == depth ? 0u : 1u) + 8 * (uint64_t)(ptr - 1) + digit;
+    }
+    return (ptrdiff_t)node;
+}
+
+/* The 8 corners of a trilinear sample of level k at p, as voxgi__trilinear visits them: their
+   voxels, weights (0 beyond the grid) and where their values are (-1: nowhere, or of weight 0):
+   a volume's voxel offset within the level, an octree's slot. */
+static void voxgi__cone_corners(const voxgi__cone_job *J, int k, const float p[3], int v[8][3], ptrdiff_t at[8], double wt[8])
+{
+    const int *dm = J->dims[k];
     double c[3], f[3];
     int i0[3], a, corner;
     for (a = 0; a < 3; a++) {
@@ -7493,16 +7617,18 @@ static void voxgi__cone_corners(const voxgi_volume *vol, int k, const float p[3]
         f[a] = c[a] - i0[a];
     }
     for (corner = 0; corner < 8; corner++) {
-        int v[3], inside = 1;
+        int inside = 1;
         double w = 1;
         for (a = 0; a < 3; a++) {
             int hi = (corner >> a) & 1;
-            v[a] = i0[a] + hi;
+            v[corner][a] = i0[a] + hi;
             w *= hi ? f[a] : 1 - f[a];
-            inside &= v[a] >= 0 && v[a] < dm[a];
+            inside &= v[corner][a] >= 0 && v[corner][a] < dm[a];
         }
-        wt[corner] = w;
-        at[corner] = inside && w != 0 ? (ptrdiff_t)((size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])) : -1;
+        wt[corner] = inside ? w : 0;
+        at[corner] = !inside || w == 0 ? -1
+                     : J->svo ? voxgi__svo_slot_at(J->svo, k, v[corner])
+                              : (ptrdiff_t)((size_t)v[corner][0] + (size_t)dm[0] * ((size_t)v[corner][1] + (size_t)dm[1] * (size_t)v[corner][2]));
     }
 }
 
@@ -7518,10 +7644,12 @@ static void voxgi__cone_level(const voxgi__cone_job *J, int a, const double d[3]
         int dir = J->dirs == 1 || a == VOXGI__SIDE_SLOT ? 0 : 2 * ax + (d[ax] < 0);
         const float *arr;
         if (w == 0) continue;
-        arr = voxgi__volume_level(J->vol, a, dir, k);
+        arr = J->svo ? NULL : voxgi__volume_level(J->vol, a, dir, k);
         for (corner = 0; corner < 8; corner++)
             if (at[corner] >= 0) {
-                const float *v = arr + 4 * at[corner];
+                float got[4];
+                const float *v = arr ? arr + 4 * at[corner] : got;
+                if (!arr) voxgi__svo_get(J->svo, a, k ? J->svo->node_values[a] : J->svo->leaf_values[a], (uint64_t)at[corner], got);
                 for (ch = 0; ch < 4; ch++) s[ch] += (float)(wt[corner] * v[ch]);
             }
         for (ch = 0; ch < 4; ch++) out[ch] += (float)(w * s[ch]);
@@ -7541,21 +7669,47 @@ static float voxgi__back_share(const float side[4], const double o[3])
     return (float)VOXGI__MIN(1.0, VOXGI__MAX(0.0, 0.5 - VOXGI__SIDE_RAMP * dist));
 }
 
+/* The region label of an octree's level-k voxel v (inside the grid), as the volume's level k
+   holds it (voxgi__svo_regions). */
+static uint32_t voxgi__svo_region(const voxgi_svo *svo, int k, const int v[3])
+{
+    int depth = svo->info.depth, level = depth - k, m;
+    uint64_t node = 0;
+    uint32_t label;
+    for (m = 1; m <= level; m++) {
+        uint32_t ptr = svo->child[node], digit = (uint32_t)(((v[0] >> (level - m)) & 1) | (((v[1] >> (level - m)) & 1) << 1) | (((v[2] >> (level - m)) & 1) << 2));
+        if (!ptr) break; /* in the empty cube of node */
+        node = (m == depth ? svo->info.nodes : 1u) + 8 * (uint64_t)(ptr - 1) + digit;
+    }
+    label = svo->regions[node];
+    if (m > level && (level == depth || svo->child[node])) return label; /* a voxel's, or a node's */
+    return k == 0 ? label & ~VOXGI__REGION_DARK : (label & VOXGI__REGION_DARK ? 0 : label);
+}
+
+/* The region label of level k's voxel v, 0 beyond the grid. */
+static uint32_t voxgi__region_label(const voxgi__cone_job *J, int k, const int v[3])
+{
+    const int *dm = J->dims[k];
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= dm[0] || v[1] >= dm[1] || v[2] >= dm[2]) return 0;
+    if (J->svo) return voxgi__svo_region(J->svo, k, v);
+    return J->regions[J->vol->first[k] + (size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])];
+}
+
 /* The radiance volume's sample at p (grid units) and lod along unit direction d, returned as
    (radiance, alpha): the stored values are premultiplied, so empty space thins a sample's alpha
    without darkening its colour. Per level, linear between the two around lod. Two-sided: each
    level mixes the front and the back by the back share seen from the cone's origin o, the back's
-   alpha VOXGI__BACK_COVERAGE times its own. */
+   alpha VOXGI__BACK_COVERAGE times its own. An octree's two sides are sampled alike (through
+   lookups, not bricks). */
 static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], const float p[3], float lod_in, const double o[3], uint32_t home,
                                float out[4])
 {
-    const voxgi_volume *vol = J->vol;
     ptrdiff_t at[8];
     double wt[8];
     float lod, t, s[2][4];
-    int ch, k0, lev;
+    int ch, k0, lev, v[8][3];
     for (ch = 0; ch < 4; ch++) out[ch] = 0;
-    if (J->svo) { /* the octree's isotropic mips, through its bricks where it has them */
+    if (J->svo && !J->two_sided) { /* the octree's isotropic mips, through its bricks where it has them */
         voxgi__svo_source os;
         os.svo = J->svo;
         os.a = 4;
@@ -7569,11 +7723,11 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], cons
     t = lod - (float)k0;
     for (lev = 0; lev < (t > 0 ? 2 : 1); lev++) {
         float back = 0, b[4];
-        voxgi__cone_corners(vol, k0 + lev, p, at, wt);
+        voxgi__cone_corners(J, k0 + lev, p, v, at, wt);
         if (home && k0 + lev == 0)
             for (ch = 0; ch < 8; ch++) { /* a surface's voxel lit from another region only is not seen from this one */
-                uint32_t r = at[ch] >= 0 ? J->regions[at[ch]] : 0;
-                if ((r & VOXGI__REGION_BORDER) && (r &= ~VOXGI__REGION_BORDER) != home && !voxgi__region_inside(vol->region_boxes, home, r)) at[ch] = -1;
+                uint32_t r = at[ch] >= 0 ? voxgi__region_label(J, 0, v[ch]) : 0;
+                if ((r & VOXGI__REGION_BORDER) && (r &= ~VOXGI__REGION_BORDER) != home && !voxgi__region_inside(J->boxes, home, r)) at[ch] = -1;
             }
         if (J->two_sided) {
             voxgi__cone_level(J, VOXGI__SIDE_SLOT, d, k0 + lev, at, wt, b);
@@ -7593,14 +7747,24 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], cons
 /* The region of level k's voxel holding p (grid units of level 0), 0 beyond the grid. */
 static uint32_t voxgi__region_at(const voxgi__cone_job *J, int k, const float p[3])
 {
-    const int *dm = J->vol->dims[k];
+    const int *dm = J->dims[k];
     int v[3], a;
     for (a = 0; a < 3; a++) {
         float c = p[a] / (float)(1 << k);
         if (!(c >= 0 && c < (float)dm[a])) return 0;
         v[a] = (int)c;
     }
-    return J->regions[J->vol->first[k] + (size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])];
+    return voxgi__region_label(J, k, v);
+}
+
+/* Level 0's side (RADIANCE_SIDE) at voxel v inside the grid. */
+static void voxgi__side_at(const voxgi__cone_job *J, const int v[3], float side[4])
+{
+    const int *dm = J->dims[0];
+    ptrdiff_t slot;
+    if (!J->svo) { memcpy(side, J->vol->cpu[VOXGI__SIDE_SLOT][0] + 4 * ((size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])), 16); return; }
+    if ((slot = voxgi__svo_slot_at(J->svo, 0, v)) >= 0) voxgi__svo_get(J->svo, VOXGI__SIDE_SLOT, J->svo->leaf_values[VOXGI__SIDE_SLOT], (uint64_t)slot, side);
+    else side[0] = side[1] = side[2] = side[3] = 0;
 }
 
 /* The region of the first empty voxel along unit normal n from o within 4 voxels (in float, as
@@ -7624,8 +7788,7 @@ static uint32_t voxgi__home_along(const voxgi__cone_job *J, const double o[3], c
    from q. 0 where that region is open or there is none. */
 static uint32_t voxgi__home_region(const voxgi__cone_job *J, const double o[3], const double n[3])
 {
-    const int *dm = J->vol->dims[0];
-    const float *side = J->vol->cpu[VOXGI__SIDE_SLOT][0];
+    const int *dm = J->dims[0];
     float q[3], best_d2 = 1e30f;
     uint32_t best = voxgi__home_along(J, o, n);
     int a, c[3], e[3], v[3];
@@ -7641,17 +7804,16 @@ static uint32_t voxgi__home_region(const voxgi__cone_job *J, const double o[3], 
                 uint32_t r;
                 int ok = 1;
                 if (e[0] < 0 || e[1] < 0 || e[2] < 0 || e[0] >= dm[0] || e[1] >= dm[1] || e[2] >= dm[2]) continue;
-                r = J->regions[(size_t)e[0] + (size_t)dm[0] * ((size_t)e[1] + (size_t)dm[1] * (size_t)e[2])];
+                r = voxgi__region_label(J, 0, e);
                 if (!r || (r & VOXGI__REGION_BORDER)) continue;
                 for (a = 0; a < 3; a++) { ec[a] = (float)e[a] + 0.5f; d2 += (ec[a] - q[a]) * (ec[a] - q[a]); }
                 if (!(d2 < best_d2)) continue;
                 for (v[2] = c[2] - 1; ok && v[2] <= c[2] + 1; v[2]++)
                     for (v[1] = c[1] - 1; ok && v[1] <= c[1] + 1; v[1]++)
                         for (v[0] = c[0] - 1; ok && v[0] <= c[0] + 1; v[0]++) {
-                            const float *pl;
-                            float at_q, at_e;
+                            float pl[4], at_q, at_e;
                             if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= dm[0] || v[1] >= dm[1] || v[2] >= dm[2]) continue;
-                            pl = side + 4 * ((size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2]));
+                            voxgi__side_at(J, v, pl);
                             at_q = pl[0] * q[0] + pl[1] * q[1] + pl[2] * q[2] - pl[3];
                             at_e = pl[0] * ec[0] + pl[1] * ec[1] + pl[2] * ec[2] - pl[3];
                             ok = !((at_q > 0 && at_e < 0) || (at_q < 0 && at_e > 0));
@@ -7666,11 +7828,11 @@ static int voxgi__region_clear(const voxgi__cone_job *J, int k, const float p[3]
 {
     ptrdiff_t at[8];
     double wt[8];
-    int corner;
-    voxgi__cone_corners(J->vol, k, p, at, wt);
+    int corner, v[8][3];
+    voxgi__cone_corners(J, k, p, v, at, wt);
     for (corner = 0; corner < 8; corner++) {
-        uint32_t r = at[corner] >= 0 ? J->regions[J->vol->first[k] + (size_t)at[corner]] : 0;
-        if (r && r != home && !voxgi__region_inside(J->vol->region_boxes, home, r)) return 0;
+        uint32_t r = wt[corner] != 0 ? voxgi__region_label(J, k, v[corner]) : 0;
+        if (r && r != home && !voxgi__region_inside(J->boxes, home, r)) return 0;
     }
     return 1;
 }
@@ -7697,7 +7859,7 @@ static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const
         if (home) {
             uint32_t here = voxgi__region_at(J, 0, p);
             int k;
-            if (here && !(here & VOXGI__REGION_BORDER) && here != home && !voxgi__region_inside(J->vol->region_boxes, home, here)) {
+            if (here && !(here & VOXGI__REGION_BORDER) && here != home && !voxgi__region_inside(J->boxes, home, here)) {
                 for (a = 0; a < 3; a++) C[a] += (1 - A) * last[a]; /* the rest of the cone ends on the enclosure, as last seen */
                 A = 1;
                 break;
@@ -7892,6 +8054,7 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radianc
     const voxgi_volume *vol = source->volume;
     const voxgi_svo *svo = source->octree;
     const char *what = vol ? "volume" : "octree";
+    int k, a;
     memset(J, 0, sizeof *J);
     if (!vol == !svo)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance source sets %s: exactly one of volume and octree is needed",
@@ -7912,9 +8075,13 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radianc
     J->desc = desc;
     J->cones = desc->cones ? desc->cones : 16;
     J->dirs = vol && vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
-    J->two_sided = vol && (vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_BACK) && (vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_SIDE);
-    J->enclosed = J->two_sided && vol->region_count > 2;
-    J->regions = J->enclosed ? vol->regions : NULL;
+    J->two_sided = ((vol ? vol->info.attributes : svo->info.attributes) & (VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE)) ==
+                   (VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE);
+    J->enclosed = J->two_sided && (vol ? vol->region_count : svo->region_count) > 2;
+    J->regions = !J->enclosed ? NULL : vol ? vol->regions : svo->regions;
+    J->boxes = !J->regions ? NULL : vol ? vol->region_boxes : svo->regions + svo->info.nodes + svo->info.leaf_slots;
+    for (k = 0; k < J->levels; k++)
+        for (a = 0; a < 3; a++) J->dims[k][a] = vol ? vol->dims[k][a] : (int)(((int64_t)g->res[a] + ((int64_t)1 << k) - 1) >> k);
     J->half_tan = tan(desc->half_angle > 0 ? desc->half_angle : acos(1 - 1.0 / J->cones));
     J->step = desc->step > 0 ? desc->step : 0.5;
     J->offset = desc->offset > 0 ? desc->offset : 1.5;
@@ -8988,7 +9155,7 @@ static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *s
     id.bounces = desc->bounces;
     id.gather = desc->bounce_cones;
     id.gather_block = desc->bounce_block;
-    id.one_sided = desc->one_sided || desc->octree; /* an octree keeps the front alone */
+    id.one_sided = desc->one_sided;
     t1 = voxgi__now_ms();
     r = voxgi_fit_grid(ctx, scene, &fit, &xd.grid);
     if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &xd, vox);

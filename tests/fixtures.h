@@ -255,8 +255,8 @@ static inline void vct_view(voxgi_vct_desc *vd, const voxgi_builtin_scene *bs, i
    lamp) cone traced at res^3 from inside the box, where the exact image is black, and from the
    room: the mean and largest radiance inside over the room view's mean (emitters hidden). With
    rect = 1 a rectangular light under the lamp lights the room instead (the lights' path of the
-   injection, not the emitters'). 0 on success. */
-static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter filter, int rect, double *mean_ratio, double *max_ratio)
+   injection, not the emitters'); octree = 1: the cones gather from an octree. 0 on success. */
+static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter filter, int octree, int rect, double *mean_ratio, double *max_ratio)
 {
     enum { W = 24 };
     voxgi_builtin_scene bs;
@@ -281,6 +281,7 @@ static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter
         vct_view(&vd, &bs, W);
         vd.resolution = res;
         vd.filter = filter;
+        vd.octree = octree;
         vd.samples = 1;
         vd.hide_emitters = 1;
         if (v) {
@@ -304,8 +305,8 @@ static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter
 /* The leak-box scene (a closed box of zero-thickness faces on sunlit ground, a point light
    beside it; with area = 1 a rectangular light there instead) cone traced at res^3 from inside,
    where the exact image is black: the mean and largest radiance inside over the lit ground's
-   (albedo / pi x the sun's irradiance). 0 on success. */
-static inline int leak_box_ratios(voxgi_context *ctx, int res, voxgi_mip_filter filter, int area, double *mean_ratio, double *max_ratio)
+   (albedo / pi x the sun's irradiance); octree = 1: the cones gather from an octree. 0 on success. */
+static inline int leak_box_ratios(voxgi_context *ctx, int res, voxgi_mip_filter filter, int octree, int area, double *mean_ratio, double *max_ratio)
 {
     enum { W = 64 }; /* fine enough to meet the box's corners, where a point's region is hardest to find */
     voxgi_builtin_scene bs;
@@ -331,6 +332,7 @@ static inline int leak_box_ratios(voxgi_context *ctx, int res, voxgi_mip_filter 
     vct_view(&vd, &bs, W);
     vd.resolution = res;
     vd.filter = filter;
+    vd.octree = octree;
     vd.samples = 1;
     bad = voxgi_vct_render(ctx, &bs.scene, &vd, img, sizeof img, NULL) != VOXGI_OK;
     for (i = 0; i < W * W && !bad; i++) {

@@ -1024,7 +1024,7 @@ static void test_gl_raster_leak_room(void)
     ctx = make_ctx(VOXGI_BACKEND_GL, 0);
     for (res = 32; res <= 128; res *= 4) {
         double m = 1, x = 1;
-        TH_CHECK(leak_room_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+        TH_CHECK(leak_room_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, 0, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
         printf("    GL leak room %3d^3: inside mean %.4f%%, largest %.3f%% of the room view's mean\n", res, 100 * m, 100 * x);
         TH_CHECK(m <= 0.001 && x <= 0.01, "%d^3: mean %.4f%%, largest %.3f%%", res, 100 * m, 100 * x);
     }
@@ -1043,7 +1043,7 @@ static void test_gl_raster_leak_box(void)
     for (area = 0; area < 2; area++)
         for (res = 32; res <= 128; res *= 4) {
             double m = 1, x = 1;
-            TH_CHECK(leak_box_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, area, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+            TH_CHECK(leak_box_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, 0, area, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
             printf("    GL leak box %3d^3 (sun and %s light): inside mean %.4f%%, largest %.3f%% of the lit ground's\n", res,
                    area ? "rectangular" : "point", 100 * m, 100 * x);
             TH_CHECK(m <= 0.001 && x <= 0.01, "%d^3: mean %.4f%%, largest %.3f%%", res, 100 * m, 100 * x);

@@ -248,7 +248,7 @@ static void test_cornell_box_image(void)
    light, or a sun and a rectangular light) is black inside. The cones from inside keep to the
    box's region of empty space: at most 0.1% of the lit ground's radiance in the mean and no
    pixel above 1%, at 32^3 to 256^3 (the rectangular light at 64^3), anisotropic mips (the
-   tool's default). Isotropic mips are printed, not bounded. */
+   tool's default), and from an octree at 64^3. Isotropic mips are printed, not bounded. */
 static void test_leak_box(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -257,21 +257,24 @@ static void test_leak_box(void)
     for (area = 0; area < 2; area++)
         for (res = 32; res <= 256; res *= 2) {
             if (area && res != 64) continue;
-            TH_CHECK(leak_box_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, area, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+            TH_CHECK(leak_box_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, 0, area, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
             printf("    leak box %3d^3 (sun and %s light): inside mean %.4f%%, largest %.3f%% of the lit ground's\n", res, area ? "rectangular" : "point",
                    100 * m, 100 * x);
             TH_CHECK(m <= 0.001 && x <= 0.01, "%d^3: mean %.4f%%, largest %.3f%%", res, 100 * m, 100 * x);
         }
-    TH_CHECK(leak_box_ratios(ctx, 64, VOXGI_MIPS_ISOTROPIC, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+    TH_CHECK(leak_box_ratios(ctx, 64, VOXGI_MIPS_ISOTROPIC, 0, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
     printf("    leak box  64^3, isotropic mips: inside mean %.4f%%, largest %.3f%%\n", 100 * m, 100 * x);
+    TH_CHECK(leak_box_ratios(ctx, 64, VOXGI_MIPS_ISOTROPIC, 1, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+    printf("    leak box  64^3, octree: inside mean %.4f%%, largest %.3f%%\n", 100 * m, 100 * x);
+    TH_CHECK(m <= 0.001 && x <= 0.01, "octree: mean %.4f%%, largest %.3f%%", 100 * m, 100 * x);
     voxgi_destroy(ctx);
 }
 
 /* No light through closed walls of zero thickness: inside the leak room's box the cone-traced
    mean stays at most 0.1% of the room view's and no pixel above 1%, at 32^3 to 256^3, lit by
    the lamp's emitting quad (or at 64^3 by a rectangular light), anisotropic mips (the tool's
-   default). Each face's inner side is lit on its own (black), cones see the side they come from
-   and keep to the box's region of empty space. */
+   default), and from an octree at 64^3. Each face's inner side is lit on its own (black), cones
+   see the side they come from and keep to the box's region of empty space. */
 static void test_leak_room(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -280,11 +283,17 @@ static void test_leak_room(void)
         for (res = 32; res <= 256; res *= 2) {
             double m = 1, x = 1;
             if (rect && res != 64) continue;
-            TH_CHECK(leak_room_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, rect, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+            TH_CHECK(leak_room_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, 0, rect, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
             printf("    leak room %3d^3 (%s): inside mean %.4f%%, largest %.3f%% of the room view's mean\n", res, rect ? "rect light" : "emitter",
                    100 * m, 100 * x);
             TH_CHECK(m <= 0.001 && x <= 0.01, "%d^3: mean %.4f%%, largest %.3f%%", res, 100 * m, 100 * x);
         }
+    {
+        double m = 1, x = 1;
+        TH_CHECK(leak_room_ratios(ctx, 64, VOXGI_MIPS_ISOTROPIC, 1, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+        printf("    leak room  64^3 (emitter), octree: inside mean %.4f%%, largest %.3f%% of the room view's mean\n", 100 * m, 100 * x);
+        TH_CHECK(m <= 0.001 && x <= 0.01, "octree: mean %.4f%%, largest %.3f%%", 100 * m, 100 * x);
+    }
     voxgi_destroy(ctx);
 }
 
@@ -491,9 +500,10 @@ static void test_cone_stride(void)
 /* Cone tracing over an octree of the radiance: the octree's mips are the isotropic volume's
    (premultiplied, plain means), and the march is the volume's, so a float32 octree gives the
    volume's irradiance, occlusion and single cones bit for bit, with or without bricks, on a grid
-   that is not a power of two (24^3 in a 32^3 cube); a float16 octree stays within 1% of the mean
-   irradiance; a cone-traced image through the octree equals the volume's bit for bit. Bad
-   radiance inputs are refused. */
+   that is not a power of two (24^3 in a 32^3 cube), one-sided and two-sided; a float16 octree
+   stays within 1% of the mean irradiance; a cone-traced image through the octree equals the
+   volume's bit for bit, also where cones keep to enclosed regions (the leak room, from inside
+   its closed box and from the room). Bad radiance inputs are refused. */
 static void test_octree_cones(void)
 {
     enum { N = 200, W = 16 };
@@ -511,55 +521,70 @@ static void test_octree_cones(void)
     voxgi_cone single[N];
     float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], each[2][4 * N], *img[2];
     double mean = 0, worst16 = 0;
-    int i, k;
+    int i, k, sides;
     voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
-    memset(&fit, 0, sizeof fit);
-    memset(&xd, 0, sizeof xd);
-    memset(&id, 0, sizeof id);
-    memset(&cd, 0, sizeof cd);
-    fit.res = 24;
-    fit.padding = 1;
-    xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
-    id.samples = 4;
-    id.one_sided = 1; /* as an octree holds it */
-    TH_CHECK(voxgi_fit_grid(ctx, &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &bs.scene, &xd, &vox) == VOXGI_OK &&
-             voxgi_inject_light(ctx, &bs.scene, vox, &id, &vol) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    cornell_cone_points(11, N, pos, nrm, single);
-    TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, N, pos, nrm, irr[0], occ[0]) == VOXGI_OK && voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, N, single, each[0]) == VOXGI_OK,
-             "volume: %s", voxgi_last_error(ctx));
-    for (i = 0; i < 3 * N; i++) mean += irr[0][i] / (3.0 * N);
-    for (k = 0; k < 3; k++) { /* float32, float32 with bricks, float16 */
-        memset(&sd, 0, sizeof sd);
-        sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
-        sd.radiance = vol;
-        sd.bricks = k == 1;
-        sd.format = k == 2 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
-        TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr[1], occ[1]) == VOXGI_OK &&
-                 voxgi_cone_trace_each(ctx, OCTREE_SOURCE(svo), &cd, N, single, each[1]) == VOXGI_OK, "octree %d: %s", k, voxgi_last_error(ctx));
-        if (k < 2)
-            TH_CHECK(!memcmp(irr[0], irr[1], sizeof irr[0]) && !memcmp(occ[0], occ[1], sizeof occ[0]) && !memcmp(each[0], each[1], sizeof each[0]),
-                     "float32 octree%s: cones differ from the volume's", k ? " with bricks" : "");
-        else {
-            for (i = 0; i < 3 * N; i++) worst16 = fmax(worst16, fabs(irr[0][i] - irr[1][i]) / mean);
-            printf("    octree cones: float32 (and with bricks) == the isotropic volume bit for bit; float16 within %.2g of the mean irradiance %.3g\n",
-                   worst16, mean);
-            TH_CHECK(mean > 0.05 && worst16 < 0.01, "float16 octree off by %.3g of the mean", worst16);
+    for (sides = 1; sides <= 2; sides++) {
+        memset(&fit, 0, sizeof fit);
+        memset(&xd, 0, sizeof xd);
+        memset(&id, 0, sizeof id);
+        memset(&cd, 0, sizeof cd);
+        fit.res = 24;
+        fit.padding = 1;
+        xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+        id.samples = 4;
+        id.one_sided = sides == 1;
+        TH_CHECK(voxgi_fit_grid(ctx, &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &bs.scene, &xd, &vox) == VOXGI_OK &&
+                 voxgi_inject_light(ctx, &bs.scene, vox, &id, &vol) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        cornell_cone_points(11, N, pos, nrm, single);
+        TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, N, pos, nrm, irr[0], occ[0]) == VOXGI_OK && voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, N, single, each[0]) == VOXGI_OK,
+                 "volume: %s", voxgi_last_error(ctx));
+        for (i = 0, mean = worst16 = 0; i < 3 * N; i++) mean += irr[0][i] / (3.0 * N);
+        for (k = 0; k < 3; k++) { /* float32, float32 with bricks, float16 */
+            memset(&sd, 0, sizeof sd);
+            sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
+            sd.radiance = vol;
+            sd.bricks = k == 1;
+            sd.format = k == 2 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
+            TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr[1], occ[1]) == VOXGI_OK &&
+                     voxgi_cone_trace_each(ctx, OCTREE_SOURCE(svo), &cd, N, single, each[1]) == VOXGI_OK, "octree %d: %s", k, voxgi_last_error(ctx));
+            if (k < 2)
+                TH_CHECK(!memcmp(irr[0], irr[1], sizeof irr[0]) && !memcmp(occ[0], occ[1], sizeof occ[0]) && !memcmp(each[0], each[1], sizeof each[0]),
+                         "%s-sided float32 octree%s: cones differ from the volume's", sides == 1 ? "one" : "two", k ? " with bricks" : "");
+            else {
+                for (i = 0; i < 3 * N; i++) worst16 = fmax(worst16, fabs(irr[0][i] - irr[1][i]) / mean);
+                printf("    %s-sided octree cones: float32 (and with bricks) == the isotropic volume bit for bit; float16 within %.2g of the mean irradiance %.3g\n",
+                       sides == 1 ? "one" : "two", worst16, mean);
+                TH_CHECK(mean > 0.05 && worst16 < 0.01, "float16 octree off by %.3g of the mean", worst16);
+            }
+            voxgi_svo_destroy(ctx, svo);
+            svo = NULL;
         }
-        voxgi_svo_destroy(ctx, svo);
-        svo = NULL;
+        if (sides == 1) { voxgi_volume_destroy(ctx, vol); voxgi_voxels_destroy(ctx, vox); }
     }
-    vct_view(&vd, &bs, W); /* an image through the octree */
-    vd.resolution = 24;
-    vd.samples = 2;
-    vd.one_sided = 1; /* the volume as an octree holds it */
-    for (k = 0; k < 2; k++) {
-        img[k] = (float *)malloc(W * W * 12);
-        vd.octree = k;
-        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, img[k], W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+    for (sides = 0; sides < 3; sides++) { /* images through the octree: the Cornell box one-sided; the leak room from its box and from the room */
+        voxgi_builtin_scene room;
+        TH_CHECK(voxgi_builtin_scene_create(ctx, sides ? "leak-room" : "cornell-box", &room) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        vct_view(&vd, &room, W);
+        vd.resolution = sides ? 32 : 24;
+        vd.samples = 2;
+        vd.one_sided = !sides;
+        if (sides == 2) {
+            vd.camera.eye[0] = 0.85f; vd.camera.eye[1] = 1.6f; vd.camera.eye[2] = -0.85f;
+            vd.camera.target[0] = 0; vd.camera.target[1] = 0.4f; vd.camera.target[2] = 0;
+            vd.camera.fovy_degrees = 75;
+        }
+        for (k = 0; k < 2; k++) {
+            img[k] = (float *)malloc(W * W * 12);
+            vd.octree = k;
+            TH_CHECK(voxgi_vct_render(ctx, &room.scene, &vd, img[k], W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+        }
+        for (i = 0, mean = 0; i < 3 * W * W; i++) mean += img[0][i];
+        TH_CHECK(sides == 1 || mean > 0, "a black image");
+        TH_CHECK(!memcmp(img[0], img[1], W * W * 12), "%s: the image through the octree differs from the volume's", sides ? "leak room" : "Cornell box");
+        free(img[0]);
+        free(img[1]);
+        voxgi_builtin_scene_destroy(ctx, &room);
     }
-    TH_CHECK(!memcmp(img[0], img[1], W * W * 12), "the image through the octree differs from the volume's");
-    free(img[0]);
-    free(img[1]);
     /* refusals: RADIANCE without a volume, a volume without RADIANCE, another grid, an octree without radiance */
     memset(&sd, 0, sizeof sd);
     sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
