@@ -533,7 +533,9 @@ VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_v
    to leaf tiles: the voxel values, which carry no pointers. Every node and leaf slot holds the
    attributes as the attribute volumes do (RGBA value and alpha, opacity alone), inner nodes the
    isotropic mip of their children, so a lookup at level l equals the dense volume's level
-   depth - l at the same place. */
+   depth - l at the same place. An octree of a two-sided radiance (voxgi_inject_light) also holds
+   RADIANCE_BACK and RADIANCE_SIDE and, where its empty space has enclosed regions, their labels
+   per slot (4 bytes a node or leaf slot), so that cones keep to their region as in the volume. */
 typedef struct voxgi_svo voxgi_svo;
 /* How node and leaf values are stored: FLOAT32 (RGBA32F, R32F) or FLOAT16 (RGBA16F, R16F; each
    value rounded to the nearest half, ties to even; a parent is the mip of its children's stored
@@ -547,8 +549,8 @@ typedef struct voxgi_svo_desc {
     const voxgi_volume *radiance; /* a RADIANCE volume on the voxels' grid (voxgi_inject_light), or NULL: the
                                      octree also holds RADIANCE, premultiplied as in the volume: its level 0 at
                                      the set voxels, the nodes the plain mean of their children (so sampling
-                                     equals the isotropic volume's), for cone tracing (voxgi_radiance_source); the
-                                     front's alone (RADIANCE): an octree is one-sided, as voxgi_inject_desc.one_sided */
+                                     equals the isotropic volume's), for cone tracing (voxgi_radiance_source);
+                                     a two-sided volume's RADIANCE_BACK and RADIANCE_SIDE alike, and its regions */
 } voxgi_svo_desc;
 typedef struct voxgi_svo_info {
     voxgi_grid grid;
@@ -563,7 +565,7 @@ typedef struct voxgi_svo_info {
     size_t structure_bytes;       /* child pointers */
     size_t neighbour_bytes;       /* neighbour pointers, when built */
     size_t brick_bytes;           /* bricks, when built */
-    size_t bytes;                 /* everything: structure, neighbours and values */
+    size_t bytes;                 /* everything: structure, neighbours, values and regions */
     size_t dense_bytes;           /* the dense equivalent: level 0 of the same attributes in the same format */
     double ms, ms_sort, ms_nodes, ms_values, ms_neighbours; /* whole build, then its passes */
 } voxgi_svo_info;
@@ -599,9 +601,10 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
 /* Where cones gather from: the RADIANCE of a volume (voxgi_inject_light) or of an octree
    (voxgi_svo_desc.radiance), made on the context's backend; exactly one of the two is set. An
    octree is marched step for step as the volume is, over its isotropic mips (lod 0 = the voxels,
-   up to the root), through its bricks where it has them: a float32 octree gives what the
-   isotropic volume it was built from gives, bit for bit on the CPU; on GL the march runs over
-   the octree's buffers (shaders/cone_svo.glsl). */
+   up to the root), through its bricks where it has them (one-sided; a two-sided octree's three
+   values and labels are read by lookups): a float32 octree gives what the isotropic volume it was
+   built from gives, bit for bit on the CPU, one-sided or two-sided; on GL the march runs over the
+   octree's buffers (shaders/cone_svo.glsl). */
 typedef struct voxgi_radiance_source {
     const voxgi_volume *volume;
     const voxgi_svo *octree;
@@ -2559,8 +2562,8 @@ typedef enum voxgi__gl_program_id {
     X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_lookup) X(u_max_channels) X(u_max_distance) X(u_max_lod)    \
     X(u_near) X(u_offset) X(u_op) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_premultiplied)     \
     X(u_regions) X(u_res) X(u_right) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) X(u_src_level)          \
-    X(u_src_res) X(u_step) X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_nodes)     \
-    X(u_svo_single) X(u_tan) X(u_thin) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) X(u_view)          \
+    X(u_src_res) X(u_step) X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_leaf_first) \
+    X(u_svo_nodes) X(u_svo_single) X(u_tan) X(u_thin) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) X(u_view)          \
     X(u_voxel_size) X(u_with_values) X(u_words)
 enum {
 #define VOXGI__GL_UNIFORM_LOCATION(name) VOXGI__LOC_##name,
@@ -2574,7 +2577,8 @@ enum {
    prelude, used by name in C. A program's own buffers are numbered in its file, clear of these. */
 #define VOXGI__GL_BINDINGS(X)                                                                                 \
     X(VERTICES, 0) X(TRIANGLES, 1) X(BITS, 2) X(CONTROL, 3) X(PAIRS, 4) X(FLAGS, 5) X(BIG, 6)                  \
-    X(RANK, 7) X(RECORDS, 8) X(SUMS, 9) X(SVO_CHILD, 0) X(SVO_NODE_VALUES, 1) X(SVO_LEAF_VALUES, 2)
+    X(RANK, 7) X(RECORDS, 8) X(SUMS, 9) X(SVO_CHILD, 0) X(SVO_VALUES, 1) X(SVO_BACK_VALUES, 2)     \
+    X(SVO_SIDE_VALUES, 6)
 enum {
 #define VOXGI__GL_BINDING_NUMBER(role, number) VOXGI__BINDING_##role = number,
     VOXGI__GL_BINDINGS(VOXGI__GL_BINDING_NUMBER)
@@ -6547,7 +6551,9 @@ struct voxgi_svo {
     unsigned char *node_values[VOXGI__VOLUME_SLOTS], *leaf_values[VOXGI__VOLUME_SLOTS]; /* per node / leaf slot: slot_bytes[a] in info.format */
     int slot_bytes[VOXGI__VOLUME_SLOTS];
     uint64_t inner_tiles, bricks;             /* bricks: one per inner node, or 0 */
-    unsigned int gl_child, gl_neighbour, gl_node_values[VOXGI__VOLUME_SLOTS], gl_leaf_values[VOXGI__VOLUME_SLOTS]; /* GL: the same arrays in buffers */
+    unsigned int gl_child, gl_neighbour;      /* GL: the same arrays in buffers, */
+    unsigned int gl_values[VOXGI__VOLUME_SLOTS]; /* and per attribute one buffer of the node values, then the leaf values */
+    uint32_t gl_leaf_first[VOXGI__VOLUME_SLOTS]; /* from this word on */
     uint32_t *regions;                        /* two-sided radiance with enclosed regions: a label per node slot, then per leaf
                                                  slot, then the bounds (voxgi__svo_regions) */
     size_t region_count;                      /* labels, 0 and OPEN included (0: no regions) */
@@ -6717,8 +6723,8 @@ static void voxgi__svo_bind_gl(voxgi_context *ctx, const voxgi_svo *svo, unsigne
 {
     voxgi__gl *gl = ctx->gl;
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_CHILD, svo->gl_child);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_NODE_VALUES, a >= 0 ? svo->gl_node_values[a] : 0);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_LEAF_VALUES, a >= 0 ? svo->gl_leaf_values[a] : 0);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_VALUES, a >= 0 ? svo->gl_values[a] : 0);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_svo_leaf_first, a >= 0 ? svo->gl_leaf_first[a] : 0u);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_depth, svo->info.depth);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_format, (int)svo->info.format);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_single, a == 3);
@@ -6798,8 +6804,9 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
     if ((r = voxgi__svo_size(ctx, svo, tiles, desc)) != VOXGI_OK) goto done; /* before the values are allocated */
     for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* each value buffer within one storage block (so word indices stay 32-bit too) */
         if ((svo->info.attributes & (1u << a)) &&
-            ((int64_t)((svo->info.nodes + 64 * svo->bricks) * (uint64_t)svo->slot_bytes[a]) > gl->max_ssbo_bytes ||
-             (int64_t)(svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a]) > gl->max_ssbo_bytes || (int64_t)(16 * (uint64_t)n) > gl->max_ssbo_bytes)) {
+            ((int64_t)(((svo->info.nodes + 64 * svo->bricks) * (uint64_t)svo->slot_bytes[a] + 3) / 4 * 4 + svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a]) >
+                 gl->max_ssbo_bytes ||
+             (int64_t)(16 * (uint64_t)n) > gl->max_ssbo_bytes)) {
             r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree's values of attribute %d exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld", a,
                             (long long)gl->max_ssbo_bytes);
             goto done;
@@ -6847,10 +6854,9 @@ static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size
         }
         gl->NamedBufferSubData(fvals, 0, (ptrdiff_t)(n * 16), v4);
         voxgi__free(ctx, v4);
-        svo->gl_node_values[a] = voxgi__gl_buffer(ctx, (size_t)((node_bytes + 64 * svo->bricks * (uint64_t)svo->slot_bytes[a] + 3) / 4 * 4), NULL);
-        svo->gl_leaf_values[a] = voxgi__gl_buffer(ctx, (size_t)((leaf_bytes + 3) / 4 * 4), NULL);
-        gl->ClearNamedBufferData(svo->gl_node_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-        gl->ClearNamedBufferData(svo->gl_leaf_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        svo->gl_leaf_first[a] = (uint32_t)((node_bytes + 64 * svo->bricks * (uint64_t)svo->slot_bytes[a] + 3) / 4);
+        svo->gl_values[a] = voxgi__gl_buffer(ctx, (size_t)(4 * (uint64_t)svo->gl_leaf_first[a] + (leaf_bytes + 3) / 4 * 4), NULL);
+        gl->ClearNamedBufferData(svo->gl_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
         voxgi__svo_bind_gl(ctx, svo, p, a);
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, fvals);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_LEAVES);
@@ -7283,7 +7289,7 @@ VOXGI_API void voxgi_svo_destroy(voxgi_context *ctx, voxgi_svo *svo)
     voxgi__gl_delete_buffer(ctx, svo->gl_child);
     voxgi__gl_delete_buffer(ctx, svo->gl_neighbour);
     voxgi__gl_delete_buffer(ctx, svo->gl_regions);
-    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) { voxgi__gl_delete_buffer(ctx, svo->gl_node_values[a]); voxgi__gl_delete_buffer(ctx, svo->gl_leaf_values[a]); }
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) voxgi__gl_delete_buffer(ctx, svo->gl_values[a]);
 #endif
     voxgi__free(ctx, svo);
 }
@@ -7512,7 +7518,7 @@ VOXGI_API voxgi_result voxgi_svo_brick(voxgi_context *ctx, const voxgi_svo *svo,
 #ifndef VOXGI_NO_GL
     if (svo->gl_child) {
         ctx->gl->MemoryBarrier(VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
-        ctx->gl->GetNamedBufferSubData(svo->gl_node_values[a], (ptrdiff_t)first, (ptrdiff_t)(64 * b), raw);
+        ctx->gl->GetNamedBufferSubData(svo->gl_values[a], (ptrdiff_t)first, (ptrdiff_t)(64 * b), raw);
     } else
 #endif
         memcpy(raw, svo->node_values[a] + first, (size_t)(64 * b));
@@ -7782,21 +7788,44 @@ static uint32_t voxgi__home_along(const voxgi__cone_job *J, const double o[3], c
     return 0;
 }
 
+/* Whether the segment from a to b (grid units) meets voxel v's box (slabs, in float as GL). */
+static int voxgi__segment_meets(const float a[3], const float b[3], const int v[3])
+{
+    float t0 = 0, t1 = 1;
+    int ax;
+    for (ax = 0; ax < 3; ax++) {
+        float d = b[ax] - a[ax], lo = (float)v[ax] - a[ax], hi = (float)v[ax] + 1 - a[ax], ta, tb;
+        if (d == 0) {
+            if (lo > 0 || hi < 0) return 0;
+            continue;
+        }
+        ta = lo / d;
+        tb = hi / d;
+        t0 = VOXGI__MAX(t0, VOXGI__MIN(ta, tb));
+        t1 = VOXGI__MIN(t1, VOXGI__MAX(ta, tb));
+        if (t0 > t1) return 0;
+    }
+    return 1;
+}
+
 /* The enclosed region the cones from o on unit normal n start in: voxgi__home_along's; where
    there is none (o near a corner, the other wall's voxels all along n), that of the nearest empty
    voxel within 2 voxels of q = o + n/4 which no surface's plane in the voxels around q separates
-   from q. 0 where that region is open or there is none. */
+   from q; where none is, the planes of those voxels alone that the segment between them passes
+   (a voxel on an edge holds the mean plane of two surfaces, which can cut off both sides). 0
+   where that region is open or there is none. */
 static uint32_t voxgi__home_region(const voxgi__cone_job *J, const double o[3], const double n[3])
 {
     const int *dm = J->dims[0];
     float q[3], best_d2 = 1e30f;
     uint32_t best = voxgi__home_along(J, o, n);
-    int a, c[3], e[3], v[3];
+    int a, c[3], e[3], v[3], strict;
     if (best) return best == VOXGI__REGION_OPEN ? 0 : best;
     for (a = 0; a < 3; a++) {
         q[a] = (float)o[a] + 0.25f * (float)n[a];
         c[a] = (int)floorf(q[a]);
     }
+    for (strict = 1; strict >= 0 && !best; strict--)
     for (e[2] = c[2] - 2; e[2] <= c[2] + 2; e[2]++)
         for (e[1] = c[1] - 2; e[1] <= c[1] + 2; e[1]++)
             for (e[0] = c[0] - 2; e[0] <= c[0] + 2; e[0]++) {
@@ -7812,7 +7841,7 @@ static uint32_t voxgi__home_region(const voxgi__cone_job *J, const double o[3], 
                     for (v[1] = c[1] - 1; ok && v[1] <= c[1] + 1; v[1]++)
                         for (v[0] = c[0] - 1; ok && v[0] <= c[0] + 1; v[0]++) {
                             float pl[4], at_q, at_e;
-                            if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= dm[0] || v[1] >= dm[1] || v[2] >= dm[2]) continue;
+                            if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= dm[0] || v[1] >= dm[1] || v[2] >= dm[2] || (!strict && !voxgi__segment_meets(q, ec, v))) continue;
                             voxgi__side_at(J, v, pl);
                             at_q = pl[0] * q[0] + pl[1] * q[1] + pl[2] * q[2] - pl[3];
                             at_e = pl[0] * ec[0] + pl[1] * ec[1] + pl[2] * ec[2] - pl[3];
@@ -7959,10 +7988,10 @@ static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__con
     gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, J->levels);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_anisotropic, J->dirs == 6);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_two_sided, J->two_sided);
-    if (J->vol) { /* the regions: where their bounds start (0: no enclosed region), level 0's size */
-        gl->ProgramUniform1ui(p, VOXGI__LOC_u_regions, J->enclosed ? (unsigned)J->vol->voxels : 0u);
-        gl->ProgramUniform3i(p, VOXGI__LOC_u_res, J->vol->dims[0][0], J->vol->dims[0][1], J->vol->dims[0][2]);
-    }
+    /* the regions: where their bounds start (0: no enclosed region), level 0's size */
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_regions,
+                          !J->enclosed ? 0u : J->vol ? (unsigned)J->vol->voxels : (unsigned)(J->svo->info.nodes + J->svo->info.leaf_slots));
+    gl->ProgramUniform3i(p, VOXGI__LOC_u_res, J->dims[0][0], J->dims[0][1], J->dims[0][2]);
     gl->ProgramUniform1f(p, VOXGI__LOC_u_back_coverage, VOXGI__BACK_COVERAGE);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_cones, J->list ? 0 : J->cones);
     gl->ProgramUniform1f(p, VOXGI__LOC_u_half_tan, (float)J->half_tan);
@@ -7971,11 +8000,21 @@ static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__con
     gl->ProgramUniform1f(p, VOXGI__LOC_u_max_distance, (float)J->max_dist);
 }
 
-/* The radiance textures on units 0-5 (front), 9-14 (back) and 15 (side), the regions on
-   storage binding 5, or 0 to unbind. */
-static void voxgi__cone_bind_gl(voxgi__gl *gl, const voxgi__cone_job *J, int bind)
+/* The radiance, a volume's textures on units 0-5 (front), 9-14 (back) and 15 (side) or an
+   octree's buffers (svo.glsl: the front bound, the back and the side beside it), and the regions
+   on storage binding 5; bind 0 unbinds the textures (voxgi__gl_unbind the buffers). */
+static void voxgi__cone_bind_gl(voxgi_context *ctx, const voxgi__cone_job *J, unsigned int p, int bind)
 {
+    voxgi__gl *gl = ctx->gl;
     int a;
+    if (J->svo) {
+        if (!bind) return;
+        voxgi__svo_bind_gl(ctx, J->svo, p, VOXGI__RADIANCE_SLOT); /* the three share their layout, so u_svo_leaf_first */
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_BACK_VALUES, J->two_sided ? J->svo->gl_values[VOXGI__BACK_SLOT] : 0u);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_SIDE_VALUES, J->two_sided ? J->svo->gl_values[VOXGI__SIDE_SLOT] : 0u);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, J->enclosed ? J->svo->gl_regions : 0u);
+        return;
+    }
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, bind && J->enclosed ? J->vol->region_buffer : 0u);
     for (a = 0; a < 6; a++) {
         int d = J->dirs == 6 ? a : 0;
@@ -8018,8 +8057,7 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
     p = J->svo ? gl->prog_cone_trace_svo : gl->prog_cone_trace;
     gl->UseProgram(p);
     voxgi__cone_uniforms(gl, p, J);
-    if (J->svo) voxgi__svo_bind_gl(ctx, J->svo, p, 4);
-    else voxgi__cone_bind_gl(gl, J, 1);
+    voxgi__cone_bind_gl(ctx, J, p, 1);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, bufs[0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, bufs[1]);
     gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)count);
@@ -8029,7 +8067,7 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
         gl->Finish();
     }
     gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
-    if (!J->svo) voxgi__cone_bind_gl(gl, J, 0);
+    voxgi__cone_bind_gl(ctx, J, p, 0);
     voxgi__gl_unbind(gl);
     r = voxgi__gl_read_buffer(ctx, bufs[1], io, count * 16);
     for (i = 0; r == VOXGI_OK && i < count; i++) {
@@ -8180,8 +8218,7 @@ VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_radia
     p = *prog;
     gl->UseProgram(p);
     voxgi__cone_uniforms(gl, p, &J);
-    if (J.svo) voxgi__svo_bind_gl(ctx, J.svo, p, 4);
-    else voxgi__cone_bind_gl(gl, &J, 1);
+    voxgi__cone_bind_gl(ctx, &J, p, 1);
     gl->BindTextureUnit(6, gb->position_texture);
     gl->BindTextureUnit(7, gb->normal_texture);
     gl->BindTextureUnit(8, gb->albedo_texture ? gb->albedo_texture : gb->normal_texture);
@@ -8193,7 +8230,7 @@ VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_radia
     gl->DispatchCompute((unsigned)((gb->width + 7) / 8), (unsigned)((gb->height + 7) / 8), 1);
     gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT);
     for (a = 0; a < 9; a++) gl->BindTextureUnit((unsigned)a, 0);
-    if (!J.svo) voxgi__cone_bind_gl(gl, &J, 0);
+    voxgi__cone_bind_gl(ctx, &J, p, 0);
     gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_RGBA32F);
     voxgi__gl_unbind(gl);
     return voxgi__gl_check(ctx, "cone tracing a G-buffer");

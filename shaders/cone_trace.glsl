@@ -3,6 +3,13 @@
 // stored premultiplied, so linear filtering is right), or over an octree's RADIANCE where
 // cone_svo.glsl defines VOXGI_CONE_SVO (after svo.glsl). Its passes: cone_trace_buffers.glsl
 // (points and single cones in storage buffers) and cone_trace_images.glsl (a G-buffer).
+
+// the regions of its empty space (voxgi__volume_regions): a volume's labels level after level,
+// or an octree's per node slot then per leaf slot (voxgi__svo_regions); then 6 bounds per label
+// from u_regions on (0: no enclosed region); level 0 is u_res voxels
+layout(std430, binding = 5) readonly buffer Regions { uint regions[]; };
+layout(location = VOXGI_LOC_u_regions) uniform uint u_regions;
+layout(location = VOXGI_LOC_u_res) uniform ivec3 u_res;
 #ifndef VOXGI_CONE_SVO
 // isotropic: u_rad0; anisotropic: one texture per direction of travel, +x -x +y -y +z -z
 layout(binding = 0) uniform sampler3D u_rad0;
@@ -19,11 +26,6 @@ layout(binding = 12) uniform sampler3D u_back3;
 layout(binding = 13) uniform sampler3D u_back4;
 layout(binding = 14) uniform sampler3D u_back5;
 layout(binding = 15) uniform sampler3D u_side;
-// the regions of its empty space (voxgi__volume_regions): the labels level after level, then 6
-// bounds per label from u_regions on (0: no enclosed region); level 0 is u_res voxels
-layout(std430, binding = 5) readonly buffer Regions { uint regions[]; };
-layout(location = VOXGI_LOC_u_regions) uniform uint u_regions;
-layout(location = VOXGI_LOC_u_res) uniform ivec3 u_res;
 #endif
 layout(location = VOXGI_LOC_u_size) uniform vec3 u_size;      // the textures' base size
 layout(location = VOXGI_LOC_u_levels) uniform int u_levels;     // mip levels (an octree: depth + 1)
@@ -50,6 +52,7 @@ vec4 cone_level(bool back, vec3 d, vec3 uv, float k)
            w.y * (d.y < 0.0 ? textureLod(u_rad3, uv, k) : textureLod(u_rad2, uv, k)) +
            w.z * (d.z < 0.0 ? textureLod(u_rad5, uv, k) : textureLod(u_rad4, uv, k));
 }
+#endif
 
 // The share of a sample's back sides seen from o: voxgi__back_share (VOXGI__SIDE_RAMP 4096).
 float back_share(vec4 side, vec3 o)
@@ -58,10 +61,8 @@ float back_share(vec4 side, vec3 o)
     if (!(len > 0.0)) return 0.0;
     return clamp(0.5 - 4096.0 * (dot(side.xyz, o) - side.w) / len, 0.0, 1.0);
 }
-#endif
 
-#ifndef VOXGI_CONE_SVO
-const uint REGION_OPEN = 1u, REGION_MIXED = 0xFFFFFFFFu, REGION_BORDER = 0x80000000u;
+const uint REGION_OPEN = 1u, REGION_MIXED = 0xFFFFFFFFu, REGION_BORDER = 0x80000000u, REGION_DARK = 0x40000000u;
 
 // Where level k's labels start, and its size.
 uint region_level(int k, out ivec3 dk)
@@ -85,22 +86,74 @@ bool region_inside(uint a, uint b)
            regions[pb + 3u] <= regions[pa + 3u] && regions[pb + 4u] <= regions[pa + 4u] && regions[pb + 5u] <= regions[pa + 5u];
 }
 
+// The label of level k's voxel v, 0 beyond the grid: voxgi__region_label.
+uint region_label(int k, ivec3 v)
+{
+    ivec3 dk;
+    uint first = region_level(k, dk);
+    if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, dk))) return 0u;
+#ifdef VOXGI_CONE_SVO // voxgi__svo_region
+    int level = u_svo_depth - k;
+    uint node = 0u;
+    bool empty = false;
+    for (int m = 1; m <= level; m++) {
+        uint ptr = svo_child[node];
+        if (ptr == 0u) { empty = true; break; } // in the empty cube of node
+        ivec3 b = (v >> (level - m)) & 1;
+        node = (m == u_svo_depth ? u_svo_nodes : 1u) + 8u * (ptr - 1u) + uint(b.x | (b.y << 1) | (b.z << 2));
+    }
+    uint label = regions[node];
+    if (!empty && (level == u_svo_depth || svo_child[node] != 0u)) return label;
+    return k == 0 ? label & ~REGION_DARK : ((label & REGION_DARK) != 0u ? 0u : label);
+#else
+    return regions[first + uint(v.x) + uint(dk.x) * (uint(v.y) + uint(dk.y) * uint(v.z))];
+#endif
+}
+
 // The label of level 0's voxel v, 0 beyond the grid.
 uint region_of(ivec3 v)
 {
-    if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, u_res))) return 0u;
-    return regions[uint(v.x) + uint(u_res.x) * (uint(v.y) + uint(u_res.y) * uint(v.z))];
+    return region_label(0, v);
+}
+
+// Level 0's side (RADIANCE_SIDE) at voxel v inside the grid: voxgi__side_at.
+vec4 side_at(ivec3 v)
+{
+#ifdef VOXGI_CONE_SVO
+    uint slot;
+    bool leaf;
+    return voxgi_svo_descend(u_svo_depth, v, slot, leaf) ? voxgi_svo_load_of(VOXGI_SVO_SIDE, leaf, slot) : vec4(0.0);
+#else
+    return texelFetch(u_side, v, 0);
+#endif
 }
 
 // The region of level k's voxel holding p: voxgi__region_at.
 uint region_at(int k, vec3 p)
 {
     ivec3 dk;
-    uint first = region_level(k, dk);
+    region_level(k, dk);
     vec3 c = p / float(1 << k);
     if (!(all(greaterThanEqual(c, vec3(0.0))) && all(lessThan(c, vec3(dk))))) return 0u;
-    ivec3 v = ivec3(c);
-    return regions[first + uint(v.x) + uint(dk.x) * (uint(v.y) + uint(dk.y) * uint(v.z))];
+    return region_label(k, ivec3(c));
+}
+
+// Whether the segment from a to b meets voxel v's box: voxgi__segment_meets.
+bool segment_meets(vec3 a, vec3 b, ivec3 v)
+{
+    float t0 = 0.0, t1 = 1.0;
+    for (int ax = 0; ax < 3; ax++) {
+        float d = b[ax] - a[ax], lo = float(v[ax]) - a[ax], hi = float(v[ax]) + 1.0 - a[ax];
+        if (d == 0.0) {
+            if (lo > 0.0 || hi < 0.0) return false;
+            continue;
+        }
+        float ta = lo / d, tb = hi / d;
+        t0 = max(t0, min(ta, tb));
+        t1 = min(t1, max(ta, tb));
+        if (t0 > t1) return false;
+    }
+    return true;
 }
 
 // The enclosed region the cones from o on unit normal n start in: voxgi__home_region.
@@ -114,6 +167,7 @@ uint home_region(vec3 o, vec3 n)
     ivec3 c = ivec3(floor(q));
     uint best = 0u;
     float best_d2 = 1e30;
+    for (int strict = 1; strict >= 0 && best == 0u; strict--) // all the planes around q; where that leaves none, those the segment passes
     for (int ez = c.z - 2; ez <= c.z + 2; ez++)
         for (int ey = c.y - 2; ey <= c.y + 2; ey++)
             for (int ex = c.x - 2; ex <= c.x + 2; ex++) {
@@ -129,8 +183,8 @@ uint home_region(vec3 o, vec3 n)
                     for (int vy = c.y - 1; ok && vy <= c.y + 1; vy++)
                         for (int vx = c.x - 1; ok && vx <= c.x + 1; vx++) {
                             ivec3 v = ivec3(vx, vy, vz);
-                            if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, u_res))) continue;
-                            vec4 pl = texelFetch(u_side, v, 0);
+                            if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, u_res)) || (strict == 0 && !segment_meets(q, ec, v))) continue;
+                            vec4 pl = side_at(v);
                             float at_q = pl.x * q.x + pl.y * q.y + pl.z * q.z - pl.w, at_e = pl.x * ec.x + pl.y * ec.y + pl.z * ec.z - pl.w;
                             ok = !((at_q > 0.0 && at_e < 0.0) || (at_q < 0.0 && at_e > 0.0));
                         }
@@ -154,10 +208,10 @@ float region_corner(int k, vec3 p, ivec3 dk, int corner, out ivec3 v)
 bool region_clear(int k, vec3 p, uint home)
 {
     ivec3 dk, v;
-    uint first = region_level(k, dk);
+    region_level(k, dk);
     for (int corner = 0; corner < 8; corner++) {
         if (region_corner(k, p, dk, corner, v) == 0.0) continue;
-        uint r = regions[first + uint(v.x) + uint(dk.x) * (uint(v.y) + uint(dk.y) * uint(v.z))];
+        uint r = region_label(k, v);
         if (r != 0u && r != home && !region_inside(home, r)) return false;
     }
     return true;
@@ -170,6 +224,28 @@ bool region_left_out(ivec3 v, uint home)
     return (r & REGION_BORDER) != 0u && (r & ~REGION_BORDER) != home && !region_inside(home, r & ~REGION_BORDER);
 }
 
+#ifdef VOXGI_CONE_SVO
+// Level k of a two-sided octree at p, by hand from its slots (without, at level 0 from region
+// home, the voxels region_left_out drops): the front and the back mixed by the back share seen
+// from o, as voxgi__cone_sample.
+vec4 svo_two_sided_level(int k, vec3 p, vec3 o, uint home)
+{
+    ivec3 dk, v;
+    region_level(k, dk);
+    vec4 side = vec4(0.0), front = vec4(0.0), behind = vec4(0.0);
+    for (int corner = 0; corner < 8; corner++) {
+        float w = region_corner(k, p, dk, corner, v);
+        uint slot;
+        bool leaf;
+        if (w == 0.0 || (home != 0u && k == 0 && region_left_out(v, home)) || !voxgi_svo_descend(u_svo_depth - k, v, slot, leaf)) continue;
+        side += w * voxgi_svo_load_of(VOXGI_SVO_SIDE, leaf, slot);
+        front += w * voxgi_svo_load(leaf, slot);
+        behind += w * voxgi_svo_load_of(VOXGI_SVO_BACK, leaf, slot);
+    }
+    float back = back_share(side, o);
+    return (1.0 - back) * front + back * u_back_coverage * behind;
+}
+#else
 // Level 0 at p without the surfaces' voxels lit from a region that is neither home nor inside it
 // (voxgi__cone_sample): false where it leaves none out (the textures' own filter serves);
 // else the side, the front and the back filtered by hand from the rest.
@@ -209,7 +285,11 @@ vec4 cone_sample(vec3 d, vec3 p, float lod, vec3 o, uint home)
     float m = float(u_levels - 1);
     vec4 s;
 #ifdef VOXGI_CONE_SVO
-    s = voxgi_sample_svo(p, clamp(lod, 0.0, m));
+    if (u_two_sided != 0) {
+        float l = clamp(lod, 0.0, m), k0 = floor(l), t = l - k0;
+        vec4 v0 = svo_two_sided_level(int(k0), p, o, home);
+        s = t > 0.0 ? v0 + t * (svo_two_sided_level(int(k0) + 1, p, o, home) - v0) : v0;
+    } else s = voxgi_sample_svo(p, clamp(lod, 0.0, m));
 #else
     if (u_two_sided != 0) { // each level on its own: the front and the back mixed by the back share
         float l = clamp(lod, 0.0, m), k0 = floor(l), t = l - k0;
@@ -235,11 +315,7 @@ vec4 cone_sample(vec3 d, vec3 p, float lod, vec3 o, uint home)
 // The cones' region from o on unit normal n: home_region where the volume has regions, else 0.
 uint home_of(vec3 o, vec3 n)
 {
-#ifdef VOXGI_CONE_SVO
-    return 0u;
-#else
     return u_regions != 0u ? home_region(o, n) : 0u;
-#endif
 }
 
 // One cone from o (on a surface of unit normal n) along unit d, at cosine lz with n: marched from
@@ -252,7 +328,6 @@ vec4 march(vec3 o, vec3 n, vec3 d, float lz, float tan_k, float max_d, uint home
         float diam = max(1.0, 2.0 * t * tan_k), h = u_offset + (t - u_offset) * lz;
         vec3 p = o + u_offset * n + (t - u_offset) * d;
         float lod = min(min(log2(diam), log2(h / 1.5) - 1.0), float(u_levels - 1));
-#ifndef VOXGI_CONE_SVO
         if (home != 0u) { // out of an enclosed region: ended where it leaves it, no level reaching beyond it
             uint here = region_at(0, p);
             if (here != 0u && (here & REGION_BORDER) == 0u && here != home && !region_inside(home, here)) {
@@ -264,7 +339,6 @@ vec4 march(vec3 o, vec3 n, vec3 d, float lz, float tan_k, float max_d, uint home
             while (k > 0 && !region_clear(k, p, home)) k--;
             if (float(k) < lod) { lod = float(k); diam = exp2(lod); }
         }
-#endif
         vec4 s = cone_sample(d, p, lod, start, home);
         if (s.a > 0.0) last = s.rgb;
         float ap = 1.0 - pow(1.0 - min(1.0, s.a * (u_anisotropic != 0 ? 2.0 : exp2(max(lod, 0.0)))), u_step);

@@ -3,10 +3,16 @@
 // the lighting passes. The layout is the CPU octree's byte for byte: svo_child[slot] = 1 + the
 // index of the slot's child tile (0: none); inner tile t holds slots 1 + 8t .. 8 + 8t, leaf tile t
 // the leaf slots 8t .. 7 + 8t; values per slot RGBA32F / R32F (u_svo_format 0) or RGBA16F / R16F
-// (1, two halves per word, the first in the low bits), (value, alpha), opacity alpha alone.
+// (1, two halves per word, the first in the low bits), (value, alpha), opacity alpha alone; an
+// attribute's node values, then from word u_svo_leaf_first on its leaf values, in one buffer.
+// Cone tracing (VOXGI_CONE_SVO) also reads a two-sided octree's back and side, laid out alike.
 layout(std430, binding = VOXGI_BINDING_SVO_CHILD) buffer SvoChild { uint svo_child[]; };
-layout(std430, binding = VOXGI_BINDING_SVO_NODE_VALUES) buffer SvoNodeValues { uint svo_node_words[]; };
-layout(std430, binding = VOXGI_BINDING_SVO_LEAF_VALUES) buffer SvoLeafValues { uint svo_leaf_words[]; };
+layout(std430, binding = VOXGI_BINDING_SVO_VALUES) buffer SvoValues { uint svo_words[]; };
+#ifdef VOXGI_CONE_SVO
+layout(std430, binding = VOXGI_BINDING_SVO_BACK_VALUES) readonly buffer SvoBackValues { uint svo_back_words[]; };
+layout(std430, binding = VOXGI_BINDING_SVO_SIDE_VALUES) readonly buffer SvoSideValues { uint svo_side_words[]; };
+#endif
+layout(location = VOXGI_LOC_u_svo_leaf_first) uniform uint u_svo_leaf_first;
 layout(location = VOXGI_LOC_u_svo_depth) uniform int u_svo_depth;   // leaves at level depth
 layout(location = VOXGI_LOC_u_svo_format) uniform int u_svo_format;  // 0: float32, 1: float16
 layout(location = VOXGI_LOC_u_svo_single) uniform int u_svo_single;  // 1: the attribute is opacity (alpha alone)
@@ -35,22 +41,38 @@ float voxgi_float_from_half(uint h)
     return unpackHalf2x16(h & 0xFFFFu).x; // exact
 }
 
-uint voxgi_svo_word(bool leaf, uint i)
+#define VOXGI_SVO_BOUND 0 // the attribute bound (SvoValues)
+#define VOXGI_SVO_BACK 1
+#define VOXGI_SVO_SIDE 2
+
+// Word i of the node (or leaf) values of the bound attribute, or of the back's or the side's.
+uint voxgi_svo_word(int attr, bool leaf, uint i)
 {
-    return leaf ? svo_leaf_words[i] : svo_node_words[i];
+    uint at = (leaf ? u_svo_leaf_first : 0u) + i;
+#ifdef VOXGI_CONE_SVO
+    if (attr == VOXGI_SVO_BACK) return svo_back_words[at];
+    if (attr == VOXGI_SVO_SIDE) return svo_side_words[at];
+#endif
+    return svo_words[at];
 }
 
-// A slot's value as (value, alpha).
-vec4 voxgi_svo_load(bool leaf, uint slot)
+// A slot's value as (value, alpha), of attr.
+vec4 voxgi_svo_load_of(int attr, bool leaf, uint slot)
 {
     if (u_svo_format == 0) {
-        if (u_svo_single != 0) return vec4(0.0, 0.0, 0.0, uintBitsToFloat(voxgi_svo_word(leaf, slot)));
-        return uintBitsToFloat(uvec4(voxgi_svo_word(leaf, 4u * slot), voxgi_svo_word(leaf, 4u * slot + 1u),
-                                     voxgi_svo_word(leaf, 4u * slot + 2u), voxgi_svo_word(leaf, 4u * slot + 3u)));
+        if (u_svo_single != 0) return vec4(0.0, 0.0, 0.0, uintBitsToFloat(voxgi_svo_word(attr, leaf, slot)));
+        return uintBitsToFloat(uvec4(voxgi_svo_word(attr, leaf, 4u * slot), voxgi_svo_word(attr, leaf, 4u * slot + 1u),
+                                     voxgi_svo_word(attr, leaf, 4u * slot + 2u), voxgi_svo_word(attr, leaf, 4u * slot + 3u)));
     }
-    if (u_svo_single != 0) return vec4(0.0, 0.0, 0.0, voxgi_float_from_half(voxgi_svo_word(leaf, slot >> 1) >> (16u * (slot & 1u))));
-    uint lo = voxgi_svo_word(leaf, 2u * slot), hi = voxgi_svo_word(leaf, 2u * slot + 1u);
+    if (u_svo_single != 0) return vec4(0.0, 0.0, 0.0, voxgi_float_from_half(voxgi_svo_word(attr, leaf, slot >> 1) >> (16u * (slot & 1u))));
+    uint lo = voxgi_svo_word(attr, leaf, 2u * slot), hi = voxgi_svo_word(attr, leaf, 2u * slot + 1u);
     return vec4(voxgi_float_from_half(lo), voxgi_float_from_half(lo >> 16), voxgi_float_from_half(hi), voxgi_float_from_half(hi >> 16));
+}
+
+// A slot's value of the bound attribute.
+vec4 voxgi_svo_load(bool leaf, uint slot)
+{
+    return voxgi_svo_load_of(VOXGI_SVO_BOUND, leaf, slot);
 }
 
 // The slot of the node at `level` (0 = the root) holding v (in level-`level` coordinates);

@@ -38,24 +38,22 @@ ivec3 voxgi_fragment(uint i)
 
 void voxgi_svo_store(bool leaf, uint slot, vec4 c)
 {
+    uint base = leaf ? u_svo_leaf_first : 0u;
     if (u_svo_format == 0) {
         if (u_svo_single != 0) {
-            if (leaf) svo_leaf_words[slot] = floatBitsToUint(c.a); else svo_node_words[slot] = floatBitsToUint(c.a);
+            svo_words[base + slot] = floatBitsToUint(c.a);
             return;
         }
         uvec4 u = floatBitsToUint(c);
-        for (uint k = 0u; k < 4u; k++)
-            if (leaf) svo_leaf_words[4u * slot + k] = u[k]; else svo_node_words[4u * slot + k] = u[k];
+        for (uint k = 0u; k < 4u; k++) svo_words[base + 4u * slot + k] = u[k];
         return;
     }
     if (u_svo_single != 0) { // two slots share a word: or into the cleared word
-        uint h = voxgi_half_from_float(c.a) << (16u * (slot & 1u));
-        if (leaf) atomicOr(svo_leaf_words[slot >> 1], h); else atomicOr(svo_node_words[slot >> 1], h);
+        atomicOr(svo_words[base + (slot >> 1)], voxgi_half_from_float(c.a) << (16u * (slot & 1u)));
         return;
     }
-    uint lo = voxgi_half_from_float(c.r) | (voxgi_half_from_float(c.g) << 16), hi = voxgi_half_from_float(c.b) | (voxgi_half_from_float(c.a) << 16);
-    if (leaf) { svo_leaf_words[2u * slot] = lo; svo_leaf_words[2u * slot + 1u] = hi; }
-    else { svo_node_words[2u * slot] = lo; svo_node_words[2u * slot + 1u] = hi; }
+    svo_words[base + 2u * slot] = voxgi_half_from_float(c.r) | (voxgi_half_from_float(c.g) << 16);
+    svo_words[base + 2u * slot + 1u] = voxgi_half_from_float(c.b) | (voxgi_half_from_float(c.a) << 16);
 }
 
 void main()

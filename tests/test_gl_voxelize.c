@@ -1033,7 +1033,7 @@ static void test_gl_raster_leak_room(void)
 
 /* The leak box on GL (distance maps, the GL mips and cones), as on the CPU (test_vct): inside at
    most 0.1% of the lit ground's radiance and no pixel above 1%, sun with a point light and with
-   a rectangular light. */
+   a rectangular light, and from an octree. */
 static void test_gl_raster_leak_box(void)
 {
     voxgi_context *ctx;
@@ -1048,7 +1048,28 @@ static void test_gl_raster_leak_box(void)
                    area ? "rectangular" : "point", 100 * m, 100 * x);
             TH_CHECK(m <= 0.001 && x <= 0.01, "%d^3: mean %.4f%%, largest %.3f%%", res, 100 * m, 100 * x);
         }
+    {
+        double m = 1, x = 1;
+        TH_CHECK(leak_box_ratios(ctx, 64, VOXGI_MIPS_ISOTROPIC, 1, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+        printf("    GL leak box  64^3 (sun and point light), octree: inside mean %.4f%%, largest %.3f%% of the lit ground's\n", 100 * m, 100 * x);
+        TH_CHECK(m <= 0.001 && x <= 0.01, "octree: mean %.4f%%, largest %.3f%%", 100 * m, 100 * x);
+    }
     voxgi_destroy(ctx);
+}
+
+/* The leak box with a lamp inside its closed box as well (lights: 3, the scene's two and the lamp). */
+static voxgi_result leak_box_with_lamp(voxgi_context *ctx, voxgi_builtin_scene *box, voxgi_light lights[3])
+{
+    voxgi_result r = voxgi_builtin_scene_create(ctx, "leak-box", box);
+    if (r != VOXGI_OK) return r;
+    memcpy(lights, box->scene.lights, 2 * sizeof *lights);
+    memset(&lights[2], 0, sizeof lights[2]);
+    lights[2].type = VOXGI_LIGHT_POINT;
+    lights[2].position[0] = -0.2f; lights[2].position[1] = 0.7f; lights[2].position[2] = 0.1f;
+    lights[2].intensity[0] = lights[2].intensity[1] = lights[2].intensity[2] = 0.5f;
+    box->scene.lights = lights;
+    box->scene.light_count = 3;
+    return VOXGI_OK;
 }
 
 /* The caller's G-buffer as GL textures (voxgi_cone_trace_gl): positions and normals in RGBA32F
@@ -1288,14 +1309,7 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
         voxgi_light lights[3];
         double worst_r = 0, mean_r = 0;
         int bounces;
-        TH_CHECK(voxgi_builtin_scene_create(ctx[0], "leak-box", &box) == VOXGI_OK, "leak-box");
-        memcpy(lights, box.scene.lights, 2 * sizeof *lights);
-        memset(&lights[2], 0, sizeof lights[2]);
-        lights[2].type = VOXGI_LIGHT_POINT;
-        lights[2].position[0] = -0.2f; lights[2].position[1] = 0.7f; lights[2].position[2] = 0.1f;
-        lights[2].intensity[0] = lights[2].intensity[1] = lights[2].intensity[2] = 0.5f;
-        box.scene.lights = lights;
-        box.scene.light_count = 3;
+        TH_CHECK(leak_box_with_lamp(ctx[0], &box, lights) == VOXGI_OK, "leak-box");
         for (bounces = 1; bounces <= 3; bounces += 2) {
             voxgi_vct_desc vd;
             double worst = 0, mean = 0;
@@ -1325,7 +1339,9 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
 
 /* Cone tracing over an octree of the radiance on GL (the march over the octree's buffers,
    shaders/cone_svo.glsl) against the CPU's over the CPU's octree of the same radiance: float32
-   and float16, with and without bricks, diffuse gathers and single cones. */
+   and float16, with and without bricks, diffuse gathers and single cones, one-sided and
+   two-sided; and an image from inside an enclosed region (the leak box with a lamp inside), where
+   the cones keep to the region by the octree's labels. */
 static void test_gl_octree_cones_equal_cpu(void)
 {
     enum { N = 200 };
@@ -1340,7 +1356,7 @@ static void test_gl_octree_cones_equal_cpu(void)
     ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
     TH_CHECK(voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs) == VOXGI_OK, "scene");
     cornell_cone_points(7, N, pos, nrm, single);
-    for (k = 0; k < 3; k++) { /* float32, float32 with bricks, float16 */
+    for (k = 0; k < 6; k++) { /* float32, float32 with bricks, float16; two-sided, then one-sided */
         for (b = 0; b < 2; b++) {
             voxgi_inject_desc id;
             voxgi_cone_desc cd;
@@ -1353,9 +1369,10 @@ static void test_gl_octree_cones_equal_cpu(void)
             memset(&sd, 0, sizeof sd);
             id.samples = 4;
             id.shadow_rays = 1; /* the same radiance on both */
+            id.one_sided = k >= 3;
             sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
-            sd.bricks = k == 1;
-            sd.format = k == 2 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
+            sd.bricks = k % 3 == 1;
+            sd.format = k % 3 == 2 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
             TH_CHECK(lit_voxels(ctx[b], &bs.scene, 24, &id, &vx, &vol), "lit voxels");
             sd.radiance = vol;
             TH_CHECK(voxgi_svo_create(ctx[b], vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx[b], OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
@@ -1375,6 +1392,31 @@ static void test_gl_octree_cones_equal_cpu(void)
     TH_CHECK(mean > 0.05 && worst_irr <= 1e-4 * mean, "irradiance differs by %g (mean %g)", worst_irr, mean);
     TH_CHECK(worst_occ <= 1e-4, "occlusion differs by %g", worst_occ);
     TH_CHECK(worst_each <= 1e-4, "single cones differ by %g", worst_each);
+    {
+        enum { W = 24 };
+        voxgi_builtin_scene box;
+        voxgi_light lights[3];
+        float *img[2];
+        double worst = 0, mean_img = 0;
+        TH_CHECK(leak_box_with_lamp(ctx[0], &box, lights) == VOXGI_OK, "leak-box");
+        for (b = 0; b < 2; b++) {
+            voxgi_vct_desc vd;
+            img[b] = (float *)malloc(W * W * 12);
+            vct_view(&vd, &box, W);
+            vd.resolution = 32;
+            vd.samples = 2;
+            vd.shadow_rays = 1;
+            vd.hide_emitters = 1;
+            vd.octree = 1;
+            TH_CHECK(voxgi_vct_render(ctx[b], &box.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "enclosed: %s", voxgi_last_error(ctx[b]));
+        }
+        for (i = 0; i < 3 * W * W; i++) { worst = fmax(worst, fabs(img[0][i] - img[1][i])); mean_img += img[0][i] / (3.0 * W * W); }
+        printf("    GL octree cones from an enclosed region vs CPU: image within %.3g of its mean (%.3g)\n", worst / mean_img, mean_img);
+        TH_CHECK(mean_img > 0.01 && worst <= 1e-4 * mean_img, "enclosed: image differs by %g (mean %g)", worst, mean_img);
+        free(img[0]);
+        free(img[1]);
+        voxgi_builtin_scene_destroy(ctx[0], &box);
+    }
     voxgi_builtin_scene_destroy(ctx[0], &bs);
     voxgi_destroy(ctx[0]);
     voxgi_destroy(ctx[1]);
