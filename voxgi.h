@@ -7423,19 +7423,31 @@ VOXGI_API voxgi_result voxgi_svo_neighbours(voxgi_context *ctx, const voxgi_svo 
 /* The octree as a sampling source: level k of the dense chain is octree level depth - k. */
 typedef struct voxgi__svo_source { const voxgi_svo *svo; int a, w; } voxgi__svo_source;
 
+/* The descent from the root toward the node of level `level` holding v (in that level's
+   coordinates, inside the cube): the slot it reaches (a leaf slot at level depth) and that
+   slot's level, short of `level` where a node there has no children. */
+static int voxgi__svo_descend(const voxgi_svo *svo, int level, const int v[3], uint64_t *slot)
+{
+    int depth = svo->info.depth, m;
+    uint64_t node = 0;
+    for (m = 1; m <= level; m++) { /* v's bits from the top */
+        uint32_t ptr = svo->child[node], digit = (uint32_t)(((v[0] >> (level - m)) & 1) | (((v[1] >> (level - m)) & 1) << 1) | (((v[2] >> (level - m)) & 1) << 2));
+        if (!ptr) break;
+        node = (m == depth ? 0u : 1u) + 8 * (uint64_t)(ptr - 1) + digit;
+    }
+    *slot = node;
+    return m - 1;
+}
+
 static int voxgi__svo_fetch(const void *source, int k, const int v[3], float t[4])
 {
     const voxgi__svo_source *s = (const voxgi__svo_source *)source;
     const voxgi_svo *svo = s->svo;
-    int depth = svo->info.depth, level = depth - k, m;
-    uint64_t node = 0;
+    int depth = svo->info.depth, level = depth - k;
+    uint64_t node;
     float c[4];
     if (v[0] < 0 || v[1] < 0 || v[2] < 0 || (v[0] >> level) || (v[1] >> level) || (v[2] >> level)) return 0;
-    for (m = 1; m <= level; m++) { /* v is in level-`level` coordinates: its bits from the top */
-        uint32_t ptr = svo->child[node], digit = (uint32_t)(((v[0] >> (level - m)) & 1) | (((v[1] >> (level - m)) & 1) << 1) | (((v[2] >> (level - m)) & 1) << 2));
-        if (!ptr) return 0;
-        node = (m == depth ? 0u : 1u) + 8 * (uint64_t)(ptr - 1) + digit;
-    }
+    if (voxgi__svo_descend(svo, level, v, &node) < level) return 0;
     voxgi__svo_get(svo, s->a, level == depth ? svo->leaf_values[s->a] : svo->node_values[s->a], node, c);
     if (s->w == 1) t[0] = c[3];
     else memcpy(t, c, sizeof c);
@@ -7599,14 +7611,8 @@ typedef struct voxgi__cone_job {
 /* The slot of an octree's node of level-k voxel v (a leaf slot at k = 0), -1 where there is none. */
 static ptrdiff_t voxgi__svo_slot_at(const voxgi_svo *svo, int k, const int v[3])
 {
-    int depth = svo->info.depth, level = depth - k, m;
-    uint64_t node = 0;
-    for (m = 1; m <= level; m++) {
-        uint32_t ptr = svo->child[node], digit = (uint32_t)(((v[0] >> (level - m)) & 1) | (((v[1] >> (level - m)) & 1) << 1) | (((v[2] >> (level - m)) & 1) << 2));
-        if (!ptr) return -1;
-        node = (m == depth ? 0u : 1u) + 8 * (uint64_t)(ptr - 1) + digit;
-    }
-    return (ptrdiff_t)node;
+    uint64_t slot;
+    return voxgi__svo_descend(svo, svo->info.depth - k, v, &slot) == svo->info.depth - k ? (ptrdiff_t)slot : -1;
 }
 
 /* The 8 corners of a trilinear sample of level k at p, as voxgi__trilinear visits them: their
@@ -7679,16 +7685,12 @@ static float voxgi__back_share(const float side[4], const double o[3])
    holds it (voxgi__svo_regions). */
 static uint32_t voxgi__svo_region(const voxgi_svo *svo, int k, const int v[3])
 {
-    int depth = svo->info.depth, level = depth - k, m;
-    uint64_t node = 0;
+    int depth = svo->info.depth, level = depth - k;
+    uint64_t slot;
     uint32_t label;
-    for (m = 1; m <= level; m++) {
-        uint32_t ptr = svo->child[node], digit = (uint32_t)(((v[0] >> (level - m)) & 1) | (((v[1] >> (level - m)) & 1) << 1) | (((v[2] >> (level - m)) & 1) << 2));
-        if (!ptr) break; /* in the empty cube of node */
-        node = (m == depth ? svo->info.nodes : 1u) + 8 * (uint64_t)(ptr - 1) + digit;
-    }
-    label = svo->regions[node];
-    if (m > level && (level == depth || svo->child[node])) return label; /* a voxel's, or a node's */
+    if (voxgi__svo_descend(svo, level, v, &slot) == level && (level == depth || svo->child[slot])) /* a voxel's label, or a node's */
+        return svo->regions[(level == depth ? svo->info.nodes : 0u) + slot];
+    label = svo->regions[slot]; /* v lies in the empty cube of slot */
     return k == 0 ? label & ~VOXGI__REGION_DARK : (label & VOXGI__REGION_DARK ? 0 : label);
 }
 
