@@ -302,6 +302,23 @@ static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter
     return bad;
 }
 
+/* Points on the leak room's inner faces (16 on each of the floor, two walls and the ceiling,
+   0.3 m to 0.9 m from the room's axes) and their normals, into the room. */
+#define LEAK_ROOM_POINTS 64
+static inline void leak_room_points(float pos[3 * LEAK_ROOM_POINTS], float nrm[3 * LEAK_ROOM_POINTS])
+{
+    int i;
+    for (i = 0; i < LEAK_ROOM_POINTS; i++) {
+        int face = i / 16;
+        float u = -0.9f + 0.6f * (float)(i % 4), w = -0.9f + 0.6f * (float)(i / 4 % 4), *q = pos + 3 * i, *n = nrm + 3 * i;
+        n[0] = n[1] = n[2] = 0;
+        if (face == 0) { q[0] = u; q[1] = 0; q[2] = w; n[1] = 1; }
+        else if (face == 1) { q[0] = -1; q[1] = 1 + w; q[2] = u; n[0] = 1; }
+        else if (face == 2) { q[0] = u; q[1] = 1 + w; q[2] = 1; n[2] = -1; }
+        else { q[0] = u; q[1] = 2; q[2] = w; n[1] = -1; }
+    }
+}
+
 /* The leak-box scene (a closed box of zero-thickness faces on sunlit ground, a point light
    beside it; with area = 1 a rectangular light there instead) cone traced at res^3 from inside,
    where the exact image is black: the mean and largest radiance inside over the lit ground's

@@ -933,16 +933,17 @@ static void test_gl_missing_function_and_fallback(void)
     voxgi_destroy(ctx);
 }
 
-/* A scene voxelized (albedo, normal) on a fitted grid of res voxels and lit (voxgi_inject_light
-   with id); 1 when it all worked, else the error is printed. */
-static int lit_voxels(voxgi_context *ctx, const voxgi_scene *sc, int res, const voxgi_inject_desc *id, voxgi_voxels **vx, voxgi_volume **vol)
+/* A scene voxelized (albedo, normal) on a fitted grid of res voxels with `padding` empty ones
+   around it and lit (voxgi_inject_light with id); 1 when it all worked, else the error is printed. */
+static int lit_voxels_padded(voxgi_context *ctx, const voxgi_scene *sc, int res, int padding, const voxgi_inject_desc *id, voxgi_voxels **vx,
+                             voxgi_volume **vol)
 {
     voxgi_fit_desc fit;
     voxgi_voxelize_desc xd;
     memset(&fit, 0, sizeof fit);
     memset(&xd, 0, sizeof xd);
     fit.res = res;
-    fit.padding = 1;
+    fit.padding = padding;
     xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
     *vx = NULL;
     *vol = NULL;
@@ -950,6 +951,11 @@ static int lit_voxels(voxgi_context *ctx, const voxgi_scene *sc, int res, const 
         return 1;
     printf("    %s\n", voxgi_last_error(ctx));
     return 0;
+}
+
+static int lit_voxels(voxgi_context *ctx, const voxgi_scene *sc, int res, const voxgi_inject_desc *id, voxgi_voxels **vx, voxgi_volume **vol)
+{
+    return lit_voxels_padded(ctx, sc, res, 1, id, vx, vol);
 }
 
 /* Light injection on GL (distance maps, a gather per voxel) against the CPU's exact shadow rays
@@ -1416,6 +1422,39 @@ static void test_gl_octree_cones_equal_cpu(void)
         free(img[0]);
         free(img[1]);
         voxgi_builtin_scene_destroy(ctx[0], &box);
+    }
+    { /* the leak room in a dark shell of empty space 4 voxels thick (its coarse empty cubes count as no region) */
+        voxgi_builtin_scene room;
+        float rpos[3 * LEAK_ROOM_POINTS], rnrm[3 * LEAK_ROOM_POINTS], rirr[2][3 * LEAK_ROOM_POINTS];
+        double worst = 0, mean_room = 0;
+        TH_CHECK(voxgi_builtin_scene_create(ctx[0], "leak-room", &room) == VOXGI_OK, "leak-room");
+        leak_room_points(rpos, rnrm);
+        for (b = 0; b < 2; b++) {
+            voxgi_inject_desc id;
+            voxgi_cone_desc cd;
+            voxgi_svo_desc sd;
+            voxgi_voxels *vx;
+            voxgi_volume *vol;
+            voxgi_svo *svo = NULL;
+            memset(&id, 0, sizeof id);
+            memset(&cd, 0, sizeof cd);
+            memset(&sd, 0, sizeof sd);
+            id.samples = 4;
+            id.shadow_rays = 1;
+            TH_CHECK(lit_voxels_padded(ctx[b], &room.scene, 32, 4, &id, &vx, &vol), "lit voxels");
+            sd.radiance = vol;
+            TH_CHECK(voxgi_svo_create(ctx[b], vx, &sd, &svo) == VOXGI_OK &&
+                         voxgi_cone_trace(ctx[b], OCTREE_SOURCE(svo), &cd, LEAK_ROOM_POINTS, rpos, rnrm, rirr[b], NULL) == VOXGI_OK,
+                     "%s octree: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
+            voxgi_svo_destroy(ctx[b], svo);
+            voxgi_volume_destroy(ctx[b], vol);
+            voxgi_voxels_destroy(ctx[b], vx);
+        }
+        for (i = 0; i < 3 * LEAK_ROOM_POINTS; i++) mean_room += rirr[0][i] / (3.0 * LEAK_ROOM_POINTS);
+        for (i = 0; i < 3 * LEAK_ROOM_POINTS; i++) worst = fmax(worst, fabs(rirr[0][i] - rirr[1][i]));
+        printf("    GL octree cones in the leak room's dark shell vs CPU: irradiance within %.3g of the mean (%.3g)\n", worst / mean_room, mean_room);
+        TH_CHECK(mean_room > 0.01 && worst <= 1e-4 * mean_room, "dark shell: irradiance differs by %g (mean %g)", worst, mean_room);
+        voxgi_builtin_scene_destroy(ctx[0], &room);
     }
     voxgi_builtin_scene_destroy(ctx[0], &bs);
     voxgi_destroy(ctx[0]);

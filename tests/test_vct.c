@@ -587,6 +587,32 @@ static void test_octree_cones(void)
         free(img[1]);
         voxgi_builtin_scene_destroy(ctx, &room);
     }
+    { /* the leak room in a shell of empty space 4 voxels thick: no surface lights the shell, so its empty
+         cubes above level 0 count as no region, in the octree as in the volume's levels */
+        enum { M = LEAK_ROOM_POINTS };
+        voxgi_builtin_scene room;
+        voxgi_voxels *rvox = NULL;
+        voxgi_volume *rvol = NULL;
+        float rpos[3 * M], rnrm[3 * M], rirr[2][3 * M];
+        TH_CHECK(voxgi_builtin_scene_create(ctx, "leak-room", &room) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        leak_room_points(rpos, rnrm);
+        fit.res = 32;
+        fit.padding = 4;
+        id.one_sided = 0;
+        memset(&sd, 0, sizeof sd);
+        TH_CHECK(voxgi_fit_grid(ctx, &room.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &room.scene, &xd, &rvox) == VOXGI_OK &&
+                 voxgi_inject_light(ctx, &room.scene, rvox, &id, &rvol) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        sd.radiance = rvol;
+        TH_CHECK(voxgi_svo_create(ctx, rvox, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx, VOLUME_SOURCE(rvol), &cd, M, rpos, rnrm, rirr[0], NULL) == VOXGI_OK &&
+                 voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), &cd, M, rpos, rnrm, rirr[1], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        for (i = 0, mean = 0; i < 3 * M; i++) mean += rirr[0][i];
+        TH_CHECK(mean > 0 && !memcmp(rirr[0], rirr[1], sizeof rirr[0]), "leak room in a dark shell: the octree's cones differ from the volume's");
+        voxgi_svo_destroy(ctx, svo);
+        svo = NULL;
+        voxgi_volume_destroy(ctx, rvol);
+        voxgi_voxels_destroy(ctx, rvox);
+        voxgi_builtin_scene_destroy(ctx, &room);
+    }
     /* refusals: RADIANCE without a volume, a volume without RADIANCE, another grid, an octree without radiance */
     memset(&sd, 0, sizeof sd);
     sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
