@@ -8026,15 +8026,42 @@ static void voxgi__cone_bind_gl(voxgi_context *ctx, const voxgi__cone_job *J, un
     gl->BindTextureUnit(15, bind && J->two_sided ? J->vol->tex[VOXGI__SIDE_SLOT][0] : 0);
 }
 
+/* The gathers of `count` points or pixels by program p (shaders/cone_trace.glsl's gather_pass):
+   in slices, each in three passes: the home regions, then every cone on an invocation of its own
+   (llvmpipe ends an invocation's loops after 65535 iterations in all, which a whole gather over
+   an octree exceeds: its results came out short), then their sums. Single cones (J->list): one
+   pass, a cone per invocation. */
+static voxgi_result voxgi__cone_passes_gl(voxgi_context *ctx, const voxgi__cone_job *J, unsigned int p, size_t count)
+{
+    voxgi__gl *gl = ctx->gl;
+    size_t cones = J->list ? 1 : (size_t)J->cones, slice = VOXGI__MIN((size_t)16384, ((size_t)1 << 20) / cones), first;
+    unsigned int scratch = J->list ? 0 : voxgi__gl_buffer(ctx, (slice * cones + slice) * 16, NULL);
+    int pass;
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, scratch);
+    for (first = 0; first < count; first += slice) {
+        size_t n = VOXGI__MIN(slice, count - first);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)n);
+        for (pass = J->list ? 2 : 0; pass < 3; pass++) {
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, pass);
+            gl->DispatchCompute((unsigned)(((pass == 1 ? (n + 7) / 8 * 8 * cones : n) + 63) / 64), 1, 1); /* pass 1: cones of 8 points at a time */
+            gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+        gl->Finish(); /* no one submission runs long */
+    }
+    voxgi__gl_delete_buffer(ctx, scratch);
+    return VOXGI_OK;
+}
+
 /* The same march on GL (shaders/cone_trace.glsl): points in grid units and unit normals go up,
-   (irradiance, occlusion) come back; dispatched in slices so that no one dispatch runs long. */
+   (irradiance, occlusion) come back. */
 static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_job *J, size_t count)
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = J->grid;
     unsigned int bufs[2] = {0, 0}, p;
     float *io;
-    size_t i, first, slice = 16384;
+    size_t i;
     int a;
     voxgi_result r = voxgi__gl_get_program(ctx, J->svo ? VOXGI__GL_PROGRAM_cone_trace_svo : VOXGI__GL_PROGRAM_cone_trace);
     if (r != VOXGI_OK || !count) return r;
@@ -8062,12 +8089,7 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
     voxgi__cone_bind_gl(ctx, J, p, 1);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, bufs[0]);
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, bufs[1]);
-    gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)count);
-    for (first = 0; first < count; first += slice) {
-        gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first);
-        gl->DispatchCompute((unsigned)((VOXGI__MIN(slice, count - first) + 63) / 64), 1, 1);
-        gl->Finish();
-    }
+    voxgi__cone_passes_gl(ctx, J, p, count);
     gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
     voxgi__cone_bind_gl(ctx, J, p, 0);
     voxgi__gl_unbind(gl);
@@ -8229,7 +8251,7 @@ VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_radia
     gl->ProgramUniform3f(p, VOXGI__LOC_u_origin, (float)g->origin[0], (float)g->origin[1], (float)g->origin[2]);
     gl->ProgramUniform1f(p, VOXGI__LOC_u_voxel_size, (float)g->voxel_size);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_has_albedo, gb->albedo_texture != 0);
-    gl->DispatchCompute((unsigned)((gb->width + 7) / 8), (unsigned)((gb->height + 7) / 8), 1);
+    voxgi__cone_passes_gl(ctx, &J, p, (size_t)gb->width * (size_t)gb->height);
     gl->MemoryBarrier(VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT);
     for (a = 0; a < 9; a++) gl->BindTextureUnit((unsigned)a, 0);
     voxgi__cone_bind_gl(ctx, &J, p, 0);

@@ -349,20 +349,48 @@ vec4 march(vec3 o, vec3 n, vec3 d, float lz, float tan_k, float max_d, uint home
     return vec4(C, A);
 }
 
-// The diffuse gather at o (grid units) on unit normal n: (irradiance, occlusion).
-vec4 gather(vec3 o, vec3 n)
+// The diffuse gathers of the points or pixels u_first .. u_first + u_count - 1, in three passes
+// (u_pass): 0 each one's home region, 1 each of its cones on an invocation of its own, 2 their
+// sums in cone order, (irradiance, occlusion). llvmpipe ends an invocation's loops after 65535
+// iterations in all (LP_MAX_TGSI_LOOP_ITERATIONS), which a whole gather of 32 cones over an
+// octree at 64^3 exceeds (its sums came out short); one cone stays well below.
+// cone_trace_buffers.glsl and cone_trace_images.glsl say where a point comes from and where its
+// gather goes.
+layout(std430, binding = 7) buffer ConeScratch { uvec4 cone_scratch[]; }; // cone k of point j at k u_count + j, then u_count homes
+layout(location = VOXGI_LOC_u_pass) uniform int u_pass;
+layout(location = VOXGI_LOC_u_first) uniform uint u_first; // the slice's first point
+layout(location = VOXGI_LOC_u_count) uniform uint u_count;
+bool gather_point(uint i, out vec3 o, out vec3 n); // false: no surface there (its gather is 0)
+void gather_result(uint i, vec4 irradiance_occlusion);
+
+void gather_pass(uint g)
 {
-    vec3 t3, b3;
-    voxgi_basis(n, t3, b3);
+    uint cones = uint(u_cones), homes = u_count * cones;
+    vec3 o, n;
+    if (u_pass == 1) { // cone k of point j: 8 neighbouring points' cone 0, their cone 1, ... (alike in a SIMD vector, near in the caches)
+        uint j = g / (8u * cones) * 8u + g % 8u, kk = g / 8u % cones;
+        float k = float(kk);
+        if (j >= u_count) return;
+        if (!gather_point(u_first + j, o, n)) return;
+        vec3 t3, b3;
+        voxgi_basis(n, t3, b3);
+        float r = sqrt((k + 0.5) / float(u_cones)), phi = 2.399963229728653 * k;
+        vec3 l = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - r * r)));
+        cone_scratch[kk * u_count + j] = floatBitsToUint(march(o, n, l.x * t3 + l.y * b3 + l.z * n, l.z, min(u_half_tan, l.z / 3.0), u_max_distance, cone_scratch[homes + j].x));
+        return;
+    }
+    if (g >= u_count) return;
+    bool surface = gather_point(u_first + g, o, n);
+    if (u_pass == 0) {
+        cone_scratch[homes + g] = uvec4(surface ? home_of(o, n) : 0u);
+        return;
+    }
     vec3 e = vec3(0.0);
     float occ = 0.0;
-    uint home = home_of(o, n);
-    for (int k = 0; k < u_cones; k++) {
-        float r = sqrt((float(k) + 0.5) / float(u_cones)), phi = 2.399963229728653 * float(k);
-        vec3 l = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - r * r)));
-        vec4 c = march(o, n, l.x * t3 + l.y * b3 + l.z * n, l.z, min(u_half_tan, l.z / 3.0), u_max_distance, home);
+    for (uint k = 0u; surface && k < cones; k++) {
+        vec4 c = uintBitsToFloat(cone_scratch[k * u_count + g]);
         e += 3.14159265358979323846 / float(u_cones) * c.rgb;
         occ += c.a / float(u_cones);
     }
-    return vec4(e, occ);
+    gather_result(u_first + g, vec4(e, occ));
 }

@@ -82,15 +82,17 @@ bool voxgi_svo_descend(int level, ivec3 v, out uint slot, out bool leaf)
     slot = 0u;
     leaf = false;
     if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(1 << level)))) return false;
-    for (int m = 1; m <= level; m++) {
+    bool found = true;
+    for (int m = 1; m <= level && found; m++) {
         uint ptr = svo_child[slot];
-        if (ptr == 0u) return false;
-        ivec3 b = (v >> (level - m)) & 1;
-        uint digit = uint(b.x | (b.y << 1) | (b.z << 2));
-        leaf = m == u_svo_depth;
-        slot = (leaf ? 0u : 1u) + 8u * (ptr - 1u) + digit;
+        found = ptr != 0u;
+        if (found) {
+            ivec3 b = (v >> (level - m)) & 1;
+            leaf = m == u_svo_depth;
+            slot = (leaf ? 0u : 1u) + 8u * (ptr - 1u) + uint(b.x | (b.y << 1) | (b.z << 2));
+        }
     }
-    return true;
+    return found;
 }
 
 // The stored value of the node at `level` holding v; zero where there is none.
