@@ -7167,7 +7167,7 @@ static uint32_t voxgi__svo_region_slot(const voxgi__svo_region_walk *W, int lev,
 static voxgi_result voxgi__svo_regions(voxgi_context *ctx, voxgi_svo *svo, const voxgi_volume *vol)
 {
     voxgi__svo_region_walk W;
-    size_t labels = (size_t)(svo->info.nodes + svo->info.leaf_slots), level0 = (size_t)voxgi_grid_voxel_count(&svo->info.grid);
+    size_t labels = (size_t)(svo->info.nodes + svo->info.leaf_slots);
     uint32_t *child = NULL, *read = NULL;
     int64_t root[3] = {0, 0, 0};
     voxgi_result r = VOXGI_OK;
@@ -7183,6 +7183,7 @@ static voxgi_result voxgi__svo_regions(voxgi_context *ctx, voxgi_svo *svo, const
 #ifndef VOXGI_NO_GL
     if (!vol->regions) { /* a GL volume's and octree's: read back for the walk */
         voxgi__gl *gl = ctx->gl;
+        size_t level0 = (size_t)voxgi_grid_voxel_count(&svo->info.grid);
         if (!(child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)svo->info.nodes, 4, 0)) ||
             !(read = (uint32_t *)voxgi__alloc_array(ctx, level0 + 6 * vol->region_count, 4, 0)))
             r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree's regions");
