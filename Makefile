@@ -8,10 +8,10 @@ B       := build
 ASAN    := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 
 GLSL    := $(sort $(wildcard shaders/*.glsl))
-TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact
+TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact test_rays
 # The test programs that link the implementation object (they include voxgi.h for the declarations
 # only); test_internals (private helpers) compiles the implementation itself.
-LINKED_TESTS := test_voxelize test_gl_voxelize test_reference test_vct test_tool test_exact
+LINKED_TESTS := test_voxelize test_gl_voxelize test_reference test_vct test_tool test_exact test_rays
 # test_exact's oracle computes in GMP rationals (libgmp-dev, a test-only dependency).
 $(B)/test_exact $(B)/asan/test_exact: LDLIBS += -lgmp
 NPROC   := $(shell nproc 2>/dev/null || echo 2)
@@ -67,6 +67,10 @@ $(B)/test_%: tests/test_%.c voxgi.h $(TEST_H) shaders.h tools/embed_shaders.c | 
 $(B)/asan/test_%: tests/test_%.c voxgi.h $(TEST_H) shaders.h tools/embed_shaders.c | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(LDLIBS)
 
+# The ray core without SIMD (VOXGI_NO_SIMD): its scalar code held to the same tests.
+$(B)/test_rays_scalar: tests/test_rays.c tools/voxgi_impl.c voxgi.h $(TEST_H) shaders.h | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -DVOXGI_NO_SIMD -o $@ tests/test_rays.c tools/voxgi_impl.c $(LDLIBS)
+
 $(B)/asan/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/asan/voxgi_impl.o | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(B)/asan/voxgi_impl.o $(LDLIBS)
 
@@ -76,7 +80,7 @@ $(B)/asan/leak_canary: tests/leak_canary.c voxgi.h tools/headless_gl.h $(B)/asan
 
 # Builds everything the tests run, in parallel (one job per processor unless make was given -j),
 # then runs them (tests/run.sh, in parallel too).
-TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) \
+TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(B)/test_rays_scalar \
               $(addprefix $(B)/asan/,$(TESTS)) $(B)/asan/leak_canary
 # CI (VOXGI_CI=1) also builds the tool and the test programs at -O0, -O1 and -O3 (the main build is
 # -O2), in $(B)/O<level>, and tests/run.sh runs them: no test may depend on the optimiser's mood.

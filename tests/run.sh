@@ -98,7 +98,7 @@ fi
 # 2. the compile matrix: C and C++ standards, two translation units, static, without GL, without threads
 heading "== compile matrix"
 for std in c99 c11 c++11 c++17; do
-    for variant in "" "-DVOXGI_STATIC" "-DVOXGI_NO_GL" "-DVOXGI_NO_THREADS" "-DVOXGI_NO_GL -DVOXGI_STATIC"; do
+    for variant in "" "-DVOXGI_STATIC" "-DVOXGI_NO_GL" "-DVOXGI_NO_THREADS" "-DVOXGI_NO_SIMD" "-DVOXGI_NO_GL -DVOXGI_STATIC"; do
         name="compile_${std}${variant:+_$(echo "$variant" | tr -d ' -' | tr 'A-Z' 'a-z')}"
         check "$name" status matrix_entry "$std" "$variant"
     done
@@ -106,11 +106,12 @@ done
 check exported_symbols_are_prefixed status exported_symbols
 
 # 3. the test programs, then again under AddressSanitizer and UndefinedBehaviorSanitizer
-programs="test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact"
+programs="test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact test_rays"
 export VOXGI_REQUIRE_GL=${VOXGI_REQUIRE_GL:-0}  # CI sets 1: there a GL context must exist
 for t in $programs; do
     check "$t" program env VOXGI_TOOL="$B/voxgi" "$B/$t"
 done
+check test_rays_scalar program "$B/test_rays_scalar" # the ray core built with VOXGI_NO_SIMD
 # CI (VOXGI_CI=1): the same programs built at the other optimisation levels (the Makefile builds them)
 if [ "${VOXGI_CI:-0}" = 1 ]; then
     for level in 0 1 3; do

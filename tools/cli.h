@@ -172,6 +172,8 @@ void cli_close_mesh_and_context(cli_session *s, cli_mesh *t, cli_context *c);
 /* ------------------------------------------------------------------ numbers */
 /* The median of v[0..n) (sorts v). */
 double cli_median(double *v, int n);
+/* Wall-clock milliseconds (for differences). */
+double cli_now_ms(void);
 /* A grid of res^3 voxels (per_axis: only as long as the scene needs) fitted around the scene. */
 voxgi_result cli_fit_grid(voxgi_context *ctx, const voxgi_scene *scene, int res, int per_axis, double pad, voxgi_grid *out);
 
@@ -219,7 +221,8 @@ void cli_cornell_mesh_close(voxgi_context *ctx, cli_cornell_mesh *c);
 /* ------------------------------------------------------------------ commands, one file each */
 int cmd_voxelize(int argc, char **argv);
 int cmd_info(int argc, char **argv);
-int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" */
+int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
+int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_report(int argc, char **argv); /* argv[0] is "vct" */

@@ -379,7 +379,8 @@ int cmd_bench(int argc, char **argv)
             cli_help(&cmd, stdout);
             return CLI_EXIT_OK;
         }
-        if (argc < 1 || strcmp(argv[0], "voxelize") != 0) return cli_usage("bench", "the benchmark to run is 'voxelize'");
+        if (argc >= 1 && strcmp(argv[0], "rays") == 0) return cmd_bench_rays(argc - 1, argv + 1);
+        if (argc < 1 || strcmp(argv[0], "voxelize") != 0) return cli_usage("bench", "the benchmark to run is 'voxelize' or 'rays'");
         if ((rc = cli_parse(&cmd, argc - 1, argv + 1)) != CLI_CONTINUE) return rc;
     }
     if (a.min_res > a.max_res) return cli_usage("bench", "empty resolution range: --min-res %d is above --max-res %d", a.min_res, a.max_res);

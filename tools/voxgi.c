@@ -3,6 +3,7 @@
  *   voxgi voxelize MESH [--res N | --grid OX OY OZ SIZE NX NY NZ] [--method M] [--backend B] [-o OUT.binvox] [--json]
  *   voxgi info [--gl KIND] [--json]
  *   voxgi bench voxelize [MESH ...] [--methods LIST] [--min-res N] [--max-res N] [--runs R] [--csv FILE]
+ *   voxgi bench rays MESH [--rays N] [--runs R] [--threads T] [--json]
  *   voxgi svo MESH [--res N] [--backend B] [--format F] [--bricks] [--neighbours] [--json]
  *   voxgi render SCENE|MESH [--method reference|vct] [--bounces B] [--spp S] [--camera EX EY EZ TX TY TZ FOVY] [--size W H] -o OUT.png|OUT.pfm
  *   voxgi report vct [--scenes LIST] [--size N] [--res LIST] [--cones LIST] [--apertures LIST] [--steps LIST] [--out DIR]
@@ -19,6 +20,7 @@ static const char *const main_help =
     "  voxelize MESH ...   exact conservative voxelization to binvox / JSON\n"
     "  info                version, capabilities, CPU threads and headless GL contexts\n"
     "  bench voxelize ...  timing and voxel-count tables (Buchacher 2014, Tables 1-2)\n"
+    "  bench rays MESH     millions of rays per second of the ray core, coherent and incoherent\n"
     "  svo MESH ...        sparse voxel octree: nodes, memory, build time per pass\n"
     "  render SCENE ...    an image of a built-in scene or a mesh (PNG, PFM): the path-traced\n"
     "                      reference or voxel cone tracing\n"
