@@ -111,6 +111,7 @@ bench: all
 # Optional: voxgi's CPU voxelizer against OpenVDB's meshToLevelSet (needs libopenvdb-dev).
 bench-anchors: all
 	bash bench/anchors.sh $(ANCHOR_ARGS)
+	bash bench/anchors_rays.sh
 
 clean:
 	rm -rf $(B)

@@ -69,7 +69,7 @@ static void write_file(const char *name, const char *text, char *path, size_t pa
 static void test_help_everywhere(void)
 {
     static char out[8192];
-    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "svo --help", "render --help", "report --help", "report vct --help"};
+    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "bench rays --help", "svo --help", "render --help", "report --help", "report vct --help"};
     size_t i;
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         int rc = run(cmds[i], out, sizeof out);
@@ -354,6 +354,17 @@ static void test_info_and_bench(void)
     rc = run("bench voxelize --min-res 16 --max-res 16 --runs 1 --no-gl --methods solid,solid-vote --inside-samples 1000", out, sizeof out);
     TH_CHECK(rc == 0 && strstr(out, "Table 4") && strstr(out, "| builtin:cube | solid | 0.00% (") &&
              strstr(out, "| builtin:quad | solid-vote | 0.00% (") && !strstr(out, "| builtin:quad | solid | 0.00% ("), "bench solid: %s", out);
+    /* bench rays: both sets measured; the camera sees the sphere (it fills about a quarter of the view: the
+       bounding sphere holds the sphere's box), and about a third of the segments across the bounding
+       sphere pass through the sphere of radius r / sqrt(3) */
+    rc = run("bench rays builtin:sphere --rays 3000 --runs 1 --threads 2 --json", out, sizeof out);
+    TH_CHECK(rc == 0 && json_number(out, "coherent_intersect_mrays") > 0 && json_number(out, "incoherent_occluded_mrays") > 0 &&
+                 json_number(out, "coherent_rays") == 262144 && json_number(out, "incoherent_rays") == 3000,
+             "bench rays: %s", out);
+    TH_CHECK(json_number(out, "coherent_hits") > 0.15 * 262144 && json_number(out, "coherent_hits") < 0.35 * 262144 &&
+                 json_number(out, "incoherent_occluded") > 0.2 * 3000 && json_number(out, "incoherent_occluded") < 0.5 * 3000,
+             "bench rays counts: %s", out);
+    TH_CHECK(run("bench rays", out, sizeof out) == 2 && run("bench rays builtin:sphere --rays 0", out, sizeof out) == 2, "bench rays: bad arguments accepted");
 }
 
 static int count_of(const char *hay, const char *needle)

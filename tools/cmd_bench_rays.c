@@ -1,6 +1,7 @@
 /* tools/cmd_bench_rays.c - voxgi bench rays: millions of rays per second of the ray core
  * (voxgi_ray_intersect, voxgi_ray_occluded) on a mesh, for a coherent and an incoherent set. */
 #include "cli.h"
+#include "ray_sets.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -21,85 +22,28 @@ typedef struct rays_args {
     int rays, runs;
 } rays_args;
 
-/* A uniform random point on the sphere (c, r): xorshift64* and the z-phi method. */
-static void sphere_point(uint64_t *state, const double c[3], double r, float p[3])
-{
-    double z, phi, s;
-    uint64_t x = *state;
-    x ^= x >> 12; x ^= x << 25; x ^= x >> 27;
-    *state = x;
-    z = 2.0 * (double)((x * 0x2545F4914F6CDD1Dull) >> 11) / 9007199254740992.0 - 1.0;
-    x ^= x >> 12; x ^= x << 25; x ^= x >> 27;
-    *state = x;
-    phi = 2 * 3.14159265358979323846 * (double)((x * 0x2545F4914F6CDD1Dull) >> 11) / 9007199254740992.0;
-    s = sqrt(1 - z * z);
-    p[0] = (float)(c[0] + r * s * cos(phi));
-    p[1] = (float)(c[1] + r * s * sin(phi));
-    p[2] = (float)(c[2] + r * z);
-}
-
-/* The coherent set: the camera's rays, tile by tile (4 x 4 pixels), rows from the top. */
-static void camera_rays(const double c[3], double r, voxgi_ray *rays)
-{
-    enum { W = 512 };
-    double dir[3] = {1, 0.5, 2}, len = sqrt(1 + 0.25 + 4), eye[3], f[3], right[3], up[3], th = 0.4 / sqrt(1 - 0.16); /* tan(asin(0.4)) */
-    int a, tx, ty, x, y;
-    size_t i = 0;
-    for (a = 0; a < 3; a++) { eye[a] = c[a] + 2.5 * r * dir[a] / len; f[a] = -dir[a] / len; }
-    right[0] = f[1] * 0 - f[2] * 1; right[1] = f[2] * 0 - f[0] * 0; right[2] = f[0] * 1 - f[1] * 0; /* f x (0, 1, 0) */
-    len = sqrt(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
-    for (a = 0; a < 3; a++) right[a] /= len;
-    up[0] = right[1] * f[2] - right[2] * f[1]; up[1] = right[2] * f[0] - right[0] * f[2]; up[2] = right[0] * f[1] - right[1] * f[0];
-    for (ty = 0; ty < W; ty += 4)
-        for (tx = 0; tx < W; tx += 4)
-            for (y = ty; y < ty + 4; y++)
-                for (x = tx; x < tx + 4; x++, i++) {
-                    double sx = (2 * (x + 0.5) / W - 1) * th, sy = (1 - 2 * (y + 0.5) / W) * th;
-                    for (a = 0; a < 3; a++) {
-                        rays[i].origin[a] = (float)eye[a];
-                        rays[i].direction[a] = (float)(f[a] + sx * right[a] + sy * up[a]);
-                    }
-                    rays[i].tmin = 0;
-                    rays[i].tmax = INFINITY;
-                }
-}
-
 static int rays_run(cli_session *s, const rays_args *a)
 {
-    enum { W = 512 };
     cli_mesh tm;
     cli_context c;
     voxgi_ray_scene *rs = NULL;
     voxgi_ray *coherent = NULL, *incoherent = NULL;
     voxgi_ray_hit *hits = NULL;
     unsigned char *occluded = NULL;
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, centre[3], r = 0, build_ms, ms[2][31];
-    size_t i, nc = (size_t)W * W, ni = (size_t)a->rays, hit_count = 0, occluded_count = 0;
-    uint64_t state = 0x9E3779B97F4A7C15ull;
-    int k, run, rc = CLI_EXIT_FAILURE;
+    double centre[3], r, build_ms, ms[2][31];
+    size_t i, nc = (size_t)VXT_CAMERA_SIDE * VXT_CAMERA_SIDE, ni = (size_t)a->rays, hit_count = 0, occluded_count = 0;
+    int run, rc = CLI_EXIT_FAILURE;
     memset(&c, 0, sizeof c);
     if (cli_mesh_open(s, a->mesh, &tm)) return CLI_EXIT_FAILURE;
     if (cli_context_open(s, &c, VOXGI_BACKEND_CPU, VXT_GL_AUTO, a->common.threads, 0)) goto done;
-    for (i = 0; i < tm.vm.vertex_count; i++) {
-        const float *p = (const float *)(const void *)((const unsigned char *)tm.vm.positions + i * (tm.vm.position_stride ? tm.vm.position_stride : 12));
-        for (k = 0; k < 3; k++) { lo[k] = fmin(lo[k], p[k]); hi[k] = fmax(hi[k], p[k]); }
-    }
-    for (k = 0; k < 3; k++) { centre[k] = 0.5 * (lo[k] + hi[k]); r += 0.25 * (hi[k] - lo[k]) * (hi[k] - lo[k]); }
-    r = sqrt(r);
+    vxt_bounding_sphere(tm.vm.positions, tm.vm.vertex_count, centre, &r); /* positions are packed (cli_mesh) */
     coherent = (voxgi_ray *)malloc(nc * sizeof *coherent);
     incoherent = (voxgi_ray *)malloc(ni * sizeof *incoherent);
     hits = (voxgi_ray_hit *)malloc(nc * sizeof *hits);
     occluded = (unsigned char *)malloc(ni);
     if (!coherent || !incoherent || !hits || !occluded) { cli_fail(s, "out of memory for %lu rays", (unsigned long)ni); goto done; }
-    camera_rays(centre, r, coherent);
-    for (i = 0; i < ni; i++) {
-        float p[3], q[3];
-        sphere_point(&state, centre, r, p);
-        sphere_point(&state, centre, r, q);
-        for (k = 0; k < 3; k++) { incoherent[i].origin[k] = p[k]; incoherent[i].direction[k] = q[k] - p[k]; }
-        incoherent[i].tmin = 0;
-        incoherent[i].tmax = 1;
-    }
+    vxt_camera_rays(centre, r, (float *)(void *)coherent); /* voxgi_ray is 8 floats */
+    vxt_segment_rays(centre, r, ni, (float *)(void *)incoherent);
     build_ms = cli_now_ms();
     if (voxgi_ray_scene_create(c.vx, &tm.scene, &rs) != VOXGI_OK) { cli_fail_lib(s, c.vx, "building the BVH"); goto done; }
     build_ms = cli_now_ms() - build_ms;

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Anchor benchmark for the ray core: `voxgi bench rays` against Intel Embree 3 casting the same
+# two ray sets (tools/ray_sets.h) on the same threads, best Embree kernel per set.
+#
+# usage: bench/anchors_rays.sh [MESH ...]
+#   MESH     default: the standard meshes in ../shared/meshes next to the project, if present
+# environment:
+#   RAYS=1000000       incoherent segments
+#   RUNS=3             runs per set (voxgi: the median; Embree: the best)
+#   THREADS=$(nproc)   threads of both
+#   EMBREE_CFLAGS, EMBREE_LIBS   for an Embree outside the default paths
+#
+# Embree is optional for the project: without its headers this script says so and exits 0.
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=$root/build
+anchor=$build/anchor_embree
+voxgi=$build/voxgi
+CC=${CC:-cc}
+CXX=${CXX:-c++}
+EMBREE_CFLAGS=${EMBREE_CFLAGS:-}
+EMBREE_LIBS=${EMBREE_LIBS:--lembree3}
+rays=${RAYS:-1000000}
+runs=${RUNS:-3}
+threads=${THREADS:-$(nproc)}
+
+if [[ ${1:-} == -h || ${1:-} == --help ]]; then
+    sed -n '2,13s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"
+    exit 0
+fi
+meshes=("$@")
+if ((${#meshes[@]} == 0)); then
+    for m in bunny suzanne teapot dragon; do
+        [[ -f $root/../shared/meshes/$m.obj ]] && meshes+=("$root/../shared/meshes/$m.obj")
+    done
+    if ((${#meshes[@]} == 0)); then
+        echo "anchors_rays: no mesh given and none found in ../shared/meshes; skipping" >&2
+        exit 0
+    fi
+fi
+# shellcheck disable=SC2086
+if ! echo '#include <embree3/rtcore.h>' | "$CXX" -std=c++17 $EMBREE_CFLAGS -x c++ -E - >/dev/null 2>&1; then
+    echo "anchors_rays: Embree 3 headers not found; the Embree anchor is optional." >&2
+    echo "anchors_rays: on Debian/Ubuntu: apt-get install libembree-dev" >&2
+    exit 0
+fi
+srcs=("$root/bench/anchor_embree.cpp" "$root/tools/ray_sets.h" "$root/tools/mesh_io.c" "$root/tools/mesh_io.h")
+stale=0
+[[ -x $anchor ]] || stale=1
+for s in "${srcs[@]}"; do
+    if [[ $s -nt $anchor ]]; then stale=1; fi
+done
+if ((stale)); then
+    echo "anchors_rays: building $(basename "$anchor")" >&2
+    mkdir -p "$build"
+    "$CC" -O2 -c "$root/tools/mesh_io.c" -o "$build/anchor_mesh_io.o"
+    # shellcheck disable=SC2086
+    "$CXX" -std=c++17 -O2 -Wall -Wextra -pedantic $EMBREE_CFLAGS -I"$root/tools" "$root/bench/anchor_embree.cpp" \
+        "$build/anchor_mesh_io.o" -o "$anchor" $EMBREE_LIBS -lpthread
+fi
+json_num() { sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\([-+0-9.eE]*\).*/\1/p" <<<"$1" | head -n 1; }
+json_str() { sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\"\([^\"]*\)\".*/\1/p" <<<"$1" | head -n 1; }
+
+echo "| mesh | triangles | coherent, voxgi | Embree (kernel) | ratio | incoherent, voxgi | Embree (kernel) | ratio | hits, voxgi - Embree |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---|"
+for mesh in "${meshes[@]}"; do
+    v=$("$voxgi" bench rays "$mesh" --rays "$rays" --runs "$runs" --threads "$threads" --json)
+    e=$("$anchor" "$mesh" "$rays" "$threads" "$runs")
+    vc=$(json_num "$v" coherent_intersect_mrays) vi=$(json_num "$v" incoherent_occluded_mrays)
+    ec=$(json_num "$e" coherent_intersect_mrays) ei=$(json_num "$e" incoherent_occluded_mrays)
+    agree="$(($(json_num "$v" coherent_hits) - $(json_num "$e" coherent_hits))), $(($(json_num "$v" incoherent_occluded) - $(json_num "$e" incoherent_occluded)))"
+    awk -v m="$(basename "$mesh")" -v t="$(json_num "$v" triangles)" -v vc="$vc" -v ec="$ec" -v vi="$vi" -v ei="$ei" \
+        -v kc="$(json_str "$e" coherent_kernel)" -v ki="$(json_str "$e" incoherent_kernel)" -v a="$agree" \
+        'BEGIN { printf "| %s | %d | %.1f M/s | %.1f M/s (%s) | %.2fx | %.1f M/s | %.1f M/s (%s) | %.2fx | %s |\n", m, t, vc, ec, kc, vc / ec, vi, ei, ki, vi / ei, a }'
+done
+echo
+echo "($threads threads, $rays incoherent segments, 262144 camera rays; wall-clock rates on this machine; the last"
+echo "column: closest hits of the camera's rays, occluded segments - a ray grazing an edge may fall either way)"
