@@ -1831,6 +1831,7 @@ typedef struct voxgi__bvh_build {
     uint32_t *order;
     voxgi__bvh_node *nodes;
     size_t count;
+    size_t leaf;                  /* ranges this small stay leaves (the ray core's: a pack of four) */
 } voxgi__bvh_build;
 
 static void voxgi__box_area(const float lo[3], const float hi[3], double *area)
@@ -1864,7 +1865,7 @@ static void voxgi__bvh_split(voxgi__bvh_build *b, size_t node, size_t first, siz
         if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
     nd->first = (uint32_t)first;
     nd->count = (uint32_t)n;
-    if (n <= 2 || !(chi[axis] > clo[axis]) || depth >= VOXGI__BVH_DEPTH) return; /* a leaf */
+    if (n <= b->leaf || !(chi[axis] > clo[axis]) || depth >= VOXGI__BVH_DEPTH) return; /* a leaf */
     {   /* binned SAH along the widest centroid axis */
         size_t cnt[BINS];
         float blo[BINS][3], bhi[BINS][3];
@@ -1953,6 +1954,7 @@ static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *s
     b.order = tr->tri;
     b.nodes = tr->nodes;
     b.count = 1;
+    b.leaf = 2;
     if (nt) voxgi__bvh_split(&b, 0, 0, nt, 0);
     else { int a; for (a = 0; a < 3; a++) { tr->nodes[0].lo[a] = 1; tr->nodes[0].hi[a] = -1; } } /* an empty box: nothing is hit */
     tr->node_count = b.count;
@@ -2063,14 +2065,21 @@ static int voxgi__trace(const voxgi__tracer *tr, const double o[3], const double
    with fused multiply-adds. */
 typedef struct voxgi__node4 {
     float lo[3][4], hi[3][4];     /* the children's boxes (an unused lane: empty, lo = +inf, hi = -inf) */
-    uint32_t child[4], count[4];  /* count 0: inner node `child`; else triangles [child, child + count) */
+    uint32_t child[4], count[4];  /* count 0: inner node `child`; else the packs [child, child + count) */
 } voxgi__node4;
 
+/* A leaf's triangles four at a time, by lanes: row 3 k + a holds vertex k's coordinate a of each
+   (relative to the centre); a lane without a triangle is a point, which nothing hits. */
+typedef struct voxgi__tri4 {
+    float v[9][4];
+    uint32_t tri[4];              /* the scene's triangle, UINT32_MAX: none */
+} voxgi__tri4;
+
 struct voxgi_ray_scene {
-    voxgi__node4 *nodes;
-    size_t node_count, triangles;
-    float *v;                     /* 9 per triangle, in BVH order, relative to centre */
-    uint32_t *tri;                /* BVH order -> the scene's triangle */
+    voxgi__node4 *nodes;          /* on 64-byte boundaries: a node is two cache lines */
+    void *node_block;             /* what was allocated for them */
+    voxgi__tri4 *packs;
+    size_t node_count, pack_count, triangles;
     double centre[3];
 };
 
@@ -2117,6 +2126,7 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
     voxgi__bvh_build b;
     voxgi__bvh_node *bin = NULL;
     voxgi_ray_scene *rs;
+    uint32_t *order = NULL;
     float *local = NULL, *boxes = NULL;
     double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
     size_t t, nt, i;
@@ -2134,11 +2144,13 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
     bin = (voxgi__bvh_node *)voxgi__alloc_array(ctx, 2 * nt + 1, sizeof *bin, 1);
     if (rs) {
         rs->triangles = nt;
-        rs->v = (float *)voxgi__alloc_array(ctx, nt, 9 * sizeof(float), 0);
-        rs->tri = (uint32_t *)voxgi__alloc_array(ctx, nt, 4, 0);
-        rs->nodes = (voxgi__node4 *)voxgi__alloc_array(ctx, 2 * nt + 1, sizeof *rs->nodes, 1);
+        rs->packs = (voxgi__tri4 *)voxgi__alloc_array(ctx, nt, sizeof *rs->packs, 0); /* at most one a triangle */
+        rs->node_block = voxgi__alloc_array(ctx, 2 * nt + 2, sizeof *rs->nodes, 1);
+        rs->nodes = (voxgi__node4 *)(void *)(((uintptr_t)rs->node_block + 63) & ~(uintptr_t)63);
     }
-    if (!rs || !local || !boxes || !bin || !rs->v || !rs->tri || !rs->nodes) {
+    order = (uint32_t *)voxgi__alloc_array(ctx, nt, 4, 0);
+    if (!rs || !local || !boxes || !bin || !order || !rs->packs || !rs->node_block) {
+        voxgi__free(ctx, order);
         voxgi__free(ctx, local);
         voxgi__free(ctx, boxes);
         voxgi__free(ctx, bin);
@@ -2151,7 +2163,7 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
     for (a = 0; a < 3; a++) rs->centre[a] = 0.5 * (lo[a] + hi[a]);
     for (i = 0; i < 3 * flat.vertex_count; i++) local[i] = (float)((double)flat.pos[i] - rs->centre[i % 3]);
     for (t = 0; t < nt; t++) { /* boxes of the local floats */
-        rs->tri[t] = (uint32_t)t;
+        order[t] = (uint32_t)t;
         for (a = 0; a < 3; a++) {
             boxes[3 * t + a] = INFINITY;
             boxes[3 * nt + 3 * t + a] = -INFINITY;
@@ -2164,9 +2176,10 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
     }
     b.cmin = boxes;
     b.cmax = boxes + 3 * nt;
-    b.order = rs->tri;
+    b.order = order;
     b.nodes = bin;
     b.count = 1;
+    b.leaf = 4;
     voxgi__bvh_split(&b, 0, 0, nt, 0); /* a scene has triangles (voxgi__flatten) */
     if (bin[0].count) { /* one leaf: the root's one lane */
         for (a = 0; a < 3; a++)
@@ -2175,9 +2188,23 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
         rs->node_count = 1;
     } else
         rs->node_count = voxgi__collapse(rs->nodes, 0, 1, bin, 0);
-    for (t = 0; t < nt; t++)
-        for (k = 0; k < 3; k++)
-            for (a = 0; a < 3; a++) rs->v[9 * t + 3 * (size_t)k + (size_t)a] = local[3 * (size_t)flat.tri[3 * (size_t)rs->tri[t] + (size_t)k] + (size_t)a];
+    for (i = 0; i < rs->node_count; i++) /* each leaf's triangles into packs of four */
+        for (k = 0; k < 4; k++) {
+            voxgi__node4 *nd = &rs->nodes[i];
+            uint32_t first = nd->child[k], n = nd->count[k], j;
+            if (!n) continue;
+            nd->child[k] = (uint32_t)rs->pack_count;
+            nd->count[k] = (n + 3) / 4;
+            for (j = 0; j < 4 * nd->count[k]; j++) {
+                voxgi__tri4 *pk = &rs->packs[rs->pack_count + j / 4];
+                uint32_t src = order[first + VOXGI__MIN(j, n - 1)]; /* a lane without a triangle: the last one's first vertex */
+                int r;
+                pk->tri[j % 4] = j < n ? src : UINT32_MAX;
+                for (r = 0; r < 9; r++) pk->v[r][j % 4] = local[3 * (size_t)flat.tri[3 * (size_t)src + (size_t)(j < n ? r / 3 : 0)] + (size_t)(r % 3)];
+            }
+            rs->pack_count += nd->count[k];
+        }
+    voxgi__free(ctx, order);
     voxgi__free(ctx, local);
     voxgi__free(ctx, boxes);
     voxgi__free(ctx, bin);
@@ -2189,9 +2216,8 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
 VOXGI_API void voxgi_ray_scene_destroy(voxgi_context *ctx, voxgi_ray_scene *rs)
 {
     if (!ctx || !rs) return;
-    voxgi__free(ctx, rs->nodes);
-    voxgi__free(ctx, rs->v);
-    voxgi__free(ctx, rs->tri);
+    voxgi__free(ctx, rs->node_block);
+    voxgi__free(ctx, rs->packs);
     voxgi__free(ctx, rs);
 }
 
@@ -2260,14 +2286,14 @@ static int voxgi__node4_hits(const voxgi__node4 *nd, const voxgi__ray4 *r, float
 #endif
 }
 
-/* The watertight test of triangle t (BVH order) for a hit in (tmin, tmax): 1 and its t, u, v. */
-static int voxgi__ray4_triangle(const voxgi_ray_scene *rs, size_t t, const voxgi__ray4 *r, float tmax, float *t_out, float *u_out, float *v_out)
+/* Lane l of pack pk against the ray for a hit in (tmin, tmax), the edge functions in double: 1
+   and its t, u, v. */
+static int voxgi__tri_lane_exact(const voxgi__tri4 *pk, int l, const voxgi__ray4 *r, float tmax, float *t_out, float *u_out, float *v_out)
 {
-    const float *v = rs->v + 9 * t;
-    float az = v[r->kz] - r->o[r->kz], bz = v[3 + r->kz] - r->o[r->kz], cz = v[6 + r->kz] - r->o[r->kz];
-    float ax = v[r->kx] - r->o[r->kx] - r->sx * az, ay = v[r->ky] - r->o[r->ky] - r->sy * az;
-    float bx = v[3 + r->kx] - r->o[r->kx] - r->sx * bz, by = v[3 + r->ky] - r->o[r->ky] - r->sy * bz;
-    float cx = v[6 + r->kx] - r->o[r->kx] - r->sx * cz, cy = v[6 + r->ky] - r->o[r->ky] - r->sy * cz;
+    float az = pk->v[r->kz][l] - r->o[r->kz], bz = pk->v[3 + r->kz][l] - r->o[r->kz], cz = pk->v[6 + r->kz][l] - r->o[r->kz];
+    float ax = pk->v[r->kx][l] - r->o[r->kx] - r->sx * az, ay = pk->v[r->ky][l] - r->o[r->ky] - r->sy * az;
+    float bx = pk->v[3 + r->kx][l] - r->o[r->kx] - r->sx * bz, by = pk->v[3 + r->ky][l] - r->o[r->ky] - r->sy * bz;
+    float cx = pk->v[6 + r->kx][l] - r->o[r->kx] - r->sx * cz, cy = pk->v[6 + r->ky][l] - r->o[r->ky] - r->sy * cz;
     double u = (double)cx * by - (double)cy * bx, w = (double)ax * cy - (double)ay * cx, x = (double)bx * ay - (double)by * ax, det, tt;
     if ((u < 0 || w < 0 || x < 0) && (u > 0 || w > 0 || x > 0)) return 0;
     det = u + w + x;
@@ -2278,6 +2304,78 @@ static int voxgi__ray4_triangle(const voxgi_ray_scene *rs, size_t t, const voxgi
     *u_out = (float)(w / det);
     *v_out = (float)(x / det);
     return 1;
+}
+
+/* An edge function in float, e = p - q, whose sign may not be the exact one of the sheared floats:
+   within 2^-21 (|p| + |q|) of 0 (its rounding is below 2^-23 of that). */
+#define VOXGI__EDGE_NEAR_ZERO 4.76837158e-7f
+
+/* The closest hit in pack pk before tmax: its lane (-1: none) and t, u, v. The four lanes' edge
+   functions in float at once (SSE, or lane by lane in the same arithmetic); a lane whose edge
+   function lies within rounding of 0 is tested again with them in double, so every sign is
+   the exact one and no ray slips between triangles that share an edge or a vertex. */
+static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float tmax, float *t_out, float *u_out, float *v_out)
+{
+    float tf[4], uf[4], wf[4], xf[4], det[4];
+    int near_zero = 0, l, best = -1;
+#ifdef VOXGI__SSE
+    {
+        const __m128 sign = _mm_set1_ps(-0.0f), eps = _mm_set1_ps(VOXGI__EDGE_NEAR_ZERO);
+        __m128 okx = _mm_set1_ps(r->o[r->kx]), oky = _mm_set1_ps(r->o[r->ky]), okz = _mm_set1_ps(r->o[r->kz]), sx = _mm_set1_ps(r->sx), sy = _mm_set1_ps(r->sy);
+        __m128 az = _mm_sub_ps(_mm_loadu_ps(pk->v[r->kz]), okz), bz = _mm_sub_ps(_mm_loadu_ps(pk->v[3 + r->kz]), okz), cz = _mm_sub_ps(_mm_loadu_ps(pk->v[6 + r->kz]), okz);
+        __m128 ax = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(pk->v[r->kx]), okx), _mm_mul_ps(sx, az));
+        __m128 ay = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(pk->v[r->ky]), oky), _mm_mul_ps(sy, az));
+        __m128 bx = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(pk->v[3 + r->kx]), okx), _mm_mul_ps(sx, bz));
+        __m128 by = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(pk->v[3 + r->ky]), oky), _mm_mul_ps(sy, bz));
+        __m128 cx = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(pk->v[6 + r->kx]), okx), _mm_mul_ps(sx, cz));
+        __m128 cy = _mm_sub_ps(_mm_sub_ps(_mm_loadu_ps(pk->v[6 + r->ky]), oky), _mm_mul_ps(sy, cz));
+        __m128 p0 = _mm_mul_ps(cx, by), q0 = _mm_mul_ps(cy, bx), p1 = _mm_mul_ps(ax, cy), q1 = _mm_mul_ps(ay, cx), p2 = _mm_mul_ps(bx, ay), q2 = _mm_mul_ps(by, ax);
+        __m128 u = _mm_sub_ps(p0, q0), w = _mm_sub_ps(p1, q1), x = _mm_sub_ps(p2, q2), d = _mm_add_ps(_mm_add_ps(u, w), x);
+        __m128 nz = _mm_or_ps(_mm_cmple_ps(_mm_andnot_ps(sign, u), _mm_mul_ps(eps, _mm_add_ps(_mm_andnot_ps(sign, p0), _mm_andnot_ps(sign, q0)))),
+                              _mm_cmple_ps(_mm_andnot_ps(sign, w), _mm_mul_ps(eps, _mm_add_ps(_mm_andnot_ps(sign, p1), _mm_andnot_ps(sign, q1)))));
+        nz = _mm_or_ps(nz, _mm_cmple_ps(_mm_andnot_ps(sign, x), _mm_mul_ps(eps, _mm_add_ps(_mm_andnot_ps(sign, p2), _mm_andnot_ps(sign, q2)))));
+        near_zero = _mm_movemask_ps(nz);
+        _mm_storeu_ps(tf, _mm_div_ps(_mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(w, bz)), _mm_mul_ps(x, cz)), _mm_set1_ps(r->sz)), d));
+        _mm_storeu_ps(uf, u);
+        _mm_storeu_ps(wf, w);
+        _mm_storeu_ps(xf, x);
+        _mm_storeu_ps(det, d);
+    }
+#else
+    for (l = 0; l < 4; l++) {
+        float az = pk->v[r->kz][l] - r->o[r->kz], bz = pk->v[3 + r->kz][l] - r->o[r->kz], cz = pk->v[6 + r->kz][l] - r->o[r->kz];
+        float ax = pk->v[r->kx][l] - r->o[r->kx] - r->sx * az, ay = pk->v[r->ky][l] - r->o[r->ky] - r->sy * az;
+        float bx = pk->v[3 + r->kx][l] - r->o[r->kx] - r->sx * bz, by = pk->v[3 + r->ky][l] - r->o[r->ky] - r->sy * bz;
+        float cx = pk->v[6 + r->kx][l] - r->o[r->kx] - r->sx * cz, cy = pk->v[6 + r->ky][l] - r->o[r->ky] - r->sy * cz;
+        float p0 = cx * by, q0 = cy * bx, p1 = ax * cy, q1 = ay * cx, p2 = bx * ay, q2 = by * ax;
+        uf[l] = p0 - q0;
+        wf[l] = p1 - q1;
+        xf[l] = p2 - q2;
+        det[l] = uf[l] + wf[l] + xf[l];
+        tf[l] = (uf[l] * az + wf[l] * bz + xf[l] * cz) * r->sz / det[l];
+        if (fabsf(uf[l]) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p0) + fabsf(q0)) || fabsf(wf[l]) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p1) + fabsf(q1)) ||
+            fabsf(xf[l]) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p2) + fabsf(q2)))
+            near_zero |= 1 << l;
+    }
+#endif
+    for (l = 0; l < 4; l++) {
+        float t, u, v;
+        if (near_zero >> l & 1) {
+            if (!voxgi__tri_lane_exact(pk, l, r, tmax, &t, &u, &v)) continue;
+        } else {
+            if ((uf[l] < 0 || wf[l] < 0 || xf[l] < 0) && (uf[l] > 0 || wf[l] > 0 || xf[l] > 0)) continue;
+            t = tf[l];
+            if (!(t > r->tmin && t < tmax)) continue;
+            u = wf[l] / det[l];
+            v = xf[l] / det[l];
+        }
+        tmax = t; /* the nearest lane; a later one only when strictly nearer */
+        best = l;
+        *t_out = t;
+        *u_out = u;
+        *v_out = v;
+    }
+    return best;
 }
 
 /* One ray's closest hit (any = 0) or any hit (any = 1); 1 when there is one. */
@@ -2307,14 +2405,15 @@ static int voxgi__ray4_cast(const voxgi_ray_scene *rs, const voxgi_ray *ray, int
             if (nd->count[i]) {
                 uint32_t k;
                 for (k = nd->child[i]; k < nd->child[i] + nd->count[i]; k++) {
-                    float tt, u, v;
-                    if (!voxgi__ray4_triangle(rs, k, &r, tmax, &tt, &u, &v)) continue;
+                    float tt = 0, u = 0, v = 0;
+                    int lane = voxgi__ray4_pack(&rs->packs[k], &r, tmax, &tt, &u, &v);
+                    if (lane < 0) continue;
                     tmax = tt;
                     found = 1;
                     hit->t = tt;
                     hit->u = u;
                     hit->v = v;
-                    hit->triangle = rs->tri[k];
+                    hit->triangle = rs->packs[k].tri[lane];
                     if (any) return 1;
                 }
             } else { /* in order of entry, nearest first */
@@ -2328,6 +2427,10 @@ static int voxgi__ray4_cast(const voxgi_ray_scene *rs, const voxgi_ray *ray, int
             stack[sp].node = inner[j];
             stack[sp].t = inner_t[j];
             sp++;
+#ifdef VOXGI__SSE
+            _mm_prefetch((const char *)&rs->nodes[inner[j]], _MM_HINT_T0);
+            _mm_prefetch((const char *)&rs->nodes[inner[j]] + 64, _MM_HINT_T0);
+#endif
         }
     }
     return found;
