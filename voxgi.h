@@ -2224,7 +2224,8 @@ VOXGI_API void voxgi_ray_scene_destroy(voxgi_context *ctx, voxgi_ray_scene *rs)
 /* A ray in the scene's frame, ready for the boxes and the triangles. */
 typedef struct voxgi__ray4 {
     float o[3], inv[3], inv_far[3], tmin;
-    int neg[3];                   /* the direction's sign per axis: which of lo and hi is near */
+    int neg[3];                   /* the direction's sign per axis: which of lo and hi is near, */
+    size_t near_at[3], far_at[3]; /* and so their byte offsets in a node */
     int kx, ky, kz;               /* the shear: kz the largest component */
     float sx, sy, sz;
 } voxgi__ray4;
@@ -2240,6 +2241,8 @@ static int voxgi__ray4_setup(const voxgi_ray_scene *rs, const voxgi_ray *ray, vo
         /* a zero component: a tiny one of its sign, so that no slab sees 0 x inf */
         r->inv[a] = 1.0f / (fabsf(d[a]) > 1e-30f ? d[a] : (r->neg[a] ? -1e-30f : 1e-30f));
         r->inv_far[a] = r->inv[a] * (1.0f + 4.76837158e-7f);
+        r->near_at[a] = r->neg[a] ? offsetof(voxgi__node4, hi) + 16 * (size_t)a : offsetof(voxgi__node4, lo) + 16 * (size_t)a;
+        r->far_at[a] = r->neg[a] ? offsetof(voxgi__node4, lo) + 16 * (size_t)a : offsetof(voxgi__node4, hi) + 16 * (size_t)a;
         if (fabsf(d[a]) > fabsf(d[kz])) kz = a;
     }
     if (d[kz] == 0) return 0;
@@ -2263,7 +2266,8 @@ static int voxgi__node4_hits(const voxgi__node4 *nd, const voxgi__ray4 *r, float
     int a;
     for (a = 0; a < 3; a++) {
         __m128 o = _mm_set1_ps(r->o[a]);
-        __m128 near_plane = _mm_loadu_ps(r->neg[a] ? nd->hi[a] : nd->lo[a]), far_plane = _mm_loadu_ps(r->neg[a] ? nd->lo[a] : nd->hi[a]);
+        __m128 near_plane = _mm_load_ps((const float *)(const void *)((const char *)nd + r->near_at[a]));
+        __m128 far_plane = _mm_load_ps((const float *)(const void *)((const char *)nd + r->far_at[a]));
         tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(near_plane, o), _mm_set1_ps(r->inv[a])));
         tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(far_plane, o), _mm_set1_ps(r->inv_far[a])));
     }
@@ -2316,8 +2320,8 @@ static int voxgi__tri_lane_exact(const voxgi__tri4 *pk, int l, const voxgi__ray4
    the exact one and no ray slips between triangles that share an edge or a vertex. */
 static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float tmax, float *t_out, float *u_out, float *v_out)
 {
-    float tf[4], uf[4], wf[4], xf[4], det[4];
-    int near_zero = 0, l, best = -1;
+    float tf[4], wf[4], xf[4], det[4];
+    int near_zero = 0, hits = 0, l, best = -1;
 #ifdef VOXGI__SSE
     {
         const __m128 sign = _mm_set1_ps(-0.0f), eps = _mm_set1_ps(VOXGI__EDGE_NEAR_ZERO);
@@ -2334,9 +2338,14 @@ static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float t
         __m128 nz = _mm_or_ps(_mm_cmple_ps(_mm_andnot_ps(sign, u), _mm_mul_ps(eps, _mm_add_ps(_mm_andnot_ps(sign, p0), _mm_andnot_ps(sign, q0)))),
                               _mm_cmple_ps(_mm_andnot_ps(sign, w), _mm_mul_ps(eps, _mm_add_ps(_mm_andnot_ps(sign, p1), _mm_andnot_ps(sign, q1)))));
         nz = _mm_or_ps(nz, _mm_cmple_ps(_mm_andnot_ps(sign, x), _mm_mul_ps(eps, _mm_add_ps(_mm_andnot_ps(sign, p2), _mm_andnot_ps(sign, q2)))));
+        __m128 zero = _mm_setzero_ps(), t = _mm_div_ps(_mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(w, bz)), _mm_mul_ps(x, cz)), _mm_set1_ps(r->sz)), d);
+        __m128 inside = _mm_or_ps(_mm_and_ps(_mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmpge_ps(w, zero)), _mm_cmpge_ps(x, zero)),
+                                  _mm_and_ps(_mm_and_ps(_mm_cmple_ps(u, zero), _mm_cmple_ps(w, zero)), _mm_cmple_ps(x, zero)));
         near_zero = _mm_movemask_ps(nz);
-        _mm_storeu_ps(tf, _mm_div_ps(_mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(w, bz)), _mm_mul_ps(x, cz)), _mm_set1_ps(r->sz)), d));
-        _mm_storeu_ps(uf, u);
+        hits = _mm_movemask_ps(_mm_and_ps(_mm_and_ps(inside, _mm_cmpneq_ps(d, zero)),
+                                          _mm_and_ps(_mm_cmpgt_ps(t, _mm_set1_ps(r->tmin)), _mm_cmplt_ps(t, _mm_set1_ps(tmax))))) & ~near_zero;
+        if (!(hits | near_zero)) return -1; /* the usual case: nothing here */
+        _mm_storeu_ps(tf, t);
         _mm_storeu_ps(wf, w);
         _mm_storeu_ps(xf, x);
         _mm_storeu_ps(det, d);
@@ -2347,15 +2356,16 @@ static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float t
         float ax = pk->v[r->kx][l] - r->o[r->kx] - r->sx * az, ay = pk->v[r->ky][l] - r->o[r->ky] - r->sy * az;
         float bx = pk->v[3 + r->kx][l] - r->o[r->kx] - r->sx * bz, by = pk->v[3 + r->ky][l] - r->o[r->ky] - r->sy * bz;
         float cx = pk->v[6 + r->kx][l] - r->o[r->kx] - r->sx * cz, cy = pk->v[6 + r->ky][l] - r->o[r->ky] - r->sy * cz;
-        float p0 = cx * by, q0 = cy * bx, p1 = ax * cy, q1 = ay * cx, p2 = bx * ay, q2 = by * ax;
-        uf[l] = p0 - q0;
+        float p0 = cx * by, q0 = cy * bx, p1 = ax * cy, q1 = ay * cx, p2 = bx * ay, q2 = by * ax, u = p0 - q0;
         wf[l] = p1 - q1;
         xf[l] = p2 - q2;
-        det[l] = uf[l] + wf[l] + xf[l];
-        tf[l] = (uf[l] * az + wf[l] * bz + xf[l] * cz) * r->sz / det[l];
-        if (fabsf(uf[l]) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p0) + fabsf(q0)) || fabsf(wf[l]) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p1) + fabsf(q1)) ||
+        det[l] = u + wf[l] + xf[l];
+        tf[l] = (u * az + wf[l] * bz + xf[l] * cz) * r->sz / det[l];
+        if (fabsf(u) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p0) + fabsf(q0)) || fabsf(wf[l]) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p1) + fabsf(q1)) ||
             fabsf(xf[l]) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p2) + fabsf(q2)))
             near_zero |= 1 << l;
+        else if (((u >= 0 && wf[l] >= 0 && xf[l] >= 0) || (u <= 0 && wf[l] <= 0 && xf[l] <= 0)) && det[l] != 0 && tf[l] > r->tmin && tf[l] < tmax)
+            hits |= 1 << l;
     }
 #endif
     for (l = 0; l < 4; l++) {
@@ -2363,9 +2373,8 @@ static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float t
         if (near_zero >> l & 1) {
             if (!voxgi__tri_lane_exact(pk, l, r, tmax, &t, &u, &v)) continue;
         } else {
-            if ((uf[l] < 0 || wf[l] < 0 || xf[l] < 0) && (uf[l] > 0 || wf[l] > 0 || xf[l] > 0)) continue;
+            if (!(hits >> l & 1) || !(tf[l] < tmax)) continue;
             t = tf[l];
-            if (!(t > r->tmin && t < tmax)) continue;
             u = wf[l] / det[l];
             v = xf[l] / det[l];
         }
@@ -2384,25 +2393,19 @@ static int voxgi__ray4_cast(const voxgi_ray_scene *rs, const voxgi_ray *ray, int
     struct { uint32_t node; float t; } stack[3 * VOXGI__BVH_DEPTH + 8];
     voxgi__ray4 r;
     float tmax = ray->tmax;
-    int sp = 1, found = 0;
+    uint32_t node = 0;
+    int sp = 0, found = 0;
     hit->triangle = UINT32_MAX;
     hit->t = hit->u = hit->v = 0;
     if (!voxgi__ray4_setup(rs, ray, &r)) return 0;
-    stack[0].node = 0;
-    stack[0].t = r.tmin;
-    while (sp) {
-        const voxgi__node4 *nd;
-        float tn[4];
+    for (;;) {
+        const voxgi__node4 *nd = &rs->nodes[node];
+        float tn[4], inner_t[4];
         uint32_t inner[4];
-        float inner_t[4];
-        int mask, i, j, n = 0;
-        --sp;
-        if (stack[sp].t > tmax) continue;
-        nd = &rs->nodes[stack[sp].node];
-        mask = voxgi__node4_hits(nd, &r, tmax, tn);
-        for (i = 0; i < 4; i++) {
-            if (!(mask >> i & 1)) continue;
-            if (nd->count[i]) {
+        int mask = voxgi__node4_hits(nd, &r, tmax, tn), i, j, n = 0;
+        for (i = 0; mask; i++, mask >>= 1) {
+            if (!(mask & 1)) continue;
+            if (nd->count[i]) { /* a leaf: its packs */
                 uint32_t k;
                 for (k = nd->child[i]; k < nd->child[i] + nd->count[i]; k++) {
                     float tt = 0, u = 0, v = 0;
@@ -2416,22 +2419,28 @@ static int voxgi__ray4_cast(const voxgi_ray_scene *rs, const voxgi_ray *ray, int
                     hit->triangle = rs->packs[k].tri[lane];
                     if (any) return 1;
                 }
-            } else { /* in order of entry, nearest first */
-                for (j = n; j > 0 && inner_t[j - 1] < tn[i]; j--) { inner[j] = inner[j - 1]; inner_t[j] = inner_t[j - 1]; }
+            } else { /* an inner node: in order of entry, nearest last (occlusion: any order) */
+                for (j = n; !any && j > 0 && inner_t[j - 1] < tn[i]; j--) { inner[j] = inner[j - 1]; inner_t[j] = inner_t[j - 1]; }
                 inner[j] = nd->child[i];
                 inner_t[j] = tn[i];
                 n++;
             }
         }
-        for (j = 0; j < n; j++) { /* farthest pushed first: the nearest comes off next */
-            stack[sp].node = inner[j];
-            stack[sp].t = inner_t[j];
-            sp++;
+        if (n) { /* on into the nearest; the others wait on the stack, farthest deepest */
+            for (j = 0; j < n - 1; j++) {
+                stack[sp].node = inner[j];
+                stack[sp].t = inner_t[j];
+                sp++;
+            }
+            node = inner[n - 1];
 #ifdef VOXGI__SSE
-            _mm_prefetch((const char *)&rs->nodes[inner[j]], _MM_HINT_T0);
-            _mm_prefetch((const char *)&rs->nodes[inner[j]] + 64, _MM_HINT_T0);
+            _mm_prefetch((const char *)&rs->nodes[node] + 64, _MM_HINT_T0);
 #endif
+            continue;
         }
+        while (sp && stack[sp - 1].t > tmax) sp--; /* behind a hit already found */
+        if (!sp) break;
+        node = stack[--sp].node;
     }
     return found;
 }
