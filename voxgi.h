@@ -44,7 +44,8 @@
                           half floats, Morton codes, random numbers, frames); exact arithmetic;
                           the worker pool
        3. scene           validation and flattening, materials per triangle, grids, the BVH and
-                          ray casting, lights and direct light, cameras
+                          ray casting (the reference renderer's; the ray core: voxgi_ray_scene),
+                          lights and direct light, cameras
        4. GL core         GL types and the loader table, programs from the embedded shaders,
                           buffers, dispatches, raster state (absent with VOXGI_NO_GL)
        5. voxelization    exact triangle tests, attributes, one sub-part per method (CPU, then
