@@ -111,18 +111,20 @@ static size_t inside_rays(const cube_sphere *s, const double c[3], double r, fx_
     return n;
 }
 
-/* No ray from inside a closed mesh escapes it, at its vertices and edges too, near the origin
-   and 1e6 away (the core works relative to the scene's centre); with 1 and 2 threads alike. */
+/* No ray from inside a closed mesh escapes it, at its vertices and edges too: near the origin,
+   1e6 away (the core works relative to the scene's centre), 1e-6 and 1e6 in size; with 1 and 2
+   threads alike. */
 static void test_watertight_sphere(void)
 {
     enum { N = 12, M = 12 * N * N * 6 + 20000 };
     static voxgi_ray rays[M];
     static voxgi_ray_hit hits[2][M];
     static unsigned char occ[M];
-    double offsets[2] = {0, 1e6};
+    const double offsets[4] = {0, 1e6, 0, 0}, sizes[4] = {1, 8, 1e-6, 1e6};
+    const char *const names[4] = {"at the origin", "1e6 from the origin", "of radius 1e-6", "of radius 1e6"};
     int o;
-    for (o = 0; o < 2; o++) {
-        double c[3] = {0.25 + offsets[o], -0.5 + offsets[o], 0.125 - offsets[o]}, r = o ? 8 : 1;
+    for (o = 0; o < 4; o++) {
+        double r = sizes[o], c[3] = {0.25 * r + offsets[o], -0.5 * r + offsets[o], 0.125 * r - offsets[o]};
         cube_sphere s;
         voxgi_scene sc;
         voxgi_mesh mesh;
@@ -146,7 +148,7 @@ static void test_watertight_sphere(void)
             occ_missed += !occ[i];
         }
         printf("    closed sphere %s: %lu rays from inside (%lu aimed at vertices and edge midpoints), %lu missed, %lu not occluded\n",
-               o ? "1e6 from the origin" : "at the origin", (unsigned long)n, (unsigned long)(12 * N * N * 6), (unsigned long)missed,
+               names[o], (unsigned long)n, (unsigned long)(12 * N * N * 6), (unsigned long)missed,
                (unsigned long)occ_missed);
         TH_CHECK(!missed && !occ_missed, "%lu rays escaped the closed sphere (%lu by occlusion)", (unsigned long)missed, (unsigned long)occ_missed);
         TH_CHECK(!memcmp(hits[0], hits[1], n * sizeof hits[0][0]), "1 and 2 threads answer differently");
