@@ -264,6 +264,57 @@ static void test_closest_hits_are_brute_force(void)
     voxgi_destroy(ctx);
 }
 
+/* Camera rays in 4 x 4 tiles, as voxgi bench rays casts them: a batch gives each ray's answer
+   cast alone (the same t, and the same triangle but where two triangles meet at that t), and
+   brute force's. */
+static void test_camera_rays(void)
+{
+    enum { W = 64, R = W * W };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    cube_sphere s;
+    double c[3] = {0, 0, 0};
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_ray_scene *rs = NULL;
+    static voxgi_ray rays[R];
+    static voxgi_ray_hit hits[R], one[R];
+    const double eye[3] = {2.5, 1.9, 3.1};
+    size_t i, hit = 0, differ = 0, wrong = 0;
+    int x, y, a;
+    cube_sphere_make(&s, 16, 1, c);
+    scene_of_soup(&sc, &mesh, s.pos, s.triangles);
+    for (i = 0, y = 0; y < W; y += 4) /* tile by tile */
+        for (x = 0; x < W; x += 4) {
+            int tx, ty;
+            for (ty = y; ty < y + 4; ty++)
+                for (tx = x; tx < x + 4; tx++, i++) {
+                    double d[3] = {-eye[0], -eye[1], -eye[2]};
+                    d[0] += 3.0 * (tx - W / 2.0) / W;
+                    d[1] += 3.0 * (ty - W / 2.0) / W;
+                    for (a = 0; a < 3; a++) { rays[i].origin[a] = (float)eye[a]; rays[i].direction[a] = (float)d[a]; }
+                    rays[i].tmin = 0;
+                    rays[i].tmax = INFINITY;
+                }
+        }
+    TH_CHECK(voxgi_ray_scene_create(ctx, &sc, &rs) == VOXGI_OK && voxgi_ray_intersect(ctx, rs, R, rays, hits) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (i = 0; i < R; i++) { /* one at a time */
+        TH_CHECK(voxgi_ray_intersect(ctx, rs, 1, &rays[i], &one[i]) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        hit += hits[i].triangle != UINT32_MAX;
+        if (hits[i].t != one[i].t || (hits[i].triangle == UINT32_MAX) != (one[i].triangle == UINT32_MAX)) differ++;
+        if (hits[i].triangle != UINT32_MAX) {
+            uint32_t bt = UINT32_MAX;
+            double margin = 0, bf = brute_force(s.pos, s.triangles, &rays[i], &bt, &margin);
+            if (bf < 0 || fabs(hits[i].t - bf) > 1e-5 * bf || (hits[i].triangle != bt && margin > 1e-4)) wrong++;
+        }
+    }
+    printf("    %d camera rays in 4x4 tiles at a sphere of %lu triangles: %lu hit, %lu differ from the same rays one at a time, %lu from brute force\n", R,
+           (unsigned long)s.triangles, (unsigned long)hit, (unsigned long)differ, (unsigned long)wrong);
+    TH_CHECK(hit > R / 4 && hit < R && !differ && !wrong, "camera rays differ from single rays or from brute force");
+    voxgi_ray_scene_destroy(ctx, rs);
+    free(s.pos);
+    voxgi_destroy(ctx);
+}
+
 /* Bad input: NULLs, a scene without triangles and non-finite rays are refused; a zero direction
    hits nothing; a hit is at (tmin, tmax) exclusive and reports the barycentrics of its point. */
 static void test_ray_input(void)
@@ -307,6 +358,7 @@ int main(void)
     TH_RUN(test_watertight_sphere);
     TH_RUN(test_watertight_fan);
     TH_RUN(test_closest_hits_are_brute_force);
+    TH_RUN(test_camera_rays);
     TH_RUN(test_ray_input);
     return th_finish();
 }
