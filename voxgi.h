@@ -1843,10 +1843,11 @@ static void voxgi__box_area(const float lo[3], const float hi[3], double *area)
     *area = 2 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
 }
 
-static void voxgi__bvh_split(voxgi__bvh_build *b, size_t node, size_t first, size_t end, int depth)
+/* Node nd over the ordered triangles [first, end): its box, and where a binned SAH split
+   partitions them (mid), or 0 when it stays a leaf (nd->first, nd->count set). */
+static size_t voxgi__bvh_partition(voxgi__bvh_build *b, voxgi__bvh_node *nd, size_t first, size_t end, int depth)
 {
     enum { BINS = 12 };
-    voxgi__bvh_node *nd = &b->nodes[node];
     float clo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, chi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
     size_t i, n = end - first, mid;
     int a, axis = 0, best_bin = -1;
@@ -1866,7 +1867,7 @@ static void voxgi__bvh_split(voxgi__bvh_build *b, size_t node, size_t first, siz
         if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
     nd->first = (uint32_t)first;
     nd->count = (uint32_t)n;
-    if (n <= b->leaf || !(chi[axis] > clo[axis]) || depth >= VOXGI__BVH_DEPTH) return; /* a leaf */
+    if (n <= b->leaf || !(chi[axis] > clo[axis]) || depth >= VOXGI__BVH_DEPTH) return 0; /* a leaf */
     {   /* binned SAH along the widest centroid axis */
         size_t cnt[BINS];
         float blo[BINS][3], bhi[BINS][3];
@@ -1899,7 +1900,7 @@ static void voxgi__bvh_split(voxgi__bvh_build *b, size_t node, size_t first, siz
             if (cost < best) { best = cost; best_bin = k; }
         }
         voxgi__box_area(nd->lo, nd->hi, &leaf_area);
-        if (best_bin < 0 || (n <= 8 && best >= leaf_area * (double)(n - 1))) return; /* splitting does not pay */
+        if (best_bin < 0 || (n <= 8 && best >= leaf_area * (double)(n - 1))) return 0; /* splitting does not pay */
         for (i = mid = first; i < end; i++) { /* partition */
             uint32_t t = b->order[i];
             double c = 0.5 * ((double)b->cmin[3 * t + axis] + b->cmax[3 * t + axis]);
@@ -1907,13 +1908,119 @@ static void voxgi__bvh_split(voxgi__bvh_build *b, size_t node, size_t first, siz
         }
     }
     nd->count = 0;
-    {   /* the left child is the next node, the right one follows its subtree */
-        size_t left = b->count++, right;
-        voxgi__bvh_split(b, left, first, mid, depth + 1);
-        right = b->count++;
-        b->nodes[node].first = (uint32_t)right;
-        voxgi__bvh_split(b, right, mid, end, depth + 1);
+    return mid;
+}
+
+/* The subtree of `node` over [first, end): the left child is the next node, the right one
+   follows the left's subtree (b->count: the next free node). */
+static void voxgi__bvh_split(voxgi__bvh_build *b, size_t node, size_t first, size_t end, int depth)
+{
+    size_t mid = voxgi__bvh_partition(b, &b->nodes[node], first, end, depth), left, right;
+    if (!mid) return;
+    left = b->count++;
+    voxgi__bvh_split(b, left, first, mid, depth + 1);
+    right = b->count++;
+    b->nodes[node].first = (uint32_t)right;
+    voxgi__bvh_split(b, right, mid, end, depth + 1);
+}
+
+/* The same tree on the workers: the top levels split here until ranges hold at most `grain`
+   triangles (a count that depends on the scene alone), each such range's subtree built on its
+   own into nodes of its own (the ranges' parts of b->order are disjoint), then all laid out as the
+   serial build lays them out. So the tree is the serial one whatever the thread count. */
+#define VOXGI__BVH_TOP 64 /* ranges built on the workers, at most */
+typedef struct voxgi__bvh_top {
+    voxgi__bvh_node node;
+    int left, right, task;        /* task >= 0: the subtree is that task's */
+} voxgi__bvh_top;
+typedef struct voxgi__bvh_task {
+    voxgi__bvh_build b;
+    size_t first, end;
+    int depth;
+} voxgi__bvh_task;
+typedef struct voxgi__bvh_plan {
+    voxgi__bvh_build *b;
+    voxgi__bvh_top top[2 * VOXGI__BVH_TOP];
+    voxgi__bvh_task task[VOXGI__BVH_TOP];
+    int ntop, ntask;
+    size_t grain;
+} voxgi__bvh_plan;
+
+/* Top node me over [first, end): split here while the range is big and there is room for both
+   children (2 VOXGI__BVH_TOP - 1 top nodes hold at most VOXGI__BVH_TOP ranges), else a task. */
+static void voxgi__bvh_plan_node(voxgi__bvh_plan *P, int me, size_t first, size_t end, int depth)
+{
+    size_t mid;
+    P->top[me].task = -1;
+    if (end - first > P->grain && P->ntop + 2 <= 2 * VOXGI__BVH_TOP - 1) {
+        if (!(mid = voxgi__bvh_partition(P->b, &P->top[me].node, first, end, depth))) return; /* a leaf already */
+        P->top[me].left = P->ntop++;
+        P->top[me].right = P->ntop++;
+        voxgi__bvh_plan_node(P, P->top[me].left, first, mid, depth + 1);
+        voxgi__bvh_plan_node(P, P->top[me].right, mid, end, depth + 1);
+        return;
     }
+    P->top[me].task = P->ntask;
+    P->task[P->ntask].first = first;
+    P->task[P->ntask].end = end;
+    P->task[P->ntask++].depth = depth;
+}
+
+static void voxgi__bvh_task_run(void *user, size_t first, size_t end)
+{
+    voxgi__bvh_plan *P = (voxgi__bvh_plan *)user;
+    size_t i;
+    for (i = first; i < end; i++) {
+        voxgi__bvh_task *T = &P->task[i];
+        T->b.count = 1;
+        voxgi__bvh_split(&T->b, 0, T->first, T->end, T->depth);
+    }
+}
+
+/* Lays out top node t and what lies below it from node `at` on; returns the next free node. */
+static size_t voxgi__bvh_lay_out(const voxgi__bvh_plan *P, int t, voxgi__bvh_node *out, size_t at)
+{
+    const voxgi__bvh_top *tp = &P->top[t];
+    size_t i, next;
+    if (tp->task >= 0) { /* a task's nodes, its inner nodes' right children moved with them */
+        const voxgi__bvh_build *tb = &P->task[tp->task].b;
+        for (i = 0; i < tb->count; i++) {
+            out[at + i] = tb->nodes[i];
+            if (!out[at + i].count) out[at + i].first += (uint32_t)at;
+        }
+        return at + tb->count;
+    }
+    out[at] = tp->node;
+    if (tp->node.count) return at + 1;
+    next = voxgi__bvh_lay_out(P, tp->left, out, at + 1);
+    out[at].first = (uint32_t)next;
+    return voxgi__bvh_lay_out(P, tp->right, out, next);
+}
+
+/* b->nodes[0..] the tree over b->order[0, n), built on the context's workers; b->count set. */
+static voxgi_result voxgi__bvh_build_tree(voxgi_context *ctx, voxgi__bvh_build *b, size_t n)
+{
+    voxgi__bvh_plan *P = (voxgi__bvh_plan *)voxgi__alloc_array(ctx, 1, sizeof *P, 1);
+    voxgi_result r = VOXGI_OK;
+    int i;
+    if (!P) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the BVH build");
+    P->b = b;
+    P->grain = VOXGI__MAX((size_t)4096, n / VOXGI__BVH_TOP);
+    P->ntop = 1;
+    voxgi__bvh_plan_node(P, 0, 0, n, 0);
+    for (i = 0; i < P->ntask && r == VOXGI_OK; i++) {
+        voxgi__bvh_task *T = &P->task[i];
+        T->b = *b;
+        if (!(T->b.nodes = (voxgi__bvh_node *)voxgi__alloc_array(ctx, 2 * (T->end - T->first) + 1, sizeof *T->b.nodes, 1)))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the BVH of %lu triangles", (unsigned long)n);
+    }
+    if (r == VOXGI_OK) {
+        voxgi__parallel(ctx, (size_t)P->ntask, 1, voxgi__bvh_task_run, P);
+        b->count = voxgi__bvh_lay_out(P, 0, b->nodes, 0);
+    }
+    for (i = 0; i < P->ntask; i++) voxgi__free(ctx, P->task[i].b.nodes);
+    voxgi__free(ctx, P);
+    return r;
 }
 
 static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *scene, voxgi__tracer *tr)
@@ -1956,8 +2063,11 @@ static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *s
     b.nodes = tr->nodes;
     b.count = 1;
     b.leaf = 2;
-    if (nt) voxgi__bvh_split(&b, 0, 0, nt, 0);
-    else { int a; for (a = 0; a < 3; a++) { tr->nodes[0].lo[a] = 1; tr->nodes[0].hi[a] = -1; } } /* an empty box: nothing is hit */
+    if ((r = voxgi__bvh_build_tree(ctx, &b, nt)) != VOXGI_OK) { /* a scene has triangles (voxgi__flatten) */
+        voxgi__free(ctx, boxes);
+        voxgi__tracer_free(ctx, tr);
+        return r;
+    }
     tr->node_count = b.count;
     for (t = 0; t < nt; t++) { /* vertices and normals in BVH order */
         uint32_t src = tr->tri[t];
@@ -2181,7 +2291,16 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
     b.nodes = bin;
     b.count = 1;
     b.leaf = 4;
-    voxgi__bvh_split(&b, 0, 0, nt, 0); /* a scene has triangles (voxgi__flatten) */
+    r = voxgi__bvh_build_tree(ctx, &b, nt); /* a scene has triangles (voxgi__flatten) */
+    if (r != VOXGI_OK) {
+        voxgi__free(ctx, order);
+        voxgi__free(ctx, local);
+        voxgi__free(ctx, boxes);
+        voxgi__free(ctx, bin);
+        voxgi__flat_free(ctx, &flat);
+        voxgi_ray_scene_destroy(ctx, rs);
+        return r;
+    }
     if (bin[0].count) { /* one leaf: the root's one lane */
         for (a = 0; a < 3; a++)
             for (k = 0; k < 4; k++) { rs->nodes[0].lo[a][k] = k ? INFINITY : bin[0].lo[a]; rs->nodes[0].hi[a][k] = k ? -INFINITY : bin[0].hi[a]; }

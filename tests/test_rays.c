@@ -315,6 +315,40 @@ static void test_camera_rays(void)
     voxgi_destroy(ctx);
 }
 
+/* A scene big enough that its BVH's subtrees are built on the workers (10800 triangles): the
+   same tree, so the same answers, with 1, 2 and 3 threads. */
+static void test_build_on_workers(void)
+{
+    enum { R = 20000 };
+    cube_sphere s;
+    double c[3] = {0.5, 0.25, -0.125};
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    static voxgi_ray rays[R];
+    static voxgi_ray_hit hits[3][R];
+    fx_rng g = fx_rng_seeded(5);
+    size_t n, hit = 0, i;
+    int th;
+    cube_sphere_make(&s, 30, 1, c);
+    scene_of_soup(&sc, &mesh, s.pos, s.triangles);
+    n = inside_rays(&s, c, 1, &g, rays, R);
+    for (i = 0; i < n; i += 3) rays[i].origin[0] += 3; /* some from outside, to miss or hit the far side */
+    for (th = 0; th < 3; th++) {
+        voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, th + 1);
+        voxgi_ray_scene *rs = NULL;
+        TH_CHECK(voxgi_ray_scene_create(ctx, &sc, &rs) == VOXGI_OK && voxgi_ray_intersect(ctx, rs, n, rays, hits[th]) == VOXGI_OK, "%s",
+                 voxgi_last_error(ctx));
+        voxgi_ray_scene_destroy(ctx, rs);
+        voxgi_destroy(ctx);
+    }
+    for (i = 0; i < n; i++) hit += hits[0][i].triangle != UINT32_MAX;
+    printf("    %lu triangles, %lu rays (%lu hit): 1, 2 and 3 threads %s\n", (unsigned long)s.triangles, (unsigned long)n, (unsigned long)hit,
+           !memcmp(hits[0], hits[1], n * sizeof hits[0][0]) && !memcmp(hits[0], hits[2], n * sizeof hits[0][0]) ? "agree" : "differ");
+    TH_CHECK(hit > n / 2 && hit < n, "%lu of %lu hit", (unsigned long)hit, (unsigned long)n);
+    TH_CHECK(!memcmp(hits[0], hits[1], n * sizeof hits[0][0]) && !memcmp(hits[0], hits[2], n * sizeof hits[0][0]), "thread counts answer differently");
+    free(s.pos);
+}
+
 /* Bad input: NULLs, a scene without triangles and non-finite rays are refused; a zero direction
    hits nothing; a hit is at (tmin, tmax) exclusive and reports the barycentrics of its point. */
 static void test_ray_input(void)
@@ -359,6 +393,7 @@ int main(void)
     TH_RUN(test_watertight_fan);
     TH_RUN(test_closest_hits_are_brute_force);
     TH_RUN(test_camera_rays);
+    TH_RUN(test_build_on_workers);
     TH_RUN(test_ray_input);
     return th_finish();
 }
