@@ -2261,13 +2261,8 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
     }
     order = (uint32_t *)voxgi__alloc_array(ctx, nt, 4, 0);
     if (!rs || !local || !boxes || !bin || !order || !rs->packs || !rs->node_block) {
-        voxgi__free(ctx, order);
-        voxgi__free(ctx, local);
-        voxgi__free(ctx, boxes);
-        voxgi__free(ctx, bin);
-        voxgi__flat_free(ctx, &flat);
-        voxgi_ray_scene_destroy(ctx, rs);
-        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the BVH of %lu triangles", (unsigned long)nt);
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the BVH of %lu triangles", (unsigned long)nt);
+        goto done;
     }
     for (i = 0; i < flat.vertex_count; i++)
         for (a = 0; a < 3; a++) { lo[a] = VOXGI__MIN(lo[a], (double)flat.pos[3 * i + a]); hi[a] = VOXGI__MAX(hi[a], (double)flat.pos[3 * i + a]); }
@@ -2291,16 +2286,7 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
     b.nodes = bin;
     b.count = 1;
     b.leaf = 4;
-    r = voxgi__bvh_build_tree(ctx, &b, nt); /* a scene has triangles (voxgi__flatten) */
-    if (r != VOXGI_OK) {
-        voxgi__free(ctx, order);
-        voxgi__free(ctx, local);
-        voxgi__free(ctx, boxes);
-        voxgi__free(ctx, bin);
-        voxgi__flat_free(ctx, &flat);
-        voxgi_ray_scene_destroy(ctx, rs);
-        return r;
-    }
+    if ((r = voxgi__bvh_build_tree(ctx, &b, nt)) != VOXGI_OK) goto done; /* a scene has triangles (voxgi__flatten) */
     if (bin[0].count) { /* one leaf: the root's one lane */
         for (a = 0; a < 3; a++)
             for (k = 0; k < 4; k++) { rs->nodes[0].lo[a][k] = k ? INFINITY : bin[0].lo[a]; rs->nodes[0].hi[a][k] = k ? -INFINITY : bin[0].hi[a]; }
@@ -2324,13 +2310,16 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
             }
             rs->pack_count += nd->count[k];
         }
+    *out = rs;
+    rs = NULL;
+done:
     voxgi__free(ctx, order);
     voxgi__free(ctx, local);
     voxgi__free(ctx, boxes);
     voxgi__free(ctx, bin);
     voxgi__flat_free(ctx, &flat);
-    *out = rs;
-    return VOXGI_OK;
+    voxgi_ray_scene_destroy(ctx, rs);
+    return r;
 }
 
 VOXGI_API void voxgi_ray_scene_destroy(voxgi_context *ctx, voxgi_ray_scene *rs)

@@ -50,6 +50,14 @@ template <class F> double parallel_ms(size_t n, int threads, F f)
     return now_ms() - t0;
 }
 
+// One ray from the set's 8 floats (origin, tnear, direction, tfar).
+void fill1(RTCRay &r, const float *q)
+{
+    r.org_x = q[0]; r.org_y = q[1]; r.org_z = q[2]; r.tnear = q[3];
+    r.dir_x = q[4]; r.dir_y = q[5]; r.dir_z = q[6]; r.tfar = q[7];
+    r.time = 0; r.mask = 0xFFFFFFFFu; r.id = 0; r.flags = 0;
+}
+
 template <int N, class RayN> void fill(RayN &r, const float *rays, size_t first, size_t end, int *valid)
 {
     for (int k = 0; k < N; k++) {
@@ -135,7 +143,7 @@ int main(int argc, char **argv)
     rtcCommitScene(scene);
     double build_ms = now_ms() - t0;
 
-    struct Kernel { const char *name; double best_ms; size_t hits; };
+    struct Kernel { double best_ms; size_t hits; };
     auto time_it = [&](size_t n, auto body) {
         double best = 1e30;
         Counts counts;
@@ -143,7 +151,7 @@ int main(int argc, char **argv)
             counts.hits = 0;
             best = std::min(best, parallel_ms(n, threads, [&](size_t first, size_t end) { body(first, end, counts); }));
         }
-        return Kernel{"", best, counts.hits.load()};
+        return Kernel{best, counts.hits.load()};
     };
     const float *cr = coherent.data(), *ir = incoherent.data();
     Kernel ki[4] = {
@@ -151,10 +159,7 @@ int main(int argc, char **argv)
             size_t hits = 0;
             for (size_t i = f; i < e; i++) {
                 RTCRayHit rh;
-                const float *q = cr + 8 * i;
-                rh.ray.org_x = q[0]; rh.ray.org_y = q[1]; rh.ray.org_z = q[2]; rh.ray.tnear = q[3];
-                rh.ray.dir_x = q[4]; rh.ray.dir_y = q[5]; rh.ray.dir_z = q[6]; rh.ray.tfar = q[7];
-                rh.ray.time = 0; rh.ray.mask = 0xFFFFFFFFu; rh.ray.id = 0; rh.ray.flags = 0;
+                fill1(rh.ray, cr + 8 * i);
                 rh.hit.geomID = RTC_INVALID_GEOMETRY_ID; rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
                 RTCIntersectContext ctx;
                 rtcInitIntersectContext(&ctx);
@@ -171,10 +176,7 @@ int main(int argc, char **argv)
             size_t hits = 0;
             for (size_t i = f; i < e; i++) {
                 RTCRay ray;
-                const float *q = ir + 8 * i;
-                ray.org_x = q[0]; ray.org_y = q[1]; ray.org_z = q[2]; ray.tnear = q[3];
-                ray.dir_x = q[4]; ray.dir_y = q[5]; ray.dir_z = q[6]; ray.tfar = q[7];
-                ray.time = 0; ray.mask = 0xFFFFFFFFu; ray.id = 0; ray.flags = 0;
+                fill1(ray, ir + 8 * i);
                 RTCIntersectContext ctx;
                 rtcInitIntersectContext(&ctx);
                 rtcOccluded1(scene, &ctx, &ray);
