@@ -1343,6 +1343,32 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
     voxgi_destroy(ctx[1]);
 }
 
+/* The scene's voxels lit on ctx (res voxels, `padding` empty ones around; the CPU's shadow rays on
+   either backend, so that both hold the same radiance), their octree as sd asks, and its cones
+   (cd) at n points (occ may be NULL) and, with single, along those n cones. 1 on success. */
+static int octree_cones(voxgi_context *ctx, const voxgi_scene *sc, int res, int padding, int one_sided, voxgi_svo_desc sd, const voxgi_cone_desc *cd,
+                        size_t n, const float *pos, const float *nrm, float *irr, float *occ, const voxgi_cone *single, float *each)
+{
+    voxgi_inject_desc id;
+    voxgi_voxels *vx;
+    voxgi_volume *vol;
+    voxgi_svo *svo = NULL;
+    int ok;
+    memset(&id, 0, sizeof id);
+    id.samples = 4;
+    id.shadow_rays = 1;
+    id.one_sided = one_sided;
+    if (!lit_voxels_padded(ctx, sc, res, padding, &id, &vx, &vol)) return 0;
+    sd.radiance = vol;
+    ok = voxgi_svo_create(ctx, vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), cd, n, pos, nrm, irr, occ) == VOXGI_OK &&
+         (!single || voxgi_cone_trace_each(ctx, OCTREE_SOURCE(svo), cd, n, single, each) == VOXGI_OK);
+    if (!ok) printf("    %s\n", voxgi_last_error(ctx));
+    voxgi_svo_destroy(ctx, svo);
+    voxgi_volume_destroy(ctx, vol);
+    voxgi_voxels_destroy(ctx, vx);
+    return ok;
+}
+
 /* Cone tracing over an octree of the radiance on GL (the march over the octree's buffers,
    shaders/cone_svo.glsl) against the CPU's over the CPU's octree of the same radiance: float32
    and float16, with and without bricks, diffuse gathers and single cones, one-sided and
@@ -1366,29 +1392,16 @@ static void test_gl_octree_cones_equal_cpu(void)
     cornell_cone_points(7, N, pos, nrm, single);
     for (k = 0; k < 7; k++) { /* float32, float32 with bricks, float16; two-sided, then one-sided; then 32 cones at 64^3 */
         for (b = 0; b < 2; b++) {
-            voxgi_inject_desc id;
             voxgi_cone_desc cd;
             voxgi_svo_desc sd;
-            voxgi_voxels *vx;
-            voxgi_volume *vol;
-            voxgi_svo *svo = NULL;
-            memset(&id, 0, sizeof id);
             memset(&cd, 0, sizeof cd);
             memset(&sd, 0, sizeof sd);
-            id.samples = 4;
-            id.shadow_rays = 1; /* the same radiance on both */
-            id.one_sided = k >= 3 && k < 6;
             sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
             sd.bricks = k % 3 == 1;
             sd.format = k % 3 == 2 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
             cd.cones = k == 6 ? 32 : 0; /* a gather llvmpipe's loop limit used to cut short */
-            TH_CHECK(lit_voxels(ctx[b], &bs.scene, k == 6 ? 64 : 24, &id, &vx, &vol), "lit voxels");
-            sd.radiance = vol;
-            TH_CHECK(voxgi_svo_create(ctx[b], vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx[b], OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
-                     voxgi_cone_trace_each(ctx[b], OCTREE_SOURCE(svo), &cd, N, single, each[b]) == VOXGI_OK, "%s octree: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
-            voxgi_svo_destroy(ctx[b], svo);
-            voxgi_volume_destroy(ctx[b], vol);
-            voxgi_voxels_destroy(ctx[b], vx);
+            TH_CHECK(octree_cones(ctx[b], &bs.scene, k == 6 ? 64 : 24, 1, k >= 3 && k < 6, sd, &cd, N, pos, nrm, irr[b], occ[b], single, each[b]),
+                     "%s octree", b ? "GL" : "CPU");
         }
         if (!k) for (i = 0; i < 3 * N; i++) mean += irr[0][i] / (3.0 * N);
         for (i = 0; i < 3 * N; i++) worst_irr = fmax(worst_irr, fabs(irr[0][i] - irr[1][i]));
@@ -1433,25 +1446,12 @@ static void test_gl_octree_cones_equal_cpu(void)
         TH_CHECK(voxgi_builtin_scene_create(ctx[0], "leak-room", &room) == VOXGI_OK, "leak-room");
         leak_room_points(rpos, rnrm);
         for (b = 0; b < 2; b++) {
-            voxgi_inject_desc id;
             voxgi_cone_desc cd;
             voxgi_svo_desc sd;
-            voxgi_voxels *vx;
-            voxgi_volume *vol;
-            voxgi_svo *svo = NULL;
-            memset(&id, 0, sizeof id);
             memset(&cd, 0, sizeof cd);
             memset(&sd, 0, sizeof sd);
-            id.samples = 4;
-            id.shadow_rays = 1;
-            TH_CHECK(lit_voxels_padded(ctx[b], &room.scene, 32, 4, &id, &vx, &vol), "lit voxels");
-            sd.radiance = vol;
-            TH_CHECK(voxgi_svo_create(ctx[b], vx, &sd, &svo) == VOXGI_OK &&
-                         voxgi_cone_trace(ctx[b], OCTREE_SOURCE(svo), &cd, LEAK_ROOM_POINTS, rpos, rnrm, rirr[b], NULL) == VOXGI_OK,
-                     "%s octree: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
-            voxgi_svo_destroy(ctx[b], svo);
-            voxgi_volume_destroy(ctx[b], vol);
-            voxgi_voxels_destroy(ctx[b], vx);
+            TH_CHECK(octree_cones(ctx[b], &room.scene, 32, 4, 0, sd, &cd, LEAK_ROOM_POINTS, rpos, rnrm, rirr[b], NULL, NULL, NULL), "%s octree",
+                     b ? "GL" : "CPU");
         }
         for (i = 0; i < 3 * LEAK_ROOM_POINTS; i++) mean_room += rirr[0][i] / (3.0 * LEAK_ROOM_POINTS);
         for (i = 0; i < 3 * LEAK_ROOM_POINTS; i++) worst = fmax(worst, fabs(rirr[0][i] - rirr[1][i]));
