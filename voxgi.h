@@ -827,8 +827,8 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
 
 /* ===================================================================== 11. reference renderer */
 
-/* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, over a
-   BVH with watertight ray-triangle tests in double. Surfaces are Lambertian (albedo) and emit
+/* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, through
+   the ray core (voxgi_ray_scene: watertight, hit points refined in double). Surfaces are Lambertian (albedo) and emit
    their material's emission from their front faces; the scene's lights add point, spot,
    directional and rectangular light; there is no environment (misses are black) and
    transparency is ignored (every surface is opaque). Paths gather direct light at every vertex
@@ -1791,41 +1791,16 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
     return voxgi_validate_grid(ctx, out);
 }
 
-/* ----- 3.3 BVH and ray casting */
+/* ----- 3.3 the BVH build
 
-/* reference renderer
-   A BVH (binned surface area heuristic, float boxes that hold the float vertices exactly) over
-   the triangles in double; the ray-triangle test is Woop, Benthin and Wald's watertight one (2013)
-   in double, so rays never slip between triangles that share an edge. A ray leaving a surface
-   skips the triangle it left and starts a hair off it. */
+   A binary BVH by the surface area heuristic (binned), over float boxes that hold the float
+   vertices exactly; the ray core (3.4) collapses it to four children a node. */
 #define VOXGI__BVH_DEPTH 200 /* deeper ranges stay leaves, so traversal stacks are bounded */
 typedef struct voxgi__bvh_node {
     float lo[3], hi[3];
     uint32_t first, count;        /* leaf: triangles [first, first + count) of the order; inner
                                      (count 0): left child next in the array, right child at first */
 } voxgi__bvh_node;
-
-typedef struct voxgi__tracer {
-    voxgi__flat flat;
-    double *v;                    /* 9 per triangle, in BVH order */
-    double *n;                    /* unit geometric normal (front: counter-clockwise) per triangle */
-    uint32_t *tri;                /* BVH order -> flat triangle */
-    voxgi__bvh_node *nodes;
-    size_t node_count;
-    double scale;                 /* largest coordinate magnitude: sets the offset off surfaces */
-} voxgi__tracer;
-
-typedef struct voxgi__hit { double t, p[3]; uint32_t prim; int front; } voxgi__hit;
-
-static void voxgi__tracer_free(voxgi_context *ctx, voxgi__tracer *tr)
-{
-    voxgi__flat_free(ctx, &tr->flat);
-    voxgi__free(ctx, tr->v);
-    voxgi__free(ctx, tr->n);
-    voxgi__free(ctx, tr->tri);
-    voxgi__free(ctx, tr->nodes);
-    memset(tr, 0, sizeof *tr);
-}
 
 typedef struct voxgi__bvh_build {
     const float *cmin, *cmax;     /* per flat triangle: its box */
@@ -2023,145 +1998,6 @@ static voxgi_result voxgi__bvh_build_tree(voxgi_context *ctx, voxgi__bvh_build *
     return r;
 }
 
-static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *scene, voxgi__tracer *tr)
-{
-    voxgi__bvh_build b;
-    float *boxes = NULL;
-    size_t t, nt;
-    voxgi_result r;
-    memset(tr, 0, sizeof *tr);
-    if ((r = voxgi__flatten(ctx, scene, 0, 1, &tr->flat)) != VOXGI_OK) return r;
-    nt = tr->flat.triangle_count;
-    if (nt > (size_t)UINT32_MAX / 2) { voxgi__tracer_free(ctx, tr); return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)nt); }
-    tr->v = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, 9 * sizeof(double), 0);
-    tr->n = (double *)voxgi__alloc_array(ctx, nt ? nt : 1, 3 * sizeof(double), 0);
-    tr->tri = (uint32_t *)voxgi__alloc_array(ctx, nt ? nt : 1, 4, 0);
-    tr->nodes = (voxgi__bvh_node *)voxgi__alloc_array(ctx, 2 * nt + 1, sizeof *tr->nodes, 1);
-    boxes = (float *)voxgi__alloc_array(ctx, nt ? nt : 1, 6 * sizeof(float), 0);
-    if (!tr->v || !tr->n || !tr->tri || !tr->nodes || !boxes) {
-        voxgi__free(ctx, boxes);
-        voxgi__tracer_free(ctx, tr);
-        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the BVH of %lu triangles", (unsigned long)nt);
-    }
-    for (t = 0; t < nt; t++) {
-        int a, k;
-        tr->tri[t] = (uint32_t)t;
-        for (a = 0; a < 3; a++) {
-            boxes[3 * t + a] = FLT_MAX;
-            boxes[3 * nt + 3 * t + a] = -FLT_MAX;
-            for (k = 0; k < 3; k++) {
-                float c = tr->flat.pos[3 * (size_t)tr->flat.tri[3 * t + (size_t)k] + (size_t)a];
-                boxes[3 * t + a] = VOXGI__MIN(boxes[3 * t + a], c);
-                boxes[3 * nt + 3 * t + a] = VOXGI__MAX(boxes[3 * nt + 3 * t + a], c);
-                tr->scale = VOXGI__MAX(tr->scale, fabs((double)c));
-            }
-        }
-    }
-    b.cmin = boxes;
-    b.cmax = boxes + 3 * nt;
-    b.order = tr->tri;
-    b.nodes = tr->nodes;
-    b.count = 1;
-    b.leaf = 2;
-    if ((r = voxgi__bvh_build_tree(ctx, &b, nt)) != VOXGI_OK) { /* a scene has triangles (voxgi__flatten) */
-        voxgi__free(ctx, boxes);
-        voxgi__tracer_free(ctx, tr);
-        return r;
-    }
-    tr->node_count = b.count;
-    for (t = 0; t < nt; t++) { /* vertices and normals in BVH order */
-        uint32_t src = tr->tri[t];
-        int k, a;
-        double e1[3], e2[3], len;
-        for (k = 0; k < 3; k++)
-            for (a = 0; a < 3; a++) tr->v[9 * t + 3 * (size_t)k + (size_t)a] = tr->flat.pos[3 * (size_t)tr->flat.tri[3 * (size_t)src + (size_t)k] + (size_t)a];
-        for (a = 0; a < 3; a++) { e1[a] = tr->v[9 * t + 3 + (size_t)a] - tr->v[9 * t + (size_t)a]; e2[a] = tr->v[9 * t + 6 + (size_t)a] - tr->v[9 * t + (size_t)a]; }
-        for (a = 0; a < 3; a++) tr->n[3 * t + (size_t)a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
-        len = sqrt(tr->n[3 * t] * tr->n[3 * t] + tr->n[3 * t + 1] * tr->n[3 * t + 1] + tr->n[3 * t + 2] * tr->n[3 * t + 2]);
-        for (a = 0; a < 3; a++) tr->n[3 * t + (size_t)a] = len > 0 ? tr->n[3 * t + (size_t)a] / len : 0;
-    }
-    voxgi__free(ctx, boxes);
-    return VOXGI_OK;
-}
-
-/* The watertight test of ray (o, d) against triangle t for a hit in (0, tmax): its t, or -1. */
-static double voxgi__ray_triangle(const voxgi__tracer *tr, size_t t, const double o[3], const double d[3], int kx, int ky, int kz,
-                                  const double s[3], double tmax)
-{
-    const double *v = tr->v + 9 * t;
-    double ax = v[kx] - o[kx], ay = v[ky] - o[ky], az = v[kz] - o[kz];
-    double bx = v[3 + kx] - o[kx], by = v[3 + ky] - o[ky], bz = v[3 + kz] - o[kz];
-    double cx = v[6 + kx] - o[kx], cy = v[6 + ky] - o[ky], cz = v[6 + kz] - o[kz];
-    double u, w, x, det, tt;
-    (void)d;
-    ax -= s[0] * az; ay -= s[1] * az;
-    bx -= s[0] * bz; by -= s[1] * bz;
-    cx -= s[0] * cz; cy -= s[1] * cz;
-    u = cx * by - cy * bx;
-    w = ax * cy - ay * cx;
-    x = bx * ay - by * ax;
-    if ((u < 0 || w < 0 || x < 0) && (u > 0 || w > 0 || x > 0)) return -1;
-    det = u + w + x;
-    if (det == 0) return -1;
-    tt = (u * s[2] * az + w * s[2] * bz + x * s[2] * cz) / det;
-    return tt > 0 && tt < tmax ? tt : -1;
-}
-
-/* The nearest hit of ray (o, d) before tmax, skipping triangle `skip` (BVH order; UINT32_MAX:
-   none); any = 1 stops at the first hit (shadow rays). */
-static int voxgi__trace(const voxgi__tracer *tr, const double o[3], const double d[3], double tmax, uint32_t skip, int any, voxgi__hit *hit)
-{
-    uint32_t stack[VOXGI__BVH_DEPTH + 8];
-    int sp = 0, kz = 0, kx, ky, a, found = 0;
-    double inv[3], s[3];
-    size_t node = 0;
-    for (a = 1; a < 3; a++)
-        if (fabs(d[a]) > fabs(d[kz])) kz = a;
-    kx = (kz + 1) % 3;
-    ky = (kx + 1) % 3;
-    if (d[kz] < 0) { int tmp = kx; kx = ky; ky = tmp; }
-    s[0] = d[kx] / d[kz]; s[1] = d[ky] / d[kz]; s[2] = 1.0 / d[kz];
-    for (a = 0; a < 3; a++) inv[a] = 1.0 / d[a];
-    for (;;) {
-        const voxgi__bvh_node *nd = &tr->nodes[node];
-        double t0 = 0, t1 = tmax;
-        for (a = 0; a < 3 && t0 <= t1; a++) { /* slabs; the box is widened by a relative hair against rounding */
-            double lo = (nd->lo[a] - o[a]) * inv[a], hi = (nd->hi[a] - o[a]) * inv[a];
-            if (lo > hi) { double tmp = lo; lo = hi; hi = tmp; }
-            if (isnan(lo)) lo = -DBL_MAX; /* a zero direction inside the slab's plane */
-            if (isnan(hi)) hi = DBL_MAX;
-            t0 = VOXGI__MAX(t0, lo);
-            t1 = VOXGI__MIN(t1, hi * (1 + 4 * DBL_EPSILON));
-        }
-        if (t0 <= t1) {
-            if (nd->count) {
-                uint32_t i;
-                for (i = nd->first; i < nd->first + nd->count; i++) {
-                    double t;
-                    if (i == skip || (t = voxgi__ray_triangle(tr, i, o, d, kx, ky, kz, s, tmax)) < 0) continue;
-                    tmax = t;
-                    found = 1;
-                    hit->t = t;
-                    hit->prim = i;
-                    if (any) return 1;
-                }
-            } else {
-                stack[sp++] = nd->first;
-                node++;
-                continue;
-            }
-        }
-        if (!sp) break;
-        node = stack[--sp];
-    }
-    if (found) {
-        const double *n = tr->n + 3 * (size_t)hit->prim;
-        for (a = 0; a < 3; a++) hit->p[a] = o[a] + hit->t * d[a];
-        hit->front = n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0;
-    }
-    return found;
-}
-
 /* ----- 3.4 the ray core: a 4-wide BVH in float (voxgi_ray_scene)
 
    The binary SAH build above, collapsed to four children per node (a node opens its largest inner
@@ -2192,6 +2028,7 @@ struct voxgi_ray_scene {
     voxgi__tri4 *packs;
     size_t node_count, pack_count, triangles;
     double centre[3];
+    double reach;                 /* the largest coordinate relative to the centre: sets the float rounding */
 };
 
 /* Node `me` from binary node `node` (inner) and the subtrees below; returns the next free node. */
@@ -2231,9 +2068,17 @@ static size_t voxgi__collapse(voxgi__node4 *out, size_t me, size_t next, const v
     return next;
 }
 
-VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_scene *scene, voxgi_ray_scene **out)
+static void voxgi__ray_scene_free(voxgi_context *ctx, voxgi_ray_scene *rs)
 {
-    voxgi__flat flat;
+    if (!rs) return;
+    voxgi__free(ctx, rs->node_block);
+    voxgi__free(ctx, rs->packs);
+    voxgi__free(ctx, rs);
+}
+
+/* The ray scene of a flattened scene (its triangles in its order). */
+static voxgi_result voxgi__ray_scene_build(voxgi_context *ctx, const voxgi__flat *flat, voxgi_ray_scene **out)
+{
     voxgi__bvh_build b;
     voxgi__bvh_node *bin = NULL;
     voxgi_ray_scene *rs;
@@ -2242,15 +2087,12 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
     double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
     size_t t, nt, i;
     int a, k;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!scene || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene or out is NULL");
+    voxgi_result r = VOXGI_OK;
     *out = NULL;
-    if ((r = voxgi__flatten(ctx, scene, 0, 0, &flat)) != VOXGI_OK) return r;
-    nt = flat.triangle_count;
-    if (nt > (size_t)1 << 30) { voxgi__flat_free(ctx, &flat); return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)nt); }
+    nt = flat->triangle_count;
+    if (nt > (size_t)1 << 30) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)nt);
     rs = (voxgi_ray_scene *)voxgi__alloc_array(ctx, 1, sizeof *rs, 1);
-    local = (float *)voxgi__alloc_array(ctx, flat.vertex_count, 3 * sizeof(float), 0);
+    local = (float *)voxgi__alloc_array(ctx, flat->vertex_count, 3 * sizeof(float), 0);
     boxes = (float *)voxgi__alloc_array(ctx, nt, 6 * sizeof(float), 0);
     bin = (voxgi__bvh_node *)voxgi__alloc_array(ctx, 2 * nt + 1, sizeof *bin, 1);
     if (rs) {
@@ -2264,17 +2106,20 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the BVH of %lu triangles", (unsigned long)nt);
         goto done;
     }
-    for (i = 0; i < flat.vertex_count; i++)
-        for (a = 0; a < 3; a++) { lo[a] = VOXGI__MIN(lo[a], (double)flat.pos[3 * i + a]); hi[a] = VOXGI__MAX(hi[a], (double)flat.pos[3 * i + a]); }
+    for (i = 0; i < flat->vertex_count; i++)
+        for (a = 0; a < 3; a++) { lo[a] = VOXGI__MIN(lo[a], (double)flat->pos[3 * i + a]); hi[a] = VOXGI__MAX(hi[a], (double)flat->pos[3 * i + a]); }
     for (a = 0; a < 3; a++) rs->centre[a] = 0.5 * (lo[a] + hi[a]);
-    for (i = 0; i < 3 * flat.vertex_count; i++) local[i] = (float)((double)flat.pos[i] - rs->centre[i % 3]);
+    for (i = 0; i < 3 * flat->vertex_count; i++) {
+        local[i] = (float)((double)flat->pos[i] - rs->centre[i % 3]);
+        rs->reach = VOXGI__MAX(rs->reach, fabs((double)local[i]));
+    }
     for (t = 0; t < nt; t++) { /* boxes of the local floats */
         order[t] = (uint32_t)t;
         for (a = 0; a < 3; a++) {
             boxes[3 * t + a] = INFINITY;
             boxes[3 * nt + 3 * t + a] = -INFINITY;
             for (k = 0; k < 3; k++) {
-                float c = local[3 * (size_t)flat.tri[3 * t + (size_t)k] + (size_t)a];
+                float c = local[3 * (size_t)flat->tri[3 * t + (size_t)k] + (size_t)a];
                 boxes[3 * t + a] = VOXGI__MIN(boxes[3 * t + a], c);
                 boxes[3 * nt + 3 * t + a] = VOXGI__MAX(boxes[3 * nt + 3 * t + a], c);
             }
@@ -2306,7 +2151,7 @@ VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_sc
                 uint32_t src = order[first + VOXGI__MIN(j, n - 1)]; /* a lane without a triangle: the last one's first vertex */
                 int r;
                 pk->tri[j % 4] = j < n ? src : UINT32_MAX;
-                for (r = 0; r < 9; r++) pk->v[r][j % 4] = local[3 * (size_t)flat.tri[3 * (size_t)src + (size_t)(j < n ? r / 3 : 0)] + (size_t)(r % 3)];
+                for (r = 0; r < 9; r++) pk->v[r][j % 4] = local[3 * (size_t)flat->tri[3 * (size_t)src + (size_t)(j < n ? r / 3 : 0)] + (size_t)(r % 3)];
             }
             rs->pack_count += nd->count[k];
         }
@@ -2317,17 +2162,26 @@ done:
     voxgi__free(ctx, local);
     voxgi__free(ctx, boxes);
     voxgi__free(ctx, bin);
+    voxgi__ray_scene_free(ctx, rs);
+    return r;
+}
+
+VOXGI_API voxgi_result voxgi_ray_scene_create(voxgi_context *ctx, const voxgi_scene *scene, voxgi_ray_scene **out)
+{
+    voxgi__flat flat;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene or out is NULL");
+    *out = NULL;
+    if ((r = voxgi__flatten(ctx, scene, 0, 0, &flat)) != VOXGI_OK) return r;
+    r = voxgi__ray_scene_build(ctx, &flat, out);
     voxgi__flat_free(ctx, &flat);
-    voxgi_ray_scene_destroy(ctx, rs);
     return r;
 }
 
 VOXGI_API void voxgi_ray_scene_destroy(voxgi_context *ctx, voxgi_ray_scene *rs)
 {
-    if (!ctx || !rs) return;
-    voxgi__free(ctx, rs->node_block);
-    voxgi__free(ctx, rs->packs);
-    voxgi__free(ctx, rs);
+    if (ctx) voxgi__ray_scene_free(ctx, rs);
 }
 
 /* A ray in the scene's frame, ready for the boxes and the triangles. */
@@ -2337,15 +2191,17 @@ typedef struct voxgi__ray4 {
     size_t near_at[3], far_at[3]; /* and so their byte offsets in a node */
     int kx, ky, kz;               /* the shear: kz the largest component */
     float sx, sy, sz;
+    uint32_t skip;                /* the triangle the ray leaves, never hit (UINT32_MAX: none) */
 } voxgi__ray4;
 
-static int voxgi__ray4_setup(const voxgi_ray_scene *rs, const voxgi_ray *ray, voxgi__ray4 *r)
+/* The ray from o along direction, world units; 0 for a zero direction. */
+static int voxgi__ray4_setup(const voxgi_ray_scene *rs, const double o[3], const double direction[3], float tmin, uint32_t skip, voxgi__ray4 *r)
 {
     int a, kz = 0;
     float d[3];
     for (a = 0; a < 3; a++) {
-        d[a] = ray->direction[a];
-        r->o[a] = (float)((double)ray->origin[a] - rs->centre[a]);
+        d[a] = (float)direction[a];
+        r->o[a] = (float)(o[a] - rs->centre[a]);
         r->neg[a] = d[a] < 0;
         /* a zero component: a tiny one of its sign, so that no slab sees 0 x inf */
         r->inv[a] = 1.0f / (fabsf(d[a]) > 1e-30f ? d[a] : (r->neg[a] ? -1e-30f : 1e-30f));
@@ -2362,7 +2218,8 @@ static int voxgi__ray4_setup(const voxgi_ray_scene *rs, const voxgi_ray *ray, vo
     r->sx = d[r->kx] / d[kz];
     r->sy = d[r->ky] / d[kz];
     r->sz = 1.0f / d[kz];
-    r->tmin = ray->tmin;
+    r->tmin = tmin;
+    r->skip = skip;
     return 1;
 }
 
@@ -2479,6 +2336,7 @@ static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float t
 #endif
     for (l = 0; l < 4; l++) {
         float t, u, v;
+        if (pk->tri[l] == r->skip) continue;
         if (near_zero >> l & 1) {
             if (!voxgi__tri_lane_exact(pk, l, r, tmax, &t, &u, &v)) continue;
         } else {
@@ -2496,29 +2354,26 @@ static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float t
     return best;
 }
 
-/* One ray's closest hit (any = 0) or any hit (any = 1); 1 when there is one. */
-static int voxgi__ray4_cast(const voxgi_ray_scene *rs, const voxgi_ray *ray, int any, voxgi_ray_hit *hit)
+/* Ray r's closest hit before tmax (any = 0) or any hit (any = 1); 1 when there is one. */
+static int voxgi__ray4_cast(const voxgi_ray_scene *rs, const voxgi__ray4 *r, float tmax, int any, voxgi_ray_hit *hit)
 {
     struct { uint32_t node; float t; } stack[3 * VOXGI__BVH_DEPTH + 8];
-    voxgi__ray4 r;
-    float tmax = ray->tmax;
     uint32_t node = 0;
     int sp = 0, found = 0;
     hit->triangle = UINT32_MAX;
     hit->t = hit->u = hit->v = 0;
-    if (!voxgi__ray4_setup(rs, ray, &r)) return 0;
     for (;;) {
         const voxgi__node4 *nd = &rs->nodes[node];
         float tn[4], inner_t[4];
         uint32_t inner[4];
-        int mask = voxgi__node4_hits(nd, &r, tmax, tn), i, j, n = 0;
+        int mask = voxgi__node4_hits(nd, r, tmax, tn), i, j, n = 0;
         for (i = 0; mask; i++, mask >>= 1) {
             if (!(mask & 1)) continue;
             if (nd->count[i]) { /* a leaf: its packs */
                 uint32_t k;
                 for (k = nd->child[i]; k < nd->child[i] + nd->count[i]; k++) {
                     float tt = 0, u = 0, v = 0;
-                    int lane = voxgi__ray4_pack(&rs->packs[k], &r, tmax, &tt, &u, &v);
+                    int lane = voxgi__ray4_pack(&rs->packs[k], r, tmax, &tt, &u, &v);
                     if (lane < 0) continue;
                     tmax = tt;
                     found = 1;
@@ -2565,10 +2420,20 @@ static void voxgi__ray_range(void *user, size_t first, size_t end)
 {
     const voxgi__ray_job *J = (const voxgi__ray_job *)user;
     size_t i;
-    voxgi_ray_hit h;
+    voxgi_ray_hit h, *hit;
     for (i = first; i < end; i++) {
-        if (J->hits) voxgi__ray4_cast(J->rs, &J->rays[i], 0, &J->hits[i]);
-        else J->occluded[i] = (unsigned char)voxgi__ray4_cast(J->rs, &J->rays[i], 1, &h);
+        const voxgi_ray *ray = &J->rays[i];
+        double o[3], d[3];
+        voxgi__ray4 r;
+        int a, found = 0;
+        for (a = 0; a < 3; a++) { o[a] = ray->origin[a]; d[a] = ray->direction[a]; }
+        hit = J->hits ? &J->hits[i] : &h;
+        if (voxgi__ray4_setup(J->rs, o, d, ray->tmin, UINT32_MAX, &r)) found = voxgi__ray4_cast(J->rs, &r, ray->tmax, !J->hits, hit);
+        else { /* a zero direction */
+            hit->triangle = UINT32_MAX;
+            hit->t = hit->u = hit->v = 0;
+        }
+        if (!J->hits) J->occluded[i] = (unsigned char)found;
     }
 }
 
@@ -2603,21 +2468,106 @@ VOXGI_API voxgi_result voxgi_ray_occluded(voxgi_context *ctx, const voxgi_ray_sc
     return voxgi__rays_run(ctx, rs, count, rays, NULL, occluded);
 }
 
-/* ----- 3.5 lights: direct light and the exact area light */
+/* ----- 3.5 the renderers' tracer
+
+   The renderers' side of the core: the scene's triangles in double beside its ray scene, and hits
+   with their point, triangle and side. The core rounds origins and vertices to floats relative to
+   the centre, within 2^-24 of the reach each; a ray leaving a surface therefore starts a hair off
+   it (2^-18 of the reach, 16 times what both roundings can move a point off a plane), never hits
+   the triangle it leaves, and a shadow ray stops two hairs short of its target. */
+typedef struct voxgi__tracer {
+    voxgi__flat flat;
+    double *v;                    /* 9 per triangle, in the scene's order */
+    double *n;                    /* unit geometric normal (front: counter-clockwise) per triangle */
+    voxgi_ray_scene *rs;
+    double hair;                  /* world units */
+} voxgi__tracer;
+
+typedef struct voxgi__hit { double t, p[3]; uint32_t prim; int front; } voxgi__hit;
+
+static void voxgi__tracer_free(voxgi_context *ctx, voxgi__tracer *tr)
+{
+    voxgi__flat_free(ctx, &tr->flat);
+    voxgi__free(ctx, tr->v);
+    voxgi__free(ctx, tr->n);
+    voxgi__ray_scene_free(ctx, tr->rs);
+    memset(tr, 0, sizeof *tr);
+}
+
+static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *scene, voxgi__tracer *tr)
+{
+    size_t t, nt;
+    voxgi_result r;
+    memset(tr, 0, sizeof *tr);
+    if ((r = voxgi__flatten(ctx, scene, 0, 1, &tr->flat)) != VOXGI_OK) return r;
+    nt = tr->flat.triangle_count;
+    tr->v = (double *)voxgi__alloc_array(ctx, nt, 9 * sizeof(double), 0);
+    tr->n = (double *)voxgi__alloc_array(ctx, nt, 3 * sizeof(double), 0);
+    if (!tr->v || !tr->n) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)nt);
+    if (r == VOXGI_OK) r = voxgi__ray_scene_build(ctx, &tr->flat, &tr->rs);
+    if (r != VOXGI_OK) {
+        voxgi__tracer_free(ctx, tr);
+        return r;
+    }
+    tr->hair = ldexp(tr->rs->reach, -18);
+    for (t = 0; t < nt; t++) {
+        double *v = tr->v + 9 * t, *n = tr->n + 3 * t, e1[3], e2[3], len;
+        int k, a;
+        for (k = 0; k < 3; k++)
+            for (a = 0; a < 3; a++) v[3 * k + a] = tr->flat.pos[3 * (size_t)tr->flat.tri[3 * t + (size_t)k] + (size_t)a];
+        for (a = 0; a < 3; a++) { e1[a] = v[3 + a] - v[a]; e2[a] = v[6 + a] - v[a]; }
+        for (a = 0; a < 3; a++) n[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+        len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (a = 0; a < 3; a++) n[a] = len > 0 ? n[a] / len : 0;
+    }
+    return VOXGI_OK;
+}
+
+/* The nearest hit of the ray from o along d (world units) before tmax, never triangle skip
+   (UINT32_MAX: none); any = 1 stops at the first hit (shadow rays). The core finds the triangle;
+   where the ray meets its plane is then computed in double (the core's t holds float rounding
+   of the whole scene's extent, which a point near the eye on a large triangle would show). */
+static int voxgi__trace(const voxgi__tracer *tr, const double o[3], const double d[3], double tmax, uint32_t skip, int any, voxgi__hit *hit)
+{
+    voxgi__ray4 r;
+    voxgi_ray_hit h;
+    const double *v, *n;
+    double along, to_plane;
+    int a;
+    if (!voxgi__ray4_setup(tr->rs, o, d, 0, skip, &r) || !voxgi__ray4_cast(tr->rs, &r, tmax < FLT_MAX ? (float)tmax : INFINITY, any, &h)) return 0;
+    v = tr->v + 9 * (size_t)h.triangle;
+    n = tr->n + 3 * (size_t)h.triangle;
+    along = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+    to_plane = n[0] * (v[0] - o[0]) + n[1] * (v[1] - o[1]) + n[2] * (v[2] - o[2]);
+    hit->t = along != 0 ? to_plane / along : h.t;
+    hit->prim = h.triangle;
+    for (a = 0; a < 3; a++) hit->p[a] = o[a] + hit->t * d[a];
+    hit->front = along < 0;
+    return 1;
+}
+
+/* Where a ray leaving the surface at p (unit normal ns, on the side it leaves) starts. */
+static void voxgi__leave(const voxgi__tracer *tr, const double p[3], const double ns[3], double o[3])
+{
+    int a;
+    for (a = 0; a < 3; a++) o[a] = p[a] + tr->hair * ns[a];
+}
+
+/* ----- 3.6 lights: direct light and the exact area light */
 
 /* What direct light needs: the scene's lights and its emissive triangles, picked by power. */
 typedef struct voxgi__lights {
     const voxgi__tracer *tr;
     const voxgi_scene *scene;
-    uint32_t *emitters;           /* BVH-order triangles with emission, front faces */
+    uint32_t *emitters;           /* triangles with emission, front faces */
     double *emitter_cdf;          /* by area x mean emission */
-    double *emitter_pdf;          /* per BVH-order triangle: the area density of picking a point on it */
+    double *emitter_pdf;          /* per triangle: the area density of picking a point on it */
     size_t emitter_count;
 } voxgi__lights;
 
 static const voxgi_material *voxgi__prim_material(const voxgi__tracer *tr, uint32_t prim)
 {
-    return voxgi__tri_material(&tr->flat, tr->tri[prim]);
+    return voxgi__tri_material(&tr->flat, prim);
 }
 
 static void voxgi__lights_free(voxgi_context *ctx, voxgi__lights *Ls)
@@ -2659,13 +2609,16 @@ static voxgi_result voxgi__lights_build(voxgi_context *ctx, const voxgi_scene *s
     return VOXGI_OK;
 }
 
-/* Nothing between p (leaving triangle skip) and the point dist away along dir? (1e-9 short of
-   it, so the light's own triangle does not count) */
-static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const double dir[3], double dist, uint32_t skip, uint64_t *rays)
+/* Nothing between p (on triangle skip, unit normal ns on the side the ray leaves) and the
+   point dist away along dir? (short of it, so the light's own triangle does not count) */
+static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const double ns[3], const double dir[3], double dist, uint32_t skip,
+                          uint64_t *rays)
 {
     voxgi__hit h;
+    double o[3];
     ++*rays;
-    return !voxgi__trace(tr, p, dir, dist * (1 - 1e-9), skip, 1, &h);
+    voxgi__leave(tr, p, ns, o);
+    return dist <= 2 * tr->hair || !voxgi__trace(tr, o, dir, dist - 2 * tr->hair, skip, 1, &h);
 }
 
 /* Irradiance E at p (unit normal ns facing the arriving ray; leaving triangle prim, or
@@ -2724,7 +2677,7 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
         if (cos_s <= 0) continue;
         if (area_share && L->type == VOXGI_LIGHT_RECT) for (a = 0; a < 3; a++) area_share[3 + a] += L->intensity[a] * w * cos_s;
         if (area_share) area_share[6] += 1;
-        if (!voxgi__visible(tr, p, dir, dist, prim, rays)) {
+        if (!voxgi__visible(tr, p, ns, dir, dist, prim, rays)) {
             if (area_share) area_share[7] += 1;
             continue;
         }
@@ -2760,7 +2713,7 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
             if (cos_s > 0 && cos_l > 0) {
                 double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / VOXGI__PI; /* per solid angle */
                 double mis = mis_weighted ? pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf) : 1;
-                int seen = voxgi__visible(tr, p, dir, dist, prim, rays);
+                int seen = voxgi__visible(tr, p, ns, dir, dist, prim, rays);
                 if (area_share) { area_share[6] += 1; area_share[7] += !seen; }
                 m = voxgi__prim_material(tr, k);
                 for (a = 0; a < 3; a++) {
@@ -2856,7 +2809,7 @@ static void voxgi__area_irradiance(const voxgi__lights *R, const double p[3], co
     }
 }
 
-/* ----- 3.6 cameras */
+/* ----- 3.7 cameras */
 
 /* The camera's frame (gluLookAt, up +Y); fails where the view is along +-Y. */
 static voxgi_result voxgi__camera_frame(voxgi_context *ctx, const voxgi_camera *cam, double eye[3], double forward[3], double right[3],
@@ -9453,7 +9406,7 @@ typedef struct voxgi__gbuffer_job {
     const voxgi_camera *cam;
     double eye[3], forward[3], right[3], up[3], tan_half;
     float *pos, *nrm;
-    uint32_t *tri;                /* BVH order, UINT32_MAX: none */
+    uint32_t *tri;                /* UINT32_MAX: none */
 } voxgi__gbuffer_job;
 
 static void voxgi__gbuffer_cpu(void *user, size_t first, size_t end)
@@ -9579,7 +9532,7 @@ static voxgi_result voxgi__gbuffer_gl(voxgi_context *ctx, voxgi__gbuffer_job *J)
 }
 #endif
 
-/* The G-buffer on the context's backend; tri in BVH order. */
+/* The G-buffer on the context's backend. */
 static voxgi_result voxgi__gbuffer(voxgi_context *ctx, const voxgi__tracer *tr, const voxgi_camera *cam, float *pos, float *nrm, uint32_t *tri)
 {
     voxgi__gbuffer_job J;
@@ -9604,7 +9557,7 @@ VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scen
     voxgi__tracer tr;
     float *pos = NULL, *nrm = NULL;
     uint32_t *tri = NULL;
-    size_t pixels, i;
+    size_t pixels;
     voxgi_result r;
     double e[3], f[3], rt[3], u[3], t;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
@@ -9621,8 +9574,7 @@ VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scen
     if (r == VOXGI_OK) {
         if (positions) memcpy(positions, pos, pixels * 12);
         if (normals) memcpy(normals, nrm, pixels * 12);
-        if (triangles)
-            for (i = 0; i < pixels; i++) triangles[i] = tri[i] == UINT32_MAX ? UINT32_MAX : tr.tri[tri[i]]; /* the scene's order */
+        if (triangles) memcpy(triangles, tri, pixels * 4);
     }
     voxgi__free(ctx, pos);
     voxgi__free(ctx, nrm);
@@ -9698,7 +9650,7 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
             }
             for (s = 0; s < samples; s++) { /* emission and direct light over the pixel's square */
                 voxgi__hit h;
-                double d[3], ns[3], e[3], off, u[4], area[8] = {0, 0, 0, 0, 0, 0, 0, 0}, ea[3];
+                double d[3], ns[3], e[3], u[4], area[8] = {0, 0, 0, 0, 0, 0, 0, 0}, ea[3];
                 const voxgi_material *m;
                 if (J->analytic && uniform && s >= 4 && s == samples / 2) break; /* the first half agree: one surface, lit alike; the exact light needs no more */
                 voxgi__kronecker(4, s, rot, u); /* stratified over the pixel's square x the light, shifted per pixel */
@@ -9708,8 +9660,7 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                 if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) { uniform = 0; continue; }
                 m = voxgi__prim_material(J->tr, h.prim);
                 for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
-                off = 1e-9 * (1 + J->tr->scale);
-                for (a = 0; a < 3; a++) h.p[a] += off * ns[a];
+                voxgi__leave(J->tr, h.p, ns, h.p); /* off the surface: a light in its plane shines on it or not by no rounding */
                 voxgi__direct(J->lights, h.p, ns, h.prim, &g, 0, u + 2, &rays, e, J->analytic ? area : NULL);
                 if (J->analytic && h.prim == J->prim[pix]) memcpy(ea, centre, sizeof ea); /* the same surface: smooth across a pixel */
                 else if (J->analytic) voxgi__area_irradiance(J->lights, h.p, ns, h.prim, ea);
@@ -9976,7 +9927,7 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
     out[0] = out[1] = out[2] = 0;
     for (depth = 0;; depth++) {
         voxgi__hit h;
-        double ns[3], e[3], t[3], b[3], r1, phi, lx, ly, lz, off;
+        double ns[3], e[3], t[3], b[3], r1, phi, lx, ly, lz;
         const voxgi_material *m;
         const double *n;
         ++*rays;
@@ -10010,11 +9961,8 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
         lx = sqrt(r1) * cos(phi);
         ly = sqrt(r1) * sin(phi);
         lz = sqrt(1 - r1);
-        off = 1e-9 * (1 + tr->scale);
-        for (a = 0; a < 3; a++) {
-            d[a] = lx * t[a] + ly * b[a] + lz * ns[a];
-            o[a] = h.p[a] + off * ns[a];
-        }
+        for (a = 0; a < 3; a++) d[a] = lx * t[a] + ly * b[a] + lz * ns[a];
+        voxgi__leave(tr, h.p, ns, o);
         pdf_bsdf = lz / VOXGI__PI;
         skip = h.prim;
     }
@@ -10088,7 +10036,7 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     R.sum = (double *)voxgi__alloc_array(ctx, pixels, 3 * sizeof(double), 1);
     if (!R.sum) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d render", cam->width, cam->height);
     else r = voxgi__lights_build(ctx, scene, &tr, &R.lights);
-    if (info) { info->triangles = tr.flat.triangle_count; info->bvh_nodes = tr.node_count; info->ms_bvh = voxgi__now_ms() - t0; }
+    if (info) { info->triangles = tr.flat.triangle_count; info->bvh_nodes = tr.rs->node_count; info->ms_bvh = voxgi__now_ms() - t0; }
     t0 = voxgi__now_ms();
     for (R.first_sample = 0; r == VOXGI_OK && R.first_sample < samples; R.first_sample += R.pass_samples) { /* progressive passes */
         R.pass_samples = VOXGI__MIN(VOXGI__MAX(1, samples / 16), samples - R.first_sample);

@@ -1,7 +1,8 @@
 // The G-buffer voxgi rasterizes for its own images on GL (voxgi.h, part "light injection and
 // cone tracing": voxgi_gbuffer_render): per pixel the nearest surface's position (relative to
 // the eye), its normal facing the camera and its triangle. Vertex and fragment stages over the
-// triangles' corners (3 vec4 per triangle, relative to the eye).
+// triangles' corners (3 vec4 per triangle, relative to the eye); the depth test on the distance
+// along the view direction.
 layout(std430, binding = 0) readonly buffer Corners { vec4 corner[]; };
 layout(std430, binding = 1) readonly buffer Normals { vec4 tri_normal[]; };
 layout(location = VOXGI_LOC_u_right) uniform vec3 u_right; // the camera's frame
@@ -36,5 +37,8 @@ void main()
     o_position = vec4(v_p, 1.0);
     o_normal = vec4(dot(n, v_p) < 0.0 ? n : -n, 0.0);
     o_triangle = uint(v_tri);
+    // linear depth: the projective one cannot tell apart surfaces 1e-4 of the distance apart (a
+    // lamp just below a ceiling), so that the drawing order would decide
+    gl_FragDepth = dot(v_p, u_forward) / u_far;
 }
 #endif

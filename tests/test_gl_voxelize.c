@@ -1192,9 +1192,10 @@ static void test_gl_raster_gbuffer_textures(void)
 }
 
 /* voxgi's own G-buffer rasterized on GL against the CPU's ray cast (the Cornell box, 64 x 48,
-   the view's aspect stretched): the same triangle at nearly every pixel (a shared edge or a
-   silhouette may go to the neighbour), there the same normal and the position within float
-   interpolation; no surface where the CPU finds none. */
+   the view's aspect stretched): the same triangle at all but 1 in 500 pixels (a shared edge or a
+   silhouette may go to the neighbour; a projective depth test loses the lamp 0.1 mm below the
+   ceiling at 17 pixels), there the same normal and the position within float interpolation; no
+   surface where the CPU finds none. */
 static void test_gl_raster_gbuffer(void)
 {
     enum { W = 64, H = 48 };
@@ -1225,7 +1226,7 @@ static void test_gl_raster_gbuffer(void)
     }
     printf("    G-buffer: %d of %d pixels on the same triangle (%d surfaces), positions within %.3g m, normals within %.3g\n", same, W * H, hits, worst_p,
            worst_n);
-    TH_CHECK(hits > W * H / 2 && same >= W * H * 97 / 100 && worst_p < 1e-4 && worst_n < 1e-6, "G-buffers differ");
+    TH_CHECK(hits > W * H / 2 && same >= W * H - W * H / 500 && worst_p < 1e-4 && worst_n < 1e-6, "G-buffers differ");
     voxgi_builtin_scene_destroy(ctx[0], &bs);
     voxgi_destroy(ctx[0]);
     voxgi_destroy(ctx[1]);
