@@ -727,7 +727,7 @@ VOXGI_API float voxgi_specular_half_angle(float roughness);
    from outside stays dark; RADIANCE_SIDE tells a cone which side it sees. A voxel without a
    normal sends its front's light both ways. The result is a volume of RADIANCE, RADIANCE_BACK
    and RADIANCE_SIDE (RADIANCE alone with one_sided) with desc.volume's mips, and the regions of
-   its empty space for the cones (4 bytes a voxel over all levels). With bounces B > 1 the light then bounces among the voxels: each
+   its empty space for the cones where it has enclosed regions (4 bytes a voxel over all levels). With bounces B > 1 the light then bounces among the voxels: each
    gathers the irradiance at its centre on its normal from the volume so far (voxgi_cone_trace,
    on the context's backend) and sends out its direct light plus albedo / pi x that, B - 1
    times, each side gathering on its own normal. Checks: a plane under a directional light of irradiance E gets albedo E
@@ -921,6 +921,7 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #ifndef VOXGI_MALLOC
 #define VOXGI_MALLOC(sz) malloc(sz)
 #define VOXGI_FREE(p) free(p)
+#define VOXGI__CALLOC(n, sz) calloc(n, sz) /* zeroed by the system as pages are first touched: a volume's empty space costs nothing */
 #endif
 #ifndef VOXGI_ASSERT
 #include <assert.h>
@@ -942,6 +943,13 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #if !defined(VOXGI_NO_SIMD) && (defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2))
 #include <emmintrin.h>
 #define VOXGI__SSE 1
+#endif
+#if defined(__GNUC__) || defined(__clang__)
+#define VOXGI__HOT_INLINE __inline__ __attribute__((always_inline)) /* small functions on the hottest paths */
+#elif defined(_MSC_VER)
+#define VOXGI__HOT_INLINE __forceinline
+#else
+#define VOXGI__HOT_INLINE
 #endif
 
 #if defined(__GNUC__) || defined(__clang__)
@@ -1048,6 +1056,9 @@ static void *voxgi__alloc_array(voxgi_context *ctx, size_t count, size_t size, i
 {
     void *p;
     if (size && count > (size_t)-1 / size) return NULL;
+#ifdef VOXGI__CALLOC
+    if (zero && !ctx->desc.allocator.alloc) return VOXGI__CALLOC(count ? count : 1, size ? size : 1);
+#endif
     p = voxgi__alloc(ctx, count * size);
     if (p && zero) memset(p, 0, count * size);
     return p;
@@ -6679,7 +6690,11 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
         if (parent[l] == l) parent[l] = open_flags[l] ? VOXGI__REGION_OPEN : (uint32_t)kept++;
     voxgi__free(ctx, open_flags);
     open_flags = NULL;
-    if ((vol->voxels + 6 * kept) * 4 > VOXGI__REGION_BYTES) { voxgi__free(ctx, lab); voxgi__free(ctx, parent); return VOXGI_OK; }
+    if (kept == 2 || (vol->voxels + 6 * kept) * 4 > VOXGI__REGION_BYTES) { /* nothing enclosed (the cones need no labels), or too big */
+        voxgi__free(ctx, lab);
+        voxgi__free(ctx, parent);
+        return VOXGI_OK;
+    }
     if (!(box = (uint32_t *)voxgi__alloc_array(ctx, 6 * kept, 4, 0)) || !(lit = (unsigned char *)voxgi__alloc_array(ctx, kept, 1, 1))) goto no_memory;
     for (i = 0; i < kept; i++)
         for (a = 0; a < 3; a++) { box[6 * i + (size_t)a] = UINT32_MAX; box[6 * i + 3 + (size_t)a] = 0; }
@@ -6931,28 +6946,64 @@ VOXGI_API voxgi_result voxgi_volume_read(voxgi_context *ctx, const voxgi_volume 
 typedef int (*voxgi__fetch_fn)(const void *source, int k, const int v[3], float t[4]);
 
 /* Trilinear sample of level k at p (grid units of level 0) between the voxel centres. */
+/* A trilinear sample of level k at p (grid units of level 0): the lowest corner i0 and the
+   weights of the 8 corners (corner = x + 2y + 4z), in float. Every CPU trilinear sample takes
+   them from here and sums corner by corner in float, so that an octree's samples and a volume's
+   are the same bit for bit. */
+static void voxgi__corner_weights(const float p[3], int k, int i0[3], float wt[8])
+{
+    const float scale = 1.0f / (float)(1 << k); /* a power of two: p scaled exactly */
+    float f[3], wxy[4];
+    int a, corner;
+    for (a = 0; a < 3; a++) {
+        float c = VOXGI__MIN(VOXGI__MAX(p[a] * scale - 0.5f, -1e9f), 1e9f); /* far outside stays far outside, in int range */
+        i0[a] = (int)c - ((float)(int)c > c);                          /* floor */
+        f[a] = c - (float)i0[a];
+    }
+    wxy[0] = (1 - f[0]) * (1 - f[1]);
+    wxy[1] = f[0] * (1 - f[1]);
+    wxy[2] = (1 - f[0]) * f[1];
+    wxy[3] = f[0] * f[1];
+    for (corner = 0; corner < 4; corner++) {
+        wt[corner] = wxy[corner] * (1 - f[2]);
+        wt[corner + 4] = wxy[corner] * f[2];
+    }
+}
+
+/* The corners' values by their weights: corner c's 4 floats at base + 4 at[c] (none where at[c]
+   < 0), summed in one fixed order, pairs and then pairs of pairs (SSE where the compiler targets
+   it, else channel by channel in the same arithmetic). Every CPU trilinear sample sums so. */
+static VOXGI__HOT_INLINE void voxgi__corner_sum(const float *base, const ptrdiff_t at[8], const float wt[8], float out[4])
+{
+#ifdef VOXGI__SSE
+    __m128 s[8];
+    int c;
+    for (c = 0; c < 8; c++) s[c] = at[c] < 0 ? _mm_setzero_ps() : _mm_mul_ps(_mm_set1_ps(wt[c]), _mm_loadu_ps(base + 4 * at[c]));
+    _mm_storeu_ps(out, _mm_add_ps(_mm_add_ps(_mm_add_ps(s[0], s[1]), _mm_add_ps(s[2], s[3])), _mm_add_ps(_mm_add_ps(s[4], s[5]), _mm_add_ps(s[6], s[7]))));
+#else
+    float s[8];
+    int c, ch;
+    for (ch = 0; ch < 4; ch++) {
+        for (c = 0; c < 8; c++) s[c] = at[c] < 0 ? 0.0f : wt[c] * base[4 * at[c] + ch];
+        out[ch] = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+    }
+#endif
+}
+
 static void voxgi__trilinear(voxgi__fetch_fn fetch, const void *source, int w, int k, const float p[3], float out[4])
 {
-    double c[3], f[3];
+    float wt[8], t[8][4], sum[4];
+    ptrdiff_t at[8];
     int i0[3], a, corner, ch;
-    for (ch = 0; ch < 4; ch++) out[ch] = 0;
-    for (a = 0; a < 3; a++) {
-        c[a] = (double)p[a] / (double)(1 << k) - 0.5;
-        i0[a] = (int)floor(c[a]);
-        f[a] = c[a] - i0[a];
-    }
+    voxgi__corner_weights(p, k, i0, wt);
     for (corner = 0; corner < 8; corner++) {
-        int v[3];
-        double wt = 1;
-        float t[4];
-        for (a = 0; a < 3; a++) {
-            int hi = (corner >> a) & 1;
-            v[a] = i0[a] + hi;
-            wt *= hi ? f[a] : 1 - f[a];
-        }
-        if (wt == 0 || !fetch(source, k, v, t)) continue; /* empty */
-        for (ch = 0; ch < w; ch++) out[ch] += (float)(wt * t[ch]);
+        int c[3];
+        for (a = 0; a < 3; a++) c[a] = i0[a] + ((corner >> a) & 1);
+        for (ch = 0; ch < 4; ch++) t[corner][ch] = 0;
+        at[corner] = wt[corner] != 0 && fetch(source, k, c, t[corner]) ? corner : -1; /* -1: empty */
     }
+    voxgi__corner_sum(t[0], at, wt, sum);
+    for (ch = 0; ch < 4; ch++) out[ch] = ch < w ? sum[ch] : 0;
 }
 
 /* A faster trilinear sample of level k with the same result, or 0 where it cannot tell. */
@@ -8000,17 +8051,16 @@ static int voxgi__svo_brick_trilinear(const void *source, int w, int k, const fl
 {
     const voxgi__svo_source *s = (const voxgi__svo_source *)source;
     const voxgi_svo *svo = s->svo;
-    int depth = svo->info.depth, lev = depth - k - 1, m, a, corner, ch; /* the brick's node level */
-    double c[3], f[3];
-    int64_t i0[3], pc[3];
+    int depth = svo->info.depth, lev = depth - k - 1, m, a, corner, ch, i0[3]; /* the brick's node level */
+    float wt[8], vals[8][4], sum[4];
+    ptrdiff_t at[8];
+    int64_t pc[3];
     uint64_t node = 0, b = (uint64_t)svo->slot_bytes[s->a];
     uint32_t ptr = 0;
     const unsigned char *brick;
     if (lev < 0) return 0;
+    voxgi__corner_weights(p, k, i0, wt);
     for (a = 0; a < 3; a++) {
-        c[a] = (double)p[a] / (double)(1 << k) - 0.5;
-        i0[a] = (int64_t)floor(c[a]);
-        f[a] = c[a] - (double)i0[a];
         pc[a] = (int64_t)floor((double)p[a] / (double)(1 << (k + 1)));
         if (pc[a] < 0 || (pc[a] >> lev)) return 0;
     }
@@ -8028,20 +8078,16 @@ static int voxgi__svo_brick_trilinear(const void *source, int w, int k, const fl
                                                             (((pc[2] >> (lev - m - 1)) & 1) << 2));
     }
     brick = svo->node_values[s->a] + (svo->info.nodes + 64 * voxgi__svo_brick_index(svo, lev, ptr)) * b;
-    for (ch = 0; ch < 4; ch++) out[ch] = 0;
     for (corner = 0; corner < 8; corner++) {
-        double wt = 1;
         int t = 0;
-        float v[4];
-        for (a = 0; a < 3; a++) {
-            int hi = (corner >> a) & 1;
-            wt *= hi ? f[a] : 1 - f[a];
-            t += (int)(i0[a] + hi - (2 * pc[a] - 1)) << (2 * a);
-        }
-        if (wt == 0) continue;
-        voxgi__svo_get(svo, s->a, brick, (uint64_t)t, v);
-        for (ch = 0; ch < w; ch++) out[ch] += (float)(wt * (w == 1 ? v[3] : v[ch]));
+        for (a = 0; a < 3; a++) t += (int)(i0[a] + ((corner >> a) & 1) - (2 * pc[a] - 1)) << (2 * a);
+        at[corner] = wt[corner] == 0 ? -1 : corner;
+        if (wt[corner] == 0) continue;
+        voxgi__svo_get(svo, s->a, brick, (uint64_t)t, vals[corner]);
+        if (w == 1) vals[corner][0] = vals[corner][3];
     }
+    voxgi__corner_sum(vals[0], at, wt, sum);
+    for (ch = 0; ch < 4; ch++) out[ch] = ch < w ? sum[ch] : 0;
     return 1;
 }
 
@@ -8138,6 +8184,7 @@ typedef struct voxgi__cone_job {
     const uint32_t *regions;      /* on the CPU these labels (a volume's or an octree's), */
     const uint32_t *boxes;        /* with these bounds */
     int dims[VOXGI__MAX_LEVELS][3]; /* each level's size */
+    const float *level_at[3][6][VOXGI__MAX_LEVELS]; /* a volume's levels: [slot - RADIANCE_SLOT][direction][level] */
     double half_tan, step, offset, max_dist;
 } voxgi__cone_job;
 
@@ -8154,55 +8201,73 @@ static ptrdiff_t voxgi__svo_slot_at(const voxgi_svo *svo, int k, const int v[3])
 }
 
 /* The 8 corners of a trilinear sample of level k at p, as voxgi__trilinear visits them: their
-   voxels, weights (0 beyond the grid) and where their values are (-1: nowhere, or of weight 0):
-   a volume's voxel offset within the level, an octree's slot. */
-static void voxgi__cone_corners(const voxgi__cone_job *J, int k, const float p[3], int v[8][3], ptrdiff_t at[8], double wt[8])
+   voxels (v, or NULL where the caller needs none), weights in float (0 beyond the grid) and where
+   their values are (-1: nowhere, or of weight 0): a volume's voxel offset within the level, an
+   octree's slot. */
+static void voxgi__cone_corners(const voxgi__cone_job *J, int k, const float p[3], int v_out[8][3], ptrdiff_t at[8], float wt[8])
 {
     const int *dm = J->dims[k];
-    double c[3], f[3];
-    int i0[3], a, corner;
-    for (a = 0; a < 3; a++) {
-        c[a] = (double)p[a] / (double)(1 << k) - 0.5;
-        i0[a] = (int)floor(c[a]);
-        f[a] = c[a] - i0[a];
+    int i0[3], a, corner, inside_all = 1, own[8][3];
+    int (*v)[3] = v_out ? v_out : own;
+    voxgi__corner_weights(p, k, i0, wt);
+    for (a = 0; a < 3; a++) inside_all &= i0[a] >= 0 && i0[a] + 1 < dm[a];
+    if (inside_all && !J->svo && !v_out) { /* the usual case: a volume's 2 x 2 x 2 voxels, all inside */
+        const ptrdiff_t base = (ptrdiff_t)i0[0] + (ptrdiff_t)dm[0] * ((ptrdiff_t)i0[1] + (ptrdiff_t)dm[1] * (ptrdiff_t)i0[2]);
+        const ptrdiff_t dy = dm[0], dz = (ptrdiff_t)dm[0] * dm[1];
+        for (corner = 0; corner < 8; corner++)
+            at[corner] = wt[corner] == 0 ? -1 : base + (corner & 1) + (corner & 2 ? dy : 0) + (corner & 4 ? dz : 0);
+        return;
     }
     for (corner = 0; corner < 8; corner++) {
         int inside = 1;
-        double w = 1;
         for (a = 0; a < 3; a++) {
-            int hi = (corner >> a) & 1;
-            v[corner][a] = i0[a] + hi;
-            w *= hi ? f[a] : 1 - f[a];
-            inside &= v[corner][a] >= 0 && v[corner][a] < dm[a];
+            v[corner][a] = i0[a] + ((corner >> a) & 1);
+            if (!inside_all) inside &= v[corner][a] >= 0 && v[corner][a] < dm[a];
         }
-        wt[corner] = inside ? w : 0;
-        at[corner] = !inside || w == 0 ? -1
+        if (!inside) wt[corner] = 0;
+        at[corner] = wt[corner] == 0 ? -1
                      : J->svo ? voxgi__svo_slot_at(J->svo, k, v[corner])
                               : (ptrdiff_t)((size_t)v[corner][0] + (size_t)dm[0] * ((size_t)v[corner][1] + (size_t)dm[1] * (size_t)v[corner][2]));
     }
 }
 
 /* Slot a's trilinear sample of level k at the corners (at, wt) along unit direction d: isotropic
-   the one volume, anisotropic the travel direction's axis volumes by squared components. */
-static void voxgi__cone_level(const voxgi__cone_job *J, int a, const double d[3], int k, const ptrdiff_t at[8], const double wt[8], float out[4])
+   the one volume, anisotropic the travel direction's axis volumes by squared components. The
+   four channels at once (SSE where the compiler targets it, else one by one in the same float
+   arithmetic), an octree's slots read into the same sums. */
+typedef struct voxgi__cone_axes {
+    float w[3];                   /* the squared components of the cone's direction */
+    int dir[3];                   /* and the axis volumes it travels along (2 axis + negative) */
+} voxgi__cone_axes;
+
+static void voxgi__cone_axes_of(const double d[3], voxgi__cone_axes *X)
 {
+    int ax;
+    for (ax = 0; ax < 3; ax++) {
+        X->w[ax] = (float)(d[ax] * d[ax]);
+        X->dir[ax] = 2 * ax + (d[ax] < 0);
+    }
+}
+
+static void voxgi__cone_level(const voxgi__cone_job *J, int a, const voxgi__cone_axes *X, int k, const ptrdiff_t at[8], const float wt[8], float out[4])
+{
+    const int one_dir = J->dirs == 1 || a == VOXGI__SIDE_SLOT;
+    float got[8][4], s[4];
+    ptrdiff_t slot[8];
     int ch, ax, corner;
     for (ch = 0; ch < 4; ch++) out[ch] = 0;
-    for (ax = 0; ax < 3; ax++) {
-        float s[4] = {0, 0, 0, 0};
-        double w = J->dirs == 1 || a == VOXGI__SIDE_SLOT ? (ax == 0) : d[ax] * d[ax];
-        int dir = J->dirs == 1 || a == VOXGI__SIDE_SLOT ? 0 : 2 * ax + (d[ax] < 0);
-        const float *arr;
+    for (ax = 0; ax < (one_dir ? 1 : 3); ax++) {
+        const float w = one_dir ? 1.0f : X->w[ax];
         if (w == 0) continue;
-        arr = J->svo ? NULL : voxgi__volume_level(J->vol, a, dir, k);
-        for (corner = 0; corner < 8; corner++)
-            if (at[corner] >= 0) {
-                float got[4];
-                const float *v = arr ? arr + 4 * at[corner] : got;
-                if (!arr) voxgi__svo_get(J->svo, a, k ? J->svo->node_values[a] : J->svo->leaf_values[a], (uint64_t)at[corner], got);
-                for (ch = 0; ch < 4; ch++) s[ch] += (float)(wt[corner] * v[ch]);
+        if (J->svo) { /* an octree's slots, read into the same sum */
+            for (corner = 0; corner < 8; corner++) {
+                slot[corner] = at[corner] < 0 ? -1 : corner;
+                if (at[corner] >= 0) voxgi__svo_get(J->svo, a, k ? J->svo->node_values[a] : J->svo->leaf_values[a], (uint64_t)at[corner], got[corner]);
             }
-        for (ch = 0; ch < 4; ch++) out[ch] += (float)(w * s[ch]);
+            voxgi__corner_sum(got[0], slot, wt, s);
+        } else
+            voxgi__corner_sum(J->level_at[a - VOXGI__RADIANCE_SLOT][one_dir ? 0 : X->dir[ax]][k], at, wt, s);
+        for (ch = 0; ch < 4; ch++) out[ch] += w * s[ch];
     }
 }
 
@@ -8247,11 +8312,11 @@ static uint32_t voxgi__region_label(const voxgi__cone_job *J, int k, const int v
    level mixes the front and the back by the back share seen from the cone's origin o, the back's
    alpha VOXGI__BACK_COVERAGE times its own. An octree's two sides are sampled alike (through
    lookups, not bricks). */
-static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], const float p[3], float lod_in, const double o[3], uint32_t home,
+static void voxgi__cone_sample(const voxgi__cone_job *J, const voxgi__cone_axes *X, const float p[3], float lod_in, const double o[3], uint32_t home,
                                float out[4])
 {
     ptrdiff_t at[8];
-    double wt[8];
+    float wt[8];
     float lod, t, s[2][4];
     int ch, k0, lev, v[8][3];
     for (ch = 0; ch < 4; ch++) out[ch] = 0;
@@ -8269,20 +8334,20 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const double d[3], cons
     t = lod - (float)k0;
     for (lev = 0; lev < (t > 0 ? 2 : 1); lev++) {
         float back = 0, b[4];
-        voxgi__cone_corners(J, k0 + lev, p, v, at, wt);
+        voxgi__cone_corners(J, k0 + lev, p, home && k0 + lev == 0 ? v : NULL, at, wt);
         if (home && k0 + lev == 0)
             for (ch = 0; ch < 8; ch++) { /* a surface's voxel lit from another region only is not seen from this one */
                 uint32_t r = at[ch] >= 0 ? voxgi__region_label(J, 0, v[ch]) : 0;
                 if ((r & VOXGI__REGION_BORDER) && (r &= ~VOXGI__REGION_BORDER) != home && !voxgi__region_inside(J->boxes, home, r)) at[ch] = -1;
             }
         if (J->two_sided) {
-            voxgi__cone_level(J, VOXGI__SIDE_SLOT, d, k0 + lev, at, wt, b);
+            voxgi__cone_level(J, VOXGI__SIDE_SLOT, X, k0 + lev, at, wt, b);
             back = voxgi__back_share(b, o);
         }
-        if (back < 1) voxgi__cone_level(J, VOXGI__RADIANCE_SLOT, d, k0 + lev, at, wt, s[lev]);
+        if (back < 1) voxgi__cone_level(J, VOXGI__RADIANCE_SLOT, X, k0 + lev, at, wt, s[lev]);
         else for (ch = 0; ch < 4; ch++) s[lev][ch] = 0;
         if (back > 0) {
-            voxgi__cone_level(J, VOXGI__BACK_SLOT, d, k0 + lev, at, wt, b);
+            voxgi__cone_level(J, VOXGI__BACK_SLOT, X, k0 + lev, at, wt, b);
             for (ch = 0; ch < 4; ch++) s[lev][ch] = (1 - back) * s[lev][ch] + back * VOXGI__BACK_COVERAGE * b[ch];
         }
     }
@@ -8396,7 +8461,7 @@ static uint32_t voxgi__home_region(const voxgi__cone_job *J, const double o[3], 
 static int voxgi__region_clear(const voxgi__cone_job *J, int k, const float p[3], uint32_t home)
 {
     ptrdiff_t at[8];
-    double wt[8];
+    float wt[8];
     int corner, v[8][3];
     voxgi__cone_corners(J, k, p, v, at, wt);
     for (corner = 0; corner < 8; corner++) {
@@ -8416,15 +8481,18 @@ static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const
 {
     double t = J->offset, A = 0, start[3];
     float last[4] = {0, 0, 0, 0};
+    voxgi__cone_axes X;
     int a;
     C[0] = C[1] = C[2] = 0;
+    voxgi__cone_axes_of(d, &X);
     for (a = 0; a < 3; a++) start[a] = o[a] + J->offset * n[a]; /* where a sample's side is seen from */
     while (t < max_d && A < 0.99) {
-        double diam = VOXGI__MAX(1.0, 2 * t * tan_k), ap, h = J->offset + (t - J->offset) * lz;
+        double diam = VOXGI__MAX(1.0, 2 * t * tan_k), ap, h = J->offset + (t - J->offset) * lz, keep;
         float p[3], s[4];
         for (a = 0; a < 3; a++) p[a] = (float)(o[a] + J->offset * n[a] + (t - J->offset) * d[a]);
-        /* both levels blended must stay clear of the surface: a level-L voxel holding it reaches 1.5 x 2^L above it */
-        double lod = VOXGI__MIN(VOXGI__MIN(log2(diam), log2(h / 1.5) - 1), J->levels - 1.0);
+        /* both levels blended must stay clear of the surface: a level-L voxel holding it reaches 1.5 x 2^L above it,
+           so lod <= log2(h / 1.5) - 1 = log2(h / 3) */
+        double lod = VOXGI__MIN(log2(VOXGI__MIN(diam, h / 3)), J->levels - 1.0);
         if (home) {
             uint32_t here = voxgi__region_at(J, 0, p);
             int k;
@@ -8436,14 +8504,15 @@ static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const
             for (k = (int)ceil(lod); k > 0 && !voxgi__region_clear(J, k, p, home); k--) {}
             if (k < lod) diam = exp2(lod = k);
         }
-        voxgi__cone_sample(J, d, p, (float)lod, start, home, s);
+        voxgi__cone_sample(J, &X, p, (float)lod, start, home, s);
         if (s[3] > 0) memcpy(last, s, sizeof last);
         /* what the cone sees is the coverage of its cross-section. Isotropic: a level-L voxel's alpha is the share
            of its volume that is filled; a surface one voxel thick fills 2^-L of it yet may cover its whole
            cross-section: alpha x 2^L. Anisotropic: alpha is already the coverage along the axis (composited front
            to back), and a surface parallel to the travel covers only its share; only the trilinear filter's
            halving of a one-voxel wall between voxel centres is undone: alpha x 2. At most 1 either way. */
-        ap = 1 - pow(1 - VOXGI__MIN(1.0, s[3] * (J->dirs == 6 ? 2.0 : exp2(VOXGI__MAX(lod, 0.0)))), J->step); /* it holds for one diameter; a step is J->step of it */
+        keep = 1 - VOXGI__MIN(1.0, s[3] * (J->dirs == 6 ? 2.0 : exp2(VOXGI__MAX(lod, 0.0)))); /* what one diameter lets through; */
+        ap = 1 - (J->step == 0.5 ? sqrt(keep) : J->step == 1 ? keep : pow(keep, J->step)); /* a step is J->step of it */
         for (a = 0; a < 3; a++) C[a] += (1 - A) * ap * s[a];
         A += (1 - A) * ap;
         t += J->step * diam;
@@ -8682,6 +8751,12 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radianc
     J->boxes = !J->regions ? NULL : vol ? vol->region_boxes : svo->regions + svo->info.nodes + svo->info.leaf_slots;
     for (k = 0; k < J->levels; k++)
         for (a = 0; a < 3; a++) J->dims[k][a] = vol ? vol->dims[k][a] : (int)(((int64_t)g->res[a] + ((int64_t)1 << k) - 1) >> k);
+    for (a = 0; vol && a < 3; a++) /* the levels the source holds, on the CPU */
+        if (vol->cpu[VOXGI__RADIANCE_SLOT + a][0]) {
+            int dir;
+            for (dir = 0; dir < (a == 2 ? 1 : J->dirs); dir++)
+                for (k = 0; k < J->levels; k++) J->level_at[a][dir][k] = voxgi__volume_level(vol, VOXGI__RADIANCE_SLOT + a, dir, k);
+        }
     J->half_tan = tan(desc->half_angle > 0 ? desc->half_angle : acos(1 - 1.0 / J->cones));
     J->step = desc->step > 0 ? desc->step : 0.5;
     J->offset = desc->offset > 0 ? desc->offset : 1.5;
@@ -9323,8 +9398,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
                               VOXGI_ATTRIBUTE_RADIANCE | (sides == 2 ? VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE : 0u), &vol);
     for (a = 0; a < (sides == 2 ? 3 : 1) && r == VOXGI_OK; a++) {
         if (ctx->backend == VOXGI_BACKEND_CPU && desc->bounces >= 0 && desc->bounces <= 1) { /* level 0 written in place, the mips after it */
-            if ((vol->cpu[VOXGI__RADIANCE_SLOT + a][0] = (float *)voxgi__alloc_array(ctx, vol->voxels, 16, 0)) != NULL)
-                memset(vol->cpu[VOXGI__RADIANCE_SLOT + a][0], 0, (size_t)nvox * 16);
+            vol->cpu[VOXGI__RADIANCE_SLOT + a][0] = (float *)voxgi__alloc_array(ctx, vol->voxels, 16, 1);
             level0[a] = vol->cpu[VOXGI__RADIANCE_SLOT + a][0];
         } else /* GL uploads it; the bounces rewrite it for each new volume */
             own[a] = level0[a] = (float *)voxgi__alloc_array(ctx, (size_t)nvox, 16, 1);

@@ -16,7 +16,9 @@ static const char *const report_help =
     "(4, 16 and 64 spp against the converged image; error ~ 1/sqrt(spp)) gives the time it needs\n"
     "to reach each error, and so the cone tracer's speed-up. Writes DIR/vct.md (tables),\n"
     "DIR/vct.csv and DIR/vct.svg (error against time, log scales, the Pareto front marked).\n"
-    "Times are wall clock on this machine; GL times on a software rasteriser are not GPU times.\n";
+    "It also times each stage of the tool's default configuration on the CPU and on GL, where a GL\n"
+    "4.5 context can be made (--no-stages: not). Times are wall clock on this machine; GL times on a\n"
+    "software rasteriser are not GPU times.\n";
 
 /* mips: 0 isotropic, 1 anisotropic, 2 octree (the --filters bits 1, 2, 4) */
 static const char *const mips_names[] = {"isotropic", "anisotropic", "octree", NULL}, *const mips_short[3] = {"iso", "aniso", "octree"},
@@ -30,7 +32,7 @@ typedef struct report_args {
     cli_common common; /* --backend, --threads */
     const char *out_dir, *scene_list, *cornell_mesh;
     double res[REPORT_MAX_LIST], cones[REPORT_MAX_LIST], apertures[REPORT_MAX_LIST], steps[REPORT_MAX_LIST], strides[REPORT_MAX_LIST];
-    int nres, ncones, naps, nsteps, nstrides, size, spp, direct_spp;
+    int nres, ncones, naps, nsteps, nstrides, size, spp, direct_spp, no_stages, stage_res;
     unsigned filters;
 } report_args;
 
@@ -53,7 +55,16 @@ typedef struct report {
     report_row *rows;
     voxgi_info ci;
     const report_args *args;
+    /* the stages of the tool's defaults: [0] the CPU, [1] GL (each the faster of two runs) */
+    voxgi_context *stage_ctx[2];  /* NULL: that backend is not timed */
+    voxgi_info stage_ci[2];
+    voxgi_vct_info stages[REPORT_MAX_SCENES][2];
 } report;
+
+/* The tool's default cone tracing (voxgi render --method vct), at the report's size (the grid: --stage-res). */
+#define STAGE_CONES 32
+#define STAGE_STRIDE 4
+#define STAGE_DIRECT_SPP 24
 
 /* The tools' one rule (cli_masked_error); 0 for a black reference. */
 static double rel_rmse(const cli_error_mask *m, const float *a, const float *ref)
@@ -249,6 +260,29 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
                             row->ref_ms = rep->ref_bvh_ms[si] + rep->ref_ms_per_spp[si] * (need > 1.0 ? need : 1.0);
                             rep->nrows++;
                         }
+    for (k = 0; k < 2; k++) { /* the stages on each backend, the faster of two runs (the first compiles GL's shaders) */
+        voxgi_vct_desc vd;
+        int run;
+        if (!rep->stage_ctx[k]) continue;
+        memset(&vd, 0, sizeof vd);
+        vd.camera = rd.camera;
+        vd.resolution = a->stage_res;
+        vd.filter = VOXGI_MIPS_ANISOTROPIC;
+        vd.cones.cones = STAGE_CONES;
+        vd.cone_stride = STAGE_STRIDE;
+        vd.samples = STAGE_DIRECT_SPP;
+        vd.seed = 1;
+        vd.hide_emitters = 1;
+        cli_note(s, "%s: the defaults' stages on %s", name, voxgi_backend_name(rep->stage_ci[k].backend));
+        for (run = 0; run < 2; run++) {
+            voxgi_vct_info vi;
+            if (voxgi_vct_render(rep->stage_ctx[k], scene, &vd, img, nv * 4, &vi) != VOXGI_OK) {
+                cli_fail_lib(s, rep->stage_ctx[k], NULL);
+                goto done;
+            }
+            if (run == 0 || vi.ms < rep->stages[si][k].ms) rep->stages[si][k] = vi;
+        }
+    }
     for (i = first_row; i < rep->nrows; i++) { /* on the front: nothing both faster and closer */
         report_row *p = &rep->rows[i];
         int j;
@@ -309,6 +343,25 @@ static void write_markdown(FILE *md, const report *rep)
         fprintf(md, "\n");
     }
     fprintf(md, "![error against time](vct.svg)\n");
+    if (!rep->stage_ctx[0]) return;
+    fprintf(md, "\n## Stages: the CPU against GL\n\nThe tool's defaults (%d^3 (the tool's: 128^3), anisotropic, %d cones at stride %d, %d direct-light rays per pixel) "
+                "at %d x %d, each stage's time (ms) on the CPU (%d threads) and on GL (%s), the faster of two runs.%s\n\n"
+                "| scene | stage | CPU | GL | CPU faster by |\n|---|---|---:|---:|---:|\n",
+            a->stage_res, STAGE_CONES, STAGE_STRIDE, STAGE_DIRECT_SPP, a->size, a->size, rep->stage_ci[0].thread_count,
+            rep->stage_ctx[1] ? rep->stage_ci[1].gl_renderer : "no GL 4.5 context could be made: not timed",
+            rep->stage_ctx[1] && rep->stage_ci[1].gl_software ? " GL runs on a software rasteriser on the same cores: these are not GPU timings." : "");
+    for (s = 0; s < rep->scene_count; s++) {
+        static const char *const stage_names[5] = {"voxelize", "inject + mips", "cones", "direct light (CPU rays on both)", "total"};
+        const voxgi_vct_info *c = &rep->stages[s][0], *g = &rep->stages[s][1];
+        const double cpu[5] = {c->ms_voxelize, c->ms_inject, c->ms_cones, c->ms_direct, c->ms}, gl[5] = {g->ms_voxelize, g->ms_inject, g->ms_cones, g->ms_direct, g->ms};
+        int k;
+        for (k = 0; k < 5; k++) {
+            if (rep->stage_ctx[1])
+                fprintf(md, "| %s | %s | %.1f | %.1f | %.1fx |\n", rep->scenes[s], stage_names[k], cpu[k], gl[k], cpu[k] > 0 ? gl[k] / cpu[k] : 0);
+            else
+                fprintf(md, "| %s | %s | %.1f | - | - |\n", rep->scenes[s], stage_names[k], cpu[k]);
+        }
+    }
 }
 
 /* DIR/NAME, written by fn; 0, or says why and returns 1. */
@@ -325,13 +378,29 @@ static int write_file(cli_session *s, const report *rep, const char *name, void 
 
 static int report_run(cli_session *s, const report_args *a, report *rep)
 {
-    cli_context c;
+    cli_context c, stage_c; /* stage_c: the other backend's, for the stages */
     cli_cornell_mesh cm;
     float *ref = NULL, *img = NULL;
     int i, si, rc = CLI_EXIT_FAILURE;
     memset(&cm, 0, sizeof cm);
     if (cli_context_open_options(s, &c, &a->common)) return CLI_EXIT_FAILURE;
     voxgi_query_info(c.vx, &rep->ci);
+    memset(&stage_c, 0, sizeof stage_c);
+    if (!a->no_stages) { /* the report's context for its backend, one more for the other (a GL one where it can be made) */
+        int mine = rep->ci.backend == VOXGI_BACKEND_GL, other = !mine;
+        cli_common o = a->common;
+        rep->stage_ctx[mine] = c.vx;
+        rep->stage_ci[mine] = rep->ci;
+        o.backend = other ? VOXGI_BACKEND_GL : VOXGI_BACKEND_CPU;
+        if (cli_context_open_options(s, &stage_c, &o) == 0) {
+            rep->stage_ctx[other] = stage_c.vx;
+            voxgi_query_info(stage_c.vx, &rep->stage_ci[other]);
+        } else if (other) {
+            cli_note(s, "no GL context (%s): the stages are timed on the CPU alone", s->error);
+            s->error[0] = 0;
+        } else
+            goto done;
+    }
     if (a->cornell_mesh) { /* first: a bad mesh fails before any rendering */
         if (cli_cornell_mesh_open(s, c.vx, a->cornell_mesh, &cm)) goto done;
         rep->cornell_mesh_scene = rep->scene_count++;
@@ -369,6 +438,7 @@ done:
     free(ref);
     free(img);
     if (cm.name[0]) cli_cornell_mesh_close(c.vx, &cm);
+    if (stage_c.vx) cli_context_close(s, &stage_c);
     cli_context_close(s, &c);
     return rc;
 }
@@ -389,6 +459,7 @@ int cmd_report(int argc, char **argv)
     a.size = 128;
     a.spp = 1024;
     a.direct_spp = 16;
+    a.stage_res = 128;
     a.filters = 3;
     memcpy(a.res, res, sizeof res);
     memcpy(a.cones, cones, sizeof cones);
@@ -423,6 +494,10 @@ int cmd_report(int argc, char **argv)
                      "radiance, isotropic mips) (default isotropic,anisotropic)"},
             LIST("--strides", strides, nstrides, 64, 1, "cone strides: cones at every S-th pixel, the rest interpolated (default 1,2)"),
             CLI_OPT_BACKEND(&a.common, "where the cone tracer runs (default cpu)"),
+            {.name = "--no-stages", .kind = CLI_FLAG, .dst = &a.no_stages,
+             .help = "leave out the timing of the defaults' stages on the CPU and on GL"},
+            {.name = "--stage-res", .arg = "N", .kind = CLI_INT, .dst = &a.stage_res, .lo = 1, .hi = 4096,
+             .help = "the grid of the stages' timing (default 128, the tool's)"},
             {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
             CLI_OPT_THREADS(&a.common)};
 #undef LIST
