@@ -6427,15 +6427,12 @@ static void voxgi__mip_voxel(const float *src, const int sd[3], float *dst, floa
         voxgi__mip_load(a == 3 ? src + ((size_t)v[0] + (size_t)sd[0] * ((size_t)v[1] + (size_t)sd[1] * (size_t)v[2])) * (size_t)w : NULL, w, c[k]);
         any |= c[k][0] != 0 || c[k][1] != 0 || c[k][2] != 0 || c[k][3] != 0;
     }
+    if (!any) return; /* the levels start zeroed: empty space stays untouched (and, from calloc, unpaged) */
     if (dir != -2) {
-        if (any) voxgi__mip_combine(c, w, dir, premultiplied, dst);
-        else memset(dst, 0, (size_t)w * sizeof(float));
+        voxgi__mip_combine(c, w, dir, premultiplied, dst);
         return;
     }
-    for (k = 0; k < 6; k++) {
-        if (any) voxgi__mip_combine(c, w, k, premultiplied, dst6[k]);
-        else memset(dst6[k], 0, (size_t)w * sizeof(float));
-    }
+    for (k = 0; k < 6; k++) voxgi__mip_combine(c, w, k, premultiplied, dst6[k]);
 }
 
 /* Level 0 of every asked-for attribute, dense, from the voxels' bits and attribute means. */
@@ -6661,7 +6658,7 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
     const float *radiance0 = base[VOXGI__RADIANCE_SLOT], *back0 = base[VOXGI__BACK_SLOT], *side0 = base[VOXGI__SIDE_SLOT];
     const int *dm = vol->dims[0];
     size_t nx = (size_t)dm[0], nxy = nx * (size_t)dm[1], n = nxy * (size_t)dm[2], i, kept = 2;
-    uint32_t *lab, *parent = NULL, *box = NULL, next = 2, l;
+    uint32_t *lab, *parent = NULL, *box = NULL, next = 2, l, root_of_l = 0;
     unsigned char *open_flags = NULL, *lit = NULL;
     int x, y, z, k, a, q;
     if (!radiance0 || !back0 || !side0 || vol->voxels > VOXGI__REGION_BYTES / 4) return VOXGI_OK;
@@ -6674,16 +6671,21 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
             for (x = 0; x < dm[0]; x++, i++) {
                 if (radiance0[4 * i + 3] > 0) continue;
                 l = x > 0 ? lab[i - 1] : 0;
-                if (y > 0 && lab[i - nx]) l = l ? voxgi__region_unite(parent, l, lab[i - nx]) : lab[i - nx];
-                if (z > 0 && lab[i - nxy]) l = l ? voxgi__region_unite(parent, l, lab[i - nxy]) : lab[i - nxy];
+                /* a neighbour whose own -x neighbour holds the same label was joined to lab[i - 1] already */
+                if (y > 0 && lab[i - nx] && !(l && lab[i - nx - 1] == lab[i - nx]))
+                    l = l ? voxgi__region_unite(parent, l, lab[i - nx]) : lab[i - nx];
+                if (z > 0 && lab[i - nxy] && !(l && lab[i - nxy - 1] == lab[i - nxy]))
+                    l = l ? voxgi__region_unite(parent, l, lab[i - nxy]) : lab[i - nxy];
                 if (!l) { l = next++; parent[l] = l; }
                 lab[i] = l;
             }
-    for (z = 0, i = 0; z < dm[2]; z++) /* each voxel its region's root; a region with a voxel on the grid's faces is open */
+    for (z = 0, i = 0, l = 0; z < dm[2]; z++) /* each voxel its region's root; a region with a voxel on the grid's faces is open */
         for (y = 0; y < dm[1]; y++)
             for (x = 0; x < dm[0]; x++, i++)
                 if (lab[i]) {
-                    lab[i] = voxgi__region_root(parent, lab[i]);
+                    uint32_t root = lab[i] == l ? root_of_l : voxgi__region_root(parent, lab[i]); /* runs share their label */
+                    l = lab[i];
+                    root_of_l = lab[i] = root;
                     if (x == 0 || x + 1 == dm[0] || y == 0 || y + 1 == dm[1] || z == 0 || z + 1 == dm[2]) open_flags[lab[i]] = 1;
                 }
     for (l = 2; l < next; l++) /* the roots renumbered, in the order the scan met them: open 1, enclosed 2, 3, ... */
@@ -6801,7 +6803,7 @@ static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, c
         M.premultiplied = a >= VOXGI__RADIANCE_SLOT;
         for (d = 0; d < dirs && r == VOXGI_OK; d++) {
             size_t held = d ? vol->voxels - base_voxels : vol->voxels; /* every voxel of every level it holds is written */
-            float *arr = !d && vol->cpu[a][0] ? vol->cpu[a][0] : (float *)voxgi__alloc_array(ctx, held ? held : 1, (size_t)w * 4, 0);
+            float *arr = !d && vol->cpu[a][0] ? vol->cpu[a][0] : (float *)voxgi__alloc_array(ctx, held ? held : 1, (size_t)w * 4, 1); /* zeroed (mip_voxel) */
             if (!arr) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the mip chain"); break; }
             vol->cpu[a][d] = arr;
             if (!d && base[a] != arr) memcpy(arr, base[a], base_voxels * (size_t)w * 4); /* or the caller wrote level 0 in place */
@@ -8931,14 +8933,15 @@ static double voxgi__surface_offset(const voxgi__inject *J, const double c[3], c
 
 /* The back side's lookup point of a voxel whose front looks up at p along nl: as far behind its
    surface (where it crosses the normal through the centre) as p is before the centre, so that a
-   light map's bias cannot reach through the surface from it. */
-static void voxgi__back_point(const voxgi__inject *J, const double p[3], const double nl[3], double pb[3])
+   light map's bias cannot reach through the surface from it. surface: the voxel's
+   voxgi__surface_offset along nl. */
+static void voxgi__back_point(const voxgi__inject *J, const double p[3], const double nl[3], double surface, double pb[3])
 {
     const double off = 0.8660254037844386 * J->g->voxel_size;
     double c[3], behind;
     int a;
     for (a = 0; a < 3; a++) c[a] = p[a] - off * nl[a];
-    behind = voxgi__surface_offset(J, c, nl) * J->g->voxel_size - off;
+    behind = surface * J->g->voxel_size - off;
     for (a = 0; a < 3; a++) pb[a] = c[a] + behind * nl[a];
 }
 
@@ -8946,7 +8949,8 @@ static void voxgi__back_point(const voxgi__inject *J, const double p[3], const d
    e_back at the mirror point behind its surface; and its side: (alpha n, alpha n.s), s where
    its surface crosses the normal through its centre (grid units), so that a point between the
    centre and the surface is not taken for one behind it. */
-static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e[3], const double e_back[3])
+/* Voxel i's light into the volume's level 0; surface: its voxgi__surface_offset where known, else NAN. */
+static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e[3], const double e_back[3], double surface)
 {
     const voxgi_grid *g = J->g;
     uint64_t l = J->index[i];
@@ -8967,7 +8971,7 @@ static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e
         sd[a] = o[3] * (float)nl[a];
     }
     sd[3] = has_normal ? o[3] * (float)(nl[0] * (c[0] - g->origin[0]) / g->voxel_size + nl[1] * (c[1] - g->origin[1]) / g->voxel_size +
-                                        nl[2] * (c[2] - g->origin[2]) / g->voxel_size + voxgi__surface_offset(J, c, nl))
+                                        nl[2] * (c[2] - g->origin[2]) / g->voxel_size + (isnan(surface) ? voxgi__surface_offset(J, c, nl) : surface))
                        : 0.0f;
 }
 
@@ -8997,17 +9001,19 @@ static void voxgi__inject_cpu(void *user, size_t first, size_t end)
     size_t i;
     int a;
     for (i = first; i < end; i++) {
-        double p[3], nl[3], e[3] = {0, 0, 0}, eb[3] = {0, 0, 0};
+        double p[3], nl[3], e[3] = {0, 0, 0}, eb[3] = {0, 0, 0}, surface = NAN;
         if (voxgi__inject_point(J, i, p, nl)) { /* no normal: the voxel only emits */
             voxgi__inject_irradiance(J, i, 0, p, nl, &rays, e);
             if (J->back) {
-                double pb[3];
-                voxgi__back_point(J, p, nl, pb);
+                double pb[3], c[3];
+                for (a = 0; a < 3; a++) c[a] = p[a] - 0.8660254037844386 * J->g->voxel_size * nl[a]; /* the centre */
+                surface = voxgi__surface_offset(J, c, nl);
+                voxgi__back_point(J, p, nl, surface, pb);
                 for (a = 0; a < 3; a++) nl[a] = -nl[a];
                 voxgi__inject_irradiance(J, i, 1, pb, nl, &rays, eb);
             }
         }
-        voxgi__inject_store(J, i, e, eb);
+        voxgi__inject_store(J, i, e, eb, surface);
     }
     VOXGI__ATOMIC_ADD_SIZE(&J->rays, (size_t)rays);
 }
@@ -9436,7 +9442,11 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
             for (i = 0; r == VOXGI_OK && i < m; i++) {
                 double p[3], nl[3], sgn = i < n ? 1 : -1;
                 io[8 * i + 7] = (float)voxgi__inject_point(&J, i % n, p, nl);
-                if (i >= n) voxgi__back_point(&J, p, nl, p);
+                if (i >= n) {
+                    double c[3];
+                    for (a = 0; a < 3; a++) c[a] = p[a] - 0.8660254037844386 * J.g->voxel_size * nl[a]; /* the centre */
+                    voxgi__back_point(&J, p, nl, voxgi__surface_offset(&J, c, nl), p);
+                }
                 for (a = 0; a < 3; a++) {
                     io[8 * i + (size_t)a] = (float)(p[a] - J.g->origin[a]);
                     io[8 * i + 4 + (size_t)a] = (float)(sgn * nl[a]);
@@ -9450,7 +9460,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
                     e[a] = io[4 * i + (size_t)a];
                     if (sides == 2) eb[a] = io[4 * (n + i) + (size_t)a];
                 }
-                voxgi__inject_store(&J, i, e, eb);
+                voxgi__inject_store(&J, i, e, eb, NAN);
             }
             voxgi__free(ctx, io);
         } else
