@@ -344,10 +344,10 @@ static void write_markdown(FILE *md, const report *rep)
     }
     fprintf(md, "![error against time](vct.svg)\n");
     if (!rep->stage_ctx[0]) return;
-    fprintf(md, "\n## Stages: the CPU against GL\n\nThe tool's defaults (%d^3 (the tool's: 128^3), anisotropic, %d cones at stride %d, %d direct-light rays per pixel) "
+    fprintf(md, "\n## Stages: the CPU against GL\n\nThe tool's defaults (%d^3%s, anisotropic, %d cones at stride %d, %d direct-light rays per pixel) "
                 "at %d x %d, each stage's time (ms) on the CPU (%d threads) and on GL (%s), the faster of two runs.%s\n\n"
                 "| scene | stage | CPU | GL | CPU faster by |\n|---|---|---:|---:|---:|\n",
-            a->stage_res, STAGE_CONES, STAGE_STRIDE, STAGE_DIRECT_SPP, a->size, a->size, rep->stage_ci[0].thread_count,
+            a->stage_res, a->stage_res == 128 ? "" : " (the tool's: 128^3)", STAGE_CONES, STAGE_STRIDE, STAGE_DIRECT_SPP, a->size, a->size, rep->stage_ci[0].thread_count,
             rep->stage_ctx[1] ? rep->stage_ci[1].gl_renderer : "no GL 4.5 context could be made: not timed",
             rep->stage_ctx[1] && rep->stage_ci[1].gl_software ? " GL runs on a software rasteriser on the same cores: these are not GPU timings." : "");
     for (s = 0; s < rep->scene_count; s++) {
