@@ -6670,11 +6670,12 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
         for (y = 0; y < dm[1]; y++)
             for (x = 0; x < dm[0]; x++, i++) {
                 if (radiance0[4 * i + 3] > 0) continue;
-                l = x > 0 ? lab[i - 1] : 0;
-                /* a neighbour whose own -x neighbour holds the same label was joined to lab[i - 1] already */
-                if (y > 0 && lab[i - nx] && !(l && lab[i - nx - 1] == lab[i - nx]))
+                int left = x > 0 && lab[i - 1] != 0;
+                l = left ? lab[i - 1] : 0;
+                /* a neighbour whose own -x neighbour is empty was joined to lab[i - 1] through it already */
+                if (y > 0 && lab[i - nx] && !(left && lab[i - nx - 1]))
                     l = l ? voxgi__region_unite(parent, l, lab[i - nx]) : lab[i - nx];
-                if (z > 0 && lab[i - nxy] && !(l && lab[i - nxy - 1] == lab[i - nxy]))
+                if (z > 0 && lab[i - nxy] && !(left && lab[i - nxy - 1]))
                     l = l ? voxgi__region_unite(parent, l, lab[i - nxy]) : lab[i - nxy];
                 if (!l) { l = next++; parent[l] = l; }
                 lab[i] = l;

@@ -348,6 +348,141 @@ static void test_volume_mips_by_hand(void)
     voxgi_destroy(ctx);
 }
 
+
+/* ---------------------------------------------------------------- regions and rays leaving surfaces */
+/* The region labels of a volume's empty space (voxgi__volume_regions) against a flood fill:
+   random 13 x 11 x 9 grids, 45% of the voxels filled; two empty voxels share a label exactly when
+   6-connected through empty voxels, a region touching the grid's faces is OPEN, the others
+   enclosed; no labels at all where nothing is enclosed. */
+static void test_region_labels_flood_fill(void)
+{
+    enum { X = 13, Y = 11, Z = 9, N = X * Y * Z };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    static float rad[4 * N], back[4 * N], side[4 * N];
+    static int comp[N], open_comp[N], stack[N];
+    static uint32_t label_of[N];
+    fx_rng rng;
+    int trial, bad = 0, enclosed_seen = 0;
+    rng = fx_rng_seeded(77);
+    for (trial = 0; trial < 40; trial++) {
+        voxgi_grid g;
+        voxgi_volume_desc vd;
+        voxgi_volume *vol = NULL;
+        const float *base[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+        int i, c, ncomp = 0, enclosed = 0;
+        memset(&g, 0, sizeof g);
+        g.res[0] = X; g.res[1] = Y; g.res[2] = Z;
+        g.voxel_size = 1;
+        memset(&vd, 0, sizeof vd);
+        memset(back, 0, sizeof back);
+        memset(side, 0, sizeof side);
+        for (i = 0; i < N; i++) { rad[4 * i + 3] = fx_rng_range(&rng, 0, 1) < 0.45 ? 1.0f : 0.0f; comp[i] = -1; }
+        for (i = 0; i < N; i++) { /* the oracle: flood fill */
+            int sp = 0;
+            if (rad[4 * i + 3] > 0 || comp[i] >= 0) continue;
+            open_comp[ncomp] = 0;
+            comp[i] = ncomp;
+            stack[sp++] = i;
+            while (sp) {
+                int v = stack[--sp], x = v % X, y = v / X % Y, z = v / (X * Y), q;
+                if (x == 0 || y == 0 || z == 0 || x == X - 1 || y == Y - 1 || z == Z - 1) open_comp[ncomp] = 1;
+                for (q = 0; q < 6; q++) {
+                    int nx = x + (q == 0) - (q == 1), ny = y + (q == 2) - (q == 3), nz = z + (q == 4) - (q == 5), w;
+                    if (nx < 0 || ny < 0 || nz < 0 || nx >= X || ny >= Y || nz >= Z) continue;
+                    w = nx + X * (ny + Y * nz);
+                    if (rad[4 * w + 3] > 0 || comp[w] >= 0) continue;
+                    comp[w] = ncomp;
+                    stack[sp++] = w;
+                }
+            }
+            enclosed += !open_comp[ncomp];
+            ncomp++;
+        }
+        base[VOXGI__RADIANCE_SLOT] = rad;
+        base[VOXGI__BACK_SLOT] = back;
+        base[VOXGI__SIDE_SLOT] = side;
+        TH_CHECK(voxgi__volume_new(ctx, &g, &vd, VOXGI__RADIANCE_FAMILY, &vol) == VOXGI_OK && voxgi__volume_regions(ctx, vol, base) == VOXGI_OK,
+                 "regions: %s", voxgi_last_error(ctx));
+        if (!vol) continue;
+        enclosed_seen += enclosed;
+        if (!enclosed) bad += vol->regions != NULL;
+        else if (!vol->regions) bad++;
+        else {
+            for (c = 0; c < ncomp; c++) label_of[c] = 0;
+            for (i = 0; i < N && bad < 5; i++) {
+                uint32_t l = vol->regions[i];
+                if (comp[i] < 0) continue;
+                if (!l || (l == VOXGI__REGION_OPEN) != open_comp[comp[i]] || (label_of[comp[i]] && label_of[comp[i]] != l)) {
+                    TH_CHECK(0, "trial %d: voxel %d of region %d (%s) labelled %u", trial, i, comp[i], open_comp[comp[i]] ? "open" : "enclosed", l);
+                    bad++;
+                }
+                label_of[comp[i]] = l;
+            }
+            for (c = 0; c < ncomp; c++) { /* distinct enclosed regions, distinct labels */
+                int d;
+                for (d = c + 1; d < ncomp; d++)
+                    if (!open_comp[c] && label_of[c] && label_of[c] == label_of[d]) bad++;
+            }
+        }
+        voxgi_volume_destroy(ctx, vol);
+    }
+    printf("    40 random grids, %d enclosed regions: %d labels wrong\n", enclosed_seen, bad);
+    TH_CHECK(bad == 0 && enclosed_seen > 40, "%d region labels wrong (%d enclosed regions)", bad, enclosed_seen);
+    voxgi_destroy(ctx);
+}
+
+/* Rays leaving a surface (voxgi__leave, voxgi__trace skipping the triangle left) find nothing on
+   the surface itself: a tilted plane of 2 x 40 x 40 triangles, 1e3 m from the origin (floats
+   there are 6e-5 m apart), left from points on it at grazing angles, 2 to 0.01 degrees. Started
+   on the plane instead, float rounding puts some origins behind it and they hit its neighbours. */
+static void test_rays_leave_surfaces(void)
+{
+    enum { M = 40 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    static float pos[3 * (M + 1) * (M + 1)];
+    static uint32_t idx[6 * M * M];
+    const double u[3] = {0.8, 0.6, 0}, v[3] = {-0.36, 0.48, 0.8}, off[3] = {1000.3, -700.1, 400.7};
+    double n[3];
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi__tracer tr;
+    fx_rng rng;
+    int i, j, a, hits = 0, rays = 0;
+    n[0] = u[1] * v[2] - u[2] * v[1]; n[1] = u[2] * v[0] - u[0] * v[2]; n[2] = u[0] * v[1] - u[1] * v[0];
+    for (j = 0; j <= M; j++)
+        for (i = 0; i <= M; i++)
+            for (a = 0; a < 3; a++) pos[3 * (j * (M + 1) + i) + a] = (float)(off[a] + (i - M / 2) * 0.25 * u[a] + (j - M / 2) * 0.25 * v[a]);
+    for (j = 0; j < M; j++)
+        for (i = 0; i < M; i++) {
+            uint32_t q = (uint32_t)(j * (M + 1) + i), *t = idx + 6 * (j * M + i);
+            t[0] = q; t[1] = q + 1; t[2] = q + M + 2; t[3] = q; t[4] = q + M + 2; t[5] = q + M + 1;
+        }
+    scene_of_triangles(&sc, &mesh, pos, (M + 1) * (M + 1), idx, 2 * M * M);
+    TH_CHECK(voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK, "tracer: %s", voxgi_last_error(ctx));
+    rng = fx_rng_seeded(5);
+    for (i = 0; i < 20000; i++) {
+        double o[3], d[3], p[3], ns[3], phi = fx_rng_range(&rng, 0, 6.283185307179586), el = pow(10, fx_rng_range(&rng, -2, log10(2.0))) * 3.141592653589793 / 180;
+        double su = fx_rng_range(&rng, -4, 4), sv = fx_rng_range(&rng, -4, 4);
+        voxgi__hit h, h2;
+        for (a = 0; a < 3; a++) { /* down onto the plane, then away from it along it */
+            o[a] = off[a] + su * u[a] + sv * v[a] + n[a];
+            d[a] = -n[a];
+        }
+        if (!voxgi__trace(&tr, o, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+        for (a = 0; a < 3; a++) {
+            ns[a] = h.front ? tr.n[3 * (size_t)h.prim + (size_t)a] : -tr.n[3 * (size_t)h.prim + (size_t)a];
+            d[a] = cos(el) * (cos(phi) * u[a] + sin(phi) * v[a]) + sin(el) * ns[a];
+        }
+        voxgi__leave(&tr, h.p, ns, p);
+        rays++;
+        hits += voxgi__trace(&tr, p, d, DBL_MAX, h.prim, 1, &h2);
+    }
+    printf("    %d rays leaving a plane 1e3 m out at 0.01-2 degrees: %d hit it\n", rays, hits);
+    TH_CHECK(rays > 19000 && hits == 0, "%d of %d rays leaving the plane hit it", hits, rays);
+    voxgi__tracer_free(ctx, &tr);
+    voxgi_destroy(ctx);
+}
+
 /* ---------------------------------------------------------------- cone tracing and light */
 /* qsort's order of doubles. */
 static int cmp_double(const void *a, const void *b)
@@ -795,6 +930,8 @@ int main(void)
     TH_RUN(test_mip_combine_by_hand);
     TH_RUN(test_mip_voxel_by_hand);
     TH_RUN(test_volume_mips_by_hand);
+    TH_RUN(test_region_labels_flood_fill);
+    TH_RUN(test_rays_leave_surfaces);
     TH_RUN(test_polygon_irradiance);
     TH_RUN(test_exact_area_light_image);
     TH_RUN(test_cone_set);
