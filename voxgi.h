@@ -8934,16 +8934,18 @@ static double voxgi__surface_offset(const voxgi__inject *J, const double c[3], c
 
 /* The back side's lookup point of a voxel whose front looks up at p along nl: as far behind its
    surface (where it crosses the normal through the centre) as p is before the centre, so that a
-   light map's bias cannot reach through the surface from it. surface: the voxel's
-   voxgi__surface_offset along nl. */
-static void voxgi__back_point(const voxgi__inject *J, const double p[3], const double nl[3], double surface, double pb[3])
+   light map's bias cannot reach through the surface from it. Returns that surface's
+   voxgi__surface_offset (its side plane needs it too). */
+static double voxgi__back_point(const voxgi__inject *J, const double p[3], const double nl[3], double pb[3])
 {
     const double off = 0.8660254037844386 * J->g->voxel_size;
-    double c[3], behind;
+    double c[3], behind, surface;
     int a;
     for (a = 0; a < 3; a++) c[a] = p[a] - off * nl[a];
+    surface = voxgi__surface_offset(J, c, nl);
     behind = surface * J->g->voxel_size - off;
     for (a = 0; a < 3; a++) pb[a] = c[a] + behind * nl[a];
+    return surface;
 }
 
 /* The i-th set voxel's radiance, premultiplied, from the irradiance e at its lookup point and
@@ -9006,10 +9008,8 @@ static void voxgi__inject_cpu(void *user, size_t first, size_t end)
         if (voxgi__inject_point(J, i, p, nl)) { /* no normal: the voxel only emits */
             voxgi__inject_irradiance(J, i, 0, p, nl, &rays, e);
             if (J->back) {
-                double pb[3], c[3];
-                for (a = 0; a < 3; a++) c[a] = p[a] - 0.8660254037844386 * J->g->voxel_size * nl[a]; /* the centre */
-                surface = voxgi__surface_offset(J, c, nl);
-                voxgi__back_point(J, p, nl, surface, pb);
+                double pb[3];
+                surface = voxgi__back_point(J, p, nl, pb);
                 for (a = 0; a < 3; a++) nl[a] = -nl[a];
                 voxgi__inject_irradiance(J, i, 1, pb, nl, &rays, eb);
             }
@@ -9443,11 +9443,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
             for (i = 0; r == VOXGI_OK && i < m; i++) {
                 double p[3], nl[3], sgn = i < n ? 1 : -1;
                 io[8 * i + 7] = (float)voxgi__inject_point(&J, i % n, p, nl);
-                if (i >= n) {
-                    double c[3];
-                    for (a = 0; a < 3; a++) c[a] = p[a] - 0.8660254037844386 * J.g->voxel_size * nl[a]; /* the centre */
-                    voxgi__back_point(&J, p, nl, voxgi__surface_offset(&J, c, nl), p);
-                }
+                if (i >= n) voxgi__back_point(&J, p, nl, p);
                 for (a = 0; a < 3; a++) {
                     io[8 * i + (size_t)a] = (float)(p[a] - J.g->origin[a]);
                     io[8 * i + 4 + (size_t)a] = (float)(sgn * nl[a]);
