@@ -9367,13 +9367,16 @@ static voxgi_inject_desc voxgi__inject_defaults(const voxgi_inject_desc *in)
     return d;
 }
 
-VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *vx, const voxgi_inject_desc *desc_in,
-                                          voxgi_volume **out)
+/* voxgi_inject_light through the caller's tracer and lights of the scene (NULL: its own). */
+static voxgi_result voxgi__inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *vx, const voxgi_inject_desc *desc_in,
+                                        const voxgi__tracer *tr_in, const voxgi__lights *Ls_in, voxgi_volume **out)
 {
     voxgi_inject_desc resolved;
     const voxgi_inject_desc *desc = &resolved;
-    voxgi__tracer tr;
-    voxgi__lights Ls;
+    voxgi__tracer own_tr;
+    voxgi__lights own_Ls;
+    const voxgi__tracer *tr = tr_in;
+    const voxgi__lights *Ls = Ls_in;
     voxgi__inject J;
     voxgi_volume *vol = NULL;
     float *vals[4] = {NULL, NULL, NULL, NULL}, *level0[3] = {NULL, NULL, NULL}, *own[3] = {NULL, NULL, NULL};
@@ -9394,8 +9397,14 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d (-1..64), gather block %d (1..64)", desc->samples, desc->bounces,
                            desc->gather_block);
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
-    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    r = voxgi__lights_build(ctx, scene, &tr, &Ls);
+    memset(&own_tr, 0, sizeof own_tr);
+    memset(&own_Ls, 0, sizeof own_Ls);
+    if (!tr) {
+        if ((r = voxgi__tracer_build(ctx, scene, &own_tr)) != VOXGI_OK) return r;
+        r = voxgi__lights_build(ctx, scene, &own_tr, &own_Ls);
+        tr = &own_tr;
+        Ls = &own_Ls;
+    }
     nvox = voxgi_grid_voxel_count(&vx->info.grid);
     n = (size_t)vx->info.voxel_count;
     if (r == VOXGI_OK) r = voxgi_voxels_read(ctx, vx, NULL, 0, &need);
@@ -9425,7 +9434,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     }
     if (r == VOXGI_OK) {
         memset(&J, 0, sizeof J);
-        J.lights = &Ls;
+        J.lights = Ls;
         J.g = &vx->info.grid;
         J.desc = desc;
         J.index = index;
@@ -9450,7 +9459,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
                 }
                 io[8 * i + 3] = 0;
             }
-            if (r == VOXGI_OK) r = voxgi__inject_gl(ctx, &tr, &Ls, J.g, desc->samples, m, io, io);
+            if (r == VOXGI_OK) r = voxgi__inject_gl(ctx, tr, Ls, J.g, desc->samples, m, io, io);
             for (i = 0; r == VOXGI_OK && i < n; i++) {
                 double e[3], eb[3] = {0, 0, 0};
                 for (a = 0; a < 3; a++) {
@@ -9473,10 +9482,16 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     voxgi__free(ctx, bits);
     voxgi__free(ctx, index);
     for (a = 0; a < 3; a++) voxgi__free(ctx, own[a]);
-    voxgi__lights_free(ctx, &Ls);
-    voxgi__tracer_free(ctx, &tr);
+    voxgi__lights_free(ctx, &own_Ls);
+    voxgi__tracer_free(ctx, &own_tr);
     *out = vol;
     return r;
+}
+
+VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *vx, const voxgi_inject_desc *desc,
+                                          voxgi_volume **out)
+{
+    return voxgi__inject_light(ctx, scene, vx, desc, NULL, NULL, out);
 }
 
 /* ===================================================================== 10. images */
@@ -9812,8 +9827,8 @@ static voxgi_vct_desc voxgi__vct_defaults(const voxgi_context *ctx, const voxgi_
 /* The radiance the cones gather: the scene voxelized on a grid of desc->resolution voxels
    along its longest side (albedo and normal), the direct light injected (and bounced), in a
    volume or, with desc->octree, moved into an octree. */
-static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, voxgi_vct_info *inf,
-                                        voxgi_voxels **vox, voxgi_volume **vol, voxgi_svo **svo)
+static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *scene, const voxgi__tracer *tr, const voxgi__lights *Ls,
+                                        const voxgi_vct_desc *desc, voxgi_vct_info *inf, voxgi_voxels **vox, voxgi_volume **vol, voxgi_svo **svo)
 {
     voxgi_fit_desc fit;
     voxgi_voxelize_desc xd;
@@ -9842,7 +9857,7 @@ static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *s
     if (r == VOXGI_OK) { /* emission is left out: the pixels take it from the direct light */
         inf->voxels = (*vox)->info.voxel_count;
         t1 = voxgi__now_ms();
-        r = voxgi_inject_light(ctx, scene, *vox, &id, vol);
+        r = voxgi__inject_light(ctx, scene, *vox, &id, tr, Ls, vol); /* the image's tracer: one BVH build */
         inf->ms_inject = voxgi__now_ms() - t1;
     }
     if (r == VOXGI_OK && desc->octree) { /* the radiance moves into an octree; the volume goes */
@@ -9957,7 +9972,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if (r == VOXGI_OK) r = voxgi__gbuffer(ctx, &tr, &desc->camera, J.pos, J.nrm, J.prim);
     if (r == VOXGI_OK && !desc->no_gi) {
         if (voxgi__cancelled(ctx, 0.0, "cone-traced image", "vct: voxelization")) r = VOXGI_ERR_CANCELLED;
-        if (r == VOXGI_OK) r = voxgi__vct_radiance(ctx, scene, desc, &inf, &vox, &vol, &svo);
+        if (r == VOXGI_OK) r = voxgi__vct_radiance(ctx, scene, &tr, &Ls, desc, &inf, &vox, &vol, &svo);
         if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.4, "cone-traced image", "vct: cones")) r = VOXGI_ERR_CANCELLED;
         t1 = voxgi__now_ms();
         if (r == VOXGI_OK) {
