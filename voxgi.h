@@ -1217,6 +1217,16 @@ static uint32_t voxgi__popcount32(uint32_t x)
     return (((x + (x >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24;
 }
 
+/* The lowest set bit's index (x != 0). */
+static VOXGI__HOT_INLINE int voxgi__ctz32(uint32_t x)
+{
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctz(x);
+#else
+    return (int)voxgi__popcount32((x & (0u - x)) - 1u);
+#endif
+}
+
 /* float -> half, rounded to the nearest, ties to even (finite input; 65520 and beyond: infinity).
    Integer steps only, so shaders/svo.glsl rounds exactly alike. */
 static uint16_t voxgi__half_from_float(float f)
@@ -2195,33 +2205,63 @@ VOXGI_API void voxgi_ray_scene_destroy(voxgi_context *ctx, voxgi_ray_scene *rs)
     if (ctx) voxgi__ray_scene_free(ctx, rs);
 }
 
-/* A ray in the scene's frame, ready for the boxes and the triangles. */
+/* A ray in the scene's frame, ready for the boxes, and for the triangles once sheared (on its
+   first leaf: a ray that meets no leaf never needs the shear). */
 typedef struct voxgi__ray4 {
-    float o[3], inv[3], inv_far[3], tmin;
+#ifdef VOXGI__SSE
+    __m128 o4[3], inv4[3], inv_far4[3]; /* o, inv and inv_far in every lane */
+#endif
+    float o[3], d[3], inv[3], inv_far[3], tmin;
     int neg[3];                   /* the direction's sign per axis: which of lo and hi is near, */
     size_t near_at[3], far_at[3]; /* and so their byte offsets in a node */
+    int sheared;                  /* the shear below is set */
     int kx, ky, kz;               /* the shear: kz the largest component */
     float sx, sy, sz;
     uint32_t skip;                /* the triangle the ray leaves, never hit (UINT32_MAX: none) */
 } voxgi__ray4;
 
-/* The ray from o along direction, world units; 0 for a zero direction. */
+/* Which of a node's lo and hi is near along each axis, as byte offsets. */
+static void voxgi__ray4_planes(const int neg[3], size_t near_at[3], size_t far_at[3])
+{
+    int a;
+    for (a = 0; a < 3; a++) {
+        near_at[a] = neg[a] ? offsetof(voxgi__node4, hi) + 16 * (size_t)a : offsetof(voxgi__node4, lo) + 16 * (size_t)a;
+        far_at[a] = neg[a] ? offsetof(voxgi__node4, lo) + 16 * (size_t)a : offsetof(voxgi__node4, hi) + 16 * (size_t)a;
+    }
+}
+
+/* The ray from o along direction, world units, for the boxes; 0 for a zero direction. */
 static int voxgi__ray4_setup(const voxgi_ray_scene *rs, const double o[3], const double direction[3], float tmin, uint32_t skip, voxgi__ray4 *r)
 {
-    int a, kz = 0;
-    float d[3];
+    int a;
     for (a = 0; a < 3; a++) {
-        d[a] = (float)direction[a];
+        r->d[a] = (float)direction[a];
         r->o[a] = (float)(o[a] - rs->centre[a]);
-        r->neg[a] = d[a] < 0;
+        r->neg[a] = r->d[a] < 0;
         /* a zero component: a tiny one of its sign, so that no slab sees 0 x inf */
-        r->inv[a] = 1.0f / (fabsf(d[a]) > 1e-30f ? d[a] : (r->neg[a] ? -1e-30f : 1e-30f));
+        r->inv[a] = 1.0f / (fabsf(r->d[a]) > 1e-30f ? r->d[a] : (r->neg[a] ? -1e-30f : 1e-30f));
         r->inv_far[a] = r->inv[a] * (1.0f + 4.76837158e-7f);
-        r->near_at[a] = r->neg[a] ? offsetof(voxgi__node4, hi) + 16 * (size_t)a : offsetof(voxgi__node4, lo) + 16 * (size_t)a;
-        r->far_at[a] = r->neg[a] ? offsetof(voxgi__node4, lo) + 16 * (size_t)a : offsetof(voxgi__node4, hi) + 16 * (size_t)a;
-        if (fabsf(d[a]) > fabsf(d[kz])) kz = a;
+#ifdef VOXGI__SSE
+        r->o4[a] = _mm_set1_ps(r->o[a]);
+        r->inv4[a] = _mm_set1_ps(r->inv[a]);
+        r->inv_far4[a] = _mm_set1_ps(r->inv_far[a]);
+#endif
     }
-    if (d[kz] == 0) return 0;
+    if (r->d[0] == 0 && r->d[1] == 0 && r->d[2] == 0) return 0;
+    voxgi__ray4_planes(r->neg, r->near_at, r->far_at);
+    r->sheared = 0;
+    r->tmin = tmin;
+    r->skip = skip;
+    return 1;
+}
+
+/* The shear of ray r's triangle test (Woop et al.): its largest direction component becomes z. */
+static void voxgi__ray4_shear(voxgi__ray4 *r)
+{
+    const float *d = r->d;
+    int a, kz = 0;
+    for (a = 1; a < 3; a++)
+        if (fabsf(d[a]) > fabsf(d[kz])) kz = a;
     r->kz = kz;
     r->kx = (kz + 1) % 3;
     r->ky = (r->kx + 1) % 3;
@@ -2229,25 +2269,22 @@ static int voxgi__ray4_setup(const voxgi_ray_scene *rs, const double o[3], const
     r->sx = d[r->kx] / d[kz];
     r->sy = d[r->ky] / d[kz];
     r->sz = 1.0f / d[kz];
-    r->tmin = tmin;
-    r->skip = skip;
-    return 1;
+    r->sheared = 1;
 }
 
 /* The four boxes of nd against the ray between tmin and tmax: the lanes hit (bits), and where
    each is entered. */
-static int voxgi__node4_hits(const voxgi__node4 *nd, const voxgi__ray4 *r, float tmax, float tnear[4])
+static VOXGI__HOT_INLINE int voxgi__node4_hits(const voxgi__node4 *nd, const voxgi__ray4 *r, float tmax, float tnear[4])
 {
 #ifdef VOXGI__SSE
+#define VOXGI__SLAB(a)                                                                                                                      \
+    tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(_mm_load_ps((const float *)(const void *)((const char *)nd + r->near_at[a])), r->o4[a]), r->inv4[a])); \
+    tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(_mm_load_ps((const float *)(const void *)((const char *)nd + r->far_at[a])), r->o4[a]), r->inv_far4[a]))
     __m128 tn = _mm_set1_ps(r->tmin), tf = _mm_set1_ps(tmax);
-    int a;
-    for (a = 0; a < 3; a++) {
-        __m128 o = _mm_set1_ps(r->o[a]);
-        __m128 near_plane = _mm_load_ps((const float *)(const void *)((const char *)nd + r->near_at[a]));
-        __m128 far_plane = _mm_load_ps((const float *)(const void *)((const char *)nd + r->far_at[a]));
-        tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(near_plane, o), _mm_set1_ps(r->inv[a])));
-        tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(far_plane, o), _mm_set1_ps(r->inv_far[a])));
-    }
+    VOXGI__SLAB(0);
+    VOXGI__SLAB(1);
+    VOXGI__SLAB(2);
+#undef VOXGI__SLAB
     _mm_storeu_ps(tnear, tn);
     return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
 #else
@@ -2267,7 +2304,17 @@ static int voxgi__node4_hits(const voxgi__node4 *nd, const voxgi__ray4 *r, float
 #endif
 }
 
-/* Lane l of pack pk against the ray for a hit in (tmin, tmax), the edge functions in double: 1
+/* The children of nd that are leaves (bits). */
+static VOXGI__HOT_INLINE int voxgi__node4_leaves(const voxgi__node4 *nd)
+{
+#ifdef VOXGI__SSE
+    return ~_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_loadu_si128((const __m128i *)(const void *)nd->count), _mm_setzero_si128()))) & 15;
+#else
+    return (nd->count[0] != 0) | (nd->count[1] != 0) << 1 | (nd->count[2] != 0) << 2 | (nd->count[3] != 0) << 3;
+#endif
+}
+
+/* Lane l of pack pk against the ray for a hit in (tmin, tmax], the edge functions in double: 1
    and its t, u, v. */
 static int voxgi__tri_lane_exact(const voxgi__tri4 *pk, int l, const voxgi__ray4 *r, float tmax, float *t_out, float *u_out, float *v_out)
 {
@@ -2280,7 +2327,7 @@ static int voxgi__tri_lane_exact(const voxgi__tri4 *pk, int l, const voxgi__ray4
     det = u + w + x;
     if (det == 0) return 0;
     tt = (u * az + w * bz + x * cz) * (double)r->sz / det;
-    if (!(tt > r->tmin && tt < tmax)) return 0;
+    if (!(tt > r->tmin && tt <= tmax)) return 0;
     *t_out = (float)tt;
     *u_out = (float)(w / det);
     *v_out = (float)(x / det);
@@ -2291,11 +2338,14 @@ static int voxgi__tri_lane_exact(const voxgi__tri4 *pk, int l, const voxgi__ray4
    within 2^-21 (|p| + |q|) of 0 (its rounding is below 2^-23 of that). */
 #define VOXGI__EDGE_NEAR_ZERO 4.76837158e-7f
 
-/* The closest hit in pack pk before tmax: its lane (-1: none) and t, u, v. The four lanes' edge
-   functions in float at once (SSE, or lane by lane in the same arithmetic); a lane whose edge
-   function lies within rounding of 0 is tested again with them in double, so every sign is
-   the exact one and no ray slips between triangles that share an edge or a vertex. */
-static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float tmax, float *t_out, float *u_out, float *v_out)
+/* The closest hit in pack pk before tmax, or at tmax on a triangle below tie (the hit so far: of
+   two hits at one t the lower triangle wins, so the closest hit is the same in any order of
+   traversal): its lane (-1: none) and t, u, v. The four lanes' edge functions in float at once
+   (SSE, or lane by lane in the same arithmetic); a lane whose edge function lies within rounding
+   of 0 is tested again with them in double, so every sign is the exact one and no ray slips
+   between triangles that share an edge or a vertex. */
+static VOXGI__HOT_INLINE int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float tmax, uint32_t tie, float *t_out, float *u_out,
+                                              float *v_out)
 {
     float tf[4], wf[4], xf[4], det[4];
     int near_zero = 0, hits = 0, l, best = -1;
@@ -2320,7 +2370,7 @@ static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float t
                                   _mm_and_ps(_mm_and_ps(_mm_cmple_ps(u, zero), _mm_cmple_ps(w, zero)), _mm_cmple_ps(x, zero)));
         near_zero = _mm_movemask_ps(nz);
         hits = _mm_movemask_ps(_mm_and_ps(_mm_and_ps(inside, _mm_cmpneq_ps(d, zero)),
-                                          _mm_and_ps(_mm_cmpgt_ps(t, _mm_set1_ps(r->tmin)), _mm_cmplt_ps(t, _mm_set1_ps(tmax))))) & ~near_zero;
+                                          _mm_and_ps(_mm_cmpgt_ps(t, _mm_set1_ps(r->tmin)), _mm_cmple_ps(t, _mm_set1_ps(tmax))))) & ~near_zero;
         if (!(hits | near_zero)) return -1; /* the usual case: nothing here */
         _mm_storeu_ps(tf, t);
         _mm_storeu_ps(wf, w);
@@ -2341,7 +2391,7 @@ static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float t
         if (fabsf(u) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p0) + fabsf(q0)) || fabsf(wf[l]) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p1) + fabsf(q1)) ||
             fabsf(xf[l]) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p2) + fabsf(q2)))
             near_zero |= 1 << l;
-        else if (((u >= 0 && wf[l] >= 0 && xf[l] >= 0) || (u <= 0 && wf[l] <= 0 && xf[l] <= 0)) && det[l] != 0 && tf[l] > r->tmin && tf[l] < tmax)
+        else if (((u >= 0 && wf[l] >= 0 && xf[l] >= 0) || (u <= 0 && wf[l] <= 0 && xf[l] <= 0)) && det[l] != 0 && tf[l] > r->tmin && tf[l] <= tmax)
             hits |= 1 << l;
     }
 #endif
@@ -2351,12 +2401,14 @@ static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float t
         if (near_zero >> l & 1) {
             if (!voxgi__tri_lane_exact(pk, l, r, tmax, &t, &u, &v)) continue;
         } else {
-            if (!(hits >> l & 1) || !(tf[l] < tmax)) continue;
+            if (!(hits >> l & 1)) continue;
             t = tf[l];
             u = wf[l] / det[l];
             v = xf[l] / det[l];
         }
-        tmax = t; /* the nearest lane; a later one only when strictly nearer */
+        if (!(t < tmax || (t == tmax && pk->tri[l] < tie))) continue;
+        tmax = t;
+        tie = pk->tri[l];
         best = l;
         *t_out = t;
         *u_out = u;
@@ -2365,53 +2417,66 @@ static int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi__ray4 *r, float t
     return best;
 }
 
-/* Ray r's closest hit before tmax (any = 0) or any hit (any = 1); 1 when there is one. */
-static int voxgi__ray4_cast(const voxgi_ray_scene *rs, const voxgi__ray4 *r, float tmax, int any, voxgi_ray_hit *hit)
+/* Ray r's closest hit before tmax (any = 0) or any hit (any = 1); 1 when there is one. A node's
+   leaves first, then on into its nearest inner child, the others on the stack. */
+static int voxgi__ray4_cast(const voxgi_ray_scene *rs, voxgi__ray4 *r, float tmax, int any, voxgi_ray_hit *hit)
 {
     struct { uint32_t node; float t; } stack[3 * VOXGI__BVH_DEPTH + 8];
-    uint32_t node = 0;
+    uint32_t node = 0, tie = 0; /* tie: no hit at the ray's own tmax counts */
     int sp = 0, found = 0;
     hit->triangle = UINT32_MAX;
     hit->t = hit->u = hit->v = 0;
     for (;;) {
         const voxgi__node4 *nd = &rs->nodes[node];
-        float tn[4], inner_t[4];
-        uint32_t inner[4];
-        int mask = voxgi__node4_hits(nd, r, tmax, tn), i, j, n = 0;
-        for (i = 0; mask; i++, mask >>= 1) {
-            if (!(mask & 1)) continue;
-            if (nd->count[i]) { /* a leaf: its packs */
-                uint32_t k;
-                for (k = nd->child[i]; k < nd->child[i] + nd->count[i]; k++) {
-                    float tt = 0, u = 0, v = 0;
-                    int lane = voxgi__ray4_pack(&rs->packs[k], r, tmax, &tt, &u, &v);
-                    if (lane < 0) continue;
-                    tmax = tt;
-                    found = 1;
-                    hit->t = tt;
-                    hit->u = u;
-                    hit->v = v;
-                    hit->triangle = rs->packs[k].tri[lane];
-                    if (any) return 1;
-                }
-            } else { /* an inner node: in order of entry, nearest last (occlusion: any order) */
-                for (j = n; !any && j > 0 && inner_t[j - 1] < tn[i]; j--) { inner[j] = inner[j - 1]; inner_t[j] = inner_t[j - 1]; }
-                inner[j] = nd->child[i];
-                inner_t[j] = tn[i];
-                n++;
+        float tn[4];
+        int mask = voxgi__node4_hits(nd, r, tmax, tn), leaves = mask & voxgi__node4_leaves(nd), inner = mask & ~leaves, i;
+        if (leaves && !r->sheared) voxgi__ray4_shear(r);
+        while (leaves) {
+            uint32_t k, end;
+            i = voxgi__ctz32((uint32_t)leaves);
+            leaves &= leaves - 1;
+            for (k = nd->child[i], end = k + nd->count[i]; k < end; k++) {
+                float tt = 0, u = 0, v = 0;
+                int lane = voxgi__ray4_pack(&rs->packs[k], r, tmax, tie, &tt, &u, &v);
+                if (lane < 0) continue;
+                tmax = tt;
+                tie = rs->packs[k].tri[lane];
+                found = 1;
+                hit->t = tt;
+                hit->u = u;
+                hit->v = v;
+                hit->triangle = tie;
+                if (any) return 1;
             }
         }
-        if (n) { /* on into the nearest; the others wait on the stack, farthest deepest */
-            for (j = 0; j < n - 1; j++) {
-                stack[sp].node = inner[j];
-                stack[sp].t = inner_t[j];
-                sp++;
+        if (inner) {
+            i = voxgi__ctz32((uint32_t)inner);
+            inner &= inner - 1;
+            if (inner) { /* two or more: the nearest on, the others pushed farthest deepest (occlusion: any order) */
+                uint32_t ids[4];
+                float ts[4];
+                int n = 1, j;
+                ids[0] = nd->child[i];
+                ts[0] = tn[i];
+                do {
+                    i = voxgi__ctz32((uint32_t)inner);
+                    inner &= inner - 1;
+                    for (j = n; !any && j > 0 && ts[j - 1] < tn[i]; j--) { ids[j] = ids[j - 1]; ts[j] = ts[j - 1]; }
+                    ids[j] = nd->child[i];
+                    ts[j] = tn[i];
+                    n++;
+                } while (inner);
+                for (j = 0; j < n - 1; j++) {
+                    stack[sp].node = ids[j];
+                    stack[sp].t = ts[j];
+                    sp++;
+                }
+                node = ids[n - 1];
+                if (any || ts[n - 1] <= tmax) continue;
+            } else if (tn[i] <= tmax) { /* a leaf of this node may have come nearer */
+                node = nd->child[i];
+                continue;
             }
-            node = inner[n - 1];
-#ifdef VOXGI__SSE
-            _mm_prefetch((const char *)&rs->nodes[node] + 64, _MM_HINT_T0);
-#endif
-            continue;
         }
         while (sp && stack[sp - 1].t > tmax) sp--; /* behind a hit already found */
         if (!sp) break;
@@ -2425,27 +2490,242 @@ typedef struct voxgi__ray_job {
     const voxgi_ray *rays;
     voxgi_ray_hit *hits;
     unsigned char *occluded;
+    int bad;                      /* set when a ray is not finite (checked where it is cast, while in the cache) */
 } voxgi__ray_job;
+
+static int voxgi__ray_finite(const voxgi_ray *ray)
+{
+    int a, ok = !isnan(ray->tmin) && !isnan(ray->tmax);
+    for (a = 0; a < 3; a++) ok &= isfinite(ray->origin[a]) && isfinite(ray->direction[a]);
+    return ok;
+}
+
+#ifdef VOXGI__SSE
+/* Packets: sixteen consecutive rays whose directions share their signs traced together, a node's
+   boxes tested against four rays at a time and a child visited when any ray enters it, nearest
+   first by its nearest ray. Each ray tests the triangles with its own shear and keeps its own tmax
+   and tie, so it finds exactly the hit it finds alone: the packet saves the set-up and the
+   traversal's bookkeeping, which coherent rays (a camera's tile) share. */
+#define VOXGI__PACKET 16
+typedef struct voxgi__packet {
+    __m128 o[3][4], inv[3][4], inv_far[3][4], tmin[4];
+    float tmax[VOXGI__PACKET];    /* on a 16-byte boundary: read as four vectors */
+    float lane[7][VOXGI__PACKET]; /* o, d and tmin by ray, for the shear */
+    uint32_t tie[VOXGI__PACKET];
+    int sheared;                  /* the rays (bits) whose ray[] is set */
+    size_t near_at[3], far_at[3];
+    voxgi_ray_hit *hits;
+    voxgi__ray4 ray[VOXGI__PACKET];
+} voxgi__packet;
+
+/* The rays of P in `active` (bits) that enter child c of nd, and the nearest entry among them. */
+static VOXGI__HOT_INLINE int voxgi__packet_child(const voxgi__packet *P, const voxgi__node4 *nd, int c, int active, float *t_near)
+{
+    __m128 near_plane[3], far_plane[3], nearest = _mm_set1_ps(INFINITY);
+    int a, g, hits = 0;
+    for (a = 0; a < 3; a++) {
+        near_plane[a] = _mm_set1_ps(((const float *)(const void *)((const char *)nd + P->near_at[a]))[c]);
+        far_plane[a] = _mm_set1_ps(((const float *)(const void *)((const char *)nd + P->far_at[a]))[c]);
+    }
+    for (g = 0; g < 4; g++) {
+        __m128 tn, tf, in;
+        int m;
+        if (!(active >> 4 * g & 15)) continue;
+        tn = P->tmin[g];
+        tf = _mm_load_ps(P->tmax + 4 * g);
+        for (a = 0; a < 3; a++) {
+            tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(near_plane[a], P->o[a][g]), P->inv[a][g]));
+            tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(far_plane[a], P->o[a][g]), P->inv_far[a][g]));
+        }
+        in = _mm_cmple_ps(tn, tf);
+        m = _mm_movemask_ps(in) & (active >> 4 * g & 15);
+        if (!m) continue;
+        hits |= m << 4 * g;
+        nearest = _mm_min_ps(nearest, _mm_or_ps(_mm_and_ps(in, tn), _mm_andnot_ps(in, _mm_set1_ps(INFINITY))));
+    }
+    nearest = _mm_min_ps(nearest, _mm_shuffle_ps(nearest, nearest, _MM_SHUFFLE(2, 3, 0, 1)));
+    nearest = _mm_min_ps(nearest, _mm_shuffle_ps(nearest, nearest, _MM_SHUFFLE(1, 0, 3, 2)));
+    *t_near = _mm_cvtss_f32(nearest);
+    return hits;
+}
+
+/* The closest hits of the packet's rays in `all` (bits), into P->hits. */
+static void voxgi__packet_cast(const voxgi_ray_scene *rs, voxgi__packet *P, int all)
+{
+    struct { uint32_t node; int mask; } stack[3 * VOXGI__BVH_DEPTH + 8];
+    uint32_t node = 0;
+    int sp = 0, active = all;
+    for (;;) {
+        const voxgi__node4 *nd = &rs->nodes[node];
+        uint32_t ids[4];
+        int masks[4], n = 0, c, j, leaves = voxgi__node4_leaves(nd);
+        float ts[4];
+        for (c = 0; c < 4; c++) {
+            float t;
+            int m = voxgi__packet_child(P, nd, c, active, &t);
+            if (!m) continue;
+            if (leaves >> c & 1) { /* a leaf: each ray that enters it, against its packs */
+                uint32_t k, end = nd->child[c] + nd->count[c];
+                while (m) {
+                    int i = voxgi__ctz32((uint32_t)m), a;
+                    voxgi__ray4 *r = &P->ray[i];
+                    m &= m - 1;
+                    if (!(P->sheared >> i & 1)) {
+                        for (a = 0; a < 3; a++) { r->o[a] = P->lane[a][i]; r->d[a] = P->lane[3 + a][i]; }
+                        r->tmin = P->lane[6][i];
+                        r->skip = UINT32_MAX;
+                        voxgi__ray4_shear(r);
+                        P->sheared |= 1 << i;
+                    }
+                    for (k = nd->child[c]; k < end; k++) {
+                        float tt = 0, u = 0, v = 0;
+                        int lane = voxgi__ray4_pack(&rs->packs[k], r, P->tmax[i], P->tie[i], &tt, &u, &v);
+                        if (lane < 0) continue;
+                        P->tmax[i] = tt;
+                        P->tie[i] = rs->packs[k].tri[lane];
+                        P->hits[i].t = tt;
+                        P->hits[i].u = u;
+                        P->hits[i].v = v;
+                        P->hits[i].triangle = P->tie[i];
+                    }
+                }
+                continue;
+            }
+            for (j = n; j > 0 && ts[j - 1] < t; j--) { ids[j] = ids[j - 1]; ts[j] = ts[j - 1]; masks[j] = masks[j - 1]; }
+            ids[j] = nd->child[c];
+            ts[j] = t;
+            masks[j] = m;
+            n++;
+        }
+        if (n) { /* on into the nearest; the others on the stack, farthest deepest */
+            for (j = 0; j < n - 1; j++) {
+                stack[sp].node = ids[j];
+                stack[sp].mask = masks[j];
+                sp++;
+            }
+            node = ids[n - 1];
+            active = masks[n - 1];
+            continue;
+        }
+        if (!sp) break;
+        --sp;
+        node = stack[sp].node;
+        active = stack[sp].mask;
+    }
+}
+
+/* Rays [first, first + n) of J (n <= 16) into P, four at a time with the arithmetic of
+   voxgi__ray4_setup: the rays to cast (bits), 0 where their signs differ (each then goes alone);
+   hits cleared, rays not finite flagged. */
+static int voxgi__packet_load(voxgi__ray_job *J, size_t first, size_t n, voxgi__packet *P)
+{
+    const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f), tiny = _mm_set1_ps(1e-30f);
+    voxgi_ray in[VOXGI__PACKET];
+    size_t k;
+    int g, a, cast = 0, neg[3] = {0, 0, 0};
+    memcpy(in, J->rays + first, n * sizeof *in);
+    for (k = n; k < VOXGI__PACKET; k++) in[k] = in[0];
+    P->hits = J->hits + first;
+    for (k = 0; k < n; k++) {
+        P->hits[k].triangle = UINT32_MAX;
+        P->hits[k].t = P->hits[k].u = P->hits[k].v = 0;
+    }
+    for (g = 0; g < 4; g++) {
+        const voxgi_ray *q = in + 4 * g;
+        __m128 o[4], d[4], ok, some;
+        int m;
+        for (k = 0; k < 4; k++) { /* origin, tmin; direction, tmax */
+            o[k] = _mm_loadu_ps((const float *)(const void *)&q[k]);
+            d[k] = _mm_loadu_ps((const float *)(const void *)((const char *)&q[k] + offsetof(voxgi_ray, direction)));
+        }
+        _MM_TRANSPOSE4_PS(o[0], o[1], o[2], o[3]); /* x, y, z, tmin of the four */
+        _MM_TRANSPOSE4_PS(d[0], d[1], d[2], d[3]); /* x, y, z, tmax */
+        ok = _mm_and_ps(_mm_cmpord_ps(o[3], o[3]), _mm_cmpord_ps(d[3], d[3]));
+        some = zero;
+        for (a = 0; a < 3; a++) {
+            __m128d c = _mm_set1_pd(J->rs->centre[a]);
+            __m128 negative = _mm_cmplt_ps(d[a], zero), nonzero;
+            ok = _mm_and_ps(ok, _mm_and_ps(_mm_cmpeq_ps(_mm_sub_ps(o[a], o[a]), zero), _mm_cmpeq_ps(_mm_sub_ps(d[a], d[a]), zero)));
+            some = _mm_or_ps(some, _mm_cmpneq_ps(d[a], zero));
+            _mm_storeu_ps(P->lane[3 + a] + 4 * g, d[a]);
+            o[a] = _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(o[a]), c)), _mm_cvtpd_ps(_mm_sub_pd(_mm_cvtps_pd(_mm_movehl_ps(o[a], o[a])), c)));
+            _mm_storeu_ps(P->lane[a] + 4 * g, o[a]);
+            P->o[a][g] = o[a];
+            nonzero = _mm_cmpgt_ps(_mm_andnot_ps(sign, d[a]), tiny);
+            nonzero = _mm_or_ps(_mm_and_ps(nonzero, d[a]), _mm_andnot_ps(nonzero, _mm_or_ps(tiny, _mm_and_ps(negative, sign))));
+            P->inv[a][g] = _mm_div_ps(_mm_set1_ps(1.0f), nonzero);
+            P->inv_far[a][g] = _mm_mul_ps(P->inv[a][g], _mm_set1_ps(1.0f + 4.76837158e-7f));
+            neg[a] |= _mm_movemask_ps(negative) << 4 * g;
+        }
+        _mm_storeu_ps(P->lane[6] + 4 * g, o[3]);
+        P->tmin[g] = o[3];
+        m = _mm_movemask_ps(ok);
+        if (m != 15)
+            for (k = 0; k < 4; k++)
+                if (!(m >> k & 1) && 4 * g + k < n) VOXGI__ATOMIC_STORE_INT(&J->bad, 1);
+        m &= _mm_movemask_ps(some);
+        _mm_store_ps(P->tmax + 4 * g, _mm_or_ps(_mm_and_ps(_mm_castsi128_ps(_mm_set_epi32(-(m >> 3 & 1), -(m >> 2 & 1), -(m >> 1 & 1), -(m & 1))), d[3]),
+                                                _mm_andnot_ps(_mm_castsi128_ps(_mm_set_epi32(-(m >> 3 & 1), -(m >> 2 & 1), -(m >> 1 & 1), -(m & 1))),
+                                                              _mm_set1_ps(-INFINITY))));
+        cast |= m << 4 * g;
+    }
+    cast &= (int)((1u << n) - 1u);
+    for (a = 0; a < 3; a++) {
+        int s = neg[a] & cast;
+        if (s != 0 && s != cast) return 0;
+        P->ray[0].neg[a] = s != 0;
+    }
+    voxgi__ray4_planes(P->ray[0].neg, P->near_at, P->far_at);
+    memset(P->tie, 0, sizeof P->tie);
+    P->sheared = 0;
+    return cast;
+}
+#endif
+
+/* Ray i of the job set up in r (0: not cast; its hit cleared, not finite ones flagged). */
+static int voxgi__ray_job_setup(voxgi__ray_job *J, size_t i, voxgi__ray4 *r)
+{
+    const voxgi_ray *ray = &J->rays[i];
+    double o[3], d[3];
+    int a;
+    for (a = 0; a < 3; a++) { o[a] = ray->origin[a]; d[a] = ray->direction[a]; }
+    if (!voxgi__ray_finite(ray)) VOXGI__ATOMIC_STORE_INT(&J->bad, 1);
+    else if (voxgi__ray4_setup(J->rs, o, d, ray->tmin, UINT32_MAX, r)) return 1;
+    if (J->hits) {
+        J->hits[i].triangle = UINT32_MAX;
+        J->hits[i].t = J->hits[i].u = J->hits[i].v = 0;
+    } else
+        J->occluded[i] = 0;
+    return 0;
+}
 
 static void voxgi__ray_range(void *user, size_t first, size_t end)
 {
-    const voxgi__ray_job *J = (const voxgi__ray_job *)user;
+    voxgi__ray_job *J = (voxgi__ray_job *)user;
     size_t i;
-    voxgi_ray_hit h, *hit;
-    for (i = first; i < end; i++) {
-        const voxgi_ray *ray = &J->rays[i];
-        double o[3], d[3];
-        voxgi__ray4 r;
-        int a, found = 0;
-        for (a = 0; a < 3; a++) { o[a] = ray->origin[a]; d[a] = ray->direction[a]; }
-        hit = J->hits ? &J->hits[i] : &h;
-        if (voxgi__ray4_setup(J->rs, o, d, ray->tmin, UINT32_MAX, &r)) found = voxgi__ray4_cast(J->rs, &r, ray->tmax, !J->hits, hit);
-        else { /* a zero direction */
-            hit->triangle = UINT32_MAX;
-            hit->t = hit->u = hit->v = 0;
+    voxgi__ray4 r;
+    voxgi_ray_hit h;
+#ifdef VOXGI__SSE
+    if (J->hits) { /* closest hits: by packets where their signs agree */
+        voxgi__packet P;
+        for (i = first; i < end; i += VOXGI__PACKET) {
+            size_t k, n = VOXGI__MIN(end - i, (size_t)VOXGI__PACKET);
+            int cast = n == VOXGI__PACKET ? voxgi__packet_load(J, i, n, &P) : 0;
+            if (cast) {
+                voxgi__packet_cast(J->rs, &P, cast);
+                continue;
+            }
+            for (k = i; k < i + n; k++)
+                if (voxgi__ray_job_setup(J, k, &r)) voxgi__ray4_cast(J->rs, &r, J->rays[k].tmax, 0, &J->hits[k]);
         }
-        if (!J->hits) J->occluded[i] = (unsigned char)found;
+        return;
     }
+#endif
+    for (i = first; i < end; i++)
+        if (voxgi__ray_job_setup(J, i, &r)) {
+            int found = voxgi__ray4_cast(J->rs, &r, J->rays[i].tmax, !J->hits, J->hits ? &J->hits[i] : &h);
+            if (!J->hits) J->occluded[i] = (unsigned char)found;
+        }
 }
 
 static voxgi_result voxgi__rays_run(voxgi_context *ctx, const voxgi_ray_scene *rs, size_t count, const voxgi_ray *rays, voxgi_ray_hit *hits,
@@ -2453,19 +2733,16 @@ static voxgi_result voxgi__rays_run(voxgi_context *ctx, const voxgi_ray_scene *r
 {
     voxgi__ray_job J;
     size_t i;
-    int a;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!rs || (count && (!rays || (!hits && !occluded)))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the ray scene, rays or results are NULL");
-    for (i = 0; i < count; i++) {
-        int ok = !isnan(rays[i].tmin) && !isnan(rays[i].tmax);
-        for (a = 0; a < 3; a++) ok &= isfinite(rays[i].origin[a]) && isfinite(rays[i].direction[a]);
-        if (!ok) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "ray %lu is not finite", (unsigned long)i);
-    }
     J.rs = rs;
     J.rays = rays;
     J.hits = hits;
     J.occluded = occluded;
+    J.bad = 0;
     voxgi__parallel(ctx, count, 256, voxgi__ray_range, &J);
+    for (i = 0; J.bad && i < count; i++)
+        if (!voxgi__ray_finite(&rays[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "ray %lu is not finite", (unsigned long)i);
     return VOXGI_OK;
 }
 
