@@ -2365,20 +2365,23 @@ static VOXGI__HOT_INLINE int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi
         __m128 nz = _mm_or_ps(_mm_cmple_ps(_mm_andnot_ps(sign, u), _mm_mul_ps(eps, _mm_add_ps(_mm_andnot_ps(sign, p0), _mm_andnot_ps(sign, q0)))),
                               _mm_cmple_ps(_mm_andnot_ps(sign, w), _mm_mul_ps(eps, _mm_add_ps(_mm_andnot_ps(sign, p1), _mm_andnot_ps(sign, q1)))));
         nz = _mm_or_ps(nz, _mm_cmple_ps(_mm_andnot_ps(sign, x), _mm_mul_ps(eps, _mm_add_ps(_mm_andnot_ps(sign, p2), _mm_andnot_ps(sign, q2)))));
-        __m128 zero = _mm_setzero_ps(), t = _mm_div_ps(_mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(w, bz)), _mm_mul_ps(x, cz)), _mm_set1_ps(r->sz)), d);
+        __m128 zero = _mm_setzero_ps(), t;
         __m128 inside = _mm_or_ps(_mm_and_ps(_mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmpge_ps(w, zero)), _mm_cmpge_ps(x, zero)),
                                   _mm_and_ps(_mm_and_ps(_mm_cmple_ps(u, zero), _mm_cmple_ps(w, zero)), _mm_cmple_ps(x, zero)));
-        near_zero = _mm_movemask_ps(nz);
-        hits = _mm_movemask_ps(_mm_and_ps(_mm_and_ps(inside, _mm_cmpneq_ps(d, zero)),
-                                          _mm_and_ps(_mm_cmpgt_ps(t, _mm_set1_ps(r->tmin)), _mm_cmple_ps(t, _mm_set1_ps(tmax))))) & ~near_zero;
+        int real = ~_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_loadu_si128((const __m128i *)(const void *)pk->tri), _mm_set1_epi32(-1))));
+        near_zero = _mm_movemask_ps(nz) & real; /* a lane without a triangle is a point: every edge function 0 */
+        hits = _mm_movemask_ps(_mm_and_ps(inside, _mm_cmpneq_ps(d, zero))) & ~near_zero & real;
         if (!(hits | near_zero)) return -1; /* the usual case: nothing here */
+        t = _mm_div_ps(_mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(w, bz)), _mm_mul_ps(x, cz)), _mm_set1_ps(r->sz)), d);
+        hits &= _mm_movemask_ps(_mm_and_ps(_mm_cmpgt_ps(t, _mm_set1_ps(r->tmin)), _mm_cmple_ps(t, _mm_set1_ps(tmax))));
+        if (!(hits | near_zero)) return -1;
         _mm_storeu_ps(tf, t);
         _mm_storeu_ps(wf, w);
         _mm_storeu_ps(xf, x);
         _mm_storeu_ps(det, d);
     }
 #else
-    for (l = 0; l < 4; l++) {
+    for (l = 0; l < 4 && pk->tri[l] != UINT32_MAX; l++) { /* the lanes without a triangle come last */
         float az = pk->v[r->kz][l] - r->o[r->kz], bz = pk->v[3 + r->kz][l] - r->o[r->kz], cz = pk->v[6 + r->kz][l] - r->o[r->kz];
         float ax = pk->v[r->kx][l] - r->o[r->kx] - r->sx * az, ay = pk->v[r->ky][l] - r->o[r->ky] - r->sy * az;
         float bx = pk->v[3 + r->kx][l] - r->o[r->kx] - r->sx * bz, by = pk->v[3 + r->ky][l] - r->o[r->ky] - r->sy * bz;
@@ -2510,16 +2513,18 @@ static int voxgi__ray_finite(const voxgi_ray *ray)
 typedef struct voxgi__packet {
     __m128 o[3][4], inv[3][4], inv_far[3][4], tmin[4];
     float tmax[VOXGI__PACKET];    /* on a 16-byte boundary: read as four vectors */
-    float lane[7][VOXGI__PACKET]; /* o, d and tmin by ray, for the shear */
+    float lane[13][VOXGI__PACKET]; /* by ray: o, d, tmin, inv, inv_far */
     uint32_t tie[VOXGI__PACKET];
-    int sheared;                  /* the rays (bits) whose ray[] is set */
+    int sheared, boxed;           /* the rays (bits) whose ray[] has its shear, its vectors for the boxes */
     size_t near_at[3], far_at[3];
+    __m128 o_lo[3], o_hi[3], inv_lo[3], inv_hi[3], far_lo[3], far_hi[3], tmin_lo, tmax_hi; /* the rays' bounds, in every lane */
     voxgi_ray_hit *hits;
     voxgi__ray4 ray[VOXGI__PACKET];
 } voxgi__packet;
 
-/* The rays of P in `active` (bits) that enter child c of nd, and the nearest entry among them. */
-static VOXGI__HOT_INLINE int voxgi__packet_child(const voxgi__packet *P, const voxgi__node4 *nd, int c, int active, float *t_near)
+/* The rays of P in `active` (bits) that enter child c of nd, and the nearest entry among them;
+   first_only: those of the first group of four with one. */
+static VOXGI__HOT_INLINE int voxgi__packet_child(const voxgi__packet *P, const voxgi__node4 *nd, int c, int active, int first_only, float *t_near)
 {
     __m128 near_plane[3], far_plane[3], nearest = _mm_set1_ps(INFINITY);
     int a, g, hits = 0;
@@ -2542,6 +2547,7 @@ static VOXGI__HOT_INLINE int voxgi__packet_child(const voxgi__packet *P, const v
         if (!m) continue;
         hits |= m << 4 * g;
         nearest = _mm_min_ps(nearest, _mm_or_ps(_mm_and_ps(in, tn), _mm_andnot_ps(in, _mm_set1_ps(INFINITY))));
+        if (first_only) break;
     }
     nearest = _mm_min_ps(nearest, _mm_shuffle_ps(nearest, nearest, _MM_SHUFFLE(2, 3, 0, 1)));
     nearest = _mm_min_ps(nearest, _mm_shuffle_ps(nearest, nearest, _MM_SHUFFLE(1, 0, 3, 2)));
@@ -2549,34 +2555,81 @@ static VOXGI__HOT_INLINE int voxgi__packet_child(const voxgi__packet *P, const v
     return hits;
 }
 
-/* The closest hits of the packet's rays in `all` (bits), into P->hits. */
+/* Ray i of P as a ray of its own, with its shear, and with its vectors for the boxes when asked. */
+static voxgi__ray4 *voxgi__packet_ray(voxgi__packet *P, int i, int boxes)
+{
+    voxgi__ray4 *r = &P->ray[i];
+    int a;
+    if (!(P->sheared >> i & 1)) {
+        for (a = 0; a < 3; a++) { r->o[a] = P->lane[a][i]; r->d[a] = P->lane[3 + a][i]; }
+        r->tmin = P->lane[6][i];
+        r->skip = UINT32_MAX;
+        voxgi__ray4_shear(r);
+        P->sheared |= 1 << i;
+    }
+    if (boxes && !(P->boxed >> i & 1)) {
+        for (a = 0; a < 3; a++) {
+            r->inv[a] = P->lane[7 + a][i];
+            r->inv_far[a] = P->lane[10 + a][i];
+            r->o4[a] = _mm_set1_ps(r->o[a]);
+            r->inv4[a] = _mm_set1_ps(r->inv[a]);
+            r->inv_far4[a] = _mm_set1_ps(r->inv_far[a]);
+            r->near_at[a] = P->near_at[a];
+            r->far_at[a] = P->far_at[a];
+        }
+        P->boxed |= 1 << i;
+    }
+    return r;
+}
+
+/* The children of nd that some ray of P may enter (bits), from the bounds of the rays' origins and
+   inverse directions: each slab's entry is monotonic in both, so its least and greatest over the
+   rays lie at corners of those bounds, rounding included. */
+static VOXGI__HOT_INLINE int voxgi__packet_bounds(const voxgi__packet *P, const voxgi__node4 *nd)
+{
+    __m128 lo = P->tmin_lo, hi = P->tmax_hi;
+    int a;
+    for (a = 0; a < 3; a++) {
+        __m128 n = _mm_load_ps((const float *)(const void *)((const char *)nd + P->near_at[a]));
+        __m128 f = _mm_load_ps((const float *)(const void *)((const char *)nd + P->far_at[a]));
+        __m128 n0 = _mm_sub_ps(n, P->o_lo[a]), n1 = _mm_sub_ps(n, P->o_hi[a]), f0 = _mm_sub_ps(f, P->o_lo[a]), f1 = _mm_sub_ps(f, P->o_hi[a]);
+        lo = _mm_max_ps(lo, _mm_min_ps(_mm_min_ps(_mm_mul_ps(n0, P->inv_lo[a]), _mm_mul_ps(n0, P->inv_hi[a])),
+                                       _mm_min_ps(_mm_mul_ps(n1, P->inv_lo[a]), _mm_mul_ps(n1, P->inv_hi[a]))));
+        hi = _mm_min_ps(hi, _mm_max_ps(_mm_max_ps(_mm_mul_ps(f0, P->far_lo[a]), _mm_mul_ps(f0, P->far_hi[a])),
+                                       _mm_max_ps(_mm_mul_ps(f1, P->far_lo[a]), _mm_mul_ps(f1, P->far_hi[a]))));
+    }
+    return _mm_movemask_ps(_mm_cmple_ps(lo, hi));
+}
+
+/* The closest hits of the packet's rays in `all` (bits), into P->hits. Ranged traversal (Wald,
+   Boulos and Shirley 2007): a node carries the first ray that entered it, the rays before it
+   having missed it and so its children; a child the first ray enters is entered with it, else the
+   bounds of all rays may rule it out, else the first ray that enters it is looked for. Leaves
+   test exactly which rays enter them. */
 static void voxgi__packet_cast(const voxgi_ray_scene *rs, voxgi__packet *P, int all)
 {
-    struct { uint32_t node; int mask; } stack[3 * VOXGI__BVH_DEPTH + 8];
+    struct { uint32_t node; int first; } stack[3 * VOXGI__BVH_DEPTH + 8];
     uint32_t node = 0;
-    int sp = 0, active = all;
+    int sp = 0, first = voxgi__ctz32((uint32_t)all);
     for (;;) {
         const voxgi__node4 *nd = &rs->nodes[node];
         uint32_t ids[4];
-        int masks[4], n = 0, c, j, leaves = voxgi__node4_leaves(nd);
-        float ts[4];
+        int firsts[4], n = 0, c, j, leaves = voxgi__node4_leaves(nd), mine, maybe;
+        float ts[4], tn[4];
+        voxgi__ray4 *one = voxgi__packet_ray(P, first, 1);
+        mine = voxgi__node4_hits(nd, one, P->tmax[first], tn);
+        maybe = (mine ? mine | voxgi__packet_bounds(P, nd) : voxgi__packet_bounds(P, nd)) & 15;
         for (c = 0; c < 4; c++) {
-            float t;
-            int m = voxgi__packet_child(P, nd, c, active, &t);
-            if (!m) continue;
+            int f = first, m;
+            float t = tn[c];
+            if (!(maybe >> c & 1)) continue;
             if (leaves >> c & 1) { /* a leaf: each ray that enters it, against its packs */
                 uint32_t k, end = nd->child[c] + nd->count[c];
+                m = voxgi__packet_child(P, nd, c, all & (0xFFFF << first), 0, &t);
                 while (m) {
-                    int i = voxgi__ctz32((uint32_t)m), a;
-                    voxgi__ray4 *r = &P->ray[i];
+                    int i = voxgi__ctz32((uint32_t)m);
+                    const voxgi__ray4 *r = voxgi__packet_ray(P, i, 0);
                     m &= m - 1;
-                    if (!(P->sheared >> i & 1)) {
-                        for (a = 0; a < 3; a++) { r->o[a] = P->lane[a][i]; r->d[a] = P->lane[3 + a][i]; }
-                        r->tmin = P->lane[6][i];
-                        r->skip = UINT32_MAX;
-                        voxgi__ray4_shear(r);
-                        P->sheared |= 1 << i;
-                    }
                     for (k = nd->child[c]; k < end; k++) {
                         float tt = 0, u = 0, v = 0;
                         int lane = voxgi__ray4_pack(&rs->packs[k], r, P->tmax[i], P->tie[i], &tt, &u, &v);
@@ -2591,26 +2644,31 @@ static void voxgi__packet_cast(const voxgi_ray_scene *rs, voxgi__packet *P, int 
                 }
                 continue;
             }
-            for (j = n; j > 0 && ts[j - 1] < t; j--) { ids[j] = ids[j - 1]; ts[j] = ts[j - 1]; masks[j] = masks[j - 1]; }
+            if (!(mine >> c & 1)) { /* the first ray misses it: the first one that does not */
+                m = voxgi__packet_child(P, nd, c, all & (0xFFFF << (first + 1)), 1, &t);
+                if (!m) continue;
+                f = voxgi__ctz32((uint32_t)m);
+            }
+            for (j = n; j > 0 && ts[j - 1] < t; j--) { ids[j] = ids[j - 1]; ts[j] = ts[j - 1]; firsts[j] = firsts[j - 1]; }
             ids[j] = nd->child[c];
             ts[j] = t;
-            masks[j] = m;
+            firsts[j] = f;
             n++;
         }
         if (n) { /* on into the nearest; the others on the stack, farthest deepest */
             for (j = 0; j < n - 1; j++) {
                 stack[sp].node = ids[j];
-                stack[sp].mask = masks[j];
+                stack[sp].first = firsts[j];
                 sp++;
             }
             node = ids[n - 1];
-            active = masks[n - 1];
+            first = firsts[n - 1];
             continue;
         }
         if (!sp) break;
         --sp;
         node = stack[sp].node;
-        active = stack[sp].mask;
+        first = stack[sp].first;
     }
 }
 
@@ -2620,11 +2678,15 @@ static void voxgi__packet_cast(const voxgi_ray_scene *rs, voxgi__packet *P, int 
 static int voxgi__packet_load(voxgi__ray_job *J, size_t first, size_t n, voxgi__packet *P)
 {
     const __m128 zero = _mm_setzero_ps(), sign = _mm_set1_ps(-0.0f), tiny = _mm_set1_ps(1e-30f);
-    voxgi_ray in[VOXGI__PACKET];
+    voxgi_ray pad[VOXGI__PACKET];
+    const voxgi_ray *in = J->rays + first;
     size_t k;
     int g, a, cast = 0, neg[3] = {0, 0, 0};
-    memcpy(in, J->rays + first, n * sizeof *in);
-    for (k = n; k < VOXGI__PACKET; k++) in[k] = in[0];
+    if (n < VOXGI__PACKET) { /* a short packet: the first ray again in the lanes left */
+        memcpy(pad, in, n * sizeof *in);
+        for (k = n; k < VOXGI__PACKET; k++) pad[k] = in[0];
+        in = pad;
+    }
     P->hits = J->hits + first;
     for (k = 0; k < n; k++) {
         P->hits[k].triangle = UINT32_MAX;
@@ -2655,6 +2717,8 @@ static int voxgi__packet_load(voxgi__ray_job *J, size_t first, size_t n, voxgi__
             nonzero = _mm_or_ps(_mm_and_ps(nonzero, d[a]), _mm_andnot_ps(nonzero, _mm_or_ps(tiny, _mm_and_ps(negative, sign))));
             P->inv[a][g] = _mm_div_ps(_mm_set1_ps(1.0f), nonzero);
             P->inv_far[a][g] = _mm_mul_ps(P->inv[a][g], _mm_set1_ps(1.0f + 4.76837158e-7f));
+            _mm_storeu_ps(P->lane[7 + a] + 4 * g, P->inv[a][g]);
+            _mm_storeu_ps(P->lane[10 + a] + 4 * g, P->inv_far[a][g]);
             neg[a] |= _mm_movemask_ps(negative) << 4 * g;
         }
         _mm_storeu_ps(P->lane[6] + 4 * g, o[3]);
@@ -2677,7 +2741,43 @@ static int voxgi__packet_load(voxgi__ray_job *J, size_t first, size_t n, voxgi__
     }
     voxgi__ray4_planes(P->ray[0].neg, P->near_at, P->far_at);
     memset(P->tie, 0, sizeof P->tie);
-    P->sheared = 0;
+    P->sheared = P->boxed = 0;
+    { /* the rays' bounds, in every lane: the rays cast, the others left out */
+        static const int rows[11] = {0, 1, 2, 6, 7, 8, 9, 10, 11, 12, 13}; /* o, tmin, inv, inv_far; 13: tmax */
+        const __m128 inf = _mm_set1_ps(INFINITY), minus_inf = _mm_set1_ps(-INFINITY);
+        __m128 valid[4], lo[14], hi[14];
+        int k;
+        for (g = 0; g < 4; g++) valid[g] = _mm_castsi128_ps(_mm_set_epi32(-(cast >> (4 * g + 3) & 1), -(cast >> (4 * g + 2) & 1), -(cast >> (4 * g + 1) & 1), -(cast >> 4 * g & 1)));
+        for (k = 0; k < 11; k++) {
+            int row = rows[k];
+            const float *v = row < 13 ? P->lane[row] : P->tmax;
+            __m128 l = inf, h = minus_inf;
+            for (g = 0; g < 4; g++) {
+                __m128 x = _mm_loadu_ps(v + 4 * g);
+                if (cast == 0xFFFF) {
+                    l = _mm_min_ps(l, x);
+                    h = _mm_max_ps(h, x);
+                } else {
+                    l = _mm_min_ps(l, _mm_or_ps(_mm_and_ps(valid[g], x), _mm_andnot_ps(valid[g], inf)));
+                    h = _mm_max_ps(h, _mm_or_ps(_mm_and_ps(valid[g], x), _mm_andnot_ps(valid[g], minus_inf)));
+                }
+            }
+            l = _mm_min_ps(l, _mm_shuffle_ps(l, l, _MM_SHUFFLE(2, 3, 0, 1)));
+            lo[row] = _mm_min_ps(l, _mm_shuffle_ps(l, l, _MM_SHUFFLE(1, 0, 3, 2)));
+            h = _mm_max_ps(h, _mm_shuffle_ps(h, h, _MM_SHUFFLE(2, 3, 0, 1)));
+            hi[row] = _mm_max_ps(h, _mm_shuffle_ps(h, h, _MM_SHUFFLE(1, 0, 3, 2)));
+        }
+        for (a = 0; a < 3; a++) {
+            P->o_lo[a] = lo[a];
+            P->o_hi[a] = hi[a];
+            P->inv_lo[a] = lo[7 + a];
+            P->inv_hi[a] = hi[7 + a];
+            P->far_lo[a] = lo[10 + a];
+            P->far_hi[a] = hi[10 + a];
+        }
+        P->tmin_lo = lo[6];
+        P->tmax_hi = hi[13];
+    }
     return cast;
 }
 #endif
