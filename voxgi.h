@@ -1892,11 +1892,11 @@ static size_t voxgi__bvh_partition(voxgi__bvh_build *b, voxgi__bvh_node *nd, siz
             if (!nl || !nr) continue;
             voxgi__box_area(llo, lhi, &al);
             voxgi__box_area(rlo, rhi, &ar);
-            cost = al * (double)nl + ar * (double)nr;
+            cost = al * (double)((nl + 3) / 4) + ar * (double)((nr + 3) / 4); /* a leaf's cost: its packs of four */
             if (cost < best) { best = cost; best_bin = k; }
         }
         voxgi__box_area(nd->lo, nd->hi, &leaf_area);
-        if (best_bin < 0 || (n <= 8 && best >= leaf_area * (double)(n - 1))) return 0; /* splitting does not pay */
+        if (best_bin < 0 || (n <= 16 && best >= leaf_area * (double)((n + 3) / 4 - 1))) return 0; /* splitting does not pay */
         for (i = mid = first; i < end; i++) { /* partition */
             uint32_t t = b->order[i];
             double c = 0.5 * ((double)b->cmin[3 * t + axis] + b->cmax[3 * t + axis]);
@@ -2618,7 +2618,9 @@ static void voxgi__packet_cast(const voxgi_ray_scene *rs, voxgi__packet *P, int 
         float ts[4], tn[4];
         voxgi__ray4 *one = voxgi__packet_ray(P, first, 1);
         mine = voxgi__node4_hits(nd, one, P->tmax[first], tn);
-        maybe = (mine ? mine | voxgi__packet_bounds(P, nd) : voxgi__packet_bounds(P, nd)) & 15;
+        maybe = mine;
+        if ((mine | _mm_movemask_ps(_mm_cmpgt_ps(_mm_load_ps(nd->lo[0]), _mm_load_ps(nd->hi[0])))) != 15) /* a child the first ray misses */
+            maybe |= voxgi__packet_bounds(P, nd);
         for (c = 0; c < 4; c++) {
             int f = first, m;
             float t = tn[c];
