@@ -2627,7 +2627,7 @@ static void voxgi__packet_cast(const voxgi_ray_scene *rs, voxgi__packet *P, int 
             if (!(maybe >> c & 1)) continue;
             if (leaves >> c & 1) { /* a leaf: each ray that enters it, against its packs */
                 uint32_t k, end = nd->child[c] + nd->count[c];
-                m = voxgi__packet_child(P, nd, c, all & (0xFFFF << first), 0, &t);
+                m = voxgi__packet_child(P, nd, c, (int)((unsigned)all & (0xFFFFu << first)), 0, &t);
                 while (m) {
                     int i = voxgi__ctz32((uint32_t)m);
                     const voxgi__ray4 *r = voxgi__packet_ray(P, i, 0);
@@ -2647,7 +2647,7 @@ static void voxgi__packet_cast(const voxgi_ray_scene *rs, voxgi__packet *P, int 
                 continue;
             }
             if (!(mine >> c & 1)) { /* the first ray misses it: the first one that does not */
-                m = voxgi__packet_child(P, nd, c, all & (0xFFFF << (first + 1)), 1, &t);
+                m = voxgi__packet_child(P, nd, c, (int)((unsigned)all & (0xFFFFu << (first + 1))), 1, &t);
                 if (!m) continue;
                 f = voxgi__ctz32((uint32_t)m);
             }
