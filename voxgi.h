@@ -1892,11 +1892,11 @@ static size_t voxgi__bvh_partition(voxgi__bvh_build *b, voxgi__bvh_node *nd, siz
             if (!nl || !nr) continue;
             voxgi__box_area(llo, lhi, &al);
             voxgi__box_area(rlo, rhi, &ar);
-            cost = al * (double)((nl + 3) / 4) + ar * (double)((nr + 3) / 4); /* a leaf's cost: its packs of four */
+            cost = al * (double)nl + ar * (double)nr;
             if (cost < best) { best = cost; best_bin = k; }
         }
         voxgi__box_area(nd->lo, nd->hi, &leaf_area);
-        if (best_bin < 0 || (n <= 16 && best >= leaf_area * (double)((n + 3) / 4 - 1))) return 0; /* splitting does not pay */
+        if (best_bin < 0 || (n <= 8 && best >= leaf_area * (double)(n - 1))) return 0; /* splitting does not pay */
         for (i = mid = first; i < end; i++) { /* partition */
             uint32_t t = b->order[i];
             double c = 0.5 * ((double)b->cmin[3 * t + axis] + b->cmax[3 * t + axis]);
