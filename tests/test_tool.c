@@ -290,7 +290,7 @@ static void test_vct_and_report_commands(void)
     vd.samples = 2;
     vd.seed = 1;
     vd.filter = VOXGI_MIPS_ANISOTROPIC; /* the tool's defaults, which are not the library's zeros */
-    vd.cone_stride = 4;
+    vd.cone_stride = 6;
     TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, want, sizeof want, NULL) == VOXGI_OK, "library vct render");
     f = fopen(pfm, "rb");
     TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");

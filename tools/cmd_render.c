@@ -323,8 +323,9 @@ int cmd_render(int argc, char **argv)
     a.seed = 1;
     a.size[0] = a.size[1] = 256;
     a.exposure = 1;
-    a.cones = 32; /* vct: the defaults sit on the Pareto front of `voxgi report vct` (docs/cone-tracing.md) */
-    a.cone_stride = 4;
+    a.res = 96; /* vct: the defaults sit on the Pareto front of `voxgi report vct` (docs/cone-tracing.md) */
+    a.cones = 24;
+    a.cone_stride = 6;
     {
         const cli_option options[] = {
             {.name = "--method", .arg = "reference|vct", .kind = CLI_ENUM, .dst = &a.vct, .names = render_methods,
@@ -335,8 +336,8 @@ int cmd_render(int argc, char **argv)
                                        "headless GL 4.5 context works); the reference runs on the CPU"),
             CLI_OPT_GL(&a.common, "which headless GL to try"),
             {.name = "--res", .arg = "N", .kind = CLI_INT, .dst = &a.res, .lo = 1, .hi = 4096,
-             .help = "vct: voxels along the scene's longest side (default 128)"},
-            {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 32)"},
+             .help = "vct: voxels along the scene's longest side (default 96)"},
+            {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 24)"},
             {.name = "--step", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.step, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "vct: step as a fraction of the cone diameter (default 0.5)"},
             {.name = "--anisotropic", .kind = CLI_FLAG, .dst = &a.anisotropic, .help = "vct: six-direction mips (the default)"},
@@ -344,7 +345,7 @@ int cmd_render(int argc, char **argv)
              .help = "vct: one mip chain (less memory, more light through thin walls)"},
             {.name = "--cone-stride", .arg = "S", .kind = CLI_INT, .dst = &a.cone_stride, .lo = 1, .hi = 64,
              .help = "vct: cones at every S-th pixel across and down, the pixels between\n"
-                     "interpolated where they share a surface (default 4; 1: every pixel)"},
+                     "interpolated where they share a surface (default 6; 1: every pixel)"},
             {.name = "--octree", .arg = "[float32|float16]", .kind = CLI_ENUM, .optional = 1, .dst = &a.octree_format, .names = cli_svo_format_names,
              .given = &a.octree,
              .help = "vct: the cones gather from a sparse voxel octree of the radiance\n"

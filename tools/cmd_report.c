@@ -62,8 +62,8 @@ typedef struct report {
 } report;
 
 /* The tool's default cone tracing (voxgi render --method vct), at the report's size (the grid: --stage-res). */
-#define STAGE_CONES 32
-#define STAGE_STRIDE 4
+#define STAGE_CONES 24
+#define STAGE_STRIDE 6
 #define STAGE_DIRECT_SPP 24
 
 /* The tools' one rule (cli_masked_error); 0 for a black reference. */
@@ -347,7 +347,7 @@ static void write_markdown(FILE *md, const report *rep)
     fprintf(md, "\n## Stages: the CPU against GL\n\nThe tool's defaults (%d^3%s, anisotropic, %d cones at stride %d, %d direct-light rays per pixel) "
                 "at %d x %d, each stage's time (ms) on the CPU (%d threads) and on GL (%s), the faster of two runs.%s\n\n"
                 "| scene | stage | CPU | GL | CPU faster by |\n|---|---|---:|---:|---:|\n",
-            a->stage_res, a->stage_res == 128 ? "" : " (the tool's: 128^3)", STAGE_CONES, STAGE_STRIDE, STAGE_DIRECT_SPP, a->size, a->size, rep->stage_ci[0].thread_count,
+            a->stage_res, a->stage_res == 96 ? "" : " (the tool's: 96^3)", STAGE_CONES, STAGE_STRIDE, STAGE_DIRECT_SPP, a->size, a->size, rep->stage_ci[0].thread_count,
             rep->stage_ctx[1] ? rep->stage_ci[1].gl_renderer : "no GL 4.5 context could be made: not timed",
             rep->stage_ctx[1] && rep->stage_ci[1].gl_software ? " GL runs on a software rasteriser on the same cores: these are not GPU timings." : "");
     for (s = 0; s < rep->scene_count; s++) {
@@ -459,7 +459,7 @@ int cmd_report(int argc, char **argv)
     a.size = 128;
     a.spp = 1024;
     a.direct_spp = 16;
-    a.stage_res = 128;
+    a.stage_res = 96;
     a.filters = 3;
     memcpy(a.res, res, sizeof res);
     memcpy(a.cones, cones, sizeof cones);
@@ -497,7 +497,7 @@ int cmd_report(int argc, char **argv)
             {.name = "--no-stages", .kind = CLI_FLAG, .dst = &a.no_stages,
              .help = "leave out the timing of the defaults' stages on the CPU and on GL"},
             {.name = "--stage-res", .arg = "N", .kind = CLI_INT, .dst = &a.stage_res, .lo = 1, .hi = 4096,
-             .help = "the grid of the stages' timing (default 128, the tool's)"},
+             .help = "the grid of the stages' timing (default 96, the tool's)"},
             {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
             CLI_OPT_THREADS(&a.common)};
 #undef LIST
