@@ -71,6 +71,12 @@ $(B)/asan/test_%: tests/test_%.c voxgi.h $(TEST_H) shaders.h tools/embed_shaders
 $(B)/test_rays_scalar: tests/test_rays.c tools/voxgi_impl.c voxgi.h $(TEST_H) shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -DVOXGI_NO_SIMD -o $@ tests/test_rays.c tools/voxgi_impl.c $(LDLIBS)
 
+# The ray core with AVX2 (eight-wide nodes), where the compiler can target it; tests/run.sh runs it
+# where the CPU has AVX2.
+AVX2_CC := $(shell echo 'int main(void) { return 0; }' | $(CC) -mavx2 -mfma -x c - -o /dev/null 2>/dev/null && echo yes)
+$(B)/test_rays_avx2: tests/test_rays.c tools/voxgi_impl.c voxgi.h $(TEST_H) shaders.h | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -mavx2 -mfma -o $@ tests/test_rays.c tools/voxgi_impl.c $(LDLIBS)
+
 $(B)/asan/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/asan/voxgi_impl.o | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(B)/asan/voxgi_impl.o $(LDLIBS)
 
@@ -81,6 +87,7 @@ $(B)/asan/leak_canary: tests/leak_canary.c voxgi.h tools/headless_gl.h $(B)/asan
 # Builds everything the tests run, in parallel (one job per processor unless make was given -j),
 # then runs them (tests/run.sh, in parallel too).
 TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(B)/test_rays_scalar \
+              $(if $(AVX2_CC),$(B)/test_rays_avx2) \
               $(addprefix $(B)/asan/,$(TESTS)) $(B)/asan/leak_canary
 # CI (VOXGI_CI=1) also builds the tool and the test programs at -O0, -O1 and -O3 (the main build is
 # -O2), in $(B)/O<level>, and tests/run.sh runs them: no test may depend on the optimiser's mood.

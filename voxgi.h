@@ -944,6 +944,15 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #include <emmintrin.h>
 #define VOXGI__SSE 1
 #endif
+/* AVX2 where the compiler targets it (-mavx2, -march=native): the ray core's nodes hold eight
+   children, tested at once; else four. */
+#if defined(VOXGI__SSE) && defined(__AVX2__)
+#include <immintrin.h>
+#define VOXGI__AVX2 1
+#define VOXGI__BVH_WIDTH 8
+#else
+#define VOXGI__BVH_WIDTH 4
+#endif
 #if defined(__GNUC__) || defined(__clang__)
 #define VOXGI__HOT_INLINE __inline__ __attribute__((always_inline)) /* small functions on the hottest paths */
 #elif defined(_MSC_VER)
@@ -2019,22 +2028,51 @@ static voxgi_result voxgi__bvh_build_tree(voxgi_context *ctx, voxgi__bvh_build *
     return r;
 }
 
-/* ----- 3.4 the ray core: a 4-wide BVH in float (voxgi_ray_scene)
+/* ----- 3.4 the ray core: a 4- or 8-wide BVH in float (voxgi_ray_scene)
 
-   The binary SAH build above, collapsed to four children per node (a node opens its largest inner
-   child until it has four), over the triangles in float relative to the scene's box centre: a
-   scene far from the origin keeps the precision of its extent, and the boxes, made from the very
-   floats the triangle test reads, hold every triangle exactly. A node's four boxes are tested at
-   once (SSE where the compiler targets it, else lane by lane), each slab's far end widened by
+   The binary SAH build above, collapsed to VOXGI__BVH_WIDTH children per node (a node opens its
+   largest inner child until it has that many), over the triangles in float relative to the
+   scene's box centre: a scene far from the origin keeps the precision of its extent, and the
+   boxes, made from the very floats the triangle test reads, hold every triangle exactly. A node's
+   boxes are tested at once (SSE or AVX2 where the compiler targets it, else lane by lane), each slab's far end widened by
    2^-21 against rounding (Ize 2013), children visited nearest first. The triangle test is Woop,
    Benthin and Wald's (2013): vertices sheared into the ray's frame in float, edge functions in
    double, where the products of floats are exact and the sign of each difference is right, so a
    ray through a shared edge or vertex never slips between triangles, whatever the compiler does
    with fused multiply-adds. */
-typedef struct voxgi__node4 {
-    float lo[3][4], hi[3][4];     /* the children's boxes (an unused lane: empty, lo = +inf, hi = -inf) */
-    uint32_t child[4], count[4];  /* count 0: inner node `child`; else the packs [child, child + count) */
-} voxgi__node4;
+#define VOXGI__W VOXGI__BVH_WIDTH
+#define VOXGI__W_ALL ((1 << VOXGI__W) - 1)
+typedef struct voxgi__node {
+    float lo[3][VOXGI__W], hi[3][VOXGI__W];    /* the children's boxes (an unused lane: empty, lo = +inf, hi = -inf) */
+    uint32_t child[VOXGI__W], count[VOXGI__W]; /* count 0: inner node `child`; else the packs [child, child + count) */
+} voxgi__node;
+
+/* A node's lanes as one vector: AVX2's eight or SSE's four. */
+#if defined(VOXGI__AVX2)
+typedef __m256 voxgi__wide;
+#define VOXGI__WIDE_SET1 _mm256_set1_ps
+#define VOXGI__WIDE_LOAD _mm256_load_ps
+#define VOXGI__WIDE_STORE _mm256_storeu_ps
+#define VOXGI__WIDE_SUB _mm256_sub_ps
+#define VOXGI__WIDE_MUL _mm256_mul_ps
+#define VOXGI__WIDE_MIN _mm256_min_ps
+#define VOXGI__WIDE_MAX _mm256_max_ps
+#define VOXGI__WIDE_LE(a, b) _mm256_movemask_ps(_mm256_cmp_ps((a), (b), _CMP_LE_OS))
+#define VOXGI__WIDE_GT(a, b) _mm256_movemask_ps(_mm256_cmp_ps((a), (b), _CMP_GT_OS))
+#define VOXGI__WIDE_ZERO_U32(p) _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_loadu_si256((const __m256i *)(const void *)(p)), _mm256_setzero_si256())))
+#elif defined(VOXGI__SSE)
+typedef __m128 voxgi__wide;
+#define VOXGI__WIDE_SET1 _mm_set1_ps
+#define VOXGI__WIDE_LOAD _mm_load_ps
+#define VOXGI__WIDE_STORE _mm_storeu_ps
+#define VOXGI__WIDE_SUB _mm_sub_ps
+#define VOXGI__WIDE_MUL _mm_mul_ps
+#define VOXGI__WIDE_MIN _mm_min_ps
+#define VOXGI__WIDE_MAX _mm_max_ps
+#define VOXGI__WIDE_LE(a, b) _mm_movemask_ps(_mm_cmple_ps((a), (b)))
+#define VOXGI__WIDE_GT(a, b) _mm_movemask_ps(_mm_cmpgt_ps((a), (b)))
+#define VOXGI__WIDE_ZERO_U32(p) _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_loadu_si128((const __m128i *)(const void *)(p)), _mm_setzero_si128())))
+#endif
 
 /* A leaf's triangles four at a time, by lanes: row 3 k + a holds vertex k's coordinate a of each
    (relative to the centre); a lane without a triangle is a point, which nothing hits. */
@@ -2044,7 +2082,7 @@ typedef struct voxgi__tri4 {
 } voxgi__tri4;
 
 struct voxgi_ray_scene {
-    voxgi__node4 *nodes;          /* on 64-byte boundaries: a node is two cache lines */
+    voxgi__node *nodes;           /* on 64-byte boundaries: a node is two or four cache lines */
     void *node_block;             /* what was allocated for them */
     voxgi__tri4 *packs;
     size_t node_count, pack_count, triangles;
@@ -2053,13 +2091,13 @@ struct voxgi_ray_scene {
 };
 
 /* Node `me` from binary node `node` (inner) and the subtrees below; returns the next free node. */
-static size_t voxgi__collapse(voxgi__node4 *out, size_t me, size_t next, const voxgi__bvh_node *bin, uint32_t node)
+static size_t voxgi__collapse(voxgi__node *out, size_t me, size_t next, const voxgi__bvh_node *bin, uint32_t node)
 {
-    uint32_t kids[4];
+    uint32_t kids[VOXGI__W];
     int n = 2, i, a;
     kids[0] = node + 1;
     kids[1] = bin[node].first;
-    while (n < 4) { /* open the inner child of the largest box */
+    while (n < VOXGI__W) { /* open the inner child of the largest box */
         int best = -1;
         double best_area = -1, area;
         for (i = 0; i < n; i++)
@@ -2072,7 +2110,7 @@ static size_t voxgi__collapse(voxgi__node4 *out, size_t me, size_t next, const v
         kids[best] = (uint32_t)a + 1;
         kids[n++] = bin[a].first;
     }
-    for (i = 0; i < 4; i++) {
+    for (i = 0; i < VOXGI__W; i++) {
         const voxgi__bvh_node *c = i < n ? &bin[kids[i]] : NULL;
         for (a = 0; a < 3; a++) {
             out[me].lo[a][i] = c ? c->lo[a] : INFINITY;
@@ -2120,7 +2158,7 @@ static voxgi_result voxgi__ray_scene_build(voxgi_context *ctx, const voxgi__flat
         rs->triangles = nt;
         rs->packs = (voxgi__tri4 *)voxgi__alloc_array(ctx, nt, sizeof *rs->packs, 0); /* at most one a triangle */
         rs->node_block = voxgi__alloc_array(ctx, 2 * nt + 2, sizeof *rs->nodes, 1);
-        rs->nodes = (voxgi__node4 *)(void *)(((uintptr_t)rs->node_block + 63) & ~(uintptr_t)63);
+        rs->nodes = (voxgi__node *)(void *)(((uintptr_t)rs->node_block + 63) & ~(uintptr_t)63);
     }
     order = (uint32_t *)voxgi__alloc_array(ctx, nt, 4, 0);
     if (!rs || !local || !boxes || !bin || !order || !rs->packs || !rs->node_block) {
@@ -2155,14 +2193,14 @@ static voxgi_result voxgi__ray_scene_build(voxgi_context *ctx, const voxgi__flat
     if ((r = voxgi__bvh_build_tree(ctx, &b, nt)) != VOXGI_OK) goto done; /* a scene has triangles (voxgi__flatten) */
     if (bin[0].count) { /* one leaf: the root's one lane */
         for (a = 0; a < 3; a++)
-            for (k = 0; k < 4; k++) { rs->nodes[0].lo[a][k] = k ? INFINITY : bin[0].lo[a]; rs->nodes[0].hi[a][k] = k ? -INFINITY : bin[0].hi[a]; }
+            for (k = 0; k < VOXGI__W; k++) { rs->nodes[0].lo[a][k] = k ? INFINITY : bin[0].lo[a]; rs->nodes[0].hi[a][k] = k ? -INFINITY : bin[0].hi[a]; }
         rs->nodes[0].count[0] = (uint32_t)nt;
         rs->node_count = 1;
     } else
         rs->node_count = voxgi__collapse(rs->nodes, 0, 1, bin, 0);
     for (i = 0; i < rs->node_count; i++) /* each leaf's triangles into packs of four */
-        for (k = 0; k < 4; k++) {
-            voxgi__node4 *nd = &rs->nodes[i];
+        for (k = 0; k < VOXGI__W; k++) {
+            voxgi__node *nd = &rs->nodes[i];
             uint32_t first = nd->child[k], n = nd->count[k], j;
             if (!n) continue;
             nd->child[k] = (uint32_t)rs->pack_count;
@@ -2209,7 +2247,7 @@ VOXGI_API void voxgi_ray_scene_destroy(voxgi_context *ctx, voxgi_ray_scene *rs)
    first leaf: a ray that meets no leaf never needs the shear). */
 typedef struct voxgi__ray4 {
 #ifdef VOXGI__SSE
-    __m128 o4[3], inv4[3], inv_far4[3]; /* o, inv and inv_far in every lane */
+    voxgi__wide o4[3], inv4[3], inv_far4[3]; /* o, inv and inv_far in every lane */
 #endif
     float o[3], d[3], inv[3], inv_far[3], tmin;
     int neg[3];                   /* the direction's sign per axis: which of lo and hi is near, */
@@ -2225,8 +2263,8 @@ static void voxgi__ray4_planes(const int neg[3], size_t near_at[3], size_t far_a
 {
     int a;
     for (a = 0; a < 3; a++) {
-        near_at[a] = neg[a] ? offsetof(voxgi__node4, hi) + 16 * (size_t)a : offsetof(voxgi__node4, lo) + 16 * (size_t)a;
-        far_at[a] = neg[a] ? offsetof(voxgi__node4, lo) + 16 * (size_t)a : offsetof(voxgi__node4, hi) + 16 * (size_t)a;
+        near_at[a] = (neg[a] ? offsetof(voxgi__node, hi) : offsetof(voxgi__node, lo)) + 4 * VOXGI__W * (size_t)a;
+        far_at[a] = (neg[a] ? offsetof(voxgi__node, lo) : offsetof(voxgi__node, hi)) + 4 * VOXGI__W * (size_t)a;
     }
 }
 
@@ -2242,9 +2280,9 @@ static int voxgi__ray4_setup(const voxgi_ray_scene *rs, const double o[3], const
         r->inv[a] = 1.0f / (fabsf(r->d[a]) > 1e-30f ? r->d[a] : (r->neg[a] ? -1e-30f : 1e-30f));
         r->inv_far[a] = r->inv[a] * (1.0f + 4.76837158e-7f);
 #ifdef VOXGI__SSE
-        r->o4[a] = _mm_set1_ps(r->o[a]);
-        r->inv4[a] = _mm_set1_ps(r->inv[a]);
-        r->inv_far4[a] = _mm_set1_ps(r->inv_far[a]);
+        r->o4[a] = VOXGI__WIDE_SET1(r->o[a]);
+        r->inv4[a] = VOXGI__WIDE_SET1(r->inv[a]);
+        r->inv_far4[a] = VOXGI__WIDE_SET1(r->inv_far[a]);
 #endif
     }
     if (r->d[0] == 0 && r->d[1] == 0 && r->d[2] == 0) return 0;
@@ -2272,24 +2310,24 @@ static void voxgi__ray4_shear(voxgi__ray4 *r)
     r->sheared = 1;
 }
 
-/* The four boxes of nd against the ray between tmin and tmax: the lanes hit (bits), and where
-   each is entered. */
-static VOXGI__HOT_INLINE int voxgi__node4_hits(const voxgi__node4 *nd, const voxgi__ray4 *r, float tmax, float tnear[4])
+/* The boxes of nd against the ray between tmin and tmax: the lanes hit (bits), and where each
+   is entered. */
+static VOXGI__HOT_INLINE int voxgi__node_hits(const voxgi__node *nd, const voxgi__ray4 *r, float tmax, float tnear[VOXGI__W])
 {
 #ifdef VOXGI__SSE
-#define VOXGI__SLAB(a)                                                                                                                      \
-    tn = _mm_max_ps(tn, _mm_mul_ps(_mm_sub_ps(_mm_load_ps((const float *)(const void *)((const char *)nd + r->near_at[a])), r->o4[a]), r->inv4[a])); \
-    tf = _mm_min_ps(tf, _mm_mul_ps(_mm_sub_ps(_mm_load_ps((const float *)(const void *)((const char *)nd + r->far_at[a])), r->o4[a]), r->inv_far4[a]))
-    __m128 tn = _mm_set1_ps(r->tmin), tf = _mm_set1_ps(tmax);
+#define VOXGI__SLAB(a)                                                                                                                                    \
+    tn = VOXGI__WIDE_MAX(tn, VOXGI__WIDE_MUL(VOXGI__WIDE_SUB(VOXGI__WIDE_LOAD((const float *)(const void *)((const char *)nd + r->near_at[a])), r->o4[a]), r->inv4[a])); \
+    tf = VOXGI__WIDE_MIN(tf, VOXGI__WIDE_MUL(VOXGI__WIDE_SUB(VOXGI__WIDE_LOAD((const float *)(const void *)((const char *)nd + r->far_at[a])), r->o4[a]), r->inv_far4[a]))
+    voxgi__wide tn = VOXGI__WIDE_SET1(r->tmin), tf = VOXGI__WIDE_SET1(tmax);
     VOXGI__SLAB(0);
     VOXGI__SLAB(1);
     VOXGI__SLAB(2);
 #undef VOXGI__SLAB
-    _mm_storeu_ps(tnear, tn);
-    return _mm_movemask_ps(_mm_cmple_ps(tn, tf));
+    VOXGI__WIDE_STORE(tnear, tn);
+    return VOXGI__WIDE_LE(tn, tf);
 #else
     int a, i, mask = 0;
-    for (i = 0; i < 4; i++) {
+    for (i = 0; i < VOXGI__W; i++) {
         float tn = r->tmin, tf = tmax;
         for (a = 0; a < 3; a++) {
             float near_plane = r->neg[a] ? nd->hi[a][i] : nd->lo[a][i], far_plane = r->neg[a] ? nd->lo[a][i] : nd->hi[a][i];
@@ -2305,12 +2343,14 @@ static VOXGI__HOT_INLINE int voxgi__node4_hits(const voxgi__node4 *nd, const vox
 }
 
 /* The children of nd that are leaves (bits). */
-static VOXGI__HOT_INLINE int voxgi__node4_leaves(const voxgi__node4 *nd)
+static VOXGI__HOT_INLINE int voxgi__node_leaves(const voxgi__node *nd)
 {
 #ifdef VOXGI__SSE
-    return ~_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(_mm_loadu_si128((const __m128i *)(const void *)nd->count), _mm_setzero_si128()))) & 15;
+    return ~VOXGI__WIDE_ZERO_U32(nd->count) & VOXGI__W_ALL;
 #else
-    return (nd->count[0] != 0) | (nd->count[1] != 0) << 1 | (nd->count[2] != 0) << 2 | (nd->count[3] != 0) << 3;
+    int i, leaves = 0;
+    for (i = 0; i < VOXGI__W; i++) leaves |= (nd->count[i] != 0) << i;
+    return leaves;
 #endif
 }
 
@@ -2424,15 +2464,15 @@ static VOXGI__HOT_INLINE int voxgi__ray4_pack(const voxgi__tri4 *pk, const voxgi
    leaves first, then on into its nearest inner child, the others on the stack. */
 static int voxgi__ray4_cast(const voxgi_ray_scene *rs, voxgi__ray4 *r, float tmax, int any, voxgi_ray_hit *hit)
 {
-    struct { uint32_t node; float t; } stack[3 * VOXGI__BVH_DEPTH + 8];
+    struct { uint32_t node; float t; } stack[(VOXGI__W - 1) * VOXGI__BVH_DEPTH + 8];
     uint32_t node = 0, tie = 0; /* tie: no hit at the ray's own tmax counts */
     int sp = 0, found = 0;
     hit->triangle = UINT32_MAX;
     hit->t = hit->u = hit->v = 0;
     for (;;) {
-        const voxgi__node4 *nd = &rs->nodes[node];
-        float tn[4];
-        int mask = voxgi__node4_hits(nd, r, tmax, tn), leaves = mask & voxgi__node4_leaves(nd), inner = mask & ~leaves, i;
+        const voxgi__node *nd = &rs->nodes[node];
+        float tn[VOXGI__W];
+        int mask = voxgi__node_hits(nd, r, tmax, tn), leaves = mask & voxgi__node_leaves(nd), inner = mask & ~leaves, i;
         if (leaves && !r->sheared) voxgi__ray4_shear(r);
         while (leaves) {
             uint32_t k, end;
@@ -2456,8 +2496,8 @@ static int voxgi__ray4_cast(const voxgi_ray_scene *rs, voxgi__ray4 *r, float tma
             i = voxgi__ctz32((uint32_t)inner);
             inner &= inner - 1;
             if (inner) { /* two or more: the nearest on, the others pushed farthest deepest (occlusion: any order) */
-                uint32_t ids[4];
-                float ts[4];
+                uint32_t ids[VOXGI__W];
+                float ts[VOXGI__W];
                 int n = 1, j;
                 ids[0] = nd->child[i];
                 ts[0] = tn[i];
@@ -2517,14 +2557,14 @@ typedef struct voxgi__packet {
     uint32_t tie[VOXGI__PACKET];
     int sheared, boxed;           /* the rays (bits) whose ray[] has its shear, its vectors for the boxes */
     size_t near_at[3], far_at[3];
-    __m128 o_lo[3], o_hi[3], inv_lo[3], inv_hi[3], far_lo[3], far_hi[3], tmin_lo, tmax_hi; /* the rays' bounds, in every lane */
+    voxgi__wide o_lo[3], o_hi[3], inv_lo[3], inv_hi[3], far_lo[3], far_hi[3], tmin_lo, tmax_hi; /* the rays' bounds, in every lane */
     voxgi_ray_hit *hits;
     voxgi__ray4 ray[VOXGI__PACKET];
 } voxgi__packet;
 
 /* The rays of P in `active` (bits) that enter child c of nd, and the nearest entry among them;
    first_only: those of the first group of four with one. */
-static VOXGI__HOT_INLINE int voxgi__packet_child(const voxgi__packet *P, const voxgi__node4 *nd, int c, int active, int first_only, float *t_near)
+static VOXGI__HOT_INLINE int voxgi__packet_child(const voxgi__packet *P, const voxgi__node *nd, int c, int active, int first_only, float *t_near)
 {
     __m128 near_plane[3], far_plane[3], nearest = _mm_set1_ps(INFINITY);
     int a, g, hits = 0;
@@ -2571,9 +2611,9 @@ static voxgi__ray4 *voxgi__packet_ray(voxgi__packet *P, int i, int boxes)
         for (a = 0; a < 3; a++) {
             r->inv[a] = P->lane[7 + a][i];
             r->inv_far[a] = P->lane[10 + a][i];
-            r->o4[a] = _mm_set1_ps(r->o[a]);
-            r->inv4[a] = _mm_set1_ps(r->inv[a]);
-            r->inv_far4[a] = _mm_set1_ps(r->inv_far[a]);
+            r->o4[a] = VOXGI__WIDE_SET1(r->o[a]);
+            r->inv4[a] = VOXGI__WIDE_SET1(r->inv[a]);
+            r->inv_far4[a] = VOXGI__WIDE_SET1(r->inv_far[a]);
             r->near_at[a] = P->near_at[a];
             r->far_at[a] = P->far_at[a];
         }
@@ -2585,20 +2625,20 @@ static voxgi__ray4 *voxgi__packet_ray(voxgi__packet *P, int i, int boxes)
 /* The children of nd that some ray of P may enter (bits), from the bounds of the rays' origins and
    inverse directions: each slab's entry is monotonic in both, so its least and greatest over the
    rays lie at corners of those bounds, rounding included. */
-static VOXGI__HOT_INLINE int voxgi__packet_bounds(const voxgi__packet *P, const voxgi__node4 *nd)
+static VOXGI__HOT_INLINE int voxgi__packet_bounds(const voxgi__packet *P, const voxgi__node *nd)
 {
-    __m128 lo = P->tmin_lo, hi = P->tmax_hi;
+    voxgi__wide lo = P->tmin_lo, hi = P->tmax_hi;
     int a;
     for (a = 0; a < 3; a++) {
-        __m128 n = _mm_load_ps((const float *)(const void *)((const char *)nd + P->near_at[a]));
-        __m128 f = _mm_load_ps((const float *)(const void *)((const char *)nd + P->far_at[a]));
-        __m128 n0 = _mm_sub_ps(n, P->o_lo[a]), n1 = _mm_sub_ps(n, P->o_hi[a]), f0 = _mm_sub_ps(f, P->o_lo[a]), f1 = _mm_sub_ps(f, P->o_hi[a]);
-        lo = _mm_max_ps(lo, _mm_min_ps(_mm_min_ps(_mm_mul_ps(n0, P->inv_lo[a]), _mm_mul_ps(n0, P->inv_hi[a])),
-                                       _mm_min_ps(_mm_mul_ps(n1, P->inv_lo[a]), _mm_mul_ps(n1, P->inv_hi[a]))));
-        hi = _mm_min_ps(hi, _mm_max_ps(_mm_max_ps(_mm_mul_ps(f0, P->far_lo[a]), _mm_mul_ps(f0, P->far_hi[a])),
-                                       _mm_max_ps(_mm_mul_ps(f1, P->far_lo[a]), _mm_mul_ps(f1, P->far_hi[a]))));
+        voxgi__wide n = VOXGI__WIDE_LOAD((const float *)(const void *)((const char *)nd + P->near_at[a]));
+        voxgi__wide f = VOXGI__WIDE_LOAD((const float *)(const void *)((const char *)nd + P->far_at[a]));
+        voxgi__wide n0 = VOXGI__WIDE_SUB(n, P->o_lo[a]), n1 = VOXGI__WIDE_SUB(n, P->o_hi[a]), f0 = VOXGI__WIDE_SUB(f, P->o_lo[a]), f1 = VOXGI__WIDE_SUB(f, P->o_hi[a]);
+        lo = VOXGI__WIDE_MAX(lo, VOXGI__WIDE_MIN(VOXGI__WIDE_MIN(VOXGI__WIDE_MUL(n0, P->inv_lo[a]), VOXGI__WIDE_MUL(n0, P->inv_hi[a])),
+                                                 VOXGI__WIDE_MIN(VOXGI__WIDE_MUL(n1, P->inv_lo[a]), VOXGI__WIDE_MUL(n1, P->inv_hi[a]))));
+        hi = VOXGI__WIDE_MIN(hi, VOXGI__WIDE_MAX(VOXGI__WIDE_MAX(VOXGI__WIDE_MUL(f0, P->far_lo[a]), VOXGI__WIDE_MUL(f0, P->far_hi[a])),
+                                                 VOXGI__WIDE_MAX(VOXGI__WIDE_MUL(f1, P->far_lo[a]), VOXGI__WIDE_MUL(f1, P->far_hi[a]))));
     }
-    return _mm_movemask_ps(_mm_cmple_ps(lo, hi));
+    return VOXGI__WIDE_LE(lo, hi);
 }
 
 /* The closest hits of the packet's rays in `all` (bits), into P->hits. Ranged traversal (Wald,
@@ -2608,20 +2648,20 @@ static VOXGI__HOT_INLINE int voxgi__packet_bounds(const voxgi__packet *P, const 
    test exactly which rays enter them. */
 static void voxgi__packet_cast(const voxgi_ray_scene *rs, voxgi__packet *P, int all)
 {
-    struct { uint32_t node; int first; } stack[3 * VOXGI__BVH_DEPTH + 8];
+    struct { uint32_t node; int first; } stack[(VOXGI__W - 1) * VOXGI__BVH_DEPTH + 8];
     uint32_t node = 0;
     int sp = 0, first = voxgi__ctz32((uint32_t)all);
     for (;;) {
-        const voxgi__node4 *nd = &rs->nodes[node];
-        uint32_t ids[4];
-        int firsts[4], n = 0, c, j, leaves = voxgi__node4_leaves(nd), mine, maybe;
-        float ts[4], tn[4];
+        const voxgi__node *nd = &rs->nodes[node];
+        uint32_t ids[VOXGI__W];
+        int firsts[VOXGI__W], n = 0, c, j, leaves = voxgi__node_leaves(nd), mine, maybe;
+        float ts[VOXGI__W], tn[VOXGI__W];
         voxgi__ray4 *one = voxgi__packet_ray(P, first, 1);
-        mine = voxgi__node4_hits(nd, one, P->tmax[first], tn);
+        mine = voxgi__node_hits(nd, one, P->tmax[first], tn);
         maybe = mine;
-        if ((mine | _mm_movemask_ps(_mm_cmpgt_ps(_mm_load_ps(nd->lo[0]), _mm_load_ps(nd->hi[0])))) != 15) /* a child the first ray misses */
+        if ((mine | VOXGI__WIDE_GT(VOXGI__WIDE_LOAD(nd->lo[0]), VOXGI__WIDE_LOAD(nd->hi[0]))) != VOXGI__W_ALL) /* a child the first ray misses */
             maybe |= voxgi__packet_bounds(P, nd);
-        for (c = 0; c < 4; c++) {
+        for (c = 0; c < VOXGI__W; c++) {
             int f = first, m;
             float t = tn[c];
             if (!(maybe >> c & 1)) continue;
@@ -2770,15 +2810,15 @@ static int voxgi__packet_load(voxgi__ray_job *J, size_t first, size_t n, voxgi__
             hi[row] = _mm_max_ps(h, _mm_shuffle_ps(h, h, _MM_SHUFFLE(1, 0, 3, 2)));
         }
         for (a = 0; a < 3; a++) {
-            P->o_lo[a] = lo[a];
-            P->o_hi[a] = hi[a];
-            P->inv_lo[a] = lo[7 + a];
-            P->inv_hi[a] = hi[7 + a];
-            P->far_lo[a] = lo[10 + a];
-            P->far_hi[a] = hi[10 + a];
+            P->o_lo[a] = VOXGI__WIDE_SET1(_mm_cvtss_f32(lo[a]));
+            P->o_hi[a] = VOXGI__WIDE_SET1(_mm_cvtss_f32(hi[a]));
+            P->inv_lo[a] = VOXGI__WIDE_SET1(_mm_cvtss_f32(lo[7 + a]));
+            P->inv_hi[a] = VOXGI__WIDE_SET1(_mm_cvtss_f32(hi[7 + a]));
+            P->far_lo[a] = VOXGI__WIDE_SET1(_mm_cvtss_f32(lo[10 + a]));
+            P->far_hi[a] = VOXGI__WIDE_SET1(_mm_cvtss_f32(hi[10 + a]));
         }
-        P->tmin_lo = lo[6];
-        P->tmax_hi = hi[13];
+        P->tmin_lo = VOXGI__WIDE_SET1(_mm_cvtss_f32(lo[6]));
+        P->tmax_hi = VOXGI__WIDE_SET1(_mm_cvtss_f32(hi[13]));
     }
     return cast;
 }

@@ -8,6 +8,8 @@
 #   RAYS=1000000       incoherent segments
 #   RUNS=3             runs per set (voxgi: the median; Embree: the best)
 #   THREADS=$(nproc)   threads of both
+#   NATIVE=1           also voxgi built for this CPU (-march=native: AVX2's eight-wide nodes where
+#                      the CPU has them), as Embree picks its kernels at run time; 0: not
 #   EMBREE_CFLAGS, EMBREE_LIBS   for an Embree outside the default paths
 #
 # Embree is optional for the project: without its headers this script says so and exits 0.
@@ -24,9 +26,10 @@ EMBREE_LIBS=${EMBREE_LIBS:--lembree3}
 rays=${RAYS:-1000000}
 runs=${RUNS:-3}
 threads=${THREADS:-$(nproc)}
+native=${NATIVE:-1}
 
 if [[ ${1:-} == -h || ${1:-} == --help ]]; then
-    sed -n '2,13s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"
+    sed -n '2,15s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"
     exit 0
 fi
 meshes=("$@")
@@ -62,18 +65,34 @@ fi
 json_num() { sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\([-+0-9.eE]*\).*/\1/p" <<<"$1" | head -n 1; }
 json_str() { sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\"\([^\"]*\)\".*/\1/p" <<<"$1" | head -n 1; }
 
-echo "| mesh | triangles | coherent, voxgi | Embree (kernel) | ratio | incoherent, voxgi | Embree (kernel) | ratio | hits, voxgi - Embree |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---|"
-for mesh in "${meshes[@]}"; do
-    v=$("$voxgi" bench rays "$mesh" --rays "$rays" --runs "$runs" --threads "$threads" --json)
-    e=$("$anchor" "$mesh" "$rays" "$threads" "$runs")
-    vc=$(json_num "$v" coherent_intersect_mrays) vi=$(json_num "$v" incoherent_occluded_mrays)
-    ec=$(json_num "$e" coherent_intersect_mrays) ei=$(json_num "$e" incoherent_occluded_mrays)
-    agree="$(($(json_num "$v" coherent_hits) - $(json_num "$e" coherent_hits))), $(($(json_num "$v" incoherent_occluded) - $(json_num "$e" incoherent_occluded)))"
-    awk -v m="$(basename "$mesh")" -v t="$(json_num "$v" triangles)" -v vc="$vc" -v ec="$ec" -v vi="$vi" -v ei="$ei" \
-        -v kc="$(json_str "$e" coherent_kernel)" -v ki="$(json_str "$e" incoherent_kernel)" -v a="$agree" \
-        'BEGIN { printf "| %s | %d | %.1f M/s | %.1f M/s (%s) | %.2fx | %.1f M/s | %.1f M/s (%s) | %.2fx | %s |\n", m, t, vc, ec, kc, vc / ec, vi, ei, ki, vi / ei, a }'
-done
+table() { # VOXGI_BINARY
+    echo "| mesh | triangles | coherent, voxgi | Embree (kernel) | ratio | incoherent, voxgi | Embree (kernel) | ratio | hits, voxgi - Embree |"
+    echo "|---|---:|---:|---:|---:|---:|---:|---:|---|"
+    for mesh in "${meshes[@]}"; do
+        v=$("$1" bench rays "$mesh" --rays "$rays" --runs "$runs" --threads "$threads" --json)
+        e=$("$anchor" "$mesh" "$rays" "$threads" "$runs")
+        vc=$(json_num "$v" coherent_intersect_mrays) vi=$(json_num "$v" incoherent_occluded_mrays)
+        ec=$(json_num "$e" coherent_intersect_mrays) ei=$(json_num "$e" incoherent_occluded_mrays)
+        agree="$(($(json_num "$v" coherent_hits) - $(json_num "$e" coherent_hits))), $(($(json_num "$v" incoherent_occluded) - $(json_num "$e" incoherent_occluded)))"
+        awk -v m="$(basename "$mesh")" -v t="$(json_num "$v" triangles)" -v vc="$vc" -v ec="$ec" -v vi="$vi" -v ei="$ei" \
+            -v kc="$(json_str "$e" coherent_kernel)" -v ki="$(json_str "$e" incoherent_kernel)" -v a="$agree" \
+            'BEGIN { printf "| %s | %d | %.1f M/s | %.1f M/s (%s) | %.2fx | %.1f M/s | %.1f M/s (%s) | %.2fx | %s |\n", m, t, vc, ec, kc, vc / ec, vi, ei, ki, vi / ei, a }'
+    done
+}
+echo "voxgi as built ($voxgi):"
+echo
+table "$voxgi"
+if [[ $native == 1 ]]; then
+    echo "anchors_rays: building voxgi for this CPU (-march=native)" >&2
+    if make -s -C "$root" B="$build/native" CFLAGS="-O2 -g -march=native" "$build/native/voxgi" >&2; then
+        echo
+        echo "voxgi built for this CPU (-march=native):"
+        echo
+        table "$build/native/voxgi"
+    else
+        echo "anchors_rays: the compiler cannot build for -march=native; that table is left out" >&2
+    fi
+fi
 echo
 echo "($threads threads, $rays incoherent segments, 262144 camera rays; wall-clock rates on this machine; the last"
 echo "column: closest hits of the camera's rays, occluded segments - a ray grazing an edge may fall either way)"

@@ -97,8 +97,10 @@ fi
 
 # 2. the compile matrix: C and C++ standards, two translation units, static, without GL, without threads
 heading "== compile matrix"
+avx2=""
+grep -qw avx2 /proc/cpuinfo 2>/dev/null && avx2="-mavx2 -mfma" # where the CPU can run it: the AVX2 paths
 for std in c99 c11 c++11 c++17; do
-    for variant in "" "-DVOXGI_STATIC" "-DVOXGI_NO_GL" "-DVOXGI_NO_THREADS" "-DVOXGI_NO_SIMD" "-DVOXGI_NO_GL -DVOXGI_STATIC"; do
+    for variant in "" "-DVOXGI_STATIC" "-DVOXGI_NO_GL" "-DVOXGI_NO_THREADS" "-DVOXGI_NO_SIMD" "-DVOXGI_NO_GL -DVOXGI_STATIC" ${avx2:+"$avx2"}; do
         name="compile_${std}${variant:+_$(echo "$variant" | tr -d ' -' | tr 'A-Z' 'a-z')}"
         check "$name" status matrix_entry "$std" "$variant"
     done
@@ -112,6 +114,13 @@ for t in $programs; do
     check "$t" program env VOXGI_TOOL="$B/voxgi" "$B/$t"
 done
 check test_rays_scalar program "$B/test_rays_scalar" # the ray core built with VOXGI_NO_SIMD
+if ! grep -qw avx2 /proc/cpuinfo 2>/dev/null; then # the ray core's eight-wide nodes
+    record test_rays_avx2 skip "this CPU has no AVX2"
+elif [ ! -x "$B/test_rays_avx2" ]; then
+    record test_rays_avx2 skip "the compiler cannot target AVX2 (-mavx2 -mfma)"
+else
+    check test_rays_avx2 program "$B/test_rays_avx2"
+fi
 # CI (VOXGI_CI=1): the same programs built at the other optimisation levels (the Makefile builds them)
 if [ "${VOXGI_CI:-0}" = 1 ]; then
     for level in 0 1 3; do
