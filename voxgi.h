@@ -5409,13 +5409,12 @@ static void voxgi__vox_raster_cpu(const double xin[3], const double yin[3], int 
         }
 }
 
-/* ----- CPU raster slicemap: the rasterizer's sampling, exactly. A pixel centre is covered when
-   strictly inside the projected triangle, or on an edge the fill rule gives it (the rule of
-   Mesa's rasterizer, measured: an edge whose CCW direction d has d_b < 0, or d_b == 0 and
-   d_a > 0; the same ownership as solid parity);
-   the slice is floor of the plane's depth there, computed in double in the same order as the
-   fragment shader (shaders/slicemap.glsl). GL differs only where a centre is within the
-   rasterizer's snapping (1/256 pixel) of an edge, or a depth within an ulp of a slice. */
+/* ----- CPU raster slicemap: the rasterizer's sampling, exactly. The triangle's projected
+   corners are rounded to the rasterizer's subpixel grid (1/256 pixel) as the GL twin hands them
+   to it (shaders/slicemap.glsl: on that grid, the rasterizer's own snapping changes nothing); a
+   pixel centre is covered when strictly inside the rounded triangle, or on an edge the fill rule
+   gives it (voxgi__vox_raster_cpu); the slice is floor of the unrounded plane's depth there,
+   computed in double in the same order as the fragment shader. So GL sets the same voxels. */
 static double voxgi__slicemap_depth(const double q0[3], const double q1[3], const double q2[3], int A, double ca, double cb)
 {
     int a = (A + 1) % 3, b = (A + 2) % 3;
@@ -5425,44 +5424,41 @@ static double voxgi__slicemap_depth(const double q0[3], const double q1[3], cons
     return q0[A] - (na * (ca - q0[a]) + nb * (cb - q0[b])) / nA;
 }
 
+/* A covered pixel (i, j) of a triangle drawn along axis c: the voxel of floor(depth) there. */
+typedef struct voxgi__vox_column_job { const voxgi__vox_shared *vs; voxgi__stats *st; const double *q[3]; int c; } voxgi__vox_column_job;
+
+static void voxgi__vox_column_pixel(void *user, uint32_t tri, int i, int j)
+{
+    voxgi__vox_column_job *job = (voxgi__vox_column_job *)user;
+    int c = job->c, a = (c + 1) % 3, b = (c + 2) % 3;
+    double z = floor(voxgi__slicemap_depth(job->q[0], job->q[1], job->q[2], c, (double)i + 0.5, (double)j + 0.5));
+    (void)tri;
+    if (z >= 0 && z < (double)job->vs->grid->res[c]) {
+        int64_t v[3];
+        v[a] = i;
+        v[b] = j;
+        v[c] = (int64_t)z;
+        voxgi__set_voxel(job->vs, job->st, v[0], v[1], v[2]);
+    }
+}
+
+/* Triangle ti drawn along axis c: its corners on the subpixel grid, its covered pixel centres. */
+static void voxgi__vox_draw_along(const voxgi__vox_shared *vs, size_t ti, int c, voxgi__stats *st)
+{
+    voxgi__vox_column_job job;
+    double x[3], y[3];
+    int k, a = (c + 1) % 3, b = (c + 2) % 3;
+    for (k = 0; k < 3; k++) job.q[k] = vs->vp[vs->tri[3 * ti + (size_t)k]].q;
+    job.vs = vs;
+    job.st = st;
+    job.c = c;
+    for (k = 0; k < 3; k++) { x[k] = voxgi__snap256(job.q[k][a]); y[k] = voxgi__snap256(job.q[k][b]); }
+    voxgi__vox_raster_cpu(x, y, vs->grid->res[a], vs->grid->res[b], voxgi__vox_column_pixel, &job, (uint32_t)ti);
+}
+
 static void voxgi__vox_slicemap_cpu(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
 {
-    static const double centre[3] = {0.5, 0.5, 0.5};
-    voxgi__tri t;
-    int A = vs->slice_axis, a = (A + 1) % 3, b = (A + 2) % 3, i;
-    int32_t rel[3];
-    const double *q[3];
-    if (!voxgi__tri_setup(vs, ti, &t)) return; /* its fragments would all lie outside the grid */
-    voxgi__tri_resolve_signs(vs, &t, st);
-    if (t.sig[A] == 0) return; /* zero projected area: the rasterizer makes no fragments */
-    voxgi__tri_forms(&t);
-    for (i = 0; i < 3; i++) q[i] = vs->vp[t.v[i]].q;
-    for (rel[b] = 0; rel[b] <= t.hi[b] - t.lo[b]; rel[b]++) {
-        int32_t first, last;
-        voxgi__row_span(&t, A, rel[b], t.hi[a] - t.lo[a] + 1, &first, &last);
-        for (rel[a] = first; rel[a] <= last; rel[a]++) {
-            double z;
-            int covered = 1;
-            rel[A] = 0;
-            for (i = 0; i < t.proj_count[A] && covered; i++) {
-                const voxgi__lin *L = &t.proj[A][i];
-                int s = voxgi__form_sign(vs, &t, L, rel, centre, st);
-                if (s == 0) {
-                    double da = L->orient * t.e[(int)L->edge][a], db = L->orient * t.e[(int)L->edge][b];
-                    covered = db < 0 || (db == 0 && da > 0);
-                } else covered = s > 0;
-            }
-            if (!covered) continue;
-            z = floor(voxgi__slicemap_depth(q[0], q[1], q[2], A, (double)(t.lo[a] + rel[a]) + 0.5, (double)(t.lo[b] + rel[b]) + 0.5));
-            if (z >= 0 && z < (double)vs->grid->res[A]) {
-                int64_t v[3];
-                v[a] = (int64_t)t.lo[a] + rel[a];
-                v[b] = (int64_t)t.lo[b] + rel[b];
-                v[A] = (int64_t)z;
-                voxgi__set_voxel(vs, st, v[0], v[1], v[2]);
-            }
-        }
-    }
+    voxgi__vox_draw_along(vs, ti, vs->slice_axis, st);
 }
 
 #ifndef VOXGI_NO_GL
@@ -5477,7 +5473,7 @@ static voxgi_result voxgi__vox_raster_gl(voxgi_context *ctx, const voxgi_grid *g
     voxgi__gl *gl = ctx->gl;
     voxgi__gl_raster_state state;
     int a = (A + 1) % 3, b = (A + 2) % 3, per_layer = atomic ? 32 : 128;
-    int layers = (g->res[A] + per_layer - 1) / per_layer, max_targets = 1, max_size = 0, i, first;
+    int layers = (g->res[A] + per_layer - 1) / per_layer, max_targets = 1, max_size = 0, i, first, vw = 1, vh = 1;
     unsigned int tex = 0, fbo = 0, vao = 0, zero[4] = {0, 0, 0, 0};
     size_t bytes = (size_t)voxgi__grid_words(g) * 4;
     voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_slicemap_unpack);
@@ -5505,10 +5501,13 @@ static voxgi_result voxgi__vox_raster_gl(voxgi_context *ctx, const voxgi_grid *g
     gl->ProgramUniform1i(p, VOXGI__LOC_u_atomic, atomic);
     gl->BindVertexArray(vao);
     gl->BindFramebuffer(VOXGI__GL_FRAMEBUFFER, fbo);
-    gl->Viewport(0, 0, g->res[a], g->res[b]);
-    if (atomic) { /* no colour outputs: an attachment-less framebuffer of the slicemap's size */
-        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, g->res[a]);
-        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, g->res[b]);
+    while (vw < g->res[a]) vw *= 2; /* powers of two: clip coordinates on the subpixel grid reach the window exactly */
+    while (vh < g->res[b]) vh *= 2;
+    gl->ProgramUniform2i(p, VOXGI__LOC_u_view, vw, vh);
+    gl->Viewport(0, 0, vw, vh); /* beyond the targets' size: no fragments */
+    if (atomic) { /* no colour outputs: an attachment-less framebuffer (texels beyond the image: no writes) */
+        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_WIDTH, vw);
+        gl->NamedFramebufferParameteri(fbo, VOXGI__GL_FRAMEBUFFER_DEFAULT_HEIGHT, vh);
         gl->BindImageTexture(0, tex, 0, 1, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32UI);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_first_slice, 0);
         gl->DrawArrays(mode, 0, (int)count);
@@ -5593,37 +5592,15 @@ static int voxgi__dominant_axis(const double *q0, const double *q1, const double
     return c;
 }
 
-typedef struct voxgi__vox_volume_buffer_job { const voxgi__vox_shared *vs; voxgi__stats *st; const double *q[3]; int c; } voxgi__vox_volume_buffer_job;
-
-static void voxgi__vox_volume_buffer_pixel(void *user, uint32_t tri, int i, int j)
-{
-    voxgi__vox_volume_buffer_job *job = (voxgi__vox_volume_buffer_job *)user;
-    int c = job->c, a = (c + 1) % 3, b = (c + 2) % 3;
-    double z = floor(voxgi__slicemap_depth(job->q[0], job->q[1], job->q[2], c, (double)i + 0.5, (double)j + 0.5));
-    (void)tri;
-    if (z >= 0 && z < (double)job->vs->grid->res[c]) {
-        int64_t v[3];
-        v[a] = i;
-        v[b] = j;
-        v[c] = (int64_t)z;
-        voxgi__set_voxel(job->vs, job->st, v[0], v[1], v[2]);
-    }
-}
-
 static void voxgi__vox_volume_buffer_cpu(const voxgi__vox_shared *vs, size_t ti, voxgi__stats *st)
 {
-    voxgi__vox_volume_buffer_job job;
-    double n[3], x[3], y[3];
-    int k, a, b;
-    for (k = 0; k < 3; k++) job.q[k] = vs->vp[vs->tri[3 * ti + (size_t)k]].q;
-    job.c = voxgi__dominant_axis(job.q[0], job.q[1], job.q[2], n);
-    if (n[job.c] == 0) return; /* no area in any projection */
-    job.vs = vs;
-    job.st = st;
-    a = (job.c + 1) % 3;
-    b = (job.c + 2) % 3;
-    for (k = 0; k < 3; k++) { x[k] = voxgi__snap256(job.q[k][a]); y[k] = voxgi__snap256(job.q[k][b]); }
-    voxgi__vox_raster_cpu(x, y, vs->grid->res[a], vs->grid->res[b], voxgi__vox_volume_buffer_pixel, &job, (uint32_t)ti);
+    double n[3];
+    const double *q[3];
+    int k, c;
+    for (k = 0; k < 3; k++) q[k] = vs->vp[vs->tri[3 * ti + (size_t)k]].q;
+    c = voxgi__dominant_axis(q[0], q[1], q[2], n);
+    if (n[c] == 0) return; /* no area in any projection */
+    voxgi__vox_draw_along(vs, ti, c, st);
 }
 
 #ifndef VOXGI_NO_GL

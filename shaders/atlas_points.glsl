@@ -15,7 +15,7 @@ void main()
         v_slice = -1;
         return;
     }
-    gl_Position = vec4((2.0 * float(v[a]) + 1.0) / float(u_res[a]) - 1.0, (2.0 * float(v[b]) + 1.0) / float(u_res[b]) - 1.0, 0.0, 1.0);
+    gl_Position = vec4((2.0 * float(v[a]) + 1.0) / float(u_view.x) - 1.0, (2.0 * float(v[b]) + 1.0) / float(u_view.y) - 1.0, 0.0, 1.0);
     v_slice = v[A];
 }
 #endif

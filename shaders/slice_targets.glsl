@@ -4,6 +4,7 @@
 // imageAtomicOr into an R32UI array, 32 slices per layer.
 layout(location = VOXGI_LOC_u_first_slice) uniform int u_first_slice;
 layout(location = VOXGI_LOC_u_atomic) uniform int u_atomic;
+layout(location = VOXGI_LOC_u_view) uniform ivec2 u_view; // the viewport: powers of two, at least the slicemap's size
 
 #ifdef VOXGI_FRAGMENT
 layout(binding = 0, r32ui) uniform coherent uimage2DArray u_slices;

@@ -1,18 +1,20 @@
 // Raster slicemap (Eisemann & Decoret 2006; Buchacher 2014 method A), after scene.glsl and
-// slice_targets.glsl: vertex and fragment stages. Pixels are voxel columns along u_axis; the
-// depth of each fragment is not the rasterizer's but the triangle's plane at the pixel centre,
-// in double, in the same order as voxgi__slicemap_depth, so only the rasterizer's coverage
-// differs from the CPU twin.
+// slice_targets.glsl: vertex and fragment stages. Pixels are voxel columns along u_axis. The
+// corners go to the rasterizer already on its 1/256 subpixel grid, in a power-of-two viewport
+// u_view (window = clip coordinates exactly), so its own snapping changes nothing; the depth of
+// each fragment is not the rasterizer's but the unrounded triangle's plane at the pixel centre,
+// in double, in the same order as voxgi__slicemap_depth. So the voxels equal the CPU twin's.
 layout(location = VOXGI_LOC_u_axis) uniform int u_axis;
 
 #ifdef VOXGI_VERTEX
 flat out int v_tri;
+double snap(double x) { return floor(x * 256.0LF + 0.5LF) / 256.0LF; }
 void main()
 {
     int A = u_axis, a = (A + 1) % 3, b = (A + 2) % 3;
     dvec3 q = vp[tri_index[gl_VertexID]].q.xyz;
     // window x, y = the voxel coordinates along a and b; z is unused (never clipped)
-    gl_Position = vec4(float(2.0LF * q[a] / double(u_res[a]) - 1.0LF), float(2.0LF * q[b] / double(u_res[b]) - 1.0LF), 0.0, 1.0);
+    gl_Position = vec4(float(snap(q[a]) * (2.0LF / double(u_view.x)) - 1.0LF), float(snap(q[b]) * (2.0LF / double(u_view.y)) - 1.0LF), 0.0, 1.0);
     v_tri = gl_VertexID / 3;
 }
 #endif

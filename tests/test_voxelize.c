@@ -1039,52 +1039,63 @@ static void test_or_mips(void)
 }
 
 /* ---------------------------------------------------------------- raster slicemap */
-/* Pixel-centre sampling on the lattice, in integers: covered when every edge function is
-   positive or zero on an edge the fill rule gives it (CCW direction d: d_b < 0, or d_b == 0 and
-   d_a > 0), slice = floor of the plane's depth (an exact rational) at the centre. */
-static uint32_t *oracle_slicemap(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g, int A)
+/* A triangle drawn along an axis, as the rasterizer draws it, in 128-bit integers: corners
+   rounded half up to 1/256 of a voxel in the other two axes, pixel centres covered under the fill
+   rule, the exact plane's depth floored. The raster slicemap draws along its axis, the Volume
+   Buffer along each triangle's dominant one (largest |n|, lowest axis on ties: axis -1). Needs a
+   power-of-two voxel size, so that the library's voxel coordinates are exact. */
+static int64_t floor_div(i128 num, i128 den)
+{
+    if (den < 0) { num = -num; den = -den; }
+    return (int64_t)(num >= 0 ? num / den : -((-num + den - 1) / den));
+}
+
+static uint32_t *oracle_drawn_along(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g, int axis)
 {
     uint64_t nvox = voxgi_grid_voxel_count(g);
     uint32_t *bits = (uint32_t *)calloc((size_t)(nvox + 31) / 32, 4);
-    int a = (A + 1) % 3, b = (A + 2) % 3;
     int64_t o[3], s = to_fixed(g->voxel_size);
+    const i128 one = (i128)1 << ORACLE_BITS; /* a voxel, in units of 2^-ORACLE_BITS voxels */
     size_t t;
     int k;
     for (k = 0; k < 3; k++) o[k] = to_fixed(g->origin[k]);
     for (t = 0; t < ntri; t++) {
-        i128 v[3][3], area;
-        int i, j, c;
-        for (c = 0; c < 3; c++)
-            for (k = 0; k < 3; k++) v[c][k] = 2 * (i128)to_fixed(pos[3 * idx[3 * t + (size_t)c] + (size_t)k]); /* doubled */
-        area = (v[1][a] - v[0][a]) * (v[2][b] - v[0][b]) - (v[1][b] - v[0][b]) * (v[2][a] - v[0][a]);
+        i128 q[3][3], n[3], e[3], f[3], X[3], Y[3], area;
+        int c = 0, a, b, i, j, v;
+        for (v = 0; v < 3; v++)
+            for (k = 0; k < 3; k++) q[v][k] = ((i128)to_fixed(pos[3 * idx[3 * t + (size_t)v] + (size_t)k]) - o[k]) * one / s; /* exact: s is 2^m */
+        for (k = 0; k < 3; k++) { e[k] = q[1][k] - q[0][k]; f[k] = q[2][k] - q[0][k]; }
+        n[0] = e[1] * f[2] - f[1] * e[2]; n[1] = e[2] * f[0] - f[2] * e[0]; n[2] = e[0] * f[1] - f[0] * e[1];
+        for (k = 1; k < 3; k++) if ((n[k] < 0 ? -n[k] : n[k]) > (n[c] < 0 ? -n[c] : n[c])) c = k;
+        if (axis >= 0) c = axis;
+        if (n[c] == 0) continue;
+        a = (c + 1) % 3; b = (c + 2) % 3;
+        for (v = 0; v < 3; v++) { /* rounded to 1/256, then in units of 1/512 so centres are integers */
+            X[v] = 2 * (i128)floor_div(q[v][a] * 256 + one / 2, one);
+            Y[v] = 2 * (i128)floor_div(q[v][b] * 256 + one / 2, one);
+        }
+        area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
         if (area == 0) continue;
         for (j = 0; j < g->res[b]; j++)
             for (i = 0; i < g->res[a]; i++) {
-                i128 pa = 2 * (i128)o[a] + (2 * (i128)i + 1) * s, pb = 2 * (i128)o[b] + (2 * (i128)j + 1) * s, num, den, z;
+                i128 px = 512 * (i128)i + 256, py = 512 * (i128)j + 256;
                 int covered = 1;
-                for (c = 0; c < 3 && covered; c++) {
-                    const i128 *p0 = v[c], *p1 = v[(c + 1) % 3];
-                    i128 da = (p1[a] - p0[a]) * (area > 0 ? 1 : -1), db = (p1[b] - p0[b]) * (area > 0 ? 1 : -1);
-                    i128 e = da * (pb - p0[b]) - db * (pa - p0[a]);
-                    covered = e > 0 || (e == 0 && (db < 0 || (db == 0 && da > 0)));
+                int64_t z;
+                for (v = 0; v < 3 && covered; v++) {
+                    int w = (v + 1) % 3;
+                    i128 dx = (X[w] - X[v]) * (area > 0 ? 1 : -1), dy = (Y[w] - Y[v]) * (area > 0 ? 1 : -1);
+                    i128 x0 = area > 0 ? X[v] : X[w], y0 = area > 0 ? Y[v] : Y[w];
+                    i128 ev = dx * (py - y0) - dy * (px - x0);
+                    covered = ev > 0 || (ev == 0 && (dy < 0 || (dy == 0 && dx > 0)));
                 }
                 if (!covered) continue;
-                /* depth along A at the centre, in voxels: ((z - 2o)/(2s)), z from the plane */
-                {
-                    i128 e1[3], f[3], n[3];
-                    for (k = 0; k < 3; k++) { e1[k] = v[1][k] - v[0][k]; f[k] = v[2][k] - v[0][k]; }
-                    n[a] = e1[b] * f[A] - e1[A] * f[b];
-                    n[b] = e1[A] * f[a] - e1[a] * f[A];
-                    n[A] = e1[a] * f[b] - e1[b] * f[a];
-                    /* n.(p - v0) = 0 -> zA = v0A - (n_a (pa - v0a) + n_b (pb - v0b)) / nA; voxels: (zA - 2 oA) / (2 s) */
-                    num = (v[0][A] - 2 * (i128)o[A]) * n[A] - (n[a] * (pa - v[0][a]) + n[b] * (pb - v[0][b]));
-                    den = n[A] * 2 * (i128)s;
-                    if (den < 0) { num = -num; den = -den; }
-                    z = num >= 0 ? num / den : -((-num + den - 1) / den); /* floor */
+                {   /* depth: q0c - (n_a (pa - q0a) + n_b (pb - q0b)) / n_c, centres (i + 1/2) voxels */
+                    i128 pa = (2 * (i128)i + 1) * one / 2, pb = (2 * (i128)j + 1) * one / 2;
+                    z = floor_div(q[0][c] * n[c] - (n[a] * (pa - q[0][a]) + n[b] * (pb - q[0][b])), n[c] * one);
                 }
-                if (z >= 0 && z < g->res[A]) {
+                if (z >= 0 && z < g->res[c]) {
                     int vv[3];
-                    vv[a] = i; vv[b] = j; vv[A] = (int)z;
+                    vv[a] = i; vv[b] = j; vv[c] = (int)z;
                     oracle_set(bits, g, vv);
                 }
             }
@@ -1092,18 +1103,25 @@ static uint32_t *oracle_slicemap(const float *pos, const uint32_t *idx, size_t n
     return bits;
 }
 
+static uint32_t *oracle_volume_buffer(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g)
+{
+    return oracle_drawn_along(pos, idx, ntri, g, -1);
+}
+
+static uint64_t outside_dilated(const uint32_t *a, const uint32_t *b, const voxgi_grid *g);
+
 static void test_slicemap_vs_oracle_and_relations(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
     vxt_shape m;
     voxgi_grid g;
     int A, trial;
-    uint64_t bad = 0;
-    /* random triangles on a generic grid (lattice inputs) along every axis */
+    uint64_t bad = 0, outside = 0;
+    /* random triangles on a grid of power-of-two voxels (lattice inputs) along every axis */
     g.origin[0] = lattice(-3.3); g.origin[1] = lattice(1.7); g.origin[2] = lattice(-0.45);
-    g.voxel_size = lattice(0.73);
-    g.res[0] = 13; g.res[1] = 9; g.res[2] = 11;
-    for (trial = 0; trial < 150 && bad == 0; trial++) {
+    g.voxel_size = 0.5;
+    g.res[0] = 23; g.res[1] = 19; g.res[2] = 21;
+    for (trial = 0; trial < 150 && bad == 0 && outside == 0; trial++) {
         float p[9];
         uint32_t idx[3] = {0, 1, 2};
         int c;
@@ -1111,7 +1129,7 @@ static void test_slicemap_vs_oracle_and_relations(void)
         for (A = 0; A < 3; A++) {
             voxgi_voxelize_desc vd;
             uint32_t *mine, *ref, *cons;
-            uint64_t l, n = voxgi_grid_voxel_count(&g);
+            uint64_t n = voxgi_grid_voxel_count(&g);
             voxgi_mesh mesh;
             voxgi_scene sc;
             voxgi_voxels *vox = NULL;
@@ -1122,14 +1140,15 @@ static void test_slicemap_vs_oracle_and_relations(void)
             mine = (uint32_t *)malloc((size_t)(n + 31) / 32 * 4);
             voxgi_voxels_read(ctx, vox, mine, (size_t)(n + 31) / 32 * 4, NULL);
             voxgi_voxels_destroy(ctx, vox);
-            ref = oracle_slicemap(p, idx, 1, &g, A);
+            ref = oracle_drawn_along(p, idx, 1, &g, A);
             cons = oracle_voxelize(p, idx, 1, &g);
             bad += compare_bits(mine, ref, &g, "slicemap");
-            for (l = 0; l < n; l++) bad += (uint64_t)(voxgi_bit_get(mine, l) && !voxgi_bit_get(cons, l)); /* within conservative */
+            outside += outside_dilated(mine, cons, &g);
             free(mine); free(ref); free(cons);
         }
     }
-    TH_CHECK(bad == 0, "slicemap differs from pixel-centre sampling or leaves the conservative set (trial %d)", trial);
+    TH_CHECK(bad == 0 && outside == 0, "slicemap: %llu voxels differ from the definition (trial %d), %llu beyond one voxel of conservative",
+             (unsigned long long)bad, trial, (unsigned long long)outside);
     {   /* the axis-aligned cube at 32: the faces parallel to the axis vanish, only the two caps
            remain: 2 * 30^2 voxels, against 5048 conservative ones */
         voxgi_voxelize_desc vd;
@@ -1407,68 +1426,6 @@ static float *attr_read(voxgi_context *ctx, const voxgi_voxels *vox, voxgi_attri
     out = (float *)malloc(need ? need : 4);
     if (voxgi_voxels_read_attribute(ctx, vox, which, out, need, NULL) != VOXGI_OK) { free(out); return NULL; }
     return out;
-}
-
-/* The Volume Buffer's definition in 128-bit integers: each triangle along its dominant axis
-   (largest |n|, lowest axis on ties), corners rounded half up to 1/256 of a voxel in the other
-   two axes, pixel centres covered under the fill rule, the exact plane's depth floored. Needs a
-   power-of-two voxel size, so that the library's voxel coordinates are exact. */
-static int64_t floor_div(i128 num, i128 den)
-{
-    if (den < 0) { num = -num; den = -den; }
-    return (int64_t)(num >= 0 ? num / den : -((-num + den - 1) / den));
-}
-
-static uint32_t *oracle_volume_buffer(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g)
-{
-    uint64_t nvox = voxgi_grid_voxel_count(g);
-    uint32_t *bits = (uint32_t *)calloc((size_t)(nvox + 31) / 32, 4);
-    int64_t o[3], s = to_fixed(g->voxel_size);
-    const i128 one = (i128)1 << ORACLE_BITS; /* a voxel, in units of 2^-ORACLE_BITS voxels */
-    size_t t;
-    int k;
-    for (k = 0; k < 3; k++) o[k] = to_fixed(g->origin[k]);
-    for (t = 0; t < ntri; t++) {
-        i128 q[3][3], n[3], e[3], f[3], X[3], Y[3], area;
-        int c = 0, a, b, i, j, v;
-        for (v = 0; v < 3; v++)
-            for (k = 0; k < 3; k++) q[v][k] = ((i128)to_fixed(pos[3 * idx[3 * t + (size_t)v] + (size_t)k]) - o[k]) * one / s; /* exact: s is 2^m */
-        for (k = 0; k < 3; k++) { e[k] = q[1][k] - q[0][k]; f[k] = q[2][k] - q[0][k]; }
-        n[0] = e[1] * f[2] - f[1] * e[2]; n[1] = e[2] * f[0] - f[2] * e[0]; n[2] = e[0] * f[1] - f[0] * e[1];
-        for (k = 1; k < 3; k++) if ((n[k] < 0 ? -n[k] : n[k]) > (n[c] < 0 ? -n[c] : n[c])) c = k;
-        if (n[c] == 0) continue;
-        a = (c + 1) % 3; b = (c + 2) % 3;
-        for (v = 0; v < 3; v++) { /* rounded to 1/256, then in units of 1/512 so centres are integers */
-            X[v] = 2 * (i128)floor_div(q[v][a] * 256 + one / 2, one);
-            Y[v] = 2 * (i128)floor_div(q[v][b] * 256 + one / 2, one);
-        }
-        area = (X[1] - X[0]) * (Y[2] - Y[0]) - (Y[1] - Y[0]) * (X[2] - X[0]);
-        if (area == 0) continue;
-        for (j = 0; j < g->res[b]; j++)
-            for (i = 0; i < g->res[a]; i++) {
-                i128 px = 512 * (i128)i + 256, py = 512 * (i128)j + 256;
-                int covered = 1;
-                int64_t z;
-                for (v = 0; v < 3 && covered; v++) {
-                    int w = (v + 1) % 3;
-                    i128 dx = (X[w] - X[v]) * (area > 0 ? 1 : -1), dy = (Y[w] - Y[v]) * (area > 0 ? 1 : -1);
-                    i128 x0 = area > 0 ? X[v] : X[w], y0 = area > 0 ? Y[v] : Y[w];
-                    i128 ev = dx * (py - y0) - dy * (px - x0);
-                    covered = ev > 0 || (ev == 0 && (dy < 0 || (dy == 0 && dx > 0)));
-                }
-                if (!covered) continue;
-                {   /* depth: q0c - (n_a (pa - q0a) + n_b (pb - q0b)) / n_c, centres (i + 1/2) voxels */
-                    i128 pa = (2 * (i128)i + 1) * one / 2, pb = (2 * (i128)j + 1) * one / 2;
-                    z = floor_div(q[0][c] * n[c] - (n[a] * (pa - q[0][a]) + n[b] * (pb - q[0][b])), n[c] * one);
-                }
-                if (z >= 0 && z < g->res[c]) {
-                    int vv[3];
-                    vv[a] = i; vv[b] = j; vv[c] = (int)z;
-                    oracle_set(bits, g, vv);
-                }
-            }
-    }
-    return bits;
 }
 
 /* The Volume Buffer on the CPU equals its integer definition, triangle by triangle and for a
