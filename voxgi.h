@@ -55,10 +55,11 @@
        8. cone tracing    cones gathering from a radiance volume or octree (below injection,
                           whose further bounces gather with cones)
        9. light injection the direct light into the voxels, and its bounces among them
-          (lighting passes to come: light-space, screen-space and line-space, one part each)
-      10. images          voxgi's own G-buffer and cone-traced images
-      11. reference renderer  the path tracer every image is measured against
-      12. built-in scenes and files
+      10. light-space passes  transmittance shadow maps (reflective shadow maps and a spherical-
+                          harmonics volume to come; screen-space and line-space passes after them)
+      11. images          voxgi's own G-buffer and cone-traced images
+      12. reference renderer  the path tracer every image is measured against
+      13. built-in scenes and files
 
    METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
    (raster), atlas and atlas-compute (texture atlas points), geometry (conservative by geometry
@@ -758,7 +759,44 @@ typedef struct voxgi_inject_desc {
 VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *voxels,
                                           const voxgi_inject_desc *desc, voxgi_volume **out);
 
-/* ===================================================================== 10. images */
+/* ===================================================================== 10. light-space passes */
+
+/* Transmittance shadow maps (Buchacher 2014, section 4): the light's view of the scene's
+   translucent surfaces as raster slicemaps, and an ordinary shadow map of its opaque ones. A
+   point's light is 0 where an opaque surface lies before it (the shadow map, checked first),
+   else the product over the translucent materials of (1 - sigma)^n, n the occupied slices of
+   that material's slicemap strictly between the light and the point (its own slice never
+   counts), sigma = 1 - transparency (surfaces of one slice count once: the method's artifact).
+   A DIRECTIONAL light looks along its direction with an orthographic map over the scene's
+   bounds: square texels, `slices` slices of equal depth between the scene's nearest and
+   farthest point. The slicemaps are voxgi_voxelize's raster slicemap (VOXGI_METHOD_SLICEMAP) of
+   the scene in the light's frame, on the context's backend: GL and CPU give the same bits. The
+   shadow map holds, per texel, the least depth of an opaque triangle at its centre (the same
+   rasterizer's coverage). Lookups move a point 1.5 texels along its normal toward the light
+   (normal-offset shadow mapping) and let an opaque depth within half a texel of its own pass. */
+typedef struct voxgi_tsm_desc {
+    size_t light;                 /* the scene's light: DIRECTIONAL */
+    int size;                     /* texels across the square map; 0 = 1024 */
+    int slices;                   /* slices along the light; 0 = 32 */
+    float sigma;                  /* > 0: this absorption for every translucent material instead of its
+                                     1 - transparency */
+} voxgi_tsm_desc;
+typedef struct voxgi_tsm voxgi_tsm;
+typedef struct voxgi_tsm_info {
+    int materials;                /* translucent absorptions, one slicemap each */
+    uint64_t voxels;              /* occupied slices over them all */
+    size_t bytes;                 /* the maps' memory */
+    double ms;                    /* wall time of voxgi_tsm_create */
+} voxgi_tsm_info;
+VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_desc *desc, voxgi_tsm **out);
+VOXGI_API void voxgi_tsm_query(const voxgi_tsm *tsm, voxgi_tsm_info *info);
+/* The light's share reaching each point (0..1): count points (xyz), their unit normals (NULL: no
+   offset, the bare definition) into out[count]. */
+VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_tsm *tsm, size_t count, const float *points, const float *normals,
+                                               float *out);
+VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm);
+
+/* ===================================================================== 11. images */
 
 /* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
    pixel's centre meets first: its position (world units), its normal facing the camera, its
@@ -825,7 +863,7 @@ typedef struct voxgi_vct_info {
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info);
 
-/* ===================================================================== 11. reference renderer */
+/* ===================================================================== 12. reference renderer */
 
 /* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, through
    the ray core (voxgi_ray_scene: watertight, hit points refined in double). Surfaces are Lambertian (albedo) and emit
@@ -857,7 +895,7 @@ typedef struct voxgi_reference_info {
 VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
                                               size_t rgb_bytes, voxgi_reference_info *info);
 
-/* ===================================================================== 12. built-in scenes and files */
+/* ===================================================================== 13. built-in scenes and files */
 
 /* Scenes that need no files, each with its usual view (256 x 256):
    "cornell-box"  the Cornell box (the published geometry in metres, the light 0.1 mm below the
@@ -9890,7 +9928,277 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
     return voxgi__inject_light(ctx, scene, vx, desc, NULL, NULL, out);
 }
 
-/* ===================================================================== 10. images */
+/* ===================================================================== 10. light-space passes */
+
+/* ----- 10.1 transmittance shadow maps (voxgi_tsm)
+
+   The light's frame: u, v across the map and w along the light, in texel units (slices along w),
+   so that a map is a grid of unit voxels: voxgi_voxelize's raster slicemap of each translucent
+   material's triangles along z, and the opaque triangles' least depth at each texel centre drawn
+   by the same rasterizer on the CPU. */
+#define VOXGI__TSM_MAX_MATERIALS 8
+
+struct voxgi_tsm {
+    double u[3], v[3], w[3];      /* the light's frame: across the map, and the direction light travels */
+    double lo[3];                 /* the map's corner in the frame (world units) */
+    double texel, slice;          /* world units */
+    int size, slices, words;      /* words: 32-slice words per column */
+    int materials;
+    float sigma[VOXGI__TSM_MAX_MATERIALS];
+    uint32_t *columns;            /* per material, per texel (row by row), `words` words of slice bits */
+    float *opaque;                /* per texel: the least depth (slices) of an opaque surface, +inf: none */
+    voxgi_tsm_info info;
+};
+
+/* Point x (world) in the map's frame: texels across, slices along. */
+static void voxgi__tsm_frame(const voxgi_tsm *T, const double x[3], double out[3])
+{
+    out[0] = ((x[0] * T->u[0] + x[1] * T->u[1] + x[2] * T->u[2]) - T->lo[0]) / T->texel;
+    out[1] = ((x[0] * T->v[0] + x[1] * T->v[1] + x[2] * T->v[2]) - T->lo[1]) / T->texel;
+    out[2] = ((x[0] * T->w[0] + x[1] * T->w[1] + x[2] * T->w[2]) - T->lo[2]) / T->slice;
+}
+
+typedef struct voxgi__tsm_depth_job { float *map; int size; const double *q[3]; } voxgi__tsm_depth_job;
+
+static void voxgi__tsm_depth_pixel(void *user, uint32_t tri, int i, int j)
+{
+    voxgi__tsm_depth_job *job = (voxgi__tsm_depth_job *)user;
+    double z = voxgi__slicemap_depth(job->q[0], job->q[1], job->q[2], 2, (double)i + 0.5, (double)j + 0.5);
+    float *m = &job->map[(size_t)j * (size_t)job->size + (size_t)i];
+    (void)tri;
+    if (z < (double)*m) *m = (float)z;
+}
+
+static void voxgi__tsm_free(voxgi_context *ctx, voxgi_tsm *T)
+{
+    if (!T) return;
+    voxgi__free(ctx, T->columns);
+    voxgi__free(ctx, T->opaque);
+    voxgi__free(ctx, T);
+}
+
+/* Material group g's slicemap: its triangles (group[t] == g) in the frame q, voxelized along z
+   and repacked by column. */
+static voxgi_result voxgi__tsm_slicemap(voxgi_context *ctx, voxgi_tsm *T, const voxgi__flat *f, const double *q, const signed char *group, int g)
+{
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *vox = NULL;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_voxels_info vi;
+    float *soup;
+    uint32_t *bits = NULL;
+    size_t t, n = 0, texels = (size_t)T->size * (size_t)T->size, k;
+    int a, c;
+    voxgi_result r = VOXGI_OK;
+    for (t = 0; t < f->triangle_count; t++) n += group[t] == g;
+    soup = (float *)voxgi__alloc_array(ctx, n ? n : 1, 9 * sizeof(float), 0);
+    if (!soup) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)n);
+    for (t = 0, n = 0; t < f->triangle_count; t++) {
+        if (group[t] != g) continue;
+        for (c = 0; c < 3; c++)
+            for (a = 0; a < 3; a++) soup[9 * n + 3 * (size_t)c + (size_t)a] = (float)q[3 * (size_t)f->tri[3 * t + (size_t)c] + (size_t)a];
+        n++;
+    }
+    memset(&mesh, 0, sizeof mesh);
+    mesh.positions = soup;
+    mesh.vertex_count = 3 * n;
+    memset(&sc, 0, sizeof sc);
+    sc.meshes = &mesh;
+    sc.mesh_count = 1;
+    memset(&vd, 0, sizeof vd);
+    vd.grid.voxel_size = 1;
+    vd.grid.res[0] = vd.grid.res[1] = T->size;
+    vd.grid.res[2] = T->slices;
+    vd.method = VOXGI_METHOD_SLICEMAP;
+    vd.axis = VOXGI_AXIS_Z;
+    r = voxgi_voxelize(ctx, &sc, &vd, &vox);
+    if (r == VOXGI_OK) {
+        voxgi_voxels_query(vox, &vi);
+        T->info.voxels += vi.voxel_count;
+        bits = (uint32_t *)voxgi__alloc_array(ctx, 1, vi.bytes, 0);
+        if (!bits) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to read a slicemap");
+        else r = voxgi_voxels_read(ctx, vox, bits, vi.bytes, NULL);
+    }
+    if (r == VOXGI_OK) /* slice k of texel (i, j) is voxel i + size (j + size k) */
+        for (k = 0; k < (size_t)T->slices; k++)
+            for (t = 0; t < texels; t++) {
+                uint64_t l = (uint64_t)t + (uint64_t)texels * k;
+                if (bits[l >> 5] >> (l & 31) & 1u) T->columns[((size_t)g * texels + t) * (size_t)T->words + (k >> 5)] |= 1u << (k & 31);
+            }
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi__free(ctx, bits);
+    voxgi__free(ctx, soup);
+    return r;
+}
+
+VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_desc *desc, voxgi_tsm **out)
+{
+    voxgi__flat f;
+    voxgi_tsm *T = NULL;
+    const voxgi_light *L;
+    double *q = NULL, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, len, t0 = voxgi__now_ms();
+    signed char *group = NULL;
+    size_t i, t, texels;
+    int a, g, size, slices;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or out is NULL");
+    *out = NULL;
+    size = desc->size ? desc->size : 1024;
+    slices = desc->slices ? desc->slices : 32;
+    if (size < 1 || size > 16384 || slices < 1 || slices > 4096 || !(desc->sigma >= 0 && desc->sigma <= 1))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "size %d (1..16384), slices %d (1..4096), sigma %g (0..1)", size, slices, (double)desc->sigma);
+    if (desc->light >= scene->light_count) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu of %lu", (unsigned long)desc->light, (unsigned long)scene->light_count);
+    L = &scene->lights[desc->light];
+    if (L->type != VOXGI_LIGHT_DIRECTIONAL) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "transmittance shadow maps take a directional light");
+    len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
+    if (!(len > 0) || !isfinite(len)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu has no direction", (unsigned long)desc->light);
+    if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
+    texels = (size_t)size * (size_t)size;
+    T = (voxgi_tsm *)voxgi__alloc_array(ctx, 1, sizeof *T, 1);
+    q = (double *)voxgi__alloc_array(ctx, f.vertex_count, 3 * sizeof(double), 0);
+    group = (signed char *)voxgi__alloc_array(ctx, f.triangle_count, 1, 0);
+    if (!T || !q || !group) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a transmittance shadow map"); goto done; }
+    T->size = size;
+    T->slices = slices;
+    T->words = (slices + 31) / 32;
+    for (a = 0; a < 3; a++) T->w[a] = L->direction[a] / len;
+    voxgi__basis(T->w, T->u, T->v);
+    for (a = 0; a < 3; a++) T->lo[a] = DBL_MAX;
+    for (i = 0; i < f.vertex_count; i++) { /* the scene's bounds in the frame */
+        const float *p = f.pos + 3 * i;
+        double x[3], s[3];
+        for (a = 0; a < 3; a++) x[a] = p[a];
+        s[0] = x[0] * T->u[0] + x[1] * T->u[1] + x[2] * T->u[2];
+        s[1] = x[0] * T->v[0] + x[1] * T->v[1] + x[2] * T->v[2];
+        s[2] = x[0] * T->w[0] + x[1] * T->w[1] + x[2] * T->w[2];
+        for (a = 0; a < 3; a++) { T->lo[a] = VOXGI__MIN(T->lo[a], s[a]); hi[a] = VOXGI__MAX(hi[a], s[a]); }
+    }
+    { /* square texels over the larger extent, half a texel to spare on each side; slices over the depth */
+        double ext = VOXGI__MAX(hi[0] - T->lo[0], hi[1] - T->lo[1]), scale = VOXGI__MAX(ext, hi[2] - T->lo[2]);
+        if (!(scale > 0)) scale = VOXGI__MAX(1.0, fabs(T->lo[0]) + fabs(T->lo[1]) + fabs(T->lo[2])) * 1e-6;
+        ext = VOXGI__MAX(ext, scale * 1e-6);
+        T->texel = ext / (size - 1 > 0 ? size - 1 : 1);
+        T->lo[0] -= 0.5 * T->texel + 0.5 * (ext - (hi[0] - T->lo[0]));
+        T->lo[1] -= 0.5 * T->texel + 0.5 * (ext - (hi[1] - T->lo[1]));
+        T->slice = VOXGI__MAX(hi[2] - T->lo[2], scale * 1e-6) * (1 + 1e-6) / slices;
+    }
+    for (i = 0; i < f.vertex_count; i++) {
+        double x[3];
+        for (a = 0; a < 3; a++) x[a] = f.pos[3 * i + (size_t)a];
+        voxgi__tsm_frame(T, x, q + 3 * i);
+    }
+    for (t = 0; t < f.triangle_count; t++) { /* each triangle's map: -1 the shadow map, g a slicemap, -2 none */
+        const voxgi_material *m = voxgi__tri_material(&f, t);
+        float sigma = desc->sigma > 0 ? desc->sigma : 1 - m->transparency;
+        group[t] = -2;
+        if (!(m->transparency > 0)) { group[t] = -1; continue; }
+        if (!(m->transparency < 1)) continue; /* lets all light through */
+        for (g = 0; g < T->materials && T->sigma[g] != sigma; g++) continue;
+        if (g == T->materials) {
+            if (g == VOXGI__TSM_MAX_MATERIALS) {
+                r = voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "more than %d translucent absorptions (set desc.sigma for one)", VOXGI__TSM_MAX_MATERIALS);
+                goto done;
+            }
+            T->sigma[T->materials++] = sigma;
+        }
+        group[t] = (signed char)g;
+    }
+    T->columns = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(T->materials ? T->materials : 1) * texels, (size_t)T->words * 4, 1);
+    T->opaque = (float *)voxgi__alloc_array(ctx, texels, sizeof(float), 0);
+    if (!T->columns || !T->opaque) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %dx%d maps", size, size); goto done; }
+    for (g = 0; r == VOXGI_OK && g < T->materials; g++) r = voxgi__tsm_slicemap(ctx, T, &f, q, group, g);
+    for (i = 0; i < texels; i++) T->opaque[i] = INFINITY;
+    for (t = 0; r == VOXGI_OK && t < f.triangle_count; t++) { /* the shadow map: the rasterizer's coverage, the plane's depth */
+        voxgi__tsm_depth_job job;
+        double x[3], y[3];
+        int k;
+        if (group[t] != -1) continue;
+        job.map = T->opaque;
+        job.size = size;
+        for (k = 0; k < 3; k++) {
+            job.q[k] = q + 3 * (size_t)f.tri[3 * t + (size_t)k];
+            x[k] = voxgi__snap256(job.q[k][0]);
+            y[k] = voxgi__snap256(job.q[k][1]);
+        }
+        voxgi__vox_raster_cpu(x, y, size, size, voxgi__tsm_depth_pixel, &job, (uint32_t)t);
+    }
+    T->info.materials = T->materials;
+    T->info.bytes = (size_t)T->materials * texels * (size_t)T->words * 4 + texels * sizeof(float);
+    T->info.ms = voxgi__now_ms() - t0;
+done:
+    voxgi__free(ctx, q);
+    voxgi__free(ctx, group);
+    voxgi__flat_free(ctx, &f);
+    if (r == VOXGI_OK) *out = T;
+    else voxgi__tsm_free(ctx, T);
+    return r;
+}
+
+VOXGI_API void voxgi_tsm_query(const voxgi_tsm *tsm, voxgi_tsm_info *info)
+{
+    if (info) {
+        if (tsm) *info = tsm->info;
+        else memset(info, 0, sizeof *info);
+    }
+}
+
+/* The light reaching point x (world), moved along unit normal n toward the light first when n is given. */
+static float voxgi__tsm_point(const voxgi_tsm *T, const double x_in[3], const double *n)
+{
+    double x[3], p[3], bias = 0, light = 1;
+    size_t texel, texels = (size_t)T->size * (size_t)T->size;
+    int a, g, k, i, j;
+    for (a = 0; a < 3; a++) x[a] = x_in[a];
+    if (n) { /* normal offset, on the side the light comes from; an opaque depth within half a texel passes */
+        double side = n[0] * T->w[0] + n[1] * T->w[1] + n[2] * T->w[2] > 0 ? -1 : 1;
+        for (a = 0; a < 3; a++) x[a] += side * 1.5 * T->texel * n[a];
+        bias = 0.5 * T->texel / T->slice;
+    }
+    voxgi__tsm_frame(T, x, p);
+    if (!(p[0] >= 0 && p[0] < T->size && p[1] >= 0 && p[1] < T->size)) return 1; /* beyond the scene across the light */
+    i = (int)p[0];
+    j = (int)p[1];
+    texel = (size_t)j * (size_t)T->size + (size_t)i;
+    if (T->opaque[texel] < p[2] - bias) return 0;
+    k = p[2] <= 0 ? 0 : (p[2] >= T->slices ? T->slices : (int)p[2]); /* the slices before the point's own */
+    for (g = 0; g < T->materials; g++) {
+        const uint32_t *col = T->columns + ((size_t)g * texels + texel) * (size_t)T->words;
+        int w, layers = 0;
+        for (w = 0; w < k >> 5; w++) layers += (int)voxgi__popcount32(col[w]);
+        if (k & 31) layers += (int)voxgi__popcount32(col[k >> 5] & ((1u << (k & 31)) - 1u));
+        if (layers) light *= pow(1.0 - T->sigma[g], layers);
+    }
+    return (float)light;
+}
+
+VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_tsm *tsm, size_t count, const float *points, const float *normals,
+                                               float *out)
+{
+    size_t i;
+    int a;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!tsm || (count && (!points || !out))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "tsm, points or out is NULL");
+    for (i = 0; i < count; i++) {
+        double x[3], n[3];
+        for (a = 0; a < 3; a++) {
+            x[a] = points[3 * i + (size_t)a];
+            n[a] = normals ? normals[3 * i + (size_t)a] : 0;
+        }
+        if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]) || !isfinite(n[0]) || !isfinite(n[1]) || !isfinite(n[2]))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)i);
+        out[i] = voxgi__tsm_point(tsm, x, normals ? n : NULL);
+    }
+    return VOXGI_OK;
+}
+
+VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm)
+{
+    if (ctx) voxgi__tsm_free(ctx, tsm);
+}
+
+/* ===================================================================== 11. images */
 
 /* ----- the G-buffer of voxgi's own images */
 typedef struct voxgi__gbuffer_job {
@@ -10396,7 +10704,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     return r;
 }
 
-/* ===================================================================== 11. reference renderer */
+/* ===================================================================== 12. reference renderer */
 
 typedef struct voxgi__render {
     voxgi_context *ctx;
@@ -10545,7 +10853,7 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     return r;
 }
 
-/* ===================================================================== 12. built-in scenes and files */
+/* ===================================================================== 13. built-in scenes and files */
 
 #define VOXGI__BUILTIN_VERTICES 6144
 #define VOXGI__BUILTIN_TRIANGLES 6144

@@ -1,0 +1,236 @@
+/* The light-space passes against their definitions. Transmittance shadow maps: a stack of
+   horizontal translucent quads over an opaque ground under a sun straight above, where every
+   answer is known: no translucent layer lets all light through (sigma 0), sigma = 1 casts a
+   binary shadow, k layers pass (1 - sigma)^k, a point's own slice never counts, two materials
+   multiply, an opaque quad casts a full shadow; the slicemaps built on GL give the very same
+   answers; bad input is refused. */
+#include "../voxgi.h"
+#include "fixtures.h"
+
+/* Quad at height y over [-r, r]^2 in x and z, two triangles facing up, appended to pos / mats. */
+static size_t put_quad(float *pos, uint32_t *mats, size_t t, double y, double r, uint32_t material)
+{
+    static const double corner[6][2] = {{-1, -1}, {-1, 1}, {1, 1}, {-1, -1}, {1, 1}, {1, -1}};
+    int k;
+    for (k = 0; k < 6; k++) {
+        pos[9 * t + 3 * (size_t)k + 0] = (float)(r * corner[k][0]);
+        pos[9 * t + 3 * (size_t)k + 1] = (float)y;
+        pos[9 * t + 3 * (size_t)k + 2] = (float)(r * corner[k][1]);
+    }
+    mats[t] = mats[t + 1] = material;
+    return t + 2;
+}
+
+/* The stack: ground (opaque, material 0) at y = 0 over [-4, 4]^2; translucent quads (material 1)
+   at y = 1, 2, 3 over [-1, 1]^2; a quad of material 2 at y = 2.5 over [-1, 1]^2 when `second`; an
+   opaque quad (material 0) at y = 1.5 over [2, 3] x [-1, 1] when `blocker`. The sun shines
+   straight down. */
+typedef struct stack_scene {
+    float pos[9 * 12];
+    uint32_t mats[12];
+    voxgi_material materials[3];
+    voxgi_light sun;
+    voxgi_mesh mesh;
+    voxgi_scene scene;
+} stack_scene;
+
+static void stack_make(stack_scene *S, float transparency1, float transparency2, int second, int blocker)
+{
+    size_t t = 0;
+    int y;
+    memset(S, 0, sizeof *S);
+    t = put_quad(S->pos, S->mats, t, 0, 4, 0);
+    for (y = 1; y <= 3; y++) t = put_quad(S->pos, S->mats, t, y, 1, 1);
+    if (second) t = put_quad(S->pos, S->mats, t, 2.5, 1, 2);
+    if (blocker) {
+        size_t k;
+        t = put_quad(S->pos, S->mats, t, 1.5, 0.5, 0);
+        for (k = 9 * (t - 2); k < 9 * t; k += 3) S->pos[k] += 2.5f; /* over [2, 3] x [-0.5, 0.5] */
+    }
+    S->materials[0].albedo[0] = S->materials[0].albedo[1] = S->materials[0].albedo[2] = 0.5f;
+    S->materials[1] = S->materials[0];
+    S->materials[1].transparency = transparency1;
+    S->materials[2] = S->materials[0];
+    S->materials[2].transparency = transparency2;
+    S->sun.type = VOXGI_LIGHT_DIRECTIONAL;
+    S->sun.direction[1] = -1;
+    S->sun.intensity[0] = S->sun.intensity[1] = S->sun.intensity[2] = 1;
+    S->mesh.positions = S->pos;
+    S->mesh.vertex_count = 3 * t;
+    S->mesh.material_ids = S->mats;
+    S->scene.meshes = &S->mesh;
+    S->scene.mesh_count = 1;
+    S->scene.materials = S->materials;
+    S->scene.material_count = 3;
+    S->scene.lights = &S->sun;
+    S->scene.light_count = 1;
+}
+
+/* The light at (x, y, z) without a normal, on a map of 64 texels and 32 slices. */
+static double light_at(voxgi_context *ctx, const voxgi_tsm *tsm, double x, double y, double z)
+{
+    float p[3], out = -1;
+    p[0] = (float)x; p[1] = (float)y; p[2] = (float)z;
+    TH_CHECK(voxgi_tsm_transmittance(ctx, tsm, 1, p, NULL, &out) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    return out;
+}
+
+static voxgi_tsm *make_tsm(voxgi_context *ctx, const voxgi_scene *sc, float sigma)
+{
+    voxgi_tsm_desc d;
+    voxgi_tsm *tsm = NULL;
+    memset(&d, 0, sizeof d);
+    d.size = 64;
+    d.slices = 32;
+    d.sigma = sigma;
+    TH_CHECK(voxgi_tsm_create(ctx, sc, &d, &tsm) == VOXGI_OK && tsm, "tsm: %s", voxgi_last_error(ctx));
+    return tsm;
+}
+
+/* Depth runs from y = 3 (slice 0) to y = 0 (slice 31): the quads at 3, 2, 1 fill slices 0, 10 and
+   21 (3 / 32 each), so a point at y = 0.5 lies under all three, one at 1.5 under two, one on the
+   quad at 2 (its own slice 10) under one; beside the quads (x = 3) nothing is above. */
+static void test_tsm_layers(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    stack_scene S;
+    voxgi_tsm *tsm;
+    voxgi_tsm_info info;
+    const double s = 0.3, pass = 1 - s;
+    double got[5];
+    stack_make(&S, (float)pass, 0.5f, 0, 0);
+    tsm = make_tsm(ctx, &S.scene, 0);
+    if (tsm) {
+        got[0] = light_at(ctx, tsm, 0.1, 0.5, 0.2);
+        got[1] = light_at(ctx, tsm, 0.1, 1.5, 0.2);
+        got[2] = light_at(ctx, tsm, 0.1, 2.0, 0.2);
+        got[3] = light_at(ctx, tsm, 0.1, 3.5, 0.2);
+        got[4] = light_at(ctx, tsm, 3.0, 0.5, 0.2);
+        voxgi_tsm_query(tsm, &info);
+        printf("    sigma 0.3: under 3, 2 and 1 (its own slice) layers %.6f %.6f %.6f, above %.6f, beside %.6f; %d material, %llu voxels\n", got[0],
+               got[1], got[2], got[3], got[4], info.materials, (unsigned long long)info.voxels);
+        TH_CHECK(fabs(got[0] - pass * pass * pass) < 1e-6 && fabs(got[1] - pass * pass) < 1e-6 && fabs(got[2] - pass) < 1e-6, "k layers pass (1 - sigma)^k");
+        TH_CHECK(got[3] == 1 && got[4] == 1, "nothing above: all the light");
+        TH_CHECK(info.materials == 1 && info.voxels > 0, "one translucent material");
+        voxgi_tsm_destroy(ctx, tsm);
+    }
+    tsm = make_tsm(ctx, &S.scene, 1); /* sigma = 1: a binary shadow */
+    if (tsm) {
+        got[0] = light_at(ctx, tsm, 0.1, 0.5, 0.2);
+        got[1] = light_at(ctx, tsm, 0.1, 3.01, 0.2); /* on the top quad: its own slice */
+        got[2] = light_at(ctx, tsm, 3.0, 0.5, 0.2);
+        TH_CHECK(got[0] == 0 && got[1] == 1 && got[2] == 1, "sigma 1: %g under, %g on the top quad, %g beside", got[0], got[1], got[2]);
+        voxgi_tsm_destroy(ctx, tsm);
+    }
+    stack_make(&S, 1.0f, 0.5f, 0, 0); /* transparency 1, sigma 0: no layer at all */
+    tsm = make_tsm(ctx, &S.scene, 0);
+    if (tsm) {
+        got[0] = light_at(ctx, tsm, 0.1, 0.5, 0.2);
+        voxgi_tsm_query(tsm, &info);
+        TH_CHECK(got[0] == 1 && info.materials == 0, "sigma 0: %g, %d materials", got[0], info.materials);
+        voxgi_tsm_destroy(ctx, tsm);
+    }
+    voxgi_destroy(ctx);
+}
+
+/* Two translucent materials multiply their layers; an opaque quad casts a full shadow (the
+   shadow map, checked before the slicemaps), and a point on the lit ground with its normal is
+   not shadowed by the ground itself (the normal offset). */
+static void test_tsm_materials_and_opaque(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    stack_scene S;
+    voxgi_tsm *tsm;
+    voxgi_tsm_info info;
+    double got[3], want = 0.7 * 0.7 * 0.4 * 0.7;
+    stack_make(&S, 0.7f, 0.4f, 1, 1);
+    tsm = make_tsm(ctx, &S.scene, 0);
+    if (tsm) {
+        float p[3] = {3.5f, 0.0f, 0.0f}, n[3] = {0, 1, 0}, out = -1;
+        got[0] = light_at(ctx, tsm, 0.1, 0.5, 0.2);
+        got[1] = light_at(ctx, tsm, 2.5, 0.5, 0.0);
+        TH_CHECK(voxgi_tsm_transmittance(ctx, tsm, 1, p, n, &out) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        got[2] = out;
+        voxgi_tsm_query(tsm, &info);
+        printf("    two materials: %.6f (want %.6f); under the opaque quad %g; the open ground %g\n", got[0], want, got[1], got[2]);
+        TH_CHECK(info.materials == 2 && fabs(got[0] - want) < 1e-6, "two materials multiply");
+        TH_CHECK(got[1] == 0 && got[2] == 1, "an opaque quad shadows fully, the open ground is lit");
+        voxgi_tsm_destroy(ctx, tsm);
+    }
+    voxgi_destroy(ctx);
+}
+
+/* The slicemaps built on GL answer exactly as the CPU's, at 2000 random points in and beside the
+   stack. */
+static void test_tsm_gl_equals_cpu(void)
+{
+    enum { N = 2000 };
+    voxgi_context *cpu, *gl;
+    stack_scene S;
+    voxgi_tsm *a, *b;
+    static float pts[3 * N], ta[N], tb[N];
+    fx_rng g = fx_rng_seeded(3);
+    size_t i, differ = 0, shaded = 0;
+    if (!have_gl()) return;
+    cpu = make_ctx(VOXGI_BACKEND_CPU, 0);
+    gl = make_ctx(VOXGI_BACKEND_GL, 0);
+    stack_make(&S, 0.7f, 0.4f, 1, 1);
+    for (i = 0; i < 3 * N; i++) pts[i] = (float)(i % 3 == 0 ? fx_rng_range(&g, -1.2, 3.2) : i % 3 == 1 ? fx_rng_range(&g, 0, 3.2) : fx_rng_range(&g, -1.2, 1.2));
+    a = make_tsm(cpu, &S.scene, 0);
+    b = make_tsm(gl, &S.scene, 0);
+    if (a && b) {
+        TH_CHECK(voxgi_tsm_transmittance(cpu, a, N, pts, NULL, ta) == VOXGI_OK && voxgi_tsm_transmittance(gl, b, N, pts, NULL, tb) == VOXGI_OK, "lookups");
+        for (i = 0; i < N; i++) {
+            differ += ta[i] != tb[i];
+            shaded += ta[i] < 1;
+        }
+        printf("    %d points: %lu in some shadow, %lu differ between the CPU's and GL's maps\n", N, (unsigned long)shaded, (unsigned long)differ);
+        TH_CHECK(differ == 0 && shaded > N / 10, "GL's maps differ");
+    }
+    voxgi_tsm_destroy(cpu, a);
+    voxgi_tsm_destroy(gl, b);
+    voxgi_destroy(cpu);
+    voxgi_destroy(gl);
+}
+
+/* Bad input: a light that is not directional, a light index past the end, absurd sizes, a NaN
+   point, NULLs. */
+static void test_tsm_input(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    stack_scene S;
+    voxgi_tsm_desc d;
+    voxgi_tsm *tsm = NULL;
+    float p[3] = {0, NAN, 0}, out;
+    stack_make(&S, 0.7f, 0.4f, 0, 0);
+    memset(&d, 0, sizeof d);
+    S.sun.type = VOXGI_LIGHT_POINT;
+    TH_CHECK(voxgi_tsm_create(ctx, &S.scene, &d, &tsm) == VOXGI_ERR_UNSUPPORTED && !tsm, "a point light");
+    S.sun.type = VOXGI_LIGHT_DIRECTIONAL;
+    d.light = 1;
+    TH_CHECK(voxgi_tsm_create(ctx, &S.scene, &d, &tsm) == VOXGI_ERR_INVALID_ARGUMENT && !tsm, "light 1 of 1");
+    d.light = 0;
+    d.size = -3;
+    TH_CHECK(voxgi_tsm_create(ctx, &S.scene, &d, &tsm) == VOXGI_ERR_INVALID_ARGUMENT && !tsm, "size -3");
+    d.size = 16;
+    d.sigma = 2;
+    TH_CHECK(voxgi_tsm_create(ctx, &S.scene, &d, &tsm) == VOXGI_ERR_INVALID_ARGUMENT && !tsm, "sigma 2");
+    d.sigma = 0;
+    TH_CHECK(voxgi_tsm_create(ctx, &S.scene, &d, &tsm) == VOXGI_OK && tsm, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_tsm_transmittance(ctx, tsm, 1, p, NULL, &out) == VOXGI_ERR_INVALID_ARGUMENT, "a NaN point");
+    TH_CHECK(voxgi_tsm_transmittance(ctx, NULL, 1, p, NULL, &out) == VOXGI_ERR_INVALID_ARGUMENT, "no map");
+    TH_CHECK(voxgi_tsm_create(ctx, NULL, &d, &tsm) == VOXGI_ERR_INVALID_ARGUMENT, "no scene");
+    voxgi_tsm_destroy(ctx, tsm);
+    voxgi_destroy(ctx);
+}
+
+int main(void)
+{
+    gl_open();
+    TH_RUN(test_tsm_layers);
+    TH_RUN(test_tsm_materials_and_opaque);
+    TH_RUN(test_tsm_gl_equals_cpu);
+    TH_RUN(test_tsm_input);
+    gl_close();
+    return th_finish();
+}
