@@ -910,7 +910,9 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
                   square lamp (radiance 10) 1.45 m above the box's top, the camera inside the
                   box: black again, with the light bouncing around the box's outer faces;
    "furnace"      a closed sphere of albedo 0.5 and emission 1 seen from inside: radiance 2
-                  everywhere (E / (1 - albedo)). */
+                  everywhere (E / (1 - albedo));
+   "foliage"      a tree under the sun: an opaque trunk, a canopy of 1200 small leaf quads of
+                  transparency 0.7 (Buchacher 2014's transmittance shadow map scene), a ground. */
 typedef struct voxgi_builtin_scene {
     voxgi_scene scene;            /* points into memory the struct owns */
     voxgi_camera camera;
@@ -2949,6 +2951,7 @@ typedef struct voxgi__tracer {
     double *n;                    /* unit geometric normal (front: counter-clockwise) per triangle */
     voxgi_ray_scene *rs;
     double hair;                  /* world units */
+    int translucent;              /* a material lets light through (transparency > 0) */
 } voxgi__tracer;
 
 typedef struct voxgi__hit { double t, p[3]; uint32_t prim; int front; } voxgi__hit;
@@ -2978,6 +2981,7 @@ static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *s
         return r;
     }
     tr->hair = ldexp(tr->rs->reach, -18);
+    for (t = 0; t < tr->flat.material_count; t++) tr->translucent |= tr->flat.materials[t].transparency > 0;
     for (t = 0; t < nt; t++) {
         double *v = tr->v + 9 * t, *n = tr->n + 3 * t, e1[3], e2[3], len;
         int k, a;
@@ -3079,14 +3083,34 @@ static voxgi_result voxgi__lights_build(voxgi_context *ctx, const voxgi_scene *s
 
 /* Nothing between p (on triangle skip, unit normal ns on the side the ray leaves) and the
    point dist away along dir? (short of it, so the light's own triangle does not count) */
-static int voxgi__visible(const voxgi__tracer *tr, const double p[3], const double ns[3], const double dir[3], double dist, uint32_t skip,
-                          uint64_t *rays)
+/* The share of light arriving at p along dir from dist away: 0 behind an opaque surface, else the
+   product of the transparencies of the surfaces on the way (each surface once: the ray goes on a
+   hair past each one it crosses). Shadow rays alone see through surfaces; camera rays and bounces
+   meet them as they are. */
+static double voxgi__visible(const voxgi__tracer *tr, const double p[3], const double ns[3], const double dir[3], double dist, uint32_t skip,
+                             uint64_t *rays)
 {
     voxgi__hit h;
-    double o[3];
+    double o[3], left, light = 1;
+    int a, crossed;
     ++*rays;
     voxgi__leave(tr, p, ns, o);
-    return dist <= 2 * tr->hair || !voxgi__trace(tr, o, dir, dist - 2 * tr->hair, skip, 1, &h);
+    left = dist - 2 * tr->hair;
+    if (left <= 0 || !voxgi__trace(tr, o, dir, left, skip, 1, &h)) return 1;
+    if (!tr->translucent) return 0;
+    for (crossed = 0; crossed < 256; crossed++) { /* through the translucent surfaces one by one */
+        const voxgi_material *m;
+        if (!voxgi__trace(tr, o, dir, left, skip, 0, &h)) return light;
+        m = voxgi__tri_material(&tr->flat, h.prim);
+        if (!(m->transparency > 0)) return 0;
+        light *= VOXGI__MIN(m->transparency, 1.0f);
+        ++*rays;
+        for (a = 0; a < 3; a++) o[a] = h.p[a] + tr->hair * dir[a];
+        left -= h.t + tr->hair;
+        skip = h.prim;
+        if (left <= 0) return light;
+    }
+    return 0; /* a wall of 256 leaves */
 }
 
 /* Irradiance E at p (unit normal ns facing the arriving ray; leaving triangle prim, or
@@ -3107,7 +3131,7 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
     e[0] = e[1] = e[2] = 0;
     for (li = 0; li < R->scene->light_count; li++) {
         const voxgi_light *L = &R->scene->lights[li];
-        double dir[3], dist = DBL_MAX, cos_s, w = 0, q[3];
+        double dir[3], dist = DBL_MAX, cos_s, w = 0, q[3], seen;
         if (L->type == VOXGI_LIGHT_DIRECTIONAL) {
             double len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
             for (a = 0; a < 3; a++) dir[a] = -L->direction[a] / len;
@@ -3145,13 +3169,14 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
         if (cos_s <= 0) continue;
         if (area_share && L->type == VOXGI_LIGHT_RECT) for (a = 0; a < 3; a++) area_share[3 + a] += L->intensity[a] * w * cos_s;
         if (area_share) area_share[6] += 1;
-        if (!voxgi__visible(tr, p, ns, dir, dist, prim, rays)) {
+        seen = voxgi__visible(tr, p, ns, dir, dist, prim, rays);
+        if (seen <= 0) {
             if (area_share) area_share[7] += 1;
             continue;
         }
         for (a = 0; a < 3; a++) {
-            e[a] += L->intensity[a] * w * cos_s;
-            if (area_share && L->type == VOXGI_LIGHT_RECT) area_share[a] += L->intensity[a] * w * cos_s;
+            e[a] += L->intensity[a] * w * cos_s * seen;
+            if (area_share && L->type == VOXGI_LIGHT_RECT) area_share[a] += L->intensity[a] * w * cos_s * seen;
         }
     }
     if (R->emitter_count) { /* one emissive triangle by power, one uniform point on it */
@@ -3181,15 +3206,15 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
             if (cos_s > 0 && cos_l > 0) {
                 double pdf_light = R->emitter_pdf[k] * dist2 / cos_l, pdf_bsdf = cos_s / VOXGI__PI; /* per solid angle */
                 double mis = mis_weighted ? pdf_light * pdf_light / (pdf_light * pdf_light + pdf_bsdf * pdf_bsdf) : 1;
-                int seen = voxgi__visible(tr, p, ns, dir, dist, prim, rays);
-                if (area_share) { area_share[6] += 1; area_share[7] += !seen; }
+                double seen = voxgi__visible(tr, p, ns, dir, dist, prim, rays);
+                if (area_share) { area_share[6] += 1; area_share[7] += seen <= 0; }
                 m = voxgi__prim_material(tr, k);
                 for (a = 0; a < 3; a++) {
                     double c = mis * m->emission[a] * cos_s / pdf_light;
                     if (area_share) area_share[3 + a] += c;
-                    if (!seen) continue;
-                    e[a] += c;
-                    if (area_share) area_share[a] += c;
+                    if (seen <= 0) continue;
+                    e[a] += c * seen;
+                    if (area_share) area_share[a] += c * seen;
                 }
             }
         }
@@ -10945,11 +10970,11 @@ static void voxgi__view(voxgi_camera *c, double ex, double ey, double ez, double
     c->width = c->height = 256;
 }
 
-static const char *const voxgi__builtin_names[5] = {"cornell-box", "two-spheres", "leak-box", "furnace", "leak-room"};
+static const char *const voxgi__builtin_names[6] = {"cornell-box", "two-spheres", "leak-box", "furnace", "leak-room", "foliage"};
 
 VOXGI_API const char *voxgi_builtin_scene_names(void)
 {
-    return "cornell-box two-spheres leak-box furnace leak-room";
+    return "cornell-box two-spheres leak-box furnace leak-room foliage";
 }
 
 VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char *name, voxgi_builtin_scene *out)
@@ -10959,8 +10984,8 @@ VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!name || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "name or out is NULL");
     memset(out, 0, sizeof *out);
-    for (which = 0; which < 5 && strcmp(name, voxgi__builtin_names[which]) != 0; which++) {}
-    if (which == 5) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "no built-in scene \"%s\" (there are: %s)", name, voxgi_builtin_scene_names());
+    for (which = 0; which < 6 && strcmp(name, voxgi__builtin_names[which]) != 0; which++) {}
+    if (which == 6) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "no built-in scene \"%s\" (there are: %s)", name, voxgi_builtin_scene_names());
     if (!(b = (voxgi__builtin *)voxgi__alloc_array(ctx, 1, sizeof *b, 1))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a scene");
     if (which == 0) { /* the Cornell box, millimetres / 1000 */
         static const double walls[5][4][3] = {
@@ -11049,6 +11074,41 @@ VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char
         voxgi__builtin_quad(b, lamp, 1, below, 0);
         out->scene.material_count = 2;
         voxgi__view(&out->camera, 0.15, 0.3, -0.2, -0.1, 0.15, 0.25, 90);
+    } else if (which == 5) { /* a tree: trunk, translucent leaves, ground, sun */
+        static const double ground[4][3] = {{-3, 0, -3}, {3, 0, -3}, {3, 0, 3}, {-3, 0, 3}};
+        double up[3] = {0, 1, 0}, lo[3] = {-0.08, 0, -0.08}, hi[3] = {0.08, 1.3, 0.08};
+        voxgi__rng g;
+        int leaf, k, a;
+        voxgi__material_set(&b->materials[0], 0.5f, 0.5f, 0.5f, 0, 0, 0);
+        voxgi__material_set(&b->materials[1], 0.35f, 0.22f, 0.12f, 0, 0, 0);
+        voxgi__material_set(&b->materials[2], 0.2f, 0.55f, 0.15f, 0, 0, 0);
+        b->materials[2].transparency = 0.7f;
+        voxgi__builtin_quad(b, ground, 0, up, 0);
+        voxgi__builtin_box(b, lo, hi, 1, 0);
+        voxgi__rng_seed(&g, 2014, 0, 0);
+        for (leaf = 0; leaf < 1200; leaf++) { /* in an ellipsoid about (0, 1.6, 0), each facing its own way */
+            double c[3], n[3], t[3], s[3], q[4][3], toward[3], len;
+            do {
+                for (a = 0; a < 3; a++) c[a] = 2 * voxgi__rng_unit(&g) - 1;
+            } while (c[0] * c[0] + c[1] * c[1] + c[2] * c[2] > 1);
+            c[0] *= 0.9; c[1] = 1.6 + 0.55 * c[1]; c[2] *= 0.9;
+            do {
+                for (a = 0; a < 3; a++) n[a] = 2 * voxgi__rng_unit(&g) - 1;
+                len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            } while (len > 1 || len < 0.1);
+            for (a = 0; a < 3; a++) n[a] /= len;
+            voxgi__basis(n, t, s);
+            for (k = 0; k < 4; k++)
+                for (a = 0; a < 3; a++) q[k][a] = c[a] + 0.06 * ((k == 1 || k == 2 ? 1 : -1) * t[a] + (k >= 2 ? 1 : -1) * s[a]);
+            for (a = 0; a < 3; a++) toward[a] = c[a] + n[a];
+            voxgi__builtin_quad(b, (const double(*)[3])q, 2, toward, 0);
+        }
+        b->lights[0].type = VOXGI_LIGHT_DIRECTIONAL;
+        b->lights[0].direction[0] = 0.4f; b->lights[0].direction[1] = -1; b->lights[0].direction[2] = 0.25f;
+        b->lights[0].intensity[0] = b->lights[0].intensity[1] = b->lights[0].intensity[2] = 3;
+        out->scene.material_count = 3;
+        out->scene.light_count = 1;
+        voxgi__view(&out->camera, -2.2, 2.3, -3.6, 0.3, 0.7, 0.2, 45);
     } else { /* the furnace */
         double c[3] = {0, 0, 0};
         voxgi__material_set(&b->materials[0], 0.5f, 0.5f, 0.5f, 1, 1, 1);

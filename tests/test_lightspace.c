@@ -193,6 +193,35 @@ static void test_tsm_gl_equals_cpu(void)
     voxgi_destroy(gl);
 }
 
+/* The reference renderer's shadow rays pass translucent surfaces the same way, without slices:
+   the ground straight under the stack (three layers of transparency 0.7, the sun of irradiance 1
+   straight above) has radiance 0.5 / pi x 0.7^3 in every pixel, direct light only; with a second
+   material of transparency 0.4 between them, x 0.4 more. */
+static void test_reference_sees_through_leaves(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    stack_scene S;
+    voxgi_reference_desc d;
+    float rgb[3 * 9 * 9];
+    double worst[2] = {0, 0};
+    int second, i;
+    for (second = 0; second < 2; second++) {
+        double want = 0.5 / 3.14159265358979 * 0.343 * (second ? 0.4 : 1);
+        stack_make(&S, 0.7f, 0.4f, second, 0);
+        memset(&d, 0, sizeof d);
+        d.camera.eye[1] = 0.9; d.camera.eye[2] = -3; /* under the lowest quad, looking at the ground's centre */
+        d.camera.fovy_degrees = 4;
+        d.camera.width = d.camera.height = 9;
+        d.samples = 4;
+        d.seed = 1;
+        TH_CHECK(voxgi_reference_render(ctx, &S.scene, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        for (i = 0; i < 3 * 81; i++) worst[second] = fmax(worst[second], fabs(rgb[i] - want) / want);
+    }
+    printf("    the ground under three leaves: relative error %.2e; with a fourth of another material %.2e\n", worst[0], worst[1]);
+    TH_CHECK(worst[0] < 1e-5 && worst[1] < 1e-5, "the reference's shadow rays through translucent surfaces");
+    voxgi_destroy(ctx);
+}
+
 /* Bad input: a light that is not directional, a light index past the end, absurd sizes, a NaN
    point, NULLs. */
 static void test_tsm_input(void)
@@ -230,6 +259,7 @@ int main(void)
     TH_RUN(test_tsm_layers);
     TH_RUN(test_tsm_materials_and_opaque);
     TH_RUN(test_tsm_gl_equals_cpu);
+    TH_RUN(test_reference_sees_through_leaves);
     TH_RUN(test_tsm_input);
     gl_close();
     return th_finish();
