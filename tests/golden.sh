@@ -80,7 +80,7 @@ run svo-albedo svo builtin:cube --res 16 --attributes albedo --backend cpu $T --
 run svo-gl svo builtin:sphere --res 32 --neighbours --backend gl $T --json
 
 # 3. images: the reference and cone tracing on each built-in scene, fixed seed
-for scene in cornell-box two-spheres leak-box furnace leak-room; do
+for scene in cornell-box two-spheres leak-box furnace leak-room foliage; do
     run "reference-$scene" render "$scene" --size 24 24 --spp 8 --seed 3 $T --json -o "$tmp/o.pfm"
     run "vct-$scene" render "$scene" --method vct --backend cpu --res 24 --cones 8 --size 24 24 \
         --spp 8 --seed 3 $T --json -o "$tmp/o.pfm"

@@ -474,12 +474,13 @@ static void test_builtin_scenes(void)
         if (strcmp(name, "furnace") == 0) TH_CHECK(fabs(mean - 2) < 0.02, "furnace mean %g", mean);
         else if (strcmp(name, "leak-box") == 0 || strcmp(name, "leak-room") == 0) TH_CHECK(lit == 0, "%s: %lu pixels lit inside the closed box", name, (unsigned long)lit);
         else if (strcmp(name, "cornell-box") == 0) TH_CHECK(light_pixels >= 4 && lit > 1200, "Cornell box: %lu light pixels, %lu lit", (unsigned long)light_pixels, (unsigned long)lit);
+        else if (strcmp(name, "foliage") == 0) TH_CHECK(lit > 1400 && lit < 2000, "foliage: %lu lit (the sky above the ground is black)", (unsigned long)lit);
         else TH_CHECK(lit > 1800, "%s: %lu lit", name, (unsigned long)lit);
         voxgi_builtin_scene_destroy(ctx, &bs);
         at = strstr(at, name) + strlen(name);
         n++;
     }
-    TH_CHECK(n == 5, "%d built-in scenes", n);
+    TH_CHECK(n == 6, "%d built-in scenes", n);
     TH_CHECK(voxgi_builtin_scene_create(ctx, "no-such", &bs) == VOXGI_ERR_INVALID_ARGUMENT, "an unknown name accepted");
     free(rgb);
     voxgi_destroy(ctx);
