@@ -796,6 +796,26 @@ VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_t
                                                float *out);
 VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm);
 
+/* An image of the direct light with transmittance shadow maps: every directional light through
+   its own map, the other lights and emissive triangles through exact shadow rays (which pass
+   translucent surfaces as the reference renderer's do), `samples` camera rays per pixel
+   (stratified over the pixel, the same for every image of a seed), the emission the camera sees
+   added. rgb as voxgi_reference_render's. */
+typedef struct voxgi_tsm_image_desc {
+    voxgi_camera camera;
+    voxgi_tsm_desc tsm;           /* size, slices and sigma of every light's map (light: ignored) */
+    int samples;                  /* camera rays per pixel; 0 = 4 */
+    uint64_t seed;
+    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
+} voxgi_tsm_image_desc;
+typedef struct voxgi_tsm_image_info {
+    int maps;                     /* directional lights, one map each */
+    size_t bytes;                 /* their memory */
+    double ms_maps, ms_shade, ms; /* building the maps, shading the pixels, all */
+} voxgi_tsm_image_info;
+VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
+                                        size_t rgb_bytes, voxgi_tsm_image_info *info);
+
 /* ===================================================================== 11. images */
 
 /* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
@@ -10726,6 +10746,124 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi__free(ctx, J.prim);
     voxgi__lights_free(ctx, &Ls);
     voxgi__tracer_free(ctx, &tr);
+    return r;
+}
+
+/* ----- images with transmittance shadow maps */
+typedef struct voxgi__tsm_image_job {
+    const voxgi_tsm_image_desc *desc;
+    const voxgi__tracer *tr;
+    const voxgi__lights *others;  /* every light but the directional ones, and the emitters */
+    voxgi_tsm **maps;             /* per scene light: its map, or NULL */
+    const voxgi_scene *scene;
+    double eye[3], forward[3], right[3], up[3], tan_half;
+    float *rgb;
+} voxgi__tsm_image_job;
+
+static void voxgi__tsm_image_rows(void *user, size_t first, size_t end)
+{
+    const voxgi__tsm_image_job *J = (const voxgi__tsm_image_job *)user;
+    const voxgi_camera *cam = &J->desc->camera;
+    int samples = J->desc->samples ? J->desc->samples : 4;
+    size_t y, li;
+    for (y = first; y < end; y++) {
+        int x;
+        for (x = 0; x < cam->width; x++) {
+            size_t pix = y * (size_t)cam->width + (size_t)x;
+            double sum[3] = {0, 0, 0}, rot[2];
+            uint64_t rays = 0;
+            voxgi__rng g;
+            int s, a;
+            voxgi__rng_seed(&g, J->desc->seed, pix, 0);
+            rot[0] = voxgi__rng_unit(&g);
+            rot[1] = voxgi__rng_unit(&g);
+            for (s = 0; s < samples; s++) {
+                voxgi__hit h;
+                const voxgi_material *m;
+                double d[3], ns[3], e[3], u[2];
+                voxgi__kronecker(2, s, rot, u);
+                voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + u[0], (double)y + u[1], d);
+                if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+                m = voxgi__prim_material(J->tr, h.prim);
+                for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
+                if (h.front && !J->desc->hide_emitters) for (a = 0; a < 3; a++) sum[a] += m->emission[a];
+                for (li = 0; li < J->scene->light_count; li++) { /* the maps' lights */
+                    const voxgi_tsm *T = J->maps[li];
+                    const voxgi_light *L = &J->scene->lights[li];
+                    double c;
+                    if (!T) continue;
+                    c = -(ns[0] * T->w[0] + ns[1] * T->w[1] + ns[2] * T->w[2]);
+                    if (c <= 0) continue;
+                    c *= voxgi__tsm_point(T, h.p, ns);
+                    for (a = 0; a < 3; a++) sum[a] += m->albedo[a] / VOXGI__PI * L->intensity[a] * c;
+                }
+                voxgi__leave(J->tr, h.p, ns, h.p); /* off the surface for the shadow rays */
+                voxgi__direct(J->others, h.p, ns, h.prim, &g, 0, NULL, &rays, e, NULL);
+                for (a = 0; a < 3; a++) sum[a] += m->albedo[a] / VOXGI__PI * e[a];
+            }
+            for (a = 0; a < 3; a++) J->rgb[3 * pix + (size_t)a] = (float)(sum[a] / samples);
+        }
+    }
+}
+
+VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
+                                        size_t rgb_bytes, voxgi_tsm_image_info *info)
+{
+    voxgi__tsm_image_job J;
+    voxgi__tracer tr;
+    voxgi__lights others;
+    voxgi_scene rest;
+    voxgi_light *kept = NULL;
+    voxgi_tsm_image_info inf;
+    double t0 = voxgi__now_ms(), t1;
+    size_t li, n = 0;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
+    if (desc->samples < 0) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d", desc->samples);
+    memset(&J, 0, sizeof J);
+    memset(&inf, 0, sizeof inf);
+    memset(&others, 0, sizeof others);
+    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
+    if (rgb_bytes < (size_t)desc->camera.width * (size_t)desc->camera.height * 12)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes,
+                           (unsigned long)((size_t)desc->camera.width * (size_t)desc->camera.height * 12));
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    J.maps = (voxgi_tsm **)voxgi__alloc_array(ctx, scene->light_count ? scene->light_count : 1, sizeof *J.maps, 1);
+    kept = (voxgi_light *)voxgi__alloc_array(ctx, scene->light_count ? scene->light_count : 1, sizeof *kept, 0);
+    if (!J.maps || !kept) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    t1 = voxgi__now_ms();
+    for (li = 0; r == VOXGI_OK && li < scene->light_count; li++) {
+        voxgi_tsm_desc td = desc->tsm;
+        if (scene->lights[li].type != VOXGI_LIGHT_DIRECTIONAL) { kept[n++] = scene->lights[li]; continue; }
+        td.light = li;
+        if ((r = voxgi_tsm_create(ctx, scene, &td, &J.maps[li])) == VOXGI_OK) {
+            inf.maps++;
+            inf.bytes += J.maps[li]->info.bytes;
+        }
+    }
+    inf.ms_maps = voxgi__now_ms() - t1;
+    rest = *scene;
+    rest.lights = n ? kept : NULL;
+    rest.light_count = n;
+    if (r == VOXGI_OK) r = voxgi__lights_build(ctx, &rest, &tr, &others);
+    if (r == VOXGI_OK) {
+        J.desc = desc;
+        J.tr = &tr;
+        J.others = &others;
+        J.scene = scene;
+        J.rgb = rgb;
+        t1 = voxgi__now_ms();
+        voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__tsm_image_rows, &J);
+        inf.ms_shade = voxgi__now_ms() - t1;
+    }
+    for (li = 0; J.maps && li < scene->light_count; li++) voxgi_tsm_destroy(ctx, J.maps[li]);
+    voxgi__free(ctx, J.maps);
+    voxgi__free(ctx, kept);
+    voxgi__lights_free(ctx, &others);
+    voxgi__tracer_free(ctx, &tr);
+    inf.ms = voxgi__now_ms() - t0;
+    if (info) *info = inf;
     return r;
 }
 

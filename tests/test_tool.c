@@ -261,6 +261,47 @@ static void test_render_command(void)
     voxgi_destroy(ctx);
 }
 
+/* voxgi render --method tsm writes what voxgi_tsm_render gives with the same settings, bit for
+   bit, and reports its maps; --compare measures it against direct light. */
+static void test_tsm_command(void)
+{
+    static char out[16384];
+    char pfm[512], args[1400];
+    voxgi_context *ctx = NULL;
+    voxgi_desc d;
+    voxgi_builtin_scene bs;
+    voxgi_tsm_image_desc td;
+    float want[8 * 8 * 3], got[8 * 8 * 3];
+    FILE *f;
+    int w = 0, h = 0, y;
+    snprintf(pfm, sizeof pfm, "%s/t.pfm", tmpdir);
+    snprintf(args, sizeof args, "render foliage --method tsm --size 8 8 --tsm-size 64 --slices 16 --sigma 0.5 --compare 8 --json -o %s", pfm);
+    TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "maps") == 1 && json_number(out, "slices") == 16 && json_number(out, "rel_rmse") > 0,
+             "tsm render: %s", out);
+    memset(&d, 0, sizeof d);
+    d.backend = VOXGI_BACKEND_CPU;
+    voxgi_create(&d, &ctx);
+    voxgi_builtin_scene_create(ctx, "foliage", &bs);
+    memset(&td, 0, sizeof td);
+    td.camera = bs.camera;
+    td.camera.width = td.camera.height = 8;
+    td.tsm.size = 64;
+    td.tsm.slices = 16;
+    td.tsm.sigma = 0.5f;
+    td.seed = 1;
+    TH_CHECK(voxgi_tsm_render(ctx, &bs.scene, &td, want, sizeof want, NULL) == VOXGI_OK, "library tsm render: %s", voxgi_last_error(ctx));
+    f = fopen(pfm, "rb");
+    TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
+    if (f) {
+        for (y = 7; y >= 0; y--) TH_CHECK(fread(got + 3 * 8 * y, 4, 24, f) == 24, "PFM rows");
+        fclose(f);
+        TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's render");
+    }
+    TH_CHECK(run("render foliage --method tsm --sigma 0 -o x.png", out, sizeof out) == 2, "--sigma 0 accepted");
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
 /* voxgi render --method vct writes what voxgi_vct_render gives with the same settings, bit for
    bit; voxgi report vct writes its table, CSV (a row per configuration, one on the Pareto front
    at least) and SVG. */
@@ -762,6 +803,7 @@ int main(int argc, char **argv)
     TH_RUN(test_info_and_bench);
     TH_RUN(test_svo_command);
     TH_RUN(test_render_command);
+    TH_RUN(test_tsm_command);
     TH_RUN(test_vct_and_report_commands);
     TH_RUN(test_compare_black_reference);
     TH_RUN(test_compare_masks_emitters);

@@ -4,7 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const render_methods[] = {"reference", "vct", NULL};
+static const char *const render_methods[] = {"reference", "vct", "tsm", NULL};
+enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM };
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -18,10 +19,10 @@ static const char *const render_help =
 typedef struct render_args {
     cli_common common;
     const char *what, *out, *cornell_mesh, *reference;
-    int vct, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
+    int method, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
     int bounce_cones, bounce_block, isotropic;
-    int octree, octree_format, bricks, have_camera, have_sun;
-    double step, camera[7], sun[4], exposure;
+    int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices;
+    double step, camera[7], sun[4], exposure, sigma;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -114,19 +115,25 @@ typedef struct render_compare {
    the camera sees, and the pixels within 3 of one whose centre sees an emitter left out (the
    noise at the emitters' edges would swamp the lighting). */
 static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene,
-                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, render_compare *cmp)
+                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, const voxgi_tsm_image_desc *td, render_compare *cmp)
 {
     size_t n = (size_t)a->size[0] * (size_t)a->size[1] * 3;
     float *ref = (float *)malloc(n * 8), *mine = ref ? ref + n : NULL;
     voxgi_reference_desc rd = *d, dh = *d;
     voxgi_vct_desc vh = *vd;
+    voxgi_tsm_image_desc th = *td;
     voxgi_reference_info ri;
+    voxgi_result r;
     cli_error_mask mask;
     rd.samples = a->compare;
     rd.seed = d->seed + 1000003; /* independent of the image's own noise */
-    rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = 1;
-    if (!ref || voxgi_reference_render(ctx, scene, &rd, ref, n * 4, &ri) != VOXGI_OK ||
-        (a->vct ? voxgi_vct_render(ctx, scene, &vh, mine, n * 4, NULL) : voxgi_reference_render(ctx, scene, &dh, mine, n * 4, NULL)) != VOXGI_OK) {
+    rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = th.hide_emitters = 1;
+    r = ref ? voxgi_reference_render(ctx, scene, &rd, ref, n * 4, &ri) : VOXGI_ERR_OUT_OF_MEMORY;
+    if (r == VOXGI_OK)
+        r = a->method == METHOD_VCT   ? voxgi_vct_render(ctx, scene, &vh, mine, n * 4, NULL)
+            : a->method == METHOD_TSM ? voxgi_tsm_render(ctx, scene, &th, mine, n * 4, NULL)
+                                      : voxgi_reference_render(ctx, scene, &dh, mine, n * 4, NULL);
+    if (r != VOXGI_OK) {
         free(ref);
         return ref ? cli_fail_lib(s, ctx, "the reference") : cli_fail(s, "the reference: out of memory");
     }
@@ -197,8 +204,30 @@ static void print_compare_json(const render_compare *cmp)
     printf("\"masked_pixels\":%lu,\"reference_ms\":%.3f,", (unsigned long)cmp->masked, cmp->ref_ms);
 }
 
+/* The --method tsm lines, text or JSON. */
+static void print_tsm(const render_args *a, const char *name, const double mean[3], const voxgi_tsm_image_desc *td, const voxgi_tsm_image_info *ti,
+                      const voxgi_reference_desc *d, const render_compare *cmp)
+{
+    int w = a->size[0], h = a->size[1], size = td->tsm.size ? td->tsm.size : 1024, slices = td->tsm.slices ? td->tsm.slices : 32;
+    if (a->common.json) {
+        printf("{\"scene\":\"%s\",\"method\":\"tsm\",\"size\":[%d,%d],\"spp\":%d,\"maps\":%d,\"map_size\":%d,\"slices\":%d,\"sigma\":%.6g,"
+               "\"map_bytes\":%lu,\"maps_ms\":%.3f,\"shade_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
+               name, w, h, td->samples, ti->maps, size, slices, (double)td->tsm.sigma, (unsigned long)ti->bytes, ti->ms_maps, ti->ms_shade, ti->ms, mean[0],
+               mean[1], mean[2]);
+        if (a->compare || a->reference) print_compare_json(cmp);
+        printf("\"output\":\"%s\"}\n", a->out);
+        return;
+    }
+    printf("%s: %d x %d, direct light with transmittance shadow maps (%d map%s of %d x %d texels, %d slices, %.1f MB): maps %.1f ms, "
+           "shading %.1f ms (%d rays per pixel), total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
+           name, w, h, ti->maps, ti->maps == 1 ? "" : "s", size, size, slices, ti->bytes / 1e6, ti->ms_maps, ti->ms_shade, td->samples, ti->ms, mean[0],
+           mean[1], mean[2], a->out);
+    if (a->compare || a->reference) print_compare(a, d, cmp);
+}
+
 static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const voxgi_reference_desc *d,
-                         const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, const render_compare *cmp)
+                         const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, const voxgi_tsm_image_desc *td,
+                         const voxgi_tsm_image_info *ti, const render_compare *cmp)
 {
     double mean[3] = {0, 0, 0};
     size_t p;
@@ -206,7 +235,8 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
     for (p = 0; p < (size_t)w * (size_t)h; p++)
         for (i = 0; i < 3; i++) mean[i] += rgb[3 * p + (size_t)i];
     for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
-    if (a->vct && a->common.json) {
+    if (a->method == METHOD_TSM) print_tsm(a, name, mean, td, ti, d, cmp);
+    else if (a->method == METHOD_VCT && a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
                "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
                name, voxgi_backend_name(ci->backend), w, h, vd->resolution ? vd->resolution : 128, vd->cones.cones ? vd->cones.cones : 16, !vd->no_gi,
@@ -215,7 +245,7 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
         if (a->compare || a->reference) print_compare_json(cmp);
         else printf("\"rel_rmse\":-1,\"rms\":0,\"reference_ms\":0.000,"); /* nothing compared */
         printf("\"output\":\"%s\"}\n", a->out);
-    } else if (a->vct) {
+    } else if (a->method == METHOD_VCT) {
         printf("%s: %d x %d cone-traced (%s%s%s), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, ", name, w, h, voxgi_backend_name(ci->backend),
                ci->backend == VOXGI_BACKEND_GL ? ", " : "", ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "", (unsigned long long)vinfo->voxels,
                vinfo->ms_voxelize, vinfo->ms_inject);
@@ -246,6 +276,8 @@ static int render_run(cli_session *s, const render_args *a)
     voxgi_reference_info info;
     voxgi_vct_desc vd;
     voxgi_vct_info vinfo;
+    voxgi_tsm_image_desc td;
+    voxgi_tsm_image_info tinfo;
     voxgi_info ci;
     render_scene rs;
     cli_context c;
@@ -258,6 +290,8 @@ static int render_run(cli_session *s, const render_args *a)
     memset(&info, 0, sizeof info);
     memset(&vd, 0, sizeof vd);
     memset(&vinfo, 0, sizeof vinfo);
+    memset(&td, 0, sizeof td);
+    memset(&tinfo, 0, sizeof tinfo);
     memset(&rs, 0, sizeof rs);
     memset(&cmp, 0, sizeof cmp);
     d.bounces = a->bounces;
@@ -275,7 +309,7 @@ static int render_run(cli_session *s, const render_args *a)
     vd.octree = a->octree;
     vd.octree_format = (voxgi_svo_format)a->octree_format;
     vd.octree_bricks = a->bricks;
-    if (!a->vct) options.backend = VOXGI_BACKEND_CPU; /* the path tracer runs on the CPU */
+    if (a->method == METHOD_REFERENCE) options.backend = VOXGI_BACKEND_CPU; /* the path tracer runs on the CPU */
     if (cli_context_open_options(s, &c, &options)) return CLI_EXIT_FAILURE;
     voxgi_query_info(c.vx, &ci);
     if (scene_open(s, c.vx, a, &rs, &d)) goto done;
@@ -283,19 +317,29 @@ static int render_run(cli_session *s, const render_args *a)
         cli_fail(s, "out of memory");
         goto done;
     }
-    if (a->vct) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
+    if (a->method == METHOD_TSM) { /* direct light: compared with the reference's */
+        td.camera = d.camera;
+        td.seed = d.seed;
+        td.samples = a->spp_given ? d.samples : 4;
+        td.tsm.size = a->tsm_size;
+        td.tsm.slices = a->slices;
+        td.tsm.sigma = (float)a->sigma;
+        d.bounces = 0;
+    }
+    if (a->method == METHOD_VCT) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
         vd.camera = d.camera;
         vd.seed = d.seed;
         vd.samples = a->spp_given ? d.samples : 24;
         vd.bounces = d.bounces;
         if (vd.no_gi) d.bounces = 0; /* what it is compared against */
     }
-    if (a->vct ? voxgi_vct_render(c.vx, rs.scene, &vd, rgb, bytes, &vinfo) != VOXGI_OK
-               : voxgi_reference_render(c.vx, rs.scene, &d, rgb, bytes, &info) != VOXGI_OK) {
+    if ((a->method == METHOD_VCT   ? voxgi_vct_render(c.vx, rs.scene, &vd, rgb, bytes, &vinfo)
+         : a->method == METHOD_TSM ? voxgi_tsm_render(c.vx, rs.scene, &td, rgb, bytes, &tinfo)
+                                   : voxgi_reference_render(c.vx, rs.scene, &d, rgb, bytes, &info)) != VOXGI_OK) {
         cli_fail_lib(s, c.vx, NULL);
         goto done;
     }
-    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &cmp)) goto done;
+    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &td, &cmp)) goto done;
     if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &d.camera, rgb, &cmp)) goto done;
     if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
                                            : vxt_write_png(a->out, rgb, a->size[0], a->size[1], (float)a->exposure)) != 0) {
@@ -303,7 +347,7 @@ static int render_run(cli_session *s, const render_args *a)
         goto done;
     }
     cli_status_clear(s);
-    print_result(a, rs.name, &ci, rgb, &d, &info, &vd, &vinfo, &cmp);
+    print_result(a, rs.name, &ci, rgb, &d, &info, &vd, &vinfo, &td, &tinfo, &cmp);
     rc = CLI_EXIT_OK;
 done:
     free(rgb);
@@ -328,10 +372,11 @@ int cmd_render(int argc, char **argv)
     a.cone_stride = 6;
     {
         const cli_option options[] = {
-            {.name = "--method", .arg = "reference|vct", .kind = CLI_ENUM, .dst = &a.vct, .names = render_methods,
+            {.name = "--method", .arg = "reference|vct|tsm", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
              .help = "the Monte Carlo path tracer (default), or voxel cone tracing: direct\n"
                      "light through shadow rays plus one bounce gathered by cones from\n"
-                     "the voxels"},
+                     "the voxels, or transmittance shadow maps: direct light, each\n"
+                     "directional light through its map (compared with --bounces 0)"},
             CLI_OPT_BACKEND(&a.common, "vct: where voxelization, mips and cones run (default auto: GL when a\n"
                                        "headless GL 4.5 context works); the reference runs on the CPU"),
             CLI_OPT_GL(&a.common, "which headless GL to try"),
@@ -354,6 +399,11 @@ int cmd_render(int argc, char **argv)
             {.name = "--inject-samples", .arg = "N", .kind = CLI_INT, .dst = &a.inject_samples, .lo = 1, .hi = 4096,
              .help = "vct: points on each area light and emitter per voxel's light\n(default 4 on the CPU, 16 on GL)"},
             {.name = "--no-gi", .kind = CLI_FLAG, .dst = &a.no_gi, .help = "vct: direct light only"},
+            {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
+             .help = "tsm: texels across each light's map (default 1024)"},
+            {.name = "--slices", .arg = "N", .kind = CLI_INT, .dst = &a.slices, .lo = 1, .hi = 4096, .help = "tsm: slices along the light (default 32)"},
+            {.name = "--sigma", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.sigma, .lo = 0, .lo_open = 1, .hi = 1,
+             .help = "tsm: every translucent material's absorption per slice\n(default: each material's 1 - transparency)"},
             {.name = "--reference", .arg = "REF.pfm", .kind = CLI_STRING, .dst = &a.reference,
              .help = "print the error by --compare's rule against an image rendered before\n"
                      "(same view and --size, e.g. a converged `render SCENE --spp 4096 -o REF.pfm`)"},
@@ -378,7 +428,7 @@ int cmd_render(int argc, char **argv)
                      "facing the same way (default 4; 1: every voxel)"},
             {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 1, .hi = 1 << 24, .given = &a.spp_given,
              .help = "samples per pixel (default 64); vct: the direct light's rays per pixel\n"
-                     "(default 24)"},
+                     "(default 24); tsm: camera rays per pixel (default 4)"},
             {.name = "--seed", .arg = "N", .kind = CLI_INT, .dst = &a.seed, .lo = 0, .hi = 2147483647,
              .help = "random seed (default 1); the same seed gives the same image"},
             {.name = "--camera", .arg = "EX EY EZ TX TY TZ FOVY", .kind = CLI_DOUBLE, .count = 7, .dst = a.camera, .lo = -HUGE_VAL, .hi = HUGE_VAL,
@@ -402,8 +452,8 @@ int cmd_render(int argc, char **argv)
     if (!a.out) return cli_usage("render", "-o OUT.png or OUT.pfm is needed");
     if (!cli_has_extension(a.out, ".png") && !cli_has_extension(a.out, ".pfm"))
         return cli_usage("render", "-o %s: render writes .png or .pfm images only", a.out);
-    if (a.vct && a.bounces == 0 && !a.no_gi) return cli_usage("render", "--method vct needs --bounces 1 or more, or -1 (or --no-gi)");
-    if (a.vct && a.bounces > 64) return cli_usage("render", "--method vct: --bounces %d, at most 64", a.bounces);
+    if (a.method == METHOD_VCT && a.bounces == 0 && !a.no_gi) return cli_usage("render", "--method vct needs --bounces 1 or more, or -1 (or --no-gi)");
+    if (a.method == METHOD_VCT && a.bounces > 64) return cli_usage("render", "--method vct: --bounces %d, at most 64", a.bounces);
     if (a.anisotropic && a.isotropic) return cli_usage("render", "--anisotropic and --isotropic: one or the other");
     if (a.compare && a.reference) return cli_usage("render", "--compare and --reference: one or the other");
     if (a.cornell_mesh && strcmp(a.what, "cornell-box") != 0)
