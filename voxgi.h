@@ -769,13 +769,16 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
    counts), sigma = 1 - transparency (surfaces of one slice count once: the method's artifact).
    A DIRECTIONAL light looks along its direction with an orthographic map over the scene's
    bounds: square texels, `slices` slices of equal depth between the scene's nearest and
-   farthest point. The slicemaps are voxgi_voxelize's raster slicemap (VOXGI_METHOD_SLICEMAP) of
+   farthest point. A SPOT light looks along its axis with a perspective map of its outer cone's
+   square, slices uniform in 1 / depth between the scene's nearest point ahead of it (at least
+   1/1000 of the farthest) and its farthest: the map is projective, so triangles stay triangles
+   (cut at the near plane) and the slicemap applies; a point before the near plane is lit. The slicemaps are voxgi_voxelize's raster slicemap (VOXGI_METHOD_SLICEMAP) of
    the scene in the light's frame, on the context's backend: GL and CPU give the same bits. The
    shadow map holds, per texel, the least depth of an opaque triangle at its centre (the same
    rasterizer's coverage). Lookups move a point 1.5 texels along its normal toward the light
    (normal-offset shadow mapping) and let an opaque depth within half a texel of its own pass. */
 typedef struct voxgi_tsm_desc {
-    size_t light;                 /* the scene's light: DIRECTIONAL */
+    size_t light;                 /* the scene's light: DIRECTIONAL or SPOT */
     int size;                     /* texels across the square map; 0 = 1024 */
     int slices;                   /* slices along the light; 0 = 32 */
     float sigma;                  /* > 0: this absorption for every translucent material instead of its
@@ -796,8 +799,8 @@ VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_t
                                                float *out);
 VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm);
 
-/* An image of the direct light with transmittance shadow maps: every directional light through
-   its own map, the other lights and emissive triangles through exact shadow rays (which pass
+/* An image of the direct light with transmittance shadow maps: every directional and spot light
+   through its own map, the other lights and emissive triangles through exact shadow rays (which pass
    translucent surfaces as the reference renderer's do), `samples` camera rays per pixel
    (stratified over the pixel, the same for every image of a seed), the emission the camera sees
    added. rgb as voxgi_reference_render's. */
@@ -809,7 +812,7 @@ typedef struct voxgi_tsm_image_desc {
     int hide_emitters;            /* 1: leave out the emission the camera sees directly */
 } voxgi_tsm_image_desc;
 typedef struct voxgi_tsm_image_info {
-    int maps;                     /* directional lights, one map each */
+    int maps;                     /* directional and spot lights, one map each */
     size_t bytes;                 /* their memory */
     double ms_maps, ms_shade, ms; /* building the maps, shading the pixels, all */
 } voxgi_tsm_image_info;
@@ -3133,6 +3136,17 @@ static double voxgi__visible(const voxgi__tracer *tr, const double p[3], const d
     return 0; /* a wall of 256 leaves */
 }
 
+/* A spot light's share toward the unit direction dir from the lit point to the light: a
+   smoothstep from the outer cone (0) to the inner one (1). */
+static double voxgi__spot_share(const voxgi_light *L, const double dir[3])
+{
+    double len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
+    double c = -(dir[0] * L->direction[0] + dir[1] * L->direction[1] + dir[2] * L->direction[2]) / len;
+    double ci = cos((double)L->spot_inner), co = cos((double)L->spot_outer), x = ci > co ? (c - co) / (ci - co) : (c >= ci ? 1 : 0);
+    x = x < 0 ? 0 : (x > 1 ? 1 : x);
+    return x * x * (3 - 2 * x);
+}
+
 /* Irradiance E at p (unit normal ns facing the arriving ray; leaving triangle prim, or
    UINT32_MAX) from every light and one sampled point on the emissive triangles; the reflected
    radiance is albedo / pi * E. With mis, the emitters' share carries the power-heuristic weight
@@ -3174,14 +3188,7 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
                 dist = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
                 if (dist <= 0) continue;
                 for (a = 0; a < 3; a++) dir[a] /= dist;
-                if (L->type == VOXGI_LIGHT_SPOT) { /* smoothstep from the outer to the inner cone */
-                    double len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
-                    double c = -(dir[0] * L->direction[0] + dir[1] * L->direction[1] + dir[2] * L->direction[2]) / len;
-                    double ci = cos((double)L->spot_inner), co = cos((double)L->spot_outer), x = ci > co ? (c - co) / (ci - co) : (c >= ci ? 1 : 0);
-                    x = x < 0 ? 0 : (x > 1 ? 1 : x);
-                    cos_l = x * x * (3 - 2 * x);
-                    if (cos_l <= 0) continue;
-                }
+                if (L->type == VOXGI_LIGHT_SPOT && (cos_l = voxgi__spot_share(L, dir)) <= 0) continue;
             }
             w = cos_l * area / (dist * dist);
         }
@@ -9985,8 +9992,10 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
 
 struct voxgi_tsm {
     double u[3], v[3], w[3];      /* the light's frame: across the map, and the direction light travels */
-    double lo[3];                 /* the map's corner in the frame (world units) */
-    double texel, slice;          /* world units */
+    int perspective;              /* a spot light's map (else a directional light's) */
+    double lo[3];                 /* orthographic: the map's corner in the frame (world units) */
+    double texel, slice;          /* orthographic: world units */
+    double eye[3], tan_half, near_z, far_z; /* perspective: the light's position, the cone, depths along w */
     int size, slices, words;      /* words: 32-slice words per column */
     int materials;
     float sigma[VOXGI__TSM_MAX_MATERIALS];
@@ -9995,12 +10004,57 @@ struct voxgi_tsm {
     voxgi_tsm_info info;
 };
 
-/* Point x (world) in the map's frame: texels across, slices along. */
+/* Point x (world) in the map's frame: texels across, slices along. Perspective: across, the
+   cone's square; along, slices uniform in 1 / depth between near_z (where a point nearer is
+   taken to lie) and far_z: a projective map, so triangles stay triangles and planes planes. */
 static void voxgi__tsm_frame(const voxgi_tsm *T, const double x[3], double out[3])
 {
+    if (T->perspective) {
+        double r[3], z, s = T->size;
+        int a;
+        for (a = 0; a < 3; a++) r[a] = x[a] - T->eye[a];
+        z = VOXGI__MAX(r[0] * T->w[0] + r[1] * T->w[1] + r[2] * T->w[2], T->near_z);
+        out[0] = 0.5 * s * (1 + (r[0] * T->u[0] + r[1] * T->u[1] + r[2] * T->u[2]) / (z * T->tan_half));
+        out[1] = 0.5 * s * (1 + (r[0] * T->v[0] + r[1] * T->v[1] + r[2] * T->v[2]) / (z * T->tan_half));
+        out[2] = T->slices * (1 / T->near_z - 1 / z) / (1 / T->near_z - 1 / T->far_z);
+        return;
+    }
     out[0] = ((x[0] * T->u[0] + x[1] * T->u[1] + x[2] * T->u[2]) - T->lo[0]) / T->texel;
     out[1] = ((x[0] * T->v[0] + x[1] * T->v[1] + x[2] * T->v[2]) - T->lo[1]) / T->texel;
     out[2] = ((x[0] * T->w[0] + x[1] * T->w[1] + x[2] * T->w[2]) - T->lo[2]) / T->slice;
+}
+
+/* The triangle x[0..2] (world) in the map's frame, as 0, 1 or 2 triangles into out (9 each): in
+   perspective, first cut to the part in front of the near plane. */
+static int voxgi__tsm_triangle(const voxgi_tsm *T, const double x[3][3], double *out)
+{
+    double poly[4][3], z[3];
+    int n = 0, k, a, tris;
+    if (!T->perspective) {
+        for (k = 0; k < 3; k++) voxgi__tsm_frame(T, x[k], out + 3 * k);
+        return 1;
+    }
+    for (k = 0; k < 3; k++) z[k] = (x[k][0] - T->eye[0]) * T->w[0] + (x[k][1] - T->eye[1]) * T->w[1] + (x[k][2] - T->eye[2]) * T->w[2] - T->near_z;
+    for (k = 0; k < 3; k++) { /* Sutherland-Hodgman against z >= near */
+        int j = (k + 1) % 3;
+        if (z[k] >= 0) memcpy(poly[n++], x[k], sizeof poly[0]);
+        if ((z[k] >= 0) != (z[j] >= 0)) {
+            double f = z[k] / (z[k] - z[j]);
+            for (a = 0; a < 3; a++) poly[n][a] = x[k][a] + f * (x[j][a] - x[k][a]);
+            n++;
+        }
+    }
+    if (n < 3) return 0;
+    tris = n - 2;
+    for (k = 0; k < tris; k++) { /* a fan */
+        const double *c[3];
+        int m;
+        c[0] = poly[0];
+        c[1] = poly[k + 1];
+        c[2] = poly[k + 2];
+        for (m = 0; m < 3; m++) voxgi__tsm_frame(T, c[m], out + 9 * k + 3 * m);
+    }
+    return tris;
 }
 
 typedef struct voxgi__tsm_depth_job { float *map; int size; const double *q[3]; } voxgi__tsm_depth_job;
@@ -10022,9 +10076,9 @@ static void voxgi__tsm_free(voxgi_context *ctx, voxgi_tsm *T)
     voxgi__free(ctx, T);
 }
 
-/* Material group g's slicemap: its triangles (group[t] == g) in the frame q, voxelized along z
-   and repacked by column. */
-static voxgi_result voxgi__tsm_slicemap(voxgi_context *ctx, voxgi_tsm *T, const voxgi__flat *f, const double *q, const signed char *group, int g)
+/* Material group g's slicemap: its triangles (group[t] == g of the n in the frame, 9 doubles
+   each), voxelized along z and repacked by column. */
+static voxgi_result voxgi__tsm_slicemap(voxgi_context *ctx, voxgi_tsm *T, const double *soup_in, const signed char *group, size_t count, int g)
 {
     voxgi_voxelize_desc vd;
     voxgi_voxels *vox = NULL;
@@ -10034,15 +10088,14 @@ static voxgi_result voxgi__tsm_slicemap(voxgi_context *ctx, voxgi_tsm *T, const 
     float *soup;
     uint32_t *bits = NULL;
     size_t t, n = 0, texels = (size_t)T->size * (size_t)T->size, k;
-    int a, c;
+    int c;
     voxgi_result r = VOXGI_OK;
-    for (t = 0; t < f->triangle_count; t++) n += group[t] == g;
+    for (t = 0; t < count; t++) n += group[t] == g;
     soup = (float *)voxgi__alloc_array(ctx, n ? n : 1, 9 * sizeof(float), 0);
     if (!soup) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)n);
-    for (t = 0, n = 0; t < f->triangle_count; t++) {
+    for (t = 0, n = 0; t < count; t++) {
         if (group[t] != g) continue;
-        for (c = 0; c < 3; c++)
-            for (a = 0; a < 3; a++) soup[9 * n + 3 * (size_t)c + (size_t)a] = (float)q[3 * (size_t)f->tri[3 * t + (size_t)c] + (size_t)a];
+        for (c = 0; c < 9; c++) soup[9 * n + (size_t)c] = (float)soup_in[9 * t + (size_t)c];
         n++;
     }
     memset(&mesh, 0, sizeof mesh);
@@ -10082,9 +10135,9 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
     voxgi__flat f;
     voxgi_tsm *T = NULL;
     const voxgi_light *L;
-    double *q = NULL, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, len, t0 = voxgi__now_ms();
+    double *soup = NULL, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, len, t0 = voxgi__now_ms();
     signed char *group = NULL;
-    size_t i, t, texels;
+    size_t i, t, texels, count = 0;
     int a, g, size, slices;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
@@ -10096,66 +10149,87 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "size %d (1..16384), slices %d (1..4096), sigma %g (0..1)", size, slices, (double)desc->sigma);
     if (desc->light >= scene->light_count) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu of %lu", (unsigned long)desc->light, (unsigned long)scene->light_count);
     L = &scene->lights[desc->light];
-    if (L->type != VOXGI_LIGHT_DIRECTIONAL) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "transmittance shadow maps take a directional light");
+    if (L->type != VOXGI_LIGHT_DIRECTIONAL && L->type != VOXGI_LIGHT_SPOT)
+        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "transmittance shadow maps take a directional or spot light");
+    if (L->type == VOXGI_LIGHT_SPOT && !(L->spot_outer > 0 && L->spot_outer < 1.5))
+        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "a spot light's map needs its outer angle in (0, 1.5) radians, not %g", (double)L->spot_outer);
     len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
     if (!(len > 0) || !isfinite(len)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu has no direction", (unsigned long)desc->light);
     if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
     texels = (size_t)size * (size_t)size;
     T = (voxgi_tsm *)voxgi__alloc_array(ctx, 1, sizeof *T, 1);
-    q = (double *)voxgi__alloc_array(ctx, f.vertex_count, 3 * sizeof(double), 0);
-    group = (signed char *)voxgi__alloc_array(ctx, f.triangle_count, 1, 0);
-    if (!T || !q || !group) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a transmittance shadow map"); goto done; }
+    soup = (double *)voxgi__alloc_array(ctx, 2 * f.triangle_count, 9 * sizeof(double), 0); /* a triangle cut by the near plane: two */
+    group = (signed char *)voxgi__alloc_array(ctx, 2 * f.triangle_count, 1, 0);
+    if (!T || !soup || !group) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a transmittance shadow map"); goto done; }
     T->size = size;
     T->slices = slices;
     T->words = (slices + 31) / 32;
     for (a = 0; a < 3; a++) T->w[a] = L->direction[a] / len;
     voxgi__basis(T->w, T->u, T->v);
-    for (a = 0; a < 3; a++) T->lo[a] = DBL_MAX;
-    for (i = 0; i < f.vertex_count; i++) { /* the scene's bounds in the frame */
-        const float *p = f.pos + 3 * i;
-        double x[3], s[3];
-        for (a = 0; a < 3; a++) x[a] = p[a];
-        s[0] = x[0] * T->u[0] + x[1] * T->u[1] + x[2] * T->u[2];
-        s[1] = x[0] * T->v[0] + x[1] * T->v[1] + x[2] * T->v[2];
-        s[2] = x[0] * T->w[0] + x[1] * T->w[1] + x[2] * T->w[2];
-        for (a = 0; a < 3; a++) { T->lo[a] = VOXGI__MIN(T->lo[a], s[a]); hi[a] = VOXGI__MAX(hi[a], s[a]); }
+    if (L->type == VOXGI_LIGHT_SPOT) { /* the cone's square; depths from the scene's nearest point ahead to its farthest */
+        double nearest = DBL_MAX;
+        T->perspective = 1;
+        T->tan_half = tan((double)L->spot_outer);
+        for (a = 0; a < 3; a++) T->eye[a] = L->position[a];
+        T->far_z = 0;
+        for (i = 0; i < f.vertex_count; i++) {
+            double z = 0;
+            for (a = 0; a < 3; a++) z += ((double)f.pos[3 * i + (size_t)a] - T->eye[a]) * T->w[a];
+            T->far_z = VOXGI__MAX(T->far_z, z);
+            if (z > 0) nearest = VOXGI__MIN(nearest, z);
+        }
+        if (!(T->far_z > 0)) { r = voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "spot light %lu faces away from the whole scene", (unsigned long)desc->light); goto done; }
+        T->near_z = VOXGI__MAX(VOXGI__MIN(nearest, T->far_z), 1e-3 * T->far_z) * (1 - 1e-6);
+        T->far_z *= 1 + 1e-6;
+    } else {
+        for (a = 0; a < 3; a++) T->lo[a] = DBL_MAX;
+        for (i = 0; i < f.vertex_count; i++) { /* the scene's bounds in the frame */
+            const float *p = f.pos + 3 * i;
+            double x[3], s[3];
+            for (a = 0; a < 3; a++) x[a] = p[a];
+            s[0] = x[0] * T->u[0] + x[1] * T->u[1] + x[2] * T->u[2];
+            s[1] = x[0] * T->v[0] + x[1] * T->v[1] + x[2] * T->v[2];
+            s[2] = x[0] * T->w[0] + x[1] * T->w[1] + x[2] * T->w[2];
+            for (a = 0; a < 3; a++) { T->lo[a] = VOXGI__MIN(T->lo[a], s[a]); hi[a] = VOXGI__MAX(hi[a], s[a]); }
+        }
+        { /* square texels over the larger extent, half a texel to spare on each side; slices over the depth */
+            double ext = VOXGI__MAX(hi[0] - T->lo[0], hi[1] - T->lo[1]), scale = VOXGI__MAX(ext, hi[2] - T->lo[2]);
+            if (!(scale > 0)) scale = VOXGI__MAX(1.0, fabs(T->lo[0]) + fabs(T->lo[1]) + fabs(T->lo[2])) * 1e-6;
+            ext = VOXGI__MAX(ext, scale * 1e-6);
+            T->texel = ext / (size - 1 > 0 ? size - 1 : 1);
+            T->lo[0] -= 0.5 * T->texel + 0.5 * (ext - (hi[0] - T->lo[0]));
+            T->lo[1] -= 0.5 * T->texel + 0.5 * (ext - (hi[1] - T->lo[1]));
+            T->slice = VOXGI__MAX(hi[2] - T->lo[2], scale * 1e-6) * (1 + 1e-6) / slices;
+        }
     }
-    { /* square texels over the larger extent, half a texel to spare on each side; slices over the depth */
-        double ext = VOXGI__MAX(hi[0] - T->lo[0], hi[1] - T->lo[1]), scale = VOXGI__MAX(ext, hi[2] - T->lo[2]);
-        if (!(scale > 0)) scale = VOXGI__MAX(1.0, fabs(T->lo[0]) + fabs(T->lo[1]) + fabs(T->lo[2])) * 1e-6;
-        ext = VOXGI__MAX(ext, scale * 1e-6);
-        T->texel = ext / (size - 1 > 0 ? size - 1 : 1);
-        T->lo[0] -= 0.5 * T->texel + 0.5 * (ext - (hi[0] - T->lo[0]));
-        T->lo[1] -= 0.5 * T->texel + 0.5 * (ext - (hi[1] - T->lo[1]));
-        T->slice = VOXGI__MAX(hi[2] - T->lo[2], scale * 1e-6) * (1 + 1e-6) / slices;
-    }
-    for (i = 0; i < f.vertex_count; i++) {
-        double x[3];
-        for (a = 0; a < 3; a++) x[a] = f.pos[3 * i + (size_t)a];
-        voxgi__tsm_frame(T, x, q + 3 * i);
-    }
-    for (t = 0; t < f.triangle_count; t++) { /* each triangle's map: -1 the shadow map, g a slicemap, -2 none */
+    for (t = 0; t < f.triangle_count; t++) { /* each triangle's map (-1 the shadow map, g a slicemap, none), in the frame */
         const voxgi_material *m = voxgi__tri_material(&f, t);
         float sigma = desc->sigma > 0 ? desc->sigma : 1 - m->transparency;
-        group[t] = -2;
-        if (!(m->transparency > 0)) { group[t] = -1; continue; }
-        if (!(m->transparency < 1)) continue; /* lets all light through */
-        for (g = 0; g < T->materials && T->sigma[g] != sigma; g++) continue;
-        if (g == T->materials) {
-            if (g == VOXGI__TSM_MAX_MATERIALS) {
-                r = voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "more than %d translucent absorptions (set desc.sigma for one)", VOXGI__TSM_MAX_MATERIALS);
-                goto done;
+        double x[3][3];
+        int k, pieces;
+        if (m->transparency > 0 && !(m->transparency < 1)) continue; /* lets all light through */
+        g = -1;
+        if (m->transparency > 0) {
+            for (g = 0; g < T->materials && T->sigma[g] != sigma; g++) continue;
+            if (g == T->materials) {
+                if (g == VOXGI__TSM_MAX_MATERIALS) {
+                    r = voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "more than %d translucent absorptions (set desc.sigma for one)", VOXGI__TSM_MAX_MATERIALS);
+                    goto done;
+                }
+                T->sigma[T->materials++] = sigma;
             }
-            T->sigma[T->materials++] = sigma;
         }
-        group[t] = (signed char)g;
+        for (k = 0; k < 3; k++)
+            for (a = 0; a < 3; a++) x[k][a] = f.pos[3 * (size_t)f.tri[3 * t + (size_t)k] + (size_t)a];
+        pieces = voxgi__tsm_triangle(T, (const double(*)[3])x, soup + 9 * count);
+        for (k = 0; k < pieces; k++) group[count++] = (signed char)g;
     }
     T->columns = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(T->materials ? T->materials : 1) * texels, (size_t)T->words * 4, 1);
     T->opaque = (float *)voxgi__alloc_array(ctx, texels, sizeof(float), 0);
     if (!T->columns || !T->opaque) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %dx%d maps", size, size); goto done; }
-    for (g = 0; r == VOXGI_OK && g < T->materials; g++) r = voxgi__tsm_slicemap(ctx, T, &f, q, group, g);
+    for (g = 0; r == VOXGI_OK && g < T->materials; g++) r = voxgi__tsm_slicemap(ctx, T, soup, group, count, g);
     for (i = 0; i < texels; i++) T->opaque[i] = INFINITY;
-    for (t = 0; r == VOXGI_OK && t < f.triangle_count; t++) { /* the shadow map: the rasterizer's coverage, the plane's depth */
+    for (t = 0; r == VOXGI_OK && t < count; t++) { /* the shadow map: the rasterizer's coverage, the plane's depth */
         voxgi__tsm_depth_job job;
         double x[3], y[3];
         int k;
@@ -10163,7 +10237,7 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
         job.map = T->opaque;
         job.size = size;
         for (k = 0; k < 3; k++) {
-            job.q[k] = q + 3 * (size_t)f.tri[3 * t + (size_t)k];
+            job.q[k] = soup + 9 * t + 3 * (size_t)k;
             x[k] = voxgi__snap256(job.q[k][0]);
             y[k] = voxgi__snap256(job.q[k][1]);
         }
@@ -10173,7 +10247,7 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
     T->info.bytes = (size_t)T->materials * texels * (size_t)T->words * 4 + texels * sizeof(float);
     T->info.ms = voxgi__now_ms() - t0;
 done:
-    voxgi__free(ctx, q);
+    voxgi__free(ctx, soup);
     voxgi__free(ctx, group);
     voxgi__flat_free(ctx, &f);
     if (r == VOXGI_OK) *out = T;
@@ -10196,7 +10270,16 @@ static float voxgi__tsm_point(const voxgi_tsm *T, const double x_in[3], const do
     size_t texel, texels = (size_t)T->size * (size_t)T->size;
     int a, g, k, i, j;
     for (a = 0; a < 3; a++) x[a] = x_in[a];
-    if (n) { /* normal offset, on the side the light comes from; an opaque depth within half a texel passes */
+    if (T->perspective) { /* before the near plane nothing was drawn, so nothing is in the way */
+        double z = (x[0] - T->eye[0]) * T->w[0] + (x[1] - T->eye[1]) * T->w[1] + (x[2] - T->eye[2]) * T->w[2];
+        if (!(z > T->near_z)) return 1;
+        if (n) { /* a texel at this depth, in world units and in slices */
+            double texel = 2 * z * T->tan_half / T->size, along = 0;
+            for (a = 0; a < 3; a++) along += n[a] * (x[a] - T->eye[a]);
+            for (a = 0; a < 3; a++) x[a] += (along > 0 ? -1 : 1) * 1.5 * texel * n[a];
+            bias = 0.5 * texel * T->slices / (z * z * (1 / T->near_z - 1 / T->far_z));
+        }
+    } else if (n) { /* normal offset, on the side the light comes from; an opaque depth within half a texel passes */
         double side = n[0] * T->w[0] + n[1] * T->w[1] + n[2] * T->w[2] > 0 ? -1 : 1;
         for (a = 0; a < 3; a++) x[a] += side * 1.5 * T->texel * n[a];
         bias = 0.5 * T->texel / T->slice;
@@ -10790,9 +10873,16 @@ static void voxgi__tsm_image_rows(void *user, size_t first, size_t end)
                 for (li = 0; li < J->scene->light_count; li++) { /* the maps' lights */
                     const voxgi_tsm *T = J->maps[li];
                     const voxgi_light *L = &J->scene->lights[li];
-                    double c;
+                    double c, to[3], dist = 0;
                     if (!T) continue;
-                    c = -(ns[0] * T->w[0] + ns[1] * T->w[1] + ns[2] * T->w[2]);
+                    if (L->type == VOXGI_LIGHT_SPOT) { /* toward the light, its cone, the inverse square */
+                        for (a = 0; a < 3; a++) { to[a] = L->position[a] - h.p[a]; dist += to[a] * to[a]; }
+                        dist = sqrt(dist);
+                        if (!(dist > 0)) continue;
+                        for (a = 0; a < 3; a++) to[a] /= dist;
+                        c = (ns[0] * to[0] + ns[1] * to[1] + ns[2] * to[2]) * voxgi__spot_share(L, to) / (dist * dist);
+                    } else
+                        c = -(ns[0] * T->w[0] + ns[1] * T->w[1] + ns[2] * T->w[2]);
                     if (c <= 0) continue;
                     c *= voxgi__tsm_point(T, h.p, ns);
                     for (a = 0; a < 3; a++) sum[a] += m->albedo[a] / VOXGI__PI * L->intensity[a] * c;
@@ -10835,7 +10925,7 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
     t1 = voxgi__now_ms();
     for (li = 0; r == VOXGI_OK && li < scene->light_count; li++) {
         voxgi_tsm_desc td = desc->tsm;
-        if (scene->lights[li].type != VOXGI_LIGHT_DIRECTIONAL) { kept[n++] = scene->lights[li]; continue; }
+        if (scene->lights[li].type != VOXGI_LIGHT_DIRECTIONAL && scene->lights[li].type != VOXGI_LIGHT_SPOT) { kept[n++] = scene->lights[li]; continue; }
         td.light = li;
         if ((r = voxgi_tsm_create(ctx, scene, &td, &J.maps[li])) == VOXGI_OK) {
             inf.maps++;

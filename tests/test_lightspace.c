@@ -133,6 +133,60 @@ static void test_tsm_layers(void)
     voxgi_destroy(ctx);
 }
 
+/* The same stack under a spot light 5 above the ground pointing down (outer angle 0.6): its map
+   is perspective, slices uniform in 1 / depth from the top quad (depth 2) to the ground (5), so
+   the quads at 3, 2, 1 fill slices 0, 17 and 26, and the same layers are counted; points off the
+   cone's axis, and one above the top quad (before the near plane: nothing in the way). Built on
+   GL, the same answers. */
+static void test_tsm_spot_layers(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    stack_scene S;
+    voxgi_tsm *tsm;
+    const double pass = 0.7;
+    double got[5];
+    stack_make(&S, (float)pass, 0.5f, 0, 0);
+    S.sun.type = VOXGI_LIGHT_SPOT;
+    S.sun.position[1] = 5;
+    S.sun.spot_inner = 0.5f;
+    S.sun.spot_outer = 0.6f;
+    tsm = make_tsm(ctx, &S.scene, 0);
+    if (tsm) {
+        got[0] = light_at(ctx, tsm, 0.3, 0.5, -0.4);
+        got[1] = light_at(ctx, tsm, -0.5, 1.5, 0.2);
+        got[2] = light_at(ctx, tsm, 0.1, 2.0, 0.6);
+        got[3] = light_at(ctx, tsm, 0.1, 3.5, 0.2);
+        got[4] = light_at(ctx, tsm, 2.5, 0.1, 0.0); /* outside the quads' shadow cone */
+        printf("    spot light, sigma 0.3: under 3, 2 and 1 (its own slice) layers %.6f %.6f %.6f, above %.6f, beside %.6f\n", got[0], got[1], got[2], got[3],
+               got[4]);
+        TH_CHECK(fabs(got[0] - pass * pass * pass) < 1e-6 && fabs(got[1] - pass * pass) < 1e-6 && fabs(got[2] - pass) < 1e-6, "spot: k layers");
+        TH_CHECK(got[3] == 1 && got[4] == 1, "spot: nothing in the way");
+        voxgi_tsm_destroy(ctx, tsm);
+    }
+    if (have_gl()) {
+        voxgi_context *gl = make_ctx(VOXGI_BACKEND_GL, 0);
+        voxgi_tsm *a = make_tsm(ctx, &S.scene, 0), *b = make_tsm(gl, &S.scene, 0);
+        fx_rng g = fx_rng_seeded(8);
+        size_t i, differ = 0, shaded = 0;
+        float p[3], ta, tb;
+        for (i = 0; a && b && i < 2000; i++) {
+            p[0] = (float)fx_rng_range(&g, -1.5, 1.5);
+            p[1] = (float)fx_rng_range(&g, 0, 3.2);
+            p[2] = (float)fx_rng_range(&g, -1.5, 1.5);
+            voxgi_tsm_transmittance(ctx, a, 1, p, NULL, &ta);
+            voxgi_tsm_transmittance(gl, b, 1, p, NULL, &tb);
+            differ += ta != tb;
+            shaded += ta < 1;
+        }
+        printf("    spot light: 2000 points, %lu in some shadow, %lu differ between the CPU's and GL's maps\n", (unsigned long)shaded, (unsigned long)differ);
+        TH_CHECK(a && b && differ == 0 && shaded > 200, "spot: GL's maps differ");
+        voxgi_tsm_destroy(ctx, a);
+        voxgi_tsm_destroy(gl, b);
+        voxgi_destroy(gl);
+    }
+    voxgi_destroy(ctx);
+}
+
 /* Two translucent materials multiply their layers; an opaque quad casts a full shadow (the
    shadow map, checked before the slicemaps), and a point on the lit ground with its normal is
    not shadowed by the ground itself (the normal offset). */
@@ -222,6 +276,49 @@ static void test_reference_sees_through_leaves(void)
     voxgi_destroy(ctx);
 }
 
+/* voxgi_tsm_render of the ground under the stack equals the reference's direct light, for the
+   sun (to 1e-5) and for a spot light (its cone's falloff and the inverse square included; to 1%:
+   the two sample other points of each pixel, where the spot's light varies): where every layer
+   has a slice of its own the maps count them all. */
+static void test_tsm_image_equals_reference(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    stack_scene S;
+    voxgi_reference_desc d;
+    voxgi_tsm_image_desc td;
+    voxgi_tsm_image_info ti;
+    float ref[3 * 9 * 9], img[3 * 9 * 9];
+    double worst[2] = {0, 0};
+    int spot, i;
+    for (spot = 0; spot < 2; spot++) {
+        stack_make(&S, 0.7f, 0.4f, 0, 0);
+        if (spot) {
+            S.sun.type = VOXGI_LIGHT_SPOT;
+            S.sun.position[1] = 5;
+            S.sun.spot_inner = 0.05f;
+            S.sun.spot_outer = 0.6f;
+            S.sun.intensity[0] = S.sun.intensity[1] = S.sun.intensity[2] = 20;
+        }
+        memset(&d, 0, sizeof d);
+        d.camera.eye[1] = 0.9; d.camera.eye[2] = -3;
+        d.camera.fovy_degrees = 4;
+        d.camera.width = d.camera.height = 9;
+        d.samples = 4;
+        d.seed = 1;
+        memset(&td, 0, sizeof td);
+        td.camera = d.camera;
+        td.tsm.size = 128;
+        td.seed = 1;
+        TH_CHECK(voxgi_reference_render(ctx, &S.scene, &d, ref, sizeof ref, NULL) == VOXGI_OK && voxgi_tsm_render(ctx, &S.scene, &td, img, sizeof img, &ti) == VOXGI_OK,
+                 "%s", voxgi_last_error(ctx));
+        TH_CHECK(ti.maps == 1, "%d maps", ti.maps);
+        for (i = 0; i < 3 * 81; i++) worst[spot] = fmax(worst[spot], fabs(img[i] - ref[i]) / ref[i]);
+    }
+    printf("    the ground under the stack: maps against the reference's rays within %.2e (sun), %.2e (spot light)\n", worst[0], worst[1]);
+    TH_CHECK(worst[0] < 1e-5 && worst[1] < 1e-2, "the image differs from the reference's direct light");
+    voxgi_destroy(ctx);
+}
+
 /* Bad input: a light that is not directional, a light index past the end, absurd sizes, a NaN
    point, NULLs. */
 static void test_tsm_input(void)
@@ -257,9 +354,11 @@ int main(void)
 {
     gl_open();
     TH_RUN(test_tsm_layers);
+    TH_RUN(test_tsm_spot_layers);
     TH_RUN(test_tsm_materials_and_opaque);
     TH_RUN(test_tsm_gl_equals_cpu);
     TH_RUN(test_reference_sees_through_leaves);
+    TH_RUN(test_tsm_image_equals_reference);
     TH_RUN(test_tsm_input);
     gl_close();
     return th_finish();
