@@ -3599,7 +3599,8 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
       "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl")              \
     X(light_map_draw, RASTER, "sampling.glsl light_maps.glsl light_map_draw.glsl")                                 \
     X(inject, COMPUTE, "sampling.glsl light_maps.glsl inject.glsl")                                                \
-    X(gbuffer, RASTER, "gbuffer.glsl")
+    X(gbuffer, RASTER, "gbuffer.glsl")                                                                             \
+    X(tsm_lookup, COMPUTE, "tsm_lookup.glsl")
 
 enum { VOXGI__GL_COMPUTE = 0, VOXGI__GL_RASTER = 1, VOXGI__GL_GEOMETRY = 2 };
 typedef enum voxgi__gl_program_id {
@@ -10002,6 +10003,7 @@ struct voxgi_tsm {
     uint32_t *columns;            /* per material, per texel (row by row), `words` words of slice bits */
     float *opaque;                /* per texel: the least depth (slices) of an opaque surface, +inf: none */
     voxgi_tsm_info info;
+    unsigned int gl_columns, gl_opaque, gl_params; /* on a GL context: the same, and the frame (tsm_lookup.glsl) */
 };
 
 /* Point x (world) in the map's frame: texels across, slices along. Perspective: across, the
@@ -10071,6 +10073,13 @@ static void voxgi__tsm_depth_pixel(void *user, uint32_t tri, int i, int j)
 static void voxgi__tsm_free(voxgi_context *ctx, voxgi_tsm *T)
 {
     if (!T) return;
+#ifndef VOXGI_NO_GL
+    if (T->gl_params) {
+        voxgi__gl_delete_buffer(ctx, T->gl_columns);
+        voxgi__gl_delete_buffer(ctx, T->gl_opaque);
+        voxgi__gl_delete_buffer(ctx, T->gl_params);
+    }
+#endif
     voxgi__free(ctx, T->columns);
     voxgi__free(ctx, T->opaque);
     voxgi__free(ctx, T);
@@ -10245,6 +10254,22 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
     }
     T->info.materials = T->materials;
     T->info.bytes = (size_t)T->materials * texels * (size_t)T->words * 4 + texels * sizeof(float);
+#ifndef VOXGI_NO_GL
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_GL) { /* the maps and the frame for the GL lookups */
+        double P[34];
+        memset(P, 0, sizeof P);
+        for (a = 0; a < 3; a++) {
+            P[a] = T->u[a]; P[3 + a] = T->v[a]; P[6 + a] = T->w[a]; P[9 + a] = T->lo[a]; P[14 + a] = T->eye[a];
+        }
+        P[12] = T->texel; P[13] = T->slice; P[17] = T->tan_half; P[18] = T->near_z; P[19] = T->far_z;
+        P[20] = T->size; P[21] = T->slices; P[22] = T->perspective; P[23] = T->words; P[24] = T->materials;
+        for (g = 0; g < T->materials; g++) P[26 + g] = T->sigma[g];
+        T->gl_columns = voxgi__gl_buffer(ctx, (size_t)(T->materials ? T->materials : 1) * texels * (size_t)T->words * 4, T->columns);
+        T->gl_opaque = voxgi__gl_buffer(ctx, texels * sizeof(float), T->opaque);
+        T->gl_params = voxgi__gl_buffer(ctx, sizeof P, P);
+        r = voxgi__gl_check(ctx, "the transmittance shadow map's buffers");
+    }
+#endif
     T->info.ms = voxgi__now_ms() - t0;
 done:
     voxgi__free(ctx, soup);
@@ -10296,10 +10321,46 @@ static float voxgi__tsm_point(const voxgi_tsm *T, const double x_in[3], const do
         int w, layers = 0;
         for (w = 0; w < k >> 5; w++) layers += (int)voxgi__popcount32(col[w]);
         if (k & 31) layers += (int)voxgi__popcount32(col[k >> 5] & ((1u << (k & 31)) - 1u));
-        if (layers) light *= pow(1.0 - T->sigma[g], layers);
+        for (w = 0; w < layers; w++) light *= 1.0 - T->sigma[g]; /* a product, as on GL */
     }
     return (float)light;
 }
+
+#ifndef VOXGI_NO_GL
+/* The same lookups on GL (shaders/tsm_lookup.glsl). */
+static voxgi_result voxgi__tsm_transmittance_gl(voxgi_context *ctx, const voxgi_tsm *T, size_t count, const float *points, const float *normals,
+                                                float *out)
+{
+    voxgi__gl *gl = ctx->gl;
+    unsigned int pts, nrm = 0, light, p;
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_tsm_lookup);
+    double given = normals ? 1 : 0;
+    if (r != VOXGI_OK) return r;
+    if (count > (size_t)UINT32_MAX / 3) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one GL lookup", (unsigned long)count);
+    p = gl->prog_tsm_lookup;
+    pts = voxgi__gl_buffer(ctx, count * 12, points);
+    if (normals) nrm = voxgi__gl_buffer(ctx, count * 12, normals);
+    light = voxgi__gl_buffer(ctx, count * 4, NULL);
+    gl->NamedBufferSubData(T->gl_params, 25 * sizeof(double), sizeof given, &given);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, pts);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 1, normals ? nrm : pts);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 2, T->gl_columns);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, T->gl_opaque);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, T->gl_params);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, light);
+    gl->UseProgram(p);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)count);
+    voxgi__gl_dispatch_items(gl, (uint64_t)count);
+    gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+    voxgi__gl_unbind(gl);
+    r = voxgi__gl_read_buffer(ctx, light, out, count * 4);
+    voxgi__gl_delete_buffer(ctx, pts);
+    if (nrm) voxgi__gl_delete_buffer(ctx, nrm);
+    voxgi__gl_delete_buffer(ctx, light);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "transmittance shadow map lookups");
+    return r;
+}
+#endif
 
 VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_tsm *tsm, size_t count, const float *points, const float *normals,
                                                float *out)
@@ -10308,14 +10369,18 @@ VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_t
     int a;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!tsm || (count && (!points || !out))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "tsm, points or out is NULL");
+    for (i = 0; i < 3 * count; i++)
+        if (!isfinite(points[i]) || (normals && !isfinite(normals[i])))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL && tsm->gl_params && count) return voxgi__tsm_transmittance_gl(ctx, tsm, count, points, normals, out);
+#endif
     for (i = 0; i < count; i++) {
         double x[3], n[3];
         for (a = 0; a < 3; a++) {
             x[a] = points[3 * i + (size_t)a];
             n[a] = normals ? normals[3 * i + (size_t)a] : 0;
         }
-        if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2]) || !isfinite(n[0]) || !isfinite(n[1]) || !isfinite(n[2]))
-            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)i);
         out[i] = voxgi__tsm_point(tsm, x, normals ? n : NULL);
     }
     return VOXGI_OK;
