@@ -772,11 +772,14 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
    farthest point. A SPOT light looks along its axis with a perspective map of its outer cone's
    square, slices uniform in 1 / depth between the scene's nearest point ahead of it (at least
    1/1000 of the farthest) and its farthest: the map is projective, so triangles stay triangles
-   (cut at the near plane) and the slicemap applies; a point before the near plane is lit. The slicemaps are voxgi_voxelize's raster slicemap (VOXGI_METHOD_SLICEMAP) of
-   the scene in the light's frame, on the context's backend: GL and CPU give the same bits. The
-   shadow map holds, per texel, the least depth of an opaque triangle at its centre (the same
-   rasterizer's coverage). Lookups move a point 1.5 texels along its normal toward the light
-   (normal-offset shadow mapping) and let an opaque depth within half a texel of its own pass. */
+   (cut at the near plane) and the slicemap applies; a point before the near plane is lit.
+   The slicemaps are voxgi_voxelize's raster slicemap (VOXGI_METHOD_SLICEMAP) of the scene in
+   the light's frame, on the context's backend: GL and CPU give the same bits. The shadow map
+   holds, per texel, the least depth of an opaque triangle at its centre (the same rasterizer's
+   coverage, on the CPU). On a GL context the lookups run on GL too (shaders/tsm_lookup.glsl:
+   double precision in the CPU's order, the same answers on llvmpipe). Lookups move a point 1.5
+   texels along its normal toward the light (normal-offset shadow mapping) and let an opaque
+   depth within half a texel of its own pass. */
 typedef struct voxgi_tsm_desc {
     size_t light;                 /* the scene's light: DIRECTIONAL or SPOT */
     int size;                     /* texels across the square map; 0 = 1024 */
