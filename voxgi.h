@@ -71,7 +71,9 @@
    LIGHTING: voxgi_inject_light puts the direct light into the voxels (a RADIANCE volume);
    voxgi_cone_trace (diffuse gathers at points), voxgi_cone_trace_each (single glossy or shadow
    cones) and voxgi_cone_trace_gl (the caller's G-buffer textures) gather it from a radiance
-   source: the volume's mips or an octree of it; voxgi_vct_render makes whole images;
+   source: the volume's mips or an octree of it; voxgi_vct_render makes whole images.
+   voxgi_tsm_create / voxgi_tsm_transmittance give the light through translucent surfaces from
+   transmittance shadow maps, voxgi_tsm_render images of the direct light with them.
    voxgi_reference_render is the path tracer they are measured against.
 
    SEMANTICS (exact; see the part banners below for each capability)
@@ -89,6 +91,7 @@
      VOXGI_NO_THREADS      the CPU backend runs on the calling thread only
      VOXGI_MALLOC(sz)/VOXGI_FREE(p)   default allocator when desc.allocator is not set (both or none)
      VOXGI_ASSERT(x)       internal assertions (default: assert)
+     VOXGI_NO_SIMD         no SSE or AVX2 code: the scalar code, which computes the same
      Do not compile the implementation with -ffast-math: exactness needs IEEE double arithmetic.
 
    GL LOADER (desc.gl_get_proc_address is called only while the GL 4.5 context is current)
@@ -120,6 +123,11 @@
             voxgi_cone_trace_each (was voxgi_trace_cones) and voxgi_cone_trace_gl replace the six
             entry points (voxgi_cone_trace_svo, voxgi_trace_cones_svo and voxgi_cone_trace_svo_gl
             are gone: set source.octree). Cone-traced images report progress at each stage.
+     0.6.0  the ray core (voxgi_ray_scene): packets of coherent rays, eight-wide nodes with AVX2,
+            one closest hit whatever the order (ties to the lower triangle); the raster slicemap
+            exact on both backends; transmittance shadow maps (voxgi_tsm, directional and spot
+            lights, GL lookups) and images with them (voxgi_tsm_render); shadow rays through
+            translucent surfaces; the foliage scene.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -130,10 +138,10 @@
 
 /* ===================================================================== 1. config */
 #define VOXGI_VERSION_MAJOR 0
-#define VOXGI_VERSION_MINOR 5
+#define VOXGI_VERSION_MINOR 6
 #define VOXGI_VERSION_PATCH 0
 #define VOXGI_VERSION (VOXGI_VERSION_MAJOR * 10000 + VOXGI_VERSION_MINOR * 100 + VOXGI_VERSION_PATCH)
-#define VOXGI_VERSION_STRING "0.5.0"
+#define VOXGI_VERSION_STRING "0.6.0"
 
 #ifndef VOXGI_API
 #ifdef VOXGI_STATIC
