@@ -2107,13 +2107,13 @@ static voxgi_result voxgi__bvh_build_tree(voxgi_context *ctx, voxgi__bvh_build *
    The binary SAH build above, collapsed to VOXGI__BVH_WIDTH children per node (a node opens its
    largest inner child until it has that many), over the triangles in float relative to the
    scene's box centre: a scene far from the origin keeps the precision of its extent, and the
-   boxes, made from the very floats the triangle test reads, hold every triangle exactly. A node's
-   boxes are tested at once (SSE or AVX2 where the compiler targets it, else lane by lane), each slab's far end widened by
-   2^-21 against rounding (Ize 2013), children visited nearest first. The triangle test is Woop,
-   Benthin and Wald's (2013): vertices sheared into the ray's frame in float, edge functions in
-   double, where the products of floats are exact and the sign of each difference is right, so a
-   ray through a shared edge or vertex never slips between triangles, whatever the compiler does
-   with fused multiply-adds. */
+   boxes, made from the very floats the triangle test reads, hold every triangle exactly. A
+   node's boxes are tested at once (SSE or AVX2 where the compiler targets it, else lane by
+   lane), each slab's far end widened by 2^-21 against rounding (Ize 2013), children visited
+   nearest first. The triangle test is Woop, Benthin and Wald's (2013): vertices sheared into the
+   ray's frame in float, edge functions in double, where the products of floats are exact and the
+   sign of each difference is right, so a ray through a shared edge or vertex never slips between
+   triangles, whatever the compiler does with fused multiply-adds. */
 #define VOXGI__W VOXGI__BVH_WIDTH
 #define VOXGI__W_ALL ((1 << VOXGI__W) - 1)
 typedef struct voxgi__node {
