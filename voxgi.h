@@ -790,8 +790,8 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
    depth within half a texel of its own pass. */
 typedef struct voxgi_tsm_desc {
     size_t light;                 /* the scene's light: DIRECTIONAL or SPOT */
-    int size;                     /* texels across the square map; 0 = 1024 */
-    int slices;                   /* slices along the light; 0 = 32 */
+    int size;                     /* texels across the square map; 0 = 512 */
+    int slices;                   /* slices along the light; 0 = 64 (the front of voxgi report tsm) */
     float sigma;                  /* > 0: this absorption for every translucent material instead of its
                                      1 - transparency */
 } voxgi_tsm_desc;
@@ -10163,8 +10163,8 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or out is NULL");
     *out = NULL;
-    size = desc->size ? desc->size : 1024;
-    slices = desc->slices ? desc->slices : 32;
+    size = desc->size ? desc->size : 512;
+    slices = desc->slices ? desc->slices : 64;
     if (size < 1 || size > 16384 || slices < 1 || slices > 4096 || !(desc->sigma >= 0 && desc->sigma <= 1))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "size %d (1..16384), slices %d (1..4096), sigma %g (0..1)", size, slices, (double)desc->sigma);
     if (desc->light >= scene->light_count) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu of %lu", (unsigned long)desc->light, (unsigned long)scene->light_count);

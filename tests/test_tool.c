@@ -298,6 +298,21 @@ static void test_tsm_command(void)
         TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's render");
     }
     TH_CHECK(run("render foliage --method tsm --sigma 0 -o x.png", out, sizeof out) == 2, "--sigma 0 accepted");
+    snprintf(args, sizeof args, "report tsm --size 8 --spp 64 --map-sizes 16 --slices 8,16 --out %s/rt", tmpdir);
+    TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "tsm.md"), "report tsm: %s", out);
+    snprintf(pfm, sizeof pfm, "%s/rt/tsm.csv", tmpdir);
+    f = fopen(pfm, "r");
+    {
+        char line[512];
+        int lines = 0, front = 0;
+        while (f && fgets(line, sizeof line, f)) {
+            lines++;
+            front += lines > 1 && line[strlen(line) - 2] == '1';
+        }
+        if (f) fclose(f);
+        TH_CHECK(lines == 3 && front >= 1, "tsm.csv: %d lines, %d on the front", lines, front);
+    }
+    TH_CHECK(run("report tsm --slices 0 --out x", out, sizeof out) == 2, "--slices 0 accepted");
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }

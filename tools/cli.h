@@ -225,5 +225,6 @@ int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
 int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);
 int cmd_render(int argc, char **argv);
-int cmd_report(int argc, char **argv); /* argv[0] is "vct" */
+int cmd_report(int argc, char **argv); /* argv[0] is "vct" or "tsm" */
+int cmd_report_tsm(int argc, char **argv);
 #endif

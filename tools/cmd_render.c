@@ -208,7 +208,7 @@ static void print_compare_json(const render_compare *cmp)
 static void print_tsm(const render_args *a, const char *name, const double mean[3], const voxgi_tsm_image_desc *td, const voxgi_tsm_image_info *ti,
                       const voxgi_reference_desc *d, const render_compare *cmp)
 {
-    int w = a->size[0], h = a->size[1], size = td->tsm.size ? td->tsm.size : 1024, slices = td->tsm.slices ? td->tsm.slices : 32;
+    int w = a->size[0], h = a->size[1], size = td->tsm.size ? td->tsm.size : 512, slices = td->tsm.slices ? td->tsm.slices : 64;
     if (a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"tsm\",\"size\":[%d,%d],\"spp\":%d,\"maps\":%d,\"map_size\":%d,\"slices\":%d,\"sigma\":%.6g,"
                "\"map_bytes\":%lu,\"maps_ms\":%.3f,\"shade_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
@@ -400,8 +400,8 @@ int cmd_render(int argc, char **argv)
              .help = "vct: points on each area light and emitter per voxel's light\n(default 4 on the CPU, 16 on GL)"},
             {.name = "--no-gi", .kind = CLI_FLAG, .dst = &a.no_gi, .help = "vct: direct light only"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
-             .help = "tsm: texels across each light's map (default 1024)"},
-            {.name = "--slices", .arg = "N", .kind = CLI_INT, .dst = &a.slices, .lo = 1, .hi = 4096, .help = "tsm: slices along the light (default 32)"},
+             .help = "tsm: texels across each light's map (default 512)"},
+            {.name = "--slices", .arg = "N", .kind = CLI_INT, .dst = &a.slices, .lo = 1, .hi = 4096, .help = "tsm: slices along the light (default 64)"},
             {.name = "--sigma", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.sigma, .lo = 0, .lo_open = 1, .hi = 1,
              .help = "tsm: every translucent material's absorption per slice\n(default: each material's 1 - transparency)"},
             {.name = "--reference", .arg = "REF.pfm", .kind = CLI_STRING, .dst = &a.reference,

@@ -1,0 +1,265 @@
+/* tools/cmd_report_tsm.c - voxgi report tsm: transmittance shadow maps' error against run time, as Markdown and CSV. */
+#include "cli.h"
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static const char *const tsm_help =
+    "usage: voxgi report tsm [options]\n"
+    "Error against run time of transmittance shadow maps (voxgi render --method tsm). For each\n"
+    "built-in scene it renders the reference's direct light (converged, --spp samples per pixel;\n"
+    "shadow rays through translucent surfaces), then the image with maps for every combination of\n"
+    "map size, slices and camera rays per pixel, and measures the relative RMSE by the tools' rule\n"
+    "(render --compare's). The reference's own convergence (16 spp against the converged image)\n"
+    "gives the time it needs for each error. Writes DIR/tsm.md and DIR/tsm.csv, the Pareto front\n"
+    "marked. Times are wall clock on this machine.\n";
+
+#define TSM_MAX_SCENES 8
+#define TSM_MAX_LIST 16
+
+typedef struct tsm_args {
+    cli_common common;
+    const char *out_dir, *scene_list;
+    double sizes[TSM_MAX_LIST], slices[TSM_MAX_LIST], samples[TSM_MAX_LIST];
+    int nsizes, nslices, nsamples, size, spp;
+} tsm_args;
+
+typedef struct tsm_row {
+    int scene, map_size, slices, samples, pareto;
+    voxgi_tsm_image_info info;
+    double rmse, ref_ms;
+} tsm_row;
+
+typedef struct tsm_report {
+    char scenes[TSM_MAX_SCENES][64];
+    int scene_count, nrows;
+    double ref_c[TSM_MAX_SCENES], ref_ms_per_spp[TSM_MAX_SCENES];
+    size_t masked[TSM_MAX_SCENES];
+    tsm_row *rows;
+} tsm_report;
+
+static int tsm_make_dir(const char *path)
+{
+    char buf[1024];
+    size_t i, n = strlen(path);
+    if (n == 0 || n >= sizeof buf) return -1;
+    memcpy(buf, path, n + 1);
+    for (i = 1; i <= n; i++)
+        if (buf[i] == '/' || buf[i] == 0) {
+            char c = buf[i];
+            buf[i] = 0;
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
+            buf[i] = c;
+        }
+    return 0;
+}
+
+/* The path tracer's time for error e: c^2 (1/k + 1/spp) = e^2 at k samples per pixel. */
+static double tsm_reference_ms(const tsm_report *rep, int si, double e, int spp)
+{
+    double inv_k = (e / rep->ref_c[si]) * (e / rep->ref_c[si]) - 1.0 / spp;
+    return inv_k > 0 ? rep->ref_ms_per_spp[si] / inv_k : HUGE_VAL;
+}
+
+static int tsm_scene(cli_session *s, voxgi_context *ctx, const tsm_args *a, tsm_report *rep, int si, float *ref, float *img)
+{
+    voxgi_builtin_scene bs;
+    voxgi_reference_desc rd;
+    voxgi_reference_info ri;
+    cli_error_mask mask;
+    double e16;
+    int i, j, k, rc = 1;
+    if (voxgi_builtin_scene_create(ctx, rep->scenes[si], &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, rep->scenes[si]);
+    memset(&rd, 0, sizeof rd);
+    rd.camera = bs.camera;
+    rd.camera.width = rd.camera.height = a->size;
+    rd.hide_emitters = 1;
+    rd.samples = a->spp;
+    rd.seed = 1000003;
+    cli_status(s, "%s: the reference, %d spp", rep->scenes[si], a->spp);
+    if (voxgi_reference_render(ctx, &bs.scene, &rd, ref, (size_t)a->size * (size_t)a->size * 12, &ri) != VOXGI_OK) {
+        cli_fail_lib(s, ctx, "the reference");
+        goto done;
+    }
+    if (cli_error_mask_make(s, ctx, &bs.scene, &rd.camera, &mask)) goto done;
+    rep->masked[si] = mask.masked_pixels;
+    rd.samples = 16; /* its convergence */
+    rd.seed = 7;
+    if (voxgi_reference_render(ctx, &bs.scene, &rd, img, (size_t)a->size * (size_t)a->size * 12, &ri) != VOXGI_OK) {
+        cli_fail_lib(s, ctx, "the reference at 16 spp");
+        cli_error_mask_free(&mask);
+        goto done;
+    }
+    e16 = cli_masked_error(&mask, img, ref, NULL, NULL);
+    rep->ref_c[si] = e16 / sqrt(1.0 / 16 + 1.0 / a->spp);
+    rep->ref_ms_per_spp[si] = (ri.ms_bvh + ri.ms_render) / 16;
+    for (i = 0; i < a->nsizes; i++)
+        for (j = 0; j < a->nslices; j++)
+            for (k = 0; k < a->nsamples; k++) {
+                tsm_row *r = &rep->rows[rep->nrows];
+                voxgi_tsm_image_desc td;
+                memset(&td, 0, sizeof td);
+                td.camera = rd.camera;
+                td.hide_emitters = 1;
+                td.seed = 1;
+                td.tsm.size = (int)a->sizes[i];
+                td.tsm.slices = (int)a->slices[j];
+                td.samples = (int)a->samples[k];
+                cli_status(s, "%s: maps of %d texels, %d slices, %d rays per pixel", rep->scenes[si], td.tsm.size, td.tsm.slices, td.samples);
+                if (voxgi_tsm_render(ctx, &bs.scene, &td, img, (size_t)a->size * (size_t)a->size * 12, &r->info) != VOXGI_OK) {
+                    cli_fail_lib(s, ctx, "tsm");
+                    cli_error_mask_free(&mask);
+                    goto done;
+                }
+                r->scene = si;
+                r->map_size = td.tsm.size;
+                r->slices = td.tsm.slices;
+                r->samples = td.samples;
+                r->rmse = cli_masked_error(&mask, img, ref, NULL, NULL);
+                r->ref_ms = tsm_reference_ms(rep, si, r->rmse, a->spp);
+                rep->nrows++;
+            }
+    cli_error_mask_free(&mask);
+    rc = 0;
+done:
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    return rc;
+}
+
+/* A row is on its scene's front when no other row is at once faster and better. */
+static void tsm_pareto(tsm_report *rep)
+{
+    int i, j;
+    for (i = 0; i < rep->nrows; i++) {
+        tsm_row *r = &rep->rows[i];
+        r->pareto = 1;
+        for (j = 0; j < rep->nrows && r->pareto; j++) {
+            const tsm_row *q = &rep->rows[j];
+            if (j != i && q->scene == r->scene && q->info.ms <= r->info.ms && q->rmse <= r->rmse && (q->info.ms < r->info.ms || q->rmse < r->rmse))
+                r->pareto = 0;
+        }
+    }
+}
+
+static int tsm_write(cli_session *s, const tsm_args *a, const tsm_report *rep)
+{
+    char path[1100];
+    FILE *md, *csv;
+    int si, i;
+    snprintf(path, sizeof path, "%s/tsm.md", a->out_dir);
+    if (!(md = fopen(path, "w"))) return cli_fail(s, "cannot write %s", path);
+    snprintf(path, sizeof path, "%s/tsm.csv", a->out_dir);
+    if (!(csv = fopen(path, "w"))) {
+        fclose(md);
+        return cli_fail(s, "cannot write %s", path);
+    }
+    fprintf(md, "# Transmittance shadow maps: error against run time\n\n%d x %d pixels; direct light against the reference's (%d spp, shadow rays "
+                "through translucent surfaces); CPU. Error: relative RMSE by the tools' rule (`voxgi render --compare`). *Reference at the same "
+                "error*: the time the path tracer needs for an image that measures that error (from its own convergence). Wall clock on this "
+                "machine.\n",
+            a->size, a->size, a->spp);
+    fprintf(csv, "scene,map_size,slices,samples,maps,map_bytes,maps_ms,shade_ms,ms,rel_rmse,reference_ms,pareto\n");
+    for (si = 0; si < rep->scene_count; si++) {
+        fprintf(md, "\n## %s\n\nReference: its error is %.2f%% / sqrt(spp), %.2f ms per sample per pixel; %lu pixels near an emitter left out.\n\n",
+                rep->scenes[si], 100 * rep->ref_c[si], rep->ref_ms_per_spp[si], (unsigned long)rep->masked[si]);
+        fprintf(md, "| map size | slices | rays per pixel | map MB | maps ms | shading ms | total ms | rel. RMSE | reference at the same error | speed-up | "
+                    "Pareto |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:-:|\n");
+        for (i = 0; i < rep->nrows; i++) {
+            const tsm_row *r = &rep->rows[i];
+            if (r->scene != si) continue;
+            fprintf(md, "| %d | %d | %d | %.1f | %.1f | %.1f | %.1f | %.2f%% | ", r->map_size, r->slices, r->samples, r->info.bytes / 1e6, r->info.ms_maps,
+                    r->info.ms_shade, r->info.ms, 100 * r->rmse);
+            if (isfinite(r->ref_ms)) fprintf(md, "%.0f ms | %.1fx | %s |\n", r->ref_ms, r->ref_ms / r->info.ms, r->pareto ? "yes" : "");
+            else fprintf(md, "beyond its reference | - | %s |\n", r->pareto ? "yes" : "");
+            fprintf(csv, "%s,%d,%d,%d,%d,%lu,%.3f,%.3f,%.3f,%.6g,%.6g,%d\n", rep->scenes[si], r->map_size, r->slices, r->samples, r->info.maps,
+                    (unsigned long)r->info.bytes, r->info.ms_maps, r->info.ms_shade, r->info.ms, r->rmse, isfinite(r->ref_ms) ? r->ref_ms : -1.0, r->pareto);
+        }
+    }
+    i = ferror(md) || ferror(csv);
+    i |= fclose(md) != 0;
+    i |= fclose(csv) != 0;
+    return i ? cli_fail(s, "cannot write to %s", a->out_dir) : 0;
+}
+
+int cmd_report_tsm(int argc, char **argv)
+{
+    static const double sizes[] = {256, 512, 1024, 2048}, slices[] = {16, 32, 64, 128};
+    tsm_args a;
+    tsm_report rep;
+    cli_session s;
+    cli_context c;
+    const char *list;
+    float *ref = NULL, *img = NULL;
+    int r, rc, i, si;
+    memset(&a, 0, sizeof a);
+    memset(&rep, 0, sizeof rep);
+    a.common.backend = VOXGI_BACKEND_CPU;
+    a.out_dir = "build/report";
+    a.scene_list = "foliage";
+    a.size = 256;
+    a.spp = 1024;
+    memcpy(a.sizes, sizes, sizeof sizes);
+    memcpy(a.slices, slices, sizeof slices);
+    a.samples[0] = 4;
+    a.nsizes = a.nslices = 4;
+    a.nsamples = 1;
+    {
+#define LIST(opt, field, count, top, text) \
+    {.name = opt, .arg = "LIST", .kind = CLI_NUMBERS, .dst = a.field, .items = &a.count, .min_items = 1, .max_items = TSM_MAX_LIST, \
+     .lo = 0, .lo_open = 1, .hi = top, .whole = 1, .help = text}
+        const cli_option options[] = {
+            {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list, .help = "built-in scenes, comma-separated (default foliage)"},
+            {.name = "--size", .arg = "N", .kind = CLI_INT, .dst = &a.size, .lo = 1, .hi = 4096, .help = "N x N pixels (default 256)"},
+            {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 64, .hi = 1 << 20,
+             .help = "samples per pixel of the converged reference (default 1024)"},
+            LIST("--map-sizes", sizes, nsizes, 16384, "texels across the maps (default 256,512,1024,2048)"),
+            LIST("--slices", slices, nslices, 4096, "slices along the light (default 16,32,64,128)"),
+            LIST("--samples", samples, nsamples, 65536, "camera rays per pixel (default 4)"),
+            CLI_OPT_BACKEND(&a.common, "where the maps are built (default cpu)"),
+            {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
+            CLI_OPT_THREADS(&a.common)};
+#undef LIST
+        const cli_command cmd = {.name = "report tsm", .help = tsm_help, .column = 27, .options = options, .option_count = CLI_COUNT(options)};
+        if ((rc = cli_parse(&cmd, argc, argv)) != CLI_CONTINUE) return rc;
+    }
+    for (list = a.scene_list; (r = cli_next_item(&list, rep.scenes[rep.scene_count], sizeof rep.scenes[0])) != 0; rep.scene_count++)
+        if (r < 0 || rep.scene_count == TSM_MAX_SCENES)
+            return cli_usage("report", "--scenes needs 1 to %d comma-separated built-in scenes, got '%s'", TSM_MAX_SCENES, a.scene_list);
+    cli_session_init(&s, "report");
+    if (cli_context_open_options(&s, &c, &a.common)) return CLI_EXIT_FAILURE;
+    rc = CLI_EXIT_FAILURE;
+    rep.rows = (tsm_row *)calloc((size_t)rep.scene_count * (size_t)(a.nsizes * a.nslices * a.nsamples), sizeof *rep.rows);
+    ref = (float *)malloc((size_t)a.size * (size_t)a.size * 12);
+    img = (float *)malloc((size_t)a.size * (size_t)a.size * 12);
+    if (!rep.rows || !ref || !img) {
+        cli_fail(&s, "out of memory");
+        goto done;
+    }
+    if (tsm_make_dir(a.out_dir) != 0) {
+        cli_fail(&s, "cannot make %s", a.out_dir);
+        goto done;
+    }
+    for (si = 0; si < rep.scene_count; si++)
+        if (tsm_scene(&s, c.vx, &a, &rep, si, ref, img)) goto done;
+    tsm_pareto(&rep);
+    if (tsm_write(&s, &a, &rep)) goto done;
+    cli_status_clear(&s);
+    for (si = 0; si < rep.scene_count; si++) { /* the front on stdout */
+        printf("%s (reference error %.2f%% / sqrt(spp), %.2f ms per spp)\n", rep.scenes[si], 100 * rep.ref_c[si], rep.ref_ms_per_spp[si]);
+        for (i = 0; i < rep.nrows; i++) {
+            const tsm_row *q = &rep.rows[i];
+            if (q->scene == si && q->pareto)
+                printf("  map %5d  %4d slices  %3d rays  %8.1f ms  %6.2f%%  reference %9.0f ms\n", q->map_size, q->slices, q->samples, q->info.ms, 100 * q->rmse,
+                       isfinite(q->ref_ms) ? q->ref_ms : -1.0);
+        }
+    }
+    printf("wrote %s/tsm.md, %s/tsm.csv\n", a.out_dir, a.out_dir);
+    rc = CLI_EXIT_OK;
+done:
+    free(rep.rows);
+    free(ref);
+    free(img);
+    cli_context_close(&s, &c);
+    return rc;
+}
