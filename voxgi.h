@@ -10008,21 +10008,31 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
 
 /* ===================================================================== 10. light-space passes */
 
-/* ----- 10.1 transmittance shadow maps (voxgi_tsm)
+/* ----- 10.1 a light's view of the scene
 
-   The light's frame: u, v across the map and w along the light, in texel units (slices along w),
-   so that a map is a grid of unit voxels: voxgi_voxelize's raster slicemap of each translucent
-   material's triangles along z, and the opaque triangles' least depth at each texel centre drawn
-   by the same rasterizer on the CPU. */
-#define VOXGI__TSM_MAX_MATERIALS 8
-
-struct voxgi_tsm {
+   The maps a light makes of the scene: u, v across and w along the light, in texel units across
+   and slices along, so that a map is a grid of unit voxels. A directional light's view is
+   orthographic over the scene's bounds, a spot light's perspective over its outer cone's square
+   with slices uniform in 1 / depth (voxgi_tsm_desc says how). */
+typedef struct voxgi__light_view {
     double u[3], v[3], w[3];      /* the light's frame: across the map, and the direction light travels */
     int perspective;              /* a spot light's map (else a directional light's) */
     double lo[3];                 /* orthographic: the map's corner in the frame (world units) */
     double texel, slice;          /* orthographic: world units */
     double eye[3], tan_half, near_z, far_z; /* perspective: the light's position, the cone, depths along w */
-    int size, slices, words;      /* words: 32-slice words per column */
+    int size, slices;
+} voxgi__light_view;
+
+/* ----- 10.2 transmittance shadow maps (voxgi_tsm)
+
+   voxgi_voxelize's raster slicemap of each translucent material's triangles along z in the
+   light's view, and the opaque triangles' least depth at each texel centre drawn by the same
+   rasterizer on the CPU. */
+#define VOXGI__TSM_MAX_MATERIALS 8
+
+struct voxgi_tsm {
+    voxgi__light_view view;
+    int words;                    /* 32-slice words per column */
     int materials;
     float sigma[VOXGI__TSM_MAX_MATERIALS];
     uint32_t *columns;            /* per material, per texel (row by row), `words` words of slice bits */
@@ -10034,7 +10044,7 @@ struct voxgi_tsm {
 /* Point x (world) in the map's frame: texels across, slices along. Perspective: across, the
    cone's square; along, slices uniform in 1 / depth between near_z (where a point nearer is
    taken to lie) and far_z: a projective map, so triangles stay triangles and planes planes. */
-static void voxgi__tsm_frame(const voxgi_tsm *T, const double x[3], double out[3])
+static void voxgi__view_point(const voxgi__light_view *T, const double x[3], double out[3])
 {
     if (T->perspective) {
         double r[3], z, s = T->size;
@@ -10053,12 +10063,12 @@ static void voxgi__tsm_frame(const voxgi_tsm *T, const double x[3], double out[3
 
 /* The triangle x[0..2] (world) in the map's frame, as 0, 1 or 2 triangles into out (9 each): in
    perspective, first cut to the part in front of the near plane. */
-static int voxgi__tsm_triangle(const voxgi_tsm *T, const double x[3][3], double *out)
+static int voxgi__view_triangle(const voxgi__light_view *T, const double x[3][3], double *out)
 {
     double poly[4][3], z[3];
     int n = 0, k, a, tris;
     if (!T->perspective) {
-        for (k = 0; k < 3; k++) voxgi__tsm_frame(T, x[k], out + 3 * k);
+        for (k = 0; k < 3; k++) voxgi__view_point(T, x[k], out + 3 * k);
         return 1;
     }
     for (k = 0; k < 3; k++) z[k] = (x[k][0] - T->eye[0]) * T->w[0] + (x[k][1] - T->eye[1]) * T->w[1] + (x[k][2] - T->eye[2]) * T->w[2] - T->near_z;
@@ -10079,7 +10089,7 @@ static int voxgi__tsm_triangle(const voxgi_tsm *T, const double x[3][3], double 
         c[0] = poly[0];
         c[1] = poly[k + 1];
         c[2] = poly[k + 2];
-        for (m = 0; m < 3; m++) voxgi__tsm_frame(T, c[m], out + 9 * k + 3 * m);
+        for (m = 0; m < 3; m++) voxgi__view_point(T, c[m], out + 9 * k + 3 * m);
     }
     return tris;
 }
@@ -10121,7 +10131,7 @@ static voxgi_result voxgi__tsm_slicemap(voxgi_context *ctx, voxgi_tsm *T, const 
     voxgi_voxels_info vi;
     float *soup;
     uint32_t *bits = NULL;
-    size_t t, n = 0, texels = (size_t)T->size * (size_t)T->size, k;
+    size_t t, n = 0, texels = (size_t)T->view.size * (size_t)T->view.size, k;
     int c;
     voxgi_result r = VOXGI_OK;
     for (t = 0; t < count; t++) n += group[t] == g;
@@ -10140,8 +10150,8 @@ static voxgi_result voxgi__tsm_slicemap(voxgi_context *ctx, voxgi_tsm *T, const 
     sc.mesh_count = 1;
     memset(&vd, 0, sizeof vd);
     vd.grid.voxel_size = 1;
-    vd.grid.res[0] = vd.grid.res[1] = T->size;
-    vd.grid.res[2] = T->slices;
+    vd.grid.res[0] = vd.grid.res[1] = T->view.size;
+    vd.grid.res[2] = T->view.slices;
     vd.method = VOXGI_METHOD_SLICEMAP;
     vd.axis = VOXGI_AXIS_Z;
     r = voxgi_voxelize(ctx, &sc, &vd, &vox);
@@ -10153,7 +10163,7 @@ static voxgi_result voxgi__tsm_slicemap(voxgi_context *ctx, voxgi_tsm *T, const 
         else r = voxgi_voxels_read(ctx, vox, bits, vi.bytes, NULL);
     }
     if (r == VOXGI_OK) /* slice k of texel (i, j) is voxel i + size (j + size k) */
-        for (k = 0; k < (size_t)T->slices; k++)
+        for (k = 0; k < (size_t)T->view.slices; k++)
             for (t = 0; t < texels; t++) {
                 uint64_t l = (uint64_t)t + (uint64_t)texels * k;
                 if (bits[l >> 5] >> (l & 31) & 1u) T->columns[((size_t)g * texels + t) * (size_t)T->words + (k >> 5)] |= 1u << (k & 31);
@@ -10164,12 +10174,64 @@ static voxgi_result voxgi__tsm_slicemap(voxgi_context *ctx, voxgi_tsm *T, const 
     return r;
 }
 
+/* Light L's (scene light `index`, DIRECTIONAL or SPOT) view of the flattened scene f, V->size
+   texels across and V->slices slices along (set by the caller). */
+static voxgi_result voxgi__view_setup(voxgi_context *ctx, const voxgi__flat *f, const voxgi_light *L, size_t index, voxgi__light_view *V)
+{
+    double hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, len;
+    size_t i;
+    int a, size = V->size, slices = V->slices;
+    if (L->type == VOXGI_LIGHT_SPOT && !(L->spot_outer > 0 && L->spot_outer < 1.5))
+        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "a spot light's map needs its outer angle in (0, 1.5) radians, not %g", (double)L->spot_outer);
+    len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
+    if (!(len > 0) || !isfinite(len)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu has no direction", (unsigned long)index);
+    for (a = 0; a < 3; a++) V->w[a] = L->direction[a] / len;
+    voxgi__basis(V->w, V->u, V->v);
+    if (L->type == VOXGI_LIGHT_SPOT) { /* the cone's square; depths from the scene's nearest point ahead to its farthest */
+        double nearest = DBL_MAX;
+        V->perspective = 1;
+        V->tan_half = tan((double)L->spot_outer);
+        for (a = 0; a < 3; a++) V->eye[a] = L->position[a];
+        V->far_z = 0;
+        for (i = 0; i < f->vertex_count; i++) {
+            double z = 0;
+            for (a = 0; a < 3; a++) z += ((double)f->pos[3 * i + (size_t)a] - V->eye[a]) * V->w[a];
+            V->far_z = VOXGI__MAX(V->far_z, z);
+            if (z > 0) nearest = VOXGI__MIN(nearest, z);
+        }
+        if (!(V->far_z > 0)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "spot light %lu faces away from the whole scene", (unsigned long)index);
+        V->near_z = VOXGI__MAX(VOXGI__MIN(nearest, V->far_z), 1e-3 * V->far_z) * (1 - 1e-6);
+        V->far_z *= 1 + 1e-6;
+    } else {
+        for (a = 0; a < 3; a++) V->lo[a] = DBL_MAX;
+        for (i = 0; i < f->vertex_count; i++) { /* the scene's bounds in the frame */
+            const float *p = f->pos + 3 * i;
+            double x[3], s[3];
+            for (a = 0; a < 3; a++) x[a] = p[a];
+            s[0] = x[0] * V->u[0] + x[1] * V->u[1] + x[2] * V->u[2];
+            s[1] = x[0] * V->v[0] + x[1] * V->v[1] + x[2] * V->v[2];
+            s[2] = x[0] * V->w[0] + x[1] * V->w[1] + x[2] * V->w[2];
+            for (a = 0; a < 3; a++) { V->lo[a] = VOXGI__MIN(V->lo[a], s[a]); hi[a] = VOXGI__MAX(hi[a], s[a]); }
+        }
+        { /* square texels over the larger extent, half a texel to spare on each side; slices over the depth */
+            double ext = VOXGI__MAX(hi[0] - V->lo[0], hi[1] - V->lo[1]), scale = VOXGI__MAX(ext, hi[2] - V->lo[2]);
+            if (!(scale > 0)) scale = VOXGI__MAX(1.0, fabs(V->lo[0]) + fabs(V->lo[1]) + fabs(V->lo[2])) * 1e-6;
+            ext = VOXGI__MAX(ext, scale * 1e-6);
+            V->texel = ext / (size - 1 > 0 ? size - 1 : 1);
+            V->lo[0] -= 0.5 * V->texel + 0.5 * (ext - (hi[0] - V->lo[0]));
+            V->lo[1] -= 0.5 * V->texel + 0.5 * (ext - (hi[1] - V->lo[1]));
+            V->slice = VOXGI__MAX(hi[2] - V->lo[2], scale * 1e-6) * (1 + 1e-6) / slices;
+        }
+    }
+    return VOXGI_OK;
+}
+
 VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_desc *desc, voxgi_tsm **out)
 {
     voxgi__flat f;
     voxgi_tsm *T = NULL;
     const voxgi_light *L;
-    double *soup = NULL, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, len, t0 = voxgi__now_ms();
+    double *soup = NULL, t0 = voxgi__now_ms();
     signed char *group = NULL;
     size_t i, t, texels, count = 0;
     int a, g, size, slices;
@@ -10185,57 +10247,16 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
     L = &scene->lights[desc->light];
     if (L->type != VOXGI_LIGHT_DIRECTIONAL && L->type != VOXGI_LIGHT_SPOT)
         return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "transmittance shadow maps take a directional or spot light");
-    if (L->type == VOXGI_LIGHT_SPOT && !(L->spot_outer > 0 && L->spot_outer < 1.5))
-        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "a spot light's map needs its outer angle in (0, 1.5) radians, not %g", (double)L->spot_outer);
-    len = sqrt((double)L->direction[0] * L->direction[0] + (double)L->direction[1] * L->direction[1] + (double)L->direction[2] * L->direction[2]);
-    if (!(len > 0) || !isfinite(len)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu has no direction", (unsigned long)desc->light);
     if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
     texels = (size_t)size * (size_t)size;
     T = (voxgi_tsm *)voxgi__alloc_array(ctx, 1, sizeof *T, 1);
     soup = (double *)voxgi__alloc_array(ctx, 2 * f.triangle_count, 9 * sizeof(double), 0); /* a triangle cut by the near plane: two */
     group = (signed char *)voxgi__alloc_array(ctx, 2 * f.triangle_count, 1, 0);
     if (!T || !soup || !group) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a transmittance shadow map"); goto done; }
-    T->size = size;
-    T->slices = slices;
+    T->view.size = size;
+    T->view.slices = slices;
     T->words = (slices + 31) / 32;
-    for (a = 0; a < 3; a++) T->w[a] = L->direction[a] / len;
-    voxgi__basis(T->w, T->u, T->v);
-    if (L->type == VOXGI_LIGHT_SPOT) { /* the cone's square; depths from the scene's nearest point ahead to its farthest */
-        double nearest = DBL_MAX;
-        T->perspective = 1;
-        T->tan_half = tan((double)L->spot_outer);
-        for (a = 0; a < 3; a++) T->eye[a] = L->position[a];
-        T->far_z = 0;
-        for (i = 0; i < f.vertex_count; i++) {
-            double z = 0;
-            for (a = 0; a < 3; a++) z += ((double)f.pos[3 * i + (size_t)a] - T->eye[a]) * T->w[a];
-            T->far_z = VOXGI__MAX(T->far_z, z);
-            if (z > 0) nearest = VOXGI__MIN(nearest, z);
-        }
-        if (!(T->far_z > 0)) { r = voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "spot light %lu faces away from the whole scene", (unsigned long)desc->light); goto done; }
-        T->near_z = VOXGI__MAX(VOXGI__MIN(nearest, T->far_z), 1e-3 * T->far_z) * (1 - 1e-6);
-        T->far_z *= 1 + 1e-6;
-    } else {
-        for (a = 0; a < 3; a++) T->lo[a] = DBL_MAX;
-        for (i = 0; i < f.vertex_count; i++) { /* the scene's bounds in the frame */
-            const float *p = f.pos + 3 * i;
-            double x[3], s[3];
-            for (a = 0; a < 3; a++) x[a] = p[a];
-            s[0] = x[0] * T->u[0] + x[1] * T->u[1] + x[2] * T->u[2];
-            s[1] = x[0] * T->v[0] + x[1] * T->v[1] + x[2] * T->v[2];
-            s[2] = x[0] * T->w[0] + x[1] * T->w[1] + x[2] * T->w[2];
-            for (a = 0; a < 3; a++) { T->lo[a] = VOXGI__MIN(T->lo[a], s[a]); hi[a] = VOXGI__MAX(hi[a], s[a]); }
-        }
-        { /* square texels over the larger extent, half a texel to spare on each side; slices over the depth */
-            double ext = VOXGI__MAX(hi[0] - T->lo[0], hi[1] - T->lo[1]), scale = VOXGI__MAX(ext, hi[2] - T->lo[2]);
-            if (!(scale > 0)) scale = VOXGI__MAX(1.0, fabs(T->lo[0]) + fabs(T->lo[1]) + fabs(T->lo[2])) * 1e-6;
-            ext = VOXGI__MAX(ext, scale * 1e-6);
-            T->texel = ext / (size - 1 > 0 ? size - 1 : 1);
-            T->lo[0] -= 0.5 * T->texel + 0.5 * (ext - (hi[0] - T->lo[0]));
-            T->lo[1] -= 0.5 * T->texel + 0.5 * (ext - (hi[1] - T->lo[1]));
-            T->slice = VOXGI__MAX(hi[2] - T->lo[2], scale * 1e-6) * (1 + 1e-6) / slices;
-        }
-    }
+    if ((r = voxgi__view_setup(ctx, &f, L, desc->light, &T->view)) != VOXGI_OK) goto done;
     for (t = 0; t < f.triangle_count; t++) { /* each triangle's map (-1 the shadow map, g a slicemap, none), in the frame */
         const voxgi_material *m = voxgi__tri_material(&f, t);
         float sigma = desc->sigma > 0 ? desc->sigma : 1 - m->transparency;
@@ -10255,7 +10276,7 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
         }
         for (k = 0; k < 3; k++)
             for (a = 0; a < 3; a++) x[k][a] = f.pos[3 * (size_t)f.tri[3 * t + (size_t)k] + (size_t)a];
-        pieces = voxgi__tsm_triangle(T, (const double(*)[3])x, soup + 9 * count);
+        pieces = voxgi__view_triangle(&T->view, (const double(*)[3])x, soup + 9 * count);
         for (k = 0; k < pieces; k++) group[count++] = (signed char)g;
     }
     T->columns = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(T->materials ? T->materials : 1) * texels, (size_t)T->words * 4, 1);
@@ -10284,10 +10305,10 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
         double P[34];
         memset(P, 0, sizeof P);
         for (a = 0; a < 3; a++) {
-            P[a] = T->u[a]; P[3 + a] = T->v[a]; P[6 + a] = T->w[a]; P[9 + a] = T->lo[a]; P[14 + a] = T->eye[a];
+            P[a] = T->view.u[a]; P[3 + a] = T->view.v[a]; P[6 + a] = T->view.w[a]; P[9 + a] = T->view.lo[a]; P[14 + a] = T->view.eye[a];
         }
-        P[12] = T->texel; P[13] = T->slice; P[17] = T->tan_half; P[18] = T->near_z; P[19] = T->far_z;
-        P[20] = T->size; P[21] = T->slices; P[22] = T->perspective; P[23] = T->words; P[24] = T->materials;
+        P[12] = T->view.texel; P[13] = T->view.slice; P[17] = T->view.tan_half; P[18] = T->view.near_z; P[19] = T->view.far_z;
+        P[20] = T->view.size; P[21] = T->view.slices; P[22] = T->view.perspective; P[23] = T->words; P[24] = T->materials;
         for (g = 0; g < T->materials; g++) P[26 + g] = T->sigma[g];
         T->gl_columns = voxgi__gl_buffer(ctx, (size_t)(T->materials ? T->materials : 1) * texels * (size_t)T->words * 4, T->columns);
         T->gl_opaque = voxgi__gl_buffer(ctx, texels * sizeof(float), T->opaque);
@@ -10317,30 +10338,30 @@ VOXGI_API void voxgi_tsm_query(const voxgi_tsm *tsm, voxgi_tsm_info *info)
 static float voxgi__tsm_point(const voxgi_tsm *T, const double x_in[3], const double *n)
 {
     double x[3], p[3], bias = 0, light = 1;
-    size_t texel, texels = (size_t)T->size * (size_t)T->size;
+    size_t texel, texels = (size_t)T->view.size * (size_t)T->view.size;
     int a, g, k, i, j;
     for (a = 0; a < 3; a++) x[a] = x_in[a];
-    if (T->perspective) { /* before the near plane nothing was drawn, so nothing is in the way */
-        double z = (x[0] - T->eye[0]) * T->w[0] + (x[1] - T->eye[1]) * T->w[1] + (x[2] - T->eye[2]) * T->w[2];
-        if (!(z > T->near_z)) return 1;
+    if (T->view.perspective) { /* before the near plane nothing was drawn, so nothing is in the way */
+        double z = (x[0] - T->view.eye[0]) * T->view.w[0] + (x[1] - T->view.eye[1]) * T->view.w[1] + (x[2] - T->view.eye[2]) * T->view.w[2];
+        if (!(z > T->view.near_z)) return 1;
         if (n) { /* a texel at this depth, in world units and in slices */
-            double texel = 2 * z * T->tan_half / T->size, along = 0;
-            for (a = 0; a < 3; a++) along += n[a] * (x[a] - T->eye[a]);
+            double texel = 2 * z * T->view.tan_half / T->view.size, along = 0;
+            for (a = 0; a < 3; a++) along += n[a] * (x[a] - T->view.eye[a]);
             for (a = 0; a < 3; a++) x[a] += (along > 0 ? -1 : 1) * 1.5 * texel * n[a];
-            bias = 0.5 * texel * T->slices / (z * z * (1 / T->near_z - 1 / T->far_z));
+            bias = 0.5 * texel * T->view.slices / (z * z * (1 / T->view.near_z - 1 / T->view.far_z));
         }
     } else if (n) { /* normal offset, on the side the light comes from; an opaque depth within half a texel passes */
-        double side = n[0] * T->w[0] + n[1] * T->w[1] + n[2] * T->w[2] > 0 ? -1 : 1;
-        for (a = 0; a < 3; a++) x[a] += side * 1.5 * T->texel * n[a];
-        bias = 0.5 * T->texel / T->slice;
+        double side = n[0] * T->view.w[0] + n[1] * T->view.w[1] + n[2] * T->view.w[2] > 0 ? -1 : 1;
+        for (a = 0; a < 3; a++) x[a] += side * 1.5 * T->view.texel * n[a];
+        bias = 0.5 * T->view.texel / T->view.slice;
     }
-    voxgi__tsm_frame(T, x, p);
-    if (!(p[0] >= 0 && p[0] < T->size && p[1] >= 0 && p[1] < T->size)) return 1; /* beyond the scene across the light */
+    voxgi__view_point(&T->view, x, p);
+    if (!(p[0] >= 0 && p[0] < T->view.size && p[1] >= 0 && p[1] < T->view.size)) return 1; /* beyond the scene across the light */
     i = (int)p[0];
     j = (int)p[1];
-    texel = (size_t)j * (size_t)T->size + (size_t)i;
+    texel = (size_t)j * (size_t)T->view.size + (size_t)i;
     if (T->opaque[texel] < p[2] - bias) return 0;
-    k = p[2] <= 0 ? 0 : (p[2] >= T->slices ? T->slices : (int)p[2]); /* the slices before the point's own */
+    k = p[2] <= 0 ? 0 : (p[2] >= T->view.slices ? T->view.slices : (int)p[2]); /* the slices before the point's own */
     for (g = 0; g < T->materials; g++) {
         const uint32_t *col = T->columns + ((size_t)g * texels + texel) * (size_t)T->words;
         int w, layers = 0;
@@ -10416,7 +10437,7 @@ VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm)
     if (ctx) voxgi__tsm_free(ctx, tsm);
 }
 
-/* ----- 10.2 voxel visibility: 3D-DDA and hierarchical traversal of the OR mipmaps */
+/* ----- 10.3 voxel visibility: 3D-DDA and hierarchical traversal of the OR mipmaps */
 
 /* A grid's occupancy and its OR mipmaps (level l: ceil(res / 2^l) per axis, cell set when any of
    its voxels is), up to one cell. */
@@ -11143,7 +11164,7 @@ static void voxgi__tsm_image_rows(void *user, size_t first, size_t end)
                         for (a = 0; a < 3; a++) to[a] /= dist;
                         c = (ns[0] * to[0] + ns[1] * to[1] + ns[2] * to[2]) * voxgi__spot_share(L, to) / (dist * dist);
                     } else
-                        c = -(ns[0] * T->w[0] + ns[1] * T->w[1] + ns[2] * T->w[2]);
+                        c = -(ns[0] * T->view.w[0] + ns[1] * T->view.w[1] + ns[2] * T->view.w[2]);
                     if (c <= 0) continue;
                     c *= voxgi__tsm_point(T, h.p, ns);
                     for (a = 0; a < 3; a++) sum[a] += m->albedo[a] / VOXGI__PI * L->intensity[a] * c;
