@@ -55,8 +55,9 @@
        8. cone tracing    cones gathering from a radiance volume or octree (below injection,
                           whose further bounces gather with cones)
        9. light injection the direct light into the voxels, and its bounces among them
-      10. light-space passes  transmittance shadow maps (reflective shadow maps and a spherical-
-                          harmonics volume to come; screen-space and line-space passes after them)
+      10. light-space passes  a light's view; transmittance shadow maps; voxel visibility (3D-DDA,
+                          hierarchical); reflective shadow maps (a spherical-harmonics volume to
+                          come; screen-space and line-space passes after them)
       11. images          voxgi's own G-buffer and cone-traced images
       12. reference renderer  the path tracer every image is measured against
       13. built-in scenes and files
@@ -823,6 +824,38 @@ VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm);
 typedef enum voxgi_traversal { VOXGI_TRAVERSAL_DDA = 0, VOXGI_TRAVERSAL_HIERARCHICAL } voxgi_traversal;
 VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_traversal how, size_t count, const float *from,
                                              const float *to, unsigned char *blocked, uint64_t *steps);
+
+/* Reflective shadow maps (Dachsbacher and Stamminger 2005, with voxel visibility after Buchacher
+   2014): every texel of a light's view (voxgi_tsm_desc says how it looks: orthographic for a
+   DIRECTIONAL light, perspective for a SPOT) holds the surface the light meets there, by ray
+   casting: its position, its unit normal facing the light, and the flux it reflects, a small
+   Lambertian reflector (directional: albedo E texel^2; spot: albedo I falloff times the texel's
+   solid angle). The one-bounce irradiance at a point gathers `samples` texels of a fixed pattern
+   around the point's own texel, offsets r xi1 (sin 2 pi xi2, cos 2 pi xi2), r = radius x size,
+   weighted xi1 / sum xi1 (the unbiased weight of that pattern, whose density falls as 1 / xi1;
+   the seed's xi1^2 over-counts the rim), each texel p adding pi r^2 w Phi_p max(0, n_p.(x - x_p))
+   max(0, n.(x_p - x)) / (pi |x - x_p|^4) (the seed's equation 5 with the Lambertian 1 / pi it
+   folds into the flux; |x - x_p| at least one texel: the singularity), when the voxels (if given)
+   let it through: the segment between the two, each end moved one voxel along its normal off its
+   own surface, by voxgi_voxels_occluded. */
+typedef struct voxgi_rsm_desc {
+    size_t light;                 /* the scene's light: DIRECTIONAL or SPOT */
+    int size;                     /* texels across; 0 = 256 */
+    int samples;                  /* texels gathered per point; 0 = 100 (the seed's) */
+    float radius;                 /* of the sample disc, as a share of the map's width; 0 = 0.1 */
+    uint64_t seed;                /* of the sample pattern */
+} voxgi_rsm_desc;
+typedef struct voxgi_rsm voxgi_rsm;
+VOXGI_API voxgi_result voxgi_rsm_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_desc *desc, voxgi_rsm **out);
+/* The texels, size x size rows from the light's v axis up: positions, normals (xyz each) and
+   reflected flux (rgb), any may be NULL; a texel that sees nothing has flux 0. */
+VOXGI_API voxgi_result voxgi_rsm_texels(voxgi_context *ctx, const voxgi_rsm *rsm, float *positions, float *normals, float *flux);
+/* The sample pattern: offsets (2 per sample, texels) and weights (summing to 1), either may be NULL. */
+VOXGI_API voxgi_result voxgi_rsm_pattern(voxgi_context *ctx, const voxgi_rsm *rsm, float *offsets, float *weights);
+/* The one-bounce irradiance (rgb) at count points with unit normals; voxels NULL: no visibility. */
+VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm *rsm, const voxgi_voxels *voxels, voxgi_traversal how, size_t count,
+                                            const float *points, const float *normals, float *irradiance);
+VOXGI_API void voxgi_rsm_destroy(voxgi_context *ctx, voxgi_rsm *rsm);
 
 /* An image of the direct light with transmittance shadow maps: every directional and spot light
    through its own map, the other lights and emissive triangles through exact shadow rays (which pass
@@ -10606,6 +10639,242 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
     voxgi__occ_free(ctx, &O);
     if (steps) *steps = n;
     return VOXGI_OK;
+}
+
+/* ----- 10.4 reflective shadow maps (voxgi_rsm) */
+struct voxgi_rsm {
+    voxgi__light_view view;
+    float *position, *normal, *flux; /* 3 per texel */
+    float *offset, *weight;       /* the sample pattern: 2 and 1 per sample */
+    int samples;
+    double radius;                /* texels */
+};
+
+static void voxgi__rsm_free(voxgi_context *ctx, voxgi_rsm *R)
+{
+    if (!R) return;
+    voxgi__free(ctx, R->position);
+    voxgi__free(ctx, R->normal);
+    voxgi__free(ctx, R->flux);
+    voxgi__free(ctx, R->offset);
+    voxgi__free(ctx, R->weight);
+    voxgi__free(ctx, R);
+}
+
+typedef struct voxgi__rsm_job { voxgi_rsm *R; const voxgi__tracer *tr; const voxgi_light *L; } voxgi__rsm_job;
+
+/* Rows [first, end) of texels: the surface the light meets through each texel's centre. */
+static void voxgi__rsm_rows(void *user, size_t first, size_t end)
+{
+    const voxgi__rsm_job *J = (const voxgi__rsm_job *)user;
+    voxgi_rsm *R = J->R;
+    const voxgi__light_view *V = &R->view;
+    size_t j;
+    for (j = first; j < end; j++) {
+        int i, a;
+        for (i = 0; i < V->size; i++) {
+            size_t at = 3 * (j * (size_t)V->size + (size_t)i);
+            double o[3], d[3], share;
+            voxgi__hit h;
+            if (V->perspective) { /* from the light through the texel's centre; its solid angle */
+                double x = (2 * (i + 0.5) / V->size - 1) * V->tan_half, y = (2 * ((double)j + 0.5) / V->size - 1) * V->tan_half, len, to[3];
+                for (a = 0; a < 3; a++) { o[a] = V->eye[a]; d[a] = V->w[a] + x * V->u[a] + y * V->v[a]; }
+                len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+                for (a = 0; a < 3; a++) { d[a] /= len; to[a] = -d[a]; }
+                share = (2 * V->tan_half / V->size) * (2 * V->tan_half / V->size) / (len * len * len) * voxgi__spot_share(J->L, to);
+            } else { /* along the light from before the scene; the texel's area */
+                for (a = 0; a < 3; a++) {
+                    o[a] = (V->lo[0] + (i + 0.5) * V->texel) * V->u[a] + (V->lo[1] + ((double)j + 0.5) * V->texel) * V->v[a] + (V->lo[2] - V->texel) * V->w[a];
+                    d[a] = V->w[a];
+                }
+                share = V->texel * V->texel;
+            }
+            for (a = 0; a < 3; a++) R->position[at + (size_t)a] = R->normal[at + (size_t)a] = R->flux[at + (size_t)a] = 0;
+            if (!voxgi__trace(J->tr, o, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+            {
+                const voxgi_material *m = voxgi__prim_material(J->tr, h.prim);
+                const double *n = J->tr->n + 3 * (size_t)h.prim;
+                double side = n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0 ? -1 : 1; /* the side facing the light */
+                for (a = 0; a < 3; a++) {
+                    R->position[at + (size_t)a] = (float)h.p[a];
+                    R->normal[at + (size_t)a] = (float)(side * n[a]);
+                    R->flux[at + (size_t)a] = (float)(m->albedo[a] * J->L->intensity[a] * share);
+                }
+            }
+        }
+    }
+}
+
+VOXGI_API voxgi_result voxgi_rsm_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_desc *desc, voxgi_rsm **out)
+{
+    voxgi__tracer tr;
+    voxgi__rsm_job J;
+    voxgi_rsm *R;
+    voxgi__rng g;
+    const voxgi_light *L;
+    size_t texels;
+    double sum = 0;
+    int size, samples, k;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or out is NULL");
+    *out = NULL;
+    size = desc->size ? desc->size : 256;
+    samples = desc->samples ? desc->samples : 100;
+    if (size < 1 || size > 16384 || samples < 1 || samples > 65536 || !(desc->radius >= 0 && desc->radius <= 1))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "size %d (1..16384), samples %d (1..65536), radius %g (0..1)", size, samples, (double)desc->radius);
+    if (desc->light >= scene->light_count) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu of %lu", (unsigned long)desc->light, (unsigned long)scene->light_count);
+    L = &scene->lights[desc->light];
+    if (L->type != VOXGI_LIGHT_DIRECTIONAL && L->type != VOXGI_LIGHT_SPOT) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "reflective shadow maps take a directional or spot light");
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    texels = (size_t)size * (size_t)size;
+    R = (voxgi_rsm *)voxgi__alloc_array(ctx, 1, sizeof *R, 1);
+    if (R) {
+        R->position = (float *)voxgi__alloc_array(ctx, texels, 12, 0);
+        R->normal = (float *)voxgi__alloc_array(ctx, texels, 12, 0);
+        R->flux = (float *)voxgi__alloc_array(ctx, texels, 12, 0);
+        R->offset = (float *)voxgi__alloc_array(ctx, (size_t)samples, 8, 0);
+        R->weight = (float *)voxgi__alloc_array(ctx, (size_t)samples, 4, 0);
+    }
+    if (!R || !R->position || !R->normal || !R->flux || !R->offset || !R->weight) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %dx%d map", size, size);
+    if (r == VOXGI_OK) {
+        R->view.size = size;
+        R->view.slices = 1;
+        r = voxgi__view_setup(ctx, &tr.flat, L, desc->light, &R->view);
+    }
+    if (r == VOXGI_OK) {
+        R->samples = samples;
+        R->radius = (desc->radius > 0 ? desc->radius : 0.1) * size;
+        voxgi__rng_seed(&g, desc->seed, 0, 0);
+        for (k = 0; k < samples; k++) { /* the pattern: r xi1 (sin 2 pi xi2, cos 2 pi xi2), weight xi1 */
+            double x1 = voxgi__rng_unit(&g), x2 = voxgi__rng_unit(&g);
+            R->offset[2 * k] = (float)(R->radius * x1 * sin(2 * VOXGI__PI * x2));
+            R->offset[2 * k + 1] = (float)(R->radius * x1 * cos(2 * VOXGI__PI * x2));
+            R->weight[k] = (float)x1;
+            sum += x1;
+        }
+        for (k = 0; k < samples; k++) R->weight[k] = (float)(R->weight[k] / sum);
+        J.R = R;
+        J.tr = &tr;
+        J.L = L;
+        voxgi__parallel(ctx, (size_t)size, 4, voxgi__rsm_rows, &J);
+    }
+    voxgi__tracer_free(ctx, &tr);
+    if (r == VOXGI_OK) *out = R;
+    else voxgi__rsm_free(ctx, R);
+    return r;
+}
+
+VOXGI_API voxgi_result voxgi_rsm_texels(voxgi_context *ctx, const voxgi_rsm *rsm, float *positions, float *normals, float *flux)
+{
+    size_t bytes;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!rsm) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "rsm is NULL");
+    bytes = (size_t)rsm->view.size * (size_t)rsm->view.size * 12;
+    if (positions) memcpy(positions, rsm->position, bytes);
+    if (normals) memcpy(normals, rsm->normal, bytes);
+    if (flux) memcpy(flux, rsm->flux, bytes);
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_rsm_pattern(voxgi_context *ctx, const voxgi_rsm *rsm, float *offsets, float *weights)
+{
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!rsm) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "rsm is NULL");
+    if (offsets) memcpy(offsets, rsm->offset, (size_t)rsm->samples * 8);
+    if (weights) memcpy(weights, rsm->weight, (size_t)rsm->samples * 4);
+    return VOXGI_OK;
+}
+
+typedef struct voxgi__rsm_gather_job {
+    const voxgi_rsm *R;
+    const voxgi__occupancy *O;    /* NULL: no visibility */
+    const voxgi_grid *grid;
+    int hierarchical;
+    const float *points, *normals;
+    float *irradiance;
+} voxgi__rsm_gather_job;
+
+static void voxgi__rsm_gather(void *user, size_t first, size_t end)
+{
+    const voxgi__rsm_gather_job *J = (const voxgi__rsm_gather_job *)user;
+    const voxgi_rsm *R = J->R;
+    const voxgi__light_view *V = &R->view;
+    double disc = VOXGI__PI * R->radius * R->radius, floor2 = 0;
+    size_t i;
+    uint64_t steps = 0;
+    int k, a;
+    if (!V->perspective) floor2 = V->texel * V->texel;
+    for (i = first; i < end; i++) {
+        double x[3], n[3], st[3], e[3] = {0, 0, 0};
+        for (a = 0; a < 3; a++) { x[a] = J->points[3 * i + (size_t)a]; n[a] = J->normals[3 * i + (size_t)a]; }
+        voxgi__view_point(V, x, st);
+        for (k = 0; k < R->samples; k++) {
+            double s = st[0] + R->offset[2 * k], t = st[1] + R->offset[2 * k + 1], d[3], dist2 = 0, cp = 0, cx = 0, f;
+            size_t at;
+            const float *xp, *np, *phi;
+            if (!(s >= 0 && s < V->size && t >= 0 && t < V->size)) continue;
+            at = 3 * ((size_t)t * (size_t)V->size + (size_t)s);
+            phi = R->flux + at;
+            if (phi[0] == 0 && phi[1] == 0 && phi[2] == 0) continue;
+            xp = R->position + at;
+            np = R->normal + at;
+            for (a = 0; a < 3; a++) {
+                d[a] = x[a] - xp[a];
+                dist2 += d[a] * d[a];
+                cp += np[a] * d[a];
+                cx -= n[a] * d[a];
+            }
+            if (cp <= 0 || cx <= 0) continue;
+            if (V->perspective) floor2 = dist2 * 1e-6;
+            dist2 = VOXGI__MAX(dist2, floor2);
+            if (J->O) { /* each end a voxel off its own surface */
+                double o[3], dd[3], vs = J->grid->voxel_size;
+                for (a = 0; a < 3; a++) {
+                    double from = x[a] + vs * n[a], to = xp[a] + vs * np[a];
+                    o[a] = (from - J->grid->origin[a]) / vs;
+                    dd[a] = (to - J->grid->origin[a]) / vs - o[a];
+                }
+                if (voxgi__traverse(J->O, J->hierarchical, o, dd, &steps, NULL, NULL)) continue;
+            }
+            f = disc * R->weight[k] * cp * cx / (VOXGI__PI * dist2 * dist2);
+            for (a = 0; a < 3; a++) e[a] += f * phi[a];
+        }
+        for (a = 0; a < 3; a++) J->irradiance[3 * i + (size_t)a] = (float)e[a];
+    }
+}
+
+VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm *rsm, const voxgi_voxels *voxels, voxgi_traversal how, size_t count,
+                                            const float *points, const float *normals, float *irradiance)
+{
+    voxgi__rsm_gather_job J;
+    voxgi__occupancy O;
+    size_t i;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!rsm || (count && (!points || !normals || !irradiance))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "rsm, points, normals or irradiance is NULL");
+    if (how != VOXGI_TRAVERSAL_DDA && how != VOXGI_TRAVERSAL_HIERARCHICAL) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "traversal %d", (int)how);
+    for (i = 0; i < 3 * count; i++)
+        if (!isfinite(points[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
+    memset(&J, 0, sizeof J);
+    if (voxels) {
+        if ((r = voxgi__occ_build(ctx, voxels, how == VOXGI_TRAVERSAL_HIERARCHICAL, &O)) != VOXGI_OK) return r;
+        J.O = &O;
+        J.grid = &voxels->info.grid;
+        J.hierarchical = how == VOXGI_TRAVERSAL_HIERARCHICAL;
+    }
+    J.R = rsm;
+    J.points = points;
+    J.normals = normals;
+    J.irradiance = irradiance;
+    voxgi__parallel(ctx, count, 64, voxgi__rsm_gather, &J);
+    if (voxels) voxgi__occ_free(ctx, &O);
+    return VOXGI_OK;
+}
+
+VOXGI_API void voxgi_rsm_destroy(voxgi_context *ctx, voxgi_rsm *rsm)
+{
+    if (ctx) voxgi__rsm_free(ctx, rsm);
 }
 
 /* ===================================================================== 11. images */

@@ -441,6 +441,117 @@ static void test_voxel_visibility(void)
     voxgi_destroy(ctx);
 }
 
+/* Reflective shadow maps on two-spheres (the seed's scene: two white spheres, a red and a blue
+   wall, a grey divider, the sun): the pattern's weights sum to 1 within its disc; the gather at
+   points equals this test's own double evaluation of the seed's equation 5 (with the Lambertian
+   1 / pi) over the pattern's texels; texels lie on surfaces and face the light; and the divider,
+   through the voxels, stops the red wall's light reaching the floor right of it (by DDA and by
+   the hierarchy alike), where without visibility it bleeds through. */
+static void test_rsm_two_spheres(void)
+{
+    enum { S = 64, K = 100 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    voxgi_builtin_scene bs;
+    voxgi_rsm_desc d;
+    voxgi_rsm *rsm = NULL;
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
+    voxgi_voxels *vox = NULL;
+    static float pos[3 * S * S], nrm[3 * S * S], flux[3 * S * S];
+    float off[2 * K], w[K], pts[6] = {0.3f, 0.001f, 0.4f, -0.4f, 0.001f, 0.6f}, nr[6] = {0, 1, 0, 0, 1, 0}, e[6], e_dda[6], e_hier[6];
+    double sum = 0, worst_off = 0, worst = 0, radius = 0.3 * S;
+    int k, i, a, lit = 0;
+    TH_CHECK(voxgi_builtin_scene_create(ctx, "two-spheres", &bs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    memset(&d, 0, sizeof d);
+    d.size = S;
+    d.samples = K;
+    d.radius = 0.3f;
+    d.seed = 4;
+    TH_CHECK(voxgi_rsm_create(ctx, &bs.scene, &d, &rsm) == VOXGI_OK && rsm, "%s", voxgi_last_error(ctx));
+    if (rsm) {
+        TH_CHECK(voxgi_rsm_pattern(ctx, rsm, off, w) == VOXGI_OK && voxgi_rsm_texels(ctx, rsm, pos, nrm, flux) == VOXGI_OK, "read");
+        for (k = 0; k < K; k++) {
+            sum += w[k];
+            worst_off = fmax(worst_off, sqrt((double)off[2 * k] * off[2 * k] + (double)off[2 * k + 1] * off[2 * k + 1]));
+        }
+        for (i = 0; i < S * S; i++) {
+            double facing = 0;
+            lit += flux[3 * i] > 0;
+            for (a = 0; a < 3; a++) facing += nrm[3 * i + a] * (a == 0 ? 0.35 : a == 1 ? -0.8 : 0.5);
+            if (flux[3 * i] > 0) TH_CHECK(facing < 0 && pos[3 * i + 1] > -1e-3 && pos[3 * i + 1] < 2.01, "texel %d: facing %g, height %g", i, facing, pos[3 * i + 1]);
+        }
+        printf("    %d x %d texels, %d lit; %d samples: weights sum to %.7f, the farthest %.2f texels out (radius %.2f)\n", S, S, lit, K, sum, worst_off, radius);
+        TH_CHECK(fabs(sum - 1) < 1e-5 && worst_off <= radius && lit > S * S / 4, "the pattern or the texels");
+        TH_CHECK(voxgi_rsm_irradiance(ctx, rsm, NULL, VOXGI_TRAVERSAL_DDA, 2, pts, nr, e) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        for (i = S / 4; i < S * S; i += 37) { /* by hand at lit texels' own points (whose texel is their own): equation 5 / pi in double */
+            int ti = i % S, tj = i / S;
+            float x[3], n[3], got[3];
+            double want[3] = {0, 0, 0};
+            if (!(flux[3 * i] > 0)) continue;
+            for (a = 0; a < 3; a++) { x[a] = pos[3 * i + a]; n[a] = nrm[3 * i + a]; }
+            TH_CHECK(voxgi_rsm_irradiance(ctx, rsm, NULL, VOXGI_TRAVERSAL_DDA, 1, x, n, got) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            for (k = 0; k < K; k++) {
+                double ss = ti + 0.5 + off[2 * k], tt = tj + 0.5 + off[2 * k + 1], dd[3], dist2 = 0, cp = 0, cx = 0;
+                int q;
+                if (!(ss >= 0 && ss < S && tt >= 0 && tt < S)) continue;
+                q = (int)tt * S + (int)ss;
+                for (a = 0; a < 3; a++) {
+                    dd[a] = (double)x[a] - pos[3 * q + a];
+                    dist2 += dd[a] * dd[a];
+                    cp += nrm[3 * q + a] * dd[a];
+                    cx -= n[a] * dd[a];
+                }
+                if (cp <= 0 || cx <= 0) continue;
+                for (a = 0; a < 3; a++) want[a] += 3.14159265358979 * radius * radius * w[k] * flux[3 * q + a] * cp * cx / (3.14159265358979 * dist2 * dist2);
+            }
+            for (a = 0; a < 3; a++) worst = fmax(worst, fabs(got[a] - want[a]) / fmax(want[a], 1e-3));
+        }
+        printf("    the gather at lit texels' points against equation 5 by hand: within %.2e\n", worst);
+        TH_CHECK(worst < 1e-4, "the gather differs from equation 5");
+        memset(&fit, 0, sizeof fit);
+        fit.res = 64;
+        memset(&vd, 0, sizeof vd);
+        TH_CHECK(voxgi_fit_grid(ctx, &bs.scene, &fit, &vd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &bs.scene, &vd, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_rsm_irradiance(ctx, rsm, vox, VOXGI_TRAVERSAL_DDA, 2, pts, nr, e_dda) == VOXGI_OK &&
+                     voxgi_rsm_irradiance(ctx, rsm, vox, VOXGI_TRAVERSAL_HIERARCHICAL, 2, pts, nr, e_hier) == VOXGI_OK,
+                 "%s", voxgi_last_error(ctx));
+        /* red's excess over green: the red wall's share (the grey floor and white spheres send all three alike) */
+        printf("    red bleeding on the floor right of the divider: %.4f without visibility, %.4f with DDA, %.4f hierarchical; left of it: %.4f, %.4f\n",
+               e[0] - e[1], e_dda[0] - e_dda[1], e_hier[0] - e_hier[1], e[3] - e[4], e_dda[3] - e_dda[4]);
+        TH_CHECK(e_dda[0] == e_hier[0] && e_dda[1] == e_hier[1] && e_dda[2] == e_hier[2], "DDA and hierarchical gathers differ");
+        TH_CHECK(e[0] - e[1] > 0.01 && e_dda[0] - e_dda[1] < 0.05 * (e[0] - e[1]), "the red wall's light bleeds through the divider");
+        TH_CHECK(e_dda[3] - e_dda[4] > 0.3 * (e[3] - e[4]), "the red wall's light is lost on its own side");
+    }
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_rsm_destroy(ctx, rsm);
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
+/* The flux of a reflective shadow map under a sun straight above the stack (ground 8 x 8 m and
+   quads, all of albedo 0.5; irradiance 1) sums to 0.5 x 1 x 64, the power the scene reflects,
+   within the map's border texels; under a spot light the texels' flux falls off with the cone. */
+static void test_rsm_flux(void)
+{
+    enum { S = 63 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    stack_scene St;
+    voxgi_rsm_desc d;
+    voxgi_rsm *rsm = NULL;
+    static float flux[3 * S * S];
+    double total = 0;
+    int i;
+    stack_make(&St, 0.7f, 0.4f, 0, 0);
+    memset(&d, 0, sizeof d);
+    d.size = S;
+    TH_CHECK(voxgi_rsm_create(ctx, &St.scene, &d, &rsm) == VOXGI_OK && voxgi_rsm_texels(ctx, rsm, NULL, NULL, flux) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (i = 0; i < S * S; i++) total += flux[3 * i];
+    printf("    under the sun: reflected flux %.4f (the scene reflects 32)\n", total);
+    TH_CHECK(fabs(total - 32) < 0.02 * 32, "the flux");
+    voxgi_rsm_destroy(ctx, rsm);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     gl_open();
@@ -452,6 +563,8 @@ int main(void)
     TH_RUN(test_tsm_image_equals_reference);
     TH_RUN(test_tsm_input);
     TH_RUN(test_voxel_visibility);
+    TH_RUN(test_rsm_two_spheres);
+    TH_RUN(test_rsm_flux);
     gl_close();
     return th_finish();
 }
