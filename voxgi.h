@@ -10207,6 +10207,16 @@ static voxgi_result voxgi__tsm_slicemap(voxgi_context *ctx, voxgi_tsm *T, const 
     return r;
 }
 
+/* Scene light `index` for a light's view (what: the pass, for the message): it must exist and be
+   DIRECTIONAL or SPOT. */
+static voxgi_result voxgi__view_light(voxgi_context *ctx, const voxgi_scene *scene, size_t index, const char *what, const voxgi_light **L)
+{
+    if (index >= scene->light_count) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu of %lu", (unsigned long)index, (unsigned long)scene->light_count);
+    *L = &scene->lights[index];
+    if ((*L)->type != VOXGI_LIGHT_DIRECTIONAL && (*L)->type != VOXGI_LIGHT_SPOT) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "%s take a directional or spot light", what);
+    return VOXGI_OK;
+}
+
 /* Light L's (scene light `index`, DIRECTIONAL or SPOT) view of the flattened scene f, V->size
    texels across and V->slices slices along (set by the caller). */
 static voxgi_result voxgi__view_setup(voxgi_context *ctx, const voxgi__flat *f, const voxgi_light *L, size_t index, voxgi__light_view *V)
@@ -10276,10 +10286,7 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
     slices = desc->slices ? desc->slices : 64;
     if (size < 1 || size > 16384 || slices < 1 || slices > 4096 || !(desc->sigma >= 0 && desc->sigma <= 1))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "size %d (1..16384), slices %d (1..4096), sigma %g (0..1)", size, slices, (double)desc->sigma);
-    if (desc->light >= scene->light_count) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu of %lu", (unsigned long)desc->light, (unsigned long)scene->light_count);
-    L = &scene->lights[desc->light];
-    if (L->type != VOXGI_LIGHT_DIRECTIONAL && L->type != VOXGI_LIGHT_SPOT)
-        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "transmittance shadow maps take a directional or spot light");
+    if ((r = voxgi__view_light(ctx, scene, desc->light, "transmittance shadow maps", &L)) != VOXGI_OK) return r;
     if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
     texels = (size_t)size * (size_t)size;
     T = (voxgi_tsm *)voxgi__alloc_array(ctx, 1, sizeof *T, 1);
@@ -10723,9 +10730,7 @@ VOXGI_API voxgi_result voxgi_rsm_create(voxgi_context *ctx, const voxgi_scene *s
     samples = desc->samples ? desc->samples : 100;
     if (size < 1 || size > 16384 || samples < 1 || samples > 65536 || !(desc->radius >= 0 && desc->radius <= 1))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "size %d (1..16384), samples %d (1..65536), radius %g (0..1)", size, samples, (double)desc->radius);
-    if (desc->light >= scene->light_count) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu of %lu", (unsigned long)desc->light, (unsigned long)scene->light_count);
-    L = &scene->lights[desc->light];
-    if (L->type != VOXGI_LIGHT_DIRECTIONAL && L->type != VOXGI_LIGHT_SPOT) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "reflective shadow maps take a directional or spot light");
+    if ((r = voxgi__view_light(ctx, scene, desc->light, "reflective shadow maps", &L)) != VOXGI_OK) return r;
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     texels = (size_t)size * (size_t)size;
     R = (voxgi_rsm *)voxgi__alloc_array(ctx, 1, sizeof *R, 1);

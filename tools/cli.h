@@ -87,6 +87,8 @@ int cli_parse_int(const char *s, int lo, int hi, int *out);
 int cli_parse_double(const char *s, double *out);
 /* The next comma-separated item of *list into buf: 1, or 0 at the end, or -1 for an empty or too long item. */
 int cli_next_item(const char **list, char *buf, size_t size);
+/* Makes directory path and those above it (mkdir -p); 0, or -1. */
+int cli_make_dirs(const char *path);
 /* Whether path ends in ext (".png"), in any case. */
 int cli_has_extension(const char *path, const char *ext);
 

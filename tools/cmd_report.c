@@ -1,9 +1,7 @@
 /* tools/cmd_report.c - voxgi report vct: the cone tracer's error against run time, as Markdown, CSV and SVG. */
 #include "cli.h"
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 static const char *const report_help =
     "usage: voxgi report vct [options]\n"
@@ -71,23 +69,6 @@ static double rel_rmse(const cli_error_mask *m, const float *a, const float *ref
 {
     double e = cli_masked_error(m, a, ref, NULL, NULL);
     return isfinite(e) ? e : 0;
-}
-
-/* Makes a directory and its parents (like mkdir -p); 0 on success. */
-static int make_dirs(const char *path)
-{
-    char buf[1024];
-    size_t i, n = strlen(path);
-    if (n == 0 || n >= sizeof buf) return -1;
-    strcpy(buf, path);
-    for (i = 1; i <= n; i++)
-        if (buf[i] == '/' || buf[i] == 0) {
-            char c = buf[i];
-            buf[i] = 0;
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
-            buf[i] = c;
-        }
-    return 0;
 }
 
 /* Error against time, log scales: every configuration, the Pareto front joined, the reference dashed. */
@@ -413,7 +394,7 @@ static int report_run(cli_session *s, const report_args *a, report *rep)
         cli_fail(s, "out of memory");
         goto done;
     }
-    if (make_dirs(a->out_dir) != 0) {
+    if (cli_make_dirs(a->out_dir) != 0) {
         cli_fail(s, "cannot make %s", a->out_dir);
         goto done;
     }

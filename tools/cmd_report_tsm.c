@@ -1,9 +1,7 @@
 /* tools/cmd_report_tsm.c - voxgi report tsm: transmittance shadow maps' error against run time, as Markdown and CSV. */
 #include "cli.h"
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 static const char *const tsm_help =
     "usage: voxgi report tsm [options]\n"
@@ -39,21 +37,6 @@ typedef struct tsm_report {
     tsm_row *rows;
 } tsm_report;
 
-static int tsm_make_dir(const char *path)
-{
-    char buf[1024];
-    size_t i, n = strlen(path);
-    if (n == 0 || n >= sizeof buf) return -1;
-    memcpy(buf, path, n + 1);
-    for (i = 1; i <= n; i++)
-        if (buf[i] == '/' || buf[i] == 0) {
-            char c = buf[i];
-            buf[i] = 0;
-            if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
-            buf[i] = c;
-        }
-    return 0;
-}
 
 /* The path tracer's time for error e: c^2 (1/k + 1/spp) = e^2 at k samples per pixel. */
 static double tsm_reference_ms(const tsm_report *rep, int si, double e, int spp)
@@ -236,7 +219,7 @@ int cmd_report_tsm(int argc, char **argv)
         cli_fail(&s, "out of memory");
         goto done;
     }
-    if (tsm_make_dir(a.out_dir) != 0) {
+    if (cli_make_dirs(a.out_dir) != 0) {
         cli_fail(&s, "cannot make %s", a.out_dir);
         goto done;
     }
