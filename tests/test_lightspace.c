@@ -1,9 +1,12 @@
 /* The light-space passes against their definitions. Transmittance shadow maps: a stack of
-   horizontal translucent quads over an opaque ground under a sun straight above, where every
-   answer is known: no translucent layer lets all light through (sigma 0), sigma = 1 casts a
-   binary shadow, k layers pass (1 - sigma)^k, a point's own slice never counts, two materials
-   multiply, an opaque quad casts a full shadow; the slicemaps built on GL give the very same
-   answers; bad input is refused. */
+   horizontal translucent quads over an opaque ground under a sun or a spot light straight above,
+   where every answer is known: no translucent layer lets all light through (sigma 0), sigma = 1
+   casts a binary shadow, k layers pass (1 - sigma)^k, a point's own slice never counts, two
+   materials multiply, an opaque quad casts a full shadow; maps and lookups on GL give the very
+   same answers; images equal the reference's direct light; bad input is refused. Voxel
+   visibility: 3D-DDA and the hierarchical traversal against a brute-force slab test. Reflective
+   shadow maps: the flux they hold, the gather against equation 5 by hand, the divider of
+   two-spheres stopping the red wall's light. */
 #include "../voxgi.h"
 #include "fixtures.h"
 
