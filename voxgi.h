@@ -10273,7 +10273,7 @@ VOXGI_API voxgi_result voxgi_tsm_create(voxgi_context *ctx, const voxgi_scene *s
 {
     voxgi__flat f;
     voxgi_tsm *T = NULL;
-    const voxgi_light *L;
+    const voxgi_light *L = NULL;
     double *soup = NULL, t0 = voxgi__now_ms();
     signed char *group = NULL;
     size_t i, t, texels, count = 0;
@@ -10718,7 +10718,7 @@ VOXGI_API voxgi_result voxgi_rsm_create(voxgi_context *ctx, const voxgi_scene *s
     voxgi__rsm_job J;
     voxgi_rsm *R;
     voxgi__rng g;
-    const voxgi_light *L;
+    const voxgi_light *L = NULL;
     size_t texels;
     double sum = 0;
     int size, samples, k;
