@@ -74,7 +74,9 @@
    cones) and voxgi_cone_trace_gl (the caller's G-buffer textures) gather it from a radiance
    source: the volume's mips or an octree of it; voxgi_vct_render makes whole images.
    voxgi_tsm_create / voxgi_tsm_transmittance give the light through translucent surfaces from
-   transmittance shadow maps, voxgi_tsm_render images of the direct light with them.
+   transmittance shadow maps, voxgi_tsm_render images of the direct light with them;
+   voxgi_rsm_create / voxgi_rsm_irradiance one bounce from reflective shadow maps through the
+   voxels (voxgi_voxels_occluded), voxgi_rsm_render images with it.
    voxgi_reference_render is the path tracer they are measured against.
 
    SEMANTICS (exact; see the part banners below for each capability)
@@ -856,6 +858,28 @@ VOXGI_API voxgi_result voxgi_rsm_pattern(voxgi_context *ctx, const voxgi_rsm *rs
 VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm *rsm, const voxgi_voxels *voxels, voxgi_traversal how, size_t count,
                                             const float *points, const float *normals, float *irradiance);
 VOXGI_API void voxgi_rsm_destroy(voxgi_context *ctx, voxgi_rsm *rsm);
+
+/* An image of the direct light (exact shadow rays, `samples` camera rays per pixel) and one bounce
+   from reflective shadow maps: every directional and spot light's map gathered at each pixel's
+   surface (voxgi's G-buffer: the pixel centre's ray), through the scene's voxels (a conservative
+   grid of `resolution` voxels along its longest side) unless visibility is none. Light from other
+   lights and emitters bounces nowhere (their maps are to come). rgb as voxgi_reference_render's. */
+typedef enum voxgi_visibility { VOXGI_VISIBILITY_DDA = 0, VOXGI_VISIBILITY_HIERARCHICAL, VOXGI_VISIBILITY_NONE } voxgi_visibility;
+typedef struct voxgi_rsm_image_desc {
+    voxgi_camera camera;
+    voxgi_rsm_desc rsm;           /* size, samples, radius and seed of every light's map (light: ignored) */
+    voxgi_visibility visibility;  /* 0 = DDA */
+    int resolution;               /* of the visibility's voxels; 0 = 64 */
+    int samples;                  /* camera rays per pixel for the direct light; 0 = 4 */
+    uint64_t seed;
+    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
+} voxgi_rsm_image_desc;
+typedef struct voxgi_rsm_image_info {
+    int maps;                     /* directional and spot lights, one map each */
+    double ms_maps, ms_voxels, ms_direct, ms_gather, ms; /* the maps, the voxels, the direct light, the gathers, all */
+} voxgi_rsm_image_info;
+VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
+                                        size_t rgb_bytes, voxgi_rsm_image_info *info);
 
 /* An image of the direct light with transmittance shadow maps: every directional and spot light
    through its own map, the other lights and emissive triangles through exact shadow rays (which pass
@@ -11507,6 +11531,139 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi__free(ctx, J.maps);
     voxgi__free(ctx, kept);
     voxgi__lights_free(ctx, &others);
+    voxgi__tracer_free(ctx, &tr);
+    inf.ms = voxgi__now_ms() - t0;
+    if (info) *info = inf;
+    return r;
+}
+
+/* ----- images with reflective shadow maps */
+typedef struct voxgi__rsm_image_job {
+    const voxgi_rsm_image_desc *desc;
+    const voxgi__tracer *tr;
+    const voxgi__lights *Ls;
+    double eye[3], forward[3], right[3], up[3], tan_half;
+    float *rgb;
+} voxgi__rsm_image_job;
+
+/* Rows of the direct light: the emission seen and the lights through exact shadow rays. */
+static void voxgi__rsm_image_direct(void *user, size_t first, size_t end)
+{
+    const voxgi__rsm_image_job *J = (const voxgi__rsm_image_job *)user;
+    const voxgi_camera *cam = &J->desc->camera;
+    int samples = J->desc->samples ? J->desc->samples : 4;
+    size_t y;
+    for (y = first; y < end; y++) {
+        int x;
+        for (x = 0; x < cam->width; x++) {
+            size_t pix = y * (size_t)cam->width + (size_t)x;
+            double sum[3] = {0, 0, 0}, rot[2];
+            uint64_t rays = 0;
+            voxgi__rng g;
+            int s, a;
+            voxgi__rng_seed(&g, J->desc->seed, pix, 0);
+            rot[0] = voxgi__rng_unit(&g);
+            rot[1] = voxgi__rng_unit(&g);
+            for (s = 0; s < samples; s++) {
+                voxgi__hit h;
+                const voxgi_material *m;
+                double d[3], ns[3], e[3], u[2];
+                voxgi__kronecker(2, s, rot, u);
+                voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + u[0], (double)y + u[1], d);
+                if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+                m = voxgi__prim_material(J->tr, h.prim);
+                for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
+                if (h.front && !J->desc->hide_emitters) for (a = 0; a < 3; a++) sum[a] += m->emission[a];
+                voxgi__leave(J->tr, h.p, ns, h.p);
+                voxgi__direct(J->Ls, h.p, ns, h.prim, &g, 0, NULL, &rays, e, NULL);
+                for (a = 0; a < 3; a++) sum[a] += m->albedo[a] / VOXGI__PI * e[a];
+            }
+            for (a = 0; a < 3; a++) J->rgb[3 * pix + (size_t)a] = (float)(sum[a] / samples);
+        }
+    }
+}
+
+VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
+                                        size_t rgb_bytes, voxgi_rsm_image_info *info)
+{
+    voxgi__rsm_image_job J;
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    voxgi_rsm_image_info inf;
+    voxgi_voxels *vox = NULL;
+    float *pos = NULL, *nrm = NULL, *irr = NULL;
+    uint32_t *prim = NULL;
+    size_t pixels, li, p;
+    double t0 = voxgi__now_ms(), t1;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || (unsigned)desc->visibility > VOXGI_VISIBILITY_NONE)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), visibility %d", desc->samples, desc->resolution, (int)desc->visibility);
+    memset(&J, 0, sizeof J);
+    memset(&inf, 0, sizeof inf);
+    memset(&Ls, 0, sizeof Ls);
+    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
+    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
+    if (rgb_bytes < pixels * 12)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    prim = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
+    if (!pos || !nrm || !irr || !prim) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", desc->camera.width, desc->camera.height);
+    if (r == VOXGI_OK) r = voxgi__lights_build(ctx, scene, &tr, &Ls);
+    if (r == VOXGI_OK) { /* the direct light */
+        J.desc = desc;
+        J.tr = &tr;
+        J.Ls = &Ls;
+        J.rgb = rgb;
+        t1 = voxgi__now_ms();
+        voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__rsm_image_direct, &J);
+        inf.ms_direct = voxgi__now_ms() - t1;
+        r = voxgi__gbuffer(ctx, &tr, &desc->camera, pos, nrm, prim);
+    }
+    if (r == VOXGI_OK && desc->visibility != VOXGI_VISIBILITY_NONE) { /* the voxels the samples pass */
+        voxgi_voxelize_desc vd;
+        voxgi_fit_desc fit;
+        memset(&vd, 0, sizeof vd);
+        memset(&fit, 0, sizeof fit);
+        fit.res = desc->resolution ? desc->resolution : 64;
+        t1 = voxgi__now_ms();
+        r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid);
+        if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &vd, &vox);
+        inf.ms_voxels = voxgi__now_ms() - t1;
+    }
+    for (li = 0; r == VOXGI_OK && li < scene->light_count; li++) { /* each map's bounce at the pixels' surfaces */
+        voxgi_rsm_desc rd = desc->rsm;
+        voxgi_rsm *R = NULL;
+        if (scene->lights[li].type != VOXGI_LIGHT_DIRECTIONAL && scene->lights[li].type != VOXGI_LIGHT_SPOT) continue;
+        rd.light = li;
+        t1 = voxgi__now_ms();
+        r = voxgi_rsm_create(ctx, scene, &rd, &R);
+        inf.ms_maps += voxgi__now_ms() - t1;
+        if (r != VOXGI_OK) break;
+        inf.maps++;
+        t1 = voxgi__now_ms();
+        r = voxgi_rsm_irradiance(ctx, R, vox, desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL ? VOXGI_TRAVERSAL_HIERARCHICAL : VOXGI_TRAVERSAL_DDA, pixels, pos,
+                                 nrm, irr);
+        inf.ms_gather += voxgi__now_ms() - t1;
+        for (p = 0; r == VOXGI_OK && p < pixels; p++) {
+            const voxgi_material *m;
+            int a;
+            if (prim[p] == UINT32_MAX) continue;
+            m = voxgi__prim_material(&tr, prim[p]);
+            for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * irr[3 * p + (size_t)a]);
+        }
+        voxgi_rsm_destroy(ctx, R);
+    }
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, nrm);
+    voxgi__free(ctx, irr);
+    voxgi__free(ctx, prim);
+    voxgi__lights_free(ctx, &Ls);
     voxgi__tracer_free(ctx, &tr);
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;

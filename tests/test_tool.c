@@ -313,6 +313,33 @@ static void test_tsm_command(void)
         TH_CHECK(lines == 3 && front >= 1, "tsm.csv: %d lines, %d on the front", lines, front);
     }
     TH_CHECK(run("report tsm --slices 0 --out x", out, sizeof out) == 2, "--slices 0 accepted");
+    { /* --method rsm: the library's image, bit for bit */
+        voxgi_builtin_scene ts;
+        voxgi_rsm_image_desc qd;
+        snprintf(pfm, sizeof pfm, "%s/q.pfm", tmpdir);
+        snprintf(args, sizeof args, "render two-spheres --method rsm --size 8 8 --rsm-size 32 --rsm-samples 16 --visibility hierarchical --res 16 --compare 8 --json -o %s", pfm);
+        TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "maps") == 1 && json_number(out, "rel_rmse") > 0 && strstr(out, "\"visibility\":\"hierarchical\""),
+                 "rsm render: %s", out);
+        voxgi_builtin_scene_create(ctx, "two-spheres", &ts);
+        memset(&qd, 0, sizeof qd);
+        qd.camera = ts.camera;
+        qd.camera.width = qd.camera.height = 8;
+        qd.rsm.size = 32;
+        qd.rsm.samples = 16;
+        qd.rsm.seed = 1;
+        qd.visibility = VOXGI_VISIBILITY_HIERARCHICAL;
+        qd.resolution = 16;
+        qd.seed = 1;
+        TH_CHECK(voxgi_rsm_render(ctx, &ts.scene, &qd, want, sizeof want, NULL) == VOXGI_OK, "library rsm render: %s", voxgi_last_error(ctx));
+        f = fopen(pfm, "rb");
+        TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
+        if (f) {
+            for (y = 7; y >= 0; y--) TH_CHECK(fread(got + 3 * 8 * y, 4, 24, f) == 24, "PFM rows");
+            fclose(f);
+            TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's rsm render");
+        }
+        voxgi_builtin_scene_destroy(ctx, &ts);
+    }
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }

@@ -4,8 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const render_methods[] = {"reference", "vct", "tsm", NULL};
-enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM };
+static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", NULL};
+enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM };
+static const char *const visibility_names[] = {"dda", "hierarchical", "none", NULL};
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -21,8 +22,8 @@ typedef struct render_args {
     const char *what, *out, *cornell_mesh, *reference;
     int method, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
     int bounce_cones, bounce_block, isotropic;
-    int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices;
-    double step, camera[7], sun[4], exposure, sigma;
+    int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, visibility, res_given;
+    double step, camera[7], sun[4], exposure, sigma, rsm_radius;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -115,23 +116,26 @@ typedef struct render_compare {
    the camera sees, and the pixels within 3 of one whose centre sees an emitter left out (the
    noise at the emitters' edges would swamp the lighting). */
 static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene,
-                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, const voxgi_tsm_image_desc *td, render_compare *cmp)
+                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, const voxgi_tsm_image_desc *td,
+                                  const voxgi_rsm_image_desc *qd, render_compare *cmp)
 {
     size_t n = (size_t)a->size[0] * (size_t)a->size[1] * 3;
     float *ref = (float *)malloc(n * 8), *mine = ref ? ref + n : NULL;
     voxgi_reference_desc rd = *d, dh = *d;
     voxgi_vct_desc vh = *vd;
     voxgi_tsm_image_desc th = *td;
+    voxgi_rsm_image_desc qh = *qd;
     voxgi_reference_info ri;
     voxgi_result r;
     cli_error_mask mask;
     rd.samples = a->compare;
     rd.seed = d->seed + 1000003; /* independent of the image's own noise */
-    rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = th.hide_emitters = 1;
+    rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = th.hide_emitters = qh.hide_emitters = 1;
     r = ref ? voxgi_reference_render(ctx, scene, &rd, ref, n * 4, &ri) : VOXGI_ERR_OUT_OF_MEMORY;
     if (r == VOXGI_OK)
         r = a->method == METHOD_VCT   ? voxgi_vct_render(ctx, scene, &vh, mine, n * 4, NULL)
             : a->method == METHOD_TSM ? voxgi_tsm_render(ctx, scene, &th, mine, n * 4, NULL)
+            : a->method == METHOD_RSM ? voxgi_rsm_render(ctx, scene, &qh, mine, n * 4, NULL)
                                       : voxgi_reference_render(ctx, scene, &dh, mine, n * 4, NULL);
     if (r != VOXGI_OK) {
         free(ref);
@@ -225,9 +229,30 @@ static void print_tsm(const render_args *a, const char *name, const double mean[
     if (a->compare || a->reference) print_compare(a, d, cmp);
 }
 
+/* The --method rsm lines, text or JSON. */
+static void print_rsm(const render_args *a, const char *name, const double mean[3], const voxgi_rsm_image_desc *qd, const voxgi_rsm_image_info *qi,
+                      const voxgi_reference_desc *d, const render_compare *cmp)
+{
+    int w = a->size[0], h = a->size[1], size = qd->rsm.size ? qd->rsm.size : 256, samples = qd->rsm.samples ? qd->rsm.samples : 100;
+    if (a->common.json) {
+        printf("{\"scene\":\"%s\",\"method\":\"rsm\",\"size\":[%d,%d],\"maps\":%d,\"map_size\":%d,\"samples\":%d,\"visibility\":\"%s\",\"res\":%d,"
+               "\"maps_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
+               name, w, h, qi->maps, size, samples, visibility_names[qd->visibility], qd->resolution ? qd->resolution : 64, qi->ms_maps, qi->ms_voxels,
+               qi->ms_direct, qi->ms_gather, qi->ms, mean[0], mean[1], mean[2]);
+        if (a->compare || a->reference) print_compare_json(cmp);
+        printf("\"output\":\"%s\"}\n", a->out);
+        return;
+    }
+    printf("%s: %d x %d, direct light and one bounce from reflective shadow maps (%d map%s of %d x %d texels, %d samples, visibility %s): "
+           "maps %.1f ms, voxels %.1f ms, direct light %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
+           name, w, h, qi->maps, qi->maps == 1 ? "" : "s", size, size, samples, visibility_names[qd->visibility], qi->ms_maps, qi->ms_voxels, qi->ms_direct,
+           qi->ms_gather, qi->ms, mean[0], mean[1], mean[2], a->out);
+    if (a->compare || a->reference) print_compare(a, d, cmp);
+}
+
 static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const voxgi_reference_desc *d,
                          const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, const voxgi_tsm_image_desc *td,
-                         const voxgi_tsm_image_info *ti, const render_compare *cmp)
+                         const voxgi_tsm_image_info *ti, const voxgi_rsm_image_desc *qd, const voxgi_rsm_image_info *qi, const render_compare *cmp)
 {
     double mean[3] = {0, 0, 0};
     size_t p;
@@ -236,6 +261,7 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
         for (i = 0; i < 3; i++) mean[i] += rgb[3 * p + (size_t)i];
     for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
     if (a->method == METHOD_TSM) print_tsm(a, name, mean, td, ti, d, cmp);
+    else if (a->method == METHOD_RSM) print_rsm(a, name, mean, qd, qi, d, cmp);
     else if (a->method == METHOD_VCT && a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
                "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
@@ -278,6 +304,8 @@ static int render_run(cli_session *s, const render_args *a)
     voxgi_vct_info vinfo;
     voxgi_tsm_image_desc td;
     voxgi_tsm_image_info tinfo;
+    voxgi_rsm_image_desc qd;
+    voxgi_rsm_image_info qinfo;
     voxgi_info ci;
     render_scene rs;
     cli_context c;
@@ -292,6 +320,8 @@ static int render_run(cli_session *s, const render_args *a)
     memset(&vinfo, 0, sizeof vinfo);
     memset(&td, 0, sizeof td);
     memset(&tinfo, 0, sizeof tinfo);
+    memset(&qd, 0, sizeof qd);
+    memset(&qinfo, 0, sizeof qinfo);
     memset(&rs, 0, sizeof rs);
     memset(&cmp, 0, sizeof cmp);
     d.bounces = a->bounces;
@@ -326,6 +356,18 @@ static int render_run(cli_session *s, const render_args *a)
         td.tsm.sigma = (float)a->sigma;
         d.bounces = 0;
     }
+    if (a->method == METHOD_RSM) { /* direct light and one bounce: compared with the reference's one bounce */
+        qd.camera = d.camera;
+        qd.seed = d.seed;
+        qd.samples = a->spp_given ? d.samples : 4;
+        qd.rsm.size = a->rsm_size;
+        qd.rsm.samples = a->rsm_samples;
+        qd.rsm.radius = (float)a->rsm_radius;
+        qd.rsm.seed = d.seed;
+        qd.visibility = (voxgi_visibility)a->visibility;
+        qd.resolution = a->res_given ? a->res : 64;
+        d.bounces = 1;
+    }
     if (a->method == METHOD_VCT) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
         vd.camera = d.camera;
         vd.seed = d.seed;
@@ -335,11 +377,12 @@ static int render_run(cli_session *s, const render_args *a)
     }
     if ((a->method == METHOD_VCT   ? voxgi_vct_render(c.vx, rs.scene, &vd, rgb, bytes, &vinfo)
          : a->method == METHOD_TSM ? voxgi_tsm_render(c.vx, rs.scene, &td, rgb, bytes, &tinfo)
+         : a->method == METHOD_RSM ? voxgi_rsm_render(c.vx, rs.scene, &qd, rgb, bytes, &qinfo)
                                    : voxgi_reference_render(c.vx, rs.scene, &d, rgb, bytes, &info)) != VOXGI_OK) {
         cli_fail_lib(s, c.vx, NULL);
         goto done;
     }
-    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &td, &cmp)) goto done;
+    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &td, &qd, &cmp)) goto done;
     if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &d.camera, rgb, &cmp)) goto done;
     if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
                                            : vxt_write_png(a->out, rgb, a->size[0], a->size[1], (float)a->exposure)) != 0) {
@@ -347,7 +390,7 @@ static int render_run(cli_session *s, const render_args *a)
         goto done;
     }
     cli_status_clear(s);
-    print_result(a, rs.name, &ci, rgb, &d, &info, &vd, &vinfo, &td, &tinfo, &cmp);
+    print_result(a, rs.name, &ci, rgb, &d, &info, &vd, &vinfo, &td, &tinfo, &qd, &qinfo, &cmp);
     rc = CLI_EXIT_OK;
 done:
     free(rgb);
@@ -372,16 +415,18 @@ int cmd_render(int argc, char **argv)
     a.cone_stride = 6;
     {
         const cli_option options[] = {
-            {.name = "--method", .arg = "reference|vct|tsm", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
+            {.name = "--method", .arg = "reference|vct|tsm|rsm", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
              .help = "the Monte Carlo path tracer (default), or voxel cone tracing: direct\n"
                      "light through shadow rays plus one bounce gathered by cones from\n"
                      "the voxels, or transmittance shadow maps: direct light, each\n"
-                     "directional light through its map (compared with --bounces 0)"},
+                     "directional light through its map (compared with --bounces 0), or\n"
+                     "reflective shadow maps: direct light and one bounce from each\n"
+                     "directional and spot light's map (compared with --bounces 1)"},
             CLI_OPT_BACKEND(&a.common, "vct: where voxelization, mips and cones run (default auto: GL when a\n"
                                        "headless GL 4.5 context works); the reference runs on the CPU"),
             CLI_OPT_GL(&a.common, "which headless GL to try"),
-            {.name = "--res", .arg = "N", .kind = CLI_INT, .dst = &a.res, .lo = 1, .hi = 4096,
-             .help = "vct: voxels along the scene's longest side (default 96)"},
+            {.name = "--res", .arg = "N", .kind = CLI_INT, .dst = &a.res, .lo = 1, .hi = 4096, .given = &a.res_given,
+             .help = "vct: voxels along the scene's longest side (default 96); rsm: of the\nvisibility's voxels (default 64)"},
             {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 24)"},
             {.name = "--step", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.step, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "vct: step as a fraction of the cone diameter (default 0.5)"},
@@ -399,6 +444,14 @@ int cmd_render(int argc, char **argv)
             {.name = "--inject-samples", .arg = "N", .kind = CLI_INT, .dst = &a.inject_samples, .lo = 1, .hi = 4096,
              .help = "vct: points on each area light and emitter per voxel's light\n(default 4 on the CPU, 16 on GL)"},
             {.name = "--no-gi", .kind = CLI_FLAG, .dst = &a.no_gi, .help = "vct: direct light only"},
+            {.name = "--rsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_size, .lo = 1, .hi = 16384,
+             .help = "rsm: texels across each light's map (default 256)"},
+            {.name = "--rsm-samples", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_samples, .lo = 1, .hi = 65536,
+             .help = "rsm: texels gathered per pixel (default 100)"},
+            {.name = "--rsm-radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.rsm_radius, .lo = 0, .lo_open = 1, .hi = 1,
+             .help = "rsm: the sample disc's radius, a share of the map's width (default 0.1)"},
+            {.name = "--visibility", .arg = "dda|hierarchical|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
+             .help = "rsm: each sample's visibility through the voxels (default dda)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
              .help = "tsm: texels across each light's map (default 512)"},
             {.name = "--slices", .arg = "N", .kind = CLI_INT, .dst = &a.slices, .lo = 1, .hi = 4096, .help = "tsm: slices along the light (default 64)"},
