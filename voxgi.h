@@ -11412,22 +11412,24 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     return r;
 }
 
-/* ----- images with transmittance shadow maps */
-typedef struct voxgi__tsm_image_job {
-    const voxgi_tsm_image_desc *desc;
+/* ----- images of the direct light (with transmittance shadow maps, and under reflective ones) */
+typedef struct voxgi__direct_image_job {
+    const voxgi_camera *cam;
+    int samples, hide_emitters;   /* camera rays per pixel (stratified, shifted per pixel by the seed) */
+    uint64_t seed;
     const voxgi__tracer *tr;
-    const voxgi__lights *others;  /* every light but the directional ones, and the emitters */
-    voxgi_tsm **maps;             /* per scene light: its map, or NULL */
+    const voxgi__lights *others;  /* the lights through exact shadow rays, and the emitters */
+    voxgi_tsm **maps;             /* per scene light: its transmittance shadow map, or NULL (maps NULL: none) */
     const voxgi_scene *scene;
     double eye[3], forward[3], right[3], up[3], tan_half;
     float *rgb;
-} voxgi__tsm_image_job;
+} voxgi__direct_image_job;
 
-static void voxgi__tsm_image_rows(void *user, size_t first, size_t end)
+static void voxgi__direct_image_rows(void *user, size_t first, size_t end)
 {
-    const voxgi__tsm_image_job *J = (const voxgi__tsm_image_job *)user;
-    const voxgi_camera *cam = &J->desc->camera;
-    int samples = J->desc->samples ? J->desc->samples : 4;
+    const voxgi__direct_image_job *J = (const voxgi__direct_image_job *)user;
+    const voxgi_camera *cam = J->cam;
+    int samples = J->samples;
     size_t y, li;
     for (y = first; y < end; y++) {
         int x;
@@ -11437,7 +11439,7 @@ static void voxgi__tsm_image_rows(void *user, size_t first, size_t end)
             uint64_t rays = 0;
             voxgi__rng g;
             int s, a;
-            voxgi__rng_seed(&g, J->desc->seed, pix, 0);
+            voxgi__rng_seed(&g, J->seed, pix, 0);
             rot[0] = voxgi__rng_unit(&g);
             rot[1] = voxgi__rng_unit(&g);
             for (s = 0; s < samples; s++) {
@@ -11449,8 +11451,8 @@ static void voxgi__tsm_image_rows(void *user, size_t first, size_t end)
                 if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
                 m = voxgi__prim_material(J->tr, h.prim);
                 for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
-                if (h.front && !J->desc->hide_emitters) for (a = 0; a < 3; a++) sum[a] += m->emission[a];
-                for (li = 0; li < J->scene->light_count; li++) { /* the maps' lights */
+                if (h.front && !J->hide_emitters) for (a = 0; a < 3; a++) sum[a] += m->emission[a];
+                for (li = 0; J->maps && li < J->scene->light_count; li++) { /* the maps' lights */
                     const voxgi_tsm *T = J->maps[li];
                     const voxgi_light *L = &J->scene->lights[li];
                     double c, to[3], dist = 0;
@@ -11479,7 +11481,7 @@ static void voxgi__tsm_image_rows(void *user, size_t first, size_t end)
 VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_tsm_image_info *info)
 {
-    voxgi__tsm_image_job J;
+    voxgi__direct_image_job J;
     voxgi__tracer tr;
     voxgi__lights others;
     voxgi_scene rest;
@@ -11518,13 +11520,16 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
     rest.light_count = n;
     if (r == VOXGI_OK) r = voxgi__lights_build(ctx, &rest, &tr, &others);
     if (r == VOXGI_OK) {
-        J.desc = desc;
+        J.cam = &desc->camera;
+        J.samples = desc->samples ? desc->samples : 4;
+        J.hide_emitters = desc->hide_emitters;
+        J.seed = desc->seed;
         J.tr = &tr;
         J.others = &others;
         J.scene = scene;
         J.rgb = rgb;
         t1 = voxgi__now_ms();
-        voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__tsm_image_rows, &J);
+        voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__direct_image_rows, &J);
         inf.ms_shade = voxgi__now_ms() - t1;
     }
     for (li = 0; J.maps && li < scene->light_count; li++) voxgi_tsm_destroy(ctx, J.maps[li]);
@@ -11538,55 +11543,10 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
 }
 
 /* ----- images with reflective shadow maps */
-typedef struct voxgi__rsm_image_job {
-    const voxgi_rsm_image_desc *desc;
-    const voxgi__tracer *tr;
-    const voxgi__lights *Ls;
-    double eye[3], forward[3], right[3], up[3], tan_half;
-    float *rgb;
-} voxgi__rsm_image_job;
-
-/* Rows of the direct light: the emission seen and the lights through exact shadow rays. */
-static void voxgi__rsm_image_direct(void *user, size_t first, size_t end)
-{
-    const voxgi__rsm_image_job *J = (const voxgi__rsm_image_job *)user;
-    const voxgi_camera *cam = &J->desc->camera;
-    int samples = J->desc->samples ? J->desc->samples : 4;
-    size_t y;
-    for (y = first; y < end; y++) {
-        int x;
-        for (x = 0; x < cam->width; x++) {
-            size_t pix = y * (size_t)cam->width + (size_t)x;
-            double sum[3] = {0, 0, 0}, rot[2];
-            uint64_t rays = 0;
-            voxgi__rng g;
-            int s, a;
-            voxgi__rng_seed(&g, J->desc->seed, pix, 0);
-            rot[0] = voxgi__rng_unit(&g);
-            rot[1] = voxgi__rng_unit(&g);
-            for (s = 0; s < samples; s++) {
-                voxgi__hit h;
-                const voxgi_material *m;
-                double d[3], ns[3], e[3], u[2];
-                voxgi__kronecker(2, s, rot, u);
-                voxgi__camera_ray(cam, J->forward, J->right, J->up, J->tan_half, x + u[0], (double)y + u[1], d);
-                if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
-                m = voxgi__prim_material(J->tr, h.prim);
-                for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
-                if (h.front && !J->desc->hide_emitters) for (a = 0; a < 3; a++) sum[a] += m->emission[a];
-                voxgi__leave(J->tr, h.p, ns, h.p);
-                voxgi__direct(J->Ls, h.p, ns, h.prim, &g, 0, NULL, &rays, e, NULL);
-                for (a = 0; a < 3; a++) sum[a] += m->albedo[a] / VOXGI__PI * e[a];
-            }
-            for (a = 0; a < 3; a++) J->rgb[3 * pix + (size_t)a] = (float)(sum[a] / samples);
-        }
-    }
-}
-
 VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_rsm_image_info *info)
 {
-    voxgi__rsm_image_job J;
+    voxgi__direct_image_job J;
     voxgi__tracer tr;
     voxgi__lights Ls;
     voxgi_rsm_image_info inf;
@@ -11615,12 +11575,16 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
     if (!pos || !nrm || !irr || !prim) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", desc->camera.width, desc->camera.height);
     if (r == VOXGI_OK) r = voxgi__lights_build(ctx, scene, &tr, &Ls);
     if (r == VOXGI_OK) { /* the direct light */
-        J.desc = desc;
+        J.cam = &desc->camera;
+        J.samples = desc->samples ? desc->samples : 4;
+        J.hide_emitters = desc->hide_emitters;
+        J.seed = desc->seed;
         J.tr = &tr;
-        J.Ls = &Ls;
+        J.others = &Ls;
+        J.scene = scene;
         J.rgb = rgb;
         t1 = voxgi__now_ms();
-        voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__rsm_image_direct, &J);
+        voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__direct_image_rows, &J);
         inf.ms_direct = voxgi__now_ms() - t1;
         r = voxgi__gbuffer(ctx, &tr, &desc->camera, pos, nrm, prim);
     }

@@ -100,6 +100,13 @@ run vct-nogi-png render two-spheres --method vct --backend cpu --res 24 --no-gi 
 run vct-compare render leak-box --method vct --backend cpu --res 24 --compare 16 \
     --size 16 16 --spp 4 $T --json -o "$tmp/o.pfm"
 
+# the light-space passes: transmittance and reflective shadow maps
+run tsm-foliage render foliage --method tsm --size 24 24 --tsm-size 64 --slices 32 --seed 3 $T --json -o "$tmp/o.pfm"
+run tsm-sigma render foliage --method tsm --size 16 16 --tsm-size 32 --sigma 0.5 --spp 2 $T --json -o "$tmp/o.pfm"
+run rsm-two-spheres render two-spheres --method rsm --size 24 24 --rsm-size 64 --rsm-samples 32 --res 24 --seed 3 $T --json -o "$tmp/o.pfm"
+run rsm-hierarchical render two-spheres --method rsm --size 16 16 --rsm-size 32 --rsm-samples 16 --visibility hierarchical --res 16 \
+    $T --json -o "$tmp/o.pfm"
+
 # GL cone tracing: llvmpipe gives the same bits run after run (a GPU need not: mips by blending)
 run vct-gl render cornell-box --method vct --backend gl --res 24 --cones 8 --size 24 24 --spp 8 \
     --seed 3 $T --json -o "$tmp/o.pfm"
