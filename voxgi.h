@@ -11478,6 +11478,23 @@ static void voxgi__direct_image_rows(void *user, size_t first, size_t end)
     }
 }
 
+/* Job J's direct light into rgb (J's view and maps set by the caller; samples 0 = 4): its time. */
+static double voxgi__direct_image(voxgi_context *ctx, voxgi__direct_image_job *J, const voxgi_camera *cam, int samples, int hide_emitters, uint64_t seed,
+                                  const voxgi__tracer *tr, const voxgi__lights *others, const voxgi_scene *scene, float *rgb)
+{
+    double t0 = voxgi__now_ms();
+    J->cam = cam;
+    J->samples = samples ? samples : 4;
+    J->hide_emitters = hide_emitters;
+    J->seed = seed;
+    J->tr = tr;
+    J->others = others;
+    J->scene = scene;
+    J->rgb = rgb;
+    voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__direct_image_rows, J);
+    return voxgi__now_ms() - t0;
+}
+
 VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_tsm_image_info *info)
 {
@@ -11520,17 +11537,7 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
     rest.light_count = n;
     if (r == VOXGI_OK) r = voxgi__lights_build(ctx, &rest, &tr, &others);
     if (r == VOXGI_OK) {
-        J.cam = &desc->camera;
-        J.samples = desc->samples ? desc->samples : 4;
-        J.hide_emitters = desc->hide_emitters;
-        J.seed = desc->seed;
-        J.tr = &tr;
-        J.others = &others;
-        J.scene = scene;
-        J.rgb = rgb;
-        t1 = voxgi__now_ms();
-        voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__direct_image_rows, &J);
-        inf.ms_shade = voxgi__now_ms() - t1;
+        inf.ms_shade = voxgi__direct_image(ctx, &J, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, &tr, &others, scene, rgb);
     }
     for (li = 0; J.maps && li < scene->light_count; li++) voxgi_tsm_destroy(ctx, J.maps[li]);
     voxgi__free(ctx, J.maps);
@@ -11575,17 +11582,7 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
     if (!pos || !nrm || !irr || !prim) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", desc->camera.width, desc->camera.height);
     if (r == VOXGI_OK) r = voxgi__lights_build(ctx, scene, &tr, &Ls);
     if (r == VOXGI_OK) { /* the direct light */
-        J.cam = &desc->camera;
-        J.samples = desc->samples ? desc->samples : 4;
-        J.hide_emitters = desc->hide_emitters;
-        J.seed = desc->seed;
-        J.tr = &tr;
-        J.others = &Ls;
-        J.scene = scene;
-        J.rgb = rgb;
-        t1 = voxgi__now_ms();
-        voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__direct_image_rows, &J);
-        inf.ms_direct = voxgi__now_ms() - t1;
+        inf.ms_direct = voxgi__direct_image(ctx, &J, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, &tr, &Ls, scene, rgb);
         r = voxgi__gbuffer(ctx, &tr, &desc->camera, pos, nrm, prim);
     }
     if (r == VOXGI_OK && desc->visibility != VOXGI_VISIBILITY_NONE) { /* the voxels the samples pass */
