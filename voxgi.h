@@ -838,8 +838,8 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
    the seed's xi1^2 over-counts the rim), each texel p adding pi r^2 w Phi_p max(0, n_p.(x - x_p))
    max(0, n.(x_p - x)) / (pi |x - x_p|^4) (the seed's equation 5 with the Lambertian 1 / pi it
    folds into the flux; |x - x_p| at least one texel: the singularity), when the voxels (if given)
-   let it through: the segment between the two, each end moved one voxel along its normal off its
-   own surface, by voxgi_voxels_occluded. */
+   let it through: the segment between the two, each end moved 1.5 voxels along its normal off
+   its own surface (clear of the surface's conservative voxels), by voxgi_voxels_occluded. */
 typedef struct voxgi_rsm_desc {
     size_t light;                 /* the scene's light: DIRECTIONAL or SPOT */
     int size;                     /* texels across; 0 = 256 */
@@ -10857,10 +10857,10 @@ static void voxgi__rsm_gather(void *user, size_t first, size_t end)
             if (cp <= 0 || cx <= 0) continue;
             if (V->perspective) floor2 = dist2 * 1e-6;
             dist2 = VOXGI__MAX(dist2, floor2);
-            if (J->O) { /* each end a voxel off its own surface */
+            if (J->O) { /* each end 1.5 voxels off its own surface */
                 double o[3], dd[3], vs = J->grid->voxel_size;
                 for (a = 0; a < 3; a++) {
-                    double from = x[a] + vs * n[a], to = xp[a] + vs * np[a];
+                    double from = x[a] + 1.5 * vs * n[a], to = xp[a] + 1.5 * vs * np[a];
                     o[a] = (from - J->grid->origin[a]) / vs;
                     dd[a] = (to - J->grid->origin[a]) / vs - o[a];
                 }
