@@ -841,16 +841,25 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
    let it through: the segment between the two, each end moved 1.5 voxels along its normal off
    its own surface (clear of the surface's conservative voxels), by voxgi_voxels_occluded. */
 typedef struct voxgi_rsm_desc {
-    size_t light;                 /* the scene's light: DIRECTIONAL or SPOT */
+    size_t light;                 /* the scene's light: DIRECTIONAL, SPOT or RECT */
     int size;                     /* texels across; 0 = 256 */
-    int samples;                  /* texels gathered per point; 0 = 100 (the seed's) */
-    float radius;                 /* of the sample disc, as a share of the map's width; 0 = 0.1 */
+    int samples;                  /* texels gathered per point and map; 0 = 100 (the seed's) */
+    float radius;                 /* of the sample disc, as a share of the map's width (up to 2); 0 = 0.1 (the
+                                     seed's) for a light's map, 1 for an area's points (their whole hemisphere) */
     uint64_t seed;                /* of the sample pattern */
+    int emitters;                 /* 1: the scene's emissive triangles instead of a light */
+    int points;                   /* a RECT light or the emitters: points on it, one map each; 0 = 4 */
 } voxgi_rsm_desc;
 typedef struct voxgi_rsm voxgi_rsm;
+typedef struct voxgi_rsm_info {
+    int maps, size, samples;      /* maps (1, or the points of an area), texels across each, samples per map */
+    size_t bytes;                 /* the maps' and the pattern's memory */
+    double ms;                    /* wall time of voxgi_rsm_create */
+} voxgi_rsm_info;
 VOXGI_API voxgi_result voxgi_rsm_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_desc *desc, voxgi_rsm **out);
-/* The texels, size x size rows from the light's v axis up: positions, normals (xyz each) and
-   reflected flux (rgb), any may be NULL; a texel that sees nothing has flux 0. */
+VOXGI_API void voxgi_rsm_query(const voxgi_rsm *rsm, voxgi_rsm_info *info);
+/* The texels, map after map of size x size rows from the map's v axis up: positions, normals
+   (xyz each) and reflected flux (rgb), any may be NULL; a texel that sees nothing has flux 0. */
 VOXGI_API voxgi_result voxgi_rsm_texels(voxgi_context *ctx, const voxgi_rsm *rsm, float *positions, float *normals, float *flux);
 /* The sample pattern: offsets (2 per sample, texels) and weights (summing to 1), either may be NULL. */
 VOXGI_API voxgi_result voxgi_rsm_pattern(voxgi_context *ctx, const voxgi_rsm *rsm, float *offsets, float *weights);
@@ -859,27 +868,94 @@ VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm 
                                             const float *points, const float *normals, float *irradiance);
 VOXGI_API void voxgi_rsm_destroy(voxgi_context *ctx, voxgi_rsm *rsm);
 
+/* A spherical-harmonics volume of the direct light (after Gaitatzes et al. 2011's SH channel):
+   per voxel and colour band, the L0 + L1 SH (4 coefficients: Y00, Y1-1, Y10, Y11, the real basis
+   with Y00 = 1 / (2 sqrt pi), Y1m = sqrt(3 / (4 pi)) (y, z, x)) of the radiant intensity its
+   surfaces reflect: every triangle is cut to the voxels (exactly, in double), and each piece's
+   sides, lit at its centroid by every light (exact shadow rays; area lights and emitters through
+   `samples` stratified points), add the projection of albedo E A / pi max(0, n.w), that is
+   albedo E A / pi (pi Y00, 2 pi / 3 Y1(n)); lights add (the seed's MAX does not). Emission is left
+   out (it is direct light). Coarser levels sum 2x2x2 cells, each cell also keeping its
+   intensity-weighted centroid. The estimator (voxgi_sh_irradiance) is a Barnes-Hut sum: from the
+   coarsest level, a cell whose size is at most `opening` times its centroid's distance acts as one
+   point at its centroid (else its children do), adding I(w) max(0, n.d) / |d|^2 (I its SH toward
+   the point, clamped at 0; |d| at least a voxel; cells within a voxel left out), each through the
+   voxels if given (from 1.5 voxels off the point's surface to 1.5 voxels short of the centroid,
+   voxgi_voxels_occluded's rule). Memory: 64 bytes a cell over all levels (dense). */
+typedef struct voxgi_sh_desc {
+    int samples;                  /* points per area light and on the emitters for each piece; 0 = 16 */
+    uint64_t seed;
+} voxgi_sh_desc;
+typedef struct voxgi_sh voxgi_sh;
+typedef struct voxgi_sh_info {
+    int levels;                   /* level 0 the grid's voxels, the last one cell */
+    uint64_t voxels;              /* voxels holding a piece */
+    size_t pieces;                /* triangle pieces lit */
+    size_t bytes;
+    double ms;                    /* wall time of voxgi_sh_create */
+} voxgi_sh_info;
+VOXGI_API voxgi_result voxgi_sh_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_grid *grid, const voxgi_sh_desc *desc, voxgi_sh **out);
+VOXGI_API void voxgi_sh_query(const voxgi_sh *sh, voxgi_sh_info *info);
+/* One level's cells (x fastest): 16 floats each, rgb x 4 coefficients, then the weighted centroid
+   (w x, w y, w z, w). res (may be NULL): the level's cells per axis; cells NULL: res alone. */
+VOXGI_API voxgi_result voxgi_sh_read(voxgi_context *ctx, const voxgi_sh *sh, int level, float *cells, size_t cells_bytes, int res[3]);
+/* The one-bounce irradiance (rgb) at count points with unit normals; voxels (NULL: no visibility)
+   on the SH volume's grid; opening 0 = 0.5. */
+VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *sh, const voxgi_voxels *voxels, voxgi_traversal how, float opening,
+                                           size_t count, const float *points, const float *normals, float *irradiance);
+VOXGI_API void voxgi_sh_destroy(voxgi_context *ctx, voxgi_sh *sh);
+
 /* An image of the direct light (exact shadow rays, `samples` camera rays per pixel) and one bounce
-   from reflective shadow maps: every directional and spot light's map gathered at each pixel's
-   surface (voxgi's G-buffer: the pixel centre's ray), through the scene's voxels (a conservative
-   grid of `resolution` voxels along its longest side) unless visibility is none. Light from other
-   lights and emitters bounces nowhere (their maps are to come). rgb as voxgi_reference_render's. */
+   from reflective shadow maps: the maps of every light but point lights (whose light bounces
+   nowhere) and of the emitters, gathered at each pixel's surface (voxgi's G-buffer: the pixel
+   centre's ray) through the scene's voxels (a conservative grid of `resolution` voxels along its
+   longest side) unless visibility is none. With a gather stride s > 1 (Buchacher 2014's
+   interpolation, its low-resolution image being the anchors) only every s-th pixel across and down
+   gathers, the pixels between taking the bilinear mean of the anchors around them that share
+   their surface (normals within 26 degrees, on its plane within a voxel) where at least three of
+   the four do (all, on an anchor's row or column), the rest gathering their own. rgb as
+   voxgi_reference_render's. */
 typedef enum voxgi_visibility { VOXGI_VISIBILITY_DDA = 0, VOXGI_VISIBILITY_HIERARCHICAL, VOXGI_VISIBILITY_NONE } voxgi_visibility;
 typedef struct voxgi_rsm_image_desc {
     voxgi_camera camera;
     voxgi_rsm_desc rsm;           /* size, samples, radius and seed of every light's map (light: ignored) */
     voxgi_visibility visibility;  /* 0 = DDA */
     int resolution;               /* of the visibility's voxels; 0 = 64 */
-    int samples;                  /* camera rays per pixel for the direct light; 0 = 4 */
+    int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
     uint64_t seed;
     int hide_emitters;            /* 1: leave out the emission the camera sees directly */
+    int gather_stride;            /* gathers at every s-th pixel, the rest interpolated where they can be; 0 = 4,
+                                     1: every pixel */
 } voxgi_rsm_image_desc;
 typedef struct voxgi_rsm_image_info {
-    int maps;                     /* directional and spot lights, one map each */
+    int maps;                     /* all lights' and the emitters' */
+    size_t gathered;              /* pixels that gathered (the rest interpolated) */
     double ms_maps, ms_voxels, ms_direct, ms_gather, ms; /* the maps, the voxels, the direct light, the gathers, all */
 } voxgi_rsm_image_info;
 VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_rsm_image_info *info);
+
+/* An image of the direct light (as voxgi_rsm_render's) and one bounce from the SH volume of a grid
+   of `resolution` voxels along the scene's longest side, gathered (voxgi_sh_irradiance) at the
+   anchors of a gather stride and interpolated between them as voxgi_rsm_render does, through that
+   grid's conservative voxels unless visibility is none. rgb as voxgi_reference_render's. */
+typedef struct voxgi_sh_image_desc {
+    voxgi_camera camera;
+    voxgi_sh_desc sh;
+    int resolution;               /* of the SH volume and the visibility's voxels; 0 = 64 */
+    voxgi_visibility visibility;  /* 0 = DDA */
+    float opening;                /* the estimator's opening: 0 = 0.5 */
+    int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
+    uint64_t seed;
+    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
+    int gather_stride;            /* gathers at every s-th pixel; 0 = 4, 1: every pixel */
+} voxgi_sh_image_desc;
+typedef struct voxgi_sh_image_info {
+    size_t gathered;              /* pixels that gathered (the rest interpolated) */
+    double ms_sh, ms_voxels, ms_direct, ms_gather, ms; /* the SH volume, the voxels, the direct light, the gathers, all */
+} voxgi_sh_image_info;
+VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_sh_image_desc *desc, float *rgb, size_t rgb_bytes,
+                                       voxgi_sh_image_info *info);
 
 /* An image of the direct light with transmittance shadow maps: every directional and spot light
    through its own map, the other lights and emissive triangles through exact shadow rays (which pass
@@ -3184,6 +3260,50 @@ static voxgi_result voxgi__lights_build(voxgi_context *ctx, const voxgi_scene *s
     }
     for (i = 0; i < nt; i++) Ls->emitter_pdf[i] /= Ls->emitter_count ? Ls->emitter_cdf[Ls->emitter_count - 1] : 1;
     return VOXGI_OK;
+}
+
+/* Point k of n on a rectangular light L, or (L NULL) on the emitters picked by power, stratified
+   (a 2D Kronecker sequence; on a triangle, the pick's remainder and the second coordinate): its
+   position q, the unit normal n it shines along, and the radiance x area it stands for (power,
+   rgb), so that it sends the intensity power cos(theta) into its hemisphere (power pi in all);
+   *prim: its emissive triangle (UINT32_MAX on a light). How area light becomes point light. */
+static void voxgi__area_point(const voxgi__lights *Ls, const voxgi_light *L, int k, int n, double q[3], double nrm[3], double power[3], uint32_t *prim)
+{
+    static const double unshifted[2] = {0.5, 0.5}; /* the same points for every caller */
+    const voxgi__tracer *tr = Ls->tr;
+    double uv[2];
+    int a;
+    voxgi__kronecker(2, k, unshifted, uv);
+    if (L) {
+        double area;
+        for (a = 0; a < 3; a++) nrm[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
+        area = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+        for (a = 0; a < 3; a++) {
+            q[a] = L->position[a] + uv[0] * L->edge_u[a] + uv[1] * L->edge_v[a];
+            nrm[a] = area > 0 ? nrm[a] / area : 0;
+            power[a] = L->intensity[a] * area / n;
+        }
+        *prim = UINT32_MAX;
+    } else {
+        double total = Ls->emitter_cdf[Ls->emitter_count - 1], u = uv[0] * total, below, r1, b1, b2;
+        size_t lo = 0, hi = Ls->emitter_count - 1;
+        const double *v, *tn;
+        const voxgi_material *m;
+        while (lo < hi) { size_t mid = (lo + hi) / 2; if (Ls->emitter_cdf[mid] <= u) lo = mid + 1; else hi = mid; }
+        *prim = Ls->emitters[lo];
+        below = lo ? Ls->emitter_cdf[lo - 1] : 0;
+        r1 = sqrt(VOXGI__MIN(1.0, VOXGI__MAX(0.0, (u - below) / (Ls->emitter_cdf[lo] - below))));
+        b1 = 1 - r1;
+        b2 = r1 * uv[1];
+        v = tr->v + 9 * (size_t)*prim;
+        tn = tr->n + 3 * (size_t)*prim;
+        m = voxgi__prim_material(tr, *prim);
+        for (a = 0; a < 3; a++) {
+            q[a] = v[a] + b1 * (v[3 + a] - v[a]) + b2 * (v[6 + a] - v[a]);
+            nrm[a] = tn[a];
+            power[a] = m->emission[a] / (Ls->emitter_pdf[*prim] * n);
+        }
+    }
 }
 
 /* Nothing between p (on triangle skip, unit normal ns on the side the ray leaves) and the
@@ -9611,7 +9731,6 @@ static voxgi_result voxgi__light_casters(voxgi_context *ctx, const voxgi__tracer
     const voxgi_scene *scene = Ls->scene;
     size_t nt = tr->flat.triangle_count, i, nc = 0, cap;
     voxgi__caster *cs;
-    const double unshifted[2] = {0.5, 0.5}; /* the same points for every voxel */
     double lo[3], hi[3], centre[3], radius = 0, vs = g->voxel_size;
     int a, layers = 0, f;
     voxgi_result r = VOXGI_OK;
@@ -9647,44 +9766,27 @@ static voxgi_result voxgi__light_casters(voxgi_context *ctx, const voxgi__tracer
             } else if (L->type == VOXGI_LIGHT_SPOT) {
                 c->param[0] = (float)cos((double)L->spot_inner);
                 c->param[1] = (float)cos((double)L->spot_outer);
-            } else if (L->type == VOXGI_LIGHT_RECT) { /* a stratified point (Kronecker sequence), the area's share */
-                double uv[2], nn[3], area, u, v;
-                voxgi__kronecker(2, k, unshifted, uv);
-                u = uv[0];
-                v = uv[1];
-                for (a = 0; a < 3; a++) nn[a] = (double)L->edge_u[(a + 1) % 3] * L->edge_v[(a + 2) % 3] - (double)L->edge_u[(a + 2) % 3] * L->edge_v[(a + 1) % 3];
-                area = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+            } else if (L->type == VOXGI_LIGHT_RECT) {
+                double q[3], nn[3], power[3];
+                uint32_t own;
+                voxgi__area_point(Ls, L, k, samples, q, nn, power, &own);
                 for (a = 0; a < 3; a++) {
-                    c->pos[a] = (float)(L->position[a] + u * L->edge_u[a] + v * L->edge_v[a] - g->origin[a]);
-                    c->dir[a] = (float)(area > 0 ? nn[a] / area : 0);
-                    c->power[a] = (float)(L->intensity[a] * area / samples);
+                    c->pos[a] = (float)(q[a] - g->origin[a]);
+                    c->dir[a] = (float)nn[a];
+                    c->power[a] = (float)power[a];
                 }
             }
         }
     }
     for (f = 0; r == VOXGI_OK && Ls->emitter_count && f < samples; f++) { /* points on the emitters by power, stratified */
         voxgi__caster *c = &cs[nc++];
-        double total = Ls->emitter_cdf[Ls->emitter_count - 1], uv[2], u, v2, below, r1, b1, b2;
-        size_t lo_i = 0, hi_i = Ls->emitter_count - 1;
-        const double *v, *nrm;
-        const voxgi_material *m;
-        uint32_t k;
-        voxgi__kronecker(2, f, unshifted, uv);
-        u = uv[0] * total;
-        v2 = uv[1];
-        while (lo_i < hi_i) { size_t mid = (lo_i + hi_i) / 2; if (Ls->emitter_cdf[mid] <= u) lo_i = mid + 1; else hi_i = mid; }
-        k = Ls->emitters[lo_i];
-        below = lo_i ? Ls->emitter_cdf[lo_i - 1] : 0;
-        r1 = sqrt(VOXGI__MIN(1.0, VOXGI__MAX(0.0, (u - below) / (Ls->emitter_cdf[lo_i] - below))));
-        b1 = 1 - r1;
-        b2 = r1 * v2;
-        v = tr->v + 9 * (size_t)k;
-        nrm = tr->n + 3 * (size_t)k;
-        m = voxgi__prim_material(tr, k);
+        double q[3], nn[3], power[3];
+        uint32_t own;
+        voxgi__area_point(Ls, NULL, f, samples, q, nn, power, &own);
         for (a = 0; a < 3; a++) {
-            c->pos[a] = (float)(v[a] + b1 * (v[3 + a] - v[a]) + b2 * (v[6 + a] - v[a]) + 1e-3 * vs * nrm[a] - g->origin[a]); /* just off its own triangle */
-            c->dir[a] = (float)nrm[a];
-            c->power[a] = (float)(m->emission[a] / (Ls->emitter_pdf[k] * samples));
+            c->pos[a] = (float)(q[a] + 1e-3 * vs * nn[a] - g->origin[a]); /* just off its own triangle */
+            c->dir[a] = (float)nn[a];
+            c->power[a] = (float)power[a];
         }
         c->pos[3] = 3;
         c->power[3] = (float)layers;
@@ -10074,6 +10176,7 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
 typedef struct voxgi__light_view {
     double u[3], v[3], w[3];      /* the light's frame: across the map, and the direction light travels */
     int perspective;              /* a spot light's map (else a directional light's) */
+    int hemisphere;               /* a Lambertian point's map (eye, facing w): its hemisphere by the concentric map */
     double lo[3];                 /* orthographic: the map's corner in the frame (world units) */
     double texel, slice;          /* orthographic: world units */
     double eye[3], tan_half, near_z, far_z; /* perspective: the light's position, the cone, depths along w */
@@ -10098,11 +10201,54 @@ struct voxgi_tsm {
     unsigned int gl_columns, gl_opaque, gl_params; /* on a GL context: the same, and the frame (tsm_lookup.glsl) */
 };
 
+/* Shirley and Chiu's concentric map between the square [-1,1]^2 and the unit disk: continuous,
+   area-preserving up to pi / 4, so with the disk lifted to the hemisphere above it (Malley) each
+   texel of a square map holds the same cosine-weighted solid angle, pi / texels. */
+static void voxgi__square_to_disk(const double sq[2], double disk[2])
+{
+    double r, phi;
+    if (sq[0] == 0 && sq[1] == 0) { disk[0] = disk[1] = 0; return; }
+    if (fabs(sq[0]) > fabs(sq[1])) { r = sq[0]; phi = VOXGI__PI / 4 * sq[1] / sq[0]; }
+    else { r = sq[1]; phi = VOXGI__PI / 2 - VOXGI__PI / 4 * sq[0] / sq[1]; }
+    disk[0] = r * cos(phi);
+    disk[1] = r * sin(phi);
+}
+
+/* The inverse, for a direction p (frame coordinates, w = p[2] up): its point of the disk, or
+   for a direction at or below the horizon the rim toward it. */
+static void voxgi__disk_to_square(const double p[3], double sq[2])
+{
+    double len = p[2] > 0 ? sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) : sqrt(p[0] * p[0] + p[1] * p[1]), x, y, r, phi;
+    if (!(len > 0)) { sq[0] = sq[1] = 0; return; }
+    x = p[0] / len;
+    y = p[1] / len;
+    r = VOXGI__MIN(1.0, sqrt(x * x + y * y));
+    phi = atan2(y, x);
+    if (phi < -VOXGI__PI / 4) phi += 2 * VOXGI__PI; /* [-pi/4, 7pi/4): the four wedges in turn */
+    if (phi < VOXGI__PI / 4) { sq[0] = r; sq[1] = phi * 4 / VOXGI__PI * r; }
+    else if (phi < 3 * VOXGI__PI / 4) { sq[1] = r; sq[0] = -(phi - VOXGI__PI / 2) * 4 / VOXGI__PI * r; }
+    else if (phi < 5 * VOXGI__PI / 4) { sq[0] = -r; sq[1] = -(phi - VOXGI__PI) * 4 / VOXGI__PI * r; }
+    else { sq[1] = -r; sq[0] = (phi - 3 * VOXGI__PI / 2) * 4 / VOXGI__PI * r; }
+}
+
 /* Point x (world) in the map's frame: texels across, slices along. Perspective: across, the
    cone's square; along, slices uniform in 1 / depth between near_z (where a point nearer is
    taken to lie) and far_z: a projective map, so triangles stay triangles and planes planes. */
 static void voxgi__view_point(const voxgi__light_view *T, const double x[3], double out[3])
 {
+    if (T->hemisphere) {
+        double r[3], p[3], sq[2];
+        int a;
+        for (a = 0; a < 3; a++) r[a] = x[a] - T->eye[a];
+        p[0] = r[0] * T->u[0] + r[1] * T->u[1] + r[2] * T->u[2];
+        p[1] = r[0] * T->v[0] + r[1] * T->v[1] + r[2] * T->v[2];
+        p[2] = r[0] * T->w[0] + r[1] * T->w[1] + r[2] * T->w[2];
+        voxgi__disk_to_square(p, sq);
+        out[0] = 0.5 * T->size * (1 + sq[0]);
+        out[1] = 0.5 * T->size * (1 + sq[1]);
+        out[2] = 0;
+        return;
+    }
     if (T->perspective) {
         double r[3], z, s = T->size;
         int a;
@@ -10674,16 +10820,18 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
 
 /* ----- 10.4 reflective shadow maps (voxgi_rsm) */
 struct voxgi_rsm {
-    voxgi__light_view view;
-    float *position, *normal, *flux; /* 3 per texel */
+    int maps, samples;
+    voxgi__light_view *views;     /* one per map */
+    float *position, *normal, *flux; /* 3 per texel, map after map */
     float *offset, *weight;       /* the sample pattern: 2 and 1 per sample */
-    int samples;
     double radius;                /* texels */
+    voxgi_rsm_info info;
 };
 
 static void voxgi__rsm_free(voxgi_context *ctx, voxgi_rsm *R)
 {
     if (!R) return;
+    voxgi__free(ctx, R->views);
     voxgi__free(ctx, R->position);
     voxgi__free(ctx, R->normal);
     voxgi__free(ctx, R->flux);
@@ -10692,36 +10840,59 @@ static void voxgi__rsm_free(voxgi_context *ctx, voxgi_rsm *R)
     voxgi__free(ctx, R);
 }
 
-typedef struct voxgi__rsm_job { voxgi_rsm *R; const voxgi__tracer *tr; const voxgi_light *L; } voxgi__rsm_job;
+typedef struct voxgi__rsm_job {
+    voxgi_rsm *R;
+    const voxgi__tracer *tr;
+    const voxgi_light *L;         /* a directional or spot light's map */
+    const double *power;          /* else per map: its point's radiance x area (rgb) */
+    const uint32_t *own;          /* and its emissive triangle (UINT32_MAX: none) */
+} voxgi__rsm_job;
 
-/* Rows [first, end) of texels: the surface the light meets through each texel's centre. */
+/* Rows [first, end) of all maps' texels: the surface the light meets through each texel's centre. */
 static void voxgi__rsm_rows(void *user, size_t first, size_t end)
 {
     const voxgi__rsm_job *J = (const voxgi__rsm_job *)user;
     voxgi_rsm *R = J->R;
-    const voxgi__light_view *V = &R->view;
-    size_t j;
-    for (j = first; j < end; j++) {
+    size_t row, size = (size_t)R->info.size;
+    for (row = first; row < end; row++) {
+        size_t map = row / size, j = row % size;
+        const voxgi__light_view *V = &R->views[map];
         int i, a;
         for (i = 0; i < V->size; i++) {
-            size_t at = 3 * (j * (size_t)V->size + (size_t)i);
-            double o[3], d[3], share;
+            size_t at = 3 * (row * size + (size_t)i);
+            double o[3], d[3], I[3], share;
+            uint32_t skip = UINT32_MAX;
             voxgi__hit h;
-            if (V->perspective) { /* from the light through the texel's centre; its solid angle */
-                double x = (2 * (i + 0.5) / V->size - 1) * V->tan_half, y = (2 * ((double)j + 0.5) / V->size - 1) * V->tan_half, len, to[3];
+            if (V->hemisphere) { /* from the point through the texel's centre: each the same cosine-weighted solid angle */
+                double sq[2], disk[2], z;
+                sq[0] = 2 * (i + 0.5) / V->size - 1;
+                sq[1] = 2 * ((double)j + 0.5) / V->size - 1;
+                voxgi__square_to_disk(sq, disk);
+                z = sqrt(VOXGI__MAX(0.0, 1 - disk[0] * disk[0] - disk[1] * disk[1]));
+                for (a = 0; a < 3; a++) {
+                    o[a] = V->eye[a];
+                    d[a] = disk[0] * V->u[a] + disk[1] * V->v[a] + z * V->w[a];
+                    I[a] = J->power[3 * map + (size_t)a];
+                }
+                share = VOXGI__PI / ((double)V->size * V->size);
+                skip = J->own[map];
+            } else if (V->perspective) { /* from the light through the texel's centre; its solid angle */
+                double x = (2 * (i + 0.5) / V->size - 1) * V->tan_half, y = (2 * ((double)j + 0.5) / V->size - 1) * V->tan_half, to[3], len;
                 for (a = 0; a < 3; a++) { o[a] = V->eye[a]; d[a] = V->w[a] + x * V->u[a] + y * V->v[a]; }
                 len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
                 for (a = 0; a < 3; a++) { d[a] /= len; to[a] = -d[a]; }
                 share = (2 * V->tan_half / V->size) * (2 * V->tan_half / V->size) / (len * len * len) * voxgi__spot_share(J->L, to);
+                for (a = 0; a < 3; a++) I[a] = J->L->intensity[a];
             } else { /* along the light from before the scene; the texel's area */
                 for (a = 0; a < 3; a++) {
                     o[a] = (V->lo[0] + (i + 0.5) * V->texel) * V->u[a] + (V->lo[1] + ((double)j + 0.5) * V->texel) * V->v[a] + (V->lo[2] - V->texel) * V->w[a];
                     d[a] = V->w[a];
+                    I[a] = J->L->intensity[a];
                 }
                 share = V->texel * V->texel;
             }
             for (a = 0; a < 3; a++) R->position[at + (size_t)a] = R->normal[at + (size_t)a] = R->flux[at + (size_t)a] = 0;
-            if (!voxgi__trace(J->tr, o, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+            if (!voxgi__trace(J->tr, o, d, DBL_MAX, skip, 0, &h)) continue;
             {
                 const voxgi_material *m = voxgi__prim_material(J->tr, h.prim);
                 const double *n = J->tr->n + 3 * (size_t)h.prim;
@@ -10729,7 +10900,7 @@ static void voxgi__rsm_rows(void *user, size_t first, size_t end)
                 for (a = 0; a < 3; a++) {
                     R->position[at + (size_t)a] = (float)h.p[a];
                     R->normal[at + (size_t)a] = (float)(side * n[a]);
-                    R->flux[at + (size_t)a] = (float)(m->albedo[a] * J->L->intensity[a] * share);
+                    R->flux[at + (size_t)a] = (float)(m->albedo[a] * I[a] * share);
                 }
             }
         }
@@ -10739,41 +10910,69 @@ static void voxgi__rsm_rows(void *user, size_t first, size_t end)
 VOXGI_API voxgi_result voxgi_rsm_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_desc *desc, voxgi_rsm **out)
 {
     voxgi__tracer tr;
+    voxgi__lights Ls;
     voxgi__rsm_job J;
-    voxgi_rsm *R;
+    voxgi_rsm *R = NULL;
     voxgi__rng g;
     const voxgi_light *L = NULL;
+    double *power = NULL, sum = 0, t0 = voxgi__now_ms();
+    uint32_t *own = NULL;
     size_t texels;
-    double sum = 0;
-    int size, samples, k;
+    int size, samples, points, maps = 1, k, a;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or out is NULL");
     *out = NULL;
     size = desc->size ? desc->size : 256;
     samples = desc->samples ? desc->samples : 100;
-    if (size < 1 || size > 16384 || samples < 1 || samples > 65536 || !(desc->radius >= 0 && desc->radius <= 1))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "size %d (1..16384), samples %d (1..65536), radius %g (0..1)", size, samples, (double)desc->radius);
-    if ((r = voxgi__view_light(ctx, scene, desc->light, "reflective shadow maps", &L)) != VOXGI_OK) return r;
+    points = desc->points ? desc->points : 4;
+    if (size < 1 || size > 16384 || samples < 1 || samples > 65536 || points < 1 || points > 4096 || !(desc->radius >= 0 && desc->radius <= 2))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "size %d (1..16384), samples %d (1..65536), points %d (1..4096), radius %g (0..2)", size,
+                           samples, points, (double)desc->radius);
+    if (!desc->emitters) {
+        if (desc->light >= scene->light_count)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "light %lu of %lu", (unsigned long)desc->light, (unsigned long)scene->light_count);
+        L = &scene->lights[desc->light];
+        if (L->type == VOXGI_LIGHT_POINT) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "reflective shadow maps take a directional, spot or rectangular light");
+        if (L->type == VOXGI_LIGHT_RECT) maps = points;
+    }
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    texels = (size_t)size * (size_t)size;
-    R = (voxgi_rsm *)voxgi__alloc_array(ctx, 1, sizeof *R, 1);
-    if (R) {
+    if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
+    if (desc->emitters) {
+        if (!Ls.emitter_count) r = voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the scene has no emissive triangles");
+        maps = points;
+    }
+    texels = (size_t)size * (size_t)size * (size_t)maps;
+    if (r == VOXGI_OK && (R = (voxgi_rsm *)voxgi__alloc_array(ctx, 1, sizeof *R, 1)) != NULL) {
+        R->maps = maps;
+        R->views = (voxgi__light_view *)voxgi__alloc_array(ctx, (size_t)maps, sizeof *R->views, 1);
         R->position = (float *)voxgi__alloc_array(ctx, texels, 12, 0);
         R->normal = (float *)voxgi__alloc_array(ctx, texels, 12, 0);
         R->flux = (float *)voxgi__alloc_array(ctx, texels, 12, 0);
         R->offset = (float *)voxgi__alloc_array(ctx, (size_t)samples, 8, 0);
         R->weight = (float *)voxgi__alloc_array(ctx, (size_t)samples, 4, 0);
+        power = (double *)voxgi__alloc_array(ctx, (size_t)maps, 3 * sizeof *power, 1);
+        own = (uint32_t *)voxgi__alloc_array(ctx, (size_t)maps, sizeof *own, 1);
     }
-    if (!R || !R->position || !R->normal || !R->flux || !R->offset || !R->weight) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %dx%d map", size, size);
-    if (r == VOXGI_OK) {
-        R->view.size = size;
-        R->view.slices = 1;
-        r = voxgi__view_setup(ctx, &tr.flat, L, desc->light, &R->view);
+    if (r == VOXGI_OK && (!R || !R->views || !R->position || !R->normal || !R->flux || !R->offset || !R->weight || !power || !own))
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %d maps of %dx%d texels", maps, size, size);
+    for (k = 0; r == VOXGI_OK && k < maps; k++) {
+        voxgi__light_view *V = &R->views[k];
+        V->size = size;
+        V->slices = 1;
+        if (desc->emitters || L->type == VOXGI_LIGHT_RECT) { /* point k of the area: its hemisphere, from a hair off its surface */
+            double q[3], n[3];
+            voxgi__area_point(&Ls, L, k, points, q, n, power + 3 * k, &own[k]);
+            V->hemisphere = 1;
+            for (a = 0; a < 3; a++) V->w[a] = n[a];
+            voxgi__leave(&tr, q, n, V->eye);
+            voxgi__basis(V->w, V->u, V->v);
+        } else
+            r = voxgi__view_setup(ctx, &tr.flat, L, desc->light, V);
     }
     if (r == VOXGI_OK) {
         R->samples = samples;
-        R->radius = (desc->radius > 0 ? desc->radius : 0.1) * size;
+        R->radius = (desc->radius > 0 ? desc->radius : maps > 1 || desc->emitters || L->type == VOXGI_LIGHT_RECT ? 1.0 : 0.1) * size;
         voxgi__rng_seed(&g, desc->seed, 0, 0);
         for (k = 0; k < samples; k++) { /* the pattern: r xi1 (sin 2 pi xi2, cos 2 pi xi2), weight xi1 */
             double x1 = voxgi__rng_unit(&g), x2 = voxgi__rng_unit(&g);
@@ -10783,15 +10982,32 @@ VOXGI_API voxgi_result voxgi_rsm_create(voxgi_context *ctx, const voxgi_scene *s
             sum += x1;
         }
         for (k = 0; k < samples; k++) R->weight[k] = (float)(R->weight[k] / sum);
+        R->info.maps = maps;
+        R->info.size = size;
+        R->info.samples = samples;
+        R->info.bytes = texels * 36 + (size_t)samples * 12;
         J.R = R;
         J.tr = &tr;
         J.L = L;
-        voxgi__parallel(ctx, (size_t)size, 4, voxgi__rsm_rows, &J);
+        J.power = power;
+        J.own = own;
+        voxgi__parallel(ctx, (size_t)size * (size_t)maps, 4, voxgi__rsm_rows, &J);
+        R->info.ms = voxgi__now_ms() - t0;
     }
+    voxgi__free(ctx, power);
+    voxgi__free(ctx, own);
+    voxgi__lights_free(ctx, &Ls);
     voxgi__tracer_free(ctx, &tr);
     if (r == VOXGI_OK) *out = R;
     else voxgi__rsm_free(ctx, R);
     return r;
+}
+
+VOXGI_API void voxgi_rsm_query(const voxgi_rsm *rsm, voxgi_rsm_info *info)
+{
+    if (!info) return;
+    if (rsm) *info = rsm->info;
+    else memset(info, 0, sizeof *info);
 }
 
 VOXGI_API voxgi_result voxgi_rsm_texels(voxgi_context *ctx, const voxgi_rsm *rsm, float *positions, float *normals, float *flux)
@@ -10799,7 +11015,7 @@ VOXGI_API voxgi_result voxgi_rsm_texels(voxgi_context *ctx, const voxgi_rsm *rsm
     size_t bytes;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!rsm) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "rsm is NULL");
-    bytes = (size_t)rsm->view.size * (size_t)rsm->view.size * 12;
+    bytes = (size_t)rsm->info.size * (size_t)rsm->info.size * (size_t)rsm->maps * 12;
     if (positions) memcpy(positions, rsm->position, bytes);
     if (normals) memcpy(normals, rsm->normal, bytes);
     if (flux) memcpy(flux, rsm->flux, bytes);
@@ -10816,7 +11032,8 @@ VOXGI_API voxgi_result voxgi_rsm_pattern(voxgi_context *ctx, const voxgi_rsm *rs
 }
 
 typedef struct voxgi__rsm_gather_job {
-    const voxgi_rsm *R;
+    voxgi_rsm *const *maps;       /* their light adds up */
+    size_t n;
     const voxgi__occupancy *O;    /* NULL: no visibility */
     const voxgi_grid *grid;
     int hierarchical;
@@ -10827,47 +11044,51 @@ typedef struct voxgi__rsm_gather_job {
 static void voxgi__rsm_gather(void *user, size_t first, size_t end)
 {
     const voxgi__rsm_gather_job *J = (const voxgi__rsm_gather_job *)user;
-    const voxgi_rsm *R = J->R;
-    const voxgi__light_view *V = &R->view;
-    double disc = VOXGI__PI * R->radius * R->radius, floor2 = 0;
-    size_t i;
+    size_t i, ri;
     uint64_t steps = 0;
-    int k, a;
-    if (!V->perspective) floor2 = V->texel * V->texel;
+    int k, a, map;
     for (i = first; i < end; i++) {
-        double x[3], n[3], st[3], e[3] = {0, 0, 0};
+        double x[3], n[3], e[3] = {0, 0, 0};
         for (a = 0; a < 3; a++) { x[a] = J->points[3 * i + (size_t)a]; n[a] = J->normals[3 * i + (size_t)a]; }
-        voxgi__view_point(V, x, st);
-        for (k = 0; k < R->samples; k++) {
-            double s = st[0] + R->offset[2 * k], t = st[1] + R->offset[2 * k + 1], d[3], dist2 = 0, cp = 0, cx = 0, f;
-            size_t at;
-            const float *xp, *np, *phi;
-            if (!(s >= 0 && s < V->size && t >= 0 && t < V->size)) continue;
-            at = 3 * ((size_t)t * (size_t)V->size + (size_t)s);
-            phi = R->flux + at;
-            if (phi[0] == 0 && phi[1] == 0 && phi[2] == 0) continue;
-            xp = R->position + at;
-            np = R->normal + at;
-            for (a = 0; a < 3; a++) {
-                d[a] = x[a] - xp[a];
-                dist2 += d[a] * d[a];
-                cp += np[a] * d[a];
-                cx -= n[a] * d[a];
-            }
-            if (cp <= 0 || cx <= 0) continue;
-            if (V->perspective) floor2 = dist2 * 1e-6;
-            dist2 = VOXGI__MAX(dist2, floor2);
-            if (J->O) { /* each end 1.5 voxels off its own surface */
-                double o[3], dd[3], vs = J->grid->voxel_size;
-                for (a = 0; a < 3; a++) {
-                    double from = x[a] + 1.5 * vs * n[a], to = xp[a] + 1.5 * vs * np[a];
-                    o[a] = (from - J->grid->origin[a]) / vs;
-                    dd[a] = (to - J->grid->origin[a]) / vs - o[a];
+        for (ri = 0; ri < J->n; ri++) {
+            const voxgi_rsm *R = J->maps[ri];
+            double disc = VOXGI__PI * R->radius * R->radius;
+            size_t size = (size_t)R->info.size;
+            for (map = 0; map < R->maps; map++) {
+                const voxgi__light_view *V = &R->views[map];
+                double st[3], floor2 = V->perspective || V->hemisphere ? 0 : V->texel * V->texel; /* the singularity: at least a texel apart */
+                voxgi__view_point(V, x, st);
+                for (k = 0; k < R->samples; k++) {
+                    double s = st[0] + R->offset[2 * k], t = st[1] + R->offset[2 * k + 1], d[3], dist2 = 0, cp = 0, cx = 0, f;
+                    size_t at;
+                    const float *xp, *np, *phi;
+                    if (!(s >= 0 && s < V->size && t >= 0 && t < V->size)) continue;
+                    at = 3 * (((size_t)map * size + (size_t)t) * size + (size_t)s);
+                    phi = R->flux + at;
+                    if (phi[0] == 0 && phi[1] == 0 && phi[2] == 0) continue;
+                    xp = R->position + at;
+                    np = R->normal + at;
+                    for (a = 0; a < 3; a++) {
+                        d[a] = x[a] - xp[a];
+                        dist2 += d[a] * d[a];
+                        cp += np[a] * d[a];
+                        cx -= n[a] * d[a];
+                    }
+                    if (cp <= 0 || cx <= 0) continue;
+                    dist2 = VOXGI__MAX(dist2, floor2 > 0 ? floor2 : dist2 * 1e-6);
+                    if (J->O) { /* each end 1.5 voxels off its own surface */
+                        double o[3], dd[3], vs = J->grid->voxel_size;
+                        for (a = 0; a < 3; a++) {
+                            double from = x[a] + 1.5 * vs * n[a], to = xp[a] + 1.5 * vs * np[a];
+                            o[a] = (from - J->grid->origin[a]) / vs;
+                            dd[a] = (to - J->grid->origin[a]) / vs - o[a];
+                        }
+                        if (voxgi__traverse(J->O, J->hierarchical, o, dd, &steps, NULL, NULL)) continue;
+                    }
+                    f = disc * R->weight[k] * cp * cx / (VOXGI__PI * dist2 * dist2);
+                    for (a = 0; a < 3; a++) e[a] += f * phi[a];
                 }
-                if (voxgi__traverse(J->O, J->hierarchical, o, dd, &steps, NULL, NULL)) continue;
             }
-            f = disc * R->weight[k] * cp * cx / (VOXGI__PI * dist2 * dist2);
-            for (a = 0; a < 3; a++) e[a] += f * phi[a];
         }
         for (a = 0; a < 3; a++) J->irradiance[3 * i + (size_t)a] = (float)e[a];
     }
@@ -10892,7 +11113,8 @@ VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm 
         J.grid = &voxels->info.grid;
         J.hierarchical = how == VOXGI_TRAVERSAL_HIERARCHICAL;
     }
-    J.R = rsm;
+    J.maps = (voxgi_rsm *const *)&rsm;
+    J.n = 1;
     J.points = points;
     J.normals = normals;
     J.irradiance = irradiance;
@@ -10904,6 +11126,352 @@ VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm 
 VOXGI_API void voxgi_rsm_destroy(voxgi_context *ctx, voxgi_rsm *rsm)
 {
     if (ctx) voxgi__rsm_free(ctx, rsm);
+}
+
+/* ----- 10.5 a spherical-harmonics volume of the direct light (voxgi_sh)
+
+   Per cell: 12 coefficients (rgb x Y00, Y1-1, Y10, Y11) and the weighted centroid (w x, w y,
+   w z, w), 16 floats; level l + 1 sums level l's cells two by two per axis. */
+#define VOXGI__SH_Y0 0.28209479177387814 /* 1 / (2 sqrt(pi)) */
+#define VOXGI__SH_Y1 0.48860251190291992 /* sqrt(3 / (4 pi)) */
+struct voxgi_sh {
+    voxgi_grid grid;
+    int levels;
+    int res[VOXGI__MAX_OCC_LEVELS][3];
+    float *cells[VOXGI__MAX_OCC_LEVELS];
+    voxgi_sh_info info;
+};
+
+static void voxgi__sh_free(voxgi_context *ctx, voxgi_sh *S)
+{
+    int l;
+    if (!S) return;
+    for (l = 0; l < S->levels; l++) voxgi__free(ctx, S->cells[l]);
+    voxgi__free(ctx, S);
+}
+
+/* The part of triangle v (9 doubles) inside the box [lo, lo + size]^3: its area and centroid. */
+static double voxgi__clip_to_box(const double *v, const double lo[3], double size, double centroid[3])
+{
+    double poly[2][9][3], area = 0, c[3] = {0, 0, 0};
+    int n = 3, cur = 0, a, plane, i, k;
+    for (i = 0; i < 3; i++) for (a = 0; a < 3; a++) poly[0][i][a] = v[3 * i + a];
+    for (plane = 0; plane < 6 && n; plane++) { /* Sutherland-Hodgman against each face */
+        int ax = plane >> 1, m = 0;
+        double bound = lo[ax] + ((plane & 1) ? size : 0), sgn = (plane & 1) ? -1 : 1;
+        for (i = 0; i < n; i++) {
+            const double *p = poly[cur][i], *q = poly[cur][(i + 1) % n];
+            double dp = sgn * (p[ax] - bound), dq = sgn * (q[ax] - bound);
+            if (dp >= 0) memcpy(poly[!cur][m++], p, sizeof poly[0][0]);
+            if ((dp >= 0) != (dq >= 0) && m < 9) {
+                double t = dp / (dp - dq);
+                for (a = 0; a < 3; a++) poly[!cur][m][a] = p[a] + t * (q[a] - p[a]);
+                m++;
+            }
+        }
+        n = m;
+        cur = !cur;
+    }
+    for (k = 1; k + 1 < n; k++) { /* a fan from the first corner */
+        const double *p0 = poly[cur][0], *p1 = poly[cur][k], *p2 = poly[cur][k + 1];
+        double e1[3], e2[3], x[3], t;
+        for (a = 0; a < 3; a++) { e1[a] = p1[a] - p0[a]; e2[a] = p2[a] - p0[a]; }
+        for (a = 0; a < 3; a++) x[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+        t = 0.5 * sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        area += t;
+        for (a = 0; a < 3; a++) c[a] += t * (p0[a] + p1[a] + p2[a]) / 3;
+    }
+    for (a = 0; a < 3; a++) centroid[a] = area > 0 ? c[a] / area : 0;
+    return area;
+}
+
+typedef struct voxgi__sh_piece { double c[3], area; uint32_t prim; uint64_t voxel; double e[6]; } voxgi__sh_piece;
+typedef struct voxgi__sh_job { const voxgi__lights *Ls; voxgi__sh_piece *pieces; int samples; uint64_t seed; } voxgi__sh_job;
+
+/* Pieces [first, end): the irradiance on both sides of each (front e[0..2], back e[3..5]) at its
+   centroid, the area lights and emitters through `samples` stratified points. */
+static void voxgi__sh_light_pieces(void *user, size_t first, size_t end)
+{
+    const voxgi__sh_job *J = (const voxgi__sh_job *)user;
+    size_t i;
+    uint64_t rays = 0;
+    for (i = first; i < end; i++) {
+        voxgi__sh_piece *P = &J->pieces[i];
+        const double *n = J->Ls->tr->n + 3 * (size_t)P->prim;
+        int side, s, a;
+        for (side = 0; side < 2; side++) {
+            double ns[3], p[3], e[3], rot[2], xi[2];
+            voxgi__rng g;
+            voxgi__rng_seed(&g, J->seed, i, (uint64_t)side);
+            rot[0] = voxgi__rng_unit(&g);
+            rot[1] = voxgi__rng_unit(&g);
+            for (a = 0; a < 3; a++) { ns[a] = side ? -n[a] : n[a]; P->e[3 * side + a] = 0; }
+            voxgi__leave(J->Ls->tr, P->c, ns, p);
+            for (s = 0; s < J->samples; s++) {
+                voxgi__kronecker(2, s, rot, xi);
+                voxgi__direct(J->Ls, p, ns, P->prim, &g, 0, xi, &rays, e, NULL);
+                for (a = 0; a < 3; a++) P->e[3 * side + a] += e[a] / J->samples;
+            }
+        }
+    }
+}
+
+VOXGI_API voxgi_result voxgi_sh_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_grid *grid, const voxgi_sh_desc *desc, voxgi_sh **out)
+{
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    voxgi__sh_job J;
+    voxgi_sh *S = NULL;
+    voxgi__sh_piece *pieces = NULL;
+    size_t np = 0, cap = 0, t, i;
+    double t0 = voxgi__now_ms(), vs;
+    int samples, a, l, area_lights = 0;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !grid || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, grid, desc or out is NULL");
+    *out = NULL;
+    if ((r = voxgi_validate_grid(ctx, grid)) != VOXGI_OK) return r;
+    if ((double)grid->res[0] * grid->res[1] * grid->res[2] * 64 * 8 / 7 > (ctx->desc.memory_budget ? (double)ctx->desc.memory_budget : 4e9))
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d SH volume (64 bytes a cell over all levels)", grid->res[0], grid->res[1], grid->res[2]);
+    if (desc->samples < 0 || desc->samples > 4096) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d (0..4096)", desc->samples);
+    vs = grid->voxel_size;
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
+    for (i = 0; i < scene->light_count; i++) area_lights |= scene->lights[i].type == VOXGI_LIGHT_RECT;
+    samples = area_lights || Ls.emitter_count ? (desc->samples ? desc->samples : 16) : 1; /* point-like lights need one */
+    for (t = 0; r == VOXGI_OK && t < tr.flat.triangle_count; t++) { /* every triangle's pieces, voxel by voxel */
+        const double *v = tr.v + 9 * t;
+        const voxgi_material *m = voxgi__prim_material(&tr, (uint32_t)t);
+        int64_t lo[3], hi[3], c[3];
+        if (m->albedo[0] == 0 && m->albedo[1] == 0 && m->albedo[2] == 0) continue;
+        for (a = 0; a < 3; a++) {
+            double mn = VOXGI__MIN(v[a], VOXGI__MIN(v[3 + a], v[6 + a])), mx = VOXGI__MAX(v[a], VOXGI__MAX(v[3 + a], v[6 + a]));
+            lo[a] = VOXGI__MAX((int64_t)0, (int64_t)floor((mn - grid->origin[a]) / vs));
+            hi[a] = VOXGI__MIN((int64_t)grid->res[a] - 1, (int64_t)floor((mx - grid->origin[a]) / vs));
+        }
+        for (c[2] = lo[2]; r == VOXGI_OK && c[2] <= hi[2]; c[2]++)
+            for (c[1] = lo[1]; r == VOXGI_OK && c[1] <= hi[1]; c[1]++)
+                for (c[0] = lo[0]; c[0] <= hi[0]; c[0]++) {
+                    double box[3], cen[3], area;
+                    for (a = 0; a < 3; a++) box[a] = grid->origin[a] + (double)c[a] * vs;
+                    if (!((area = voxgi__clip_to_box(v, box, vs, cen)) > 0)) continue;
+                    if (np == cap) {
+                        size_t nc = cap ? 2 * cap : 4096;
+                        voxgi__sh_piece *grown = (voxgi__sh_piece *)voxgi__alloc_array(ctx, nc, sizeof *grown, 0);
+                        if (!grown) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu surface pieces", (unsigned long)nc); break; }
+                        if (np) memcpy(grown, pieces, np * sizeof *pieces);
+                        voxgi__free(ctx, pieces);
+                        pieces = grown;
+                        cap = nc;
+                    }
+                    memcpy(pieces[np].c, cen, sizeof cen);
+                    pieces[np].area = area;
+                    pieces[np].prim = (uint32_t)t;
+                    pieces[np].voxel = (uint64_t)c[0] + (uint64_t)grid->res[0] * ((uint64_t)c[1] + (uint64_t)grid->res[1] * (uint64_t)c[2]);
+                    np++;
+                }
+    }
+    if (r == VOXGI_OK && !(S = (voxgi_sh *)voxgi__alloc_array(ctx, 1, sizeof *S, 1))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    if (r == VOXGI_OK) { /* the levels, down to one cell */
+        S->grid = *grid;
+        for (a = 0; a < 3; a++) S->res[0][a] = grid->res[a];
+        for (l = 0; l < VOXGI__MAX_OCC_LEVELS; l++) {
+            S->cells[l] = (float *)voxgi__alloc_array(ctx, (size_t)S->res[l][0] * (size_t)S->res[l][1] * (size_t)S->res[l][2], 64, 1);
+            if (!S->cells[l]) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the SH volume"); break; }
+            S->levels = l + 1;
+            if (S->res[l][0] == 1 && S->res[l][1] == 1 && S->res[l][2] == 1) break;
+            for (a = 0; a < 3; a++) S->res[l + 1][a] = (S->res[l][a] + 1) / 2;
+        }
+    }
+    if (r == VOXGI_OK) { /* each piece's light, then its reflected intensity projected into its voxel */
+        J.Ls = &Ls;
+        J.pieces = pieces;
+        J.samples = samples;
+        J.seed = desc->seed;
+        voxgi__parallel(ctx, np, 16, voxgi__sh_light_pieces, &J);
+        for (i = 0; i < np; i++) {
+            const voxgi__sh_piece *P = &pieces[i];
+            const voxgi_material *m = voxgi__prim_material(&tr, P->prim);
+            const double *n = tr.n + 3 * (size_t)P->prim;
+            float *cell = S->cells[0] + 16 * P->voxel;
+            double w = 0;
+            int side;
+            for (side = 0; side < 2; side++) { /* a Lambertian side sends albedo E A / pi max(0, n.w): SH of the clamped cosine */
+                double sg = side ? -1 : 1;
+                for (a = 0; a < 3; a++) {
+                    double k = m->albedo[a] * P->e[3 * side + a] * P->area / VOXGI__PI;
+                    cell[4 * a + 0] += (float)(k * VOXGI__PI * VOXGI__SH_Y0);
+                    cell[4 * a + 1] += (float)(k * 2 * VOXGI__PI / 3 * VOXGI__SH_Y1 * sg * n[1]);
+                    cell[4 * a + 2] += (float)(k * 2 * VOXGI__PI / 3 * VOXGI__SH_Y1 * sg * n[2]);
+                    cell[4 * a + 3] += (float)(k * 2 * VOXGI__PI / 3 * VOXGI__SH_Y1 * sg * n[0]);
+                    w += k / 3;
+                }
+            }
+            for (a = 0; a < 3; a++) cell[12 + a] += (float)(w * P->c[a]);
+            cell[15] += (float)w;
+        }
+        for (l = 1; l < S->levels; l++) { /* each cell adds into its parent */
+            const int *rc = S->res[l - 1], *rp = S->res[l];
+            int64_t c[3];
+            for (c[2] = 0; c[2] < rc[2]; c[2]++)
+                for (c[1] = 0; c[1] < rc[1]; c[1]++)
+                    for (c[0] = 0; c[0] < rc[0]; c[0]++) {
+                        const float *src = S->cells[l - 1] + 16 * ((size_t)c[0] + (size_t)rc[0] * ((size_t)c[1] + (size_t)rc[1] * (size_t)c[2]));
+                        float *dst = S->cells[l] + 16 * ((size_t)(c[0] >> 1) + (size_t)rp[0] * ((size_t)(c[1] >> 1) + (size_t)rp[1] * (size_t)(c[2] >> 1)));
+                        int k;
+                        if (src[15] == 0) continue;
+                        for (k = 0; k < 16; k++) dst[k] += src[k];
+                    }
+        }
+        for (i = 0; i < (size_t)S->res[0][0] * (size_t)S->res[0][1] * (size_t)S->res[0][2]; i++) S->info.voxels += S->cells[0][16 * i + 15] > 0;
+        S->info.levels = S->levels;
+        for (l = 0; l < S->levels; l++) S->info.bytes += (size_t)S->res[l][0] * (size_t)S->res[l][1] * (size_t)S->res[l][2] * 64;
+        S->info.pieces = np;
+        S->info.ms = voxgi__now_ms() - t0;
+    }
+    voxgi__free(ctx, pieces);
+    voxgi__lights_free(ctx, &Ls);
+    voxgi__tracer_free(ctx, &tr);
+    if (r == VOXGI_OK) *out = S;
+    else voxgi__sh_free(ctx, S);
+    return r;
+}
+
+VOXGI_API void voxgi_sh_query(const voxgi_sh *sh, voxgi_sh_info *info)
+{
+    if (!info) return;
+    if (sh) *info = sh->info;
+    else memset(info, 0, sizeof *info);
+}
+
+VOXGI_API voxgi_result voxgi_sh_read(voxgi_context *ctx, const voxgi_sh *sh, int level, float *cells, size_t cells_bytes, int res[3])
+{
+    size_t bytes;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!sh || level < 0 || level >= sh->levels) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "sh is NULL or level %d is not in 0..%d", level, sh ? sh->levels - 1 : 0);
+    bytes = (size_t)sh->res[level][0] * (size_t)sh->res[level][1] * (size_t)sh->res[level][2] * 64;
+    if (res) memcpy(res, sh->res[level], sizeof sh->res[level]);
+    if (!cells) return VOXGI_OK;
+    if (cells_bytes < bytes) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "cells holds %lu bytes, level %d needs %lu", (unsigned long)cells_bytes, level, (unsigned long)bytes);
+    memcpy(cells, sh->cells[level], bytes);
+    return VOXGI_OK;
+}
+
+typedef struct voxgi__sh_gather_job {
+    const voxgi_sh *S;
+    const voxgi__occupancy *O;    /* NULL: no visibility */
+    int hierarchical;
+    double opening;
+    const float *points, *normals;
+    float *irradiance;
+} voxgi__sh_gather_job;
+
+/* The irradiance at x on unit normal n: every cell, from the coarsest, seen whole where its size
+   over its centroid's distance is at most the opening (else its children are), as a point at its
+   centroid sending its intensity's SH toward x (clamped at 0), the distance at least a voxel, the
+   voxels within a voxel of x left out (its own surface). */
+static void voxgi__sh_point(const voxgi__sh_gather_job *J, const double x[3], const double n[3], double e[3])
+{
+    const voxgi_sh *S = J->S;
+    const voxgi_grid *g = &S->grid;
+    double vs = g->voxel_size;
+    int32_t stack[64 * 8][4];
+    int top = 0, a;
+    uint64_t steps = 0;
+    e[0] = e[1] = e[2] = 0;
+    stack[top][0] = S->levels - 1;
+    stack[top][1] = stack[top][2] = stack[top][3] = 0;
+    top++;
+    while (top) {
+        int32_t l, c[3];
+        const float *cell;
+        double p[3], d[3], dist2 = 0, dist, cr, w[3], size;
+        top--;
+        l = stack[top][0];
+        for (a = 0; a < 3; a++) c[a] = stack[top][1 + a];
+        cell = S->cells[l] + 16 * ((size_t)c[0] + (size_t)S->res[l][0] * ((size_t)c[1] + (size_t)S->res[l][1] * (size_t)c[2]));
+        if (!(cell[15] > 0)) continue;
+        for (a = 0; a < 3; a++) { p[a] = cell[12 + a] / cell[15]; d[a] = p[a] - x[a]; dist2 += d[a] * d[a]; }
+        dist = sqrt(dist2);
+        size = ldexp(vs, l);
+        if (l > 0 && !(size <= J->opening * dist)) { /* too near to be one point: its children */
+            int k;
+            for (k = 0; k < 8; k++) {
+                int32_t q[3];
+                for (a = 0; a < 3; a++) q[a] = 2 * c[a] + ((k >> a) & 1);
+                if (q[0] >= S->res[l - 1][0] || q[1] >= S->res[l - 1][1] || q[2] >= S->res[l - 1][2]) continue;
+                stack[top][0] = l - 1;
+                for (a = 0; a < 3; a++) stack[top][1 + a] = q[a];
+                top++;
+            }
+            continue;
+        }
+        if (!(dist > vs)) continue; /* the point's own surface */
+        for (a = 0; a < 3; a++) w[a] = -d[a] / dist; /* from the cell toward x */
+        cr = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / dist;
+        if (cr <= 0) continue;
+        if (J->O && dist > 3 * vs) { /* x 1.5 voxels off its surface to the centroid 1.5 voxels toward x */
+            double o[3], dd[3];
+            for (a = 0; a < 3; a++) {
+                o[a] = (x[a] + 1.5 * vs * n[a] - g->origin[a]) / vs;
+                dd[a] = (p[a] + 1.5 * vs * w[a] - g->origin[a]) / vs - o[a];
+            }
+            if (voxgi__traverse(J->O, J->hierarchical, o, dd, &steps, NULL, NULL)) continue;
+        }
+        for (a = 0; a < 3; a++) {
+            const float *k = cell + 4 * a;
+            double I = k[0] * VOXGI__SH_Y0 + VOXGI__SH_Y1 * (k[1] * w[1] + k[2] * w[2] + k[3] * w[0]);
+            if (I > 0) e[a] += I * cr / dist2;
+        }
+    }
+}
+
+static void voxgi__sh_gather(void *user, size_t first, size_t end)
+{
+    const voxgi__sh_gather_job *J = (const voxgi__sh_gather_job *)user;
+    size_t i;
+    int a;
+    for (i = first; i < end; i++) {
+        double x[3], n[3], e[3];
+        for (a = 0; a < 3; a++) { x[a] = J->points[3 * i + (size_t)a]; n[a] = J->normals[3 * i + (size_t)a]; }
+        voxgi__sh_point(J, x, n, e);
+        for (a = 0; a < 3; a++) J->irradiance[3 * i + (size_t)a] = (float)e[a];
+    }
+}
+
+VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *sh, const voxgi_voxels *voxels, voxgi_traversal how, float opening,
+                                           size_t count, const float *points, const float *normals, float *irradiance)
+{
+    voxgi__sh_gather_job J;
+    voxgi__occupancy O;
+    size_t i;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!sh || (count && (!points || !normals || !irradiance))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "sh, points, normals or irradiance is NULL");
+    if (how != VOXGI_TRAVERSAL_DDA && how != VOXGI_TRAVERSAL_HIERARCHICAL) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "traversal %d", (int)how);
+    if (!(opening >= 0 && opening <= 4)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "opening %g (0..4)", (double)opening);
+    for (i = 0; i < 3 * count; i++)
+        if (!isfinite(points[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
+    memset(&J, 0, sizeof J);
+    if (voxels) {
+        if (memcmp(&voxels->info.grid, &sh->grid, sizeof sh->grid) != 0) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the voxels' grid is not the SH volume's");
+        if ((r = voxgi__occ_build(ctx, voxels, how == VOXGI_TRAVERSAL_HIERARCHICAL, &O)) != VOXGI_OK) return r;
+        J.O = &O;
+        J.hierarchical = how == VOXGI_TRAVERSAL_HIERARCHICAL;
+    }
+    J.S = sh;
+    J.opening = opening > 0 ? opening : 0.5;
+    J.points = points;
+    J.normals = normals;
+    J.irradiance = irradiance;
+    voxgi__parallel(ctx, count, 64, voxgi__sh_gather, &J);
+    if (voxels) voxgi__occ_free(ctx, &O);
+    return VOXGI_OK;
+}
+
+VOXGI_API void voxgi_sh_destroy(voxgi_context *ctx, voxgi_sh *sh)
+{
+    if (ctx) voxgi__sh_free(ctx, sh);
 }
 
 /* ===================================================================== 11. images */
@@ -11294,47 +11862,72 @@ static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *s
     return r;
 }
 
-/* The cones' irradiance at every pixel's surface (J->irr), or with a cone stride s > 1 at every
-   s-th pixel across and down (and the last row and column), the pixels between taking the
-   bilinear mean of the four around them that share their surface, or tracing their own where
-   none does. */
-static voxgi_result voxgi__vct_cones(voxgi_context *ctx, const voxgi_vct_desc *desc, voxgi__vct_job *J, const voxgi_volume *vol,
-                                     const voxgi_svo *svo, double voxel_size, size_t *traced)
+/* Anchors and the pixels between (cone tracing's and the reflective shadow maps' gathers at a
+   stride s > 1): the anchors are every s-th pixel across and down and the last row and column
+   (want[i] = 1 where such a pixel has a surface). */
+static void voxgi__anchors(int w, int h, int stride, const uint32_t *prim, unsigned char *want)
 {
-    int w = desc->camera.width, h = desc->camera.height, stride = desc->cone_stride;
-    size_t pixels = (size_t)w * (size_t)h, i, n = 0, more = 0;
-    unsigned char *want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
-    voxgi_result r = VOXGI_OK;
-    if (!want) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
-    for (i = 0; i < pixels; i++) { /* every pixel's surface, or with a stride the grid of anchors */
+    size_t i, pixels = (size_t)w * (size_t)h;
+    for (i = 0; i < pixels; i++) {
         int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
-        want[i] = J->prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
+        want[i] = prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
     }
-    r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, J, pixels, want, &n);
-    for (i = 0; r == VOXGI_OK && stride > 1 && i < pixels; i++) { /* the rest between the four anchors around them */
-        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a;
+}
+
+/* Every other pixel with a surface: the bilinear mean of the irradiance of the anchors around it
+   (want: 1 at the anchors, on return 1 where a pixel needs its own gather) that share its
+   surface (normals within 26 degrees, within `plane` of its plane), renormalized over them. With
+   `strict` (Buchacher 2014's rule), only where at least three of the four share it (all of them
+   on an anchor's row or column); else wherever one with weight does. */
+static void voxgi__between_anchors(int w, int h, int stride, const float *pos, const float *nrm, const uint32_t *prim, double plane, int strict, float *irr,
+                                   unsigned char *want)
+{
+    size_t i, pixels = (size_t)w * (size_t)h;
+    for (i = 0; i < pixels; i++) {
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a, weighted = 0, shared = 0;
         int xs[2], ys[2];
         double sum = 0, e[3] = {0, 0, 0};
-        if (want[i] || J->prim[i] == UINT32_MAX) { want[i] = 0; continue; }
+        if (want[i] || prim[i] == UINT32_MAX) { want[i] = 0; continue; }
         xs[0] = x0; xs[1] = VOXGI__MIN(x0 + stride, w - 1);
         ys[0] = y0; ys[1] = VOXGI__MIN(y0 + stride, h - 1);
         for (k = 0; k < 4; k++) {
             size_t c = (size_t)ys[k >> 1] * (size_t)w + (size_t)xs[k & 1];
             double wx = xs[1] > xs[0] ? (double)(x - xs[0]) / (xs[1] - xs[0]) : 0, wy = ys[1] > ys[0] ? (double)(y - ys[0]) / (ys[1] - ys[0]) : 0;
             double wt = ((k & 1) ? wx : 1 - wx) * ((k >> 1) ? wy : 1 - wy), dn = 0, dp = 0;
-            if (J->prim[c] == UINT32_MAX || wt <= 0) continue;
+            if (wt <= 0) continue;
+            weighted++;
+            if (prim[c] == UINT32_MAX) continue;
             for (a = 0; a < 3; a++) {
-                dn += (double)J->nrm[3 * c + (size_t)a] * J->nrm[3 * i + (size_t)a];
-                dp += ((double)J->pos[3 * c + (size_t)a] - J->pos[3 * i + (size_t)a]) * J->nrm[3 * i + (size_t)a];
+                dn += (double)nrm[3 * c + (size_t)a] * nrm[3 * i + (size_t)a];
+                dp += ((double)pos[3 * c + (size_t)a] - pos[3 * i + (size_t)a]) * nrm[3 * i + (size_t)a];
             }
-            if (dn < 0.9 || fabs(dp) > voxel_size) continue; /* another surface: not its light */
+            if (dn < 0.9 || fabs(dp) > plane) continue; /* another surface: not its light */
+            shared++;
             sum += wt;
-            for (a = 0; a < 3; a++) e[a] += wt * J->irr[3 * c + (size_t)a];
+            for (a = 0; a < 3; a++) e[a] += wt * irr[3 * c + (size_t)a];
         }
-        if (sum > 1e-3) for (a = 0; a < 3; a++) J->irr[3 * i + (size_t)a] = (float)(e[a] / sum);
-        else want[i] = 1; /* no anchor shares its surface: its own cones */
+        if (sum > 1e-3 && (!strict || shared >= VOXGI__MIN(3, weighted))) for (a = 0; a < 3; a++) irr[3 * i + (size_t)a] = (float)(e[a] / sum);
+        else want[i] = 1; /* too few anchors share its surface: its own gather */
     }
-    if (r == VOXGI_OK && stride > 1) r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, J, pixels, want, &more);
+}
+
+/* The cones' irradiance at every pixel's surface (J->irr), or with a cone stride s > 1 at the
+   anchors (voxgi__anchors), the pixels between interpolated (voxgi__between_anchors, not strict)
+   or tracing their own where no anchor shares their surface. */
+static voxgi_result voxgi__vct_cones(voxgi_context *ctx, const voxgi_vct_desc *desc, voxgi__vct_job *J, const voxgi_volume *vol,
+                                     const voxgi_svo *svo, double voxel_size, size_t *traced)
+{
+    int w = desc->camera.width, h = desc->camera.height, stride = desc->cone_stride;
+    size_t pixels = (size_t)w * (size_t)h, n = 0, more = 0;
+    unsigned char *want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
+    voxgi_result r = VOXGI_OK;
+    if (!want) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    voxgi__anchors(w, h, stride, J->prim, want);
+    r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, J, pixels, want, &n);
+    if (r == VOXGI_OK && stride > 1) {
+        voxgi__between_anchors(w, h, stride, J->pos, J->nrm, J->prim, voxel_size, 0, J->irr, want);
+        r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, J, pixels, want, &more);
+    }
     *traced = n + more;
     voxgi__free(ctx, want);
     return r;
@@ -11550,81 +12143,259 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
 }
 
 /* ----- images with reflective shadow maps */
+
+/* A one-bounce gather at the pixels marked in want: gather(user, count, points, normals, out)
+   sets out (3 per point), added into irr (3 per pixel); their number added into *gathered. */
+typedef void (*voxgi__gather_fn)(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out);
+static voxgi_result voxgi__gather_pixels(voxgi_context *ctx, size_t pixels, const float *pos, const float *nrm, const unsigned char *want, float *irr,
+                                         size_t *gathered, voxgi__gather_fn gather, void *user)
+{
+    size_t count = 0, i, k;
+    float *p, *q, *e;
+    for (i = 0; i < pixels; i++) count += want[i] != 0;
+    *gathered += count;
+    if (!count) return VOXGI_OK;
+    p = (float *)voxgi__alloc_array(ctx, count, 12, 0);
+    q = (float *)voxgi__alloc_array(ctx, count, 12, 0);
+    e = (float *)voxgi__alloc_array(ctx, count, 12, 0);
+    if (p && q && e) {
+        for (i = k = 0; i < pixels; i++)
+            if (want[i]) {
+                memcpy(p + 3 * k, pos + 3 * i, 12);
+                memcpy(q + 3 * k, nrm + 3 * i, 12);
+                k++;
+            }
+        gather(ctx, user, count, p, q, e);
+        for (i = k = 0; i < pixels; i++)
+            if (want[i]) {
+                int a;
+                for (a = 0; a < 3; a++) irr[3 * i + (size_t)a] += e[3 * k + (size_t)a];
+                k++;
+            }
+    }
+    voxgi__free(ctx, p);
+    voxgi__free(ctx, q);
+    voxgi__free(ctx, e);
+    return p && q && e ? VOXGI_OK : voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu gathers", (unsigned long)count);
+}
+
+/* The bounce from every map of an image (a voxgi__rsm_gather_job). */
+static void voxgi__rsm_gather_maps(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
+{
+    voxgi__rsm_gather_job *J = (voxgi__rsm_gather_job *)user;
+    J->points = points;
+    J->normals = normals;
+    J->irradiance = out;
+    voxgi__parallel(ctx, count, 64, voxgi__rsm_gather, J);
+}
+
 VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_rsm_image_info *info)
 {
     voxgi__direct_image_job J;
     voxgi__tracer tr;
     voxgi__lights Ls;
+    voxgi__occupancy O;
     voxgi_rsm_image_info inf;
     voxgi_voxels *vox = NULL;
+    voxgi_rsm **maps = NULL;
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
     float *pos = NULL, *nrm = NULL, *irr = NULL;
     uint32_t *prim = NULL;
-    size_t pixels, li, p;
+    unsigned char *want = NULL;
+    size_t pixels, li, p, n = 0;
+    int w = desc ? desc->camera.width : 0, h = desc ? desc->camera.height : 0, stride, hierarchical, have_occ = 0;
     double t0 = voxgi__now_ms(), t1;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || (unsigned)desc->visibility > VOXGI_VISIBILITY_NONE)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), visibility %d", desc->samples, desc->resolution, (int)desc->visibility);
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || (unsigned)desc->visibility > VOXGI_VISIBILITY_NONE || desc->gather_stride < 0 ||
+        desc->gather_stride > 64)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), visibility %d, gather_stride %d (0..64)", desc->samples,
+                           desc->resolution, (int)desc->visibility, desc->gather_stride);
+    stride = desc->gather_stride ? desc->gather_stride : 4;
+    hierarchical = desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL;
     memset(&J, 0, sizeof J);
     memset(&inf, 0, sizeof inf);
     memset(&Ls, 0, sizeof Ls);
     if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
-    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
+    pixels = (size_t)w * (size_t)h;
     if (rgb_bytes < pixels * 12)
         return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
     nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-    irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 1);
     prim = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
-    if (!pos || !nrm || !irr || !prim) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", desc->camera.width, desc->camera.height);
+    want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
+    maps = (voxgi_rsm **)voxgi__alloc_array(ctx, scene->light_count + 1, sizeof *maps, 1);
+    if (!pos || !nrm || !irr || !prim || !want || !maps) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", w, h);
     if (r == VOXGI_OK) r = voxgi__lights_build(ctx, scene, &tr, &Ls);
     if (r == VOXGI_OK) { /* the direct light */
-        inf.ms_direct = voxgi__direct_image(ctx, &J, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, &tr, &Ls, scene, rgb);
+        inf.ms_direct = voxgi__direct_image(ctx, &J, &desc->camera, desc->samples ? desc->samples : 24, desc->hide_emitters, desc->seed, &tr, &Ls, scene, rgb);
         r = voxgi__gbuffer(ctx, &tr, &desc->camera, pos, nrm, prim);
     }
+    memset(&vd, 0, sizeof vd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = desc->resolution ? desc->resolution : 64;
+    if (r == VOXGI_OK) r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid); /* its voxel size is also the interpolation's plane distance */
     if (r == VOXGI_OK && desc->visibility != VOXGI_VISIBILITY_NONE) { /* the voxels the samples pass */
-        voxgi_voxelize_desc vd;
-        voxgi_fit_desc fit;
-        memset(&vd, 0, sizeof vd);
-        memset(&fit, 0, sizeof fit);
-        fit.res = desc->resolution ? desc->resolution : 64;
         t1 = voxgi__now_ms();
-        r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid);
-        if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &vd, &vox);
+        r = voxgi_voxelize(ctx, scene, &vd, &vox);
+        if (r == VOXGI_OK && (r = voxgi__occ_build(ctx, vox, hierarchical, &O)) == VOXGI_OK) have_occ = 1;
         inf.ms_voxels = voxgi__now_ms() - t1;
     }
-    for (li = 0; r == VOXGI_OK && li < scene->light_count; li++) { /* each map's bounce at the pixels' surfaces */
+    t1 = voxgi__now_ms();
+    for (li = 0; r == VOXGI_OK && li <= scene->light_count; li++) { /* each light's map, then the emitters' */
         voxgi_rsm_desc rd = desc->rsm;
-        voxgi_rsm *R = NULL;
-        if (scene->lights[li].type != VOXGI_LIGHT_DIRECTIONAL && scene->lights[li].type != VOXGI_LIGHT_SPOT) continue;
+        voxgi_rsm_info ri;
+        if (li == scene->light_count ? !Ls.emitter_count : scene->lights[li].type == VOXGI_LIGHT_POINT) continue;
         rd.light = li;
-        t1 = voxgi__now_ms();
-        r = voxgi_rsm_create(ctx, scene, &rd, &R);
-        inf.ms_maps += voxgi__now_ms() - t1;
-        if (r != VOXGI_OK) break;
-        inf.maps++;
-        t1 = voxgi__now_ms();
-        r = voxgi_rsm_irradiance(ctx, R, vox, desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL ? VOXGI_TRAVERSAL_HIERARCHICAL : VOXGI_TRAVERSAL_DDA, pixels, pos,
-                                 nrm, irr);
-        inf.ms_gather += voxgi__now_ms() - t1;
-        for (p = 0; r == VOXGI_OK && p < pixels; p++) {
-            const voxgi_material *m;
-            int a;
-            if (prim[p] == UINT32_MAX) continue;
-            m = voxgi__prim_material(&tr, prim[p]);
-            for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * irr[3 * p + (size_t)a]);
-        }
-        voxgi_rsm_destroy(ctx, R);
+        rd.emitters = li == scene->light_count;
+        if ((r = voxgi_rsm_create(ctx, scene, &rd, &maps[n])) != VOXGI_OK) break;
+        voxgi_rsm_query(maps[n++], &ri);
+        inf.maps += ri.maps;
     }
+    inf.ms_maps = voxgi__now_ms() - t1;
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK) { /* the gathers at the anchors, then at the pixels between that cannot be interpolated */
+        voxgi__rsm_gather_job G;
+        memset(&G, 0, sizeof G);
+        G.maps = maps;
+        G.n = n;
+        G.O = have_occ ? &O : NULL;
+        G.grid = &vd.grid;
+        G.hierarchical = hierarchical;
+        voxgi__anchors(w, h, stride, prim, want);
+        r = voxgi__gather_pixels(ctx, pixels, pos, nrm, want, irr, &inf.gathered, voxgi__rsm_gather_maps, &G);
+        if (r == VOXGI_OK && stride > 1) {
+            voxgi__between_anchors(w, h, stride, pos, nrm, prim, vd.grid.voxel_size, 1, irr, want);
+            r = voxgi__gather_pixels(ctx, pixels, pos, nrm, want, irr, &inf.gathered, voxgi__rsm_gather_maps, &G);
+        }
+    }
+    inf.ms_gather = voxgi__now_ms() - t1;
+    for (p = 0; r == VOXGI_OK && p < pixels; p++) {
+        const voxgi_material *m;
+        int a;
+        if (prim[p] == UINT32_MAX) continue;
+        m = voxgi__prim_material(&tr, prim[p]);
+        for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * irr[3 * p + (size_t)a]);
+    }
+    for (li = 0; li < n; li++) voxgi_rsm_destroy(ctx, maps[li]);
+    if (have_occ) voxgi__occ_free(ctx, &O);
     voxgi_voxels_destroy(ctx, vox);
+    voxgi__free(ctx, maps);
     voxgi__free(ctx, pos);
     voxgi__free(ctx, nrm);
     voxgi__free(ctx, irr);
     voxgi__free(ctx, prim);
+    voxgi__free(ctx, want);
     voxgi__lights_free(ctx, &Ls);
+    voxgi__tracer_free(ctx, &tr);
+    inf.ms = voxgi__now_ms() - t0;
+    if (info) *info = inf;
+    return r;
+}
+
+/* ----- images with the SH volume */
+static void voxgi__sh_gather_all(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
+{
+    voxgi__sh_gather_job *J = (voxgi__sh_gather_job *)user;
+    J->points = points;
+    J->normals = normals;
+    J->irradiance = out;
+    voxgi__parallel(ctx, count, 16, voxgi__sh_gather, J);
+}
+
+VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_sh_image_desc *desc, float *rgb, size_t rgb_bytes,
+                                       voxgi_sh_image_info *info)
+{
+    voxgi__direct_image_job J;
+    voxgi__sh_gather_job G;
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    voxgi__occupancy O;
+    voxgi_sh_image_info inf;
+    voxgi_voxels *vox = NULL;
+    voxgi_sh *sh = NULL;
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
+    float *pos = NULL, *nrm = NULL, *irr = NULL;
+    uint32_t *prim = NULL;
+    unsigned char *want = NULL;
+    size_t pixels, p;
+    int w = desc ? desc->camera.width : 0, h = desc ? desc->camera.height : 0, stride, have_occ = 0;
+    double t0 = voxgi__now_ms(), t1;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 1024 || (unsigned)desc->visibility > VOXGI_VISIBILITY_NONE || desc->gather_stride < 0 ||
+        desc->gather_stride > 64 || !(desc->opening >= 0 && desc->opening <= 4))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..1024), visibility %d, gather_stride %d (0..64), opening %g (0..4)",
+                           desc->samples, desc->resolution, (int)desc->visibility, desc->gather_stride, (double)desc->opening);
+    stride = desc->gather_stride ? desc->gather_stride : 4;
+    memset(&J, 0, sizeof J);
+    memset(&G, 0, sizeof G);
+    memset(&inf, 0, sizeof inf);
+    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
+    pixels = (size_t)w * (size_t)h;
+    if (rgb_bytes < pixels * 12)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 1);
+    prim = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
+    want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
+    if (!pos || !nrm || !irr || !prim || !want) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", w, h);
+    if (r == VOXGI_OK && (r = voxgi__lights_build(ctx, scene, &tr, &Ls)) == VOXGI_OK) { /* the direct light */
+        inf.ms_direct = voxgi__direct_image(ctx, &J, &desc->camera, desc->samples ? desc->samples : 24, desc->hide_emitters, desc->seed, &tr, &Ls, scene, rgb);
+        voxgi__lights_free(ctx, &Ls);
+        r = voxgi__gbuffer(ctx, &tr, &desc->camera, pos, nrm, prim);
+    }
+    memset(&vd, 0, sizeof vd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = desc->resolution ? desc->resolution : 64;
+    if (r == VOXGI_OK) r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid);
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK) r = voxgi_sh_create(ctx, scene, &vd.grid, &desc->sh, &sh);
+    inf.ms_sh = voxgi__now_ms() - t1;
+    if (r == VOXGI_OK && desc->visibility != VOXGI_VISIBILITY_NONE) { /* the voxels the gathers pass */
+        t1 = voxgi__now_ms();
+        r = voxgi_voxelize(ctx, scene, &vd, &vox);
+        if (r == VOXGI_OK && (r = voxgi__occ_build(ctx, vox, desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL, &O)) == VOXGI_OK) have_occ = 1;
+        inf.ms_voxels = voxgi__now_ms() - t1;
+    }
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK) { /* the gathers at the anchors, then at the pixels between that cannot be interpolated */
+        G.S = sh;
+        G.O = have_occ ? &O : NULL;
+        G.hierarchical = desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL;
+        G.opening = desc->opening > 0 ? desc->opening : 0.5;
+        voxgi__anchors(w, h, stride, prim, want);
+        r = voxgi__gather_pixels(ctx, pixels, pos, nrm, want, irr, &inf.gathered, voxgi__sh_gather_all, &G);
+        if (r == VOXGI_OK && stride > 1) {
+            voxgi__between_anchors(w, h, stride, pos, nrm, prim, vd.grid.voxel_size, 1, irr, want);
+            r = voxgi__gather_pixels(ctx, pixels, pos, nrm, want, irr, &inf.gathered, voxgi__sh_gather_all, &G);
+        }
+    }
+    inf.ms_gather = voxgi__now_ms() - t1;
+    for (p = 0; r == VOXGI_OK && p < pixels; p++) {
+        const voxgi_material *m;
+        int a;
+        if (prim[p] == UINT32_MAX) continue;
+        m = voxgi__prim_material(&tr, prim[p]);
+        for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * irr[3 * p + (size_t)a]);
+    }
+    if (have_occ) voxgi__occ_free(ctx, &O);
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_sh_destroy(ctx, sh);
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, nrm);
+    voxgi__free(ctx, irr);
+    voxgi__free(ctx, prim);
+    voxgi__free(ctx, want);
     voxgi__tracer_free(ctx, &tr);
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;

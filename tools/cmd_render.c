@@ -4,8 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", NULL};
-enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM };
+static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", NULL};
+enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH };
 static const char *const visibility_names[] = {"dda", "hierarchical", "none", NULL};
 
 static const char *const render_help =
@@ -22,8 +22,8 @@ typedef struct render_args {
     const char *what, *out, *cornell_mesh, *reference;
     int method, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
     int bounce_cones, bounce_block, isotropic;
-    int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, visibility, res_given;
-    double step, camera[7], sun[4], exposure, sigma, rsm_radius;
+    int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
+    double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -117,7 +117,7 @@ typedef struct render_compare {
    noise at the emitters' edges would swamp the lighting). */
 static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene,
                                   const voxgi_reference_desc *d, const voxgi_vct_desc *vd, const voxgi_tsm_image_desc *td,
-                                  const voxgi_rsm_image_desc *qd, render_compare *cmp)
+                                  const voxgi_rsm_image_desc *qd, const voxgi_sh_image_desc *hd, render_compare *cmp)
 {
     size_t n = (size_t)a->size[0] * (size_t)a->size[1] * 3;
     float *ref = (float *)malloc(n * 8), *mine = ref ? ref + n : NULL;
@@ -125,17 +125,19 @@ static int compare_with_reference(cli_session *s, voxgi_context *ctx, const rend
     voxgi_vct_desc vh = *vd;
     voxgi_tsm_image_desc th = *td;
     voxgi_rsm_image_desc qh = *qd;
+    voxgi_sh_image_desc hh = *hd;
     voxgi_reference_info ri;
     voxgi_result r;
     cli_error_mask mask;
     rd.samples = a->compare;
     rd.seed = d->seed + 1000003; /* independent of the image's own noise */
-    rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = th.hide_emitters = qh.hide_emitters = 1;
+    rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = th.hide_emitters = qh.hide_emitters = hh.hide_emitters = 1;
     r = ref ? voxgi_reference_render(ctx, scene, &rd, ref, n * 4, &ri) : VOXGI_ERR_OUT_OF_MEMORY;
     if (r == VOXGI_OK)
         r = a->method == METHOD_VCT   ? voxgi_vct_render(ctx, scene, &vh, mine, n * 4, NULL)
             : a->method == METHOD_TSM ? voxgi_tsm_render(ctx, scene, &th, mine, n * 4, NULL)
             : a->method == METHOD_RSM ? voxgi_rsm_render(ctx, scene, &qh, mine, n * 4, NULL)
+            : a->method == METHOD_SH  ? voxgi_sh_render(ctx, scene, &hh, mine, n * 4, NULL)
                                       : voxgi_reference_render(ctx, scene, &dh, mine, n * 4, NULL);
     if (r != VOXGI_OK) {
         free(ref);
@@ -236,23 +238,48 @@ static void print_rsm(const render_args *a, const char *name, const double mean[
     int w = a->size[0], h = a->size[1], size = qd->rsm.size ? qd->rsm.size : 256, samples = qd->rsm.samples ? qd->rsm.samples : 100;
     if (a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"rsm\",\"size\":[%d,%d],\"maps\":%d,\"map_size\":%d,\"samples\":%d,\"visibility\":\"%s\",\"res\":%d,"
-               "\"maps_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
-               name, w, h, qi->maps, size, samples, visibility_names[qd->visibility], qd->resolution ? qd->resolution : 64, qi->ms_maps, qi->ms_voxels,
-               qi->ms_direct, qi->ms_gather, qi->ms, mean[0], mean[1], mean[2]);
+               "\"gather_stride\":%d,\"gathered\":%lu,\"maps_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,"
+               "\"mean\":[%.6g,%.6g,%.6g],",
+               name, w, h, qi->maps, size, samples, visibility_names[qd->visibility], qd->resolution ? qd->resolution : 64,
+               qd->gather_stride ? qd->gather_stride : 4, (unsigned long)qi->gathered, qi->ms_maps, qi->ms_voxels, qi->ms_direct, qi->ms_gather, qi->ms,
+               mean[0], mean[1], mean[2]);
         if (a->compare || a->reference) print_compare_json(cmp);
         printf("\"output\":\"%s\"}\n", a->out);
         return;
     }
-    printf("%s: %d x %d, direct light and one bounce from reflective shadow maps (%d map%s of %d x %d texels, %d samples, visibility %s): "
-           "maps %.1f ms, voxels %.1f ms, direct light %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-           name, w, h, qi->maps, qi->maps == 1 ? "" : "s", size, size, samples, visibility_names[qd->visibility], qi->ms_maps, qi->ms_voxels, qi->ms_direct,
-           qi->ms_gather, qi->ms, mean[0], mean[1], mean[2], a->out);
+    printf("%s: %d x %d, direct light and one bounce from reflective shadow maps (%d map%s of %d x %d texels, %d samples, visibility %s, "
+           "%lu pixels gathering): maps %.1f ms, voxels %.1f ms, direct light %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
+           name, w, h, qi->maps, qi->maps == 1 ? "" : "s", size, size, samples, visibility_names[qd->visibility], (unsigned long)qi->gathered, qi->ms_maps,
+           qi->ms_voxels, qi->ms_direct, qi->ms_gather, qi->ms, mean[0], mean[1], mean[2], a->out);
+    if (a->compare || a->reference) print_compare(a, d, cmp);
+}
+
+/* The --method sh lines, text or JSON. */
+static void print_sh(const render_args *a, const char *name, const double mean[3], const voxgi_sh_image_desc *hd, const voxgi_sh_image_info *hi,
+                     const voxgi_reference_desc *d, const render_compare *cmp)
+{
+    int w = a->size[0], h = a->size[1], res = hd->resolution ? hd->resolution : 64, stride = hd->gather_stride ? hd->gather_stride : 4;
+    double opening = hd->opening > 0 ? hd->opening : 0.5;
+    if (a->common.json) {
+        printf("{\"scene\":\"%s\",\"method\":\"sh\",\"size\":[%d,%d],\"res\":%d,\"opening\":%.6g,\"visibility\":\"%s\",\"gather_stride\":%d,"
+               "\"gathered\":%lu,\"sh_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
+               name, w, h, res, opening, visibility_names[hd->visibility], stride, (unsigned long)hi->gathered, hi->ms_sh, hi->ms_voxels, hi->ms_direct,
+               hi->ms_gather, hi->ms, mean[0], mean[1], mean[2]);
+        if (a->compare || a->reference) print_compare_json(cmp);
+        printf("\"output\":\"%s\"}\n", a->out);
+        return;
+    }
+    printf("%s: %d x %d, direct light and one bounce from an SH volume (%d voxels across, opening %.2g, visibility %s, %lu pixels gathering): "
+           "SH volume %.1f ms, voxels %.1f ms, direct light %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
+           name, w, h, res, opening, visibility_names[hd->visibility], (unsigned long)hi->gathered, hi->ms_sh, hi->ms_voxels, hi->ms_direct, hi->ms_gather,
+           hi->ms, mean[0], mean[1], mean[2], a->out);
     if (a->compare || a->reference) print_compare(a, d, cmp);
 }
 
 static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const voxgi_reference_desc *d,
                          const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, const voxgi_tsm_image_desc *td,
-                         const voxgi_tsm_image_info *ti, const voxgi_rsm_image_desc *qd, const voxgi_rsm_image_info *qi, const render_compare *cmp)
+                         const voxgi_tsm_image_info *ti, const voxgi_rsm_image_desc *qd, const voxgi_rsm_image_info *qi, const voxgi_sh_image_desc *hd,
+                         const voxgi_sh_image_info *hi, const render_compare *cmp)
 {
     double mean[3] = {0, 0, 0};
     size_t p;
@@ -262,6 +289,7 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
     for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
     if (a->method == METHOD_TSM) print_tsm(a, name, mean, td, ti, d, cmp);
     else if (a->method == METHOD_RSM) print_rsm(a, name, mean, qd, qi, d, cmp);
+    else if (a->method == METHOD_SH) print_sh(a, name, mean, hd, hi, d, cmp);
     else if (a->method == METHOD_VCT && a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
                "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
@@ -306,6 +334,8 @@ static int render_run(cli_session *s, const render_args *a)
     voxgi_tsm_image_info tinfo;
     voxgi_rsm_image_desc qd;
     voxgi_rsm_image_info qinfo;
+    voxgi_sh_image_desc hd;
+    voxgi_sh_image_info hinfo;
     voxgi_info ci;
     render_scene rs;
     cli_context c;
@@ -322,6 +352,8 @@ static int render_run(cli_session *s, const render_args *a)
     memset(&tinfo, 0, sizeof tinfo);
     memset(&qd, 0, sizeof qd);
     memset(&qinfo, 0, sizeof qinfo);
+    memset(&hd, 0, sizeof hd);
+    memset(&hinfo, 0, sizeof hinfo);
     memset(&rs, 0, sizeof rs);
     memset(&cmp, 0, sizeof cmp);
     d.bounces = a->bounces;
@@ -359,13 +391,26 @@ static int render_run(cli_session *s, const render_args *a)
     if (a->method == METHOD_RSM) { /* direct light and one bounce: compared with the reference's one bounce */
         qd.camera = d.camera;
         qd.seed = d.seed;
-        qd.samples = a->spp_given ? d.samples : 4;
+        qd.samples = a->spp_given ? d.samples : 0;
         qd.rsm.size = a->rsm_size;
         qd.rsm.samples = a->rsm_samples;
         qd.rsm.radius = (float)a->rsm_radius;
+        qd.rsm.points = a->rsm_points;
+        qd.gather_stride = a->gather_stride;
         qd.rsm.seed = d.seed;
         qd.visibility = (voxgi_visibility)a->visibility;
         qd.resolution = a->res_given ? a->res : 64;
+        d.bounces = 1;
+    }
+    if (a->method == METHOD_SH) { /* direct light and one bounce: compared with the reference's one bounce */
+        hd.camera = d.camera;
+        hd.seed = d.seed;
+        hd.samples = a->spp_given ? d.samples : 0;
+        hd.sh.seed = d.seed;
+        hd.visibility = (voxgi_visibility)a->visibility;
+        hd.resolution = a->res_given ? a->res : 64;
+        hd.opening = (float)a->opening;
+        hd.gather_stride = a->gather_stride;
         d.bounces = 1;
     }
     if (a->method == METHOD_VCT) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
@@ -378,11 +423,12 @@ static int render_run(cli_session *s, const render_args *a)
     if ((a->method == METHOD_VCT   ? voxgi_vct_render(c.vx, rs.scene, &vd, rgb, bytes, &vinfo)
          : a->method == METHOD_TSM ? voxgi_tsm_render(c.vx, rs.scene, &td, rgb, bytes, &tinfo)
          : a->method == METHOD_RSM ? voxgi_rsm_render(c.vx, rs.scene, &qd, rgb, bytes, &qinfo)
+         : a->method == METHOD_SH  ? voxgi_sh_render(c.vx, rs.scene, &hd, rgb, bytes, &hinfo)
                                    : voxgi_reference_render(c.vx, rs.scene, &d, rgb, bytes, &info)) != VOXGI_OK) {
         cli_fail_lib(s, c.vx, NULL);
         goto done;
     }
-    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &td, &qd, &cmp)) goto done;
+    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &td, &qd, &hd, &cmp)) goto done;
     if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &d.camera, rgb, &cmp)) goto done;
     if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
                                            : vxt_write_png(a->out, rgb, a->size[0], a->size[1], (float)a->exposure)) != 0) {
@@ -390,7 +436,7 @@ static int render_run(cli_session *s, const render_args *a)
         goto done;
     }
     cli_status_clear(s);
-    print_result(a, rs.name, &ci, rgb, &d, &info, &vd, &vinfo, &td, &tinfo, &qd, &qinfo, &cmp);
+    print_result(a, rs.name, &ci, rgb, &d, &info, &vd, &vinfo, &td, &tinfo, &qd, &qinfo, &hd, &hinfo, &cmp);
     rc = CLI_EXIT_OK;
 done:
     free(rgb);
@@ -415,18 +461,19 @@ int cmd_render(int argc, char **argv)
     a.cone_stride = 6;
     {
         const cli_option options[] = {
-            {.name = "--method", .arg = "reference|vct|tsm|rsm", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
+            {.name = "--method", .arg = "reference|vct|tsm|rsm|sh", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
              .help = "the Monte Carlo path tracer (default), or voxel cone tracing: direct\n"
                      "light through shadow rays plus one bounce gathered by cones from\n"
                      "the voxels, or transmittance shadow maps: direct light, each\n"
                      "directional light through its map (compared with --bounces 0), or\n"
-                     "reflective shadow maps: direct light and one bounce from each\n"
-                     "directional and spot light's map (compared with --bounces 1)"},
+                     "reflective shadow maps: direct light and one bounce from the maps of\n"
+                     "every light and the emitters (compared with --bounces 1), or an SH\n"
+                     "volume: direct light and one bounce from the voxels' SH (--bounces 1)"},
             CLI_OPT_BACKEND(&a.common, "vct: where voxelization, mips and cones run (default auto: GL when a\n"
                                        "headless GL 4.5 context works); the reference runs on the CPU"),
             CLI_OPT_GL(&a.common, "which headless GL to try"),
             {.name = "--res", .arg = "N", .kind = CLI_INT, .dst = &a.res, .lo = 1, .hi = 4096, .given = &a.res_given,
-             .help = "vct: voxels along the scene's longest side (default 96); rsm: of the\nvisibility's voxels (default 64)"},
+             .help = "vct: voxels along the scene's longest side (default 96); rsm: of the\nvisibility's voxels (default 64); sh: of the SH volume (default 64)"},
             {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 24)"},
             {.name = "--step", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.step, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "vct: step as a fraction of the cone diameter (default 0.5)"},
@@ -447,9 +494,15 @@ int cmd_render(int argc, char **argv)
             {.name = "--rsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_size, .lo = 1, .hi = 16384,
              .help = "rsm: texels across each light's map (default 256)"},
             {.name = "--rsm-samples", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_samples, .lo = 1, .hi = 65536,
-             .help = "rsm: texels gathered per pixel (default 100)"},
-            {.name = "--rsm-radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.rsm_radius, .lo = 0, .lo_open = 1, .hi = 1,
-             .help = "rsm: the sample disc's radius, a share of the map's width (default 0.1)"},
+             .help = "rsm: texels gathered per pixel and map (default 100)"},
+            {.name = "--rsm-radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.rsm_radius, .lo = 0, .lo_open = 1, .hi = 2,
+             .help = "rsm: the sample disc's radius, a share of the map's width (default 0.1\nfor a light's map, 1 for an area's points)"},
+            {.name = "--rsm-points", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_points, .lo = 1, .hi = 4096,
+             .help = "rsm: points on each rectangular light and on the emitters, one map each\n(default 4)"},
+            {.name = "--gather-stride", .arg = "S", .kind = CLI_INT, .dst = &a.gather_stride, .lo = 1, .hi = 64,
+             .help = "rsm: gathers at every S-th pixel across and down, the pixels between\ninterpolated where three of the four around share their surface (default 4)"},
+            {.name = "--opening", .arg = "T", .kind = CLI_DOUBLE, .dst = &a.opening, .lo = 0, .lo_open = 1, .hi = 4,
+             .help = "sh: a cell counts as one point where its size is at most T times its\ndistance (default 0.5)"},
             {.name = "--visibility", .arg = "dda|hierarchical|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
              .help = "rsm: each sample's visibility through the voxels (default dda)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
@@ -481,7 +534,7 @@ int cmd_render(int argc, char **argv)
                      "facing the same way (default 4; 1: every voxel)"},
             {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 1, .hi = 1 << 24, .given = &a.spp_given,
              .help = "samples per pixel (default 64); vct: the direct light's rays per pixel\n"
-                     "(default 24); tsm: camera rays per pixel (default 4)"},
+                     "(default 24), as rsm and sh; tsm: camera rays per pixel (default 4)"},
             {.name = "--seed", .arg = "N", .kind = CLI_INT, .dst = &a.seed, .lo = 0, .hi = 2147483647,
              .help = "random seed (default 1); the same seed gives the same image"},
             {.name = "--camera", .arg = "EX EY EZ TX TY TZ FOVY", .kind = CLI_DOUBLE, .count = 7, .dst = a.camera, .lo = -HUGE_VAL, .hi = HUGE_VAL,
