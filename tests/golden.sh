@@ -106,6 +106,9 @@ run tsm-sigma render foliage --method tsm --size 16 16 --tsm-size 32 --sigma 0.5
 run rsm-two-spheres render two-spheres --method rsm --size 24 24 --rsm-size 64 --rsm-samples 32 --res 24 --seed 3 $T --json -o "$tmp/o.pfm"
 run rsm-hierarchical render two-spheres --method rsm --size 16 16 --rsm-size 32 --rsm-samples 16 --visibility hierarchical --res 16 \
     $T --json -o "$tmp/o.pfm"
+run rsm-cornell render cornell-box --method rsm --size 16 16 --rsm-size 24 --rsm-samples 16 --rsm-points 2 --gather-stride 2 --res 16 --spp 2 \
+    $T --json -o "$tmp/o.pfm"
+run sh-cornell render cornell-box --method sh --size 16 16 --res 16 --spp 2 $T --json -o "$tmp/o.pfm"
 
 # GL cone tracing: llvmpipe gives the same bits run after run (a GPU need not: mips by blending)
 run vct-gl render cornell-box --method vct --backend gl --res 24 --cones 8 --size 24 24 --spp 8 \

@@ -340,6 +340,32 @@ static void test_tsm_command(void)
         }
         voxgi_builtin_scene_destroy(ctx, &ts);
     }
+    { /* --method sh: the library's image, bit for bit */
+        voxgi_builtin_scene ts;
+        voxgi_sh_image_desc hd;
+        snprintf(pfm, sizeof pfm, "%s/h.pfm", tmpdir);
+        snprintf(args, sizeof args, "render cornell-box --method sh --size 8 8 --res 16 --spp 2 --gather-stride 2 --opening 0.7 --json -o %s", pfm);
+        TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "gathered") > 0 && strstr(out, "\"method\":\"sh\""), "sh render: %s", out);
+        voxgi_builtin_scene_create(ctx, "cornell-box", &ts);
+        memset(&hd, 0, sizeof hd);
+        hd.camera = ts.camera;
+        hd.camera.width = hd.camera.height = 8;
+        hd.resolution = 16;
+        hd.samples = 2;
+        hd.gather_stride = 2;
+        hd.opening = 0.7f;
+        hd.sh.seed = 1;
+        hd.seed = 1;
+        TH_CHECK(voxgi_sh_render(ctx, &ts.scene, &hd, want, sizeof want, NULL) == VOXGI_OK, "library sh render: %s", voxgi_last_error(ctx));
+        f = fopen(pfm, "rb");
+        TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
+        if (f) {
+            for (y = 7; y >= 0; y--) TH_CHECK(fread(got + 3 * 8 * y, 4, 24, f) == 24, "PFM rows");
+            fclose(f);
+            TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's sh render");
+        }
+        voxgi_builtin_scene_destroy(ctx, &ts);
+    }
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }
