@@ -75,8 +75,10 @@
    source: the volume's mips or an octree of it; voxgi_vct_render makes whole images.
    voxgi_tsm_create / voxgi_tsm_transmittance give the light through translucent surfaces from
    transmittance shadow maps, voxgi_tsm_render images of the direct light with them;
-   voxgi_rsm_create / voxgi_rsm_irradiance one bounce from reflective shadow maps through the
-   voxels (voxgi_voxels_occluded), voxgi_rsm_render images with it.
+   voxgi_rsm_create / voxgi_rsm_irradiance one bounce from reflective shadow maps (of lights and
+   of area lights' and emitters' points) through the voxels (voxgi_voxels_occluded),
+   voxgi_rsm_render images with it; voxgi_sh_create / voxgi_sh_irradiance one bounce from a
+   spherical-harmonics volume of the direct light, voxgi_sh_render images with it.
    voxgi_reference_render is the path tracer they are measured against.
 
    SEMANTICS (exact; see the part banners below for each capability)
@@ -130,7 +132,8 @@
             one closest hit whatever the order (ties to the lower triangle); the raster slicemap
             exact on both backends; transmittance shadow maps (voxgi_tsm, directional and spot
             lights, GL lookups) and images with them (voxgi_tsm_render); shadow rays through
-            translucent surfaces; the foliage scene.
+            translucent surfaces; the foliage scene; reflective shadow maps (voxgi_rsm: lights,
+            area lights and emitters) and the SH volume (voxgi_sh), images with a gather stride.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
