@@ -835,8 +835,12 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
    DIRECTIONAL light, perspective for a SPOT) holds the surface the light meets there, by ray
    casting: its position, its unit normal facing the light, and the flux it reflects, a small
    Lambertian reflector (directional: albedo E texel^2; spot: albedo I falloff times the texel's
-   solid angle). The one-bounce irradiance at a point gathers `samples` texels of a fixed pattern
-   around the point's own texel, offsets r xi1 (sin 2 pi xi2, cos 2 pi xi2), r = radius x size,
+   solid angle). A RECT light or the scene's emitters (picked by power) become `points` stratified
+   points, each a Lambertian point (intensity P cos, P = radiance x area / points) with a map of
+   its whole hemisphere by the concentric map (Shirley and Chiu) lifted to the hemisphere: every
+   texel the same cosine-weighted solid angle, flux albedo P pi / texels. The one-bounce
+   irradiance at a point gathers, from every map, `samples` texels of a fixed pattern around the
+   point's own texel (a point behind a hemisphere map: the rim toward it), offsets r xi1 (sin 2 pi xi2, cos 2 pi xi2), r = radius x size,
    weighted xi1 / sum xi1 (the unbiased weight of that pattern, whose density falls as 1 / xi1;
    the seed's xi1^2 over-counts the rim), each texel p adding pi r^2 w Phi_p max(0, n_p.(x - x_p))
    max(0, n.(x_p - x)) / (pi |x - x_p|^4) (the seed's equation 5 with the Lambertian 1 / pi it
