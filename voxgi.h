@@ -12149,7 +12149,13 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
     return r;
 }
 
-/* ----- images with reflective shadow maps */
+/* ----- one-bounce images: the reflective shadow maps' and the SH volume's
+
+   What both share: the direct light as voxgi_tsm_render's (exact shadow rays), the G-buffer, a
+   grid of `resolution` voxels along the scene's longest side (its voxel size the interpolation's
+   plane distance) and, unless visibility is none, the occupancy of its conservative voxels; the
+   method's gather at the anchors of the gather stride and where interpolation fails; the bounce
+   albedo / pi x irradiance added to the direct light. */
 
 /* A one-bounce gather at the pixels marked in want: gather(user, count, points, normals, out)
    sets out (3 per point), added into irr (3 per pixel); their number added into *gathered. */
@@ -12186,6 +12192,99 @@ static voxgi_result voxgi__gather_pixels(voxgi_context *ctx, size_t pixels, cons
     return p && q && e ? VOXGI_OK : voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu gathers", (unsigned long)count);
 }
 
+typedef struct voxgi__bounce_image {
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    voxgi_grid grid;
+    voxgi_voxels *vox;
+    voxgi__occupancy O;
+    int have_occ, w, h;
+    size_t pixels;
+    float *pos, *nrm, *irr;       /* the G-buffer, and the bounce's irradiance (3 per pixel) */
+    uint32_t *prim;
+    unsigned char *want;
+} voxgi__bounce_image;
+
+static void voxgi__bounce_free(voxgi_context *ctx, voxgi__bounce_image *B)
+{
+    if (B->have_occ) voxgi__occ_free(ctx, &B->O);
+    voxgi_voxels_destroy(ctx, B->vox);
+    voxgi__free(ctx, B->pos);
+    voxgi__free(ctx, B->nrm);
+    voxgi__free(ctx, B->irr);
+    voxgi__free(ctx, B->prim);
+    voxgi__free(ctx, B->want);
+    voxgi__lights_free(ctx, &B->Ls);
+    voxgi__tracer_free(ctx, &B->tr);
+}
+
+/* The direct light into rgb and all the shared parts (B zeroed first, freed by voxgi__bounce_free
+   whatever the result); the times of the direct light and the voxels. */
+static voxgi_result voxgi__bounce_begin(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *cam, int samples, int hide_emitters,
+                                        uint64_t seed, int resolution, voxgi_visibility visibility, float *rgb, size_t rgb_bytes, voxgi__bounce_image *B,
+                                        double *ms_direct, double *ms_voxels)
+{
+    voxgi__direct_image_job J;
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
+    double t1;
+    voxgi_result r;
+    memset(B, 0, sizeof *B);
+    memset(&J, 0, sizeof J);
+    if ((r = voxgi__camera_frame(ctx, cam, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
+    B->w = cam->width;
+    B->h = cam->height;
+    B->pixels = (size_t)B->w * (size_t)B->h;
+    if (rgb_bytes < B->pixels * 12)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(B->pixels * 12));
+    if ((r = voxgi__tracer_build(ctx, scene, &B->tr)) != VOXGI_OK) return r;
+    B->pos = (float *)voxgi__alloc_array(ctx, B->pixels, 12, 0);
+    B->nrm = (float *)voxgi__alloc_array(ctx, B->pixels, 12, 0);
+    B->irr = (float *)voxgi__alloc_array(ctx, B->pixels, 12, 1);
+    B->prim = (uint32_t *)voxgi__alloc_array(ctx, B->pixels, 4, 0);
+    B->want = (unsigned char *)voxgi__alloc_array(ctx, B->pixels, 1, 1);
+    if (!B->pos || !B->nrm || !B->irr || !B->prim || !B->want) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", B->w, B->h);
+    if ((r = voxgi__lights_build(ctx, scene, &B->tr, &B->Ls)) != VOXGI_OK) return r;
+    *ms_direct = voxgi__direct_image(ctx, &J, cam, samples ? samples : 24, hide_emitters, seed, &B->tr, &B->Ls, scene, rgb);
+    if ((r = voxgi__gbuffer(ctx, &B->tr, cam, B->pos, B->nrm, B->prim)) != VOXGI_OK) return r;
+    memset(&vd, 0, sizeof vd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = resolution ? resolution : 64;
+    if ((r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid)) != VOXGI_OK) return r;
+    B->grid = vd.grid;
+    if (visibility == VOXGI_VISIBILITY_NONE) return VOXGI_OK;
+    t1 = voxgi__now_ms(); /* the voxels the gathers pass */
+    if ((r = voxgi_voxelize(ctx, scene, &vd, &B->vox)) == VOXGI_OK && (r = voxgi__occ_build(ctx, B->vox, visibility == VOXGI_VISIBILITY_HIERARCHICAL, &B->O)) == VOXGI_OK)
+        B->have_occ = 1;
+    *ms_voxels = voxgi__now_ms() - t1;
+    return r;
+}
+
+/* The gathers at the anchors, then at the pixels between that cannot be interpolated; the bounce
+   added into rgb. */
+static voxgi_result voxgi__bounce_gather(voxgi_context *ctx, voxgi__bounce_image *B, int stride, voxgi__gather_fn gather, void *user, float *rgb,
+                                         size_t *gathered)
+{
+    size_t p;
+    voxgi_result r;
+    voxgi__anchors(B->w, B->h, stride, B->prim, B->want);
+    r = voxgi__gather_pixels(ctx, B->pixels, B->pos, B->nrm, B->want, B->irr, gathered, gather, user);
+    if (r == VOXGI_OK && stride > 1) {
+        voxgi__between_anchors(B->w, B->h, stride, B->pos, B->nrm, B->prim, B->grid.voxel_size, 1, B->irr, B->want);
+        r = voxgi__gather_pixels(ctx, B->pixels, B->pos, B->nrm, B->want, B->irr, gathered, gather, user);
+    }
+    for (p = 0; r == VOXGI_OK && p < B->pixels; p++) {
+        const voxgi_material *m;
+        int a;
+        if (B->prim[p] == UINT32_MAX) continue;
+        m = voxgi__prim_material(&B->tr, B->prim[p]);
+        for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * B->irr[3 * p + (size_t)a]);
+    }
+    return r;
+}
+
+/* ----- images with reflective shadow maps */
+
 /* The bounce from every map of an image (a voxgi__rsm_gather_job). */
 static void voxgi__rsm_gather_maps(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
 {
@@ -12199,20 +12298,11 @@ static void voxgi__rsm_gather_maps(voxgi_context *ctx, void *user, size_t count,
 VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_rsm_image_info *info)
 {
-    voxgi__direct_image_job J;
-    voxgi__tracer tr;
-    voxgi__lights Ls;
-    voxgi__occupancy O;
+    voxgi__bounce_image B;
+    voxgi__rsm_gather_job G;
     voxgi_rsm_image_info inf;
-    voxgi_voxels *vox = NULL;
     voxgi_rsm **maps = NULL;
-    voxgi_voxelize_desc vd;
-    voxgi_fit_desc fit;
-    float *pos = NULL, *nrm = NULL, *irr = NULL;
-    uint32_t *prim = NULL;
-    unsigned char *want = NULL;
-    size_t pixels, li, p, n = 0;
-    int w = desc ? desc->camera.width : 0, h = desc ? desc->camera.height : 0, stride, hierarchical, have_occ = 0;
+    size_t li, n = 0;
     double t0 = voxgi__now_ms(), t1;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
@@ -12221,43 +12311,16 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
         desc->gather_stride > 64)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), visibility %d, gather_stride %d (0..64)", desc->samples,
                            desc->resolution, (int)desc->visibility, desc->gather_stride);
-    stride = desc->gather_stride ? desc->gather_stride : 4;
-    hierarchical = desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL;
-    memset(&J, 0, sizeof J);
     memset(&inf, 0, sizeof inf);
-    memset(&Ls, 0, sizeof Ls);
-    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
-    pixels = (size_t)w * (size_t)h;
-    if (rgb_bytes < pixels * 12)
-        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
-    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-    nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-    irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 1);
-    prim = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
-    want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
-    maps = (voxgi_rsm **)voxgi__alloc_array(ctx, scene->light_count + 1, sizeof *maps, 1);
-    if (!pos || !nrm || !irr || !prim || !want || !maps) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", w, h);
-    if (r == VOXGI_OK) r = voxgi__lights_build(ctx, scene, &tr, &Ls);
-    if (r == VOXGI_OK) { /* the direct light */
-        inf.ms_direct = voxgi__direct_image(ctx, &J, &desc->camera, desc->samples ? desc->samples : 24, desc->hide_emitters, desc->seed, &tr, &Ls, scene, rgb);
-        r = voxgi__gbuffer(ctx, &tr, &desc->camera, pos, nrm, prim);
-    }
-    memset(&vd, 0, sizeof vd);
-    memset(&fit, 0, sizeof fit);
-    fit.res = desc->resolution ? desc->resolution : 64;
-    if (r == VOXGI_OK) r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid); /* its voxel size is also the interpolation's plane distance */
-    if (r == VOXGI_OK && desc->visibility != VOXGI_VISIBILITY_NONE) { /* the voxels the samples pass */
-        t1 = voxgi__now_ms();
-        r = voxgi_voxelize(ctx, scene, &vd, &vox);
-        if (r == VOXGI_OK && (r = voxgi__occ_build(ctx, vox, hierarchical, &O)) == VOXGI_OK) have_occ = 1;
-        inf.ms_voxels = voxgi__now_ms() - t1;
-    }
+    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, rgb, rgb_bytes,
+                            &B, &inf.ms_direct, &inf.ms_voxels);
+    if (r == VOXGI_OK && !(maps = (voxgi_rsm **)voxgi__alloc_array(ctx, scene->light_count + 1, sizeof *maps, 1)))
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
     t1 = voxgi__now_ms();
     for (li = 0; r == VOXGI_OK && li <= scene->light_count; li++) { /* each light's map, then the emitters' */
         voxgi_rsm_desc rd = desc->rsm;
         voxgi_rsm_info ri;
-        if (li == scene->light_count ? !Ls.emitter_count : scene->lights[li].type == VOXGI_LIGHT_POINT) continue;
+        if (li == scene->light_count ? !B.Ls.emitter_count : scene->lights[li].type == VOXGI_LIGHT_POINT) continue;
         rd.light = li;
         rd.emitters = li == scene->light_count;
         if ((r = voxgi_rsm_create(ctx, scene, &rd, &maps[n])) != VOXGI_OK) break;
@@ -12266,40 +12329,19 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
     }
     inf.ms_maps = voxgi__now_ms() - t1;
     t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) { /* the gathers at the anchors, then at the pixels between that cannot be interpolated */
-        voxgi__rsm_gather_job G;
+    if (r == VOXGI_OK) {
         memset(&G, 0, sizeof G);
         G.maps = maps;
         G.n = n;
-        G.O = have_occ ? &O : NULL;
-        G.grid = &vd.grid;
-        G.hierarchical = hierarchical;
-        voxgi__anchors(w, h, stride, prim, want);
-        r = voxgi__gather_pixels(ctx, pixels, pos, nrm, want, irr, &inf.gathered, voxgi__rsm_gather_maps, &G);
-        if (r == VOXGI_OK && stride > 1) {
-            voxgi__between_anchors(w, h, stride, pos, nrm, prim, vd.grid.voxel_size, 1, irr, want);
-            r = voxgi__gather_pixels(ctx, pixels, pos, nrm, want, irr, &inf.gathered, voxgi__rsm_gather_maps, &G);
-        }
+        G.O = B.have_occ ? &B.O : NULL;
+        G.grid = &B.grid;
+        G.hierarchical = desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL;
+        r = voxgi__bounce_gather(ctx, &B, desc->gather_stride ? desc->gather_stride : 4, voxgi__rsm_gather_maps, &G, rgb, &inf.gathered);
     }
     inf.ms_gather = voxgi__now_ms() - t1;
-    for (p = 0; r == VOXGI_OK && p < pixels; p++) {
-        const voxgi_material *m;
-        int a;
-        if (prim[p] == UINT32_MAX) continue;
-        m = voxgi__prim_material(&tr, prim[p]);
-        for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * irr[3 * p + (size_t)a]);
-    }
     for (li = 0; li < n; li++) voxgi_rsm_destroy(ctx, maps[li]);
-    if (have_occ) voxgi__occ_free(ctx, &O);
-    voxgi_voxels_destroy(ctx, vox);
     voxgi__free(ctx, maps);
-    voxgi__free(ctx, pos);
-    voxgi__free(ctx, nrm);
-    voxgi__free(ctx, irr);
-    voxgi__free(ctx, prim);
-    voxgi__free(ctx, want);
-    voxgi__lights_free(ctx, &Ls);
-    voxgi__tracer_free(ctx, &tr);
+    voxgi__bounce_free(ctx, &B);
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;
     return r;
@@ -12318,21 +12360,10 @@ static void voxgi__sh_gather_all(voxgi_context *ctx, void *user, size_t count, c
 VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_sh_image_desc *desc, float *rgb, size_t rgb_bytes,
                                        voxgi_sh_image_info *info)
 {
-    voxgi__direct_image_job J;
+    voxgi__bounce_image B;
     voxgi__sh_gather_job G;
-    voxgi__tracer tr;
-    voxgi__lights Ls;
-    voxgi__occupancy O;
     voxgi_sh_image_info inf;
-    voxgi_voxels *vox = NULL;
     voxgi_sh *sh = NULL;
-    voxgi_voxelize_desc vd;
-    voxgi_fit_desc fit;
-    float *pos = NULL, *nrm = NULL, *irr = NULL;
-    uint32_t *prim = NULL;
-    unsigned char *want = NULL;
-    size_t pixels, p;
-    int w = desc ? desc->camera.width : 0, h = desc ? desc->camera.height : 0, stride, have_occ = 0;
     double t0 = voxgi__now_ms(), t1;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
@@ -12341,69 +12372,24 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
         desc->gather_stride > 64 || !(desc->opening >= 0 && desc->opening <= 4))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..1024), visibility %d, gather_stride %d (0..64), opening %g (0..4)",
                            desc->samples, desc->resolution, (int)desc->visibility, desc->gather_stride, (double)desc->opening);
-    stride = desc->gather_stride ? desc->gather_stride : 4;
-    memset(&J, 0, sizeof J);
-    memset(&G, 0, sizeof G);
     memset(&inf, 0, sizeof inf);
-    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
-    pixels = (size_t)w * (size_t)h;
-    if (rgb_bytes < pixels * 12)
-        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
-    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-    nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-    irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 1);
-    prim = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
-    want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
-    if (!pos || !nrm || !irr || !prim || !want) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", w, h);
-    if (r == VOXGI_OK && (r = voxgi__lights_build(ctx, scene, &tr, &Ls)) == VOXGI_OK) { /* the direct light */
-        inf.ms_direct = voxgi__direct_image(ctx, &J, &desc->camera, desc->samples ? desc->samples : 24, desc->hide_emitters, desc->seed, &tr, &Ls, scene, rgb);
-        voxgi__lights_free(ctx, &Ls);
-        r = voxgi__gbuffer(ctx, &tr, &desc->camera, pos, nrm, prim);
-    }
-    memset(&vd, 0, sizeof vd);
-    memset(&fit, 0, sizeof fit);
-    fit.res = desc->resolution ? desc->resolution : 64;
-    if (r == VOXGI_OK) r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid);
+    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, rgb, rgb_bytes,
+                            &B, &inf.ms_direct, &inf.ms_voxels);
     t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) r = voxgi_sh_create(ctx, scene, &vd.grid, &desc->sh, &sh);
+    if (r == VOXGI_OK) r = voxgi_sh_create(ctx, scene, &B.grid, &desc->sh, &sh);
     inf.ms_sh = voxgi__now_ms() - t1;
-    if (r == VOXGI_OK && desc->visibility != VOXGI_VISIBILITY_NONE) { /* the voxels the gathers pass */
-        t1 = voxgi__now_ms();
-        r = voxgi_voxelize(ctx, scene, &vd, &vox);
-        if (r == VOXGI_OK && (r = voxgi__occ_build(ctx, vox, desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL, &O)) == VOXGI_OK) have_occ = 1;
-        inf.ms_voxels = voxgi__now_ms() - t1;
-    }
     t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) { /* the gathers at the anchors, then at the pixels between that cannot be interpolated */
+    if (r == VOXGI_OK) {
+        memset(&G, 0, sizeof G);
         G.S = sh;
-        G.O = have_occ ? &O : NULL;
+        G.O = B.have_occ ? &B.O : NULL;
         G.hierarchical = desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL;
         G.opening = desc->opening > 0 ? desc->opening : 0.5;
-        voxgi__anchors(w, h, stride, prim, want);
-        r = voxgi__gather_pixels(ctx, pixels, pos, nrm, want, irr, &inf.gathered, voxgi__sh_gather_all, &G);
-        if (r == VOXGI_OK && stride > 1) {
-            voxgi__between_anchors(w, h, stride, pos, nrm, prim, vd.grid.voxel_size, 1, irr, want);
-            r = voxgi__gather_pixels(ctx, pixels, pos, nrm, want, irr, &inf.gathered, voxgi__sh_gather_all, &G);
-        }
+        r = voxgi__bounce_gather(ctx, &B, desc->gather_stride ? desc->gather_stride : 4, voxgi__sh_gather_all, &G, rgb, &inf.gathered);
     }
     inf.ms_gather = voxgi__now_ms() - t1;
-    for (p = 0; r == VOXGI_OK && p < pixels; p++) {
-        const voxgi_material *m;
-        int a;
-        if (prim[p] == UINT32_MAX) continue;
-        m = voxgi__prim_material(&tr, prim[p]);
-        for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * irr[3 * p + (size_t)a]);
-    }
-    if (have_occ) voxgi__occ_free(ctx, &O);
-    voxgi_voxels_destroy(ctx, vox);
     voxgi_sh_destroy(ctx, sh);
-    voxgi__free(ctx, pos);
-    voxgi__free(ctx, nrm);
-    voxgi__free(ctx, irr);
-    voxgi__free(ctx, prim);
-    voxgi__free(ctx, want);
-    voxgi__tracer_free(ctx, &tr);
+    voxgi__bounce_free(ctx, &B);
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;
     return r;
