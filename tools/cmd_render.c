@@ -104,6 +104,32 @@ static void scene_close(voxgi_context *ctx, render_scene *rs)
     if (rs->cm.name[0]) cli_cornell_mesh_close(ctx, &rs->cm);
 }
 
+/* Every method's settings and what it reports (the chosen method's alone are used). */
+typedef struct render_jobs {
+    voxgi_reference_desc d;
+    voxgi_reference_info info;
+    voxgi_vct_desc vd;
+    voxgi_vct_info vinfo;
+    voxgi_tsm_image_desc td;
+    voxgi_tsm_image_info tinfo;
+    voxgi_rsm_image_desc qd;
+    voxgi_rsm_image_info qinfo;
+    voxgi_sh_image_desc hd;
+    voxgi_sh_image_info hinfo;
+} render_jobs;
+
+/* The image of `method` with J's settings into rgb (bytes), its report into J. */
+static voxgi_result render_method(voxgi_context *ctx, int method, const voxgi_scene *scene, render_jobs *J, float *rgb, size_t bytes)
+{
+    switch (method) {
+    case METHOD_VCT: return voxgi_vct_render(ctx, scene, &J->vd, rgb, bytes, &J->vinfo);
+    case METHOD_TSM: return voxgi_tsm_render(ctx, scene, &J->td, rgb, bytes, &J->tinfo);
+    case METHOD_RSM: return voxgi_rsm_render(ctx, scene, &J->qd, rgb, bytes, &J->qinfo);
+    case METHOD_SH: return voxgi_sh_render(ctx, scene, &J->hd, rgb, bytes, &J->hinfo);
+    default: return voxgi_reference_render(ctx, scene, &J->d, rgb, bytes, &J->info);
+    }
+}
+
 /* What --compare measured. */
 typedef struct render_compare {
     double rmse;                  /* NaN: nothing to relate to (a black reference, or every pixel masked) */
@@ -115,42 +141,32 @@ typedef struct render_compare {
    with an independent seed) by the tools' one rule (cli_masked_error): both without the emission
    the camera sees, and the pixels within 3 of one whose centre sees an emitter left out (the
    noise at the emitters' edges would swamp the lighting). */
-static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene,
-                                  const voxgi_reference_desc *d, const voxgi_vct_desc *vd, const voxgi_tsm_image_desc *td,
-                                  const voxgi_rsm_image_desc *qd, const voxgi_sh_image_desc *hd, render_compare *cmp)
+static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene, const render_jobs *J,
+                                  render_compare *cmp)
 {
     size_t n = (size_t)a->size[0] * (size_t)a->size[1] * 3;
     float *ref = (float *)malloc(n * 8), *mine = ref ? ref + n : NULL;
-    voxgi_reference_desc rd = *d, dh = *d;
-    voxgi_vct_desc vh = *vd;
-    voxgi_tsm_image_desc th = *td;
-    voxgi_rsm_image_desc qh = *qd;
-    voxgi_sh_image_desc hh = *hd;
-    voxgi_reference_info ri;
+    render_jobs hidden = *J, reference = *J;
     voxgi_result r;
     cli_error_mask mask;
-    rd.samples = a->compare;
-    rd.seed = d->seed + 1000003; /* independent of the image's own noise */
-    rd.hide_emitters = vh.hide_emitters = dh.hide_emitters = th.hide_emitters = qh.hide_emitters = hh.hide_emitters = 1;
-    r = ref ? voxgi_reference_render(ctx, scene, &rd, ref, n * 4, &ri) : VOXGI_ERR_OUT_OF_MEMORY;
-    if (r == VOXGI_OK)
-        r = a->method == METHOD_VCT   ? voxgi_vct_render(ctx, scene, &vh, mine, n * 4, NULL)
-            : a->method == METHOD_TSM ? voxgi_tsm_render(ctx, scene, &th, mine, n * 4, NULL)
-            : a->method == METHOD_RSM ? voxgi_rsm_render(ctx, scene, &qh, mine, n * 4, NULL)
-            : a->method == METHOD_SH  ? voxgi_sh_render(ctx, scene, &hh, mine, n * 4, NULL)
-                                      : voxgi_reference_render(ctx, scene, &dh, mine, n * 4, NULL);
+    reference.d.samples = a->compare;
+    reference.d.seed = J->d.seed + 1000003; /* independent of the image's own noise */
+    reference.d.hide_emitters = hidden.d.hide_emitters = hidden.vd.hide_emitters = hidden.td.hide_emitters = hidden.qd.hide_emitters =
+        hidden.hd.hide_emitters = 1;
+    r = ref ? render_method(ctx, METHOD_REFERENCE, scene, &reference, ref, n * 4) : VOXGI_ERR_OUT_OF_MEMORY;
+    if (r == VOXGI_OK) r = render_method(ctx, a->method, scene, &hidden, mine, n * 4);
     if (r != VOXGI_OK) {
         free(ref);
         return ref ? cli_fail_lib(s, ctx, "the reference") : cli_fail(s, "the reference: out of memory");
     }
-    if (cli_error_mask_make(s, ctx, scene, &d->camera, &mask)) {
+    if (cli_error_mask_make(s, ctx, scene, &J->d.camera, &mask)) {
         free(ref);
         return CLI_EXIT_FAILURE;
     }
     cmp->rmse = cli_masked_error(&mask, mine, ref, &cmp->rms, NULL); /* a black reference (the leak box): NaN, the RMS says it */
     cmp->masked = mask.masked_pixels;
     cmp->pixels = (size_t)a->size[0] * (size_t)a->size[1];
-    cmp->ref_ms = ri.ms_bvh + ri.ms_render;
+    cmp->ref_ms = reference.info.ms_bvh + reference.info.ms_render;
     cli_error_mask_free(&mask);
     free(ref);
     return 0;
@@ -276,20 +292,21 @@ static void print_sh(const render_args *a, const char *name, const double mean[3
     if (a->compare || a->reference) print_compare(a, d, cmp);
 }
 
-static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const voxgi_reference_desc *d,
-                         const voxgi_reference_info *info, const voxgi_vct_desc *vd, const voxgi_vct_info *vinfo, const voxgi_tsm_image_desc *td,
-                         const voxgi_tsm_image_info *ti, const voxgi_rsm_image_desc *qd, const voxgi_rsm_image_info *qi, const voxgi_sh_image_desc *hd,
-                         const voxgi_sh_image_info *hi, const render_compare *cmp)
+static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const render_jobs *J, const render_compare *cmp)
 {
+    const voxgi_reference_desc *d = &J->d;
+    const voxgi_reference_info *info = &J->info;
+    const voxgi_vct_desc *vd = &J->vd;
+    const voxgi_vct_info *vinfo = &J->vinfo;
     double mean[3] = {0, 0, 0};
     size_t p;
     int i, w = a->size[0], h = a->size[1];
     for (p = 0; p < (size_t)w * (size_t)h; p++)
         for (i = 0; i < 3; i++) mean[i] += rgb[3 * p + (size_t)i];
     for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
-    if (a->method == METHOD_TSM) print_tsm(a, name, mean, td, ti, d, cmp);
-    else if (a->method == METHOD_RSM) print_rsm(a, name, mean, qd, qi, d, cmp);
-    else if (a->method == METHOD_SH) print_sh(a, name, mean, hd, hi, d, cmp);
+    if (a->method == METHOD_TSM) print_tsm(a, name, mean, &J->td, &J->tinfo, d, cmp);
+    else if (a->method == METHOD_RSM) print_rsm(a, name, mean, &J->qd, &J->qinfo, d, cmp);
+    else if (a->method == METHOD_SH) print_sh(a, name, mean, &J->hd, &J->hinfo, d, cmp);
     else if (a->method == METHOD_VCT && a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
                "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
@@ -326,16 +343,12 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
 
 static int render_run(cli_session *s, const render_args *a)
 {
-    voxgi_reference_desc d;
-    voxgi_reference_info info;
-    voxgi_vct_desc vd;
-    voxgi_vct_info vinfo;
-    voxgi_tsm_image_desc td;
-    voxgi_tsm_image_info tinfo;
-    voxgi_rsm_image_desc qd;
-    voxgi_rsm_image_info qinfo;
-    voxgi_sh_image_desc hd;
-    voxgi_sh_image_info hinfo;
+    render_jobs J;
+    voxgi_reference_desc *d = &J.d;
+    voxgi_vct_desc *vd = &J.vd;
+    voxgi_tsm_image_desc *td = &J.td;
+    voxgi_rsm_image_desc *qd = &J.qd;
+    voxgi_sh_image_desc *hd = &J.hd;
     voxgi_info ci;
     render_scene rs;
     cli_context c;
@@ -344,99 +357,86 @@ static int render_run(cli_session *s, const render_args *a)
     size_t bytes = (size_t)a->size[0] * (size_t)a->size[1] * 12;
     render_compare cmp;
     int rc = CLI_EXIT_FAILURE;
-    memset(&d, 0, sizeof d);
-    memset(&info, 0, sizeof info);
-    memset(&vd, 0, sizeof vd);
-    memset(&vinfo, 0, sizeof vinfo);
-    memset(&td, 0, sizeof td);
-    memset(&tinfo, 0, sizeof tinfo);
-    memset(&qd, 0, sizeof qd);
-    memset(&qinfo, 0, sizeof qinfo);
-    memset(&hd, 0, sizeof hd);
-    memset(&hinfo, 0, sizeof hinfo);
+    memset(&J, 0, sizeof J);
     memset(&rs, 0, sizeof rs);
     memset(&cmp, 0, sizeof cmp);
-    d.bounces = a->bounces;
-    d.samples = a->spp;
-    d.seed = (uint64_t)a->seed;
-    vd.resolution = a->res;
-    vd.cones.cones = a->cones;
-    vd.cones.step = (float)a->step;
-    vd.filter = a->isotropic ? VOXGI_MIPS_ISOTROPIC : VOXGI_MIPS_ANISOTROPIC;
-    vd.no_gi = a->no_gi;
-    vd.inject_samples = a->inject_samples;
-    vd.cone_stride = a->cone_stride;
-    vd.bounce_cones.cones = a->bounce_cones;
-    vd.bounce_block = a->bounce_block;
-    vd.octree = a->octree;
-    vd.octree_format = (voxgi_svo_format)a->octree_format;
-    vd.octree_bricks = a->bricks;
+    d->bounces = a->bounces;
+    d->samples = a->spp;
+    d->seed = (uint64_t)a->seed;
+    vd->resolution = a->res;
+    vd->cones.cones = a->cones;
+    vd->cones.step = (float)a->step;
+    vd->filter = a->isotropic ? VOXGI_MIPS_ISOTROPIC : VOXGI_MIPS_ANISOTROPIC;
+    vd->no_gi = a->no_gi;
+    vd->inject_samples = a->inject_samples;
+    vd->cone_stride = a->cone_stride;
+    vd->bounce_cones.cones = a->bounce_cones;
+    vd->bounce_block = a->bounce_block;
+    vd->octree = a->octree;
+    vd->octree_format = (voxgi_svo_format)a->octree_format;
+    vd->octree_bricks = a->bricks;
     if (a->method == METHOD_REFERENCE) options.backend = VOXGI_BACKEND_CPU; /* the path tracer runs on the CPU */
     if (cli_context_open_options(s, &c, &options)) return CLI_EXIT_FAILURE;
     voxgi_query_info(c.vx, &ci);
-    if (scene_open(s, c.vx, a, &rs, &d)) goto done;
+    if (scene_open(s, c.vx, a, &rs, d)) goto done;
     if (!(rgb = (float *)malloc(bytes))) {
         cli_fail(s, "out of memory");
         goto done;
     }
     if (a->method == METHOD_TSM) { /* direct light: compared with the reference's */
-        td.camera = d.camera;
-        td.seed = d.seed;
-        td.samples = a->spp_given ? d.samples : 4;
-        td.tsm.size = a->tsm_size;
-        td.tsm.slices = a->slices;
-        td.tsm.sigma = (float)a->sigma;
-        d.bounces = 0;
+        td->camera = d->camera;
+        td->seed = d->seed;
+        td->samples = a->spp_given ? d->samples : 4;
+        td->tsm.size = a->tsm_size;
+        td->tsm.slices = a->slices;
+        td->tsm.sigma = (float)a->sigma;
+        d->bounces = 0;
     }
     if (a->method == METHOD_RSM) { /* direct light and one bounce: compared with the reference's one bounce */
-        qd.camera = d.camera;
-        qd.seed = d.seed;
-        qd.samples = a->spp_given ? d.samples : 0;
-        qd.rsm.size = a->rsm_size;
-        qd.rsm.samples = a->rsm_samples;
-        qd.rsm.radius = (float)a->rsm_radius;
-        qd.rsm.points = a->rsm_points;
-        qd.gather_stride = a->gather_stride;
-        qd.rsm.seed = d.seed;
-        qd.visibility = (voxgi_visibility)a->visibility;
-        qd.resolution = a->res_given ? a->res : 64;
-        d.bounces = 1;
+        qd->camera = d->camera;
+        qd->seed = d->seed;
+        qd->samples = a->spp_given ? d->samples : 0;
+        qd->rsm.size = a->rsm_size;
+        qd->rsm.samples = a->rsm_samples;
+        qd->rsm.radius = (float)a->rsm_radius;
+        qd->rsm.points = a->rsm_points;
+        qd->gather_stride = a->gather_stride;
+        qd->rsm.seed = d->seed;
+        qd->visibility = (voxgi_visibility)a->visibility;
+        qd->resolution = a->res_given ? a->res : 64;
+        d->bounces = 1;
     }
     if (a->method == METHOD_SH) { /* direct light and one bounce: compared with the reference's one bounce */
-        hd.camera = d.camera;
-        hd.seed = d.seed;
-        hd.samples = a->spp_given ? d.samples : 0;
-        hd.sh.seed = d.seed;
-        hd.visibility = (voxgi_visibility)a->visibility;
-        hd.resolution = a->res_given ? a->res : 64;
-        hd.opening = (float)a->opening;
-        hd.gather_stride = a->gather_stride;
-        d.bounces = 1;
+        hd->camera = d->camera;
+        hd->seed = d->seed;
+        hd->samples = a->spp_given ? d->samples : 0;
+        hd->sh.seed = d->seed;
+        hd->visibility = (voxgi_visibility)a->visibility;
+        hd->resolution = a->res_given ? a->res : 64;
+        hd->opening = (float)a->opening;
+        hd->gather_stride = a->gather_stride;
+        d->bounces = 1;
     }
     if (a->method == METHOD_VCT) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
-        vd.camera = d.camera;
-        vd.seed = d.seed;
-        vd.samples = a->spp_given ? d.samples : 24;
-        vd.bounces = d.bounces;
-        if (vd.no_gi) d.bounces = 0; /* what it is compared against */
+        vd->camera = d->camera;
+        vd->seed = d->seed;
+        vd->samples = a->spp_given ? d->samples : 24;
+        vd->bounces = d->bounces;
+        if (vd->no_gi) d->bounces = 0; /* what it is compared against */
     }
-    if ((a->method == METHOD_VCT   ? voxgi_vct_render(c.vx, rs.scene, &vd, rgb, bytes, &vinfo)
-         : a->method == METHOD_TSM ? voxgi_tsm_render(c.vx, rs.scene, &td, rgb, bytes, &tinfo)
-         : a->method == METHOD_RSM ? voxgi_rsm_render(c.vx, rs.scene, &qd, rgb, bytes, &qinfo)
-         : a->method == METHOD_SH  ? voxgi_sh_render(c.vx, rs.scene, &hd, rgb, bytes, &hinfo)
-                                   : voxgi_reference_render(c.vx, rs.scene, &d, rgb, bytes, &info)) != VOXGI_OK) {
+    if (render_method(c.vx, a->method, rs.scene, &J, rgb, bytes) != VOXGI_OK) {
         cli_fail_lib(s, c.vx, NULL);
         goto done;
     }
-    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &d, &vd, &td, &qd, &hd, &cmp)) goto done;
-    if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &d.camera, rgb, &cmp)) goto done;
+    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &J, &cmp)) goto done;
+    if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &d->camera, rgb, &cmp)) goto done;
     if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
                                            : vxt_write_png(a->out, rgb, a->size[0], a->size[1], (float)a->exposure)) != 0) {
         cli_fail(s, "cannot write %s", a->out);
         goto done;
     }
     cli_status_clear(s);
-    print_result(a, rs.name, &ci, rgb, &d, &info, &vd, &vinfo, &td, &tinfo, &qd, &qinfo, &hd, &hinfo, &cmp);
+    print_result(a, rs.name, &ci, rgb, &J, &cmp);
     rc = CLI_EXIT_OK;
 done:
     free(rgb);
