@@ -200,6 +200,22 @@ void cli_error_mask_free(cli_error_mask *m);
    pixel is kept or the reference is black there. rms and ref_mean (may be NULL): its parts. */
 double cli_masked_error(const cli_error_mask *m, const float *img, const float *ref, double *rms, double *ref_mean);
 
+/* A converged reference of a scene's view for the reports: the path tracer's image with `spp`
+   samples per pixel and `bounces` (without the emission the camera sees), the error mask, and how
+   the path tracer converges there: c from a 16-spp image, so that k samples measure
+   c sqrt(1/k + 1/spp) against it. 0, or says why and returns 1. */
+typedef struct cli_reference {
+    float *image;
+    cli_error_mask mask;
+    double c, ms_per_spp;
+    int spp;
+} cli_reference;
+int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, int spp, int bounces,
+                       cli_reference *R);
+void cli_reference_free(cli_reference *R);
+/* The path tracer's time for an image that measures error e against R (HUGE_VAL: beyond R). */
+double cli_reference_ms(const cli_reference *R, double e);
+
 /* The built-in Cornell box with a mesh in place of its tall block: the box's triangles but the
    block's (found by geometry: the triangles that do not emit and lie inside the room, the highest
    of them), and the mesh (file or built-in shape, +Y up as it comes) scaled uniformly and moved

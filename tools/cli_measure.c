@@ -105,6 +105,65 @@ double cli_masked_error(const cli_error_mask *m, const float *img, const float *
     return kept && mean > 0 ? rms / mean : NAN;
 }
 
+/* ------------------------------------------------------------------ a converged reference */
+int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, int spp, int bounces,
+                       cli_reference *R)
+{
+    size_t bytes = (size_t)camera->width * (size_t)camera->height * 12;
+    voxgi_reference_desc rd;
+    voxgi_reference_info ri;
+    float *quick;
+    double e16;
+    memset(R, 0, sizeof *R);
+    memset(&rd, 0, sizeof rd);
+    rd.camera = *camera;
+    rd.hide_emitters = 1;
+    rd.bounces = bounces;
+    rd.samples = spp;
+    rd.seed = 1000003; /* independent of the images' seeds */
+    R->spp = spp;
+    if (!(R->image = (float *)malloc(bytes)) || !(quick = (float *)malloc(bytes))) {
+        cli_reference_free(R);
+        return cli_fail(s, "the reference: out of memory");
+    }
+    cli_status(s, "the reference, %d spp", spp);
+    if (voxgi_reference_render(ctx, scene, &rd, R->image, bytes, &ri) != VOXGI_OK) {
+        free(quick);
+        cli_reference_free(R);
+        return cli_fail_lib(s, ctx, "the reference");
+    }
+    if (cli_error_mask_make(s, ctx, scene, camera, &R->mask)) {
+        free(quick);
+        cli_reference_free(R);
+        return 1;
+    }
+    rd.samples = 16; /* its convergence */
+    rd.seed = 7;
+    if (voxgi_reference_render(ctx, scene, &rd, quick, bytes, &ri) != VOXGI_OK) {
+        free(quick);
+        cli_reference_free(R);
+        return cli_fail_lib(s, ctx, "the reference at 16 spp");
+    }
+    e16 = cli_masked_error(&R->mask, quick, R->image, NULL, NULL);
+    R->c = e16 / sqrt(1.0 / 16 + 1.0 / spp);
+    R->ms_per_spp = (ri.ms_bvh + ri.ms_render) / 16;
+    free(quick);
+    return 0;
+}
+
+void cli_reference_free(cli_reference *R)
+{
+    free(R->image);
+    cli_error_mask_free(&R->mask);
+    memset(R, 0, sizeof *R);
+}
+
+double cli_reference_ms(const cli_reference *R, double e)
+{
+    double inv_k = (e / R->c) * (e / R->c) - 1.0 / R->spp;
+    return inv_k > 0 ? R->ms_per_spp / inv_k : HUGE_VAL;
+}
+
 /* ------------------------------------------------------------------ the Cornell box with a mesh */
 /* The mesh vertex v of `mesh`, as doubles. */
 static void vertex_at(const voxgi_mesh *mesh, size_t v, double p[3])

@@ -38,52 +38,26 @@ typedef struct tsm_report {
 } tsm_report;
 
 
-/* The path tracer's time for error e: c^2 (1/k + 1/spp) = e^2 at k samples per pixel. */
-static double tsm_reference_ms(const tsm_report *rep, int si, double e, int spp)
-{
-    double inv_k = (e / rep->ref_c[si]) * (e / rep->ref_c[si]) - 1.0 / spp;
-    return inv_k > 0 ? rep->ref_ms_per_spp[si] / inv_k : HUGE_VAL;
-}
-
-static int tsm_scene(cli_session *s, voxgi_context *ctx, const tsm_args *a, tsm_report *rep, int si, float *ref, float *img)
+static int tsm_scene(cli_session *s, voxgi_context *ctx, const tsm_args *a, tsm_report *rep, int si, float *img)
 {
     voxgi_builtin_scene bs;
-    voxgi_reference_desc rd;
-    voxgi_reference_info ri;
-    cli_error_mask mask;
-    double e16;
+    voxgi_camera cam;
+    cli_reference R;
     int i, j, k, rc = 1;
     if (voxgi_builtin_scene_create(ctx, rep->scenes[si], &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, rep->scenes[si]);
-    memset(&rd, 0, sizeof rd);
-    rd.camera = bs.camera;
-    rd.camera.width = rd.camera.height = a->size;
-    rd.hide_emitters = 1;
-    rd.samples = a->spp;
-    rd.seed = 1000003;
-    cli_status(s, "%s: the reference, %d spp", rep->scenes[si], a->spp);
-    if (voxgi_reference_render(ctx, &bs.scene, &rd, ref, (size_t)a->size * (size_t)a->size * 12, &ri) != VOXGI_OK) {
-        cli_fail_lib(s, ctx, "the reference");
-        goto done;
-    }
-    if (cli_error_mask_make(s, ctx, &bs.scene, &rd.camera, &mask)) goto done;
-    rep->masked[si] = mask.masked_pixels;
-    rd.samples = 16; /* its convergence */
-    rd.seed = 7;
-    if (voxgi_reference_render(ctx, &bs.scene, &rd, img, (size_t)a->size * (size_t)a->size * 12, &ri) != VOXGI_OK) {
-        cli_fail_lib(s, ctx, "the reference at 16 spp");
-        cli_error_mask_free(&mask);
-        goto done;
-    }
-    e16 = cli_masked_error(&mask, img, ref, NULL, NULL);
-    rep->ref_c[si] = e16 / sqrt(1.0 / 16 + 1.0 / a->spp);
-    rep->ref_ms_per_spp[si] = (ri.ms_bvh + ri.ms_render) / 16;
+    cam = bs.camera;
+    cam.width = cam.height = a->size;
+    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, &R)) goto done;
+    rep->masked[si] = R.mask.masked_pixels;
+    rep->ref_c[si] = R.c;
+    rep->ref_ms_per_spp[si] = R.ms_per_spp;
     for (i = 0; i < a->nsizes; i++)
         for (j = 0; j < a->nslices; j++)
             for (k = 0; k < a->nsamples; k++) {
                 tsm_row *r = &rep->rows[rep->nrows];
                 voxgi_tsm_image_desc td;
                 memset(&td, 0, sizeof td);
-                td.camera = rd.camera;
+                td.camera = cam;
                 td.hide_emitters = 1;
                 td.seed = 1;
                 td.tsm.size = (int)a->sizes[i];
@@ -92,20 +66,19 @@ static int tsm_scene(cli_session *s, voxgi_context *ctx, const tsm_args *a, tsm_
                 cli_status(s, "%s: maps of %d texels, %d slices, %d rays per pixel", rep->scenes[si], td.tsm.size, td.tsm.slices, td.samples);
                 if (voxgi_tsm_render(ctx, &bs.scene, &td, img, (size_t)a->size * (size_t)a->size * 12, &r->info) != VOXGI_OK) {
                     cli_fail_lib(s, ctx, "tsm");
-                    cli_error_mask_free(&mask);
                     goto done;
                 }
                 r->scene = si;
                 r->map_size = td.tsm.size;
                 r->slices = td.tsm.slices;
                 r->samples = td.samples;
-                r->rmse = cli_masked_error(&mask, img, ref, NULL, NULL);
-                r->ref_ms = tsm_reference_ms(rep, si, r->rmse, a->spp);
+                r->rmse = cli_masked_error(&R.mask, img, R.image, NULL, NULL);
+                r->ref_ms = cli_reference_ms(&R, r->rmse);
                 rep->nrows++;
             }
-    cli_error_mask_free(&mask);
     rc = 0;
 done:
+    cli_reference_free(&R);
     voxgi_builtin_scene_destroy(ctx, &bs);
     return rc;
 }
@@ -173,7 +146,7 @@ int cmd_report_tsm(int argc, char **argv)
     cli_session s;
     cli_context c;
     const char *list;
-    float *ref = NULL, *img = NULL;
+    float *img = NULL;
     int r, rc, i, si;
     memset(&a, 0, sizeof a);
     memset(&rep, 0, sizeof rep);
@@ -213,9 +186,8 @@ int cmd_report_tsm(int argc, char **argv)
     if (cli_context_open_options(&s, &c, &a.common)) return CLI_EXIT_FAILURE;
     rc = CLI_EXIT_FAILURE;
     rep.rows = (tsm_row *)calloc((size_t)rep.scene_count * (size_t)(a.nsizes * a.nslices * a.nsamples), sizeof *rep.rows);
-    ref = (float *)malloc((size_t)a.size * (size_t)a.size * 12);
     img = (float *)malloc((size_t)a.size * (size_t)a.size * 12);
-    if (!rep.rows || !ref || !img) {
+    if (!rep.rows || !img) {
         cli_fail(&s, "out of memory");
         goto done;
     }
@@ -224,7 +196,7 @@ int cmd_report_tsm(int argc, char **argv)
         goto done;
     }
     for (si = 0; si < rep.scene_count; si++)
-        if (tsm_scene(&s, c.vx, &a, &rep, si, ref, img)) goto done;
+        if (tsm_scene(&s, c.vx, &a, &rep, si, img)) goto done;
     tsm_pareto(&rep);
     if (tsm_write(&s, &a, &rep)) goto done;
     cli_status_clear(&s);
@@ -241,7 +213,6 @@ int cmd_report_tsm(int argc, char **argv)
     rc = CLI_EXIT_OK;
 done:
     free(rep.rows);
-    free(ref);
     free(img);
     cli_context_close(&s, &c);
     return rc;
