@@ -69,7 +69,8 @@ static void write_file(const char *name, const char *text, char *path, size_t pa
 static void test_help_everywhere(void)
 {
     static char out[8192];
-    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "bench rays --help", "svo --help", "render --help", "report --help", "report vct --help"};
+    const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "bench rays --help", "svo --help", "render --help", "report --help", "report vct --help",
+                          "report tsm --help", "report rsm --help", "report sh --help"};
     size_t i;
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         int rc = run(cmds[i], out, sizeof out);
@@ -853,6 +854,45 @@ static void test_exit_codes(void)
     TH_CHECK(run("report", out, sizeof out) == 2, "report without a report: %s", out);
 }
 
+/* The rows of a report's CSV (the header left out) and how many are on the front (the last
+   column 1); -1 when it cannot be read. */
+static int csv_rows(const char *path, int *front)
+{
+    char line[1024];
+    int lines = 0;
+    FILE *f = fopen(path, "r");
+    *front = 0;
+    if (!f) return -1;
+    while (fgets(line, sizeof line, f)) {
+        lines++;
+        *front += lines > 1 && strlen(line) >= 2 && line[strlen(line) - 2] == '1';
+    }
+    fclose(f);
+    return lines - 1;
+}
+
+/* voxgi report rsm and report sh: a row per configuration (visibilities x the parameter lists),
+   one on the front at least, the traversals agreeing on every segment inside the grid. */
+static void test_bounce_reports(void)
+{
+    static char out[16384];
+    char args[1024], path[512];
+    int rows, front;
+    snprintf(args, sizeof args, "report rsm --size 12 --spp 64 --map-sizes 32 --samples 8,16 --radii 1 --points 1 --strides 1,2 --visibility dda,hierarchical,none "
+                                "--segments 2000 --out %s/rr", tmpdir);
+    TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "rsm.md") && strstr(out, ", 0 disagree"), "report rsm: %s", out);
+    snprintf(path, sizeof path, "%s/rr/rsm.csv", tmpdir);
+    rows = csv_rows(path, &front);
+    TH_CHECK(rows == 12 && front >= 1, "rsm.csv: %d rows, %d on the front", rows, front);
+    snprintf(args, sizeof args, "report sh --size 12 --spp 64 --res 8,16 --openings 0.5 --strides 2 --visibility none --out %s/rr", tmpdir);
+    TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "sh.md"), "report sh: %s", out);
+    snprintf(path, sizeof path, "%s/rr/sh.csv", tmpdir);
+    rows = csv_rows(path, &front);
+    TH_CHECK(rows == 2 && front >= 1, "sh.csv: %d rows, %d on the front", rows, front);
+    TH_CHECK(run("report rsm --radii 3 --out x", out, sizeof out) == 2 && run("report sh --visibility sideways --out x", out, sizeof out) == 2,
+             "bad lists accepted: %s", out);
+}
+
 int main(int argc, char **argv)
 {
     (void)argc;
@@ -872,6 +912,7 @@ int main(int argc, char **argv)
     TH_RUN(test_svo_command);
     TH_RUN(test_render_command);
     TH_RUN(test_tsm_command);
+    TH_RUN(test_bounce_reports);
     TH_RUN(test_vct_and_report_commands);
     TH_RUN(test_compare_black_reference);
     TH_RUN(test_compare_masks_emitters);

@@ -243,6 +243,7 @@ int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
 int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);
 int cmd_render(int argc, char **argv);
-int cmd_report(int argc, char **argv); /* argv[0] is "vct" or "tsm" */
+int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm" or "sh" */
 int cmd_report_tsm(int argc, char **argv);
+int cmd_report_bounce(int method, int argc, char **argv); /* method 0: rsm, 1: sh */
 #endif

@@ -488,7 +488,9 @@ int cmd_report(int argc, char **argv)
             return CLI_EXIT_OK;
         }
         if (argc >= 1 && strcmp(argv[0], "tsm") == 0) return cmd_report_tsm(argc - 1, argv + 1);
-        if (argc < 1 || strcmp(argv[0], "vct") != 0) return cli_usage("report", "the reports to make are 'vct' and 'tsm'");
+        if (argc >= 1 && strcmp(argv[0], "rsm") == 0) return cmd_report_bounce(0, argc - 1, argv + 1);
+        if (argc >= 1 && strcmp(argv[0], "sh") == 0) return cmd_report_bounce(1, argc - 1, argv + 1);
+        if (argc < 1 || strcmp(argv[0], "vct") != 0) return cli_usage("report", "the reports to make are 'vct', 'tsm', 'rsm' and 'sh'");
         if ((rc = cli_parse(&cmd, argc - 1, argv + 1)) != CLI_CONTINUE) return rc;
     }
     for (list = a.scene_list; (r = cli_next_item(&list, rep.scene_buf[rep.scene_count], sizeof rep.scene_buf[0])) != 0; rep.scene_count++)

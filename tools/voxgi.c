@@ -5,9 +5,11 @@
  *   voxgi bench voxelize [MESH ...] [--methods LIST] [--min-res N] [--max-res N] [--runs R] [--csv FILE]
  *   voxgi bench rays MESH [--rays N] [--runs R] [--threads T] [--json]
  *   voxgi svo MESH [--res N] [--backend B] [--format F] [--bricks] [--neighbours] [--json]
- *   voxgi render SCENE|MESH [--method reference|vct|tsm] [--bounces B] [--spp S] [--camera EX EY EZ TX TY TZ FOVY] [--size W H] -o OUT.png|OUT.pfm
+ *   voxgi render SCENE|MESH [--method reference|vct|tsm|rsm|sh] [--bounces B] [--spp S] [--camera EX EY EZ TX TY TZ FOVY] [--size W H] -o OUT.png|OUT.pfm
  *   voxgi report vct [--scenes LIST] [--size N] [--res LIST] [--cones LIST] [--apertures LIST] [--steps LIST] [--out DIR]
  *   voxgi report tsm [--scenes LIST] [--size N] [--map-sizes LIST] [--slices LIST] [--samples LIST] [--out DIR]
+ *   voxgi report rsm [--scenes LIST] [--size N] [--samples LIST] [--radii LIST] [--points LIST] [--strides LIST] [--visibility LIST] [--out DIR]
+ *   voxgi report sh [--scenes LIST] [--size N] [--res LIST] [--openings LIST] [--strides LIST] [--visibility LIST] [--out DIR]
  *
  * MESH is an OBJ (+MTL), OFF, STL or PLY file, or a built-in shape: builtin:quad,
  * builtin:subdivided-quad, builtin:cube, builtin:sphere. Every command takes --help; tools/cli.h
@@ -24,9 +26,11 @@ static const char *const main_help =
     "  bench rays MESH     millions of rays per second of the ray core, coherent and incoherent\n"
     "  svo MESH ...        sparse voxel octree: nodes, memory, build time per pass\n"
     "  render SCENE ...    an image of a built-in scene or a mesh (PNG, PFM): the path-traced\n"
-    "                      reference or voxel cone tracing\n"
+    "                      reference, voxel cone tracing, or the light-space passes\n"
     "  report vct ...      cone tracing's error against run time (Markdown, CSV, SVG)\n"
     "  report tsm ...      transmittance shadow maps' error against run time (Markdown, CSV)\n"
+    "  report rsm ...      reflective shadow maps' error against run time, and the voxel traversals\n"
+    "  report sh ...       the SH volume's error against run time (Markdown, CSV)\n"
     "Exit status, for every command:\n"
     "  0  success (--help and --version too)\n"
     "  1  failure while running: a mesh that cannot be read, an error from the library, no GL\n"
