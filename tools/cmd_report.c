@@ -16,7 +16,7 @@ static const char *const report_help =
     "DIR/vct.csv and DIR/vct.svg (error against time, log scales, the Pareto front marked).\n"
     "It also times each stage of the tool's default configuration on the CPU and on GL, where a GL\n"
     "4.5 context can be made (--no-stages: not). Times are wall clock on this machine; GL times on a\n"
-    "software rasteriser are not GPU times.\n";
+    "software rasteriser are not GPU times. The other reports: voxgi report tsm|rsm|sh --help.\n";
 
 /* mips: 0 isotropic, 1 anisotropic, 2 octree (the --filters bits 1, 2, 4) */
 static const char *const mips_names[] = {"isotropic", "anisotropic", "octree", NULL}, *const mips_short[3] = {"iso", "aniso", "octree"},
