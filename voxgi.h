@@ -133,7 +133,8 @@
             exact on both backends; transmittance shadow maps (voxgi_tsm, directional and spot
             lights, GL lookups) and images with them (voxgi_tsm_render); shadow rays through
             translucent surfaces; the foliage scene; reflective shadow maps (voxgi_rsm: lights,
-            area lights and emitters) and the SH volume (voxgi_sh), images with a gather stride.
+            area lights and emitters) and the SH volume (voxgi_sh), images with a gather stride;
+            the built-in scene two-spheres is now rsm-walls (the source's name for it).
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -844,7 +845,8 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
    weighted xi1 / sum xi1 (the unbiased weight of that pattern, whose density falls as 1 / xi1;
    the seed's xi1^2 over-counts the rim), each texel p adding pi r^2 w Phi_p max(0, n_p.(x - x_p))
    max(0, n.(x_p - x)) / (pi |x - x_p|^4) (the seed's equation 5 with the Lambertian 1 / pi it
-   folds into the flux; |x - x_p| at least one texel: the singularity), when the voxels (if given)
+   folds into the flux; |x - x_p| at least a texel's width where the texel lies: the
+   singularity), when the voxels (if given)
    let it through: the segment between the two, each end moved 1.5 voxels along its normal off
    its own surface (clear of the surface's conservative voxels), by voxgi_voxels_occluded. */
 typedef struct voxgi_rsm_desc {
@@ -887,8 +889,9 @@ VOXGI_API void voxgi_rsm_destroy(voxgi_context *ctx, voxgi_rsm *rsm);
    coarsest level, a cell whose size is at most `opening` times its centroid's distance acts as one
    point at its centroid (else its children do), adding I(w) max(0, n.d) / |d|^2 (I its SH toward
    the point, clamped at 0; |d| at least a voxel; cells within a voxel left out), each through the
-   voxels if given (from 1.5 voxels off the point's surface to 1.5 voxels short of the centroid,
-   voxgi_voxels_occluded's rule). Memory: 64 bytes a cell over all levels (dense). */
+   voxels if given (from 1.5 voxels off the point's surface toward the centroid, up to half a
+   voxel before the cell: a cell's own surfaces do not hide its light; voxgi_voxels_occluded's
+   rule). Memory: 64 bytes a cell over all levels (dense). */
 typedef struct voxgi_sh_desc {
     int samples;                  /* points per area light and on the emitters for each piece; 0 = 16 */
     uint64_t seed;
@@ -1089,7 +1092,7 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
    "cornell-box"  the Cornell box (the published geometry in metres, the light 0.1 mm below the
                   ceiling; albedos white 0.725 0.71 0.68, red 0.63 0.065 0.05, green 0.14 0.45
                   0.091; the light's radiance 17 12 4);
-   "two-spheres"  two white spheres before a red and a blue wall with a grey divider between
+   "rsm-walls"    two white spheres before a red and a blue wall with a grey divider between
                   them, lit by a directional light (Buchacher 2014's visibility test scene);
    "leak-box"     a closed box with the camera inside and every light outside: the exact image
                   is black, so anything else is light leaking through the walls;
@@ -11063,7 +11066,9 @@ static void voxgi__rsm_gather(void *user, size_t first, size_t end)
             size_t size = (size_t)R->info.size;
             for (map = 0; map < R->maps; map++) {
                 const voxgi__light_view *V = &R->views[map];
-                double st[3], floor2 = V->perspective || V->hemisphere ? 0 : V->texel * V->texel; /* the singularity: at least a texel apart */
+                /* the singularity: x at least a texel's width from the texel, its width where the texel lies (the square of
+                   its distance from the light times this) */
+                double st[3], spread = V->hemisphere ? VOXGI__PI / ((double)V->size * V->size) : V->perspective ? 4 * V->tan_half * V->tan_half / ((double)V->size * V->size) : 0;
                 voxgi__view_point(V, x, st);
                 for (k = 0; k < R->samples; k++) {
                     double s = st[0] + R->offset[2 * k], t = st[1] + R->offset[2 * k + 1], d[3], dist2 = 0, cp = 0, cx = 0, f;
@@ -11082,7 +11087,12 @@ static void voxgi__rsm_gather(void *user, size_t first, size_t end)
                         cx -= n[a] * d[a];
                     }
                     if (cp <= 0 || cx <= 0) continue;
-                    dist2 = VOXGI__MAX(dist2, floor2 > 0 ? floor2 : dist2 * 1e-6);
+                    if (spread > 0) {
+                        double r2 = 0;
+                        for (a = 0; a < 3; a++) r2 += (xp[a] - V->eye[a]) * (xp[a] - V->eye[a]);
+                        dist2 = VOXGI__MAX(dist2, r2 * spread);
+                    } else
+                        dist2 = VOXGI__MAX(dist2, V->texel * V->texel);
                     if (J->O) { /* each end 1.5 voxels off its own surface */
                         double o[3], dd[3], vs = J->grid->voxel_size;
                         for (a = 0; a < 3; a++) {
@@ -11417,13 +11427,26 @@ static void voxgi__sh_point(const voxgi__sh_gather_job *J, const double x[3], co
         for (a = 0; a < 3; a++) w[a] = -d[a] / dist; /* from the cell toward x */
         cr = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / dist;
         if (cr <= 0) continue;
-        if (J->O && dist > 3 * vs) { /* x 1.5 voxels off its surface to the centroid 1.5 voxels toward x */
-            double o[3], dd[3];
-            for (a = 0; a < 3; a++) {
+        if (J->O) { /* from x 1.5 voxels off its surface toward the centroid, up to half a voxel before the cell (what lies
+                       inside the cell is its own light's business) */
+            double o[3], dd[3], enter = 0, len;
+            for (a = 0; a < 3; a++) { /* voxel units */
                 o[a] = (x[a] + 1.5 * vs * n[a] - g->origin[a]) / vs;
-                dd[a] = (p[a] + 1.5 * vs * w[a] - g->origin[a]) / vs - o[a];
+                dd[a] = (p[a] - g->origin[a]) / vs - o[a];
             }
-            if (voxgi__traverse(J->O, J->hierarchical, o, dd, &steps, NULL, NULL)) continue;
+            len = sqrt(dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]);
+            for (a = 0; a < 3; a++) {
+                double lo = (double)c[a] * (double)((int64_t)1 << l), hi = lo + (double)((int64_t)1 << l), t0, t1;
+                if (dd[a] == 0) continue;
+                t0 = (lo - o[a]) / dd[a];
+                t1 = (hi - o[a]) / dd[a];
+                enter = VOXGI__MAX(enter, VOXGI__MIN(t0, t1));
+            }
+            enter -= 0.5 / len;
+            if (enter > 0) {
+                for (a = 0; a < 3; a++) dd[a] *= enter;
+                if (voxgi__traverse(J->O, J->hierarchical, o, dd, &steps, NULL, NULL)) continue;
+            }
         }
         for (a = 0; a < 3; a++) {
             const float *k = cell + 4 * a;
@@ -12636,11 +12659,11 @@ static void voxgi__view(voxgi_camera *c, double ex, double ey, double ez, double
     c->width = c->height = 256;
 }
 
-static const char *const voxgi__builtin_names[6] = {"cornell-box", "two-spheres", "leak-box", "furnace", "leak-room", "foliage"};
+static const char *const voxgi__builtin_names[6] = {"cornell-box", "rsm-walls", "leak-box", "furnace", "leak-room", "foliage"};
 
 VOXGI_API const char *voxgi_builtin_scene_names(void)
 {
-    return "cornell-box two-spheres leak-box furnace leak-room foliage";
+    return "cornell-box rsm-walls leak-box furnace leak-room foliage";
 }
 
 VOXGI_API voxgi_result voxgi_builtin_scene_create(voxgi_context *ctx, const char *name, voxgi_builtin_scene *out)

@@ -80,13 +80,13 @@ run svo-albedo svo builtin:cube --res 16 --attributes albedo --backend cpu $T --
 run svo-gl svo builtin:sphere --res 32 --neighbours --backend gl $T --json
 
 # 3. images: the reference and cone tracing on each built-in scene, fixed seed
-for scene in cornell-box two-spheres leak-box furnace leak-room foliage; do
+for scene in cornell-box rsm-walls leak-box furnace leak-room foliage; do
     run "reference-$scene" render "$scene" --size 24 24 --spp 8 --seed 3 $T --json -o "$tmp/o.pfm"
     run "vct-$scene" render "$scene" --method vct --backend cpu --res 24 --cones 8 --size 24 24 \
         --spp 8 --seed 3 $T --json -o "$tmp/o.pfm"
 done
 run reference-unlimited render cornell-box --size 16 16 --spp 4 --bounces -1 --seed 2 $T --json -o "$tmp/o.pfm"
-run reference-sun render two-spheres --size 16 16 --spp 4 --sun 0.3 -1 0.2 2 $T --json -o "$tmp/o.pfm"
+run reference-sun render rsm-walls --size 16 16 --spp 4 --sun 0.3 -1 0.2 2 $T --json -o "$tmp/o.pfm"
 run vct-aniso render cornell-box --method vct --backend cpu --res 24 --anisotropic --cones 16 \
     --size 24 24 --spp 4 $T --json -o "$tmp/o.pfm"
 run vct-octree render cornell-box --method vct --backend cpu --res 24 --octree float16 --bricks \
@@ -95,7 +95,7 @@ run vct-stride render cornell-box --method vct --backend cpu --res 24 --cone-str
     --size 24 24 --spp 4 $T --json -o "$tmp/o.pfm"
 run vct-bounces render cornell-box --method vct --backend cpu --res 24 --bounces 3 \
     --size 24 24 --spp 4 --inject-samples 2 $T --json -o "$tmp/o.pfm"
-run vct-nogi-png render two-spheres --method vct --backend cpu --res 24 --no-gi \
+run vct-nogi-png render rsm-walls --method vct --backend cpu --res 24 --no-gi \
     --size 24 24 --spp 4 --exposure 2 $T --json -o "$tmp/o.png"
 run vct-compare render leak-box --method vct --backend cpu --res 24 --compare 16 \
     --size 16 16 --spp 4 $T --json -o "$tmp/o.pfm"
@@ -103,8 +103,8 @@ run vct-compare render leak-box --method vct --backend cpu --res 24 --compare 16
 # the light-space passes: transmittance and reflective shadow maps
 run tsm-foliage render foliage --method tsm --size 24 24 --tsm-size 64 --slices 32 --seed 3 $T --json -o "$tmp/o.pfm"
 run tsm-sigma render foliage --method tsm --size 16 16 --tsm-size 32 --sigma 0.5 --spp 2 $T --json -o "$tmp/o.pfm"
-run rsm-two-spheres render two-spheres --method rsm --size 24 24 --rsm-size 64 --rsm-samples 32 --res 24 --seed 3 $T --json -o "$tmp/o.pfm"
-run rsm-hierarchical render two-spheres --method rsm --size 16 16 --rsm-size 32 --rsm-samples 16 --visibility hierarchical --res 16 \
+run rsm-walls render rsm-walls --method rsm --size 24 24 --rsm-size 64 --rsm-samples 32 --res 24 --seed 3 $T --json -o "$tmp/o.pfm"
+run rsm-hierarchical render rsm-walls --method rsm --size 16 16 --rsm-size 32 --rsm-samples 16 --visibility hierarchical --res 16 \
     $T --json -o "$tmp/o.pfm"
 run rsm-cornell render cornell-box --method rsm --size 16 16 --rsm-size 24 --rsm-samples 16 --rsm-points 2 --gather-stride 2 --res 16 --spp 2 \
     $T --json -o "$tmp/o.pfm"
@@ -113,7 +113,7 @@ run sh-cornell render cornell-box --method sh --size 16 16 --res 16 --spp 2 $T -
 # GL cone tracing: llvmpipe gives the same bits run after run (a GPU need not: mips by blending)
 run vct-gl render cornell-box --method vct --backend gl --res 24 --cones 8 --size 24 24 --spp 8 \
     --seed 3 $T --json -o "$tmp/o.pfm"
-run vct-gl-aniso render two-spheres --method vct --backend gl --res 24 --anisotropic --size 24 24 \
+run vct-gl-aniso render rsm-walls --method vct --backend gl --res 24 --anisotropic --size 24 24 \
     --spp 4 $T --json -o "$tmp/o.pfm"
 
 # 4. the cone tracer's report at a tiny size (the error columns, not the times)

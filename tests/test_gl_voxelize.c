@@ -933,7 +933,7 @@ static int lit_voxels(voxgi_context *ctx, const voxgi_scene *sc, int res, const 
    voxel on the CPU). Checked: the share of voxels that agree to 1e-4, and the total power. */
 static void test_gl_raster_injection_matches_cpu(void)
 {
-    static const char *const scenes[2] = {"two-spheres", "cornell-box"};
+    static const char *const scenes[2] = {"rsm-walls", "cornell-box"};
     voxgi_context *ctx[2];
     int sc, b;
     if (!have_gl()) return;

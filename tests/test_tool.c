@@ -318,10 +318,10 @@ static void test_tsm_command(void)
         voxgi_builtin_scene ts;
         voxgi_rsm_image_desc qd;
         snprintf(pfm, sizeof pfm, "%s/q.pfm", tmpdir);
-        snprintf(args, sizeof args, "render two-spheres --method rsm --size 8 8 --rsm-size 32 --rsm-samples 16 --visibility hierarchical --res 16 --compare 8 --json -o %s", pfm);
+        snprintf(args, sizeof args, "render rsm-walls --method rsm --size 8 8 --rsm-size 32 --rsm-samples 16 --visibility hierarchical --res 16 --compare 8 --json -o %s", pfm);
         TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "maps") == 1 && json_number(out, "rel_rmse") > 0 && strstr(out, "\"visibility\":\"hierarchical\""),
                  "rsm render: %s", out);
-        voxgi_builtin_scene_create(ctx, "two-spheres", &ts);
+        voxgi_builtin_scene_create(ctx, "rsm-walls", &ts);
         memset(&qd, 0, sizeof qd);
         qd.camera = ts.camera;
         qd.camera.width = qd.camera.height = 8;
@@ -606,7 +606,7 @@ static void test_reference_file(void)
 
 /* --compare's error leaves out every pixel within 3 (Chebyshev) of a pixel whose centre sees an
    emitter: masked_pixels is the count of the test's own dilation of the library's G-buffer (the
-   Cornell box's light), 0 where the camera sees no emitter (two-spheres), and rel_rmse is the
+   Cornell box's light), 0 where the camera sees no emitter (rsm-walls), and rel_rmse is the
    test's own relative RMSE over the kept pixels of the written image and of the reference rendered
    alone with the seed --compare uses (the image's seed + 1000003). Outside the mask neither
    holds any of the emission the camera sees, so the images with it give the same error there. */
@@ -672,9 +672,9 @@ static void test_compare_masks_emitters(void)
     TH_CHECK(fabs(all - mine) > 0.1 * mine, "the mask makes no difference here (%.6g with it, %.6g without): the test proves nothing", mine, all);
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
-    snprintf(args, sizeof args, "render two-spheres --method vct --backend cpu --res 16 --cones 6 --size 32 32 --spp 2 --compare 4 --json -o %s", pfm);
+    snprintf(args, sizeof args, "render rsm-walls --method vct --backend cpu --res 16 --cones 6 --size 32 32 --spp 2 --compare 4 --json -o %s", pfm);
     TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "\"masked_pixels\":0,") && json_number(out, "rel_rmse") > 0,
-             "two-spheres: no emitter in view, nothing masked: %s", out);
+             "rsm-walls: no emitter in view, nothing masked: %s", out);
     /* the report measures by the same rule: its table says how many pixels it left out */
     snprintf(args, sizeof args, "report vct --scenes cornell-box --size %d --spp 64 --res 8 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --no-stages --out %s/rm",
              W, tmpdir);
@@ -707,16 +707,16 @@ static void test_cornell_mesh(void)
     rc = run(args, out, sizeof out);
     TH_CHECK(rc == 0 && json_mean(out, with) && json_number(out, "voxels") > 0, "vct: exit %d: %s", rc, out);
     for (i = 0; i < 3; i++) TH_CHECK(with[i] > 0.5 * box[i] && with[i] < 2 * box[i], "vct channel %d: mean %g, the box's %g", i, with[i], box[i]);
-    rc = run("render two-spheres --cornell-mesh builtin:sphere -o x.png", out, sizeof out);
+    rc = run("render rsm-walls --cornell-mesh builtin:sphere -o x.png", out, sizeof out);
     TH_CHECK(rc == 2 && strstr(out, "--cornell-mesh") && count_of(out, "\n") == 1, "another scene: exit %d: %s", rc, out);
     rc = run("render builtin:cube --cornell-mesh builtin:sphere -o x.png", out, sizeof out);
     TH_CHECK(rc == 2, "a mesh scene: exit %d: %s", rc, out);
     rc = run("render cornell-box --cornell-mesh /nonexistent/mesh.obj -o x.png", out, sizeof out);
     TH_CHECK(rc == 1 && strstr(out, "/nonexistent/mesh.obj") && count_of(out, "\n") == 1, "missing mesh: exit %d: %s", rc, out);
-    snprintf(args, sizeof args, "report vct --scenes two-spheres --cornell-mesh builtin:nothing --size 8 --spp 64 --res 8 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --no-stages --out %s/rc", tmpdir);
+    snprintf(args, sizeof args, "report vct --scenes rsm-walls --cornell-mesh builtin:nothing --size 8 --spp 64 --res 8 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --no-stages --out %s/rc", tmpdir);
     rc = run(args, out, sizeof out);
-    TH_CHECK(rc == 1 && strstr(out, "builtin:nothing") && !strstr(out, "two-spheres ("), "report, unknown shape (before any work): exit %d: %s", rc, out);
-    snprintf(args, sizeof args, "report vct --scenes two-spheres --cornell-mesh builtin:sphere --size 8 --spp 64 --res 8 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --no-stages --out %s/rc", tmpdir);
+    TH_CHECK(rc == 1 && strstr(out, "builtin:nothing") && !strstr(out, "rsm-walls ("), "report, unknown shape (before any work): exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "report vct --scenes rsm-walls --cornell-mesh builtin:sphere --size 8 --spp 64 --res 8 --cones 4 --steps 1 --strides 1 --filters isotropic --backend cpu --no-stages --out %s/rc", tmpdir);
     TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "cornell-box+builtin:sphere ("), "report: %s", out);
     snprintf(path, sizeof path, "%s/rc/vct.csv", tmpdir);
     if ((f = fopen(path, "r")) != NULL) {

@@ -10,7 +10,7 @@ static const char *const visibility_names[] = {"dda", "hierarchical", "none", NU
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
-    "Renders a built-in scene (cornell-box, two-spheres, leak-box, furnace, leak-room, foliage) or a mesh\n"
+    "Renders a built-in scene (cornell-box, rsm-walls, leak-box, furnace, leak-room, foliage) or a mesh\n"
     "file (OBJ+MTL: Kd is the albedo, Ke the emitted radiance) with the reference path tracer on\n"
     "the CPU. A PFM pixel is the mean linear radiance over the pixel's square; a PNG is that\n"
     "times --exposure, clamped and sRGB encoded. --compare's error: the relative RMSE over the\n"

@@ -436,7 +436,7 @@ int cmd_report(int argc, char **argv)
     memset(&rep, 0, sizeof rep);
     a.common.backend = VOXGI_BACKEND_CPU;
     a.out_dir = "build/report";
-    a.scene_list = "cornell-box,two-spheres";
+    a.scene_list = "cornell-box,rsm-walls";
     a.size = 128;
     a.spp = 1024;
     a.direct_spp = 16;
@@ -456,7 +456,7 @@ int cmd_report(int argc, char **argv)
      .lo = 0, .lo_open = 1, .hi = top, .whole = is_whole, .help = text}
         const cli_option options[] = {
             {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list,
-             .help = "built-in scenes, comma-separated (default cornell-box,two-spheres)"},
+             .help = "built-in scenes, comma-separated (default cornell-box,rsm-walls)"},
             {.name = "--cornell-mesh", .arg = "MESH", .kind = CLI_STRING, .dst = &a.cornell_mesh,
              .help = "also the Cornell box with MESH (a file or builtin:NAME) in place of its\n"
                      "tall block (scaled uniformly to fit inside the block's bounding box, on\n"
