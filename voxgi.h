@@ -852,7 +852,8 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
 typedef struct voxgi_rsm_desc {
     size_t light;                 /* the scene's light: DIRECTIONAL, SPOT or RECT */
     int size;                     /* texels across; 0 = 256 */
-    int samples;                  /* texels gathered per point and map; 0 = 100 (the seed's) */
+    int samples;                  /* texels gathered per point and map; 0 = 100 (the seed's) for a light's map,
+                                     200 for an area's points (voxgi report rsm) */
     float radius;                 /* of the sample disc, as a share of the map's width (up to 2); 0 = 0.1 (the
                                      seed's) for a light's map, 1 for an area's points (their whole hemisphere) */
     uint64_t seed;                /* of the sample pattern */
@@ -925,11 +926,12 @@ VOXGI_API void voxgi_sh_destroy(voxgi_context *ctx, voxgi_sh *sh);
    their surface (normals within 26 degrees, on its plane within a voxel) where at least three of
    the four do (all, on an anchor's row or column), the rest gathering their own. rgb as
    voxgi_reference_render's. */
-typedef enum voxgi_visibility { VOXGI_VISIBILITY_DDA = 0, VOXGI_VISIBILITY_HIERARCHICAL, VOXGI_VISIBILITY_NONE } voxgi_visibility;
+/* The traversals agree on every segment; the hierarchy takes half the time (voxgi report rsm). */
+typedef enum voxgi_visibility { VOXGI_VISIBILITY_HIERARCHICAL = 0, VOXGI_VISIBILITY_DDA, VOXGI_VISIBILITY_NONE } voxgi_visibility;
 typedef struct voxgi_rsm_image_desc {
     voxgi_camera camera;
     voxgi_rsm_desc rsm;           /* size, samples, radius and seed of every light's map (light: ignored) */
-    voxgi_visibility visibility;  /* 0 = DDA */
+    voxgi_visibility visibility;  /* 0 = HIERARCHICAL */
     int resolution;               /* of the visibility's voxels; 0 = 64 */
     int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
     uint64_t seed;
@@ -953,7 +955,7 @@ typedef struct voxgi_sh_image_desc {
     voxgi_camera camera;
     voxgi_sh_desc sh;
     int resolution;               /* of the SH volume and the visibility's voxels; 0 = 64 */
-    voxgi_visibility visibility;  /* 0 = DDA */
+    voxgi_visibility visibility;  /* 0 = HIERARCHICAL */
     float opening;                /* the estimator's opening: 0 = 0.5 */
     int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
     uint64_t seed;
@@ -10934,8 +10936,8 @@ VOXGI_API voxgi_result voxgi_rsm_create(voxgi_context *ctx, const voxgi_scene *s
     if (!scene || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or out is NULL");
     *out = NULL;
     size = desc->size ? desc->size : 256;
-    samples = desc->samples ? desc->samples : 100;
     points = desc->points ? desc->points : 4;
+    samples = desc->samples ? desc->samples : desc->emitters || (desc->light < scene->light_count && scene->lights[desc->light].type == VOXGI_LIGHT_RECT) ? 200 : 100;
     if (size < 1 || size > 16384 || samples < 1 || samples > 65536 || points < 1 || points > 4096 || !(desc->radius >= 0 && desc->radius <= 2))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "size %d (1..16384), samples %d (1..65536), points %d (1..4096), radius %g (0..2)", size,
                            samples, points, (double)desc->radius);

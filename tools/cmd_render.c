@@ -6,7 +6,7 @@
 
 static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", NULL};
 enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH };
-static const char *const visibility_names[] = {"dda", "hierarchical", "none", NULL};
+static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_visibility's order */
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -494,7 +494,7 @@ int cmd_render(int argc, char **argv)
             {.name = "--rsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_size, .lo = 1, .hi = 16384,
              .help = "rsm: texels across each light's map (default 256)"},
             {.name = "--rsm-samples", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_samples, .lo = 1, .hi = 65536,
-             .help = "rsm: texels gathered per pixel and map (default 100)"},
+             .help = "rsm: texels gathered per pixel and map (default 100 for a light's map,\n200 for an area's points)"},
             {.name = "--rsm-radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.rsm_radius, .lo = 0, .lo_open = 1, .hi = 2,
              .help = "rsm: the sample disc's radius, a share of the map's width (default 0.1\nfor a light's map, 1 for an area's points)"},
             {.name = "--rsm-points", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_points, .lo = 1, .hi = 4096,
@@ -503,8 +503,8 @@ int cmd_render(int argc, char **argv)
              .help = "rsm: gathers at every S-th pixel across and down, the pixels between\ninterpolated where three of the four around share their surface (default 4)"},
             {.name = "--opening", .arg = "T", .kind = CLI_DOUBLE, .dst = &a.opening, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "sh: a cell counts as one point where its size is at most T times its\ndistance (default 0.5)"},
-            {.name = "--visibility", .arg = "dda|hierarchical|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
-             .help = "rsm: each sample's visibility through the voxels (default dda)"},
+            {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
+             .help = "rsm and sh: each gather's visibility through the voxels (default hierarchical)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
              .help = "tsm: texels across each light's map (default 512)"},
             {.name = "--slices", .arg = "N", .kind = CLI_INT, .dst = &a.slices, .lo = 1, .hi = 4096, .help = "tsm: slices along the light (default 64)"},

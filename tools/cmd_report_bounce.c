@@ -6,7 +6,7 @@
 
 enum { BOUNCE_RSM, BOUNCE_SH };
 static const char *const bounce_names[] = {"rsm", "sh"};
-static const char *const visibility_names[] = {"dda", "hierarchical", "none", NULL};
+static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_visibility's order */
 
 static const char *const rsm_help =
     "usage: voxgi report rsm [options]\n"
@@ -365,7 +365,7 @@ int cmd_report_bounce(int method, int argc, char **argv)
     SET(res, nres, res);
     SET(openings, nopenings, openings);
 #undef SET
-    a.visibility[0] = 0; /* dda, none */
+    a.visibility[0] = 0; /* hierarchical, none */
     a.visibility[1] = 2;
     a.nvisibility = 2;
     {
@@ -383,7 +383,7 @@ int cmd_report_bounce(int method, int argc, char **argv)
             LIST("--points", points, npoints, 0, 4096, 1, "points on each area light and on the emitters (default 1,4)"),
             LIST("--strides", strides, nstrides, 0, 64, 1, "gather strides (default 1,4)"),
             {.name = "--visibility", .arg = "LIST", .kind = CLI_ENUMS, .dst = a.visibility, .items = &a.nvisibility, .names = visibility_names,
-             .min_items = 1, .max_items = 3, .help = "visibilities through the voxels (default dda,none)"},
+             .min_items = 1, .max_items = 3, .help = "visibilities through the voxels (default hierarchical,none)"},
             {.name = "--segments", .arg = "N", .kind = CLI_INT, .dst = &a.segments, .lo = 0, .hi = 1 << 24,
              .help = "segments the two traversals compare on (default 20000; 0: none)"},
             {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
@@ -397,7 +397,7 @@ int cmd_report_bounce(int method, int argc, char **argv)
             LIST("--openings", openings, nopenings, 0, 4, 0, "the estimator's openings (default 0.25,0.5,1)"),
             LIST("--strides", strides, nstrides, 0, 64, 1, "gather strides (default 1,4)"),
             {.name = "--visibility", .arg = "LIST", .kind = CLI_ENUMS, .dst = a.visibility, .items = &a.nvisibility, .names = visibility_names,
-             .min_items = 1, .max_items = 3, .help = "visibilities through the voxels (default dda,none)"},
+             .min_items = 1, .max_items = 3, .help = "visibilities through the voxels (default hierarchical,none)"},
             {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
             CLI_OPT_THREADS(&a.common)};
 #undef LIST
