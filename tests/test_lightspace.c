@@ -790,6 +790,100 @@ static void test_sh_image(void)
     voxgi_destroy(ctx);
 }
 
+/* Bad input to the reflective shadow maps and the SH volume: refused with the right result and
+   nothing made; degenerate input (no lights, one voxel, a point far outside) answered. */
+static void test_bounce_input(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    stack_scene S;
+    voxgi_rsm_desc d;
+    voxgi_rsm *rsm = NULL;
+    voxgi_sh_desc sd;
+    voxgi_sh *sh = NULL;
+    voxgi_sh_info si;
+    voxgi_grid grid, small;
+    voxgi_fit_desc fit;
+    voxgi_voxels *vox = NULL;
+    voxgi_voxelize_desc vd;
+    voxgi_sh_image_desc hd;
+    voxgi_rsm_image_desc qd;
+    float p[3] = {0, NAN, 0}, q[3] = {0, 0.5f, 0}, far[3] = {1e30f, 0, 0}, up[3] = {0, 1, 0}, e[3], img[3 * 4 * 4];
+    stack_make(&S, 0.7f, 0.4f, 0, 0);
+    memset(&d, 0, sizeof d);
+    d.size = 16;
+    S.sun.type = VOXGI_LIGHT_POINT;
+    TH_CHECK(voxgi_rsm_create(ctx, &S.scene, &d, &rsm) == VOXGI_ERR_UNSUPPORTED && !rsm, "a point light");
+    S.sun.type = VOXGI_LIGHT_DIRECTIONAL;
+    d.points = -1;
+    TH_CHECK(voxgi_rsm_create(ctx, &S.scene, &d, &rsm) == VOXGI_ERR_INVALID_ARGUMENT && !rsm, "points -1");
+    d.points = 0;
+    d.radius = 2.5f;
+    TH_CHECK(voxgi_rsm_create(ctx, &S.scene, &d, &rsm) == VOXGI_ERR_INVALID_ARGUMENT && !rsm, "radius 2.5");
+    d.radius = NAN;
+    TH_CHECK(voxgi_rsm_create(ctx, &S.scene, &d, &rsm) == VOXGI_ERR_INVALID_ARGUMENT && !rsm, "radius NaN");
+    d.radius = 0;
+    d.emitters = 1;
+    TH_CHECK(voxgi_rsm_create(ctx, &S.scene, &d, &rsm) == VOXGI_ERR_INVALID_ARGUMENT && !rsm, "no emitters");
+    d.emitters = 0;
+    TH_CHECK(voxgi_rsm_create(ctx, &S.scene, &d, &rsm) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_rsm_irradiance(ctx, rsm, NULL, VOXGI_TRAVERSAL_DDA, 1, p, up, e) == VOXGI_ERR_INVALID_ARGUMENT, "a NaN point");
+    TH_CHECK(voxgi_rsm_irradiance(ctx, rsm, NULL, VOXGI_TRAVERSAL_DDA, 1, far, up, e) == VOXGI_OK && e[0] == 0, "a point far outside: %g", e[0]);
+    voxgi_rsm_destroy(ctx, rsm);
+
+    memset(&sd, 0, sizeof sd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = 16;
+    TH_CHECK(voxgi_fit_grid(ctx, &S.scene, &fit, &grid) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    small = grid;
+    small.voxel_size = -1;
+    TH_CHECK(voxgi_sh_create(ctx, &S.scene, &small, &sd, &sh) == VOXGI_ERR_INVALID_GRID && !sh, "a negative voxel size");
+    small = grid;
+    small.res[0] = small.res[1] = small.res[2] = 1000000;
+    TH_CHECK(voxgi_sh_create(ctx, &S.scene, &small, &sd, &sh) != VOXGI_OK && !sh, "a grid of 10^18 voxels");
+    sd.samples = -2;
+    TH_CHECK(voxgi_sh_create(ctx, &S.scene, &grid, &sd, &sh) == VOXGI_ERR_INVALID_ARGUMENT && !sh, "samples -2");
+    sd.samples = 0;
+    small = grid; /* one voxel holding everything */
+    small.res[0] = small.res[1] = small.res[2] = 1;
+    small.voxel_size = 16 * grid.voxel_size;
+    TH_CHECK(voxgi_sh_create(ctx, &S.scene, &small, &sd, &sh) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    voxgi_sh_query(sh, &si);
+    TH_CHECK(si.levels == 1 && si.voxels == 1, "one voxel: %d levels, %lu voxels", si.levels, (unsigned long)si.voxels);
+    voxgi_sh_destroy(ctx, sh);
+    sh = NULL;
+    S.scene.light_count = 0; /* no light: a volume of zeros, no bounce */
+    TH_CHECK(voxgi_sh_create(ctx, &S.scene, &grid, &sd, &sh) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_sh_irradiance(ctx, sh, NULL, VOXGI_TRAVERSAL_DDA, 0, 1, q, up, e) == VOXGI_OK && e[0] == 0 && e[1] == 0 && e[2] == 0, "no light");
+    TH_CHECK(voxgi_sh_irradiance(ctx, sh, NULL, VOXGI_TRAVERSAL_DDA, 0, 1, p, up, e) == VOXGI_ERR_INVALID_ARGUMENT, "a NaN point");
+    TH_CHECK(voxgi_sh_irradiance(ctx, sh, NULL, (voxgi_traversal)7, 0, 1, q, up, e) == VOXGI_ERR_INVALID_ARGUMENT, "traversal 7");
+    memset(&vd, 0, sizeof vd);
+    vd.grid = grid;
+    vd.grid.res[0]++;
+    TH_CHECK(voxgi_voxelize(ctx, &S.scene, &vd, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_sh_irradiance(ctx, sh, vox, VOXGI_TRAVERSAL_DDA, 0, 1, q, up, e) == VOXGI_ERR_INVALID_ARGUMENT, "voxels on another grid");
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_sh_destroy(ctx, sh);
+    S.scene.light_count = 1;
+
+    memset(&hd, 0, sizeof hd);
+    hd.camera.eye[1] = 5;
+    hd.camera.fovy_degrees = 40;
+    hd.camera.eye[2] = 0.1;
+    hd.camera.width = hd.camera.height = 4;
+    hd.opening = 9;
+    TH_CHECK(voxgi_sh_render(ctx, &S.scene, &hd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "opening 9");
+    hd.opening = 0;
+    TH_CHECK(voxgi_sh_render(ctx, &S.scene, &hd, img, sizeof img - 4, NULL) == VOXGI_ERR_BUFFER_TOO_SMALL, "a short buffer");
+    memset(&qd, 0, sizeof qd);
+    qd.camera = hd.camera;
+    qd.gather_stride = 65;
+    TH_CHECK(voxgi_rsm_render(ctx, &S.scene, &qd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "stride 65");
+    qd.gather_stride = 0;
+    qd.visibility = (voxgi_visibility)5;
+    TH_CHECK(voxgi_rsm_render(ctx, &S.scene, &qd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "visibility 5");
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
     gl_open();
@@ -807,6 +901,7 @@ int main(void)
     TH_RUN(test_rsm_gather_stride);
     TH_RUN(test_sh_volume);
     TH_RUN(test_sh_image);
+    TH_RUN(test_bounce_input);
     gl_close();
     return th_finish();
 }
