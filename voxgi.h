@@ -873,7 +873,9 @@ VOXGI_API void voxgi_rsm_query(const voxgi_rsm *rsm, voxgi_rsm_info *info);
 VOXGI_API voxgi_result voxgi_rsm_texels(voxgi_context *ctx, const voxgi_rsm *rsm, float *positions, float *normals, float *flux);
 /* The sample pattern: offsets (2 per sample, texels) and weights (summing to 1), either may be NULL. */
 VOXGI_API voxgi_result voxgi_rsm_pattern(voxgi_context *ctx, const voxgi_rsm *rsm, float *offsets, float *weights);
-/* The one-bounce irradiance (rgb) at count points with unit normals; voxels NULL: no visibility. */
+/* The one-bounce irradiance (rgb) at count points with unit normals; voxels NULL: no visibility.
+   On a GL context the gather runs on GL (shaders/rsm_gather.glsl, voxel_traverse.glsl: in float,
+   the maps as the CPU made them), within 1e-4 of the CPU's double. */
 VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm *rsm, const voxgi_voxels *voxels, voxgi_traversal how, size_t count,
                                             const float *points, const float *normals, float *irradiance);
 VOXGI_API void voxgi_rsm_destroy(voxgi_context *ctx, voxgi_rsm *rsm);
@@ -911,7 +913,8 @@ VOXGI_API void voxgi_sh_query(const voxgi_sh *sh, voxgi_sh_info *info);
    (w x, w y, w z, w). res (may be NULL): the level's cells per axis; cells NULL: res alone. */
 VOXGI_API voxgi_result voxgi_sh_read(voxgi_context *ctx, const voxgi_sh *sh, int level, float *cells, size_t cells_bytes, int res[3]);
 /* The one-bounce irradiance (rgb) at count points with unit normals; voxels (NULL: no visibility)
-   on the SH volume's grid; opening 0 = 0.5. */
+   on the SH volume's grid; opening 0 = 0.5. On a GL context the gather runs on GL
+   (shaders/sh_gather.glsl: in float, the volume as the CPU made it), within 1e-4 of the CPU's. */
 VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *sh, const voxgi_voxels *voxels, voxgi_traversal how, float opening,
                                            size_t count, const float *points, const float *normals, float *irradiance);
 VOXGI_API void voxgi_sh_destroy(voxgi_context *ctx, voxgi_sh *sh);
@@ -3814,7 +3817,9 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
     X(light_map_draw, RASTER, "sampling.glsl light_maps.glsl light_map_draw.glsl")                                 \
     X(inject, COMPUTE, "sampling.glsl light_maps.glsl inject.glsl")                                                \
     X(gbuffer, RASTER, "gbuffer.glsl")                                                                             \
-    X(tsm_lookup, COMPUTE, "tsm_lookup.glsl")
+    X(tsm_lookup, COMPUTE, "tsm_lookup.glsl")                                                                      \
+    X(rsm_gather, COMPUTE, "voxel_traverse.glsl rsm_gather.glsl")                                                  \
+    X(sh_gather, COMPUTE, "voxel_traverse.glsl sh_gather.glsl")
 
 enum { VOXGI__GL_COMPUTE = 0, VOXGI__GL_RASTER = 1, VOXGI__GL_GEOMETRY = 2 };
 typedef enum voxgi__gl_program_id {
@@ -3829,10 +3834,10 @@ typedef enum voxgi__gl_program_id {
    prelude, so that no location is looked up by name at run time. */
 #define VOXGI__GL_UNIFORMS(X) \
     X(u_anisotropic) X(u_atomic) X(u_attr) X(u_attributes) X(u_axis) X(u_back_coverage) X(u_bias) X(u_big)       \
-    X(u_blend) X(u_caster) X(u_casters) X(u_channels) X(u_cones) X(u_count) X(u_dir) X(u_dst_dims) X(u_dst_res)  \
+    X(u_blend) X(u_caster) X(u_casters) X(u_cell_levels) X(u_channels) X(u_cones) X(u_count) X(u_dir) X(u_dst_dims) X(u_dst_res)  \
     X(u_face) X(u_factor) X(u_far) X(u_first) X(u_first_slice) X(u_forward) X(u_half_tan) X(u_has_albedo)        \
-    X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_lookup) X(u_max_channels) X(u_max_distance) X(u_max_lod)    \
-    X(u_near) X(u_offset) X(u_op) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_premultiplied)     \
+    X(u_hierarchical) X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_lookup) X(u_maps) X(u_max_channels) X(u_max_distance) X(u_max_lod)    \
+    X(u_near) X(u_offset) X(u_op) X(u_opening) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_premultiplied)     \
     X(u_regions) X(u_res) X(u_right) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) X(u_src_level)          \
     X(u_src_res) X(u_step) X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_leaf_first) \
     X(u_svo_nodes) X(u_svo_single) X(u_tan) X(u_thin) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) X(u_view)          \
@@ -10830,6 +10835,41 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
     return VOXGI_OK;
 }
 
+#ifndef VOXGI_NO_GL
+/* The occupancy for the GL traversal (shaders/voxel_traverse.glsl): every level's words one
+   after another in *bits, and per level its cells per axis and first word in *levels. */
+static void voxgi__occ_upload(voxgi_context *ctx, const voxgi__occupancy *O, unsigned int *bits, unsigned int *levels)
+{
+    uint32_t info[4 * VOXGI__MAX_OCC_LEVELS];
+    size_t words = 0, n[VOXGI__MAX_OCC_LEVELS];
+    int l;
+    for (l = 0; l < O->levels; l++) {
+        info[4 * l] = (uint32_t)O->res[l][0];
+        info[4 * l + 1] = (uint32_t)O->res[l][1];
+        info[4 * l + 2] = (uint32_t)O->res[l][2];
+        info[4 * l + 3] = (uint32_t)words;
+        n[l] = ((size_t)O->res[l][0] * (size_t)O->res[l][1] * (size_t)O->res[l][2] + 31) / 32;
+        words += n[l];
+    }
+    *bits = voxgi__gl_buffer(ctx, words * 4, NULL);
+    for (l = 0; l < O->levels; l++) ctx->gl->NamedBufferSubData(*bits, (ptrdiff_t)(info[4 * l + 3] * 4u), (ptrdiff_t)(n[l] * 4), O->bits[l]);
+    *levels = voxgi__gl_buffer(ctx, (size_t)O->levels * 16, info);
+}
+
+/* Runs `program` (bound by the caller, with its buffers) over count points in batches of 2^20
+   (u_first, u_count). */
+static void voxgi__gl_dispatch_points(voxgi__gl *gl, unsigned int program, size_t count)
+{
+    size_t first;
+    for (first = 0; first < count; first += (size_t)1 << 20) {
+        size_t n = VOXGI__MIN(count - first, (size_t)1 << 20);
+        gl->ProgramUniform1ui(program, VOXGI__LOC_u_first, (unsigned)first);
+        gl->ProgramUniform1ui(program, VOXGI__LOC_u_count, (unsigned)n);
+        voxgi__gl_dispatch_items(gl, (uint64_t)n);
+    }
+}
+#endif
+
 /* ----- 10.4 reflective shadow maps (voxgi_rsm) */
 struct voxgi_rsm {
     int maps, samples;
@@ -11113,6 +11153,107 @@ static void voxgi__rsm_gather(void *user, size_t first, size_t end)
     }
 }
 
+#ifndef VOXGI_NO_GL
+/* The gather of job J at count points on GL (shaders/rsm_gather.glsl, in float): the maps'
+   texels, views and patterns uploaded as they are, the occupancy too. */
+static voxgi_result voxgi__rsm_gather_gl(voxgi_context *ctx, const voxgi__rsm_gather_job *J, size_t count)
+{
+    voxgi__gl *gl = ctx->gl;
+    size_t texels = 0, samples = 0, maps = 0, i, m, t;
+    float *tx = NULL, *views = NULL, *pattern = NULL;
+    unsigned int buf[8] = {0, 0, 0, 0, 0, 0, 0, 0}, p;
+    int v, a;
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_rsm_gather);
+    if (r != VOXGI_OK) return r;
+    for (i = 0; i < J->n; i++) {
+        texels += (size_t)J->maps[i]->maps * (size_t)J->maps[i]->info.size * (size_t)J->maps[i]->info.size;
+        samples += (size_t)J->maps[i]->samples;
+        maps += (size_t)J->maps[i]->maps;
+    }
+    if (texels >= (size_t)1 << 24 || count > (size_t)UINT32_MAX / 3)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu texels (GL gathers index below 2^24) or %lu points", (unsigned long)texels, (unsigned long)count);
+    tx = (float *)voxgi__alloc_array(ctx, texels ? texels : 1, 36, 0);
+    views = (float *)voxgi__alloc_array(ctx, maps ? maps : 1, 24 * sizeof(float), 1);
+    pattern = (float *)voxgi__alloc_array(ctx, samples ? samples : 1, 12, 0);
+    if (!tx || !views || !pattern) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the GL gather");
+    for (i = 0, m = 0, t = 0, samples = 0; r == VOXGI_OK && i < J->n; i++) {
+        const voxgi_rsm *R = J->maps[i];
+        size_t own = (size_t)R->maps * (size_t)R->info.size * (size_t)R->info.size, k;
+        for (k = 0; k < own; k++)
+            for (a = 0; a < 3; a++) {
+                tx[9 * (t + k) + (size_t)a] = R->position[3 * k + (size_t)a];
+                tx[9 * (t + k) + 3 + (size_t)a] = R->normal[3 * k + (size_t)a];
+                tx[9 * (t + k) + 6 + (size_t)a] = R->flux[3 * k + (size_t)a];
+            }
+        for (k = 0; k < (size_t)R->samples; k++) {
+            pattern[3 * (samples + k)] = R->offset[2 * k];
+            pattern[3 * (samples + k) + 1] = R->offset[2 * k + 1];
+            pattern[3 * (samples + k) + 2] = R->weight[k];
+        }
+        for (v = 0; v < R->maps; v++, m++) {
+            const voxgi__light_view *V = &R->views[v];
+            float *f = views + 24 * m;
+            for (a = 0; a < 3; a++) {
+                f[a] = (float)V->u[a];
+                f[3 + a] = (float)V->v[a];
+                f[6 + a] = (float)V->w[a];
+                f[9 + a] = (float)V->lo[a];
+                f[13 + a] = (float)V->eye[a];
+            }
+            f[12] = (float)V->texel;
+            f[16] = (float)V->tan_half;
+            f[17] = V->hemisphere ? 2.0f : (V->perspective ? 1.0f : 0.0f);
+            f[18] = (float)V->size;
+            f[19] = (float)R->radius;
+            f[20] = (float)samples;
+            f[21] = (float)R->samples;
+            f[22] = (float)(t + (size_t)v * (size_t)V->size * (size_t)V->size);
+            f[23] = (float)V->near_z;
+        }
+        t += own;
+        samples += (size_t)R->samples;
+    }
+    if (r == VOXGI_OK) {
+        p = gl->prog_rsm_gather;
+        buf[0] = voxgi__gl_buffer(ctx, count * 12, J->points);
+        buf[1] = voxgi__gl_buffer(ctx, count * 12, J->normals);
+        buf[2] = voxgi__gl_buffer(ctx, count * 12, NULL);
+        buf[3] = voxgi__gl_buffer(ctx, texels * 36, tx);
+        buf[4] = voxgi__gl_buffer(ctx, maps * 24 * sizeof(float), views);
+        buf[5] = voxgi__gl_buffer(ctx, samples * 12, pattern);
+        if (J->O) voxgi__occ_upload(ctx, J->O, &buf[6], &buf[7]);
+        for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i] ? buf[i] : buf[0]);
+        gl->UseProgram(p);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_maps, (int)maps);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, J->O ? J->O->levels : 0);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_hierarchical, J->hierarchical);
+        if (J->grid) {
+            gl->ProgramUniform3f(p, VOXGI__LOC_u_origin, (float)J->grid->origin[0], (float)J->grid->origin[1], (float)J->grid->origin[2]);
+            gl->ProgramUniform1f(p, VOXGI__LOC_u_voxel_size, (float)J->grid->voxel_size);
+        }
+        voxgi__gl_dispatch_points(gl, p, count);
+        voxgi__gl_unbind(gl);
+        r = voxgi__gl_read_buffer(ctx, buf[2], J->irradiance, count * 12);
+        for (i = 0; i < 8; i++) voxgi__gl_delete_buffer(ctx, buf[i]);
+        if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the reflective shadow maps' gather");
+    }
+    voxgi__free(ctx, tx);
+    voxgi__free(ctx, views);
+    voxgi__free(ctx, pattern);
+    return r;
+}
+#endif
+
+/* The gather of job J at count points (J's points, normals, irradiance) on the context's backend. */
+static voxgi_result voxgi__rsm_gather_run(voxgi_context *ctx, voxgi__rsm_gather_job *J, size_t count)
+{
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__rsm_gather_gl(ctx, J, count);
+#endif
+    voxgi__parallel(ctx, count, 64, voxgi__rsm_gather, J);
+    return VOXGI_OK;
+}
+
 VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm *rsm, const voxgi_voxels *voxels, voxgi_traversal how, size_t count,
                                             const float *points, const float *normals, float *irradiance)
 {
@@ -11137,9 +11278,9 @@ VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm 
     J.points = points;
     J.normals = normals;
     J.irradiance = irradiance;
-    voxgi__parallel(ctx, count, 64, voxgi__rsm_gather, &J);
+    r = voxgi__rsm_gather_run(ctx, &J, count);
     if (voxels) voxgi__occ_free(ctx, &O);
-    return VOXGI_OK;
+    return r;
 }
 
 VOXGI_API void voxgi_rsm_destroy(voxgi_context *ctx, voxgi_rsm *rsm)
@@ -11471,6 +11612,64 @@ static void voxgi__sh_gather(void *user, size_t first, size_t end)
     }
 }
 
+#ifndef VOXGI_NO_GL
+/* The gather of job J at count points on GL (shaders/sh_gather.glsl, in float): every level's
+   cells uploaded one after another, the occupancy too. */
+static voxgi_result voxgi__sh_gather_gl(voxgi_context *ctx, const voxgi__sh_gather_job *J, size_t count)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_sh *S = J->S;
+    uint32_t info[4 * VOXGI__MAX_OCC_LEVELS];
+    size_t cells = 0, n[VOXGI__MAX_OCC_LEVELS], i;
+    unsigned int buf[8] = {0, 0, 0, 0, 0, 0, 0, 0}, p;
+    int l;
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_sh_gather);
+    if (r != VOXGI_OK) return r;
+    if (count > (size_t)UINT32_MAX / 3) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one GL gather", (unsigned long)count);
+    for (l = 0; l < S->levels; l++) {
+        info[4 * l] = (uint32_t)S->res[l][0];
+        info[4 * l + 1] = (uint32_t)S->res[l][1];
+        info[4 * l + 2] = (uint32_t)S->res[l][2];
+        info[4 * l + 3] = (uint32_t)cells;
+        n[l] = (size_t)S->res[l][0] * (size_t)S->res[l][1] * (size_t)S->res[l][2];
+        cells += n[l];
+    }
+    if (cells * 16 > (size_t)UINT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu SH cells for one GL gather", (unsigned long)cells);
+    p = gl->prog_sh_gather;
+    buf[0] = voxgi__gl_buffer(ctx, count * 12, J->points);
+    buf[1] = voxgi__gl_buffer(ctx, count * 12, J->normals);
+    buf[2] = voxgi__gl_buffer(ctx, count * 12, NULL);
+    buf[3] = voxgi__gl_buffer(ctx, cells * 64, NULL);
+    for (l = 0; l < S->levels; l++) gl->NamedBufferSubData(buf[3], (ptrdiff_t)((size_t)info[4 * l + 3] * 64), (ptrdiff_t)(n[l] * 64), S->cells[l]);
+    buf[4] = voxgi__gl_buffer(ctx, (size_t)S->levels * 16, info);
+    if (J->O) voxgi__occ_upload(ctx, J->O, &buf[6], &buf[7]);
+    for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i] ? buf[i] : buf[0]);
+    gl->UseProgram(p);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_cell_levels, S->levels);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, J->O ? J->O->levels : 0);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_hierarchical, J->hierarchical);
+    gl->ProgramUniform3f(p, VOXGI__LOC_u_origin, (float)S->grid.origin[0], (float)S->grid.origin[1], (float)S->grid.origin[2]);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_voxel_size, (float)S->grid.voxel_size);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_opening, (float)J->opening);
+    voxgi__gl_dispatch_points(gl, p, count);
+    voxgi__gl_unbind(gl);
+    r = voxgi__gl_read_buffer(ctx, buf[2], J->irradiance, count * 12);
+    for (i = 0; i < 8; i++) voxgi__gl_delete_buffer(ctx, buf[i]);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the SH volume's gather");
+    return r;
+}
+#endif
+
+/* The gather of job J at count points on the context's backend. */
+static voxgi_result voxgi__sh_gather_run(voxgi_context *ctx, voxgi__sh_gather_job *J, size_t count)
+{
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__sh_gather_gl(ctx, J, count);
+#endif
+    voxgi__parallel(ctx, count, 16, voxgi__sh_gather, J);
+    return VOXGI_OK;
+}
+
 VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *sh, const voxgi_voxels *voxels, voxgi_traversal how, float opening,
                                            size_t count, const float *points, const float *normals, float *irradiance)
 {
@@ -11486,7 +11685,10 @@ VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *s
         if (!isfinite(points[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
     memset(&J, 0, sizeof J);
     if (voxels) {
-        if (memcmp(&voxels->info.grid, &sh->grid, sizeof sh->grid) != 0) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the voxels' grid is not the SH volume's");
+        const voxgi_grid *a = &voxels->info.grid, *b = &sh->grid;
+        if (a->voxel_size != b->voxel_size || a->origin[0] != b->origin[0] || a->origin[1] != b->origin[1] || a->origin[2] != b->origin[2] ||
+            a->res[0] != b->res[0] || a->res[1] != b->res[1] || a->res[2] != b->res[2])
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the voxels' grid is not the SH volume's");
         if ((r = voxgi__occ_build(ctx, voxels, how == VOXGI_TRAVERSAL_HIERARCHICAL, &O)) != VOXGI_OK) return r;
         J.O = &O;
         J.hierarchical = how == VOXGI_TRAVERSAL_HIERARCHICAL;
@@ -11496,9 +11698,9 @@ VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *s
     J.points = points;
     J.normals = normals;
     J.irradiance = irradiance;
-    voxgi__parallel(ctx, count, 64, voxgi__sh_gather, &J);
+    r = voxgi__sh_gather_run(ctx, &J, count);
     if (voxels) voxgi__occ_free(ctx, &O);
-    return VOXGI_OK;
+    return r;
 }
 
 VOXGI_API void voxgi_sh_destroy(voxgi_context *ctx, voxgi_sh *sh)
@@ -12184,12 +12386,13 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
 
 /* A one-bounce gather at the pixels marked in want: gather(user, count, points, normals, out)
    sets out (3 per point), added into irr (3 per pixel); their number added into *gathered. */
-typedef void (*voxgi__gather_fn)(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out);
+typedef voxgi_result (*voxgi__gather_fn)(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out);
 static voxgi_result voxgi__gather_pixels(voxgi_context *ctx, size_t pixels, const float *pos, const float *nrm, const unsigned char *want, float *irr,
                                          size_t *gathered, voxgi__gather_fn gather, void *user)
 {
     size_t count = 0, i, k;
     float *p, *q, *e;
+    voxgi_result r = VOXGI_OK;
     for (i = 0; i < pixels; i++) count += want[i] != 0;
     *gathered += count;
     if (!count) return VOXGI_OK;
@@ -12203,8 +12406,8 @@ static voxgi_result voxgi__gather_pixels(voxgi_context *ctx, size_t pixels, cons
                 memcpy(q + 3 * k, nrm + 3 * i, 12);
                 k++;
             }
-        gather(ctx, user, count, p, q, e);
-        for (i = k = 0; i < pixels; i++)
+        r = gather(ctx, user, count, p, q, e);
+        for (i = k = 0; r == VOXGI_OK && i < pixels; i++)
             if (want[i]) {
                 int a;
                 for (a = 0; a < 3; a++) irr[3 * i + (size_t)a] += e[3 * k + (size_t)a];
@@ -12214,7 +12417,7 @@ static voxgi_result voxgi__gather_pixels(voxgi_context *ctx, size_t pixels, cons
     voxgi__free(ctx, p);
     voxgi__free(ctx, q);
     voxgi__free(ctx, e);
-    return p && q && e ? VOXGI_OK : voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu gathers", (unsigned long)count);
+    return p && q && e ? r : voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu gathers", (unsigned long)count);
 }
 
 typedef struct voxgi__bounce_image {
@@ -12311,13 +12514,13 @@ static voxgi_result voxgi__bounce_gather(voxgi_context *ctx, voxgi__bounce_image
 /* ----- images with reflective shadow maps */
 
 /* The bounce from every map of an image (a voxgi__rsm_gather_job). */
-static void voxgi__rsm_gather_maps(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
+static voxgi_result voxgi__rsm_gather_maps(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
 {
     voxgi__rsm_gather_job *J = (voxgi__rsm_gather_job *)user;
     J->points = points;
     J->normals = normals;
     J->irradiance = out;
-    voxgi__parallel(ctx, count, 64, voxgi__rsm_gather, J);
+    return voxgi__rsm_gather_run(ctx, J, count);
 }
 
 VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
@@ -12373,13 +12576,13 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
 }
 
 /* ----- images with the SH volume */
-static void voxgi__sh_gather_all(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
+static voxgi_result voxgi__sh_gather_all(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
 {
     voxgi__sh_gather_job *J = (voxgi__sh_gather_job *)user;
     J->points = points;
     J->normals = normals;
     J->irradiance = out;
-    voxgi__parallel(ctx, count, 16, voxgi__sh_gather, J);
+    return voxgi__sh_gather_run(ctx, J, count);
 }
 
 VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_sh_image_desc *desc, float *rgb, size_t rgb_bytes,

@@ -115,6 +115,9 @@ run vct-gl render cornell-box --method vct --backend gl --res 24 --cones 8 --siz
     --seed 3 $T --json -o "$tmp/o.pfm"
 run vct-gl-aniso render rsm-walls --method vct --backend gl --res 24 --anisotropic --size 24 24 \
     --spp 4 $T --json -o "$tmp/o.pfm"
+run rsm-gl render cornell-box --method rsm --backend gl --size 16 16 --rsm-size 24 --rsm-samples 16 --rsm-points 2 --gather-stride 2 \
+    --res 16 --spp 2 $T --json -o "$tmp/o.pfm"
+run sh-gl render cornell-box --method sh --backend gl --size 16 16 --res 16 --spp 2 $T --json -o "$tmp/o.pfm"
 
 # 4. the cone tracer's report at a tiny size (the error columns, not the times)
 rm -rf "$tmp/report"
