@@ -854,8 +854,8 @@ typedef struct voxgi_rsm_desc {
     int size;                     /* texels across; 0 = 256 */
     int samples;                  /* texels gathered per point and map; 0 = 100 (the seed's) for a light's map,
                                      200 for an area's points (voxgi report rsm) */
-    float radius;                 /* of the sample disc, as a share of the map's width (up to 2); 0 = 0.1 (the
-                                     seed's) for a light's map, 1 for an area's points (their whole hemisphere) */
+    float radius;                 /* of the sample disc, as a share of the map's width (up to 2); 0 = 0.3 for a
+                                     light's map, 1 for an area's points (their whole hemisphere): voxgi report rsm */
     uint64_t seed;                /* of the sample pattern */
     int emitters;                 /* 1: the scene's emissive triangles instead of a light */
     int points;                   /* a RECT light or the emitters: points on it, one map each; 0 = 4 */
@@ -11024,7 +11024,7 @@ VOXGI_API voxgi_result voxgi_rsm_create(voxgi_context *ctx, const voxgi_scene *s
     }
     if (r == VOXGI_OK) {
         R->samples = samples;
-        R->radius = (desc->radius > 0 ? desc->radius : maps > 1 || desc->emitters || L->type == VOXGI_LIGHT_RECT ? 1.0 : 0.1) * size;
+        R->radius = (desc->radius > 0 ? desc->radius : maps > 1 || desc->emitters || L->type == VOXGI_LIGHT_RECT ? 1.0 : 0.3) * size;
         voxgi__rng_seed(&g, desc->seed, 0, 0);
         for (k = 0; k < samples; k++) { /* the pattern: r xi1 (sin 2 pi xi2, cos 2 pi xi2), weight xi1 */
             double x1 = voxgi__rng_unit(&g), x2 = voxgi__rng_unit(&g);

@@ -878,13 +878,13 @@ static void test_bounce_reports(void)
     static char out[16384];
     char args[1024], path[512];
     int rows, front;
-    snprintf(args, sizeof args, "report rsm --size 12 --spp 64 --map-sizes 32 --samples 8,16 --radii 1 --points 1 --strides 1,2 --visibility dda,hierarchical,none "
+    snprintf(args, sizeof args, "report rsm --scenes cornell-box --size 12 --spp 64 --map-sizes 32 --samples 8,16 --radii 1 --points 1 --strides 1,2 --visibility dda,hierarchical,none "
                                 "--segments 2000 --out %s/rr", tmpdir);
     TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "rsm.md") && strstr(out, ", 0 disagree"), "report rsm: %s", out);
     snprintf(path, sizeof path, "%s/rr/rsm.csv", tmpdir);
     rows = csv_rows(path, &front);
     TH_CHECK(rows == 12 && front >= 1, "rsm.csv: %d rows, %d on the front", rows, front);
-    snprintf(args, sizeof args, "report sh --size 12 --spp 64 --res 8,16 --openings 0.5 --strides 2 --visibility none --out %s/rr", tmpdir);
+    snprintf(args, sizeof args, "report sh --scenes rsm-walls --size 12 --spp 64 --res 8,16 --openings 0.5 --strides 2 --visibility none --out %s/rr", tmpdir);
     TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "sh.md"), "report sh: %s", out);
     snprintf(path, sizeof path, "%s/rr/sh.csv", tmpdir);
     rows = csv_rows(path, &front);

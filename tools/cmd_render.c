@@ -496,7 +496,7 @@ int cmd_render(int argc, char **argv)
             {.name = "--rsm-samples", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_samples, .lo = 1, .hi = 65536,
              .help = "rsm: texels gathered per pixel and map (default 100 for a light's map,\n200 for an area's points)"},
             {.name = "--rsm-radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.rsm_radius, .lo = 0, .lo_open = 1, .hi = 2,
-             .help = "rsm: the sample disc's radius, a share of the map's width (default 0.1\nfor a light's map, 1 for an area's points)"},
+             .help = "rsm: the sample disc's radius, a share of the map's width (default 0.3\nfor a light's map, 1 for an area's points)"},
             {.name = "--rsm-points", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_points, .lo = 1, .hi = 4096,
              .help = "rsm: points on each rectangular light and on the emitters, one map each\n(default 4)"},
             {.name = "--gather-stride", .arg = "S", .kind = CLI_INT, .dst = &a.gather_stride, .lo = 1, .hi = 64,

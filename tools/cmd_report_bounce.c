@@ -337,7 +337,7 @@ static int bounce_write(cli_session *s, const bounce_args *a, const bounce_repor
 
 int cmd_report_bounce(int method, int argc, char **argv)
 {
-    static const double map_sizes[] = {256}, samples[] = {50, 100, 200}, radii[] = {0.5, 1}, points[] = {1, 4}, strides[] = {1, 4};
+    static const double map_sizes[] = {256}, samples[] = {50, 100, 200}, radii[] = {0.1, 0.3, 1}, points[] = {1, 4}, strides[] = {1, 4};
     static const double res[] = {32, 64, 96}, openings[] = {0.25, 0.5, 1};
     bounce_args a;
     bounce_report rep;
@@ -352,7 +352,7 @@ int cmd_report_bounce(int method, int argc, char **argv)
     a.method = method;
     a.common.backend = VOXGI_BACKEND_CPU;
     a.out_dir = "build/report";
-    a.scene_list = "cornell-box";
+    a.scene_list = "cornell-box,rsm-walls";
     a.size = 128;
     a.spp = 1024;
     a.segments = 20000;
@@ -373,13 +373,13 @@ int cmd_report_bounce(int method, int argc, char **argv)
     {.name = opt, .arg = "LIST", .kind = CLI_NUMBERS, .dst = a.field, .items = &a.count, .min_items = 1, .max_items = BOUNCE_MAX_LIST, \
      .lo = lo_, .lo_open = 1, .hi = top, .whole = whole_, .help = text}
         const cli_option rsm_options[] = {
-            {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list, .help = "built-in scenes, comma-separated (default cornell-box)"},
+            {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list, .help = "built-in scenes, comma-separated (default cornell-box,rsm-walls)"},
             {.name = "--size", .arg = "N", .kind = CLI_INT, .dst = &a.size, .lo = 1, .hi = 4096, .help = "N x N pixels (default 128)"},
             {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 64, .hi = 1 << 20,
              .help = "samples per pixel of the converged reference (default 1024)"},
             LIST("--map-sizes", map_sizes, nmap_sizes, 0, 16384, 1, "texels across the maps (default 256)"),
             LIST("--samples", samples, nsamples, 0, 65536, 1, "texels gathered per pixel and map (default 50,100,200)"),
-            LIST("--radii", radii, nradii, 0, 2, 0, "the sample disc's radius, a share of the map (default 0.5,1)"),
+            LIST("--radii", radii, nradii, 0, 2, 0, "the sample disc's radius, a share of the map (default 0.1,0.3,1)"),
             LIST("--points", points, npoints, 0, 4096, 1, "points on each area light and on the emitters (default 1,4)"),
             LIST("--strides", strides, nstrides, 0, 64, 1, "gather strides (default 1,4)"),
             {.name = "--visibility", .arg = "LIST", .kind = CLI_ENUMS, .dst = a.visibility, .items = &a.nvisibility, .names = visibility_names,
@@ -389,7 +389,7 @@ int cmd_report_bounce(int method, int argc, char **argv)
             {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
             CLI_OPT_THREADS(&a.common)};
         const cli_option sh_options[] = {
-            {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list, .help = "built-in scenes, comma-separated (default cornell-box)"},
+            {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list, .help = "built-in scenes, comma-separated (default cornell-box,rsm-walls)"},
             {.name = "--size", .arg = "N", .kind = CLI_INT, .dst = &a.size, .lo = 1, .hi = 4096, .help = "N x N pixels (default 128)"},
             {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 64, .hi = 1 << 20,
              .help = "samples per pixel of the converged reference (default 1024)"},
