@@ -31,7 +31,7 @@ static const char *const sh_help =
 
 #define BOUNCE_MAX_SCENES 8
 #define BOUNCE_MAX_LIST 16
-#define BOUNCE_PARAMS 5
+#define BOUNCE_PARAMS 6
 
 typedef struct bounce_args {
     cli_common common;
@@ -43,8 +43,8 @@ typedef struct bounce_args {
     int nmap_sizes, nsamples, nradii, npoints, nstrides, nres, nopenings, nvisibility, size, spp, segments;
 } bounce_args;
 
-/* One image: its parameters (rsm: map size, samples, radius, points, stride; sh: resolution,
-   opening, stride), what it took and how far it is. */
+/* One image: its parameters (rsm: map size, samples, radius, points, stride, the visibility's
+   resolution; sh: resolution, opening, stride), what it took and how far it is. */
 typedef struct bounce_row {
     int scene, visibility, pareto;
     double p[BOUNCE_PARAMS];
@@ -174,9 +174,10 @@ static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a
         d.rsm.radius = (float)row->p[2];
         d.rsm.points = (int)row->p[3];
         d.gather_stride = (int)row->p[4];
+        d.resolution = (int)row->p[5];
         d.visibility = (voxgi_visibility)row->visibility;
-        cli_status(s, "%s: rsm, %d texels, %d samples, radius %g, %d points, stride %d, %s", bs->name, d.rsm.size, d.rsm.samples, row->p[2], d.rsm.points,
-                   d.gather_stride, visibility_names[row->visibility]);
+        cli_status(s, "%s: rsm, %d texels, %d samples, radius %g, %d points, stride %d, %d voxels, %s", bs->name, d.rsm.size, d.rsm.samples, row->p[2],
+                   d.rsm.points, d.gather_stride, d.resolution, visibility_names[row->visibility]);
         r = voxgi_rsm_render(ctx, &bs->scene, &d, img, bytes, &info);
         row->ms = info.ms;
         row->ms_gather = info.ms_gather;
@@ -220,7 +221,8 @@ static int bounce_scene(cli_session *s, voxgi_context *ctx, const bounce_args *a
         lists[2] = a->radii; counts[2] = a->nradii;
         lists[3] = a->points; counts[3] = a->npoints;
         lists[4] = a->strides; counts[4] = a->nstrides;
-        np = 5;
+        lists[5] = a->res; counts[5] = a->nres;
+        np = 6;
     } else {
         lists[0] = a->res; counts[0] = a->nres;
         lists[1] = a->openings; counts[1] = a->nopenings;
@@ -277,8 +279,8 @@ static void bounce_pareto(bounce_report *rep)
 static void bounce_params(FILE *f, const bounce_args *a, const bounce_row *r, const char *sep)
 {
     if (a->method == BOUNCE_RSM)
-        fprintf(f, "%d%s%d%s%g%s%d%s%d%s%s", (int)r->p[0], sep, (int)r->p[1], sep, r->p[2], sep, (int)r->p[3], sep, (int)r->p[4], sep,
-                visibility_names[r->visibility]);
+        fprintf(f, "%d%s%d%s%g%s%d%s%d%s%d%s%s", (int)r->p[0], sep, (int)r->p[1], sep, r->p[2], sep, (int)r->p[3], sep, (int)r->p[4], sep,
+                (int)r->p[5], sep, visibility_names[r->visibility]);
     else fprintf(f, "%d%s%g%s%d%s%s", (int)r->p[0], sep, r->p[1], sep, (int)r->p[2], sep, visibility_names[r->visibility]);
 }
 
@@ -301,14 +303,14 @@ static int bounce_write(cli_session *s, const bounce_args *a, const bounce_repor
                 "error (from its own convergence). Wall clock on this machine.\n",
             a->method == BOUNCE_RSM ? "Reflective shadow maps" : "The SH volume of the direct light", a->size, a->size, a->spp);
     fprintf(csv, "%s,visibility,gathered,gather_ms,ms,rel_rmse,red_excess,reference_ms,pareto\n",
-            a->method == BOUNCE_RSM ? "scene,map_size,samples,radius,points,stride" : "scene,res,opening,stride");
+            a->method == BOUNCE_RSM ? "scene,map_size,samples,radius,points,stride,res" : "scene,res,opening,stride");
     for (si = 0; si < rep->scene_count; si++) {
         const bounce_traversal *T = &rep->traversal[si];
         fprintf(md, "\n## %s\n\nReference: its error is %.2f%% / sqrt(spp), %.2f ms per sample per pixel; %lu pixels near an emitter left out.\n\n",
                 rep->scenes[si], 100 * rep->ref_c[si], rep->ref_ms_per_spp[si], (unsigned long)rep->masked[si]);
         fprintf(md, "%s | pixels gathering | gathers ms | total ms | rel. RMSE | red excess | reference at the same error | Pareto |\n%s|---:|---:|---:|---:|---:|---:|:-:|\n",
-                a->method == BOUNCE_RSM ? "| map size | samples | radius | points | stride | visibility" : "| resolution | opening | stride | visibility",
-                a->method == BOUNCE_RSM ? "|---:|---:|---:|---:|---:|:-:" : "|---:|---:|---:|:-:");
+                a->method == BOUNCE_RSM ? "| map size | samples | radius | points | stride | voxels | visibility" : "| resolution | opening | stride | visibility",
+                a->method == BOUNCE_RSM ? "|---:|---:|---:|---:|---:|---:|:-:" : "|---:|---:|---:|:-:");
         for (i = 0; i < rep->nrows; i++) {
             const bounce_row *r = &rep->rows[i];
             if (r->scene != si) continue;
@@ -362,7 +364,8 @@ int cmd_report_bounce(int method, int argc, char **argv)
     SET(radii, nradii, radii);
     SET(points, npoints, points);
     SET(strides, nstrides, strides);
-    SET(res, nres, res);
+    if (method == BOUNCE_SH) SET(res, nres, res);
+    else a.res[0] = 64, a.nres = 1;
     SET(openings, nopenings, openings);
 #undef SET
     a.visibility[0] = 0; /* hierarchical, none */
@@ -382,6 +385,7 @@ int cmd_report_bounce(int method, int argc, char **argv)
             LIST("--radii", radii, nradii, 0, 2, 0, "the sample disc's radius, a share of the map (default 0.1,0.3,1)"),
             LIST("--points", points, npoints, 0, 4096, 1, "points on each area light and on the emitters (default 1,4)"),
             LIST("--strides", strides, nstrides, 0, 64, 1, "gather strides (default 1,4)"),
+            LIST("--res", res, nres, 0, 4096, 1, "the visibility's voxels along the scene's longest side (default 64)"),
             {.name = "--visibility", .arg = "LIST", .kind = CLI_ENUMS, .dst = a.visibility, .items = &a.nvisibility, .names = visibility_names,
              .min_items = 1, .max_items = 3, .help = "visibilities through the voxels (default hierarchical,none)"},
             {.name = "--segments", .arg = "N", .kind = CLI_INT, .dst = &a.segments, .lo = 0, .hi = 1 << 24,
@@ -408,8 +412,8 @@ int cmd_report_bounce(int method, int argc, char **argv)
     for (list = a.scene_list; (r = cli_next_item(&list, rep.scenes[rep.scene_count], sizeof rep.scenes[0])) != 0; rep.scene_count++)
         if (r < 0 || rep.scene_count == BOUNCE_MAX_SCENES)
             return cli_usage("report", "--scenes needs 1 to %d comma-separated built-in scenes, got '%s'", BOUNCE_MAX_SCENES, a.scene_list);
-    combos = (size_t)a.nvisibility * (size_t)a.nstrides *
-             (method == BOUNCE_RSM ? (size_t)a.nmap_sizes * (size_t)a.nsamples * (size_t)a.nradii * (size_t)a.npoints : (size_t)a.nres * (size_t)a.nopenings);
+    combos = (size_t)a.nvisibility * (size_t)a.nstrides * (size_t)a.nres *
+             (method == BOUNCE_RSM ? (size_t)a.nmap_sizes * (size_t)a.nsamples * (size_t)a.nradii * (size_t)a.npoints : (size_t)a.nopenings);
     cli_session_init(&s, "report");
     if (cli_context_open_options(&s, &c, &a.common)) return CLI_EXIT_FAILURE;
     rc = CLI_EXIT_FAILURE;
