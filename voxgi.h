@@ -992,7 +992,47 @@ typedef struct voxgi_tsm_image_info {
 VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_tsm_image_info *info);
 
-/* ===================================================================== 11. images */
+/* ===================================================================== 11. screen-space passes */
+
+/* Low-discrepancy points (Thiedemann 2009's sampler, the one the screen-space passes share): the
+   radical inverse of i in base b >= 2 (its digits mirrored about the radix point: Phi_2(1), (2),
+   (3) = 1/2, 1/4, 3/4; Phi_3(1) = 1/3), and point i of the n-point 2D Hammersley set
+   (i / n, Phi_2(i)) shifted by rot modulo 1 (Cranley-Patterson rotation: one rot per pixel turns
+   the set's structure into noise; rot NULL: none). */
+VOXGI_API double voxgi_radical_inverse(uint32_t base, uint64_t i);
+VOXGI_API void voxgi_hammersley(uint32_t i, uint32_t n, const double rot[2], double out[2]);
+
+/* Ambient occlusion at the pixels of a G-buffer (the caller's, or voxgi_gbuffer_render's): the
+   occluded share (0 open, 1 closed) of the cosine-weighted hemisphere within `radius` of each
+   pixel's surface, from `rays` directions (the Hammersley set, rotated per pixel by the seed):
+   SCREEN (Thiedemann 2009's ray marching) steps along each ray at t = (j + xi) / steps x radius,
+   j = 0 .. steps - 1 (xi a per-pixel jitter), and the ray is blocked at the first step behind
+   the G-buffer's surface: the surface of the step's pixel, taken as its plane (its position and
+   normal), meets the eye's ray through the step nearer the eye than the step (by more than
+   radius / 1000), within radius of the pixel's own surface (the radius check); steps off the
+   screen, behind the eye or over no surface block nothing: one depth layer sees nothing hidden
+   or off screen. (The plane, not the pixel centre's depth: a flat surface then never hides
+   points above itself, however grazing the view.)
+   VOXELS: the segment from 1.5 voxels off the surface along its normal to radius along the ray,
+   through the voxels (voxgi_voxels_occluded): view-independent, sees what the camera does not.
+   The reference renderer's AO mode (voxgi_reference_desc.ao_radius) is the exact definition. */
+typedef enum voxgi_ao_method { VOXGI_AO_SCREEN = 0, VOXGI_AO_VOXELS } voxgi_ao_method;
+typedef struct voxgi_ao_desc {
+    voxgi_camera camera;          /* the G-buffer's view and size */
+    const float *positions;       /* per pixel, rows from the top: the world position of its surface (xyz) */
+    const float *normals;         /* per pixel: the unit normal facing the camera; (0, 0, 0): no surface (AO 0) */
+    voxgi_ao_method method;
+    const voxgi_voxels *voxels;   /* VOXELS: what blocks the rays */
+    voxgi_traversal traversal;    /* VOXELS: DDA or the hierarchy (the same answers) */
+    int rays;                     /* per pixel; 0 = 16 */
+    int steps;                    /* SCREEN: per ray; 0 = 16 */
+    float radius;                 /* world units, > 0 */
+    uint64_t seed;
+} voxgi_ao_desc;
+/* ao: width x height floats. */
+VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, float *ao, size_t ao_bytes);
+
+/* ===================================================================== 12. images */
 
 /* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
    pixel's centre meets first: its position (world units), its normal facing the camera, its
@@ -1059,7 +1099,7 @@ typedef struct voxgi_vct_info {
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info);
 
-/* ===================================================================== 12. reference renderer */
+/* ===================================================================== 13. reference renderer */
 
 /* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, through
    the ray core (voxgi_ray_scene: watertight, hit points refined in double). Surfaces are Lambertian (albedo) and emit
@@ -1078,6 +1118,10 @@ typedef struct voxgi_reference_desc {
                                      -1 = unlimited (Russian roulette ends paths without bias) */
     uint64_t seed;
     int hide_emitters;            /* 1: leave out the emission the camera sees directly (to compare lighting alone) */
+    float ao_radius;              /* > 0: ambient occlusion instead of light: per sample a camera ray and one
+                                     cosine-distributed ray from its surface, occluded when it meets any
+                                     surface within ao_radius; the pixel is the occluded share (grey), 0
+                                     where the camera sees nothing (voxgi_ao's exact definition) */
 } voxgi_reference_desc;
 
 typedef struct voxgi_reference_info {
@@ -1091,7 +1135,7 @@ typedef struct voxgi_reference_info {
 VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
                                               size_t rgb_bytes, voxgi_reference_info *info);
 
-/* ===================================================================== 13. built-in scenes and files */
+/* ===================================================================== 14. built-in scenes and files */
 
 /* Scenes that need no files, each with its usual view (256 x 256):
    "cornell-box"  the Cornell box (the published geometry in metres, the light 0.1 mm below the
@@ -11708,7 +11752,160 @@ VOXGI_API void voxgi_sh_destroy(voxgi_context *ctx, voxgi_sh *sh)
     if (ctx) voxgi__sh_free(ctx, sh);
 }
 
-/* ===================================================================== 11. images */
+/* ===================================================================== 11. screen-space passes */
+
+/* ----- 11.1 low-discrepancy points */
+VOXGI_API double voxgi_radical_inverse(uint32_t base, uint64_t i)
+{
+    double inv = base >= 2 ? 1.0 / base : 0.5, f = inv, r = 0;
+    uint64_t b = base >= 2 ? base : 2;
+    while (i) {
+        r += (double)(i % b) * f;
+        i /= b;
+        f *= inv;
+    }
+    return r;
+}
+
+VOXGI_API void voxgi_hammersley(uint32_t i, uint32_t n, const double rot[2], double out[2])
+{
+    out[0] = n ? (double)i / n : 0;
+    out[1] = voxgi_radical_inverse(2, i);
+    if (rot) {
+        out[0] += rot[0];
+        out[1] += rot[1];
+        out[0] -= floor(out[0]);
+        out[1] -= floor(out[1]);
+    }
+}
+
+/* ----- 11.2 ambient occlusion: the depth buffer's and the voxels' */
+typedef struct voxgi__ao_job {
+    const voxgi_ao_desc *desc;
+    const voxgi__occupancy *O;    /* VOXELS */
+    int rays, steps;
+    double eye[3], forward[3], right[3], up[3], tan_half;
+    float *ao;
+} voxgi__ao_job;
+
+/* The pixel (and 1) whose centre ray passes nearest to world point s in front of the eye, or 0;
+   *z: the point's distance along the view direction. */
+static int voxgi__ao_pixel(const voxgi__ao_job *J, const double s[3], size_t *pix, double *z)
+{
+    const voxgi_camera *cam = &J->desc->camera;
+    double d[3], x, y, sx, sy;
+    int a;
+    for (a = 0; a < 3; a++) d[a] = s[a] - J->eye[a];
+    *z = d[0] * J->forward[0] + d[1] * J->forward[1] + d[2] * J->forward[2];
+    if (!(*z > 0)) return 0;
+    x = (d[0] * J->right[0] + d[1] * J->right[1] + d[2] * J->right[2]) / *z;
+    y = (d[0] * J->up[0] + d[1] * J->up[1] + d[2] * J->up[2]) / *z;
+    sx = (x / (J->tan_half * cam->width / cam->height) + 1) * 0.5 * cam->width;
+    sy = (1 - y / J->tan_half) * 0.5 * cam->height;
+    if (!(sx >= 0 && sx < cam->width && sy >= 0 && sy < cam->height)) return 0;
+    *pix = (size_t)sy * (size_t)cam->width + (size_t)sx;
+    return 1;
+}
+
+static void voxgi__ao_rows(void *user, size_t first, size_t end)
+{
+    const voxgi__ao_job *J = (const voxgi__ao_job *)user;
+    const voxgi_ao_desc *D = J->desc;
+    const voxgi_camera *cam = &D->camera;
+    double R = D->radius;
+    uint64_t steps_taken = 0;
+    size_t y;
+    for (y = first; y < end; y++) {
+        int x;
+        for (x = 0; x < cam->width; x++) {
+            size_t pix = y * (size_t)cam->width + (size_t)x;
+            double p[3], n[3], t[3], b[3], rot[2], jitter;
+            int k, a, blocked = 0;
+            voxgi__rng g;
+            for (a = 0; a < 3; a++) { p[a] = D->positions[3 * pix + (size_t)a]; n[a] = D->normals[3 * pix + (size_t)a]; }
+            J->ao[pix] = 0;
+            if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+            voxgi__rng_seed(&g, D->seed, pix, 0);
+            rot[0] = voxgi__rng_unit(&g);
+            rot[1] = voxgi__rng_unit(&g);
+            jitter = voxgi__rng_unit(&g);
+            voxgi__basis(n, t, b);
+            for (k = 0; k < J->rays; k++) { /* cosine-weighted: the Hammersley point on the disk, lifted */
+                double u[2], r, phi, dir[3];
+                voxgi_hammersley((uint32_t)k, (uint32_t)J->rays, rot, u);
+                r = sqrt(u[0]);
+                phi = 2 * VOXGI__PI * u[1];
+                for (a = 0; a < 3; a++) dir[a] = r * cos(phi) * t[a] + r * sin(phi) * b[a] + sqrt(VOXGI__MAX(0.0, 1 - u[0])) * n[a];
+                if (D->method == VOXGI_AO_VOXELS) {
+                    const voxgi_grid *g0 = &D->voxels->info.grid;
+                    double o[3], dd[3], vs = g0->voxel_size;
+                    for (a = 0; a < 3; a++) {
+                        o[a] = (p[a] + 1.5 * vs * n[a] - g0->origin[a]) / vs;
+                        dd[a] = (p[a] + R * dir[a] - g0->origin[a]) / vs - o[a];
+                    }
+                    blocked += voxgi__traverse(J->O, D->traversal == VOXGI_TRAVERSAL_HIERARCHICAL, o, dd, &steps_taken, NULL, NULL);
+                    continue;
+                }
+                for (a = 0; a < J->steps; a++) { /* SCREEN: march the depth buffer */
+                    double s[3], v[3], z, nv = 0, nq = 0, f, dq = 0, tt = (a + jitter) / J->steps * R;
+                    const float *q, *m;
+                    size_t at;
+                    int c;
+                    for (c = 0; c < 3; c++) s[c] = p[c] + tt * dir[c];
+                    if (!voxgi__ao_pixel(J, s, &at, &z)) continue;
+                    q = D->positions + 3 * at;
+                    m = D->normals + 3 * at;
+                    if (m[0] == 0 && m[1] == 0 && m[2] == 0) continue;
+                    for (c = 0; c < 3; c++) { /* the pixel's surface as its plane, met by the eye's ray through the step at eye + f v */
+                        v[c] = s[c] - J->eye[c];
+                        nv += m[c] * v[c];
+                        nq += m[c] * ((double)q[c] - J->eye[c]);
+                    }
+                    if (!(fabs(nv) > 1e-9 * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))) continue; /* the plane edge-on */
+                    f = nq / nv;
+                    for (c = 0; c < 3; c++) dq += (J->eye[c] + f * v[c] - p[c]) * (J->eye[c] + f * v[c] - p[c]);
+                    if (f > 0 && f < 1 - 1e-3 * R / z && dq < R * R) { blocked++; break; } /* behind the surface there, and that surface near */
+                }
+            }
+            J->ao[pix] = (float)((double)blocked / J->rays);
+        }
+    }
+}
+
+VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, float *ao, size_t ao_bytes)
+{
+    voxgi__ao_job J;
+    voxgi__occupancy O;
+    size_t pixels, i;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc || !ao || !desc->positions || !desc->normals) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc, ao, positions or normals is NULL");
+    memset(&J, 0, sizeof J);
+    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
+    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
+    if (ao_bytes < pixels * 4) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "ao holds %lu bytes, the image needs %lu", (unsigned long)ao_bytes, (unsigned long)(pixels * 4));
+    J.rays = desc->rays ? desc->rays : 16;
+    J.steps = desc->steps ? desc->steps : 16;
+    if (J.rays < 1 || J.rays > 65536 || J.steps < 1 || J.steps > 4096 || !(desc->radius > 0 && isfinite(desc->radius)) ||
+        (desc->method != VOXGI_AO_SCREEN && desc->method != VOXGI_AO_VOXELS) ||
+        (desc->traversal != VOXGI_TRAVERSAL_DDA && desc->traversal != VOXGI_TRAVERSAL_HIERARCHICAL))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "rays %d (1..65536), steps %d (1..4096), radius %g (> 0), method %d, traversal %d", J.rays, J.steps,
+                           (double)desc->radius, (int)desc->method, (int)desc->traversal);
+    if (desc->method == VOXGI_AO_VOXELS && !desc->voxels) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "VOXELS needs the voxels");
+    for (i = 0; i < 3 * pixels; i++)
+        if (!isfinite(desc->positions[i]) || !isfinite(desc->normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "pixel %lu is not finite", (unsigned long)(i / 3));
+    if (desc->method == VOXGI_AO_VOXELS) {
+        if ((r = voxgi__occ_build(ctx, desc->voxels, desc->traversal == VOXGI_TRAVERSAL_HIERARCHICAL, &O)) != VOXGI_OK) return r;
+        J.O = &O;
+    }
+    J.desc = desc;
+    J.ao = ao;
+    voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__ao_rows, &J);
+    if (J.O) voxgi__occ_free(ctx, &O);
+    return VOXGI_OK;
+}
+
+/* ===================================================================== 12. images */
 
 /* ----- the G-buffer of voxgi's own images */
 typedef struct voxgi__gbuffer_job {
@@ -12623,7 +12820,7 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
     return r;
 }
 
-/* ===================================================================== 12. reference renderer */
+/* ===================================================================== 13. reference renderer */
 
 typedef struct voxgi__render {
     voxgi_context *ctx;
@@ -12687,6 +12884,24 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
     }
 }
 
+/* The AO mode's sample through the camera ray (o, d): 1 (in all three channels) when a
+   cosine-distributed ray from the surface meets any surface within ao_radius. */
+static void voxgi__occlusion(voxgi__render *R, const double o[3], const double d[3], voxgi__rng *g, uint64_t *rays, double out[3])
+{
+    voxgi__hit h, any;
+    double ns[3], t[3], b[3], dir[3], from[3], r1 = voxgi__rng_unit(g), phi = 2 * VOXGI__PI * voxgi__rng_unit(g);
+    int a;
+    out[0] = out[1] = out[2] = 0;
+    ++*rays;
+    if (!voxgi__trace(R->tr, o, d, DBL_MAX, UINT32_MAX, 0, &h)) return;
+    for (a = 0; a < 3; a++) ns[a] = h.front ? R->tr->n[3 * (size_t)h.prim + (size_t)a] : -R->tr->n[3 * (size_t)h.prim + (size_t)a];
+    voxgi__basis(ns, t, b);
+    for (a = 0; a < 3; a++) dir[a] = sqrt(r1) * cos(phi) * t[a] + sqrt(r1) * sin(phi) * b[a] + sqrt(1 - r1) * ns[a];
+    voxgi__leave(R->tr, h.p, ns, from);
+    ++*rays;
+    if (voxgi__trace(R->tr, from, dir, (double)R->desc->ao_radius, h.prim, 1, &any)) out[0] = out[1] = out[2] = 1;
+}
+
 static void voxgi__render_rows(void *user, size_t first, size_t end)
 {
     voxgi__render *R = (voxgi__render *)user;
@@ -12707,7 +12922,8 @@ static void voxgi__render_rows(void *user, size_t first, size_t end)
                 sy = (double)y + voxgi__rng_unit(&g);
                 voxgi__camera_ray(cam, R->forward, R->right, R->up, R->tan_half, sx, sy, d);
                 for (a = 0; a < 3; a++) o[a] = R->eye[a];
-                voxgi__path(R, o, d, &g, &rays, L);
+                if (R->desc->ao_radius > 0) voxgi__occlusion(R, o, d, &g, &rays, L);
+                else voxgi__path(R, o, d, &g, &rays, L);
                 for (a = 0; a < 3; a++) acc[a] += L[a];
             }
         }
@@ -12743,7 +12959,8 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     if ((r = voxgi__camera_frame(ctx, cam, R.eye, R.forward, R.right, R.up, &R.tan_half)) != VOXGI_OK) return r;
     pixels = (size_t)cam->width * (size_t)cam->height;
     if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (desc->samples < 0 || desc->bounces < -1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d", desc->samples, desc->bounces);
+    if (desc->samples < 0 || desc->bounces < -1 || !(desc->ao_radius >= 0 && isfinite(desc->ao_radius)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d, ao_radius %g", desc->samples, desc->bounces, (double)desc->ao_radius);
     resolved = voxgi__reference_defaults(desc_in);
     desc = &resolved;
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
@@ -12772,7 +12989,7 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     return r;
 }
 
-/* ===================================================================== 13. built-in scenes and files */
+/* ===================================================================== 14. built-in scenes and files */
 
 #define VOXGI__BUILTIN_VERTICES 6144
 #define VOXGI__BUILTIN_TRIANGLES 6144

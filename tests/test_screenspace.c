@@ -1,0 +1,249 @@
+/* The screen-space passes against what is known. The sampler: radical inverses by hand, the
+   Hammersley set and its rotation. Ambient occlusion (the occluded share of the cosine-weighted
+   hemisphere within a radius): on an open plane 0, inside a closed box 1, at a floor beside a
+   wall the analytic share (acos c - c sqrt(1 - c^2)) / pi, c = the distance to the wall over the
+   radius; for the reference renderer's AO mode (the definition), for the depth buffer's ray
+   marching and for the voxels'; the depth buffer's known blind spot (a closed box's walls behind
+   the camera) shown; bad input refused. */
+#include "../voxgi.h"
+#include "fixtures.h"
+
+static void test_radical_inverse(void)
+{
+    static const double base2[8] = {0, 0.5, 0.25, 0.75, 0.125, 0.625, 0.375, 0.875};
+    double u[2], rot[2] = {0.75, 0.5};
+    int i;
+    for (i = 0; i < 8; i++) TH_CHECK(voxgi_radical_inverse(2, (uint64_t)i) == base2[i], "Phi_2(%d) = %g", i, voxgi_radical_inverse(2, (uint64_t)i));
+    TH_CHECK(fabs(voxgi_radical_inverse(3, 1) - 1.0 / 3) < 1e-15 && fabs(voxgi_radical_inverse(3, 2) - 2.0 / 3) < 1e-15 &&
+                 fabs(voxgi_radical_inverse(3, 3) - 1.0 / 9) < 1e-15 && fabs(voxgi_radical_inverse(3, 5) - 7.0 / 9) < 1e-15,
+             "Phi_3");
+    TH_CHECK(voxgi_radical_inverse(2, (uint64_t)1 << 40) == ldexp(1, -41), "Phi_2(2^40) = 2^-41");
+    voxgi_hammersley(3, 8, NULL, u);
+    TH_CHECK(u[0] == 3.0 / 8 && u[1] == 0.75, "point 3 of 8: %g %g", u[0], u[1]);
+    voxgi_hammersley(3, 8, rot, u);
+    TH_CHECK(u[0] == 0.125 && u[1] == 0.25, "rotated, modulo 1: %g %g", u[0], u[1]);
+}
+
+/* A floor [-4, 4]^2 at y = 0 facing up; with `wall`, a wall at x = 1 facing -x, 4 high; with
+   `box`, instead the closed box [-1, 1]^3 facing in. */
+static void ao_scene(quads *q, voxgi_scene *sc, voxgi_mesh *mesh, int wall, int box)
+{
+    static const float floor_quad[12] = {-4, 0, -4, -4, 0, 4, 4, 0, 4, 4, 0, -4};
+    static const float wall_quad[12] = {1, 0, -4, 1, 4, -4, 1, 4, 4, 1, 0, 4};
+    static const float box_quads[6][12] = {{-1, -1, -1, -1, -1, 1, 1, -1, 1, 1, -1, -1}, {-1, 1, -1, 1, 1, -1, 1, 1, 1, -1, 1, 1},
+                                           {-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1}, {-1, -1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1},
+                                           {-1, -1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1}, {1, -1, -1, 1, -1, 1, 1, 1, 1, 1, 1, -1}};
+    int k;
+    q->n = 0;
+    if (box)
+        for (k = 0; k < 6; k++) quad(q, box_quads[k], 0);
+    else {
+        quad(q, floor_quad, 0);
+        if (wall) quad(q, wall_quad, 0);
+    }
+    scene_of_quads(sc, mesh, q, NULL, 0, NULL, 0);
+}
+
+/* The analytic occluded share at a floor point d from an infinite wall, radius R. */
+static double corner_share(double d, double R)
+{
+    double c = d / R;
+    return c >= 1 ? 0 : (acos(c) - c * sqrt(1 - c * c)) / PI;
+}
+
+/* The reference's AO at the centre pixel of a needle-thin view (0.01 degrees) and the point it sees. */
+static double reference_ao(voxgi_context *ctx, const voxgi_scene *sc, const voxgi_camera *view, double R, int samples, float p[3])
+{
+    voxgi_reference_desc d;
+    voxgi_camera c = *view;
+    float rgb[3], n[3];
+    uint32_t tri;
+    c.width = c.height = 1;
+    c.fovy_degrees = 0.01;
+    memset(&d, 0, sizeof d);
+    d.camera = c;
+    d.samples = samples;
+    d.ao_radius = (float)R;
+    d.seed = 5;
+    TH_CHECK(voxgi_reference_render(ctx, sc, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_gbuffer_render(ctx, sc, &c, p, n, &tri) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(rgb[0] == rgb[1] && rgb[1] == rgb[2], "grey");
+    return rgb[0];
+}
+
+/* voxgi_ao at every pixel of view's G-buffer (W x W) into ao; the centre pixel's value. */
+static double pass_ao(voxgi_context *ctx, const voxgi_scene *sc, const voxgi_camera *view, voxgi_ao_method method, double R, int rays, float *ao, int W)
+{
+    voxgi_ao_desc d;
+    voxgi_camera c = *view;
+    voxgi_voxels *vox = NULL;
+    float *pos = (float *)malloc((size_t)W * W * 12), *nrm = (float *)malloc((size_t)W * W * 12);
+    double centre;
+    c.width = c.height = W;
+    memset(&d, 0, sizeof d);
+    d.camera = c;
+    TH_CHECK(pos && nrm && voxgi_gbuffer_render(ctx, sc, &c, pos, nrm, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    d.positions = pos;
+    d.normals = nrm;
+    d.method = method;
+    d.rays = rays;
+    d.steps = 32;
+    d.radius = (float)R;
+    d.traversal = VOXGI_TRAVERSAL_HIERARCHICAL;
+    if (method == VOXGI_AO_VOXELS) {
+        voxgi_voxelize_desc vd;
+        voxgi_fit_desc fit;
+        memset(&vd, 0, sizeof vd);
+        memset(&fit, 0, sizeof fit);
+        fit.res = 128;
+        TH_CHECK(voxgi_fit_grid(ctx, sc, &fit, &vd.grid) == VOXGI_OK && voxgi_voxelize(ctx, sc, &vd, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        d.voxels = vox;
+    }
+    TH_CHECK(voxgi_ao(ctx, &d, ao, (size_t)W * W * 4) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    centre = ao[(W / 2) * W + W / 2];
+    voxgi_voxels_destroy(ctx, vox);
+    free(pos);
+    free(nrm);
+    return centre;
+}
+
+static voxgi_camera look(double ex, double ey, double ez, double tx, double ty, double tz)
+{
+    voxgi_camera c;
+    memset(&c, 0, sizeof c);
+    c.eye[0] = ex; c.eye[1] = ey; c.eye[2] = ez;
+    c.target[0] = tx; c.target[1] = ty; c.target[2] = tz;
+    c.fovy_degrees = 40;
+    c.width = c.height = 32;
+    return c;
+}
+
+/* An open plane occludes nothing: 0 for the definition and the depth buffer exactly, for the
+   voxels but for rays so flat that they end in the floor's own voxels. */
+static void test_ao_open_plane(void)
+{
+    enum { W = 32 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_camera view = look(-2, 2, 2.5, 0, 0, 0);
+    static float ao[W * W];
+    float p[3];
+    double ref, worst[2] = {0, 0};
+    int m, i;
+    ao_scene(&q, &sc, &mesh, 0, 0);
+    ref = reference_ao(ctx, &sc, &view, 1, 4096, p);
+    TH_CHECK(ref == 0, "the reference on an open plane: %g", ref);
+    for (m = 0; m < 2; m++) {
+        pass_ao(ctx, &sc, &view, (voxgi_ao_method)m, 1, 64, ao, W);
+        for (i = 0; i < W * W; i++) worst[m] = fmax(worst[m], ao[i]);
+    }
+    printf("    open plane: reference %g, depth buffer at most %g, voxels at most %g\n", ref, worst[0], worst[1]);
+    TH_CHECK(worst[0] == 0, "the depth buffer occludes an open plane: %g", worst[0]);
+    TH_CHECK(worst[1] <= 0.05, "the voxels occlude an open plane: %g", worst[1]);
+    voxgi_destroy(ctx);
+}
+
+/* A floor point 0.4 from a wall, radius 1: the analytic share 0.2528 for the definition (4096
+   samples: within 0.025), the depth buffer and the voxels (256 rays: within 0.04). */
+static void test_ao_corner(void)
+{
+    enum { W = 64 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_camera view = look(-2.5, 2, 1.5, 0.6, 0, 0);
+    static float ao[W * W];
+    float p[3];
+    double ref, want, screen, voxels;
+    ao_scene(&q, &sc, &mesh, 1, 0);
+    ref = reference_ao(ctx, &sc, &view, 1, 4096, p);
+    want = corner_share(1 - p[0], 1);
+    screen = pass_ao(ctx, &sc, &view, VOXGI_AO_SCREEN, 1, 256, ao, W);
+    voxels = pass_ao(ctx, &sc, &view, VOXGI_AO_VOXELS, 1, 256, ao, W);
+    printf("    floor point %.3f from the wall: analytic %.4f, reference %.4f, depth buffer %.4f, voxels %.4f\n", 1 - p[0], want, ref, screen, voxels);
+    TH_CHECK(fabs(p[1]) < 1e-5 && fabs(1 - p[0] - 0.4) < 0.01, "the centre pixel sees the floor 0.4 from the wall: %g %g %g", p[0], p[1], p[2]);
+    TH_CHECK(fabs(ref - want) < 0.025, "the reference");
+    TH_CHECK(fabs(screen - want) < 0.04, "the depth buffer");
+    TH_CHECK(fabs(voxels - want) < 0.04, "the voxels");
+    voxgi_destroy(ctx);
+}
+
+/* Inside a closed box with a radius beyond its walls every ray is blocked: 1 for the definition
+   and the voxels at every pixel; the depth buffer misses the walls it cannot see (behind the
+   camera, off the screen) and measures less. */
+static void test_ao_closed_box(void)
+{
+    enum { W = 32 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_camera view = look(0.1, 0.2, 0.6, 0.3, -0.2, -1);
+    static float ao[W * W];
+    float p[3];
+    double ref, low[2] = {1, 1}, mean = 0;
+    int m, i;
+    ao_scene(&q, &sc, &mesh, 0, 1);
+    ref = reference_ao(ctx, &sc, &view, 10, 1024, p);
+    for (m = 0; m < 2; m++) {
+        pass_ao(ctx, &sc, &view, (voxgi_ao_method)m, 10, 32, ao, W);
+        for (i = 0; i < W * W; i++) {
+            low[m] = fmin(low[m], ao[i]);
+            if (m == 0) mean += ao[i] / (W * W);
+        }
+    }
+    printf("    closed box: reference %g, voxels at least %g; depth buffer at least %.3f, mean %.3f\n", ref, low[1], low[0], mean);
+    TH_CHECK(ref == 1, "the reference in a closed box: %g", ref);
+    TH_CHECK(low[1] == 1, "the voxels in a closed box: %g", low[1]);
+    TH_CHECK(mean < 0.95, "the depth buffer sees walls it cannot: mean %g", mean);
+    voxgi_destroy(ctx);
+}
+
+static void test_ao_input(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    voxgi_ao_desc d;
+    float pos[3] = {0, 0, 0}, nrm[3] = {0, 1, 0}, ao[1], bad[3] = {0, NAN, 0};
+    voxgi_reference_desc rd;
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    float rgb[3];
+    memset(&d, 0, sizeof d);
+    d.camera = look(0, 1, 1, 0, 0, 0);
+    d.camera.width = d.camera.height = 1;
+    d.positions = pos;
+    d.normals = nrm;
+    TH_CHECK(voxgi_ao(ctx, &d, ao, sizeof ao) == VOXGI_ERR_INVALID_ARGUMENT, "radius 0");
+    d.radius = 1;
+    TH_CHECK(voxgi_ao(ctx, &d, ao, 0) == VOXGI_ERR_BUFFER_TOO_SMALL, "no room");
+    d.method = VOXGI_AO_VOXELS;
+    TH_CHECK(voxgi_ao(ctx, &d, ao, sizeof ao) == VOXGI_ERR_INVALID_ARGUMENT, "VOXELS without voxels");
+    d.method = VOXGI_AO_SCREEN;
+    d.rays = -1;
+    TH_CHECK(voxgi_ao(ctx, &d, ao, sizeof ao) == VOXGI_ERR_INVALID_ARGUMENT, "rays -1");
+    d.rays = 0;
+    d.normals = bad;
+    TH_CHECK(voxgi_ao(ctx, &d, ao, sizeof ao) == VOXGI_ERR_INVALID_ARGUMENT, "a NaN normal");
+    d.normals = nrm;
+    TH_CHECK(voxgi_ao(ctx, &d, ao, sizeof ao) == VOXGI_OK && ao[0] == 0, "one pixel alone: %s", voxgi_last_error(ctx));
+    ao_scene(&q, &sc, &mesh, 0, 0);
+    memset(&rd, 0, sizeof rd);
+    rd.camera = d.camera;
+    rd.ao_radius = -1;
+    TH_CHECK(voxgi_reference_render(ctx, &sc, &rd, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "ao_radius -1");
+    voxgi_destroy(ctx);
+}
+
+int main(void)
+{
+    TH_RUN(test_radical_inverse);
+    TH_RUN(test_ao_open_plane);
+    TH_RUN(test_ao_corner);
+    TH_RUN(test_ao_closed_box);
+    TH_RUN(test_ao_input);
+    return th_finish();
+}
