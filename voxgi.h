@@ -79,6 +79,8 @@
    of area lights' and emitters' points) through the voxels (voxgi_voxels_occluded),
    voxgi_rsm_render images with it; voxgi_sh_create / voxgi_sh_irradiance one bounce from a
    spherical-harmonics volume of the direct light, voxgi_sh_render images with it.
+   voxgi_ao ambient occlusion at a G-buffer's pixels from the depth buffer or the voxels
+   (voxgi_hammersley its sampler), voxgi_ao_render images of it.
    voxgi_reference_render is the path tracer they are measured against.
 
    SEMANTICS (exact; see the part banners below for each capability)
@@ -134,7 +136,9 @@
             lights, GL lookups) and images with them (voxgi_tsm_render); shadow rays through
             translucent surfaces; the foliage scene; reflective shadow maps (voxgi_rsm: lights,
             area lights and emitters) and the SH volume (voxgi_sh), images with a gather stride;
-            the built-in scene two-spheres is now rsm-walls (the source's name for it).
+            the built-in scene two-spheres is now rsm-walls (the source's name for it); GL
+            gathers; screen-space ambient occlusion (voxgi_ao: depth buffer and voxels) and the
+            reference renderer's AO mode.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -1031,6 +1035,25 @@ typedef struct voxgi_ao_desc {
 } voxgi_ao_desc;
 /* ao: width x height floats. */
 VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, float *ao, size_t ao_bytes);
+
+/* An image of ambient occlusion (grey: the occluded share in all three channels, 0 where nothing
+   is): voxgi's G-buffer (the pixel centres' rays), voxgi_ao by `method`, the voxels (VOXELS) a
+   conservative grid of `resolution` along the scene's longest side. Compare with the reference's
+   AO mode at the same radius. */
+typedef struct voxgi_ao_image_desc {
+    voxgi_camera camera;
+    voxgi_ao_method method;
+    int resolution;               /* VOXELS: 0 = 128 */
+    int rays, steps;              /* as voxgi_ao_desc's */
+    float radius;                 /* 0 = a tenth of the scene's longest side */
+    uint64_t seed;
+} voxgi_ao_image_desc;
+typedef struct voxgi_ao_image_info {
+    float radius;                 /* the radius used */
+    double ms_gbuffer, ms_voxels, ms_ao, ms;
+} voxgi_ao_image_info;
+VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ao_image_desc *desc, float *rgb, size_t rgb_bytes,
+                                       voxgi_ao_image_info *info);
 
 /* ===================================================================== 12. images */
 
@@ -12815,6 +12838,86 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
     inf.ms_gather = voxgi__now_ms() - t1;
     voxgi_sh_destroy(ctx, sh);
     voxgi__bounce_free(ctx, &B);
+    inf.ms = voxgi__now_ms() - t0;
+    if (info) *info = inf;
+    return r;
+}
+
+/* ----- images of ambient occlusion */
+VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ao_image_desc *desc, float *rgb, size_t rgb_bytes,
+                                       voxgi_ao_image_info *info)
+{
+    voxgi__tracer tr;
+    voxgi_ao_desc ad;
+    voxgi_ao_image_info inf;
+    voxgi_voxels *vox = NULL;
+    float *pos = NULL, *nrm = NULL, *ao = NULL;
+    uint32_t *tri = NULL;
+    double t0 = voxgi__now_ms(), t1, e[3], f[3], rt[3], u[3], th;
+    size_t pixels, p;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
+    if ((r = voxgi__camera_frame(ctx, &desc->camera, e, f, rt, u, &th)) != VOXGI_OK) return r;
+    if (desc->resolution < 0 || desc->resolution > 4096 || !(desc->radius >= 0 && isfinite(desc->radius)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "resolution %d (0..4096), radius %g", desc->resolution, (double)desc->radius);
+    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
+    if (rgb_bytes < pixels * 12)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
+    memset(&inf, 0, sizeof inf);
+    memset(&ad, 0, sizeof ad);
+    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    ad.radius = desc->radius;
+    if (!(ad.radius > 0)) { /* a tenth of the scene's longest side */
+        double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+        int a;
+        for (p = 0; p < 9 * tr.flat.triangle_count; p++) {
+            lo[p % 3] = VOXGI__MIN(lo[p % 3], tr.v[p]);
+            hi[p % 3] = VOXGI__MAX(hi[p % 3], tr.v[p]);
+        }
+        for (a = 0; a < 3; a++) ad.radius = (float)VOXGI__MAX((double)ad.radius, 0.1 * (hi[a] - lo[a]));
+        if (!(ad.radius > 0)) ad.radius = 1;
+    }
+    pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    ao = (float *)voxgi__alloc_array(ctx, pixels, 4, 0);
+    tri = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
+    if (!pos || !nrm || !ao || !tri) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", desc->camera.width, desc->camera.height);
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK) r = voxgi__gbuffer(ctx, &tr, &desc->camera, pos, nrm, tri);
+    inf.ms_gbuffer = voxgi__now_ms() - t1;
+    if (r == VOXGI_OK && desc->method == VOXGI_AO_VOXELS) {
+        voxgi_voxelize_desc vd;
+        voxgi_fit_desc fit;
+        memset(&vd, 0, sizeof vd);
+        memset(&fit, 0, sizeof fit);
+        fit.res = desc->resolution ? desc->resolution : 128;
+        t1 = voxgi__now_ms();
+        if ((r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid)) == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &vd, &vox);
+        inf.ms_voxels = voxgi__now_ms() - t1;
+    }
+    if (r == VOXGI_OK) {
+        ad.camera = desc->camera;
+        ad.positions = pos;
+        ad.normals = nrm;
+        ad.method = desc->method;
+        ad.voxels = vox;
+        ad.traversal = VOXGI_TRAVERSAL_HIERARCHICAL;
+        ad.rays = desc->rays;
+        ad.steps = desc->steps;
+        ad.seed = desc->seed;
+        t1 = voxgi__now_ms();
+        r = voxgi_ao(ctx, &ad, ao, pixels * 4);
+        inf.ms_ao = voxgi__now_ms() - t1;
+    }
+    for (p = 0; r == VOXGI_OK && p < pixels; p++) rgb[3 * p] = rgb[3 * p + 1] = rgb[3 * p + 2] = ao[p];
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, nrm);
+    voxgi__free(ctx, ao);
+    voxgi__free(ctx, tri);
+    voxgi__tracer_free(ctx, &tr);
+    inf.radius = ad.radius;
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;
     return r;

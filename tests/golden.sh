@@ -109,6 +109,9 @@ run rsm-hierarchical render rsm-walls --method rsm --size 16 16 --rsm-size 32 --
 run rsm-cornell render cornell-box --method rsm --size 16 16 --rsm-size 24 --rsm-samples 16 --rsm-points 2 --gather-stride 2 --res 16 --spp 2 \
     $T --json -o "$tmp/o.pfm"
 run sh-cornell render cornell-box --method sh --size 16 16 --res 16 --spp 2 $T --json -o "$tmp/o.pfm"
+run ssao-cornell render cornell-box --method ssao --size 16 16 --rays 8 --steps 8 $T --json -o "$tmp/o.pfm"
+run vao-cornell render cornell-box --method vao --size 16 16 --rays 8 --res 32 $T --json -o "$tmp/o.pfm"
+run ao-reference render cornell-box --ao-radius 0.1 --size 16 16 --spp 8 $T --json -o "$tmp/o.pfm"
 
 # GL cone tracing: llvmpipe gives the same bits run after run (a GPU need not: mips by blending)
 run vct-gl render cornell-box --method vct --backend gl --res 24 --cones 8 --size 24 24 --spp 8 \

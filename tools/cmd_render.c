@@ -4,8 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", NULL};
-enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH };
+static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", "ssao", "vao", NULL};
+enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH, METHOD_SSAO, METHOD_VAO };
 static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_visibility's order */
 
 static const char *const render_help =
@@ -23,7 +23,8 @@ typedef struct render_args {
     int method, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
     int bounce_cones, bounce_block, isotropic;
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
-    double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening;
+    double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius;
+    int rays, march_steps;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -116,6 +117,8 @@ typedef struct render_jobs {
     voxgi_rsm_image_info qinfo;
     voxgi_sh_image_desc hd;
     voxgi_sh_image_info hinfo;
+    voxgi_ao_image_desc ad;
+    voxgi_ao_image_info ainfo;
 } render_jobs;
 
 /* The image of `method` with J's settings into rgb (bytes), its report into J. */
@@ -126,6 +129,8 @@ static voxgi_result render_method(voxgi_context *ctx, int method, const voxgi_sc
     case METHOD_TSM: return voxgi_tsm_render(ctx, scene, &J->td, rgb, bytes, &J->tinfo);
     case METHOD_RSM: return voxgi_rsm_render(ctx, scene, &J->qd, rgb, bytes, &J->qinfo);
     case METHOD_SH: return voxgi_sh_render(ctx, scene, &J->hd, rgb, bytes, &J->hinfo);
+    case METHOD_SSAO:
+    case METHOD_VAO: return voxgi_ao_render(ctx, scene, &J->ad, rgb, bytes, &J->ainfo);
     default: return voxgi_reference_render(ctx, scene, &J->d, rgb, bytes, &J->info);
     }
 }
@@ -205,6 +210,7 @@ static int compare_with_file(cli_session *s, voxgi_context *ctx, const render_ar
 static void print_compare(const render_args *a, const voxgi_reference_desc *d, const render_compare *cmp)
 {
     if (a->reference) printf("against %s: ", a->reference);
+    else if (d->ao_radius > 0) printf("against the reference (ambient occlusion within %.4g, %d spp, %.1f ms): ", (double)d->ao_radius, a->compare, cmp->ref_ms);
     else printf("against the reference (%d bounce%s, %d spp, %.1f ms): ", d->bounces, d->bounces == 1 ? "" : "s", a->compare, cmp->ref_ms);
     if (cmp->masked == cmp->pixels) {
         printf("no error measured: all %lu pixels are within %d of one that sees an emitter\n", (unsigned long)cmp->pixels, CLI_EMITTER_MARGIN);
@@ -270,6 +276,28 @@ static void print_rsm(const render_args *a, const char *name, const double mean[
     if (a->compare || a->reference) print_compare(a, d, cmp);
 }
 
+/* The --method ssao and vao lines, text or JSON. */
+static void print_ao(const render_args *a, const char *name, const double mean[3], const voxgi_ao_image_desc *ad, const voxgi_ao_image_info *ai,
+                     const voxgi_reference_desc *d, const render_compare *cmp)
+{
+    int w = a->size[0], h = a->size[1], rays = ad->rays ? ad->rays : 16, steps = ad->steps ? ad->steps : 16;
+    const char *method = ad->method == VOXGI_AO_VOXELS ? "vao" : "ssao";
+    if (a->common.json) {
+        printf("{\"scene\":\"%s\",\"method\":\"%s\",\"size\":[%d,%d],\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"res\":%d,\"gbuffer_ms\":%.3f,"
+               "\"voxels_ms\":%.3f,\"ao_ms\":%.3f,\"ms\":%.3f,\"mean\":%.6g,",
+               name, method, w, h, (double)ai->radius, rays, steps, ad->resolution ? ad->resolution : 128, ai->ms_gbuffer, ai->ms_voxels, ai->ms_ao, ai->ms,
+               mean[0]);
+        if (a->compare || a->reference) print_compare_json(cmp);
+        printf("\"output\":\"%s\"}\n", a->out);
+        return;
+    }
+    printf("%s: %d x %d, ambient occlusion from %s (radius %.4g, %d rays%s): G-buffer %.1f ms, voxels %.1f ms, occlusion %.1f ms, total %.1f ms; "
+           "mean %.4g -> %s\n",
+           name, w, h, ad->method == VOXGI_AO_VOXELS ? "the voxels" : "the depth buffer", (double)ai->radius, rays,
+           ad->method == VOXGI_AO_VOXELS ? "" : " marched in steps", ai->ms_gbuffer, ai->ms_voxels, ai->ms_ao, ai->ms, mean[0], a->out);
+    if (a->compare || a->reference) print_compare(a, d, cmp);
+}
+
 /* The --method sh lines, text or JSON. */
 static void print_sh(const render_args *a, const char *name, const double mean[3], const voxgi_sh_image_desc *hd, const voxgi_sh_image_info *hi,
                      const voxgi_reference_desc *d, const render_compare *cmp)
@@ -307,6 +335,7 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
     if (a->method == METHOD_TSM) print_tsm(a, name, mean, &J->td, &J->tinfo, d, cmp);
     else if (a->method == METHOD_RSM) print_rsm(a, name, mean, &J->qd, &J->qinfo, d, cmp);
     else if (a->method == METHOD_SH) print_sh(a, name, mean, &J->hd, &J->hinfo, d, cmp);
+    else if (a->method == METHOD_SSAO || a->method == METHOD_VAO) print_ao(a, name, mean, &J->ad, &J->ainfo, d, cmp);
     else if (a->method == METHOD_VCT && a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
                "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
@@ -417,6 +446,16 @@ static int render_run(cli_session *s, const render_args *a)
         hd->gather_stride = a->gather_stride;
         d->bounces = 1;
     }
+    if (a->method == METHOD_SSAO || a->method == METHOD_VAO) { /* compared with the reference's AO mode at the radius used */
+        J.ad.camera = d->camera;
+        J.ad.seed = d->seed;
+        J.ad.method = a->method == METHOD_VAO ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN;
+        J.ad.resolution = a->res_given ? a->res : 0;
+        J.ad.rays = a->rays;
+        J.ad.steps = a->march_steps;
+        J.ad.radius = (float)a->ao_radius;
+    }
+    if (a->method == METHOD_REFERENCE) d->ao_radius = (float)a->ao_radius; /* > 0: the AO mode */
     if (a->method == METHOD_VCT) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
         vd->camera = d->camera;
         vd->seed = d->seed;
@@ -428,6 +467,7 @@ static int render_run(cli_session *s, const render_args *a)
         cli_fail_lib(s, c.vx, NULL);
         goto done;
     }
+    if (a->method == METHOD_SSAO || a->method == METHOD_VAO) d->ao_radius = J.ainfo.radius;
     if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &J, &cmp)) goto done;
     if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &d->camera, rgb, &cmp)) goto done;
     if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
@@ -461,19 +501,21 @@ int cmd_render(int argc, char **argv)
     a.cone_stride = 6;
     {
         const cli_option options[] = {
-            {.name = "--method", .arg = "reference|vct|tsm|rsm|sh", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
+            {.name = "--method", .arg = "reference|vct|tsm|rsm|sh|ssao|vao", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
              .help = "the Monte Carlo path tracer (default), or voxel cone tracing: direct\n"
                      "light through shadow rays plus one bounce gathered by cones from\n"
                      "the voxels, or transmittance shadow maps: direct light, each\n"
                      "directional light through its map (compared with --bounces 0), or\n"
                      "reflective shadow maps: direct light and one bounce from the maps of\n"
                      "every light and the emitters (compared with --bounces 1), or an SH\n"
-                     "volume: direct light and one bounce from the voxels' SH (--bounces 1)"},
+                     "volume: direct light and one bounce from the voxels' SH (--bounces 1),\n"
+                     "or ambient occlusion from the depth buffer (ssao) or the voxels (vao),\n"
+                     "compared with the reference's AO mode"},
             CLI_OPT_BACKEND(&a.common, "vct: where voxelization, mips and cones run (default auto: GL when a\n"
                                        "headless GL 4.5 context works); the reference runs on the CPU"),
             CLI_OPT_GL(&a.common, "which headless GL to try"),
             {.name = "--res", .arg = "N", .kind = CLI_INT, .dst = &a.res, .lo = 1, .hi = 4096, .given = &a.res_given,
-             .help = "vct: voxels along the scene's longest side (default 96); rsm: of the\nvisibility's voxels (default 64); sh: of the SH volume (default 64)"},
+             .help = "vct: voxels along the scene's longest side (default 96); rsm: of the\nvisibility's voxels (default 64); sh: of the SH volume (default 64);\nvao: of the voxels (default 128)"},
             {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 24)"},
             {.name = "--step", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.step, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "vct: step as a fraction of the cone diameter (default 0.5)"},
@@ -503,6 +545,10 @@ int cmd_render(int argc, char **argv)
              .help = "rsm: gathers at every S-th pixel across and down, the pixels between\ninterpolated where three of the four around share their surface (default 4)"},
             {.name = "--opening", .arg = "T", .kind = CLI_DOUBLE, .dst = &a.opening, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "sh: a cell counts as one point where its size is at most T times its\ndistance (default 0.5)"},
+            {.name = "--ao-radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.ao_radius, .lo = 0, .lo_open = 1, .hi = 1e30,
+             .help = "ssao, vao: the occlusion's radius (default a tenth of the scene's longest\nside); reference: render ambient occlusion within R instead of light"},
+            {.name = "--rays", .arg = "N", .kind = CLI_INT, .dst = &a.rays, .lo = 1, .hi = 65536, .help = "ssao, vao: rays per pixel (default 16)"},
+            {.name = "--steps", .arg = "N", .kind = CLI_INT, .dst = &a.march_steps, .lo = 1, .hi = 4096, .help = "ssao: steps along each ray (default 16)"},
             {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
              .help = "rsm and sh: each gather's visibility through the voxels (default hierarchical)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
