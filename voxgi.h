@@ -1036,6 +1036,53 @@ typedef struct voxgi_ao_desc {
 /* ao: width x height floats. */
 VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, float *ao, size_t ao_bytes);
 
+/* One bounce of diffuse light at the pixels of a G-buffer from the light the screen's surfaces
+   send (Thiedemann 2009): irradiance = pi / rays x the sum of the radiance met along `rays`
+   cosine-distributed Hammersley directions within `radius`. SCREEN (SSGI): the first step behind
+   the depth buffer as voxgi_ao finds it, the radiance of its pixel. VOXELS (Hybrid-GI): the
+   first occupied voxel along the ray (from 1.5 voxels off the surface), the radiance of the pixel
+   showing the point where the ray enters it, when that point lies within 2 voxels of the plane of
+   that pixel's surface; a hit hidden from the camera or off the screen blocks the ray and sends nothing
+   (the one rule for both: only the screen has light). Misses send nothing (no environment). */
+typedef struct voxgi_ssgi_desc {
+    voxgi_camera camera;          /* the G-buffer's view and size */
+    const float *positions, *normals; /* as voxgi_ao_desc's */
+    const float *radiance;        /* per pixel: the radiance its surface sends (rgb), e.g. the direct light it reflects */
+    voxgi_ao_method method;       /* SCREEN: SSGI; VOXELS: Hybrid-GI */
+    const voxgi_voxels *voxels;   /* VOXELS */
+    voxgi_traversal traversal;
+    int rays, steps;              /* 0 = 16 each */
+    float radius;                 /* world units, > 0 */
+    uint64_t seed;
+} voxgi_ssgi_desc;
+/* irradiance: 3 floats per pixel. */
+VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *desc, float *irradiance, size_t irradiance_bytes);
+
+/* An image of the direct light (as voxgi_rsm_render's) and one bounce from the screen
+   (voxgi_ssgi: SSGI through the depth buffer, or Hybrid-GI through a conservative grid of
+   `resolution` voxels), the screen's radiance the direct light its surfaces reflect, gathered at
+   the anchors of the gather stride and interpolated between them as voxgi_rsm_render does.
+   Compare with the reference's one bounce: light from surfaces the camera does not see is
+   missing by design. */
+typedef struct voxgi_ssgi_image_desc {
+    voxgi_camera camera;
+    voxgi_ao_method method;       /* SCREEN: SSGI; VOXELS: Hybrid-GI */
+    int resolution;               /* VOXELS: 0 = 128 */
+    int rays, steps;              /* 0 = 16 each */
+    float radius;                 /* 0 = the scene's longest side */
+    int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
+    uint64_t seed;
+    int hide_emitters;
+    int gather_stride;            /* 0 = 4 */
+} voxgi_ssgi_image_desc;
+typedef struct voxgi_ssgi_image_info {
+    float radius;                 /* the radius used */
+    size_t gathered;
+    double ms_direct, ms_voxels, ms_gather, ms;
+} voxgi_ssgi_image_info;
+VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ssgi_image_desc *desc, float *rgb, size_t rgb_bytes,
+                                         voxgi_ssgi_image_info *info);
+
 /* An image of ambient occlusion (grey: the occluded share in all three channels, 0 where nothing
    is): voxgi's G-buffer (the pixel centres' rays), voxgi_ao by `method`, the voxels (VOXELS) a
    conservative grid of `resolution` along the scene's longest side. Compare with the reference's
@@ -11802,20 +11849,31 @@ VOXGI_API void voxgi_hammersley(uint32_t i, uint32_t n, const double rot[2], dou
     }
 }
 
-/* ----- 11.2 ambient occlusion: the depth buffer's and the voxels' */
-typedef struct voxgi__ao_job {
-    const voxgi_ao_desc *desc;
-    const voxgi__occupancy *O;    /* VOXELS */
-    int rays, steps;
-    double eye[3], forward[3], right[3], up[3], tan_half;
-    float *ao;
-} voxgi__ao_job;
+/* ----- 11.2 rays through the screen or the voxels: ambient occlusion and one bounce */
 
-/* The pixel (and 1) whose centre ray passes nearest to world point s in front of the eye, or 0;
-   *z: the point's distance along the view direction. */
-static int voxgi__ao_pixel(const voxgi__ao_job *J, const double s[3], size_t *pix, double *z)
+/* What the passes march through (the screen: a G-buffer, and for one bounce the light its
+   surfaces send) and where they gather: count points with normals, into out (AO: 1 float a
+   point; one bounce: 3). */
+typedef struct voxgi__screen_job {
+    const voxgi_camera *cam;
+    double eye[3], forward[3], right[3], up[3], tan_half;
+    const float *pos, *nrm;       /* the screen's G-buffer */
+    const float *radiance;        /* NULL: ambient occlusion; else per pixel the radiance its surface sends */
+    voxgi_ao_method method;
+    const voxgi__occupancy *O;    /* VOXELS */
+    const voxgi_grid *grid;
+    int hierarchical, rays, steps;
+    double radius;
+    uint64_t seed;
+    const float *points, *normals;
+    float *out;
+} voxgi__screen_job;
+
+/* The pixel whose centre ray passes nearest to world point s in front of the eye (returns 1), or
+   0; *z: the point's distance along the view direction. */
+static int voxgi__screen_pixel(const voxgi__screen_job *J, const double s[3], size_t *pix, double *z)
 {
-    const voxgi_camera *cam = &J->desc->camera;
+    const voxgi_camera *cam = J->cam;
     double d[3], x, y, sx, sy;
     int a;
     for (a = 0; a < 3; a++) d[a] = s[a] - J->eye[a];
@@ -11830,102 +11888,184 @@ static int voxgi__ao_pixel(const voxgi__ao_job *J, const double s[3], size_t *pi
     return 1;
 }
 
-static void voxgi__ao_rows(void *user, size_t first, size_t end)
+static int voxgi__screen_has_surface(const voxgi__screen_job *J, size_t pix)
 {
-    const voxgi__ao_job *J = (const voxgi__ao_job *)user;
-    const voxgi_ao_desc *D = J->desc;
-    const voxgi_camera *cam = &D->camera;
-    double R = D->radius;
-    uint64_t steps_taken = 0;
-    size_t y;
-    for (y = first; y < end; y++) {
-        int x;
-        for (x = 0; x < cam->width; x++) {
-            size_t pix = y * (size_t)cam->width + (size_t)x;
-            double p[3], n[3], t[3], b[3], rot[2], jitter;
-            int k, a, blocked = 0;
-            voxgi__rng g;
-            for (a = 0; a < 3; a++) { p[a] = D->positions[3 * pix + (size_t)a]; n[a] = D->normals[3 * pix + (size_t)a]; }
-            J->ao[pix] = 0;
-            if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
-            voxgi__rng_seed(&g, D->seed, pix, 0);
+    const float *m = J->nrm + 3 * pix;
+    return m[0] != 0 || m[1] != 0 || m[2] != 0;
+}
+
+/* The ray p + t dir, t in [0, radius], marched through the depth buffer: 1 when a step lies behind
+   the surface of the pixel it projects to (that pixel's plane met by the eye's ray through the
+   step, nearer the eye by more than radius / 1000, within radius of p), that pixel in *hit. */
+static int voxgi__screen_march(const voxgi__screen_job *J, const double p[3], const double dir[3], double jitter, size_t *hit)
+{
+    double R = J->radius;
+    int j, c;
+    for (j = 0; j < J->steps; j++) {
+        double s[3], v[3], z, nv = 0, nq = 0, f, dq = 0, tt = (j + jitter) / J->steps * R;
+        const float *q, *m;
+        size_t at;
+        for (c = 0; c < 3; c++) s[c] = p[c] + tt * dir[c];
+        if (!voxgi__screen_pixel(J, s, &at, &z) || !voxgi__screen_has_surface(J, at)) continue;
+        q = J->pos + 3 * at;
+        m = J->nrm + 3 * at;
+        for (c = 0; c < 3; c++) {
+            v[c] = s[c] - J->eye[c];
+            nv += m[c] * v[c];
+            nq += m[c] * ((double)q[c] - J->eye[c]);
+        }
+        if (!(fabs(nv) > 1e-9 * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))) continue; /* the plane edge-on */
+        f = nq / nv;
+        for (c = 0; c < 3; c++) dq += (J->eye[c] + f * v[c] - p[c]) * (J->eye[c] + f * v[c] - p[c]);
+        if (f > 0 && f < 1 - 1e-3 * R / z && dq < R * R) {
+            *hit = at;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static void voxgi__screen_last_voxel(void *user, const int64_t v[3]) { memcpy(user, v, 3 * sizeof(int64_t)); }
+
+/* The ray from 1.5 voxels off p along its normal n to p + radius dir through the voxels: 1 when
+   it meets one; *hit: the pixel showing the point where it enters that voxel, when that point
+   lies within 2 voxels of that pixel's surface's plane, else (hidden or off screen) SIZE_MAX. */
+static int voxgi__screen_voxels(const voxgi__screen_job *J, const double p[3], const double n[3], const double dir[3], uint64_t *steps, size_t *hit)
+{
+    const voxgi_grid *g = J->grid;
+    double o[3], d[3], vs = g->voxel_size, enter = 0, x[3], z, dq = 0;
+    int64_t v[3];
+    int a;
+    for (a = 0; a < 3; a++) {
+        o[a] = (p[a] + 1.5 * vs * n[a] - g->origin[a]) / vs;
+        d[a] = (p[a] + J->radius * dir[a] - g->origin[a]) / vs - o[a];
+    }
+    *hit = SIZE_MAX;
+    if (!voxgi__traverse(J->O, J->hierarchical, o, d, steps, voxgi__screen_last_voxel, v)) return 0;
+    if (!J->radiance) return 1;
+    for (a = 0; a < 3; a++) /* where the segment enters the voxel it met */
+        if (d[a] != 0) enter = VOXGI__MAX(enter, VOXGI__MIN(((double)v[a] - o[a]) / d[a], ((double)v[a] + 1 - o[a]) / d[a]));
+    for (a = 0; a < 3; a++) x[a] = g->origin[a] + (o[a] + enter * d[a]) * vs;
+    if (!voxgi__screen_pixel(J, x, hit, &z) || !voxgi__screen_has_surface(J, *hit)) { *hit = SIZE_MAX; return 1; }
+    for (a = 0; a < 3; a++) dq += (double)J->nrm[3 * *hit + (size_t)a] * ((double)J->pos[3 * *hit + (size_t)a] - x[a]);
+    if (!(fabs(dq) <= 2 * vs)) *hit = SIZE_MAX; /* another surface than the pixel's: hidden from the camera */
+    return 1;
+}
+
+static void voxgi__screen_rows(void *user, size_t first, size_t end)
+{
+    const voxgi__screen_job *J = (const voxgi__screen_job *)user;
+    uint64_t steps = 0;
+    size_t i;
+    for (i = first; i < end; i++) {
+        double p[3], n[3], t[3], b[3], rot[2], jitter, e[3] = {0, 0, 0};
+        int k, a, blocked = 0;
+        voxgi__rng g;
+        for (a = 0; a < 3; a++) { p[a] = J->points[3 * i + (size_t)a]; n[a] = J->normals[3 * i + (size_t)a]; }
+        if (n[0] != 0 || n[1] != 0 || n[2] != 0) {
+            voxgi__rng_seed(&g, J->seed, i, 0);
             rot[0] = voxgi__rng_unit(&g);
             rot[1] = voxgi__rng_unit(&g);
             jitter = voxgi__rng_unit(&g);
             voxgi__basis(n, t, b);
             for (k = 0; k < J->rays; k++) { /* cosine-weighted: the Hammersley point on the disk, lifted */
                 double u[2], r, phi, dir[3];
+                size_t hit = SIZE_MAX;
+                int met;
                 voxgi_hammersley((uint32_t)k, (uint32_t)J->rays, rot, u);
                 r = sqrt(u[0]);
                 phi = 2 * VOXGI__PI * u[1];
                 for (a = 0; a < 3; a++) dir[a] = r * cos(phi) * t[a] + r * sin(phi) * b[a] + sqrt(VOXGI__MAX(0.0, 1 - u[0])) * n[a];
-                if (D->method == VOXGI_AO_VOXELS) {
-                    const voxgi_grid *g0 = &D->voxels->info.grid;
-                    double o[3], dd[3], vs = g0->voxel_size;
-                    for (a = 0; a < 3; a++) {
-                        o[a] = (p[a] + 1.5 * vs * n[a] - g0->origin[a]) / vs;
-                        dd[a] = (p[a] + R * dir[a] - g0->origin[a]) / vs - o[a];
-                    }
-                    blocked += voxgi__traverse(J->O, D->traversal == VOXGI_TRAVERSAL_HIERARCHICAL, o, dd, &steps_taken, NULL, NULL);
-                    continue;
-                }
-                for (a = 0; a < J->steps; a++) { /* SCREEN: march the depth buffer */
-                    double s[3], v[3], z, nv = 0, nq = 0, f, dq = 0, tt = (a + jitter) / J->steps * R;
-                    const float *q, *m;
-                    size_t at;
-                    int c;
-                    for (c = 0; c < 3; c++) s[c] = p[c] + tt * dir[c];
-                    if (!voxgi__ao_pixel(J, s, &at, &z)) continue;
-                    q = D->positions + 3 * at;
-                    m = D->normals + 3 * at;
-                    if (m[0] == 0 && m[1] == 0 && m[2] == 0) continue;
-                    for (c = 0; c < 3; c++) { /* the pixel's surface as its plane, met by the eye's ray through the step at eye + f v */
-                        v[c] = s[c] - J->eye[c];
-                        nv += m[c] * v[c];
-                        nq += m[c] * ((double)q[c] - J->eye[c]);
-                    }
-                    if (!(fabs(nv) > 1e-9 * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))) continue; /* the plane edge-on */
-                    f = nq / nv;
-                    for (c = 0; c < 3; c++) dq += (J->eye[c] + f * v[c] - p[c]) * (J->eye[c] + f * v[c] - p[c]);
-                    if (f > 0 && f < 1 - 1e-3 * R / z && dq < R * R) { blocked++; break; } /* behind the surface there, and that surface near */
-                }
+                met = J->method == VOXGI_AO_VOXELS ? voxgi__screen_voxels(J, p, n, dir, &steps, &hit) : voxgi__screen_march(J, p, dir, jitter, &hit);
+                blocked += met;
+                if (met && J->radiance && hit != SIZE_MAX)
+                    for (a = 0; a < 3; a++) e[a] += J->radiance[3 * hit + (size_t)a];
             }
-            J->ao[pix] = (float)((double)blocked / J->rays);
         }
+        if (J->radiance)
+            for (a = 0; a < 3; a++) J->out[3 * i + (size_t)a] = (float)(VOXGI__PI * e[a] / J->rays);
+        else
+            J->out[i] = (float)((double)blocked / J->rays);
     }
+}
+
+/* A screen job from desc-like settings (validated here): the view, the G-buffer and the method. */
+static voxgi_result voxgi__screen_setup(voxgi_context *ctx, voxgi__screen_job *J, const voxgi_camera *cam, const float *pos, const float *nrm,
+                                        voxgi_ao_method method, voxgi_traversal traversal, int rays, int steps, float radius)
+{
+    voxgi_result r;
+    memset(J, 0, sizeof *J);
+    if ((r = voxgi__camera_frame(ctx, cam, J->eye, J->forward, J->right, J->up, &J->tan_half)) != VOXGI_OK) return r;
+    J->cam = cam;
+    J->pos = pos;
+    J->nrm = nrm;
+    J->method = method;
+    J->hierarchical = traversal == VOXGI_TRAVERSAL_HIERARCHICAL;
+    J->rays = rays ? rays : 16;
+    J->steps = steps ? steps : 16;
+    J->radius = radius;
+    if (J->rays < 1 || J->rays > 65536 || J->steps < 1 || J->steps > 4096 || !(radius > 0 && isfinite(radius)) ||
+        (method != VOXGI_AO_SCREEN && method != VOXGI_AO_VOXELS) || (traversal != VOXGI_TRAVERSAL_DDA && traversal != VOXGI_TRAVERSAL_HIERARCHICAL))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "rays %d (1..65536), steps %d (1..4096), radius %g (> 0), method %d, traversal %d", J->rays,
+                           J->steps, (double)radius, (int)method, (int)traversal);
+    return VOXGI_OK;
+}
+
+/* Every pixel of the screen as a point, through job J (its voxels' occupancy built here). */
+static voxgi_result voxgi__screen_run(voxgi_context *ctx, voxgi__screen_job *J, const voxgi_voxels *voxels, uint64_t seed, float *out)
+{
+    voxgi__occupancy O;
+    size_t pixels = (size_t)J->cam->width * (size_t)J->cam->height, i;
+    voxgi_result r;
+    for (i = 0; i < 3 * pixels; i++)
+        if (!isfinite(J->pos[i]) || !isfinite(J->nrm[i]) || (J->radiance && !isfinite(J->radiance[i])))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "pixel %lu is not finite", (unsigned long)(i / 3));
+    if (J->method == VOXGI_AO_VOXELS) {
+        if (!voxels) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "VOXELS needs the voxels");
+        if ((r = voxgi__occ_build(ctx, voxels, J->hierarchical, &O)) != VOXGI_OK) return r;
+        J->O = &O;
+        J->grid = &voxels->info.grid;
+    }
+    J->seed = seed;
+    J->points = J->pos;
+    J->normals = J->nrm;
+    J->out = out;
+    voxgi__parallel(ctx, pixels, 64, voxgi__screen_rows, J);
+    if (J->O) voxgi__occ_free(ctx, &O);
+    J->O = NULL;
+    return VOXGI_OK;
 }
 
 VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, float *ao, size_t ao_bytes)
 {
-    voxgi__ao_job J;
-    voxgi__occupancy O;
-    size_t pixels, i;
+    voxgi__screen_job J;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!desc || !ao || !desc->positions || !desc->normals) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc, ao, positions or normals is NULL");
-    memset(&J, 0, sizeof J);
-    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
-    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
-    if (ao_bytes < pixels * 4) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "ao holds %lu bytes, the image needs %lu", (unsigned long)ao_bytes, (unsigned long)(pixels * 4));
-    J.rays = desc->rays ? desc->rays : 16;
-    J.steps = desc->steps ? desc->steps : 16;
-    if (J.rays < 1 || J.rays > 65536 || J.steps < 1 || J.steps > 4096 || !(desc->radius > 0 && isfinite(desc->radius)) ||
-        (desc->method != VOXGI_AO_SCREEN && desc->method != VOXGI_AO_VOXELS) ||
-        (desc->traversal != VOXGI_TRAVERSAL_DDA && desc->traversal != VOXGI_TRAVERSAL_HIERARCHICAL))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "rays %d (1..65536), steps %d (1..4096), radius %g (> 0), method %d, traversal %d", J.rays, J.steps,
-                           (double)desc->radius, (int)desc->method, (int)desc->traversal);
-    if (desc->method == VOXGI_AO_VOXELS && !desc->voxels) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "VOXELS needs the voxels");
-    for (i = 0; i < 3 * pixels; i++)
-        if (!isfinite(desc->positions[i]) || !isfinite(desc->normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "pixel %lu is not finite", (unsigned long)(i / 3));
-    if (desc->method == VOXGI_AO_VOXELS) {
-        if ((r = voxgi__occ_build(ctx, desc->voxels, desc->traversal == VOXGI_TRAVERSAL_HIERARCHICAL, &O)) != VOXGI_OK) return r;
-        J.O = &O;
-    }
-    J.desc = desc;
-    J.ao = ao;
-    voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__ao_rows, &J);
-    if (J.O) voxgi__occ_free(ctx, &O);
-    return VOXGI_OK;
+    if ((r = voxgi__screen_setup(ctx, &J, &desc->camera, desc->positions, desc->normals, desc->method, desc->traversal, desc->rays, desc->steps,
+                                 desc->radius)) != VOXGI_OK)
+        return r;
+    if (ao_bytes < (size_t)desc->camera.width * (size_t)desc->camera.height * 4)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "ao holds %lu bytes, the image needs %lu", (unsigned long)ao_bytes,
+                           (unsigned long)((size_t)desc->camera.width * (size_t)desc->camera.height * 4));
+    return voxgi__screen_run(ctx, &J, desc->voxels, desc->seed, ao);
+}
+
+VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *desc, float *irradiance, size_t irradiance_bytes)
+{
+    voxgi__screen_job J;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc || !irradiance || !desc->positions || !desc->normals || !desc->radiance)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc, irradiance, positions, normals or radiance is NULL");
+    if ((r = voxgi__screen_setup(ctx, &J, &desc->camera, desc->positions, desc->normals, desc->method, desc->traversal, desc->rays, desc->steps,
+                                 desc->radius)) != VOXGI_OK)
+        return r;
+    if (irradiance_bytes < (size_t)desc->camera.width * (size_t)desc->camera.height * 12)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "irradiance holds %lu bytes, the image needs %lu", (unsigned long)irradiance_bytes,
+                           (unsigned long)((size_t)desc->camera.width * (size_t)desc->camera.height * 12));
+    J.radiance = desc->radiance;
+    return voxgi__screen_run(ctx, &J, desc->voxels, desc->seed, irradiance);
 }
 
 /* ===================================================================== 12. images */
@@ -12470,6 +12610,7 @@ typedef struct voxgi__direct_image_job {
     const voxgi_scene *scene;
     double eye[3], forward[3], right[3], up[3], tan_half;
     float *rgb;
+    float *reflected;             /* or NULL: the direct light the pixels' surfaces reflect, without their emission */
 } voxgi__direct_image_job;
 
 static void voxgi__direct_image_rows(void *user, size_t first, size_t end)
@@ -12482,7 +12623,7 @@ static void voxgi__direct_image_rows(void *user, size_t first, size_t end)
         int x;
         for (x = 0; x < cam->width; x++) {
             size_t pix = y * (size_t)cam->width + (size_t)x;
-            double sum[3] = {0, 0, 0}, rot[2];
+            double sum[3] = {0, 0, 0}, emitted[3] = {0, 0, 0}, rot[2];
             uint64_t rays = 0;
             voxgi__rng g;
             int s, a;
@@ -12498,7 +12639,7 @@ static void voxgi__direct_image_rows(void *user, size_t first, size_t end)
                 if (!voxgi__trace(J->tr, J->eye, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
                 m = voxgi__prim_material(J->tr, h.prim);
                 for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
-                if (h.front && !J->hide_emitters) for (a = 0; a < 3; a++) sum[a] += m->emission[a];
+                if (h.front && !J->hide_emitters) for (a = 0; a < 3; a++) emitted[a] += m->emission[a];
                 for (li = 0; J->maps && li < J->scene->light_count; li++) { /* the maps' lights */
                     const voxgi_tsm *T = J->maps[li];
                     const voxgi_light *L = &J->scene->lights[li];
@@ -12520,7 +12661,10 @@ static void voxgi__direct_image_rows(void *user, size_t first, size_t end)
                 voxgi__direct(J->others, h.p, ns, h.prim, &g, 0, NULL, &rays, e, NULL);
                 for (a = 0; a < 3; a++) sum[a] += m->albedo[a] / VOXGI__PI * e[a];
             }
-            for (a = 0; a < 3; a++) J->rgb[3 * pix + (size_t)a] = (float)(sum[a] / samples);
+            for (a = 0; a < 3; a++) {
+                J->rgb[3 * pix + (size_t)a] = (float)((sum[a] + emitted[a]) / samples);
+                if (J->reflected) J->reflected[3 * pix + (size_t)a] = (float)(sum[a] / samples);
+            }
         }
     }
 }
@@ -12666,11 +12810,12 @@ static void voxgi__bounce_free(voxgi_context *ctx, voxgi__bounce_image *B)
     voxgi__tracer_free(ctx, &B->tr);
 }
 
-/* The direct light into rgb and all the shared parts (B zeroed first, freed by voxgi__bounce_free
+/* The direct light into rgb (and the light the surfaces reflect, without their emission, into
+   reflected, if not NULL) and all the shared parts (B zeroed first, freed by voxgi__bounce_free
    whatever the result); the times of the direct light and the voxels. */
 static voxgi_result voxgi__bounce_begin(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *cam, int samples, int hide_emitters,
-                                        uint64_t seed, int resolution, voxgi_visibility visibility, float *rgb, size_t rgb_bytes, voxgi__bounce_image *B,
-                                        double *ms_direct, double *ms_voxels)
+                                        uint64_t seed, int resolution, voxgi_visibility visibility, float *rgb, size_t rgb_bytes, float *reflected,
+                                        voxgi__bounce_image *B, double *ms_direct, double *ms_voxels)
 {
     voxgi__direct_image_job J;
     voxgi_voxelize_desc vd;
@@ -12693,6 +12838,7 @@ static voxgi_result voxgi__bounce_begin(voxgi_context *ctx, const voxgi_scene *s
     B->want = (unsigned char *)voxgi__alloc_array(ctx, B->pixels, 1, 1);
     if (!B->pos || !B->nrm || !B->irr || !B->prim || !B->want) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", B->w, B->h);
     if ((r = voxgi__lights_build(ctx, scene, &B->tr, &B->Ls)) != VOXGI_OK) return r;
+    J.reflected = reflected;
     *ms_direct = voxgi__direct_image(ctx, &J, cam, samples ? samples : 24, hide_emitters, seed, &B->tr, &B->Ls, scene, rgb);
     if ((r = voxgi__gbuffer(ctx, &B->tr, cam, B->pos, B->nrm, B->prim)) != VOXGI_OK) return r;
     memset(&vd, 0, sizeof vd);
@@ -12761,7 +12907,7 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
                            desc->resolution, (int)desc->visibility, desc->gather_stride);
     memset(&inf, 0, sizeof inf);
     r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, rgb, rgb_bytes,
-                            &B, &inf.ms_direct, &inf.ms_voxels);
+                            NULL, &B, &inf.ms_direct, &inf.ms_voxels);
     if (r == VOXGI_OK && !(maps = (voxgi_rsm **)voxgi__alloc_array(ctx, scene->light_count + 1, sizeof *maps, 1)))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
     t1 = voxgi__now_ms();
@@ -12822,7 +12968,7 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
                            desc->samples, desc->resolution, (int)desc->visibility, desc->gather_stride, (double)desc->opening);
     memset(&inf, 0, sizeof inf);
     r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, rgb, rgb_bytes,
-                            &B, &inf.ms_direct, &inf.ms_voxels);
+                            NULL, &B, &inf.ms_direct, &inf.ms_voxels);
     t1 = voxgi__now_ms();
     if (r == VOXGI_OK) r = voxgi_sh_create(ctx, scene, &B.grid, &desc->sh, &sh);
     inf.ms_sh = voxgi__now_ms() - t1;
@@ -12838,6 +12984,67 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
     inf.ms_gather = voxgi__now_ms() - t1;
     voxgi_sh_destroy(ctx, sh);
     voxgi__bounce_free(ctx, &B);
+    inf.ms = voxgi__now_ms() - t0;
+    if (info) *info = inf;
+    return r;
+}
+
+/* ----- images with one bounce from the screen */
+static voxgi_result voxgi__screen_gather(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
+{
+    voxgi__screen_job *J = (voxgi__screen_job *)user;
+    J->points = points;
+    J->normals = normals;
+    J->out = out;
+    voxgi__parallel(ctx, count, 16, voxgi__screen_rows, J);
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ssgi_image_desc *desc, float *rgb, size_t rgb_bytes,
+                                         voxgi_ssgi_image_info *info)
+{
+    voxgi__bounce_image B;
+    voxgi__screen_job J;
+    voxgi_ssgi_image_info inf;
+    float *reflected = NULL;
+    double t0 = voxgi__now_ms(), t1;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->gather_stride < 0 || desc->gather_stride > 64 ||
+        !(desc->radius >= 0 && isfinite(desc->radius)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), gather_stride %d (0..64), radius %g", desc->samples,
+                           desc->resolution, desc->gather_stride, (double)desc->radius);
+    memset(&inf, 0, sizeof inf);
+    reflected = (float *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(desc->camera.width, 1) * (size_t)VOXGI__MAX(desc->camera.height, 1), 12, 0);
+    if (!reflected) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the screen's light");
+    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution ? desc->resolution : 128,
+                            desc->method == VOXGI_AO_VOXELS ? VOXGI_VISIBILITY_HIERARCHICAL : VOXGI_VISIBILITY_NONE, rgb, rgb_bytes, reflected, &B,
+                            &inf.ms_direct, &inf.ms_voxels);
+    inf.radius = desc->radius;
+    if (r == VOXGI_OK && !(inf.radius > 0)) { /* the scene's longest side */
+        double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+        size_t i;
+        int a;
+        for (i = 0; i < 9 * B.tr.flat.triangle_count; i++) {
+            lo[i % 3] = VOXGI__MIN(lo[i % 3], B.tr.v[i]);
+            hi[i % 3] = VOXGI__MAX(hi[i % 3], B.tr.v[i]);
+        }
+        for (a = 0; a < 3; a++) inf.radius = (float)VOXGI__MAX((double)inf.radius, hi[a] - lo[a]);
+        if (!(inf.radius > 0)) inf.radius = 1;
+    }
+    if (r == VOXGI_OK) r = voxgi__screen_setup(ctx, &J, &desc->camera, B.pos, B.nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, inf.radius);
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK) {
+        J.radiance = reflected;
+        J.O = B.have_occ ? &B.O : NULL;
+        J.grid = &B.grid;
+        J.seed = desc->seed;
+        r = voxgi__bounce_gather(ctx, &B, desc->gather_stride ? desc->gather_stride : 4, voxgi__screen_gather, &J, rgb, &inf.gathered);
+    }
+    inf.ms_gather = voxgi__now_ms() - t1;
+    voxgi__bounce_free(ctx, &B);
+    voxgi__free(ctx, reflected);
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;
     return r;

@@ -112,6 +112,8 @@ run sh-cornell render cornell-box --method sh --size 16 16 --res 16 --spp 2 $T -
 run ssao-cornell render cornell-box --method ssao --size 16 16 --rays 8 --steps 8 $T --json -o "$tmp/o.pfm"
 run vao-cornell render cornell-box --method vao --size 16 16 --rays 8 --res 32 $T --json -o "$tmp/o.pfm"
 run ao-reference render cornell-box --ao-radius 0.1 --size 16 16 --spp 8 $T --json -o "$tmp/o.pfm"
+run ssgi-cornell render cornell-box --method ssgi --size 16 16 --rays 8 --steps 8 --spp 2 $T --json -o "$tmp/o.pfm"
+run hybrid-cornell render cornell-box --method hybrid --size 16 16 --rays 8 --res 32 --spp 2 $T --json -o "$tmp/o.pfm"
 
 # GL cone tracing: llvmpipe gives the same bits run after run (a GPU need not: mips by blending)
 run vct-gl render cornell-box --method vct --backend gl --res 24 --cones 8 --size 24 24 --spp 8 \

@@ -202,6 +202,63 @@ static void test_ao_closed_box(void)
     voxgi_destroy(ctx);
 }
 
+/* One bounce from the screen: the corner's wall sends radiance 1 (its pixels' radiance), the
+   floor none; at a floor point d from the wall with radius 1 the irradiance is the wall's
+   cosine-weighted share within reach, acos c - c sqrt(1 - c^2) (c = d), by the depth buffer
+   (SSGI: within 0.03) and through the voxels (Hybrid-GI: between that and the share of a wall up
+   to 1.5 voxels nearer, where its conservative voxels reach), the camera seeing that part of the
+   wall. */
+static void test_ssgi_corner(void)
+{
+    enum { W = 64 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_camera c = look(-2.5, 2, 1.5, 0.6, 0, 0);
+    static float pos[3 * W * W], nrm[3 * W * W], L[3 * W * W], irr[3 * W * W];
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
+    voxgi_voxels *vox = NULL;
+    double want, d0;
+    size_t centre = (size_t)(W / 2) * W + W / 2;
+    int m, i;
+    ao_scene(&q, &sc, &mesh, 1, 0);
+    memset(&vd, 0, sizeof vd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = 128;
+    TH_CHECK(voxgi_fit_grid(ctx, &sc, &fit, &vd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    c.width = c.height = W;
+    TH_CHECK(voxgi_gbuffer_render(ctx, &sc, &c, pos, nrm, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (i = 0; i < W * W; i++) L[3 * i] = L[3 * i + 1] = L[3 * i + 2] = nrm[3 * i] < -0.5f ? 1.0f : 0.0f; /* the wall's pixels */
+    d0 = 1 - pos[3 * centre];
+    want = acos(d0) - d0 * sqrt(1 - d0 * d0);
+    TH_CHECK(fabs(pos[3 * centre + 1]) < 1e-5 && d0 > 0.3 && d0 < 0.5, "the centre pixel sees the floor near the wall");
+    for (m = 0; m < 2; m++) {
+        voxgi_ssgi_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = c;
+        d.positions = pos;
+        d.normals = nrm;
+        d.radiance = L;
+        d.method = (voxgi_ao_method)m;
+        d.voxels = vox;
+        d.traversal = VOXGI_TRAVERSAL_HIERARCHICAL;
+        d.rays = 256;
+        d.steps = 64;
+        d.radius = 1;
+        TH_CHECK(voxgi_ssgi(ctx, &d, irr, sizeof irr) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        printf("    floor point %.3f from the wall, %s: irradiance %.4f (analytic %.4f)\n", d0, m ? "voxels" : "depth buffer", irr[3 * centre], want);
+        if (m == 0) TH_CHECK(fabs(irr[3 * centre] - want) < 0.03, "the wall's light");
+        else { /* the wall's conservative voxels reach up to 1.5 voxels nearer: between the two answers */
+            double nearer = d0 - 1.5 * vd.grid.voxel_size, most = acos(nearer) - nearer * sqrt(1 - nearer * nearer);
+            TH_CHECK(irr[3 * centre] > want - 0.02 && irr[3 * centre] < most + 0.02, "the wall's light: %g not in [%g, %g]", irr[3 * centre], want, most);
+        }
+    }
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_destroy(ctx);
+}
+
 static void test_ao_input(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -244,6 +301,7 @@ int main(void)
     TH_RUN(test_ao_open_plane);
     TH_RUN(test_ao_corner);
     TH_RUN(test_ao_closed_box);
+    TH_RUN(test_ssgi_corner);
     TH_RUN(test_ao_input);
     return th_finish();
 }

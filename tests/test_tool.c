@@ -345,7 +345,7 @@ static void test_tsm_command(void)
         voxgi_builtin_scene ts;
         voxgi_ao_image_desc ad;
         snprintf(pfm, sizeof pfm, "%s/a.pfm", tmpdir);
-        snprintf(args, sizeof args, "render cornell-box --method vao --size 8 8 --rays 8 --res 24 --ao-radius 0.1 --compare 16 --json -o %s", pfm);
+        snprintf(args, sizeof args, "render cornell-box --method vao --size 8 8 --rays 8 --res 24 --radius 0.1 --compare 16 --json -o %s", pfm);
         TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "radius") > 0.099 && json_number(out, "rel_rmse") > 0, "vao render: %s", out);
         snprintf(args, sizeof args, "render cornell-box --method ssao --size 8 8 --steps 4 -o %s/s.png", tmpdir);
         TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "depth buffer"), "ssao render: %s", out);
@@ -365,6 +365,33 @@ static void test_tsm_command(void)
             for (y = 7; y >= 0; y--) TH_CHECK(fread(got + 3 * 8 * y, 4, 24, f) == 24, "PFM rows");
             fclose(f);
             TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's ao render");
+        }
+        voxgi_builtin_scene_destroy(ctx, &ts);
+    }
+    { /* --method hybrid: the library's image, bit for bit */
+        voxgi_builtin_scene ts;
+        voxgi_ssgi_image_desc gd;
+        snprintf(pfm, sizeof pfm, "%s/g.pfm", tmpdir);
+        snprintf(args, sizeof args, "render cornell-box --method hybrid --size 8 8 --rays 8 --res 24 --radius 0.3 --spp 2 --gather-stride 2 --json -o %s", pfm);
+        TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "radius") > 0.299 && strstr(out, "\"method\":\"hybrid\""), "hybrid render: %s", out);
+        voxgi_builtin_scene_create(ctx, "cornell-box", &ts);
+        memset(&gd, 0, sizeof gd);
+        gd.camera = ts.camera;
+        gd.camera.width = gd.camera.height = 8;
+        gd.method = VOXGI_AO_VOXELS;
+        gd.resolution = 24;
+        gd.rays = 8;
+        gd.radius = 0.3f;
+        gd.samples = 2;
+        gd.gather_stride = 2;
+        gd.seed = 1;
+        TH_CHECK(voxgi_ssgi_render(ctx, &ts.scene, &gd, want, sizeof want, NULL) == VOXGI_OK, "library ssgi render: %s", voxgi_last_error(ctx));
+        f = fopen(pfm, "rb");
+        TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
+        if (f) {
+            for (y = 7; y >= 0; y--) TH_CHECK(fread(got + 3 * 8 * y, 4, 24, f) == 24, "PFM rows");
+            fclose(f);
+            TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's ssgi render");
         }
         voxgi_builtin_scene_destroy(ctx, &ts);
     }

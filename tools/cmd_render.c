@@ -4,8 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", "ssao", "vao", NULL};
-enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH, METHOD_SSAO, METHOD_VAO };
+static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", "ssao", "vao", "ssgi", "hybrid", NULL};
+enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH, METHOD_SSAO, METHOD_VAO, METHOD_SSGI, METHOD_HYBRID };
 static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_visibility's order */
 
 static const char *const render_help =
@@ -23,7 +23,7 @@ typedef struct render_args {
     int method, res, cones, anisotropic, no_gi, inject_samples, compare, bounces, spp, spp_given, seed, size[2], cone_stride;
     int bounce_cones, bounce_block, isotropic;
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
-    double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius;
+    double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
     int rays, march_steps;
 } render_args;
 
@@ -119,6 +119,8 @@ typedef struct render_jobs {
     voxgi_sh_image_info hinfo;
     voxgi_ao_image_desc ad;
     voxgi_ao_image_info ainfo;
+    voxgi_ssgi_image_desc gd;
+    voxgi_ssgi_image_info ginfo;
 } render_jobs;
 
 /* The image of `method` with J's settings into rgb (bytes), its report into J. */
@@ -131,6 +133,8 @@ static voxgi_result render_method(voxgi_context *ctx, int method, const voxgi_sc
     case METHOD_SH: return voxgi_sh_render(ctx, scene, &J->hd, rgb, bytes, &J->hinfo);
     case METHOD_SSAO:
     case METHOD_VAO: return voxgi_ao_render(ctx, scene, &J->ad, rgb, bytes, &J->ainfo);
+    case METHOD_SSGI:
+    case METHOD_HYBRID: return voxgi_ssgi_render(ctx, scene, &J->gd, rgb, bytes, &J->ginfo);
     default: return voxgi_reference_render(ctx, scene, &J->d, rgb, bytes, &J->info);
     }
 }
@@ -157,7 +161,7 @@ static int compare_with_reference(cli_session *s, voxgi_context *ctx, const rend
     reference.d.samples = a->compare;
     reference.d.seed = J->d.seed + 1000003; /* independent of the image's own noise */
     reference.d.hide_emitters = hidden.d.hide_emitters = hidden.vd.hide_emitters = hidden.td.hide_emitters = hidden.qd.hide_emitters =
-        hidden.hd.hide_emitters = 1;
+        hidden.hd.hide_emitters = hidden.gd.hide_emitters = 1;
     r = ref ? render_method(ctx, METHOD_REFERENCE, scene, &reference, ref, n * 4) : VOXGI_ERR_OUT_OF_MEMORY;
     if (r == VOXGI_OK) r = render_method(ctx, a->method, scene, &hidden, mine, n * 4);
     if (r != VOXGI_OK) {
@@ -298,6 +302,28 @@ static void print_ao(const render_args *a, const char *name, const double mean[3
     if (a->compare || a->reference) print_compare(a, d, cmp);
 }
 
+/* The --method ssgi and hybrid lines, text or JSON. */
+static void print_ssgi(const render_args *a, const char *name, const double mean[3], const voxgi_ssgi_image_desc *gd, const voxgi_ssgi_image_info *gi,
+                       const voxgi_reference_desc *d, const render_compare *cmp)
+{
+    int w = a->size[0], h = a->size[1], rays = gd->rays ? gd->rays : 16, steps = gd->steps ? gd->steps : 16;
+    const char *method = gd->method == VOXGI_AO_VOXELS ? "hybrid" : "ssgi";
+    if (a->common.json) {
+        printf("{\"scene\":\"%s\",\"method\":\"%s\",\"size\":[%d,%d],\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"gathered\":%lu,\"direct_ms\":%.3f,"
+               "\"voxels_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
+               name, method, w, h, (double)gi->radius, rays, steps, (unsigned long)gi->gathered, gi->ms_direct, gi->ms_voxels, gi->ms_gather, gi->ms, mean[0],
+               mean[1], mean[2]);
+        if (a->compare || a->reference) print_compare_json(cmp);
+        printf("\"output\":\"%s\"}\n", a->out);
+        return;
+    }
+    printf("%s: %d x %d, direct light and one bounce from the screen, visibility %s (radius %.4g, %d rays, %lu pixels gathering): direct light "
+           "%.1f ms, voxels %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
+           name, w, h, gd->method == VOXGI_AO_VOXELS ? "through the voxels (Hybrid-GI)" : "through the depth buffer (SSGI)", (double)gi->radius, rays,
+           (unsigned long)gi->gathered, gi->ms_direct, gi->ms_voxels, gi->ms_gather, gi->ms, mean[0], mean[1], mean[2], a->out);
+    if (a->compare || a->reference) print_compare(a, d, cmp);
+}
+
 /* The --method sh lines, text or JSON. */
 static void print_sh(const render_args *a, const char *name, const double mean[3], const voxgi_sh_image_desc *hd, const voxgi_sh_image_info *hi,
                      const voxgi_reference_desc *d, const render_compare *cmp)
@@ -336,6 +362,7 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
     else if (a->method == METHOD_RSM) print_rsm(a, name, mean, &J->qd, &J->qinfo, d, cmp);
     else if (a->method == METHOD_SH) print_sh(a, name, mean, &J->hd, &J->hinfo, d, cmp);
     else if (a->method == METHOD_SSAO || a->method == METHOD_VAO) print_ao(a, name, mean, &J->ad, &J->ainfo, d, cmp);
+    else if (a->method == METHOD_SSGI || a->method == METHOD_HYBRID) print_ssgi(a, name, mean, &J->gd, &J->ginfo, d, cmp);
     else if (a->method == METHOD_VCT && a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
                "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
@@ -453,7 +480,19 @@ static int render_run(cli_session *s, const render_args *a)
         J.ad.resolution = a->res_given ? a->res : 0;
         J.ad.rays = a->rays;
         J.ad.steps = a->march_steps;
-        J.ad.radius = (float)a->ao_radius;
+        J.ad.radius = (float)a->radius;
+    }
+    if (a->method == METHOD_SSGI || a->method == METHOD_HYBRID) { /* direct light and one bounce: compared with the reference's one bounce */
+        J.gd.camera = d->camera;
+        J.gd.seed = d->seed;
+        J.gd.samples = a->spp_given ? d->samples : 0;
+        J.gd.method = a->method == METHOD_HYBRID ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN;
+        J.gd.resolution = a->res_given ? a->res : 0;
+        J.gd.rays = a->rays;
+        J.gd.steps = a->march_steps;
+        J.gd.radius = (float)a->radius;
+        J.gd.gather_stride = a->gather_stride;
+        d->bounces = 1;
     }
     if (a->method == METHOD_REFERENCE) d->ao_radius = (float)a->ao_radius; /* > 0: the AO mode */
     if (a->method == METHOD_VCT) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
@@ -501,7 +540,7 @@ int cmd_render(int argc, char **argv)
     a.cone_stride = 6;
     {
         const cli_option options[] = {
-            {.name = "--method", .arg = "reference|vct|tsm|rsm|sh|ssao|vao", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
+            {.name = "--method", .arg = "reference|vct|tsm|rsm|sh|ssao|vao|ssgi|hybrid", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
              .help = "the Monte Carlo path tracer (default), or voxel cone tracing: direct\n"
                      "light through shadow rays plus one bounce gathered by cones from\n"
                      "the voxels, or transmittance shadow maps: direct light, each\n"
@@ -510,7 +549,8 @@ int cmd_render(int argc, char **argv)
                      "every light and the emitters (compared with --bounces 1), or an SH\n"
                      "volume: direct light and one bounce from the voxels' SH (--bounces 1),\n"
                      "or ambient occlusion from the depth buffer (ssao) or the voxels (vao),\n"
-                     "compared with the reference's AO mode"},
+                     "compared with the reference's AO mode, or direct light and one bounce\n"
+                     "from the screen through the depth buffer (ssgi) or the voxels (hybrid)"},
             CLI_OPT_BACKEND(&a.common, "vct: where voxelization, mips and cones run (default auto: GL when a\n"
                                        "headless GL 4.5 context works); the reference runs on the CPU"),
             CLI_OPT_GL(&a.common, "which headless GL to try"),
@@ -542,13 +582,15 @@ int cmd_render(int argc, char **argv)
             {.name = "--rsm-points", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_points, .lo = 1, .hi = 4096,
              .help = "rsm: points on each rectangular light and on the emitters, one map each\n(default 4)"},
             {.name = "--gather-stride", .arg = "S", .kind = CLI_INT, .dst = &a.gather_stride, .lo = 1, .hi = 64,
-             .help = "rsm: gathers at every S-th pixel across and down, the pixels between\ninterpolated where three of the four around share their surface (default 4)"},
+             .help = "rsm, sh, ssgi, hybrid: gathers at every S-th pixel across and down, the pixels between\ninterpolated where three of the four around share their surface (default 4)"},
             {.name = "--opening", .arg = "T", .kind = CLI_DOUBLE, .dst = &a.opening, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "sh: a cell counts as one point where its size is at most T times its\ndistance (default 0.5)"},
             {.name = "--ao-radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.ao_radius, .lo = 0, .lo_open = 1, .hi = 1e30,
-             .help = "ssao, vao: the occlusion's radius (default a tenth of the scene's longest\nside); reference: render ambient occlusion within R instead of light"},
-            {.name = "--rays", .arg = "N", .kind = CLI_INT, .dst = &a.rays, .lo = 1, .hi = 65536, .help = "ssao, vao: rays per pixel (default 16)"},
-            {.name = "--steps", .arg = "N", .kind = CLI_INT, .dst = &a.march_steps, .lo = 1, .hi = 4096, .help = "ssao: steps along each ray (default 16)"},
+             .help = "reference: render ambient occlusion within R instead of light"},
+            {.name = "--radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.radius, .lo = 0, .lo_open = 1, .hi = 1e30,
+             .help = "ssao, vao: the occlusion's radius (default a tenth of the scene's longest\nside); ssgi, hybrid: the rays' reach (default the scene's longest side)"},
+            {.name = "--rays", .arg = "N", .kind = CLI_INT, .dst = &a.rays, .lo = 1, .hi = 65536, .help = "ssao, vao, ssgi, hybrid: rays per pixel (default 16)"},
+            {.name = "--steps", .arg = "N", .kind = CLI_INT, .dst = &a.march_steps, .lo = 1, .hi = 4096, .help = "ssao, ssgi: steps along each ray (default 16)"},
             {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
              .help = "rsm and sh: each gather's visibility through the voxels (default hierarchical)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
