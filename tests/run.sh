@@ -108,7 +108,7 @@ done
 check exported_symbols_are_prefixed status exported_symbols
 
 # 3. the test programs, then again under AddressSanitizer and UndefinedBehaviorSanitizer
-programs="test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact test_rays test_lightspace"
+programs=$(sed -n 's/^TESTS *:= *//p' Makefile) # the Makefile's list: one list of the test programs
 export VOXGI_REQUIRE_GL=${VOXGI_REQUIRE_GL:-0}  # CI sets 1: there a GL context must exist
 for t in $programs; do
     check "$t" program env VOXGI_TOOL="$B/voxgi" "$B/$t"
