@@ -4,7 +4,8 @@
    wall the analytic share (acos c - c sqrt(1 - c^2)) / pi, c = the distance to the wall over the
    radius; for the reference renderer's AO mode (the definition), for the depth buffer's ray
    marching and for the voxels'; the depth buffer's known blind spot (a closed box's walls behind
-   the camera) shown; bad input refused. */
+   the camera) shown; the radius check against a floating occluder; one bounce from a lit wall
+   against its analytic irradiance; bad input refused. */
 #include "../voxgi.h"
 #include "fixtures.h"
 
@@ -259,6 +260,46 @@ static void test_ssgi_corner(void)
     voxgi_destroy(ctx);
 }
 
+/* The radius check: a small quad floating 1.2 above the floor, far beyond the radius 0.3, hides
+   part of the floor from the camera; floor points seen beside it stay open (their rays' steps
+   that project onto the quad lie behind it, but the quad is not within reach), as the
+   definition says. */
+static void test_ssao_radius_check(void)
+{
+    enum { W = 64 };
+    static const float floater[12] = {-0.3f, 1.2f, -0.3f, -0.3f, 1.2f, 0.3f, 0.3f, 1.2f, 0.3f, 0.3f, 1.2f, -0.3f};
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_camera c = look(-2, 3, 2.5, 0, 0, 0);
+    static float pos[3 * W * W], nrm[3 * W * W], ao[W * W];
+    voxgi_ao_desc d;
+    double worst = 0;
+    int i, floor_pixels = 0;
+    ao_scene(&q, &sc, &mesh, 0, 0);
+    quad(&q, floater, 0);
+    scene_of_quads(&sc, &mesh, &q, NULL, 0, NULL, 0);
+    c.width = c.height = W;
+    TH_CHECK(voxgi_gbuffer_render(ctx, &sc, &c, pos, nrm, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    memset(&d, 0, sizeof d);
+    d.camera = c;
+    d.positions = pos;
+    d.normals = nrm;
+    d.rays = 64;
+    d.steps = 32;
+    d.radius = 0.3f;
+    TH_CHECK(voxgi_ao(ctx, &d, ao, sizeof ao) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (i = 0; i < W * W; i++)
+        if (nrm[3 * i + 1] > 0.5f && fabs(pos[3 * i + 1]) < 1e-4) {
+            floor_pixels++;
+            worst = fmax(worst, ao[i]);
+        }
+    printf("    %d floor pixels around a quad 1.2 above, radius 0.3: occlusion at most %g\n", floor_pixels, worst);
+    TH_CHECK(floor_pixels > W * W / 4 && worst == 0, "false occlusion from beyond the radius");
+    voxgi_destroy(ctx);
+}
+
 static void test_ao_input(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -301,6 +342,7 @@ int main(void)
     TH_RUN(test_ao_open_plane);
     TH_RUN(test_ao_corner);
     TH_RUN(test_ao_closed_box);
+    TH_RUN(test_ssao_radius_check);
     TH_RUN(test_ssgi_corner);
     TH_RUN(test_ao_input);
     return th_finish();
