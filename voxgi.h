@@ -1033,7 +1033,8 @@ typedef struct voxgi_ao_desc {
     float radius;                 /* world units, > 0 */
     uint64_t seed;
 } voxgi_ao_desc;
-/* ao: width x height floats. */
+/* ao: width x height floats. On a GL context the rays run on GL (shaders/screen_rays.glsl, in
+   float, the random numbers the CPU's): within 1e-4 of the CPU's. */
 VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, float *ao, size_t ao_bytes);
 
 /* One bounce of diffuse light at the pixels of a G-buffer from the light the screen's surfaces
@@ -1055,7 +1056,7 @@ typedef struct voxgi_ssgi_desc {
     float radius;                 /* world units, > 0 */
     uint64_t seed;
 } voxgi_ssgi_desc;
-/* irradiance: 3 floats per pixel. */
+/* irradiance: 3 floats per pixel; on a GL context on GL, as voxgi_ao. */
 VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *desc, float *irradiance, size_t irradiance_bytes);
 
 /* An image of the direct light (as voxgi_rsm_render's) and one bounce from the screen
@@ -3933,7 +3934,8 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
     X(gbuffer, RASTER, "gbuffer.glsl")                                                                             \
     X(tsm_lookup, COMPUTE, "tsm_lookup.glsl")                                                                      \
     X(rsm_gather, COMPUTE, "voxel_traverse.glsl rsm_gather.glsl")                                                  \
-    X(sh_gather, COMPUTE, "voxel_traverse.glsl sh_gather.glsl")
+    X(sh_gather, COMPUTE, "voxel_traverse.glsl sh_gather.glsl")                                                    \
+    X(screen_rays, COMPUTE, "voxel_traverse.glsl screen_rays.glsl")
 
 enum { VOXGI__GL_COMPUTE = 0, VOXGI__GL_RASTER = 1, VOXGI__GL_GEOMETRY = 2 };
 typedef enum voxgi__gl_program_id {
@@ -3948,13 +3950,13 @@ typedef enum voxgi__gl_program_id {
    prelude, so that no location is looked up by name at run time. */
 #define VOXGI__GL_UNIFORMS(X) \
     X(u_anisotropic) X(u_atomic) X(u_attr) X(u_attributes) X(u_axis) X(u_back_coverage) X(u_bias) X(u_big)       \
-    X(u_blend) X(u_caster) X(u_casters) X(u_cell_levels) X(u_channels) X(u_cones) X(u_count) X(u_dir) X(u_dst_dims) X(u_dst_res)  \
-    X(u_face) X(u_factor) X(u_far) X(u_first) X(u_first_slice) X(u_forward) X(u_half_tan) X(u_has_albedo)        \
+    X(u_blend) X(u_caster) X(u_casters) X(u_cell_levels) X(u_channels) X(u_cones) X(u_count) X(u_dir) X(u_dst_dims) X(u_dst_res) X(u_eye) \
+    X(u_face) X(u_factor) X(u_far) X(u_first) X(u_first_slice) X(u_forward) X(u_gather) X(u_half_tan) X(u_has_albedo)        \
     X(u_hierarchical) X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_lookup) X(u_maps) X(u_max_channels) X(u_max_distance) X(u_max_lod)    \
-    X(u_near) X(u_offset) X(u_op) X(u_opening) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_premultiplied)     \
+    X(u_near) X(u_offset) X(u_op) X(u_opening) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_premultiplied) X(u_radius) X(u_rays)     \
     X(u_regions) X(u_res) X(u_right) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) X(u_src_level)          \
-    X(u_src_res) X(u_step) X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_leaf_first) \
-    X(u_svo_nodes) X(u_svo_single) X(u_tan) X(u_thin) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) X(u_view)          \
+    X(u_src_res) X(u_step) X(u_steps) X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_leaf_first) \
+    X(u_svo_nodes) X(u_svo_single) X(u_tan) X(u_thin) X(u_through_voxels) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) X(u_view)          \
     X(u_voxel_size) X(u_with_values) X(u_words)
 enum {
 #define VOXGI__GL_UNIFORM_LOCATION(name) VOXGI__LOC_##name,
@@ -11989,6 +11991,83 @@ static void voxgi__screen_rows(void *user, size_t first, size_t end)
     }
 }
 
+#ifndef VOXGI_NO_GL
+/* Job J's rays at count points on GL (shaders/screen_rays.glsl, in float): the screen's G-buffer
+   and radiance, and each point's rotation and jitter drawn here as the CPU draws them. */
+static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job *J, size_t count)
+{
+    voxgi__gl *gl = ctx->gl;
+    size_t pixels = (size_t)J->cam->width * (size_t)J->cam->height, i, per = J->radiance ? 3 : 1;
+    float *screen = NULL, *random = NULL;
+    unsigned int buf[8] = {0, 0, 0, 0, 0, 0, 0, 0}, p;
+    int a;
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_screen_rays);
+    if (r != VOXGI_OK) return r;
+    if (count > (size_t)UINT32_MAX / 3 || pixels > (size_t)UINT32_MAX / 9)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points or %lu pixels in one GL pass", (unsigned long)count, (unsigned long)pixels);
+    screen = (float *)voxgi__alloc_array(ctx, pixels, 36, 1);
+    random = (float *)voxgi__alloc_array(ctx, count ? count : 1, 12, 0);
+    if (!screen || !random) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the GL screen");
+    for (i = 0; r == VOXGI_OK && i < pixels; i++)
+        for (a = 0; a < 3; a++) {
+            screen[9 * i + (size_t)a] = J->pos[3 * i + (size_t)a];
+            screen[9 * i + 3 + (size_t)a] = J->nrm[3 * i + (size_t)a];
+            if (J->radiance) screen[9 * i + 6 + (size_t)a] = J->radiance[3 * i + (size_t)a];
+        }
+    for (i = 0; r == VOXGI_OK && i < count; i++) { /* voxgi__screen_rows' draws */
+        voxgi__rng g;
+        voxgi__rng_seed(&g, J->seed, i, 0);
+        for (a = 0; a < 3; a++) random[3 * i + (size_t)a] = (float)voxgi__rng_unit(&g);
+    }
+    if (r == VOXGI_OK) {
+        p = gl->prog_screen_rays;
+        buf[0] = voxgi__gl_buffer(ctx, count * 12, J->points);
+        buf[1] = voxgi__gl_buffer(ctx, count * 12, J->normals);
+        buf[2] = voxgi__gl_buffer(ctx, count * 4 * per, NULL);
+        buf[3] = voxgi__gl_buffer(ctx, pixels * 36, screen);
+        buf[4] = voxgi__gl_buffer(ctx, count * 12, random);
+        if (J->O) voxgi__occ_upload(ctx, J->O, &buf[6], &buf[7]);
+        for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i] ? buf[i] : buf[0]);
+        gl->UseProgram(p);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, J->O ? J->O->levels : 0);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_hierarchical, J->hierarchical);
+        if (J->grid) {
+            gl->ProgramUniform3f(p, VOXGI__LOC_u_origin, (float)J->grid->origin[0], (float)J->grid->origin[1], (float)J->grid->origin[2]);
+            gl->ProgramUniform1f(p, VOXGI__LOC_u_voxel_size, (float)J->grid->voxel_size);
+        }
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_eye, (float)J->eye[0], (float)J->eye[1], (float)J->eye[2]);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_forward, (float)J->forward[0], (float)J->forward[1], (float)J->forward[2]);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_right, (float)J->right[0], (float)J->right[1], (float)J->right[2]);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_up, (float)J->up[0], (float)J->up[1], (float)J->up[2]);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_tan, (float)J->tan_half);
+        gl->ProgramUniform2i(p, VOXGI__LOC_u_size, J->cam->width, J->cam->height);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_rays, J->rays);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_steps, J->steps);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_radius, (float)J->radius);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_gather, J->radiance != NULL);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_through_voxels, J->method == VOXGI_AO_VOXELS);
+        voxgi__gl_dispatch_points(gl, p, count);
+        voxgi__gl_unbind(gl);
+        r = voxgi__gl_read_buffer(ctx, buf[2], J->out, count * 4 * per);
+        for (i = 0; i < 8; i++) voxgi__gl_delete_buffer(ctx, buf[i]);
+        if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the screen's rays");
+    }
+    voxgi__free(ctx, screen);
+    voxgi__free(ctx, random);
+    return r;
+}
+#endif
+
+/* Job J's rays at count points (J's points, normals, out) on the context's backend. */
+static voxgi_result voxgi__screen_rays(voxgi_context *ctx, voxgi__screen_job *J, size_t count)
+{
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__screen_gl(ctx, J, count);
+#endif
+    voxgi__parallel(ctx, count, 16, voxgi__screen_rows, J);
+    return VOXGI_OK;
+}
+
 /* A screen job from desc-like settings (validated here): the view, the G-buffer and the method. */
 static voxgi_result voxgi__screen_setup(voxgi_context *ctx, voxgi__screen_job *J, const voxgi_camera *cam, const float *pos, const float *nrm,
                                         voxgi_ao_method method, voxgi_traversal traversal, int rays, int steps, float radius)
@@ -12030,10 +12109,10 @@ static voxgi_result voxgi__screen_run(voxgi_context *ctx, voxgi__screen_job *J, 
     J->points = J->pos;
     J->normals = J->nrm;
     J->out = out;
-    voxgi__parallel(ctx, pixels, 64, voxgi__screen_rows, J);
+    r = voxgi__screen_rays(ctx, J, pixels);
     if (J->O) voxgi__occ_free(ctx, &O);
     J->O = NULL;
-    return VOXGI_OK;
+    return r;
 }
 
 VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, float *ao, size_t ao_bytes)
@@ -12996,8 +13075,7 @@ static voxgi_result voxgi__screen_gather(voxgi_context *ctx, void *user, size_t 
     J->points = points;
     J->normals = normals;
     J->out = out;
-    voxgi__parallel(ctx, count, 16, voxgi__screen_rows, J);
-    return VOXGI_OK;
+    return voxgi__screen_rays(ctx, J, count);
 }
 
 VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ssgi_image_desc *desc, float *rgb, size_t rgb_bytes,

@@ -23,8 +23,10 @@ ivec3 voxel_at(vec3 o, vec3 d, float t, ivec3 lo, ivec3 hi)
     return ivec3(x);
 }
 
-bool occluded(vec3 o, vec3 d)
+// Whether the segment meets an occupied voxel, and which (hit)
+bool occluded_at(vec3 o, vec3 d, out ivec3 hit)
 {
+    hit = ivec3(0);
     ivec3 res = occ_res(0), lo = ivec3(0), hi = res - 1, v;
     float t0 = 0.0, t1 = 1.0;
     int l = u_hierarchical != 0 ? u_levels - 1 : 0;
@@ -43,7 +45,7 @@ bool occluded(vec3 o, vec3 d)
         int size = 1 << l, axis = 0;
         ivec3 cell = v >> l;
         if (occ_get(l, cell)) {
-            if (l == 0) return true;
+            if (l == 0) { hit = v; return true; }
             l--;
             continue;
         }
@@ -60,4 +62,10 @@ bool occluded(vec3 o, vec3 d)
         if (v[axis] < 0 || v[axis] > hi[axis]) return false;
         if (u_hierarchical != 0 && l < u_levels - 1) l++;
     }
+}
+
+bool occluded(vec3 o, vec3 d)
+{
+    ivec3 hit;
+    return occluded_at(o, d, hit);
 }

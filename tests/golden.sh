@@ -123,6 +123,8 @@ run vct-gl-aniso render rsm-walls --method vct --backend gl --res 24 --anisotrop
 run rsm-gl render cornell-box --method rsm --backend gl --size 16 16 --rsm-size 24 --rsm-samples 16 --rsm-points 2 --gather-stride 2 \
     --res 16 --spp 2 $T --json -o "$tmp/o.pfm"
 run sh-gl render cornell-box --method sh --backend gl --size 16 16 --res 16 --spp 2 $T --json -o "$tmp/o.pfm"
+run ssao-gl render cornell-box --method ssao --backend gl --size 16 16 --rays 8 --steps 8 $T --json -o "$tmp/o.pfm"
+run hybrid-gl render cornell-box --method hybrid --backend gl --size 16 16 --rays 8 --res 32 --spp 2 $T --json -o "$tmp/o.pfm"
 
 # 4. the cone tracer's report at a tiny size (the error columns, not the times)
 rm -rf "$tmp/report"
