@@ -373,6 +373,82 @@ static void test_screen_gl_equals_cpu(void)
     voxgi_destroy(ctx[1]);
 }
 
+/* View-independence: a floor point 0.2 beside a unit cube, radius 0.5, seen by two cameras: one
+   sees the cube's face beside the point, the other, from above the cube's far side, sees the
+   point but not that face (it turns away). The voxels' occlusion there is the same from both
+   (within 0.05: the rays' rotation is drawn per pixel); the depth buffer's drops by more, as the
+   face it cannot see occludes nothing. */
+static void test_vao_view_independence(void)
+{
+    enum { W = 64 };
+    static const float floor_quad[12] = {-4, 0, -4, -4, 0, 4, 4, 0, 4, 4, 0, -4};
+    static const float cube[5][12] = {{-0.5f, 1, -0.5f, -0.5f, 1, 0.5f, 0.5f, 1, 0.5f, 0.5f, 1, -0.5f},
+                                      {-0.5f, 0, 0.5f, 0.5f, 0, 0.5f, 0.5f, 1, 0.5f, -0.5f, 1, 0.5f},
+                                      {-0.5f, 0, -0.5f, -0.5f, 1, -0.5f, 0.5f, 1, -0.5f, 0.5f, 0, -0.5f},
+                                      {0.5f, 0, -0.5f, 0.5f, 1, -0.5f, 0.5f, 1, 0.5f, 0.5f, 0, 0.5f},
+                                      {-0.5f, 0, -0.5f, -0.5f, 0, 0.5f, -0.5f, 1, 0.5f, -0.5f, 1, -0.5f}};
+    static const double pt[3] = {0.7, 0, 0.1};
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_camera views[2];
+    static float pos[3 * W * W], nrm[3 * W * W], ao[2][W * W];
+    double at_point[2][2];
+    voxgi_voxels *vox = NULL;
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
+    int v, k, m, i;
+    views[0] = look(3, 2, 0.5, 0.6, 0.2, 0);
+    views[1] = look(0.3, 4, 2, 0.7, 0, 0.1); /* from above the cube's far side: the face beside the point turns away */
+    q.n = 0;
+    quad(&q, floor_quad, 0);
+    for (k = 0; k < 5; k++) quad(&q, cube[k], 0);
+    scene_of_quads(&sc, &mesh, &q, NULL, 0, NULL, 0);
+    memset(&vd, 0, sizeof vd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = 256;
+    TH_CHECK(voxgi_fit_grid(ctx, &sc, &fit, &vd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (v = 0; v < 2; v++) {
+        voxgi_camera c = views[v];
+        double best = 1e30;
+        int at = -1;
+        c.width = c.height = W;
+        TH_CHECK(voxgi_gbuffer_render(ctx, &sc, &c, pos, nrm, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        for (i = 0; i < W * W; i++) { /* the pixel seeing the point */
+            double dx = pos[3 * i] - pt[0], dy = pos[3 * i + 1] - pt[1], dz = pos[3 * i + 2] - pt[2], dd = dx * dx + dy * dy + dz * dz;
+            if (nrm[3 * i + 1] > 0.5f && dd < best) { best = dd; at = i; }
+        }
+        TH_CHECK(at >= 0 && best < 0.05 * 0.05, "view %d sees the point (%g away)", v, sqrt(best));
+        if (at < 0) continue;
+        for (k = 0; k < 3; k++) { /* that pixel's surface exactly at the point, so that both views measure the same point */
+            pos[3 * at + k] = (float)pt[k];
+            nrm[3 * at + k] = k == 1 ? 1.0f : 0.0f;
+        }
+        for (m = 0; m < 2; m++) {
+            voxgi_ao_desc d;
+            memset(&d, 0, sizeof d);
+            d.camera = c;
+            d.positions = pos;
+            d.normals = nrm;
+            d.method = (voxgi_ao_method)m;
+            d.voxels = vox;
+            d.traversal = VOXGI_TRAVERSAL_HIERARCHICAL;
+            d.rays = 256;
+            d.steps = 32;
+            d.radius = 0.5f;
+            TH_CHECK(voxgi_ao(ctx, &d, ao[m], sizeof ao[m]) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            at_point[v][m] = ao[m][at];
+        }
+    }
+    printf("    the point's occlusion from two views: depth buffer %.3f and %.3f, voxels %.3f and %.3f\n", at_point[0][0], at_point[1][0], at_point[0][1],
+           at_point[1][1]);
+    TH_CHECK(fabs(at_point[0][1] - at_point[1][1]) <= 0.05, "the voxels' occlusion depends on the view");
+    TH_CHECK(fabs(at_point[0][0] - at_point[1][0]) > fabs(at_point[0][1] - at_point[1][1]) + 0.05, "the depth buffer does not depend on the view here");
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_destroy(ctx);
+}
+
 static void test_ao_input(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -417,6 +493,7 @@ int main(void)
     TH_RUN(test_ao_corner);
     TH_RUN(test_ao_closed_box);
     TH_RUN(test_ssao_radius_check);
+    TH_RUN(test_vao_view_independence);
     TH_RUN(test_ssgi_corner);
     TH_RUN(test_screen_gl_equals_cpu);
     TH_RUN(test_ao_input);
