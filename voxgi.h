@@ -1032,6 +1032,9 @@ typedef struct voxgi_ao_desc {
     int steps;                    /* SCREEN: per ray; 0 = 16 */
     float radius;                 /* world units, > 0 */
     uint64_t seed;
+    int point_sampling;           /* SCREEN: 1 = one point per ray at distance Phi_3 x radius (3D Hammersley) tested
+                                     against the depth buffer instead of the march: each ray then counts
+                                     (1 - d / radius) of a hit at d (linear falloff, obscurance), not 1 */
 } voxgi_ao_desc;
 /* ao: width x height floats. On a GL context the rays run on GL (shaders/screen_rays.glsl, in
    float, the random numbers the CPU's): within 1e-4 of the CPU's. */
@@ -1095,6 +1098,7 @@ typedef struct voxgi_ao_image_desc {
     int rays, steps;              /* as voxgi_ao_desc's */
     float radius;                 /* 0 = a tenth of the scene's longest side */
     uint64_t seed;
+    int point_sampling;           /* SCREEN: as voxgi_ao_desc's */
 } voxgi_ao_image_desc;
 typedef struct voxgi_ao_image_info {
     float radius;                 /* the radius used */
@@ -3953,7 +3957,7 @@ typedef enum voxgi__gl_program_id {
     X(u_blend) X(u_caster) X(u_casters) X(u_cell_levels) X(u_channels) X(u_cones) X(u_count) X(u_dir) X(u_dst_dims) X(u_dst_res) X(u_eye) \
     X(u_face) X(u_factor) X(u_far) X(u_first) X(u_first_slice) X(u_forward) X(u_gather) X(u_half_tan) X(u_has_albedo)        \
     X(u_hierarchical) X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_lookup) X(u_maps) X(u_max_channels) X(u_max_distance) X(u_max_lod)    \
-    X(u_near) X(u_offset) X(u_op) X(u_opening) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_premultiplied) X(u_radius) X(u_rays)     \
+    X(u_near) X(u_offset) X(u_op) X(u_opening) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_point_sampling) X(u_premultiplied) X(u_radius) X(u_rays)     \
     X(u_regions) X(u_res) X(u_right) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) X(u_src_level)          \
     X(u_src_res) X(u_step) X(u_steps) X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_leaf_first) \
     X(u_svo_nodes) X(u_svo_single) X(u_tan) X(u_thin) X(u_through_voxels) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) X(u_view)          \
@@ -11864,7 +11868,7 @@ typedef struct voxgi__screen_job {
     voxgi_ao_method method;
     const voxgi__occupancy *O;    /* VOXELS */
     const voxgi_grid *grid;
-    int hierarchical, rays, steps;
+    int hierarchical, rays, steps, point_sampling;
     double radius;
     uint64_t seed;
     const float *points, *normals;
@@ -11896,33 +11900,40 @@ static int voxgi__screen_has_surface(const voxgi__screen_job *J, size_t pix)
     return m[0] != 0 || m[1] != 0 || m[2] != 0;
 }
 
-/* The ray p + t dir, t in [0, radius], marched through the depth buffer: 1 when a step lies behind
-   the surface of the pixel it projects to (that pixel's plane met by the eye's ray through the
-   step, nearer the eye by more than radius / 1000, within radius of p), that pixel in *hit. */
+/* 1 when point s lies behind the surface of the pixel it projects to (that pixel's plane met by
+   the eye's ray through s, nearer the eye by more than radius / 1000) and that surface lies within
+   radius of p; that pixel in *hit. */
+static int voxgi__screen_behind(const voxgi__screen_job *J, const double p[3], const double s[3], size_t *hit)
+{
+    double R = J->radius, v[3], z, nv = 0, nq = 0, f, dq = 0;
+    const float *q, *m;
+    size_t at;
+    int c;
+    if (!voxgi__screen_pixel(J, s, &at, &z) || !voxgi__screen_has_surface(J, at)) return 0;
+    q = J->pos + 3 * at;
+    m = J->nrm + 3 * at;
+    for (c = 0; c < 3; c++) {
+        v[c] = s[c] - J->eye[c];
+        nv += m[c] * v[c];
+        nq += m[c] * ((double)q[c] - J->eye[c]);
+    }
+    if (!(fabs(nv) > 1e-9 * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))) return 0; /* the plane edge-on */
+    f = nq / nv;
+    for (c = 0; c < 3; c++) dq += (J->eye[c] + f * v[c] - p[c]) * (J->eye[c] + f * v[c] - p[c]);
+    if (!(f > 0 && f < 1 - 1e-3 * R / z && dq < R * R)) return 0;
+    *hit = at;
+    return 1;
+}
+
+/* The ray p + t dir, t in [0, radius], marched through the depth buffer: 1 at the first step
+   behind the screen's surface (voxgi__screen_behind), its pixel in *hit. */
 static int voxgi__screen_march(const voxgi__screen_job *J, const double p[3], const double dir[3], double jitter, size_t *hit)
 {
-    double R = J->radius;
     int j, c;
     for (j = 0; j < J->steps; j++) {
-        double s[3], v[3], z, nv = 0, nq = 0, f, dq = 0, tt = (j + jitter) / J->steps * R;
-        const float *q, *m;
-        size_t at;
+        double s[3], tt = (j + jitter) / J->steps * J->radius;
         for (c = 0; c < 3; c++) s[c] = p[c] + tt * dir[c];
-        if (!voxgi__screen_pixel(J, s, &at, &z) || !voxgi__screen_has_surface(J, at)) continue;
-        q = J->pos + 3 * at;
-        m = J->nrm + 3 * at;
-        for (c = 0; c < 3; c++) {
-            v[c] = s[c] - J->eye[c];
-            nv += m[c] * v[c];
-            nq += m[c] * ((double)q[c] - J->eye[c]);
-        }
-        if (!(fabs(nv) > 1e-9 * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))) continue; /* the plane edge-on */
-        f = nq / nv;
-        for (c = 0; c < 3; c++) dq += (J->eye[c] + f * v[c] - p[c]) * (J->eye[c] + f * v[c] - p[c]);
-        if (f > 0 && f < 1 - 1e-3 * R / z && dq < R * R) {
-            *hit = at;
-            return 1;
-        }
+        if (voxgi__screen_behind(J, p, s, hit)) return 1;
     }
     return 0;
 }
@@ -11978,7 +11989,13 @@ static void voxgi__screen_rows(void *user, size_t first, size_t end)
                 r = sqrt(u[0]);
                 phi = 2 * VOXGI__PI * u[1];
                 for (a = 0; a < 3; a++) dir[a] = r * cos(phi) * t[a] + r * sin(phi) * b[a] + sqrt(VOXGI__MAX(0.0, 1 - u[0])) * n[a];
-                met = J->method == VOXGI_AO_VOXELS ? voxgi__screen_voxels(J, p, n, dir, &steps, &hit) : voxgi__screen_march(J, p, dir, jitter, &hit);
+                if (J->point_sampling) { /* one point along the ray, its distance Phi_3(k) shifted by the jitter */
+                    double s3[3], f = voxgi_radical_inverse(3, (uint64_t)k) + jitter;
+                    f -= floor(f);
+                    for (a = 0; a < 3; a++) s3[a] = p[a] + f * J->radius * dir[a];
+                    met = voxgi__screen_behind(J, p, s3, &hit);
+                } else
+                    met = J->method == VOXGI_AO_VOXELS ? voxgi__screen_voxels(J, p, n, dir, &steps, &hit) : voxgi__screen_march(J, p, dir, jitter, &hit);
                 blocked += met;
                 if (met && J->radiance && hit != SIZE_MAX)
                     for (a = 0; a < 3; a++) e[a] += J->radiance[3 * hit + (size_t)a];
@@ -12046,6 +12063,7 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
         gl->ProgramUniform1f(p, VOXGI__LOC_u_radius, (float)J->radius);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_gather, J->radiance != NULL);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_through_voxels, J->method == VOXGI_AO_VOXELS);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_point_sampling, J->point_sampling);
         voxgi__gl_dispatch_points(gl, p, count);
         voxgi__gl_unbind(gl);
         r = voxgi__gl_read_buffer(ctx, buf[2], J->out, count * 4 * per);
@@ -12124,6 +12142,8 @@ VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, f
     if ((r = voxgi__screen_setup(ctx, &J, &desc->camera, desc->positions, desc->normals, desc->method, desc->traversal, desc->rays, desc->steps,
                                  desc->radius)) != VOXGI_OK)
         return r;
+    if (desc->point_sampling && desc->method != VOXGI_AO_SCREEN) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point sampling is for SCREEN");
+    J.point_sampling = desc->point_sampling != 0;
     if (ao_bytes < (size_t)desc->camera.width * (size_t)desc->camera.height * 4)
         return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "ao holds %lu bytes, the image needs %lu", (unsigned long)ao_bytes,
                            (unsigned long)((size_t)desc->camera.width * (size_t)desc->camera.height * 4));
@@ -13191,6 +13211,7 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
         ad.rays = desc->rays;
         ad.steps = desc->steps;
         ad.seed = desc->seed;
+        ad.point_sampling = desc->point_sampling;
         t1 = voxgi__now_ms();
         r = voxgi_ao(ctx, &ad, ao, pixels * 4);
         inf.ms_ao = voxgi__now_ms() - t1;

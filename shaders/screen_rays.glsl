@@ -23,6 +23,7 @@ layout(location = VOXGI_LOC_u_steps) uniform int u_steps;
 layout(location = VOXGI_LOC_u_radius) uniform float u_radius;
 layout(location = VOXGI_LOC_u_gather) uniform int u_gather;
 layout(location = VOXGI_LOC_u_through_voxels) uniform int u_through_voxels;
+layout(location = VOXGI_LOC_u_point_sampling) uniform int u_point_sampling;
 
 const float PI = 3.14159265358979;
 
@@ -44,23 +45,43 @@ bool screen_pixel(vec3 s, out uint pix, out float z)
     return true;
 }
 
+// voxgi__screen_behind: s behind the surface of its pixel, that surface within the radius of p
+bool behind(vec3 p, vec3 s, out uint hit)
+{
+    float z;
+    uint at;
+    hit = 0u;
+    if (!screen_pixel(s, at, z) || !has_surface(at)) return false;
+    vec3 q = svec(at, 0u), m = svec(at, 3u), v = s - u_eye;
+    float nv = dot(m, v), nq = dot(m, q - u_eye);
+    if (!(abs(nv) > 1e-9 * length(v))) return false;
+    float f = nq / nv;
+    vec3 e = u_eye + f * v - p;
+    if (!(f > 0.0 && f < 1.0 - 1e-3 * u_radius / z && dot(e, e) < u_radius * u_radius)) return false;
+    hit = at;
+    return true;
+}
+
 // voxgi__screen_march
 bool march(vec3 p, vec3 dir, float jitter, out uint hit)
 {
     hit = 0u;
     for (int j = 0; j < u_steps; j++) {
-        float tt = (float(j) + jitter) / float(u_steps) * u_radius, z;
-        vec3 s = p + tt * dir;
-        uint at;
-        if (!screen_pixel(s, at, z) || !has_surface(at)) continue;
-        vec3 q = svec(at, 0u), m = svec(at, 3u), v = s - u_eye;
-        float nv = dot(m, v), nq = dot(m, q - u_eye);
-        if (!(abs(nv) > 1e-9 * length(v))) continue;
-        float f = nq / nv;
-        vec3 e = u_eye + f * v - p;
-        if (f > 0.0 && f < 1.0 - 1e-3 * u_radius / z && dot(e, e) < u_radius * u_radius) { hit = at; return true; }
+        float tt = (float(j) + jitter) / float(u_steps) * u_radius;
+        if (behind(p, p + tt * dir, hit)) return true;
     }
     return false;
+}
+
+// voxgi_radical_inverse(3, k)
+float phi3(int k)
+{
+    float r = 0.0, f = 1.0 / 3.0;
+    for (int i = k; i > 0; i /= 3) {
+        r += float(i % 3) * f;
+        f /= 3.0;
+    }
+    return r;
 }
 
 // voxgi__screen_voxels: met, and the pixel showing the entry point (0xFFFFFFFF: hidden or off screen)
@@ -100,7 +121,9 @@ void main()
             float r = sqrt(u.x), phi = 2.0 * PI * u.y;
             vec3 dir = r * cos(phi) * t + r * sin(phi) * b + sqrt(max(0.0, 1.0 - u.x)) * n;
             uint hit;
-            bool met = u_through_voxels != 0 ? through_voxels(p, n, dir, hit) : march(p, dir, jitter, hit);
+            bool met;
+            if (u_point_sampling != 0) met = behind(p, p + fract(phi3(k) + jitter) * u_radius * dir, hit); // one point along the ray
+            else met = u_through_voxels != 0 ? through_voxels(p, n, dir, hit) : march(p, dir, jitter, hit);
             if (met) blocked++;
             if (met && u_gather != 0 && hit != 0xFFFFFFFFu) e += svec(hit, 6u);
         }

@@ -110,6 +110,7 @@ run rsm-cornell render cornell-box --method rsm --size 16 16 --rsm-size 24 --rsm
     $T --json -o "$tmp/o.pfm"
 run sh-cornell render cornell-box --method sh --size 16 16 --res 16 --spp 2 $T --json -o "$tmp/o.pfm"
 run ssao-cornell render cornell-box --method ssao --size 16 16 --rays 8 --steps 8 $T --json -o "$tmp/o.pfm"
+run ssao-points render cornell-box --method ssao --point-sampling --size 16 16 --rays 8 $T --json -o "$tmp/o.pfm"
 run vao-cornell render cornell-box --method vao --size 16 16 --rays 8 --res 32 $T --json -o "$tmp/o.pfm"
 run ao-reference render cornell-box --ao-radius 0.1 --size 16 16 --spp 8 $T --json -o "$tmp/o.pfm"
 run ssgi-cornell render cornell-box --method ssgi --size 16 16 --rays 8 --steps 8 --spp 2 $T --json -o "$tmp/o.pfm"

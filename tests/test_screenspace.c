@@ -367,6 +367,23 @@ static void test_screen_gl_equals_cpu(void)
                    (unsigned long)n);
             TH_CHECK(off <= n / 100, "GL and CPU part ways");
         }
+    { /* point sampling */
+        size_t off = 0;
+        for (b = 0; b < 2; b++) {
+            voxgi_ao_desc d;
+            memset(&d, 0, sizeof d);
+            d.camera = c;
+            d.positions = pos;
+            d.normals = nrm;
+            d.rays = 32;
+            d.radius = 1;
+            d.point_sampling = 1;
+            TH_CHECK(voxgi_ao(ctx[b], &d, out[b], sizeof out[b]) == VOXGI_OK, "%s", voxgi_last_error(ctx[b]));
+        }
+        for (i = 0; i < W * W; i++) off += fabs((double)out[0][i] - out[1][i]) > 1e-4;
+        printf("    occlusion, points: %lu of %d values differ by more than 1e-4\n", (unsigned long)off, W * W);
+        TH_CHECK(off <= W * W / 100, "GL and CPU part ways");
+    }
     voxgi_voxels_destroy(ctx[0], vox[0]);
     voxgi_voxels_destroy(ctx[1], vox[1]);
     voxgi_destroy(ctx[0]);
@@ -449,6 +466,46 @@ static void test_vao_view_independence(void)
     voxgi_destroy(ctx);
 }
 
+/* Point sampling counts a ray blocked at d as (1 - d / radius) (one point at a uniform distance
+   along it): at the floor-wall corner (radius 1) the share with that falloff, by quadrature over
+   the wall's directions, within 0.03 (256 points); 0 on the open plane. */
+static void test_ssao_point_sampling(void)
+{
+    enum { W = 64 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_camera c = look(-2.5, 2, 1.5, 0.6, 0, 0);
+    static float pos[3 * W * W], nrm[3 * W * W], ao[W * W];
+    voxgi_ao_desc d;
+    size_t centre = (size_t)(W / 2) * W + W / 2;
+    double dist, want = 0;
+    int i, j, n = 2000;
+    ao_scene(&q, &sc, &mesh, 1, 0);
+    c.width = c.height = W;
+    TH_CHECK(voxgi_gbuffer_render(ctx, &sc, &c, pos, nrm, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    dist = 1 - pos[3 * centre];
+    for (i = 0; i < n; i++) /* the projected disk (cosine weight): x = the direction's component toward the wall */
+        for (j = 0; j < n; j++) {
+            double x = -1 + 2 * (i + 0.5) / n, y = -1 + 2 * (j + 0.5) / n;
+            if (x * x + y * y < 1 && x > dist) want += (1 - dist / x) * (4.0 / ((double)n * n)) / PI;
+        }
+    memset(&d, 0, sizeof d);
+    d.camera = c;
+    d.positions = pos;
+    d.normals = nrm;
+    d.rays = 256;
+    d.radius = 1;
+    d.point_sampling = 1;
+    TH_CHECK(voxgi_ao(ctx, &d, ao, sizeof ao) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    printf("    point sampling at the corner (%.3f from the wall): %.4f, with the falloff's share %.4f\n", dist, ao[centre], want);
+    TH_CHECK(fabs(ao[centre] - want) < 0.03, "the points");
+    d.method = VOXGI_AO_VOXELS;
+    TH_CHECK(voxgi_ao(ctx, &d, ao, sizeof ao) == VOXGI_ERR_INVALID_ARGUMENT, "point sampling through voxels");
+    voxgi_destroy(ctx);
+}
+
 static void test_ao_input(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -493,6 +550,7 @@ int main(void)
     TH_RUN(test_ao_corner);
     TH_RUN(test_ao_closed_box);
     TH_RUN(test_ssao_radius_check);
+    TH_RUN(test_ssao_point_sampling);
     TH_RUN(test_vao_view_independence);
     TH_RUN(test_ssgi_corner);
     TH_RUN(test_screen_gl_equals_cpu);

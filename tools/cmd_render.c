@@ -24,7 +24,7 @@ typedef struct render_args {
     int bounce_cones, bounce_block, isotropic;
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
     double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
-    int rays, march_steps;
+    int rays, march_steps, point_sampling;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -287,18 +287,18 @@ static void print_ao(const render_args *a, const char *name, const double mean[3
     int w = a->size[0], h = a->size[1], rays = ad->rays ? ad->rays : 16, steps = ad->steps ? ad->steps : 16;
     const char *method = ad->method == VOXGI_AO_VOXELS ? "vao" : "ssao";
     if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"%s\",\"size\":[%d,%d],\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"res\":%d,\"gbuffer_ms\":%.3f,"
-               "\"voxels_ms\":%.3f,\"ao_ms\":%.3f,\"ms\":%.3f,\"mean\":%.6g,",
-               name, method, w, h, (double)ai->radius, rays, steps, ad->resolution ? ad->resolution : 128, ai->ms_gbuffer, ai->ms_voxels, ai->ms_ao, ai->ms,
+        printf("{\"scene\":\"%s\",\"method\":\"%s\",\"size\":[%d,%d],\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"point_sampling\":%d,\"res\":%d,"
+               "\"gbuffer_ms\":%.3f,\"voxels_ms\":%.3f,\"ao_ms\":%.3f,\"ms\":%.3f,\"mean\":%.6g,",
+               name, method, w, h, (double)ai->radius, rays, steps, ad->point_sampling, ad->resolution ? ad->resolution : 128, ai->ms_gbuffer, ai->ms_voxels, ai->ms_ao, ai->ms,
                mean[0]);
         if (a->compare || a->reference) print_compare_json(cmp);
         printf("\"output\":\"%s\"}\n", a->out);
         return;
     }
-    printf("%s: %d x %d, ambient occlusion from %s (radius %.4g, %d rays%s): G-buffer %.1f ms, voxels %.1f ms, occlusion %.1f ms, total %.1f ms; "
+    printf("%s: %d x %d, ambient occlusion from %s (radius %.4g, %d %s%s): G-buffer %.1f ms, voxels %.1f ms, occlusion %.1f ms, total %.1f ms; "
            "mean %.4g -> %s\n",
-           name, w, h, ad->method == VOXGI_AO_VOXELS ? "the voxels" : "the depth buffer", (double)ai->radius, rays,
-           ad->method == VOXGI_AO_VOXELS ? "" : " marched in steps", ai->ms_gbuffer, ai->ms_voxels, ai->ms_ao, ai->ms, mean[0], a->out);
+           name, w, h, ad->method == VOXGI_AO_VOXELS ? "the voxels" : "the depth buffer", (double)ai->radius, rays, ad->point_sampling ? "points" : "rays",
+           ad->method == VOXGI_AO_VOXELS || ad->point_sampling ? "" : " marched in steps", ai->ms_gbuffer, ai->ms_voxels, ai->ms_ao, ai->ms, mean[0], a->out);
     if (a->compare || a->reference) print_compare(a, d, cmp);
 }
 
@@ -481,6 +481,7 @@ static int render_run(cli_session *s, const render_args *a)
         J.ad.rays = a->rays;
         J.ad.steps = a->march_steps;
         J.ad.radius = (float)a->radius;
+        J.ad.point_sampling = a->point_sampling;
     }
     if (a->method == METHOD_SSGI || a->method == METHOD_HYBRID) { /* direct light and one bounce: compared with the reference's one bounce */
         J.gd.camera = d->camera;
@@ -591,6 +592,8 @@ int cmd_render(int argc, char **argv)
              .help = "ssao, vao: the occlusion's radius (default a tenth of the scene's longest\nside); ssgi, hybrid: the rays' reach (default the scene's longest side)"},
             {.name = "--rays", .arg = "N", .kind = CLI_INT, .dst = &a.rays, .lo = 1, .hi = 65536, .help = "ssao, vao, ssgi, hybrid: rays per pixel (default 16)"},
             {.name = "--steps", .arg = "N", .kind = CLI_INT, .dst = &a.march_steps, .lo = 1, .hi = 4096, .help = "ssao, ssgi: steps along each ray (default 16)"},
+            {.name = "--point-sampling", .kind = CLI_FLAG, .dst = &a.point_sampling,
+             .help = "ssao: one point per ray instead of the march (occlusion with a linear\nfalloff: a hit at d counts 1 - d / radius)"},
             {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
              .help = "rsm and sh: each gather's visibility through the voxels (default hierarchical)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
