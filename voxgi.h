@@ -12839,6 +12839,21 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
     return r;
 }
 
+/* The longest side of the box around the scene's triangles (1 when they have no extent): the scale
+   of the screen passes' default radii. */
+static double voxgi__longest_side(const voxgi__tracer *tr)
+{
+    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, side = 0;
+    size_t i;
+    int a;
+    for (i = 0; i < 9 * tr->flat.triangle_count; i++) {
+        lo[i % 3] = VOXGI__MIN(lo[i % 3], tr->v[i]);
+        hi[i % 3] = VOXGI__MAX(hi[i % 3], tr->v[i]);
+    }
+    for (a = 0; a < 3; a++) side = VOXGI__MAX(side, hi[a] - lo[a]);
+    return side > 0 ? side : 1;
+}
+
 /* ----- one-bounce images: the reflective shadow maps' and the SH volume's
 
    What both share: the direct light as voxgi_tsm_render's (exact shadow rays), the G-buffer, a
@@ -13120,17 +13135,7 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
                             desc->method == VOXGI_AO_VOXELS ? VOXGI_VISIBILITY_HIERARCHICAL : VOXGI_VISIBILITY_NONE, rgb, rgb_bytes, reflected, &B,
                             &inf.ms_direct, &inf.ms_voxels);
     inf.radius = desc->radius;
-    if (r == VOXGI_OK && !(inf.radius > 0)) { /* the scene's longest side */
-        double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
-        size_t i;
-        int a;
-        for (i = 0; i < 9 * B.tr.flat.triangle_count; i++) {
-            lo[i % 3] = VOXGI__MIN(lo[i % 3], B.tr.v[i]);
-            hi[i % 3] = VOXGI__MAX(hi[i % 3], B.tr.v[i]);
-        }
-        for (a = 0; a < 3; a++) inf.radius = (float)VOXGI__MAX((double)inf.radius, hi[a] - lo[a]);
-        if (!(inf.radius > 0)) inf.radius = 1;
-    }
+    if (r == VOXGI_OK && !(inf.radius > 0)) inf.radius = (float)voxgi__longest_side(&B.tr);
     if (r == VOXGI_OK) r = voxgi__screen_setup(ctx, &J, &desc->camera, B.pos, B.nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, inf.radius);
     t1 = voxgi__now_ms();
     if (r == VOXGI_OK) {
@@ -13173,16 +13178,7 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
     memset(&ad, 0, sizeof ad);
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     ad.radius = desc->radius;
-    if (!(ad.radius > 0)) { /* a tenth of the scene's longest side */
-        double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
-        int a;
-        for (p = 0; p < 9 * tr.flat.triangle_count; p++) {
-            lo[p % 3] = VOXGI__MIN(lo[p % 3], tr.v[p]);
-            hi[p % 3] = VOXGI__MAX(hi[p % 3], tr.v[p]);
-        }
-        for (a = 0; a < 3; a++) ad.radius = (float)VOXGI__MAX((double)ad.radius, 0.1 * (hi[a] - lo[a]));
-        if (!(ad.radius > 0)) ad.radius = 1;
-    }
+    if (!(ad.radius > 0)) ad.radius = (float)(0.1 * voxgi__longest_side(&tr));
     pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
     nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
     ao = (float *)voxgi__alloc_array(ctx, pixels, 4, 0);
