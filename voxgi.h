@@ -1062,10 +1062,34 @@ typedef struct voxgi_ssgi_desc {
 /* irradiance: 3 floats per pixel; on a GL context on GL, as voxgi_ao. */
 VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *desc, float *irradiance, size_t irradiance_bytes);
 
+/* The edge-aware blur and upsampling of a screen pass's result (Thiedemann 2009 after Reinbothe et
+   al. and Kopf et al.: a joint bilateral filter, run as a row pass then a column pass): each
+   pixel with a surface takes the weighted mean of the values within `radius` pixels across, then
+   down, each weighted by
+       exp(-d^2 / (2 sigma^2)) x max(0, n . n_s)^8 x exp(-(((p_s - p) . n) / t)^2)
+   (d the distance in pixels, sigma = max(radius, 1) / 2; n, p the pixel's normal and position,
+   n_s, p_s the sample's; t = max(radius, 1) x the width of a pixel at the pixel's distance): the
+   same surface weighs fully, another (an edge, a step in depth) next to nothing. No weight on the
+   values themselves: what the filter removes is their noise. With half_resolution the values are
+   an image of (w + 1) / 2 x (h + 1) / 2 pixels, its pixel (X, Y) computed at the full pixel
+   (2X, 2Y), and the same weights against those pixels' surfaces upsample it (radius at least 1).
+   A pass whose weights sum below 1e-3 has no sample on the pixel's surface: out is 0 there and
+   unsupported (if not NULL, a byte per pixel) 1, for the caller to compute on its own. */
+typedef struct voxgi_screen_filter_desc {
+    voxgi_camera camera;          /* the full-resolution G-buffer's view and size */
+    const float *positions, *normals; /* full resolution, as voxgi_ao_desc's */
+    int channels;                 /* values per pixel, 1..4 */
+    int half_resolution;          /* 1: values at half resolution, upsampled */
+    int radius;                   /* pixels (full resolution) each side, 0..64; 0 at full resolution: a copy */
+} voxgi_screen_filter_desc;
+/* out: channels floats per full-resolution pixel. On a GL context on GL (shaders/screen_filter.glsl). */
+VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_screen_filter_desc *desc, const float *values, float *out, size_t out_bytes,
+                                           unsigned char *unsupported);
+
 /* An image of the direct light (as voxgi_rsm_render's) and one bounce from the screen
    (voxgi_ssgi: SSGI through the depth buffer, or Hybrid-GI through a conservative grid of
    `resolution` voxels), the screen's radiance the direct light its surfaces reflect, gathered at
-   the anchors of the gather stride and interpolated between them as voxgi_rsm_render does.
+   every pixel or at half resolution, blurred and upsampled by voxgi_screen_filter.
    Compare with the reference's one bounce: light from surfaces the camera does not see is
    missing by design. */
 typedef struct voxgi_ssgi_image_desc {
@@ -1077,7 +1101,8 @@ typedef struct voxgi_ssgi_image_desc {
     int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
     uint64_t seed;
     int hide_emitters;
-    int gather_stride;            /* 0 = 4 */
+    int half_resolution;          /* 1: the rays at every other pixel across and down, upsampled by voxgi_screen_filter */
+    int blur;                     /* voxgi_screen_filter's radius in pixels (0: none, 0..64) */
 } voxgi_ssgi_image_desc;
 typedef struct voxgi_ssgi_image_info {
     float radius;                 /* the radius used */
@@ -1088,7 +1113,8 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
                                          voxgi_ssgi_image_info *info);
 
 /* An image of ambient occlusion (grey: the occluded share in all three channels, 0 where nothing
-   is): voxgi's G-buffer (the pixel centres' rays), voxgi_ao by `method`, the voxels (VOXELS) a
+   is): voxgi's G-buffer (the pixel centres' rays), voxgi_ao's rays by `method` at every pixel or
+   at half resolution, blurred and upsampled by voxgi_screen_filter, the voxels (VOXELS) a
    conservative grid of `resolution` along the scene's longest side. Compare with the reference's
    AO mode at the same radius. */
 typedef struct voxgi_ao_image_desc {
@@ -1099,9 +1125,11 @@ typedef struct voxgi_ao_image_desc {
     float radius;                 /* 0 = a tenth of the scene's longest side */
     uint64_t seed;
     int point_sampling;           /* SCREEN: as voxgi_ao_desc's */
+    int half_resolution, blur;    /* as voxgi_ssgi_image_desc's */
 } voxgi_ao_image_desc;
 typedef struct voxgi_ao_image_info {
     float radius;                 /* the radius used */
+    size_t gathered;              /* pixels whose rays ran */
     double ms_gbuffer, ms_voxels, ms_ao, ms;
 } voxgi_ao_image_info;
 VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ao_image_desc *desc, float *rgb, size_t rgb_bytes,
@@ -3939,7 +3967,8 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
     X(tsm_lookup, COMPUTE, "tsm_lookup.glsl")                                                                      \
     X(rsm_gather, COMPUTE, "voxel_traverse.glsl rsm_gather.glsl")                                                  \
     X(sh_gather, COMPUTE, "voxel_traverse.glsl sh_gather.glsl")                                                    \
-    X(screen_rays, COMPUTE, "voxel_traverse.glsl screen_rays.glsl")
+    X(screen_rays, COMPUTE, "voxel_traverse.glsl screen_rays.glsl")                                                \
+    X(screen_filter, COMPUTE, "screen_filter.glsl")
 
 enum { VOXGI__GL_COMPUTE = 0, VOXGI__GL_RASTER = 1, VOXGI__GL_GEOMETRY = 2 };
 typedef enum voxgi__gl_program_id {
@@ -12167,6 +12196,189 @@ VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *des
     return voxgi__screen_run(ctx, &J, desc->voxels, desc->seed, irradiance);
 }
 
+/* ----- 11.3 edge-aware blur and upsampling */
+typedef struct voxgi__filter_job {
+    const float *pos, *nrm, *in;
+    float *mid, *out;             /* mid: the row pass, w x ih, channels + 1 (the weight's sum) each */
+    unsigned char *unsupported;
+    int w, h, iw, ih, scale, window, channels;
+    double eye[3], pixel_width, inv_two_sigma2; /* pixel_width: a pixel's width at distance 1 */
+} voxgi__filter_job;
+
+/* The weight of the sample at full pixel s for the pixel c, d pixels apart. */
+static double voxgi__filter_weight(const voxgi__filter_job *F, size_t c, size_t s, int d)
+{
+    double dn = 0, dp = 0, dist2 = 0, t, dn2;
+    int a;
+    for (a = 0; a < 3; a++) {
+        double e = (double)F->pos[3 * c + (size_t)a] - F->eye[a];
+        dn += (double)F->nrm[3 * c + (size_t)a] * F->nrm[3 * s + (size_t)a];
+        dp += ((double)F->pos[3 * s + (size_t)a] - F->pos[3 * c + (size_t)a]) * F->nrm[3 * c + (size_t)a];
+        dist2 += e * e;
+    }
+    if (!(dn > 0)) return 0;
+    dn2 = dn * dn;
+    t = VOXGI__MAX(F->window, 1) * F->pixel_width * sqrt(dist2);
+    return dn2 * dn2 * dn2 * dn2 * exp(-(double)(d * d) * F->inv_two_sigma2 - (t > 0 ? dp * dp / (t * t) : 0));
+}
+
+static int voxgi__has_surface(const float *nrm, size_t pix)
+{
+    return nrm[3 * pix] != 0 || nrm[3 * pix + 1] != 0 || nrm[3 * pix + 2] != 0;
+}
+
+/* Rows [first, end) of the row pass (mid, row Y at the full row Y x scale). */
+static void voxgi__filter_rows(void *user, size_t first, size_t end)
+{
+    voxgi__filter_job *F = (voxgi__filter_job *)user;
+    size_t Y;
+    for (Y = first; Y < end; Y++) {
+        int x, X, k, fy = (int)Y * F->scale;
+        for (x = 0; x < F->w; x++) {
+            size_t c = (size_t)fy * (size_t)F->w + (size_t)x;
+            float *m = F->mid + ((size_t)Y * (size_t)F->w + (size_t)x) * (size_t)(F->channels + 1);
+            double sum = 0, v[4] = {0, 0, 0, 0};
+            if (voxgi__has_surface(F->nrm, c))
+                for (X = VOXGI__MAX(0, (x - F->window + F->scale - 1) / F->scale); X < F->iw && X * F->scale <= x + F->window; X++) {
+                    size_t s = (size_t)fy * (size_t)F->w + (size_t)(X * F->scale);
+                    double wt;
+                    if (!voxgi__has_surface(F->nrm, s) || (wt = voxgi__filter_weight(F, c, s, X * F->scale - x)) <= 0) continue;
+                    sum += wt;
+                    for (k = 0; k < F->channels; k++) v[k] += wt * F->in[((size_t)Y * (size_t)F->iw + (size_t)X) * (size_t)F->channels + (size_t)k];
+                }
+            for (k = 0; k < F->channels; k++) m[k] = sum >= 1e-3 ? (float)(v[k] / sum) : 0;
+            m[F->channels] = sum >= 1e-3 ? (float)sum : 0;
+        }
+    }
+}
+
+/* Rows [first, end) of the column pass (out). */
+static void voxgi__filter_columns(void *user, size_t first, size_t end)
+{
+    voxgi__filter_job *F = (voxgi__filter_job *)user;
+    size_t y;
+    for (y = first; y < end; y++) {
+        int x, Y, k;
+        for (x = 0; x < F->w; x++) {
+            size_t c = y * (size_t)F->w + (size_t)x;
+            double sum = 0, v[4] = {0, 0, 0, 0};
+            if (voxgi__has_surface(F->nrm, c))
+                for (Y = VOXGI__MAX(0, ((int)y - F->window + F->scale - 1) / F->scale); Y < F->ih && Y * F->scale <= (int)y + F->window; Y++) {
+                    size_t s = (size_t)(Y * F->scale) * (size_t)F->w + (size_t)x;
+                    const float *m = F->mid + ((size_t)Y * (size_t)F->w + (size_t)x) * (size_t)(F->channels + 1);
+                    double wt;
+                    if (m[F->channels] <= 0 || (wt = voxgi__filter_weight(F, c, s, Y * F->scale - (int)y)) <= 0) continue;
+                    sum += wt;
+                    for (k = 0; k < F->channels; k++) v[k] += wt * m[k];
+                }
+            for (k = 0; k < F->channels; k++) F->out[c * (size_t)F->channels + (size_t)k] = sum >= 1e-3 ? (float)(v[k] / sum) : 0;
+            if (F->unsupported) F->unsupported[c] = voxgi__has_surface(F->nrm, c) && sum < 1e-3;
+        }
+    }
+}
+
+#ifndef VOXGI_NO_GL
+/* Both passes on GL (shaders/screen_filter.glsl, in float). */
+static voxgi_result voxgi__filter_gl(voxgi_context *ctx, voxgi__filter_job *F)
+{
+    voxgi__gl *gl = ctx->gl;
+    size_t pixels = (size_t)F->w * (size_t)F->h, mids = (size_t)F->w * (size_t)F->ih, i;
+    unsigned int buf[5] = {0, 0, 0, 0, 0}, p;
+    uint32_t *flags = NULL;
+    float *screen = (float *)voxgi__alloc_array(ctx, pixels, 24, 0);
+    int pass, a;
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_screen_filter);
+    if (r == VOXGI_OK && !screen) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the filter's G-buffer");
+    if (r == VOXGI_OK && F->unsupported && !(flags = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0)))
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the filter's flags");
+    if (r == VOXGI_OK) {
+        for (i = 0; i < pixels; i++)
+            for (a = 0; a < 3; a++) {
+                screen[6 * i + (size_t)a] = F->pos[3 * i + (size_t)a];
+                screen[6 * i + 3 + (size_t)a] = F->nrm[3 * i + (size_t)a];
+            }
+        p = gl->prog_screen_filter;
+        buf[0] = voxgi__gl_buffer(ctx, pixels * 24, screen);
+        buf[1] = voxgi__gl_buffer(ctx, (size_t)F->iw * (size_t)F->ih * (size_t)F->channels * 4, F->in);
+        buf[2] = voxgi__gl_buffer(ctx, mids * (size_t)(F->channels + 1) * 4, NULL);
+        buf[3] = voxgi__gl_buffer(ctx, pixels * (size_t)F->channels * 4, NULL);
+        buf[4] = voxgi__gl_buffer(ctx, pixels * 4, NULL);
+        for (i = 0; i < 5; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i]);
+        gl->UseProgram(p);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_eye, (float)F->eye[0], (float)F->eye[1], (float)F->eye[2]);
+        gl->ProgramUniform2i(p, VOXGI__LOC_u_size, F->w, F->h);
+        gl->ProgramUniform2i(p, VOXGI__LOC_u_src_dims, F->iw, F->ih);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_factor, F->scale);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_radius, F->window);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_channels, F->channels);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_step, (float)F->pixel_width);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_inv_s, (float)F->inv_two_sigma2);
+        for (pass = 0; pass < 2; pass++) {
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, pass);
+            voxgi__gl_dispatch_points(gl, p, pass ? pixels : mids);
+            gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+        voxgi__gl_unbind(gl);
+        r = voxgi__gl_read_buffer(ctx, buf[3], F->out, pixels * (size_t)F->channels * 4);
+        if (r == VOXGI_OK && flags) r = voxgi__gl_read_buffer(ctx, buf[4], flags, pixels * 4);
+        for (i = 0; flags && r == VOXGI_OK && i < pixels; i++) F->unsupported[i] = flags[i] != 0;
+        for (i = 0; i < 5; i++) voxgi__gl_delete_buffer(ctx, buf[i]);
+        if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the screen filter");
+    }
+    voxgi__free(ctx, screen);
+    voxgi__free(ctx, flags);
+    return r;
+}
+#endif
+
+VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_screen_filter_desc *desc, const float *values, float *out, size_t out_bytes,
+                                           unsigned char *unsupported)
+{
+    voxgi__filter_job F;
+    double forward[3], right[3], up[3], tan_half;
+    size_t pixels, i;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc || !values || !out || !desc->positions || !desc->normals) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc, values, out, positions or normals is NULL");
+    memset(&F, 0, sizeof F);
+    if ((r = voxgi__camera_frame(ctx, &desc->camera, F.eye, forward, right, up, &tan_half)) != VOXGI_OK) return r;
+    if (desc->channels < 1 || desc->channels > 4 || desc->radius < 0 || desc->radius > 64 || (desc->half_resolution != 0 && desc->half_resolution != 1))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "channels %d (1..4), radius %d (0..64), half_resolution %d (0 or 1)", desc->channels, desc->radius,
+                           desc->half_resolution);
+    F.w = desc->camera.width;
+    F.h = desc->camera.height;
+    pixels = (size_t)F.w * (size_t)F.h;
+    if (out_bytes < pixels * (size_t)desc->channels * 4)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "out holds %lu bytes, the image needs %lu", (unsigned long)out_bytes,
+                           (unsigned long)(pixels * (size_t)desc->channels * 4));
+    for (i = 0; i < 3 * pixels; i++)
+        if (!isfinite(desc->positions[i]) || !isfinite(desc->normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "pixel %lu is not finite", (unsigned long)(i / 3));
+    F.pos = desc->positions;
+    F.nrm = desc->normals;
+    F.in = values;
+    F.out = out;
+    F.unsupported = unsupported;
+    F.channels = desc->channels;
+    F.scale = desc->half_resolution ? 2 : 1;
+    F.iw = (F.w + F.scale - 1) / F.scale;
+    F.ih = (F.h + F.scale - 1) / F.scale;
+    F.window = VOXGI__MAX(desc->radius, F.scale - 1);
+    F.inv_two_sigma2 = 2.0 / VOXGI__MAX(F.window * F.window, 1);
+    F.pixel_width = 2 * tan_half / F.h;
+    if (!(F.mid = (float *)voxgi__alloc_array(ctx, (size_t)F.w * (size_t)F.ih, (size_t)(F.channels + 1) * 4, 0)))
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the filter's row pass");
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL) r = voxgi__filter_gl(ctx, &F);
+    else
+#endif
+    {
+        voxgi__parallel(ctx, (size_t)F.ih, 1, voxgi__filter_rows, &F);
+        voxgi__parallel(ctx, (size_t)F.h, 1, voxgi__filter_columns, &F);
+    }
+    voxgi__free(ctx, F.mid);
+    return r;
+}
+
 /* ===================================================================== 12. images */
 
 /* ----- the G-buffer of voxgi's own images */
@@ -12968,12 +13180,24 @@ static voxgi_result voxgi__bounce_begin(voxgi_context *ctx, const voxgi_scene *s
     return r;
 }
 
+/* The bounce's light, albedo / pi x irradiance, added into rgb. */
+static void voxgi__bounce_add(const voxgi__bounce_image *B, float *rgb)
+{
+    size_t p;
+    for (p = 0; p < B->pixels; p++) {
+        const voxgi_material *m;
+        int a;
+        if (B->prim[p] == UINT32_MAX) continue;
+        m = voxgi__prim_material(&B->tr, B->prim[p]);
+        for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * B->irr[3 * p + (size_t)a]);
+    }
+}
+
 /* The gathers at the anchors, then at the pixels between that cannot be interpolated; the bounce
    added into rgb. */
 static voxgi_result voxgi__bounce_gather(voxgi_context *ctx, voxgi__bounce_image *B, int stride, voxgi__gather_fn gather, void *user, float *rgb,
                                          size_t *gathered)
 {
-    size_t p;
     voxgi_result r;
     voxgi__anchors(B->w, B->h, stride, B->prim, B->want);
     r = voxgi__gather_pixels(ctx, B->pixels, B->pos, B->nrm, B->want, B->irr, gathered, gather, user);
@@ -12981,13 +13205,7 @@ static voxgi_result voxgi__bounce_gather(voxgi_context *ctx, voxgi__bounce_image
         voxgi__between_anchors(B->w, B->h, stride, B->pos, B->nrm, B->prim, B->grid.voxel_size, 1, B->irr, B->want);
         r = voxgi__gather_pixels(ctx, B->pixels, B->pos, B->nrm, B->want, B->irr, gathered, gather, user);
     }
-    for (p = 0; r == VOXGI_OK && p < B->pixels; p++) {
-        const voxgi_material *m;
-        int a;
-        if (B->prim[p] == UINT32_MAX) continue;
-        m = voxgi__prim_material(&B->tr, B->prim[p]);
-        for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * B->irr[3 * p + (size_t)a]);
-    }
+    if (r == VOXGI_OK) voxgi__bounce_add(B, rgb);
     return r;
 }
 
@@ -13103,14 +13321,62 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
     return r;
 }
 
-/* ----- images with one bounce from the screen */
-static voxgi_result voxgi__screen_gather(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
+/* ----- images from the screen-space passes */
+
+/* Job J's values (channels per pixel: 1 occlusion, 3 irradiance) into values at every pixel with
+   a surface (its G-buffer J->pos, J->nrm), or with `half` at the pixels (2X, 2Y) only; then,
+   with `half` or a blur, the edge-aware filter (voxgi_screen_filter) and the pixels it finds no
+   sample for computed on their own. The number of points computed added into *gathered. */
+static voxgi_result voxgi__screen_image(voxgi_context *ctx, voxgi__screen_job *J, int channels, int half, int blur, float *values, size_t *gathered)
 {
-    voxgi__screen_job *J = (voxgi__screen_job *)user;
-    J->points = points;
-    J->normals = normals;
-    J->out = out;
-    return voxgi__screen_rays(ctx, J, count);
+    int w = J->cam->width, h = J->cam->height, iw = (w + 1) / 2, ih = (h + 1) / 2, round;
+    size_t pixels = (size_t)w * (size_t)h, i, n, ch = (size_t)channels;
+    unsigned char *want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
+    float *p = (float *)voxgi__alloc_array(ctx, pixels, 12, 0), *q = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+    float *e = (float *)voxgi__alloc_array(ctx, pixels, 4 * ch, 0), *raw = (float *)voxgi__alloc_array(ctx, pixels, 4 * ch, 1);
+    voxgi_result r = VOXGI_OK;
+    if (!want || !p || !q || !e || !raw) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d screen pass", w, h);
+    for (i = 0; r == VOXGI_OK && i < pixels; i++)
+        want[i] = voxgi__has_surface(J->nrm, i) && (!half || ((i % (size_t)w) % 2 == 0 && (i / (size_t)w) % 2 == 0));
+    for (round = 0; r == VOXGI_OK && round < 2; round++) { /* the pixels wanted; then those the filter cannot fill */
+        float *dst = round ? values : raw;
+        for (i = n = 0; i < pixels; i++)
+            if (want[i]) {
+                memcpy(p + 3 * n, J->pos + 3 * i, 12);
+                memcpy(q + 3 * n, J->nrm + 3 * i, 12);
+                n++;
+            }
+        *gathered += n;
+        J->points = p;
+        J->normals = q;
+        J->out = e;
+        if (n && (r = voxgi__screen_rays(ctx, J, n)) != VOXGI_OK) break;
+        for (i = n = 0; i < pixels; i++)
+            if (want[i]) memcpy(dst + ch * i, e + ch * n++, 4 * ch);
+        if (round) break;
+        if (!half && !blur) {
+            memcpy(values, raw, pixels * 4 * ch);
+            break;
+        } else {
+            voxgi_screen_filter_desc fd;
+            memset(&fd, 0, sizeof fd);
+            fd.camera = *J->cam;
+            fd.positions = J->pos;
+            fd.normals = J->nrm;
+            fd.channels = channels;
+            fd.half_resolution = half;
+            fd.radius = blur;
+            if (half) /* raw's pixels (2X, 2Y) as the half-resolution image, in place: row by row, each row's pixels only move down */
+                for (i = 0; i < (size_t)iw * (size_t)ih; i++) memmove(raw + ch * i, raw + ch * (2 * (i / (size_t)iw) * (size_t)w + 2 * (i % (size_t)iw)), 4 * ch);
+            r = voxgi_screen_filter(ctx, &fd, raw, values, pixels * 4 * ch, want);
+        }
+    }
+    voxgi__free(ctx, want);
+    voxgi__free(ctx, p);
+    voxgi__free(ctx, q);
+    voxgi__free(ctx, e);
+    voxgi__free(ctx, raw);
+    return r;
 }
 
 VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ssgi_image_desc *desc, float *rgb, size_t rgb_bytes,
@@ -13124,10 +13390,10 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->gather_stride < 0 || desc->gather_stride > 64 ||
-        !(desc->radius >= 0 && isfinite(desc->radius)))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), gather_stride %d (0..64), radius %g", desc->samples,
-                           desc->resolution, desc->gather_stride, (double)desc->radius);
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->blur < 0 || desc->blur > 64 ||
+        (desc->half_resolution != 0 && desc->half_resolution != 1) || !(desc->radius >= 0 && isfinite(desc->radius)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), half_resolution %d (0 or 1), blur %d (0..64), radius %g",
+                           desc->samples, desc->resolution, desc->half_resolution, desc->blur, (double)desc->radius);
     memset(&inf, 0, sizeof inf);
     reflected = (float *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(desc->camera.width, 1) * (size_t)VOXGI__MAX(desc->camera.height, 1), 12, 0);
     if (!reflected) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the screen's light");
@@ -13143,7 +13409,8 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
         J.O = B.have_occ ? &B.O : NULL;
         J.grid = &B.grid;
         J.seed = desc->seed;
-        r = voxgi__bounce_gather(ctx, &B, desc->gather_stride ? desc->gather_stride : 4, voxgi__screen_gather, &J, rgb, &inf.gathered);
+        r = voxgi__screen_image(ctx, &J, 3, desc->half_resolution, desc->blur, B.irr, &inf.gathered);
+        if (r == VOXGI_OK) voxgi__bounce_add(&B, rgb);
     }
     inf.ms_gather = voxgi__now_ms() - t1;
     voxgi__bounce_free(ctx, &B);
@@ -13158,9 +13425,12 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
                                        voxgi_ao_image_info *info)
 {
     voxgi__tracer tr;
-    voxgi_ao_desc ad;
+    voxgi__screen_job J;
+    voxgi__occupancy O;
     voxgi_ao_image_info inf;
     voxgi_voxels *vox = NULL;
+    float radius;
+    int have_occ = 0;
     float *pos = NULL, *nrm = NULL, *ao = NULL;
     uint32_t *tri = NULL;
     double t0 = voxgi__now_ms(), t1, e[3], f[3], rt[3], u[3], th;
@@ -13169,16 +13439,16 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
     if ((r = voxgi__camera_frame(ctx, &desc->camera, e, f, rt, u, &th)) != VOXGI_OK) return r;
-    if (desc->resolution < 0 || desc->resolution > 4096 || !(desc->radius >= 0 && isfinite(desc->radius)))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "resolution %d (0..4096), radius %g", desc->resolution, (double)desc->radius);
+    if (desc->resolution < 0 || desc->resolution > 4096 || desc->blur < 0 || desc->blur > 64 || (desc->half_resolution != 0 && desc->half_resolution != 1) ||
+        !(desc->radius >= 0 && isfinite(desc->radius)))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "resolution %d (0..4096), half_resolution %d (0 or 1), blur %d (0..64), radius %g",
+                           desc->resolution, desc->half_resolution, desc->blur, (double)desc->radius);
     pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
     if (rgb_bytes < pixels * 12)
         return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
     memset(&inf, 0, sizeof inf);
-    memset(&ad, 0, sizeof ad);
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    ad.radius = desc->radius;
-    if (!(ad.radius > 0)) ad.radius = (float)(0.1 * voxgi__longest_side(&tr));
+    radius = desc->radius > 0 ? desc->radius : (float)(0.1 * voxgi__longest_side(&tr));
     pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
     nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
     ao = (float *)voxgi__alloc_array(ctx, pixels, 4, 0);
@@ -13194,32 +13464,31 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
         memset(&fit, 0, sizeof fit);
         fit.res = desc->resolution ? desc->resolution : 128;
         t1 = voxgi__now_ms();
-        if ((r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid)) == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &vd, &vox);
+        if ((r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid)) == VOXGI_OK && (r = voxgi_voxelize(ctx, scene, &vd, &vox)) == VOXGI_OK &&
+            (r = voxgi__occ_build(ctx, vox, 1, &O)) == VOXGI_OK)
+            have_occ = 1;
         inf.ms_voxels = voxgi__now_ms() - t1;
     }
-    if (r == VOXGI_OK) {
-        ad.camera = desc->camera;
-        ad.positions = pos;
-        ad.normals = nrm;
-        ad.method = desc->method;
-        ad.voxels = vox;
-        ad.traversal = VOXGI_TRAVERSAL_HIERARCHICAL;
-        ad.rays = desc->rays;
-        ad.steps = desc->steps;
-        ad.seed = desc->seed;
-        ad.point_sampling = desc->point_sampling;
+    if (r == VOXGI_OK &&
+        (r = voxgi__screen_setup(ctx, &J, &desc->camera, pos, nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, radius)) == VOXGI_OK) {
+        if (desc->point_sampling && desc->method != VOXGI_AO_SCREEN) r = voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point sampling is for SCREEN");
+        J.point_sampling = desc->point_sampling != 0;
+        J.O = have_occ ? &O : NULL;
+        J.grid = vox ? &vox->info.grid : NULL;
+        J.seed = desc->seed;
         t1 = voxgi__now_ms();
-        r = voxgi_ao(ctx, &ad, ao, pixels * 4);
+        if (r == VOXGI_OK) r = voxgi__screen_image(ctx, &J, 1, desc->half_resolution, desc->blur, ao, &inf.gathered);
         inf.ms_ao = voxgi__now_ms() - t1;
     }
     for (p = 0; r == VOXGI_OK && p < pixels; p++) rgb[3 * p] = rgb[3 * p + 1] = rgb[3 * p + 2] = ao[p];
+    if (have_occ) voxgi__occ_free(ctx, &O);
     voxgi_voxels_destroy(ctx, vox);
     voxgi__free(ctx, pos);
     voxgi__free(ctx, nrm);
     voxgi__free(ctx, ao);
     voxgi__free(ctx, tri);
     voxgi__tracer_free(ctx, &tr);
-    inf.radius = ad.radius;
+    inf.radius = radius;
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;
     return r;

@@ -24,7 +24,7 @@ typedef struct render_args {
     int bounce_cones, bounce_block, isotropic;
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
     double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
-    int rays, march_steps, point_sampling;
+    int rays, march_steps, point_sampling, half_res, blur, blur_given;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -482,6 +482,8 @@ static int render_run(cli_session *s, const render_args *a)
         J.ad.steps = a->march_steps;
         J.ad.radius = (float)a->radius;
         J.ad.point_sampling = a->point_sampling;
+        J.ad.half_resolution = a->half_res;
+        J.ad.blur = a->blur;
     }
     if (a->method == METHOD_SSGI || a->method == METHOD_HYBRID) { /* direct light and one bounce: compared with the reference's one bounce */
         J.gd.camera = d->camera;
@@ -492,7 +494,8 @@ static int render_run(cli_session *s, const render_args *a)
         J.gd.rays = a->rays;
         J.gd.steps = a->march_steps;
         J.gd.radius = (float)a->radius;
-        J.gd.gather_stride = a->gather_stride;
+        J.gd.half_resolution = a->half_res;
+        J.gd.blur = a->blur;
         d->bounces = 1;
     }
     if (a->method == METHOD_REFERENCE) d->ao_radius = (float)a->ao_radius; /* > 0: the AO mode */
@@ -583,7 +586,7 @@ int cmd_render(int argc, char **argv)
             {.name = "--rsm-points", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_points, .lo = 1, .hi = 4096,
              .help = "rsm: points on each rectangular light and on the emitters, one map each\n(default 4)"},
             {.name = "--gather-stride", .arg = "S", .kind = CLI_INT, .dst = &a.gather_stride, .lo = 1, .hi = 64,
-             .help = "rsm, sh, ssgi, hybrid: gathers at every S-th pixel across and down, the pixels between\ninterpolated where three of the four around share their surface (default 4)"},
+             .help = "rsm, sh: gathers at every S-th pixel across and down, the pixels between\ninterpolated where three of the four around share their surface (default 4)"},
             {.name = "--opening", .arg = "T", .kind = CLI_DOUBLE, .dst = &a.opening, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "sh: a cell counts as one point where its size is at most T times its\ndistance (default 0.5)"},
             {.name = "--ao-radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.ao_radius, .lo = 0, .lo_open = 1, .hi = 1e30,
@@ -594,6 +597,10 @@ int cmd_render(int argc, char **argv)
             {.name = "--steps", .arg = "N", .kind = CLI_INT, .dst = &a.march_steps, .lo = 1, .hi = 4096, .help = "ssao, ssgi: steps along each ray (default 16)"},
             {.name = "--point-sampling", .kind = CLI_FLAG, .dst = &a.point_sampling,
              .help = "ssao: one point per ray instead of the march (occlusion with a linear\nfalloff: a hit at d counts 1 - d / radius)"},
+            {.name = "--half-res", .kind = CLI_FLAG, .dst = &a.half_res,
+             .help = "ssao, vao, ssgi, hybrid: rays at every other pixel across and down, upsampled\nalong the surfaces (an edge-aware filter)"},
+            {.name = "--blur", .arg = "N", .kind = CLI_INT, .dst = &a.blur, .lo = 0, .hi = 64, .given = &a.blur_given,
+             .help = "ssao, vao, ssgi, hybrid: the edge-aware blur's radius in pixels (0: none;\ndefault 0)"},
             {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
              .help = "rsm and sh: each gather's visibility through the voxels (default hierarchical)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
