@@ -1068,8 +1068,8 @@ VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *des
    down, each weighted by
        exp(-d^2 / (2 sigma^2)) x max(0, n . n_s)^8 x exp(-(((p_s - p) . n) / t)^2)
    (d the distance in pixels, sigma = max(radius, 1) / 2; n, p the pixel's normal and position,
-   n_s, p_s the sample's; t = max(radius, 1) x the width of a pixel at the pixel's distance): the
-   same surface weighs fully, another (an edge, a step in depth) next to nothing. No weight on the
+   n_s, p_s the sample's; t = the width of two pixels at the pixel's distance): the same plane
+   weighs fully, another surface (an edge, a step in depth) next to nothing. No weight on the
    values themselves: what the filter removes is their noise. With half_resolution the values are
    an image of (w + 1) / 2 x (h + 1) / 2 pixels, its pixel (X, Y) computed at the full pixel
    (2X, 2Y), and the same weights against those pixels' surfaces upsample it (radius at least 1).
@@ -11901,6 +11901,7 @@ typedef struct voxgi__screen_job {
     double radius;
     uint64_t seed;
     const float *points, *normals;
+    const uint32_t *pixel_of;     /* NULL, or per point the pixel whose random numbers it draws (else its own index) */
     float *out;
 } voxgi__screen_job;
 
@@ -12005,7 +12006,7 @@ static void voxgi__screen_rows(void *user, size_t first, size_t end)
         voxgi__rng g;
         for (a = 0; a < 3; a++) { p[a] = J->points[3 * i + (size_t)a]; n[a] = J->normals[3 * i + (size_t)a]; }
         if (n[0] != 0 || n[1] != 0 || n[2] != 0) {
-            voxgi__rng_seed(&g, J->seed, i, 0);
+            voxgi__rng_seed(&g, J->seed, J->pixel_of ? J->pixel_of[i] : i, 0);
             rot[0] = voxgi__rng_unit(&g);
             rot[1] = voxgi__rng_unit(&g);
             jitter = voxgi__rng_unit(&g);
@@ -12062,7 +12063,7 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
         }
     for (i = 0; r == VOXGI_OK && i < count; i++) { /* voxgi__screen_rows' draws */
         voxgi__rng g;
-        voxgi__rng_seed(&g, J->seed, i, 0);
+        voxgi__rng_seed(&g, J->seed, J->pixel_of ? J->pixel_of[i] : i, 0);
         for (a = 0; a < 3; a++) random[3 * i + (size_t)a] = (float)voxgi__rng_unit(&g);
     }
     if (r == VOXGI_OK) {
@@ -12218,7 +12219,7 @@ static double voxgi__filter_weight(const voxgi__filter_job *F, size_t c, size_t 
     }
     if (!(dn > 0)) return 0;
     dn2 = dn * dn;
-    t = VOXGI__MAX(F->window, 1) * F->pixel_width * sqrt(dist2);
+    t = 2 * F->pixel_width * sqrt(dist2);
     return dn2 * dn2 * dn2 * dn2 * exp(-(double)(d * d) * F->inv_two_sigma2 - (t > 0 ? dp * dp / (t * t) : 0));
 }
 
@@ -13326,7 +13327,9 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
 /* Job J's values (channels per pixel: 1 occlusion, 3 irradiance) into values at every pixel with
    a surface (its G-buffer J->pos, J->nrm), or with `half` at the pixels (2X, 2Y) only; then,
    with `half` or a blur, the edge-aware filter (voxgi_screen_filter) and the pixels it finds no
-   sample for computed on their own. The number of points computed added into *gathered. */
+   sample for computed on their own (each pixel's random numbers its own, as voxgi_ao draws them:
+   at a pixel computed, the values are voxgi_ao's). The number of points computed added into
+   *gathered. */
 static voxgi_result voxgi__screen_image(voxgi_context *ctx, voxgi__screen_job *J, int channels, int half, int blur, float *values, size_t *gathered)
 {
     int w = J->cam->width, h = J->cam->height, iw = (w + 1) / 2, ih = (h + 1) / 2, round;
@@ -13334,8 +13337,9 @@ static voxgi_result voxgi__screen_image(voxgi_context *ctx, voxgi__screen_job *J
     unsigned char *want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
     float *p = (float *)voxgi__alloc_array(ctx, pixels, 12, 0), *q = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
     float *e = (float *)voxgi__alloc_array(ctx, pixels, 4 * ch, 0), *raw = (float *)voxgi__alloc_array(ctx, pixels, 4 * ch, 1);
-    voxgi_result r = VOXGI_OK;
-    if (!want || !p || !q || !e || !raw) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d screen pass", w, h);
+    uint32_t *ids = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
+    voxgi_result r = pixels > UINT32_MAX ? voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu pixels", (unsigned long)pixels) : VOXGI_OK;
+    if (!want || !p || !q || !e || !raw || !ids) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d screen pass", w, h);
     for (i = 0; r == VOXGI_OK && i < pixels; i++)
         want[i] = voxgi__has_surface(J->nrm, i) && (!half || ((i % (size_t)w) % 2 == 0 && (i / (size_t)w) % 2 == 0));
     for (round = 0; r == VOXGI_OK && round < 2; round++) { /* the pixels wanted; then those the filter cannot fill */
@@ -13344,11 +13348,12 @@ static voxgi_result voxgi__screen_image(voxgi_context *ctx, voxgi__screen_job *J
             if (want[i]) {
                 memcpy(p + 3 * n, J->pos + 3 * i, 12);
                 memcpy(q + 3 * n, J->nrm + 3 * i, 12);
-                n++;
+                ids[n++] = (uint32_t)i;
             }
         *gathered += n;
         J->points = p;
         J->normals = q;
+        J->pixel_of = ids;
         J->out = e;
         if (n && (r = voxgi__screen_rays(ctx, J, n)) != VOXGI_OK) break;
         for (i = n = 0; i < pixels; i++)
@@ -13376,6 +13381,8 @@ static voxgi_result voxgi__screen_image(voxgi_context *ctx, voxgi__screen_job *J
     voxgi__free(ctx, q);
     voxgi__free(ctx, e);
     voxgi__free(ctx, raw);
+    voxgi__free(ctx, ids);
+    J->pixel_of = NULL;
     return r;
 }
 

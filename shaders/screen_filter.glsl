@@ -29,7 +29,7 @@ float weight(uint c, uint s, int d)
     vec3 n = normal(c), p = position(c);
     float dn = dot(n, normal(s)), dp = dot(position(s) - p, n);
     if (!(dn > 0.0)) return 0.0;
-    float dn2 = dn * dn, t = float(max(u_window, 1)) * u_pixel_width * length(p - u_eye);
+    float dn2 = dn * dn, t = 2.0 * u_pixel_width * length(p - u_eye);
     return dn2 * dn2 * dn2 * dn2 * exp(-float(d * d) * u_inv_two_sigma2 - (t > 0.0 ? dp * dp / (t * t) : 0.0));
 }
 

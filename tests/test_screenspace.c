@@ -506,6 +506,190 @@ static void test_ssao_point_sampling(void)
     voxgi_destroy(ctx);
 }
 
+/* A step down: a top at y = 0.5 for x > 0, a floor at y = 0 for x in [-3, 0], a wall at x = -3,
+   seen from above the top, so that the top's edge lies on the floor in the image; its G-buffer
+   (W x W) and each pixel's surface (0 floor, 1 top, 2 wall, -1 none), and one pixel (odd across
+   and down) turned to face +z, as a thing less than a pixel wide would (3). */
+enum { FILTER_W = 48 };
+static void step_gbuffer(voxgi_context *ctx, voxgi_camera *c, float *pos, float *nrm, int *surface)
+{
+    static const float quads_xyz[3][12] = {{-3, 0, -4, -3, 0, 4, 0, 0, 4, 0, 0, -4},
+                                           {0, 0.5f, -4, 0, 0.5f, 4, 4, 0.5f, 4, 4, 0.5f, -4},
+                                           {-3, 0, -4, -3, 3, -4, -3, 3, 4, -3, 0, 4}};
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    int k, i;
+    q.n = 0;
+    for (k = 0; k < 3; k++) quad(&q, quads_xyz[k], 0);
+    scene_of_quads(&sc, &mesh, &q, NULL, 0, NULL, 0);
+    *c = look(2.5, 2, 0.3, -1, 0.3, 0);
+    c->width = c->height = FILTER_W;
+    TH_CHECK(voxgi_gbuffer_render(ctx, &sc, c, pos, nrm, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (i = 0; i < FILTER_W * FILTER_W; i++)
+        surface[i] = nrm[3 * i] == 0 && nrm[3 * i + 1] == 0 && nrm[3 * i + 2] == 0 ? -1 : nrm[3 * i + 1] < 0.5f ? 2 : pos[3 * i + 1] > 0.25f ? 1 : 0;
+    i = (FILTER_W / 2 + 1) * FILTER_W + FILTER_W / 2 + 1;
+    TH_CHECK(surface[i] >= 0, "the odd pixel shows a surface");
+    nrm[3 * i] = nrm[3 * i + 1] = 0;
+    nrm[3 * i + 2] = 1;
+    surface[i] = 3;
+}
+
+/* The edge-aware filter: values constant on each surface of the step (0, 1, 0.5, 0.25) stay
+   exactly so under a wide blur and half-resolution upsampling (nothing leaks across the step in
+   depth or the edge), but where a pixel is flagged as having no sample on its surface: at half
+   resolution the odd pixel alone; noise on them loses most of its variance and none of its mean. */
+static void test_screen_filter(void)
+{
+    enum { W = FILTER_W, N = FILTER_W * FILTER_W };
+    static const float level[4] = {0, 1, 0.5f, 0.25f};
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    voxgi_screen_filter_desc fd;
+    voxgi_camera c;
+    static float pos[3 * N], nrm[3 * N], in[N], noisy[N], out[N];
+    static int surface[N];
+    static unsigned char flag[N];
+    int half, i, k, count[4] = {0, 0, 0, 0};
+    unsigned rnd = 12345;
+    double var[2] = {0, 0}, mean[2][4] = {{0, 0, 0, 0}, {0, 0, 0, 0}};
+    step_gbuffer(ctx, &c, pos, nrm, surface);
+    for (i = 0; i < N; i++) if (surface[i] >= 0) count[surface[i]]++;
+    TH_CHECK(count[0] > N / 10 && count[1] > N / 10 && count[2] > N / 10, "the view shows all three surfaces: %d %d %d", count[0], count[1], count[2]);
+    memset(&fd, 0, sizeof fd);
+    fd.camera = c;
+    fd.positions = pos;
+    fd.normals = nrm;
+    fd.channels = 1;
+    for (half = 0; half < 2; half++) {
+        int unsupported = 0, off = 0, iw = (W + 1) / 2;
+        for (i = 0; i < N; i++) { /* full resolution, or the pixels (2X, 2Y) */
+            int x = i % W, y = i / W;
+            if (!half) in[i] = surface[i] >= 0 ? level[surface[i]] : 0;
+            else if (x % 2 == 0 && y % 2 == 0) in[(y / 2) * iw + x / 2] = surface[i] >= 0 ? level[surface[i]] : 0;
+        }
+        fd.half_resolution = half;
+        fd.radius = half ? 2 : 6;
+        TH_CHECK(voxgi_screen_filter(ctx, &fd, in, out, sizeof out, flag) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        for (i = 0; i < N; i++) {
+            if (flag[i]) unsupported++;
+            else if (surface[i] >= 0 ? fabs(out[i] - level[surface[i]]) > 1e-5 : out[i] != 0) off++;
+            if (flag[i] && (surface[i] < 0 || out[i] != 0)) off++;
+        }
+        printf("    %s, radius %d: %d pixels off their surface's value, %d without a sample on their surface\n", half ? "half resolution" : "full resolution",
+               fd.radius, off, unsupported);
+        TH_CHECK(off == 0, "values leak across the step or the edge");
+        TH_CHECK(unsupported == half && (!half || flag[(W / 2 + 1) * W + W / 2 + 1]), "the pixels without support are not the odd one alone");
+    }
+    /* noise +-0.5 on each level: blurred, its variance drops at least eightfold, the means stay */
+    for (i = 0; i < N; i++) {
+        rnd = rnd * 1664525u + 1013904223u;
+        noisy[i] = surface[i] >= 0 ? level[surface[i]] + (float)((rnd >> 8) / 16777216.0 - 0.5) : 0;
+    }
+    fd.half_resolution = 0;
+    fd.radius = 4;
+    TH_CHECK(voxgi_screen_filter(ctx, &fd, noisy, out, sizeof out, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (i = 0; i < N; i++)
+        if (surface[i] >= 0)
+            for (k = 0; k < 2; k++) {
+                double v = k ? out[i] : noisy[i];
+                var[k] += (v - level[surface[i]]) * (v - level[surface[i]]);
+                mean[k][surface[i]] += v / count[surface[i]];
+            }
+    printf("    noise: variance %.4f -> %.4f; means %.3f %.3f %.3f -> %.3f %.3f %.3f\n", var[0] / N, var[1] / N, mean[0][0], mean[0][1], mean[0][2], mean[1][0],
+           mean[1][1], mean[1][2]);
+    TH_CHECK(var[1] < var[0] / 8, "the blur keeps the noise");
+    for (k = 0; k < 3; k++) TH_CHECK(fabs(mean[1][k] - mean[0][k]) < 0.02, "surface %d's mean moved", k);
+    voxgi_destroy(ctx);
+}
+
+/* The filter on GL (in float) against the CPU: every value within 1e-5, the same pixels flagged. */
+static void test_screen_filter_gl(void)
+{
+    enum { W = FILTER_W, N = FILTER_W * FILTER_W };
+    voxgi_context *ctx[2];
+    voxgi_screen_filter_desc fd;
+    voxgi_camera c;
+    static float pos[3 * N], nrm[3 * N], in[3 * N], out[2][3 * N];
+    static int surface[N];
+    static unsigned char flag[2][N];
+    int b, half, i;
+    unsigned rnd = 777;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 0);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
+    step_gbuffer(ctx[0], &c, pos, nrm, surface);
+    for (i = 0; i < 3 * N; i++) {
+        rnd = rnd * 1664525u + 1013904223u;
+        in[i] = (float)((rnd >> 8) / 16777216.0);
+    }
+    memset(&fd, 0, sizeof fd);
+    fd.camera = c;
+    fd.positions = pos;
+    fd.normals = nrm;
+    fd.channels = 3;
+    for (half = 0; half < 2; half++) {
+        size_t off = 0, flags_off = 0;
+        fd.half_resolution = half;
+        fd.radius = half ? 3 : 5;
+        for (b = 0; b < 2; b++)
+            TH_CHECK(voxgi_screen_filter(ctx[b], &fd, in, out[b], sizeof out[b], flag[b]) == VOXGI_OK, "%s", voxgi_last_error(ctx[b]));
+        for (i = 0; i < 3 * N; i++) off += fabs((double)out[0][i] - out[1][i]) > 1e-5;
+        for (i = 0; i < N; i++) flags_off += flag[0][i] != flag[1][i];
+        printf("    %s: %lu of %d values differ by more than 1e-5, %lu flags\n", half ? "half resolution" : "full resolution", (unsigned long)off, 3 * N,
+               (unsigned long)flags_off);
+        TH_CHECK(off == 0 && flags_off == 0, "GL and CPU part ways");
+    }
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
+/* Half resolution in the images: the rays run at about a quarter of the pixels, and on their own
+   at the pixels the filter finds no sample for (a pole about a pixel wide beside the wall): no
+   pixel that full resolution finds occluded reads open; refused settings. */
+static void test_screen_images_half(void)
+{
+    enum { W = 32 };
+    static const float pole[12] = {0.5f, 0, 0, 0.56f, 0, 0, 0.56f, 1.5f, 0, 0.5f, 1.5f, 0};
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_ao_image_desc d;
+    voxgi_ao_image_info info[2];
+    static float rgb[2][3 * W * W];
+    int half, i;
+    size_t quarter = 0, lost = 0;
+    double diff = 0;
+    ao_scene(&q, &sc, &mesh, 1, 0);
+    quad(&q, pole, 0);
+    scene_of_quads(&sc, &mesh, &q, NULL, 0, NULL, 0);
+    memset(&d, 0, sizeof d);
+    d.camera = look(-2.5, 2, 1.5, 0.6, 0, 0);
+    d.radius = 1;
+    d.rays = 64;
+    for (half = 0; half < 2; half++) {
+        d.half_resolution = half;
+        TH_CHECK(voxgi_ao_render(ctx, &sc, &d, rgb[half], sizeof rgb[half], &info[half]) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    }
+    for (i = 0; i < W * W; i++) {
+        quarter += i % W % 2 == 0 && i / W % 2 == 0;
+        diff += fabs((double)rgb[0][3 * i] - rgb[1][3 * i]) / (W * W);
+        lost += rgb[0][3 * i] > 0.1f && rgb[1][3 * i] == 0;
+    }
+    printf("    rays at %lu pixels, at half resolution %lu (%lu on their own); %lu occluded pixels read open; mean difference %.4f\n",
+           (unsigned long)info[0].gathered, (unsigned long)info[1].gathered, (unsigned long)(info[1].gathered - quarter), (unsigned long)lost, diff);
+    TH_CHECK(info[0].gathered == W * W && info[1].gathered > quarter && info[1].gathered < quarter + W, "rays at %lu and %lu pixels",
+             (unsigned long)info[0].gathered, (unsigned long)info[1].gathered);
+    TH_CHECK(lost == 0, "pixels without a sample on their surface left open");
+    TH_CHECK(diff < 0.05, "half resolution is another image");
+    d.blur = 65;
+    TH_CHECK(voxgi_ao_render(ctx, &sc, &d, rgb[0], sizeof rgb[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "blur 65");
+    d.blur = 0;
+    d.half_resolution = 2;
+    TH_CHECK(voxgi_ao_render(ctx, &sc, &d, rgb[0], sizeof rgb[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "half_resolution 2");
+    voxgi_destroy(ctx);
+}
+
 static void test_ao_input(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -539,6 +723,26 @@ static void test_ao_input(void)
     rd.camera = d.camera;
     rd.ao_radius = -1;
     TH_CHECK(voxgi_reference_render(ctx, &sc, &rd, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "ao_radius -1");
+    { /* the filter */
+        voxgi_screen_filter_desc fd;
+        float v[4] = {0.5f, 0.5f, 0.5f, 0.5f}, o[4];
+        memset(&fd, 0, sizeof fd);
+        fd.camera = d.camera;
+        fd.positions = pos;
+        fd.normals = nrm;
+        fd.channels = 1;
+        TH_CHECK(voxgi_screen_filter(ctx, &fd, v, o, sizeof o, NULL) == VOXGI_OK && o[0] == 0.5f, "one pixel: %s", voxgi_last_error(ctx));
+        fd.channels = 5;
+        TH_CHECK(voxgi_screen_filter(ctx, &fd, v, o, sizeof o, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "5 channels");
+        fd.channels = 1;
+        fd.radius = 65;
+        TH_CHECK(voxgi_screen_filter(ctx, &fd, v, o, sizeof o, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "radius 65");
+        fd.radius = 0;
+        TH_CHECK(voxgi_screen_filter(ctx, &fd, v, o, 0, NULL) == VOXGI_ERR_BUFFER_TOO_SMALL, "no room");
+        fd.normals = bad;
+        TH_CHECK(voxgi_screen_filter(ctx, &fd, v, o, sizeof o, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a NaN normal");
+        TH_CHECK(voxgi_screen_filter(ctx, NULL, v, o, sizeof o, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "no desc");
+    }
     voxgi_destroy(ctx);
 }
 
@@ -554,6 +758,9 @@ int main(void)
     TH_RUN(test_vao_view_independence);
     TH_RUN(test_ssgi_corner);
     TH_RUN(test_screen_gl_equals_cpu);
+    TH_RUN(test_screen_filter);
+    TH_RUN(test_screen_filter_gl);
+    TH_RUN(test_screen_images_half);
     TH_RUN(test_ao_input);
     gl_close();
     return th_finish();
