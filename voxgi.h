@@ -1225,6 +1225,9 @@ typedef struct voxgi_reference_desc {
                                      cosine-distributed ray from its surface, occluded when it meets any
                                      surface within ao_radius; the pixel is the occluded share (grey), 0
                                      where the camera sees nothing (voxgi_ao's exact definition) */
+    int screen_light_only;        /* 1 (with bounces 1): the bounce takes the light a surface reflects only where the
+                                     camera sees that surface (inside the image, nothing in front): the most that
+                                     one bounce from the screen (voxgi_ssgi) can find */
 } voxgi_reference_desc;
 
 typedef struct voxgi_reference_info {
@@ -13514,6 +13517,25 @@ typedef struct voxgi__render {
     size_t rays;                  /* summed over the workers */
 } voxgi__render;
 
+/* Whether the camera sees point p on primitive prim's side `front` (inside the image, nothing in
+   front of it): one ray from the eye. */
+static int voxgi__camera_sees(const voxgi__render *R, const double p[3], uint32_t prim, int front, uint64_t *rays)
+{
+    const voxgi_camera *cam = &R->desc->camera;
+    double d[3], z = 0, x = 0, y = 0;
+    voxgi__hit h;
+    int a;
+    for (a = 0; a < 3; a++) {
+        d[a] = p[a] - R->eye[a];
+        z += d[a] * R->forward[a];
+        x += d[a] * R->right[a];
+        y += d[a] * R->up[a];
+    }
+    if (!(z > 0) || fabs(x / z) > R->tan_half * cam->width / cam->height || fabs(y / z) > R->tan_half) return 0;
+    ++*rays;
+    return voxgi__trace(R->tr, R->eye, d, DBL_MAX, UINT32_MAX, 0, &h) && h.prim == prim && h.front == front;
+}
+
 /* One path's radiance through the camera ray (o, d). */
 static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *g, uint64_t *rays, double out[3])
 {
@@ -13542,6 +13564,7 @@ static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *
         }
         if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
         voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, NULL, rays, e, NULL);
+        if (depth == 1 && R->desc->screen_light_only && !voxgi__camera_sees(R, h.p, h.prim, h.front, rays)) e[0] = e[1] = e[2] = 0;
         for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / VOXGI__PI * e[a];
         for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
         if (bounces < 0 && depth >= 2) { /* Russian roulette */
@@ -13640,8 +13663,10 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     if ((r = voxgi__camera_frame(ctx, cam, R.eye, R.forward, R.right, R.up, &R.tan_half)) != VOXGI_OK) return r;
     pixels = (size_t)cam->width * (size_t)cam->height;
     if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (desc->samples < 0 || desc->bounces < -1 || !(desc->ao_radius >= 0 && isfinite(desc->ao_radius)))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d, ao_radius %g", desc->samples, desc->bounces, (double)desc->ao_radius);
+    if (desc->samples < 0 || desc->bounces < -1 || !(desc->ao_radius >= 0 && isfinite(desc->ao_radius)) ||
+        (desc->screen_light_only && desc->bounces != 1))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d, ao_radius %g, screen_light_only %d (with bounces 1 only)", desc->samples,
+                           desc->bounces, (double)desc->ao_radius, desc->screen_light_only);
     resolved = voxgi__reference_defaults(desc_in);
     desc = &resolved;
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;

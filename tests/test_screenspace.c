@@ -690,6 +690,66 @@ static void test_screen_images_half(void)
     voxgi_destroy(ctx);
 }
 
+/* The reference's screen_light_only (the most one bounce from the screen can find): a floor and a
+   wall meeting at a corner, under the sun. Seen whole, every bounce's surface is on the screen:
+   the image is the full one bounce's, bit for bit (the same paths). Seen from above the floor
+   alone, the wall out of the image, the bounce (from the wall: the floor cannot see itself) is
+   gone: the image is the direct light's, bit for bit, and the full bounce's is brighter. */
+static void test_reference_screen_light_only(void)
+{
+    enum { W = 16 };
+    static const float floor_quad[12] = {-1, 0, -1, -1, 0, 1, 1, 0, 1, 1, 0, -1};
+    static const float wall_quad[12] = {1, 0, -1, 1, 2, -1, 1, 2, 1, 1, 0, 1};
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    voxgi_light sun;
+    voxgi_material white;
+    voxgi_reference_desc d;
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    static float img[3][3 * W * W];
+    int view, k, i;
+    memset(&sun, 0, sizeof sun);
+    sun.type = VOXGI_LIGHT_DIRECTIONAL;
+    sun.direction[0] = 1;
+    sun.direction[1] = -1;
+    sun.direction[2] = 0.2f;
+    sun.intensity[0] = sun.intensity[1] = sun.intensity[2] = 3;
+    memset(&white, 0, sizeof white);
+    white.albedo[0] = white.albedo[1] = white.albedo[2] = 0.8f;
+    q.n = 0;
+    quad(&q, floor_quad, 0);
+    quad(&q, wall_quad, 0);
+    scene_of_quads(&sc, &mesh, &q, &white, 1, &sun, 1);
+    for (view = 0; view < 2; view++) {
+        double sum[3] = {0, 0, 0};
+        size_t same01 = 0, same02 = 0;
+        memset(&d, 0, sizeof d);
+        d.camera = view ? look(-0.5, 1.5, 0, -0.5, 0, 0.001) : look(-4, 3, 0, 0, 0.7, 0);
+        d.camera.width = d.camera.height = W;
+        d.samples = 16;
+        d.seed = 3;
+        for (k = 0; k < 3; k++) { /* full one bounce, screen light only, direct light */
+            d.bounces = k == 2 ? 0 : 1;
+            d.screen_light_only = k == 1;
+            TH_CHECK(voxgi_reference_render(ctx, &sc, &d, img[k], sizeof img[k], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        }
+        for (i = 0; i < 3 * W * W; i++) {
+            for (k = 0; k < 3; k++) sum[k] += img[k][i];
+            same01 += img[0][i] == img[1][i];
+            same02 += img[1][i] == img[2][i];
+        }
+        printf("    %s: light full bounce %.2f, screen light only %.2f, direct %.2f; as the full bounce %lu, as the direct light %lu of %d values\n",
+               view ? "the floor alone" : "all in view", sum[0], sum[1], sum[2], (unsigned long)same01, (unsigned long)same02, 3 * W * W);
+        if (!view) TH_CHECK(same01 == 3 * W * W && sum[0] > sum[2] * 1.05, "everything is on the screen: the full bounce");
+        else TH_CHECK(same02 == 3 * W * W && sum[0] > sum[1] * 1.05, "the wall is off the screen: no bounce");
+    }
+    d.bounces = 2;
+    d.screen_light_only = 1;
+    TH_CHECK(voxgi_reference_render(ctx, &sc, &d, img[0], sizeof img[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "screen light only with bounces 2");
+    voxgi_destroy(ctx);
+}
+
 static void test_ao_input(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -757,6 +817,7 @@ int main(void)
     TH_RUN(test_ssao_point_sampling);
     TH_RUN(test_vao_view_independence);
     TH_RUN(test_ssgi_corner);
+    TH_RUN(test_reference_screen_light_only);
     TH_RUN(test_screen_gl_equals_cpu);
     TH_RUN(test_screen_filter);
     TH_RUN(test_screen_filter_gl);

@@ -24,7 +24,7 @@ typedef struct render_args {
     int bounce_cones, bounce_block, isotropic;
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
     double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
-    int rays, march_steps, point_sampling, half_res, blur, blur_given;
+    int rays, march_steps, point_sampling, half_res, blur, blur_given, screen_light_only;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -498,7 +498,10 @@ static int render_run(cli_session *s, const render_args *a)
         J.gd.blur = a->blur;
         d->bounces = 1;
     }
-    if (a->method == METHOD_REFERENCE) d->ao_radius = (float)a->ao_radius; /* > 0: the AO mode */
+    if (a->method == METHOD_REFERENCE) {
+        d->ao_radius = (float)a->ao_radius; /* > 0: the AO mode */
+        d->screen_light_only = a->screen_light_only;
+    }
     if (a->method == METHOD_VCT) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
         vd->camera = d->camera;
         vd->seed = d->seed;
@@ -591,6 +594,8 @@ int cmd_render(int argc, char **argv)
              .help = "sh: a cell counts as one point where its size is at most T times its\ndistance (default 0.5)"},
             {.name = "--ao-radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.ao_radius, .lo = 0, .lo_open = 1, .hi = 1e30,
              .help = "reference: render ambient occlusion within R instead of light"},
+            {.name = "--screen-light-only", .kind = CLI_FLAG, .dst = &a.screen_light_only,
+             .help = "reference with --bounces 1: the bounce takes light only from surfaces the\ncamera sees (the most one bounce from the screen can find)"},
             {.name = "--radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.radius, .lo = 0, .lo_open = 1, .hi = 1e30,
              .help = "ssao, vao: the occlusion's radius (default a tenth of the scene's longest\nside); ssgi, hybrid: the rays' reach (default the scene's longest side)"},
             {.name = "--rays", .arg = "N", .kind = CLI_INT, .dst = &a.rays, .lo = 1, .hi = 65536, .help = "ssao, vao, ssgi, hybrid: rays per pixel (default 16)"},
