@@ -1047,7 +1047,9 @@ VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, f
    first occupied voxel along the ray (from 1.5 voxels off the surface), the radiance of the pixel
    showing the point where the ray enters it, when that point lies within 2 voxels of the plane of
    that pixel's surface; a hit hidden from the camera or off the screen blocks the ray and sends nothing
-   (the one rule for both: only the screen has light). Misses send nothing (no environment). */
+   (the one rule for both: only the screen has light), or with hidden_light the light of the voxel
+   it met (an extension of the source's method: the light the screen cannot see, from the voxels).
+   Misses send nothing (no environment). */
 typedef struct voxgi_ssgi_desc {
     voxgi_camera camera;          /* the G-buffer's view and size */
     const float *positions, *normals; /* as voxgi_ao_desc's */
@@ -1058,6 +1060,10 @@ typedef struct voxgi_ssgi_desc {
     int rays, steps;              /* 0 = 16 each */
     float radius;                 /* world units, > 0 */
     uint64_t seed;
+    const voxgi_volume *hidden_light; /* VOXELS: NULL, or the light the voxels send (voxgi_inject_light on the voxels'
+                                     grid, from voxels without EMISSION, as emitters' light is the direct light's),
+                                     read at the centre of the voxel a hidden hit meets: RADIANCE, or RADIANCE_BACK
+                                     where the ray meets the side its RADIANCE_SIDE normal turns away */
 } voxgi_ssgi_desc;
 /* irradiance: 3 floats per pixel; on a GL context on GL, as voxgi_ao. */
 VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *desc, float *irradiance, size_t irradiance_bytes);
@@ -1103,11 +1109,14 @@ typedef struct voxgi_ssgi_image_desc {
     int hide_emitters;
     int half_resolution;          /* 1: the rays at every other pixel across and down, upsampled by voxgi_screen_filter */
     int blur;                     /* voxgi_screen_filter's radius in pixels (0: none, 0..64) */
+    int hidden_light;             /* VOXELS: 1 = hidden and off-screen hits send the direct light injected into their
+                                     voxel (voxgi_inject_light, without emission), from the side the ray meets */
+    int inject_samples;           /* hidden_light: voxgi_inject_desc.samples; 0 = its default */
 } voxgi_ssgi_image_desc;
 typedef struct voxgi_ssgi_image_info {
     float radius;                 /* the radius used */
     size_t gathered;
-    double ms_direct, ms_voxels, ms_gather, ms;
+    double ms_direct, ms_voxels, ms_inject, ms_gather, ms;
 } voxgi_ssgi_image_info;
 VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ssgi_image_desc *desc, float *rgb, size_t rgb_bytes,
                                          voxgi_ssgi_image_info *info);
@@ -3987,7 +3996,7 @@ typedef enum voxgi__gl_program_id {
 #define VOXGI__GL_UNIFORMS(X) \
     X(u_anisotropic) X(u_atomic) X(u_attr) X(u_attributes) X(u_axis) X(u_back_coverage) X(u_bias) X(u_big)       \
     X(u_blend) X(u_caster) X(u_casters) X(u_cell_levels) X(u_channels) X(u_cones) X(u_count) X(u_dir) X(u_dst_dims) X(u_dst_res) X(u_eye) \
-    X(u_face) X(u_factor) X(u_far) X(u_first) X(u_first_slice) X(u_forward) X(u_gather) X(u_half_tan) X(u_has_albedo)        \
+    X(u_face) X(u_factor) X(u_far) X(u_first) X(u_first_slice) X(u_forward) X(u_gather) X(u_half_tan) X(u_has_albedo) X(u_hidden) \
     X(u_hierarchical) X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_lookup) X(u_maps) X(u_max_channels) X(u_max_distance) X(u_max_lod)    \
     X(u_near) X(u_offset) X(u_op) X(u_opening) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_point_sampling) X(u_premultiplied) X(u_radius) X(u_rays)     \
     X(u_regions) X(u_res) X(u_right) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) X(u_src_level)          \
@@ -11906,6 +11915,11 @@ typedef struct voxgi__screen_job {
     const float *points, *normals;
     const uint32_t *pixel_of;     /* NULL, or per point the pixel whose random numbers it draws (else its own index) */
     float *out;
+    size_t first_point;           /* the random numbers of point i are those of point first_point + i (pixel_of NULL) */
+    const voxgi_volume *hidden_light; /* VOXELS with radiance: NULL, or the light of the voxels hidden hits meet */
+    float *hidden_hits;           /* with hidden_light, per point and ray: the centre (grid units) of the voxel a
+                                     hidden or off-screen hit met and the ray's direction, NAN in the first where
+                                     the ray met none such */
 } voxgi__screen_job;
 
 /* The pixel whose centre ray passes nearest to world point s in front of the eye (returns 1), or
@@ -11975,12 +11989,13 @@ static void voxgi__screen_last_voxel(void *user, const int64_t v[3]) { memcpy(us
 
 /* The ray from 1.5 voxels off p along its normal n to p + radius dir through the voxels: 1 when
    it meets one; *hit: the pixel showing the point where it enters that voxel, when that point
-   lies within 2 voxels of that pixel's surface's plane, else (hidden or off screen) SIZE_MAX. */
-static int voxgi__screen_voxels(const voxgi__screen_job *J, const double p[3], const double n[3], const double dir[3], uint64_t *steps, size_t *hit)
+   lies within 2 voxels of that pixel's surface's plane, else (hidden or off screen) SIZE_MAX;
+   v: the voxel met. */
+static int voxgi__screen_voxels(const voxgi__screen_job *J, const double p[3], const double n[3], const double dir[3], uint64_t *steps, size_t *hit,
+                                int64_t v[3])
 {
     const voxgi_grid *g = J->grid;
     double o[3], d[3], vs = g->voxel_size, enter = 0, x[3], z, dq = 0;
-    int64_t v[3];
     int a;
     for (a = 0; a < 3; a++) {
         o[a] = (p[a] + 1.5 * vs * n[a] - g->origin[a]) / vs;
@@ -12008,8 +12023,9 @@ static void voxgi__screen_rows(void *user, size_t first, size_t end)
         int k, a, blocked = 0;
         voxgi__rng g;
         for (a = 0; a < 3; a++) { p[a] = J->points[3 * i + (size_t)a]; n[a] = J->normals[3 * i + (size_t)a]; }
+        for (k = 0; J->hidden_hits && k < J->rays; k++) J->hidden_hits[6 * (i * (size_t)J->rays + (size_t)k)] = NAN;
         if (n[0] != 0 || n[1] != 0 || n[2] != 0) {
-            voxgi__rng_seed(&g, J->seed, J->pixel_of ? J->pixel_of[i] : i, 0);
+            voxgi__rng_seed(&g, J->seed, J->pixel_of ? J->pixel_of[i] : J->first_point + i, 0);
             rot[0] = voxgi__rng_unit(&g);
             rot[1] = voxgi__rng_unit(&g);
             jitter = voxgi__rng_unit(&g);
@@ -12017,6 +12033,7 @@ static void voxgi__screen_rows(void *user, size_t first, size_t end)
             for (k = 0; k < J->rays; k++) { /* cosine-weighted: the Hammersley point on the disk, lifted */
                 double u[2], r, phi, dir[3];
                 size_t hit = SIZE_MAX;
+                int64_t v[3];
                 int met;
                 voxgi_hammersley((uint32_t)k, (uint32_t)J->rays, rot, u);
                 r = sqrt(u[0]);
@@ -12028,10 +12045,15 @@ static void voxgi__screen_rows(void *user, size_t first, size_t end)
                     for (a = 0; a < 3; a++) s3[a] = p[a] + f * J->radius * dir[a];
                     met = voxgi__screen_behind(J, p, s3, &hit);
                 } else
-                    met = J->method == VOXGI_AO_VOXELS ? voxgi__screen_voxels(J, p, n, dir, &steps, &hit) : voxgi__screen_march(J, p, dir, jitter, &hit);
+                    met = J->method == VOXGI_AO_VOXELS ? voxgi__screen_voxels(J, p, n, dir, &steps, &hit, v) : voxgi__screen_march(J, p, dir, jitter, &hit);
                 blocked += met;
                 if (met && J->radiance && hit != SIZE_MAX)
                     for (a = 0; a < 3; a++) e[a] += J->radiance[3 * hit + (size_t)a];
+                if (J->hidden_hits && met && hit == SIZE_MAX)
+                    for (a = 0; a < 3; a++) {
+                        J->hidden_hits[6 * (i * (size_t)J->rays + (size_t)k) + (size_t)a] = (float)v[a] + 0.5f;
+                        J->hidden_hits[6 * (i * (size_t)J->rays + (size_t)k) + 3 + (size_t)a] = (float)dir[a];
+                    }
             }
         }
         if (J->radiance)
@@ -12053,7 +12075,7 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
     int a;
     voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_screen_rays);
     if (r != VOXGI_OK) return r;
-    if (count > (size_t)UINT32_MAX / 3 || pixels > (size_t)UINT32_MAX / 9)
+    if (count > (size_t)UINT32_MAX / 6 / (size_t)J->rays || pixels > (size_t)UINT32_MAX / 9)
         return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points or %lu pixels in one GL pass", (unsigned long)count, (unsigned long)pixels);
     screen = (float *)voxgi__alloc_array(ctx, pixels, 36, 1);
     random = (float *)voxgi__alloc_array(ctx, count ? count : 1, 12, 0);
@@ -12066,7 +12088,7 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
         }
     for (i = 0; r == VOXGI_OK && i < count; i++) { /* voxgi__screen_rows' draws */
         voxgi__rng g;
-        voxgi__rng_seed(&g, J->seed, J->pixel_of ? J->pixel_of[i] : i, 0);
+        voxgi__rng_seed(&g, J->seed, J->pixel_of ? J->pixel_of[i] : J->first_point + i, 0);
         for (a = 0; a < 3; a++) random[3 * i + (size_t)a] = (float)voxgi__rng_unit(&g);
     }
     if (r == VOXGI_OK) {
@@ -12076,6 +12098,7 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
         buf[2] = voxgi__gl_buffer(ctx, count * 4 * per, NULL);
         buf[3] = voxgi__gl_buffer(ctx, pixels * 36, screen);
         buf[4] = voxgi__gl_buffer(ctx, count * 12, random);
+        if (J->hidden_hits) buf[5] = voxgi__gl_buffer(ctx, count * (size_t)J->rays * 24, NULL);
         if (J->O) voxgi__occ_upload(ctx, J->O, &buf[6], &buf[7]);
         for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i] ? buf[i] : buf[0]);
         gl->UseProgram(p);
@@ -12097,9 +12120,11 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
         gl->ProgramUniform1i(p, VOXGI__LOC_u_gather, J->radiance != NULL);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_through_voxels, J->method == VOXGI_AO_VOXELS);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_point_sampling, J->point_sampling);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_hidden, J->hidden_hits != NULL);
         voxgi__gl_dispatch_points(gl, p, count);
         voxgi__gl_unbind(gl);
         r = voxgi__gl_read_buffer(ctx, buf[2], J->out, count * 4 * per);
+        if (r == VOXGI_OK && J->hidden_hits) r = voxgi__gl_read_buffer(ctx, buf[5], J->hidden_hits, count * (size_t)J->rays * 24);
         for (i = 0; i < 8; i++) voxgi__gl_delete_buffer(ctx, buf[i]);
         if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the screen's rays");
     }
@@ -12109,14 +12134,67 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
 }
 #endif
 
-/* Job J's rays at count points (J's points, normals, out) on the context's backend. */
-static voxgi_result voxgi__screen_rays(voxgi_context *ctx, voxgi__screen_job *J, size_t count)
+static voxgi_result voxgi__screen_rays_on(voxgi_context *ctx, voxgi__screen_job *J, size_t count)
 {
 #ifndef VOXGI_NO_GL
     if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__screen_gl(ctx, J, count);
 #endif
     voxgi__parallel(ctx, count, 16, voxgi__screen_rows, J);
     return VOXGI_OK;
+}
+
+/* Job J's rays at count points (J's points, normals, out) on the context's backend; with
+   J->hidden_hits' volume, in parts of about a million rays, the light of the voxels the hidden
+   hits met (voxgi_volume_sample at their centres: RADIANCE, or RADIANCE_BACK where the ray meets
+   the side its RADIANCE_SIDE normal turns away) added after each part. */
+static voxgi_result voxgi__screen_rays(voxgi_context *ctx, voxgi__screen_job *J, size_t count)
+{
+    size_t part = VOXGI__MAX((size_t)1, ((size_t)1 << 20) / (size_t)J->rays), first, i, n, k;
+    float *hits, *pos, *lods, *L;
+    uint32_t *owner;
+    voxgi_volume_info vi;
+    voxgi_result r = VOXGI_OK;
+    if (!J->hidden_light) return voxgi__screen_rays_on(ctx, J, count);
+    voxgi_volume_query(J->hidden_light, &vi);
+    part = VOXGI__MIN(part, VOXGI__MAX(count, 1));
+    hits = (float *)voxgi__alloc_array(ctx, part * (size_t)J->rays, 24, 0);
+    pos = (float *)voxgi__alloc_array(ctx, part * (size_t)J->rays, 12, 0);
+    lods = (float *)voxgi__alloc_array(ctx, part * (size_t)J->rays, 4, 1);
+    L = (float *)voxgi__alloc_array(ctx, part * (size_t)J->rays, 48, 0); /* front, back, side: 4 each */
+    owner = (uint32_t *)voxgi__alloc_array(ctx, part * (size_t)J->rays, 4, 0);
+    if (!hits || !pos || !lods || !L || !owner) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the hidden hits of %lu points", (unsigned long)part);
+    for (first = 0; r == VOXGI_OK && first < count; first += part) {
+        voxgi__screen_job C = *J;
+        size_t m = VOXGI__MIN(part, count - first);
+        int a, sides = vi.attributes & VOXGI_ATTRIBUTE_RADIANCE_BACK ? 2 : 1;
+        C.points += 3 * first;
+        C.normals += 3 * first;
+        C.out += 3 * first;
+        if (C.pixel_of) C.pixel_of += first;
+        C.first_point = J->first_point + first;
+        C.hidden_hits = hits;
+        if ((r = voxgi__screen_rays_on(ctx, &C, m)) != VOXGI_OK) break;
+        for (i = n = 0; i < m * (size_t)J->rays; i++)
+            if (!isnan(hits[6 * i])) {
+                memcpy(pos + 3 * n, hits + 6 * i, 12);
+                memcpy(hits + 6 * n + 3, hits + 6 * i + 3, 12); /* the direction, packed alongside (n <= i) */
+                owner[n++] = (uint32_t)(i / (size_t)J->rays);
+            }
+        for (k = 0; n && r == VOXGI_OK && k < (size_t)(sides == 2 ? 3 : 1); k++)
+            r = voxgi_volume_sample(ctx, J->hidden_light, k == 0 ? VOXGI_ATTRIBUTE_RADIANCE : k == 1 ? VOXGI_ATTRIBUTE_RADIANCE_BACK : VOXGI_ATTRIBUTE_RADIANCE_SIDE,
+                                    VOXGI_DIR_POS_X, n, pos, lods, L + 4 * k * n);
+        for (i = 0; r == VOXGI_OK && i < n; i++) {
+            const float *d = hits + 6 * i + 3, *side = L + 8 * n + 4 * i;
+            const float *from = sides == 2 && d[0] * side[0] + d[1] * side[1] + d[2] * side[2] > 0 ? L + 4 * n + 4 * i : L + 4 * i;
+            for (a = 0; a < 3; a++) C.out[3 * owner[i] + (size_t)a] += (float)(VOXGI__PI / J->rays * from[a]);
+        }
+    }
+    voxgi__free(ctx, hits);
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, lods);
+    voxgi__free(ctx, L);
+    voxgi__free(ctx, owner);
+    return r;
 }
 
 /* A screen job from desc-like settings (validated here): the view, the G-buffer and the method. */
@@ -12197,6 +12275,15 @@ VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *des
         return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "irradiance holds %lu bytes, the image needs %lu", (unsigned long)irradiance_bytes,
                            (unsigned long)((size_t)desc->camera.width * (size_t)desc->camera.height * 12));
     J.radiance = desc->radiance;
+    if (desc->hidden_light) {
+        voxgi_volume_info vi;
+        voxgi_volume_query(desc->hidden_light, &vi);
+        const voxgi_grid *g = desc->voxels ? &desc->voxels->info.grid : NULL;
+        if (desc->method != VOXGI_AO_VOXELS || !g || !(vi.attributes & VOXGI_ATTRIBUTE_RADIANCE) || vi.grid.voxel_size != g->voxel_size ||
+            memcmp(vi.grid.origin, g->origin, sizeof g->origin) != 0 || memcmp(vi.grid.res, g->res, sizeof g->res) != 0)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "hidden_light needs VOXELS and a RADIANCE volume on the voxels' grid");
+        J.hidden_light = desc->hidden_light;
+    }
     return voxgi__screen_run(ctx, &J, desc->voxels, desc->seed, irradiance);
 }
 
@@ -13142,10 +13229,10 @@ static void voxgi__bounce_free(voxgi_context *ctx, voxgi__bounce_image *B)
 
 /* The direct light into rgb (and the light the surfaces reflect, without their emission, into
    reflected, if not NULL) and all the shared parts (B zeroed first, freed by voxgi__bounce_free
-   whatever the result); the times of the direct light and the voxels. */
+   whatever the result); the times of the direct light and the voxels (holding `attributes`). */
 static voxgi_result voxgi__bounce_begin(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *cam, int samples, int hide_emitters,
-                                        uint64_t seed, int resolution, voxgi_visibility visibility, float *rgb, size_t rgb_bytes, float *reflected,
-                                        voxgi__bounce_image *B, double *ms_direct, double *ms_voxels)
+                                        uint64_t seed, int resolution, voxgi_visibility visibility, unsigned attributes, float *rgb, size_t rgb_bytes,
+                                        float *reflected, voxgi__bounce_image *B, double *ms_direct, double *ms_voxels)
 {
     voxgi__direct_image_job J;
     voxgi_voxelize_desc vd;
@@ -13176,6 +13263,7 @@ static voxgi_result voxgi__bounce_begin(voxgi_context *ctx, const voxgi_scene *s
     fit.res = resolution ? resolution : 64;
     if ((r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid)) != VOXGI_OK) return r;
     B->grid = vd.grid;
+    vd.attributes = attributes;
     if (visibility == VOXGI_VISIBILITY_NONE) return VOXGI_OK;
     t1 = voxgi__now_ms(); /* the voxels the gathers pass */
     if ((r = voxgi_voxelize(ctx, scene, &vd, &B->vox)) == VOXGI_OK && (r = voxgi__occ_build(ctx, B->vox, visibility == VOXGI_VISIBILITY_HIERARCHICAL, &B->O)) == VOXGI_OK)
@@ -13242,7 +13330,7 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), visibility %d, gather_stride %d (0..64)", desc->samples,
                            desc->resolution, (int)desc->visibility, desc->gather_stride);
     memset(&inf, 0, sizeof inf);
-    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, rgb, rgb_bytes,
+    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, 0, rgb, rgb_bytes,
                             NULL, &B, &inf.ms_direct, &inf.ms_voxels);
     if (r == VOXGI_OK && !(maps = (voxgi_rsm **)voxgi__alloc_array(ctx, scene->light_count + 1, sizeof *maps, 1)))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
@@ -13303,7 +13391,7 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..1024), visibility %d, gather_stride %d (0..64), opening %g (0..4)",
                            desc->samples, desc->resolution, (int)desc->visibility, desc->gather_stride, (double)desc->opening);
     memset(&inf, 0, sizeof inf);
-    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, rgb, rgb_bytes,
+    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, 0, rgb, rgb_bytes,
                             NULL, &B, &inf.ms_direct, &inf.ms_voxels);
     t1 = voxgi__now_ms();
     if (r == VOXGI_OK) r = voxgi_sh_create(ctx, scene, &B.grid, &desc->sh, &sh);
@@ -13395,12 +13483,14 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
     voxgi__bounce_image B;
     voxgi__screen_job J;
     voxgi_ssgi_image_info inf;
+    voxgi_volume *light = NULL;
     float *reflected = NULL;
+    int hidden = desc && desc->hidden_light && desc->method == VOXGI_AO_VOXELS;
     double t0 = voxgi__now_ms(), t1;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->blur < 0 || desc->blur > 64 ||
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->blur < 0 || desc->blur > 64 || desc->inject_samples < 0 ||
         (desc->half_resolution != 0 && desc->half_resolution != 1) || !(desc->radius >= 0 && isfinite(desc->radius)))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), half_resolution %d (0 or 1), blur %d (0..64), radius %g",
                            desc->samples, desc->resolution, desc->half_resolution, desc->blur, (double)desc->radius);
@@ -13408,8 +13498,18 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
     reflected = (float *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(desc->camera.width, 1) * (size_t)VOXGI__MAX(desc->camera.height, 1), 12, 0);
     if (!reflected) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the screen's light");
     r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution ? desc->resolution : 128,
-                            desc->method == VOXGI_AO_VOXELS ? VOXGI_VISIBILITY_HIERARCHICAL : VOXGI_VISIBILITY_NONE, rgb, rgb_bytes, reflected, &B,
-                            &inf.ms_direct, &inf.ms_voxels);
+                            desc->method == VOXGI_AO_VOXELS ? VOXGI_VISIBILITY_HIERARCHICAL : VOXGI_VISIBILITY_NONE,
+                            hidden ? VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL : 0u, rgb, rgb_bytes, reflected, &B, &inf.ms_direct, &inf.ms_voxels);
+    if (r == VOXGI_OK && hidden) { /* the voxels' direct light, one level: only level 0 is read */
+        voxgi_inject_desc id;
+        memset(&id, 0, sizeof id);
+        id.volume.levels = 1;
+        id.samples = desc->inject_samples ? desc->inject_samples : ctx->backend == VOXGI_BACKEND_GL ? 16 : 4;
+        id.seed = desc->seed;
+        t1 = voxgi__now_ms();
+        r = voxgi__inject_light(ctx, scene, B.vox, &id, &B.tr, &B.Ls, &light);
+        inf.ms_inject = voxgi__now_ms() - t1;
+    }
     inf.radius = desc->radius;
     if (r == VOXGI_OK && !(inf.radius > 0)) inf.radius = (float)voxgi__longest_side(&B.tr);
     if (r == VOXGI_OK) r = voxgi__screen_setup(ctx, &J, &desc->camera, B.pos, B.nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, inf.radius);
@@ -13419,10 +13519,12 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
         J.O = B.have_occ ? &B.O : NULL;
         J.grid = &B.grid;
         J.seed = desc->seed;
+        J.hidden_light = light;
         r = voxgi__screen_image(ctx, &J, 3, desc->half_resolution, desc->blur, B.irr, &inf.gathered);
         if (r == VOXGI_OK) voxgi__bounce_add(&B, rgb);
     }
     inf.ms_gather = voxgi__now_ms() - t1;
+    voxgi_volume_destroy(ctx, light);
     voxgi__bounce_free(ctx, &B);
     voxgi__free(ctx, reflected);
     inf.ms = voxgi__now_ms() - t0;

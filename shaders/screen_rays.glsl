@@ -8,6 +8,7 @@ layout(std430, binding = 1) readonly buffer Normals { float normals[]; }; // 3 p
 layout(std430, binding = 2) writeonly buffer Out { float result[]; };     // 1 (occlusion) or 3 per point
 layout(std430, binding = 3) readonly buffer Screen { float screen[]; };   // per pixel: position 3, normal 3, radiance 3
 layout(std430, binding = 4) readonly buffer Random { float random[]; };   // 3 per point: rotation, jitter
+layout(std430, binding = 5) writeonly buffer Hidden { float hidden[]; };  // u_hidden: 6 per point and ray, the voxel a hidden hit met, the ray
 layout(location = VOXGI_LOC_u_count) uniform uint u_count;
 layout(location = VOXGI_LOC_u_first) uniform uint u_first;
 layout(location = VOXGI_LOC_u_origin) uniform vec3 u_origin;
@@ -24,6 +25,7 @@ layout(location = VOXGI_LOC_u_radius) uniform float u_radius;
 layout(location = VOXGI_LOC_u_gather) uniform int u_gather;
 layout(location = VOXGI_LOC_u_through_voxels) uniform int u_through_voxels;
 layout(location = VOXGI_LOC_u_point_sampling) uniform int u_point_sampling;
+layout(location = VOXGI_LOC_u_hidden) uniform int u_hidden;
 
 const float PI = 3.14159265358979;
 
@@ -84,12 +86,12 @@ float phi3(int k)
     return r;
 }
 
-// voxgi__screen_voxels: met, and the pixel showing the entry point (0xFFFFFFFF: hidden or off screen)
-bool through_voxels(vec3 p, vec3 n, vec3 dir, out uint hit)
+// voxgi__screen_voxels: met, and the pixel showing the entry point (0xFFFFFFFF: hidden or off screen);
+// v: the voxel met
+bool through_voxels(vec3 p, vec3 n, vec3 dir, out uint hit, out ivec3 v)
 {
     float vs = u_voxel_size, enter = 0.0, z;
     vec3 o = (p + 1.5 * vs * n - u_origin) / vs, d = (p + u_radius * dir - u_origin) / vs - o;
-    ivec3 v;
     hit = 0xFFFFFFFFu;
     if (!occluded_at(o, d, v)) return false;
     if (u_gather == 0) return true;
@@ -110,6 +112,7 @@ void main()
     vec3 n = vec3(normals[3u * i], normals[3u * i + 1u], normals[3u * i + 2u]);
     vec3 e = vec3(0.0);
     int blocked = 0;
+    for (int k = 0; u_hidden != 0 && k < u_rays; k++) hidden[6u * (i * uint(u_rays) + uint(k))] = uintBitsToFloat(0x7FC00000u);
     if (n != vec3(0.0)) {
         vec2 rot = vec2(random[3u * i], random[3u * i + 1u]);
         float jitter = random[3u * i + 2u];
@@ -121,11 +124,17 @@ void main()
             float r = sqrt(u.x), phi = 2.0 * PI * u.y;
             vec3 dir = r * cos(phi) * t + r * sin(phi) * b + sqrt(max(0.0, 1.0 - u.x)) * n;
             uint hit;
+            ivec3 v = ivec3(0);
             bool met;
             if (u_point_sampling != 0) met = behind(p, p + fract(phi3(k) + jitter) * u_radius * dir, hit); // one point along the ray
-            else met = u_through_voxels != 0 ? through_voxels(p, n, dir, hit) : march(p, dir, jitter, hit);
+            else met = u_through_voxels != 0 ? through_voxels(p, n, dir, hit, v) : march(p, dir, jitter, hit);
             if (met) blocked++;
             if (met && u_gather != 0 && hit != 0xFFFFFFFFu) e += svec(hit, 6u);
+            if (met && u_hidden != 0 && hit == 0xFFFFFFFFu)
+                for (int a = 0; a < 3; a++) {
+                    hidden[6u * (i * uint(u_rays) + uint(k)) + uint(a)] = float(v[a]) + 0.5;
+                    hidden[6u * (i * uint(u_rays) + uint(k)) + 3u + uint(a)] = dir[a];
+                }
         }
     }
     if (u_gather != 0) {

@@ -24,7 +24,7 @@ typedef struct render_args {
     int bounce_cones, bounce_block, isotropic;
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
     double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
-    int rays, march_steps, point_sampling, half_res, blur, blur_given, screen_light_only;
+    int rays, march_steps, point_sampling, half_res, blur, blur_given, screen_light_only, hidden_light;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -309,18 +309,21 @@ static void print_ssgi(const render_args *a, const char *name, const double mean
     int w = a->size[0], h = a->size[1], rays = gd->rays ? gd->rays : 16, steps = gd->steps ? gd->steps : 16;
     const char *method = gd->method == VOXGI_AO_VOXELS ? "hybrid" : "ssgi";
     if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"%s\",\"size\":[%d,%d],\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"gathered\":%lu,\"direct_ms\":%.3f,"
-               "\"voxels_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
-               name, method, w, h, (double)gi->radius, rays, steps, (unsigned long)gi->gathered, gi->ms_direct, gi->ms_voxels, gi->ms_gather, gi->ms, mean[0],
-               mean[1], mean[2]);
+        printf("{\"scene\":\"%s\",\"method\":\"%s\",\"size\":[%d,%d],\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"half_res\":%d,\"blur\":%d,"
+               "\"hidden_light\":%d,\"gathered\":%lu,\"direct_ms\":%.3f,\"voxels_ms\":%.3f,\"inject_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,"
+               "\"mean\":[%.6g,%.6g,%.6g],",
+               name, method, w, h, (double)gi->radius, rays, steps, gd->half_resolution, gd->blur, gd->hidden_light, (unsigned long)gi->gathered, gi->ms_direct,
+               gi->ms_voxels, gi->ms_inject, gi->ms_gather, gi->ms, mean[0], mean[1], mean[2]);
         if (a->compare || a->reference) print_compare_json(cmp);
         printf("\"output\":\"%s\"}\n", a->out);
         return;
     }
-    printf("%s: %d x %d, direct light and one bounce from the screen, visibility %s (radius %.4g, %d rays, %lu pixels gathering): direct light "
-           "%.1f ms, voxels %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-           name, w, h, gd->method == VOXGI_AO_VOXELS ? "through the voxels (Hybrid-GI)" : "through the depth buffer (SSGI)", (double)gi->radius, rays,
-           (unsigned long)gi->gathered, gi->ms_direct, gi->ms_voxels, gi->ms_gather, gi->ms, mean[0], mean[1], mean[2], a->out);
+    printf("%s: %d x %d, direct light and one bounce from the screen, visibility %s%s (radius %.4g, %d rays, %lu pixels gathering%s, blur %d): "
+           "direct light %.1f ms, voxels %.1f ms, their light %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
+           name, w, h, gd->method == VOXGI_AO_VOXELS ? "through the voxels (Hybrid-GI)" : "through the depth buffer (SSGI)",
+           gd->hidden_light ? ", hidden hits sending the voxels' light" : "", (double)gi->radius, rays, (unsigned long)gi->gathered,
+           gd->half_resolution ? " at half resolution" : "", gd->blur, gi->ms_direct, gi->ms_voxels, gi->ms_inject, gi->ms_gather, gi->ms, mean[0], mean[1], mean[2],
+           a->out);
     if (a->compare || a->reference) print_compare(a, d, cmp);
 }
 
@@ -495,6 +498,8 @@ static int render_run(cli_session *s, const render_args *a)
         J.gd.steps = a->march_steps;
         J.gd.radius = (float)a->radius;
         J.gd.half_resolution = a->half_res;
+        J.gd.hidden_light = a->hidden_light;
+        J.gd.inject_samples = a->inject_samples;
         J.gd.blur = a->blur;
         d->bounces = 1;
     }
@@ -602,6 +607,8 @@ int cmd_render(int argc, char **argv)
             {.name = "--steps", .arg = "N", .kind = CLI_INT, .dst = &a.march_steps, .lo = 1, .hi = 4096, .help = "ssao, ssgi: steps along each ray (default 16)"},
             {.name = "--point-sampling", .kind = CLI_FLAG, .dst = &a.point_sampling,
              .help = "ssao: one point per ray instead of the march (occlusion with a linear\nfalloff: a hit at d counts 1 - d / radius)"},
+            {.name = "--hidden-light", .kind = CLI_FLAG, .dst = &a.hidden_light,
+             .help = "hybrid: rays that meet a voxel the camera does not see take the direct\nlight injected into it (default: they send nothing, as in the source)"},
             {.name = "--half-res", .kind = CLI_FLAG, .dst = &a.half_res,
              .help = "ssao, vao, ssgi, hybrid: rays at every other pixel across and down, upsampled\nalong the surfaces (an edge-aware filter)"},
             {.name = "--blur", .arg = "N", .kind = CLI_INT, .dst = &a.blur, .lo = 0, .hi = 64, .given = &a.blur_given,
