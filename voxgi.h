@@ -1103,7 +1103,7 @@ typedef struct voxgi_ssgi_image_desc {
     voxgi_ao_method method;       /* SCREEN: SSGI; VOXELS: Hybrid-GI */
     int resolution;               /* VOXELS: 0 = 128 */
     int rays, steps;              /* 0 = 16 each */
-    float radius;                 /* 0 = the scene's longest side */
+    float radius;                 /* 0 = sqrt(3) x the scene's longest side (the rays reach across it) */
     int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
     uint64_t seed;
     int hide_emitters;
@@ -13511,7 +13511,7 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
         inf.ms_inject = voxgi__now_ms() - t1;
     }
     inf.radius = desc->radius;
-    if (r == VOXGI_OK && !(inf.radius > 0)) inf.radius = (float)voxgi__longest_side(&B.tr);
+    if (r == VOXGI_OK && !(inf.radius > 0)) inf.radius = (float)(sqrt(3.0) * voxgi__longest_side(&B.tr)); /* across the scene */
     if (r == VOXGI_OK) r = voxgi__screen_setup(ctx, &J, &desc->camera, B.pos, B.nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, inf.radius);
     t1 = voxgi__now_ms();
     if (r == VOXGI_OK) {

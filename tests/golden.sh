@@ -115,6 +115,10 @@ run vao-cornell render cornell-box --method vao --size 16 16 --rays 8 --res 32 $
 run ao-reference render cornell-box --ao-radius 0.1 --size 16 16 --spp 8 $T --json -o "$tmp/o.pfm"
 run ssgi-cornell render cornell-box --method ssgi --size 16 16 --rays 8 --steps 8 --spp 2 $T --json -o "$tmp/o.pfm"
 run hybrid-cornell render cornell-box --method hybrid --size 16 16 --rays 8 --res 32 --spp 2 $T --json -o "$tmp/o.pfm"
+run ssao-half render cornell-box --method ssao --size 16 16 --rays 8 --steps 8 --half-res on --blur 2 $T --json -o "$tmp/o.pfm"
+run ssgi-half render cornell-box --method ssgi --size 16 16 --rays 8 --steps 8 --spp 2 --half-res on --blur 3 $T --json -o "$tmp/o.pfm"
+run hybrid-hidden render cornell-box --method hybrid --hidden-light on --size 16 16 --rays 8 --res 32 --spp 2 --blur 2 $T --json -o "$tmp/o.pfm"
+run reference-screen-light render cornell-box --size 16 16 --spp 4 --screen-light-only $T --json -o "$tmp/o.pfm"
 
 # GL cone tracing: llvmpipe gives the same bits run after run (a GPU need not: mips by blending)
 run vct-gl render cornell-box --method vct --backend gl --res 24 --cones 8 --size 24 24 --spp 8 \

@@ -372,7 +372,7 @@ static void test_tsm_command(void)
         voxgi_builtin_scene ts;
         voxgi_ssgi_image_desc gd;
         snprintf(pfm, sizeof pfm, "%s/g.pfm", tmpdir);
-        snprintf(args, sizeof args, "render cornell-box --method hybrid --size 8 8 --rays 8 --res 24 --radius 0.3 --spp 2 --gather-stride 2 --json -o %s", pfm);
+        snprintf(args, sizeof args, "render cornell-box --method hybrid --size 8 8 --rays 8 --res 24 --radius 0.3 --spp 2 --half-res on --blur 2 --hidden-light on --json -o %s", pfm);
         TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "radius") > 0.299 && strstr(out, "\"method\":\"hybrid\""), "hybrid render: %s", out);
         voxgi_builtin_scene_create(ctx, "cornell-box", &ts);
         memset(&gd, 0, sizeof gd);
@@ -383,7 +383,9 @@ static void test_tsm_command(void)
         gd.rays = 8;
         gd.radius = 0.3f;
         gd.samples = 2;
-        gd.gather_stride = 2;
+        gd.half_resolution = 1;
+        gd.blur = 2;
+        gd.hidden_light = 1;
         gd.seed = 1;
         TH_CHECK(voxgi_ssgi_render(ctx, &ts.scene, &gd, want, sizeof want, NULL) == VOXGI_OK, "library ssgi render: %s", voxgi_last_error(ctx));
         f = fopen(pfm, "rb");

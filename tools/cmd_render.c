@@ -7,6 +7,12 @@
 static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", "ssao", "vao", "ssgi", "hybrid", NULL};
 enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH, METHOD_SSAO, METHOD_VAO, METHOD_SSGI, METHOD_HYBRID };
 static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_visibility's order */
+static const char *const off_on_names[] = {"off", "on", NULL};
+
+/* The screen passes' defaults, from `voxgi report ao` and `voxgi report ssgi` on the Cornell box
+   (docs/screen-space.md): ambient occlusion at full resolution, its sharp bands along the edges
+   blurred little; one bounce at half resolution, blurred more, Hybrid-GI with its hidden light. */
+enum { AO_BLUR = 2, GI_BLUR = 4, GI_HALF_RES = 1, HYBRID_HIDDEN_LIGHT = 1 };
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -24,7 +30,7 @@ typedef struct render_args {
     int bounce_cones, bounce_block, isotropic;
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
     double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
-    int rays, march_steps, point_sampling, half_res, blur, blur_given, screen_light_only, hidden_light;
+    int rays, march_steps, point_sampling, half_res, half_res_given, blur, blur_given, screen_light_only, hidden_light, hidden_light_given;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -485,8 +491,8 @@ static int render_run(cli_session *s, const render_args *a)
         J.ad.steps = a->march_steps;
         J.ad.radius = (float)a->radius;
         J.ad.point_sampling = a->point_sampling;
-        J.ad.half_resolution = a->half_res;
-        J.ad.blur = a->blur;
+        J.ad.half_resolution = a->half_res_given ? a->half_res : 0;
+        J.ad.blur = a->blur_given ? a->blur : AO_BLUR;
     }
     if (a->method == METHOD_SSGI || a->method == METHOD_HYBRID) { /* direct light and one bounce: compared with the reference's one bounce */
         J.gd.camera = d->camera;
@@ -497,10 +503,10 @@ static int render_run(cli_session *s, const render_args *a)
         J.gd.rays = a->rays;
         J.gd.steps = a->march_steps;
         J.gd.radius = (float)a->radius;
-        J.gd.half_resolution = a->half_res;
-        J.gd.hidden_light = a->hidden_light;
+        J.gd.half_resolution = a->half_res_given ? a->half_res : GI_HALF_RES;
+        J.gd.hidden_light = a->method == METHOD_HYBRID && (a->hidden_light_given ? a->hidden_light : HYBRID_HIDDEN_LIGHT);
         J.gd.inject_samples = a->inject_samples;
-        J.gd.blur = a->blur;
+        J.gd.blur = a->blur_given ? a->blur : GI_BLUR;
         d->bounces = 1;
     }
     if (a->method == METHOD_REFERENCE) {
@@ -567,7 +573,7 @@ int cmd_render(int argc, char **argv)
                                        "headless GL 4.5 context works); the reference runs on the CPU"),
             CLI_OPT_GL(&a.common, "which headless GL to try"),
             {.name = "--res", .arg = "N", .kind = CLI_INT, .dst = &a.res, .lo = 1, .hi = 4096, .given = &a.res_given,
-             .help = "vct: voxels along the scene's longest side (default 96); rsm: of the\nvisibility's voxels (default 64); sh: of the SH volume (default 64);\nvao: of the voxels (default 128)"},
+             .help = "vct: voxels along the scene's longest side (default 96); rsm: of the\nvisibility's voxels (default 64); sh: of the SH volume (default 64);\nvao, hybrid: of the voxels (default 128)"},
             {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 24)"},
             {.name = "--step", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.step, .lo = 0, .lo_open = 1, .hi = 4,
              .help = "vct: step as a fraction of the cone diameter (default 0.5)"},
@@ -583,7 +589,7 @@ int cmd_render(int argc, char **argv)
                      "(isotropic mips) instead of the volume (default float32)"},
             {.name = "--bricks", .kind = CLI_FLAG, .dst = &a.bricks, .help = "vct with --octree: sample the octree through its bricks"},
             {.name = "--inject-samples", .arg = "N", .kind = CLI_INT, .dst = &a.inject_samples, .lo = 1, .hi = 4096,
-             .help = "vct: points on each area light and emitter per voxel's light\n(default 4 on the CPU, 16 on GL)"},
+             .help = "vct, hybrid with --hidden-light: points on each area light and emitter\nper voxel's light (default 4 on the CPU, 16 on GL)"},
             {.name = "--no-gi", .kind = CLI_FLAG, .dst = &a.no_gi, .help = "vct: direct light only"},
             {.name = "--rsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.rsm_size, .lo = 1, .hi = 16384,
              .help = "rsm: texels across each light's map (default 256)"},
@@ -602,17 +608,17 @@ int cmd_render(int argc, char **argv)
             {.name = "--screen-light-only", .kind = CLI_FLAG, .dst = &a.screen_light_only,
              .help = "reference with --bounces 1: the bounce takes light only from surfaces the\ncamera sees (the most one bounce from the screen can find)"},
             {.name = "--radius", .arg = "R", .kind = CLI_DOUBLE, .dst = &a.radius, .lo = 0, .lo_open = 1, .hi = 1e30,
-             .help = "ssao, vao: the occlusion's radius (default a tenth of the scene's longest\nside); ssgi, hybrid: the rays' reach (default the scene's longest side)"},
+             .help = "ssao, vao: the occlusion's radius (default a tenth of the scene's longest\nside); ssgi, hybrid: the rays' reach (default sqrt(3) x the scene's longest side)"},
             {.name = "--rays", .arg = "N", .kind = CLI_INT, .dst = &a.rays, .lo = 1, .hi = 65536, .help = "ssao, vao, ssgi, hybrid: rays per pixel (default 16)"},
             {.name = "--steps", .arg = "N", .kind = CLI_INT, .dst = &a.march_steps, .lo = 1, .hi = 4096, .help = "ssao, ssgi: steps along each ray (default 16)"},
             {.name = "--point-sampling", .kind = CLI_FLAG, .dst = &a.point_sampling,
              .help = "ssao: one point per ray instead of the march (occlusion with a linear\nfalloff: a hit at d counts 1 - d / radius)"},
-            {.name = "--hidden-light", .kind = CLI_FLAG, .dst = &a.hidden_light,
-             .help = "hybrid: rays that meet a voxel the camera does not see take the direct\nlight injected into it (default: they send nothing, as in the source)"},
-            {.name = "--half-res", .kind = CLI_FLAG, .dst = &a.half_res,
-             .help = "ssao, vao, ssgi, hybrid: rays at every other pixel across and down, upsampled\nalong the surfaces (an edge-aware filter)"},
+            {.name = "--hidden-light", .arg = "on|off", .kind = CLI_ENUM, .dst = &a.hidden_light, .names = off_on_names, .given = &a.hidden_light_given,
+             .help = "hybrid: rays that meet a voxel the camera does not see take the direct\nlight injected into it (default on; off: they send nothing, as in the source)"},
+            {.name = "--half-res", .arg = "on|off", .kind = CLI_ENUM, .dst = &a.half_res, .names = off_on_names, .given = &a.half_res_given,
+             .help = "ssao, vao, ssgi, hybrid: rays at every other pixel across and down, upsampled\nalong the surfaces by an edge-aware filter (default off for ssao and vao, on\nfor ssgi and hybrid)"},
             {.name = "--blur", .arg = "N", .kind = CLI_INT, .dst = &a.blur, .lo = 0, .hi = 64, .given = &a.blur_given,
-             .help = "ssao, vao, ssgi, hybrid: the edge-aware blur's radius in pixels (0: none;\ndefault 0)"},
+             .help = "ssao, vao, ssgi, hybrid: the edge-aware blur's radius in pixels (0: none;\ndefault 2 for ssao and vao, 4 for ssgi and hybrid)"},
             {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
              .help = "rsm and sh: each gather's visibility through the voxels (default hierarchical)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
