@@ -68,7 +68,7 @@ static void write_file(const char *name, const char *text, char *path, size_t pa
 
 static void test_help_everywhere(void)
 {
-    static char out[8192];
+    static char out[32768];
     const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "bench rays --help", "svo --help", "render --help", "report --help", "report vct --help",
                           "report tsm --help", "report rsm --help", "report sh --help"};
     size_t i;
@@ -357,6 +357,7 @@ static void test_tsm_command(void)
         ad.resolution = 24;
         ad.rays = 8;
         ad.radius = 0.1f;
+        ad.blur = 2; /* the command's default */
         ad.seed = 1;
         TH_CHECK(voxgi_ao_render(ctx, &ts.scene, &ad, want, sizeof want, NULL) == VOXGI_OK, "library ao render: %s", voxgi_last_error(ctx));
         f = fopen(pfm, "rb");
