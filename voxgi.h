@@ -11941,10 +11941,10 @@ static int voxgi__screen_pixel(const voxgi__screen_job *J, const double s[3], si
     return 1;
 }
 
-static int voxgi__screen_has_surface(const voxgi__screen_job *J, size_t pix)
+/* Whether pixel pix of a G-buffer's normals shows a surface (no surface: the normal 0). */
+static int voxgi__has_surface(const float *nrm, size_t pix)
 {
-    const float *m = J->nrm + 3 * pix;
-    return m[0] != 0 || m[1] != 0 || m[2] != 0;
+    return nrm[3 * pix] != 0 || nrm[3 * pix + 1] != 0 || nrm[3 * pix + 2] != 0;
 }
 
 /* 1 when point s lies behind the surface of the pixel it projects to (that pixel's plane met by
@@ -11956,7 +11956,7 @@ static int voxgi__screen_behind(const voxgi__screen_job *J, const double p[3], c
     const float *q, *m;
     size_t at;
     int c;
-    if (!voxgi__screen_pixel(J, s, &at, &z) || !voxgi__screen_has_surface(J, at)) return 0;
+    if (!voxgi__screen_pixel(J, s, &at, &z) || !voxgi__has_surface(J->nrm, at)) return 0;
     q = J->pos + 3 * at;
     m = J->nrm + 3 * at;
     for (c = 0; c < 3; c++) {
@@ -12007,7 +12007,7 @@ static int voxgi__screen_voxels(const voxgi__screen_job *J, const double p[3], c
     for (a = 0; a < 3; a++) /* where the segment enters the voxel it met */
         if (d[a] != 0) enter = VOXGI__MAX(enter, VOXGI__MIN(((double)v[a] - o[a]) / d[a], ((double)v[a] + 1 - o[a]) / d[a]));
     for (a = 0; a < 3; a++) x[a] = g->origin[a] + (o[a] + enter * d[a]) * vs;
-    if (!voxgi__screen_pixel(J, x, hit, &z) || !voxgi__screen_has_surface(J, *hit)) { *hit = SIZE_MAX; return 1; }
+    if (!voxgi__screen_pixel(J, x, hit, &z) || !voxgi__has_surface(J->nrm, *hit)) { *hit = SIZE_MAX; return 1; }
     for (a = 0; a < 3; a++) dq += (double)J->nrm[3 * *hit + (size_t)a] * ((double)J->pos[3 * *hit + (size_t)a] - x[a]);
     if (!(fabs(dq) <= 2 * vs)) *hit = SIZE_MAX; /* another surface than the pixel's: hidden from the camera */
     return 1;
@@ -12134,6 +12134,7 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
 }
 #endif
 
+/* Job J's rays at count points on the context's backend, as they are. */
 static voxgi_result voxgi__screen_rays_on(voxgi_context *ctx, voxgi__screen_job *J, size_t count)
 {
 #ifndef VOXGI_NO_GL
@@ -12144,7 +12145,7 @@ static voxgi_result voxgi__screen_rays_on(voxgi_context *ctx, voxgi__screen_job 
 }
 
 /* Job J's rays at count points (J's points, normals, out) on the context's backend; with
-   J->hidden_hits' volume, in parts of about a million rays, the light of the voxels the hidden
+   J->hidden_light, in parts of about a million rays, the light of the voxels the hidden
    hits met (voxgi_volume_sample at their centres: RADIANCE, or RADIANCE_BACK where the ray meets
    the side its RADIANCE_SIDE normal turns away) added after each part. */
 static voxgi_result voxgi__screen_rays(voxgi_context *ctx, voxgi__screen_job *J, size_t count)
@@ -12276,9 +12277,9 @@ VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *des
                            (unsigned long)((size_t)desc->camera.width * (size_t)desc->camera.height * 12));
     J.radiance = desc->radiance;
     if (desc->hidden_light) {
+        const voxgi_grid *g = desc->voxels ? &desc->voxels->info.grid : NULL;
         voxgi_volume_info vi;
         voxgi_volume_query(desc->hidden_light, &vi);
-        const voxgi_grid *g = desc->voxels ? &desc->voxels->info.grid : NULL;
         if (desc->method != VOXGI_AO_VOXELS || !g || !(vi.attributes & VOXGI_ATTRIBUTE_RADIANCE) || vi.grid.voxel_size != g->voxel_size ||
             memcmp(vi.grid.origin, g->origin, sizeof g->origin) != 0 || memcmp(vi.grid.res, g->res, sizeof g->res) != 0)
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "hidden_light needs VOXELS and a RADIANCE volume on the voxels' grid");
@@ -12311,11 +12312,6 @@ static double voxgi__filter_weight(const voxgi__filter_job *F, size_t c, size_t 
     dn2 = dn * dn;
     t = 2 * F->pixel_width * sqrt(dist2);
     return dn2 * dn2 * dn2 * dn2 * exp(-(double)(d * d) * F->inv_two_sigma2 - (t > 0 ? dp * dp / (t * t) : 0));
-}
-
-static int voxgi__has_surface(const float *nrm, size_t pix)
-{
-    return nrm[3 * pix] != 0 || nrm[3 * pix + 1] != 0 || nrm[3 * pix + 2] != 0;
 }
 
 /* Rows [first, end) of the row pass (mid, row Y at the full row Y x scale). */
