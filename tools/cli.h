@@ -263,7 +263,8 @@ int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
 int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);
 int cmd_render(int argc, char **argv);
-int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm" or "sh" */
+int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm", "sh", "ao" or "ssgi" */
 int cmd_report_tsm(int argc, char **argv);
 int cmd_report_bounce(int method, int argc, char **argv); /* method 0: rsm, 1: sh */
+int cmd_report_screen(int which, int argc, char **argv); /* which 0: ao, 1: ssgi */
 #endif
