@@ -38,12 +38,13 @@ static const char *const ssgi_help =
     "parameter at a time around a base (16 rays, 16 steps, radius 1 x the scene's longest side, 128\n"
     "voxels, full resolution, no blur) over the lists below, and half resolution with each blur,\n"
     "and measures the relative RMSE by the tools' rule (render --compare's) and the red light in\n"
-    "excess of the reference's. Per scene also the direct light alone, Hybrid-GI converged (256\n"
-    "rays, 256 voxels, radius 1.75: the floor of the screen's error, the light from surfaces the\n"
-    "camera does not see) and cone tracing's defaults. Then a wall barely in view: the Cornell box\n"
-    "turned until its red wall is a sliver at the image's edge, then off screen, and the red\n"
-    "light each method bleeds onto the rest, a share of the reference's. Writes DIR/ssgi.md and\n"
-    "DIR/ssgi.csv, the Pareto front marked. Wall clock on this machine.\n";
+    "excess of the reference's. Per scene also the direct light alone, the reference's bounce from\n"
+    "the surfaces the camera sees alone (the floor of the screen's error: light from surfaces the\n"
+    "camera does not see is missing), Hybrid-GI converged (256 rays, the finest --res, radius 1.75),\n"
+    "also with the hidden light, and cone tracing's defaults. Then a wall barely in view: the\n"
+    "Cornell box turned until its red wall is a sliver at the image's edge, then off screen, and\n"
+    "the red light each method bleeds onto the rest, a share of the reference's. Writes\n"
+    "DIR/ssgi.md and DIR/ssgi.csv, the Pareto front marked. Wall clock on this machine.\n";
 
 #define SCREEN_MAX_SCENES 8
 #define SCREEN_MAX_LIST 16
@@ -60,7 +61,7 @@ typedef struct screen_args {
 /* One configuration; a parameter its method does not use is 0 (steps for the voxels and for point
    sampling, res for the depth buffer). radius: a share of the scene's longest side. */
 typedef struct screen_config {
-    int method, rays, steps, res, half, blur;
+    int method, rays, steps, res, half, blur, hidden; /* hidden: hybrid, the hidden light (not swept) */
     double radius;
 } screen_config;
 
@@ -83,10 +84,13 @@ typedef struct view_spread {
 #define VIEW_RES 128  /* the voxels of the voxels' AO */
 
 /* The red wall of the Cornell box from three views: the reference's one bounce, the direct light
-   alone, SSGI and Hybrid-GI; each one's error and red light bled onto the rest of the image. */
-enum { WALL_REFERENCE, WALL_DIRECT, WALL_SSGI, WALL_HYBRID, WALL_METHODS };
+   alone, SSGI and Hybrid-GI (and Hybrid-GI with the hidden light, the extension that lets hits the
+   camera does not see send the light injected into their voxels); each one's error and red light
+   bled onto the rest of the image. */
+enum { WALL_REFERENCE, WALL_DIRECT, WALL_SSGI, WALL_HYBRID, WALL_HIDDEN, WALL_METHODS };
 static const char *const wall_view_names[3] = {"in view", "a sliver at the edge", "just off screen"};
-static const char *const wall_method_names[WALL_METHODS] = {"reference, one bounce", "direct light alone", "SSGI", "Hybrid-GI"};
+static const char *const wall_method_names[WALL_METHODS] = {"reference, one bounce", "direct light alone", "SSGI", "Hybrid-GI",
+                                                             "Hybrid-GI, hidden light"};
 #define WALL_SLIVER 3      /* a sliver: no row holds more of the wall's pixels */
 #define WALL_YAW_STEP 0.25 /* degrees */
 #define WALL_RAYS 64
@@ -108,7 +112,8 @@ typedef struct screen_report {
     double ref_c[SCREEN_MAX_SCENES][SCREEN_MAX_RADII], ref_ms_per_spp[SCREEN_MAX_SCENES][SCREEN_MAX_RADII];
     size_t masked[SCREEN_MAX_SCENES];
     double direct_rmse[SCREEN_MAX_SCENES];  /* ssgi: the direct light alone */
-    screen_row floor[SCREEN_MAX_SCENES];    /* ssgi: Hybrid-GI converged */
+    double screen_rmse[SCREEN_MAX_SCENES];  /* ssgi: the reference's bounce from the surfaces the camera sees alone */
+    screen_row floor[SCREEN_MAX_SCENES], hidden[SCREEN_MAX_SCENES]; /* ssgi: Hybrid-GI converged, without and with the hidden light */
     double vct_rmse[SCREEN_MAX_SCENES], vct_ms[SCREEN_MAX_SCENES];
     view_spread views[2][2][2];             /* ao: [the orbit, the seeds][at the pixel, at the point][depth buffer, voxels] */
     int view_rays;
@@ -137,7 +142,7 @@ static screen_config base_config(int which, int method)
 static int same_config(const screen_config *p, const screen_config *q)
 {
     return p->method == q->method && p->rays == q->rays && p->steps == q->steps && p->res == q->res && p->half == q->half && p->blur == q->blur &&
-           p->radius == q->radius;
+           p->hidden == q->hidden && p->radius == q->radius;
 }
 
 /* c appended to list[0..n) unless it is there already; the new count. */
@@ -175,7 +180,7 @@ static void config_text(const screen_config *c, char *buf, size_t size)
     if (c->steps && n >= 0 && (size_t)n < size) n += snprintf(buf + n, size - (size_t)n, ", %d steps", c->steps);
     if (c->res && n >= 0 && (size_t)n < size) n += snprintf(buf + n, size - (size_t)n, ", %d voxels", c->res);
     if (n >= 0 && (size_t)n < size)
-        snprintf(buf + n, size - (size_t)n, ", radius %g%s, blur %d", c->radius, c->half ? ", half resolution" : "", c->blur);
+        snprintf(buf + n, size - (size_t)n, ", radius %g%s, blur %d%s", c->radius, c->half ? ", half resolution" : "", c->blur, c->hidden ? ", hidden light" : "");
 }
 
 /* The parameter columns of a row, for Markdown (sep " | ", "-" where unused) or CSV (sep ",", empty). */
@@ -233,6 +238,7 @@ static voxgi_result render_config(voxgi_context *ctx, const voxgi_scene *scene, 
         d.hide_emitters = 1;
         d.half_resolution = c->half;
         d.blur = c->blur;
+        d.hidden_light = c->hidden;
         r = voxgi_ssgi_render(ctx, scene, &d, img, bytes, &info);
         row->gathered = info.gathered;
         row->ms_pass = info.ms_gather;
@@ -296,23 +302,44 @@ static int screen_scene(cli_session *s, voxgi_context *ctx, const screen_args *a
     }
     if (a->which == SCREEN_SSGI) {
         screen_config c = base_config(SCREEN_SSGI, M_HYBRID);
+        voxgi_reference_desc rd;
         voxgi_vct_desc vd;
         voxgi_vct_info vi;
         /* the direct light alone: the reference's, converged */
         if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &direct)) goto done;
         rep->direct_rmse[si] = cli_masked_error(&R[0].mask, direct.image, R[0].image, NULL, NULL);
-        /* Hybrid-GI converged: what it still misses is light from surfaces the camera does not see */
-        c.rays = 256;
-        c.res = 256;
-        c.radius = 1.75;
-        cli_status(s, "%s: Hybrid-GI converged", name);
-        if (render_config(ctx, &bs.scene, &cam, longest, &c, img, &rep->floor[si]) != VOXGI_OK) {
-            cli_fail_lib(s, ctx, "Hybrid-GI converged");
+        /* the most a bounce from the screen can find: the reference's bounce from the surfaces the camera sees alone */
+        memset(&rd, 0, sizeof rd);
+        rd.camera = cam;
+        rd.samples = a->spp;
+        rd.bounces = 1;
+        rd.seed = 1000003; /* cli_reference_make's: the same noise as the full bounce's where they agree */
+        rd.hide_emitters = 1;
+        rd.screen_light_only = 1;
+        cli_status(s, "%s: the reference's bounce from the screen alone, %d spp", name, a->spp);
+        if (voxgi_reference_render(ctx, &bs.scene, &rd, img, pixels * 12, NULL) != VOXGI_OK) {
+            cli_fail_lib(s, ctx, "the reference's bounce from the screen alone");
             goto done;
         }
-        rep->floor[si].scene = si;
-        rep->floor[si].rmse = cli_masked_error(&R[0].mask, img, R[0].image, NULL, NULL);
-        rep->floor[si].red = cli_red_excess(&R[0], img);
+        rep->screen_rmse[si] = cli_masked_error(&R[0].mask, img, R[0].image, NULL, NULL);
+        /* Hybrid-GI converged: what it still misses is light from surfaces the camera does not see;
+           with the hidden light, what the voxels' injected light gives of it */
+        c.rays = 256;
+        c.res = 0;
+        for (k = 0; k < a->nres; k++) c.res = c.res > (int)a->res[k] ? c.res : (int)a->res[k]; /* the finest of --res: 256 by default */
+        c.radius = 1.75;
+        for (k = 0; k < 2; k++) {
+            screen_row *row = k ? &rep->hidden[si] : &rep->floor[si];
+            c.hidden = k;
+            cli_status(s, "%s: Hybrid-GI converged%s", name, k ? ", hidden light" : "");
+            if (render_config(ctx, &bs.scene, &cam, longest, &c, img, row) != VOXGI_OK) {
+                cli_fail_lib(s, ctx, "Hybrid-GI converged");
+                goto done;
+            }
+            row->scene = si;
+            row->rmse = cli_masked_error(&R[0].mask, img, R[0].image, NULL, NULL);
+            row->red = cli_red_excess(&R[0], img);
+        }
         cli_vct_defaults(&vd, &cam);
         cli_status(s, "%s: cone tracing, the tool's defaults", name);
         if (voxgi_vct_render(ctx, &bs.scene, &vd, img, pixels * 12, &vi) != VOXGI_OK) {
@@ -730,11 +757,12 @@ static int ssgi_wall(cli_session *s, voxgi_context *ctx, const screen_args *a, s
         W->colour[WALL_REFERENCE] = red_bleeding(R1.image, G1.image, red, &R1.mask);
         W->rmse[WALL_DIRECT] = cli_masked_error(&R1.mask, R0.image, R1.image, NULL, NULL);
         W->bleed[WALL_DIRECT] = W->colour[WALL_DIRECT] = 0;
-        for (k = WALL_SSGI; k <= WALL_HYBRID; k++) {
+        for (k = WALL_SSGI; k < WALL_METHODS; k++) {
             screen_config c = base_config(SCREEN_SSGI, k == WALL_SSGI ? M_SSGI : M_HYBRID);
             screen_row row;
             memset(&row, 0, sizeof row);
             c.rays = WALL_RAYS;
+            c.hidden = k == WALL_HIDDEN;
             cli_status(s, "the wall %s: %s", wall_view_names[v], wall_method_names[k]);
             if (render_config(ctx, &grey_scene, &cam, longest, &c, grey, &row) != VOXGI_OK ||
                 render_config(ctx, &bs.scene, &cam, longest, &c, img, &row) != VOXGI_OK) {
@@ -809,8 +837,8 @@ static void write_wall(FILE *f, const screen_args *a, const screen_report *rep)
                "the reference's direct light, bounces 0, %d spp, the same view); it holds the light's own tint (red over green) bounced off "
                "the white surfaces and the green wall's bleeding too. *From the wall's colour*: the same mean of the image minus the image of "
                "the same view and method with the wall grey (its albedo's mean in every channel): the red the wall's colour alone puts on the "
-               "rest. Each also as a share of the reference's one bounce. SSGI and Hybrid-GI: %d rays, the rest the base. Error: against the "
-               "reference's one bounce.\n\n| view | yaw | red wall pixels (widest row) | method | rel. RMSE | red - green | share | from the "
+               "rest. Each also as a share of the reference's one bounce. SSGI and Hybrid-GI (also with the hidden light): %d rays, the rest the "
+               "base. Error: against the reference's one bounce.\n\n| view | yaw | red wall pixels (widest row) | method | rel. RMSE | red - green | share | from the "
                "wall's colour | share |\n|---|---:|---:|---|---:|---:|---:|---:|---:|\n",
             a->size[0], a->size[1], WALL_YAW_STEP, WALL_SLIVER, WALL_FINE, WALL_FINE, a->spp, WALL_RAYS);
     for (v = 0; v < 3; v++) {
@@ -900,17 +928,23 @@ static int screen_write(cli_session *s, const screen_args *a, const screen_repor
     }
     if (ao) write_views(md, a, rep);
     else {
-        fprintf(md, "\n## Light the screen cannot see\n\nHybrid-GI converged (256 rays, 256 voxels, radius 1.75, full resolution, no blur) is the "
-                    "floor of the screen methods' error: what it still misses is light from surfaces the camera does not see. Beside it the "
-                    "direct light alone and cone tracing with the tool's defaults (`voxgi render --method vct`: %d^3, anisotropic, %d cones at "
-                    "every %dth pixel, %d direct-light rays per pixel), the same scene and size.\n\n| scene | direct light alone | Hybrid-GI "
-                    "converged | its time | cone tracing | its time |\n|---|---:|---:|---:|---:|---:|\n",
-                CLI_VCT_RES, CLI_VCT_CONES, CLI_VCT_STRIDE, CLI_VCT_DIRECT_SPP);
+        fprintf(md, "\n## Light the screen cannot see\n\nWhat no bounce from the screen can find is light from surfaces the camera does "
+                    "not see. *Screen light alone*: the reference's bounce from the surfaces the camera sees only (`voxgi render "
+                    "--screen-light-only`, %d spp), the floor of every screen method's error. *Hybrid-GI converged*: 256 rays, %d voxels (the finest of "
+                    "--res), radius 1.75, full resolution, no blur; *with the hidden light*: the same with hits the camera does not see sending the direct light "
+                    "injected into their voxels (`--hidden-light`, an extension beyond the screen). Beside them the direct light alone and cone "
+                    "tracing with the tool's defaults (`voxgi render --method vct`: %d^3, anisotropic, %d cones at every %dth pixel, %d "
+                    "direct-light rays per pixel), the same scene and size.\n\n| scene | direct light alone | screen light alone | Hybrid-GI "
+                    "converged | its time | with the hidden light | its time | cone tracing | its time |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+                a->spp, rep->scene_count ? rep->floor[0].c.res : 0, CLI_VCT_RES, CLI_VCT_CONES, CLI_VCT_STRIDE, CLI_VCT_DIRECT_SPP);
         for (si = 0; si < rep->scene_count; si++) {
             fprintf(md, "| %s | ", rep->scenes[si]);
             put_percent(md, rep->direct_rmse[si], " | ");
+            put_percent(md, rep->screen_rmse[si], " | ");
             put_percent(md, rep->floor[si].rmse, "");
             fprintf(md, " | %.0f ms | ", rep->floor[si].ms);
+            put_percent(md, rep->hidden[si].rmse, "");
+            fprintf(md, " | %.0f ms | ", rep->hidden[si].ms);
             put_percent(md, rep->vct_rmse[si], "");
             fprintf(md, " | %.0f ms |\n", rep->vct_ms[si]);
         }
@@ -942,8 +976,12 @@ static void screen_print(const screen_args *a, const screen_report *rep)
             put_percent(stdout, q->rmse, "\n");
         }
         if (a->which == SCREEN_SSGI) {
-            printf("  Hybrid-GI converged (the screen's floor) %.1f ms  ", rep->floor[si].ms);
+            printf("  screen light alone (the reference's) ");
+            put_percent(stdout, rep->screen_rmse[si], "");
+            printf("; Hybrid-GI converged %.1f ms  ", rep->floor[si].ms);
             put_percent(stdout, rep->floor[si].rmse, "");
+            printf(", with the hidden light %.1f ms  ", rep->hidden[si].ms);
+            put_percent(stdout, rep->hidden[si].rmse, "");
             printf("; cone tracing (the tool's defaults) %.1f ms  ", rep->vct_ms[si]);
             put_percent(stdout, rep->vct_rmse[si], "\n");
         }
@@ -961,7 +999,8 @@ static void screen_print(const screen_args *a, const screen_report *rep)
             put_share(stdout, W->bleed[WALL_SSGI], W->bleed[WALL_REFERENCE], ", Hybrid-GI ");
             put_share(stdout, W->bleed[WALL_HYBRID], W->bleed[WALL_REFERENCE], "; from the wall's colour SSGI ");
             put_share(stdout, W->colour[WALL_SSGI], W->colour[WALL_REFERENCE], ", Hybrid-GI ");
-            put_share(stdout, W->colour[WALL_HYBRID], W->colour[WALL_REFERENCE], "\n");
+            put_share(stdout, W->colour[WALL_HYBRID], W->colour[WALL_REFERENCE], ", with the hidden light ");
+            put_share(stdout, W->colour[WALL_HIDDEN], W->colour[WALL_REFERENCE], "\n");
         }
 }
 
@@ -1017,7 +1056,8 @@ int cmd_report_screen(int which, int argc, char **argv)
             LIST("--radii", radii, nradii, 0, 1, 10, 0,
                  ao ? "radii, shares of the scene's longest side (default 0.05,0.1,0.2)" : "radii, shares of the scene's longest side (default 0.5,1,1.75)"),
             LIST("--res", res, nres, 0, 1, 4096, 1,
-                 ao ? "vao: voxels along the scene's longest side (default 64,128,256,512)" : "hybrid: voxels along the scene's longest side (default 64,128,256)"),
+                 ao ? "vao: voxels along the scene's longest side (default 64,128,256,512)"
+                    : "hybrid: voxels along the scene's longest side (default 64,128,256; the\nfinest also for Hybrid-GI converged)"),
             LIST("--blurs", blurs, nblurs, 0, 0, 64, 1,
                  ao ? "edge-aware blur radii in pixels, at full and at half resolution (default\n0,2,4)"
                     : "edge-aware blur radii in pixels, at full and at half resolution (default\n0,2,4,8)"),
