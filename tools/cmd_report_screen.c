@@ -113,7 +113,7 @@ typedef struct screen_report {
     size_t masked[SCREEN_MAX_SCENES];
     double direct_rmse[SCREEN_MAX_SCENES];  /* ssgi: the direct light alone */
     double screen_rmse[SCREEN_MAX_SCENES];  /* ssgi: the reference's bounce from the surfaces the camera sees alone */
-    screen_row floor[SCREEN_MAX_SCENES], hidden[SCREEN_MAX_SCENES]; /* ssgi: Hybrid-GI converged, without and with the hidden light */
+    screen_row converged[SCREEN_MAX_SCENES], hidden[SCREEN_MAX_SCENES]; /* ssgi: Hybrid-GI converged, without and with the hidden light */
     double vct_rmse[SCREEN_MAX_SCENES], vct_ms[SCREEN_MAX_SCENES];
     view_spread views[2][2][2];             /* ao: [the orbit, the seeds][at the pixel, at the point][depth buffer, voxels] */
     int view_rays;
@@ -329,7 +329,7 @@ static int screen_scene(cli_session *s, voxgi_context *ctx, const screen_args *a
         for (k = 0; k < a->nres; k++) c.res = c.res > (int)a->res[k] ? c.res : (int)a->res[k]; /* the finest of --res: 256 by default */
         c.radius = 1.75;
         for (k = 0; k < 2; k++) {
-            screen_row *row = k ? &rep->hidden[si] : &rep->floor[si];
+            screen_row *row = k ? &rep->hidden[si] : &rep->converged[si];
             c.hidden = k;
             cli_status(s, "%s: Hybrid-GI converged%s", name, k ? ", hidden light" : "");
             if (render_config(ctx, &bs.scene, &cam, longest, &c, img, row) != VOXGI_OK) {
@@ -936,13 +936,13 @@ static int screen_write(cli_session *s, const screen_args *a, const screen_repor
                     "tracing with the tool's defaults (`voxgi render --method vct`: %d^3, anisotropic, %d cones at every %dth pixel, %d "
                     "direct-light rays per pixel), the same scene and size.\n\n| scene | direct light alone | screen light alone | Hybrid-GI "
                     "converged | its time | with the hidden light | its time | cone tracing | its time |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
-                a->spp, rep->scene_count ? rep->floor[0].c.res : 0, CLI_VCT_RES, CLI_VCT_CONES, CLI_VCT_STRIDE, CLI_VCT_DIRECT_SPP);
+                a->spp, rep->scene_count ? rep->converged[0].c.res : 0, CLI_VCT_RES, CLI_VCT_CONES, CLI_VCT_STRIDE, CLI_VCT_DIRECT_SPP);
         for (si = 0; si < rep->scene_count; si++) {
             fprintf(md, "| %s | ", rep->scenes[si]);
             put_percent(md, rep->direct_rmse[si], " | ");
             put_percent(md, rep->screen_rmse[si], " | ");
-            put_percent(md, rep->floor[si].rmse, "");
-            fprintf(md, " | %.0f ms | ", rep->floor[si].ms);
+            put_percent(md, rep->converged[si].rmse, "");
+            fprintf(md, " | %.0f ms | ", rep->converged[si].ms);
             put_percent(md, rep->hidden[si].rmse, "");
             fprintf(md, " | %.0f ms | ", rep->hidden[si].ms);
             put_percent(md, rep->vct_rmse[si], "");
@@ -978,8 +978,8 @@ static void screen_print(const screen_args *a, const screen_report *rep)
         if (a->which == SCREEN_SSGI) {
             printf("  screen light alone (the reference's) ");
             put_percent(stdout, rep->screen_rmse[si], "");
-            printf("; Hybrid-GI converged %.1f ms  ", rep->floor[si].ms);
-            put_percent(stdout, rep->floor[si].rmse, "");
+            printf("; Hybrid-GI converged %.1f ms  ", rep->converged[si].ms);
+            put_percent(stdout, rep->converged[si].rmse, "");
             printf(", with the hidden light %.1f ms  ", rep->hidden[si].ms);
             put_percent(stdout, rep->hidden[si].rmse, "");
             printf("; cone tracing (the tool's defaults) %.1f ms  ", rep->vct_ms[si]);
