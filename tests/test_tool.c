@@ -70,7 +70,7 @@ static void test_help_everywhere(void)
 {
     static char out[32768];
     const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "bench rays --help", "svo --help", "render --help", "report --help", "report vct --help",
-                          "report tsm --help", "report rsm --help", "report sh --help"};
+                          "report tsm --help", "report rsm --help", "report sh --help", "report ao --help", "report ssgi --help"};
     size_t i;
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         int rc = run(cmds[i], out, sizeof out);
@@ -950,6 +950,44 @@ static void test_bounce_reports(void)
              "bad lists accepted: %s", out);
 }
 
+/* voxgi report ao and report ssgi at a tiny size: a row per configuration of the one-parameter
+   sweeps (each once), one on the front at least, and their own sections in the Markdown. */
+static void test_screen_reports(void)
+{
+    static char out[16384];
+    char args[1024], path[512];
+    int rows, front;
+    FILE *f;
+    /* ao: ssao rays 4 and 16 (the base), steps 8, blur 2 at full and half resolution: 5; point
+       sampling (no steps): 4; vao rays 4, 16, res 16, blur 2 full and half: 5 */
+    snprintf(args, sizeof args, "report ao --size 8 8 --spp 64 --rays 4 --steps 8 --radii 0.1 --res 16 --blurs 2 --out %s/ra", tmpdir);
+    TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "ao.md") && strstr(out, "view-independence"), "report ao: %s", out);
+    snprintf(path, sizeof path, "%s/ra/ao.csv", tmpdir);
+    rows = csv_rows(path, &front);
+    TH_CHECK(rows == 14 && front >= 1, "ao.csv: %d rows, %d on the front", rows, front);
+    snprintf(path, sizeof path, "%s/ra/ao.md", tmpdir);
+    f = fopen(path, "r");
+    TH_CHECK(f && fread(out, 1, sizeof out - 1, f) > 0 && strstr(out, "## View-independence"), "ao.md has no view-independence table");
+    if (f) fclose(f);
+    /* ssgi: ssgi rays 4, 16, steps 8, blur 2 full and half: 5; hybrid rays 4, 16, res 16, blur 2
+       full and half: 5. Off screen the wall's colour reaches neither screen method. */
+    snprintf(args, sizeof args, "report ssgi --scenes cornell-box --size 8 8 --spp 64 --rays 4 --steps 8 --radii 1 --res 16 --blurs 2 --out %s/ra", tmpdir);
+    TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "ssgi.md") && strstr(out, "from the wall's colour SSGI 0.00%, Hybrid-GI 0.00%"),
+             "report ssgi: %s", out);
+    snprintf(path, sizeof path, "%s/ra/ssgi.csv", tmpdir);
+    rows = csv_rows(path, &front);
+    TH_CHECK(rows == 10 && front >= 1, "ssgi.csv: %d rows, %d on the front", rows, front);
+    snprintf(path, sizeof path, "%s/ra/ssgi.md", tmpdir);
+    memset(out, 0, sizeof out);
+    f = fopen(path, "r");
+    TH_CHECK(f && fread(out, 1, sizeof out - 1, f) > 0 && strstr(out, "## Light the screen cannot see") && strstr(out, "## A wall barely in view"),
+             "ssgi.md lacks its sections");
+    if (f) fclose(f);
+    TH_CHECK(run("report ao --rays 0 --out x", out, sizeof out) == 2 && run("report ssgi --blurs 65 --out x", out, sizeof out) == 2 &&
+                 run("report ao --size 8 --out x", out, sizeof out) == 2 && run("report ssgi --radii 0 --out x", out, sizeof out) == 2,
+             "bad screen report arguments accepted: %s", out);
+}
+
 int main(int argc, char **argv)
 {
     (void)argc;
@@ -970,6 +1008,7 @@ int main(int argc, char **argv)
     TH_RUN(test_render_command);
     TH_RUN(test_tsm_command);
     TH_RUN(test_bounce_reports);
+    TH_RUN(test_screen_reports);
     TH_RUN(test_vct_and_report_commands);
     TH_RUN(test_compare_black_reference);
     TH_RUN(test_compare_masks_emitters);

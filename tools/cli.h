@@ -179,7 +179,7 @@ double cli_now_ms(void);
 /* A grid of res^3 voxels (per_axis: only as long as the scene needs) fitted around the scene. */
 voxgi_result cli_fit_grid(voxgi_context *ctx, const voxgi_scene *scene, int res, int per_axis, double pad, voxgi_grid *out);
 
-/* ------------------------------------------------------------------ what render --compare and report vct measure (cli_measure.c) */
+/* ------------------------------------------------------------------ what render --compare and the reports measure (cli_measure.c) */
 /* The one rule for an image's error against a reference: the relative RMSE (the RMS difference
    over pixels and channels / the reference's mean over the same) over the pixels farther than
    CLI_EMITTER_MARGIN pixels (Chebyshev distance: outside the 7 x 7 square around) from any pixel
@@ -193,6 +193,9 @@ typedef struct cli_error_mask {
     int width, height;
     size_t masked_pixels;
 } cli_error_mask;
+/* The material of the scene's triangle `id` (meshes in order, then their triangles: the
+   G-buffer's numbering); NULL for the library's default material or an id beyond the scene. */
+const voxgi_material *cli_triangle_material(const voxgi_scene *scene, uint32_t id);
 /* The mask of scene seen by camera; 0, or says why and returns 1. */
 int cli_error_mask_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, cli_error_mask *m);
 void cli_error_mask_free(cli_error_mask *m);
@@ -201,8 +204,9 @@ void cli_error_mask_free(cli_error_mask *m);
 double cli_masked_error(const cli_error_mask *m, const float *img, const float *ref, double *rms, double *ref_mean);
 
 /* A converged reference of a scene's view for the reports: the path tracer's image with `spp`
-   samples per pixel and `bounces` (without the emission the camera sees), the error mask, and how
-   the path tracer converges there: c from a 16-spp image, so that k samples measure
+   samples per pixel and `bounces` (without the emission the camera sees), or with ao_radius > 0
+   its ambient occlusion within that radius (voxgi_reference_desc.ao_radius), the error mask, and
+   how the path tracer converges there: c from a 16-spp image, so that k samples measure
    c sqrt(1/k + 1/spp) against it. 0, or says why and returns 1. */
 typedef struct cli_reference {
     float *image;
@@ -211,10 +215,26 @@ typedef struct cli_reference {
     int spp;
 } cli_reference;
 int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, int spp, int bounces,
-                       cli_reference *R);
+                       double ao_radius, cli_reference *R);
 void cli_reference_free(cli_reference *R);
 /* The path tracer's time for an image that measures error e against R (HUGE_VAL: beyond R). */
 double cli_reference_ms(const cli_reference *R, double e);
+/* The red light of img beyond R's: the sum over the pixels R's mask keeps of
+   max(0, (r - g) - (r - g) of the reference), over the reference's sum of all channels / 3
+   (colour bleeding through walls); NaN for a black reference. */
+double cli_red_excess(const cli_reference *R, const float *img);
+
+/* The longest side of the box around the scene's triangles (1 when they have no extent), as the
+   library takes it for the screen passes' default radii. */
+double cli_scene_longest_side(const voxgi_scene *scene);
+/* The tool's default cone tracing (voxgi render --method vct: on report vct's Pareto front) at
+   camera's view, without the emission the camera sees: 96 voxels along the longest side,
+   anisotropic mips, 24 cones at every 6th pixel, 24 direct-light rays per pixel, seed 1. */
+#define CLI_VCT_RES 96
+#define CLI_VCT_CONES 24
+#define CLI_VCT_STRIDE 6
+#define CLI_VCT_DIRECT_SPP 24
+void cli_vct_defaults(voxgi_vct_desc *vd, const voxgi_camera *camera);
 
 /* The built-in Cornell box with a mesh in place of its tall block: the box's triangles but the
    block's (found by geometry: the triangles that do not emit and lie inside the room, the highest
@@ -243,7 +263,8 @@ int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
 int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);
 int cmd_render(int argc, char **argv);
-int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm" or "sh" */
+int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm", "sh", "ao" or "ssgi" */
 int cmd_report_tsm(int argc, char **argv);
 int cmd_report_bounce(int method, int argc, char **argv); /* method 0: rsm, 1: sh */
+int cmd_report_screen(int which, int argc, char **argv); /* which 0: ao, 1: ssgi */
 #endif

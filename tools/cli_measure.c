@@ -1,14 +1,22 @@
-/* tools/cli_measure.c - what render --compare and report vct measure with: the one rule for an
+/* tools/cli_measure.c - what render --compare and the reports measure with: the one rule for an
  * image's error against a reference (the pixels around the emitters the camera sees left out),
- * and the Cornell box with a mesh in place of its tall block. */
+ * the converged reference the reports share, and the Cornell box with a mesh in place of its
+ * tall block. */
 #include "cli.h"
 #include <stdlib.h>
 #include <string.h>
 
-/* ------------------------------------------------------------------ the error rule */
-/* Whether the scene's triangle `id` (meshes in order, then their triangles: the G-buffer's
-   numbering) has a material with emission > 0 in any channel. */
-static int triangle_emits(const voxgi_scene *scene, uint32_t id)
+/* ------------------------------------------------------------------ the scene's triangles */
+/* The mesh vertex v of `mesh`, as doubles. */
+static void vertex_at(const voxgi_mesh *mesh, size_t v, double p[3])
+{
+    const float *f = (const float *)((const char *)mesh->positions + v * (mesh->position_stride ? mesh->position_stride : 12));
+    p[0] = f[0]; p[1] = f[1]; p[2] = f[2];
+}
+
+static size_t triangle_vertex(const voxgi_mesh *mesh, size_t t, int k) { return mesh->indices ? mesh->indices[3 * t + (size_t)k] : 3 * t + (size_t)k; }
+
+const voxgi_material *cli_triangle_material(const voxgi_scene *scene, uint32_t id)
 {
     size_t m, t = id;
     for (m = 0; m < scene->mesh_count; m++) {
@@ -16,14 +24,20 @@ static int triangle_emits(const voxgi_scene *scene, uint32_t id)
         size_t n = mesh->indices ? mesh->index_count / 3 : mesh->vertex_count / 3;
         if (t < n) {
             uint32_t mat = mesh->material_ids ? mesh->material_ids[t] : mesh->material;
-            const voxgi_material *mt;
-            if (!scene->materials || mat >= scene->material_count) return 0; /* the library's default material: no emission */
-            mt = &scene->materials[mat];
-            return mt->emission[0] > 0 || mt->emission[1] > 0 || mt->emission[2] > 0;
+            return scene->materials && mat < scene->material_count ? &scene->materials[mat] : NULL;
         }
         t -= n;
     }
-    return 0;
+    return NULL;
+}
+
+/* ------------------------------------------------------------------ the error rule */
+/* Whether the scene's triangle `id` has a material with emission > 0 in any channel (the
+   library's default material emits nothing). */
+static int triangle_emits(const voxgi_scene *scene, uint32_t id)
+{
+    const voxgi_material *mt = cli_triangle_material(scene, id);
+    return mt && (mt->emission[0] > 0 || mt->emission[1] > 0 || mt->emission[2] > 0);
 }
 
 int cli_error_mask_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, cli_error_mask *m)
@@ -107,7 +121,7 @@ double cli_masked_error(const cli_error_mask *m, const float *img, const float *
 
 /* ------------------------------------------------------------------ a converged reference */
 int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, int spp, int bounces,
-                       cli_reference *R)
+                       double ao_radius, cli_reference *R)
 {
     size_t bytes = (size_t)camera->width * (size_t)camera->height * 12;
     voxgi_reference_desc rd;
@@ -119,6 +133,7 @@ int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *sc
     rd.camera = *camera;
     rd.hide_emitters = 1;
     rd.bounces = bounces;
+    rd.ao_radius = (float)ao_radius;
     rd.samples = spp;
     rd.seed = 1000003; /* independent of the images' seeds */
     R->spp = spp;
@@ -126,7 +141,8 @@ int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *sc
         cli_reference_free(R);
         return cli_fail(s, "the reference: out of memory");
     }
-    cli_status(s, "the reference, %d spp", spp);
+    if (ao_radius > 0) cli_status(s, "the reference's ambient occlusion within %g, %d spp", ao_radius, spp);
+    else cli_status(s, "the reference, %d bounce%s, %d spp", bounces, bounces == 1 ? "" : "s", spp);
     if (voxgi_reference_render(ctx, scene, &rd, R->image, bytes, &ri) != VOXGI_OK) {
         free(quick);
         cli_reference_free(R);
@@ -164,16 +180,55 @@ double cli_reference_ms(const cli_reference *R, double e)
     return inv_k > 0 ? R->ms_per_spp / inv_k : HUGE_VAL;
 }
 
-/* ------------------------------------------------------------------ the Cornell box with a mesh */
-/* The mesh vertex v of `mesh`, as doubles. */
-static void vertex_at(const voxgi_mesh *mesh, size_t v, double p[3])
+double cli_red_excess(const cli_reference *R, const float *img)
 {
-    const float *f = (const float *)((const char *)mesh->positions + v * (mesh->position_stride ? mesh->position_stride : 12));
-    p[0] = f[0]; p[1] = f[1]; p[2] = f[2];
+    size_t p, n = (size_t)R->mask.width * (size_t)R->mask.height;
+    double excess = 0, sum = 0;
+    for (p = 0; p < n; p++) {
+        const float *a = img + 3 * p, *b = R->image + 3 * p;
+        double d;
+        if (R->mask.masked[p]) continue;
+        d = ((double)a[0] - a[1]) - ((double)b[0] - b[1]);
+        if (d > 0) excess += d;
+        sum += ((double)b[0] + b[1] + b[2]) / 3;
+    }
+    return sum > 0 ? excess / sum : NAN;
 }
 
-static size_t triangle_vertex(const voxgi_mesh *mesh, size_t t, int k) { return mesh->indices ? mesh->indices[3 * t + (size_t)k] : 3 * t + (size_t)k; }
+/* ------------------------------------------------------------------ what the reports share */
+double cli_scene_longest_side(const voxgi_scene *scene)
+{
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, side = 0;
+    size_t m, t;
+    int k, a;
+    for (m = 0; m < scene->mesh_count; m++) {
+        const voxgi_mesh *mesh = &scene->meshes[m];
+        size_t n = mesh->indices ? mesh->index_count / 3 : mesh->vertex_count / 3;
+        for (t = 0; t < n; t++)
+            for (k = 0; k < 3; k++) {
+                double p[3];
+                vertex_at(mesh, triangle_vertex(mesh, t, k), p);
+                for (a = 0; a < 3; a++) { lo[a] = fmin(lo[a], p[a]); hi[a] = fmax(hi[a], p[a]); }
+            }
+    }
+    for (a = 0; a < 3; a++) side = fmax(side, hi[a] - lo[a]);
+    return side > 0 ? side : 1;
+}
 
+void cli_vct_defaults(voxgi_vct_desc *vd, const voxgi_camera *camera)
+{
+    memset(vd, 0, sizeof *vd);
+    vd->camera = *camera;
+    vd->resolution = CLI_VCT_RES;
+    vd->filter = VOXGI_MIPS_ANISOTROPIC;
+    vd->cones.cones = CLI_VCT_CONES;
+    vd->cone_stride = CLI_VCT_STRIDE;
+    vd->samples = CLI_VCT_DIRECT_SPP;
+    vd->seed = 1;
+    vd->hide_emitters = 1;
+}
+
+/* ------------------------------------------------------------------ the Cornell box with a mesh */
 int cli_cornell_mesh_open(cli_session *s, voxgi_context *ctx, const char *path, cli_cornell_mesh *c)
 {
     const double eps = 1e-3; /* 1 mm: the room's walls meet at its bounding box, the light hangs 0.1 mm below the ceiling */

@@ -16,7 +16,7 @@ static const char *const report_help =
     "DIR/vct.csv and DIR/vct.svg (error against time, log scales, the Pareto front marked).\n"
     "It also times each stage of the tool's default configuration on the CPU and on GL, where a GL\n"
     "4.5 context can be made (--no-stages: not). Times are wall clock on this machine; GL times on a\n"
-    "software rasteriser are not GPU times. The other reports: voxgi report tsm|rsm|sh --help.\n";
+    "software rasteriser are not GPU times. The other reports: voxgi report tsm|rsm|sh|ao|ssgi --help.\n";
 
 /* mips: 0 isotropic, 1 anisotropic, 2 octree (the --filters bits 1, 2, 4) */
 static const char *const mips_names[] = {"isotropic", "anisotropic", "octree", NULL}, *const mips_short[3] = {"iso", "aniso", "octree"},
@@ -58,11 +58,6 @@ typedef struct report {
     voxgi_info stage_ci[2];
     voxgi_vct_info stages[REPORT_MAX_SCENES][2];
 } report;
-
-/* The tool's default cone tracing (voxgi render --method vct), at the report's size (the grid: --stage-res). */
-#define STAGE_CONES 24
-#define STAGE_STRIDE 6
-#define STAGE_DIRECT_SPP 24
 
 /* The tools' one rule (cli_masked_error); 0 for a black reference. */
 static double rel_rmse(const cli_error_mask *m, const float *a, const float *ref)
@@ -245,15 +240,8 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
         voxgi_vct_desc vd;
         int run;
         if (!rep->stage_ctx[k]) continue;
-        memset(&vd, 0, sizeof vd);
-        vd.camera = rd.camera;
+        cli_vct_defaults(&vd, &rd.camera); /* the tool's defaults at the report's size, the grid --stage-res */
         vd.resolution = a->stage_res;
-        vd.filter = VOXGI_MIPS_ANISOTROPIC;
-        vd.cones.cones = STAGE_CONES;
-        vd.cone_stride = STAGE_STRIDE;
-        vd.samples = STAGE_DIRECT_SPP;
-        vd.seed = 1;
-        vd.hide_emitters = 1;
         cli_note(s, "%s: the defaults' stages on %s", name, voxgi_backend_name(rep->stage_ci[k].backend));
         for (run = 0; run < 2; run++) {
             voxgi_vct_info vi;
@@ -328,7 +316,7 @@ static void write_markdown(FILE *md, const report *rep)
     fprintf(md, "\n## Stages: the CPU against GL\n\nThe tool's defaults (%d^3%s, anisotropic, %d cones at stride %d, %d direct-light rays per pixel) "
                 "at %d x %d, each stage's time (ms) on the CPU (%d threads) and on GL (%s), the faster of two runs.%s\n\n"
                 "| scene | stage | CPU | GL | CPU faster by |\n|---|---|---:|---:|---:|\n",
-            a->stage_res, a->stage_res == 96 ? "" : " (the tool's: 96^3)", STAGE_CONES, STAGE_STRIDE, STAGE_DIRECT_SPP, a->size, a->size, rep->stage_ci[0].thread_count,
+            a->stage_res, a->stage_res == CLI_VCT_RES ? "" : " (the tool's: 96^3)", CLI_VCT_CONES, CLI_VCT_STRIDE, CLI_VCT_DIRECT_SPP, a->size, a->size, rep->stage_ci[0].thread_count,
             rep->stage_ctx[1] ? rep->stage_ci[1].gl_renderer : "no GL 4.5 context could be made: not timed",
             rep->stage_ctx[1] && rep->stage_ci[1].gl_software ? " GL runs on a software rasteriser on the same cores: these are not GPU timings." : "");
     for (s = 0; s < rep->scene_count; s++) {
@@ -440,7 +428,7 @@ int cmd_report(int argc, char **argv)
     a.size = 128;
     a.spp = 1024;
     a.direct_spp = 16;
-    a.stage_res = 96;
+    a.stage_res = CLI_VCT_RES;
     a.filters = 3;
     memcpy(a.res, res, sizeof res);
     memcpy(a.cones, cones, sizeof cones);
@@ -490,7 +478,9 @@ int cmd_report(int argc, char **argv)
         if (argc >= 1 && strcmp(argv[0], "tsm") == 0) return cmd_report_tsm(argc - 1, argv + 1);
         if (argc >= 1 && strcmp(argv[0], "rsm") == 0) return cmd_report_bounce(0, argc - 1, argv + 1);
         if (argc >= 1 && strcmp(argv[0], "sh") == 0) return cmd_report_bounce(1, argc - 1, argv + 1);
-        if (argc < 1 || strcmp(argv[0], "vct") != 0) return cli_usage("report", "the reports to make are 'vct', 'tsm', 'rsm' and 'sh'");
+        if (argc >= 1 && strcmp(argv[0], "ao") == 0) return cmd_report_screen(0, argc - 1, argv + 1);
+        if (argc >= 1 && strcmp(argv[0], "ssgi") == 0) return cmd_report_screen(1, argc - 1, argv + 1);
+        if (argc < 1 || strcmp(argv[0], "vct") != 0) return cli_usage("report", "the reports to make are 'vct', 'tsm', 'rsm', 'sh', 'ao' and 'ssgi'");
         if ((rc = cli_parse(&cmd, argc - 1, argv + 1)) != CLI_CONTINUE) return rc;
     }
     for (list = a.scene_list; (r = cli_next_item(&list, rep.scene_buf[rep.scene_count], sizeof rep.scene_buf[0])) != 0; rep.scene_count++)

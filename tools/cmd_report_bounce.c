@@ -68,23 +68,6 @@ typedef struct bounce_report {
     bounce_row *rows;
 } bounce_report;
 
-/* The red light beyond the reference's: the sum over the kept pixels of max(0, (r - g) - (r - g)
-   of the reference), over the reference's sum of all channels / 3. */
-static double red_excess(const cli_reference *R, const float *img)
-{
-    size_t p, n = (size_t)R->mask.width * (size_t)R->mask.height;
-    double excess = 0, sum = 0;
-    for (p = 0; p < n; p++) {
-        const float *a = img + 3 * p, *b = R->image + 3 * p;
-        double d;
-        if (R->mask.masked[p]) continue;
-        d = ((double)a[0] - a[1]) - ((double)b[0] - b[1]);
-        if (d > 0) excess += d;
-        sum += ((double)b[0] + b[1] + b[2]) / 3;
-    }
-    return sum > 0 ? excess / sum : NAN;
-}
-
 /* Segments between random pairs of the view's surfaces, each end 1.5 voxels off its own along
    its normal (as the gathers test them), through a conservative grid of 64 voxels along the
    scene's longest side, by both traversals. */
@@ -202,7 +185,7 @@ static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a
     }
     if (r != VOXGI_OK) return cli_fail_lib(s, ctx, bounce_names[a->method]);
     row->rmse = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
-    row->red = red_excess(R, img);
+    row->red = cli_red_excess(R, img);
     row->ref_ms = cli_reference_ms(R, row->rmse);
     return 0;
 }
@@ -232,7 +215,7 @@ static int bounce_scene(cli_session *s, voxgi_context *ctx, const bounce_args *a
     if (voxgi_builtin_scene_create(ctx, rep->scenes[si], &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, rep->scenes[si]);
     cam = bs.camera;
     cam.width = cam.height = a->size;
-    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 1, &R)) goto done;
+    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 1, 0, &R)) goto done;
     rep->masked[si] = R.mask.masked_pixels;
     rep->ref_c[si] = R.c;
     rep->ref_ms_per_spp[si] = R.ms_per_spp;

@@ -47,7 +47,7 @@ static int tsm_scene(cli_session *s, voxgi_context *ctx, const tsm_args *a, tsm_
     if (voxgi_builtin_scene_create(ctx, rep->scenes[si], &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, rep->scenes[si]);
     cam = bs.camera;
     cam.width = cam.height = a->size;
-    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, &R)) goto done;
+    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R)) goto done;
     rep->masked[si] = R.mask.masked_pixels;
     rep->ref_c[si] = R.c;
     rep->ref_ms_per_spp[si] = R.ms_per_spp;
