@@ -12,9 +12,9 @@ enum { SCREEN_AO, SCREEN_SSGI };
 static const char *const report_names[] = {"ao", "ssgi"};
 
 /* The methods, as the rows name them. */
-enum { M_SSAO, M_SSAO_POINTS, M_VAO, M_SSGI, M_HYBRID };
-static const char *const method_names[] = {"ssao", "ssao-points", "vao", "ssgi", "hybrid"};
-static const int ao_methods[] = {M_SSAO, M_SSAO_POINTS, M_VAO}, gi_methods[] = {M_SSGI, M_HYBRID};
+enum { M_SSAO, M_SSAO_POINTS, M_VAO, M_SSGI, M_HYBRID, M_HYBRID_LIGHT };
+static const char *const method_names[] = {"ssao", "ssao-points", "vao", "ssgi", "hybrid", "hybrid+light"};
+static const int ao_methods[] = {M_SSAO, M_SSAO_POINTS, M_VAO}, gi_methods[] = {M_SSGI, M_HYBRID, M_HYBRID_LIGHT};
 
 static const char *const ao_help =
     "usage: voxgi report ao [options]\n"
@@ -32,8 +32,10 @@ static const char *const ao_help =
 
 static const char *const ssgi_help =
     "usage: voxgi report ssgi [options]\n"
-    "Error against run time of one bounce from the screen: SSGI (through the depth buffer) and\n"
-    "Hybrid-GI (through the voxels) (voxgi render --method ssgi|hybrid). For each built-in scene\n"
+    "Error against run time of one bounce from the screen: SSGI (through the depth buffer),\n"
+    "Hybrid-GI (through the voxels) and Hybrid-GI with the hidden light (hybrid+light: hits the\n"
+    "camera does not see send the light injected into their voxels) (voxgi render --method\n"
+    "ssgi|hybrid, --hidden-light off|on). For each built-in scene\n"
     "it renders the reference's one bounce (converged, --spp samples per pixel), then varies one\n"
     "parameter at a time around a base (16 rays, 16 steps, radius 1 x the scene's longest side, 128\n"
     "voxels, full resolution, no blur) over the lists below, and half resolution with each blur,\n"
@@ -61,7 +63,7 @@ typedef struct screen_args {
 /* One configuration; a parameter its method does not use is 0 (steps for the voxels and for point
    sampling, res for the depth buffer). radius: a share of the scene's longest side. */
 typedef struct screen_config {
-    int method, rays, steps, res, half, blur, hidden; /* hidden: hybrid, the hidden light (not swept) */
+    int method, rays, steps, res, half, blur, hidden; /* hidden: hybrid+light's hidden light */
     double radius;
 } screen_config;
 
@@ -125,7 +127,7 @@ typedef struct screen_report {
 
 /* ------------------------------------------------------------------ configurations */
 static int uses_steps(int m) { return m == M_SSAO || m == M_SSGI; }
-static int uses_res(int m) { return m == M_VAO || m == M_HYBRID; }
+static int uses_res(int m) { return m == M_VAO || m == M_HYBRID || m == M_HYBRID_LIGHT; }
 
 static screen_config base_config(int which, int method)
 {
@@ -136,6 +138,7 @@ static screen_config base_config(int which, int method)
     c.steps = uses_steps(method) ? 16 : 0;
     c.res = uses_res(method) ? 128 : 0;
     c.radius = which == SCREEN_AO ? 0.1 : 1;
+    c.hidden = method == M_HYBRID_LIGHT;
     return c;
 }
 
@@ -229,7 +232,7 @@ static voxgi_result render_config(voxgi_context *ctx, const voxgi_scene *scene, 
         memset(&d, 0, sizeof d);
         memset(&info, 0, sizeof info);
         d.camera = *cam;
-        d.method = c->method == M_HYBRID ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN;
+        d.method = c->method == M_SSGI ? VOXGI_AO_SCREEN : VOXGI_AO_VOXELS;
         d.resolution = c->res;
         d.rays = c->rays;
         d.steps = c->steps;
