@@ -12,7 +12,7 @@ static const char *const off_on_names[] = {"off", "on", NULL};
 /* The screen passes' defaults, from `voxgi report ao` and `voxgi report ssgi` on the Cornell box
    (docs/screen-space.md): ambient occlusion at full resolution, its sharp bands along the edges
    blurred little; one bounce at half resolution, blurred more, Hybrid-GI with its hidden light. */
-enum { AO_BLUR = 2, GI_BLUR = 4, GI_HALF_RES = 1, HYBRID_HIDDEN_LIGHT = 1 };
+enum { AO_BLUR = 2, GI_BLUR = 8, GI_HALF_RES = 1, HYBRID_HIDDEN_LIGHT = 1 };
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -618,7 +618,7 @@ int cmd_render(int argc, char **argv)
             {.name = "--half-res", .arg = "on|off", .kind = CLI_ENUM, .dst = &a.half_res, .names = off_on_names, .given = &a.half_res_given,
              .help = "ssao, vao, ssgi, hybrid: rays at every other pixel across and down, upsampled\nalong the surfaces by an edge-aware filter (default off for ssao and vao, on\nfor ssgi and hybrid)"},
             {.name = "--blur", .arg = "N", .kind = CLI_INT, .dst = &a.blur, .lo = 0, .hi = 64, .given = &a.blur_given,
-             .help = "ssao, vao, ssgi, hybrid: the edge-aware blur's radius in pixels (0: none;\ndefault 2 for ssao and vao, 4 for ssgi and hybrid)"},
+             .help = "ssao, vao, ssgi, hybrid: the edge-aware blur's radius in pixels (0: none;\ndefault 2 for ssao and vao, 8 for ssgi and hybrid)"},
             {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
              .help = "rsm and sh: each gather's visibility through the voxels (default hierarchical)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,
