@@ -12033,7 +12033,7 @@ static void voxgi__screen_rows(void *user, size_t first, size_t end)
             for (k = 0; k < J->rays; k++) { /* cosine-weighted: the Hammersley point on the disk, lifted */
                 double u[2], r, phi, dir[3];
                 size_t hit = SIZE_MAX;
-                int64_t v[3];
+                int64_t v[3] = {0, 0, 0};
                 int met;
                 voxgi_hammersley((uint32_t)k, (uint32_t)J->rays, rot, u);
                 r = sqrt(u[0]);
