@@ -56,11 +56,12 @@
                           whose further bounces gather with cones)
        9. light injection the direct light into the voxels, and its bounces among them
       10. light-space passes  a light's view; transmittance shadow maps; voxel visibility (3D-DDA,
-                          hierarchical); reflective shadow maps (a spherical-harmonics volume to
-                          come; screen-space and line-space passes after them)
-      11. images          voxgi's own G-buffer and cone-traced images
-      12. reference renderer  the path tracer every image is measured against
-      13. built-in scenes and files
+                          hierarchical); reflective shadow maps; the spherical-harmonics volume
+      11. screen-space passes  low-discrepancy points; ambient occlusion and one bounce from the
+                          screen through the depth buffer or the voxels; the edge-aware filter
+      12. images          voxgi's own G-buffer; cone-traced, one-bounce and screen-space images
+      13. reference renderer  the path tracer every image is measured against
+      14. built-in scenes and files
 
    METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
    (raster), atlas and atlas-compute (texture atlas points), geometry (conservative by geometry
