@@ -59,9 +59,10 @@
                           hierarchical); reflective shadow maps; the spherical-harmonics volume
       11. screen-space passes  low-discrepancy points; ambient occlusion and one bounce from the
                           screen through the depth buffer or the voxels; the edge-aware filter
-      12. images          voxgi's own G-buffer; cone-traced, one-bounce and screen-space images
-      13. reference renderer  the path tracer every image is measured against
-      14. built-in scenes and files
+      12. line space      the N-tree of line spaces: shafts between the patches of a node's faces
+      13. images          voxgi's own G-buffer; cone-traced, one-bounce and screen-space images
+      14. reference renderer  the path tracer every image is measured against
+      15. built-in scenes and files
 
    METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
    (raster), atlas and atlas-compute (texture atlas points), geometry (conservative by geometry
@@ -1145,7 +1146,38 @@ typedef struct voxgi_ao_image_info {
 VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ao_image_desc *desc, float *rgb, size_t rgb_bytes,
                                        voxgi_ao_image_info *info);
 
-/* ===================================================================== 12. images */
+/* ===================================================================== 12. line space */
+
+/* The cascaded line space (Klee 2016, after Keul, Lemke and Mueller): an N-tree over the scene
+   (a cube, each filled node split into N^3 children down to `depth` levels below the root; the
+   leaves hold the triangles meeting them, by an exact closed triangle-box test) whose every node
+   with children holds a line space: one bit per pair of patches on two different faces of the
+   node (each face split into N x N patches, one per child face), set when the shaft between
+   them (the convex hull of the two patches) meets a filled child. The shaft test is exact on
+   closed sets (the hull is the union over t in [0, 1] of the boxes (1 - t) S + t E, so a cell
+   meets it when six linear bounds in t leave an interval), so a segment between the two patches
+   through a filled child always finds its bit set. Each unordered pair is stored once:
+   15 N^4 bits per line space. Deterministic whatever the threads. */
+typedef struct voxgi_linespace voxgi_linespace;
+typedef struct voxgi_linespace_desc {
+    int n;                        /* children per axis of a split node, 2..16; 0 = 10 */
+    int depth;                    /* levels below the root, 1..8 (the leaves' level); 0 = 3 */
+    size_t memory_budget;         /* bytes the tree, its line spaces and triangle lists may take; 0 = 1 GiB */
+} voxgi_linespace_desc;
+typedef struct voxgi_linespace_info {
+    int n, depth;
+    double origin[3], size;       /* the root cube */
+    size_t nodes;                 /* every node: the root and the children of every split node */
+    size_t line_spaces;           /* nodes with children, one line space each */
+    size_t leaves, triangle_refs; /* filled nodes at the leaves' level, and their triangle references */
+    size_t bytes;                 /* held: 8 x nodes + 15 N^4 / 8 x line_spaces + 4 x triangle_refs + 8 x leaves */
+    double ms;
+} voxgi_linespace_info;
+VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_desc *desc, voxgi_linespace **out);
+VOXGI_API void voxgi_linespace_destroy(voxgi_context *ctx, voxgi_linespace *ls);
+VOXGI_API void voxgi_linespace_query(const voxgi_linespace *ls, voxgi_linespace_info *out);
+
+/* ===================================================================== 13. images */
 
 /* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
    pixel's centre meets first: its position (world units), its normal facing the camera, its
@@ -1212,7 +1244,7 @@ typedef struct voxgi_vct_info {
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info);
 
-/* ===================================================================== 13. reference renderer */
+/* ===================================================================== 14. reference renderer */
 
 /* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, through
    the ray core (voxgi_ray_scene: watertight, hit points refined in double). Surfaces are Lambertian (albedo) and emit
@@ -1251,7 +1283,7 @@ typedef struct voxgi_reference_info {
 VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
                                               size_t rgb_bytes, voxgi_reference_info *info);
 
-/* ===================================================================== 14. built-in scenes and files */
+/* ===================================================================== 15. built-in scenes and files */
 
 /* Scenes that need no files, each with its usual view (256 x 256):
    "cornell-box"  the Cornell box (the published geometry in metres, the light 0.1 mm below the
@@ -12467,7 +12499,388 @@ VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_scree
     return r;
 }
 
-/* ===================================================================== 12. images */
+/* ===================================================================== 12. line space */
+
+struct voxgi_linespace {
+    voxgi_linespace_info info;
+    uint32_t *node;               /* 2 per node: its first child (UINT32_MAX: none; the N^3 children are consecutive, x fastest), then its
+                                     line space (a node with children) or leaf (a filled node without) index, UINT32_MAX: empty */
+    uint32_t *bits;               /* the line spaces, words_per_space each */
+    uint32_t *leaf;               /* 2 per leaf: its first triangle reference, their count */
+    uint32_t *tris;               /* the leaves' triangles, ascending in each */
+    size_t words_per_space;
+};
+
+/* The index of the unordered pair of different faces (fs, fe), fs < fe, among the 15. */
+static int voxgi__ls_face_pair(int fs, int fe)
+{
+    return fs * 5 - fs * (fs - 1) / 2 + (fe - fs - 1);
+}
+
+/* Patch (i, j) of face f (axis f / 2 at 0 or n by f % 2; i along the next axis, j the one after)
+   of the node [0, n]^3 as a closed box. */
+static void voxgi__ls_patch_box(int n, int f, int i, int j, double lo[3], double hi[3])
+{
+    int a = f >> 1;
+    lo[a] = hi[a] = (f & 1) ? n : 0;
+    lo[(a + 1) % 3] = i;
+    hi[(a + 1) % 3] = i + 1;
+    lo[(a + 2) % 3] = j;
+    hi[(a + 2) % 3] = j + 1;
+}
+
+/* Whether the shaft between patches S and E (the convex hull of the two, the union over t in
+   [0, 1] of the boxes (1 - t) S + t E) meets the closed box C: an interval of t left by the six
+   linear bounds box(t) overlapping C puts on it. */
+static int voxgi__ls_shaft_meets(const double slo[3], const double shi[3], const double elo[3], const double ehi[3], const double clo[3],
+                                 const double chi[3])
+{
+    double t0 = 0, t1 = 1;
+    int k;
+    for (k = 0; k < 3; k++) {
+        double d = elo[k] - slo[k], g = ehi[k] - shi[k];
+        if (d > 0) t1 = VOXGI__MIN(t1, (chi[k] - slo[k]) / d); /* lo(t) <= chi */
+        else if (d < 0) t0 = VOXGI__MAX(t0, (chi[k] - slo[k]) / d);
+        else if (slo[k] > chi[k]) return 0;
+        if (g > 0) t0 = VOXGI__MAX(t0, (clo[k] - shi[k]) / g); /* hi(t) >= clo */
+        else if (g < 0) t1 = VOXGI__MIN(t1, (clo[k] - shi[k]) / g);
+        else if (shi[k] < clo[k]) return 0;
+    }
+    return t0 <= t1 + 1e-12; /* touching counts: closed sets, and a rounded quotient never loses a point */
+}
+
+/* The bit of the shaft between patch ps of face fs and patch pe of face fe (fs != fe). */
+static size_t voxgi__ls_bit(int n, int fs, int ps, int fe, int pe)
+{
+    size_t n2 = (size_t)n * (size_t)n;
+    if (fs > fe) {
+        int f = fs, p = ps;
+        fs = fe; ps = pe; fe = f; pe = p;
+    }
+    return ((size_t)voxgi__ls_face_pair(fs, fe) * n2 + (size_t)ps) * n2 + (size_t)pe;
+}
+
+/* Whether the closed triangle v (9 doubles) meets the closed box [lo, hi] (separating axes: the
+   box's 3, the triangle's normal, the 9 edge cross products; every comparison closed). */
+static int voxgi__ls_tri_box(const double v[9], const double lo[3], const double hi[3])
+{
+    double c[3], h[3], p[9], e[9], nrm[3];
+    int a, k, m;
+    for (a = 0; a < 3; a++) {
+        c[a] = 0.5 * (lo[a] + hi[a]);
+        h[a] = 0.5 * (hi[a] - lo[a]);
+        for (k = 0; k < 3; k++) p[3 * k + a] = v[3 * k + a] - c[a];
+    }
+    for (a = 0; a < 3; a++)
+        if (VOXGI__MIN(p[a], VOXGI__MIN(p[3 + a], p[6 + a])) > h[a] || VOXGI__MAX(p[a], VOXGI__MAX(p[3 + a], p[6 + a])) < -h[a]) return 0;
+    for (k = 0; k < 3; k++)
+        for (a = 0; a < 3; a++) e[3 * k + a] = p[3 * ((k + 1) % 3) + a] - p[3 * k + a];
+    nrm[0] = e[1] * e[5] - e[2] * e[4];
+    nrm[1] = e[2] * e[3] - e[0] * e[5];
+    nrm[2] = e[0] * e[4] - e[1] * e[3];
+    for (m = -1; m < 9; m++) { /* m = -1: the normal; else edge m / 3 x box axis m % 3 */
+        double ax[3], r, q0, q1, q2;
+        if (m < 0) memcpy(ax, nrm, sizeof ax);
+        else {
+            const double *ed = e + 3 * (m / 3);
+            int b = m % 3;
+            ax[b] = 0;
+            ax[(b + 1) % 3] = -ed[(b + 2) % 3];
+            ax[(b + 2) % 3] = ed[(b + 1) % 3];
+        }
+        r = h[0] * fabs(ax[0]) + h[1] * fabs(ax[1]) + h[2] * fabs(ax[2]);
+        q0 = p[0] * ax[0] + p[1] * ax[1] + p[2] * ax[2];
+        q1 = p[3] * ax[0] + p[4] * ax[1] + p[5] * ax[2];
+        q2 = p[6] * ax[0] + p[7] * ax[1] + p[8] * ax[2];
+        if (VOXGI__MIN(q0, VOXGI__MIN(q1, q2)) > r || VOXGI__MAX(q0, VOXGI__MAX(q1, q2)) < -r) return 0;
+    }
+    return 1;
+}
+
+typedef struct voxgi__ls_build {
+    voxgi_linespace *L;
+    uint32_t *masks;              /* per child position (x fastest) the shafts it meets */
+    const uint32_t *spaces;       /* per line space, its node */
+} voxgi__ls_build;
+
+/* Masks [first, end): every shaft of the node [0, n]^3 the child cell meets. */
+static void voxgi__ls_masks(void *user, size_t first, size_t end)
+{
+    voxgi__ls_build *B = (voxgi__ls_build *)user;
+    int n = B->L->info.n, fs, fe, ps, pe;
+    size_t c;
+    for (c = first; c < end; c++) {
+        uint32_t *m = B->masks + c * B->L->words_per_space;
+        double clo[3], chi[3], slo[3], shi[3], elo[3], ehi[3];
+        clo[0] = (double)(c % (size_t)n);
+        clo[1] = (double)(c / (size_t)n % (size_t)n);
+        clo[2] = (double)(c / ((size_t)n * (size_t)n));
+        for (fs = 0; fs < 3; fs++) chi[fs] = clo[fs] + 1;
+        for (fs = 0; fs < 6; fs++)
+            for (fe = fs + 1; fe < 6; fe++)
+                for (ps = 0; ps < n * n; ps++) {
+                    voxgi__ls_patch_box(n, fs, ps / n, ps % n, slo, shi);
+                    for (pe = 0; pe < n * n; pe++) {
+                        size_t bit = voxgi__ls_bit(n, fs, ps, fe, pe);
+                        voxgi__ls_patch_box(n, fe, pe / n, pe % n, elo, ehi);
+                        if (voxgi__ls_shaft_meets(slo, shi, elo, ehi, clo, chi)) m[bit >> 5] |= 1u << (bit & 31);
+                    }
+                }
+    }
+}
+
+/* Line spaces [first, end): the OR of the masks of each one's filled children. */
+static void voxgi__ls_spaces(void *user, size_t first, size_t end)
+{
+    voxgi__ls_build *B = (voxgi__ls_build *)user;
+    const voxgi_linespace *L = B->L;
+    size_t s, c, w, children = (size_t)L->info.n * (size_t)L->info.n * (size_t)L->info.n;
+    for (s = first; s < end; s++) {
+        uint32_t *bits = L->bits + s * L->words_per_space, child0 = L->node[2 * (size_t)B->spaces[s]];
+        for (c = 0; c < children; c++) {
+            const uint32_t *ch = L->node + 2 * ((size_t)child0 + c);
+            if (ch[0] == UINT32_MAX && ch[1] == UINT32_MAX) continue; /* empty */
+            for (w = 0; w < L->words_per_space; w++) bits[w] |= B->masks[c * L->words_per_space + w];
+        }
+    }
+}
+
+VOXGI_API void voxgi_linespace_destroy(voxgi_context *ctx, voxgi_linespace *ls)
+{
+    if (!ctx || !ls) return;
+    voxgi__free(ctx, ls->node);
+    voxgi__free(ctx, ls->bits);
+    voxgi__free(ctx, ls->leaf);
+    voxgi__free(ctx, ls->tris);
+    voxgi__free(ctx, ls);
+}
+
+VOXGI_API void voxgi_linespace_query(const voxgi_linespace *ls, voxgi_linespace_info *out)
+{
+    if (ls && out) *out = ls->info;
+}
+
+/* A growing array of `size`-byte items: room for item `index` (the capacity doubled, what it held kept). */
+static int voxgi__ls_grow(voxgi_context *ctx, void **a, size_t index, size_t *cap, size_t size)
+{
+    size_t want;
+    void *b;
+    if (index < *cap) return 1;
+    want = VOXGI__MAX(*cap * 2, (size_t)256);
+    if (!(b = voxgi__alloc_array(ctx, want, size, 0))) return 0;
+    if (*cap) memcpy(b, *a, *cap * size);
+    voxgi__free(ctx, *a);
+    *a = b;
+    *cap = want;
+    return 1;
+}
+
+/* Triangle t of the flattened scene, its three vertices in doubles. */
+static void voxgi__ls_vertices(const voxgi__flat *f, uint32_t t, double v[9])
+{
+    int a;
+    for (a = 0; a < 9; a++) v[a] = f->pos[3 * (size_t)f->tri[3 * (size_t)t + (size_t)(a / 3)] + (size_t)(a % 3)];
+}
+
+/* A node of the level being split: where it is, and its triangles (refs[first .. first + count)). */
+typedef struct voxgi__ls_open {
+    uint32_t node, first, count;
+    double corner[3];
+} voxgi__ls_open;
+
+/* The children (x fastest) of the open node o, of edge `cell`, that the triangle v meets: their
+   count, into out. The candidates: those its bounds reach, a cell's rounding either side. */
+static size_t voxgi__ls_children_met(const voxgi__ls_open *o, int n, double cell, const double v[9], uint32_t *out)
+{
+    int rlo[3], rhi[3], x, y, z, a;
+    size_t m = 0;
+    for (a = 0; a < 3; a++) {
+        double tl = VOXGI__MIN(v[a], VOXGI__MIN(v[3 + a], v[6 + a])), th = VOXGI__MAX(v[a], VOXGI__MAX(v[3 + a], v[6 + a]));
+        rlo[a] = (int)VOXGI__MAX(0.0, floor((tl - o->corner[a]) / cell) - 1);
+        rhi[a] = (int)VOXGI__MIN((double)(n - 1), floor((th - o->corner[a]) / cell) + 1);
+    }
+    for (z = rlo[2]; z <= rhi[2]; z++)
+        for (y = rlo[1]; y <= rhi[1]; y++)
+            for (x = rlo[0]; x <= rhi[0]; x++) {
+                double blo[3], bhi[3];
+                blo[0] = o->corner[0] + x * cell;
+                blo[1] = o->corner[1] + y * cell;
+                blo[2] = o->corner[2] + z * cell;
+                for (a = 0; a < 3; a++) bhi[a] = blo[a] + cell;
+                if (voxgi__ls_tri_box(v, blo, bhi)) out[m++] = (uint32_t)(((size_t)z * (size_t)n + (size_t)y) * (size_t)n + (size_t)x);
+            }
+    return m;
+}
+
+VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_desc *desc, voxgi_linespace **out)
+{
+    voxgi_linespace *L;
+    voxgi__flat f;
+    voxgi__ls_build B;
+    voxgi__ls_open *open = NULL, *next = NULL;
+    uint32_t *refs = NULL, *next_refs = NULL, *spaces = NULL, *cnt = NULL, *met = NULL;
+    double t0 = voxgi__now_ms(), lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, ext = 0, cell;
+    size_t nopen, nnext, nrefs, nnext_refs, cap_open = 0, cap_next = 0, cap_refs = 0, cap_next_refs = 0, cap_spaces = 0, nspaces = 0, cap_nodes = 0,
+                                           nnodes = 0, cap_leaf = 0, nleaves = 0, ntris = 0, i, budget, children, held;
+    int n, depth, lev, a;
+    voxgi_result r = VOXGI_OK;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or out is NULL");
+    *out = NULL;
+    n = desc->n ? desc->n : 10;
+    depth = desc->depth ? desc->depth : 3;
+    budget = desc->memory_budget ? desc->memory_budget : (size_t)1 << 30;
+    if (n < 2 || n > 16 || depth < 1 || depth > 8) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "n %d (2..16), depth %d (1..8)", n, depth);
+    children = (size_t)n * (size_t)n * (size_t)n;
+    if ((r = voxgi__flatten(ctx, scene, 0, 0, &f)) != VOXGI_OK) return r;
+    if (!(L = (voxgi_linespace *)voxgi__alloc_array(ctx, 1, sizeof *L, 1))) {
+        voxgi__flat_free(ctx, &f);
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a line space");
+    }
+    memset(&B, 0, sizeof B);
+    L->info.n = n;
+    L->info.depth = depth;
+    L->words_per_space = (15 * children * (size_t)n + 31) / 32;
+    for (i = 0; i < 3 * f.vertex_count; i++) {
+        lo[i % 3] = VOXGI__MIN(lo[i % 3], (double)f.pos[i]);
+        hi[i % 3] = VOXGI__MAX(hi[i % 3], (double)f.pos[i]);
+    }
+    for (a = 0; a < 3 && f.vertex_count; a++) ext = VOXGI__MAX(ext, hi[a] - lo[a]);
+    L->info.size = ext > 0 ? ext * (1 + 1e-6) : 1; /* a hair larger: the scene inside, off the cube's faces */
+    for (a = 0; a < 3; a++) L->info.origin[a] = f.vertex_count ? 0.5 * (lo[a] + hi[a]) - 0.5 * L->info.size : 0;
+    if (f.triangle_count >= UINT32_MAX) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)f.triangle_count);
+    else if (children * L->words_per_space * 4 > budget)
+        r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the %lu child masks need %lu bytes, over the budget of %lu", (unsigned long)children,
+                        (unsigned long)(children * L->words_per_space * 4), (unsigned long)budget);
+    /* the root, holding every triangle */
+    nopen = f.triangle_count ? 1 : 0;
+    nrefs = f.triangle_count;
+    cap_refs = VOXGI__MAX(nrefs, (size_t)1);
+    if (r == VOXGI_OK && (!voxgi__ls_grow(ctx, (void **)&L->node, 0, &cap_nodes, 8) || !voxgi__ls_grow(ctx, (void **)&open, 0, &cap_open, sizeof *open) ||
+                          !(refs = (uint32_t *)voxgi__alloc_array(ctx, cap_refs, 4, 0)) || !(cnt = (uint32_t *)voxgi__alloc_array(ctx, children + 1, 4, 0)) ||
+                          !(met = (uint32_t *)voxgi__alloc_array(ctx, children, 4, 0))))
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the tree");
+    if (r == VOXGI_OK) {
+        L->node[0] = L->node[1] = UINT32_MAX;
+        nnodes = 1;
+        open[0].node = 0;
+        open[0].first = 0;
+        open[0].count = (uint32_t)nrefs;
+        memcpy(open[0].corner, L->info.origin, sizeof open[0].corner);
+        for (i = 0; i < nrefs; i++) refs[i] = (uint32_t)i;
+    }
+    cell = L->info.size;
+    for (lev = 1; r == VOXGI_OK && lev <= depth && nopen; lev++) { /* the children of every open node, in order */
+        size_t k;
+        cell /= n;
+        nnext = nnext_refs = 0;
+        for (k = 0; r == VOXGI_OK && k < nopen; k++) {
+            const voxgi__ls_open *o = &open[k];
+            size_t c, t, child0 = nnodes;
+            double v[9];
+            if (nnodes + children >= UINT32_MAX) { r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "more than 2^32 nodes"); break; }
+            while (cap_nodes < nnodes + children)
+                if (!voxgi__ls_grow(ctx, (void **)&L->node, cap_nodes, &cap_nodes, 8)) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the tree"); break; }
+            if (r != VOXGI_OK) break;
+            L->node[2 * o->node] = (uint32_t)child0;
+            for (c = 0; c < 2 * children; c++) L->node[2 * child0 + c] = UINT32_MAX;
+            nnodes += children;
+            memset(cnt, 0, (children + 1) * 4);
+            for (t = o->first; t < (size_t)o->first + o->count; t++) { /* each child's count */
+                size_t m, j;
+                voxgi__ls_vertices(&f, refs[t], v);
+                m = voxgi__ls_children_met(o, n, cell, v, met);
+                for (j = 0; j < m; j++) cnt[met[j] + 1]++;
+            }
+            for (c = 0; c < children; c++) { /* a filled child opens on the next level, or is a leaf */
+                uint32_t m = cnt[c + 1];
+                cnt[c + 1] = cnt[c] + m; /* the lists' starts, in the level's array */
+                if (!m) continue;
+                if (lev < depth) {
+                    if (!voxgi__ls_grow(ctx, (void **)&next, nnext, &cap_next, sizeof *next)) break;
+                    next[nnext].node = (uint32_t)(child0 + c);
+                    next[nnext].first = (uint32_t)(nnext_refs + cnt[c]);
+                    next[nnext].count = m;
+                    next[nnext].corner[0] = o->corner[0] + (double)(c % (size_t)n) * cell;
+                    next[nnext].corner[1] = o->corner[1] + (double)(c / (size_t)n % (size_t)n) * cell;
+                    next[nnext].corner[2] = o->corner[2] + (double)(c / ((size_t)n * (size_t)n)) * cell;
+                    nnext++;
+                } else {
+                    if (!voxgi__ls_grow(ctx, (void **)&L->leaf, 2 * nleaves + 1, &cap_leaf, 4)) break;
+                    L->node[2 * (child0 + c) + 1] = (uint32_t)nleaves;
+                    L->leaf[2 * nleaves] = (uint32_t)(nnext_refs + cnt[c]);
+                    L->leaf[2 * nleaves + 1] = m;
+                    nleaves++;
+                }
+            }
+            while (r == VOXGI_OK && c == children && cap_next_refs < nnext_refs + cnt[children])
+                if (!voxgi__ls_grow(ctx, (void **)&next_refs, cap_next_refs, &cap_next_refs, 4)) break;
+            if (c < children || cap_next_refs < nnext_refs + cnt[children]) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the tree"); break; }
+            for (t = o->first; t < (size_t)o->first + o->count; t++) { /* the lists, each ascending */
+                size_t m, j;
+                voxgi__ls_vertices(&f, refs[t], v);
+                m = voxgi__ls_children_met(o, n, cell, v, met);
+                for (j = 0; j < m; j++) next_refs[nnext_refs + cnt[met[j]]++] = refs[t];
+            }
+            nnext_refs += cnt[children];
+            if (r == VOXGI_OK) { /* a node with children has a line space */
+                if (!voxgi__ls_grow(ctx, (void **)&spaces, nspaces, &cap_spaces, 4)) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the tree");
+                else {
+                    L->node[2 * o->node + 1] = (uint32_t)nspaces;
+                    spaces[nspaces++] = o->node;
+                }
+            }
+            held = 8 * nnodes + L->words_per_space * 4 * nspaces + 4 * nnext_refs + 8 * nleaves;
+            if (r == VOXGI_OK && held + children * L->words_per_space * 4 > budget)
+                r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the line space needs more than %lu bytes, over the budget of %lu", (unsigned long)held,
+                                (unsigned long)budget);
+        }
+        if (r == VOXGI_OK && lev == depth) { /* the leaves' lists are the last level's */
+            L->tris = next_refs;
+            ntris = nnext_refs;
+            next_refs = NULL;
+            cap_next_refs = 0;
+        } else { /* the next level's lists become the open ones */
+            voxgi__ls_open *so = open;
+            uint32_t *sr = refs;
+            size_t sc = cap_open, src = cap_refs;
+            open = next; cap_open = cap_next; next = so; cap_next = sc;
+            refs = next_refs; cap_refs = cap_next_refs; next_refs = sr; cap_next_refs = src;
+            nopen = nnext;
+        }
+    }
+    if (r == VOXGI_OK && nspaces) { /* the child masks, then each line space: the OR of its filled children's */
+        B.L = L;
+        B.spaces = spaces;
+        B.masks = (uint32_t *)voxgi__alloc_array(ctx, children * L->words_per_space, 4, 1);
+        L->bits = (uint32_t *)voxgi__alloc_array(ctx, nspaces * L->words_per_space, 4, 1);
+        if (!B.masks || !L->bits) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu line spaces", (unsigned long)nspaces);
+        else {
+            voxgi__parallel(ctx, children, 1, voxgi__ls_masks, &B);
+            voxgi__parallel(ctx, nspaces, 1, voxgi__ls_spaces, &B);
+        }
+        voxgi__free(ctx, B.masks);
+    }
+    L->info.nodes = nnodes;
+    L->info.line_spaces = nspaces;
+    L->info.leaves = nleaves;
+    L->info.triangle_refs = ntris;
+    L->info.bytes = 8 * nnodes + L->words_per_space * 4 * nspaces + 4 * ntris + 8 * nleaves;
+    L->info.ms = voxgi__now_ms() - t0;
+    voxgi__free(ctx, open);
+    voxgi__free(ctx, next);
+    voxgi__free(ctx, refs);
+    voxgi__free(ctx, next_refs);
+    voxgi__free(ctx, spaces);
+    voxgi__free(ctx, cnt);
+    voxgi__free(ctx, met);
+    voxgi__flat_free(ctx, &f);
+    if (r != VOXGI_OK) voxgi_linespace_destroy(ctx, L);
+    else *out = L;
+    return r;
+}
+
+/* ===================================================================== 13. images */
 
 /* ----- the G-buffer of voxgi's own images */
 typedef struct voxgi__gbuffer_job {
@@ -13603,7 +14016,7 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
     return r;
 }
 
-/* ===================================================================== 13. reference renderer */
+/* ===================================================================== 14. reference renderer */
 
 typedef struct voxgi__render {
     voxgi_context *ctx;
@@ -13794,7 +14207,7 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     return r;
 }
 
-/* ===================================================================== 14. built-in scenes and files */
+/* ===================================================================== 15. built-in scenes and files */
 
 #define VOXGI__BUILTIN_VERTICES 6144
 #define VOXGI__BUILTIN_TRIANGLES 6144

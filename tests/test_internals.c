@@ -992,6 +992,227 @@ static void test_dda_visits_the_slab_voxels(void)
     free(O.bits[0]);
 }
 
+/* ---------------------------------------------------------------- line space */
+
+/* Whether the closed triangle v meets the box [lo, hi], by clipping it against the box's six
+   planes (Sutherland-Hodgman): an oracle independent of the separating-axis test. */
+static int ls_clip_meets(const double v[9], const double lo[3], const double hi[3])
+{
+    double poly[2][32][3];
+    int np = 3, a, s, k, cur = 0;
+    for (k = 0; k < 3; k++)
+        for (a = 0; a < 3; a++) poly[0][k][a] = v[3 * k + a];
+    for (a = 0; a < 3 && np; a++)
+        for (s = 0; s < 2 && np; s++) {
+            int m = 0;
+            for (k = 0; k < np; k++) {
+                const double *p = poly[cur][k], *q = poly[cur][(k + 1) % np];
+                double dp = s ? hi[a] - p[a] : p[a] - lo[a], dq = s ? hi[a] - q[a] : q[a] - lo[a];
+                if (dp >= 0) memcpy(poly[1 - cur][m++], p, sizeof poly[0][0]);
+                if ((dp >= 0) != (dq >= 0)) {
+                    double t = dp / (dp - dq);
+                    int b;
+                    for (b = 0; b < 3; b++) poly[1 - cur][m][b] = p[b] + t * (q[b] - p[b]);
+                    m++;
+                }
+            }
+            np = m;
+            cur = 1 - cur;
+        }
+    return np > 0;
+}
+
+/* The segment p + t (q - p), t in [0, 1], meets the closed box [lo, hi] (slabs). */
+static int ls_segment_meets(const double p[3], const double q[3], const double lo[3], const double hi[3])
+{
+    double t0 = 0, t1 = 1;
+    int a;
+    for (a = 0; a < 3; a++) {
+        double d = q[a] - p[a];
+        if (d == 0) {
+            if (p[a] < lo[a] || p[a] > hi[a]) return 0;
+        } else {
+            double u = (lo[a] - p[a]) / d, w = (hi[a] - p[a]) / d;
+            t0 = VOXGI__MAX(t0, VOXGI__MIN(u, w));
+            t1 = VOXGI__MIN(t1, VOXGI__MAX(u, w));
+        }
+    }
+    return t0 <= t1;
+}
+
+typedef struct ls_check {
+    const voxgi_linespace *L;
+    const float *pos;
+    int ntri;
+    unsigned rnd;
+    size_t missing, extra, filled_wrong, false_negatives, segments, zero_bits, bits, zero_hits;
+} ls_check;
+
+static double ls_unit(unsigned *rnd)
+{
+    *rnd = *rnd * 1664525u + 1013904223u;
+    return (*rnd >> 8) / 16777216.0;
+}
+
+static int ls_filled(const voxgi_linespace *L, uint32_t node)
+{
+    return L->node[2 * (size_t)node] != UINT32_MAX || L->node[2 * (size_t)node + 1] != UINT32_MAX;
+}
+
+/* Node `node` at `corner`, of edge `size`: its leaf lists against clipping, its filled flag
+   against its children's, its line space against segments between random points of two faces. */
+static void ls_visit(ls_check *C, uint32_t node, const double corner[3], double size)
+{
+    const voxgi_linespace *L = C->L;
+    int n = L->info.n, c, k, t;
+    double cell = size / n;
+    uint32_t child0 = L->node[2 * (size_t)node];
+    if (child0 == UINT32_MAX) { /* a leaf, or empty: its list against every triangle clipped to its box */
+        double lo[3], hi[3], v[9], grow = 1e-6 * L->info.size;
+        const uint32_t *list = NULL;
+        uint32_t count = 0;
+        if (ls_filled(L, node)) {
+            list = L->tris + L->leaf[2 * (size_t)L->node[2 * (size_t)node + 1]];
+            count = L->leaf[2 * (size_t)L->node[2 * (size_t)node + 1] + 1];
+        }
+        for (t = 0; t < C->ntri; t++) {
+            double slo[3], shi[3];
+            int in = 0, a;
+            uint32_t j;
+            for (a = 0; a < 9; a++) v[a] = C->pos[9 * t + a];
+            for (a = 0; a < 3; a++) {
+                lo[a] = corner[a];
+                hi[a] = corner[a] + size;
+                slo[a] = lo[a] + grow;
+                shi[a] = hi[a] - grow;
+            }
+            for (j = 0; j < count; j++) in |= list[j] == (uint32_t)t;
+            if (!in && ls_clip_meets(v, slo, shi)) C->missing++;
+            for (a = 0; a < 3; a++) { slo[a] = lo[a] - grow; shi[a] = hi[a] + grow; }
+            if (in && !ls_clip_meets(v, slo, shi)) C->extra++;
+        }
+        return;
+    }
+    { /* filled == some child filled */
+        int any = 0;
+        for (c = 0; c < n * n * n; c++) any |= ls_filled(L, child0 + (uint32_t)c);
+        if (!any) C->filled_wrong++;
+    }
+    { /* the line space: segments between random points of two different faces (a quarter of them on patch edges) */
+        const uint32_t *bits = L->bits + (size_t)L->node[2 * (size_t)node + 1] * L->words_per_space;
+        size_t b;
+        for (b = 0; b < 15 * (size_t)n * n * n * n; b++) {
+            C->bits++;
+            C->zero_bits += !((bits[b >> 5] >> (b & 31)) & 1);
+        }
+        for (k = 0; k < 3000; k++) {
+            double p[2][3];
+            int f[2], pa[2], e, ok = 1, hit = 0;
+            size_t bit;
+            f[0] = (int)(ls_unit(&C->rnd) * 6);
+            f[1] = (f[0] + 1 + (int)(ls_unit(&C->rnd) * 5)) % 6;
+            for (e = 0; e < 2; e++) {
+                int ax = f[e] >> 1, u = (ax + 1) % 3, w = (ax + 2) % 3, i, j;
+                p[e][ax] = (f[e] & 1) ? n : 0;
+                p[e][u] = k % 4 == 0 ? floor(ls_unit(&C->rnd) * (n + 1)) : ls_unit(&C->rnd) * n;
+                p[e][w] = ls_unit(&C->rnd) * n;
+                i = VOXGI__MIN((int)p[e][u], n - 1);
+                j = VOXGI__MIN((int)p[e][w], n - 1);
+                pa[e] = i * n + j;
+            }
+            bit = voxgi__ls_bit(n, f[0], pa[0], f[1], pa[1]);
+            for (c = 0; c < n * n * n && ok; c++) {
+                double clo[3], chi[3];
+                if (!ls_filled(L, child0 + (uint32_t)c)) continue;
+                clo[0] = c % n; clo[1] = c / n % n; clo[2] = c / (n * n);
+                for (e = 0; e < 3; e++) chi[e] = clo[e] + 1;
+                if (ls_segment_meets(p[0], p[1], clo, chi)) hit = 1;
+            }
+            C->segments++;
+            if (hit && !((bits[bit >> 5] >> (bit & 31)) & 1)) C->false_negatives++;
+            if (!hit && !((bits[bit >> 5] >> (bit & 31)) & 1)) C->zero_hits++;
+        }
+    }
+    for (c = 0; c < n * n * n; c++) {
+        double sub[3];
+        if (!ls_filled(L, child0 + (uint32_t)c)) {
+            if (C->ntri) { /* an empty child: no triangle meets it (its list would be empty) */
+                sub[0] = corner[0] + cell * (c % n); sub[1] = corner[1] + cell * (c / n % n); sub[2] = corner[2] + cell * (c / (n * n));
+                ls_visit(C, child0 + (uint32_t)c, sub, cell);
+            }
+            continue;
+        }
+        sub[0] = corner[0] + cell * (c % n);
+        sub[1] = corner[1] + cell * (c / n % n);
+        sub[2] = corner[2] + cell * (c / (n * n));
+        ls_visit(C, child0 + (uint32_t)c, sub, cell);
+    }
+}
+
+/* The line space of 14 triangles (random ones, a needle, one on a cell boundary), n = 4, depth
+   2: every triangle in every leaf its clipped polygon meets and in none it misses; every filled
+   node has a filled child; no segment between two faces' patches through a filled child finds
+   its bit clear, while some bits are clear; the same pools on 1 and 2 threads; the memory as
+   the formula says; a budget too small refused. */
+static void test_linespace_build(void)
+{
+    enum { T = 14 };
+    static float pos[9 * T];
+    voxgi_context *ctx[2];
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_linespace_desc d;
+    voxgi_linespace *L[2] = {NULL, NULL};
+    voxgi_linespace_info info;
+    ls_check C;
+    unsigned rnd = 99;
+    int i, b;
+    for (i = 0; i < 9 * 12; i++) pos[i] = (float)ls_unit(&rnd);
+    { /* a needle, and a triangle in the plane x = 0.5 */
+        static const float extra[18] = {0.1f, 0.2f, 0.3f, 0.9f, 0.8f, 0.7f, 0.1f, 0.2f, 0.30001f, 0.5f, 0.1f, 0.1f, 0.5f, 0.9f, 0.1f, 0.5f, 0.1f, 0.9f};
+        memcpy(pos + 9 * 12, extra, sizeof extra);
+    }
+    scene_of_triangles(&sc, &mesh, pos, 3 * T, NULL, 0);
+    memset(&d, 0, sizeof d);
+    d.n = 4;
+    d.depth = 2;
+    for (b = 0; b < 2; b++) {
+        ctx[b] = make_ctx(VOXGI_BACKEND_CPU, b + 1);
+        TH_CHECK(voxgi_linespace_create(ctx[b], &sc, &d, &L[b]) == VOXGI_OK, "%s", voxgi_last_error(ctx[b]));
+    }
+    if (!L[0] || !L[1]) return;
+    voxgi_linespace_query(L[0], &info);
+    memset(&C, 0, sizeof C);
+    C.L = L[0];
+    C.pos = pos;
+    C.ntri = T;
+    C.rnd = 7;
+    ls_visit(&C, 0, info.origin, info.size);
+    printf("    %lu nodes, %lu line spaces, %lu leaves, %lu triangle references, %lu bytes; leaves: %lu missing, %lu extra; %lu segments: %lu false "
+           "negatives, %lu with a clear bit; %lu of %lu bits clear\n",
+           (unsigned long)info.nodes, (unsigned long)info.line_spaces, (unsigned long)info.leaves, (unsigned long)info.triangle_refs, (unsigned long)info.bytes,
+           (unsigned long)C.missing, (unsigned long)C.extra, (unsigned long)C.segments, (unsigned long)C.false_negatives, (unsigned long)C.zero_hits,
+           (unsigned long)C.zero_bits, (unsigned long)C.bits);
+    TH_CHECK(C.missing == 0 && C.extra == 0 && C.filled_wrong == 0, "the tree is not the triangles'");
+    TH_CHECK(C.false_negatives == 0, "a shaft through a filled child has its bit clear");
+    TH_CHECK(C.zero_bits > 0 && C.zero_hits > 0, "every bit set: the line space skips nothing");
+    TH_CHECK(info.line_spaces >= 2 && info.bytes == 8 * info.nodes + 15 * 256 / 8 * info.line_spaces + 4 * info.triangle_refs + 8 * info.leaves,
+             "the memory is not the formula's");
+    TH_CHECK(L[0]->info.nodes == L[1]->info.nodes && L[0]->info.line_spaces == L[1]->info.line_spaces && L[0]->info.triangle_refs == L[1]->info.triangle_refs &&
+                 memcmp(L[0]->node, L[1]->node, 8 * info.nodes) == 0 && memcmp(L[0]->bits, L[1]->bits, 4 * L[0]->words_per_space * info.line_spaces) == 0 &&
+                 memcmp(L[0]->tris, L[1]->tris, 4 * info.triangle_refs) == 0,
+             "1 and 2 threads build different line spaces");
+    voxgi_linespace_destroy(ctx[0], L[0]);
+    voxgi_linespace_destroy(ctx[1], L[1]);
+    d.memory_budget = 4096;
+    TH_CHECK(voxgi_linespace_create(ctx[0], &sc, &d, &L[0]) == VOXGI_ERR_TOO_LARGE && L[0] == NULL, "a 4 KiB budget accepted");
+    d.memory_budget = 0;
+    d.n = 1;
+    TH_CHECK(voxgi_linespace_create(ctx[0], &sc, &d, &L[0]) == VOXGI_ERR_INVALID_ARGUMENT, "n 1 accepted");
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
 int main(void)
 {
     gl_open();
@@ -1009,6 +1230,7 @@ int main(void)
     TH_RUN(test_gl_volume_mips_by_hand);
     TH_RUN(test_gl_shader_error_mapping);
     TH_RUN(test_gl_software_renderers);
+    TH_RUN(test_linespace_build);
     gl_close();
     return th_finish();
 }
