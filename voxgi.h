@@ -1170,12 +1170,50 @@ typedef struct voxgi_linespace_info {
     size_t nodes;                 /* every node: the root and the children of every split node */
     size_t line_spaces;           /* nodes with children, one line space each */
     size_t leaves, triangle_refs; /* filled nodes at the leaves' level, and their triangle references */
-    size_t bytes;                 /* held: 8 x nodes + 15 N^4 / 8 x line_spaces + 4 x triangle_refs + 8 x leaves */
+    size_t triangles;
+    size_t bytes;                 /* held: 8 x nodes + 15 N^4 / 8 x line_spaces + 4 x triangle_refs + 8 x leaves + 36 x triangles */
     double ms;
 } voxgi_linespace_info;
 VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_desc *desc, voxgi_linespace **out);
 VOXGI_API void voxgi_linespace_destroy(voxgi_context *ctx, voxgi_linespace *ls);
 VOXGI_API void voxgi_linespace_query(const voxgi_linespace *ls, voxgi_linespace_info *out);
+
+/* Shadow rays through the line space. EXACT: the line spaces skip empty shafts and the leaves'
+   triangles decide (the ray core's watertight test): the answer is the triangles'. FAST: a set
+   bit at the last line-space level counts as a hit (Klee's method: never lighter than EXACT,
+   darker where a shaft holds geometry the ray misses). In both, the nodes holding the segment's
+   ends are walked to their leaves and their triangles decide, so a surface never shadows itself. */
+typedef enum voxgi_linespace_mode { VOXGI_LINESPACE_EXACT = 0, VOXGI_LINESPACE_FAST } voxgi_linespace_mode;
+
+/* Whether each ray meets something at t in (tmin, tmax): 1 or 0, each ray walking alone. */
+VOXGI_API voxgi_result voxgi_linespace_occluded(voxgi_context *ctx, const voxgi_linespace *ls, voxgi_linespace_mode mode, size_t count, const voxgi_ray *rays,
+                                                unsigned char *occluded);
+
+/* An area light seen from points: per point the S samples' rays to the light (the light split
+   into nu x nv cells, nu = ceil(sqrt(S)), nv = ceil(S / nu), a point jittered in each from
+   (seed, point, sample) alone). A ray leaves the point a hair (2^-18 of the root's edge) along
+   its normal and stops 2^-16 of the way short of the light; a sample behind the point's surface
+   (normal . direction <= 0) is blocked without a ray. */
+typedef struct voxgi_linespace_light_desc {
+    voxgi_linespace_mode mode;
+    int samples;                  /* S per point, 1..4096; 0 = 16 */
+    int packets;                  /* 1: a point's rays walk the tree together, slice by slice (coherent grid traversal);
+                                     0: each alone (3D DDA). The same answers, another cost */
+    double corner[3], edge_u[3], edge_v[3]; /* the light: corner + s edge_u + t edge_v, s and t in [0, 1]; it shines to edge_u x edge_v */
+    int triangle;                 /* 1: the triangle s + t <= 1 (samples beyond it folded in) */
+    uint32_t seed;
+} voxgi_linespace_light_desc;
+typedef struct voxgi_linespace_stats {
+    uint64_t rays, nodes, bits, triangle_tests; /* rays traced; split nodes entered, bits read, triangles tested */
+    int samples;                  /* nu x nv */
+    double ms;
+} voxgi_linespace_stats;
+/* points and normals: 3 floats each per point (a zero normal: no rays, 0 out). visible (or NULL):
+   the share of the nu x nv samples whose rays are not blocked; weighted (or NULL): the same share
+   weighted by cos_point cos_light / r^2, which times the light's unshadowed irradiance is its
+   shadowed irradiance (0 where no sample has weight). */
+VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_linespace *ls, const voxgi_linespace_light_desc *desc, size_t count,
+                                             const float *points, const float *normals, float *visible, float *weighted, voxgi_linespace_stats *stats);
 
 /* ===================================================================== 13. images */
 
@@ -1662,6 +1700,11 @@ static VOXGI__HOT_INLINE int voxgi__ctz32(uint32_t x)
 #else
     return (int)voxgi__popcount32((x & (0u - x)) - 1u);
 #endif
+}
+
+static VOXGI__HOT_INLINE int voxgi__ctz64(uint64_t x)
+{
+    return (uint32_t)x ? voxgi__ctz32((uint32_t)x) : 32 + voxgi__ctz32((uint32_t)(x >> 32));
 }
 
 /* float -> half, rounded to the nearest, ties to even (finite input; 65520 and beyond: infinity).
@@ -12508,8 +12551,16 @@ struct voxgi_linespace {
     uint32_t *bits;               /* the line spaces, words_per_space each */
     uint32_t *leaf;               /* 2 per leaf: its first triangle reference, their count */
     uint32_t *tris;               /* the leaves' triangles, ascending in each */
+    float *tv;                    /* 9 per triangle: its vertices relative to the centre */
+    double centre[3];             /* the scene's bounds' centre (the root cube's; the ray core's too, so the triangle tests are its) */
+    float half, scale;            /* the root cube's half edge, and n / its edge: the root's frame from the centre */
     size_t words_per_space;
 };
+
+/* Triangles are listed in every leaf they come within this share of the root's edge of (2^-18):
+   more than the float rounding of a ray's position in any node's frame, so a ray whose computed
+   path slips past a leaf by rounding still finds the triangles it meets in the one beside it. */
+#define VOXGI__LS_PAD 3.814697265625e-6
 
 /* The index of the unordered pair of different faces (fs, fe), fs < fe, among the 15. */
 static int voxgi__ls_face_pair(int fs, int fe)
@@ -12652,6 +12703,7 @@ VOXGI_API void voxgi_linespace_destroy(voxgi_context *ctx, voxgi_linespace *ls)
     voxgi__free(ctx, ls->bits);
     voxgi__free(ctx, ls->leaf);
     voxgi__free(ctx, ls->tris);
+    voxgi__free(ctx, ls->tv);
     voxgi__free(ctx, ls);
 }
 
@@ -12688,9 +12740,10 @@ typedef struct voxgi__ls_open {
     double corner[3];
 } voxgi__ls_open;
 
-/* The children (x fastest) of the open node o, of edge `cell`, that the triangle v meets: their
-   count, into out. The candidates: those its bounds reach, a cell's rounding either side. */
-static size_t voxgi__ls_children_met(const voxgi__ls_open *o, int n, double cell, const double v[9], uint32_t *out)
+/* The children (x fastest) of the open node o, of edge `cell`, that the triangle v meets, each
+   grown by pad on every side: their count, into out. The candidates: those its bounds reach, a
+   cell either side. */
+static size_t voxgi__ls_children_met(const voxgi__ls_open *o, int n, double cell, double pad, const double v[9], uint32_t *out)
 {
     int rlo[3], rhi[3], x, y, z, a;
     size_t m = 0;
@@ -12706,7 +12759,10 @@ static size_t voxgi__ls_children_met(const voxgi__ls_open *o, int n, double cell
                 blo[0] = o->corner[0] + x * cell;
                 blo[1] = o->corner[1] + y * cell;
                 blo[2] = o->corner[2] + z * cell;
-                for (a = 0; a < 3; a++) bhi[a] = blo[a] + cell;
+                for (a = 0; a < 3; a++) {
+                    bhi[a] = blo[a] + cell + pad;
+                    blo[a] -= pad;
+                }
                 if (voxgi__ls_tri_box(v, blo, bhi)) out[m++] = (uint32_t)(((size_t)z * (size_t)n + (size_t)y) * (size_t)n + (size_t)x);
             }
     return m;
@@ -12731,6 +12787,8 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     depth = desc->depth ? desc->depth : 3;
     budget = desc->memory_budget ? desc->memory_budget : (size_t)1 << 30;
     if (n < 2 || n > 16 || depth < 1 || depth > 8) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "n %d (2..16), depth %d (1..8)", n, depth);
+    if (pow(n, depth) > 1048576.0) /* the rays' float frames resolve 2^-20 of the root */
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "n %d, depth %d: n^depth leaves per axis, at most 2^20", n, depth);
     children = (size_t)n * (size_t)n * (size_t)n;
     if ((r = voxgi__flatten(ctx, scene, 0, 0, &f)) != VOXGI_OK) return r;
     if (!(L = (voxgi_linespace *)voxgi__alloc_array(ctx, 1, sizeof *L, 1))) {
@@ -12747,11 +12805,22 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     }
     for (a = 0; a < 3 && f.vertex_count; a++) ext = VOXGI__MAX(ext, hi[a] - lo[a]);
     L->info.size = ext > 0 ? ext * (1 + 1e-6) : 1; /* a hair larger: the scene inside, off the cube's faces */
-    for (a = 0; a < 3; a++) L->info.origin[a] = f.vertex_count ? 0.5 * (lo[a] + hi[a]) - 0.5 * L->info.size : 0;
+    for (a = 0; a < 3; a++) {
+        L->info.origin[a] = f.vertex_count ? 0.5 * (lo[a] + hi[a]) - 0.5 * L->info.size : 0;
+        L->centre[a] = f.vertex_count ? 0.5 * (lo[a] + hi[a]) : 0;
+    }
+    L->half = (float)(0.5 * L->info.size);
+    L->scale = (float)(n / L->info.size);
     if (f.triangle_count >= UINT32_MAX) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)f.triangle_count);
+    else if (36 * f.triangle_count > budget) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles need %lu bytes, over the budget of %lu", (unsigned long)f.triangle_count,
+                                                           (unsigned long)(36 * f.triangle_count), (unsigned long)budget);
+    else if (!(L->tv = (float *)voxgi__alloc_array(ctx, VOXGI__MAX(f.triangle_count, (size_t)1), 36, 0))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the triangles");
     else if (children * L->words_per_space * 4 > budget)
         r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the %lu child masks need %lu bytes, over the budget of %lu", (unsigned long)children,
                         (unsigned long)(children * L->words_per_space * 4), (unsigned long)budget);
+    else
+        for (i = 0; i < 9 * f.triangle_count; i++) /* relative to the centre, as the rays will be */
+            L->tv[i] = (float)((double)f.pos[3 * (size_t)f.tri[i / 3] + i % 3] - L->centre[i % 3]);
     /* the root, holding every triangle */
     nopen = f.triangle_count ? 1 : 0;
     nrefs = f.triangle_count;
@@ -12789,7 +12858,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
             for (t = o->first; t < (size_t)o->first + o->count; t++) { /* each child's count */
                 size_t m, j;
                 voxgi__ls_vertices(&f, refs[t], v);
-                m = voxgi__ls_children_met(o, n, cell, v, met);
+                m = voxgi__ls_children_met(o, n, cell, VOXGI__LS_PAD * L->info.size, v, met);
                 for (j = 0; j < m; j++) cnt[met[j] + 1]++;
             }
             for (c = 0; c < children; c++) { /* a filled child opens on the next level, or is a leaf */
@@ -12819,7 +12888,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
             for (t = o->first; t < (size_t)o->first + o->count; t++) { /* the lists, each ascending */
                 size_t m, j;
                 voxgi__ls_vertices(&f, refs[t], v);
-                m = voxgi__ls_children_met(o, n, cell, v, met);
+                m = voxgi__ls_children_met(o, n, cell, VOXGI__LS_PAD * L->info.size, v, met);
                 for (j = 0; j < m; j++) next_refs[nnext_refs + cnt[met[j]]++] = refs[t];
             }
             nnext_refs += cnt[children];
@@ -12830,7 +12899,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
                     spaces[nspaces++] = o->node;
                 }
             }
-            held = 8 * nnodes + L->words_per_space * 4 * nspaces + 4 * nnext_refs + 8 * nleaves;
+            held = 8 * nnodes + L->words_per_space * 4 * nspaces + 4 * nnext_refs + 8 * nleaves + 36 * f.triangle_count;
             if (r == VOXGI_OK && held + children * L->words_per_space * 4 > budget)
                 r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the line space needs more than %lu bytes, over the budget of %lu", (unsigned long)held,
                                 (unsigned long)budget);
@@ -12865,7 +12934,8 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     L->info.line_spaces = nspaces;
     L->info.leaves = nleaves;
     L->info.triangle_refs = ntris;
-    L->info.bytes = 8 * nnodes + L->words_per_space * 4 * nspaces + 4 * ntris + 8 * nleaves;
+    L->info.triangles = f.triangle_count;
+    L->info.bytes = 8 * nnodes + L->words_per_space * 4 * nspaces + 4 * ntris + 8 * nleaves + 36 * f.triangle_count;
     L->info.ms = voxgi__now_ms() - t0;
     voxgi__free(ctx, open);
     voxgi__free(ctx, next);
@@ -12878,6 +12948,572 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     if (r != VOXGI_OK) voxgi_linespace_destroy(ctx, L);
     else *out = L;
     return r;
+}
+
+/* ----- 12.2 shadow rays through the line space
+   A ray lives in the frame of the node it crosses: the node is [0, n]^3 and its children unit
+   cubes, so a child's frame is n (o - cell) with its direction n d, and t is the same in all.
+   Everything is float, in an order GLSL repeats, so the GL rays are the CPU's bit for bit.
+   A node the segment crosses face to face asks its line space (the patches where it enters and
+   leaves): clear, skip it; set at the last line-space level, fast mode calls the ray blocked,
+   exact mode goes on to the leaves' triangles. A node holding an end of the segment (the shading
+   point's, the light's) has no such line, so its children are walked, and at the leaves the
+   triangles decide in both modes: no surface occludes itself, and fast mode is only too dark. */
+
+/* A shadow ray: in the root's frame for the tree, and relative to the centre, sheared (Woop et
+   al.), for the triangles; its segment t in (t0, t1). */
+typedef struct voxgi__ls_ray {
+    float o[3], d[3];             /* the root's frame */
+    float ro[3], rd[3];           /* world units, relative to the centre */
+    float t0, t1;
+    int kx, ky, kz;
+    float sx, sy, sz;
+} voxgi__ls_ray;
+
+/* What the rays cost: nodes entered, line-space bits read, triangles tested. */
+typedef struct voxgi__ls_counts {
+    uint64_t rays, nodes, bits, triangles;
+} voxgi__ls_counts;
+
+/* The ray from o along d (world units, float) for t in (t0, t1); 0 for a zero direction. */
+static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const float d[3], float t0, float t1, voxgi__ls_ray *r)
+{
+    int a, kz = 0;
+    for (a = 0; a < 3; a++) {
+        r->ro[a] = (float)((double)o[a] - L->centre[a]);
+        r->rd[a] = d[a];
+        r->o[a] = (r->ro[a] + L->half) * L->scale;
+        r->d[a] = d[a] * L->scale;
+        if (fabsf(d[a]) > fabsf(d[kz])) kz = a;
+    }
+    r->t0 = t0;
+    r->t1 = t1;
+    if (d[kz] == 0) return 0;
+    r->kz = kz;
+    r->kx = (kz + 1) % 3;
+    r->ky = (r->kx + 1) % 3;
+    if (d[kz] < 0) { int k = r->kx; r->kx = r->ky; r->ky = k; } /* keep the winding */
+    r->sx = d[r->kx] / d[kz];
+    r->sy = d[r->ky] / d[kz];
+    r->sz = 1.0f / d[kz];
+    return 1;
+}
+
+/* Whether the ray meets triangle v (9 floats, relative to the centre) at t in (t0, t1): the
+   watertight test of the ray core (sheared edge functions in float, those within rounding of 0
+   again in double), so rays through shared edges and vertices never slip through. */
+static int voxgi__ls_tri_hit(const float *v, const voxgi__ls_ray *r)
+{
+    int kx = r->kx, ky = r->ky, kz = r->kz;
+    float az = v[kz] - r->ro[kz], bz = v[3 + kz] - r->ro[kz], cz = v[6 + kz] - r->ro[kz];
+    float ax = (v[kx] - r->ro[kx]) - r->sx * az, ay = (v[ky] - r->ro[ky]) - r->sy * az;
+    float bx = (v[3 + kx] - r->ro[kx]) - r->sx * bz, by = (v[3 + ky] - r->ro[ky]) - r->sy * bz;
+    float cx = (v[6 + kx] - r->ro[kx]) - r->sx * cz, cy = (v[6 + ky] - r->ro[ky]) - r->sy * cz;
+    float p0 = cx * by, q0 = cy * bx, p1 = ax * cy, q1 = ay * cx, p2 = bx * ay, q2 = by * ax;
+    float u = p0 - q0, w = p1 - q1, x = p2 - q2, det, t;
+    if (fabsf(u) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p0) + fabsf(q0)) || fabsf(w) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p1) + fabsf(q1)) ||
+        fabsf(x) <= VOXGI__EDGE_NEAR_ZERO * (fabsf(p2) + fabsf(q2))) {
+        double U = (double)cx * by - (double)cy * bx, W = (double)ax * cy - (double)ay * cx, X = (double)bx * ay - (double)by * ax, D, T;
+        if ((U < 0 || W < 0 || X < 0) && (U > 0 || W > 0 || X > 0)) return 0;
+        D = U + W + X;
+        if (D == 0) return 0;
+        T = (U * az + W * bz + X * cz) * (double)r->sz / D;
+        return T > r->t0 && T < r->t1;
+    }
+    if ((u < 0 || w < 0 || x < 0) && (u > 0 || w > 0 || x > 0)) return 0;
+    det = u + w + x;
+    if (det == 0) return 0;
+    t = (u * az + w * bz + x * cz) * r->sz / det;
+    return t > r->t0 && t < r->t1;
+}
+
+/* Whether the ray meets a triangle of leaf `leaf`. */
+static int voxgi__ls_leaf_hit(const voxgi_linespace *L, uint32_t leaf, const voxgi__ls_ray *r, voxgi__ls_counts *cnt)
+{
+    const uint32_t *t = L->tris + L->leaf[2 * (size_t)leaf], *end = t + L->leaf[2 * (size_t)leaf + 1];
+    cnt->triangles += (uint64_t)(end - t);
+    for (; t < end; t++)
+        if (voxgi__ls_tri_hit(L->tv + 9 * (size_t)*t, r)) return 1;
+    return 0;
+}
+
+/* The patch of the face of `axis` (which of its two faces the caller knows) where the ray (o, d
+   in the node's frame) meets it at t. */
+static int voxgi__ls_patch_at(int n, const float o[3], const float d[3], float t, int axis)
+{
+    int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    float pu = o[u] + t * d[u], pw = o[w] + t * d[w];
+    int i = pu < 1 ? 0 : (pu >= (float)(n - 1) ? n - 1 : (int)pu), j = pw < 1 ? 0 : (pw >= (float)(n - 1) ? n - 1 : (int)pw);
+    return i * n + j;
+}
+
+/* The bit of line space `space` for the ray (o, d in the node's frame) entering at ta by a face
+   of axis ea and leaving at tb by one of axis xa. */
+static int voxgi__ls_crossing_bit(const voxgi_linespace *L, uint32_t space, const float o[3], const float d[3], float ta, float tb, int ea, int xa,
+                                  voxgi__ls_counts *cnt)
+{
+    int n = L->info.n;
+    size_t bit = voxgi__ls_bit(n, 2 * ea + (d[ea] < 0), voxgi__ls_patch_at(n, o, d, ta, ea), 2 * xa + (d[xa] > 0), voxgi__ls_patch_at(n, o, d, tb, xa));
+    cnt->bits++;
+    return (int)((L->bits[(size_t)space * L->words_per_space + (bit >> 5)] >> (bit & 31)) & 1);
+}
+
+/* Where the ray (o, d, in a frame) is inside the box [lo, hi]^3 of that frame, closed: 0 if
+   nowhere, else its t range and the axes of the faces it enters (ea) and leaves (xa) by; an axis
+   the ray runs along (d 0) is never one of them. */
+static int voxgi__ls_slab(const float o[3], const float d[3], const float lo[3], const float hi[3], float *ta, float *tb, int *ea, int *xa)
+{
+    int a;
+    *ta = -INFINITY;
+    *tb = INFINITY;
+    *ea = *xa = -1;
+    for (a = 0; a < 3; a++) {
+        float inv, tn, tf;
+        if (d[a] == 0) {
+            if (o[a] < lo[a] || o[a] > hi[a]) return 0;
+            continue;
+        }
+        inv = 1.0f / d[a];
+        tn = ((d[a] > 0 ? lo[a] : hi[a]) - o[a]) * inv;
+        tf = ((d[a] > 0 ? hi[a] : lo[a]) - o[a]) * inv;
+        if (tn > *ta) { *ta = tn; *ea = a; }
+        if (tf < *tb) { *tb = tf; *xa = a; }
+    }
+    return *ta <= *tb;
+}
+
+/* A split node the DDA walks: the ray in its frame, the child it is in, where that child was
+   entered (t and the axis of the face, -1 where the segment starts in it), the node's exit. */
+typedef struct voxgi__ls_level {
+    uint32_t node;
+    float o[3], d[3], inv[3], next[3]; /* next: t where the ray leaves the current child along each axis */
+    int cell[3];
+    float t, t_out;
+    int entry_axis, exit_axis;    /* exit_axis -1: the segment ends in the node */
+} voxgi__ls_level;
+
+/* Level s walks `node` (its frame o, d) from ta (entered by a face of axis ea, or -1) to tb (left
+   by axis xa, or -1). */
+static void voxgi__ls_level_start(voxgi__ls_level *s, int n, uint32_t node, const float o[3], const float d[3], float ta, float tb, int ea, int xa)
+{
+    int a;
+    s->node = node;
+    s->t = ta;
+    s->t_out = tb;
+    s->entry_axis = ea;
+    s->exit_axis = xa;
+    for (a = 0; a < 3; a++) {
+        float p = o[a] + ta * d[a];
+        s->o[a] = o[a];
+        s->d[a] = d[a];
+        s->inv[a] = 1.0f / d[a]; /* +-inf for 0: never used, next is inf */
+        s->cell[a] = p < 1 ? 0 : (p >= (float)(n - 1) ? n - 1 : (int)p);
+        s->next[a] = d[a] == 0 ? INFINITY : ((float)(s->cell[a] + (d[a] > 0)) - o[a]) * s->inv[a];
+    }
+}
+
+/* Whether the ray meets a triangle (exact) or, in fast mode, a set bit of the last line-space
+   level: the per-ray walk, each node's children in the order the ray meets them (3D DDA). */
+static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int fast, voxgi__ls_counts *cnt)
+{
+    voxgi__ls_level st[8];
+    const int n = L->info.n, depth = L->info.depth;
+    const float lo[3] = {0, 0, 0}, hi[3] = {(float)n, (float)n, (float)n};
+    float ta, tb;
+    int ea, xa, top = 0;
+    if (L->node[0] == UINT32_MAX || !voxgi__ls_slab(r->o, r->d, lo, hi, &ta, &tb, &ea, &xa)) return 0; /* an empty scene, or outside */
+    if (ta <= r->t0) { ta = r->t0; ea = -1; }
+    if (tb >= r->t1) { tb = r->t1; xa = -1; }
+    if (ta > tb) return 0;
+    cnt->nodes++;
+    if (ea >= 0 && xa >= 0) { /* through the root */
+        if (!voxgi__ls_crossing_bit(L, L->node[1], r->o, r->d, ta, tb, ea, xa, cnt)) return 0;
+        if (fast && depth == 1) return 1;
+    }
+    voxgi__ls_level_start(&st[0], n, 0, r->o, r->d, ta, tb, ea, xa);
+    for (;;) {
+        voxgi__ls_level *s = &st[top];
+        uint32_t child, first, other;
+        float ca = s->t, cb, co[3], cd[3];
+        int m = 0, a, c[3];
+        if (!(ca <= s->t_out)) { /* this node is done */
+            if (--top < 0) return 0;
+            continue;
+        }
+        if (s->next[1] < s->next[m]) m = 1;
+        if (s->next[2] < s->next[m]) m = 2;
+        cb = s->next[m];
+        if (cb >= s->t_out) { cb = s->t_out; xa = s->exit_axis; }
+        else xa = m;
+        ea = s->entry_axis;
+        memcpy(c, s->cell, sizeof c);
+        s->cell[m] += s->d[m] > 0 ? 1 : -1; /* on to the next child */
+        s->next[m] = ((float)(s->cell[m] + (s->d[m] > 0)) - s->o[m]) * s->inv[m];
+        s->entry_axis = m;
+        s->t = (cb == s->t_out || s->cell[m] < 0 || s->cell[m] >= n) ? INFINITY : cb;
+        child = L->node[2 * s->node] + (uint32_t)((c[2] * n + c[1]) * n + c[0]);
+        first = L->node[2 * (size_t)child];
+        other = L->node[2 * (size_t)child + 1];
+        if (first == UINT32_MAX) { /* a leaf or empty */
+            if (other != UINT32_MAX && voxgi__ls_leaf_hit(L, other, r, cnt)) return 1;
+            continue;
+        }
+        cnt->nodes++;
+        for (a = 0; a < 3; a++) {
+            co[a] = (s->o[a] - (float)c[a]) * (float)n;
+            cd[a] = s->d[a] * (float)n;
+        }
+        if (ea >= 0 && xa >= 0) { /* crossed face to face: its line space */
+            if (!voxgi__ls_crossing_bit(L, other, co, cd, ca, cb, ea, xa, cnt)) continue;
+            if (fast && top + 2 == depth) return 1;
+        }
+        voxgi__ls_level_start(&st[++top], n, child, co, cd, ca, cb, ea, xa);
+    }
+}
+
+/* ----- packets: the rays from one point to the samples of a light walk each node together,
+   slice by slice along the axis they mostly go (Wald et al.'s coherent grid traversal, after
+   Klee): per slice the rectangle of children the packet's frustum can reach, each filled one
+   tested against the rays still open (their arrays side by side, for the compiler's SIMD). The
+   answers are the per-ray walk's: the same frames, slabs and bits; only the order differs. */
+
+#define VOXGI__LS_PACKET 64
+
+typedef struct voxgi__ls_packet {
+    const voxgi_linespace *L;
+    const voxgi__ls_ray *ray;     /* count rays from one origin */
+    int count, fast, k;           /* k: the slices' axis, along which every ray goes the same way */
+    float rlo[3], rhi[3];         /* the range of d[a] / d[k] over the rays (every frame's) */
+    float d[8][3][VOXGI__LS_PACKET]; /* per level the rays' directions in its frame */
+    uint64_t blocked;
+    voxgi__ls_counts *cnt;
+} voxgi__ls_packet;
+
+/* Per ray, where it is inside a node: t range and the axes it enters and leaves by (-1: an end). */
+typedef struct voxgi__ls_span {
+    float ta[VOXGI__LS_PACKET], tb[VOXGI__LS_PACKET];
+    signed char ea[VOXGI__LS_PACKET], xa[VOXGI__LS_PACKET];
+} voxgi__ls_span;
+
+/* The children [lo, hi] along axis a that rays from o (in the frame) can reach while their k
+   coordinate lies in [xlo, xhi] (o's own included). */
+static void voxgi__ls_footprint(const voxgi__ls_packet *P, const float o[3], int a, float xlo, float xhi, int n, int *lo, int *hi)
+{
+    float p0 = xlo * P->rlo[a], p1 = xlo * P->rhi[a], p2 = xhi * P->rlo[a], p3 = xhi * P->rhi[a];
+    float mn = VOXGI__MIN(VOXGI__MIN(p0, p1), VOXGI__MIN(p2, p3)), mx = VOXGI__MAX(VOXGI__MAX(p0, p1), VOXGI__MAX(p2, p3));
+    float slack = 1e-3f * (1 + fabsf(mn) + fabsf(mx)); /* the ratios' rounding from frame to frame */
+    float l = o[a] + mn - slack, h = o[a] + mx + slack;
+    *lo = l < 0 ? 0 : (l >= (float)n ? n : (int)l);
+    *hi = h < 0 ? -1 : (h >= (float)(n - 1) ? n - 1 : (int)h);
+}
+
+static void voxgi__ls_packet_node(voxgi__ls_packet *P, uint32_t node, int level, const float o[3], uint64_t active, const voxgi__ls_span *sp)
+{
+    const voxgi_linespace *L = P->L;
+    const int n = L->info.n, k = P->k, u = (k + 1) % 3, w = (k + 2) % 3, dir = P->d[level][k][voxgi__ctz64(active)] > 0 ? 1 : -1;
+    voxgi__ls_span sub;
+    float reach_lo = INFINITY, reach_hi = -INFINITY;
+    int s, s_end, i;
+    uint64_t m;
+    for (m = active; m; m &= m - 1) { /* the slices the rays reach */
+        int r = voxgi__ctz64(m);
+        float x0 = o[k] + sp->ta[r] * P->d[level][k][r], x1 = o[k] + sp->tb[r] * P->d[level][k][r];
+        reach_lo = VOXGI__MIN(reach_lo, VOXGI__MIN(x0, x1));
+        reach_hi = VOXGI__MAX(reach_hi, VOXGI__MAX(x0, x1));
+    }
+    s = (int)VOXGI__MAX(0.0f, VOXGI__MIN((float)(n - 1), floorf(dir > 0 ? reach_lo : reach_hi)));
+    s_end = (int)VOXGI__MAX(0.0f, VOXGI__MIN((float)(n - 1), floorf(dir > 0 ? reach_hi : reach_lo)));
+    for (;; s += dir) {
+        float xlo = (float)s - o[k], xhi = (float)(s + 1) - o[k];
+        int ulo, uhi, wlo, whi, cu, cw;
+        if (dir > 0) xlo = VOXGI__MAX(xlo, 0.0f);
+        else xhi = VOXGI__MIN(xhi, 0.0f);
+        voxgi__ls_footprint(P, o, u, xlo, xhi, n, &ulo, &uhi);
+        voxgi__ls_footprint(P, o, w, xlo, xhi, n, &wlo, &whi);
+        for (cw = wlo; cw <= whi; cw++)
+            for (cu = ulo; cu <= uhi; cu++) {
+                int c[3];
+                uint32_t child, first, other;
+                uint64_t into = 0;
+                float lo[3], hi[3], co[3];
+                c[k] = s; c[u] = cu; c[w] = cw;
+                child = L->node[2 * node] + (uint32_t)((c[2] * n + c[1]) * n + c[0]);
+                first = L->node[2 * (size_t)child];
+                other = L->node[2 * (size_t)child + 1];
+                if (first == UINT32_MAX && other == UINT32_MAX) continue; /* empty */
+                for (i = 0; i < 3; i++) { lo[i] = (float)c[i]; hi[i] = (float)(c[i] + 1); }
+                for (i = 0; i < 3; i++) co[i] = (o[i] - (float)c[i]) * (float)n;
+                if (first != UINT32_MAX) P->cnt->nodes++;
+                for (m = active & ~P->blocked; m; m &= m - 1) {
+                    int r = voxgi__ctz64(m), ea, xa, a;
+                    float ta, tb, d[3], cd[3];
+                    for (a = 0; a < 3; a++) d[a] = P->d[level][a][r];
+                    if (!voxgi__ls_slab(o, d, lo, hi, &ta, &tb, &ea, &xa)) continue;
+                    if (ta <= sp->ta[r]) { ta = sp->ta[r]; ea = sp->ea[r]; }
+                    if (tb >= sp->tb[r]) { tb = sp->tb[r]; xa = sp->xa[r]; }
+                    if (ta > tb) continue;
+                    if (first == UINT32_MAX) { /* a leaf */
+                        if (voxgi__ls_leaf_hit(L, other, &P->ray[r], P->cnt)) P->blocked |= (uint64_t)1 << r;
+                        continue;
+                    }
+                    if (ea >= 0 && xa >= 0) {
+                        for (a = 0; a < 3; a++) cd[a] = P->d[level + 1][a][r];
+                        if (!voxgi__ls_crossing_bit(L, other, co, cd, ta, tb, ea, xa, P->cnt)) continue;
+                        if (P->fast && level + 2 == L->info.depth) { P->blocked |= (uint64_t)1 << r; continue; }
+                    }
+                    sub.ta[r] = ta;
+                    sub.tb[r] = tb;
+                    sub.ea[r] = (signed char)ea;
+                    sub.xa[r] = (signed char)xa;
+                    into |= (uint64_t)1 << r;
+                }
+                if (into) voxgi__ls_packet_node(P, child, level + 1, co, into, &sub);
+                if (!(active & ~P->blocked)) return;
+            }
+        if (s == s_end) break;
+    }
+}
+
+/* Which of the count rays (one origin, count <= 64) are blocked, as bits. Rays not going the
+   packet's way along its axis walk alone. */
+static uint64_t voxgi__ls_trace_packet(const voxgi_linespace *L, const voxgi__ls_ray *ray, int count, int fast, voxgi__ls_counts *cnt)
+{
+    voxgi__ls_packet *P, Pbuf;
+    voxgi__ls_span sp;
+    const int n = L->info.n;
+    const float lo[3] = {0, 0, 0}, hi[3] = {(float)n, (float)n, (float)n};
+    float sum[3] = {0, 0, 0};
+    uint64_t in = 0;
+    int r, a, lev;
+    P = &Pbuf;
+    P->L = L;
+    P->ray = ray;
+    P->count = count;
+    P->fast = fast;
+    P->blocked = 0;
+    P->cnt = cnt;
+    for (r = 0; r < count; r++)
+        for (a = 0; a < 3; a++) sum[a] += ray[r].d[a];
+    P->k = fabsf(sum[1]) > fabsf(sum[0]) ? 1 : 0;
+    if (fabsf(sum[2]) > fabsf(sum[P->k])) P->k = 2;
+    for (a = 0; a < 3; a++) { P->rlo[a] = INFINITY; P->rhi[a] = -INFINITY; }
+    if (L->node[0] == UINT32_MAX) return 0;
+    for (r = 0; r < count; r++) {
+        float ta, tb;
+        int ea, xa;
+        if (!voxgi__ls_slab(ray[r].o, ray[r].d, lo, hi, &ta, &tb, &ea, &xa)) continue;
+        if (ta <= ray[r].t0) { ta = ray[r].t0; ea = -1; }
+        if (tb >= ray[r].t1) { tb = ray[r].t1; xa = -1; }
+        if (ta > tb) continue;
+        if (!(ray[r].d[P->k] != 0 && (ray[r].d[P->k] > 0) == (sum[P->k] > 0))) { /* against the packet's way: alone */
+            if (voxgi__ls_trace(L, &ray[r], fast, cnt)) P->blocked |= (uint64_t)1 << r;
+            continue;
+        }
+        cnt->nodes++;
+        if (ea >= 0 && xa >= 0) {
+            if (!voxgi__ls_crossing_bit(L, L->node[1], ray[r].o, ray[r].d, ta, tb, ea, xa, cnt)) continue;
+            if (fast && L->info.depth == 1) { P->blocked |= (uint64_t)1 << r; continue; }
+        }
+        sp.ta[r] = ta;
+        sp.tb[r] = tb;
+        sp.ea[r] = (signed char)ea;
+        sp.xa[r] = (signed char)xa;
+        for (a = 0; a < 3; a++) {
+            float q = ray[r].d[a] / ray[r].d[P->k];
+            P->rlo[a] = VOXGI__MIN(P->rlo[a], q);
+            P->rhi[a] = VOXGI__MAX(P->rhi[a], q);
+        }
+        for (a = 0; a < 3; a++) {
+            P->d[0][a][r] = ray[r].d[a];
+            for (lev = 1; lev < L->info.depth; lev++) P->d[lev][a][r] = P->d[lev - 1][a][r] * (float)n;
+        }
+        in |= (uint64_t)1 << r;
+    }
+    if (in) voxgi__ls_packet_node(P, 0, 0, ray[voxgi__ctz64(in)].o, in, &sp);
+    return P->blocked;
+}
+
+typedef struct voxgi__ls_job {
+    const voxgi_linespace *L;
+    const voxgi_ray *rays;
+    unsigned char *occluded;
+    const voxgi_linespace_light_desc *light;
+    const float *points, *normals;
+    float *visible, *weighted;
+    float corner[3], eu[3], ev[3], hair;
+    int fast, nu, nv;
+    size_t chunk;
+    voxgi__ls_counts *counts;     /* one per chunk */
+} voxgi__ls_job;
+
+static void voxgi__ls_rays_run(void *user, size_t first, size_t end)
+{
+    voxgi__ls_job *J = (voxgi__ls_job *)user;
+    voxgi__ls_counts *cnt = &J->counts[first / J->chunk];
+    size_t i;
+    for (i = first; i < end; i++) {
+        const voxgi_ray *q = &J->rays[i];
+        voxgi__ls_ray r;
+        J->occluded[i] = 0;
+        if (!(q->tmax > q->tmin) || !voxgi__ls_ray_set(J->L, q->origin, q->direction, q->tmin, q->tmax, &r)) continue;
+        J->occluded[i] = (unsigned char)voxgi__ls_trace(J->L, &r, J->fast, cnt);
+    }
+}
+
+VOXGI_API voxgi_result voxgi_linespace_occluded(voxgi_context *ctx, const voxgi_linespace *ls, voxgi_linespace_mode mode, size_t count, const voxgi_ray *rays,
+                                                unsigned char *occluded)
+{
+    voxgi__ls_job J;
+    size_t i;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!ls || (count && (!rays || !occluded))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "line space, rays or occluded is NULL");
+    if (mode != VOXGI_LINESPACE_EXACT && mode != VOXGI_LINESPACE_FAST) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "mode %d", (int)mode);
+    for (i = 0; i < count; i++)
+        if (!voxgi__ray_finite(&rays[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "ray %lu is not finite", (unsigned long)i);
+    memset(&J, 0, sizeof J);
+    J.L = ls;
+    J.rays = rays;
+    J.occluded = occluded;
+    J.fast = mode == VOXGI_LINESPACE_FAST;
+    J.chunk = 256;
+    if (!(J.counts = (voxgi__ls_counts *)voxgi__alloc_array(ctx, count / J.chunk + 1, sizeof *J.counts, 1)))
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu rays", (unsigned long)count);
+    voxgi__parallel(ctx, count, J.chunk, voxgi__ls_rays_run, &J);
+    voxgi__free(ctx, J.counts);
+    return VOXGI_OK;
+}
+
+/* A hash of 32 bits (the PCG output permutation), the same in GLSL. */
+static uint32_t voxgi__ls_hash(uint32_t x)
+{
+    x = x * 747796405u + 2891336453u;
+    x = ((x >> ((x >> 28) + 4u)) ^ x) * 277803737u;
+    return (x >> 22) ^ x;
+}
+
+/* Sample k (cell (k % nu, k / nu) of the light's nu x nv grid, jittered) for point `point`:
+   where on the light, as s and t along its edges. */
+static void voxgi__ls_light_st(uint32_t seed, uint32_t point, int k, int nu, int nv, int triangle, float *s, float *t)
+{
+    uint32_t h1 = voxgi__ls_hash(seed ^ voxgi__ls_hash(point ^ voxgi__ls_hash((uint32_t)k))), h2 = voxgi__ls_hash(h1);
+    *s = ((float)(k % nu) + (float)(h1 >> 8) * (1.0f / 16777216.0f)) / (float)nu;
+    *t = ((float)(k / nu) + (float)(h2 >> 8) * (1.0f / 16777216.0f)) / (float)nv;
+    if (triangle && *s + *t > 1) { *s = 1 - *s; *t = 1 - *t; }
+}
+
+/* The segment from point p (unit normal nrm: the side its rays leave) to light point (s, t):
+   origin a hair off the surface, ending short of the light by 2^-16 of the way (its own
+   triangles never block it); *facing: the cosine at p is positive (else the surface itself is
+   in the way and no ray goes). Also the weight cos_p cos_l / r^2 of the sample. */
+static int voxgi__ls_light_ray(const voxgi_linespace *L, const voxgi__ls_job *J, const float p[3], const float nrm[3], float s, float t, voxgi__ls_ray *r,
+                               double *weight)
+{
+    float o[3], d[3], cos_p;
+    double cos_l, len2, fn[3];
+    int a;
+    for (a = 0; a < 3; a++) {
+        float q = (J->corner[a] + s * J->eu[a]) + t * J->ev[a];
+        o[a] = p[a] + J->hair * nrm[a];
+        d[a] = q - o[a];
+    }
+    cos_p = (nrm[0] * d[0] + nrm[1] * d[1]) + nrm[2] * d[2];
+    *weight = 0;
+    if (!(cos_p > 0) || !voxgi__ls_ray_set(L, o, d, 0.0f, 1.0f - 1.52587890625e-5f, r)) return 0;
+    for (a = 0; a < 3; a++) fn[a] = (double)J->eu[(a + 1) % 3] * J->ev[(a + 2) % 3] - (double)J->eu[(a + 2) % 3] * J->ev[(a + 1) % 3];
+    len2 = (double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2];
+    cos_l = -(fn[0] * d[0] + fn[1] * d[1] + fn[2] * d[2]) / sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+    if (cos_l > 0) *weight = cos_p * cos_l / (len2 * len2);
+    return 1;
+}
+
+static void voxgi__ls_light_run(void *user, size_t first, size_t end)
+{
+    voxgi__ls_job *J = (voxgi__ls_job *)user;
+    voxgi__ls_counts *cnt = &J->counts[first / J->chunk];
+    voxgi__ls_ray ray[VOXGI__LS_PACKET];
+    double wt[VOXGI__LS_PACKET];
+    const int S = J->nu * J->nv;
+    size_t i;
+    for (i = first; i < end; i++) {
+        const float *p = J->points + 3 * i, *nrm = J->normals + 3 * i;
+        double seen = 0, wsum = 0, wseen = 0;
+        int k0, k;
+        for (k0 = 0; k0 < S; k0 += VOXGI__LS_PACKET) {
+            int m = 0;
+            uint64_t blocked = 0;
+            for (k = k0; k < S && k < k0 + VOXGI__LS_PACKET; k++) {
+                float s, t;
+                voxgi__ls_light_st(J->light->seed, (uint32_t)i, k, J->nu, J->nv, J->light->triangle, &s, &t);
+                if (!voxgi__ls_light_ray(J->L, J, p, nrm, s, t, &ray[m], &wt[m])) continue;
+                wsum += wt[m];
+                m++;
+            }
+            cnt->rays += (uint64_t)m;
+            if (J->light->packets && m > 1) blocked = voxgi__ls_trace_packet(J->L, ray, m, J->fast, cnt);
+            else
+                for (k = 0; k < m; k++) blocked |= (uint64_t)voxgi__ls_trace(J->L, &ray[k], J->fast, cnt) << k;
+            for (k = 0; k < m; k++)
+                if (!(blocked >> k & 1)) { seen += 1; wseen += wt[k]; }
+        }
+        if (J->visible) J->visible[i] = (float)(seen / S);
+        if (J->weighted) J->weighted[i] = wsum > 0 ? (float)(wseen / wsum) : 0.0f;
+    }
+}
+
+VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_linespace *ls, const voxgi_linespace_light_desc *desc, size_t count,
+                                             const float *points, const float *normals, float *visible, float *weighted, voxgi_linespace_stats *stats)
+{
+    voxgi__ls_job J;
+    double t0 = voxgi__now_ms(), cross[3], area;
+    size_t i, chunks;
+    int a, S;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (stats) memset(stats, 0, sizeof *stats);
+    if (!ls || !desc || (count && (!points || !normals))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "line space, desc, points or normals is NULL");
+    if (desc->mode != VOXGI_LINESPACE_EXACT && desc->mode != VOXGI_LINESPACE_FAST) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "mode %d", (int)desc->mode);
+    S = desc->samples ? desc->samples : 16;
+    if (S < 1 || S > 4096) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d (1..4096)", S);
+    for (a = 0; a < 3; a++)
+        if (!isfinite(desc->corner[a]) || !isfinite(desc->edge_u[a]) || !isfinite(desc->edge_v[a]))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the light is not finite");
+    for (a = 0; a < 3; a++) cross[a] = desc->edge_u[(a + 1) % 3] * desc->edge_v[(a + 2) % 3] - desc->edge_u[(a + 2) % 3] * desc->edge_v[(a + 1) % 3];
+    area = sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]);
+    if (!(area > 0)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the light's edges are parallel: it has no area");
+    for (i = 0; i < 3 * count; i++)
+        if (!isfinite(points[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
+    memset(&J, 0, sizeof J);
+    J.L = ls;
+    J.light = desc;
+    J.points = points;
+    J.normals = normals;
+    J.visible = visible;
+    J.weighted = weighted;
+    J.fast = desc->mode == VOXGI_LINESPACE_FAST;
+    J.nu = (int)ceil(sqrt((double)S) - 1e-9);
+    J.nv = (S + J.nu - 1) / J.nu;
+    J.hair = (float)(ls->info.size * VOXGI__LS_PAD);
+    for (a = 0; a < 3; a++) {
+        J.corner[a] = (float)desc->corner[a];
+        J.eu[a] = (float)desc->edge_u[a];
+        J.ev[a] = (float)desc->edge_v[a];
+    }
+    J.chunk = 64;
+    chunks = count / J.chunk + 1;
+    if (!(J.counts = (voxgi__ls_counts *)voxgi__alloc_array(ctx, chunks, sizeof *J.counts, 1)))
+        return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
+    voxgi__parallel(ctx, count, J.chunk, voxgi__ls_light_run, &J);
+    if (stats) {
+        for (i = 0; i < chunks; i++) {
+            stats->rays += J.counts[i].rays;
+            stats->nodes += J.counts[i].nodes;
+            stats->bits += J.counts[i].bits;
+            stats->triangle_tests += J.counts[i].triangles;
+        }
+        stats->samples = J.nu * J.nv;
+        stats->ms = voxgi__now_ms() - t0;
+    }
+    voxgi__free(ctx, J.counts);
+    return VOXGI_OK;
 }
 
 /* ===================================================================== 13. images */

@@ -1088,7 +1088,7 @@ static void ls_visit(ls_check *C, uint32_t node, const double corner[3], double 
             }
             for (j = 0; j < count; j++) in |= list[j] == (uint32_t)t;
             if (!in && ls_clip_meets(v, slo, shi)) C->missing++;
-            for (a = 0; a < 3; a++) { slo[a] = lo[a] - grow; shi[a] = hi[a] + grow; }
+            for (a = 0; a < 3; a++) { slo[a] = lo[a] - grow - VOXGI__LS_PAD * L->info.size; shi[a] = hi[a] + grow + VOXGI__LS_PAD * L->info.size; }
             if (in && !ls_clip_meets(v, slo, shi)) C->extra++;
         }
         return;
@@ -1196,7 +1196,7 @@ static void test_linespace_build(void)
     TH_CHECK(C.missing == 0 && C.extra == 0 && C.filled_wrong == 0, "the tree is not the triangles'");
     TH_CHECK(C.false_negatives == 0, "a shaft through a filled child has its bit clear");
     TH_CHECK(C.zero_bits > 0 && C.zero_hits > 0, "every bit set: the line space skips nothing");
-    TH_CHECK(info.line_spaces >= 2 && info.bytes == 8 * info.nodes + 15 * 256 / 8 * info.line_spaces + 4 * info.triangle_refs + 8 * info.leaves,
+    TH_CHECK(info.line_spaces >= 2 && info.bytes == 8 * info.nodes + 15 * 256 / 8 * info.line_spaces + 4 * info.triangle_refs + 8 * info.leaves + 36 * (size_t)T,
              "the memory is not the formula's");
     TH_CHECK(L[0]->info.nodes == L[1]->info.nodes && L[0]->info.line_spaces == L[1]->info.line_spaces && L[0]->info.triangle_refs == L[1]->info.triangle_refs &&
                  memcmp(L[0]->node, L[1]->node, 8 * info.nodes) == 0 && memcmp(L[0]->bits, L[1]->bits, 4 * L[0]->words_per_space * info.line_spaces) == 0 &&
@@ -1211,6 +1211,141 @@ static void test_linespace_build(void)
     TH_CHECK(voxgi_linespace_create(ctx[0], &sc, &d, &L[0]) == VOXGI_ERR_INVALID_ARGUMENT, "n 1 accepted");
     voxgi_destroy(ctx[0]);
     voxgi_destroy(ctx[1]);
+}
+
+/* The scene of the line-space ray tests: 12 random triangles in the unit cube, a needle, a
+   triangle in the plane x = 0.5 (on cell boundaries for n 2 and 4), and a closed box (0.3..0.7,
+   12 triangles sharing edges and vertices). */
+static int ls_scene(float *pos, unsigned seed)
+{
+    static const float box[8][3] = {{0.3f, 0.3f, 0.3f}, {0.7f, 0.3f, 0.3f}, {0.3f, 0.7f, 0.3f}, {0.7f, 0.7f, 0.3f},
+                                    {0.3f, 0.3f, 0.7f}, {0.7f, 0.3f, 0.7f}, {0.3f, 0.7f, 0.7f}, {0.7f, 0.7f, 0.7f}};
+    static const int quad[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    static const float extra[18] = {0.1f, 0.2f, 0.3f, 0.9f, 0.8f, 0.7f, 0.1f, 0.2f, 0.30001f, 0.5f, 0.1f, 0.1f, 0.5f, 0.9f, 0.1f, 0.5f, 0.1f, 0.9f};
+    int i, q, t = 14;
+    for (i = 0; i < 9 * 12; i++) pos[i] = (float)ls_unit(&seed);
+    memcpy(pos + 9 * 12, extra, sizeof extra);
+    for (q = 0; q < 6; q++) {
+        static const int tri[6] = {0, 1, 2, 0, 2, 3};
+        for (i = 0; i < 6; i++) memcpy(pos + 9 * t + 3 * (i % 3) + (i / 3) * 9, box[quad[q][tri[i]]], 12);
+        t += 2;
+    }
+    return t;
+}
+
+/* A random point in [-0.2, 1.2]^3; one in four snapped to the grid of the leaves (n^depth a side). */
+static void ls_point(unsigned *rnd, int cells, float p[3])
+{
+    int a, snap = ls_unit(rnd) < 0.25;
+    for (a = 0; a < 3; a++) {
+        double x = -0.2 + 1.4 * ls_unit(rnd);
+        p[a] = (float)(snap ? floor(x * cells + 0.5) / cells : x);
+    }
+}
+
+/* Shadow rays through line spaces of 26 triangles (n 4 depth 2, n 3 depth 3, n 5 depth 1):
+   random segments (a quarter from the leaves' grid, a tenth along an axis, some on the box's
+   edges) in exact mode give the brute-force answer (every triangle, the same watertight test)
+   and the ray core's (but for segments ending on a surface, hit or not at tmax), fast mode is never lighter; packets of rays from one point to a light
+   give the per-ray answers in both modes. */
+static void test_linespace_rays(void)
+{
+    static float pos[9 * 26];
+    static const int shape[3][2] = {{4, 2}, {3, 3}, {5, 1}};
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_ray_scene *rs = NULL;
+    enum { R = 20000 };
+    static voxgi_ray rays[R];
+    static unsigned char ex[R], fa[R], core[R];
+    int T = ls_scene(pos, 5), sh;
+    scene_of_triangles(&sc, &mesh, pos, 3 * (size_t)T, NULL, 0);
+    TH_CHECK(voxgi_ray_scene_create(ctx, &sc, &rs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (sh = 0; sh < 3; sh++) {
+        voxgi_linespace_desc d;
+        voxgi_linespace *L = NULL;
+        voxgi__ls_counts cnt;
+        unsigned rnd = 11 + (unsigned)sh;
+        size_t i, ends_on = 0, brute_wrong = 0, core_wrong = 0, lighter = 0, blocked = 0, darker = 0, packet_wrong = 0, packet_rays = 0, axis = 0;
+        int cells = 1, k;
+        memset(&d, 0, sizeof d);
+        d.n = shape[sh][0];
+        d.depth = shape[sh][1];
+        for (k = 0; k < d.depth; k++) cells *= d.n;
+        TH_CHECK(voxgi_linespace_create(ctx, &sc, &d, &L) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        if (!L) continue;
+        for (i = 0; i < R; i++) {
+            float a[3], b[3];
+            int c;
+            ls_point(&rnd, cells, a);
+            ls_point(&rnd, cells, b);
+            if (i % 10 == 0) { /* along an axis */
+                int keep = (int)(ls_unit(&rnd) * 3);
+                for (c = 0; c < 3; c++) if (c != keep) b[c] = a[c];
+                axis++;
+            }
+            if (i % 50 == 1) { /* along an edge of the box, or through its corner */
+                a[0] = 0.3f; a[1] = 0.3f; b[0] = 0.3f; b[1] = (i % 100 == 1) ? 0.3f : 0.9f;
+            }
+            for (c = 0; c < 3; c++) {
+                rays[i].origin[c] = a[c];
+                rays[i].direction[c] = b[c] - a[c];
+            }
+            rays[i].tmin = 0;
+            rays[i].tmax = 1;
+        }
+        TH_CHECK(voxgi_linespace_occluded(ctx, L, VOXGI_LINESPACE_EXACT, R, rays, ex) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_linespace_occluded(ctx, L, VOXGI_LINESPACE_FAST, R, rays, fa) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_ray_occluded(ctx, rs, R, rays, core) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        for (i = 0; i < R; i++) {
+            voxgi__ls_ray r;
+            int t, hit = 0, at_end = 0;
+            if (voxgi__ls_ray_set(L, rays[i].origin, rays[i].direction, rays[i].tmin, rays[i].tmax, &r)) {
+                for (t = 0; t < T && !hit; t++) hit = voxgi__ls_tri_hit(L->tv + 9 * t, &r);
+                r.t1 = nextafterf(r.t1, 2.0f); /* a surface at tmax itself, which the ray core's boxes may or may not count */
+                for (t = 0; t < T && !hit && !at_end; t++) at_end = voxgi__ls_tri_hit(L->tv + 9 * t, &r);
+            }
+            brute_wrong += ex[i] != hit;
+            core_wrong += !at_end && ex[i] != core[i];
+            ends_on += at_end;
+            lighter += ex[i] && !fa[i];
+            darker += fa[i] && !ex[i];
+            blocked += ex[i];
+        }
+        for (k = 0; k < 200; k++) { /* packets: one point, a light's samples */
+            voxgi__ls_ray pr[VOXGI__LS_PACKET];
+            float o[3], q0[3];
+            int m = 1 + (int)(ls_unit(&rnd) * VOXGI__LS_PACKET), j, t;
+            ls_point(&rnd, cells, o);
+            ls_point(&rnd, cells, q0);
+            for (j = 0; j < m; j++) {
+                float dd[3];
+                int c;
+                for (c = 0; c < 3; c++) dd[c] = q0[c] + (float)(0.3 * ls_unit(&rnd)) - o[c];
+                if (j == 1) dd[0] = 0; /* one along a face's plane */
+                if (!voxgi__ls_ray_set(L, o, dd, 0, 1, &pr[j])) pr[j] = pr[0];
+            }
+            for (t = 0; t < 2; t++) {
+                uint64_t got;
+                memset(&cnt, 0, sizeof cnt);
+                got = voxgi__ls_trace_packet(L, pr, m, t, &cnt);
+                for (j = 0; j < m; j++) packet_wrong += (int)(got >> j & 1) != voxgi__ls_trace(L, &pr[j], t, &cnt);
+                packet_rays += (size_t)m;
+            }
+        }
+        printf("    n %d depth %d: %lu segments (%lu along an axis), %lu blocked, %lu ending on a surface; exact vs brute force %lu wrong, vs the ray core %lu; fast: "
+               "%lu lighter, %lu darker; packets: %lu of %lu rays differ from walking alone\n",
+               d.n, d.depth, (unsigned long)R, (unsigned long)axis, (unsigned long)blocked, (unsigned long)ends_on, (unsigned long)brute_wrong, (unsigned long)core_wrong,
+               (unsigned long)lighter, (unsigned long)darker, (unsigned long)packet_wrong, (unsigned long)packet_rays);
+        TH_CHECK(brute_wrong == 0 && core_wrong == 0, "exact mode is not the triangles' answer");
+        TH_CHECK(lighter == 0, "fast mode finds light where the triangles block it");
+        TH_CHECK(darker > 0 && blocked > R / 10 && blocked < R - R / 10, "the rays test nothing");
+        TH_CHECK(packet_wrong == 0, "packets answer otherwise than rays walking alone");
+        voxgi_linespace_destroy(ctx, L);
+    }
+    voxgi_ray_scene_destroy(ctx, rs);
+    voxgi_destroy(ctx);
 }
 
 int main(void)
@@ -1231,6 +1366,7 @@ int main(void)
     TH_RUN(test_gl_shader_error_mapping);
     TH_RUN(test_gl_software_renderers);
     TH_RUN(test_linespace_build);
+    TH_RUN(test_linespace_rays);
     gl_close();
     return th_finish();
 }
