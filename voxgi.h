@@ -1172,6 +1172,7 @@ typedef struct voxgi_linespace_info {
     size_t leaves, triangle_refs; /* filled nodes at the leaves' level, and their triangle references */
     size_t triangles;
     size_t bytes;                 /* held: 8 x nodes + 15 N^4 / 8 x line_spaces + 4 x triangle_refs + 8 x leaves + 36 x triangles */
+    size_t allocated;             /* measured: what its arrays take as allocated (their growth's slack included) */
     double ms;
 } voxgi_linespace_info;
 VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_desc *desc, voxgi_linespace **out);
@@ -1182,7 +1183,8 @@ VOXGI_API void voxgi_linespace_query(const voxgi_linespace *ls, voxgi_linespace_
    triangles decide (the ray core's watertight test): the answer is the triangles'. FAST: a set
    bit at the last line-space level counts as a hit (Klee's method: never lighter than EXACT,
    darker where a shaft holds geometry the ray misses). In both, the nodes holding the segment's
-   ends are walked to their leaves and their triangles decide, so a surface never shadows itself. */
+   ends, and in FAST those within 3 leaves' edges of them, are walked to their leaves and their
+   triangles decide, so a surface never shadows itself. */
 typedef enum voxgi_linespace_mode { VOXGI_LINESPACE_EXACT = 0, VOXGI_LINESPACE_FAST } voxgi_linespace_mode;
 
 /* Whether each ray meets something at t in (tmin, tmax): 1 or 0, each ray walking alone. */
@@ -1214,6 +1216,34 @@ typedef struct voxgi_linespace_stats {
    shadowed irradiance (0 where no sample has weight). */
 VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_linespace *ls, const voxgi_linespace_light_desc *desc, size_t count,
                                              const float *points, const float *normals, float *visible, float *weighted, voxgi_linespace_stats *stats);
+
+/* An image of the direct light of the scene's area lights with soft shadows through the line
+   space: per pixel the surface the ray through its centre meets first (voxgi_gbuffer_render),
+   then per area light (each rect light; emissive triangles, two that share an edge and make a
+   parallelogram as one light; at most 64) its unshadowed irradiance exactly (Lambert's polygon
+   formula) times the share voxgi_linespace_light's weighted output gives: radiance = emission
+   (front faces, unless hidden) + albedo / pi x irradiance. An emitter never lights itself. Other
+   lights are left out; a scene without an area light is refused (VOXGI_ERR_UNSUPPORTED). */
+typedef struct voxgi_linespace_image_desc {
+    voxgi_camera camera;
+    const voxgi_linespace *ls;    /* the scene's line space, or NULL: built from `tree` */
+    voxgi_linespace_desc tree;
+    voxgi_linespace_mode mode;
+    int samples;                  /* per pixel and light (voxgi_linespace_light_desc); 0 = 16 */
+    int packets;
+    uint32_t seed;
+    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
+} voxgi_linespace_image_desc;
+typedef struct voxgi_linespace_image_info {
+    voxgi_linespace_info tree;
+    voxgi_linespace_stats rays;   /* over all lights */
+    int lights;
+    double ms_build, ms_gbuffer, ms_shadows, ms;
+} voxgi_linespace_image_info;
+/* rgb: 3 floats per pixel, rows from the top; visible (or NULL): 1 float per pixel, the lights'
+   mean visible share. */
+VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_image_desc *desc, float *rgb, size_t rgb_bytes,
+                                              float *visible, voxgi_linespace_image_info *info);
 
 /* ===================================================================== 13. images */
 
@@ -12554,6 +12584,7 @@ struct voxgi_linespace {
     float *tv;                    /* 9 per triangle: its vertices relative to the centre */
     double centre[3];             /* the scene's bounds' centre (the root cube's; the ray core's too, so the triangle tests are its) */
     float half, scale;            /* the root cube's half edge, and n / its edge: the root's frame from the centre */
+    float near_ends;              /* 3 leaves' edges in the root's frame: fast mode's exact zone at a segment's ends */
     size_t words_per_space;
 };
 
@@ -12777,7 +12808,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     uint32_t *refs = NULL, *next_refs = NULL, *spaces = NULL, *cnt = NULL, *met = NULL;
     double t0 = voxgi__now_ms(), lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, ext = 0, cell;
     size_t nopen, nnext, nrefs, nnext_refs, cap_open = 0, cap_next = 0, cap_refs = 0, cap_next_refs = 0, cap_spaces = 0, nspaces = 0, cap_nodes = 0,
-                                           nnodes = 0, cap_leaf = 0, nleaves = 0, ntris = 0, i, budget, children, held;
+                                           nnodes = 0, cap_leaf = 0, nleaves = 0, ntris = 0, cap_tris = 0, i, budget, children, held;
     int n, depth, lev, a;
     voxgi_result r = VOXGI_OK;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
@@ -12810,6 +12841,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
         L->centre[a] = f.vertex_count ? 0.5 * (lo[a] + hi[a]) : 0;
     }
     L->half = (float)(0.5 * L->info.size);
+    L->near_ends = (float)(3 / pow(n, depth - 1));
     L->scale = (float)(n / L->info.size);
     if (f.triangle_count >= UINT32_MAX) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)f.triangle_count);
     else if (36 * f.triangle_count > budget) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles need %lu bytes, over the budget of %lu", (unsigned long)f.triangle_count,
@@ -12907,6 +12939,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
         if (r == VOXGI_OK && lev == depth) { /* the leaves' lists are the last level's */
             L->tris = next_refs;
             ntris = nnext_refs;
+            cap_tris = cap_next_refs;
             next_refs = NULL;
             cap_next_refs = 0;
         } else { /* the next level's lists become the open ones */
@@ -12936,6 +12969,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     L->info.triangle_refs = ntris;
     L->info.triangles = f.triangle_count;
     L->info.bytes = 8 * nnodes + L->words_per_space * 4 * nspaces + 4 * ntris + 8 * nleaves + 36 * f.triangle_count;
+    L->info.allocated = sizeof *L + 8 * cap_nodes + L->words_per_space * 4 * nspaces + 4 * cap_tris + 4 * cap_leaf + 36 * VOXGI__MAX(f.triangle_count, (size_t)1);
     L->info.ms = voxgi__now_ms() - t0;
     voxgi__free(ctx, open);
     voxgi__free(ctx, next);
@@ -12958,7 +12992,10 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
    leaves): clear, skip it; set at the last line-space level, fast mode calls the ray blocked,
    exact mode goes on to the leaves' triangles. A node holding an end of the segment (the shading
    point's, the light's) has no such line, so its children are walked, and at the leaves the
-   triangles decide in both modes: no surface occludes itself, and fast mode is only too dark. */
+   triangles decide in both modes; fast mode also walks down wherever the segment lies within 3
+   leaves' edges of an end (the surface a ray leaves fills the cells beside its start, and a
+   shaft from a patch just above them touches them: it would shadow points near a node's side). No surface occludes itself, and fast
+   mode is only ever too dark. */
 
 /* A shadow ray: in the root's frame for the tree, and relative to the centre, sheared (Woop et
    al.), for the triangles; its segment t in (t0, t1). */
@@ -12966,6 +13003,7 @@ typedef struct voxgi__ls_ray {
     float o[3], d[3];             /* the root's frame */
     float ro[3], rd[3];           /* world units, relative to the centre */
     float t0, t1;
+    float tn0, tn1;               /* fast mode reads bits as hits only between these: 3 leaves' edges from the ends */
     int kx, ky, kz;
     float sx, sy, sz;
 } voxgi__ls_ray;
@@ -12989,6 +13027,8 @@ static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const f
     r->t0 = t0;
     r->t1 = t1;
     if (d[kz] == 0) return 0;
+    r->tn0 = t0 + L->near_ends / fabsf(r->d[kz]); /* the largest component: at least 3 edges of travel */
+    r->tn1 = t1 - L->near_ends / fabsf(r->d[kz]);
     r->kz = kz;
     r->kx = (kz + 1) % 3;
     r->ky = (r->kx + 1) % 3;
@@ -13128,7 +13168,7 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
     cnt->nodes++;
     if (ea >= 0 && xa >= 0) { /* through the root */
         if (!voxgi__ls_crossing_bit(L, L->node[1], r->o, r->d, ta, tb, ea, xa, cnt)) return 0;
-        if (fast && depth == 1) return 1;
+        if (fast && depth == 1 && ta >= r->tn0 && tb <= r->tn1) return 1;
     }
     voxgi__ls_level_start(&st[0], n, 0, r->o, r->d, ta, tb, ea, xa);
     for (;;) {
@@ -13165,7 +13205,7 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
         }
         if (ea >= 0 && xa >= 0) { /* crossed face to face: its line space */
             if (!voxgi__ls_crossing_bit(L, other, co, cd, ca, cb, ea, xa, cnt)) continue;
-            if (fast && top + 2 == depth) return 1;
+            if (fast && top + 2 == depth && ca >= r->tn0 && cb <= r->tn1) return 1;
         }
         voxgi__ls_level_start(&st[++top], n, child, co, cd, ca, cb, ea, xa);
     }
@@ -13259,7 +13299,7 @@ static void voxgi__ls_packet_node(voxgi__ls_packet *P, uint32_t node, int level,
                     if (ea >= 0 && xa >= 0) {
                         for (a = 0; a < 3; a++) cd[a] = P->d[level + 1][a][r];
                         if (!voxgi__ls_crossing_bit(L, other, co, cd, ta, tb, ea, xa, P->cnt)) continue;
-                        if (P->fast && level + 2 == L->info.depth) { P->blocked |= (uint64_t)1 << r; continue; }
+                        if (P->fast && level + 2 == L->info.depth && ta >= P->ray[r].tn0 && tb <= P->ray[r].tn1) { P->blocked |= (uint64_t)1 << r; continue; }
                     }
                     sub.ta[r] = ta;
                     sub.tb[r] = tb;
@@ -13312,7 +13352,7 @@ static uint64_t voxgi__ls_trace_packet(const voxgi_linespace *L, const voxgi__ls
         cnt->nodes++;
         if (ea >= 0 && xa >= 0) {
             if (!voxgi__ls_crossing_bit(L, L->node[1], ray[r].o, ray[r].d, ta, tb, ea, xa, cnt)) continue;
-            if (fast && L->info.depth == 1) { P->blocked |= (uint64_t)1 << r; continue; }
+            if (fast && L->info.depth == 1 && ta >= ray[r].tn0 && tb <= ray[r].tn1) { P->blocked |= (uint64_t)1 << r; continue; }
         }
         sp.ta[r] = ta;
         sp.tb[r] = tb;
@@ -13514,6 +13554,235 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
     }
     voxgi__free(ctx, J.counts);
     return VOXGI_OK;
+}
+
+/* ----- 12.3 images: soft shadows of the area lights */
+
+/* An area light for the images: a rect light, or emissive triangles (two sharing an edge as a
+   parallelogram when they make one, with the same emission), with its radiance. */
+typedef struct voxgi__ls_area {
+    voxgi_linespace_light_desc d;
+    double radiance[3];
+    uint32_t own[2];              /* its emissive triangles (UINT32_MAX: none): no light on themselves */
+} voxgi__ls_area;
+
+#define VOXGI__LS_AREA_LIGHTS 64
+
+/* The scene's area lights into A (room for VOXGI__LS_AREA_LIGHTS): their count, -1 for more,
+   -2 without memory. */
+static int voxgi__ls_area_lights(voxgi_context *ctx, const voxgi_scene *scene, const voxgi__flat *f, voxgi__ls_area *A)
+{
+    size_t i, t, u;
+    int count = 0, a, k;
+    unsigned char *paired = (unsigned char *)voxgi__alloc_array(ctx, VOXGI__MAX(f->triangle_count, (size_t)1), 1, 1);
+    if (!paired) return -2;
+    for (i = 0; i < scene->light_count; i++) {
+        const voxgi_light *L = &scene->lights[i];
+        if (L->type != VOXGI_LIGHT_RECT) continue;
+        if (count == VOXGI__LS_AREA_LIGHTS) { count = -1; break; }
+        memset(&A[count], 0, sizeof A[count]);
+        for (a = 0; a < 3; a++) {
+            A[count].d.corner[a] = L->position[a];
+            A[count].d.edge_u[a] = L->edge_u[a];
+            A[count].d.edge_v[a] = L->edge_v[a];
+            A[count].radiance[a] = L->intensity[a];
+        }
+        A[count].own[0] = A[count].own[1] = UINT32_MAX;
+        count++;
+    }
+    for (t = 0; count >= 0 && t < f->triangle_count; t++) {
+        const voxgi_material *m = voxgi__tri_material(f, t);
+        const float *v[3];
+        int partner_k = -1, shared = 0;
+        size_t partner = 0;
+        if (!(m->emission[0] > 0 || m->emission[1] > 0 || m->emission[2] > 0) || paired[t]) continue;
+        if (count == VOXGI__LS_AREA_LIGHTS) { count = -1; break; }
+        for (k = 0; k < 3; k++) v[k] = f->pos + 3 * (size_t)f->tri[3 * t + (size_t)k];
+        for (u = t + 1; u < f->triangle_count && partner_k < 0; u++) { /* a partner: the same emission, an edge in common, a parallelogram */
+            const voxgi_material *mu = voxgi__tri_material(f, u);
+            const float *w[3];
+            int in[3], out_k = -1, j, c;
+            if (memcmp(mu->emission, m->emission, sizeof m->emission) != 0 || mu->albedo[0] != m->albedo[0] || mu->albedo[1] != m->albedo[1] ||
+                mu->albedo[2] != m->albedo[2])
+                continue;
+            for (j = 0; j < 3; j++) w[j] = f->pos + 3 * (size_t)f->tri[3 * u + (size_t)j];
+            for (shared = 0, k = 0; k < 3; k++) {
+                in[k] = 0;
+                for (j = 0; j < 3; j++) in[k] |= memcmp(v[k], w[j], 12) == 0;
+                shared += in[k];
+            }
+            if (shared != 2) continue;
+            for (j = 0; j < 3; j++) {
+                int hit = 0;
+                for (k = 0; k < 3; k++) hit |= memcmp(w[j], v[k], 12) == 0;
+                if (!hit) out_k = j;
+            }
+            for (k = 0; k < 3 && in[k]; k++) {}
+            for (c = 0; c < 3; c++) { /* v[k] + w[out] = the two shared vertices' sum */
+                double s = 0, e = fabs((double)v[k][c]) + fabs((double)w[out_k][c]);
+                for (j = 0; j < 3; j++) if (in[j]) { s += v[j][c]; e += fabs((double)v[j][c]); }
+                if (fabs((double)v[k][c] + w[out_k][c] - s) > 1e-6 * e) break;
+            }
+            if (c == 3) { partner_k = k; partner = u; }
+        }
+        memset(&A[count], 0, sizeof A[count]);
+        A[count].own[0] = (uint32_t)t;
+        A[count].own[1] = UINT32_MAX;
+        if (partner_k >= 0) { /* corner: t's vertex off the shared edge; edges to the shared ones, turned to face as t does */
+            const float *s1 = v[(partner_k + 1) % 3], *s2 = v[(partner_k + 2) % 3];
+            for (a = 0; a < 3; a++) {
+                A[count].d.corner[a] = v[partner_k][a];
+                A[count].d.edge_u[a] = (double)s1[a] - v[partner_k][a];
+                A[count].d.edge_v[a] = (double)s2[a] - v[partner_k][a];
+            }
+            paired[partner] = 1;
+            A[count].own[1] = (uint32_t)partner;
+        } else {
+            A[count].d.triangle = 1;
+            for (a = 0; a < 3; a++) {
+                A[count].d.corner[a] = v[0][a];
+                A[count].d.edge_u[a] = (double)v[1][a] - v[0][a];
+                A[count].d.edge_v[a] = (double)v[2][a] - v[0][a];
+            }
+        }
+        for (a = 0; a < 3; a++) A[count].radiance[a] = m->emission[a];
+        count++;
+    }
+    voxgi__free(ctx, paired);
+    return count;
+}
+
+typedef struct voxgi__ls_shade {
+    const voxgi__flat *f;
+    const voxgi__ls_area *A;
+    int lights, hide_emitters;
+    const float *pos, *nrm, *weighted;  /* weighted: per light, per pixel */
+    const uint32_t *tri;
+    size_t pixels;
+    float *rgb;
+} voxgi__ls_shade;
+
+/* Pixels [first, end): emission (unless hidden) + albedo / pi x the sum over the lights of their
+   radiance x unshadowed irradiance (Lambert's polygon formula) x the rays' weighted visible share. */
+static void voxgi__ls_shade_run(void *user, size_t first, size_t end)
+{
+    const voxgi__ls_shade *S = (const voxgi__ls_shade *)user;
+    size_t i;
+    for (i = first; i < end; i++) {
+        uint32_t t = S->tri[i];
+        const voxgi_material *m;
+        double p[3], n[3], e[3] = {0, 0, 0}, g[3];
+        int l, a;
+        S->rgb[3 * i] = S->rgb[3 * i + 1] = S->rgb[3 * i + 2] = 0;
+        if (t == UINT32_MAX) continue;
+        m = voxgi__tri_material(S->f, t);
+        for (a = 0; a < 3; a++) { p[a] = S->pos[3 * i + (size_t)a]; n[a] = S->nrm[3 * i + (size_t)a]; }
+        for (l = 0; l < S->lights; l++) {
+            const voxgi__ls_area *A = &S->A[l];
+            double q[4][3], fn[3], irr;
+            float share = S->weighted[(size_t)l * S->pixels + i];
+            if (!(share > 0) || A->own[0] == t || A->own[1] == t) continue;
+            for (a = 0; a < 3; a++) {
+                q[0][a] = A->d.corner[a];
+                q[1][a] = A->d.corner[a] + A->d.edge_u[a];
+                q[2][a] = A->d.corner[a] + (A->d.triangle ? A->d.edge_v[a] : A->d.edge_u[a] + A->d.edge_v[a]);
+                q[3][a] = A->d.corner[a] + A->d.edge_v[a];
+                fn[a] = A->d.edge_u[(a + 1) % 3] * A->d.edge_v[(a + 2) % 3] - A->d.edge_u[(a + 2) % 3] * A->d.edge_v[(a + 1) % 3];
+            }
+            irr = voxgi__polygon_irradiance((const double(*)[3])q, A->d.triangle ? 3 : 4, fn, p, n) * share;
+            for (a = 0; a < 3; a++) e[a] += A->radiance[a] * irr;
+        }
+        voxgi__tri_unit_normal(S->f, t, g);
+        for (a = 0; a < 3; a++)
+            S->rgb[3 * i + (size_t)a] = (float)(m->albedo[a] / VOXGI__PI * e[a] + (!S->hide_emitters && g[0] * n[0] + g[1] * n[1] + g[2] * n[2] > 0 ? m->emission[a] : 0));
+    }
+}
+
+VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_image_desc *desc, float *rgb, size_t rgb_bytes,
+                                              float *visible, voxgi_linespace_image_info *info)
+{
+    voxgi__ls_area A[VOXGI__LS_AREA_LIGHTS];
+    voxgi__ls_shade S;
+    voxgi__flat f;
+    voxgi_linespace *built = NULL;
+    const voxgi_linespace *ls;
+    voxgi_linespace_image_info inf;
+    float *pos = NULL, *nrm = NULL, *weighted = NULL, *seen = NULL;
+    uint32_t *tri = NULL;
+    size_t pixels, i;
+    double t0 = voxgi__now_ms(), t1;
+    int lights, l;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (info) memset(info, 0, sizeof *info);
+    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
+    memset(&inf, 0, sizeof inf);
+    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
+    if (desc->camera.width < 1 || desc->camera.height < 1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d", desc->camera.width, desc->camera.height);
+    if (rgb_bytes < pixels * 12)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
+    if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
+    lights = voxgi__ls_area_lights(ctx, scene, &f, A);
+    if (lights == -2) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    else if (lights < 0) r = voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "more than %d area lights (rect lights, emissive triangles paired into parallelograms)", VOXGI__LS_AREA_LIGHTS);
+    else if (lights == 0) r = voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "the scene has no area light (a rect light or emissive triangles): line-space shadows are soft shadows of area lights");
+    ls = desc->ls;
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK && !ls && (r = voxgi_linespace_create(ctx, scene, &desc->tree, &built)) == VOXGI_OK) ls = built;
+    inf.ms_build = voxgi__now_ms() - t1;
+    if (r == VOXGI_OK) {
+        pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+        nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
+        tri = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
+        weighted = (float *)voxgi__alloc_array(ctx, pixels * (size_t)lights, 4, 0);
+        seen = (float *)voxgi__alloc_array(ctx, pixels, 4, 0);
+        if (!pos || !nrm || !tri || !weighted || !seen) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-pixel image", (unsigned long)pixels);
+    }
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK) r = voxgi_gbuffer_render(ctx, scene, &desc->camera, pos, nrm, tri);
+    inf.ms_gbuffer = voxgi__now_ms() - t1;
+    t1 = voxgi__now_ms();
+    if (visible && r == VOXGI_OK) memset(visible, 0, pixels * 4);
+    for (l = 0; r == VOXGI_OK && l < lights; l++) {
+        voxgi_linespace_stats st;
+        A[l].d.mode = desc->mode;
+        A[l].d.samples = desc->samples;
+        A[l].d.packets = desc->packets;
+        A[l].d.seed = desc->seed + (uint32_t)l * 0x9E3779B9u;
+        if ((r = voxgi_linespace_light(ctx, ls, &A[l].d, pixels, pos, nrm, seen, weighted + (size_t)l * pixels, &st)) != VOXGI_OK) break;
+        for (i = 0; visible && i < pixels; i++) visible[i] += seen[i] / (float)lights;
+        inf.rays.rays += st.rays;
+        inf.rays.nodes += st.nodes;
+        inf.rays.bits += st.bits;
+        inf.rays.triangle_tests += st.triangle_tests;
+        inf.rays.samples = st.samples;
+    }
+    inf.ms_shadows = inf.rays.ms = voxgi__now_ms() - t1;
+    if (r == VOXGI_OK) {
+        S.f = &f;
+        S.A = A;
+        S.lights = lights;
+        S.hide_emitters = desc->hide_emitters;
+        S.pos = pos;
+        S.nrm = nrm;
+        S.tri = tri;
+        S.weighted = weighted;
+        S.pixels = pixels;
+        S.rgb = rgb;
+        voxgi__parallel(ctx, pixels, 256, voxgi__ls_shade_run, &S);
+        voxgi_linespace_query(ls, &inf.tree);
+        inf.lights = lights;
+        inf.ms = voxgi__now_ms() - t0;
+        if (info) *info = inf;
+    }
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, nrm);
+    voxgi__free(ctx, tri);
+    voxgi__free(ctx, weighted);
+    voxgi__free(ctx, seen);
+    voxgi_linespace_destroy(ctx, built);
+    voxgi__flat_free(ctx, &f);
+    return r;
 }
 
 /* ===================================================================== 13. images */

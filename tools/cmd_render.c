@@ -4,8 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", "ssao", "vao", "ssgi", "hybrid", NULL};
-enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH, METHOD_SSAO, METHOD_VAO, METHOD_SSGI, METHOD_HYBRID };
+static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", "ssao", "vao", "ssgi", "hybrid", "linespace", NULL};
+enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH, METHOD_SSAO, METHOD_VAO, METHOD_SSGI, METHOD_HYBRID, METHOD_LINESPACE };
+static const char *const ls_mode_names[] = {"exact", "fast", NULL}; /* voxgi_linespace_mode's order */
 static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_visibility's order */
 static const char *const off_on_names[] = {"off", "on", NULL};
 
@@ -13,6 +14,9 @@ static const char *const off_on_names[] = {"off", "on", NULL};
    (docs/screen-space.md): ambient occlusion at full resolution, its sharp bands along the edges
    blurred little; one bounce at half resolution, blurred more, Hybrid-GI with its hidden light. */
 enum { AO_BLUR = 2, GI_BLUR = 8, GI_HALF_RES = 1, HYBRID_HIDDEN_LIGHT = 1 };
+
+/* The line space's defaults, from `voxgi report linespace` (docs/line-space.md). */
+enum { LS_MODE = VOXGI_LINESPACE_EXACT, LS_N = 8, LS_DEPTH = 2, LS_SAMPLES = 16 };
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -31,6 +35,7 @@ typedef struct render_args {
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
     double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
     int rays, march_steps, point_sampling, half_res, half_res_given, blur, blur_given, screen_light_only, hidden_light, hidden_light_given;
+    int ls_mode, ls_mode_given, ls_n, ls_depth, ls_budget, samples, packets;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -127,6 +132,8 @@ typedef struct render_jobs {
     voxgi_ao_image_info ainfo;
     voxgi_ssgi_image_desc gd;
     voxgi_ssgi_image_info ginfo;
+    voxgi_linespace_image_desc ld;
+    voxgi_linespace_image_info linfo;
 } render_jobs;
 
 /* The image of `method` with J's settings into rgb (bytes), its report into J. */
@@ -141,6 +148,7 @@ static voxgi_result render_method(voxgi_context *ctx, int method, const voxgi_sc
     case METHOD_VAO: return voxgi_ao_render(ctx, scene, &J->ad, rgb, bytes, &J->ainfo);
     case METHOD_SSGI:
     case METHOD_HYBRID: return voxgi_ssgi_render(ctx, scene, &J->gd, rgb, bytes, &J->ginfo);
+    case METHOD_LINESPACE: return voxgi_linespace_render(ctx, scene, &J->ld, rgb, bytes, NULL, &J->linfo);
     default: return voxgi_reference_render(ctx, scene, &J->d, rgb, bytes, &J->info);
     }
 }
@@ -167,7 +175,7 @@ static int compare_with_reference(cli_session *s, voxgi_context *ctx, const rend
     reference.d.samples = a->compare;
     reference.d.seed = J->d.seed + 1000003; /* independent of the image's own noise */
     reference.d.hide_emitters = hidden.d.hide_emitters = hidden.vd.hide_emitters = hidden.td.hide_emitters = hidden.qd.hide_emitters =
-        hidden.hd.hide_emitters = hidden.gd.hide_emitters = 1;
+        hidden.hd.hide_emitters = hidden.gd.hide_emitters = hidden.ld.hide_emitters = 1;
     r = ref ? render_method(ctx, METHOD_REFERENCE, scene, &reference, ref, n * 4) : VOXGI_ERR_OUT_OF_MEMORY;
     if (r == VOXGI_OK) r = render_method(ctx, a->method, scene, &hidden, mine, n * 4);
     if (r != VOXGI_OK) {
@@ -355,6 +363,38 @@ static void print_sh(const render_args *a, const char *name, const double mean[3
     if (a->compare || a->reference) print_compare(a, d, cmp);
 }
 
+/* The --method linespace lines, text or JSON. */
+static void print_linespace(const render_args *a, const char *name, const double mean[3], const voxgi_linespace_image_desc *ld,
+                            const voxgi_linespace_image_info *li, const voxgi_reference_desc *d, const render_compare *cmp)
+{
+    int w = a->size[0], h = a->size[1];
+    const voxgi_linespace_info *t = &li->tree;
+    const voxgi_linespace_stats *r = &li->rays;
+    double mrays = li->ms_shadows > 0 ? (double)r->rays / li->ms_shadows / 1000 : 0;
+    if (a->common.json) {
+        printf("{\"scene\":\"%s\",\"method\":\"linespace\",\"size\":[%d,%d],\"mode\":\"%s\",\"packets\":%d,\"n\":%d,\"depth\":%d,\"samples\":%d,"
+               "\"lights\":%d,\"nodes\":%lu,\"line_spaces\":%lu,\"leaves\":%lu,\"triangle_refs\":%lu,\"bytes\":%lu,\"allocated\":%lu,"
+               "\"rays\":%llu,\"nodes_entered\":%llu,\"bits_read\":%llu,\"triangle_tests\":%llu,\"build_ms\":%.3f,\"gbuffer_ms\":%.3f,"
+               "\"shadows_ms\":%.3f,\"ms\":%.3f,\"mrays_per_s\":%.4g,\"mean\":[%.6g,%.6g,%.6g],",
+               name, w, h, ls_mode_names[ld->mode], ld->packets, t->n, t->depth, r->samples, li->lights, (unsigned long)t->nodes, (unsigned long)t->line_spaces,
+               (unsigned long)t->leaves, (unsigned long)t->triangle_refs, (unsigned long)t->bytes, (unsigned long)t->allocated, (unsigned long long)r->rays,
+               (unsigned long long)r->nodes, (unsigned long long)r->bits, (unsigned long long)r->triangle_tests, li->ms_build, li->ms_gbuffer, li->ms_shadows,
+               li->ms, mrays, mean[0], mean[1], mean[2]);
+        if (a->compare || a->reference) print_compare_json(cmp);
+        printf("\"output\":\"%s\"}\n", a->out);
+        return;
+    }
+    printf("%s: %d x %d, direct light of %d area light%s, soft shadows through the line space (%s mode, %s; n %d, depth %d, %d samples per "
+           "pixel and light): tree %lu nodes, %lu line spaces, %lu leaves, %lu triangle references, %.2f MB by the formula, %.2f MB allocated, "
+           "built in %.1f ms; G-buffer %.1f ms; %llu shadow rays in %.1f ms (%.2f Mrays/s, CPU) reading %llu bits, testing %llu triangles; "
+           "total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
+           name, w, h, li->lights, li->lights == 1 ? "" : "s", ls_mode_names[ld->mode], ld->packets ? "packets" : "rays alone", t->n, t->depth, r->samples,
+           (unsigned long)t->nodes, (unsigned long)t->line_spaces, (unsigned long)t->leaves, (unsigned long)t->triangle_refs, t->bytes / 1e6,
+           t->allocated / 1e6, li->ms_build, li->ms_gbuffer, (unsigned long long)r->rays, li->ms_shadows, mrays, (unsigned long long)r->bits,
+           (unsigned long long)r->triangle_tests, li->ms, mean[0], mean[1], mean[2], a->out);
+    if (a->compare || a->reference) print_compare(a, d, cmp);
+}
+
 static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const render_jobs *J, const render_compare *cmp)
 {
     const voxgi_reference_desc *d = &J->d;
@@ -372,6 +412,7 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
     else if (a->method == METHOD_SH) print_sh(a, name, mean, &J->hd, &J->hinfo, d, cmp);
     else if (a->method == METHOD_SSAO || a->method == METHOD_VAO) print_ao(a, name, mean, &J->ad, &J->ainfo, d, cmp);
     else if (a->method == METHOD_SSGI || a->method == METHOD_HYBRID) print_ssgi(a, name, mean, &J->gd, &J->ginfo, d, cmp);
+    else if (a->method == METHOD_LINESPACE) print_linespace(a, name, mean, &J->ld, &J->linfo, d, cmp);
     else if (a->method == METHOD_VCT && a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
                "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
@@ -509,6 +550,17 @@ static int render_run(cli_session *s, const render_args *a)
         J.gd.blur = a->blur_given ? a->blur : GI_BLUR;
         d->bounces = 1;
     }
+    if (a->method == METHOD_LINESPACE) { /* direct light of the area lights: compared with the reference's */
+        J.ld.camera = d->camera;
+        J.ld.seed = (uint32_t)d->seed;
+        J.ld.mode = (voxgi_linespace_mode)(a->ls_mode_given ? a->ls_mode : LS_MODE);
+        J.ld.samples = a->samples ? a->samples : LS_SAMPLES;
+        J.ld.packets = a->packets;
+        J.ld.tree.n = a->ls_n ? a->ls_n : LS_N;
+        J.ld.tree.depth = a->ls_depth ? a->ls_depth : LS_DEPTH;
+        J.ld.tree.memory_budget = (size_t)a->ls_budget << 20;
+        d->bounces = 0;
+    }
     if (a->method == METHOD_REFERENCE) {
         d->ao_radius = (float)a->ao_radius; /* > 0: the AO mode */
         d->screen_light_only = a->screen_light_only;
@@ -558,7 +610,7 @@ int cmd_render(int argc, char **argv)
     a.cone_stride = 6;
     {
         const cli_option options[] = {
-            {.name = "--method", .arg = "reference|vct|tsm|rsm|sh|ssao|vao|ssgi|hybrid", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
+            {.name = "--method", .arg = "reference|vct|tsm|rsm|sh|ssao|vao|ssgi|hybrid|linespace", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
              .help = "the Monte Carlo path tracer (default), or voxel cone tracing: direct\n"
                      "light through shadow rays plus one bounce gathered by cones from\n"
                      "the voxels, or transmittance shadow maps: direct light, each\n"
@@ -568,7 +620,9 @@ int cmd_render(int argc, char **argv)
                      "volume: direct light and one bounce from the voxels' SH (--bounces 1),\n"
                      "or ambient occlusion from the depth buffer (ssao) or the voxels (vao),\n"
                      "compared with the reference's AO mode, or direct light and one bounce\n"
-                     "from the screen through the depth buffer (ssgi) or the voxels (hybrid)"},
+                     "from the screen through the depth buffer (ssgi) or the voxels (hybrid),\n"
+                     "or the area lights' direct light with soft shadows through the line\n"
+                     "space (linespace; compared with --bounces 0)"},
             CLI_OPT_BACKEND(&a.common, "vct: where voxelization, mips and cones run (default auto: GL when a\n"
                                        "headless GL 4.5 context works); the reference runs on the CPU"),
             CLI_OPT_GL(&a.common, "which headless GL to try"),
@@ -619,6 +673,16 @@ int cmd_render(int argc, char **argv)
              .help = "ssao, vao, ssgi, hybrid: rays at every other pixel across and down, upsampled\nalong the surfaces by an edge-aware filter (default off for ssao and vao, on\nfor ssgi and hybrid)"},
             {.name = "--blur", .arg = "N", .kind = CLI_INT, .dst = &a.blur, .lo = 0, .hi = 64, .given = &a.blur_given,
              .help = "ssao, vao, ssgi, hybrid: the edge-aware blur's radius in pixels (0: none;\ndefault 2 for ssao and vao, 8 for ssgi and hybrid)"},
+            {.name = "--ls-mode", .arg = "exact|fast", .kind = CLI_ENUM, .dst = &a.ls_mode, .names = ls_mode_names, .given = &a.ls_mode_given,
+             .help = "linespace: exact (the triangles decide) or fast (a set bit of the last\nline-space level blocks the ray) (default exact)"},
+            {.name = "--ls-n", .arg = "N", .kind = CLI_INT, .dst = &a.ls_n, .lo = 2, .hi = 16, .help = "linespace: children per axis of a split node (default 8)"},
+            {.name = "--ls-depth", .arg = "D", .kind = CLI_INT, .dst = &a.ls_depth, .lo = 1, .hi = 8, .help = "linespace: the tree's levels below the root (default 2)"},
+            {.name = "--ls-budget", .arg = "MB", .kind = CLI_INT, .dst = &a.ls_budget, .lo = 1, .hi = 1 << 20,
+             .help = "linespace: the most memory the tree may take, MiB (default 1024)"},
+            {.name = "--samples", .arg = "S", .kind = CLI_INT, .dst = &a.samples, .lo = 1, .hi = 4096,
+             .help = "linespace: shadow rays per pixel and light, jittered in a grid over the\nlight (default 16)"},
+            {.name = "--packets", .arg = "on|off", .kind = CLI_ENUM, .dst = &a.packets, .names = off_on_names,
+             .help = "linespace: a pixel's rays walk the tree together slice by slice (on), or\neach alone by 3D DDA (off; the default); the same image"},
             {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
              .help = "rsm and sh: each gather's visibility through the voxels (default hierarchical)"},
             {.name = "--tsm-size", .arg = "N", .kind = CLI_INT, .dst = &a.tsm_size, .lo = 1, .hi = 16384,

