@@ -1218,7 +1218,8 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
                                              const float *points, const float *normals, float *visible, float *weighted, voxgi_linespace_stats *stats);
 
 /* An image of the direct light of the scene's area lights with soft shadows through the line
-   space: per pixel the surface the ray through its centre meets first (voxgi_gbuffer_render),
+   space: per pixel the surface the ray through its centre meets first (voxgi_gbuffer_render; or
+   the mean of k x k points over the pixel's square, `supersample`),
    then per area light (each rect light; emissive triangles, two that share an edge and make a
    parallelogram as one light; at most 64) its unshadowed irradiance exactly (Lambert's polygon
    formula) times the share voxgi_linespace_light's weighted output gives: radiance = emission
@@ -1229,10 +1230,12 @@ typedef struct voxgi_linespace_image_desc {
     const voxgi_linespace *ls;    /* the scene's line space, or NULL: built from `tree` */
     voxgi_linespace_desc tree;
     voxgi_linespace_mode mode;
-    int samples;                  /* per pixel and light (voxgi_linespace_light_desc); 0 = 16 */
+    int samples;                  /* per shading point and light (voxgi_linespace_light_desc); 0 = 16 */
     int packets;
     uint32_t seed;
     int hide_emitters;            /* 1: leave out the emission the camera sees directly */
+    int supersample;              /* k > 1: k x k shading points per pixel (the G-buffer at k times the size), their
+                                     mean: the pixel's square, as the reference integrates it; 0 or 1: its centre */
 } voxgi_linespace_image_desc;
 typedef struct voxgi_linespace_image_info {
     voxgi_linespace_info tree;
@@ -13707,11 +13710,12 @@ VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_sc
     voxgi_linespace *built = NULL;
     const voxgi_linespace *ls;
     voxgi_linespace_image_info inf;
-    float *pos = NULL, *nrm = NULL, *weighted = NULL, *seen = NULL;
+    float *pos = NULL, *nrm = NULL, *weighted = NULL, *seen = NULL, *fine = NULL, *fine_seen = NULL;
     uint32_t *tri = NULL;
-    size_t pixels, i;
+    size_t pixels, points, i;
     double t0 = voxgi__now_ms(), t1;
-    int lights, l;
+    voxgi_camera cam;
+    int lights, l, k;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (info) memset(info, 0, sizeof *info);
@@ -13721,6 +13725,13 @@ VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_sc
     if (desc->camera.width < 1 || desc->camera.height < 1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d", desc->camera.width, desc->camera.height);
     if (rgb_bytes < pixels * 12)
         return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
+    k = desc->supersample > 1 ? desc->supersample : 1;
+    if (k > 16 || desc->camera.width > 65536 / k || desc->camera.height > 65536 / k)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "supersample %d (1..16, the image at most 65536 a side)", desc->supersample);
+    cam = desc->camera;
+    cam.width *= k;
+    cam.height *= k;
+    points = pixels * (size_t)k * (size_t)k;
     if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
     lights = voxgi__ls_area_lights(ctx, scene, &f, A);
     if (lights == -2) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
@@ -13731,26 +13742,28 @@ VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_sc
     if (r == VOXGI_OK && !ls && (r = voxgi_linespace_create(ctx, scene, &desc->tree, &built)) == VOXGI_OK) ls = built;
     inf.ms_build = voxgi__now_ms() - t1;
     if (r == VOXGI_OK) {
-        pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-        nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-        tri = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
-        weighted = (float *)voxgi__alloc_array(ctx, pixels * (size_t)lights, 4, 0);
-        seen = (float *)voxgi__alloc_array(ctx, pixels, 4, 0);
-        if (!pos || !nrm || !tri || !weighted || !seen) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-pixel image", (unsigned long)pixels);
+        pos = (float *)voxgi__alloc_array(ctx, points, 12, 0);
+        nrm = (float *)voxgi__alloc_array(ctx, points, 12, 0);
+        tri = (uint32_t *)voxgi__alloc_array(ctx, points, 4, 0);
+        weighted = (float *)voxgi__alloc_array(ctx, points * (size_t)lights, 4, 0);
+        seen = (float *)voxgi__alloc_array(ctx, points, 4, 0);
+        fine = k > 1 ? (float *)voxgi__alloc_array(ctx, points, 12, 0) : rgb;
+        fine_seen = (float *)voxgi__alloc_array(ctx, points, 4, 1);
+        if (!pos || !nrm || !tri || !weighted || !seen || !fine || !fine_seen)
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-point image", (unsigned long)points);
     }
     t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) r = voxgi_gbuffer_render(ctx, scene, &desc->camera, pos, nrm, tri);
+    if (r == VOXGI_OK) r = voxgi_gbuffer_render(ctx, scene, &cam, pos, nrm, tri);
     inf.ms_gbuffer = voxgi__now_ms() - t1;
     t1 = voxgi__now_ms();
-    if (visible && r == VOXGI_OK) memset(visible, 0, pixels * 4);
     for (l = 0; r == VOXGI_OK && l < lights; l++) {
         voxgi_linespace_stats st;
         A[l].d.mode = desc->mode;
         A[l].d.samples = desc->samples;
         A[l].d.packets = desc->packets;
         A[l].d.seed = desc->seed + (uint32_t)l * 0x9E3779B9u;
-        if ((r = voxgi_linespace_light(ctx, ls, &A[l].d, pixels, pos, nrm, seen, weighted + (size_t)l * pixels, &st)) != VOXGI_OK) break;
-        for (i = 0; visible && i < pixels; i++) visible[i] += seen[i] / (float)lights;
+        if ((r = voxgi_linespace_light(ctx, ls, &A[l].d, points, pos, nrm, seen, weighted + (size_t)l * points, &st)) != VOXGI_OK) break;
+        for (i = 0; i < points; i++) fine_seen[i] += seen[i] / (float)lights;
         inf.rays.rays += st.rays;
         inf.rays.nodes += st.nodes;
         inf.rays.bits += st.bits;
@@ -13767,9 +13780,23 @@ VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_sc
         S.nrm = nrm;
         S.tri = tri;
         S.weighted = weighted;
-        S.pixels = pixels;
-        S.rgb = rgb;
-        voxgi__parallel(ctx, pixels, 256, voxgi__ls_shade_run, &S);
+        S.pixels = points;
+        S.rgb = fine;
+        voxgi__parallel(ctx, points, 256, voxgi__ls_shade_run, &S);
+        for (i = 0; i < pixels; i++) { /* each pixel the mean of its k x k points */
+            size_t x = i % (size_t)desc->camera.width, y = i / (size_t)desc->camera.width, sx, sy;
+            double sum[4] = {0, 0, 0, 0};
+            for (sy = 0; sy < (size_t)k; sy++)
+                for (sx = 0; sx < (size_t)k; sx++) {
+                    size_t q = (y * (size_t)k + sy) * (size_t)cam.width + x * (size_t)k + sx;
+                    sum[0] += fine[3 * q];
+                    sum[1] += fine[3 * q + 1];
+                    sum[2] += fine[3 * q + 2];
+                    sum[3] += fine_seen[q];
+                }
+            if (k > 1) for (l = 0; l < 3; l++) rgb[3 * i + (size_t)l] = (float)(sum[l] / (k * k));
+            if (visible) visible[i] = (float)(sum[3] / (k * k));
+        }
         voxgi_linespace_query(ls, &inf.tree);
         inf.lights = lights;
         inf.ms = voxgi__now_ms() - t0;
@@ -13780,6 +13807,8 @@ VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_sc
     voxgi__free(ctx, tri);
     voxgi__free(ctx, weighted);
     voxgi__free(ctx, seen);
+    voxgi__free(ctx, fine_seen);
+    if (fine != rgb) voxgi__free(ctx, fine);
     voxgi_linespace_destroy(ctx, built);
     voxgi__flat_free(ctx, &f);
     return r;

@@ -1340,7 +1340,7 @@ static void test_linespace_rays(void)
                (unsigned long)lighter, (unsigned long)darker, (unsigned long)packet_wrong, (unsigned long)packet_rays);
         TH_CHECK(brute_wrong == 0 && core_wrong == 0, "exact mode is not the triangles' answer");
         TH_CHECK(lighter == 0, "fast mode finds light where the triangles block it");
-        TH_CHECK(darker > 0 && blocked > R / 10 && blocked < R - R / 10, "the rays test nothing");
+        TH_CHECK((darker > 0 || d.depth == 1) && blocked > R / 10 && blocked < R - R / 10, "the rays test nothing"); /* depth 1: 3 leaves from the ends span most segments */
         TH_CHECK(packet_wrong == 0, "packets answer otherwise than rays walking alone");
         voxgi_linespace_destroy(ctx, L);
     }

@@ -267,4 +267,5 @@ int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm", "sh", 
 int cmd_report_tsm(int argc, char **argv);
 int cmd_report_bounce(int method, int argc, char **argv); /* method 0: rsm, 1: sh */
 int cmd_report_screen(int which, int argc, char **argv); /* which 0: ao, 1: ssgi */
+int cmd_report_linespace(int argc, char **argv);
 #endif

@@ -16,7 +16,7 @@ static const char *const off_on_names[] = {"off", "on", NULL};
 enum { AO_BLUR = 2, GI_BLUR = 8, GI_HALF_RES = 1, HYBRID_HIDDEN_LIGHT = 1 };
 
 /* The line space's defaults, from `voxgi report linespace` (docs/line-space.md). */
-enum { LS_MODE = VOXGI_LINESPACE_EXACT, LS_N = 8, LS_DEPTH = 2, LS_SAMPLES = 16 };
+enum { LS_MODE = VOXGI_LINESPACE_EXACT, LS_N = 8, LS_DEPTH = 2, LS_SAMPLES = 16, LS_SUPERSAMPLE = 1 };
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -35,7 +35,7 @@ typedef struct render_args {
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
     double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
     int rays, march_steps, point_sampling, half_res, half_res_given, blur, blur_given, screen_light_only, hidden_light, hidden_light_given;
-    int ls_mode, ls_mode_given, ls_n, ls_depth, ls_budget, samples, packets;
+    int ls_mode, ls_mode_given, ls_n, ls_depth, ls_budget, samples, packets, supersample;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -556,6 +556,7 @@ static int render_run(cli_session *s, const render_args *a)
         J.ld.mode = (voxgi_linespace_mode)(a->ls_mode_given ? a->ls_mode : LS_MODE);
         J.ld.samples = a->samples ? a->samples : LS_SAMPLES;
         J.ld.packets = a->packets;
+        J.ld.supersample = a->supersample ? a->supersample : LS_SUPERSAMPLE;
         J.ld.tree.n = a->ls_n ? a->ls_n : LS_N;
         J.ld.tree.depth = a->ls_depth ? a->ls_depth : LS_DEPTH;
         J.ld.tree.memory_budget = (size_t)a->ls_budget << 20;
@@ -681,6 +682,8 @@ int cmd_render(int argc, char **argv)
              .help = "linespace: the most memory the tree may take, MiB (default 1024)"},
             {.name = "--samples", .arg = "S", .kind = CLI_INT, .dst = &a.samples, .lo = 1, .hi = 4096,
              .help = "linespace: shadow rays per pixel and light, jittered in a grid over the\nlight (default 16)"},
+            {.name = "--supersample", .arg = "K", .kind = CLI_INT, .dst = &a.supersample, .lo = 1, .hi = 16,
+             .help = "linespace: K x K shading points per pixel, averaged (default 1: the\npixel's centre)"},
             {.name = "--packets", .arg = "on|off", .kind = CLI_ENUM, .dst = &a.packets, .names = off_on_names,
              .help = "linespace: a pixel's rays walk the tree together slice by slice (on), or\neach alone by 3D DDA (off; the default); the same image"},
             {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,

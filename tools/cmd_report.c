@@ -480,7 +480,8 @@ int cmd_report(int argc, char **argv)
         if (argc >= 1 && strcmp(argv[0], "sh") == 0) return cmd_report_bounce(1, argc - 1, argv + 1);
         if (argc >= 1 && strcmp(argv[0], "ao") == 0) return cmd_report_screen(0, argc - 1, argv + 1);
         if (argc >= 1 && strcmp(argv[0], "ssgi") == 0) return cmd_report_screen(1, argc - 1, argv + 1);
-        if (argc < 1 || strcmp(argv[0], "vct") != 0) return cli_usage("report", "the reports to make are 'vct', 'tsm', 'rsm', 'sh', 'ao' and 'ssgi'");
+        if (argc >= 1 && strcmp(argv[0], "linespace") == 0) return cmd_report_linespace(argc - 1, argv + 1);
+        if (argc < 1 || strcmp(argv[0], "vct") != 0) return cli_usage("report", "the reports to make are 'vct', 'tsm', 'rsm', 'sh', 'ao', 'ssgi' and 'linespace'");
         if ((rc = cli_parse(&cmd, argc - 1, argv + 1)) != CLI_CONTINUE) return rc;
     }
     for (list = a.scene_list; (r = cli_next_item(&list, rep.scene_buf[rep.scene_count], sizeof rep.scene_buf[0])) != 0; rep.scene_count++)

@@ -11,6 +11,7 @@
  *   voxgi report rsm [--scenes LIST] [--size N] [--samples LIST] [--radii LIST] [--points LIST] [--strides LIST] [--visibility LIST] [--out DIR]
  *   voxgi report sh [--scenes LIST] [--size N] [--res LIST] [--openings LIST] [--strides LIST] [--visibility LIST] [--out DIR]
  *   voxgi report ao|ssgi [--scenes LIST] [--size W H] [--rays LIST] [--steps LIST] [--radii LIST] [--res LIST] [--blurs LIST] [--out DIR]
+ *   voxgi report linespace [--scenes LIST] [--meshes LIST] [--size N] [--ns LIST] [--depths LIST] [--samples LIST] [--out DIR]
  *
  * MESH is an OBJ (+MTL), OFF, STL or PLY file, or a built-in shape: builtin:quad,
  * builtin:subdivided-quad, builtin:cube, builtin:sphere. Every command takes --help; tools/cli.h
@@ -33,6 +34,7 @@ static const char *const main_help =
     "  report rsm ...      reflective shadow maps' error against run time, and the voxel traversals\n"
     "  report sh ...       the SH volume's error against run time (Markdown, CSV)\n"
     "  report ao|ssgi ...  the screen-space passes' error against run time (Markdown, CSV)\n"
+    "  report linespace ... the line space's soft shadows: error, run time, rays (Markdown, CSV)\n"
     "Exit status, for every command:\n"
     "  0  success (--help and --version too)\n"
     "  1  failure while running: a mesh that cannot be read, an error from the library, no GL\n"
