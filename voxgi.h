@@ -59,7 +59,9 @@
                           hierarchical); reflective shadow maps; the spherical-harmonics volume
       11. screen-space passes  low-discrepancy points; ambient occlusion and one bounce from the
                           screen through the depth buffer or the voxels; the edge-aware filter
-      12. line space      the N-tree of line spaces: shafts between the patches of a node's faces
+      12. line space      the N-tree of line spaces: shafts between the patches of a node's faces;
+                          shadow rays through it (exact, fast; per ray, packets); area lights'
+                          soft shadows and their images
       13. images          voxgi's own G-buffer; cone-traced, one-bounce and screen-space images
       14. reference renderer  the path tracer every image is measured against
       15. built-in scenes and files
@@ -12693,10 +12695,13 @@ static void voxgi__ls_masks(void *user, size_t first, size_t end)
 {
     voxgi__ls_build *B = (voxgi__ls_build *)user;
     int n = B->L->info.n, fs, fe, ps, pe;
+    double box[6 * 256][6]; /* every face's patches, lo then hi: n <= 16 */
     size_t c;
+    for (fs = 0; fs < 6; fs++)
+        for (ps = 0; ps < n * n; ps++) voxgi__ls_patch_box(n, fs, ps / n, ps % n, box[fs * n * n + ps], box[fs * n * n + ps] + 3);
     for (c = first; c < end; c++) {
         uint32_t *m = B->masks + c * B->L->words_per_space;
-        double clo[3], chi[3], slo[3], shi[3], elo[3], ehi[3];
+        double clo[3], chi[3];
         clo[0] = (double)(c % (size_t)n);
         clo[1] = (double)(c / (size_t)n % (size_t)n);
         clo[2] = (double)(c / ((size_t)n * (size_t)n));
@@ -12704,11 +12709,11 @@ static void voxgi__ls_masks(void *user, size_t first, size_t end)
         for (fs = 0; fs < 6; fs++)
             for (fe = fs + 1; fe < 6; fe++)
                 for (ps = 0; ps < n * n; ps++) {
-                    voxgi__ls_patch_box(n, fs, ps / n, ps % n, slo, shi);
-                    for (pe = 0; pe < n * n; pe++) {
-                        size_t bit = voxgi__ls_bit(n, fs, ps, fe, pe);
-                        voxgi__ls_patch_box(n, fe, pe / n, pe % n, elo, ehi);
-                        if (voxgi__ls_shaft_meets(slo, shi, elo, ehi, clo, chi)) m[bit >> 5] |= 1u << (bit & 31);
+                    const double *S = box[fs * n * n + ps];
+                    size_t bit = voxgi__ls_bit(n, fs, ps, fe, 0);
+                    for (pe = 0; pe < n * n; pe++, bit++) {
+                        const double *E = box[fe * n * n + pe];
+                        if (voxgi__ls_shaft_meets(S, S + 3, E, E + 3, clo, chi)) m[bit >> 5] |= 1u << (bit & 31);
                     }
                 }
     }
