@@ -1162,7 +1162,7 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
    15 N^4 bits per line space. Deterministic whatever the threads. */
 typedef struct voxgi_linespace voxgi_linespace;
 typedef struct voxgi_linespace_desc {
-    int n;                        /* children per axis of a split node, 2..16; 0 = 10 */
+    int n;                        /* children per axis of a split node, 2..16; 0 = 4 */
     int depth;                    /* levels below the root, 1..8 (the leaves' level); 0 = 3 */
     size_t memory_budget;         /* bytes the tree, its line spaces and triangle lists may take; 0 = 1 GiB */
 } voxgi_linespace_desc;
@@ -12822,7 +12822,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or out is NULL");
     *out = NULL;
-    n = desc->n ? desc->n : 10;
+    n = desc->n ? desc->n : 4;
     depth = desc->depth ? desc->depth : 3;
     budget = desc->memory_budget ? desc->memory_budget : (size_t)1 << 30;
     if (n < 2 || n > 16 || depth < 1 || depth > 8) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "n %d (2..16), depth %d (1..8)", n, depth);

@@ -16,7 +16,7 @@ static const char *const off_on_names[] = {"off", "on", NULL};
 enum { AO_BLUR = 2, GI_BLUR = 8, GI_HALF_RES = 1, HYBRID_HIDDEN_LIGHT = 1 };
 
 /* The line space's defaults, from `voxgi report linespace` (docs/line-space.md). */
-enum { LS_MODE = VOXGI_LINESPACE_EXACT, LS_N = 8, LS_DEPTH = 2, LS_SAMPLES = 16, LS_SUPERSAMPLE = 1 };
+enum { LS_MODE = VOXGI_LINESPACE_EXACT, LS_N = 4, LS_DEPTH = 3, LS_SAMPLES = 4, LS_SUPERSAMPLE = 2 };
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -676,14 +676,14 @@ int cmd_render(int argc, char **argv)
              .help = "ssao, vao, ssgi, hybrid: the edge-aware blur's radius in pixels (0: none;\ndefault 2 for ssao and vao, 8 for ssgi and hybrid)"},
             {.name = "--ls-mode", .arg = "exact|fast", .kind = CLI_ENUM, .dst = &a.ls_mode, .names = ls_mode_names, .given = &a.ls_mode_given,
              .help = "linespace: exact (the triangles decide) or fast (a set bit of the last\nline-space level blocks the ray) (default exact)"},
-            {.name = "--ls-n", .arg = "N", .kind = CLI_INT, .dst = &a.ls_n, .lo = 2, .hi = 16, .help = "linespace: children per axis of a split node (default 8)"},
-            {.name = "--ls-depth", .arg = "D", .kind = CLI_INT, .dst = &a.ls_depth, .lo = 1, .hi = 8, .help = "linespace: the tree's levels below the root (default 2)"},
+            {.name = "--ls-n", .arg = "N", .kind = CLI_INT, .dst = &a.ls_n, .lo = 2, .hi = 16, .help = "linespace: children per axis of a split node (default 4)"},
+            {.name = "--ls-depth", .arg = "D", .kind = CLI_INT, .dst = &a.ls_depth, .lo = 1, .hi = 8, .help = "linespace: the tree's levels below the root (default 3)"},
             {.name = "--ls-budget", .arg = "MB", .kind = CLI_INT, .dst = &a.ls_budget, .lo = 1, .hi = 1 << 20,
              .help = "linespace: the most memory the tree may take, MiB (default 1024)"},
             {.name = "--samples", .arg = "S", .kind = CLI_INT, .dst = &a.samples, .lo = 1, .hi = 4096,
-             .help = "linespace: shadow rays per pixel and light, jittered in a grid over the\nlight (default 16)"},
+             .help = "linespace: shadow rays per shading point and light, jittered in a grid\nover the light (default 4)"},
             {.name = "--supersample", .arg = "K", .kind = CLI_INT, .dst = &a.supersample, .lo = 1, .hi = 16,
-             .help = "linespace: K x K shading points per pixel, averaged (default 1: the\npixel's centre)"},
+             .help = "linespace: K x K shading points per pixel, averaged (default 2; 1: the\npixel's centre)"},
             {.name = "--packets", .arg = "on|off", .kind = CLI_ENUM, .dst = &a.packets, .names = off_on_names,
              .help = "linespace: a pixel's rays walk the tree together slice by slice (on), or\neach alone by 3D DDA (off; the default); the same image"},
             {.name = "--visibility", .arg = "hierarchical|dda|none", .kind = CLI_ENUM, .dst = &a.visibility, .names = visibility_names,
