@@ -405,11 +405,11 @@ int cmd_report_linespace(int argc, char **argv)
     voxgi_query_info(c.vx, &ci);
     fprintf(md, "# Line space: soft shadows, error against run time\n\nCPU, %d threads; wall clock on this machine.\n", ci.thread_count);
     fprintf(csv, "part,scene,n,depth,bytes,build_ms,supersample,samples,mode,packets,shadows_ms,ms,rel_rmse,block_rmse,mean,mae,wrong,agree_with_core,core_ms\n");
-    for (list = a.scene_list; (r = cli_next_item(&list, item, sizeof item)) != 0;) {
+    for (list = a.scene_list; *a.scene_list && (r = cli_next_item(&list, item, sizeof item)) != 0;) { /* '' : none */
         if (r < 0) { cli_usage("report", "--scenes: '%s'", a.scene_list); goto done; }
         if (ls_scene(&s, c.vx, &a, item, md, csv)) goto done;
     }
-    for (list = a.mesh_list; (r = cli_next_item(&list, item, sizeof item)) != 0;) {
+    for (list = a.mesh_list; *a.mesh_list && (r = cli_next_item(&list, item, sizeof item)) != 0;) {
         FILE *f;
         if (r < 0) { cli_usage("report", "--meshes: '%s'", a.mesh_list); goto done; }
         if (!(f = fopen(item, "rb"))) { fprintf(md, "\n(%s: not found, left out)\n", item); continue; }
