@@ -1159,7 +1159,9 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
    closed sets (the hull is the union over t in [0, 1] of the boxes (1 - t) S + t E, so a cell
    meets it when six linear bounds in t leave an interval), so a segment between the two patches
    through a filled child always finds its bit set. Each unordered pair is stored once:
-   15 N^4 bits per line space. Deterministic whatever the threads. */
+   15 N^4 bits per line space. Deterministic whatever the threads. Made on a GL context, it also
+   keeps its arrays in GL storage buffers for voxgi_linespace_light (where they fit GL's largest
+   storage block; info.bytes counts the CPU's copy). */
 typedef struct voxgi_linespace voxgi_linespace;
 typedef struct voxgi_linespace_desc {
     int n;                        /* children per axis of a split node, 2..16; 0 = 4 */
@@ -1189,7 +1191,8 @@ VOXGI_API void voxgi_linespace_query(const voxgi_linespace *ls, voxgi_linespace_
    triangles decide, so a surface never shadows itself. */
 typedef enum voxgi_linespace_mode { VOXGI_LINESPACE_EXACT = 0, VOXGI_LINESPACE_FAST } voxgi_linespace_mode;
 
-/* Whether each ray meets something at t in (tmin, tmax): 1 or 0, each ray walking alone. */
+/* Whether each ray meets something at t in (tmin, tmax): 1 or 0, each ray walking alone (on the
+   CPU, whatever the context). */
 VOXGI_API voxgi_result voxgi_linespace_occluded(voxgi_context *ctx, const voxgi_linespace *ls, voxgi_linespace_mode mode, size_t count, const voxgi_ray *rays,
                                                 unsigned char *occluded);
 
@@ -1202,20 +1205,26 @@ typedef struct voxgi_linespace_light_desc {
     voxgi_linespace_mode mode;
     int samples;                  /* S per point, 1..4096; 0 = 16 */
     int packets;                  /* 1: a point's rays walk the tree together, slice by slice (coherent grid traversal);
-                                     0: each alone (3D DDA). The same answers, another cost */
+                                     0: each alone (3D DDA). The same answers, another cost. CPU only: on GL each ray
+                                     walks alone */
     double corner[3], edge_u[3], edge_v[3]; /* the light: corner + s edge_u + t edge_v, s and t in [0, 1]; it shines to edge_u x edge_v */
     int triangle;                 /* 1: the triangle s + t <= 1 (samples beyond it folded in) */
     uint32_t seed;
 } voxgi_linespace_light_desc;
 typedef struct voxgi_linespace_stats {
-    uint64_t rays, nodes, bits, triangle_tests; /* rays traced; split nodes entered, bits read, triangles tested */
+    uint64_t rays, nodes, bits, triangle_tests; /* rays traced; split nodes entered, bits read, triangles tested (the
+                                                   last three are counted on the CPU only: 0 on GL) */
     int samples;                  /* nu x nv */
     double ms;
 } voxgi_linespace_stats;
 /* points and normals: 3 floats each per point (a zero normal: no rays, 0 out). visible (or NULL):
    the share of the nu x nv samples whose rays are not blocked; weighted (or NULL): the same share
    weighted by cos_point cos_light / r^2, which times the light's unshadowed irradiance is its
-   shadowed irradiance (0 where no sample has weight). */
+   shadowed irradiance (0 where no sample has weight). On a GL context the rays run on GL
+   (shaders/linespace.glsl), each the CPU's ray with the CPU's answer, so visible is the CPU's;
+   weighted sums its weights in float there (within 1e-5 of the CPU's). A line space made on a
+   CPU context goes up to GL for the call; one too large for GL's storage blocks gives
+   VOXGI_ERR_TOO_LARGE (use a CPU context). */
 VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_linespace *ls, const voxgi_linespace_light_desc *desc, size_t count,
                                              const float *points, const float *normals, float *visible, float *weighted, voxgi_linespace_stats *stats);
 
@@ -3995,6 +4004,7 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
     X(void, ProgramUniform2i, (unsigned int program, int location, int v0, int v1))                     \
     X(void, ProgramUniform4i, (unsigned int program, int location, int v0, int v1, int v2, int v3))     \
     X(void, ProgramUniform1d, (unsigned int program, int location, double v0))                           \
+    X(void, ProgramUniform3d, (unsigned int program, int location, double v0, double v1, double v2))     \
     X(void, CreateBuffers, (int n, unsigned int *buffers))                                               \
     X(void, DeleteBuffers, (int n, const unsigned int *buffers))                                         \
     X(void, NamedBufferData, (unsigned int buffer, ptrdiff_t size, const void *data, unsigned int usage)) \
@@ -4091,7 +4101,8 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
     X(rsm_gather, COMPUTE, "voxel_traverse.glsl rsm_gather.glsl")                                                  \
     X(sh_gather, COMPUTE, "voxel_traverse.glsl sh_gather.glsl")                                                    \
     X(screen_rays, COMPUTE, "voxel_traverse.glsl screen_rays.glsl")                                                \
-    X(screen_filter, COMPUTE, "screen_filter.glsl")
+    X(screen_filter, COMPUTE, "screen_filter.glsl")                                                                \
+    X(linespace, COMPUTE, "linespace.glsl")
 
 enum { VOXGI__GL_COMPUTE = 0, VOXGI__GL_RASTER = 1, VOXGI__GL_GEOMETRY = 2 };
 typedef enum voxgi__gl_program_id {
@@ -4106,14 +4117,18 @@ typedef enum voxgi__gl_program_id {
    prelude, so that no location is looked up by name at run time. */
 #define VOXGI__GL_UNIFORMS(X) \
     X(u_anisotropic) X(u_atomic) X(u_attr) X(u_attributes) X(u_axis) X(u_back_coverage) X(u_bias) X(u_big)       \
-    X(u_blend) X(u_caster) X(u_casters) X(u_cell_levels) X(u_channels) X(u_cones) X(u_count) X(u_dir) X(u_dst_dims) X(u_dst_res) X(u_eye) \
-    X(u_face) X(u_factor) X(u_far) X(u_first) X(u_first_slice) X(u_forward) X(u_gather) X(u_half_tan) X(u_has_albedo) X(u_hidden) \
-    X(u_hierarchical) X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_lookup) X(u_maps) X(u_max_channels) X(u_max_distance) X(u_max_lod)    \
-    X(u_near) X(u_offset) X(u_op) X(u_opening) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_point_sampling) X(u_premultiplied) X(u_radius) X(u_rays)     \
-    X(u_regions) X(u_res) X(u_right) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) X(u_src_level)          \
+    X(u_blend) X(u_caster) X(u_casters) X(u_cell_levels) X(u_cells) X(u_centre) X(u_channels) X(u_cones) X(u_corner) X(u_count) X(u_depth) \
+    X(u_dir) X(u_dst_dims) X(u_dst_res) X(u_edge_u) X(u_edge_v) X(u_eye)                                              \
+    X(u_face) X(u_factor) X(u_far) X(u_fast) X(u_first) X(u_first_slice) X(u_forward) X(u_gather) X(u_hair) X(u_half) X(u_half_tan) \
+    X(u_has_albedo) X(u_hidden)                                                                                       \
+    X(u_hierarchical) X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_light_normal) X(u_lookup) X(u_maps) X(u_max_channels) \
+    X(u_max_distance) X(u_max_lod) X(u_n)                                                                             \
+    X(u_near) X(u_near_ends) X(u_offset) X(u_op) X(u_opening) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_point_sampling) X(u_premultiplied) X(u_radius) X(u_rays)     \
+    X(u_regions) X(u_res) X(u_right) X(u_samples) X(u_scale) X(u_seed) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) \
+    X(u_src_level)                                                                                                    \
     X(u_src_res) X(u_step) X(u_steps) X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_leaf_first) \
-    X(u_svo_nodes) X(u_svo_single) X(u_tan) X(u_thin) X(u_through_voxels) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) X(u_view)          \
-    X(u_voxel_size) X(u_with_values) X(u_words)
+    X(u_svo_nodes) X(u_svo_single) X(u_tan) X(u_thin) X(u_through_voxels) X(u_triangle) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) \
+    X(u_view) X(u_voxel_size) X(u_with_values) X(u_words)
 enum {
 #define VOXGI__GL_UNIFORM_LOCATION(name) VOXGI__LOC_##name,
     VOXGI__GL_UNIFORMS(VOXGI__GL_UNIFORM_LOCATION)
@@ -12591,6 +12606,7 @@ struct voxgi_linespace {
     float half, scale;            /* the root cube's half edge, and n / its edge: the root's frame from the centre */
     float near_ends;              /* 3 leaves' edges in the root's frame: fast mode's exact zone at a segment's ends */
     size_t words_per_space;
+    unsigned int gl[5];           /* made on a GL context: node, bits, leaf, tris and tv as storage buffers (shaders/linespace.glsl) */
 };
 
 /* Triangles are listed in every leaf they come within this share of the root's edge of (2^-18):
@@ -12738,6 +12754,12 @@ static void voxgi__ls_spaces(void *user, size_t first, size_t end)
 VOXGI_API void voxgi_linespace_destroy(voxgi_context *ctx, voxgi_linespace *ls)
 {
     if (!ctx || !ls) return;
+#ifndef VOXGI_NO_GL
+    {
+        int k;
+        for (k = 0; k < 5; k++) voxgi__gl_delete_buffer(ctx, ls->gl[k]);
+    }
+#endif
     voxgi__free(ctx, ls->node);
     voxgi__free(ctx, ls->bits);
     voxgi__free(ctx, ls->leaf);
@@ -12750,6 +12772,43 @@ VOXGI_API void voxgi_linespace_query(const voxgi_linespace *ls, voxgi_linespace_
 {
     if (ls && out) *out = ls->info;
 }
+
+#ifndef VOXGI_NO_GL
+/* The line space's five arrays in the order of ls->gl, their bytes, and the first of them too
+   large for a GL storage block (-1: none). */
+static int voxgi__ls_arrays_gl(const voxgi_context *ctx, const voxgi_linespace *L, const void *data[5], size_t bytes[5])
+{
+    int k;
+    data[0] = L->node; bytes[0] = 8 * L->info.nodes;
+    data[1] = L->bits; bytes[1] = 4 * L->words_per_space * L->info.line_spaces;
+    data[2] = L->leaf; bytes[2] = 8 * L->info.leaves;
+    data[3] = L->tris; bytes[3] = 4 * L->info.triangle_refs;
+    data[4] = L->tv; bytes[4] = 36 * L->info.triangles;
+    for (k = 0; k < 5; k++)
+        if ((int64_t)bytes[k] > ctx->gl->max_ssbo_bytes) return k;
+    return -1;
+}
+
+/* The line space as storage buffers (shaders/linespace.glsl's bindings 0 to 4), or none and why. */
+static voxgi_result voxgi__ls_upload_gl(voxgi_context *ctx, const voxgi_linespace *L, unsigned int buf[5])
+{
+    static const char *const names[5] = {"nodes", "bits", "leaves", "triangle lists", "triangles"};
+    const void *data[5];
+    size_t bytes[5];
+    voxgi_result r;
+    int k = voxgi__ls_arrays_gl(ctx, L, data, bytes);
+    if (k >= 0)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the line space's %s take %lu bytes, over GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld: use a CPU context",
+                           names[k], (unsigned long)bytes[k], (long long)ctx->gl->max_ssbo_bytes);
+    for (k = 0; k < 5; k++) buf[k] = voxgi__gl_buffer(ctx, bytes[k], bytes[k] ? data[k] : NULL);
+    if ((r = voxgi__gl_check(ctx, "the line space's buffers")) != VOXGI_OK)
+        for (k = 0; k < 5; k++) {
+            voxgi__gl_delete_buffer(ctx, buf[k]);
+            buf[k] = 0;
+        }
+    return r;
+}
+#endif
 
 /* A growing array of `size`-byte items: room for item `index` (the capacity doubled, what it held kept). */
 static int voxgi__ls_grow(voxgi_context *ctx, void **a, size_t index, size_t *cap, size_t size)
@@ -12978,6 +13037,13 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     L->info.triangles = f.triangle_count;
     L->info.bytes = 8 * nnodes + L->words_per_space * 4 * nspaces + 4 * ntris + 8 * nleaves + 36 * f.triangle_count;
     L->info.allocated = sizeof *L + 8 * cap_nodes + L->words_per_space * 4 * nspaces + 4 * cap_tris + 4 * cap_leaf + 36 * VOXGI__MAX(f.triangle_count, (size_t)1);
+#ifndef VOXGI_NO_GL
+    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_GL) { /* kept for the GL rays (too large for GL: they fail, and say why) */
+        const void *data[5];
+        size_t bytes[5];
+        if (voxgi__ls_arrays_gl(ctx, L, data, bytes) < 0) r = voxgi__ls_upload_gl(ctx, L, L->gl);
+    }
+#endif
     L->info.ms = voxgi__now_ms() - t0;
     voxgi__free(ctx, open);
     voxgi__free(ctx, next);
@@ -12995,7 +13061,8 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
 /* ----- 12.2 shadow rays through the line space
    A ray lives in the frame of the node it crosses: the node is [0, n]^3 and its children unit
    cubes, so a child's frame is n (o - cell) with its direction n d, and t is the same in all.
-   Everything is float, in an order GLSL repeats, so the GL rays are the CPU's bit for bit.
+   Everything is float, in an order GLSL repeats (shaders/linespace.glsl: no fused multiply-adds,
+   each quotient the correctly rounded one), so the GL rays are the CPU's bit for bit.
    A node the segment crosses face to face asks its line space (the patches where it enters and
    leaves): clear, skip it; set at the last line-space level, fast mode calls the ray blocked,
    exact mode goes on to the leaves' triangles. A node holding an end of the segment (the shading
@@ -13508,6 +13575,84 @@ static void voxgi__ls_light_run(void *user, size_t first, size_t end)
     }
 }
 
+#ifndef VOXGI_NO_GL
+/* voxgi__ls_light_run on GL (shaders/linespace.glsl): each ray walks alone (packets are the
+   CPU's; the answers are the same), in slices of points and passes of at most
+   VOXGI__LS_GL_SAMPLES samples per point (llvmpipe ends an invocation's loops after 65535
+   iterations in all; a ray takes hundreds), each pass finished before the next, so no one
+   submission runs long. The points' sums come back, and visible and weighted are made from them
+   as the CPU makes them; nl: the light's unit normal. */
+#define VOXGI__LS_GL_SAMPLES 16
+#define VOXGI__LS_GL_POINTS 4096
+static voxgi_result voxgi__ls_light_gl(voxgi_context *ctx, const voxgi__ls_job *J, size_t count, const float nl[3], uint64_t *rays)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_linespace *L = J->L;
+    unsigned int own[5] = {0, 0, 0, 0, 0}, io[3] = {0, 0, 0}, p;
+    const unsigned int *lsb = L->gl[0] ? L->gl : own;
+    const int S = J->nu * J->nv;
+    size_t slice = VOXGI__MIN(count, (size_t)VOXGI__LS_GL_POINTS), first, i;
+    uint32_t *sums;
+    int k;
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_linespace);
+    if (r != VOXGI_OK) return r;
+    if (count > (size_t)UINT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one GL call", (unsigned long)count);
+    if (!L->gl[0] && (r = voxgi__ls_upload_gl(ctx, L, own)) != VOXGI_OK) return r; /* made on a CPU context: for this call */
+    if (!(sums = (uint32_t *)voxgi__alloc_array(ctx, slice, 16, 0))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)slice);
+    if (r == VOXGI_OK) {
+        p = gl->prog_linespace;
+        io[0] = voxgi__gl_buffer(ctx, slice * 12, NULL);
+        io[1] = voxgi__gl_buffer(ctx, slice * 12, NULL);
+        io[2] = voxgi__gl_buffer(ctx, slice * 16, NULL);
+        for (k = 0; k < 5; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, lsb[k]);
+        for (k = 0; k < 3; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)(5 + k), io[k]);
+        gl->UseProgram(p);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_n, L->info.n);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_depth, L->info.depth);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_words, (unsigned)L->words_per_space);
+        gl->ProgramUniform3d(p, VOXGI__LOC_u_centre, L->centre[0], L->centre[1], L->centre[2]);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_half, L->half);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_scale, L->scale);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_hair, J->hair);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_near_ends, L->near_ends);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_fast, J->fast);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_corner, J->corner[0], J->corner[1], J->corner[2]);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_edge_u, J->eu[0], J->eu[1], J->eu[2]);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_edge_v, J->ev[0], J->ev[1], J->ev[2]);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_light_normal, nl[0], nl[1], nl[2]);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_triangle, J->light->triangle != 0);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_seed, J->light->seed);
+        gl->ProgramUniform2i(p, VOXGI__LOC_u_cells, J->nu, J->nv);
+    }
+    for (first = 0; r == VOXGI_OK && first < count; first += slice) {
+        size_t m = VOXGI__MIN(slice, count - first);
+        gl->NamedBufferSubData(io[0], 0, (ptrdiff_t)(m * 12), J->points + 3 * first);
+        gl->NamedBufferSubData(io[1], 0, (ptrdiff_t)(m * 12), J->normals + 3 * first);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)m);
+        for (k = 0; k < S; k += VOXGI__LS_GL_SAMPLES) {
+            gl->ProgramUniform2i(p, VOXGI__LOC_u_samples, k, VOXGI__MIN(k + VOXGI__LS_GL_SAMPLES, S));
+            voxgi__gl_dispatch_items(gl, (uint64_t)m);
+            gl->Finish();
+        }
+        if ((r = voxgi__gl_read_buffer(ctx, io[2], sums, m * 16)) != VOXGI_OK) break;
+        for (i = 0; i < m; i++) { /* seen, rays, the weights' sum, the seen weights' sum */
+            float w[2];
+            memcpy(w, sums + 4 * i + 2, sizeof w);
+            *rays += sums[4 * i + 1];
+            if (J->visible) J->visible[first + i] = (float)((double)sums[4 * i] / S);
+            if (J->weighted) J->weighted[first + i] = w[0] > 0 ? (float)((double)w[1] / w[0]) : 0.0f;
+        }
+    }
+    voxgi__gl_unbind(gl);
+    for (k = 0; k < 5; k++) voxgi__gl_delete_buffer(ctx, own[k]);
+    for (k = 0; k < 3; k++) voxgi__gl_delete_buffer(ctx, io[k]);
+    voxgi__free(ctx, sums);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the line space's shadow rays");
+    return r;
+}
+#endif
+
 VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_linespace *ls, const voxgi_linespace_light_desc *desc, size_t count,
                                              const float *points, const float *normals, float *visible, float *weighted, voxgi_linespace_stats *stats)
 {
@@ -13515,6 +13660,7 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
     double t0 = voxgi__now_ms(), cross[3], area;
     size_t i, chunks;
     int a, S;
+    voxgi_result r = VOXGI_OK;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (stats) memset(stats, 0, sizeof *stats);
     if (!ls || !desc || (count && (!points || !normals))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "line space, desc, points or normals is NULL");
@@ -13549,8 +13695,15 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
     chunks = count / J.chunk + 1;
     if (!(J.counts = (voxgi__ls_counts *)voxgi__alloc_array(ctx, chunks, sizeof *J.counts, 1)))
         return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
-    voxgi__parallel(ctx, count, J.chunk, voxgi__ls_light_run, &J);
-    if (stats) {
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL && count) {
+        float nl[3];
+        for (a = 0; a < 3; a++) nl[a] = (float)(cross[a] / area);
+        r = voxgi__ls_light_gl(ctx, &J, count, nl, &J.counts[0].rays);
+    } else
+#endif
+        voxgi__parallel(ctx, count, J.chunk, voxgi__ls_light_run, &J);
+    if (r == VOXGI_OK && stats) {
         for (i = 0; i < chunks; i++) {
             stats->rays += J.counts[i].rays;
             stats->nodes += J.counts[i].nodes;
@@ -13561,7 +13714,7 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
         stats->ms = voxgi__now_ms() - t0;
     }
     voxgi__free(ctx, J.counts);
-    return VOXGI_OK;
+    return r;
 }
 
 /* ----- 12.3 images: soft shadows of the area lights */

@@ -1348,6 +1348,113 @@ static void test_linespace_rays(void)
     voxgi_destroy(ctx);
 }
 
+/* The GL shadow rays (shaders/linespace.glsl) against the CPU's, per point: line spaces of the
+   ray tests' scene (n 4 depth 2, n 3 depth 3), points on its triangles (their normals, either
+   side) and in and around it (random normals, some zero), a parallelogram light above the scene
+   and a triangle light inside it; exact and fast modes, 16, 7 and 40 samples (40: three passes
+   of samples on GL; 5000 points: two slices): `visible` the same for every point, `weighted`
+   (float sums on GL) within 1e-5, the same rays traced. The line space made on the GL context
+   keeps its buffers; the CPU context's is uploaded for the call (7 samples). */
+static void test_gl_linespace_light_equals_cpu(void)
+{
+    static float pos[9 * 26];
+    static const int shape[2][2] = {{4, 2}, {3, 3}}, samples[3] = {16, 7, 40};
+    enum { P = 5000 };
+    static float pts[3 * P], nrm[3 * P], vis[2][P], wt[2][P];
+    voxgi_context *ctx[2];
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    unsigned rnd = 23;
+    int T = ls_scene(pos, 5), sh, b;
+    size_t i;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 2);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
+    TH_CHECK(ctx[0] && ctx[1], "contexts");
+    if (!ctx[0] || !ctx[1]) return;
+    scene_of_triangles(&sc, &mesh, pos, 3 * (size_t)T, NULL, 0);
+    for (i = 0; i < P; i++) {
+        float *p = pts + 3 * i, *n = nrm + 3 * i;
+        int a;
+        if (i < 2 * P / 3) { /* on triangle i % T, its normal to one side or the other */
+            const float *v = pos + 9 * (i % (size_t)T);
+            double u = ls_unit(&rnd), w = ls_unit(&rnd), e1[3], e2[3], c[3], len;
+            if (u + w > 1) { u = 1 - u; w = 1 - w; }
+            for (a = 0; a < 3; a++) {
+                e1[a] = (double)v[3 + a] - v[a];
+                e2[a] = (double)v[6 + a] - v[a];
+                p[a] = (float)(v[a] + u * e1[a] + w * e2[a]);
+            }
+            for (a = 0; a < 3; a++) c[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+            len = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) * (i % 2 ? -1 : 1);
+            for (a = 0; a < 3; a++) n[a] = len != 0 ? (float)(c[a] / len) : 0.0f;
+        } else { /* anywhere near, any way */
+            double len = 0, d[3];
+            ls_point(&rnd, 16, p);
+            for (a = 0; a < 3; a++) {
+                d[a] = 2 * ls_unit(&rnd) - 1;
+                len += d[a] * d[a];
+            }
+            len = sqrt(len);
+            for (a = 0; a < 3; a++) n[a] = i % 97 == 0 ? 0.0f : (float)(d[a] / len);
+        }
+    }
+    for (sh = 0; sh < 2; sh++) {
+        voxgi_linespace_desc d;
+        voxgi_linespace *L[2] = {NULL, NULL};
+        int light, mode, si;
+        memset(&d, 0, sizeof d);
+        d.n = shape[sh][0];
+        d.depth = shape[sh][1];
+        for (b = 0; b < 2; b++) TH_CHECK(voxgi_linespace_create(ctx[b], &sc, &d, &L[b]) == VOXGI_OK, "%s", voxgi_last_error(ctx[b]));
+        if (!L[0] || !L[1]) continue;
+        TH_CHECK(L[1]->gl[0] != 0 && L[0]->gl[0] == 0, "the GL context's line space keeps no buffers, or the CPU's does");
+        for (light = 0; light < 2; light++)
+            for (mode = 0; mode < 2; mode++) {
+                printf("    n %d depth %d, %s light, %s:", d.n, d.depth, light ? "triangle" : "square", mode ? "fast" : "exact");
+                for (si = 0; si < 3; si++) {
+                    voxgi_linespace_light_desc ld;
+                    voxgi_linespace_stats st[2];
+                    size_t differ = 0, lit = 0, partly = 0;
+                    double worst = 0;
+                    memset(&ld, 0, sizeof ld);
+                    ld.mode = mode ? VOXGI_LINESPACE_FAST : VOXGI_LINESPACE_EXACT;
+                    ld.samples = samples[si];
+                    ld.seed = 77u + (uint32_t)sh;
+                    if (light == 0) { /* a square above the scene, shining down */
+                        ld.corner[0] = 0.2; ld.corner[1] = 1.3; ld.corner[2] = 0.2;
+                        ld.edge_u[0] = 0.6; ld.edge_v[2] = 0.6;
+                    } else { /* a triangle inside it, in the plane x = 0.85, shining to -x */
+                        ld.corner[0] = 0.85; ld.corner[1] = 0.15; ld.corner[2] = 0.15;
+                        ld.edge_u[2] = 0.7; ld.edge_v[1] = 0.7;
+                        ld.triangle = 1;
+                    }
+                    for (b = 0; b < 2; b++)
+                        TH_CHECK(voxgi_linespace_light(ctx[b], L[b == 1 && si == 1 ? 0 : b], &ld, P, pts, nrm, vis[b], wt[b], &st[b]) == VOXGI_OK, "%s",
+                                 voxgi_last_error(ctx[b]));
+                    for (i = 0; i < P; i++) {
+                        differ += vis[0][i] != vis[1][i];
+                        lit += vis[0][i] > 0;
+                        partly += vis[0][i] > 0 && vis[0][i] < 1;
+                        worst = fmax(worst, fabs((double)wt[0][i] - wt[1][i]));
+                    }
+                    printf("%s S %d: %lu of %d points lit (%lu in part), GL: %lu differ, weighted within %.2g, %llu rays", si ? ";" : "", ld.samples,
+                           (unsigned long)lit, P, (unsigned long)partly, (unsigned long)differ, worst, (unsigned long long)st[1].rays);
+                    TH_CHECK(differ == 0, "%lu points see the light otherwise on GL", (unsigned long)differ);
+                    TH_CHECK(worst <= 1e-5, "weighted differs by %g on GL", worst);
+                    TH_CHECK(st[0].rays == st[1].rays && st[0].samples == st[1].samples, "GL traced %llu rays, the CPU %llu", (unsigned long long)st[1].rays,
+                             (unsigned long long)st[0].rays);
+                    TH_CHECK(lit > P / 10 && partly > P / 20, "the light tests nothing: %lu of %d points see it, %lu in part", (unsigned long)lit, P,
+                             (unsigned long)partly);
+                }
+                printf("\n");
+            }
+        for (b = 0; b < 2; b++) voxgi_linespace_destroy(ctx[b], L[b]);
+    }
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
 int main(void)
 {
     gl_open();
@@ -1367,6 +1474,7 @@ int main(void)
     TH_RUN(test_gl_software_renderers);
     TH_RUN(test_linespace_build);
     TH_RUN(test_linespace_rays);
+    TH_RUN(test_gl_linespace_light_equals_cpu);
     gl_close();
     return th_finish();
 }
