@@ -70,7 +70,8 @@ static void test_help_everywhere(void)
 {
     static char out[32768];
     const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "bench rays --help", "svo --help", "render --help", "report --help", "report vct --help",
-                          "report tsm --help", "report rsm --help", "report sh --help", "report ao --help", "report ssgi --help"};
+                          "report tsm --help", "report rsm --help", "report sh --help", "report ao --help", "report ssgi --help",
+                          "report linespace --help"};
     size_t i;
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         int rc = run(cmds[i], out, sizeof out);
@@ -396,6 +397,37 @@ static void test_tsm_command(void)
             fclose(f);
             TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's ssgi render");
         }
+        voxgi_builtin_scene_destroy(ctx, &ts);
+    }
+    { /* --method linespace: the library's image, bit for bit, and the tree's memory */
+        voxgi_builtin_scene ts;
+        voxgi_linespace_image_desc ld;
+        snprintf(pfm, sizeof pfm, "%s/l.pfm", tmpdir);
+        snprintf(args, sizeof args, "render cornell-box --method linespace --size 8 8 --ls-mode fast --ls-n 3 --ls-depth 2 --samples 5 --supersample 2 --packets on --backend cpu --json -o %s", pfm);
+        TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "bytes") > 0 && json_number(out, "allocated") >= json_number(out, "bytes") &&
+                     json_number(out, "rays") > 0 && strstr(out, "\"mode\":\"fast\""),
+                 "linespace render: %s", out);
+        voxgi_builtin_scene_create(ctx, "cornell-box", &ts);
+        memset(&ld, 0, sizeof ld);
+        ld.camera = ts.camera;
+        ld.camera.width = ld.camera.height = 8;
+        ld.mode = VOXGI_LINESPACE_FAST;
+        ld.tree.n = 3;
+        ld.tree.depth = 2;
+        ld.samples = 5;
+        ld.supersample = 2;
+        ld.packets = 1;
+        ld.seed = 1;
+        TH_CHECK(voxgi_linespace_render(ctx, &ts.scene, &ld, want, sizeof want, NULL, NULL) == VOXGI_OK, "library linespace render: %s", voxgi_last_error(ctx));
+        f = fopen(pfm, "rb");
+        TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
+        if (f) {
+            for (y = 7; y >= 0; y--) TH_CHECK(fread(got + 3 * 8 * y, 4, 24, f) == 24, "PFM rows");
+            fclose(f);
+            TH_CHECK(memcmp(got, want, sizeof want) == 0, "the PFM differs from the library's linespace render");
+        }
+        snprintf(args, sizeof args, "render cornell-box --method linespace --size 8 8 --ls-n 16 --ls-depth 5 --ls-budget 1 -o %s", pfm);
+        TH_CHECK(run(args, out, sizeof out) == 1 && strstr(out, "budget"), "a tree over its budget: %s", out);
         voxgi_builtin_scene_destroy(ctx, &ts);
     }
     { /* --method sh: the library's image, bit for bit */
@@ -984,6 +1016,12 @@ static void test_screen_reports(void)
     TH_CHECK(f && fread(out, 1, sizeof out - 1, f) > 0 && strstr(out, "## Light the screen cannot see") && strstr(out, "## A wall barely in view"),
              "ssgi.md lacks its sections");
     if (f) fclose(f);
+    /* linespace: one tree, 2 sample counts x 2 supersamplings x 2 modes on the Cornell box; no mesh */
+    snprintf(args, sizeof args, "report linespace --size 8 --spp 64 --ns 3 --depths 2 --samples 1,4 --supersample 1,2 --meshes '' --out %s/ra", tmpdir);
+    TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "linespace.md"), "report linespace: %s", out);
+    snprintf(path, sizeof path, "%s/ra/linespace.csv", tmpdir);
+    rows = csv_rows(path, &front);
+    TH_CHECK(rows == 8, "linespace.csv: %d rows", rows);
     TH_CHECK(run("report ao --rays 0 --out x", out, sizeof out) == 2 && run("report ssgi --blurs 65 --out x", out, sizeof out) == 2 &&
                  run("report ao --size 8 --out x", out, sizeof out) == 2 && run("report ssgi --radii 0 --out x", out, sizeof out) == 2,
              "bad screen report arguments accepted: %s", out);

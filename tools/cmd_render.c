@@ -364,7 +364,7 @@ static void print_sh(const render_args *a, const char *name, const double mean[3
 }
 
 /* The --method linespace lines, text or JSON. */
-static void print_linespace(const render_args *a, const char *name, const double mean[3], const voxgi_linespace_image_desc *ld,
+static void print_linespace(const render_args *a, const char *name, const voxgi_info *ci, const double mean[3], const voxgi_linespace_image_desc *ld,
                             const voxgi_linespace_image_info *li, const voxgi_reference_desc *d, const render_compare *cmp)
 {
     int w = a->size[0], h = a->size[1];
@@ -372,11 +372,11 @@ static void print_linespace(const render_args *a, const char *name, const double
     const voxgi_linespace_stats *r = &li->rays;
     double mrays = li->ms_shadows > 0 ? (double)r->rays / li->ms_shadows / 1000 : 0;
     if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"linespace\",\"size\":[%d,%d],\"mode\":\"%s\",\"packets\":%d,\"n\":%d,\"depth\":%d,\"samples\":%d,"
+        printf("{\"scene\":\"%s\",\"method\":\"linespace\",\"backend\":\"%s\",\"size\":[%d,%d],\"mode\":\"%s\",\"packets\":%d,\"n\":%d,\"depth\":%d,\"samples\":%d,\"supersample\":%d,"
                "\"lights\":%d,\"nodes\":%lu,\"line_spaces\":%lu,\"leaves\":%lu,\"triangle_refs\":%lu,\"bytes\":%lu,\"allocated\":%lu,"
                "\"rays\":%llu,\"nodes_entered\":%llu,\"bits_read\":%llu,\"triangle_tests\":%llu,\"build_ms\":%.3f,\"gbuffer_ms\":%.3f,"
                "\"shadows_ms\":%.3f,\"ms\":%.3f,\"mrays_per_s\":%.4g,\"mean\":[%.6g,%.6g,%.6g],",
-               name, w, h, ls_mode_names[ld->mode], ld->packets, t->n, t->depth, r->samples, li->lights, (unsigned long)t->nodes, (unsigned long)t->line_spaces,
+               name, voxgi_backend_name(ci->backend), w, h, ls_mode_names[ld->mode], ld->packets, t->n, t->depth, r->samples, ld->supersample, li->lights, (unsigned long)t->nodes, (unsigned long)t->line_spaces,
                (unsigned long)t->leaves, (unsigned long)t->triangle_refs, (unsigned long)t->bytes, (unsigned long)t->allocated, (unsigned long long)r->rays,
                (unsigned long long)r->nodes, (unsigned long long)r->bits, (unsigned long long)r->triangle_tests, li->ms_build, li->ms_gbuffer, li->ms_shadows,
                li->ms, mrays, mean[0], mean[1], mean[2]);
@@ -384,13 +384,14 @@ static void print_linespace(const render_args *a, const char *name, const double
         printf("\"output\":\"%s\"}\n", a->out);
         return;
     }
-    printf("%s: %d x %d, direct light of %d area light%s, soft shadows through the line space (%s mode, %s; n %d, depth %d, %d samples per "
-           "pixel and light): tree %lu nodes, %lu line spaces, %lu leaves, %lu triangle references, %.2f MB by the formula, %.2f MB allocated, "
-           "built in %.1f ms; G-buffer %.1f ms; %llu shadow rays in %.1f ms (%.2f Mrays/s, CPU) reading %llu bits, testing %llu triangles; "
+    printf("%s: %d x %d, direct light of %d area light%s, soft shadows through the line space (%s mode, %s; n %d, depth %d, %d x %d points "
+           "per pixel, %d samples per point and light): tree %lu nodes, %lu line spaces, %lu leaves, %lu triangle references, %.2f MB by the formula, %.2f MB allocated, "
+           "built in %.1f ms; G-buffer %.1f ms; %llu shadow rays in %.1f ms (%.2f Mrays/s, %s) reading %llu bits, testing %llu triangles; "
            "total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-           name, w, h, li->lights, li->lights == 1 ? "" : "s", ls_mode_names[ld->mode], ld->packets ? "packets" : "rays alone", t->n, t->depth, r->samples,
+           name, w, h, li->lights, li->lights == 1 ? "" : "s", ls_mode_names[ld->mode],
+           ld->packets && ci->backend != VOXGI_BACKEND_GL ? "packets" : "rays alone", t->n, t->depth, ld->supersample, ld->supersample, r->samples,
            (unsigned long)t->nodes, (unsigned long)t->line_spaces, (unsigned long)t->leaves, (unsigned long)t->triangle_refs, t->bytes / 1e6,
-           t->allocated / 1e6, li->ms_build, li->ms_gbuffer, (unsigned long long)r->rays, li->ms_shadows, mrays, (unsigned long long)r->bits,
+           t->allocated / 1e6, li->ms_build, li->ms_gbuffer, (unsigned long long)r->rays, li->ms_shadows, mrays, voxgi_backend_name(ci->backend), (unsigned long long)r->bits,
            (unsigned long long)r->triangle_tests, li->ms, mean[0], mean[1], mean[2], a->out);
     if (a->compare || a->reference) print_compare(a, d, cmp);
 }
@@ -412,7 +413,7 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
     else if (a->method == METHOD_SH) print_sh(a, name, mean, &J->hd, &J->hinfo, d, cmp);
     else if (a->method == METHOD_SSAO || a->method == METHOD_VAO) print_ao(a, name, mean, &J->ad, &J->ainfo, d, cmp);
     else if (a->method == METHOD_SSGI || a->method == METHOD_HYBRID) print_ssgi(a, name, mean, &J->gd, &J->ginfo, d, cmp);
-    else if (a->method == METHOD_LINESPACE) print_linespace(a, name, mean, &J->ld, &J->linfo, d, cmp);
+    else if (a->method == METHOD_LINESPACE) print_linespace(a, name, ci, mean, &J->ld, &J->linfo, d, cmp);
     else if (a->method == METHOD_VCT && a->common.json) {
         printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
                "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
