@@ -13299,7 +13299,7 @@ typedef struct voxgi__ls_packet {
     const voxgi__ls_ray *ray;     /* count rays from one origin */
     int count, fast, k;           /* k: the slices' axis, along which every ray goes the same way */
     float rlo[3], rhi[3];         /* the range of d[a] / d[k] over the rays (every frame's) */
-    float d[8][3][VOXGI__LS_PACKET]; /* per level the rays' directions in its frame */
+    float d[9][3][VOXGI__LS_PACKET]; /* per level the rays' directions in its frame (split nodes' levels 0..7, and their children's) */
     uint64_t blocked;
     voxgi__ls_counts *cnt;
 } voxgi__ls_packet;
@@ -13330,6 +13330,7 @@ static void voxgi__ls_packet_node(voxgi__ls_packet *P, uint32_t node, int level,
     float reach_lo = INFINITY, reach_hi = -INFINITY;
     int s, s_end, i;
     uint64_t m;
+    if (level > 7) return; /* never: depth <= 8 (the bound for the compiler) */
     for (m = active; m; m &= m - 1) { /* the slices the rays reach */
         int r = voxgi__ctz64(m);
         float x0 = o[k] + sp->ta[r] * P->d[level][k][r], x1 = o[k] + sp->tb[r] * P->d[level][k][r];

@@ -10,6 +10,8 @@
 #   THREADS=$(nproc)   threads of both
 #   NATIVE=1           also voxgi built for this CPU (-march=native: AVX2's eight-wide nodes where
 #                      the CPU has them), as Embree picks its kernels at run time; 0: not
+#   LINESPACE="4,3 8,3"  line spaces (n,depth) that also cast the incoherent set, exact and fast,
+#                      against Embree's rtcOccluded on the same segments (voxgi as built); "": none
 #   EMBREE_CFLAGS, EMBREE_LIBS   for an Embree outside the default paths
 #
 # Embree is optional for the project: without its headers this script says so and exits 0.
@@ -27,6 +29,7 @@ rays=${RAYS:-1000000}
 runs=${RUNS:-3}
 threads=${THREADS:-$(nproc)}
 native=${NATIVE:-1}
+linespaces=${LINESPACE-4,3 8,3}
 
 if [[ ${1:-} == -h || ${1:-} == --help ]]; then
     sed -n '2,15s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"
@@ -82,6 +85,24 @@ table() { # VOXGI_BINARY
 echo "voxgi as built ($voxgi):"
 echo
 table "$voxgi"
+if [[ -n $linespaces ]]; then
+    echo
+    echo "The line space's shadow rays, the incoherent set (voxgi as built):"
+    echo
+    echo "| mesh | n, depth | build | exact | x Embree | fast | x Embree | fast: wrongly blocked | exact - core |"
+    echo "|---|---|---:|---:|---:|---:|---:|---:|---:|"
+    for mesh in "${meshes[@]}"; do
+        e=$("$anchor" "$mesh" "$rays" "$threads" "$runs")
+        ei=$(json_num "$e" incoherent_occluded_mrays)
+        for ls in $linespaces; do
+            v=$("$voxgi" bench rays "$mesh" --rays "$rays" --runs "$runs" --threads "$threads" --linespace "$ls" --json | tail -n 1)
+            awk -v m="$(basename "$mesh")" -v ls="$ls" -v b="$(json_num "$v" linespace_build_ms)" -v ex="$(json_num "$v" linespace_exact_mrays)" \
+                -v fa="$(json_num "$v" linespace_fast_mrays)" -v w="$(json_num "$v" linespace_fast_wrong)" -v d="$(json_num "$v" linespace_exact_disagree)" \
+                -v ei="$ei" -v n="$rays" \
+                'BEGIN { printf "| %s | %s | %.0f ms | %.2f M/s | %.3fx | %.2f M/s | %.3fx | %.2f%% | %d |\n", m, ls, b, ex, ex / ei, fa, fa / ei, 100 * w / n, d }'
+        done
+    done
+fi
 if [[ $native == 1 ]]; then
     echo "anchors_rays: building voxgi for this CPU (-march=native)" >&2
     if make -s -C "$root" B="$build/native" CFLAGS="-O2 -g -march=native" "$build/native/voxgi" >&2; then
