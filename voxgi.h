@@ -13142,13 +13142,24 @@ static int voxgi__ls_tri_hit(const float *v, const voxgi__ls_ray *r)
     return t > r->t0 && t < r->t1;
 }
 
-/* Whether the ray meets a triangle of leaf `leaf`. */
-static int voxgi__ls_leaf_hit(const voxgi_linespace *L, uint32_t leaf, const voxgi__ls_ray *r, voxgi__ls_counts *cnt)
+/* The last triangles a ray tested (and missed): a triangle over several leaves is tested once. */
+typedef struct voxgi__ls_mailbox {
+    uint32_t id[8];
+    unsigned next;
+} voxgi__ls_mailbox;
+
+/* Whether the ray meets a triangle of leaf `leaf` (mb: what it missed already). */
+static int voxgi__ls_leaf_hit(const voxgi_linespace *L, uint32_t leaf, const voxgi__ls_ray *r, voxgi__ls_mailbox *mb, voxgi__ls_counts *cnt)
 {
     const uint32_t *t = L->tris + L->leaf[2 * (size_t)leaf], *end = t + L->leaf[2 * (size_t)leaf + 1];
-    cnt->triangles += (uint64_t)(end - t);
-    for (; t < end; t++)
+    for (; t < end; t++) {
+        int k, seen = 0;
+        for (k = 0; k < 8; k++) seen |= mb->id[k] == *t;
+        if (seen) continue;
+        cnt->triangles++;
         if (voxgi__ls_tri_hit(L->tv + 9 * (size_t)*t, r)) return 1;
+        mb->id[mb->next++ & 7] = *t;
+    }
     return 0;
 }
 
@@ -13209,7 +13220,8 @@ typedef struct voxgi__ls_level {
 
 /* Level s walks `node` (its frame o, d) from ta (entered by a face of axis ea, or -1) to tb (left
    by axis xa, or -1). */
-static void voxgi__ls_level_start(voxgi__ls_level *s, int n, uint32_t node, const float o[3], const float d[3], float ta, float tb, int ea, int xa)
+static void voxgi__ls_level_start(voxgi__ls_level *s, int n, uint32_t node, const float o[3], const float d[3], const float inv[3], float ta, float tb,
+                                  int ea, int xa)
 {
     int a;
     s->node = node;
@@ -13221,7 +13233,7 @@ static void voxgi__ls_level_start(voxgi__ls_level *s, int n, uint32_t node, cons
         float p = o[a] + ta * d[a];
         s->o[a] = o[a];
         s->d[a] = d[a];
-        s->inv[a] = 1.0f / d[a]; /* +-inf for 0: never used, next is inf */
+        s->inv[a] = inv[a]; /* 1 / d: +-inf for 0, never used (next is inf) */
         s->cell[a] = p < 1 ? 0 : (p >= (float)(n - 1) ? n - 1 : (int)p);
         s->next[a] = d[a] == 0 ? INFINITY : ((float)(s->cell[a] + (d[a] > 0)) - o[a]) * s->inv[a];
     }
@@ -13232,6 +13244,9 @@ static void voxgi__ls_level_start(voxgi__ls_level *s, int n, uint32_t node, cons
 static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int fast, voxgi__ls_counts *cnt)
 {
     voxgi__ls_level st[8];
+    voxgi__ls_mailbox mb;
+    float lv_d[8][3], lv_inv[8][3]; /* every node of a level has the same direction in its frame */
+    int levels = 1, a;
     const int n = L->info.n, depth = L->info.depth;
     const float lo[3] = {0, 0, 0}, hi[3] = {(float)n, (float)n, (float)n};
     float ta, tb;
@@ -13245,12 +13260,18 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
         if (!voxgi__ls_crossing_bit(L, L->node[1], r->o, r->d, ta, tb, ea, xa, cnt)) return 0;
         if (fast && depth == 1 && ta >= r->tn0 && tb <= r->tn1) return 1;
     }
-    voxgi__ls_level_start(&st[0], n, 0, r->o, r->d, ta, tb, ea, xa);
+    memset(&mb, 0xFF, sizeof mb.id);
+    mb.next = 0;
+    for (a = 0; a < 3; a++) {
+        lv_d[0][a] = r->d[a];
+        lv_inv[0][a] = 1.0f / r->d[a];
+    }
+    voxgi__ls_level_start(&st[0], n, 0, r->o, lv_d[0], lv_inv[0], ta, tb, ea, xa);
     for (;;) {
         voxgi__ls_level *s = &st[top];
         uint32_t child, first, other;
-        float ca = s->t, cb, co[3], cd[3];
-        int m = 0, a, c[3];
+        float ca = s->t, cb, co[3];
+        int m = 0, c[3];
         if (!(ca <= s->t_out)) { /* this node is done */
             if (--top < 0) return 0;
             continue;
@@ -13270,19 +13291,24 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
         first = L->node[2 * (size_t)child];
         other = L->node[2 * (size_t)child + 1];
         if (first == UINT32_MAX) { /* a leaf or empty */
-            if (other != UINT32_MAX && voxgi__ls_leaf_hit(L, other, r, cnt)) return 1;
+            if (other != UINT32_MAX && voxgi__ls_leaf_hit(L, other, r, &mb, cnt)) return 1;
             continue;
         }
         cnt->nodes++;
-        for (a = 0; a < 3; a++) {
-            co[a] = (s->o[a] - (float)c[a]) * (float)n;
-            cd[a] = s->d[a] * (float)n;
+        for (a = 0; a < 3; a++) co[a] = (s->o[a] - (float)c[a]) * (float)n;
+        if (levels == top + 1) { /* the first node of this level: its direction */
+            for (a = 0; a < 3; a++) {
+                lv_d[levels][a] = s->d[a] * (float)n;
+                lv_inv[levels][a] = 1.0f / lv_d[levels][a];
+            }
+            levels++;
         }
         if (ea >= 0 && xa >= 0) { /* crossed face to face: its line space */
-            if (!voxgi__ls_crossing_bit(L, other, co, cd, ca, cb, ea, xa, cnt)) continue;
+            if (!voxgi__ls_crossing_bit(L, other, co, lv_d[top + 1], ca, cb, ea, xa, cnt)) continue;
             if (fast && top + 2 == depth && ca >= r->tn0 && cb <= r->tn1) return 1;
         }
-        voxgi__ls_level_start(&st[++top], n, child, co, cd, ca, cb, ea, xa);
+        top++;
+        voxgi__ls_level_start(&st[top], n, child, co, lv_d[top], lv_inv[top], ca, cb, ea, xa);
     }
 }
 
@@ -13301,6 +13327,7 @@ typedef struct voxgi__ls_packet {
     float rlo[3], rhi[3];         /* the range of d[a] / d[k] over the rays (every frame's) */
     float d[9][3][VOXGI__LS_PACKET]; /* per level the rays' directions in its frame (split nodes' levels 0..7, and their children's) */
     uint64_t blocked;
+    voxgi__ls_mailbox mb[VOXGI__LS_PACKET];
     voxgi__ls_counts *cnt;
 } voxgi__ls_packet;
 
@@ -13369,7 +13396,7 @@ static void voxgi__ls_packet_node(voxgi__ls_packet *P, uint32_t node, int level,
                     if (tb >= sp->tb[r]) { tb = sp->tb[r]; xa = sp->xa[r]; }
                     if (ta > tb) continue;
                     if (first == UINT32_MAX) { /* a leaf */
-                        if (voxgi__ls_leaf_hit(L, other, &P->ray[r], P->cnt)) P->blocked |= (uint64_t)1 << r;
+                        if (voxgi__ls_leaf_hit(L, other, &P->ray[r], &P->mb[r], P->cnt)) P->blocked |= (uint64_t)1 << r;
                         continue;
                     }
                     if (ea >= 0 && xa >= 0) {
@@ -13408,6 +13435,7 @@ static uint64_t voxgi__ls_trace_packet(const voxgi_linespace *L, const voxgi__ls
     P->fast = fast;
     P->blocked = 0;
     P->cnt = cnt;
+    memset(P->mb, 0xFF, sizeof P->mb);
     for (r = 0; r < count; r++)
         for (a = 0; a < 3; a++) sum[a] += ray[r].d[a];
     P->k = fabsf(sum[1]) > fabsf(sum[0]) ? 1 : 0;
