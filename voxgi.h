@@ -1187,8 +1187,8 @@ VOXGI_API void voxgi_linespace_query(const voxgi_linespace *ls, voxgi_linespace_
    triangles decide (the ray core's watertight test): the answer is the triangles'. FAST: a set
    bit at the last line-space level counts as a hit (Klee's method: never lighter than EXACT,
    darker where a shaft holds geometry the ray misses). In both, the nodes holding the segment's
-   ends, and in FAST those within 3 leaves' edges of them, are walked to their leaves and their
-   triangles decide, so a surface never shadows itself. */
+   ends, and in FAST those within 3 leaves' edges of them (voxgi_linespace_light_desc.exact_ends),
+   are walked to their leaves and their triangles decide, so a surface never shadows itself. */
 typedef enum voxgi_linespace_mode { VOXGI_LINESPACE_EXACT = 0, VOXGI_LINESPACE_FAST } voxgi_linespace_mode;
 
 /* Whether each ray meets something at t in (tmin, tmax): 1 or 0, each ray walking alone (on the
@@ -1210,6 +1210,8 @@ typedef struct voxgi_linespace_light_desc {
     double corner[3], edge_u[3], edge_v[3]; /* the light: corner + s edge_u + t edge_v, s and t in [0, 1]; it shines to edge_u x edge_v */
     int triangle;                 /* 1: the triangle s + t <= 1 (samples beyond it folded in) */
     uint32_t seed;
+    int exact_ends;               /* FAST: the triangles decide within this many leaves' edges of each end of a
+                                     segment (more: closer to EXACT, slower); 0 = 3 */
 } voxgi_linespace_light_desc;
 typedef struct voxgi_linespace_stats {
     uint64_t rays, nodes, bits, triangle_tests; /* rays traced; split nodes entered, bits read, triangles tested (the
@@ -1245,6 +1247,7 @@ typedef struct voxgi_linespace_image_desc {
     int packets;
     uint32_t seed;
     int hide_emitters;            /* 1: leave out the emission the camera sees directly */
+    int exact_ends;               /* FAST: as voxgi_linespace_light_desc's; 0 = 3 */
     int supersample;              /* k > 1: k x k shading points per pixel (the G-buffer at k times the size), their
                                      mean: the pixel's square, as the reference integrates it; 0 or 1: its centre */
 } voxgi_linespace_image_desc;
@@ -12604,7 +12607,7 @@ struct voxgi_linespace {
     float *tv;                    /* 9 per triangle: its vertices relative to the centre */
     double centre[3];             /* the scene's bounds' centre (the root cube's; the ray core's too, so the triangle tests are its) */
     float half, scale;            /* the root cube's half edge, and n / its edge: the root's frame from the centre */
-    float near_ends;              /* 3 leaves' edges in the root's frame: fast mode's exact zone at a segment's ends */
+    float leaf_edge;              /* a leaf's edge in the root's frame (fast mode's exact zone at a segment's ends counts them) */
     size_t words_per_space;
     unsigned int gl[5];           /* made on a GL context: node, bits, leaf, tris and tv as storage buffers (shaders/linespace.glsl) */
 };
@@ -12908,7 +12911,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
         L->centre[a] = f.vertex_count ? 0.5 * (lo[a] + hi[a]) : 0;
     }
     L->half = (float)(0.5 * L->info.size);
-    L->near_ends = (float)(3 / pow(n, depth - 1));
+    L->leaf_edge = (float)(1 / pow(n, depth - 1));
     L->scale = (float)(n / L->info.size);
     if (f.triangle_count >= UINT32_MAX) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)f.triangle_count);
     else if (36 * f.triangle_count > budget) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles need %lu bytes, over the budget of %lu", (unsigned long)f.triangle_count,
@@ -13083,13 +13086,17 @@ typedef struct voxgi__ls_ray {
     float sx, sy, sz;
 } voxgi__ls_ray;
 
+/* Fast mode walks down to the triangles within this many leaves' edges of a segment's ends. */
+#define VOXGI__LS_EXACT_ENDS 3
+
 /* What the rays cost: nodes entered, line-space bits read, triangles tested. */
 typedef struct voxgi__ls_counts {
     uint64_t rays, nodes, bits, triangles;
 } voxgi__ls_counts;
 
-/* The ray from o along d (world units, float) for t in (t0, t1); 0 for a zero direction. */
-static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const float d[3], float t0, float t1, voxgi__ls_ray *r)
+/* The ray from o along d (world units, float) for t in (t0, t1), fast mode's exact zone `near`
+   (the root's frame) at each end; 0 for a zero direction. */
+static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const float d[3], float t0, float t1, float near, voxgi__ls_ray *r)
 {
     int a, kz = 0;
     for (a = 0; a < 3; a++) {
@@ -13102,8 +13109,8 @@ static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const f
     r->t0 = t0;
     r->t1 = t1;
     if (d[kz] == 0) return 0;
-    r->tn0 = t0 + L->near_ends / fabsf(r->d[kz]); /* the largest component: at least 3 edges of travel */
-    r->tn1 = t1 - L->near_ends / fabsf(r->d[kz]);
+    r->tn0 = t0 + near / fabsf(r->d[kz]); /* the largest component: at least `near` of travel */
+    r->tn1 = t1 - near / fabsf(r->d[kz]);
     r->kz = kz;
     r->kx = (kz + 1) % 3;
     r->ky = (r->kx + 1) % 3;
@@ -13485,6 +13492,7 @@ typedef struct voxgi__ls_job {
     const float *points, *normals;
     float *visible, *weighted;
     float corner[3], eu[3], ev[3], hair;
+    float near;                   /* fast mode's exact zone at each end, the root's frame */
     int fast, nu, nv;
     size_t chunk;
     voxgi__ls_counts *counts;     /* one per chunk */
@@ -13499,7 +13507,7 @@ static void voxgi__ls_rays_run(void *user, size_t first, size_t end)
         const voxgi_ray *q = &J->rays[i];
         voxgi__ls_ray r;
         J->occluded[i] = 0;
-        if (!(q->tmax > q->tmin) || !voxgi__ls_ray_set(J->L, q->origin, q->direction, q->tmin, q->tmax, &r)) continue;
+        if (!(q->tmax > q->tmin) || !voxgi__ls_ray_set(J->L, q->origin, q->direction, q->tmin, q->tmax, J->near, &r)) continue;
         J->occluded[i] = (unsigned char)voxgi__ls_trace(J->L, &r, J->fast, cnt);
     }
 }
@@ -13519,6 +13527,7 @@ VOXGI_API voxgi_result voxgi_linespace_occluded(voxgi_context *ctx, const voxgi_
     J.rays = rays;
     J.occluded = occluded;
     J.fast = mode == VOXGI_LINESPACE_FAST;
+    J.near = (float)VOXGI__LS_EXACT_ENDS * ls->leaf_edge;
     J.chunk = 256;
     if (!(J.counts = (voxgi__ls_counts *)voxgi__alloc_array(ctx, count / J.chunk + 1, sizeof *J.counts, 1)))
         return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu rays", (unsigned long)count);
@@ -13562,7 +13571,7 @@ static int voxgi__ls_light_ray(const voxgi_linespace *L, const voxgi__ls_job *J,
     }
     cos_p = (nrm[0] * d[0] + nrm[1] * d[1]) + nrm[2] * d[2];
     *weight = 0;
-    if (!(cos_p > 0) || !voxgi__ls_ray_set(L, o, d, 0.0f, 1.0f - 1.52587890625e-5f, r)) return 0;
+    if (!(cos_p > 0) || !voxgi__ls_ray_set(L, o, d, 0.0f, 1.0f - 1.52587890625e-5f, J->near, r)) return 0;
     for (a = 0; a < 3; a++) fn[a] = (double)J->eu[(a + 1) % 3] * J->ev[(a + 2) % 3] - (double)J->eu[(a + 2) % 3] * J->ev[(a + 1) % 3];
     len2 = (double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2];
     cos_l = -(fn[0] * d[0] + fn[1] * d[1] + fn[2] * d[2]) / sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
@@ -13643,7 +13652,7 @@ static voxgi_result voxgi__ls_light_gl(voxgi_context *ctx, const voxgi__ls_job *
         gl->ProgramUniform1f(p, VOXGI__LOC_u_half, L->half);
         gl->ProgramUniform1f(p, VOXGI__LOC_u_scale, L->scale);
         gl->ProgramUniform1f(p, VOXGI__LOC_u_hair, J->hair);
-        gl->ProgramUniform1f(p, VOXGI__LOC_u_near_ends, L->near_ends);
+        gl->ProgramUniform1f(p, VOXGI__LOC_u_near_ends, J->near);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_fast, J->fast);
         gl->ProgramUniform3f(p, VOXGI__LOC_u_corner, J->corner[0], J->corner[1], J->corner[2]);
         gl->ProgramUniform3f(p, VOXGI__LOC_u_edge_u, J->eu[0], J->eu[1], J->eu[2]);
@@ -13696,6 +13705,7 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
     if (desc->mode != VOXGI_LINESPACE_EXACT && desc->mode != VOXGI_LINESPACE_FAST) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "mode %d", (int)desc->mode);
     S = desc->samples ? desc->samples : 16;
     if (S < 1 || S > 4096) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d (1..4096)", S);
+    if (desc->exact_ends < 0 || desc->exact_ends > 1 << 20) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "exact_ends %d (0..2^20)", desc->exact_ends);
     for (a = 0; a < 3; a++)
         if (!isfinite(desc->corner[a]) || !isfinite(desc->edge_u[a]) || !isfinite(desc->edge_v[a]))
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the light is not finite");
@@ -13712,6 +13722,7 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
     J.visible = visible;
     J.weighted = weighted;
     J.fast = desc->mode == VOXGI_LINESPACE_FAST;
+    J.near = (float)(desc->exact_ends ? desc->exact_ends : VOXGI__LS_EXACT_ENDS) * ls->leaf_edge;
     J.nu = (int)ceil(sqrt((double)S) - 1e-9);
     J.nv = (S + J.nu - 1) / J.nu;
     J.hair = (float)(ls->info.size * VOXGI__LS_PAD);
@@ -13949,6 +13960,7 @@ VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_sc
         A[l].d.samples = desc->samples;
         A[l].d.packets = desc->packets;
         A[l].d.seed = desc->seed + (uint32_t)l * 0x9E3779B9u;
+        A[l].d.exact_ends = desc->exact_ends;
         if ((r = voxgi_linespace_light(ctx, ls, &A[l].d, points, pos, nrm, seen, weighted + (size_t)l * points, &st)) != VOXGI_OK) break;
         for (i = 0; i < points; i++) fine_seen[i] += seen[i] / (float)lights;
         inf.rays.rays += st.rays;

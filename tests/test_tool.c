@@ -1016,8 +1016,8 @@ static void test_screen_reports(void)
     TH_CHECK(f && fread(out, 1, sizeof out - 1, f) > 0 && strstr(out, "## Light the screen cannot see") && strstr(out, "## A wall barely in view"),
              "ssgi.md lacks its sections");
     if (f) fclose(f);
-    /* linespace: one tree, 2 sample counts x 2 supersamplings x 2 modes on the Cornell box; no mesh */
-    snprintf(args, sizeof args, "report linespace --size 8 --spp 64 --ns 3 --depths 2 --samples 1,4 --supersample 1,2 --meshes '' --out %s/ra", tmpdir);
+    /* linespace: one tree, 2 sample counts x 2 supersamplings x 2 modes (fast with one exact zone) on the Cornell box; no mesh */
+    snprintf(args, sizeof args, "report linespace --size 8 --spp 64 --ns 3 --depths 2 --samples 1,4 --supersample 1,2 --exact-ends 3 --meshes '' --out %s/ra", tmpdir);
     TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "linespace.md"), "report linespace: %s", out);
     snprintf(path, sizeof path, "%s/ra/linespace.csv", tmpdir);
     rows = csv_rows(path, &front);

@@ -35,7 +35,7 @@ typedef struct render_args {
     int octree, octree_format, bricks, have_camera, have_sun, tsm_size, slices, rsm_size, rsm_samples, rsm_points, gather_stride, visibility, res_given;
     double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
     int rays, march_steps, point_sampling, half_res, half_res_given, blur, blur_given, screen_light_only, hidden_light, hidden_light_given;
-    int ls_mode, ls_mode_given, ls_n, ls_depth, ls_budget, samples, packets, supersample;
+    int ls_mode, ls_mode_given, ls_n, ls_depth, ls_budget, samples, packets, supersample, exact_ends;
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -557,6 +557,7 @@ static int render_run(cli_session *s, const render_args *a)
         J.ld.mode = (voxgi_linespace_mode)(a->ls_mode_given ? a->ls_mode : LS_MODE);
         J.ld.samples = a->samples ? a->samples : LS_SAMPLES;
         J.ld.packets = a->packets;
+        J.ld.exact_ends = a->exact_ends;
         J.ld.supersample = a->supersample ? a->supersample : LS_SUPERSAMPLE;
         J.ld.tree.n = a->ls_n ? a->ls_n : LS_N;
         J.ld.tree.depth = a->ls_depth ? a->ls_depth : LS_DEPTH;
@@ -679,6 +680,8 @@ int cmd_render(int argc, char **argv)
              .help = "linespace: exact (the triangles decide) or fast (a set bit of the last\nline-space level blocks the ray) (default exact)"},
             {.name = "--ls-n", .arg = "N", .kind = CLI_INT, .dst = &a.ls_n, .lo = 2, .hi = 16, .help = "linespace: children per axis of a split node (default 4)"},
             {.name = "--ls-depth", .arg = "D", .kind = CLI_INT, .dst = &a.ls_depth, .lo = 1, .hi = 8, .help = "linespace: the tree's levels below the root (default 3)"},
+            {.name = "--ls-exact-ends", .arg = "E", .kind = CLI_INT, .dst = &a.exact_ends, .lo = 1, .hi = 1 << 20,
+             .help = "linespace, fast: the triangles decide within E leaves' edges of each end\nof a shadow ray (default 3; more: closer to exact, slower)"},
             {.name = "--ls-budget", .arg = "MB", .kind = CLI_INT, .dst = &a.ls_budget, .lo = 1, .hi = 1 << 20,
              .help = "linespace: the most memory the tree may take, MiB (default 1024)"},
             {.name = "--samples", .arg = "S", .kind = CLI_INT, .dst = &a.samples, .lo = 1, .hi = 4096,

@@ -24,8 +24,8 @@ static const char *const ls_help =
 typedef struct ls_args {
     cli_common common;
     const char *out_dir, *scene_list, *mesh_list;
-    double ns[LS_MAX_ITEMS], depths[LS_MAX_ITEMS], samples[LS_MAX_ITEMS], supersample[LS_MAX_ITEMS];
-    int nns, ndepths, nsamples, nsuper, size, spp;
+    double ns[LS_MAX_ITEMS], depths[LS_MAX_ITEMS], samples[LS_MAX_ITEMS], supersample[LS_MAX_ITEMS], ends[LS_MAX_ITEMS];
+    int nns, ndepths, nsamples, nsuper, nends, size, spp;
 } ls_args;
 
 /* 4 x 4 block means of img and ref (3 floats per pixel), the blocks without a masked pixel: the
@@ -76,10 +76,11 @@ static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const 
     if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R)) goto done;
     fprintf(md, "\n## %s\n\n%d x %d pixels; the reference's direct light at %d spp (its error %.2f%% / sqrt(spp)); %lu pixels near an emitter left "
                 "out. *rel. RMSE*: the tools' rule; *4x4*: on 4 x 4 block means without a masked pixel. Fast mode against exact, the same samples: "
-                "*MAE* of the pixels' visible share, *wrong*: the share of samples fast mode blocks where exact mode sees the light.\n\n",
+                "*MAE* of the pixels' visible share, *wrong*: the share of samples fast mode blocks where exact mode sees the light; *exact ends*: fast mode's "
+                "exact zone at each end of a ray, in leaves' edges.\n\n",
             name, a->size, a->size, a->spp, 100 * R.c, (unsigned long)R.mask.masked_pixels);
     fprintf(md, "| n | depth | tree MB | build ms | points per pixel | samples | rays per pixel | mode | shadows ms | total ms | rel. RMSE | 4x4 | mean "
-                "| MAE | wrong |\n|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|\n");
+                "| exact ends | MAE | wrong |\n|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (i = 0; i < a->nns; i++)
         for (j = 0; j < a->ndepths; j++) {
             voxgi_linespace_desc td;
@@ -98,43 +99,41 @@ static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const 
             voxgi_linespace_query(L, &info);
             for (k = 0; k < a->nsamples * a->nsuper; k++) {
                 int ss = (int)a->supersample[k / a->nsamples], spl = (int)a->samples[k % a->nsamples];
-                double err[2], blk[2], mean[2], ms[2], total[2], mae = 0, wrong = 0;
-                for (m = 0; m < 2; m++) {
+                for (m = 0; m <= a->nends; m++) { /* exact, then fast with each exact zone */
                     voxgi_linespace_image_desc d;
                     voxgi_linespace_image_info li;
+                    double err, blk, mean, mae = 0, wrong = 0;
+                    float *v = vis[m ? 1 : 0];
                     memset(&d, 0, sizeof d);
                     d.camera = cam;
                     d.ls = L;
-                    d.mode = (voxgi_linespace_mode)m;
+                    d.mode = m ? VOXGI_LINESPACE_FAST : VOXGI_LINESPACE_EXACT;
+                    d.exact_ends = m ? (int)a->ends[m - 1] : 0;
                     d.samples = spl;
                     d.supersample = ss;
                     d.seed = 1;
                     d.hide_emitters = 1;
                     cli_status(s, "%s: n %d depth %d, %d x %d points, %d samples, %s", name, td.n, td.depth, ss, ss, d.samples, m ? "fast" : "exact");
-                    if (voxgi_linespace_render(ctx, &bs.scene, &d, img, pixels * 12, vis[m], &li) != VOXGI_OK) {
+                    if (voxgi_linespace_render(ctx, &bs.scene, &d, img, pixels * 12, v, &li) != VOXGI_OK) {
                         voxgi_linespace_destroy(ctx, L);
                         cli_fail_lib(s, ctx, "linespace");
                         goto done;
                     }
-                    err[m] = cli_masked_error(&R.mask, img, R.image, NULL, NULL);
-                    blk[m] = block_error(&R.mask, img, R.image);
-                    mean[m] = image_mean(img, 3 * pixels);
-                    ms[m] = li.ms_shadows;
-                    total[m] = li.ms - li.ms_build;
-                }
-                for (p = 0; p < pixels; p++) {
-                    mae += fabs((double)vis[1][p] - vis[0][p]);
-                    wrong += (double)vis[0][p] - vis[1][p];
-                }
-                mae /= (double)pixels;
-                wrong /= (double)pixels;
-                for (m = 0; m < 2; m++) {
+                    err = cli_masked_error(&R.mask, img, R.image, NULL, NULL);
+                    blk = block_error(&R.mask, img, R.image);
+                    mean = image_mean(img, 3 * pixels);
+                    for (p = 0; m && p < pixels; p++) { /* fast against exact, the same samples */
+                        mae += fabs((double)vis[1][p] - vis[0][p]);
+                        wrong += (double)vis[0][p] - vis[1][p];
+                    }
+                    mae /= (double)pixels;
+                    wrong /= (double)pixels;
                     fprintf(md, "| %d | %d | %.2f | %.0f | %d | %d | %d | %s | %.1f | %.1f | %.2f%% | %.2f%% | %.4g |", td.n, td.depth, info.bytes / 1e6, info.ms,
-                            ss * ss, spl, ss * ss * spl, m ? "fast" : "exact", ms[m], total[m], 100 * err[m], 100 * blk[m], mean[m]);
-                    if (m) fprintf(md, " %.4f | %.2f%% |\n", mae, 100 * wrong);
-                    else fprintf(md, " | |\n");
-                    fprintf(csv, "image,%s,%d,%d,%lu,%.3f,%d,%d,%s,0,%.3f,%.3f,%.6g,%.6g,%.6g,%.6g,%.6g,,,\n", name, td.n, td.depth, (unsigned long)info.bytes,
-                            info.ms, ss, spl, m ? "fast" : "exact", ms[m], total[m], err[m], blk[m], mean[m], m ? mae : 0.0, m ? wrong : 0.0);
+                            ss * ss, spl, ss * ss * spl, m ? "fast" : "exact", li.ms_shadows, li.ms - li.ms_build, 100 * err, 100 * blk, mean);
+                    if (m) fprintf(md, " %d | %.4f | %.2f%% |\n", d.exact_ends, mae, 100 * wrong);
+                    else fprintf(md, " | | |\n");
+                    fprintf(csv, "image,%s,%d,%d,%lu,%.3f,%d,%d,%s,%d,0,%.3f,%.3f,%.6g,%.6g,%.6g,%.6g,%.6g,,,\n", name, td.n, td.depth, (unsigned long)info.bytes,
+                            info.ms, ss, spl, m ? "fast" : "exact", d.exact_ends, li.ms_shadows, li.ms - li.ms_build, err, blk, mean, mae, wrong);
                 }
             }
             voxgi_linespace_destroy(ctx, L);
@@ -296,9 +295,9 @@ static int ls_mesh(cli_session *s, voxgi_context *ctx, const ls_args *a, const c
             }
             fprintf(md, "| %d | %d | %.2f | %.0f | %.1f | %.2f | %.3fx | %.4f%% | %.1f | %.2f | %.3fx | %.2f%% |", td.n, td.depth, info.bytes / 1e6, info.ms,
                     ms[0], nrays / ms[0] / 1000, core_ms / ms[0], 100.0 * agree / nrays, ms[1], nrays / ms[1] / 1000, core_ms / ms[1], 100.0 * wrong / nrays);
-            fprintf(csv, "rays,%s,%d,%d,%lu,%.3f,1,16,exact,0,%.3f,%.3f,,,,,,%.6g,%.6g,%.3f\n", base, td.n, td.depth, (unsigned long)info.bytes, info.ms, ms[0],
+            fprintf(csv, "rays,%s,%d,%d,%lu,%.3f,1,16,exact,0,0,%.3f,%.3f,,,,,,%.6g,%.6g,%.3f\n", base, td.n, td.depth, (unsigned long)info.bytes, info.ms, ms[0],
                     ms[0], (double)agree / nrays, 0.0, core_ms);
-            fprintf(csv, "rays,%s,%d,%d,%lu,%.3f,1,16,fast,0,%.3f,%.3f,,,,,,%.6g,%.6g,%.3f\n", base, td.n, td.depth, (unsigned long)info.bytes, info.ms, ms[1],
+            fprintf(csv, "rays,%s,%d,%d,%lu,%.3f,1,16,fast,3,0,%.3f,%.3f,,,,,,%.6g,%.6g,%.3f\n", base, td.n, td.depth, (unsigned long)info.bytes, info.ms, ms[1],
                     ms[1], 1.0, (double)wrong / nrays, core_ms);
             for (k = 0; k < 4; k++) { /* Table 3: the light's rays alone and in packets */
                 static const int counts[4] = {4, 9, 16, 100};
@@ -318,7 +317,7 @@ static int ls_mesh(cli_session *s, voxgi_context *ctx, const ls_args *a, const c
                         cli_fail_lib(s, ctx, "line space light");
                         goto done;
                     }
-                    fprintf(csv, "light,%s,%d,%d,%lu,%.3f,1,%d,fast,%d,%.3f,%.3f,,,,,,,,\n", base, td.n, td.depth, (unsigned long)info.bytes, info.ms, counts[k], pk,
+                    fprintf(csv, "light,%s,%d,%d,%lu,%.3f,1,%d,fast,3,%d,%.3f,%.3f,,,,,,,,\n", base, td.n, td.depth, (unsigned long)info.bytes, info.ms, counts[k], pk,
                             st[pk].ms, st[pk].ms);
                 }
                 fprintf(md, "%s %.0f / %.0f", k ? "," : "", st[0].ms, st[1].ms);
@@ -343,7 +342,7 @@ out:
 
 int cmd_report_linespace(int argc, char **argv)
 {
-    static const double ns[] = {4, 8}, depths[] = {2, 3}, samples[] = {4, 16, 64}, supersample[] = {1, 4};
+    static const double ns[] = {4, 8}, depths[] = {2, 3}, samples[] = {4, 16, 64}, supersample[] = {1, 4}, ends[] = {3, 12};
     ls_args a;
     cli_session s;
     cli_context c;
@@ -363,6 +362,8 @@ int cmd_report_linespace(int argc, char **argv)
     memcpy(a.depths, depths, sizeof depths);
     memcpy(a.samples, samples, sizeof samples);
     memcpy(a.supersample, supersample, sizeof supersample);
+    memcpy(a.ends, ends, sizeof ends);
+    a.nends = 2;
     a.nsuper = 2;
     a.nns = 2;
     a.ndepths = 2;
@@ -383,6 +384,7 @@ int cmd_report_linespace(int argc, char **argv)
             LIST("--depths", depths, ndepths, 1, 8, "levels below the root (default 2,3)"),
             LIST("--samples", samples, nsamples, 1, 4096, "the images' shadow rays per shading point (default 4,16,64)"),
             LIST("--supersample", supersample, nsuper, 1, 16, "the images' shading points, K x K per pixel (default 1,4)"),
+            LIST("--exact-ends", ends, nends, 1, 1 << 20, "fast mode's exact zones, leaves' edges at each end (default 3,12)"),
             {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
             CLI_OPT_THREADS(&a.common)};
 #undef LIST
@@ -404,7 +406,7 @@ int cmd_report_linespace(int argc, char **argv)
     }
     voxgi_query_info(c.vx, &ci);
     fprintf(md, "# Line space: soft shadows, error against run time\n\nCPU, %d threads; wall clock on this machine.\n", ci.thread_count);
-    fprintf(csv, "part,scene,n,depth,bytes,build_ms,supersample,samples,mode,packets,shadows_ms,ms,rel_rmse,block_rmse,mean,mae,wrong,agree_with_core,core_ms\n");
+    fprintf(csv, "part,scene,n,depth,bytes,build_ms,supersample,samples,mode,exact_ends,packets,shadows_ms,ms,rel_rmse,block_rmse,mean,mae,wrong,agree_with_core,core_ms\n");
     for (list = a.scene_list; *a.scene_list && (r = cli_next_item(&list, item, sizeof item)) != 0;) { /* '' : none */
         if (r < 0) { cli_usage("report", "--scenes: '%s'", a.scene_list); goto done; }
         if (ls_scene(&s, c.vx, &a, item, md, csv)) goto done;
