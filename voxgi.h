@@ -13796,15 +13796,18 @@ static int voxgi__ls_area_lights(voxgi_context *ctx, const voxgi_scene *scene, c
         const float *v[3];
         int partner_k = -1, shared = 0;
         size_t partner = 0;
+        double g[3];
         if (!(m->emission[0] > 0 || m->emission[1] > 0 || m->emission[2] > 0) || paired[t]) continue;
+        voxgi__tri_unit_normal(f, t, g);
+        if (g[0] == 0 && g[1] == 0 && g[2] == 0) continue; /* no area: no light */
         if (count == VOXGI__LS_AREA_LIGHTS) { count = -1; break; }
         for (k = 0; k < 3; k++) v[k] = f->pos + 3 * (size_t)f->tri[3 * t + (size_t)k];
         for (u = t + 1; u < f->triangle_count && partner_k < 0; u++) { /* a partner: the same emission, an edge in common, a parallelogram */
             const voxgi_material *mu = voxgi__tri_material(f, u);
             const float *w[3];
             int in[3], out_k = -1, j, c;
-            if (memcmp(mu->emission, m->emission, sizeof m->emission) != 0 || mu->albedo[0] != m->albedo[0] || mu->albedo[1] != m->albedo[1] ||
-                mu->albedo[2] != m->albedo[2])
+            if (paired[u] || memcmp(mu->emission, m->emission, sizeof m->emission) != 0 || mu->albedo[0] != m->albedo[0] ||
+                mu->albedo[1] != m->albedo[1] || mu->albedo[2] != m->albedo[2])
                 continue;
             for (j = 0; j < 3; j++) w[j] = f->pos + 3 * (size_t)f->tri[3 * u + (size_t)j];
             for (shared = 0, k = 0; k < 3; k++) {
@@ -13818,6 +13821,7 @@ static int voxgi__ls_area_lights(voxgi_context *ctx, const voxgi_scene *scene, c
                 for (k = 0; k < 3; k++) hit |= memcmp(w[j], v[k], 12) == 0;
                 if (!hit) out_k = j;
             }
+            if (out_k < 0) continue; /* a degenerate partner: every corner one of t's */
             for (k = 0; k < 3 && in[k]; k++) {}
             for (c = 0; c < 3; c++) { /* v[k] + w[out] = the two shared vertices' sum */
                 double s = 0, e = fabs((double)v[k][c]) + fabs((double)w[out_k][c]);

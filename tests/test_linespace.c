@@ -286,6 +286,7 @@ static void test_linespace_input(void)
     voxgi_linespace_light_desc d;
     voxgi_linespace_image_desc id;
     float rgb[3];
+    static float rgb4[3 * 16];
     scene_of_triangles(&sc, &mesh, pos, 3 * (size_t)floor_and_box(pos, 0), NULL, 0);
     memset(&td, 0, sizeof td);
     td.n = 4;
@@ -307,6 +308,34 @@ static void test_linespace_input(void)
     TH_CHECK(voxgi_linespace_render(ctx, &sc, &id, rgb, sizeof rgb, NULL, NULL) == VOXGI_ERR_UNSUPPORTED, "a scene without an area light rendered");
     printf("    the last error: %s\n", voxgi_last_error(ctx));
     voxgi_linespace_destroy(ctx, L);
+    { /* an emissive quad over the floor with a degenerate emissive triangle on its edge: one light; the furnace's
+         thousands of emissive triangles: refused */
+        static float lit[9 * 5];
+        static const float quadl[27] = {-0.2f, 1, -0.2f, 0.2f, 1, 0.2f, 0.2f, 1, -0.2f,  /* the quad's first half, */
+                                        -0.2f, 1, -0.2f, 0.2f, 1, 0.2f, 0.2f, 1, 0.2f,   /* a degenerate one on its diagonal, */
+                                        -0.2f, 1, -0.2f, -0.2f, 1, 0.2f, 0.2f, 1, 0.2f}; /* the quad's second half */
+        static uint32_t ids[5] = {0, 0, 1, 1, 1};
+        static const voxgi_material mats[2] = {{{0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0}, {{0.5f, 0.5f, 0.5f}, {5, 5, 5}, 0}};
+        voxgi_linespace_image_info info;
+        voxgi_builtin_scene bs;
+        memcpy(lit, pos, sizeof pos);
+        memcpy(lit + 18, quadl, sizeof quadl);
+        scene_of_triangles(&sc, &mesh, lit, 15, NULL, 0);
+        mesh.material_ids = ids;
+        sc.materials = mats;
+        sc.material_count = 2;
+        memset(&id, 0, sizeof id);
+        id.camera.eye[1] = 3; id.camera.eye[2] = -3; id.camera.fovy_degrees = 40; id.camera.width = id.camera.height = 4;
+        id.tree.n = 4;
+        id.tree.depth = 2;
+        TH_CHECK(voxgi_linespace_render(ctx, &sc, &id, rgb4, sizeof rgb4, NULL, &info) == VOXGI_OK && info.lights == 1, "%s (lights %d)",
+                 voxgi_last_error(ctx), info.lights);
+        TH_CHECK(voxgi_builtin_scene_create(ctx, "furnace", &bs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        bs.camera.width = bs.camera.height = 4;
+        id.camera = bs.camera;
+        TH_CHECK(voxgi_linespace_render(ctx, &bs.scene, &id, rgb4, sizeof rgb4, NULL, NULL) == VOXGI_ERR_UNSUPPORTED, "the furnace's emitters accepted");
+        voxgi_builtin_scene_destroy(ctx, &bs);
+    }
     td.depth = 7;
     td.n = 10;
     TH_CHECK(voxgi_linespace_create(ctx, &sc, &td, &L) == VOXGI_ERR_INVALID_ARGUMENT && L == NULL, "10^7 leaves a side accepted");
