@@ -12923,8 +12923,8 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     else
         for (i = 0; i < 9 * f.triangle_count; i++) /* relative to the centre, as the rays will be */
             L->tv[i] = (float)((double)f.pos[3 * (size_t)f.tri[i / 3] + i % 3] - L->centre[i % 3]);
-    /* the root, holding every triangle */
-    nopen = f.triangle_count ? 1 : 0;
+    /* the root, holding every triangle with an area (one without can never be hit: leaving it out
+       keeps fast mode from shadowing with it) */
     nrefs = f.triangle_count;
     cap_refs = VOXGI__MAX(nrefs, (size_t)1);
     if (r == VOXGI_OK && (!voxgi__ls_grow(ctx, (void **)&L->node, 0, &cap_nodes, 8) || !voxgi__ls_grow(ctx, (void **)&open, 0, &cap_open, sizeof *open) ||
@@ -12938,8 +12938,14 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
         open[0].first = 0;
         open[0].count = (uint32_t)nrefs;
         memcpy(open[0].corner, L->info.origin, sizeof open[0].corner);
-        for (i = 0; i < nrefs; i++) refs[i] = (uint32_t)i;
+        for (i = nrefs = 0; i < f.triangle_count; i++) {
+            double g[3];
+            voxgi__tri_unit_normal(&f, i, g);
+            if (g[0] != 0 || g[1] != 0 || g[2] != 0) refs[nrefs++] = (uint32_t)i;
+        }
+        open[0].count = (uint32_t)nrefs;
     }
+    nopen = nrefs ? 1 : 0;
     cell = L->info.size;
     for (lev = 1; r == VOXGI_OK && lev <= depth && nopen; lev++) { /* the children of every open node, in order */
         size_t k;
