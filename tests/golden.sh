@@ -24,7 +24,7 @@ out=$tmp/sums
 # JSON with the machine-dependent values removed: timings (ms, *_ms), threads, renderer, file names
 # (the errors, rel_rmse and rms, stay).
 strip_json() {
-    sed -E -e 's/"([a-z_]*_)?ms":[-0-9.e+]+,?//g' -e 's/"(threads|renderer|output)":("[^"]*"|[0-9]+),?//g'
+    sed -E -e 's/"([a-z_]*_)?ms":[-0-9.e+]+,?//g' -e 's/"mrays_per_s":[-0-9.e+]+,?//g' -e 's/"(threads|renderer|output)":("[^"]*"|[0-9]+),?//g'
 }
 # report CSVs without the columns that hold or derive from timings.
 strip_csv() {
@@ -119,6 +119,9 @@ run ssao-half render cornell-box --method ssao --size 16 16 --rays 8 --steps 8 -
 run ssgi-half render cornell-box --method ssgi --size 16 16 --rays 8 --steps 8 --spp 2 --half-res on --blur 3 $T --json -o "$tmp/o.pfm"
 run hybrid-hidden render cornell-box --method hybrid --hidden-light on --size 16 16 --rays 8 --res 32 --spp 2 --blur 2 $T --json -o "$tmp/o.pfm"
 run reference-screen-light render cornell-box --size 16 16 --spp 4 --screen-light-only $T --json -o "$tmp/o.pfm"
+run linespace-exact render cornell-box --method linespace --backend cpu --size 16 16 --ls-n 4 --ls-depth 2 $T --json -o "$tmp/o.pfm"
+run linespace-fast render cornell-box --method linespace --backend cpu --size 16 16 --ls-mode fast --ls-n 3 --ls-depth 3 --samples 5 \
+    --supersample 1 --packets on $T --json -o "$tmp/o.pfm"
 
 # GL cone tracing: llvmpipe gives the same bits run after run (a GPU need not: mips by blending)
 run vct-gl render cornell-box --method vct --backend gl --res 24 --cones 8 --size 24 24 --spp 8 \
