@@ -2812,19 +2812,29 @@ static int voxgi__ray4_setup(const voxgi_ray_scene *rs, const double o[3], const
 }
 
 /* The shear of ray r's triangle test (Woop et al.): its largest direction component becomes z. */
-static void voxgi__ray4_shear(voxgi__ray4 *r)
+/* The shear of direction d (nonzero) for the watertight triangle test (Woop et al.): its largest
+   component becomes z (axes kx, ky, kz), sx, sy, sz the shear. The ray core and the line space share it. */
+static void voxgi__shear(const float d[3], int k[3], float s[3])
 {
-    const float *d = r->d;
     int a, kz = 0;
     for (a = 1; a < 3; a++)
         if (fabsf(d[a]) > fabsf(d[kz])) kz = a;
-    r->kz = kz;
-    r->kx = (kz + 1) % 3;
-    r->ky = (r->kx + 1) % 3;
-    if (d[kz] < 0) { int tmp = r->kx; r->kx = r->ky; r->ky = tmp; } /* keep the winding */
-    r->sx = d[r->kx] / d[kz];
-    r->sy = d[r->ky] / d[kz];
-    r->sz = 1.0f / d[kz];
+    k[2] = kz;
+    k[0] = (kz + 1) % 3;
+    k[1] = (k[0] + 1) % 3;
+    if (d[kz] < 0) { int tmp = k[0]; k[0] = k[1]; k[1] = tmp; } /* keep the winding */
+    s[0] = d[k[0]] / d[kz];
+    s[1] = d[k[1]] / d[kz];
+    s[2] = 1.0f / d[kz];
+}
+
+static void voxgi__ray4_shear(voxgi__ray4 *r)
+{
+    int k[3];
+    float sh[3];
+    voxgi__shear(r->d, k, sh);
+    r->kx = k[0]; r->ky = k[1]; r->kz = k[2];
+    r->sx = sh[0]; r->sy = sh[1]; r->sz = sh[2];
     r->sheared = 1;
 }
 
@@ -13104,7 +13114,8 @@ typedef struct voxgi__ls_counts {
    (the root's frame) at each end; 0 for a zero direction. */
 static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const float d[3], float t0, float t1, float near, voxgi__ls_ray *r)
 {
-    int a, kz = 0;
+    int a, kz = 0, k[3];
+    float sh[3];
     for (a = 0; a < 3; a++) {
         r->ro[a] = (float)((double)o[a] - L->centre[a]);
         r->rd[a] = d[a];
@@ -13117,13 +13128,9 @@ static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const f
     if (d[kz] == 0) return 0;
     r->tn0 = t0 + near / fabsf(r->d[kz]); /* the largest component: at least `near` of travel */
     r->tn1 = t1 - near / fabsf(r->d[kz]);
-    r->kz = kz;
-    r->kx = (kz + 1) % 3;
-    r->ky = (r->kx + 1) % 3;
-    if (d[kz] < 0) { int k = r->kx; r->kx = r->ky; r->ky = k; } /* keep the winding */
-    r->sx = d[r->kx] / d[kz];
-    r->sy = d[r->ky] / d[kz];
-    r->sz = 1.0f / d[kz];
+    voxgi__shear(d, k, sh);
+    r->kx = k[0]; r->ky = k[1]; r->kz = k[2];
+    r->sx = sh[0]; r->sy = sh[1]; r->sz = sh[2];
     return 1;
 }
 
