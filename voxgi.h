@@ -12628,7 +12628,7 @@ struct voxgi_linespace {
 #define VOXGI__LS_PAD 3.814697265625e-6
 
 /* The index of the unordered pair of different faces (fs, fe), fs < fe, among the 15. */
-static int voxgi__ls_face_pair(int fs, int fe)
+static VOXGI__HOT_INLINE int voxgi__ls_face_pair(int fs, int fe)
 {
     return fs * 5 - fs * (fs - 1) / 2 + (fe - fs - 1);
 }
@@ -12666,7 +12666,7 @@ static int voxgi__ls_shaft_meets(const double slo[3], const double shi[3], const
 }
 
 /* The bit of the shaft between patch ps of face fs and patch pe of face fe (fs != fe). */
-static size_t voxgi__ls_bit(int n, int fs, int ps, int fe, int pe)
+static VOXGI__HOT_INLINE size_t voxgi__ls_bit(int n, int fs, int ps, int fe, int pe)
 {
     size_t n2 = (size_t)n * (size_t)n;
     if (fs > fe) {
@@ -13137,7 +13137,7 @@ static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const f
 /* Whether the ray meets triangle v (9 floats, relative to the centre) at t in (t0, t1): the
    watertight test of the ray core (sheared edge functions in float, those within rounding of 0
    again in double), so rays through shared edges and vertices never slip through. */
-static int voxgi__ls_tri_hit(const float *v, const voxgi__ls_ray *r)
+static VOXGI__HOT_INLINE int voxgi__ls_tri_hit(const float *v, const voxgi__ls_ray *r)
 {
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float az = v[kz] - r->ro[kz], bz = v[3 + kz] - r->ro[kz], cz = v[6 + kz] - r->ro[kz];
@@ -13169,7 +13169,7 @@ typedef struct voxgi__ls_mailbox {
 } voxgi__ls_mailbox;
 
 /* Whether the ray meets a triangle of leaf `leaf` (mb: what it missed already). */
-static int voxgi__ls_leaf_hit(const voxgi_linespace *L, uint32_t leaf, const voxgi__ls_ray *r, voxgi__ls_mailbox *mb, voxgi__ls_counts *cnt)
+static VOXGI__HOT_INLINE int voxgi__ls_leaf_hit(const voxgi_linespace *L, uint32_t leaf, const voxgi__ls_ray *r, voxgi__ls_mailbox *mb, voxgi__ls_counts *cnt)
 {
     const uint32_t *t = L->tris + L->leaf[2 * (size_t)leaf], *end = t + L->leaf[2 * (size_t)leaf + 1];
     for (; t < end; t++) {
@@ -13185,7 +13185,7 @@ static int voxgi__ls_leaf_hit(const voxgi_linespace *L, uint32_t leaf, const vox
 
 /* The patch of the face of `axis` (which of its two faces the caller knows) where the ray (o, d
    in the node's frame) meets it at t. */
-static int voxgi__ls_patch_at(int n, const float o[3], const float d[3], float t, int axis)
+static VOXGI__HOT_INLINE int voxgi__ls_patch_at(int n, const float o[3], const float d[3], float t, int axis)
 {
     int u = (axis + 1) % 3, w = (axis + 2) % 3;
     float pu = o[u] + t * d[u], pw = o[w] + t * d[w];
@@ -13195,7 +13195,7 @@ static int voxgi__ls_patch_at(int n, const float o[3], const float d[3], float t
 
 /* The bit of line space `space` for the ray (o, d in the node's frame) entering at ta by a face
    of axis ea and leaving at tb by one of axis xa. */
-static int voxgi__ls_crossing_bit(const voxgi_linespace *L, uint32_t space, const float o[3], const float d[3], float ta, float tb, int ea, int xa,
+static VOXGI__HOT_INLINE int voxgi__ls_crossing_bit(const voxgi_linespace *L, uint32_t space, const float o[3], const float d[3], float ta, float tb, int ea, int xa,
                                   voxgi__ls_counts *cnt)
 {
     int n = L->info.n;
@@ -13207,7 +13207,7 @@ static int voxgi__ls_crossing_bit(const voxgi_linespace *L, uint32_t space, cons
 /* Where the ray (o, d, in a frame) is inside the box [lo, hi]^3 of that frame, closed: 0 if
    nowhere, else its t range and the axes of the faces it enters (ea) and leaves (xa) by; an axis
    the ray runs along (d 0) is never one of them. */
-static int voxgi__ls_slab(const float o[3], const float d[3], const float lo[3], const float hi[3], float *ta, float *tb, int *ea, int *xa)
+static VOXGI__HOT_INLINE int voxgi__ls_slab(const float o[3], const float d[3], const float lo[3], const float hi[3], float *ta, float *tb, int *ea, int *xa)
 {
     int a;
     *ta = -INFINITY;
@@ -13240,7 +13240,7 @@ typedef struct voxgi__ls_level {
 
 /* Level s walks `node` (its frame o, d) from ta (entered by a face of axis ea, or -1) to tb (left
    by axis xa, or -1). */
-static void voxgi__ls_level_start(voxgi__ls_level *s, int n, uint32_t node, const float o[3], const float d[3], const float inv[3], float ta, float tb,
+static VOXGI__HOT_INLINE void voxgi__ls_level_start(voxgi__ls_level *s, int n, uint32_t node, const float o[3], const float d[3], const float inv[3], float ta, float tb,
                                   int ea, int xa)
 {
     int a;
