@@ -62,7 +62,8 @@
       12. line space      the N-tree of line spaces: shafts between the patches of a node's faces;
                           shadow rays through it (exact, fast; per ray, packets); area lights'
                           soft shadows and their images
-      13. images          voxgi's own G-buffer; cone-traced, one-bounce and screen-space images
+      13. planner and images  what a scene and a request need (voxgi_plan); voxgi's own G-buffer;
+                          cone-traced, one-bounce and screen-space images
       14. reference renderer  the path tracer every image is measured against
       15. built-in scenes and files
 
@@ -1237,7 +1238,8 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
    parallelogram as one light; at most 64) its unshadowed irradiance exactly (Lambert's polygon
    formula) times the share voxgi_linespace_light's weighted output gives: radiance = emission
    (front faces, unless hidden) + albedo / pi x irradiance. An emitter never lights itself. Other
-   lights are left out; a scene without an area light is refused (VOXGI_ERR_UNSUPPORTED). */
+   lights are left out. A scene without an area light gets no line space (voxgi_plan): its image is
+   the emission alone, its visible share 0. */
 typedef struct voxgi_linespace_image_desc {
     voxgi_camera camera;
     const voxgi_linespace *ls;    /* the scene's line space, or NULL: built from `tree` */
@@ -1262,7 +1264,72 @@ typedef struct voxgi_linespace_image_info {
 VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_image_desc *desc, float *rgb, size_t rgb_bytes,
                                               float *visible, voxgi_linespace_image_info *info);
 
-/* ===================================================================== 13. images */
+/* ===================================================================== 13. planner and images */
+
+/* ----- the planner
+   voxgi_plan looks at a scene and at what is asked of it (a method, a view, an error) and decides
+   which channels, structures and passes can contribute: it names each one it keeps or leaves out
+   and why, and what the kept ones cost in memory, before anything is allocated. The images below
+   plan the same way: voxgi_vct_render, voxgi_tsm_render, voxgi_rsm_render, voxgi_sh_render,
+   voxgi_ssgi_render and voxgi_linespace_render leave out what their plan leaves out and log each
+   such item (VOXGI_LOG_INFO, "plan: <name>: left out - <why>"). */
+typedef enum voxgi_plan_method {
+    VOXGI_PLAN_VCT = 0,           /* voxgi_vct_render */
+    VOXGI_PLAN_TSM,               /* voxgi_tsm_render */
+    VOXGI_PLAN_RSM,               /* voxgi_rsm_render */
+    VOXGI_PLAN_SH,                /* voxgi_sh_render */
+    VOXGI_PLAN_AO,                /* voxgi_ao_render */
+    VOXGI_PLAN_SSGI,              /* voxgi_ssgi_render */
+    VOXGI_PLAN_LINESPACE,         /* voxgi_linespace_render */
+    VOXGI_PLAN_REFERENCE          /* voxgi_reference_render */
+} voxgi_plan_method;
+typedef struct voxgi_plan_request {
+    voxgi_plan_method method;
+    const voxgi_camera *camera;   /* the view, or NULL: whether it sees an emitter stays open */
+    double error;                 /* VCT, > 0: the relative RMSE wanted: grid, cones and stride (with anisotropic
+                                     mips) from the measurements of docs/planner.md (unless resolution is given) */
+    int resolution;               /* voxels along the scene's longest side; 0: from error, else the method's
+                                     default. AO and SSGI: > 0 through the voxels, 0 through the depth buffer */
+    int bounces;                  /* VCT: as voxgi_vct_desc.bounces */
+    int dynamic;                  /* 1: the geometry moves every frame; 0: a static scene, voxelized once */
+    int one_sided;                /* VCT: as voxgi_vct_desc.one_sided */
+    voxgi_mip_filter filter;      /* VCT: as voxgi_vct_desc.filter */
+    int everything;               /* 1: keep every item the method has (to measure what the plan saves) */
+    uint64_t memory_budget;       /* 0: the context's (voxgi_desc.memory_budget) */
+} voxgi_plan_request;
+typedef enum voxgi_plan_kind { VOXGI_PLAN_CHANNEL = 0, VOXGI_PLAN_STRUCTURE, VOXGI_PLAN_PASS } voxgi_plan_kind;
+typedef struct voxgi_plan_item {
+    const char *name;             /* "emission", "transmittance maps", "cones", ... */
+    voxgi_plan_kind kind;
+    int kept;
+    const char *why;              /* why it is kept or left out */
+    uint64_t bytes;               /* its memory when kept, with the method's default sizes; 0: none to speak of */
+    int estimated;                /* 1: bytes from the estimated set voxels (below), 0: the formula it is allocated by */
+} voxgi_plan_item;
+#define VOXGI_PLAN_MAX_ITEMS 16
+typedef struct voxgi_plan_info {
+    uint64_t triangles, emissive_triangles, translucent_triangles, reflective_triangles; /* reflective: albedo > 0 */
+    int point_lights, spot_lights, directional_lights, rect_lights;
+    int area_lights;              /* rect lights and the emissive triangles' parallelograms (the line space's); -1: over 64 */
+    int emitters_in_view;         /* 1: an emissive front face may be in view, 0: none is, -1: no camera */
+    double surface_area;
+    int resolution;               /* the method's grid along the longest side (0: it has none) */
+    voxgi_grid grid;              /* that grid (voxgi_fit_grid, a voxel of padding) */
+    uint64_t voxels;              /* estimated set voxels: the sum over triangles of area x (|nx| + |ny| + |nz|) /
+                                     voxel size^2, at most the grid's */
+    double occupancy;             /* voxels / the grid's voxels */
+    int cones, cone_stride;       /* VCT: diffuse cones per gather, cones at every s-th pixel */
+    int octree;                   /* VCT: 1 the radiance in an octree: the dense volume does not fit the budget */
+    double expected_error;        /* VCT with error: what the chosen settings measured on the Cornell box */
+    int error_reachable;          /* 0: no measured setting reaches the error asked for (the closest is chosen) */
+    int item_count;
+    voxgi_plan_item items[VOXGI_PLAN_MAX_ITEMS];
+    uint64_t bytes;               /* the kept items' */
+} voxgi_plan_info;
+VOXGI_API voxgi_result voxgi_plan(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_plan_request *request, voxgi_plan_info *plan);
+/* The plan's item of that name, or NULL. */
+VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, const char *name);
+
 
 /* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
    pixel's centre meets first: its position (world units), its normal facing the camera, its
@@ -7481,14 +7548,44 @@ static voxgi_result voxgi__volume_base(voxgi_context *ctx, const voxgi_voxels *v
     return r;
 }
 
+/* A volume's level sizes down to one voxel or `levels` levels (0: all): their count, vol->dims,
+   vol->first and vol->voxels set. */
+static int voxgi__volume_levels(voxgi_volume *vol, const voxgi_grid *g, int levels)
+{
+    int a, k, count = 0;
+    vol->voxels = 0;
+    for (k = 0; k < VOXGI__MAX_LEVELS; k++) { /* the chain down to one voxel, or as asked */
+        for (a = 0; a < 3; a++) vol->dims[k][a] = k ? (vol->dims[k - 1][a] + 1) / 2 : g->res[a];
+        vol->first[k] = vol->voxels;
+        vol->voxels += (size_t)vol->dims[k][0] * (size_t)vol->dims[k][1] * (size_t)vol->dims[k][2];
+        count = k + 1;
+        if ((levels && k + 1 == levels) || (vol->dims[k][0] == 1 && vol->dims[k][1] == 1 && vol->dims[k][2] == 1)) break;
+    }
+    return count;
+}
+
+/* The bytes of a volume's values (vol's levels, filter and attributes set) on the CPU (level 0
+   once, the mips per direction) or on GL (a full texture per direction): what voxgi_volume_info
+   reports, before a two-sided radiance volume's regions. */
+static uint64_t voxgi__volume_bytes(const voxgi_volume *vol, int gl)
+{
+    size_t base_voxels = (size_t)vol->dims[0][0] * (size_t)vol->dims[0][1] * (size_t)vol->dims[0][2];
+    uint64_t bytes = 0;
+    int a;
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++)
+        if (vol->info.attributes & (1u << a)) {
+            uint64_t dirs = (uint64_t)voxgi__slot_dirs(vol, a);
+            bytes += ((uint64_t)vol->voxels * (gl ? dirs : 1u) + (gl ? 0u : (dirs - 1) * (vol->voxels - base_voxels))) * (a == 3 ? 4u : 16u);
+        }
+    return bytes;
+}
+
 /* The volume's levels and sizes, for `attributes` (already checked). */
 static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, const voxgi_volume_desc *desc, unsigned attributes,
                                       voxgi_volume **out)
 {
     voxgi_volume *vol;
-    uint64_t bytes = 0;
-    size_t base_voxels;
-    int a, k;
+    uint64_t bytes;
     *out = NULL;
     if ((unsigned)desc->filter > VOXGI_MIPS_ANISOTROPIC || desc->levels < 0 || desc->levels > VOXGI__MAX_LEVELS)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown mip filter %d or levels %d", (int)desc->filter, desc->levels);
@@ -7499,20 +7596,8 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
     vol->info.backend = ctx->backend;
     vol->info.attributes = attributes;
     vol->info.filter = desc->filter;
-    for (k = 0; k < VOXGI__MAX_LEVELS; k++) { /* the chain down to one voxel, or as asked */
-        for (a = 0; a < 3; a++) vol->dims[k][a] = k ? (vol->dims[k - 1][a] + 1) / 2 : g->res[a];
-        vol->first[k] = vol->voxels;
-        vol->voxels += (size_t)vol->dims[k][0] * (size_t)vol->dims[k][1] * (size_t)vol->dims[k][2];
-        vol->info.levels = k + 1;
-        if ((desc->levels && k + 1 == desc->levels) || (vol->dims[k][0] == 1 && vol->dims[k][1] == 1 && vol->dims[k][2] == 1)) break;
-    }
-    base_voxels = (size_t)g->res[0] * (size_t)g->res[1] * (size_t)g->res[2];
-    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* CPU: level 0 once; GL: a full texture per direction */
-        if (attributes & (1u << a)) {
-            uint64_t dirs = (uint64_t)voxgi__slot_dirs(vol, a);
-            bytes += ((uint64_t)vol->voxels * (ctx->backend == VOXGI_BACKEND_GL ? (uint64_t)dirs : 1u) +
-                      (ctx->backend == VOXGI_BACKEND_GL ? 0u : (dirs - 1) * (vol->voxels - base_voxels))) * (a == 3 ? 4u : 16u);
-        }
+    vol->info.levels = voxgi__volume_levels(vol, g, desc->levels);
+    bytes = voxgi__volume_bytes(vol, ctx->backend == VOXGI_BACKEND_GL);
     vol->info.bytes = (size_t)bytes;
     if (ctx->desc.memory_budget && bytes > (uint64_t)ctx->desc.memory_budget) {
         voxgi__free(ctx, vol);
@@ -13770,7 +13855,7 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
     return r;
 }
 
-/* ----- 12.3 images: soft shadows of the area lights */
+/* ----- 12.3 area lights: rect lights, and emissive triangles as parallelograms */
 
 /* An area light for the images: a rect light, or emissive triangles (two sharing an edge as a
    parallelogram when they make one, with the same emission), with its radiance. */
@@ -13870,167 +13955,285 @@ static int voxgi__ls_area_lights(voxgi_context *ctx, const voxgi_scene *scene, c
     return count;
 }
 
-typedef struct voxgi__ls_shade {
-    const voxgi__flat *f;
-    const voxgi__ls_area *A;
-    int lights, hide_emitters;
-    const float *pos, *nrm, *weighted;  /* weighted: per light, per pixel */
-    const uint32_t *tri;
-    size_t pixels;
-    float *rgb;
-} voxgi__ls_shade;
+/* ===================================================================== 13. planner and images */
 
-/* Pixels [first, end): emission (unless hidden) + albedo / pi x the sum over the lights of their
-   radiance x unshadowed irradiance (Lambert's polygon formula) x the rays' weighted visible share. */
-static void voxgi__ls_shade_run(void *user, size_t first, size_t end)
+/* ----- the planner */
+
+/* The cone tracer's Pareto front on the Cornell box (256 x 256 against a 1024-spp reference,
+   anisotropic mips, step 0.5; docs/planner.md): the cheapest settings reaching each error. */
+static const struct { double error; int resolution, cones, stride; } voxgi__plan_vct_front[] = {
+    {0.0805, 64, 32, 6}, {0.0776, 96, 24, 6}, {0.0755, 96, 32, 6}};
+
+/* An octree of two-sided radiance per set voxel (measured: 8.0 MB for the Cornell box's 56,562
+   voxels at 96^3, nodes and values). */
+#define VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL 148
+
+static double voxgi__plan_dot(const double a[3], const double b[3])
 {
-    const voxgi__ls_shade *S = (const voxgi__ls_shade *)user;
-    size_t i;
-    for (i = first; i < end; i++) {
-        uint32_t t = S->tri[i];
-        const voxgi_material *m;
-        double p[3], n[3], e[3] = {0, 0, 0}, g[3];
-        int l, a;
-        S->rgb[3 * i] = S->rgb[3 * i + 1] = S->rgb[3 * i + 2] = 0;
-        if (t == UINT32_MAX) continue;
-        m = voxgi__tri_material(S->f, t);
-        for (a = 0; a < 3; a++) { p[a] = S->pos[3 * i + (size_t)a]; n[a] = S->nrm[3 * i + (size_t)a]; }
-        for (l = 0; l < S->lights; l++) {
-            const voxgi__ls_area *A = &S->A[l];
-            double q[4][3], fn[3], irr;
-            float share = S->weighted[(size_t)l * S->pixels + i];
-            if (!(share > 0) || A->own[0] == t || A->own[1] == t) continue;
-            for (a = 0; a < 3; a++) {
-                q[0][a] = A->d.corner[a];
-                q[1][a] = A->d.corner[a] + A->d.edge_u[a];
-                q[2][a] = A->d.corner[a] + (A->d.triangle ? A->d.edge_v[a] : A->d.edge_u[a] + A->d.edge_v[a]);
-                q[3][a] = A->d.corner[a] + A->d.edge_v[a];
-                fn[a] = A->d.edge_u[(a + 1) % 3] * A->d.edge_v[(a + 2) % 3] - A->d.edge_u[(a + 2) % 3] * A->d.edge_v[(a + 1) % 3];
-            }
-            irr = voxgi__polygon_irradiance((const double(*)[3])q, A->d.triangle ? 3 : 4, fn, p, n) * share;
-            for (a = 0; a < 3; a++) e[a] += A->radiance[a] * irr;
-        }
-        voxgi__tri_unit_normal(S->f, t, g);
-        for (a = 0; a < 3; a++)
-            S->rgb[3 * i + (size_t)a] = (float)(m->albedo[a] / VOXGI__PI * e[a] + (!S->hide_emitters && g[0] * n[0] + g[1] * n[1] + g[2] * n[2] > 0 ? m->emission[a] : 0));
-    }
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_image_desc *desc, float *rgb, size_t rgb_bytes,
-                                              float *visible, voxgi_linespace_image_info *info)
+static void voxgi__plan_add(voxgi_plan_info *P, const char *name, voxgi_plan_kind kind, int kept, const char *why, uint64_t bytes, int estimated)
 {
-    voxgi__ls_area A[VOXGI__LS_AREA_LIGHTS];
-    voxgi__ls_shade S;
+    voxgi_plan_item *it;
+    VOXGI_ASSERT(P->item_count < VOXGI_PLAN_MAX_ITEMS);
+    it = &P->items[P->item_count++];
+    it->name = name;
+    it->kind = kind;
+    it->kept = kept;
+    it->why = why;
+    it->bytes = kept ? bytes : 0;
+    it->estimated = estimated;
+    P->bytes += it->bytes;
+}
+
+/* Whether a triangle (its front face toward the eye) may lie in the camera's view: not when all
+   three corners are behind the eye or beyond one side of the frustum (conservative). */
+static int voxgi__plan_in_view(const double v[9], const double eye[3], const double fw[3], const double rt[3], const double up[3], double tan_y,
+                               double tan_x)
+{
+    int k, out[5] = {0, 0, 0, 0, 0};
+    for (k = 0; k < 3; k++) {
+        double p[3], x, y, z;
+        int a;
+        for (a = 0; a < 3; a++) p[a] = v[3 * k + a] - eye[a];
+        x = voxgi__plan_dot(p, rt);
+        y = voxgi__plan_dot(p, up);
+        z = voxgi__plan_dot(p, fw);
+        out[0] += z <= 0;
+        out[1] += x > z * tan_x;
+        out[2] += -x > z * tan_x;
+        out[3] += y > z * tan_y;
+        out[4] += -y > z * tan_y;
+    }
+    for (k = 0; k < 5; k++)
+        if (out[k] == 3) return 0;
+    return 1;
+}
+
+/* What the scene holds: triangles by material, lights by type, its surface and the estimated set
+   voxels of P->grid (if it has voxels); *crossing: the sum of area x (|nx| + |ny| + |nz|), the
+   number of cells of edge 1 a surface crosses; *extent: the bounds' longest side; *absorptions:
+   the distinct 1 - transparency of translucent triangles (a transmittance map's layers). */
+static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *cam, voxgi_plan_info *P, double *crossing,
+                                      double *extent, int *absorptions)
+{
+    float sigma[VOXGI__TSM_MAX_MATERIALS];
+    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
     voxgi__flat f;
-    voxgi_linespace *built = NULL;
-    const voxgi_linespace *ls;
-    voxgi_linespace_image_info inf;
-    float *pos = NULL, *nrm = NULL, *weighted = NULL, *seen = NULL, *fine = NULL, *fine_seen = NULL;
-    uint32_t *tri = NULL;
-    size_t pixels, points, i;
-    double t0 = voxgi__now_ms(), t1;
-    voxgi_camera cam;
-    int lights, l, k;
+    voxgi__ls_area *A;
+    double eye[3], fw[3], rt[3], up[3], tan_y = 0, tan_x = 0;
+    size_t t, i;
     voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (info) memset(info, 0, sizeof *info);
-    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    memset(&inf, 0, sizeof inf);
-    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
-    if (desc->camera.width < 1 || desc->camera.height < 1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d", desc->camera.width, desc->camera.height);
-    if (rgb_bytes < pixels * 12)
-        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
-    k = desc->supersample > 1 ? desc->supersample : 1;
-    if (k > 16 || desc->camera.width > 65536 / k || desc->camera.height > 65536 / k)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "supersample %d (1..16, the image at most 65536 a side)", desc->supersample);
-    cam = desc->camera;
-    cam.width *= k;
-    cam.height *= k;
-    points = pixels * (size_t)k * (size_t)k;
+    *crossing = 0;
+    *absorptions = 0;
     if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
-    lights = voxgi__ls_area_lights(ctx, scene, &f, A);
-    if (lights == -2) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
-    else if (lights < 0) r = voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "more than %d area lights (rect lights, emissive triangles paired into parallelograms)", VOXGI__LS_AREA_LIGHTS);
-    else if (lights == 0) r = voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "the scene has no area light (a rect light or emissive triangles): line-space shadows are soft shadows of area lights");
-    ls = desc->ls;
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK && !ls && (r = voxgi_linespace_create(ctx, scene, &desc->tree, &built)) == VOXGI_OK) ls = built;
-    inf.ms_build = voxgi__now_ms() - t1;
-    if (r == VOXGI_OK) {
-        pos = (float *)voxgi__alloc_array(ctx, points, 12, 0);
-        nrm = (float *)voxgi__alloc_array(ctx, points, 12, 0);
-        tri = (uint32_t *)voxgi__alloc_array(ctx, points, 4, 0);
-        weighted = (float *)voxgi__alloc_array(ctx, points * (size_t)lights, 4, 0);
-        seen = (float *)voxgi__alloc_array(ctx, points, 4, 0);
-        fine = k > 1 ? (float *)voxgi__alloc_array(ctx, points, 12, 0) : rgb;
-        fine_seen = (float *)voxgi__alloc_array(ctx, points, 4, 1);
-        if (!pos || !nrm || !tri || !weighted || !seen || !fine || !fine_seen)
-            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-point image", (unsigned long)points);
-    }
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) r = voxgi_gbuffer_render(ctx, scene, &cam, pos, nrm, tri);
-    inf.ms_gbuffer = voxgi__now_ms() - t1;
-    t1 = voxgi__now_ms();
-    for (l = 0; r == VOXGI_OK && l < lights; l++) {
-        voxgi_linespace_stats st;
-        A[l].d.mode = desc->mode;
-        A[l].d.samples = desc->samples;
-        A[l].d.packets = desc->packets;
-        A[l].d.seed = desc->seed + (uint32_t)l * 0x9E3779B9u;
-        A[l].d.exact_ends = desc->exact_ends;
-        if ((r = voxgi_linespace_light(ctx, ls, &A[l].d, points, pos, nrm, seen, weighted + (size_t)l * points, &st)) != VOXGI_OK) break;
-        for (i = 0; i < points; i++) fine_seen[i] += seen[i] / (float)lights;
-        inf.rays.rays += st.rays;
-        inf.rays.nodes += st.nodes;
-        inf.rays.bits += st.bits;
-        inf.rays.triangle_tests += st.triangle_tests;
-        inf.rays.samples = st.samples;
-    }
-    inf.ms_shadows = inf.rays.ms = voxgi__now_ms() - t1;
-    if (r == VOXGI_OK) {
-        S.f = &f;
-        S.A = A;
-        S.lights = lights;
-        S.hide_emitters = desc->hide_emitters;
-        S.pos = pos;
-        S.nrm = nrm;
-        S.tri = tri;
-        S.weighted = weighted;
-        S.pixels = points;
-        S.rgb = fine;
-        voxgi__parallel(ctx, points, 256, voxgi__ls_shade_run, &S);
-        for (i = 0; i < pixels; i++) { /* each pixel the mean of its k x k points */
-            size_t x = i % (size_t)desc->camera.width, y = i / (size_t)desc->camera.width, sx, sy;
-            double sum[4] = {0, 0, 0, 0};
-            for (sy = 0; sy < (size_t)k; sy++)
-                for (sx = 0; sx < (size_t)k; sx++) {
-                    size_t q = (y * (size_t)k + sy) * (size_t)cam.width + x * (size_t)k + sx;
-                    sum[0] += fine[3 * q];
-                    sum[1] += fine[3 * q + 1];
-                    sum[2] += fine[3 * q + 2];
-                    sum[3] += fine_seen[q];
-                }
-            if (k > 1) for (l = 0; l < 3; l++) rgb[3 * i + (size_t)l] = (float)(sum[l] / (k * k));
-            if (visible) visible[i] = (float)(sum[3] / (k * k));
+    P->emitters_in_view = cam ? 0 : -1;
+    if (cam && (r = voxgi__camera_frame(ctx, cam, eye, fw, rt, up, &tan_y)) != VOXGI_OK) { voxgi__flat_free(ctx, &f); return r; }
+    if (cam) tan_x = tan_y * cam->width / cam->height;
+    P->triangles = f.triangle_count;
+    for (t = 0; t < f.triangle_count; t++) {
+        const voxgi_material *m = voxgi__tri_material(&f, t);
+        double v[9], e1[3], e2[3], n[3], area2;
+        int a;
+        for (a = 0; a < 9; a++) v[a] = f.pos[3 * (size_t)f.tri[3 * t + (size_t)(a / 3)] + (size_t)(a % 3)];
+        for (a = 0; a < 3; a++) { e1[a] = v[3 + a] - v[a]; e2[a] = v[6 + a] - v[a]; }
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        for (a = 0; a < 9; a++) {
+            lo[a % 3] = VOXGI__MIN(lo[a % 3], v[a]);
+            hi[a % 3] = VOXGI__MAX(hi[a % 3], v[a]);
         }
-        voxgi_linespace_query(ls, &inf.tree);
-        inf.lights = lights;
-        inf.ms = voxgi__now_ms() - t0;
-        if (info) *info = inf;
+        area2 = sqrt(voxgi__plan_dot(n, n));
+        P->surface_area += 0.5 * area2;
+        P->reflective_triangles += m->albedo[0] > 0 || m->albedo[1] > 0 || m->albedo[2] > 0;
+        P->translucent_triangles += m->transparency > 0;
+        if (m->transparency > 0 && m->transparency < 1 && *absorptions < VOXGI__TSM_MAX_MATERIALS) {
+            for (a = 0; a < *absorptions && sigma[a] != 1 - m->transparency; a++) continue;
+            if (a == *absorptions) sigma[(*absorptions)++] = 1 - m->transparency;
+        }
+        if ((m->emission[0] > 0 || m->emission[1] > 0 || m->emission[2] > 0) && area2 > 0) {
+            P->emissive_triangles++;
+            if (cam && P->emitters_in_view == 0) {
+                double to[3];
+                for (a = 0; a < 3; a++) to[a] = eye[a] - v[a];
+                P->emitters_in_view = voxgi__plan_dot(n, to) > 0 && voxgi__plan_in_view(v, eye, fw, rt, up, tan_y, tan_x);
+            }
+        }
+        *crossing += 0.5 * (fabs(n[0]) + fabs(n[1]) + fabs(n[2])); /* a plane of area A crosses about A (|nx| + |ny| + |nz|) unit cells */
     }
-    voxgi__free(ctx, pos);
-    voxgi__free(ctx, nrm);
-    voxgi__free(ctx, tri);
-    voxgi__free(ctx, weighted);
-    voxgi__free(ctx, seen);
-    voxgi__free(ctx, fine_seen);
-    if (fine != rgb) voxgi__free(ctx, fine);
-    voxgi_linespace_destroy(ctx, built);
+    *extent = 0;
+    for (i = 0; i < 3 && f.triangle_count; i++) *extent = VOXGI__MAX(*extent, hi[i] - lo[i]);
+    for (i = 0; i < scene->light_count; i++) {
+        voxgi_light_type ty = scene->lights[i].type;
+        P->point_lights += ty == VOXGI_LIGHT_POINT;
+        P->spot_lights += ty == VOXGI_LIGHT_SPOT;
+        P->directional_lights += ty == VOXGI_LIGHT_DIRECTIONAL;
+        P->rect_lights += ty == VOXGI_LIGHT_RECT;
+    }
+    A = (voxgi__ls_area *)voxgi__alloc_array(ctx, VOXGI__LS_AREA_LIGHTS, sizeof *A, 0);
+    if (!A) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the planner");
+    else if ((P->area_lights = voxgi__ls_area_lights(ctx, scene, &f, A)) == -2) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the planner");
+    if (P->grid.voxel_size > 0) {
+        double all = (double)voxgi_grid_voxel_count(&P->grid);
+        P->voxels = (uint64_t)VOXGI__MIN(all, ceil(*crossing / (P->grid.voxel_size * P->grid.voxel_size)));
+        P->occupancy = (double)P->voxels / all;
+    }
+    voxgi__free(ctx, A);
     voxgi__flat_free(ctx, &f);
     return r;
 }
 
-/* ===================================================================== 13. images */
+/* A line space's bytes with the defaults (n 4, depth 3), by voxgi_linespace_create's formula with
+   each level's split nodes estimated as the cells its surface crosses. */
+static uint64_t voxgi__plan_linespace_bytes(uint64_t triangles, double crossing, double extent)
+{
+    const int n = 4, depth = 3;
+    double cells = 1, split = 0, nodes = 1, leaves = 0, refs;
+    int l;
+    if (!triangles || !(extent > 0)) return 0;
+    for (l = 0; l <= depth; l++) { /* level l: n^l cells a side */
+        double edge = extent / cells, occupied = VOXGI__MIN(cells * cells * cells, VOXGI__MAX(1.0, ceil(crossing / (edge * edge))));
+        if (l < depth) { split += occupied; nodes += occupied * n * n * n; }
+        else leaves = occupied;
+        cells *= n;
+    }
+    refs = VOXGI__MAX((double)triangles, leaves) * 1.5;
+    return (uint64_t)(8 * nodes + (double)((15 * n * n * n * n + 31) / 32) * 4 * split + 4 * refs + 8 * leaves + 36 * (double)triangles);
+}
+
+VOXGI_API voxgi_result voxgi_plan(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_plan_request *request, voxgi_plan_info *plan)
+{
+    voxgi_plan_info P;
+    const voxgi_plan_request *q = request;
+    int all, lit, reflective, seen, m, absorptions;
+    double crossing, extent;
+    uint64_t budget;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !request || !plan) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, request or plan is NULL");
+    if ((unsigned)q->method > VOXGI_PLAN_REFERENCE) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown method %d", (int)q->method);
+    if (!(q->error >= 0 && q->error < 1e30) || q->resolution < 0 || q->resolution > 4096 || q->bounces < -1 || q->bounces > 64)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "error %g (>= 0), resolution %d (0..4096), bounces %d (-1..64)", q->error, q->resolution, q->bounces);
+    memset(&P, 0, sizeof P);
+    m = (int)q->method;
+    all = q->everything;
+    P.error_reachable = 1;
+    if (m == VOXGI_PLAN_VCT) { /* the grid and cones: asked for, from the error, or the library's zero values */
+        size_t k, n = sizeof voxgi__plan_vct_front / sizeof voxgi__plan_vct_front[0];
+        P.resolution = 128;
+        P.cones = 16;
+        P.cone_stride = 1;
+        if (q->error > 0) {
+            for (k = 0; k + 1 < n && voxgi__plan_vct_front[k].error > q->error; k++) continue;
+            P.resolution = voxgi__plan_vct_front[k].resolution;
+            P.cones = voxgi__plan_vct_front[k].cones;
+            P.cone_stride = voxgi__plan_vct_front[k].stride;
+            P.expected_error = voxgi__plan_vct_front[k].error;
+            P.error_reachable = P.expected_error <= q->error;
+        }
+    } else if (m == VOXGI_PLAN_RSM || m == VOXGI_PLAN_SH)
+        P.resolution = 64;
+    if (q->resolution && (P.resolution || m == VOXGI_PLAN_AO || m == VOXGI_PLAN_SSGI)) P.resolution = q->resolution;
+    if (P.resolution) {
+        voxgi_fit_desc fit;
+        memset(&fit, 0, sizeof fit);
+        fit.res = P.resolution;
+        fit.padding = 1;
+        if ((r = voxgi_fit_grid(ctx, scene, &fit, &P.grid)) != VOXGI_OK) return r;
+    }
+    if ((r = voxgi__plan_scene(ctx, scene, q->camera, &P, &crossing, &extent, &absorptions)) != VOXGI_OK) return r;
+    budget = q->memory_budget ? q->memory_budget : (uint64_t)ctx->desc.memory_budget;
+    lit = all || scene->light_count || P.emissive_triangles;
+    reflective = all || P.reflective_triangles;
+    seen = all || P.emitters_in_view != 0;
+    if (m == VOXGI_PLAN_VCT) {
+        int gi = lit && reflective;
+        uint64_t grid_bytes = voxgi_grid_voxel_count(&P.grid) / 8 + 4, dense, octree;
+        voxgi_volume vol;
+        const char *no_gi = !lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
+        memset(&vol, 0, sizeof vol);
+        vol.info.filter = q->error > 0 ? VOXGI_MIPS_ANISOTROPIC : q->filter; /* the measured front's */
+        vol.info.attributes = VOXGI_ATTRIBUTE_RADIANCE | (q->one_sided ? 0u : VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE);
+        voxgi__volume_levels(&vol, &P.grid, 0);
+        dense = voxgi__volume_bytes(&vol, ctx->backend == VOXGI_BACKEND_GL) + (q->one_sided ? 0u : (uint64_t)vol.voxels * 4u);
+        octree = P.voxels * VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL;
+        P.octree = budget && dense > budget && octree <= budget;
+        voxgi__plan_add(&P, "albedo", VOXGI_PLAN_CHANNEL, gi, gi ? "what the voxels reflect" : no_gi, P.voxels * 28, 1);
+        voxgi__plan_add(&P, "normal", VOXGI_PLAN_CHANNEL, gi, gi ? "the voxels' light and mips face it" : no_gi, P.voxels * 24 + grid_bytes, 1);
+        voxgi__plan_add(&P, "emission", VOXGI_PLAN_CHANNEL, all, all ? "everything asked for" : P.emissive_triangles ? "emitters light the voxels as area lights and the pixels directly" : "no emissive material", P.voxels * 28, 1);
+        voxgi__plan_add(&P, "opacity", VOXGI_PLAN_CHANNEL, all, all ? "everything asked for" : P.translucent_triangles ? "the cone tracer's voxels are opaque" : "no translucent material", P.voxels * 12, 1);
+        voxgi__plan_add(&P, "voxels", VOXGI_PLAN_STRUCTURE, gi, gi ? "conservative, the scene's surface" : no_gi, grid_bytes, 0);
+        voxgi__plan_add(&P, "voxelization", VOXGI_PLAN_PASS, gi, !gi ? no_gi : q->dynamic ? "the geometry moves: every frame" : "a static scene: once (a change of lights re-injects only)", 0, 0);
+        voxgi__plan_add(&P, "light injection", VOXGI_PLAN_PASS, gi, gi ? "the direct light into the voxels" : no_gi, 0, 0);
+        voxgi__plan_add(&P, "bounces", VOXGI_PLAN_PASS, gi && (all || q->bounces > 1 || q->bounces == -1), !gi ? no_gi : (all || q->bounces > 1 || q->bounces == -1) ? "light among the voxels before the cones" : "one bounce: the cones at the pixels", 0, 0);
+        voxgi__plan_add(&P, "radiance volume", VOXGI_PLAN_STRUCTURE, gi && !P.octree, !gi ? no_gi : P.octree ? "over the memory budget: the octree" : "within the budget", dense, 0);
+        voxgi__plan_add(&P, "radiance octree", VOXGI_PLAN_STRUCTURE, gi && P.octree, !gi ? no_gi : P.octree ? "the dense volume is over the memory budget" : "the dense volume fits the budget (and its anisotropic mips are better)", octree, 1);
+        voxgi__plan_add(&P, "cones", VOXGI_PLAN_PASS, gi, gi ? "the indirect light at the pixels" : no_gi, 0, 0);
+        voxgi__plan_add(&P, "direct light", VOXGI_PLAN_PASS, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
+    } else if (m == VOXGI_PLAN_TSM) {
+        int maps = P.directional_lights + P.spot_lights, layers = maps ? absorptions : 0;
+        uint64_t texels = 512u * 512u; /* the default size, 64 slices: 2 words a texel per absorption */
+        voxgi__plan_add(&P, "shadow maps", VOXGI_PLAN_STRUCTURE, maps > 0, maps ? "the directional and spot lights' opaque depth" : "no directional or spot light",
+                        (uint64_t)maps * texels * 4u, 0);
+        voxgi__plan_add(&P, "transmittance layers", VOXGI_PLAN_STRUCTURE, all || layers > 0, !maps ? "no directional or spot light" : layers ? "light through translucent surfaces, a slicemap per absorption" : "no translucent material",
+                        (uint64_t)maps * (uint64_t)layers * texels * 2u * 4u, 0);
+        voxgi__plan_add(&P, "direct light", VOXGI_PLAN_PASS, lit, lit ? "shadow rays to the other lights and emitters" : "no light and no emitter", 0, 0);
+    } else if (m == VOXGI_PLAN_RSM || m == VOXGI_PLAN_SH) {
+        int gi = lit && reflective, areas = P.rect_lights + (P.emissive_triangles > 0);
+        const char *no_gi = !lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
+        uint64_t gb = voxgi_grid_voxel_count(&P.grid) / 8 + 4;
+        if (m == VOXGI_PLAN_RSM)
+            voxgi__plan_add(&P, "reflective shadow maps", VOXGI_PLAN_STRUCTURE, gi, gi ? "the lit surfaces' points" : no_gi,
+                            (uint64_t)(P.directional_lights + P.spot_lights) * (256u * 256u * 36u + 100u * 12u) + (uint64_t)areas * (4u * 256u * 256u * 36u + 200u * 12u), 0);
+        else
+            voxgi__plan_add(&P, "SH volume", VOXGI_PLAN_STRUCTURE, gi, gi ? "the direct light's spherical harmonics" : no_gi, voxgi_grid_voxel_count(&P.grid) * 64u * 8u / 7u, 1);
+        voxgi__plan_add(&P, "voxels", VOXGI_PLAN_STRUCTURE, gi, gi ? "the bounce's visibility" : no_gi, gb, 0);
+        voxgi__plan_add(&P, "gathers", VOXGI_PLAN_PASS, gi, gi ? "one bounce at the pixels" : no_gi, 0, 0);
+        voxgi__plan_add(&P, "direct light", VOXGI_PLAN_PASS, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
+    } else if (m == VOXGI_PLAN_AO) {
+        voxgi__plan_add(&P, "lights", VOXGI_PLAN_CHANNEL, all, all ? "everything asked for" : "occlusion sees geometry only", 0, 0);
+        voxgi__plan_add(&P, "voxels", VOXGI_PLAN_STRUCTURE, P.resolution > 0, P.resolution > 0 ? "occlusion through the voxels" : "occlusion through the depth buffer", voxgi_grid_voxel_count(&P.grid) / 8 + 4, 0);
+        voxgi__plan_add(&P, "occlusion", VOXGI_PLAN_PASS, 1, "the image", 0, 0);
+    } else if (m == VOXGI_PLAN_SSGI) {
+        int gi = lit && reflective;
+        const char *no_gi = !lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
+        voxgi__plan_add(&P, "voxels", VOXGI_PLAN_STRUCTURE, gi && P.resolution > 0, !gi ? no_gi : P.resolution > 0 ? "the bounce's visibility" : "visibility through the depth buffer", voxgi_grid_voxel_count(&P.grid) / 8 + 4, 0);
+        voxgi__plan_add(&P, "screen bounce", VOXGI_PLAN_PASS, gi, gi ? "one bounce from the screen" : no_gi, 0, 0);
+        voxgi__plan_add(&P, "direct light", VOXGI_PLAN_PASS, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
+    } else if (m == VOXGI_PLAN_LINESPACE) {
+        int keep = all || P.area_lights != 0;
+        voxgi__plan_add(&P, "line space", VOXGI_PLAN_STRUCTURE, keep, keep ? "soft shadows of the area lights" : "no area light (rect light or emissive triangles)",
+                        voxgi__plan_linespace_bytes(P.triangles, crossing, extent), 1);
+        voxgi__plan_add(&P, "soft shadows", VOXGI_PLAN_PASS, keep, keep ? "the area lights' direct light" : "no area light (rect light or emissive triangles)", 0, 0);
+    } else {
+        voxgi__plan_add(&P, "path tracing", VOXGI_PLAN_PASS, lit, lit ? "the lights' and emitters' light along paths" : "no light and no emitter", 0, 0);
+    }
+    voxgi__plan_add(&P, "seen emission", VOXGI_PLAN_PASS, seen && P.emissive_triangles && m != VOXGI_PLAN_AO,
+                    m == VOXGI_PLAN_AO ? "occlusion sees geometry only" : !P.emissive_triangles ? "no emissive material" : seen ? "emitters in view" : "the camera sees no emitter", 0, 0);
+    *plan = P;
+    return VOXGI_OK;
+}
+
+VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, const char *name)
+{
+    int i;
+    for (i = 0; plan && name && i < plan->item_count; i++)
+        if (!strcmp(plan->items[i].name, name)) return &plan->items[i];
+    return NULL;
+}
+
+/* An image's plan: each item it leaves out logged. */
+static voxgi_result voxgi__plan_image(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_plan_request *q, voxgi_plan_info *plan)
+{
+    voxgi_result r;
+    int i;
+    if ((r = voxgi_plan(ctx, scene, q, plan)) != VOXGI_OK) return r;
+    for (i = 0; i < plan->item_count; i++)
+        if (!plan->items[i].kept) voxgi__log(ctx, VOXGI_LOG_INFO, "plan: %s: left out - %s", plan->items[i].name, plan->items[i].why);
+    return VOXGI_OK;
+}
 
 /* ----- the G-buffer of voxgi's own images */
 typedef struct voxgi__gbuffer_job {
@@ -14494,6 +14697,8 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
 {
     voxgi_vct_desc resolved;
     const voxgi_vct_desc *desc = desc_in;
+    voxgi_plan_request q;
+    voxgi_plan_info plan;
     voxgi__tracer tr;
     voxgi__lights Ls;
     voxgi__vct_job J;
@@ -14518,6 +14723,14 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     resolved = voxgi__vct_defaults(ctx, desc_in);
     desc = &resolved;
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    memset(&q, 0, sizeof q);
+    q.camera = &desc->camera;
+    q.resolution = desc->resolution;
+    q.bounces = desc->bounces;
+    q.one_sided = desc->one_sided;
+    q.filter = desc->filter;
+    if ((r = voxgi__plan_image(ctx, scene, &q, &plan)) != VOXGI_OK) return r;
+    if (!voxgi_plan_find(&plan, "cones")->kept) resolved.no_gi = 1; /* no light to bounce, or nothing reflects it */
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
     J.desc = desc;
@@ -14651,6 +14864,8 @@ static double voxgi__direct_image(voxgi_context *ctx, voxgi__direct_image_job *J
 VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_tsm_image_info *info)
 {
+    voxgi_plan_request q;
+    voxgi_plan_info plan;
     voxgi__direct_image_job J;
     voxgi__tracer tr;
     voxgi__lights others;
@@ -14670,6 +14885,10 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
     if (rgb_bytes < (size_t)desc->camera.width * (size_t)desc->camera.height * 12)
         return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes,
                            (unsigned long)((size_t)desc->camera.width * (size_t)desc->camera.height * 12));
+    memset(&q, 0, sizeof q);
+    q.method = VOXGI_PLAN_TSM;
+    q.camera = &desc->camera;
+    if ((r = voxgi__plan_image(ctx, scene, &q, &plan)) != VOXGI_OK) return r; /* the maps make no layers without translucent materials */
     if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
     J.maps = (voxgi_tsm **)voxgi__alloc_array(ctx, scene->light_count ? scene->light_count : 1, sizeof *J.maps, 1);
     kept = (voxgi_light *)voxgi__alloc_array(ctx, scene->light_count ? scene->light_count : 1, sizeof *kept, 0);
@@ -15163,6 +15382,172 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
     inf.radius = radius;
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;
+    return r;
+}
+
+/* ----- images of the area lights' soft shadows through the line space */
+typedef struct voxgi__ls_shade {
+    const voxgi__flat *f;
+    const voxgi__ls_area *A;
+    int lights, hide_emitters;
+    const float *pos, *nrm, *weighted;  /* weighted: per light, per pixel */
+    const uint32_t *tri;
+    size_t pixels;
+    float *rgb;
+} voxgi__ls_shade;
+
+/* Pixels [first, end): emission (unless hidden) + albedo / pi x the sum over the lights of their
+   radiance x unshadowed irradiance (Lambert's polygon formula) x the rays' weighted visible share. */
+static void voxgi__ls_shade_run(void *user, size_t first, size_t end)
+{
+    const voxgi__ls_shade *S = (const voxgi__ls_shade *)user;
+    size_t i;
+    for (i = first; i < end; i++) {
+        uint32_t t = S->tri[i];
+        const voxgi_material *m;
+        double p[3], n[3], e[3] = {0, 0, 0}, g[3];
+        int l, a;
+        S->rgb[3 * i] = S->rgb[3 * i + 1] = S->rgb[3 * i + 2] = 0;
+        if (t == UINT32_MAX) continue;
+        m = voxgi__tri_material(S->f, t);
+        for (a = 0; a < 3; a++) { p[a] = S->pos[3 * i + (size_t)a]; n[a] = S->nrm[3 * i + (size_t)a]; }
+        for (l = 0; l < S->lights; l++) {
+            const voxgi__ls_area *A = &S->A[l];
+            double q[4][3], fn[3], irr;
+            float share = S->weighted[(size_t)l * S->pixels + i];
+            if (!(share > 0) || A->own[0] == t || A->own[1] == t) continue;
+            for (a = 0; a < 3; a++) {
+                q[0][a] = A->d.corner[a];
+                q[1][a] = A->d.corner[a] + A->d.edge_u[a];
+                q[2][a] = A->d.corner[a] + (A->d.triangle ? A->d.edge_v[a] : A->d.edge_u[a] + A->d.edge_v[a]);
+                q[3][a] = A->d.corner[a] + A->d.edge_v[a];
+                fn[a] = A->d.edge_u[(a + 1) % 3] * A->d.edge_v[(a + 2) % 3] - A->d.edge_u[(a + 2) % 3] * A->d.edge_v[(a + 1) % 3];
+            }
+            irr = voxgi__polygon_irradiance((const double(*)[3])q, A->d.triangle ? 3 : 4, fn, p, n) * share;
+            for (a = 0; a < 3; a++) e[a] += A->radiance[a] * irr;
+        }
+        voxgi__tri_unit_normal(S->f, t, g);
+        for (a = 0; a < 3; a++)
+            S->rgb[3 * i + (size_t)a] = (float)(m->albedo[a] / VOXGI__PI * e[a] + (!S->hide_emitters && g[0] * n[0] + g[1] * n[1] + g[2] * n[2] > 0 ? m->emission[a] : 0));
+    }
+}
+
+VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_image_desc *desc, float *rgb, size_t rgb_bytes,
+                                              float *visible, voxgi_linespace_image_info *info)
+{
+    voxgi__ls_area A[VOXGI__LS_AREA_LIGHTS];
+    voxgi__ls_shade S;
+    voxgi_plan_request q;
+    voxgi_plan_info plan;
+    voxgi__flat f;
+    voxgi_linespace *built = NULL;
+    const voxgi_linespace *ls;
+    voxgi_linespace_image_info inf;
+    float *pos = NULL, *nrm = NULL, *weighted = NULL, *seen = NULL, *fine = NULL, *fine_seen = NULL;
+    uint32_t *tri = NULL;
+    size_t pixels, points, i;
+    double t0 = voxgi__now_ms(), t1;
+    voxgi_camera cam;
+    int lights, l, k;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (info) memset(info, 0, sizeof *info);
+    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
+    memset(&inf, 0, sizeof inf);
+    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
+    if (desc->camera.width < 1 || desc->camera.height < 1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d", desc->camera.width, desc->camera.height);
+    if (rgb_bytes < pixels * 12)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
+    k = desc->supersample > 1 ? desc->supersample : 1;
+    if (k > 16 || desc->camera.width > 65536 / k || desc->camera.height > 65536 / k)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "supersample %d (1..16, the image at most 65536 a side)", desc->supersample);
+    cam = desc->camera;
+    cam.width *= k;
+    cam.height *= k;
+    points = pixels * (size_t)k * (size_t)k;
+    if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
+    lights = voxgi__ls_area_lights(ctx, scene, &f, A);
+    if (lights == -2) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    else if (lights < 0) r = voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "more than %d area lights (rect lights, emissive triangles paired into parallelograms)", VOXGI__LS_AREA_LIGHTS);
+    memset(&q, 0, sizeof q);
+    q.method = VOXGI_PLAN_LINESPACE;
+    q.camera = &desc->camera;
+    if (r == VOXGI_OK) r = voxgi__plan_image(ctx, scene, &q, &plan); /* no area light: no line space */
+    ls = desc->ls;
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK && voxgi_plan_find(&plan, "line space")->kept && !ls && (r = voxgi_linespace_create(ctx, scene, &desc->tree, &built)) == VOXGI_OK) ls = built;
+    inf.ms_build = voxgi__now_ms() - t1;
+    if (r == VOXGI_OK) {
+        pos = (float *)voxgi__alloc_array(ctx, points, 12, 0);
+        nrm = (float *)voxgi__alloc_array(ctx, points, 12, 0);
+        tri = (uint32_t *)voxgi__alloc_array(ctx, points, 4, 0);
+        weighted = (float *)voxgi__alloc_array(ctx, points * (size_t)VOXGI__MAX(lights, 1), 4, 0);
+        seen = (float *)voxgi__alloc_array(ctx, points, 4, 0);
+        fine = k > 1 ? (float *)voxgi__alloc_array(ctx, points, 12, 0) : rgb;
+        fine_seen = (float *)voxgi__alloc_array(ctx, points, 4, 1);
+        if (!pos || !nrm || !tri || !weighted || !seen || !fine || !fine_seen)
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-point image", (unsigned long)points);
+    }
+    t1 = voxgi__now_ms();
+    if (r == VOXGI_OK) r = voxgi_gbuffer_render(ctx, scene, &cam, pos, nrm, tri);
+    inf.ms_gbuffer = voxgi__now_ms() - t1;
+    t1 = voxgi__now_ms();
+    for (l = 0; r == VOXGI_OK && l < lights; l++) {
+        voxgi_linespace_stats st;
+        A[l].d.mode = desc->mode;
+        A[l].d.samples = desc->samples;
+        A[l].d.packets = desc->packets;
+        A[l].d.seed = desc->seed + (uint32_t)l * 0x9E3779B9u;
+        A[l].d.exact_ends = desc->exact_ends;
+        if ((r = voxgi_linespace_light(ctx, ls, &A[l].d, points, pos, nrm, seen, weighted + (size_t)l * points, &st)) != VOXGI_OK) break;
+        for (i = 0; i < points; i++) fine_seen[i] += seen[i] / (float)lights;
+        inf.rays.rays += st.rays;
+        inf.rays.nodes += st.nodes;
+        inf.rays.bits += st.bits;
+        inf.rays.triangle_tests += st.triangle_tests;
+        inf.rays.samples = st.samples;
+    }
+    inf.ms_shadows = inf.rays.ms = voxgi__now_ms() - t1;
+    if (r == VOXGI_OK) {
+        S.f = &f;
+        S.A = A;
+        S.lights = lights;
+        S.hide_emitters = desc->hide_emitters;
+        S.pos = pos;
+        S.nrm = nrm;
+        S.tri = tri;
+        S.weighted = weighted;
+        S.pixels = points;
+        S.rgb = fine;
+        voxgi__parallel(ctx, points, 256, voxgi__ls_shade_run, &S);
+        for (i = 0; i < pixels; i++) { /* each pixel the mean of its k x k points */
+            size_t x = i % (size_t)desc->camera.width, y = i / (size_t)desc->camera.width, sx, sy;
+            double sum[4] = {0, 0, 0, 0};
+            for (sy = 0; sy < (size_t)k; sy++)
+                for (sx = 0; sx < (size_t)k; sx++) {
+                    size_t q = (y * (size_t)k + sy) * (size_t)cam.width + x * (size_t)k + sx;
+                    sum[0] += fine[3 * q];
+                    sum[1] += fine[3 * q + 1];
+                    sum[2] += fine[3 * q + 2];
+                    sum[3] += fine_seen[q];
+                }
+            if (k > 1) for (l = 0; l < 3; l++) rgb[3 * i + (size_t)l] = (float)(sum[l] / (k * k));
+            if (visible) visible[i] = (float)(sum[3] / (k * k));
+        }
+        voxgi_linespace_query(ls, &inf.tree);
+        inf.lights = lights;
+        inf.ms = voxgi__now_ms() - t0;
+        if (info) *info = inf;
+    }
+    voxgi__free(ctx, pos);
+    voxgi__free(ctx, nrm);
+    voxgi__free(ctx, tri);
+    voxgi__free(ctx, weighted);
+    voxgi__free(ctx, seen);
+    voxgi__free(ctx, fine_seen);
+    if (fine != rgb) voxgi__free(ctx, fine);
+    voxgi_linespace_destroy(ctx, built);
+    voxgi__flat_free(ctx, &f);
     return r;
 }
 

@@ -71,7 +71,7 @@ static void test_help_everywhere(void)
     static char out[32768];
     const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "bench rays --help", "svo --help", "render --help", "report --help", "report vct --help",
                           "report tsm --help", "report rsm --help", "report sh --help", "report ao --help", "report ssgi --help",
-                          "report linespace --help"};
+                          "report linespace --help", "plan --help"};
     size_t i;
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         int rc = run(cmds[i], out, sizeof out);
@@ -1027,6 +1027,20 @@ static void test_screen_reports(void)
              "bad screen report arguments accepted: %s", out);
 }
 
+/* voxgi plan: each item on a line with the reason, left out where the scene lacks what it needs. */
+static void test_plan_command(void)
+{
+    static char out[16384];
+    TH_CHECK(run("plan rsm-walls --method tsm", out, sizeof out) == 0 && strstr(out, "transmittance layers   structure left out - no translucent material") &&
+                 strstr(out, "shadow maps            structure kept - "), "an opaque scene under a sun: %s", out);
+    TH_CHECK(run("plan foliage --method tsm", out, sizeof out) == 0 && strstr(out, "transmittance layers   structure kept - "), "the foliage: %s", out);
+    TH_CHECK(run("plan cornell-box --method linespace", out, sizeof out) == 0 && strstr(out, "line space             structure kept - ") &&
+                 strstr(out, "the camera sees an emitter"), "the Cornell box's line space: %s", out);
+    TH_CHECK(run("plan cornell-box --error 0.08", out, sizeof out) == 0 && strstr(out, "grid: 96 voxels") && strstr(out, "cones: 24 per gather, stride 6"),
+             "the Cornell box at 8%%: %s", out);
+    TH_CHECK(run("plan cornell-box --method nothing", out, sizeof out) == 2, "an unknown method: %s", out);
+}
+
 int main(int argc, char **argv)
 {
     (void)argc;
@@ -1058,6 +1072,7 @@ int main(int argc, char **argv)
     TH_RUN(test_version_and_exit_codes_documented);
     TH_RUN(test_library_error_once);
     TH_RUN(test_exit_codes);
+    TH_RUN(test_plan_command);
     {
         char cmd[300];
         snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);

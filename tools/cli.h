@@ -259,6 +259,7 @@ void cli_cornell_mesh_close(voxgi_context *ctx, cli_cornell_mesh *c);
 /* ------------------------------------------------------------------ commands, one file each */
 int cmd_voxelize(int argc, char **argv);
 int cmd_info(int argc, char **argv);
+int cmd_plan(int argc, char **argv);
 int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
 int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);

@@ -12,6 +12,7 @@
  *   voxgi report sh [--scenes LIST] [--size N] [--res LIST] [--openings LIST] [--strides LIST] [--visibility LIST] [--out DIR]
  *   voxgi report ao|ssgi [--scenes LIST] [--size W H] [--rays LIST] [--steps LIST] [--radii LIST] [--res LIST] [--blurs LIST] [--out DIR]
  *   voxgi report linespace [--scenes LIST] [--meshes LIST] [--size N] [--ns LIST] [--depths LIST] [--samples LIST] [--out DIR]
+ *   voxgi plan SCENE|MESH [--method M] [--error E] [--res N] [--dynamic] [--budget MB] [--everything]
  *
  * MESH is an OBJ (+MTL), OFF, STL or PLY file, or a built-in shape: builtin:quad,
  * builtin:subdivided-quad, builtin:cube, builtin:sphere. Every command takes --help; tools/cli.h
@@ -35,6 +36,8 @@ static const char *const main_help =
     "  report sh ...       the SH volume's error against run time (Markdown, CSV)\n"
     "  report ao|ssgi ...  the screen-space passes' error against run time (Markdown, CSV)\n"
     "  report linespace ... the line space's soft shadows: error, run time, rays (Markdown, CSV)\n"
+    "  plan SCENE ...      what a scene needs for a method: each channel, structure and pass kept\n"
+    "                      or left out, and why, with its memory\n"
     "Exit status, for every command:\n"
     "  0  success (--help and --version too)\n"
     "  1  failure while running: a mesh that cannot be read, an error from the library, no GL\n"
@@ -45,7 +48,8 @@ static const char *const main_help =
 
 typedef struct command { const char *name; int (*run)(int argc, char **argv); } command;
 static const command commands[] = {{"voxelize", cmd_voxelize}, {"info", cmd_info},     {"bench", cmd_bench},
-                                   {"svo", cmd_svo},           {"render", cmd_render}, {"report", cmd_report}};
+                                   {"svo", cmd_svo},           {"render", cmd_render}, {"report", cmd_report},
+                                   {"plan", cmd_plan}};
 
 int main(int argc, char **argv)
 {
