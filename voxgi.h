@@ -14203,10 +14203,10 @@ VOXGI_API voxgi_result voxgi_plan(voxgi_context *ctx, const voxgi_scene *scene, 
         voxgi__plan_add(&P, "screen bounce", VOXGI_PLAN_PASS, gi, gi ? "one bounce from the screen" : no_gi, 0, 0);
         voxgi__plan_add(&P, "direct light", VOXGI_PLAN_PASS, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
     } else if (m == VOXGI_PLAN_LINESPACE) {
-        int keep = all || P.area_lights != 0;
-        voxgi__plan_add(&P, "line space", VOXGI_PLAN_STRUCTURE, keep, keep ? "soft shadows of the area lights" : "no area light (rect light or emissive triangles)",
-                        voxgi__plan_linespace_bytes(P.triangles, crossing, extent), 1);
-        voxgi__plan_add(&P, "soft shadows", VOXGI_PLAN_PASS, keep, keep ? "the area lights' direct light" : "no area light (rect light or emissive triangles)", 0, 0);
+        int keep = all || P.area_lights > 0;
+        const char *none = P.area_lights < 0 ? "more than 64 area lights (the image refuses them)" : "no area light (rect light or emissive triangles)";
+        voxgi__plan_add(&P, "line space", VOXGI_PLAN_STRUCTURE, keep, keep ? "soft shadows of the area lights" : none, voxgi__plan_linespace_bytes(P.triangles, crossing, extent), 1);
+        voxgi__plan_add(&P, "soft shadows", VOXGI_PLAN_PASS, keep, keep ? "the area lights' direct light" : none, 0, 0);
     } else {
         voxgi__plan_add(&P, "path tracing", VOXGI_PLAN_PASS, lit, lit ? "the lights' and emitters' light along paths" : "no light and no emitter", 0, 0);
     }
