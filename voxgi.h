@@ -14235,6 +14235,22 @@ static voxgi_result voxgi__plan_image(voxgi_context *ctx, const voxgi_scene *sce
     return VOXGI_OK;
 }
 
+/* An image's plan (method, view, grid) logged, and whether it keeps `item`. */
+static voxgi_result voxgi__plan_keeps(voxgi_context *ctx, const voxgi_scene *scene, voxgi_plan_method method, const voxgi_camera *cam, int resolution,
+                                      const char *item, int *keep)
+{
+    voxgi_plan_request q;
+    voxgi_plan_info plan;
+    voxgi_result r;
+    memset(&q, 0, sizeof q);
+    q.method = method;
+    q.camera = cam;
+    q.resolution = resolution;
+    if ((r = voxgi__plan_image(ctx, scene, &q, &plan)) != VOXGI_OK) return r;
+    *keep = voxgi_plan_find(&plan, item)->kept;
+    return VOXGI_OK;
+}
+
 /* ----- the G-buffer of voxgi's own images */
 typedef struct voxgi__gbuffer_job {
     const voxgi__tracer *tr;
@@ -15101,6 +15117,7 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi_rsm **maps = NULL;
     size_t li, n = 0;
     double t0 = voxgi__now_ms(), t1;
+    int gi;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
@@ -15109,12 +15126,13 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), visibility %d, gather_stride %d (0..64)", desc->samples,
                            desc->resolution, (int)desc->visibility, desc->gather_stride);
     memset(&inf, 0, sizeof inf);
-    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, 0, rgb, rgb_bytes,
-                            NULL, &B, &inf.ms_direct, &inf.ms_voxels);
+    if ((r = voxgi__plan_keeps(ctx, scene, VOXGI_PLAN_RSM, &desc->camera, desc->resolution, "gathers", &gi)) != VOXGI_OK) return r;
+    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution,
+                            gi ? desc->visibility : VOXGI_VISIBILITY_NONE, 0, rgb, rgb_bytes, NULL, &B, &inf.ms_direct, &inf.ms_voxels);
     if (r == VOXGI_OK && !(maps = (voxgi_rsm **)voxgi__alloc_array(ctx, scene->light_count + 1, sizeof *maps, 1)))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
     t1 = voxgi__now_ms();
-    for (li = 0; r == VOXGI_OK && li <= scene->light_count; li++) { /* each light's map, then the emitters' */
+    for (li = 0; r == VOXGI_OK && gi && li <= scene->light_count; li++) { /* each light's map, then the emitters' */
         voxgi_rsm_desc rd = desc->rsm;
         voxgi_rsm_info ri;
         if (li == scene->light_count ? !B.Ls.emitter_count : scene->lights[li].type == VOXGI_LIGHT_POINT) continue;
@@ -15126,7 +15144,7 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
     }
     inf.ms_maps = voxgi__now_ms() - t1;
     t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) {
+    if (r == VOXGI_OK && gi) {
         memset(&G, 0, sizeof G);
         G.maps = maps;
         G.n = n;
@@ -15162,6 +15180,7 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
     voxgi_sh_image_info inf;
     voxgi_sh *sh = NULL;
     double t0 = voxgi__now_ms(), t1;
+    int gi;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
@@ -15170,13 +15189,14 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..1024), visibility %d, gather_stride %d (0..64), opening %g (0..4)",
                            desc->samples, desc->resolution, (int)desc->visibility, desc->gather_stride, (double)desc->opening);
     memset(&inf, 0, sizeof inf);
-    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution, desc->visibility, 0, rgb, rgb_bytes,
-                            NULL, &B, &inf.ms_direct, &inf.ms_voxels);
+    if ((r = voxgi__plan_keeps(ctx, scene, VOXGI_PLAN_SH, &desc->camera, desc->resolution, "gathers", &gi)) != VOXGI_OK) return r;
+    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution,
+                            gi ? desc->visibility : VOXGI_VISIBILITY_NONE, 0, rgb, rgb_bytes, NULL, &B, &inf.ms_direct, &inf.ms_voxels);
     t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) r = voxgi_sh_create(ctx, scene, &B.grid, &desc->sh, &sh);
+    if (r == VOXGI_OK && gi) r = voxgi_sh_create(ctx, scene, &B.grid, &desc->sh, &sh);
     inf.ms_sh = voxgi__now_ms() - t1;
     t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) {
+    if (r == VOXGI_OK && gi) {
         memset(&G, 0, sizeof G);
         G.S = sh;
         G.O = B.have_occ ? &B.O : NULL;
@@ -15264,7 +15284,7 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
     voxgi_ssgi_image_info inf;
     voxgi_volume *light = NULL;
     float *reflected = NULL;
-    int hidden = desc && desc->hidden_light && desc->method == VOXGI_AO_VOXELS;
+    int hidden = desc && desc->hidden_light && desc->method == VOXGI_AO_VOXELS, gi;
     double t0 = voxgi__now_ms(), t1;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
@@ -15274,10 +15294,14 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), half_resolution %d (0 or 1), blur %d (0..64), radius %g",
                            desc->samples, desc->resolution, desc->half_resolution, desc->blur, (double)desc->radius);
     memset(&inf, 0, sizeof inf);
+    if ((r = voxgi__plan_keeps(ctx, scene, VOXGI_PLAN_SSGI, &desc->camera, desc->method == VOXGI_AO_VOXELS ? (desc->resolution ? desc->resolution : 128) : 0,
+                               "screen bounce", &gi)) != VOXGI_OK)
+        return r;
+    hidden = hidden && gi;
     reflected = (float *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(desc->camera.width, 1) * (size_t)VOXGI__MAX(desc->camera.height, 1), 12, 0);
     if (!reflected) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the screen's light");
     r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution ? desc->resolution : 128,
-                            desc->method == VOXGI_AO_VOXELS ? VOXGI_VISIBILITY_HIERARCHICAL : VOXGI_VISIBILITY_NONE,
+                            gi && desc->method == VOXGI_AO_VOXELS ? VOXGI_VISIBILITY_HIERARCHICAL : VOXGI_VISIBILITY_NONE,
                             hidden ? VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL : 0u, rgb, rgb_bytes, reflected, &B, &inf.ms_direct, &inf.ms_voxels);
     if (r == VOXGI_OK && hidden) { /* the voxels' direct light, one level: only level 0 is read */
         voxgi_inject_desc id;
@@ -15291,9 +15315,9 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
     }
     inf.radius = desc->radius;
     if (r == VOXGI_OK && !(inf.radius > 0)) inf.radius = (float)(sqrt(3.0) * voxgi__longest_side(&B.tr)); /* across the scene */
-    if (r == VOXGI_OK) r = voxgi__screen_setup(ctx, &J, &desc->camera, B.pos, B.nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, inf.radius);
+    if (r == VOXGI_OK && gi) r = voxgi__screen_setup(ctx, &J, &desc->camera, B.pos, B.nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, inf.radius);
     t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) {
+    if (r == VOXGI_OK && gi) {
         J.radiance = reflected;
         J.O = B.have_occ ? &B.O : NULL;
         J.grid = &B.grid;

@@ -110,6 +110,35 @@ static void test_plan_emitters_in_view(void)
     TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_REFERENCE, &away, 0, &p) == VOXGI_OK && p.emitters_in_view == 0 && kept(&p, "seen emission") == 0,
              "looking down: %d", p.emitters_in_view);
     TH_CHECK(!strcmp(voxgi_plan_find(&p, "seen emission")->why, "the camera sees no emitter"), "%s", voxgi_plan_find(&p, "seen emission")->why);
+    { /* above the light, looking down at its back: in view, but it emits from its front face only */
+        const voxgi_mesh *m;
+        size_t mi, t;
+        double c[3] = {0, 0, 0};
+        int found = 0, a, k;
+        for (mi = 0; mi < bs.scene.mesh_count && !found; mi++) {
+            size_t nt;
+            m = &bs.scene.meshes[mi];
+            nt = m->indices ? m->index_count / 3 : m->vertex_count / 3;
+            for (t = 0; t < nt && !found; t++) {
+                uint32_t id = m->material_ids ? m->material_ids[t] : m->material;
+                if (!(bs.scene.materials[id].emission[0] > 0)) continue;
+                for (k = 0; k < 3; k++) {
+                    size_t v = m->indices ? m->indices[3 * t + (size_t)k] : 3 * t + (size_t)k;
+                    const float *q = (const float *)((const char *)m->positions + v * (m->position_stride ? m->position_stride : 12));
+                    for (a = 0; a < 3; a++) c[a] += q[a] / 3.0;
+                }
+                found = 1;
+            }
+        }
+        TH_CHECK(found, "the Cornell box has no emitter");
+        memcpy(away.target, c, sizeof c);
+        memcpy(away.eye, c, sizeof c);
+        away.eye[1] += 0.5 * fabs(bs.camera.eye[2] - c[2]) + 1e-3;
+        away.eye[2] += 1e-3;
+        TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_REFERENCE, &away, 0, &p) == VOXGI_OK && p.emitters_in_view == 0, "the light's back: %d", p.emitters_in_view);
+        away.eye[1] = c[1] - 0.5 * fabs(bs.camera.eye[2] - c[2]);
+        TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_REFERENCE, &away, 0, &p) == VOXGI_OK && p.emitters_in_view == 1, "under the light: %d", p.emitters_in_view);
+    }
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }
@@ -217,8 +246,8 @@ static void test_plan_vct_settings(void)
 }
 
 /* Images follow their plans: the Cornell box with every albedo 0 has nothing to bounce, so the
-   cone tracer voxelizes nothing and its image is the direct light's; with no light at all it is
-   black but for the emission; the log names what was left out. */
+   cone tracer voxelizes nothing and its image is the direct light's; the one-bounce images gather
+   nothing and give the transmittance image's direct light; the log names what was left out. */
 static void test_plan_images(void)
 {
     voxgi_context *ctx = plan_ctx();
@@ -247,6 +276,40 @@ static void test_plan_images(void)
     TH_CHECK(voxgi_vct_render(ctx, &dark, &vd, direct, sizeof direct, NULL) == VOXGI_OK && !memcmp(rgb, direct, sizeof rgb), "not the direct light's image");
     vd.no_gi = 0;
     TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, rgb, sizeof rgb, &vi) == VOXGI_OK && vi.voxels > 0, "the lit box voxelized nothing");
+    { /* the one-bounce images: without a reflective surface no maps, SH volume, voxels or gathers, and the image is the
+         transmittance image's (the same direct light: here the emission alone); with one, they gather */
+        voxgi_tsm_image_desc td;
+        voxgi_rsm_image_desc rd;
+        voxgi_rsm_image_info ri;
+        voxgi_sh_image_desc hd;
+        voxgi_sh_image_info hi;
+        voxgi_ssgi_image_desc sd;
+        voxgi_ssgi_image_info si;
+        int k;
+        memset(&td, 0, sizeof td);
+        memset(&rd, 0, sizeof rd);
+        memset(&hd, 0, sizeof hd);
+        memset(&sd, 0, sizeof sd);
+        td.camera = rd.camera = hd.camera = sd.camera = vd.camera;
+        td.samples = rd.samples = hd.samples = sd.samples = 4;
+        td.seed = rd.seed = hd.seed = sd.seed = 7;
+        rd.resolution = hd.resolution = 16;
+        sd.method = VOXGI_AO_VOXELS;
+        sd.resolution = 16;
+        TH_CHECK(voxgi_tsm_render(ctx, &dark, &td, direct, sizeof direct, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        for (k = 0; k < 2; k++) {
+            const voxgi_scene *sc = k ? &bs.scene : &dark;
+            TH_CHECK(voxgi_rsm_render(ctx, sc, &rd, rgb, sizeof rgb, &ri) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            TH_CHECK(k ? ri.maps > 0 && ri.gathered > 0 : ri.maps == 0 && ri.gathered == 0 && !memcmp(rgb, direct, sizeof rgb), "rsm, %s: %d maps, %lu gathers",
+                     k ? "lit" : "black", ri.maps, (unsigned long)ri.gathered);
+            TH_CHECK(voxgi_sh_render(ctx, sc, &hd, rgb, sizeof rgb, &hi) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            TH_CHECK(k ? hi.gathered > 0 : hi.gathered == 0 && !memcmp(rgb, direct, sizeof rgb), "sh, %s: %lu gathers", k ? "lit" : "black",
+                     (unsigned long)hi.gathered);
+            TH_CHECK(voxgi_ssgi_render(ctx, sc, &sd, rgb, sizeof rgb, &si) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            TH_CHECK(k ? si.gathered > 0 : si.gathered == 0 && !memcmp(rgb, direct, sizeof rgb), "ssgi, %s: %lu gathers", k ? "lit" : "black",
+                     (unsigned long)si.gathered);
+        }
+    }
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }
