@@ -8,10 +8,10 @@ B       := build
 ASAN    := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 
 GLSL    := $(sort $(wildcard shaders/*.glsl))
-TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact test_rays test_lightspace test_screenspace test_linespace test_plan
+TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact test_rays test_lightspace test_screenspace test_linespace test_plan test_stiff
 # The test programs that link the implementation object (they include voxgi.h for the declarations
 # only); test_internals (private helpers) compiles the implementation itself.
-LINKED_TESTS := test_voxelize test_gl_voxelize test_reference test_vct test_tool test_exact test_rays test_lightspace test_screenspace test_linespace test_plan
+LINKED_TESTS := test_voxelize test_gl_voxelize test_reference test_vct test_tool test_exact test_rays test_lightspace test_screenspace test_linespace test_plan test_stiff
 # test_exact's oracle computes in GMP rationals (libgmp-dev, a test-only dependency).
 $(B)/test_exact $(B)/asan/test_exact: LDLIBS += -lgmp
 NPROC   := $(shell nproc 2>/dev/null || echo 2)

@@ -264,8 +264,8 @@ typedef struct voxgi_material {
 } voxgi_material;
 
 typedef struct voxgi_mesh {
-    const float *positions;      /* x y z floats */
-    size_t position_stride;      /* bytes between vertices; 0 = 12 */
+    const float *positions;      /* x y z floats, in the scene's frame */
+    size_t position_stride;      /* bytes between vertices; 0 = 12 (floats) or 24 (doubles) */
     size_t vertex_count;
     const uint32_t *indices;     /* 3 per triangle; NULL = vertices taken three at a time */
     size_t index_count;
@@ -275,6 +275,8 @@ typedef struct voxgi_mesh {
     size_t uv_stride;            /* 0 = 8 */
     const uint32_t *material_ids;/* optional, one per triangle */
     uint32_t material;           /* material of every triangle when material_ids is NULL */
+    const double *positions_double; /* instead of positions: x y z doubles in world units, taken into the
+                                     scene's frame by subtracting voxgi_scene.origin in double (large worlds) */
 } voxgi_mesh;
 
 /* Lights beside emissive materials. Intensities per colour channel:
@@ -293,6 +295,11 @@ typedef struct voxgi_light {
     float spot_inner, spot_outer; /* SPOT */
 } voxgi_light;
 
+/* Every coordinate voxgi takes or gives (float positions, lights, grids, cameras, rays, images'
+   points) is in the scene's frame. A large world keeps its precision by giving positions as
+   doubles (voxgi_mesh.positions_double) and a frame's origin near them: float32 holds about 7
+   digits, so at 1e6 a vertex is only good to 0.06 and a 0.1 mm gap closes before voxgi sees it;
+   origin - positions_double is taken in double and rounded once. */
 typedef struct voxgi_scene {
     const voxgi_mesh *meshes;
     size_t mesh_count;
@@ -301,6 +308,7 @@ typedef struct voxgi_scene {
     size_t material_count;
     const voxgi_light *lights;
     size_t light_count;
+    double origin[3];             /* where the frame's zero lies in world units (for positions_double) */
 } voxgi_scene;
 
 /* Checks a scene; the message names the mesh, triangle and what is wrong. */
@@ -2099,10 +2107,15 @@ static void voxgi__parallel(voxgi_context *ctx, size_t count, size_t chunk, voxg
 
 /* ----- 3.1 validation and flattening */
 
-static const float *voxgi__vertex(const voxgi_mesh *m, size_t i)
+/* Vertex i of mesh m in the scene's frame: its floats, or its doubles less the frame's origin. */
+static void voxgi__vertex(const voxgi_scene *scene, const voxgi_mesh *m, size_t i, float out[3])
 {
-    size_t stride = m->position_stride ? m->position_stride : 3 * sizeof(float);
-    return (const float *)(const void *)((const unsigned char *)m->positions + i * stride);
+    if (m->positions_double) {
+        const double *d = (const double *)(const void *)((const unsigned char *)m->positions_double + i * (m->position_stride ? m->position_stride : 24));
+        int a;
+        for (a = 0; a < 3; a++) out[a] = (float)(d[a] - scene->origin[a]);
+    } else
+        memcpy(out, (const unsigned char *)m->positions + i * (m->position_stride ? m->position_stride : 12), 3 * sizeof(float));
 }
 static size_t voxgi__mesh_triangles(const voxgi_mesh *m)
 {
@@ -2129,6 +2142,8 @@ static voxgi_result voxgi__validate(voxgi_context *ctx, const voxgi_scene *scene
     if (scene->material_count && !scene->materials)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "scene.materials is NULL but material_count is %lu",
                            (unsigned long)scene->material_count);
+    if (!isfinite(scene->origin[0]) || !isfinite(scene->origin[1]) || !isfinite(scene->origin[2]))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "scene.origin is not finite");
     for (mi = 0; mi < scene->material_count; mi++) {
         const voxgi_material *mat = &scene->materials[mi];
         int c, ok = isfinite(mat->transparency) && mat->transparency >= 0 && mat->transparency <= 1;
@@ -2162,18 +2177,20 @@ static voxgi_result voxgi__validate(voxgi_context *ctx, const voxgi_scene *scene
     for (mi = 0; mi < scene->mesh_count; mi++) {
         const voxgi_mesh *m = &scene->meshes[mi];
         size_t nt;
-        if (m->position_stride && m->position_stride < 3 * sizeof(float))
-            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: position_stride %lu is less than 12 bytes",
-                               (unsigned long)mi, (unsigned long)m->position_stride);
+        if (m->position_stride && m->position_stride < (m->positions_double ? 3 * sizeof(double) : 3 * sizeof(float)))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: position_stride %lu is less than a vertex (%d bytes)",
+                               (unsigned long)mi, (unsigned long)m->position_stride, m->positions_double ? 24 : 12);
+        if (m->positions && m->positions_double)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: both positions and positions_double are set", (unsigned long)mi);
         if ((m->normal_stride && m->normal_stride < 3 * sizeof(float)) || (m->uv_stride && m->uv_stride < 2 * sizeof(float)))
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: normal or uv stride too small", (unsigned long)mi);
-        if (m->vertex_count && !m->positions)
+        if (m->vertex_count && !m->positions && !m->positions_double)
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: positions is NULL but vertex_count is %lu",
                                (unsigned long)mi, (unsigned long)m->vertex_count);
         if (m->vertex_count > (size_t)UINT32_MAX)
             return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "mesh %lu: %lu vertices exceed the 32-bit index range",
                                (unsigned long)mi, (unsigned long)m->vertex_count);
-        if (m->vertex_count > (size_t)-1 / (m->position_stride ? m->position_stride : 12))
+        if (m->vertex_count > (size_t)-1 / (m->position_stride ? m->position_stride : 24))
             return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "mesh %lu: vertex_count * stride overflows", (unsigned long)mi);
         if (m->indices == NULL && m->index_count)
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu: indices is NULL but index_count is %lu",
@@ -2195,9 +2212,11 @@ static voxgi_result voxgi__validate(voxgi_context *ctx, const voxgi_scene *scene
                                        "mesh %lu, triangle %lu: index %lu out of range (vertex_count %lu)",
                                        (unsigned long)mi, (unsigned long)t, (unsigned long)vi,
                                        (unsigned long)m->vertex_count);
-                if (!voxgi__finite3(voxgi__vertex(m, vi)))
+                float p[3];
+                voxgi__vertex(scene, m, vi, p);
+                if (!voxgi__finite3(p))
                     return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE,
-                                       "mesh %lu, triangle %lu: vertex %lu is not finite (NaN or infinity)",
+                                       "mesh %lu, triangle %lu: vertex %lu is not finite (NaN or infinity, or beyond float in the scene's frame)",
                                        (unsigned long)mi, (unsigned long)t, (unsigned long)vi);
             }
             {
@@ -2265,7 +2284,7 @@ static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene,
     for (mi = 0; mi < scene->mesh_count; mi++) {
         const voxgi_mesh *m = &scene->meshes[mi];
         size_t mt = voxgi__mesh_triangles(m);
-        for (v = 0; v < m->vertex_count; v++) memcpy(f->pos + 3 * (vert_at + v), voxgi__vertex(m, v), 3 * sizeof(float));
+        for (v = 0; v < m->vertex_count; v++) voxgi__vertex(scene, m, v, f->pos + 3 * (vert_at + v));
         if (want_uv && m->vertex_count && !m->uvs) {
             voxgi__flat_free(ctx, f);
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu has no uvs, and its own uvs were asked for", (unsigned long)mi);
@@ -2382,7 +2401,8 @@ VOXGI_API voxgi_result voxgi_fit_grid(voxgi_context *ctx, const voxgi_scene *sce
         for (t = 0; t < nt; t++) {
             int c;
             for (c = 0; c < 3; c++) {
-                const float *p = voxgi__vertex(m, voxgi__mesh_index(m, t, c));
+                float p[3];
+                voxgi__vertex(scene, m, voxgi__mesh_index(m, t, c), p);
                 for (a = 0; a < 3; a++) {
                     lo[a] = VOXGI__MIN(lo[a], (double)p[a]);
                     hi[a] = VOXGI__MAX(hi[a], (double)p[a]);

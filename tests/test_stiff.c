@@ -1,0 +1,114 @@
+/* Stiff and extreme input, one test per case: what is expected is stated with each.
+   - A large world: the Cornell box a million metres from the origin. In float32 its light's 0.1 mm
+     gap under the ceiling is gone before voxgi sees it; given as doubles with the scene's origin
+     near it, the voxels and the image are those of the box at the origin, bit for bit. */
+#include "../voxgi.h"
+#include "fixtures.h"
+
+/* The built-in scene's meshes as doubles moved by `offset` (world units), in *out (meshes and
+   positions malloc'd: free with moved_free), the origin set to `origin`. */
+typedef struct moved_scene {
+    voxgi_scene scene;
+    voxgi_mesh *meshes;
+    double **pos;
+} moved_scene;
+
+static void moved_free(moved_scene *m)
+{
+    size_t i;
+    for (i = 0; m->pos && i < m->scene.mesh_count; i++) free(m->pos[i]);
+    free(m->pos);
+    free(m->meshes);
+}
+
+static int moved_make(const voxgi_scene *src, double offset, double origin, moved_scene *m)
+{
+    size_t i, v;
+    int a;
+    memset(m, 0, sizeof *m);
+    m->scene = *src;
+    m->meshes = (voxgi_mesh *)calloc(src->mesh_count, sizeof *m->meshes);
+    m->pos = (double **)calloc(src->mesh_count, sizeof *m->pos);
+    if (!m->meshes || !m->pos) return 0;
+    for (i = 0; i < src->mesh_count; i++) {
+        const voxgi_mesh *s = &src->meshes[i];
+        m->meshes[i] = *s;
+        if (!(m->pos[i] = (double *)malloc(3 * s->vertex_count * sizeof(double) + 1))) return 0;
+        for (v = 0; v < s->vertex_count; v++) {
+            const float *p = (const float *)(const void *)((const char *)s->positions + v * (s->position_stride ? s->position_stride : 12));
+            for (a = 0; a < 3; a++) m->pos[i][3 * v + (size_t)a] = (double)p[a] + offset;
+        }
+        m->meshes[i].positions = NULL;
+        m->meshes[i].position_stride = 0;
+        m->meshes[i].positions_double = m->pos[i];
+    }
+    m->scene.meshes = m->meshes;
+    for (a = 0; a < 3; a++) m->scene.origin[a] = origin;
+    return 1;
+}
+
+static void test_large_world(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    voxgi_builtin_scene bs;
+    moved_scene far;
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
+    voxgi_voxels_info i0, i1;
+    voxgi_reference_desc rd;
+    uint32_t *b0 = NULL, *b1 = NULL;
+    static float img0[3 * 16 * 16], img1[3 * 16 * 16];
+    float ceiling = -1, light = -1;
+    size_t v;
+    TH_CHECK(ctx && voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "cornell-box");
+    TH_CHECK(moved_make(&bs.scene, 1e6, 1e6, &far), "out of memory");
+    /* the gap in float32 at 1e6: the light's and the ceiling's heights (the largest y of the scene
+       and the light's, 0.1 mm apart) round to the same float */
+    for (v = 0; v < bs.scene.meshes[0].vertex_count; v++) ceiling = fmaxf(ceiling, bs.scene.meshes[0].positions[3 * v + 1]);
+    light = ceiling - 1e-4f;
+    TH_CHECK((float)(1e6 + ceiling) == (float)(1e6 + (double)light) && (float)ceiling != light,
+             "float32 keeps the gap at 1e6 (%.9g against %.9g): the case is moot", (double)(float)(1e6 + ceiling), (double)(float)(1e6 + (double)light));
+    memset(&vd, 0, sizeof vd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = 48;
+    TH_CHECK(voxgi_fit_grid(ctx, &bs.scene, &fit, &vd.grid) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    b0 = voxelized_bits(ctx, &bs.scene, &vd, &i0);
+    TH_CHECK(voxgi_fit_grid(ctx, &far.scene, &fit, &vd.grid) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    b1 = voxelized_bits(ctx, &far.scene, &vd, &i1);
+    TH_CHECK(b0 && b1 && i0.voxel_count == i1.voxel_count && i0.bytes == i1.bytes && !memcmp(b0, b1, i0.bytes), "voxels at 1e6: %lu against %lu",
+             (unsigned long)i1.voxel_count, (unsigned long)i0.voxel_count);
+    memset(&rd, 0, sizeof rd);
+    rd.camera = bs.camera;
+    rd.camera.width = rd.camera.height = 16;
+    rd.samples = 4;
+    rd.bounces = 1;
+    rd.seed = 5;
+    TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, img0, sizeof img0, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_reference_render(ctx, &far.scene, &rd, img1, sizeof img1, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(!memcmp(img0, img1, sizeof img0), "the image at 1e6 differs from the image at the origin");
+    { /* bad input: both kinds of positions, a stride shorter than three doubles, an origin that leaves floats behind */
+        voxgi_mesh keep = far.meshes[0];
+        far.meshes[0].positions = bs.scene.meshes[0].positions;
+        TH_CHECK(voxgi_validate_scene(ctx, &far.scene) == VOXGI_ERR_INVALID_SCENE, "both positions accepted");
+        far.meshes[0] = keep;
+        far.meshes[0].position_stride = 12;
+        TH_CHECK(voxgi_validate_scene(ctx, &far.scene) == VOXGI_ERR_INVALID_SCENE, "a 12-byte stride of doubles accepted");
+        far.meshes[0] = keep;
+        far.scene.origin[1] = -1e300;
+        TH_CHECK(voxgi_validate_scene(ctx, &far.scene) == VOXGI_ERR_INVALID_SCENE, "a vertex beyond float in the frame accepted");
+        far.scene.origin[1] = NAN;
+        TH_CHECK(voxgi_validate_scene(ctx, &far.scene) == VOXGI_ERR_INVALID_SCENE, "a NaN origin accepted");
+        printf("    the last error: %s\n", voxgi_last_error(ctx));
+    }
+    free(b0);
+    free(b1);
+    moved_free(&far);
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
+int main(void)
+{
+    TH_RUN(test_large_world);
+    return th_finish();
+}
