@@ -777,7 +777,9 @@ typedef struct voxgi_inject_desc {
     int shadow_rays;              /* GL context: 1 = the CPU's exact shadow rays instead of the maps */
     int bounces;                  /* 0 or 1: direct light; B > 1: B - 1 more bounces, each voxel gathering
                                      with `gather` cones from the last volume; -1: full global illumination,
-                                     bounces until one adds less than VOXGI_CONVERGED_BOUNCE of the light (at most 64) */
+                                     bounces until those still to come (their geometric tail, estimated from
+                                     the last two) add less than VOXGI_CONVERGED_BOUNCE of the light, at most
+                                     64; then that tail is added */
     voxgi_cone_desc gather;       /* cones 0 = 4: the bounces' light is smooth, and more cones do not
                                      change the image (docs/cone-tracing.md) */
     int gather_block;             /* the bounces gather once per group of voxels: those in one block of
@@ -10395,8 +10397,8 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
     const voxgi_grid *g = J->g;
     size_t *group = (size_t *)voxgi__alloc_array(ctx, n ? n : 1, sizeof(size_t), 0), ng = 0, i, k;
     int sides = J->back ? 2 : 1, b, a, sd, converged = 0;
-    double share = 1;
-    float *pos = NULL, *nrm = NULL, *irr = NULL, *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12 * (size_t)sides, 0);
+    double share = 1, last_added = 0;
+    float *pos = NULL, *nrm = NULL, *irr = NULL, *step = NULL, *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12 * (size_t)sides, 0);
     const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     voxgi_result r = VOXGI_OK;
     if (!group || !direct) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
@@ -10408,10 +10410,12 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
             direct[3 * i + (size_t)a] = J->rgba[4 * J->index[i] + (size_t)a];
             if (sides == 2) direct[3 * (n + i) + (size_t)a] = J->back[4 * J->index[i] + (size_t)a];
         }
+    if (r == VOXGI_OK && desc->bounces < 0 && !(step = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12 * (size_t)sides, 0)))
+        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
     for (b = 1; r == VOXGI_OK && b < (desc->bounces < 0 ? 64 : desc->bounces) && !converged; b++) {
         voxgi_volume *next = NULL;
         voxgi_radiance_source source = {NULL, NULL};
-        double before = 0, after = 0;
+        double before = 0, after = 0, ratio;
         source.volume = *vol;
         /* until convergence: how far the last bounce's share of the light has come down towards the bar */
         if (voxgi__cancelled(ctx, desc->bounces >= 0 ? (double)(b - 1) / (desc->bounces - 1)
@@ -10423,16 +10427,34 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
             for (i = 0; i < n; i++) {
                 float *o = (sd ? J->back : J->rgba) + 4 * J->index[i];
                 for (a = 0; a < 3; a++) {
+                    float was = o[a];
                     k = 3 * ((size_t)sd * ng + group[i]) + (size_t)a;
                     before += o[a];
                     o[a] = direct[3 * ((size_t)sd * n + i) + (size_t)a] +
                            (group[i] != SIZE_MAX ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / VOXGI__PI * irr[k]) : 0.0f);
                     after += o[a];
+                    if (step) step[3 * ((size_t)sd * n + i) + (size_t)a] = o[a] - was;
                 }
             }
-        share = after > 0 ? (after - before) / after : 0;
+        /* Bounces shrink the light about geometrically, by `ratio` each: what all the bounces still
+           to come add is about this bounce's light x ratio / (1 - ratio). At albedo 0.999 that tail
+           is hundreds of times what 64 bounces gather, so convergence is judged by it, and the last
+           round adds it to each voxel. */
+        ratio = last_added > 0 ? (after - before) / last_added : 0;
+        share = after > 0 && ratio < 1 ? (after - before) * (b > 1 ? ratio / (1 - ratio) : 1) / after : 1;
+        last_added = after - before;
         converged = desc->bounces < 0 && !(share > VOXGI_CONVERGED_BOUNCE);
-        if (converged) voxgi__log(ctx, VOXGI_LOG_INFO, "light injection: bounce %d added %.2g%% of the light: %d bounces", b + 1, 100 * share, b + 1);
+        if (step && (converged || b + 1 == 64) && b > 1 && ratio > 0 && ratio < 1) {
+            float tail = (float)(ratio / (1 - ratio));
+            for (sd = 0; sd < sides; sd++)
+                for (i = 0; i < n; i++) {
+                    float *o = (sd ? J->back : J->rgba) + 4 * J->index[i];
+                    for (a = 0; a < 3; a++) o[a] += tail * step[3 * ((size_t)sd * n + i) + (size_t)a];
+                }
+        }
+        if (converged) voxgi__log(ctx, VOXGI_LOG_INFO, "light injection: the bounces still to come add about %.2g%% of the light: %d bounces and their geometric tail", 100 * share, b + 1);
+        else if (desc->bounces < 0 && b + 1 == 64)
+            voxgi__log(ctx, VOXGI_LOG_INFO, "light injection: after 64 bounces the rest (about %.2g%% of the light, ratio %.4f a bounce) added as a geometric tail", 100 * share, ratio);
         slots[VOXGI__RADIANCE_SLOT] = J->rgba;
         slots[VOXGI__BACK_SLOT] = J->back;
         slots[VOXGI__SIDE_SLOT] = J->side;
@@ -10445,6 +10467,7 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
     voxgi__free(ctx, pos);
     voxgi__free(ctx, nrm);
     voxgi__free(ctx, irr);
+    voxgi__free(ctx, step);
     voxgi__free(ctx, direct);
     return r;
 }

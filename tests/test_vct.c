@@ -334,7 +334,7 @@ static void test_second_bounce(void)
     voxgi_destroy(ctx);
 }
 
-/* Full global illumination (bounces = -1: until a bounce adds less than 1% of the light) in the
+/* Full global illumination (bounces = -1: until the bounces still to come add less than 1% of the light) in the
    furnace, a closed sphere of albedo 0.5 and emission 1 seen from inside: radiance 1 / (1 - 0.5)
    = 2 everywhere, within 2% (measured 0.2% at 32^3); 2 bounces give the series' first three
    terms, 1.875 (measured 0.1% off). */
