@@ -453,8 +453,61 @@ static void test_light_outside_closed_box(void)
     voxgi_destroy(ctx);
 }
 
+/* Grids of 1, 2, 3 and 5 voxels a side, and one 2048 long: the conservative voxels on a grid equal
+   the OR of each 2 x 2 x 2 block of the voxels on the grid of half the voxel size (the closed
+   children cover the closed parent, so a triangle meets the parent exactly when it meets a
+   child), on the CPU and on GL. */
+static void test_resolutions(void)
+{
+    static const int res[5][3] = {{1, 1, 1}, {2, 2, 2}, {3, 3, 3}, {5, 5, 5}, {2048, 4, 4}};
+    voxgi_builtin_scene bs;
+    int b, k, a;
+    for (b = 0; b < 2; b++) {
+        voxgi_context *ctx;
+        if (b && !have_gl()) break;
+        ctx = make_ctx(b ? VOXGI_BACKEND_GL : VOXGI_BACKEND_CPU, 0);
+        TH_CHECK(ctx && voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "cornell-box");
+        for (k = 0; k < 5; k++) {
+            voxgi_fit_desc fit;
+            voxgi_voxelize_desc coarse, fine;
+            voxgi_voxels *vf = NULL, *vr = NULL;
+            voxgi_voxels_info ic, ir;
+            uint32_t *bc, *br = NULL;
+            size_t need = 0;
+            const int factor[3] = {2, 2, 2};
+            memset(&fit, 0, sizeof fit);
+            memset(&coarse, 0, sizeof coarse);
+            fit.res = res[k][0];
+            TH_CHECK(voxgi_fit_grid(ctx, &bs.scene, &fit, &coarse.grid) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            for (a = 0; a < 3; a++) coarse.grid.res[a] = res[k][a];
+            fine = coarse;
+            fine.grid.voxel_size = coarse.grid.voxel_size / 2;
+            for (a = 0; a < 3; a++) fine.grid.res[a] = 2 * res[k][a];
+            bc = voxelized_bits(ctx, &bs.scene, &coarse, &ic);
+            TH_CHECK(voxgi_voxelize(ctx, &bs.scene, &fine, &vf) == VOXGI_OK && voxgi_voxels_reduce(ctx, vf, factor, &vr) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            if (vr) {
+                voxgi_voxels_query(vr, &ir);
+                voxgi_voxels_read(ctx, vr, NULL, 0, &need);
+                br = (uint32_t *)malloc(need);
+                if (br && voxgi_voxels_read(ctx, vr, br, need, NULL) != VOXGI_OK) { free(br); br = NULL; }
+            }
+            TH_CHECK(bc && br && ic.bytes == need && !memcmp(bc, br, need), "%s, %d x %d x %d: %lu voxels, the finer grid's OR %lu", b ? "GL" : "CPU", res[k][0],
+                     res[k][1], res[k][2], (unsigned long)ic.voxel_count, (unsigned long)(vr ? ir.voxel_count : 0));
+            if (k == 0) TH_CHECK(ic.voxel_count == 1, "one voxel around the scene: %lu set", (unsigned long)ic.voxel_count);
+            free(bc);
+            free(br);
+            voxgi_voxels_destroy(ctx, vf);
+            voxgi_voxels_destroy(ctx, vr);
+        }
+        voxgi_builtin_scene_destroy(ctx, &bs);
+        voxgi_destroy(ctx);
+    }
+}
+
 int main(void)
 {
+    gl_open();
+    TH_RUN(test_resolutions);
     TH_RUN(test_large_world);
     TH_RUN(test_scale_invariance);
     TH_RUN(test_degenerate_triangles);
@@ -462,5 +515,6 @@ int main(void)
     TH_RUN(test_furnace_albedo);
     TH_RUN(test_emitter_range);
     TH_RUN(test_light_outside_closed_box);
+    gl_close();
     return th_finish();
 }

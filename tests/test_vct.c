@@ -178,6 +178,54 @@ static void test_glowing_ceiling(void)
     voxgi_destroy(ctx);
 }
 
+/* Apertures at the ends of their range under the glowing ceiling: single cones straight up of
+   half-angle 1e-6 and 1e-3 rad see the ceiling's radiance 2 as the 0.1 rad cone does (within 5%),
+   ones of 1.4 and 1.4999 rad (86 degrees) never more than 2 and an opacity in [0, 1]; a
+   diffuse gather with one cone of 1e-5 or 1.49 rad gives a finite irradiance, at most the
+   ceiling's pi x 2; half-angles 0, 1.5 and NaN are refused. */
+static void test_cone_apertures_extreme(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    quads q;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_grid g;
+    voxgi_volume *vol;
+    voxgi_cone_desc cd;
+    voxgi_cone c[4];
+    static const float angles[4] = {1e-6f, 1e-3f, 1.4f, 1.4999f}, wide[2] = {1e-5f, 1.49f}, bad[3] = {0, 1.5f, NAN};
+    float out[4 * 4], pos[3] = {0.01f, -1, 0.02f}, nrm[3] = {0, 1, 0}, irr[3];
+    int k;
+    glowing_ceiling(&sc, &mesh, &q, &g);
+    memset(&cd, 0, sizeof cd);
+    memset(c, 0, sizeof c);
+    vol = inject(ctx, &sc, &g, VOXGI_MIPS_ANISOTROPIC);
+    for (k = 0; k < 4; k++) {
+        c[k].origin[0] = 0.01f; c[k].origin[1] = -1; c[k].origin[2] = 0.02f;
+        c[k].direction[1] = 1;
+        c[k].half_angle = angles[k];
+    }
+    TH_CHECK(vol && voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, 4, c, out) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (k = 0; k < 4; k++) {
+        printf("    half-angle %g: radiance %.4f, opacity %.4f\n", (double)angles[k], out[4 * k], out[4 * k + 3]);
+        TH_CHECK(isfinite(out[4 * k]) && out[4 * k + 3] >= 0 && out[4 * k + 3] <= 1 && out[4 * k] <= 2 * 1.0001f, "half-angle %g: %g, A %g", (double)angles[k],
+                 out[4 * k], out[4 * k + 3]);
+        if (k < 2) TH_CHECK(fabs(out[4 * k] / 2 - 1) < 0.05, "half-angle %g: %g against 2", (double)angles[k], out[4 * k]);
+    }
+    for (k = 0; k < 2; k++) {
+        cd.cones = 1;
+        cd.half_angle = wide[k];
+        TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, 1, pos, nrm, irr, NULL) == VOXGI_OK && isfinite(irr[0]) && irr[0] >= 0 && irr[0] <= 2 * 3.1416f,
+                 "a diffuse cone of %g rad: %g (%s)", (double)wide[k], irr[0], voxgi_last_error(ctx));
+    }
+    for (k = 0; k < 3; k++) {
+        c[0].half_angle = bad[k];
+        TH_CHECK(voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, 1, c, out) == VOXGI_ERR_INVALID_ARGUMENT, "half-angle %g accepted", (double)bad[k]);
+    }
+    voxgi_volume_destroy(ctx, vol);
+    voxgi_destroy(ctx);
+}
+
 /* The cone-traced Cornell box: without GI it is the reference's direct light (the same mean);
    its indirect light (GI on minus off) against the reference's (one bounce minus none); and pixel
    by pixel, the relative RMSE of the lighting (emitters the camera sees left out) against the
@@ -948,6 +996,7 @@ int main(void)
     TH_RUN(test_injection_is_exact_on_a_lit_floor);
     TH_RUN(test_ambient_occlusion);
     TH_RUN(test_glowing_ceiling);
+    TH_RUN(test_cone_apertures_extreme);
     TH_RUN(test_direct_light_analytic);
     return th_finish();
 }

@@ -713,7 +713,7 @@ int cmd_render(int argc, char **argv)
             {.name = "--bounces", .arg = "B", .kind = CLI_INT, .dst = &a.bounces, .lo = -1, .hi = 1000,
              .help = "indirect bounces: 0 = direct light only, -1 = unlimited (default 1);\n"
                      "vct: B >= 1, the light bouncing B - 1 times among the voxels first;\n"
-                     "-1, until a bounce adds less than 1% of the light"},
+                     "-1, until the bounces still to come add less than 1% of the light"},
             {.name = "--bounce-cones", .arg = "N", .kind = CLI_INT, .dst = &a.bounce_cones, .lo = 1, .hi = 1024,
              .help = "vct with --bounces B > 1: cones per gather among the voxels (default 4)"},
             {.name = "--bounce-block", .arg = "N", .kind = CLI_INT, .dst = &a.bounce_block, .lo = 1, .hi = 64,
