@@ -9631,7 +9631,9 @@ static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const
         ap = 1 - (J->step == 0.5 ? sqrt(keep) : J->step == 1 ? keep : pow(keep, J->step)); /* a step is J->step of it */
         for (a = 0; a < 3; a++) C[a] += (1 - A) * ap * s[a];
         A += (1 - A) * ap;
-        t += J->step * diam;
+        t += J->step * VOXGI__MIN(diam, VOXGI__MAX(1.0, h)); /* a cone wider than its height above the surface samples a finer
+                                                                 level (above): its stride keeps to that height, or it would leap
+                                                                 over what lies just above (an 86-degree cone over a ceiling) */
     }
     *A_out = A;
 }

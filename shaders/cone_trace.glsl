@@ -344,7 +344,7 @@ vec4 march(vec3 o, vec3 n, vec3 d, float lz, float tan_k, float max_d, uint home
         float ap = 1.0 - pow(1.0 - min(1.0, s.a * (u_anisotropic != 0 ? 2.0 : exp2(max(lod, 0.0)))), u_step);
         C += (1.0 - A) * ap * s.rgb;
         A += (1.0 - A) * ap;
-        t += u_step * diam;
+        t += u_step * min(diam, max(1.0, h)); // voxgi__cone_march: no leap over what lies just above
     }
     return vec4(C, A);
 }
