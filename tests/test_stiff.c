@@ -504,9 +504,84 @@ static void test_resolutions(void)
     }
 }
 
+/* A million triangles (a UV sphere of 1000 x 500, radius 1; a tenth of that under the
+   sanitizers): the exact voxelization at 128^3 is the same on GL as on the CPU, and every set voxel
+   lies within a voxel's diagonal of the sphere; the ray core's rays from the centre meet the
+   surface between the inscribed polygon's radius and 1. The voxelizers' times are printed, not
+   asserted. */
+static void test_million_triangles(void)
+{
+    voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU, 0), *gl = NULL;
+    vxt_shape m;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_voxelize_desc vd;
+    voxgi_voxels_info ic, ig;
+    voxgi_ray_scene *rs = NULL;
+    uint32_t *bc, *bg = NULL;
+    const int slices = FX_UNDER_ASAN ? 316 : 1000, stacks = slices / 2;
+    const double inner = cos(3.14159265358979 / stacks); /* the facets' nearest points are at least this far from the centre */
+    size_t i, far = 0;
+    int x, y, z, n = 128;
+    vxt_shape_sphere(&m, slices, stacks, 1.0, 0, 0, 0);
+    scene_of_shape(&sc, &mesh, &m);
+    printf("    %lu triangles\n", (unsigned long)m.triangle_count);
+    memset(&vd, 0, sizeof vd);
+    vd.grid.origin[0] = vd.grid.origin[1] = vd.grid.origin[2] = -1.0625;
+    vd.grid.voxel_size = 2.125 / n;
+    vd.grid.res[0] = vd.grid.res[1] = vd.grid.res[2] = n;
+    bc = voxelized_bits(cpu, &sc, &vd, &ic);
+    printf("    CPU voxelization: %lu voxels in %.0f ms\n", (unsigned long)ic.voxel_count, ic.ms);
+    TH_CHECK(bc != NULL, "CPU voxelization failed");
+    for (i = 0; bc && i < (size_t)n * n * n; i++) {
+        double c[3], r;
+        if (!(bc[i >> 5] >> (i & 31) & 1)) continue;
+        x = (int)(i % (size_t)n); y = (int)(i / (size_t)n % (size_t)n); z = (int)(i / ((size_t)n * n));
+        c[0] = vd.grid.origin[0] + (x + 0.5) * vd.grid.voxel_size;
+        c[1] = vd.grid.origin[1] + (y + 0.5) * vd.grid.voxel_size;
+        c[2] = vd.grid.origin[2] + (z + 0.5) * vd.grid.voxel_size;
+        r = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        far += r > 1 + 0.87 * vd.grid.voxel_size || r < inner - 0.87 * vd.grid.voxel_size;
+    }
+    TH_CHECK(far == 0, "%lu set voxels are farther than their half-diagonal from the sphere", (unsigned long)far);
+    if (have_gl() && (gl = make_ctx(VOXGI_BACKEND_GL, 0)) != NULL) {
+        bg = voxelized_bits(gl, &sc, &vd, &ig);
+        printf("    GL voxelization (a software rasteriser's time, not a GPU's): %.0f ms\n", ig.ms);
+        TH_CHECK(bc && bg && ic.bytes == ig.bytes && !memcmp(bc, bg, ic.bytes), "GL and CPU differ: %lu against %lu voxels", (unsigned long)ig.voxel_count,
+                 (unsigned long)ic.voxel_count);
+    }
+    TH_CHECK(voxgi_ray_scene_create(cpu, &sc, &rs) == VOXGI_OK, "%s", voxgi_last_error(cpu));
+    if (rs) {
+        enum { R = 4096 };
+        static voxgi_ray rays[R];
+        static voxgi_ray_hit hits[R];
+        fx_rng g = fx_rng_seeded(7);
+        int bad = 0;
+        for (i = 0; i < R; i++) {
+            double d[3], len = 0;
+            int a;
+            for (a = 0; a < 3; a++) { d[a] = fx_rng_range(&g, -1, 1); len += d[a] * d[a]; }
+            len = sqrt(len);
+            memset(&rays[i], 0, sizeof rays[i]);
+            for (a = 0; a < 3; a++) rays[i].direction[a] = (float)(d[a] / len);
+            rays[i].tmax = 10;
+        }
+        TH_CHECK(voxgi_ray_intersect(cpu, rs, R, rays, hits) == VOXGI_OK, "%s", voxgi_last_error(cpu));
+        for (i = 0; i < R; i++) bad += hits[i].triangle == UINT32_MAX || !(hits[i].t >= inner * 0.999999 && hits[i].t <= 1.000001);
+        TH_CHECK(bad == 0, "%d rays from the centre missed the sphere or met it off its facets", bad);
+    }
+    voxgi_ray_scene_destroy(cpu, rs);
+    free(bc);
+    free(bg);
+    vxt_shape_free(&m);
+    voxgi_destroy(gl);
+    voxgi_destroy(cpu);
+}
+
 int main(void)
 {
     gl_open();
+    TH_RUN(test_million_triangles);
     TH_RUN(test_resolutions);
     TH_RUN(test_large_world);
     TH_RUN(test_scale_invariance);
