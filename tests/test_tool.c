@@ -1039,6 +1039,11 @@ static void test_plan_command(void)
     TH_CHECK(run("plan cornell-box --error 0.08", out, sizeof out) == 0 && strstr(out, "grid: 96 voxels") && strstr(out, "cones: 24 per gather, stride 6"),
              "the Cornell box at 8%%: %s", out);
     TH_CHECK(run("plan cornell-box --method nothing", out, sizeof out) == 2, "an unknown method: %s", out);
+    { /* render follows the plan and says what it left out */
+        char args[1024];
+        snprintf(args, sizeof args, "render rsm-walls --method linespace --size 8 8 -o %s/plan.pfm", tmpdir);
+        TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "voxgi render: plan: line space: left out - no area light"), "render: %s", out);
+    }
 }
 
 int main(int argc, char **argv)

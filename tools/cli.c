@@ -306,6 +306,7 @@ static void log_to_session(voxgi_log_level level, const char *msg, void *user)
     /* errors are kept, not printed: the command that sees the failed call says it once, in context */
     if (level == VOXGI_LOG_ERROR) snprintf(s->error, sizeof s->error, "%s", msg);
     else if (level == VOXGI_LOG_WARNING) cli_note(s, "warning: %s", msg);
+    else if (level == VOXGI_LOG_INFO && strncmp(msg, "plan: ", 6) == 0) cli_note(s, "%s", msg); /* what the image leaves out, and why */
 }
 
 /* Any stage the library names, at any fraction; the line stays until replaced or cleared. */
