@@ -121,6 +121,7 @@ typedef struct cli_session {
     int interactive;      /* stderr is a terminal: progress lines are worth writing */
     int status_width;     /* characters of the progress line on stderr now; 0: none */
     char error[1024];     /* the last error the library logged, or why a context could not be made */
+    char prefix[96];      /* put before every progress line (report all: its stage and fraction); "" by default */
 } cli_session;
 
 void cli_session_init(cli_session *s, const char *name);
@@ -263,9 +264,10 @@ int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
 int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);
 int cmd_render(int argc, char **argv);
-int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm", "sh", "ao" or "ssgi" */
+int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm", "sh", "ao", "ssgi", "linespace" or "all" */
 int cmd_report_tsm(int argc, char **argv);
 int cmd_report_bounce(int method, int argc, char **argv); /* method 0: rsm, 1: sh */
 int cmd_report_screen(int which, int argc, char **argv); /* which 0: ao, 1: ssgi */
 int cmd_report_linespace(int argc, char **argv);
+int cmd_report_all(int argc, char **argv);
 #endif
