@@ -218,7 +218,8 @@ typedef struct cli_reference {
 int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, int spp, int bounces,
                        double ao_radius, cli_reference *R);
 void cli_reference_free(cli_reference *R);
-/* The path tracer's time for an image that measures error e against R (HUGE_VAL: beyond R). */
+/* The path tracer's time for an image that measures error e against R, a sample per pixel at
+   least (HUGE_VAL: beyond R). */
 double cli_reference_ms(const cli_reference *R, double e);
 /* The red light of img beyond R's: the sum over the pixels R's mask keeps of
    max(0, (r - g) - (r - g) of the reference), over the reference's sum of all channels / 3

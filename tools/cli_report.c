@@ -124,7 +124,7 @@ float report_exposure(const float *ref, const cli_error_mask *m)
     qsort(v, kept, sizeof *v, compare_floats);
     top = kept ? v[(size_t)(0.95 * (double)(kept - 1))] : 0;
     free(v);
-    return top > 0 ? 1 / top : 1;
+    return top > 0 ? 0.8f / top : 1;
 }
 
 /* An sRGB-encoded value as the linear one vxt_write_png encodes back to it. */

@@ -70,7 +70,7 @@ static const all_quantity quantities[REPORT_QUANTITIES] = {
      {1, 0.5, 0.3}, 3},
     {"voxels", "voxel sets", "conservative, thin, slicemap, atlas, atlas-compute, geometry, volume-buffer (on GL also slicemap-atomic, "
      "volume-buffer-m1)",
-     "the exact conservative voxelization on the CPU, the grid N^3 fitted around the scene: error = (missed + extra voxels) / its voxels. "
+     "the exact conservative voxelization on the CPU on the same grid, N^3 fitted around the scene: error = (missed + extra voxels) / its voxels. "
      "Not light, and each method has its own definition: thin is 6-separating (a subset by design), the raster methods sample",
      {0, 0.05, 0.25}, 3}};
 

@@ -39,7 +39,7 @@ void report_plot_svg(FILE *f, const report_plot *p);
 
 /* ------------------------------------------------------------------ pictures (cli_report.c) */
 /* The exposure that puts the 95th percentile of the reference's brightest channel, over the pixels
-   the mask keeps, at 1 (1 for a black reference). */
+   the mask keeps, at 0.8 (1 for a black reference). */
 float report_exposure(const float *ref, const cli_error_mask *m);
 /* The error heat map's white: a pixel's RMS difference over its channels at this share of the
    reference's mean (over the pixels the mask keeps). */
