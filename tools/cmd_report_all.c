@@ -294,45 +294,47 @@ static void put_error(FILE *f, double e)
     else fprintf(f, "-");
 }
 
-/* The summary: per scene and quantity, for each target error, the fastest row reaching it (on
-   the front), and the path tracer's time for that error. */
+/* The summary: per scene and quantity, for each target error the fastest row reaching it (on the
+   front; targets with the same answer on one line), and the path tracer's time for that error. */
 static void write_summary(FILE *f, const all_state *st, const pareto_point *pts)
 {
-    int si, q, t;
+    int si, q, t, u;
     fprintf(f, "| scene | measured against | error at most | fastest | settings | time | its error | path tracer at that error |\n"
                "|---|---|---:|---|---|---:|---:|---:|\n");
     for (si = 0; si < st->nscenes; si++)
         for (q = 0; q < REPORT_QUANTITIES; q++) {
             const all_scene *sc = &st->scenes[si];
+            const int g = si * REPORT_QUANTITIES + q;
             size_t i;
             int any = 0;
-            for (i = 0; i < st->nrows && !any; i++) any = st->rows[i].group == si * REPORT_QUANTITIES + q;
-            if (!any) continue;
-            for (t = 0; t < quantities[q].ntargets; t++) {
-                const double target = quantities[q].targets[t];
-                long b = pareto_fastest(pts, st->nrows, si * REPORT_QUANTITIES + q, target);
+            for (i = 0; i < st->nrows && !any; i++) any = st->rows[i].group == g;
+            for (t = 0; any && t < quantities[q].ntargets; t = u) {
+                const long b = pareto_fastest(pts, st->nrows, g, quantities[q].targets[t]);
+                for (u = t + 1; u < quantities[q].ntargets && pareto_fastest(pts, st->nrows, g, quantities[q].targets[u]) == b; u++) {}
                 fprintf(f, "| %s | %s | ", sc->name, quantities[q].title);
-                if (target > 0) fprintf(f, "%g%% | ", 100 * target);
-                else fprintf(f, "0 (exact) | ");
-                if (b < 0) fprintf(f, "none reaches it | | | | ");
+                for (i = (size_t)t; i < (size_t)u; i++) {
+                    if (quantities[q].targets[i] > 0) fprintf(f, "%s%g%%", i > (size_t)t ? ", " : "", 100 * quantities[q].targets[i]);
+                    else fprintf(f, "%s0 (exact)", i > (size_t)t ? ", " : "");
+                }
+                if (b < 0) fprintf(f, " | none reaches it | | | | ");
                 else {
                     const all_row *r = &st->rows[b];
-                    fprintf(f, "%s | %s | ", r->it.method, r->it.settings);
+                    fprintf(f, " | %s | %s | ", r->it.method, r->it.settings);
                     put_time(f, r->it.ms);
                     fprintf(f, " | ");
                     put_error(f, r->it.error);
                     fprintf(f, " | ");
                 }
-                if (q == REPORT_VOXELS) fprintf(f, "- |\n");
-                else { /* c^2 (1/k + 1/spp) = target^2 */
+                for (i = (size_t)t; i < (size_t)u && q != REPORT_VOXELS; i++) { /* c^2 (1/k + 1/spp) = target^2 */
                     cli_reference R;
                     memset(&R, 0, sizeof R);
                     R.c = sc->c[q];
                     R.ms_per_spp = sc->ms_per_spp[q];
                     R.spp = st->a->spp;
-                    put_time(f, cli_reference_ms(&R, target));
-                    fprintf(f, " |\n");
+                    if (i > (size_t)t) fprintf(f, ", ");
+                    put_time(f, cli_reference_ms(&R, quantities[q].targets[i]));
                 }
+                fprintf(f, "%s |\n", q == REPORT_VOXELS ? "-" : "");
             }
         }
 }
