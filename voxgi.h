@@ -965,6 +965,7 @@ typedef struct voxgi_rsm_image_info {
     int maps;                     /* all lights' and the emitters' */
     size_t gathered;              /* pixels that gathered (the rest interpolated) */
     double ms_maps, ms_voxels, ms_direct, ms_gather, ms; /* the maps, the voxels, the direct light, the gathers, all */
+    size_t bytes;                 /* what it built from the scene: the maps, the visibility's voxels and their OR mipmaps */
 } voxgi_rsm_image_info;
 VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_rsm_image_info *info);
@@ -987,6 +988,7 @@ typedef struct voxgi_sh_image_desc {
 typedef struct voxgi_sh_image_info {
     size_t gathered;              /* pixels that gathered (the rest interpolated) */
     double ms_sh, ms_voxels, ms_direct, ms_gather, ms; /* the SH volume, the voxels, the direct light, the gathers, all */
+    size_t bytes;                 /* what it built from the scene: the SH volume, the visibility's voxels and their OR mipmaps */
 } voxgi_sh_image_info;
 VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_sh_image_desc *desc, float *rgb, size_t rgb_bytes,
                                        voxgi_sh_image_info *info);
@@ -1132,6 +1134,7 @@ typedef struct voxgi_ssgi_image_info {
     float radius;                 /* the radius used */
     size_t gathered;
     double ms_direct, ms_voxels, ms_inject, ms_gather, ms;
+    size_t bytes;                 /* what it built from the scene: VOXELS' voxels, their OR mipmaps and the hidden light's volume */
 } voxgi_ssgi_image_info;
 VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ssgi_image_desc *desc, float *rgb, size_t rgb_bytes,
                                          voxgi_ssgi_image_info *info);
@@ -1155,6 +1158,7 @@ typedef struct voxgi_ao_image_info {
     float radius;                 /* the radius used */
     size_t gathered;              /* pixels whose rays ran */
     double ms_gbuffer, ms_voxels, ms_ao, ms;
+    size_t bytes;                 /* what it built from the scene: VOXELS' voxels and their OR mipmaps */
 } voxgi_ao_image_info;
 VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ao_image_desc *desc, float *rgb, size_t rgb_bytes,
                                        voxgi_ao_image_info *info);
@@ -11118,6 +11122,15 @@ static void voxgi__occ_free(voxgi_context *ctx, voxgi__occupancy *O)
     memset(O, 0, sizeof *O);
 }
 
+/* The occupancy's memory, every level. */
+static size_t voxgi__occ_bytes(const voxgi__occupancy *O)
+{
+    size_t n = 0;
+    int l;
+    for (l = 0; l < O->levels; l++) n += ((size_t)O->res[l][0] * (size_t)O->res[l][1] * (size_t)O->res[l][2] + 31) / 32 * 4;
+    return n;
+}
+
 static voxgi_result voxgi__occ_build(voxgi_context *ctx, const voxgi_voxels *vox, int mips, voxgi__occupancy *O)
 {
     const voxgi_grid *g = &vox->info.grid;
@@ -15054,6 +15067,12 @@ typedef struct voxgi__bounce_image {
     unsigned char *want;
 } voxgi__bounce_image;
 
+/* The memory of the voxels and their occupancy. */
+static size_t voxgi__bounce_bytes(const voxgi__bounce_image *B)
+{
+    return (B->vox ? B->vox->info.bytes : 0) + (B->have_occ ? voxgi__occ_bytes(&B->O) : 0);
+}
+
 static void voxgi__bounce_free(voxgi_context *ctx, voxgi__bounce_image *B)
 {
     if (B->have_occ) voxgi__occ_free(ctx, &B->O);
@@ -15186,6 +15205,7 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
         if ((r = voxgi_rsm_create(ctx, scene, &rd, &maps[n])) != VOXGI_OK) break;
         voxgi_rsm_query(maps[n++], &ri);
         inf.maps += ri.maps;
+        inf.bytes += ri.bytes;
     }
     inf.ms_maps = voxgi__now_ms() - t1;
     t1 = voxgi__now_ms();
@@ -15199,6 +15219,7 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
         r = voxgi__bounce_gather(ctx, &B, desc->gather_stride ? desc->gather_stride : 4, voxgi__rsm_gather_maps, &G, rgb, &inf.gathered);
     }
     inf.ms_gather = voxgi__now_ms() - t1;
+    inf.bytes += voxgi__bounce_bytes(&B);
     for (li = 0; li < n; li++) voxgi_rsm_destroy(ctx, maps[li]);
     voxgi__free(ctx, maps);
     voxgi__bounce_free(ctx, &B);
@@ -15250,6 +15271,12 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
         r = voxgi__bounce_gather(ctx, &B, desc->gather_stride ? desc->gather_stride : 4, voxgi__sh_gather_all, &G, rgb, &inf.gathered);
     }
     inf.ms_gather = voxgi__now_ms() - t1;
+    if (sh) {
+        voxgi_sh_info si;
+        voxgi_sh_query(sh, &si);
+        inf.bytes = si.bytes;
+    }
+    inf.bytes += voxgi__bounce_bytes(&B);
     voxgi_sh_destroy(ctx, sh);
     voxgi__bounce_free(ctx, &B);
     inf.ms = voxgi__now_ms() - t0;
@@ -15372,6 +15399,12 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
         if (r == VOXGI_OK) voxgi__bounce_add(&B, rgb);
     }
     inf.ms_gather = voxgi__now_ms() - t1;
+    if (light) {
+        voxgi_volume_info vi;
+        voxgi_volume_query(light, &vi);
+        inf.bytes = vi.bytes;
+    }
+    inf.bytes += voxgi__bounce_bytes(&B);
     voxgi_volume_destroy(ctx, light);
     voxgi__bounce_free(ctx, &B);
     voxgi__free(ctx, reflected);
@@ -15441,6 +15474,7 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
         inf.ms_ao = voxgi__now_ms() - t1;
     }
     for (p = 0; r == VOXGI_OK && p < pixels; p++) rgb[3 * p] = rgb[3 * p + 1] = rgb[3 * p + 2] = ao[p];
+    inf.bytes = (vox ? vox->info.bytes : 0) + (have_occ ? voxgi__occ_bytes(&O) : 0);
     if (have_occ) voxgi__occ_free(ctx, &O);
     voxgi_voxels_destroy(ctx, vox);
     voxgi__free(ctx, pos);

@@ -679,6 +679,8 @@ static void test_rsm_gather_stride(void)
     TH_CHECK(full.gathered > 0.9 * W * W && strided.gathered < 0.6 * full.gathered, "gathers %lu and %lu", (unsigned long)full.gathered,
              (unsigned long)strided.gathered);
     TH_CHECK(diff < 0.04 * sum && diff > 0, "the interpolated image moved by %.3f%%", 100 * diff / sum);
+    TH_CHECK(full.bytes > (size_t)full.maps * 64 * 64 * 36 && strided.bytes == full.bytes, "the maps' memory: %lu and %lu bytes for %d maps",
+             (unsigned long)full.bytes, (unsigned long)strided.bytes, full.maps); /* each texel a position, a normal and a flux, no voxels */
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }
@@ -784,7 +786,8 @@ static void test_sh_image(void)
     TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, ref, sizeof ref, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     for (y = 0; y < 3; y++) /* the ceiling's rows, away from the light */
         for (x = 2; x < 8; x++) { a += img[3 * (y * W + x) + 1]; b += ref[3 * (y * W + x) + 1]; }
-    printf("    ceiling (green): SH %.4f, reference %.4f\n", a, b);
+    printf("    ceiling (green): SH %.4f, reference %.4f; %lu bytes\n", a, b, (unsigned long)info.bytes);
+    TH_CHECK(info.bytes > (size_t)64 * 60 * 60 * 60, "the SH volume's memory: %lu bytes", (unsigned long)info.bytes); /* 64 bytes a cell of a grid 64 across */
     TH_CHECK(a > 0.4 * b && a < 1.2 * b, "the ceiling's bounce"); /* measured 0.67: L1 sends 0.75 of the light along a normal */
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);

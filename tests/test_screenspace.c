@@ -853,6 +853,66 @@ static void test_hybrid_hidden_light(void)
     voxgi_destroy(ctx);
 }
 
+/* The images' memory (info.bytes): nothing for the depth buffer's passes; for the voxels' AO and
+   Hybrid-GI the voxels' bits and their OR mipmaps, every level (halving to one cell a side);
+   Hybrid-GI's hidden light adds its volume. */
+static void test_image_memory(void)
+{
+    enum { W = 16 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    voxgi_light sun;
+    voxgi_material white;
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_ao_image_desc ad;
+    voxgi_ao_image_info ai[2];
+    voxgi_ssgi_image_desc gd;
+    voxgi_ssgi_image_info gi[3];
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
+    voxgi_voxels *vox = NULL;
+    voxgi_voxels_info vi;
+    static float img[3 * W * W];
+    size_t expect = 0;
+    int r[3], a, k;
+    sun_corner(&q, &sc, &mesh, &sun, &white);
+    memset(&vd, 0, sizeof vd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = 20;
+    TH_CHECK(voxgi_fit_grid(ctx, &sc, &fit, &vd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    voxgi_voxels_query(vox, &vi);
+    voxgi_voxels_destroy(ctx, vox);
+    expect = 2 * vi.bytes; /* the voxels, and their copy as the occupancy's first level */
+    for (a = 0; a < 3; a++) r[a] = vd.grid.res[a];
+    while (r[0] > 1 || r[1] > 1 || r[2] > 1) {
+        for (a = 0; a < 3; a++) r[a] = (r[a] + 1) / 2;
+        expect += ((size_t)r[0] * (size_t)r[1] * (size_t)r[2] + 31) / 32 * 4;
+    }
+    memset(&ad, 0, sizeof ad);
+    ad.camera = look(-4, 3, 0, 0, 0.7, 0);
+    ad.camera.width = ad.camera.height = W;
+    ad.rays = 4;
+    ad.resolution = 20;
+    memset(&gd, 0, sizeof gd);
+    gd.camera = ad.camera;
+    gd.rays = 4;
+    gd.samples = 1;
+    gd.resolution = 20;
+    for (k = 0; k < 3; k++) {
+        ad.method = gd.method = k ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN;
+        gd.hidden_light = k == 2;
+        TH_CHECK((k == 2 || voxgi_ao_render(ctx, &sc, &ad, img, sizeof img, &ai[k]) == VOXGI_OK) &&
+                     voxgi_ssgi_render(ctx, &sc, &gd, img, sizeof img, &gi[k]) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    }
+    printf("    %d x %d x %d voxels: AO %lu bytes, Hybrid-GI %lu, with the hidden light %lu; expected %lu\n", vd.grid.res[0], vd.grid.res[1], vd.grid.res[2],
+           (unsigned long)ai[1].bytes, (unsigned long)gi[1].bytes, (unsigned long)gi[2].bytes, (unsigned long)expect);
+    TH_CHECK(ai[0].bytes == 0 && gi[0].bytes == 0, "the depth buffer's passes built %lu and %lu bytes", (unsigned long)ai[0].bytes, (unsigned long)gi[0].bytes);
+    TH_CHECK(ai[1].bytes == expect && gi[1].bytes == expect, "the voxels' passes: %lu and %lu bytes", (unsigned long)ai[1].bytes, (unsigned long)gi[1].bytes);
+    TH_CHECK(gi[2].bytes > expect, "the hidden light's volume left out");
+    voxgi_destroy(ctx);
+}
+
 /* Hidden light on GL against the CPU: the same voxels' light on both (injected with the CPU's
    shadow rays), the floor's bounce from the wall off the screen at every pixel within 1e-4. */
 static void test_hidden_light_gl(void)
@@ -989,6 +1049,7 @@ int main(void)
     TH_RUN(test_reference_screen_light_only);
     TH_RUN(test_hybrid_hidden_light);
     TH_RUN(test_hidden_light_gl);
+    TH_RUN(test_image_memory);
     TH_RUN(test_screen_gl_equals_cpu);
     TH_RUN(test_screen_filter);
     TH_RUN(test_screen_filter_gl);

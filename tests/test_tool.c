@@ -4,6 +4,7 @@
    there). Works from any directory: the tests run in their own temporary directory. */
 #define _XOPEN_SOURCE 700 /* popen, mkdtemp, realpath */
 #include "../voxgi.h"
+#include "../tools/pareto.h"
 #include "harness.h"
 #include <math.h>
 #include <stdlib.h>
@@ -71,7 +72,7 @@ static void test_help_everywhere(void)
     static char out[32768];
     const char *cmds[] = {"--help", "voxelize --help", "info --help", "bench --help", "bench voxelize --help", "bench rays --help", "svo --help", "render --help", "report --help", "report vct --help",
                           "report tsm --help", "report rsm --help", "report sh --help", "report ao --help", "report ssgi --help",
-                          "report linespace --help", "plan --help"};
+                          "report linespace --help", "plan --help", "report all --help"};
     size_t i;
     for (i = 0; i < sizeof cmds / sizeof cmds[0]; i++) {
         int rc = run(cmds[i], out, sizeof out);
@@ -1046,6 +1047,226 @@ static void test_plan_command(void)
     }
 }
 
+/* The Pareto front on a hand-made set whose answer is known: twins are both on it or both off,
+   a row as good but slower (or as fast but worse) is off, rows without a finite time or error are
+   never on it and hide nothing, and fronts are per group. The fastest row reaching an error is
+   on the front. */
+static void test_pareto_front(void)
+{
+    pareto_point p[] = {
+        {10, 0.5, 0, -1},        /* 0 on */
+        {20, 0.3, 0, -1},        /* 1 on */
+        {15, 0.6, 0, -1},        /* 2 off: 0 is faster and closer */
+        {20, 0.3, 0, -1},        /* 3 on: 1's twin */
+        {5, NAN, 0, -1},         /* 4 off: no error */
+        {30, 0.3, 0, -1},        /* 5 off: 1 as close and faster */
+        {30, 0.1, 0, -1},        /* 6 on */
+        {1, 0.9, 0, -1},         /* 7 on */
+        {100, 0.05, 1, -1},      /* 8 on */
+        {50, 0.5, 1, -1},        /* 9 on: 0 beats it, in another group */
+        {10, 0.5, 0, -1},        /* 10 on: 0's twin */
+        {HUGE_VAL, 0.01, 0, -1}, /* 11 off: no time */
+        {10, 0.55, 0, -1},       /* 12 off: 0 as fast and closer */
+    };
+    static const int front[] = {1, 1, 0, 1, 0, 0, 1, 1, 1, 1, 1, 0, 0};
+    static const struct { int group; double target; long fastest; } reach[] = {
+        {0, 0.35, 1}, {0, 0.5, 0}, {0, 1, 7}, {0, 0.2, 6}, {0, 0.01, -1}, {1, 0.5, 9}, {1, 0.04, -1}};
+    const size_t n = sizeof p / sizeof p[0];
+    size_t i;
+    pareto_mark(p, n);
+    for (i = 0; i < n; i++) TH_CHECK(p[i].front == front[i], "point %lu (%g ms, %g, group %d): front %d", (unsigned long)i, p[i].ms, p[i].error, p[i].group, p[i].front);
+    for (i = 0; i < sizeof reach / sizeof reach[0]; i++) {
+        long got = pareto_fastest(p, n, reach[i].group, reach[i].target);
+        TH_CHECK(got == reach[i].fastest && (got < 0 || p[got].front), "group %d, error %g: the fastest is %ld (front %d), not %ld", reach[i].group,
+                 reach[i].target, got, got < 0 ? -1 : p[got].front, reach[i].fastest);
+    }
+}
+
+/* A CSV line's fields (quotes taken off) into f[0..max), in place; their count. */
+static int csv_split(char *line, char **f, int max)
+{
+    int n = 0;
+    char *w = line, *r = line;
+    line[strcspn(line, "\r\n")] = 0;
+    while (n < max) {
+        int quoted = *r == '"';
+        f[n++] = w;
+        if (quoted) r++;
+        for (; *r; r++) {
+            if (quoted && *r == '"' && r[1] == '"') { *w++ = '"'; r++; continue; }
+            if (quoted && *r == '"') { quoted = 0; continue; }
+            if (!quoted && *r == ',') break;
+            *w++ = *r;
+        }
+        if (!*r) { *w = 0; break; }
+        *w++ = 0;
+        r++;
+    }
+    return n;
+}
+
+/* A Markdown table row's cells, trimmed, into c[0..max), in place; their count. */
+static int md_cells(char *line, char **c, int max)
+{
+    int n = 0;
+    char *p = line, *bar;
+    line[strcspn(line, "\r\n")] = 0;
+    if (*p != '|') return 0;
+    p++;
+    while (n < max && (bar = strchr(p, '|')) != NULL) {
+        char *e = bar;
+        *bar = 0;
+        while (*p == ' ') p++;
+        while (e > p && e[-1] == ' ') *--e = 0;
+        c[n++] = p;
+        p = bar + 1;
+    }
+    return n;
+}
+
+static char *read_text(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    char *t;
+    long n;
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    t = (char *)malloc((size_t)n + 1);
+    if (t && fread(t, 1, (size_t)n, f) != (size_t)n) { free(t); t = NULL; }
+    if (t) t[n] = 0;
+    if (size) *size = (size_t)n;
+    fclose(f);
+    return t;
+}
+
+/* voxgi report all --quick at 16 x 16: progress on stderr, report.md, the CSV, a plot per scene and
+   quantity, pictures; every method of every report in it; the CSV's front the front of its own
+   rows per scene and quantity; every row of report.md the CSV's numbers, and the summary's
+   fastest row the fastest reaching its error. */
+#define ALL_ROWS 512
+static void test_report_all(void)
+{
+    static char out[1 << 16];
+    static const char *const files[] = {"report.md", "report.csv", "cornell-box-bounce.svg", "cornell-box-direct.svg", "cornell-box-ao.svg",
+                                        "cornell-box-voxels.svg", "rsm-walls-bounce.svg", "rsm-walls-direct.svg", "rsm-walls-ao.svg", "rsm-walls-voxels.svg",
+                                        "cornell-box-vct.png", "cornell-box-linespace-fast.png", "rsm-walls-tsm.png", "rsm-walls-vao.png"};
+    static const char *const methods[] = {"vct", "rsm", "sh", "ssgi", "hybrid", "hybrid+light", "tsm", "linespace-exact", "linespace-fast", "ssao", "ssao-points",
+                                          "vao", "conservative", "thin", "slicemap", "atlas", "atlas-compute", "geometry", "volume-buffer"};
+    static const char *const quantity_keys[] = {"bounce", "direct", "ao", "voxels"}, *const quantity_titles[] = {"direct light and one bounce", "direct light",
+                                                                                                                "ambient occlusion", "voxel sets"};
+    static char csv_lines[ALL_ROWS][1024];
+    static char *cf[ALL_ROWS][12];
+    static pareto_point pts[ALL_ROWS];
+    static int matched[ALL_ROWS];
+    char args[1024], path[600], line[4096], scene[300] = "";
+    char *md, *at, *c[16];
+    size_t i, j, k, nrows = 0, md_rows = 0, summary_rows = 0;
+    int rc, section = 0; /* 1: the summary, 2: a quantity's table */
+    FILE *f;
+    snprintf(args, sizeof args, "report all --quick --size 16 --spp 16 --threads 2 -o %s/all", tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "wrote ") && strstr(out, "[1/22   0%] cornell-box: the reference") && strstr(out, "[22/22  95%] rsm-walls: voxelizers"),
+             "report all: exit %d: %.3000s", rc, out);
+    for (i = 0; i < sizeof files / sizeof files[0]; i++) {
+        char head[8] = {0};
+        snprintf(path, sizeof path, "%s/all/%s", tmpdir, files[i]);
+        f = fopen(path, "rb");
+        TH_CHECK(f && fread(head, 1, 4, f) == 4, "%s not written", files[i]);
+        if (f) fclose(f);
+        if (strstr(files[i], ".svg")) TH_CHECK(memcmp(head, "<svg", 4) == 0, "%s is no SVG", files[i]);
+        if (strstr(files[i], ".png")) TH_CHECK(memcmp(head, "\x89PNG", 4) == 0, "%s is no PNG", files[i]);
+    }
+    /* the CSV: every method, the front its own rows' */
+    snprintf(path, sizeof path, "%s/all/report.csv", tmpdir);
+    f = fopen(path, "r");
+    TH_CHECK(f && fgets(line, sizeof line, f) && strncmp(line, "scene,quantity,method,settings,backend,ms,passes_ms,bytes,rel_error,detail,reference_ms,pareto", 90) == 0,
+             "report.csv's header");
+    while (f && nrows < ALL_ROWS && fgets(csv_lines[nrows], sizeof csv_lines[0], f)) {
+        int q;
+        TH_CHECK(csv_split(csv_lines[nrows], cf[nrows], 12) == 12, "a CSV row without 12 fields");
+        for (q = 0; q < 4 && cf[nrows][1] && strcmp(cf[nrows][1], quantity_keys[q]) != 0; q++) {}
+        pts[nrows].ms = atof(cf[nrows][5]);
+        pts[nrows].error = atof(cf[nrows][8]);
+        pts[nrows].group = (strcmp(cf[nrows][0], "cornell-box") == 0 ? 0 : 4) + q;
+        nrows++;
+    }
+    if (f) fclose(f);
+    for (i = 0; i < sizeof methods / sizeof methods[0]; i++) {
+        int seen = 0;
+        for (j = 0; j < nrows; j++) seen += strcmp(cf[j][2], methods[i]) == 0;
+        TH_CHECK(seen > 0, "%s has no row in report.csv", methods[i]);
+    }
+    pareto_mark(pts, nrows);
+    for (j = 0; j < nrows; j++)
+        TH_CHECK(pts[j].front == atoi(cf[j][11]), "%s %s %s (%s): the CSV's front %s", cf[j][0], cf[j][2], cf[j][3], cf[j][5], cf[j][11]);
+    /* report.md: every row the CSV's numbers, the summary the fastest reaching each error */
+    snprintf(path, sizeof path, "%s/all/report.md", tmpdir);
+    md = read_text(path, NULL);
+    TH_CHECK(md != NULL, "report.md cannot be read");
+    for (at = md; at && *at;) {
+        char *end = strchr(at, '\n');
+        size_t len = end ? (size_t)(end - at) : strlen(at);
+        int n;
+        snprintf(line, sizeof line, "%.*s", (int)(len < sizeof line - 1 ? len : sizeof line - 1), at);
+        at = end ? end + 1 : NULL;
+        if (strncmp(line, "## ", 3) == 0) {
+            section = strstr(line, "The fastest method") ? 1 : 0;
+            snprintf(scene, sizeof scene, "%.299s", line + 3);
+        }
+        if (strncmp(line, "### ", 4) == 0) section = 2;
+        if ((n = md_cells(line, c, 16)) < 8 || strcmp(c[0], "method") == 0 || strcmp(c[0], "scene") == 0 || strncmp(c[0], "---", 3) == 0) continue;
+        if (section == 2) {
+            double ms = 0, mb = 0, err = 0;
+            for (j = 0; j < nrows && !(strcmp(cf[j][0], scene) == 0 && strcmp(cf[j][2], c[0]) == 0 && strcmp(cf[j][3], c[1]) == 0); j++) {}
+            md_rows++;
+            TH_CHECK(j < nrows, "report.md's row %s %s %s is not in the CSV", scene, c[0], c[1]);
+            if (j == nrows) continue;
+            matched[j]++;
+            TH_CHECK(sscanf(c[2], "%lf ms", &ms) == 1 && sscanf(c[4], "%lf", &mb) == 1 && sscanf(c[5], "%lf%%", &err) == 1, "report.md's row %s", line);
+            TH_CHECK(fabs(ms - atof(cf[j][5])) <= 0.05 + 1e-9 && fabs(mb - atof(cf[j][7]) / 1e6) <= 0.005 * mb + 1e-12 && fabs(err - 100 * atof(cf[j][8])) <= 0.005 + 1e-9 &&
+                         (strcmp(c[7], "yes") == 0) == (atoi(cf[j][11]) == 1),
+                     "report.md's %s %s %s: %s ms, %s MB, %s, front '%s'; the CSV's %s ms, %s bytes, %s, %s", scene, c[0], c[1], c[2], c[4], c[5], c[7], cf[j][5],
+                     cf[j][7], cf[j][8], cf[j][11]);
+        } else if (section == 1) { /* scene, quantity, targets ("40%, 20%"), method, settings, time, error, path tracer */
+            const char *t = c[2];
+            int q;
+            for (q = 0; q < 4 && strcmp(c[1], quantity_titles[q]) != 0; q++) {}
+            summary_rows++;
+            for (; t && *t; t = strchr(t, ',') ? strchr(t, ',') + 2 : NULL) { /* each target: the CSV's fastest reaching it is the row's */
+                double target = strncmp(t, "0 (exact)", 9) == 0 ? 0 : atof(t) / 100;
+                long best = -1;
+                for (j = 0; j < nrows; j++)
+                    if (strcmp(cf[j][0], c[0]) == 0 && strcmp(cf[j][1], q < 4 ? quantity_keys[q] : "") == 0 && atof(cf[j][8]) <= target &&
+                        (best < 0 || atof(cf[j][5]) < atof(cf[best][5])))
+                        best = (long)j;
+                TH_CHECK(best < 0 ? strcmp(c[3], "none reaches it") == 0 : strcmp(cf[best][2], c[3]) == 0 && strcmp(cf[best][3], c[4]) == 0 && atoi(cf[best][11]) == 1,
+                         "the summary's %s, %s, %s (%g): %s (%s); the CSV's fastest: %s (%s)", c[0], c[1], c[2], target, c[3], c[4], best >= 0 ? cf[best][2] : "none",
+                         best >= 0 ? cf[best][3] : "");
+            }
+        }
+    }
+    for (k = j = 0; j < nrows; j++) k += matched[j] == 1;
+    for (i = j = 0; j < nrows; j++) i += pts[j].front;
+    printf("    %lu rows, %lu on the fronts; %lu in report.md; %lu rows in the summary\n", (unsigned long)nrows, (unsigned long)i, (unsigned long)md_rows,
+           (unsigned long)summary_rows);
+    TH_CHECK(nrows > 50 && md_rows == nrows && k == nrows, "report.md has %lu rows, %lu of the CSV's %lu once", (unsigned long)md_rows, (unsigned long)k,
+             (unsigned long)nrows);
+    TH_CHECK(summary_rows >= 8, "the summary has %lu rows", (unsigned long)summary_rows);
+    for (i = 0; md && i < sizeof methods / sizeof methods[0]; i++) {
+        snprintf(line, sizeof line, "\n| %s | ", methods[i]);
+        TH_CHECK(strstr(md, line) != NULL, "report.md has no row of %s", methods[i]);
+    }
+    free(md);
+    TH_CHECK(run("report all --size 4 -o x", out, sizeof out) == 2 && run("report all --scenes '' -o x", out, sizeof out) == 2 &&
+                 run("report all --backend sideways -o x", out, sizeof out) == 2,
+             "bad report all arguments accepted: %s", out);
+    snprintf(args, sizeof args, "report all --quick --scenes nowhere -o %s/none", tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "nowhere"), "report all, unknown scene: exit %d: %s", rc, out);
+}
+
 int main(int argc, char **argv)
 {
     (void)argc;
@@ -1067,6 +1288,8 @@ int main(int argc, char **argv)
     TH_RUN(test_tsm_command);
     TH_RUN(test_bounce_reports);
     TH_RUN(test_screen_reports);
+    TH_RUN(test_pareto_front);
+    TH_RUN(test_report_all);
     TH_RUN(test_vct_and_report_commands);
     TH_RUN(test_compare_black_reference);
     TH_RUN(test_compare_masks_emitters);

@@ -255,9 +255,9 @@ void cli_status(cli_session *s, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(line, sizeof line, fmt, ap);
     va_end(ap);
-    n = (int)strlen(line);
+    n = (int)(strlen(s->prefix) + strlen(line));
     /* blanks over whatever of a longer previous line would show past the new one */
-    fprintf(stderr, "\r%s%*s", line, s->status_width > n ? s->status_width - n : 0, "");
+    fprintf(stderr, "\r%s%s%*s", s->prefix, line, s->status_width > n ? s->status_width - n : 0, "");
     s->status_width = n;
 }
 

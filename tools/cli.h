@@ -121,6 +121,7 @@ typedef struct cli_session {
     int interactive;      /* stderr is a terminal: progress lines are worth writing */
     int status_width;     /* characters of the progress line on stderr now; 0: none */
     char error[1024];     /* the last error the library logged, or why a context could not be made */
+    char prefix[96];      /* put before every progress line (report all: its stage and fraction); "" by default */
 } cli_session;
 
 void cli_session_init(cli_session *s, const char *name);
@@ -217,7 +218,8 @@ typedef struct cli_reference {
 int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, int spp, int bounces,
                        double ao_radius, cli_reference *R);
 void cli_reference_free(cli_reference *R);
-/* The path tracer's time for an image that measures error e against R (HUGE_VAL: beyond R). */
+/* The path tracer's time for an image that measures error e against R, a sample per pixel at
+   least (HUGE_VAL: beyond R). */
 double cli_reference_ms(const cli_reference *R, double e);
 /* The red light of img beyond R's: the sum over the pixels R's mask keeps of
    max(0, (r - g) - (r - g) of the reference), over the reference's sum of all channels / 3
@@ -264,9 +266,10 @@ int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
 int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);
 int cmd_render(int argc, char **argv);
-int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm", "sh", "ao" or "ssgi" */
+int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm", "sh", "ao", "ssgi", "linespace" or "all" */
 int cmd_report_tsm(int argc, char **argv);
 int cmd_report_bounce(int method, int argc, char **argv); /* method 0: rsm, 1: sh */
 int cmd_report_screen(int which, int argc, char **argv); /* which 0: ao, 1: ssgi */
 int cmd_report_linespace(int argc, char **argv);
+int cmd_report_all(int argc, char **argv);
 #endif

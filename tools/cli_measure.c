@@ -177,7 +177,7 @@ void cli_reference_free(cli_reference *R)
 double cli_reference_ms(const cli_reference *R, double e)
 {
     double inv_k = (e / R->c) * (e / R->c) - 1.0 / R->spp;
-    return inv_k > 0 ? R->ms_per_spp / inv_k : HUGE_VAL;
+    return inv_k > 0 ? R->ms_per_spp * fmax(1, 1 / inv_k) : HUGE_VAL; /* a sample per pixel at least */
 }
 
 double cli_red_excess(const cli_reference *R, const float *img)

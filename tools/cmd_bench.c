@@ -1,5 +1,5 @@
 /* tools/cmd_bench.c - voxgi bench voxelize: timing, voxel-count and accuracy tables of the voxelizers. */
-#include "cli.h"
+#include "report.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -120,30 +120,33 @@ static void bench_inside_sample(const cli_mesh *tm, voxgi_context *ctx, int n, i
     }
 }
 
-/* Median time of `runs` voxelizations; the last result's bits go to *bits when asked. */
-static int bench_measure(const bench_state *b, voxgi_context *ctx, const cli_mesh *tm, int n, const bench_method *bm, int runs, double *ms,
-                         uint64_t *voxels, uint32_t **bits)
+/* Median time of `runs` voxelizations of scene (name: for a message) on the n^3 grid fitted around
+   it, atlas_size the atlas methods' (0: each grid's default); the last result's bits go to *bits
+   when asked, its bytes to *bytes (may be NULL). 1, or says why and returns 0. */
+static int bench_measure(cli_session *s, int atlas_size, voxgi_context *ctx, const voxgi_scene *scene, const char *name, int n, const bench_method *bm, int runs,
+                         double *ms, uint64_t *voxels, uint32_t **bits, size_t *bytes)
 {
     voxgi_voxelize_desc vd;
     double t[32];
     int i;
     memset(&vd, 0, sizeof vd);
-    if (cli_fit_grid(ctx, &tm->scene, n, 0, 1, &vd.grid) != VOXGI_OK) return 0;
+    if (cli_fit_grid(ctx, scene, n, 0, 1, &vd.grid) != VOXGI_OK) return 0;
     vd.method = bm->method;
     vd.solid_mode = bm->mode;
     if (bm->method == VOXGI_METHOD_VOLUME_BUFFER) vd.volume_slicing = bm->variant;
     else vd.atomic = bm->variant;
-    vd.atlas_size = b->atlas_size;
+    vd.atlas_size = atlas_size;
     for (i = 0; i < runs; i++) {
         voxgi_voxels *vox = NULL;
         voxgi_voxels_info info;
-        if (voxgi_voxelize(ctx, &tm->scene, &vd, &vox) != VOXGI_OK) {
-            cli_note(b->s, "%s %s at %d: %s", tm->name, bm->name, n, voxgi_last_error(ctx));
+        if (voxgi_voxelize(ctx, scene, &vd, &vox) != VOXGI_OK) {
+            cli_note(s, "%s %s at %d: %s", name, bm->name, n, voxgi_last_error(ctx));
             return 0;
         }
         voxgi_voxels_query(vox, &info);
         t[i] = info.ms;
         *voxels = info.voxel_count;
+        if (bytes) *bytes = info.bytes;
         if (bits && i == runs - 1) {
             *bits = (uint32_t *)malloc(info.bytes);
             if (*bits && voxgi_voxels_read(ctx, vox, *bits, info.bytes, NULL) != VOXGI_OK) { free(*bits); *bits = NULL; }
@@ -159,6 +162,16 @@ static uint64_t popcount32(uint32_t x)
     uint64_t c = 0;
     for (; x; x &= x - 1) c++;
     return c;
+}
+
+/* The voxels of ref that bits misses and those it has beyond ref, over an n^3 grid's bits. */
+static void bench_compare(const uint32_t *ref, const uint32_t *bits, int n, uint64_t *missed, uint64_t *extra)
+{
+    uint64_t w, words = ((uint64_t)n * (uint64_t)n * (uint64_t)n + 31) / 32;
+    for (w = 0; w < words; w++) {
+        *missed += popcount32(ref[w] & ~bits[w]);
+        *extra += popcount32(bits[w] & ~ref[w]);
+    }
 }
 
 static void print_header(const char *first, int ncols, const int *cols)
@@ -186,16 +199,12 @@ static void bench_mesh_at(bench_state *b, const bench_args *a, cli_context *ctx,
         const bench_method *bm = &bench_methods[a->chosen[v]];
         int k, r = bm->method == VOXGI_METHOD_SOLID;
         uint32_t *bits = NULL;
-        if (!ref[r]) bench_measure(b, ctx[1].vx, tm, b->cols[n], &bench_methods[r ? 2 : 0], 1, &ms, &count, &ref[r]);
+        if (!ref[r]) bench_measure(b->s, b->atlas_size, ctx[1].vx, &tm->scene, tm->name, b->cols[n], &bench_methods[r ? 2 : 0], 1, &ms, &count, &ref[r], NULL);
         for (k = 0; k < 3; k++)
-            if (ctx[k].vx) c->ok[k] = bench_measure(b, ctx[k].vx, tm, b->cols[n], bm, a->runs, &c->ms[k], &c->voxels[k], k == 1 ? &bits : NULL);
-        if (bits && ref[r]) {
-            uint64_t w, words = ((uint64_t)b->cols[n] * (uint64_t)b->cols[n] * (uint64_t)b->cols[n] + 31) / 32;
-            for (w = 0; w < words; w++) {
-                c->missed += popcount32(ref[r][w] & ~bits[w]);
-                c->extra += popcount32(bits[w] & ~ref[r][w]);
-            }
-        }
+            if (ctx[k].vx)
+                c->ok[k] = bench_measure(b->s, b->atlas_size, ctx[k].vx, &tm->scene, tm->name, b->cols[n], bm, a->runs, &c->ms[k], &c->voxels[k],
+                                         k == 1 ? &bits : NULL, NULL);
+        if (bits && ref[r]) bench_compare(ref[r], bits, b->cols[n], &c->missed, &c->extra);
         if (bits && r) { /* solid: against the winding-number inside test at sampled centres */
             int i, wrong = 0;
             if (inside.count < 0) bench_inside_sample(tm, ctx[1].vx, b->cols[n], b->inside_samples, &inside);
@@ -305,7 +314,7 @@ static int bench_run(cli_session *s, const bench_args *a)
             double ms;
             uint64_t count;
             if (cli_mesh_open(s, "builtin:cube", &warm) == 0) {
-                for (v = 0; v < a->nchosen; v++) bench_measure(&b, ctx[2].vx, &warm, 8, &bench_methods[a->chosen[v]], 1, &ms, &count, NULL);
+                for (v = 0; v < a->nchosen; v++) bench_measure(s, b.atlas_size, ctx[2].vx, &warm.scene, warm.name, 8, &bench_methods[a->chosen[v]], 1, &ms, &count, NULL, NULL);
                 cli_mesh_close(&warm);
             }
         }
@@ -335,6 +344,56 @@ done:
     for (m = 0; m < 3; m++) cli_context_close(s, &ctx[m]);
     for (m = 0; m < a->nmesh; m++) cli_mesh_close(&meshes[m]);
     free(meshes);
+    return rc;
+}
+
+/* report all's voxel sets: every surface method (on GL also the variants GL alone has) against
+   the exact conservative set, made on the CPU, on one grid (each grid its own exact set: one
+   front); the median of 3 runs (quick: 1). */
+int report_voxels_all(report_run *run)
+{
+    static const int res[] = {128}, quick_res[] = {32};
+    voxgi_info ci;
+    int i, m, rc = 0;
+    voxgi_query_info(run->ctx, &ci);
+    for (i = 0; i < (run->quick ? CLI_COUNT(quick_res) : CLI_COUNT(res)) && rc == 0; i++) {
+        const int n = run->quick ? quick_res[i] : res[i];
+        uint32_t *ref = NULL;
+        uint64_t exact = 0;
+        double ms;
+        cli_status(run->s, "%s: the exact voxels, %d^3", run->scene_name, n);
+        if (!bench_measure(run->s, 0, run->cpu, run->scene, run->scene_name, n, &bench_methods[0], 1, &ms, &exact, &ref, NULL) || !ref) {
+            free(ref);
+            return cli_fail(run->s, "%s: the exact voxels at %d^3 could not be made", run->scene_name, n);
+        }
+        for (m = 0; m < BENCH_METHOD_COUNT && rc == 0; m++) {
+            const bench_method *bm = &bench_methods[m];
+            report_item it;
+            uint32_t *bits = NULL;
+            uint64_t voxels = 0, missed = 0, extra = 0;
+            size_t bytes = 0;
+            if (bm->method == VOXGI_METHOD_SOLID || (bm->variant == 1 && ci.backend != VOXGI_BACKEND_GL)) continue; /* solids; GL's variants */
+            cli_status(run->s, "%s: %s, %d^3", run->scene_name, bm->name, n);
+            if (!bench_measure(run->s, 0, run->ctx, run->scene, run->scene_name, n, bm, run->quick ? 1 : 3, &ms, &voxels, &bits, &bytes) || !bits) {
+                free(bits);
+                rc = cli_fail(run->s, "%s: %s at %d^3 failed", run->scene_name, bm->name, n);
+                break;
+            }
+            bench_compare(ref, bits, n, &missed, &extra);
+            free(bits);
+            memset(&it, 0, sizeof it);
+            it.method = bm->name;
+            snprintf(it.settings, sizeof it.settings, "%d^3", n);
+            snprintf(it.passes, sizeof it.passes, "voxelize %.2f", ms);
+            snprintf(it.detail, sizeof it.detail, "missed %llu, extra %llu of %llu", (unsigned long long)missed, (unsigned long long)extra,
+                     (unsigned long long)exact);
+            it.ms = ms;
+            it.bytes = (double)bytes;
+            it.error = exact ? (double)(missed + extra) / (double)exact : 0;
+            run->emit(run, &it, NULL);
+        }
+        free(ref);
+    }
     return rc;
 }
 

@@ -1,5 +1,5 @@
 /* tools/cmd_report.c - voxgi report vct: the cone tracer's error against run time, as Markdown, CSV and SVG. */
-#include "cli.h"
+#include "report.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -16,7 +16,8 @@ static const char *const report_help =
     "DIR/vct.csv and DIR/vct.svg (error against time, log scales, the Pareto front marked).\n"
     "It also times each stage of the tool's default configuration on the CPU and on GL, where a GL\n"
     "4.5 context can be made (--no-stages: not). Times are wall clock on this machine; GL times on a\n"
-    "software rasteriser are not GPU times. The other reports: voxgi report tsm|rsm|sh|ao|ssgi --help.\n";
+    "software rasteriser are not GPU times. The other reports: voxgi report tsm|rsm|sh|ao|ssgi|linespace\n"
+    "--help, and every method at once: voxgi report all --help.\n";
 
 /* mips: 0 isotropic, 1 anisotropic, 2 octree (the --filters bits 1, 2, 4) */
 static const char *const mips_names[] = {"isotropic", "anisotropic", "octree", NULL}, *const mips_short[3] = {"iso", "aniso", "octree"},
@@ -39,7 +40,8 @@ typedef struct report_row {
     int res, cones, mips, stride;
     double aperture, half_angle_deg, step;
     voxgi_vct_info info;
-    double rmse, ref_ms, pareto;
+    double rmse, ref_ms;
+    int pareto;
 } report_row;
 
 /* The measurements: per scene the reference's convergence, and a row per configuration. */
@@ -66,75 +68,121 @@ static double rel_rmse(const cli_error_mask *m, const float *a, const float *ref
     return isfinite(e) ? e : 0;
 }
 
-/* Error against time, log scales: every configuration, the Pareto front joined, the reference dashed. */
+/* Error against time, log scales: every configuration, each scene's Pareto front joined, the reference dashed. */
 static void report_svg(FILE *f, const report *rep)
 {
-    const report_row *rows = rep->rows;
-    const char *const *scenes = rep->scenes;
-    const double *ref_c = rep->ref_c, *ref_floor = rep->ref_floor, *ref_ms_per_spp = rep->ref_ms_per_spp, *ref_bvh_ms = rep->ref_bvh_ms;
-    int n = rep->nrows, scene_count = rep->scene_count;
-    static const char *const colours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd"};
-    double tmin = 1e300, tmax = 0, emin = 1e300, emax = 0;
-    const double W = 720, H = 480, L = 70, R = 20, T = 30, B = 50;
+    report_plot_point *points = (report_plot_point *)calloc((size_t)rep->nrows + 1, sizeof *points);
+    char (*labels)[32] = (char (*)[32])calloc((size_t)rep->nrows + 1, sizeof *labels);
+    char legend_text[REPORT_MAX_SCENES][160];
+    const char *legend[REPORT_MAX_SCENES];
+    double curve_ms[REPORT_MAX_SCENES][41], curve_error[REPORT_MAX_SCENES][41];
+    report_plot_curve curves[REPORT_MAX_SCENES];
+    report_plot plot;
     int i, s, k;
-#define RX(t) (L + (log10(t) - log10(tmin)) / (log10(tmax) - log10(tmin)) * (W - L - R))
-#define RY(e) (H - B - (log10(e) - log10(emin)) / (log10(emax) - log10(emin)) * (H - T - B))
-    for (i = 0; i < n; i++) {
-        tmin = fmin(tmin, rows[i].info.ms); tmax = fmax(tmax, fmax(rows[i].info.ms, rows[i].ref_ms));
-        emin = fmin(emin, rows[i].rmse); emax = fmax(emax, rows[i].rmse);
+    if (!points || !labels) {
+        free(points);
+        free(labels);
+        return;
     }
-    tmin = pow(10, floor(log10(tmin))); tmax = pow(10, ceil(log10(tmax)));
-    emin = pow(10, floor(log10(emin))); emax = pow(10, ceil(log10(emax)));
-    if (emax <= emin) emax = emin * 10;
-    if (tmax <= tmin) tmax = tmin * 10;
-    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" font-family=\"sans-serif\" font-size=\"11\">\n", W, H);
-    fprintf(f, "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
-    for (k = (int)log10(tmin); k <= (int)log10(tmax); k++)
-        fprintf(f, "<line x1=\"%.1f\" y1=\"%.0f\" x2=\"%.1f\" y2=\"%.0f\" stroke=\"#ddd\"/><text x=\"%.1f\" y=\"%.0f\" text-anchor=\"middle\">%g ms</text>\n",
-                RX(pow(10, k)), T, RX(pow(10, k)), H - B, RX(pow(10, k)), H - B + 15, pow(10, k));
-    for (k = (int)floor(log10(emin) + 0.5); k <= (int)floor(log10(emax) + 0.5); k++)
-        fprintf(f, "<line x1=\"%.0f\" y1=\"%.1f\" x2=\"%.0f\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%.0f\" y=\"%.1f\" text-anchor=\"end\">%g%%</text>\n", L,
-                RY(pow(10, k)), W - R, RY(pow(10, k)), L - 5, RY(pow(10, k)) + 4, 100 * pow(10, k));
-    fprintf(f, "<text x=\"%.0f\" y=\"%.0f\" text-anchor=\"middle\">time per image (wall clock)</text>\n", (L + W - R) / 2, H - 12);
-    fprintf(f, "<text x=\"15\" y=\"%.0f\" transform=\"rotate(-90 15 %.0f)\" text-anchor=\"middle\">relative RMSE against the one-bounce reference</text>\n",
-            (T + H - B) / 2, (T + H - B) / 2);
-    for (s = 0; s < scene_count; s++) {
-        const char *c = colours[s % 4];
-        double prev_t = 0, prev_e = 0;
-        int first = 1;
+    for (i = 0; i < rep->nrows; i++) {
+        const report_row *r = &rep->rows[i];
+        for (s = 0; s < rep->scene_count && strcmp(r->scene, rep->scenes[s]) != 0; s++) {}
+        snprintf(labels[i], sizeof labels[i], "%d/%d%s", r->res, r->cones, mips_mark[r->mips]);
+        points[i].ms = r->info.ms;
+        points[i].error = r->rmse;
+        points[i].series = s;
+        points[i].front = r->pareto;
+        points[i].label = r->pareto ? labels[i] : NULL;
+    }
+    for (s = 0; s < rep->scene_count; s++) {
         for (k = 0; k <= 40; k++) { /* the path tracer at spp k: its error c / sqrt(k) measured against the reference (with its floor), at time bvh + k x per-spp */
-            double spp = pow(2, k / 2.0), t = ref_bvh_ms[s] + spp * ref_ms_per_spp[s], e = sqrt(ref_c[s] * ref_c[s] / spp + ref_floor[s] * ref_floor[s]);
-            if (t < tmin || t > tmax || e < emin || e > emax) continue;
-            if (!first) fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-dasharray=\"4 3\"/>\n", RX(prev_t), RY(prev_e), RX(t), RY(e), c);
-            prev_t = t; prev_e = e; first = 0;
+            double spp = pow(2, k / 2.0);
+            curve_ms[s][k] = rep->ref_bvh_ms[s] + spp * rep->ref_ms_per_spp[s];
+            curve_error[s][k] = sqrt(rep->ref_c[s] * rep->ref_c[s] / spp + rep->ref_floor[s] * rep->ref_floor[s]);
         }
-        first = 1;
-        for (i = 0; i < n; i++) { /* the Pareto front, in time order (rows are not sorted: find them) */
-            if (strcmp(rows[i].scene, scenes[s]) != 0 || !rows[i].pareto) continue;
-            fprintf(f, "<text x=\"%.1f\" y=\"%.1f\" fill=\"%s\" font-size=\"9\">%d/%d%s</text>\n", RX(rows[i].info.ms) + 4, RY(rows[i].rmse) - 4, c, rows[i].res,
-                    rows[i].cones, mips_mark[rows[i].mips]);
-        }
-        for (i = 0; i < n; i++) {
-            int j, best = -1;
-            if (strcmp(rows[i].scene, scenes[s]) != 0 || !rows[i].pareto) continue;
-            for (j = 0; j < n; j++) /* the next front point in time */
-                if (strcmp(rows[j].scene, scenes[s]) == 0 && rows[j].pareto && rows[j].info.ms > rows[i].info.ms &&
-                    (best < 0 || rows[j].info.ms < rows[best].info.ms))
-                    best = j;
-            if (best >= 0)
-                fprintf(f, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"2\"/>\n", RX(rows[i].info.ms), RY(rows[i].rmse),
-                        RX(rows[best].info.ms), RY(rows[best].rmse), c);
-        }
-        for (i = 0; i < n; i++)
-            if (strcmp(rows[i].scene, scenes[s]) == 0)
-                fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"%s\" fill-opacity=\"%s\" stroke=\"%s\"/>\n", RX(rows[i].info.ms), RY(rows[i].rmse),
-                        rows[i].pareto ? 4 : 3, rows[i].pareto ? c : "white", rows[i].pareto ? "1" : "0", c);
-        fprintf(f, "<circle cx=\"%.0f\" cy=\"%.0f\" r=\"4\" fill=\"%s\"/><text x=\"%.0f\" y=\"%.0f\">%s: cone tracing (filled: Pareto front, "
-                   "label res/cones, a = anisotropic, o = octree); dashed: the reference</text>\n", L + 15, T + 12 + 15.0 * s, c, L + 25, T + 16 + 15.0 * s, scenes[s]);
+        curves[s].ms = curve_ms[s];
+        curves[s].error = curve_error[s];
+        curves[s].count = 41;
+        curves[s].series = s;
+        snprintf(legend_text[s], sizeof legend_text[s], "%s: cone tracing (filled: Pareto front, label res/cones, a = anisotropic, o = octree); dashed: the reference",
+                 rep->scenes[s]);
+        legend[s] = legend_text[s];
     }
-    fprintf(f, "</svg>\n");
-#undef RX
-#undef RY
+    memset(&plot, 0, sizeof plot);
+    plot.y_title = "relative RMSE against the one-bounce reference";
+    plot.x_title = "time per image (wall clock)";
+    plot.legend = legend;
+    plot.series_count = rep->scene_count;
+    plot.points = points;
+    plot.count = (size_t)rep->nrows;
+    plot.front_per_series = 1;
+    plot.curves = curves;
+    plot.curve_count = rep->scene_count;
+    report_plot_svg(f, &plot);
+    free(points);
+    free(labels);
+}
+
+/* The cone-traced image of scene (its name, seen by cam) for every configuration of a's lists,
+   each measured against ref (by mask) and appended to rows[*nrows] (ref_ms left to the caller);
+   with run, also handed to report all. 0, or says why and returns 1. */
+static int vct_sweep(cli_session *s, voxgi_context *ctx, const report_args *a, const voxgi_scene *scene, const voxgi_camera *cam, const char *name,
+                     const cli_error_mask *mask, const float *ref, float *img, report_row *rows, int *nrows, report_run *run)
+{
+    size_t nv = (size_t)cam->width * (size_t)cam->height * 3;
+    int ir, ic, ia, is, ist, f;
+    for (f = 0; f < 3; f++)
+        for (ir = 0; ir < a->nres; ir++)
+            for (ic = 0; ic < a->ncones; ic++)
+                for (ia = 0; ia < a->naps; ia++)
+                    for (is = 0; is < a->nsteps; is++)
+                        for (ist = 0; ist < a->nstrides; ist++) {
+                            voxgi_vct_desc vd;
+                            report_row *row = &rows[*nrows];
+                            if (!(a->filters & (1u << f))) continue;
+                            memset(&vd, 0, sizeof vd);
+                            vd.camera = *cam;
+                            vd.resolution = (int)a->res[ir];
+                            vd.filter = f == 1 ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
+                            vd.octree = f == 2;
+                            vd.cones.cones = (int)a->cones[ic];
+                            vd.cones.half_angle = (float)(a->apertures[ia] * acos(1 - 1.0 / vd.cones.cones));
+                            vd.cones.step = (float)a->steps[is];
+                            vd.samples = a->direct_spp;
+                            vd.seed = 1;
+                            vd.hide_emitters = 1;
+                            vd.cone_stride = (int)a->strides[ist];
+                            if (!(vd.cones.half_angle < 1.5f)) continue;
+                            cli_status(s, "%s: %d^3, %d cones x %.2f, step %.2f, stride %d, %s", name, vd.resolution, vd.cones.cones, a->apertures[ia],
+                                       a->steps[is], vd.cone_stride, mips_names[f]);
+                            if (voxgi_vct_render(ctx, scene, &vd, img, nv * 4, &row->info) != VOXGI_OK) return cli_fail_lib(s, ctx, NULL);
+                            row->scene = name;
+                            row->res = vd.resolution;
+                            row->cones = vd.cones.cones;
+                            row->mips = f;
+                            row->aperture = a->apertures[ia];
+                            row->half_angle_deg = vd.cones.half_angle * 180 / 3.14159265358979323846;
+                            row->step = a->steps[is];
+                            row->stride = vd.cone_stride;
+                            row->rmse = rel_rmse(mask, img, ref);
+                            (*nrows)++;
+                            if (run) {
+                                const voxgi_vct_info *v = &row->info;
+                                report_item it;
+                                memset(&it, 0, sizeof it);
+                                it.method = "vct";
+                                snprintf(it.settings, sizeof it.settings, "%d^3, %d cones (%.1f deg), step %g, stride %d, %s", row->res, row->cones,
+                                         row->half_angle_deg, row->step, row->stride, mips_names[f]);
+                                report_append(it.passes, sizeof it.passes, "voxelize %.1f, inject + mips %.1f", v->ms_voxelize, v->ms_inject);
+                                if (f == 2) report_append(it.passes, sizeof it.passes, ", octree %.1f", v->ms_octree);
+                                report_append(it.passes, sizeof it.passes, ", cones %.1f, direct %.1f", v->ms_cones, v->ms_direct);
+                                it.ms = v->ms;
+                                it.bytes = (double)v->radiance_bytes;
+                                it.error = cli_masked_error(mask, img, ref, NULL, NULL);
+                                run->emit(run, &it, img);
+                            }
+                        }
+    return 0;
 }
 
 /* One scene (cm: its scene when it is --cornell-mesh's): the converged reference into ref and its
@@ -149,7 +197,7 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
     voxgi_reference_info ri;
     size_t nv = (size_t)a->size * (size_t)a->size * 3;
     const char *name = rep->scenes[si];
-    int ir, ic, ia, is, ist, f, k, i, first_row = rep->nrows, rc = CLI_EXIT_FAILURE;
+    int k, i, first_row = rep->nrows, rc = CLI_EXIT_FAILURE;
     double c2 = 0;
     memset(&bs, 0, sizeof bs);
     memset(&mask, 0, sizeof mask);
@@ -191,51 +239,13 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
     rep->ref_ms_per_spp[si] = ri.ms_render / 64;
     rep->ref_bvh_ms[si] = ri.ms_bvh;
     rep->ref_floor[si] = rep->ref_c[si] / sqrt((double)a->spp);
-    for (f = 0; f < 3; f++)
-        for (ir = 0; ir < a->nres; ir++)
-            for (ic = 0; ic < a->ncones; ic++)
-                for (ia = 0; ia < a->naps; ia++)
-                    for (is = 0; is < a->nsteps; is++)
-                        for (ist = 0; ist < a->nstrides; ist++) {
-                            voxgi_vct_desc vd;
-                            report_row *row = &rep->rows[rep->nrows];
-                            double need, inv;
-                            if (!(a->filters & (1u << f))) continue;
-                            memset(&vd, 0, sizeof vd);
-                            vd.camera = rd.camera;
-                            vd.resolution = (int)a->res[ir];
-                            vd.filter = f == 1 ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
-                            vd.octree = f == 2;
-                            vd.cones.cones = (int)a->cones[ic];
-                            vd.cones.half_angle = (float)(a->apertures[ia] * acos(1 - 1.0 / vd.cones.cones));
-                            vd.cones.step = (float)a->steps[is];
-                            vd.samples = a->direct_spp;
-                            vd.seed = 1;
-                            vd.hide_emitters = 1;
-                            vd.cone_stride = (int)a->strides[ist];
-                            if (!(vd.cones.half_angle < 1.5f)) continue;
-                            cli_note(s, "%s: %d^3, %d cones x %.2f, step %.2f, stride %d, %s", name, vd.resolution, vd.cones.cones, a->apertures[ia],
-                                     a->steps[is], vd.cone_stride, mips_names[f]);
-                            if (voxgi_vct_render(ctx, scene, &vd, img, nv * 4, &row->info) != VOXGI_OK) {
-                                cli_fail_lib(s, ctx, NULL);
-                                goto done;
-                            }
-                            row->scene = name;
-                            row->res = vd.resolution;
-                            row->cones = vd.cones.cones;
-                            row->mips = f;
-                            row->aperture = a->apertures[ia];
-                            row->half_angle_deg = vd.cones.half_angle * 180 / 3.14159265358979323846;
-                            row->step = a->steps[is];
-                            row->stride = vd.cone_stride;
-                            row->rmse = rel_rmse(&mask, img, ref);
-                            /* the path tracer's spp k whose image measures the same error against the same reference:
-                               c^2 (1/k + 1/spp) = rmse^2 (the reference's own noise is in both) */
-                            inv = row->rmse * row->rmse / (rep->ref_c[si] * rep->ref_c[si]) - 1.0 / a->spp;
-                            need = inv > 1.0 / (1024.0 * a->spp) ? 1 / inv : 1024.0 * a->spp;
-                            row->ref_ms = rep->ref_bvh_ms[si] + rep->ref_ms_per_spp[si] * (need > 1.0 ? need : 1.0);
-                            rep->nrows++;
-                        }
+    if (vct_sweep(s, ctx, a, scene, &rd.camera, name, &mask, ref, img, rep->rows, &rep->nrows, NULL)) goto done;
+    for (i = first_row; i < rep->nrows; i++) { /* the path tracer's spp k whose image measures the same error against the same
+                                                  reference: c^2 (1/k + 1/spp) = rmse^2 (the reference's own noise is in both) */
+        report_row *row = &rep->rows[i];
+        double inv = row->rmse * row->rmse / (rep->ref_c[si] * rep->ref_c[si]) - 1.0 / a->spp, need = inv > 1.0 / (1024.0 * a->spp) ? 1 / inv : 1024.0 * a->spp;
+        row->ref_ms = rep->ref_bvh_ms[si] + rep->ref_ms_per_spp[si] * (need > 1.0 ? need : 1.0);
+    }
     for (k = 0; k < 2; k++) { /* the stages on each backend, the faster of two runs (the first compiles GL's shaders) */
         voxgi_vct_desc vd;
         int run;
@@ -252,15 +262,8 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
             if (run == 0 || vi.ms < rep->stages[si][k].ms) rep->stages[si][k] = vi;
         }
     }
-    for (i = first_row; i < rep->nrows; i++) { /* on the front: nothing both faster and closer */
-        report_row *p = &rep->rows[i];
-        int j;
-        p->pareto = 1;
-        for (j = first_row; j < rep->nrows; j++) {
-            const report_row *q = &rep->rows[j];
-            if (j != i && q->info.ms <= p->info.ms && q->rmse <= p->rmse && (q->info.ms < p->info.ms || q->rmse < p->rmse)) p->pareto = 0;
-        }
-    }
+    pareto_mark_rows(rep->rows + first_row, (size_t)(rep->nrows - first_row), sizeof(report_row), offsetof(report_row, info.ms), offsetof(report_row, rmse),
+                     PARETO_NO_GROUP, offsetof(report_row, pareto)); /* the scene's front */
     rc = CLI_EXIT_OK;
 done:
     cli_error_mask_free(&mask);
@@ -278,7 +281,7 @@ static void write_csv(FILE *csv, const report *rep)
         fprintf(csv, "%s,%d,%d,%g,%.2f,%g,%d,%s,%llu,%llu,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.5f,%.1f,%.2f,%d\n", r->scene, r->res, r->cones, r->aperture,
                 r->half_angle_deg, r->step, r->stride, mips_names[r->mips], (unsigned long long)r->info.voxels, (unsigned long long)r->info.radiance_bytes,
                 r->info.ms_voxelize, r->info.ms_inject, r->info.ms_octree, r->info.ms_cones, r->info.ms_direct, r->info.ms, r->rmse, r->ref_ms,
-                r->ref_ms / r->info.ms, (int)r->pareto);
+                r->ref_ms / r->info.ms, r->pareto);
     }
 }
 
@@ -345,7 +348,7 @@ static int write_file(cli_session *s, const report *rep, const char *name, void 
     return 0;
 }
 
-static int report_run(cli_session *s, const report_args *a, report *rep)
+static int vct_run(cli_session *s, const report_args *a, report *rep)
 {
     cli_context c, stage_c; /* stage_c: the other backend's, for the stages */
     cli_cornell_mesh cm;
@@ -409,6 +412,31 @@ done:
     if (cm.name[0]) cli_cornell_mesh_close(c.vx, &cm);
     if (stage_c.vx) cli_context_close(s, &stage_c);
     cli_context_close(s, &c);
+    return rc;
+}
+
+/* report all's cone tracing: anisotropic mips (every point of this report's fronts has them), step
+   0.5, stride 6 and 24 direct-light rays (the tool's), over grids and cone counts. */
+int report_vct_all(report_run *run)
+{
+    static const double res[] = {32, 64, 96, 128}, cones[] = {8, 24}, quick_res[] = {32, 64};
+    report_args a;
+    report_row *rows;
+    int n = 0, rc;
+    memset(&a, 0, sizeof a);
+    if (run->quick) memcpy(a.res, quick_res, sizeof quick_res), a.nres = CLI_COUNT(quick_res);
+    else memcpy(a.res, res, sizeof res), a.nres = CLI_COUNT(res);
+    memcpy(a.cones, cones, sizeof cones);
+    a.ncones = CLI_COUNT(cones);
+    a.apertures[0] = 1;
+    a.steps[0] = 0.5;
+    a.strides[0] = CLI_VCT_STRIDE;
+    a.naps = a.nsteps = a.nstrides = 1;
+    a.filters = 2; /* anisotropic */
+    a.direct_spp = CLI_VCT_DIRECT_SPP;
+    if (!(rows = (report_row *)calloc((size_t)(a.nres * a.ncones), sizeof *rows))) return cli_fail(run->s, "out of memory");
+    rc = vct_sweep(run->s, run->ctx, &a, run->scene, &run->camera, run->scene_name, &run->R->mask, run->R->image, run->img, rows, &n, run);
+    free(rows);
     return rc;
 }
 
@@ -481,7 +509,9 @@ int cmd_report(int argc, char **argv)
         if (argc >= 1 && strcmp(argv[0], "ao") == 0) return cmd_report_screen(0, argc - 1, argv + 1);
         if (argc >= 1 && strcmp(argv[0], "ssgi") == 0) return cmd_report_screen(1, argc - 1, argv + 1);
         if (argc >= 1 && strcmp(argv[0], "linespace") == 0) return cmd_report_linespace(argc - 1, argv + 1);
-        if (argc < 1 || strcmp(argv[0], "vct") != 0) return cli_usage("report", "the reports to make are 'vct', 'tsm', 'rsm', 'sh', 'ao', 'ssgi' and 'linespace'");
+        if (argc >= 1 && strcmp(argv[0], "all") == 0) return cmd_report_all(argc - 1, argv + 1);
+        if (argc < 1 || strcmp(argv[0], "vct") != 0)
+            return cli_usage("report", "the reports to make are 'vct', 'tsm', 'rsm', 'sh', 'ao', 'ssgi', 'linespace' and 'all'");
         if ((rc = cli_parse(&cmd, argc - 1, argv + 1)) != CLI_CONTINUE) return rc;
     }
     for (list = a.scene_list; (r = cli_next_item(&list, rep.scene_buf[rep.scene_count], sizeof rep.scene_buf[0])) != 0; rep.scene_count++)
@@ -491,5 +521,5 @@ int cmd_report(int argc, char **argv)
     for (r = 0; r < rep.scene_count; r++) rep.scenes[r] = rep.scene_buf[r];
     rep.args = &a;
     cli_session_init(&s, "report");
-    return report_run(&s, &a, &rep);
+    return vct_run(&s, &a, &rep);
 }

@@ -1,6 +1,6 @@
 /* tools/cmd_report_bounce.c - voxgi report rsm and report sh: the one-bounce methods' error
  * against run time, as Markdown and CSV, and how the voxel traversals compare. */
-#include "cli.h"
+#include "report.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -50,6 +50,7 @@ typedef struct bounce_row {
     double p[BOUNCE_PARAMS];
     size_t gathered;
     double ms, ms_gather, rmse, red, ref_ms;
+    double ms_passes[3]; /* the maps or the SH volume, the voxels, the direct light */
 } bounce_row;
 
 /* DDA against the hierarchy on one scene's segments. */
@@ -138,11 +139,11 @@ done:
     return rc;
 }
 
-/* Renders one configuration into img; its row. */
-static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a, const voxgi_builtin_scene *bs, const voxgi_camera *cam,
-                        const cli_reference *R, bounce_row *row, float *img)
+/* Renders one configuration of scene (its name) into img; its row, and its memory into *bytes. */
+static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a, const voxgi_scene *scene, const char *name, const voxgi_camera *cam,
+                        const cli_reference *R, bounce_row *row, float *img, double *bytes)
 {
-    size_t bytes = (size_t)cam->width * (size_t)cam->height * 12;
+    size_t img_bytes = (size_t)cam->width * (size_t)cam->height * 12;
     voxgi_result r;
     if (a->method == BOUNCE_RSM) {
         voxgi_rsm_image_desc d;
@@ -159,12 +160,16 @@ static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a
         d.gather_stride = (int)row->p[4];
         d.resolution = (int)row->p[5];
         d.visibility = (voxgi_visibility)row->visibility;
-        cli_status(s, "%s: rsm, %d texels, %d samples, radius %g, %d points, stride %d, %d voxels, %s", bs->name, d.rsm.size, d.rsm.samples, row->p[2],
+        cli_status(s, "%s: rsm, %d texels, %d samples, radius %g, %d points, stride %d, %d voxels, %s", name, d.rsm.size, d.rsm.samples, row->p[2],
                    d.rsm.points, d.gather_stride, d.resolution, visibility_names[row->visibility]);
-        r = voxgi_rsm_render(ctx, &bs->scene, &d, img, bytes, &info);
+        r = voxgi_rsm_render(ctx, scene, &d, img, img_bytes, &info);
+        *bytes = (double)info.bytes;
         row->ms = info.ms;
         row->ms_gather = info.ms_gather;
         row->gathered = info.gathered;
+        row->ms_passes[0] = info.ms_maps;
+        row->ms_passes[1] = info.ms_voxels;
+        row->ms_passes[2] = info.ms_direct;
     } else {
         voxgi_sh_image_desc d;
         voxgi_sh_image_info info;
@@ -177,11 +182,15 @@ static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a
         d.opening = (float)row->p[1];
         d.gather_stride = (int)row->p[2];
         d.visibility = (voxgi_visibility)row->visibility;
-        cli_status(s, "%s: sh, %d voxels, opening %g, stride %d, %s", bs->name, d.resolution, row->p[1], d.gather_stride, visibility_names[row->visibility]);
-        r = voxgi_sh_render(ctx, &bs->scene, &d, img, bytes, &info);
+        cli_status(s, "%s: sh, %d voxels, opening %g, stride %d, %s", name, d.resolution, row->p[1], d.gather_stride, visibility_names[row->visibility]);
+        r = voxgi_sh_render(ctx, scene, &d, img, img_bytes, &info);
+        *bytes = (double)info.bytes;
         row->ms = info.ms;
         row->ms_gather = info.ms_gather;
         row->gathered = info.gathered;
+        row->ms_passes[0] = info.ms_sh;
+        row->ms_passes[1] = info.ms_voxels;
+        row->ms_passes[2] = info.ms_direct;
     }
     if (r != VOXGI_OK) return cli_fail_lib(s, ctx, bounce_names[a->method]);
     row->rmse = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
@@ -190,14 +199,13 @@ static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a
     return 0;
 }
 
-/* Every configuration of scene si (the parameter lists' product, the last varying fastest). */
-static int bounce_scene(cli_session *s, voxgi_context *ctx, const bounce_args *a, bounce_report *rep, int si, float *img)
+/* Every configuration of scene (its name, its index si; the parameter lists' product, the last
+   varying fastest) against R, appended to rep's rows; with run, each also handed to report all. */
+static int bounce_sweep(cli_session *s, voxgi_context *ctx, const bounce_args *a, const voxgi_scene *scene, const char *name, const voxgi_camera *cam,
+                        const cli_reference *R, bounce_report *rep, int si, float *img, report_run *run)
 {
     const double *lists[BOUNCE_PARAMS];
-    int counts[BOUNCE_PARAMS], at[BOUNCE_PARAMS], np, v, k, rc = 1;
-    voxgi_builtin_scene bs;
-    voxgi_camera cam;
-    cli_reference R;
+    int counts[BOUNCE_PARAMS], at[BOUNCE_PARAMS], np, v, k;
     if (a->method == BOUNCE_RSM) {
         lists[0] = a->map_sizes; counts[0] = a->nmap_sizes;
         lists[1] = a->samples; counts[1] = a->nsamples;
@@ -212,6 +220,48 @@ static int bounce_scene(cli_session *s, voxgi_context *ctx, const bounce_args *a
         lists[2] = a->strides; counts[2] = a->nstrides;
         np = 3;
     }
+    for (v = 0; v < a->nvisibility; v++) {
+        memset(at, 0, sizeof at);
+        for (;;) {
+            bounce_row *row = &rep->rows[rep->nrows];
+            double bytes = 0;
+            memset(row, 0, sizeof *row);
+            row->scene = si;
+            row->visibility = a->visibility[v];
+            for (k = 0; k < np; k++) row->p[k] = lists[k][at[k]];
+            if (bounce_image(s, ctx, a, scene, name, cam, R, row, img, &bytes)) return 1;
+            rep->nrows++;
+            if (run) {
+                report_item it;
+                memset(&it, 0, sizeof it);
+                it.method = bounce_names[a->method];
+                if (a->method == BOUNCE_RSM)
+                    snprintf(it.settings, sizeof it.settings, "maps of %d texels, %d samples, radius %g, %d points, stride %d, %d voxels, %s", (int)row->p[0],
+                             (int)row->p[1], row->p[2], (int)row->p[3], (int)row->p[4], (int)row->p[5], visibility_names[row->visibility]);
+                else
+                    snprintf(it.settings, sizeof it.settings, "%d voxels, opening %g, stride %d, %s", (int)row->p[0], row->p[1], (int)row->p[2],
+                             visibility_names[row->visibility]);
+                snprintf(it.passes, sizeof it.passes, "%s %.1f, voxels %.1f, direct %.1f, gathers %.1f", a->method == BOUNCE_RSM ? "maps" : "SH volume",
+                         row->ms_passes[0], row->ms_passes[1], row->ms_passes[2], row->ms_gather);
+                it.ms = row->ms;
+                it.bytes = bytes;
+                it.error = row->rmse;
+                run->emit(run, &it, img);
+            }
+            for (k = np - 1; k >= 0 && ++at[k] == counts[k]; k--) at[k] = 0; /* the next combination */
+            if (k < 0) break;
+        }
+    }
+    return 0;
+}
+
+/* Scene si: its reference, every configuration, and for rsm the traversals. */
+static int bounce_scene(cli_session *s, voxgi_context *ctx, const bounce_args *a, bounce_report *rep, int si, float *img)
+{
+    voxgi_builtin_scene bs;
+    voxgi_camera cam;
+    cli_reference R;
+    int rc = 1;
     if (voxgi_builtin_scene_create(ctx, rep->scenes[si], &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, rep->scenes[si]);
     cam = bs.camera;
     cam.width = cam.height = a->size;
@@ -219,20 +269,7 @@ static int bounce_scene(cli_session *s, voxgi_context *ctx, const bounce_args *a
     rep->masked[si] = R.mask.masked_pixels;
     rep->ref_c[si] = R.c;
     rep->ref_ms_per_spp[si] = R.ms_per_spp;
-    for (v = 0; v < a->nvisibility; v++) {
-        memset(at, 0, sizeof at);
-        for (;;) {
-            bounce_row *row = &rep->rows[rep->nrows];
-            memset(row, 0, sizeof *row);
-            row->scene = si;
-            row->visibility = a->visibility[v];
-            for (k = 0; k < np; k++) row->p[k] = lists[k][at[k]];
-            if (bounce_image(s, ctx, a, &bs, &cam, &R, row, img)) goto done;
-            rep->nrows++;
-            for (k = np - 1; k >= 0 && ++at[k] == counts[k]; k--) at[k] = 0; /* the next combination */
-            if (k < 0) break;
-        }
-    }
+    if (bounce_sweep(s, ctx, a, &bs.scene, rep->scenes[si], &cam, &R, rep, si, img, NULL)) goto done;
     if (a->method == BOUNCE_RSM && a->segments > 0) {
         cli_status(s, "%s: the traversals, %d segments", rep->scenes[si], a->segments);
         if (bounce_traversals(s, ctx, &bs.scene, &cam, a->segments, &rep->traversal[si])) goto done;
@@ -245,18 +282,7 @@ done:
 }
 
 /* A row is on its scene's front when no other row is at once faster and better. */
-static void bounce_pareto(bounce_report *rep)
-{
-    int i, j;
-    for (i = 0; i < rep->nrows; i++) {
-        bounce_row *r = &rep->rows[i];
-        r->pareto = 1;
-        for (j = 0; j < rep->nrows && r->pareto; j++) {
-            const bounce_row *q = &rep->rows[j];
-            if (j != i && q->scene == r->scene && q->ms <= r->ms && q->rmse <= r->rmse && (q->ms < r->ms || q->rmse < r->rmse)) r->pareto = 0;
-        }
-    }
-}
+static void bounce_pareto(bounce_report *rep) { PARETO_MARK(rep->rows, (size_t)rep->nrows, bounce_row, ms, rmse, scene, pareto); }
 
 /* The parameter columns of a row, for Markdown (sep " | ") or CSV (sep ","). */
 static void bounce_params(FILE *f, const bounce_args *a, const bounce_row *r, const char *sep)
@@ -319,6 +345,46 @@ static int bounce_write(cli_session *s, const bounce_args *a, const bounce_repor
     i |= fclose(csv) != 0;
     return i ? cli_fail(s, "cannot write to %s", a->out_dir) : 0;
 }
+
+/* The configurations of a scene: the visibilities times the lists' product. */
+static size_t bounce_combos(const bounce_args *a)
+{
+    return (size_t)a->nvisibility * (size_t)a->nstrides * (size_t)a->nres *
+           (a->method == BOUNCE_RSM ? (size_t)a->nmap_sizes * (size_t)a->nsamples * (size_t)a->nradii * (size_t)a->npoints : (size_t)a->nopenings);
+}
+
+/* report all's rsm and sh: hierarchical visibility, gathers at every 4th pixel (the tool's); rsm
+   over samples and radii with 4 points on an area light, sh over resolutions and openings. */
+static int bounce_all(report_run *run, int method)
+{
+    static const double samples[] = {50, 200}, radii[] = {0.3, 1}, sh_res[] = {32, 64, 96}, quick_sh_res[] = {16, 32}, openings[] = {0.5, 1};
+    bounce_args a;
+    bounce_report rep;
+    int rc;
+    memset(&a, 0, sizeof a);
+    memset(&rep, 0, sizeof rep);
+    a.method = method;
+#define SET(field, count, from) (memcpy(a.field, from, sizeof from), a.count = CLI_COUNT(from))
+    SET(samples, nsamples, samples);
+    if (run->quick) a.radii[0] = 1, a.nradii = 1;
+    else SET(radii, nradii, radii);
+    if (method == BOUNCE_SH && run->quick) SET(res, nres, quick_sh_res), a.openings[0] = 0.5, a.nopenings = 1;
+    else if (method == BOUNCE_SH) SET(res, nres, sh_res), SET(openings, nopenings, openings);
+    else a.res[0] = 64, a.nres = 1;
+#undef SET
+    a.map_sizes[0] = run->quick ? 128 : 256;
+    a.points[0] = run->quick ? 1 : 4;
+    a.strides[0] = 4;
+    a.visibility[0] = VOXGI_VISIBILITY_HIERARCHICAL;
+    a.nmap_sizes = a.npoints = a.nstrides = a.nvisibility = 1;
+    if (!(rep.rows = (bounce_row *)calloc(bounce_combos(&a), sizeof *rep.rows))) return cli_fail(run->s, "out of memory");
+    rc = bounce_sweep(run->s, run->ctx, &a, run->scene, run->scene_name, &run->camera, run->R, &rep, 0, run->img, run);
+    free(rep.rows);
+    return rc;
+}
+
+int report_rsm_all(report_run *run) { return bounce_all(run, BOUNCE_RSM); }
+int report_sh_all(report_run *run) { return bounce_all(run, BOUNCE_SH); }
 
 int cmd_report_bounce(int method, int argc, char **argv)
 {
@@ -395,8 +461,7 @@ int cmd_report_bounce(int method, int argc, char **argv)
     for (list = a.scene_list; (r = cli_next_item(&list, rep.scenes[rep.scene_count], sizeof rep.scenes[0])) != 0; rep.scene_count++)
         if (r < 0 || rep.scene_count == BOUNCE_MAX_SCENES)
             return cli_usage("report", "--scenes needs 1 to %d comma-separated built-in scenes, got '%s'", BOUNCE_MAX_SCENES, a.scene_list);
-    combos = (size_t)a.nvisibility * (size_t)a.nstrides * (size_t)a.nres *
-             (method == BOUNCE_RSM ? (size_t)a.nmap_sizes * (size_t)a.nsamples * (size_t)a.nradii * (size_t)a.npoints : (size_t)a.nopenings);
+    combos = bounce_combos(&a);
     cli_session_init(&s, "report");
     if (cli_context_open_options(&s, &c, &a.common)) return CLI_EXIT_FAILURE;
     rc = CLI_EXIT_FAILURE;

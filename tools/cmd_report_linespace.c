@@ -1,7 +1,7 @@
 /* tools/cmd_report_linespace.c - voxgi report linespace: the line space's soft shadows, error
    against run time (images against the reference, fast mode's visibility against exact rays, the
    shadow rays against the ray core), as Markdown and CSV. */
-#include "cli.h"
+#include "report.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -58,29 +58,16 @@ static double image_mean(const float *img, size_t values)
     return s / (double)values;
 }
 
-/* The images of one scene. */
-static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const char *name, FILE *md, FILE *csv)
+/* The line-space image of scene (its name, seen by cam) for every tree, supersampling, sample count
+   and mode of a's lists, against R: a row each into md and csv (when not NULL) and, with run,
+   handed to report all. 0, or says why and returns 1. */
+static int ls_images(cli_session *s, voxgi_context *ctx, const ls_args *a, const voxgi_scene *scene, const char *name, const voxgi_camera *cam,
+                     const cli_reference *R, FILE *md, FILE *csv, report_run *run)
 {
-    voxgi_builtin_scene bs;
-    voxgi_camera cam;
-    cli_reference R;
-    size_t pixels = (size_t)a->size * (size_t)a->size, p;
+    size_t pixels = (size_t)cam->width * (size_t)cam->height, p;
     float *img = (float *)malloc(pixels * 12), *vis[2] = {(float *)malloc(pixels * 4), (float *)malloc(pixels * 4)};
     int i, j, k, m, rc = 1;
-    memset(&R, 0, sizeof R);
-    if (!img || !vis[0] || !vis[1]) { cli_fail(s, "out of memory"); goto out; }
-    if (voxgi_builtin_scene_create(ctx, name, &bs) != VOXGI_OK) { cli_fail_lib(s, ctx, name); goto out; }
-    cam = bs.camera;
-    cam.width = cam.height = a->size;
-    cli_status(s, "%s: the reference's direct light, %d spp", name, a->spp);
-    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R)) goto done;
-    fprintf(md, "\n## %s\n\n%d x %d pixels; the reference's direct light at %d spp (its error %.2f%% / sqrt(spp)); %lu pixels near an emitter left "
-                "out. *rel. RMSE*: the tools' rule; *4x4*: on 4 x 4 block means without a masked pixel. Fast mode against exact, the same samples: "
-                "*MAE* of the pixels' visible share, *wrong*: the share of samples fast mode blocks where exact mode sees the light; *exact ends*: fast mode's "
-                "exact zone at each end of a ray, in leaves' edges.\n\n",
-            name, a->size, a->size, a->spp, 100 * R.c, (unsigned long)R.mask.masked_pixels);
-    fprintf(md, "| n | depth | tree MB | build ms | points per pixel | samples | rays per pixel | mode | shadows ms | total ms | rel. RMSE | 4x4 | mean "
-                "| exact ends | MAE | wrong |\n|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    if (!img || !vis[0] || !vis[1]) { cli_fail(s, "out of memory"); goto done; }
     for (i = 0; i < a->nns; i++)
         for (j = 0; j < a->ndepths; j++) {
             voxgi_linespace_desc td;
@@ -91,8 +78,8 @@ static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const 
             td.n = (int)a->ns[i];
             td.depth = (int)a->depths[j];
             cli_status(s, "%s: line space n %d depth %d", name, td.n, td.depth);
-            if ((r = voxgi_linespace_create(ctx, &bs.scene, &td, &L)) == VOXGI_ERR_TOO_LARGE || r == VOXGI_ERR_INVALID_ARGUMENT) {
-                fprintf(md, "| %d | %d | - | - | - | refused: %s | | | | | | | |\n", td.n, td.depth, voxgi_last_error(ctx));
+            if ((r = voxgi_linespace_create(ctx, scene, &td, &L)) == VOXGI_ERR_TOO_LARGE || r == VOXGI_ERR_INVALID_ARGUMENT) {
+                if (md) fprintf(md, "| %d | %d | - | - | - | refused: %s | | | | | | | |\n", td.n, td.depth, voxgi_last_error(ctx));
                 continue;
             }
             if (r != VOXGI_OK) { cli_fail_lib(s, ctx, "line space"); goto done; }
@@ -105,7 +92,7 @@ static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const 
                     double err, blk, mean, mae = 0, wrong = 0;
                     float *v = vis[m ? 1 : 0];
                     memset(&d, 0, sizeof d);
-                    d.camera = cam;
+                    d.camera = *cam;
                     d.ls = L;
                     d.mode = m ? VOXGI_LINESPACE_FAST : VOXGI_LINESPACE_EXACT;
                     d.exact_ends = m ? (int)a->ends[m - 1] : 0;
@@ -114,13 +101,16 @@ static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const 
                     d.seed = 1;
                     d.hide_emitters = 1;
                     cli_status(s, "%s: n %d depth %d, %d x %d points, %d samples, %s", name, td.n, td.depth, ss, ss, d.samples, m ? "fast" : "exact");
-                    if (voxgi_linespace_render(ctx, &bs.scene, &d, img, pixels * 12, v, &li) != VOXGI_OK) {
+                    if ((r = voxgi_linespace_render(ctx, scene, &d, img, pixels * 12, v, &li)) != VOXGI_OK) {
                         voxgi_linespace_destroy(ctx, L);
-                        cli_fail_lib(s, ctx, "linespace");
+                        if (r == VOXGI_ERR_UNSUPPORTED && run) { /* no area light */
+                            snprintf(run->why, sizeof run->why, "%s", voxgi_last_error(ctx));
+                            rc = REPORT_NOT_APPLICABLE;
+                        } else cli_fail_lib(s, ctx, "linespace");
                         goto done;
                     }
-                    err = cli_masked_error(&R.mask, img, R.image, NULL, NULL);
-                    blk = block_error(&R.mask, img, R.image);
+                    err = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
+                    blk = block_error(&R->mask, img, R->image);
                     mean = image_mean(img, 3 * pixels);
                     for (p = 0; m && p < pixels; p++) { /* fast against exact, the same samples */
                         mae += fabs((double)vis[1][p] - vis[0][p]);
@@ -128,24 +118,63 @@ static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const 
                     }
                     mae /= (double)pixels;
                     wrong /= (double)pixels;
-                    fprintf(md, "| %d | %d | %.2f | %.0f | %d | %d | %d | %s | %.1f | %.1f | %.2f%% | %.2f%% | %.4g |", td.n, td.depth, info.bytes / 1e6, info.ms,
-                            ss * ss, spl, ss * ss * spl, m ? "fast" : "exact", li.ms_shadows, li.ms - li.ms_build, 100 * err, 100 * blk, mean);
-                    if (m) fprintf(md, " %d | %.4f | %.2f%% |\n", d.exact_ends, mae, 100 * wrong);
-                    else fprintf(md, " | | |\n");
-                    fprintf(csv, "image,%s,%d,%d,%lu,%.3f,%d,%d,%s,%d,0,%.3f,%.3f,%.6g,%.6g,%.6g,%.6g,%.6g,,,\n", name, td.n, td.depth, (unsigned long)info.bytes,
-                            info.ms, ss, spl, m ? "fast" : "exact", d.exact_ends, li.ms_shadows, li.ms - li.ms_build, err, blk, mean, mae, wrong);
+                    if (md) {
+                        fprintf(md, "| %d | %d | %.2f | %.0f | %d | %d | %d | %s | %.1f | %.1f | %.2f%% | %.2f%% | %.4g |", td.n, td.depth, info.bytes / 1e6, info.ms,
+                                ss * ss, spl, ss * ss * spl, m ? "fast" : "exact", li.ms_shadows, li.ms - li.ms_build, 100 * err, 100 * blk, mean);
+                        if (m) fprintf(md, " %d | %.4f | %.2f%% |\n", d.exact_ends, mae, 100 * wrong);
+                        else fprintf(md, " | | |\n");
+                    }
+                    if (csv)
+                        fprintf(csv, "image,%s,%d,%d,%lu,%.3f,%d,%d,%s,%d,0,%.3f,%.3f,%.6g,%.6g,%.6g,%.6g,%.6g,,,\n", name, td.n, td.depth, (unsigned long)info.bytes,
+                                info.ms, ss, spl, m ? "fast" : "exact", d.exact_ends, li.ms_shadows, li.ms - li.ms_build, err, blk, mean, mae, wrong);
+                    if (run) { /* the tree is built once for every image: its time counts in each */
+                        report_item it;
+                        memset(&it, 0, sizeof it);
+                        it.method = m ? "linespace-fast" : "linespace-exact";
+                        snprintf(it.settings, sizeof it.settings, "n %d, depth %d, %d x %d points per pixel, %d samples", td.n, td.depth, ss, ss, spl);
+                        if (m) report_append(it.settings, sizeof it.settings, ", exact ends %d", d.exact_ends);
+                        snprintf(it.passes, sizeof it.passes, "tree %.1f, G-buffer %.1f, shadows %.1f", info.ms, li.ms_gbuffer, li.ms_shadows);
+                        it.ms = li.ms - li.ms_build + info.ms;
+                        it.bytes = (double)info.bytes;
+                        it.error = err;
+                        run->emit(run, &it, img);
+                    }
                 }
             }
             voxgi_linespace_destroy(ctx, L);
         }
     rc = 0;
 done:
-    cli_reference_free(&R);
-    voxgi_builtin_scene_destroy(ctx, &bs);
-out:
     free(img);
     free(vis[0]);
     free(vis[1]);
+    return rc;
+}
+
+/* The images of one scene. */
+static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const char *name, FILE *md, FILE *csv)
+{
+    voxgi_builtin_scene bs;
+    voxgi_camera cam;
+    cli_reference R;
+    int rc = 1;
+    memset(&R, 0, sizeof R);
+    if (voxgi_builtin_scene_create(ctx, name, &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, name);
+    cam = bs.camera;
+    cam.width = cam.height = a->size;
+    cli_status(s, "%s: the reference's direct light, %d spp", name, a->spp);
+    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R)) goto done;
+    fprintf(md, "\n## %s\n\n%d x %d pixels; the reference's direct light at %d spp (its error %.2f%% / sqrt(spp)); %lu pixels near an emitter left "
+                "out. *rel. RMSE*: the tools' rule; *4x4*: on 4 x 4 block means without a masked pixel. Fast mode against exact, the same samples: "
+                "*MAE* of the pixels' visible share, *wrong*: the share of samples fast mode blocks where exact mode sees the light; *exact ends*: fast mode's "
+                "exact zone at each end of a ray, in leaves' edges.\n\n",
+            name, a->size, a->size, a->spp, 100 * R.c, (unsigned long)R.mask.masked_pixels);
+    fprintf(md, "| n | depth | tree MB | build ms | points per pixel | samples | rays per pixel | mode | shadows ms | total ms | rel. RMSE | 4x4 | mean "
+                "| exact ends | MAE | wrong |\n|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    rc = ls_images(s, ctx, a, &bs.scene, name, &cam, &R, md, csv, NULL);
+done:
+    cli_reference_free(&R);
+    voxgi_builtin_scene_destroy(ctx, &bs);
     return rc;
 }
 
@@ -338,6 +367,25 @@ out:
     free(occ[1]);
     free(occ[2]);
     return rc;
+}
+
+/* report all's line space: one tree (the tool's n 4, depth 3; quick: depth 2), 1 x 1 and 2 x 2
+   points per pixel, 4 and 16 samples, exact and fast (3 leaves exact at each end). */
+int report_linespace_all(report_run *run)
+{
+    ls_args a;
+    memset(&a, 0, sizeof a);
+    a.ns[0] = 4;
+    a.depths[0] = run->quick ? 2 : 3;
+    a.samples[0] = 4;
+    a.samples[1] = 16;
+    a.supersample[0] = 1;
+    a.supersample[1] = 2;
+    a.ends[0] = 3;
+    a.nns = a.ndepths = a.nends = 1;
+    a.nsamples = run->quick ? 1 : 2;
+    a.nsuper = 2;
+    return ls_images(run->s, run->ctx, &a, run->scene, run->scene_name, &run->camera, run->R, NULL, NULL, run);
 }
 
 int cmd_report_linespace(int argc, char **argv)

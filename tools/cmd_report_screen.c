@@ -2,7 +2,7 @@
  * against run time (one parameter at a time around a base configuration), as Markdown and CSV;
  * for ambient occlusion how much it changes at fixed points over a camera orbit, for the bounce
  * the light the screen cannot see and a red wall at the edge of the view. */
-#include "cli.h"
+#include "report.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -68,10 +68,11 @@ typedef struct screen_config {
 } screen_config;
 
 typedef struct screen_row {
-    int scene, pareto;
+    int scene, pareto, group; /* group: the front's (the scene's, and for ao its radius's) */
     screen_config c;
     size_t gathered;
     double ms_pass, ms, rmse, red, ref_ms; /* ms_pass: the occlusion's or the gathers' */
+    double ms_parts[3], bytes;             /* ao: G-buffer, voxels; ssgi: direct light, voxels, their light; the memory */
 } screen_row;
 
 /* AO at fixed points over several passes (views or seeds): the points seen by two passes or more,
@@ -137,7 +138,7 @@ static screen_config base_config(int which, int method)
     c.rays = 16;
     c.steps = uses_steps(method) ? 16 : 0;
     c.res = uses_res(method) ? 128 : 0;
-    c.radius = which == SCREEN_AO ? 0.1 : 1;
+    c.radius = which == SCREEN_AO ? REPORT_AO_RADIUS : 1; /* report all measures ao at this one */
     c.hidden = method == M_HYBRID_LIGHT;
     return c;
 }
@@ -226,6 +227,9 @@ static voxgi_result render_config(voxgi_context *ctx, const voxgi_scene *scene, 
         row->gathered = info.gathered;
         row->ms_pass = info.ms_ao;
         row->ms = info.ms;
+        row->ms_parts[0] = info.ms_gbuffer;
+        row->ms_parts[1] = info.ms_voxels;
+        row->bytes = (double)info.bytes;
     } else {
         voxgi_ssgi_image_desc d;
         voxgi_ssgi_image_info info;
@@ -246,27 +250,72 @@ static voxgi_result render_config(voxgi_context *ctx, const voxgi_scene *scene, 
         row->gathered = info.gathered;
         row->ms_pass = info.ms_gather;
         row->ms = info.ms;
+        row->ms_parts[0] = info.ms_direct;
+        row->ms_parts[1] = info.ms_voxels;
+        row->ms_parts[2] = info.ms_inject;
+        row->bytes = (double)info.bytes;
     }
     row->c = *c;
     return r;
 }
 
 /* ------------------------------------------------------------------ the sweeps */
+/* Every configuration of each of the report's methods on scene si (its name, seen by cam), each
+   measured against the reference at its radius (R[k] at rep->radii[k] for ao; R[0] for ssgi),
+   appended to rep's rows; with run, each also handed to report all. 0, or says why and returns 1. */
+static int screen_sweep(cli_session *s, voxgi_context *ctx, const screen_args *a, screen_report *rep, int si, const voxgi_scene *scene, const char *name,
+                        const voxgi_camera *cam, const cli_reference *R, float *img, report_run *run)
+{
+    screen_config configs[SWEEP_MAX];
+    const int *methods = a->which == SCREEN_AO ? ao_methods : gi_methods;
+    int nmethods = a->which == SCREEN_AO ? CLI_COUNT(ao_methods) : CLI_COUNT(gi_methods), m, i, k, n;
+    char text[160];
+    for (m = 0; m < nmethods; m++) {
+        n = sweep(a, methods[m], configs);
+        for (i = 0; i < n; i++) {
+            screen_row *row = &rep->rows[rep->nrows];
+            for (k = 0; a->which == SCREEN_AO && rep->radii[k] != configs[i].radius; k++) {}
+            config_text(&configs[i], text, sizeof text);
+            cli_status(s, "%s: %s", name, text);
+            memset(row, 0, sizeof *row);
+            if (render_config(ctx, scene, cam, rep->longest[si], &configs[i], img, row) != VOXGI_OK) return cli_fail_lib(s, ctx, text);
+            row->scene = si;
+            row->rmse = cli_masked_error(&R[k].mask, img, R[k].image, NULL, NULL);
+            row->ref_ms = cli_reference_ms(&R[k], row->rmse);
+            row->red = a->which == SCREEN_SSGI ? cli_red_excess(&R[k], img) : 0;
+            rep->nrows++;
+            if (run) {
+                report_item it;
+                memset(&it, 0, sizeof it);
+                it.method = method_names[configs[i].method];
+                config_text(&configs[i], text, sizeof text);
+                snprintf(it.settings, sizeof it.settings, "%s", text + strlen(it.method) + 2); /* without "method, " */
+                if (a->which == SCREEN_AO)
+                    snprintf(it.passes, sizeof it.passes, "G-buffer %.1f, voxels %.1f, occlusion %.1f", row->ms_parts[0], row->ms_parts[1], row->ms_pass);
+                else
+                    snprintf(it.passes, sizeof it.passes, "direct %.1f, voxels %.1f, their light %.1f, gathers %.1f", row->ms_parts[0], row->ms_parts[1],
+                             row->ms_parts[2], row->ms_pass);
+                it.ms = row->ms;
+                it.bytes = row->bytes;
+                it.error = row->rmse;
+                run->emit(run, &it, img);
+            }
+        }
+    }
+    return 0;
+}
+
 /* Scene si: its references, then a row per configuration of each method; for ssgi also the
    direct light alone, Hybrid-GI converged and cone tracing's defaults. */
 static int screen_scene(cli_session *s, voxgi_context *ctx, const screen_args *a, screen_report *rep, int si, float *img)
 {
     cli_reference R[SCREEN_MAX_RADII], direct;
-    screen_config configs[SWEEP_MAX];
     voxgi_builtin_scene bs;
     voxgi_camera cam;
     const char *name = rep->scenes[si];
     size_t pixels = (size_t)a->size[0] * (size_t)a->size[1];
-    int nrefs = a->which == SCREEN_AO ? rep->nradii : 1, k, m, i, n, rc = 1;
-    const int *methods = a->which == SCREEN_AO ? ao_methods : gi_methods;
-    int nmethods = a->which == SCREEN_AO ? CLI_COUNT(ao_methods) : CLI_COUNT(gi_methods);
+    int nrefs = a->which == SCREEN_AO ? rep->nradii : 1, k, rc = 1;
     double longest;
-    char text[160];
     memset(R, 0, sizeof R);
     memset(&direct, 0, sizeof direct);
     if (voxgi_builtin_scene_create(ctx, name, &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, name);
@@ -284,25 +333,7 @@ static int screen_scene(cli_session *s, voxgi_context *ctx, const screen_args *a
         rep->ref_ms_per_spp[si][k] = R[k].ms_per_spp;
     }
     rep->masked[si] = R[0].mask.masked_pixels;
-    for (m = 0; m < nmethods; m++) {
-        n = sweep(a, methods[m], configs);
-        for (i = 0; i < n; i++) {
-            screen_row *row = &rep->rows[rep->nrows];
-            for (k = 0; a->which == SCREEN_AO && rep->radii[k] != configs[i].radius; k++) {}
-            config_text(&configs[i], text, sizeof text);
-            cli_status(s, "%s: %s", name, text);
-            memset(row, 0, sizeof *row);
-            if (render_config(ctx, &bs.scene, &cam, longest, &configs[i], img, row) != VOXGI_OK) {
-                cli_fail_lib(s, ctx, text);
-                goto done;
-            }
-            row->scene = si;
-            row->rmse = cli_masked_error(&R[k].mask, img, R[k].image, NULL, NULL);
-            row->ref_ms = cli_reference_ms(&R[k], row->rmse);
-            row->red = a->which == SCREEN_SSGI ? cli_red_excess(&R[k], img) : 0;
-            rep->nrows++;
-        }
-    }
+    if (screen_sweep(s, ctx, a, rep, si, &bs.scene, name, &cam, R, img, NULL)) goto done;
     if (a->which == SCREEN_SSGI) {
         screen_config c = base_config(SCREEN_SSGI, M_HYBRID);
         voxgi_reference_desc rd;
@@ -364,17 +395,13 @@ done:
    reference) is at once faster and better. */
 static void screen_pareto(screen_report *rep, int by_radius)
 {
-    int i, j;
+    int i, k;
     for (i = 0; i < rep->nrows; i++) {
         screen_row *r = &rep->rows[i];
-        r->pareto = 1;
-        for (j = 0; j < rep->nrows && r->pareto; j++) {
-            const screen_row *q = &rep->rows[j];
-            if (j != i && q->scene == r->scene && (!by_radius || q->c.radius == r->c.radius) && q->ms <= r->ms && q->rmse <= r->rmse &&
-                (q->ms < r->ms || q->rmse < r->rmse))
-                r->pareto = 0;
-        }
+        for (k = 0; by_radius && k < rep->nradii - 1 && rep->radii[k] != r->c.radius; k++) {}
+        r->group = r->scene * SCREEN_MAX_RADII + k;
     }
+    PARETO_MARK(rep->rows, (size_t)rep->nrows, screen_row, ms, rmse, group, pareto);
 }
 
 /* ------------------------------------------------------------------ view-independence of AO */
@@ -1006,6 +1033,38 @@ static void screen_print(const screen_args *a, const screen_report *rep)
             put_share(stdout, W->colour[WALL_HIDDEN], W->colour[WALL_REFERENCE], "\n");
         }
 }
+
+/* report all's screen passes: the one-parameter sweeps around the base over rays and voxels, at
+   the base's radius (its reference's), and half resolution with the tools' blur (ao 2, ssgi 8). */
+static int screen_all(report_run *run, int which)
+{
+    static const double rays[] = {4, 16, 64}, quick_rays[] = {16}, res[] = {64, 128}, quick_res[] = {64};
+    screen_args a;
+    screen_report *rep = (screen_report *)calloc(1, sizeof *rep);
+    int rc;
+    if (!rep || !(rep->rows = (screen_row *)calloc(CLI_COUNT(ao_methods) * SWEEP_MAX, sizeof *rep->rows))) {
+        free(rep);
+        return cli_fail(run->s, "out of memory");
+    }
+    memset(&a, 0, sizeof a);
+    a.which = which;
+#define SET(field, count, from) (memcpy(a.field, from, sizeof from), a.count = CLI_COUNT(from))
+    if (run->quick) SET(rays, nrays, quick_rays), SET(res, nres, quick_res);
+    else SET(rays, nrays, rays), SET(res, nres, res);
+#undef SET
+    a.steps[0] = 16;
+    a.blurs[0] = which == SCREEN_AO ? 2 : 8;
+    a.radii[0] = rep->radii[0] = base_config(which, M_SSAO).radius;
+    a.nsteps = a.nblurs = a.nradii = rep->nradii = 1;
+    rep->longest[0] = cli_scene_longest_side(run->scene);
+    rc = screen_sweep(run->s, run->ctx, &a, rep, 0, run->scene, run->scene_name, &run->camera, run->R, run->img, run);
+    free(rep->rows);
+    free(rep);
+    return rc;
+}
+
+int report_ao_all(report_run *run) { return screen_all(run, SCREEN_AO); }
+int report_ssgi_all(report_run *run) { return screen_all(run, SCREEN_SSGI); }
 
 int cmd_report_screen(int which, int argc, char **argv)
 {

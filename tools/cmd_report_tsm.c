@@ -1,5 +1,5 @@
 /* tools/cmd_report_tsm.c - voxgi report tsm: transmittance shadow maps' error against run time, as Markdown and CSV. */
-#include "cli.h"
+#include "report.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -38,65 +38,72 @@ typedef struct tsm_report {
 } tsm_report;
 
 
-static int tsm_scene(cli_session *s, voxgi_context *ctx, const tsm_args *a, tsm_report *rep, int si, float *img)
+/* The image with maps for every combination of a's lists, of scene (seen by cam, its index si)
+   against R, appended to rep's rows; with run, each also handed to report all. 0, or says why and
+   returns 1. */
+static int tsm_sweep(cli_session *s, voxgi_context *ctx, const tsm_args *a, const voxgi_scene *scene, const char *name, const voxgi_camera *cam,
+                     const cli_reference *R, tsm_report *rep, int si, float *img, report_run *run)
 {
-    voxgi_builtin_scene bs;
-    voxgi_camera cam;
-    cli_reference R;
-    int i, j, k, rc = 1;
-    if (voxgi_builtin_scene_create(ctx, rep->scenes[si], &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, rep->scenes[si]);
-    cam = bs.camera;
-    cam.width = cam.height = a->size;
-    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R)) goto done;
-    rep->masked[si] = R.mask.masked_pixels;
-    rep->ref_c[si] = R.c;
-    rep->ref_ms_per_spp[si] = R.ms_per_spp;
+    int i, j, k;
     for (i = 0; i < a->nsizes; i++)
         for (j = 0; j < a->nslices; j++)
             for (k = 0; k < a->nsamples; k++) {
                 tsm_row *r = &rep->rows[rep->nrows];
                 voxgi_tsm_image_desc td;
                 memset(&td, 0, sizeof td);
-                td.camera = cam;
+                td.camera = *cam;
                 td.hide_emitters = 1;
                 td.seed = 1;
                 td.tsm.size = (int)a->sizes[i];
                 td.tsm.slices = (int)a->slices[j];
                 td.samples = (int)a->samples[k];
-                cli_status(s, "%s: maps of %d texels, %d slices, %d rays per pixel", rep->scenes[si], td.tsm.size, td.tsm.slices, td.samples);
-                if (voxgi_tsm_render(ctx, &bs.scene, &td, img, (size_t)a->size * (size_t)a->size * 12, &r->info) != VOXGI_OK) {
-                    cli_fail_lib(s, ctx, "tsm");
-                    goto done;
-                }
+                cli_status(s, "%s: maps of %d texels, %d slices, %d rays per pixel", name, td.tsm.size, td.tsm.slices, td.samples);
+                if (voxgi_tsm_render(ctx, scene, &td, img, (size_t)cam->width * (size_t)cam->height * 12, &r->info) != VOXGI_OK)
+                    return cli_fail_lib(s, ctx, "tsm");
                 r->scene = si;
                 r->map_size = td.tsm.size;
                 r->slices = td.tsm.slices;
                 r->samples = td.samples;
-                r->rmse = cli_masked_error(&R.mask, img, R.image, NULL, NULL);
-                r->ref_ms = cli_reference_ms(&R, r->rmse);
+                r->rmse = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
+                r->ref_ms = cli_reference_ms(R, r->rmse);
                 rep->nrows++;
+                if (run) {
+                    report_item it;
+                    memset(&it, 0, sizeof it);
+                    it.method = "tsm";
+                    snprintf(it.settings, sizeof it.settings, "maps of %d texels, %d slices, %d rays per pixel", r->map_size, r->slices, r->samples);
+                    snprintf(it.passes, sizeof it.passes, "maps %.1f, shading %.1f", r->info.ms_maps, r->info.ms_shade);
+                    it.ms = r->info.ms;
+                    it.bytes = (double)r->info.bytes;
+                    it.error = r->rmse;
+                    run->emit(run, &it, img);
+                }
             }
-    rc = 0;
-done:
+    return 0;
+}
+
+static int tsm_scene(cli_session *s, voxgi_context *ctx, const tsm_args *a, tsm_report *rep, int si, float *img)
+{
+    voxgi_builtin_scene bs;
+    voxgi_camera cam;
+    cli_reference R;
+    int rc = 1;
+    if (voxgi_builtin_scene_create(ctx, rep->scenes[si], &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, rep->scenes[si]);
+    cam = bs.camera;
+    cam.width = cam.height = a->size;
+    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R) == 0) {
+        rep->masked[si] = R.mask.masked_pixels;
+        rep->ref_c[si] = R.c;
+        rep->ref_ms_per_spp[si] = R.ms_per_spp;
+        rc = tsm_sweep(s, ctx, a, &bs.scene, rep->scenes[si], &cam, &R, rep, si, img, NULL);
+    }
     cli_reference_free(&R);
     voxgi_builtin_scene_destroy(ctx, &bs);
     return rc;
 }
 
 /* A row is on its scene's front when no other row is at once faster and better. */
-static void tsm_pareto(tsm_report *rep)
-{
-    int i, j;
-    for (i = 0; i < rep->nrows; i++) {
-        tsm_row *r = &rep->rows[i];
-        r->pareto = 1;
-        for (j = 0; j < rep->nrows && r->pareto; j++) {
-            const tsm_row *q = &rep->rows[j];
-            if (j != i && q->scene == r->scene && q->info.ms <= r->info.ms && q->rmse <= r->rmse && (q->info.ms < r->info.ms || q->rmse < r->rmse))
-                r->pareto = 0;
-        }
-    }
-}
+static void tsm_pareto(tsm_report *rep) { PARETO_MARK(rep->rows, (size_t)rep->nrows, tsm_row, info.ms, rmse, scene, pareto); }
 
 static int tsm_write(cli_session *s, const tsm_args *a, const tsm_report *rep)
 {
@@ -136,6 +143,35 @@ static int tsm_write(cli_session *s, const tsm_args *a, const tsm_report *rep)
     i |= fclose(md) != 0;
     i |= fclose(csv) != 0;
     return i ? cli_fail(s, "cannot write to %s", a->out_dir) : 0;
+}
+
+/* report all's transmittance shadow maps: where the scene has a directional or spot light (the
+   others' direct light is the exact shadow rays'). */
+int report_tsm_all(report_run *run)
+{
+    static const double sizes[] = {256, 512, 1024}, slices[] = {16, 64}, quick_sizes[] = {256, 512}, quick_slices[] = {32};
+    tsm_args a;
+    tsm_report rep;
+    size_t li;
+    int rc, maps = 0;
+    for (li = 0; li < run->scene->light_count; li++)
+        maps += run->scene->lights[li].type == VOXGI_LIGHT_DIRECTIONAL || run->scene->lights[li].type == VOXGI_LIGHT_SPOT;
+    if (!maps) {
+        snprintf(run->why, sizeof run->why, "no directional or spot light: no map to make");
+        return REPORT_NOT_APPLICABLE;
+    }
+    memset(&a, 0, sizeof a);
+    memset(&rep, 0, sizeof rep);
+#define SET(field, count, from) (memcpy(a.field, from, sizeof from), a.count = CLI_COUNT(from))
+    if (run->quick) SET(sizes, nsizes, quick_sizes), SET(slices, nslices, quick_slices);
+    else SET(sizes, nsizes, sizes), SET(slices, nslices, slices);
+#undef SET
+    a.samples[0] = 4;
+    a.nsamples = 1;
+    if (!(rep.rows = (tsm_row *)calloc((size_t)(a.nsizes * a.nslices), sizeof *rep.rows))) return cli_fail(run->s, "out of memory");
+    rc = tsm_sweep(run->s, run->ctx, &a, run->scene, run->scene_name, &run->camera, run->R, &rep, 0, run->img, run);
+    free(rep.rows);
+    return rc;
 }
 
 int cmd_report_tsm(int argc, char **argv)
