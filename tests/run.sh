@@ -161,7 +161,8 @@ else
     record shaders_h_is_fresh fail "the committed shaders.h is stale: commit the regenerated one"
 fi
 
-# 2. the compile matrix: C and C++ standards, two translation units, static, without GL, without threads
+# 2. the compile matrix: C and C++ standards, two translation units, static, without GL, without
+# threads, without each part (VOXGI_NO_<PART>)
 heading "== compile matrix"
 avx2=""
 grep -qw avx2 /proc/cpuinfo 2>/dev/null && avx2="-mavx2 -mfma" # where the CPU can run it: the AVX2 paths
