@@ -66,6 +66,7 @@
                           cone-traced, one-bounce and screen-space images
       14. reference renderer  the path tracer every image is measured against
       15. built-in scenes and files
+     Parts 7 to 12 and 14 can be left out (CONFIGURATION); a part's images in 13 go with it.
 
    METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
    (raster), atlas and atlas-compute (texture atlas points), geometry (conservative by geometry
@@ -105,6 +106,15 @@
      VOXGI_ASSERT(x)       internal assertions (default: assert)
      VOXGI_NO_SIMD         no SSE or AVX2 code: the scalar code, which computes the same
      Do not compile the implementation with -ffast-math: exactness needs IEEE double arithmetic.
+   Parts a program does not need, left out whole: declarations, code and shaders (define these alike
+   wherever voxgi.h is included; the bytes they save: docs/configuration.md):
+     VOXGI_NO_OCTREE           no octree (part 7): cones gather from volumes only
+     VOXGI_NO_CONE_TRACING     no cone tracing (8) nor its images; with light injection (its bounces use cones): #error
+     VOXGI_NO_LIGHT_INJECTION  no light injection (9), no cone-traced images, no SSGI images' hidden_light
+     VOXGI_NO_LIGHT_SPACE      no tsm, rsm, SH volume (10) nor their images; voxel visibility stays for screen space
+     VOXGI_NO_SCREEN_SPACE     no screen-space passes (11) nor their images
+     VOXGI_NO_LINE_SPACE       no line space (12) nor its images
+     VOXGI_NO_REFERENCE        no reference renderer (14)
 
    GL LOADER (desc.gl_get_proc_address is called only while the GL 4.5 context is current)
      EGL:    desc.gl_get_proc_address = (voxgi_gl_loader)eglGetProcAddress;
@@ -169,6 +179,11 @@
 #else
 #define VOXGI_API extern
 #endif
+#endif
+
+/* Parts left out (CONFIGURATION): a part may not go while another that needs it stays. */
+#if defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
+#error "voxgi: VOXGI_NO_CONE_TRACING needs VOXGI_NO_LIGHT_INJECTION too: light injection's bounces gather with cones"
 #endif
 
 #ifdef __cplusplus
@@ -582,6 +597,7 @@ VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_v
                                                voxgi_direction direction, unsigned int *gl_texture_name);
 
 /* ===================================================================== 7. octree */
+#ifndef VOXGI_NO_OCTREE
 
 /* The voxels of a grid in an octree over the cube of 2^depth voxels (depth = ceil(log2 of the
    largest resolution), at least 1). Levels 0..depth: level 0 is the root, level depth the voxels
@@ -653,8 +669,10 @@ VOXGI_API voxgi_result voxgi_svo_brick(voxgi_context *ctx, const voxgi_svo *svo,
    after one descent (else eight lookups), with the same result bit for bit. */
 VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
                                         const float *positions, const float *lods, float *out);
+#endif /* VOXGI_NO_OCTREE */
 
 /* ===================================================================== 8. cone tracing */
+#ifndef VOXGI_NO_CONE_TRACING
 
 /* Where cones gather from: the RADIANCE of a volume (voxgi_inject_light) or of an octree
    (voxgi_svo_desc.radiance), made on the context's backend; exactly one of the two is set. An
@@ -665,7 +683,9 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
    octree's buffers (shaders/cone_svo.glsl). */
 typedef struct voxgi_radiance_source {
     const voxgi_volume *volume;
+#ifndef VOXGI_NO_OCTREE
     const voxgi_svo *octree;
+#endif
 } voxgi_radiance_source;
 
 /* How cones are traced (voxgi_cone_trace and its relatives, below). */
@@ -740,9 +760,10 @@ VOXGI_API voxgi_result voxgi_cone_trace_each(voxgi_context *ctx, const voxgi_rad
    Phong exponent n = 2 / alpha^2 - 2, the angle where the lobe falls to 0.244 of its peak,
    acos(0.244^(1 / (n + 1))) (a fit common among voxel cone tracers), at least 0.005. */
 VOXGI_API float voxgi_specular_half_angle(float roughness);
-
+#endif /* VOXGI_NO_CONE_TRACING */
 
 /* ===================================================================== 9. light injection */
+#ifndef VOXGI_NO_LIGHT_INJECTION
 
 /* Light injection: the radiance the voxels send out, for the cone tracer to gather. Per set
    voxel: L = albedo / pi * E + emission (alpha = opacity, 1 when the voxels hold none), E the
@@ -792,8 +813,10 @@ typedef struct voxgi_inject_desc {
 } voxgi_inject_desc;
 VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *voxels,
                                           const voxgi_inject_desc *desc, voxgi_volume **out);
+#endif /* VOXGI_NO_LIGHT_INJECTION */
 
 /* ===================================================================== 10. light-space passes */
+#ifndef VOXGI_NO_LIGHT_SPACE
 
 /* Transmittance shadow maps (Buchacher 2014, section 4): the light's view of the scene's
    translucent surfaces as raster slicemaps, and an ordinary shadow map of its opaque ones. A
@@ -835,7 +858,9 @@ VOXGI_API void voxgi_tsm_query(const voxgi_tsm *tsm, voxgi_tsm_info *info);
 VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_tsm *tsm, size_t count, const float *points, const float *normals,
                                                float *out);
 VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm);
+#endif /* VOXGI_NO_LIGHT_SPACE */
 
+#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* the screen-space passes use it too */
 /* Voxel visibility: whether segments pass occupied voxels, by 3D-DDA (Amanatides and Woo 1987:
    voxel by voxel, in the order the segment enters them) or hierarchically (after Thiedemann
    2011, in 3D): at each voxel the coarsest empty cell of the occupancy's OR mipmaps that holds
@@ -849,7 +874,9 @@ VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm);
 typedef enum voxgi_traversal { VOXGI_TRAVERSAL_DDA = 0, VOXGI_TRAVERSAL_HIERARCHICAL } voxgi_traversal;
 VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_traversal how, size_t count, const float *from,
                                              const float *to, unsigned char *blocked, uint64_t *steps);
+#endif
 
+#ifndef VOXGI_NO_LIGHT_SPACE
 /* Reflective shadow maps (Dachsbacher and Stamminger 2005, with voxel visibility after Buchacher
    2014): every texel of a light's view (voxgi_tsm_desc says how it looks: orthographic for a
    DIRECTIONAL light, perspective for a SPOT) holds the surface the light meets there, by ray
@@ -1012,8 +1039,10 @@ typedef struct voxgi_tsm_image_info {
 } voxgi_tsm_image_info;
 VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_tsm_image_info *info);
+#endif /* VOXGI_NO_LIGHT_SPACE */
 
 /* ===================================================================== 11. screen-space passes */
+#ifndef VOXGI_NO_SCREEN_SPACE
 
 /* Low-discrepancy points (Thiedemann 2009's sampler, the one the screen-space passes share): the
    radical inverse of i in base b >= 2 (its digits mirrored about the radix point: Phi_2(1), (2),
@@ -1126,9 +1155,11 @@ typedef struct voxgi_ssgi_image_desc {
     int hide_emitters;
     int half_resolution;          /* 1: the rays at every other pixel across and down, upsampled by voxgi_screen_filter */
     int blur;                     /* voxgi_screen_filter's radius in pixels (0: none, 0..64) */
+#ifndef VOXGI_NO_LIGHT_INJECTION
     int hidden_light;             /* VOXELS: 1 = hidden and off-screen hits send the direct light injected into their
                                      voxel (voxgi_inject_light, without emission), from the side the ray meets */
     int inject_samples;           /* hidden_light: voxgi_inject_desc.samples; 0 = its default */
+#endif
 } voxgi_ssgi_image_desc;
 typedef struct voxgi_ssgi_image_info {
     float radius;                 /* the radius used */
@@ -1162,8 +1193,10 @@ typedef struct voxgi_ao_image_info {
 } voxgi_ao_image_info;
 VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ao_image_desc *desc, float *rgb, size_t rgb_bytes,
                                        voxgi_ao_image_info *info);
+#endif /* VOXGI_NO_SCREEN_SPACE */
 
 /* ===================================================================== 12. line space */
+#ifndef VOXGI_NO_LINE_SPACE
 
 /* The cascaded line space (Klee 2016, after Keul, Lemke and Mueller): an N-tree over the scene
    (a cube, each filled node split into N^3 children down to `depth` levels below the root; the
@@ -1277,6 +1310,7 @@ typedef struct voxgi_linespace_image_info {
    mean visible share. */
 VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_image_desc *desc, float *rgb, size_t rgb_bytes,
                                               float *visible, voxgi_linespace_image_info *info);
+#endif /* VOXGI_NO_LINE_SPACE */
 
 /* ===================================================================== 13. planner and images */
 
@@ -1355,6 +1389,7 @@ VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, co
 VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, float *positions, float *normals,
                                             uint32_t *triangles);
 
+#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
 /* A cone-traced image: the scene voxelized (conservative, with attributes) on a grid of
    `resolution` voxels along its longest side, direct light injected into the voxels (their
    emission left out: emitters light the pixels directly), the radiance mipmapped, then per
@@ -1396,10 +1431,12 @@ typedef struct voxgi_vct_desc {
                                      that share its surface (normals within 26 degrees, on its plane within a
                                      voxel), or traces its own where none does. 0 or 1: every pixel */
     int one_sided;                /* 1: one-sided radiance (voxgi_inject_desc.one_sided) */
+#ifndef VOXGI_NO_OCTREE
     int octree;                   /* 1: the cones gather from a sparse voxel octree of the injected radiance
                                      (isotropic mips, `filter` ignored) instead of the volume */
     voxgi_svo_format octree_format;
     int octree_bricks;            /* 1: the octree samples through bricks */
+#endif
 } voxgi_vct_desc;
 typedef struct voxgi_vct_info {
     uint64_t voxels;
@@ -1409,8 +1446,10 @@ typedef struct voxgi_vct_info {
 } voxgi_vct_info;
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info);
+#endif
 
 /* ===================================================================== 14. reference renderer */
+#ifndef VOXGI_NO_REFERENCE
 
 /* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, through
    the ray core (voxgi_ray_scene: watertight, hit points refined in double). Surfaces are Lambertian (albedo) and emit
@@ -1448,6 +1487,7 @@ typedef struct voxgi_reference_info {
    bytes); info may be NULL. */
 VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
                                               size_t rgb_bytes, voxgi_reference_info *info);
+#endif /* VOXGI_NO_REFERENCE */
 
 /* ===================================================================== 15. built-in scenes and files */
 
@@ -1673,6 +1713,7 @@ static int voxgi__progress(voxgi_context *ctx, double fraction, const char *stag
     return ctx->desc.progress.func ? ctx->desc.progress.func(fraction, stage, ctx->desc.progress.user) : 0;
 }
 
+#if !defined(VOXGI_NO_OCTREE) || !defined(VOXGI_NO_CONE_TRACING) || !defined(VOXGI_NO_LIGHT_INJECTION) /* the parts that can be cancelled */
 /* Reports progress at `stage`; non-zero when the caller cancelled (the error then says where). */
 static int voxgi__cancelled(voxgi_context *ctx, double fraction, const char *what, const char *stage)
 {
@@ -1680,6 +1721,7 @@ static int voxgi__cancelled(voxgi_context *ctx, double fraction, const char *wha
     voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "%s cancelled by the progress callback (%s)", what, stage);
     return 1;
 }
+#endif
 
 static int voxgi__core_count(void)
 {
@@ -1800,7 +1842,29 @@ VOXGI_API void voxgi_query_info(const voxgi_context *ctx, voxgi_info *out)
 #ifndef VOXGI_NO_THREADS
                         " threads"
 #endif
-                        " conservative binvox";
+                        " conservative binvox"
+#ifndef VOXGI_NO_OCTREE
+                        " octree"
+#endif
+#ifndef VOXGI_NO_CONE_TRACING
+                        " cone-tracing"
+#endif
+#ifndef VOXGI_NO_LIGHT_INJECTION
+                        " light-injection"
+#endif
+#ifndef VOXGI_NO_LIGHT_SPACE
+                        " light-space"
+#endif
+#ifndef VOXGI_NO_SCREEN_SPACE
+                        " screen-space"
+#endif
+#ifndef VOXGI_NO_LINE_SPACE
+                        " line-space"
+#endif
+#ifndef VOXGI_NO_REFERENCE
+                        " reference"
+#endif
+                        ;
     out->gl_version = ctx ? ctx->gl_version : "";
     out->gl_renderer = ctx ? ctx->gl_renderer : "";
     if (!ctx) return;
@@ -1835,6 +1899,7 @@ static VOXGI__HOT_INLINE int voxgi__ctz64(uint64_t x)
     return (uint32_t)x ? voxgi__ctz32((uint32_t)x) : 32 + voxgi__ctz32((uint32_t)(x >> 32));
 }
 
+#ifndef VOXGI_NO_OCTREE /* half floats: the octree's FLOAT16 values */
 /* float -> half, rounded to the nearest, ties to even (finite input; 65520 and beyond: infinity).
    Integer steps only, so shaders/svo.glsl rounds exactly alike. */
 static uint16_t voxgi__half_from_float(float f)
@@ -1862,7 +1927,9 @@ static float voxgi__float_from_half(uint16_t h)
     float v = e == 0 ? (float)m / 16777216.0f : (e == 31 ? (m ? NAN : INFINITY) : ldexpf((float)(m | 1024u), (int)e - 25));
     return (h & 0x8000u) ? -v : v;
 }
+#endif
 
+#if !defined(VOXGI_NO_OCTREE) || !defined(VOXGI_NO_LIGHT_INJECTION) /* the octree's and the bounces' orders */
 /* Spreads the low 21 bits of v to every third bit. */
 static uint64_t voxgi__spread3(uint64_t v)
 {
@@ -1906,6 +1973,7 @@ static voxgi_result voxgi__sort_codes(voxgi_context *ctx, uint64_t *code, uint32
     voxgi__free(ctx, p2);
     return VOXGI_OK;
 }
+#endif
 
 /* Random numbers: one PCG32 stream per (seed, pixel, sample), seeded through splitmix64. */
 typedef struct voxgi__rng { uint64_t state, inc; } voxgi__rng;
@@ -1941,6 +2009,7 @@ static double voxgi__rng_unit(voxgi__rng *g) /* [0, 1) with 53 bits */
     return (double)(hi * 67108864u + lo) / 9007199254740992.0;
 }
 
+#if !defined(VOXGI_NO_LIGHT_INJECTION) || !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* their stratified samples */
 /* Point k (from 0) of the 2D or 4D Kronecker sequence shifted by rot: frac(rot + (k + 1) alpha),
    alpha the powers of 1 / phi_d (phi_d the root of x^(d+1) = x + 1), evenly spread in any prefix:
    the stratified samples of light injection, light casters and images. */
@@ -1955,6 +2024,7 @@ static void voxgi__kronecker(int dims, int k, const double *rot, double *u)
         u[a] -= floor(u[a]);
     }
 }
+#endif
 
 /* An orthonormal basis (t, b) around unit n. */
 static void voxgi__basis(const double n[3], double t[3], double b[3])
@@ -3599,12 +3669,20 @@ static int voxgi__trace(const voxgi__tracer *tr, const double o[3], const double
     return 1;
 }
 
+/* The direct light (this and 3.6) serves light injection, the light-space passes, the
+   screen-space images and the reference renderer: it goes when they all do. */
+#if !defined(VOXGI_NO_LIGHT_INJECTION) || !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) || !defined(VOXGI_NO_REFERENCE)
+#define VOXGI__DIRECT_LIGHT
+#endif
+
+#ifdef VOXGI__DIRECT_LIGHT
 /* Where a ray leaving the surface at p (unit normal ns, on the side it leaves) starts. */
 static void voxgi__leave(const voxgi__tracer *tr, const double p[3], const double ns[3], double o[3])
 {
     int a;
     for (a = 0; a < 3; a++) o[a] = p[a] + tr->hair * ns[a];
 }
+#endif
 
 /* ----- 3.6 lights: direct light and the exact area light */
 
@@ -3618,6 +3696,7 @@ typedef struct voxgi__lights {
     size_t emitter_count;
 } voxgi__lights;
 
+#ifdef VOXGI__DIRECT_LIGHT
 static const voxgi_material *voxgi__prim_material(const voxgi__tracer *tr, uint32_t prim)
 {
     return voxgi__tri_material(&tr->flat, prim);
@@ -3661,7 +3740,9 @@ static voxgi_result voxgi__lights_build(voxgi_context *ctx, const voxgi_scene *s
     for (i = 0; i < nt; i++) Ls->emitter_pdf[i] /= Ls->emitter_count ? Ls->emitter_cdf[Ls->emitter_count - 1] : 1;
     return VOXGI_OK;
 }
+#endif
 
+#if (!defined(VOXGI_NO_LIGHT_INJECTION) && !defined(VOXGI_NO_GL)) || !defined(VOXGI_NO_LIGHT_SPACE) /* GL's light maps, the reflective shadow maps */
 /* Point k of n on a rectangular light L, or (L NULL) on the emitters picked by power, stratified
    (a 2D Kronecker sequence; on a triangle, the pick's remainder and the second coordinate): its
    position q, the unit normal n it shines along, and the radiance x area it stands for (power,
@@ -3705,7 +3786,9 @@ static void voxgi__area_point(const voxgi__lights *Ls, const voxgi_light *L, int
         }
     }
 }
+#endif
 
+#ifdef VOXGI__DIRECT_LIGHT
 /* Nothing between p (on triangle skip, unit normal ns on the side the ray leaves) and the
    point dist away along dir? (short of it, so the light's own triangle does not count) */
 /* The share of light arriving at p along dir from dist away: 0 behind an opaque surface, else the
@@ -3849,7 +3932,9 @@ static void voxgi__direct(const voxgi__lights *R, const double p[3], const doubl
         }
     }
 }
+#endif
 
+#if (!defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)) || !defined(VOXGI_NO_LINE_SPACE) /* for their images */
 /* Lambert's formula: the irradiance at p on unit normal n from a convex polygon q[0..nq-1]
    (nq <= 4) of radiance 1 whose front (the side fn faces) p sees, clipped to p's upper
    half-space: half the sum over its edges of the angle each subtends at p times the cosine
@@ -3889,10 +3974,12 @@ static double voxgi__polygon_irradiance(const double q[][3], int nq, const doubl
     }
     return fabs(sum) / 2;
 }
+#endif
 
 /* At most this many emissive triangles are summed analytically per shading point. */
 #define VOXGI__ANALYTIC_EMITTERS 64
 
+#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION) /* for the cone-traced images */
 /* The unshadowed irradiance at p (unit normal ns, on triangle prim or UINT32_MAX) from the rect
    lights and the emissive triangles, exactly (voxgi__polygon_irradiance): what voxgi__direct's
    area[3..5] estimates. Times the shadow rays' visible share area[0..2] / area[3..5], the
@@ -3930,6 +4017,7 @@ static void voxgi__area_irradiance(const voxgi__lights *R, const double p[3], co
         for (a = 0; a < 3; a++) e[a] += m->emission[a] * f;
     }
 }
+#endif
 
 /* ----- 3.7 cameras */
 
@@ -4169,7 +4257,39 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
 
 /* Every program voxgi builds: X(name, stages, its embedded shader files in order). Stages:
    COMPUTE; RASTER (vertex + fragment); GEOMETRY (vertex + geometry + fragment). Each file is
-   compiled once per stage, with VOXGI_COMPUTE, VOXGI_VERTEX, ... defined for the stage. */
+   compiled once per stage, with VOXGI_COMPUTE, VOXGI_VERTEX, ... defined for the stage. A part
+   left out takes its rows with it (VOXGI__GL_WITH_<part>: the rows, or nothing), as shaders.h
+   its files ("embedded unless" in each). */
+#ifndef VOXGI_NO_OCTREE
+#define VOXGI__GL_WITH_OCTREE(rows) rows
+#else
+#define VOXGI__GL_WITH_OCTREE(rows)
+#endif
+#ifndef VOXGI_NO_CONE_TRACING
+#define VOXGI__GL_WITH_CONE_TRACING(rows) rows
+#else
+#define VOXGI__GL_WITH_CONE_TRACING(rows)
+#endif
+#ifndef VOXGI_NO_LIGHT_INJECTION
+#define VOXGI__GL_WITH_LIGHT_INJECTION(rows) rows
+#else
+#define VOXGI__GL_WITH_LIGHT_INJECTION(rows)
+#endif
+#ifndef VOXGI_NO_LIGHT_SPACE
+#define VOXGI__GL_WITH_LIGHT_SPACE(rows) rows
+#else
+#define VOXGI__GL_WITH_LIGHT_SPACE(rows)
+#endif
+#ifndef VOXGI_NO_SCREEN_SPACE
+#define VOXGI__GL_WITH_SCREEN_SPACE(rows) rows
+#else
+#define VOXGI__GL_WITH_SCREEN_SPACE(rows)
+#endif
+#ifndef VOXGI_NO_LINE_SPACE
+#define VOXGI__GL_WITH_LINE_SPACE(rows) rows
+#else
+#define VOXGI__GL_WITH_LINE_SPACE(rows)
+#endif
 #define VOXGI__GL_PROGRAMS(X)                                                                                        \
     X(voxelize_conservative, COMPUTE, "scene.glsl triangle.glsl conservative.glsl voxelize_conservative.glsl")      \
     X(voxelize_geometry, GEOMETRY, "scene.glsl triangle.glsl conservative.glsl voxelize_geometry.glsl")            \
@@ -4190,25 +4310,29 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
     X(reduce, COMPUTE, "reduce.glsl")                                                                              \
     X(volume_mip, COMPUTE, "volume_mip.glsl")                                                                      \
     X(volume_sample, COMPUTE, "sampling.glsl volume_sample.glsl")                                                  \
-    X(svo_build, COMPUTE, "svo.glsl svo_build.glsl")                                                               \
-    X(svo_sample, COMPUTE, "sampling.glsl svo.glsl svo_sample.glsl")                                               \
-    X(cone_trace, COMPUTE, "sampling.glsl cone_trace.glsl cone_trace_buffers.glsl")                                \
-    X(cone_trace_svo, COMPUTE, "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl cone_trace_buffers.glsl")     \
-    X(cone_trace_images16, COMPUTE, "sampling.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl")       \
-    X(cone_trace_images32, COMPUTE, "sampling.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl")       \
-    X(cone_trace_svo_images16, COMPUTE,                                                                            \
-      "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl")              \
-    X(cone_trace_svo_images32, COMPUTE,                                                                            \
-      "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl")              \
-    X(light_map_draw, RASTER, "sampling.glsl light_maps.glsl light_map_draw.glsl")                                 \
-    X(inject, COMPUTE, "sampling.glsl light_maps.glsl inject.glsl")                                                \
+    VOXGI__GL_WITH_OCTREE(                                                                                         \
+        X(svo_build, COMPUTE, "svo.glsl svo_build.glsl")                                                           \
+        X(svo_sample, COMPUTE, "sampling.glsl svo.glsl svo_sample.glsl"))                                          \
+    VOXGI__GL_WITH_CONE_TRACING(                                                                                   \
+        X(cone_trace, COMPUTE, "sampling.glsl cone_trace.glsl cone_trace_buffers.glsl")                            \
+        VOXGI__GL_WITH_OCTREE(X(cone_trace_svo, COMPUTE,                                                           \
+          "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl cone_trace_buffers.glsl"))                         \
+        X(cone_trace_images16, COMPUTE, "sampling.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl")   \
+        X(cone_trace_images32, COMPUTE, "sampling.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl")   \
+        VOXGI__GL_WITH_OCTREE(X(cone_trace_svo_images16, COMPUTE,                                                  \
+          "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba16f.glsl cone_trace_images.glsl")          \
+                              X(cone_trace_svo_images32, COMPUTE,                                                  \
+          "sampling.glsl cone_svo.glsl svo.glsl cone_trace.glsl out_rgba32f.glsl cone_trace_images.glsl")))        \
+    VOXGI__GL_WITH_LIGHT_INJECTION(                                                                                \
+        X(light_map_draw, RASTER, "sampling.glsl light_maps.glsl light_map_draw.glsl")                             \
+        X(inject, COMPUTE, "sampling.glsl light_maps.glsl inject.glsl"))                                           \
     X(gbuffer, RASTER, "gbuffer.glsl")                                                                             \
-    X(tsm_lookup, COMPUTE, "tsm_lookup.glsl")                                                                      \
-    X(rsm_gather, COMPUTE, "voxel_traverse.glsl rsm_gather.glsl")                                                  \
-    X(sh_gather, COMPUTE, "voxel_traverse.glsl sh_gather.glsl")                                                    \
-    X(screen_rays, COMPUTE, "voxel_traverse.glsl screen_rays.glsl")                                                \
-    X(screen_filter, COMPUTE, "screen_filter.glsl")                                                                \
-    X(linespace, COMPUTE, "linespace.glsl")
+    VOXGI__GL_WITH_LIGHT_SPACE(X(tsm_lookup, COMPUTE, "tsm_lookup.glsl")                                           \
+                               X(rsm_gather, COMPUTE, "voxel_traverse.glsl rsm_gather.glsl")                       \
+                               X(sh_gather, COMPUTE, "voxel_traverse.glsl sh_gather.glsl"))                        \
+    VOXGI__GL_WITH_SCREEN_SPACE(X(screen_rays, COMPUTE, "voxel_traverse.glsl screen_rays.glsl")                    \
+                                X(screen_filter, COMPUTE, "screen_filter.glsl"))                                   \
+    VOXGI__GL_WITH_LINE_SPACE(X(linespace, COMPUTE, "linespace.glsl"))
 
 enum { VOXGI__GL_COMPUTE = 0, VOXGI__GL_RASTER = 1, VOXGI__GL_GEOMETRY = 2 };
 typedef enum voxgi__gl_program_id {
@@ -8247,6 +8371,7 @@ VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_v
 }
 
 /* ===================================================================== 7. octree */
+#ifndef VOXGI_NO_OCTREE
 
 /* sparse voxel octree
    CPU build, linear in the voxels: their Morton codes radix-sorted; the nodes of level l are the
@@ -9276,8 +9401,10 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
         voxgi__sample_lod(voxgi__svo_fetch, svo->info.brick_bytes ? voxgi__svo_brick_trilinear : NULL, &src, src.w, svo->info.depth + 1, pos + 3 * i, lods[i], out + (size_t)src.w * i);
     return VOXGI_OK;
 }
+#endif /* VOXGI_NO_OCTREE */
 
 /* ===================================================================== 8. cone tracing */
+#ifndef VOXGI_NO_CONE_TRACING
 
 /* Cone k of n: a direction in the frame (t, b, normal), on a Fibonacci spiral of the projected
    disc (equal cosine-weighted shares). */
@@ -9291,7 +9418,9 @@ static void voxgi__cone_direction(int k, int n, double d[3])
 
 typedef struct voxgi__cone_job {
     const voxgi_volume *vol;      /* the radiance: a volume, */
+#ifndef VOXGI_NO_OCTREE
     const voxgi_svo *svo;         /* or an octree */
+#endif
     const voxgi_grid *grid;
     int levels;                   /* mip levels (an octree: depth + 1) */
     const voxgi_cone_desc *desc;
@@ -9313,12 +9442,14 @@ typedef struct voxgi__cone_job {
    a coarse level's share of a thin wall would let it through (docs/cone-tracing.md). */
 #define VOXGI__BACK_COVERAGE 2.0f
 
+#ifndef VOXGI_NO_OCTREE
 /* The slot of an octree's node of level-k voxel v (a leaf slot at k = 0), -1 where there is none. */
 static ptrdiff_t voxgi__svo_slot_at(const voxgi_svo *svo, int k, const int v[3])
 {
     uint64_t slot;
     return voxgi__svo_descend(svo, svo->info.depth - k, v, &slot) == svo->info.depth - k ? (ptrdiff_t)slot : -1;
 }
+#endif
 
 /* The 8 corners of a trilinear sample of level k at p, as voxgi__trilinear visits them: their
    voxels (v, or NULL where the caller needs none), weights in float (0 beyond the grid) and where
@@ -9331,7 +9462,11 @@ static void voxgi__cone_corners(const voxgi__cone_job *J, int k, const float p[3
     int (*v)[3] = v_out ? v_out : own;
     voxgi__corner_weights(p, k, i0, wt);
     for (a = 0; a < 3; a++) inside_all &= i0[a] >= 0 && i0[a] + 1 < dm[a];
+#ifndef VOXGI_NO_OCTREE
     if (inside_all && !J->svo && !v_out) { /* the usual case: a volume's 2 x 2 x 2 voxels, all inside */
+#else
+    if (inside_all && !v_out) {
+#endif
         const ptrdiff_t base = (ptrdiff_t)i0[0] + (ptrdiff_t)dm[0] * ((ptrdiff_t)i0[1] + (ptrdiff_t)dm[1] * (ptrdiff_t)i0[2]);
         const ptrdiff_t dy = dm[0], dz = (ptrdiff_t)dm[0] * dm[1];
         for (corner = 0; corner < 8; corner++)
@@ -9346,7 +9481,9 @@ static void voxgi__cone_corners(const voxgi__cone_job *J, int k, const float p[3
         }
         if (!inside) wt[corner] = 0;
         at[corner] = wt[corner] == 0 ? -1
+#ifndef VOXGI_NO_OCTREE
                      : J->svo ? voxgi__svo_slot_at(J->svo, k, v[corner])
+#endif
                               : (ptrdiff_t)((size_t)v[corner][0] + (size_t)dm[0] * ((size_t)v[corner][1] + (size_t)dm[1] * (size_t)v[corner][2]));
     }
 }
@@ -9372,13 +9509,18 @@ static void voxgi__cone_axes_of(const double d[3], voxgi__cone_axes *X)
 static void voxgi__cone_level(const voxgi__cone_job *J, int a, const voxgi__cone_axes *X, int k, const ptrdiff_t at[8], const float wt[8], float out[4])
 {
     const int one_dir = J->dirs == 1 || a == VOXGI__SIDE_SLOT;
-    float got[8][4], s[4];
+    float s[4];
+#ifndef VOXGI_NO_OCTREE
+    float got[8][4];
     ptrdiff_t slot[8];
-    int ch, ax, corner;
+    int corner;
+#endif
+    int ch, ax;
     for (ch = 0; ch < 4; ch++) out[ch] = 0;
     for (ax = 0; ax < (one_dir ? 1 : 3); ax++) {
         const float w = one_dir ? 1.0f : X->w[ax];
         if (w == 0) continue;
+#ifndef VOXGI_NO_OCTREE
         if (J->svo) { /* an octree's slots, read into the same sum */
             for (corner = 0; corner < 8; corner++) {
                 slot[corner] = at[corner] < 0 ? -1 : corner;
@@ -9386,6 +9528,7 @@ static void voxgi__cone_level(const voxgi__cone_job *J, int a, const voxgi__cone
             }
             voxgi__corner_sum(got[0], slot, wt, s);
         } else
+#endif
             voxgi__corner_sum(J->level_at[a - VOXGI__RADIANCE_SLOT][one_dir ? 0 : X->dir[ax]][k], at, wt, s);
         for (ch = 0; ch < 4; ch++) out[ch] += w * s[ch];
     }
@@ -9404,6 +9547,7 @@ static float voxgi__back_share(const float side[4], const double o[3])
     return (float)VOXGI__MIN(1.0, VOXGI__MAX(0.0, 0.5 - VOXGI__SIDE_RAMP * dist));
 }
 
+#ifndef VOXGI_NO_OCTREE
 /* The region label of an octree's level-k voxel v (inside the grid), as the volume's level k
    holds it (voxgi__svo_regions). */
 static uint32_t voxgi__svo_region(const voxgi_svo *svo, int k, const int v[3])
@@ -9416,13 +9560,16 @@ static uint32_t voxgi__svo_region(const voxgi_svo *svo, int k, const int v[3])
     label = svo->regions[slot]; /* v lies in the empty cube of slot */
     return k == 0 ? label & ~VOXGI__REGION_DARK : (label & VOXGI__REGION_DARK ? 0 : label);
 }
+#endif
 
 /* The region label of level k's voxel v, 0 beyond the grid. */
 static uint32_t voxgi__region_label(const voxgi__cone_job *J, int k, const int v[3])
 {
     const int *dm = J->dims[k];
     if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[0] >= dm[0] || v[1] >= dm[1] || v[2] >= dm[2]) return 0;
+#ifndef VOXGI_NO_OCTREE
     if (J->svo) return voxgi__svo_region(J->svo, k, v);
+#endif
     return J->regions[J->vol->first[k] + (size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])];
 }
 
@@ -9440,6 +9587,7 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const voxgi__cone_axes 
     float lod, t, s[2][4];
     int ch, k0, lev, v[8][3];
     for (ch = 0; ch < 4; ch++) out[ch] = 0;
+#ifndef VOXGI_NO_OCTREE
     if (J->svo && !J->two_sided) { /* the octree's isotropic mips, through its bricks where it has them */
         voxgi__svo_source os;
         os.svo = J->svo;
@@ -9449,6 +9597,7 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const voxgi__cone_axes 
         for (ch = 0; ch < 3; ch++) out[ch] = out[3] > 0 ? out[ch] / out[3] : 0;
         return;
     }
+#endif
     lod = lod_in < 0 ? 0 : (lod_in > (float)(J->levels - 1) ? (float)(J->levels - 1) : lod_in);
     k0 = (int)floor(lod);
     t = lod - (float)k0;
@@ -9492,10 +9641,15 @@ static uint32_t voxgi__region_at(const voxgi__cone_job *J, int k, const float p[
 static void voxgi__side_at(const voxgi__cone_job *J, const int v[3], float side[4])
 {
     const int *dm = J->dims[0];
+#ifndef VOXGI_NO_OCTREE
     ptrdiff_t slot;
-    if (!J->svo) { memcpy(side, J->vol->cpu[VOXGI__SIDE_SLOT][0] + 4 * ((size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])), 16); return; }
-    if ((slot = voxgi__svo_slot_at(J->svo, 0, v)) >= 0) voxgi__svo_get(J->svo, VOXGI__SIDE_SLOT, J->svo->leaf_values[VOXGI__SIDE_SLOT], (uint64_t)slot, side);
-    else side[0] = side[1] = side[2] = side[3] = 0;
+    if (J->svo) {
+        if ((slot = voxgi__svo_slot_at(J->svo, 0, v)) >= 0) voxgi__svo_get(J->svo, VOXGI__SIDE_SLOT, J->svo->leaf_values[VOXGI__SIDE_SLOT], (uint64_t)slot, side);
+        else side[0] = side[1] = side[2] = side[3] = 0;
+        return;
+    }
+#endif
+    memcpy(side, J->vol->cpu[VOXGI__SIDE_SLOT][0] + 4 * ((size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])), 16);
 }
 
 /* The region of the first empty voxel along unit normal n from o within 4 voxels (in float, as
@@ -9720,8 +9874,11 @@ static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__con
     gl->ProgramUniform1i(p, VOXGI__LOC_u_anisotropic, J->dirs == 6);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_two_sided, J->two_sided);
     /* the regions: where their bounds start (0: no enclosed region), level 0's size */
-    gl->ProgramUniform1ui(p, VOXGI__LOC_u_regions,
-                          !J->enclosed ? 0u : J->vol ? (unsigned)J->vol->voxels : (unsigned)(J->svo->info.nodes + J->svo->info.leaf_slots));
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_regions, !J->enclosed ? 0u
+#ifndef VOXGI_NO_OCTREE
+                                                   : !J->vol ? (unsigned)(J->svo->info.nodes + J->svo->info.leaf_slots)
+#endif
+                                                   : (unsigned)J->vol->voxels);
     gl->ProgramUniform3i(p, VOXGI__LOC_u_res, J->dims[0][0], J->dims[0][1], J->dims[0][2]);
     gl->ProgramUniform1f(p, VOXGI__LOC_u_back_coverage, VOXGI__BACK_COVERAGE);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_cones, J->list ? 0 : J->cones);
@@ -9738,6 +9895,7 @@ static void voxgi__cone_bind_gl(voxgi_context *ctx, const voxgi__cone_job *J, un
 {
     voxgi__gl *gl = ctx->gl;
     int a;
+#ifndef VOXGI_NO_OCTREE
     if (J->svo) {
         if (!bind) return;
         voxgi__svo_bind_gl(ctx, J->svo, p, VOXGI__RADIANCE_SLOT); /* the three share their layout, so u_svo_leaf_first */
@@ -9746,6 +9904,9 @@ static void voxgi__cone_bind_gl(voxgi_context *ctx, const voxgi__cone_job *J, un
         gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, J->enclosed ? J->svo->gl_regions : 0u);
         return;
     }
+#else
+    (void)p; /* an octree's buffers alone take uniforms */
+#endif
     gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, bind && J->enclosed ? J->vol->region_buffer : 0u);
     for (a = 0; a < 6; a++) {
         int d = J->dirs == 6 ? a : 0;
@@ -9788,12 +9949,19 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_grid *g = J->grid;
-    unsigned int bufs[2] = {0, 0}, p;
+    unsigned int bufs[2] = {0, 0}, p, *prog = &gl->prog_cone_trace;
+    voxgi__gl_program_id id = VOXGI__GL_PROGRAM_cone_trace;
     float *io;
     size_t i;
     int a;
-    voxgi_result r = voxgi__gl_get_program(ctx, J->svo ? VOXGI__GL_PROGRAM_cone_trace_svo : VOXGI__GL_PROGRAM_cone_trace);
-    if (r != VOXGI_OK || !count) return r;
+    voxgi_result r;
+#ifndef VOXGI_NO_OCTREE
+    if (J->svo) {
+        prog = &gl->prog_cone_trace_svo;
+        id = VOXGI__GL_PROGRAM_cone_trace_svo;
+    }
+#endif
+    if ((r = voxgi__gl_get_program(ctx, id)) != VOXGI_OK || !count) return r;
     if (count > UINT32_MAX / 2) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points in one call", (unsigned long)count);
     if (!(io = (float *)voxgi__alloc_array(ctx, count, 48, 0))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu points", (unsigned long)count);
     for (i = 0; i < count; i++) { /* points: position, unit normal; single cones: origin and tan, unit direction and reach, normal and cosine */
@@ -9812,7 +9980,7 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
     }
     bufs[0] = voxgi__gl_buffer(ctx, count * 48, io);
     bufs[1] = voxgi__gl_buffer(ctx, count * 16, NULL);
-    p = J->svo ? gl->prog_cone_trace_svo : gl->prog_cone_trace;
+    p = *prog;
     gl->UseProgram(p);
     voxgi__cone_uniforms(gl, p, J);
     voxgi__cone_bind_gl(ctx, J, p, 1);
@@ -9841,38 +10009,60 @@ static voxgi_result voxgi__cone_march_gl(voxgi_context *ctx, const voxgi__cone_j
 static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *desc,
                                          voxgi__cone_job *J)
 {
-    const voxgi_grid *g;
     const voxgi_volume *vol = source->volume;
-    const voxgi_svo *svo = source->octree;
-    const char *what = vol ? "volume" : "octree";
+    const voxgi_grid *g = vol ? &vol->info.grid : NULL;
+    const char *what = "volume", *maker = "voxgi_inject_light";
+    unsigned attributes = vol ? vol->info.attributes : 0u;
+    voxgi_backend backend = vol ? vol->info.backend : VOXGI_BACKEND_AUTO;
     int k, a;
     memset(J, 0, sizeof *J);
-    if (!vol == !svo)
+#ifndef VOXGI_NO_OCTREE
+    if (!vol == !source->octree)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance source sets %s: exactly one of volume and octree is needed",
                            vol ? "both a volume and an octree" : "neither a volume nor an octree");
-    if (!((vol ? vol->info.attributes : svo->info.attributes) & VOXGI_ATTRIBUTE_RADIANCE))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the %s holds no RADIANCE (%s)", what, vol ? "voxgi_inject_light" : "voxgi_svo_desc.radiance");
-    if ((vol ? vol->info.backend : svo->info.backend) != ctx->backend)
+    if (!vol) {
+        const voxgi_svo *svo = J->svo = source->octree;
+        what = "octree";
+        maker = "voxgi_svo_desc.radiance";
+        attributes = svo->info.attributes;
+        backend = svo->info.backend;
+        g = &svo->info.grid;
+        J->levels = svo->info.depth + 1;
+        J->enclosed = svo->region_count > 2; /* with two sides, below */
+        J->regions = svo->regions;
+        J->boxes = svo->regions + svo->info.nodes + svo->info.leaf_slots;
+        for (k = 0; k < J->levels; k++)
+            for (a = 0; a < 3; a++) J->dims[k][a] = (int)(((int64_t)g->res[a] + ((int64_t)1 << k) - 1) >> k);
+    }
+#else
+    if (!vol) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the radiance source sets no volume");
+#endif
+    if (!(attributes & VOXGI_ATTRIBUTE_RADIANCE))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the %s holds no RADIANCE (%s)", what, maker);
+    if (backend != ctx->backend)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the %s was made on another backend than the context's", what);
     if (desc->cones < 0 || desc->cones > 1024 || !(desc->half_angle >= 0 && desc->half_angle < 1.5f) || !(desc->step >= 0 && desc->step <= 4) ||
         !(desc->offset >= 0) || !(desc->max_distance >= 0))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "cones %d (0..1024), half_angle %g (0..1.5), step %g (0..4), offset %g, max_distance %g",
                            desc->cones, desc->half_angle, desc->step, desc->offset, desc->max_distance);
-    g = vol ? &vol->info.grid : &svo->info.grid;
+    if (vol) {
+        J->levels = vol->info.levels;
+        J->enclosed = vol->region_count > 2;
+        J->regions = vol->regions;
+        J->boxes = vol->region_boxes;
+        for (k = 0; k < J->levels; k++)
+            for (a = 0; a < 3; a++) J->dims[k][a] = vol->dims[k][a];
+    }
     J->vol = vol;
-    J->svo = vol ? NULL : svo;
     J->grid = g;
-    J->levels = vol ? vol->info.levels : svo->info.depth + 1;
     J->desc = desc;
     J->cones = desc->cones ? desc->cones : 16;
     J->dirs = vol && vol->info.filter == VOXGI_MIPS_ANISOTROPIC ? 6 : 1;
-    J->two_sided = ((vol ? vol->info.attributes : svo->info.attributes) & (VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE)) ==
+    J->two_sided = (attributes & (VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE)) ==
                    (VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE);
-    J->enclosed = J->two_sided && (vol ? vol->region_count : svo->region_count) > 2;
-    J->regions = !J->enclosed ? NULL : vol ? vol->regions : svo->regions;
-    J->boxes = !J->regions ? NULL : vol ? vol->region_boxes : svo->regions + svo->info.nodes + svo->info.leaf_slots;
-    for (k = 0; k < J->levels; k++)
-        for (a = 0; a < 3; a++) J->dims[k][a] = vol ? vol->dims[k][a] : (int)(((int64_t)g->res[a] + ((int64_t)1 << k) - 1) >> k);
+    J->enclosed = J->two_sided && J->enclosed;
+    if (!J->enclosed) J->regions = NULL; /* the regions are read only where there are enclosed ones */
+    if (!J->regions) J->boxes = NULL;
     for (a = 0; vol && a < 3; a++) /* the levels the source holds, on the CPU */
         if (vol->cpu[VOXGI__RADIANCE_SLOT + a][0]) {
             int dir;
@@ -9966,10 +10156,13 @@ VOXGI_API voxgi_result voxgi_cone_trace_gl(voxgi_context *ctx, const voxgi_radia
     if ((r = voxgi__cone_job_init(ctx, source, desc, &J)) != VOXGI_OK) return r;
     gl = ctx->gl;
     g = J.grid;
+#ifndef VOXGI_NO_OCTREE
     if (J.svo) {
         prog = gb->irradiance_rgba16f ? &gl->prog_cone_trace_svo_images16 : &gl->prog_cone_trace_svo_images32;
         r = voxgi__gl_get_program(ctx, gb->irradiance_rgba16f ? VOXGI__GL_PROGRAM_cone_trace_svo_images16 : VOXGI__GL_PROGRAM_cone_trace_svo_images32);
-    } else {
+    } else
+#endif
+    {
         prog = gb->irradiance_rgba16f ? &gl->prog_cone_trace_images16 : &gl->prog_cone_trace_images32;
         r = voxgi__gl_get_program(ctx, gb->irradiance_rgba16f ? VOXGI__GL_PROGRAM_cone_trace_images16 : VOXGI__GL_PROGRAM_cone_trace_images32);
     }
@@ -10001,8 +10194,10 @@ VOXGI_API float voxgi_specular_half_angle(float roughness)
     double a = VOXGI__MIN(1.0, VOXGI__MAX(0.02, (double)roughness)), n = VOXGI__MAX(0.0, 2 / (a * a) - 2); /* Phong exponent of the lobe */
     return (float)VOXGI__MAX(0.005, acos(pow(0.244, 1 / (n + 1))));
 }
+#endif /* VOXGI_NO_CONE_TRACING */
 
 /* ===================================================================== 9. light injection */
+#ifndef VOXGI_NO_LIGHT_INJECTION
 
 typedef struct voxgi__inject {
     const voxgi__lights *lights;
@@ -10420,8 +10615,9 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
     for (b = 1; r == VOXGI_OK && b < (desc->bounces < 0 ? 64 : desc->bounces) && !converged; b++) {
         voxgi_volume *next = NULL;
-        voxgi_radiance_source source = {NULL, NULL};
+        voxgi_radiance_source source;
         double before = 0, after = 0, ratio;
+        memset(&source, 0, sizeof source);
         source.volume = *vol;
         /* until convergence: how far the last bounce's share of the light has come down towards the bar */
         if (voxgi__cancelled(ctx, desc->bounces >= 0 ? (double)(b - 1) / (desc->bounces - 1)
@@ -10615,8 +10811,15 @@ VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene 
 {
     return voxgi__inject_light(ctx, scene, vx, desc, NULL, NULL, out);
 }
+#endif /* VOXGI_NO_LIGHT_INJECTION */
 
 /* ===================================================================== 10. light-space passes */
+
+/* The most translucent absorptions a transmittance shadow map holds (one slicemap each): the
+   planner counts them even where the maps are compiled out. */
+#define VOXGI__TSM_MAX_MATERIALS 8
+
+#ifndef VOXGI_NO_LIGHT_SPACE
 
 /* ----- 10.1 a light's view of the scene
 
@@ -10639,7 +10842,6 @@ typedef struct voxgi__light_view {
    voxgi_voxelize's raster slicemap of each translucent material's triangles along z in the
    light's view, and the opaque triangles' least depth at each texel centre drawn by the same
    rasterizer on the CPU. */
-#define VOXGI__TSM_MAX_MATERIALS 8
 
 struct voxgi_tsm {
     voxgi__light_view view;
@@ -11097,8 +11299,10 @@ VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm)
 {
     if (ctx) voxgi__tsm_free(ctx, tsm);
 }
+#endif /* VOXGI_NO_LIGHT_SPACE */
 
 /* ----- 10.3 voxel visibility: 3D-DDA and hierarchical traversal of the OR mipmaps */
+#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* the screen-space passes use it too */
 
 /* A grid's occupancy and its OR mipmaps (level l: ceil(res / 2^l) per axis, cell set when any of
    its voxels is), up to one cell. */
@@ -11313,7 +11517,10 @@ static void voxgi__gl_dispatch_points(voxgi__gl *gl, unsigned int program, size_
 }
 #endif
 
+#endif /* voxel visibility */
+
 /* ----- 10.4 reflective shadow maps (voxgi_rsm) */
+#ifndef VOXGI_NO_LIGHT_SPACE
 struct voxgi_rsm {
     int maps, samples;
     voxgi__light_view *views;     /* one per map */
@@ -12150,8 +12357,10 @@ VOXGI_API void voxgi_sh_destroy(voxgi_context *ctx, voxgi_sh *sh)
 {
     if (ctx) voxgi__sh_free(ctx, sh);
 }
+#endif /* VOXGI_NO_LIGHT_SPACE */
 
 /* ===================================================================== 11. screen-space passes */
+#ifndef VOXGI_NO_SCREEN_SPACE
 
 /* ----- 11.1 low-discrepancy points */
 VOXGI_API double voxgi_radical_inverse(uint32_t base, uint64_t i)
@@ -12747,8 +12956,10 @@ VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_scree
     voxgi__free(ctx, F.mid);
     return r;
 }
+#endif /* VOXGI_NO_SCREEN_SPACE */
 
 /* ===================================================================== 12. line space */
+#ifndef VOXGI_NO_LINE_SPACE
 
 struct voxgi_linespace {
     voxgi_linespace_info info;
@@ -14013,6 +14224,8 @@ static int voxgi__ls_area_lights(voxgi_context *ctx, const voxgi_scene *scene, c
     return count;
 }
 
+#endif /* VOXGI_NO_LINE_SPACE */
+
 /* ===================================================================== 13. planner and images */
 
 /* ----- the planner */
@@ -14079,7 +14292,9 @@ static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *sce
     float sigma[VOXGI__TSM_MAX_MATERIALS];
     double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
     voxgi__flat f;
+#ifndef VOXGI_NO_LINE_SPACE
     voxgi__ls_area *A;
+#endif
     double eye[3], fw[3], rt[3], up[3], tan_y = 0, tan_x = 0;
     size_t t, i;
     voxgi_result r;
@@ -14130,15 +14345,19 @@ static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *sce
         P->directional_lights += ty == VOXGI_LIGHT_DIRECTIONAL;
         P->rect_lights += ty == VOXGI_LIGHT_RECT;
     }
+#ifndef VOXGI_NO_LINE_SPACE
     A = (voxgi__ls_area *)voxgi__alloc_array(ctx, VOXGI__LS_AREA_LIGHTS, sizeof *A, 0);
     if (!A) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the planner");
     else if ((P->area_lights = voxgi__ls_area_lights(ctx, scene, &f, A)) == -2) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the planner");
+    voxgi__free(ctx, A);
+#else
+    P->area_lights = P->rect_lights + (int)VOXGI__MIN(P->emissive_triangles, (uint64_t)64); /* without the line space's pairing */
+#endif
     if (P->grid.voxel_size > 0) {
         double all = (double)voxgi_grid_voxel_count(&P->grid);
         P->voxels = (uint64_t)VOXGI__MIN(all, ceil(*crossing / (P->grid.voxel_size * P->grid.voxel_size)));
         P->occupancy = (double)P->voxels / all;
     }
-    voxgi__free(ctx, A);
     voxgi__flat_free(ctx, &f);
     return r;
 }
@@ -14282,6 +14501,7 @@ VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, co
     return NULL;
 }
 
+#if !defined(VOXGI_NO_LIGHT_INJECTION) || !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) || !defined(VOXGI_NO_LINE_SPACE) /* their images */
 /* An image's plan: each item it leaves out logged. */
 static voxgi_result voxgi__plan_image(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_plan_request *q, voxgi_plan_info *plan)
 {
@@ -14293,6 +14513,9 @@ static voxgi_result voxgi__plan_image(voxgi_context *ctx, const voxgi_scene *sce
     return VOXGI_OK;
 }
 
+#endif
+
+#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* the one-bounce and screen images */
 /* An image's plan (method, view, grid) logged, and whether it keeps `item`. */
 static voxgi_result voxgi__plan_keeps(voxgi_context *ctx, const voxgi_scene *scene, voxgi_plan_method method, const voxgi_camera *cam, int resolution,
                                       const char *item, int *keep)
@@ -14308,6 +14531,7 @@ static voxgi_result voxgi__plan_keeps(voxgi_context *ctx, const voxgi_scene *sce
     *keep = voxgi_plan_find(&plan, item)->kept;
     return VOXGI_OK;
 }
+#endif
 
 /* ----- the G-buffer of voxgi's own images */
 typedef struct voxgi__gbuffer_job {
@@ -14492,6 +14716,7 @@ VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scen
     return r;
 }
 
+#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION) /* cone-traced images */
 typedef struct voxgi__vct_job {
     const voxgi_vct_desc *desc;
     const voxgi__tracer *tr;
@@ -14597,12 +14822,11 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
 
 /* The cones' irradiance at the pixels flagged in want, into J->irr (a packed copy is traced);
    *traced: how many. */
-static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_volume *vol, const voxgi_svo *svo, const voxgi_cone_desc *cd,
+static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_radiance_source *source, const voxgi_cone_desc *cd,
                                             const voxgi__vct_job *J, size_t pixels, const unsigned char *want, size_t *traced)
 {
     size_t i, n = 0;
     float *pos, *nrm, *irr;
-    voxgi_radiance_source source;
     voxgi_result r = VOXGI_OK;
     for (i = 0; i < pixels; i++) n += want[i];
     *traced = n;
@@ -14613,9 +14837,7 @@ static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_volu
     if (!pos || !nrm || !irr) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu cone points", (unsigned long)n);
     for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
         if (want[i]) { memcpy(pos + 3 * n, J->pos + 3 * i, 12); memcpy(nrm + 3 * n, J->nrm + 3 * i, 12); n++; }
-    source.volume = svo ? NULL : vol;
-    source.octree = svo;
-    if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, &source, cd, n, pos, nrm, irr, NULL);
+    if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, source, cd, n, pos, nrm, irr, NULL);
     for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
         if (want[i]) { memcpy(J->irr + 3 * i, irr + 3 * n, 12); n++; }
     voxgi__free(ctx, pos);
@@ -14639,9 +14861,9 @@ static voxgi_vct_desc voxgi__vct_defaults(const voxgi_context *ctx, const voxgi_
 
 /* The radiance the cones gather: the scene voxelized on a grid of desc->resolution voxels
    along its longest side (albedo and normal), the direct light injected (and bounced), in a
-   volume or, with desc->octree, moved into an octree. */
+   volume (voxgi__vct_octree moves it into an octree). */
 static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *scene, const voxgi__tracer *tr, const voxgi__lights *Ls,
-                                        const voxgi_vct_desc *desc, voxgi_vct_info *inf, voxgi_voxels **vox, voxgi_volume **vol, voxgi_svo **svo)
+                                        const voxgi_vct_desc *desc, voxgi_vct_info *inf, voxgi_voxels **vox, voxgi_volume **vol)
 {
     voxgi_fit_desc fit;
     voxgi_voxelize_desc xd;
@@ -14673,21 +14895,7 @@ static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *s
         r = voxgi__inject_light(ctx, scene, *vox, &id, tr, Ls, vol); /* the image's tracer: one BVH build */
         inf->ms_inject = voxgi__now_ms() - t1;
     }
-    if (r == VOXGI_OK && desc->octree) { /* the radiance moves into an octree; the volume goes */
-        voxgi_svo_desc sd;
-        voxgi_svo_info si;
-        memset(&sd, 0, sizeof sd);
-        sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
-        sd.radiance = *vol;
-        sd.format = desc->octree_format;
-        sd.bricks = desc->octree_bricks;
-        t1 = voxgi__now_ms();
-        r = voxgi_svo_create(ctx, *vox, &sd, svo);
-        inf->ms_octree = voxgi__now_ms() - t1;
-        voxgi_volume_destroy(ctx, *vol);
-        *vol = NULL;
-        if (r == VOXGI_OK) { voxgi_svo_query(*svo, &si); inf->radiance_bytes = si.bytes; }
-    } else if (*vol) {
+    if (*vol) {
         voxgi_volume_info vi;
         voxgi_volume_query(*vol, &vi);
         inf->radiance_bytes = vi.bytes;
@@ -14695,6 +14903,32 @@ static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *s
     return r;
 }
 
+#ifndef VOXGI_NO_OCTREE
+/* With desc->octree the radiance moves into an octree; the volume goes. */
+static voxgi_result voxgi__vct_octree(voxgi_context *ctx, const voxgi_vct_desc *desc, voxgi_vct_info *inf, const voxgi_voxels *vox, voxgi_volume **vol,
+                                      voxgi_svo **svo)
+{
+    voxgi_svo_desc sd;
+    voxgi_svo_info si;
+    double t1 = voxgi__now_ms();
+    voxgi_result r;
+    memset(&sd, 0, sizeof sd);
+    sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
+    sd.radiance = *vol;
+    sd.format = desc->octree_format;
+    sd.bricks = desc->octree_bricks;
+    r = voxgi_svo_create(ctx, vox, &sd, svo);
+    inf->ms_octree = voxgi__now_ms() - t1;
+    voxgi_volume_destroy(ctx, *vol);
+    *vol = NULL;
+    if (r == VOXGI_OK) { voxgi_svo_query(*svo, &si); inf->radiance_bytes = si.bytes; }
+    return r;
+}
+#endif
+
+#endif
+
+#if (!defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)) || !defined(VOXGI_NO_LIGHT_SPACE)
 /* Anchors and the pixels between (cone tracing's and the reflective shadow maps' gathers at a
    stride s > 1): the anchors are every s-th pixel across and down and the last row and column
    (want[i] = 1 where such a pixel has a surface). */
@@ -14743,12 +14977,14 @@ static void voxgi__between_anchors(int w, int h, int stride, const float *pos, c
         else want[i] = 1; /* too few anchors share its surface: its own gather */
     }
 }
+#endif
 
+#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
 /* The cones' irradiance at every pixel's surface (J->irr), or with a cone stride s > 1 at the
    anchors (voxgi__anchors), the pixels between interpolated (voxgi__between_anchors, not strict)
    or tracing their own where no anchor shares their surface. */
-static voxgi_result voxgi__vct_cones(voxgi_context *ctx, const voxgi_vct_desc *desc, voxgi__vct_job *J, const voxgi_volume *vol,
-                                     const voxgi_svo *svo, double voxel_size, size_t *traced)
+static voxgi_result voxgi__vct_cones(voxgi_context *ctx, const voxgi_vct_desc *desc, voxgi__vct_job *J, const voxgi_radiance_source *source,
+                                     double voxel_size, size_t *traced)
 {
     int w = desc->camera.width, h = desc->camera.height, stride = desc->cone_stride;
     size_t pixels = (size_t)w * (size_t)h, n = 0, more = 0;
@@ -14756,10 +14992,10 @@ static voxgi_result voxgi__vct_cones(voxgi_context *ctx, const voxgi_vct_desc *d
     voxgi_result r = VOXGI_OK;
     if (!want) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
     voxgi__anchors(w, h, stride, J->prim, want);
-    r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, J, pixels, want, &n);
+    r = voxgi__vct_trace_pixels(ctx, source, &desc->cones, J, pixels, want, &n);
     if (r == VOXGI_OK && stride > 1) {
         voxgi__between_anchors(w, h, stride, J->pos, J->nrm, J->prim, voxel_size, 0, J->irr, want);
-        r = voxgi__vct_trace_pixels(ctx, vol, svo, &desc->cones, J, pixels, want, &more);
+        r = voxgi__vct_trace_pixels(ctx, source, &desc->cones, J, pixels, want, &more);
     }
     *traced = n + more;
     voxgi__free(ctx, want);
@@ -14778,7 +15014,10 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi__vct_job J;
     voxgi_voxels *vox = NULL;
     voxgi_volume *vol = NULL;
+#ifndef VOXGI_NO_OCTREE
     voxgi_svo *svo = NULL;
+#endif
+    voxgi_radiance_source source;
     voxgi_vct_info inf;
     size_t pixels;
     double t0 = voxgi__now_ms(), t1;
@@ -14820,12 +15059,20 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if (r == VOXGI_OK) r = voxgi__gbuffer(ctx, &tr, &desc->camera, J.pos, J.nrm, J.prim);
     if (r == VOXGI_OK && !desc->no_gi) {
         if (voxgi__cancelled(ctx, 0.0, "cone-traced image", "vct: voxelization")) r = VOXGI_ERR_CANCELLED;
-        if (r == VOXGI_OK) r = voxgi__vct_radiance(ctx, scene, &tr, &Ls, desc, &inf, &vox, &vol, &svo);
+        if (r == VOXGI_OK) r = voxgi__vct_radiance(ctx, scene, &tr, &Ls, desc, &inf, &vox, &vol);
+        memset(&source, 0, sizeof source);
+        source.volume = vol;
+#ifndef VOXGI_NO_OCTREE
+        if (r == VOXGI_OK && desc->octree && (r = voxgi__vct_octree(ctx, desc, &inf, vox, &vol, &svo)) == VOXGI_OK) {
+            source.volume = NULL;
+            source.octree = svo;
+        }
+#endif
         if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.4, "cone-traced image", "vct: cones")) r = VOXGI_ERR_CANCELLED;
         t1 = voxgi__now_ms();
         if (r == VOXGI_OK) {
             J.voxel_size = vox->info.grid.voxel_size;
-            r = voxgi__vct_cones(ctx, desc, &J, vol, svo, vox->info.grid.voxel_size, &inf.cone_points);
+            r = voxgi__vct_cones(ctx, desc, &J, &source, vox->info.grid.voxel_size, &inf.cone_points);
         }
         inf.ms_cones = voxgi__now_ms() - t1;
     }
@@ -14837,7 +15084,9 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if (r == VOXGI_OK) voxgi__progress(ctx, 1.0, "vct: done");
     if (info) *info = inf;
     voxgi_volume_destroy(ctx, vol);
+#ifndef VOXGI_NO_OCTREE
     voxgi_svo_destroy(ctx, svo);
+#endif
     if (vox) voxgi_voxels_destroy(ctx, vox);
     voxgi__free(ctx, J.pos);
     voxgi__free(ctx, J.nrm);
@@ -14847,15 +15096,19 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi__tracer_free(ctx, &tr);
     return r;
 }
+#endif
 
 /* ----- images of the direct light (with transmittance shadow maps, and under reflective ones) */
+#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* one-bounce images start with it */
 typedef struct voxgi__direct_image_job {
     const voxgi_camera *cam;
     int samples, hide_emitters;   /* camera rays per pixel (stratified, shifted per pixel by the seed) */
     uint64_t seed;
     const voxgi__tracer *tr;
     const voxgi__lights *others;  /* the lights through exact shadow rays, and the emitters */
+#ifndef VOXGI_NO_LIGHT_SPACE
     voxgi_tsm **maps;             /* per scene light: its transmittance shadow map, or NULL (maps NULL: none) */
+#endif
     const voxgi_scene *scene;
     double eye[3], forward[3], right[3], up[3], tan_half;
     float *rgb;
@@ -14867,7 +15120,10 @@ static void voxgi__direct_image_rows(void *user, size_t first, size_t end)
     const voxgi__direct_image_job *J = (const voxgi__direct_image_job *)user;
     const voxgi_camera *cam = J->cam;
     int samples = J->samples;
-    size_t y, li;
+    size_t y;
+#ifndef VOXGI_NO_LIGHT_SPACE
+    size_t li;
+#endif
     for (y = first; y < end; y++) {
         int x;
         for (x = 0; x < cam->width; x++) {
@@ -14889,6 +15145,7 @@ static void voxgi__direct_image_rows(void *user, size_t first, size_t end)
                 m = voxgi__prim_material(J->tr, h.prim);
                 for (a = 0; a < 3; a++) ns[a] = h.front ? J->tr->n[3 * (size_t)h.prim + (size_t)a] : -J->tr->n[3 * (size_t)h.prim + (size_t)a];
                 if (h.front && !J->hide_emitters) for (a = 0; a < 3; a++) emitted[a] += m->emission[a];
+#ifndef VOXGI_NO_LIGHT_SPACE
                 for (li = 0; J->maps && li < J->scene->light_count; li++) { /* the maps' lights */
                     const voxgi_tsm *T = J->maps[li];
                     const voxgi_light *L = &J->scene->lights[li];
@@ -14906,6 +15163,7 @@ static void voxgi__direct_image_rows(void *user, size_t first, size_t end)
                     c *= voxgi__tsm_point(T, h.p, ns);
                     for (a = 0; a < 3; a++) sum[a] += m->albedo[a] / VOXGI__PI * L->intensity[a] * c;
                 }
+#endif
                 voxgi__leave(J->tr, h.p, ns, h.p); /* off the surface for the shadow rays */
                 voxgi__direct(J->others, h.p, ns, h.prim, &g, 0, NULL, &rays, e, NULL);
                 for (a = 0; a < 3; a++) sum[a] += m->albedo[a] / VOXGI__PI * e[a];
@@ -14934,7 +15192,9 @@ static double voxgi__direct_image(voxgi_context *ctx, voxgi__direct_image_job *J
     voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__direct_image_rows, J);
     return voxgi__now_ms() - t0;
 }
+#endif
 
+#ifndef VOXGI_NO_LIGHT_SPACE
 VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
                                         size_t rgb_bytes, voxgi_tsm_image_info *info)
 {
@@ -14994,7 +15254,9 @@ VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *s
     if (info) *info = inf;
     return r;
 }
+#endif
 
+#ifndef VOXGI_NO_SCREEN_SPACE
 /* The longest side of the box around the scene's triangles (1 when they have no extent): the scale
    of the screen passes' default radii. */
 static double voxgi__longest_side(const voxgi__tracer *tr)
@@ -15009,6 +15271,7 @@ static double voxgi__longest_side(const voxgi__tracer *tr)
     for (a = 0; a < 3; a++) side = VOXGI__MAX(side, hi[a] - lo[a]);
     return side > 0 ? side : 1;
 }
+#endif
 
 /* ----- one-bounce images: the reflective shadow maps' and the SH volume's
 
@@ -15018,6 +15281,7 @@ static double voxgi__longest_side(const voxgi__tracer *tr)
    method's gather at the anchors of the gather stride and where interpolation fails; the bounce
    albedo / pi x irradiance added to the direct light. */
 
+#ifndef VOXGI_NO_LIGHT_SPACE
 /* A one-bounce gather at the pixels marked in want: gather(user, count, points, normals, out)
    sets out (3 per point), added into irr (3 per pixel); their number added into *gathered. */
 typedef voxgi_result (*voxgi__gather_fn)(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out);
@@ -15053,7 +15317,9 @@ static voxgi_result voxgi__gather_pixels(voxgi_context *ctx, size_t pixels, cons
     voxgi__free(ctx, e);
     return p && q && e ? r : voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu gathers", (unsigned long)count);
 }
+#endif
 
+#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* the SSGI images too */
 typedef struct voxgi__bounce_image {
     voxgi__tracer tr;
     voxgi__lights Ls;
@@ -15088,9 +15354,10 @@ static void voxgi__bounce_free(voxgi_context *ctx, voxgi__bounce_image *B)
 
 /* The direct light into rgb (and the light the surfaces reflect, without their emission, into
    reflected, if not NULL) and all the shared parts (B zeroed first, freed by voxgi__bounce_free
-   whatever the result); the times of the direct light and the voxels (holding `attributes`). */
+   whatever the result); the times of the direct light and the voxels (holding `attributes`), which
+   with `voxels` also give the occupancy the gathers pass (with its OR mipmaps: `hierarchical`). */
 static voxgi_result voxgi__bounce_begin(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *cam, int samples, int hide_emitters,
-                                        uint64_t seed, int resolution, voxgi_visibility visibility, unsigned attributes, float *rgb, size_t rgb_bytes,
+                                        uint64_t seed, int resolution, int voxels, int hierarchical, unsigned attributes, float *rgb, size_t rgb_bytes,
                                         float *reflected, voxgi__bounce_image *B, double *ms_direct, double *ms_voxels)
 {
     voxgi__direct_image_job J;
@@ -15123,9 +15390,9 @@ static voxgi_result voxgi__bounce_begin(voxgi_context *ctx, const voxgi_scene *s
     if ((r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid)) != VOXGI_OK) return r;
     B->grid = vd.grid;
     vd.attributes = attributes;
-    if (visibility == VOXGI_VISIBILITY_NONE) return VOXGI_OK;
+    if (!voxels) return VOXGI_OK;
     t1 = voxgi__now_ms(); /* the voxels the gathers pass */
-    if ((r = voxgi_voxelize(ctx, scene, &vd, &B->vox)) == VOXGI_OK && (r = voxgi__occ_build(ctx, B->vox, visibility == VOXGI_VISIBILITY_HIERARCHICAL, &B->O)) == VOXGI_OK)
+    if ((r = voxgi_voxelize(ctx, scene, &vd, &B->vox)) == VOXGI_OK && (r = voxgi__occ_build(ctx, B->vox, hierarchical, &B->O)) == VOXGI_OK)
         B->have_occ = 1;
     *ms_voxels = voxgi__now_ms() - t1;
     return r;
@@ -15143,7 +15410,9 @@ static void voxgi__bounce_add(const voxgi__bounce_image *B, float *rgb)
         for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * B->irr[3 * p + (size_t)a]);
     }
 }
+#endif
 
+#ifndef VOXGI_NO_LIGHT_SPACE
 /* The gathers at the anchors, then at the pixels between that cannot be interpolated; the bounce
    added into rgb. */
 static voxgi_result voxgi__bounce_gather(voxgi_context *ctx, voxgi__bounce_image *B, int stride, voxgi__gather_fn gather, void *user, float *rgb,
@@ -15192,7 +15461,8 @@ VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *s
     memset(&inf, 0, sizeof inf);
     if ((r = voxgi__plan_keeps(ctx, scene, VOXGI_PLAN_RSM, &desc->camera, desc->resolution, "gathers", &gi)) != VOXGI_OK) return r;
     r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution,
-                            gi ? desc->visibility : VOXGI_VISIBILITY_NONE, 0, rgb, rgb_bytes, NULL, &B, &inf.ms_direct, &inf.ms_voxels);
+                            gi && desc->visibility != VOXGI_VISIBILITY_NONE, desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL, 0, rgb, rgb_bytes,
+                            NULL, &B, &inf.ms_direct, &inf.ms_voxels);
     if (r == VOXGI_OK && !(maps = (voxgi_rsm **)voxgi__alloc_array(ctx, scene->light_count + 1, sizeof *maps, 1)))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
     t1 = voxgi__now_ms();
@@ -15257,7 +15527,8 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
     memset(&inf, 0, sizeof inf);
     if ((r = voxgi__plan_keeps(ctx, scene, VOXGI_PLAN_SH, &desc->camera, desc->resolution, "gathers", &gi)) != VOXGI_OK) return r;
     r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution,
-                            gi ? desc->visibility : VOXGI_VISIBILITY_NONE, 0, rgb, rgb_bytes, NULL, &B, &inf.ms_direct, &inf.ms_voxels);
+                            gi && desc->visibility != VOXGI_VISIBILITY_NONE, desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL, 0, rgb, rgb_bytes,
+                            NULL, &B, &inf.ms_direct, &inf.ms_voxels);
     t1 = voxgi__now_ms();
     if (r == VOXGI_OK && gi) r = voxgi_sh_create(ctx, scene, &B.grid, &desc->sh, &sh);
     inf.ms_sh = voxgi__now_ms() - t1;
@@ -15283,8 +15554,10 @@ VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *sc
     if (info) *info = inf;
     return r;
 }
+#endif
 
 /* ----- images from the screen-space passes */
+#ifndef VOXGI_NO_SCREEN_SPACE
 
 /* Job J's values (channels per pixel: 1 occlusion, 3 irradiance) into values at every pixel with
    a surface (its G-buffer J->pos, J->nrm), or with `half` at the pixels (2X, 2Y) only; then,
@@ -15356,12 +15629,20 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
     voxgi_ssgi_image_info inf;
     voxgi_volume *light = NULL;
     float *reflected = NULL;
-    int hidden = desc && desc->hidden_light && desc->method == VOXGI_AO_VOXELS, gi;
+#ifndef VOXGI_NO_LIGHT_INJECTION
+    int hidden = desc && desc->hidden_light && desc->method == VOXGI_AO_VOXELS;
+#else
+    int hidden = 0; /* no light injection: no hidden light */
+#endif
+    int gi;
     double t0 = voxgi__now_ms(), t1;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->blur < 0 || desc->blur > 64 || desc->inject_samples < 0 ||
+    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->blur < 0 || desc->blur > 64 ||
+#ifndef VOXGI_NO_LIGHT_INJECTION
+        desc->inject_samples < 0 ||
+#endif
         (desc->half_resolution != 0 && desc->half_resolution != 1) || !(desc->radius >= 0 && isfinite(desc->radius)))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), half_resolution %d (0 or 1), blur %d (0..64), radius %g",
                            desc->samples, desc->resolution, desc->half_resolution, desc->blur, (double)desc->radius);
@@ -15373,8 +15654,9 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
     reflected = (float *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(desc->camera.width, 1) * (size_t)VOXGI__MAX(desc->camera.height, 1), 12, 0);
     if (!reflected) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the screen's light");
     r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution ? desc->resolution : 128,
-                            gi && desc->method == VOXGI_AO_VOXELS ? VOXGI_VISIBILITY_HIERARCHICAL : VOXGI_VISIBILITY_NONE,
+                            gi && desc->method == VOXGI_AO_VOXELS, 1,
                             hidden ? VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL : 0u, rgb, rgb_bytes, reflected, &B, &inf.ms_direct, &inf.ms_voxels);
+#ifndef VOXGI_NO_LIGHT_INJECTION
     if (r == VOXGI_OK && hidden) { /* the voxels' direct light, one level: only level 0 is read */
         voxgi_inject_desc id;
         memset(&id, 0, sizeof id);
@@ -15385,6 +15667,7 @@ VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *
         r = voxgi__inject_light(ctx, scene, B.vox, &id, &B.tr, &B.Ls, &light);
         inf.ms_inject = voxgi__now_ms() - t1;
     }
+#endif
     inf.radius = desc->radius;
     if (r == VOXGI_OK && !(inf.radius > 0)) inf.radius = (float)(sqrt(3.0) * voxgi__longest_side(&B.tr)); /* across the scene */
     if (r == VOXGI_OK && gi) r = voxgi__screen_setup(ctx, &J, &desc->camera, B.pos, B.nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, inf.radius);
@@ -15487,7 +15770,9 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
     if (info) *info = inf;
     return r;
 }
+#endif /* VOXGI_NO_SCREEN_SPACE */
 
+#ifndef VOXGI_NO_LINE_SPACE
 /* ----- images of the area lights' soft shadows through the line space */
 typedef struct voxgi__ls_shade {
     const voxgi__flat *f;
@@ -15653,8 +15938,10 @@ VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_sc
     voxgi__flat_free(ctx, &f);
     return r;
 }
+#endif /* VOXGI_NO_LINE_SPACE */
 
 /* ===================================================================== 14. reference renderer */
+#ifndef VOXGI_NO_REFERENCE
 
 typedef struct voxgi__render {
     voxgi_context *ctx;
@@ -15844,6 +16131,7 @@ VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_sc
     voxgi__tracer_free(ctx, &tr);
     return r;
 }
+#endif /* VOXGI_NO_REFERENCE */
 
 /* ===================================================================== 15. built-in scenes and files */
 

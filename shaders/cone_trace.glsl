@@ -3,6 +3,7 @@
 // stored premultiplied, so linear filtering is right), or over an octree's RADIANCE where
 // cone_svo.glsl defines VOXGI_CONE_SVO (after svo.glsl). Its passes: cone_trace_buffers.glsl
 // (points and single cones in storage buffers) and cone_trace_images.glsl (a G-buffer).
+// embedded unless VOXGI_NO_CONE_TRACING
 
 // the regions of its empty space (voxgi__volume_regions): a volume's labels level after level,
 // or an octree's per node slot then per leaf slot (voxgi__svo_regions); then 6 bounds per label

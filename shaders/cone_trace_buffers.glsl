@@ -1,5 +1,6 @@
 // voxgi_cone_trace and voxgi_trace_cones on GL (after cone_trace.glsl): points or cones from a
 // storage buffer, results into another (bindings 3 and 4: an octree's buffers take 0 to 2 and 6).
+// embedded unless VOXGI_NO_CONE_TRACING
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 3) readonly buffer Points { vec4 points[]; };   // 3 per point or cone, grid units
 layout(std430, binding = 4) writeonly buffer Gathered { vec4 gathered[]; }; // irradiance and occlusion, or radiance and opacity

@@ -2,6 +2,7 @@
 // caller's G-buffer textures, pixel i = x + width y. Positions in world units (texel rgb),
 // normals in rgb (a zero normal: no surface, written 0); out: irradiance and occlusion, or with
 // an albedo texture the reflected radiance albedo / pi x irradiance.
+// embedded unless VOXGI_NO_CONE_TRACING
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(binding = 6) uniform sampler2D u_positions;
 layout(binding = 7) uniform sampler2D u_normals;

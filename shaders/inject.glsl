@@ -4,6 +4,7 @@
 // texel is not nearer than the point, less u_bias and half a texel's width for slopes (a filter
 // over neighbouring texels would see past the foot of a wall that shadows a point beside it).
 // voxgi__inject_range is the CPU's twin with exact shadow rays.
+// embedded unless VOXGI_NO_LIGHT_INJECTION
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Points { vec4 points[]; };   // 2 per voxel: lookup point, unit normal (w = 0: none)
 layout(std430, binding = 1) readonly buffer Casters { Caster casters[]; };

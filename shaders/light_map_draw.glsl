@@ -1,5 +1,6 @@
 // Draws the scene into one layer of the distance maps (after light_maps.glsl): vertex and
 // fragment stages over the triangles' corners (3 vec4 per triangle, relative to the grid origin).
+// embedded unless VOXGI_NO_LIGHT_INJECTION
 layout(std430, binding = 0) readonly buffer Corners { vec4 corner[]; };
 layout(std430, binding = 1) readonly buffer Casters { Caster casters[]; };
 layout(location = VOXGI_LOC_u_caster) uniform int u_caster;

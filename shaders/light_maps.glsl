@@ -6,6 +6,7 @@
 // scene's bounding sphere, distance measured along the light's travel from a plane behind the
 // scene; every other caster (a point, spot, or a sampled point on an area light or emitter) has
 // six 90-degree cube faces, +x -x +y -y +z -z, distance = Euclidean.
+// embedded unless VOXGI_NO_LIGHT_INJECTION
 struct Caster {
     vec4 pos;    // point: position; directional: the plane behind the scene (its point); w: type (0 directional, 1 point, 2 spot, 3 area sample)
     vec4 dir;    // directional: travel direction; spot: axis; area sample: the surface's normal; w: the map's half-width (directional)

@@ -6,6 +6,7 @@
 // may be 2.5 ulp off; a correctly rounded double quotient rounded again to float is the correctly
 // rounded float quotient, as 53 >= 2 x 24 + 2 bits). The weights alone are float, not the CPU's
 // double: they may differ in the last bits.
+// embedded unless VOXGI_NO_LINE_SPACE
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Nodes { uint node[]; };       // 2 per node: first child, line space or leaf
 layout(std430, binding = 1) readonly buffer Bits { uint bits[]; };        // the line spaces, u_words each

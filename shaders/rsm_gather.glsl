@@ -1,6 +1,7 @@
 // The reflective shadow maps' gather (voxgi__rsm_gather's GL twin, in float): one invocation per
 // point, every map's pattern of texels through equation 5, each sample through the voxels
 // (voxel_traverse.glsl) when u_levels > 0.
+// embedded unless VOXGI_NO_LIGHT_SPACE
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Points { float points[]; };    // 3 per point
 layout(std430, binding = 1) readonly buffer Normals { float normals[]; };  // 3 per point

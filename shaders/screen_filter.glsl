@@ -1,6 +1,7 @@
 // The edge-aware blur and upsampling (voxgi__filter_rows and voxgi__filter_columns' GL twin, in
 // float): u_pass 0, one invocation per element of the row pass (full column, input row); u_pass 1,
 // one per full-resolution pixel, down the row pass's columns.
+// embedded unless VOXGI_NO_SCREEN_SPACE
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Screen { float screen[]; };  // per pixel: position 3, normal 3
 layout(std430, binding = 1) readonly buffer Values { float values[]; };  // u_channels per input pixel

@@ -2,6 +2,7 @@
 // (u_gather 0: the occluded share) or one bounce from the screen's radiance (u_gather 1: pi / rays
 // x the radiance met), at count points; the per-point rotation and jitter come from the CPU (the
 // same random numbers), the rays from the Hammersley set.
+// embedded unless VOXGI_NO_SCREEN_SPACE
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Points { float points[]; };   // 3 per point
 layout(std430, binding = 1) readonly buffer Normals { float normals[]; }; // 3 per point

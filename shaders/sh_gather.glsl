@@ -1,6 +1,7 @@
 // The SH volume's gather (voxgi__sh_point's GL twin, in float): one invocation per point, the
 // Barnes-Hut walk of the levels from the coarsest, each cell seen whole through the voxels
 // (voxel_traverse.glsl) when u_levels > 0, up to half a voxel before the cell.
+// embedded unless VOXGI_NO_LIGHT_SPACE
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Points { float points[]; };    // 3 per point
 layout(std430, binding = 1) readonly buffer Normals { float normals[]; };  // 3 per point

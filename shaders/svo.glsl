@@ -6,6 +6,7 @@
 // (1, two halves per word, the first in the low bits), (value, alpha), opacity alpha alone; an
 // attribute's node values, then from word u_svo_leaf_first on its leaf values, in one buffer.
 // Cone tracing (VOXGI_CONE_SVO) also reads a two-sided octree's back and side, laid out alike.
+// embedded unless VOXGI_NO_OCTREE
 layout(std430, binding = VOXGI_BINDING_SVO_CHILD) buffer SvoChild { uint svo_child[]; };
 layout(std430, binding = VOXGI_BINDING_SVO_VALUES) buffer SvoValues { uint svo_words[]; };
 #ifdef VOXGI_CONE_SVO

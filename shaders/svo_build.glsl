@@ -4,6 +4,7 @@
 // allocate and initialise passes are sized on the GPU (indirect dispatch). Then the fragments
 // write the leaf values and each level's nodes, bottom up, the isotropic mip of their tile.
 // Every node with a tile is in the node list (slot, coordinates at its level), level by level.
+// embedded unless VOXGI_NO_OCTREE
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 3) readonly buffer Fragments { uvec2 fragments[]; };  // x | y << 16, z
 layout(std430, binding = 4) buffer NodeList { uvec4 node_list[]; };           // slot, x, y, z

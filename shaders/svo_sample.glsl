@@ -1,5 +1,6 @@
 // Point lookups and samples of a GPU octree at a list of points (voxgi_svo_lookup and
 // voxgi_svo_sample on GL), through the functions of svo.glsl the lighting passes use.
+// embedded unless VOXGI_NO_OCTREE
 #ifdef VOXGI_COMPUTE
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 3) readonly buffer Points { vec4 points[]; };  // lookups: uvec3 bits, level; samples: xyz, lod

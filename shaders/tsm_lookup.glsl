@@ -2,6 +2,7 @@
 // double in the CPU's order of operations (precise: no fused multiply-adds), the layers'
 // transmittance a product of (1 - sigma) as on the CPU, so the answers are the same bit for bit
 // where the GL's doubles round as IEEE's do (llvmpipe).
+// embedded unless VOXGI_NO_LIGHT_SPACE
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Points { float points[]; };   // 3 per point
 layout(std430, binding = 1) readonly buffer Normals { float normals[]; }; // 3 per point, when P[25] != 0

@@ -2,6 +2,7 @@
 // [0, 1] (voxel units), meets an occupied voxel, by 3D-DDA or, from the coarsest level, by the
 // hierarchy of the OR mipmaps. Level l has occ_level[4 l .. 4 l + 2] cells per axis and its bits
 // from word occ_level[4 l + 3] of occ_bits. What the grid does not hold does not block.
+// embedded unless VOXGI_NO_LIGHT_SPACE and VOXGI_NO_SCREEN_SPACE
 layout(std430, binding = 6) readonly buffer OccBits { uint occ_bits[]; };
 layout(std430, binding = 7) readonly buffer OccLevels { uint occ_level[]; };
 layout(location = VOXGI_LOC_u_levels) uniform int u_levels; // 0: no visibility

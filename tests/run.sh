@@ -76,6 +76,72 @@ matrix_entry() { # std variant N
     fi
 }
 
+# Parts left out (voxgi.h's CONFIGURATION). part_entry: the part's macros in C (the implementation
+# at -O0, where the compiler meets every unused function; its object must hold no symbol of the
+# part and be smaller than the whole one, part_whole's) or C++ (-fsyntax-only). The whole objects
+# come from the first part check queued, which the others wait for.
+part_whole() { # N: the whole implementation's objects, with and without GL; every part's symbols in them
+    local gl missing=""
+    for gl in "" -DVOXGI_NO_GL; do
+        ${CC:-cc} -x c -std=c99 -Wall -Wextra -pedantic -Werror -O0 $gl -c -o "$tmp/part_whole$gl.o" \
+            tests/compile/tu_impl.c 2>>"$tmp/part_whole.err" || rm -f "$tmp/part_whole$gl.o"
+    done
+    if [ -e "$tmp/part_whole.o" ]; then
+        for key in "${!part_symbols[@]}"; do
+            nm "$tmp/part_whole.o" | awk '{print $NF}' | grep -qE "${part_symbols[$key]}" || missing="$missing $key"
+        done
+    fi
+    if [ ! -e "$tmp/part_whole.o" ] || [ ! -e "$tmp/part_whole-DVOXGI_NO_GL.o" ]; then
+        { echo fail; head -c 600 "$tmp/part_whole.err"; } > "$tmp/$1.status"
+    elif [ -n "$missing" ]; then
+        { echo fail; echo "no symbol of$missing in the whole object: their patterns test nothing"; } > "$tmp/$1.status"
+    else
+        echo pass > "$tmp/$1.status"
+    fi
+    touch "$tmp/part_whole.done"
+}
+part_entry() { # std key macros N
+    local std=$1 key=$2 macros=$3 obj=$tmp/part$4 whole left size whole_size
+    if [ "${std#c++}" != "$std" ]; then
+        if ${CXX:-c++} -x c++ -std=$std -Wall -Wextra -pedantic -Werror -fsyntax-only $macros \
+                tests/compile/tu_impl.c tests/compile/tu_use.c 2>"$obj.err"; then
+            echo pass
+        else
+            echo fail; head -c 600 "$obj.err"
+        fi > "$tmp/$4.status"
+        return
+    fi
+    if ! { ${CC:-cc} -x c -std=$std -Wall -Wextra -pedantic -Werror -O0 $macros -c -o "$obj.o" tests/compile/tu_impl.c &&
+           ${CC:-cc} -x c -std=$std -Wall -Wextra -pedantic -Werror -O0 $macros -c -o "$obj.use.o" tests/compile/tu_use.c &&
+           ${CC:-cc} -o "$obj" "$obj.o" "$obj.use.o" -lm -lpthread && "$obj"; } 2>"$obj.err"; then
+        { echo fail; head -c 600 "$obj.err"; } > "$tmp/$4.status"
+        return
+    fi
+    while [ ! -e "$tmp/part_whole.done" ]; do sleep 0.1; done
+    case $macros in *-DVOXGI_NO_GL*) whole=$tmp/part_whole-DVOXGI_NO_GL.o;; *) whole=$tmp/part_whole.o;; esac
+    left=$(nm "$obj.o" | awk '{print $NF}' | grep -E "${part_symbols[$key]}" | head -n 8 | tr '\n' ' ')
+    size=$(size "$obj.o" | awk 'NR == 2 {print $4}')
+    whole_size=$(size "$whole" 2>/dev/null | awk 'NR == 2 {print $4}')
+    echo "    without $key$(case $macros in *-DVOXGI_NO_GL*) echo ", without GL";; esac): $size of ${whole_size:-?} bytes (text and data, -O0)"
+    if [ -n "$left" ]; then
+        { echo fail; echo "still in the object: $left"; } > "$tmp/$4.status"
+    elif [ -z "$whole_size" ] || [ "$size" -ge "$whole_size" ]; then
+        { echo fail; echo "the object is not smaller than the whole one (${whole_size:-none})"; } > "$tmp/$4.status"
+    else
+        echo pass > "$tmp/$4.status"
+    fi
+}
+# A part left out while another that needs it stays must stop at the #error that names both.
+part_error() { # N
+    if ${CC:-cc} -x c -std=c99 -fsyntax-only -DVOXGI_NO_CONE_TRACING tests/compile/tu_impl.c 2>"$tmp/part_error.err"; then
+        { echo fail; echo "VOXGI_NO_CONE_TRACING alone compiled"; } > "$tmp/$1.status"
+    elif grep -q '#error.*VOXGI_NO_CONE_TRACING needs VOXGI_NO_LIGHT_INJECTION' "$tmp/part_error.err"; then
+        echo pass > "$tmp/$1.status"
+    else
+        { echo fail; head -c 600 "$tmp/part_error.err"; } > "$tmp/$1.status"
+    fi
+}
+
 # Every exported symbol of the implementation (the object the tests link) is voxgi_.
 exported_symbols() { # N
     local bad
@@ -95,7 +161,8 @@ else
     record shaders_h_is_fresh fail "the committed shaders.h is stale: commit the regenerated one"
 fi
 
-# 2. the compile matrix: C and C++ standards, two translation units, static, without GL, without threads
+# 2. the compile matrix: C and C++ standards, two translation units, static, without GL, without
+# threads, without each part (VOXGI_NO_<PART>)
 heading "== compile matrix"
 avx2=""
 grep -qw avx2 /proc/cpuinfo 2>/dev/null && avx2="-mavx2 -mfma" # where the CPU can run it: the AVX2 paths
@@ -105,6 +172,30 @@ for std in c99 c11 c++11 c++17; do
         check "$name" status matrix_entry "$std" "$variant"
     done
 done
+# Each part left out alone (VOXGI_NO_CONE_TRACING with VOXGI_NO_LIGHT_INJECTION, which it needs)
+# and with VOXGI_NO_GL, then all of them; part_symbols: what must be gone from the object.
+declare -A part_macros part_symbols
+part_macros=([octree]="-DVOXGI_NO_OCTREE" [cone_tracing]="-DVOXGI_NO_CONE_TRACING -DVOXGI_NO_LIGHT_INJECTION"
+             [light_injection]="-DVOXGI_NO_LIGHT_INJECTION" [light_space]="-DVOXGI_NO_LIGHT_SPACE"
+             [screen_space]="-DVOXGI_NO_SCREEN_SPACE" [line_space]="-DVOXGI_NO_LINE_SPACE" [reference]="-DVOXGI_NO_REFERENCE")
+part_symbols=([octree]='^voxgi__?svo_|^voxgi__glsl_(cone_)?svo'
+              [light_injection]='^voxgi__?(inject|vct)_|^voxgi__light_(casters|maps_gl)$|^voxgi__glsl_(inject$|light_map)'
+              [light_space]='^voxgi__?(tsm|rsm|sh)_|^voxgi__view_|^voxgi__glsl_(tsm|rsm|sh)_'
+              [screen_space]='^voxgi_(ao|ssgi|screen_filter|hammersley|radical_inverse)(_|$)|^voxgi__(screen|filter)_|^voxgi__glsl_screen_'
+              [line_space]='^voxgi_(linespace|_ls)_|^voxgi__glsl_linespace$'
+              [reference]='^voxgi_reference_render$|^voxgi__(path|render_rows|reference_defaults|camera_sees)$')
+part_symbols[cone_tracing]="^voxgi__?cone_|^voxgi_specular_half_angle$|^voxgi__glsl_(cone_|out_rgba)|${part_symbols[light_injection]}"
+part_macros[all_parts]="${part_macros[*]}"
+part_symbols[all_parts]="$(IFS='|'; echo "${part_symbols[*]}")|^voxgi_voxels_occluded$|^voxgi__(occ_|traverse$)|^voxgi__glsl_voxel_traverse$"
+check part_whole_objects status part_whole
+for key in octree cone_tracing light_injection light_space screen_space line_space reference all_parts; do
+    for gl in "" " -DVOXGI_NO_GL"; do
+        for std in c99 c++11; do
+            check "compile_${std}_no_${key}${gl:+_no_gl}" status part_entry "$std" "$key" "${part_macros[$key]}$gl"
+        done
+    done
+done
+check compile_c99_no_cone_tracing_alone_is_an_error status part_error
 check exported_symbols_are_prefixed status exported_symbols
 
 # 3. the test programs, then again under AddressSanitizer and UndefinedBehaviorSanitizer

@@ -264,7 +264,9 @@ static void test_embed_shaders(void)
                  && weird && strstr(text, "voxgi__glsl_b[]") < weird,
              "arrays not sorted by file name");
     TH_CHECK(strstr(text, "{\"a.glsl\", voxgi__glsl_a, 28UL},") != NULL, "size of a.glsl");
-    TH_CHECK(strstr(text, "#define VOXGI__GLSL_FILE_COUNT 3\n") != NULL, "file count");
+    TH_CHECK(strstr(text, "#define VOXGI__GLSL_FILE_COUNT ((int)(sizeof voxgi__glsl_files / sizeof voxgi__glsl_files[0]))\n") != NULL,
+             "file count");
+    TH_CHECK(!strstr(text, "VOXGI_NO_"), "a guard without an \"embedded unless\" line");
 
     /* A missing input fails with a message and leaves the previous output alone. */
     forward[1][strlen(forward[1]) - 1] = 'x';
@@ -290,6 +292,63 @@ static void test_embed_shaders(void)
     TH_CHECK(remove(tmp_dir) == 0, "%s is not empty: a temporary file was left behind", tmp_dir);
 }
 
+/* "embedded unless" lines: each file's array and table row kept by the matching #if; a malformed
+   line or two of them fail with the file's name. */
+static void test_embed_shaders_guards(void)
+{
+    static const char *const names[] = {"one.glsl", "either.glsl", "both.glsl", "plain.glsl"};
+    static const char *const bad[] = {"// embedded unless OCTREE\n", "// embedded unless VOXGI_NO_A or\n",
+                                      "// embedded unless VOXGI_NO_A or VOXGI_NO_B and VOXGI_NO_C\n", "// embedded unless VOXGI_NO_A  or VOXGI_NO_B\n",
+                                      "// embedded unless VOXGI_NO_A\n// embedded unless VOXGI_NO_B\n"};
+    char err[512], *paths[4], *text;
+    es_file out;
+    int i;
+    snprintf(tmp_dir, sizeof tmp_dir, "%s/voxgi-embed-XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+    if (!mkdtemp(tmp_dir)) {
+        TH_CHECK(0, "mkdtemp %s failed", tmp_dir);
+        return;
+    }
+    write_file("one.glsl", "// a part's file\n// embedded unless VOXGI_NO_OCTREE\r\nvoid f() {}\n");
+    write_file("either.glsl", "// embedded unless VOXGI_NO_CONE_TRACING or VOXGI_NO_OCTREE");
+    write_file("both.glsl", "// embedded unless VOXGI_NO_LIGHT_SPACE and VOXGI_NO_SCREEN_SPACE and VOXGI_NO_X2\n");
+    write_file("plain.glsl", "// embedded unlessVOXGI_NO_OCTREE\n  // embedded unless VOXGI_NO_OCTREE\n");
+    for (i = 0; i < 4; i++) {
+        paths[i] = (char *)malloc(600);
+        snprintf(paths[i], 600, "%s/%s", tmp_dir, names[i]);
+    }
+    TH_CHECK(embed_shaders(tmp_path("out.h"), 4, paths, err, sizeof err) == 0, "%s", err);
+    out = read_file("out.h");
+    text = (char *)calloc(1, out.size + 1);
+    if (text && out.data) memcpy(text, out.data, out.size);
+    if (text) {
+        TH_CHECK(strstr(text, "\n#ifndef VOXGI_NO_OCTREE\nstatic const unsigned char voxgi__glsl_one[] = {") != NULL, "one macro: %.300s", text);
+        TH_CHECK(strstr(text, "\n#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_OCTREE)\nstatic const unsigned char voxgi__glsl_either[]") != NULL,
+                 "or");
+        TH_CHECK(strstr(text, "\n#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) || !defined(VOXGI_NO_X2)\n"
+                              "static const unsigned char voxgi__glsl_both[]") != NULL,
+                 "and");
+        TH_CHECK(strstr(text, "0x00\n};\n#endif\n") != NULL, "an array's #endif");
+        TH_CHECK(strstr(text, "#ifndef VOXGI_NO_OCTREE\n    {\"one.glsl\", voxgi__glsl_one, 65UL},\n#endif\n") != NULL, "a table row's guard");
+        TH_CHECK(strstr(text, "\nstatic const unsigned char voxgi__glsl_plain[]") != NULL &&
+                     strstr(text, "};\n    {\"plain.glsl\"") == NULL && strstr(text, "#endif\n    {\"plain.glsl\"") != NULL,
+                 "a file without the line is kept whole");
+    }
+    free(text);
+    free(out.data);
+    for (i = 0; i < (int)(sizeof bad / sizeof bad[0]); i++) {
+        write_file("one.glsl", bad[i]);
+        err[0] = '\0';
+        TH_CHECK(embed_shaders(tmp_path("bad.h"), 4, paths, err, sizeof err) == -1, "accepted %s", bad[i]);
+        TH_CHECK(strstr(err, "one.glsl") != NULL, "the message does not name the file: %s", err);
+    }
+    for (i = 0; i < 4; i++) {
+        remove(paths[i]);
+        free(paths[i]);
+    }
+    remove(tmp_path("out.h"));
+    TH_CHECK(remove(tmp_dir) == 0, "%s is not empty: a temporary file was left behind", tmp_dir);
+}
+
 int main(void)
 {
     TH_RUN(test_kind_parse);
@@ -297,5 +356,6 @@ int main(void)
     TH_RUN(test_osmesa_compute);
     TH_RUN(test_auto_picks_a_kind);
     TH_RUN(test_embed_shaders);
+    TH_RUN(test_embed_shaders_guards);
     return th_finish();
 }

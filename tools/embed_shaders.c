@@ -9,6 +9,13 @@
  * names reach the output, which is the same byte for byte on every run. OUT.h is written to
  * a temporary file and renamed into place, so a failed run never leaves half a header.
  *
+ * A file of a part that voxgi.h can compile out says so in a line of its own:
+ *     // embedded unless VOXGI_NO_A                 left out when VOXGI_NO_A is defined
+ *     // embedded unless VOXGI_NO_A or VOXGI_NO_B   ... when either is
+ *     // embedded unless VOXGI_NO_A and VOXGI_NO_B  ... only when both are
+ * and its array and its table row are wrapped in the matching #if, so that a program without
+ * that part carries none of its text. VOXGI__GLSL_FILE_COUNT counts the rows left.
+ *
  * Defining EMBED_SHADERS_NO_MAIN before including this file gives embed_shaders() without
  * main(), for tests. */
 #include <errno.h>
@@ -19,6 +26,7 @@
 typedef struct es_file {
     const char *name; /* base name: the only part of the path that reaches the output */
     char *ident;      /* C identifier: voxgi__glsl_ + the sanitised stem */
+    char *guard;      /* the #if that keeps it (its "embedded unless" line), or NULL: always kept */
     unsigned char *data;
     unsigned long size;
 } es_file;
@@ -74,6 +82,70 @@ static int es_read(const char *path, es_file *f, char *err, size_t err_size)
     return 0;
 }
 
+/* Whether the n bytes at s make a part's macro: VOXGI_NO_ and capitals, digits or '_'. */
+static int es_macro(const char *s, size_t n)
+{
+    static const char prefix[] = "VOXGI_NO_";
+    size_t i;
+    if (n <= sizeof prefix - 1 || memcmp(s, prefix, sizeof prefix - 1) != 0) return 0;
+    for (i = sizeof prefix - 1; i < n; i++)
+        if (!((s[i] >= 'A' && s[i] <= 'Z') || (s[i] >= '0' && s[i] <= '9') || s[i] == '_')) return 0;
+    return 1;
+}
+
+/* The "embedded unless" line of f, if any, as the preprocessor line that keeps the file, into
+ * f->guard; -1 with a message when the line is malformed or there are two. */
+static int es_guard(es_file *f, char *err, size_t err_size)
+{
+    static const char marker[] = "// embedded unless ";
+    const char *text = (const char *)f->data, *end = text + f->size, *line, *eol;
+    for (line = text; line < end; line = eol + 1) {
+        const char *p, *stop, *word[15];
+        size_t len[15], n = 0, k, size = 16;
+        int ok;
+        eol = (const char *)memchr(line, '\n', (size_t)(end - line));
+        if (!eol) eol = end;
+        if ((size_t)(eol - line) < sizeof marker - 1 || memcmp(line, marker, sizeof marker - 1) != 0) continue;
+        if (f->guard) {
+            snprintf(err, err_size, "%s: more than one \"embedded unless\" line", f->name);
+            return -1;
+        }
+        p = line + sizeof marker - 1;
+        stop = eol > p && eol[-1] == '\r' ? eol - 1 : eol;
+        for (ok = 1; ok; p++) { /* the words, one space apart */
+            if (n == 15) { ok = 0; break; }
+            word[n] = p;
+            while (p < stop && *p != ' ') p++;
+            len[n] = (size_t)(p - word[n]);
+            size += len[n] + 16;
+            n++;
+            if (p == stop) break;
+        }
+        ok = ok && n % 2 == 1; /* NAME, or NAME op NAME ... with the same op throughout */
+        for (k = 0; ok && k < n; k++)
+            ok = k % 2 == 0 ? es_macro(word[k], len[k])
+                            : ((len[k] == 2 && memcmp(word[k], "or", 2) == 0) || (len[k] == 3 && memcmp(word[k], "and", 3) == 0)) &&
+                                  len[k] == len[1];
+        if (!ok) {
+            snprintf(err, err_size, "%s: \"embedded unless\" takes VOXGI_NO_ names joined by \"or\" or by \"and\": %.*s", f->name,
+                     (int)(stop - line), line);
+            return -1;
+        }
+        if (!(f->guard = (char *)malloc(size))) {
+            snprintf(err, err_size, "out of memory");
+            return -1;
+        }
+        if (n == 1) {
+            snprintf(f->guard, size, "#ifndef %.*s", (int)len[0], word[0]);
+            continue;
+        }
+        strcpy(f->guard, "#if");
+        for (k = 0; k < n; k += 2) /* "or": kept while none is defined; "and": while one is not */
+            sprintf(f->guard + strlen(f->guard), "%s !defined(%.*s)", k == 0 ? "" : len[1] == 2 ? " &&" : " ||", (int)len[k], word[k]);
+    }
+    return 0;
+}
+
 static int es_compare(const void *a, const void *b)
 {
     return strcmp(((const es_file *)a)->name, ((const es_file *)b)->name);
@@ -99,10 +171,11 @@ static void es_write(FILE *out, const es_file *files, int count)
           "#ifndef VOXGI__GLSL_EMBEDDED_H\n"
           "#define VOXGI__GLSL_EMBEDDED_H\n", out);
     for (i = 0; i < count; i++) {
-        fprintf(out, "\nstatic const unsigned char %s[] = {", files[i].ident);
+        fprintf(out, "\n%s%sstatic const unsigned char %s[] = {", files[i].guard ? files[i].guard : "", files[i].guard ? "\n" : "",
+                files[i].ident);
         for (j = 0; j < files[i].size; j++)
             fprintf(out, "%s0x%02x,", j % 16 ? "" : "\n    ", (unsigned)files[i].data[j]);
-        fprintf(out, "%s0x00\n};\n", j % 16 ? "" : "\n    ");
+        fprintf(out, "%s0x00\n};\n%s", j % 16 ? "" : "\n    ", files[i].guard ? "#endif\n" : "");
     }
     fputs("\ntypedef struct voxgi__glsl_file {\n"
           "    const char *name;\n"
@@ -111,11 +184,13 @@ static void es_write(FILE *out, const es_file *files, int count)
           "} voxgi__glsl_file;\n\n"
           "static const voxgi__glsl_file voxgi__glsl_files[] = {\n", out);
     for (i = 0; i < count; i++) {
+        if (files[i].guard) fprintf(out, "%s\n", files[i].guard);
         fputs("    {", out);
         es_write_string(out, files[i].name);
         fprintf(out, ", %s, %luUL},\n", files[i].ident, files[i].size);
+        if (files[i].guard) fputs("#endif\n", out);
     }
-    fprintf(out, "};\n#define VOXGI__GLSL_FILE_COUNT %d\n\n#endif\n", count);
+    fputs("};\n#define VOXGI__GLSL_FILE_COUNT ((int)(sizeof voxgi__glsl_files / sizeof voxgi__glsl_files[0]))\n\n#endif\n", out);
 }
 
 /* Writes out_path from the count files in in_paths. 0 on success; -1 with a message. */
@@ -132,7 +207,7 @@ static int embed_shaders(const char *out_path, int count, char **in_paths, char 
         files[i].name = es_base_name(in_paths[i]);
         files[i].ident = es_ident(files[i].name);
         if (!files[i].ident) { snprintf(err, err_size, "out of memory"); goto done; }
-        if (es_read(in_paths[i], &files[i], err, err_size)) goto done;
+        if (es_read(in_paths[i], &files[i], err, err_size) || es_guard(&files[i], err, err_size)) goto done;
     }
     qsort(files, (size_t)count, sizeof *files, es_compare);
     for (i = 0; i < count; i++)
@@ -162,6 +237,7 @@ static int embed_shaders(const char *out_path, int count, char **in_paths, char 
 done:
     for (i = 0; files && i < count; i++) {
         free(files[i].ident);
+        free(files[i].guard);
         free(files[i].data);
     }
     free(files);

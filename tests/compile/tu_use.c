@@ -8,6 +8,33 @@
 
 int tu_impl_version(void);
 
+/* A part left out takes its declarations with it: its names are free again (as enumerators they
+   would clash with any declaration left behind). */
+#ifdef VOXGI_NO_OCTREE
+enum { voxgi_svo_create, voxgi_svo_sample };
+#endif
+#ifdef VOXGI_NO_CONE_TRACING
+enum { voxgi_cone_trace, voxgi_radiance_source, voxgi_specular_half_angle };
+#endif
+#ifdef VOXGI_NO_LIGHT_INJECTION
+enum { voxgi_inject_light, voxgi_vct_render };
+#endif
+#ifdef VOXGI_NO_LIGHT_SPACE
+enum { voxgi_tsm_create, voxgi_rsm_render, voxgi_sh_create };
+#endif
+#ifdef VOXGI_NO_SCREEN_SPACE
+enum { voxgi_ao, voxgi_ssgi_render, voxgi_screen_filter };
+#endif
+#if defined(VOXGI_NO_LIGHT_SPACE) && defined(VOXGI_NO_SCREEN_SPACE)
+enum { voxgi_voxels_occluded };
+#endif
+#ifdef VOXGI_NO_LINE_SPACE
+enum { voxgi_linespace_create, voxgi_linespace_render };
+#endif
+#ifdef VOXGI_NO_REFERENCE
+enum { voxgi_reference_render };
+#endif
+
 int main(void)
 {
     static const float pos[9] = {0.1f, 0.1f, 0.1f, 0.9f, 0.2f, 0.3f, 0.2f, 0.8f, 0.6f};
