@@ -7109,9 +7109,11 @@ static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress
 {
     voxgi__stats st = {0, 0, 0};
     voxgi__prepared P;
+    int reported = 0; /* the calling thread reports its first piece of work, or the phase's end if the workers took all */
     for (;;) {
         size_t first = VOXGI__ATOMIC_ADD_SIZE(&job->next, job->phase ? (size_t)1 : (size_t)VOXGI__CHUNK), t, end;
         double fraction;
+        int due;
         if (VOXGI__ATOMIC_LOAD_INT(&job->cancel)) break;
         if (job->phase == 0) {
             if (first >= job->triangle_count) break;
@@ -7127,6 +7129,7 @@ static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress
                 else voxgi__tri_rows(job->vs, &P, 0, P.ext[(P.c + 2) % 3] - 1, &st);
             }
             fraction = (double)end / (double)job->triangle_count;
+            due = (first / VOXGI__CHUNK) % 64 == 0;
         } else {
             size_t lo = 0, hi = job->big_count, item = first;
             int32_t row0;
@@ -7141,12 +7144,15 @@ static void voxgi__vox_work(voxgi__vox_job *job, voxgi_context *ctx_for_progress
             row0 = (int32_t)(item - job->big_first_item[lo]) * VOXGI__ROWS_PER_ITEM;
             voxgi__tri_rows(job->vs, &P, row0, VOXGI__MIN(row0 + VOXGI__ROWS_PER_ITEM, P.ext[(P.c + 2) % 3]) - 1, &st);
             fraction = (double)(item + 1) / (double)job->big_first_item[job->big_count];
-            if (item % 64) continue;
+            due = item % 64 == 0;
         }
-        if (ctx_for_progress && (job->phase || (first / VOXGI__CHUNK) % 64 == 0) &&
-            voxgi__progress(ctx_for_progress, fraction, job->phase ? "voxelize large triangles" : "voxelize"))
-            VOXGI__ATOMIC_STORE_INT(&job->cancel, 1);
+        if (ctx_for_progress && (due || !reported)) {
+            reported = 1;
+            if (voxgi__progress(ctx_for_progress, fraction, job->phase ? "voxelize large triangles" : "voxelize")) VOXGI__ATOMIC_STORE_INT(&job->cancel, 1);
+        }
     }
+    if (ctx_for_progress && !reported && voxgi__progress(ctx_for_progress, 1.0, job->phase ? "voxelize large triangles" : "voxelize"))
+        VOXGI__ATOMIC_STORE_INT(&job->cancel, 1); /* the workers took every piece: the caller still hears of the phase */
     VOXGI__ATOMIC_ADD_SIZE(&job->exact_tests, st.exact_tests);
     VOXGI__ATOMIC_ADD_SIZE(&job->voxels, st.voxels);
 }
