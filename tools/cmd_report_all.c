@@ -414,7 +414,7 @@ static void write_svg(FILE *f, const all_state *st, int si, int q)
     const all_scene *sc = &st->scenes[si];
     report_plot_point *points = (report_plot_point *)calloc(st->nrows + 1, sizeof *points);
     const char *legend[ALL_MAX_PICTURES + 2];
-    char titles[2][200];
+    char titles[2][400];
     double curve_ms[40], curve_error[40];
     report_plot_curve curve;
     report_plot plot;
