@@ -1,4 +1,4 @@
-/* voxgi.h - v0.5.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
+/* voxgi.h - v0.7.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
 
    voxgi voxelizes triangle scenes and computes voxel-based lighting from them. Every GPU
    pass has a CPU twin that computes the same result, so the library works where no GL 4.5
@@ -61,9 +61,9 @@
                           screen through the depth buffer or the voxels; the edge-aware filter
       12. line space      the N-tree of line spaces: shafts between the patches of a node's faces;
                           shadow rays through it (exact, fast; per ray, packets); area lights'
-                          soft shadows and their images
+                          soft shadows (rect lights, emitters paired into parallelograms)
       13. planner and images  what a scene and a request need (voxgi_plan); voxgi's own G-buffer;
-                          cone-traced, one-bounce and screen-space images
+                          cone-traced, one-bounce, screen-space and line-space images
       14. reference renderer  the path tracer every image is measured against
       15. built-in scenes and files
      Parts 7 to 12 and 14 can be left out (CONFIGURATION); a part's images in 13 go with it.
@@ -154,6 +154,12 @@
             the built-in scene two-spheres is now rsm-walls (the source's name for it); GL
             gathers; screen-space ambient occlusion (voxgi_ao: depth buffer and voxels) and the
             reference renderer's AO mode.
+     0.7.0  the cascaded line space (voxgi_linespace: exact and fast shadow rays, per ray and in
+            packets, area lights' soft shadows, CPU and GL); the planner (voxgi_plan) that every
+            image follows; one VOXGI_NO_<PART> per capability part; double-precision positions
+            with a scene origin (voxgi_mesh.positions_double, voxgi_scene.origin); full global
+            illumination adds the geometric tail of the bounces still to come; a cone wider than
+            its height above the surface strides by that height.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -164,10 +170,10 @@
 
 /* ===================================================================== 1. config */
 #define VOXGI_VERSION_MAJOR 0
-#define VOXGI_VERSION_MINOR 6
+#define VOXGI_VERSION_MINOR 7
 #define VOXGI_VERSION_PATCH 0
 #define VOXGI_VERSION (VOXGI_VERSION_MAJOR * 10000 + VOXGI_VERSION_MINOR * 100 + VOXGI_VERSION_PATCH)
-#define VOXGI_VERSION_STRING "0.6.0"
+#define VOXGI_VERSION_STRING "0.7.0"
 
 #ifndef VOXGI_API
 #ifdef VOXGI_STATIC
