@@ -1443,6 +1443,9 @@ typedef struct voxgi_vct_desc {
     voxgi_svo_format octree_format;
     int octree_bricks;            /* 1: the octree samples through bricks */
 #endif
+    const voxgi_voxels *voxels;   /* a static scene's voxels from voxgi_vct_voxelize (this scene's geometry, this
+                                     resolution, this context): the image re-injects the light into them and
+                                     voxelizes nothing (a light-only update); NULL: it voxelizes */
 } voxgi_vct_desc;
 typedef struct voxgi_vct_info {
     uint64_t voxels;
@@ -1452,6 +1455,12 @@ typedef struct voxgi_vct_info {
 } voxgi_vct_info;
 VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
                                         voxgi_vct_info *info);
+/* The voxels voxgi_vct_render makes of the scene for desc (its grid, albedo and normal), to keep
+   while the geometry stands still: an image given them as desc.voxels is bit for bit the one that
+   voxelizes, whatever its lights. Images with another resolution, or of a scene with other
+   bounds or another triangle count, refuse them (VOXGI_ERR_INVALID_ARGUMENT); geometry moved
+   within the same bounds is the caller's to notice. */
+VOXGI_API voxgi_result voxgi_vct_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, voxgi_voxels **out);
 #endif
 
 /* ===================================================================== 14. reference renderer */
@@ -14874,20 +14883,58 @@ static voxgi_vct_desc voxgi__vct_defaults(const voxgi_context *ctx, const voxgi_
 /* The radiance the cones gather: the scene voxelized on a grid of desc->resolution voxels
    along its longest side (albedo and normal), the direct light injected (and bounced), in a
    volume (voxgi__vct_octree moves it into an octree). */
-static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *scene, const voxgi__tracer *tr, const voxgi__lights *Ls,
-                                        const voxgi_vct_desc *desc, voxgi_vct_info *inf, voxgi_voxels **vox, voxgi_volume **vol)
+/* The cone tracer's voxels of the scene (resolved desc): its grid, fitted with a voxel of
+   padding, albedo and normal. */
+static voxgi_result voxgi__vct_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, voxgi_voxels **vox)
 {
     voxgi_fit_desc fit;
     voxgi_voxelize_desc xd;
-    voxgi_inject_desc id;
-    double t1;
     voxgi_result r;
     memset(&fit, 0, sizeof fit);
     memset(&xd, 0, sizeof xd);
-    memset(&id, 0, sizeof id);
     fit.res = desc->resolution;
     fit.padding = 1;
     xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+    r = voxgi_fit_grid(ctx, scene, &fit, &xd.grid);
+    if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &xd, vox);
+    return r;
+}
+
+/* Whether desc->voxels are what voxgi__vct_voxelize would make of the scene now. */
+static voxgi_result voxgi__vct_check_voxels(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc)
+{
+    const voxgi_voxels_info *vi = &desc->voxels->info;
+    voxgi_fit_desc fit;
+    voxgi_grid g;
+    voxgi_result r;
+    uint64_t triangles = 0;
+    size_t m;
+    memset(&fit, 0, sizeof fit);
+    fit.res = desc->resolution;
+    fit.padding = 1;
+    if ((r = voxgi_fit_grid(ctx, scene, &fit, &g)) != VOXGI_OK) return r;
+    for (m = 0; m < scene->mesh_count; m++) triangles += scene->meshes[m].index_count / 3;
+    if (vi->backend != ctx->backend || vi->method != VOXGI_METHOD_CONSERVATIVE || (vi->attributes & (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL)) !=
+        (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.voxels: not from voxgi_vct_voxelize on this context");
+    if (memcmp(g.origin, vi->grid.origin, sizeof g.origin) != 0 || g.voxel_size != vi->grid.voxel_size || memcmp(g.res, vi->grid.res, sizeof g.res) != 0 ||
+        triangles != vi->triangle_count)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.voxels: made for other geometry or another resolution (%d x %d x %d voxels of %g, %lu triangles; "
+                           "this image's grid is %d x %d x %d of %g, %lu triangles)", vi->grid.res[0], vi->grid.res[1], vi->grid.res[2], vi->grid.voxel_size,
+                           (unsigned long)vi->triangle_count, g.res[0], g.res[1], g.res[2], g.voxel_size, (unsigned long)triangles);
+    return VOXGI_OK;
+}
+
+/* The radiance the cones gather, in the scene's voxels `vox` (made here unless the caller gave
+   them: then *owned stays NULL): the direct light injected (and bounced), in a volume
+   (voxgi__vct_octree moves it into an octree). */
+static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *scene, const voxgi__tracer *tr, const voxgi__lights *Ls,
+                                        const voxgi_vct_desc *desc, voxgi_vct_info *inf, const voxgi_voxels **vox, voxgi_voxels **owned, voxgi_volume **vol)
+{
+    voxgi_inject_desc id;
+    double t1;
+    voxgi_result r = VOXGI_OK;
+    memset(&id, 0, sizeof id);
     id.volume.filter = desc->filter;
     id.samples = desc->inject_samples;
     id.seed = desc->seed;
@@ -14897,8 +14944,8 @@ static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *s
     id.gather_block = desc->bounce_block;
     id.one_sided = desc->one_sided;
     t1 = voxgi__now_ms();
-    r = voxgi_fit_grid(ctx, scene, &fit, &xd.grid);
-    if (r == VOXGI_OK) r = voxgi_voxelize(ctx, scene, &xd, vox);
+    if (desc->voxels) *vox = desc->voxels;
+    else if ((r = voxgi__vct_voxelize(ctx, scene, desc, owned)) == VOXGI_OK) *vox = *owned;
     inf->ms_voxelize = voxgi__now_ms() - t1;
     if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.1, "cone-traced image", "vct: light injection")) r = VOXGI_ERR_CANCELLED;
     if (r == VOXGI_OK) { /* emission is left out: the pixels take it from the direct light */
@@ -15024,7 +15071,8 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi__tracer tr;
     voxgi__lights Ls;
     voxgi__vct_job J;
-    voxgi_voxels *vox = NULL;
+    const voxgi_voxels *vox = NULL;
+    voxgi_voxels *vox_owned = NULL;
     voxgi_volume *vol = NULL;
 #ifndef VOXGI_NO_OCTREE
     voxgi_svo *svo = NULL;
@@ -15048,6 +15096,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     resolved = voxgi__vct_defaults(ctx, desc_in);
     desc = &resolved;
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    if (desc->voxels && (r = voxgi__vct_check_voxels(ctx, scene, desc)) != VOXGI_OK) return r;
     memset(&q, 0, sizeof q);
     q.camera = &desc->camera;
     q.resolution = desc->resolution;
@@ -15071,7 +15120,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     if (r == VOXGI_OK) r = voxgi__gbuffer(ctx, &tr, &desc->camera, J.pos, J.nrm, J.prim);
     if (r == VOXGI_OK && !desc->no_gi) {
         if (voxgi__cancelled(ctx, 0.0, "cone-traced image", "vct: voxelization")) r = VOXGI_ERR_CANCELLED;
-        if (r == VOXGI_OK) r = voxgi__vct_radiance(ctx, scene, &tr, &Ls, desc, &inf, &vox, &vol);
+        if (r == VOXGI_OK) r = voxgi__vct_radiance(ctx, scene, &tr, &Ls, desc, &inf, &vox, &vox_owned, &vol);
         memset(&source, 0, sizeof source);
         source.volume = vol;
 #ifndef VOXGI_NO_OCTREE
@@ -15099,7 +15148,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
 #ifndef VOXGI_NO_OCTREE
     voxgi_svo_destroy(ctx, svo);
 #endif
-    if (vox) voxgi_voxels_destroy(ctx, vox);
+    if (vox_owned) voxgi_voxels_destroy(ctx, vox_owned);
     voxgi__free(ctx, J.pos);
     voxgi__free(ctx, J.nrm);
     voxgi__free(ctx, J.irr);
@@ -15107,6 +15156,19 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     voxgi__lights_free(ctx, &Ls);
     voxgi__tracer_free(ctx, &tr);
     return r;
+}
+
+VOXGI_API voxgi_result voxgi_vct_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc_in, voxgi_voxels **out)
+{
+    voxgi_vct_desc desc;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc_in || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or out is NULL");
+    *out = NULL;
+    if (desc_in->resolution < 0 || desc_in->resolution > 4096) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "resolution %d (0..4096)", desc_in->resolution);
+    desc = voxgi__vct_defaults(ctx, desc_in);
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    return voxgi__vct_voxelize(ctx, scene, &desc, out);
 }
 #endif
 

@@ -314,12 +314,99 @@ static void test_plan_images(void)
     voxgi_destroy(ctx);
 }
 
+/* A static scene's light-only update: the cone tracer's voxels, made once by voxgi_vct_voxelize,
+   give bit for bit the image that voxelizes, under the scene's light and under a moved and
+   brighter one, with bounces, on the CPU and on GL (where the moved light's image must differ
+   from the first: the voxels' light is re-injected, not kept). Voxels of another resolution, of
+   a scene with other bounds or fewer triangles, or without normals are refused. */
+static void test_light_only_update(void)
+{
+    enum { W = 16 };
+    int b;
+    for (b = 0; b < 2; b++) {
+        voxgi_context *ctx;
+        voxgi_builtin_scene bs, box;
+        voxgi_vct_desc vd;
+        voxgi_vct_info vi;
+        voxgi_voxels_info xi;
+        voxgi_voxels *vox = NULL, *plain = NULL;
+        voxgi_voxelize_desc xd;
+        voxgi_light moved[4];
+        voxgi_scene sc, fewer;
+        voxgi_mesh mesh;
+        voxgi_fit_desc fit;
+        voxgi_grid g;
+        static float fresh[W * W * 3], kept[W * W * 3], first[W * W * 3];
+        if (b && !have_gl()) return;
+        ctx = make_ctx(b ? VOXGI_BACKEND_GL : VOXGI_BACKEND_CPU, 0);
+        voxgi_builtin_scene_create(ctx, "rsm-walls", &bs);
+        voxgi_builtin_scene_create(ctx, "cornell-box", &box);
+        vct_view(&vd, &bs, W);
+        vd.resolution = 24;
+        vd.samples = 2;
+        vd.bounces = 2;
+        vd.cone_stride = 2;
+        TH_CHECK(voxgi_vct_voxelize(ctx, &bs.scene, &vd, &vox) == VOXGI_OK, "voxelize: %s", voxgi_last_error(ctx));
+        voxgi_voxels_query(vox, &xi);
+        TH_CHECK(bs.scene.light_count <= 4, "rsm-walls has %lu lights", (unsigned long)bs.scene.light_count);
+        memcpy(moved, bs.scene.lights, bs.scene.light_count * sizeof *moved);
+        moved[0].direction[0] = -0.5f;
+        moved[0].intensity[1] *= 2;
+        sc = bs.scene;
+        sc.lights = moved;
+        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, first, sizeof first, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        vd.voxels = vox;
+        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, &vi) == VOXGI_OK && vi.voxels == xi.voxel_count, "%s",
+                 voxgi_last_error(ctx));
+        TH_CHECK(!memcmp(first, kept, sizeof kept), "%s: the kept voxels' image is not the one that voxelizes", b ? "GL" : "CPU");
+        TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, kept, sizeof kept, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        vd.voxels = NULL;
+        TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, fresh, sizeof fresh, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(!memcmp(fresh, kept, sizeof kept) && memcmp(fresh, first, sizeof first), "%s: the moved light's image %s", b ? "GL" : "CPU",
+                 memcmp(fresh, first, sizeof first) ? "with kept voxels is not the one that voxelizes" : "did not change");
+        /* voxels for something else */
+        vd.voxels = vox;
+        vd.resolution = 32;
+        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "another resolution taken");
+        vd.resolution = 24;
+        TH_CHECK(voxgi_vct_render(ctx, &box.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "another scene taken");
+        fewer = bs.scene; /* its first triangle left out: the same bounds, one triangle fewer */
+        mesh = bs.scene.meshes[0];
+        mesh.indices += 3;
+        mesh.index_count -= 3;
+        fewer.meshes = &mesh;
+        memset(&fit, 0, sizeof fit);
+        fit.res = 24;
+        fit.padding = 1;
+        TH_CHECK(voxgi_fit_grid(ctx, &fewer, &fit, &g) == VOXGI_OK && !memcmp(g.origin, xi.grid.origin, sizeof g.origin) && g.voxel_size == xi.grid.voxel_size && !memcmp(g.res, xi.grid.res, sizeof g.res), "the first triangle set the bounds");
+        {
+            voxgi_result r = voxgi_vct_render(ctx, &fewer, &vd, kept, sizeof kept, NULL);
+            TH_CHECK(r == VOXGI_ERR_INVALID_ARGUMENT && strstr(voxgi_last_error(ctx), "desc.voxels"), "fewer triangles: %s (%s)", voxgi_result_string(r),
+                     voxgi_last_error(ctx));
+        }
+        memset(&xd, 0, sizeof xd);
+        xd.grid = xi.grid;
+        xd.attributes = VOXGI_ATTRIBUTE_ALBEDO;
+        TH_CHECK(voxgi_voxelize(ctx, &bs.scene, &xd, &plain) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        vd.voxels = plain;
+        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "voxels without normals taken");
+        voxgi_voxels_destroy(ctx, plain);
+        voxgi_voxels_destroy(ctx, vox);
+        voxgi_builtin_scene_destroy(ctx, &box);
+        voxgi_builtin_scene_destroy(ctx, &bs);
+        voxgi_destroy(ctx);
+    }
+}
+
 int main(void)
 {
+    gl_open();
     TH_RUN(test_plan_counts);
     TH_RUN(test_plan_emitters_in_view);
     TH_RUN(test_plan_bytes);
     TH_RUN(test_plan_vct_settings);
     TH_RUN(test_plan_images);
+    TH_RUN(test_light_only_update);
+    gl_close();
     return th_finish();
 }
