@@ -1162,12 +1162,13 @@ static void test_report_all(void)
     static int matched[ALL_ROWS];
     char args[1024], path[600], line[4096], scene[300] = "";
     char *md, *at, *c[16];
-    size_t i, j, k, nrows = 0, md_rows = 0, summary_rows = 0;
+    size_t i, j, k, nrows = 0, md_rows = 0, summary_rows = 0, update_rows = 0;
     int rc, section = 0; /* 1: the summary, 2: a quantity's table */
     FILE *f;
     snprintf(args, sizeof args, "report all --quick --size 16 --spp 16 --threads 2 -o %s/all", tmpdir);
     rc = run(args, out, sizeof out);
-    TH_CHECK(rc == 0 && strstr(out, "wrote ") && strstr(out, "[1/22   0%] cornell-box: the reference") && strstr(out, "[22/22  95%] rsm-walls: voxelizers"),
+    TH_CHECK(rc == 0 && strstr(out, "wrote ") && strstr(out, "[1/24   0%] cornell-box: the reference") && strstr(out, "[23/24  92%] rsm-walls: voxelizers") &&
+                 strstr(out, "[24/24  96%] rsm-walls: a light-only update"),
              "report all: exit %d: %.3000s", rc, out);
     for (i = 0; i < sizeof files / sizeof files[0]; i++) {
         char head[8] = {0};
@@ -1212,10 +1213,17 @@ static void test_report_all(void)
         snprintf(line, sizeof line, "%.*s", (int)(len < sizeof line - 1 ? len : sizeof line - 1), at);
         at = end ? end + 1 : NULL;
         if (strncmp(line, "## ", 3) == 0) {
-            section = strstr(line, "The fastest method") ? 1 : 0;
+            section = strstr(line, "The fastest method") ? 1 : strstr(line, "a light-only update") ? 3 : 0;
             snprintf(scene, sizeof scene, "%.299s", line + 3);
         }
         if (strncmp(line, "### ", 4) == 0) section = 2;
+        if (section == 3 && (n = md_cells(line, c, 16)) == 5 && strcmp(c[0], "scene") != 0 && strncmp(c[0], "---", 3) != 0) {
+            double full = 0, kept = 0, saved = 0, voxelize = 0;
+            update_rows++;
+            TH_CHECK(sscanf(c[1], "%lf ms", &full) == 1 && sscanf(c[2], "%lf ms", &kept) == 1 && sscanf(c[3], "%lf%%", &saved) == 1 &&
+                         sscanf(c[4], "%lf ms", &voxelize) == 1 && full > 0 && kept > 0 && voxelize > 0 && fabs(saved - 100 * (1 - kept / full)) <= 1.5,
+                     "the light-only update's row %s", line);
+        }
         if ((n = md_cells(line, c, 16)) < 8 || strcmp(c[0], "method") == 0 || strcmp(c[0], "scene") == 0 || strncmp(c[0], "---", 3) == 0) continue;
         if (section == 2) {
             double ms = 0, mb = 0, err = 0;
@@ -1254,6 +1262,7 @@ static void test_report_all(void)
     TH_CHECK(nrows > 50 && md_rows == nrows && k == nrows, "report.md has %lu rows, %lu of the CSV's %lu once", (unsigned long)md_rows, (unsigned long)k,
              (unsigned long)nrows);
     TH_CHECK(summary_rows >= 8, "the summary has %lu rows", (unsigned long)summary_rows);
+    TH_CHECK(update_rows == 2, "the light-only update has %lu rows, not one per scene", (unsigned long)update_rows);
     for (i = 0; md && i < sizeof methods / sizeof methods[0]; i++) {
         snprintf(line, sizeof line, "\n| %s | ", methods[i]);
         TH_CHECK(strstr(md, line) != NULL, "report.md has no row of %s", methods[i]);
