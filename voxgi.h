@@ -13487,12 +13487,12 @@ typedef struct voxgi__ls_counts {
 
 /* The ray from o along d (world units, float) for t in (t0, t1), fast mode's exact zone `near`
    (the root's frame) at each end; 0 for a zero direction. */
-static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const float d[3], float t0, float t1, float near, voxgi__ls_ray *r)
+static int voxgi__ls_ray_set_centred(const voxgi_linespace *L, const float ro[3], const float d[3], float t0, float t1, float near, voxgi__ls_ray *r)
 {
     int a, kz = 0, k[3];
     float sh[3];
     for (a = 0; a < 3; a++) {
-        r->ro[a] = (float)((double)o[a] - L->centre[a]);
+        r->ro[a] = ro[a];
         r->rd[a] = d[a];
         r->o[a] = (r->ro[a] + L->half) * L->scale;
         r->d[a] = d[a] * L->scale;
@@ -13507,6 +13507,15 @@ static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const f
     r->kx = k[0]; r->ky = k[1]; r->kz = k[2];
     r->sx = sh[0]; r->sy = sh[1]; r->sz = sh[2];
     return 1;
+}
+
+/* The same for origin o in the scene's frame. */
+static int voxgi__ls_ray_set(const voxgi_linespace *L, const float o[3], const float d[3], float t0, float t1, float near, voxgi__ls_ray *r)
+{
+    float ro[3];
+    int a;
+    for (a = 0; a < 3; a++) ro[a] = (float)((double)o[a] - L->centre[a]);
+    return voxgi__ls_ray_set_centred(L, ro, d, t0, t1, near, r);
 }
 
 /* Whether the ray meets triangle v (9 floats, relative to the centre) at t in (t0, t1): the
@@ -13942,24 +13951,35 @@ static void voxgi__ls_light_st(uint32_t seed, uint32_t point, int k, int nu, int
     if (triangle && *s + *t > 1) { *s = 1 - *s; *t = 1 - *t; }
 }
 
-/* The segment from point p (unit normal nrm: the side its rays leave) to light point (s, t):
-   origin a hair off the surface, ending short of the light by 2^-16 of the way (its own
-   triangles never block it); *facing: the cosine at p is positive (else the surface itself is
+/* How far a point's rays start off its surface: the line space's hair, or where the point's own
+   float rounding is larger (far from the origin: p at 1e3 rounds by 3e-5), 2^-20 of its largest
+   coordinate: more than that rounding and the origin's, twice over, so the ray never starts
+   behind its surface. Powers of two and a maximum: the same float on GL (shaders/linespace.glsl). */
+static float voxgi__ls_lift(float hair, const float p[3])
+{
+    float m = fmaxf(fabsf(p[0]), fmaxf(fabsf(p[1]), fabsf(p[2])));
+    return fmaxf(hair, m * 9.5367431640625e-7f);
+}
+
+/* The segment from point p (unit normal nrm: the side its rays leave) to light point (s, t),
+   in the frame of the line space's centre (where the light's corner, J->corner, is kept: far from
+   the origin the light's points keep their place to the tree's triangles): origin voxgi__ls_lift
+   off the surface, ending short of the light by 2^-16 of the way (its own triangles never block it); *facing: the cosine at p is positive (else the surface itself is
    in the way and no ray goes). Also the weight cos_p cos_l / r^2 of the sample. */
 static int voxgi__ls_light_ray(const voxgi_linespace *L, const voxgi__ls_job *J, const float p[3], const float nrm[3], float s, float t, voxgi__ls_ray *r,
                                double *weight)
 {
-    float o[3], d[3], cos_p;
+    float o[3], d[3], cos_p, lift = voxgi__ls_lift(J->hair, p);
     double cos_l, len2, fn[3];
     int a;
     for (a = 0; a < 3; a++) {
         float q = (J->corner[a] + s * J->eu[a]) + t * J->ev[a];
-        o[a] = p[a] + J->hair * nrm[a];
+        o[a] = (float)((double)p[a] - L->centre[a]) + lift * nrm[a];
         d[a] = q - o[a];
     }
     cos_p = (nrm[0] * d[0] + nrm[1] * d[1]) + nrm[2] * d[2];
     *weight = 0;
-    if (!(cos_p > 0) || !voxgi__ls_ray_set(L, o, d, 0.0f, 1.0f - 1.52587890625e-5f, J->near, r)) return 0;
+    if (!(cos_p > 0) || !voxgi__ls_ray_set_centred(L, o, d, 0.0f, 1.0f - 1.52587890625e-5f, J->near, r)) return 0;
     for (a = 0; a < 3; a++) fn[a] = (double)J->eu[(a + 1) % 3] * J->ev[(a + 2) % 3] - (double)J->eu[(a + 2) % 3] * J->ev[(a + 1) % 3];
     len2 = (double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2];
     cos_l = -(fn[0] * d[0] + fn[1] * d[1] + fn[2] * d[2]) / sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
@@ -14115,7 +14135,7 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
     J.nv = (S + J.nu - 1) / J.nu;
     J.hair = (float)(ls->info.size * VOXGI__LS_PAD);
     for (a = 0; a < 3; a++) {
-        J.corner[a] = (float)desc->corner[a];
+        J.corner[a] = (float)(desc->corner[a] - ls->centre[a]); /* voxgi__ls_light_ray's frame */
         J.eu[a] = (float)desc->edge_u[a];
         J.ev[a] = (float)desc->edge_v[a];
     }

@@ -28,7 +28,7 @@ layout(location = VOXGI_LOC_u_scale) uniform float u_scale;    // n / the root's
 layout(location = VOXGI_LOC_u_hair) uniform float u_hair;      // the rays' offset along the normal
 layout(location = VOXGI_LOC_u_fast) uniform int u_fast;
 layout(location = VOXGI_LOC_u_near_ends) uniform float u_near_ends; // fast mode's exact zone at each end, the root's frame
-layout(location = VOXGI_LOC_u_corner) uniform vec3 u_corner;
+layout(location = VOXGI_LOC_u_corner) uniform vec3 u_corner;       // the light's corner, relative to u_centre
 layout(location = VOXGI_LOC_u_edge_u) uniform vec3 u_edge_u;
 layout(location = VOXGI_LOC_u_edge_v) uniform vec3 u_edge_v;
 layout(location = VOXGI_LOC_u_light_normal) uniform vec3 u_light_normal; // unit, the side the light shines to
@@ -60,12 +60,12 @@ precise float r_tn0, r_tn1; // fast mode reads bits as hits only between these
 int r_kx, r_ky, r_kz;
 precise float r_sx, r_sy, r_sz;
 
-// voxgi__ls_ray_set: false for a zero direction
-bool ray_set(vec3 o, vec3 d, float t0, float t1)
+// voxgi__ls_ray_set_centred: the origin in the frame of the centre; false for a zero direction
+bool ray_set_centred(vec3 ro, vec3 d, float t0, float t1)
 {
     int kz = 0;
     for (int a = 0; a < 3; a++) {
-        r_ro[a] = float(double(o[a]) - u_centre[a]);
+        r_ro[a] = ro[a];
         r_o[a] = (r_ro[a] + u_half) * u_scale;
         r_d[a] = d[a] * u_scale;
         if (abs(d[a]) > abs(d[kz])) kz = a;
@@ -282,7 +282,8 @@ void main()
     vec3 p = vec3(points[3u * i], points[3u * i + 1u], points[3u * i + 2u]), nrm = vec3(normals[3u * i], normals[3u * i + 1u], normals[3u * i + 2u]);
     Sum sum = u_samples.x == 0 ? Sum(0u, 0u, 0.0, 0.0) : sums[i];
     precise vec3 o;
-    for (int a = 0; a < 3; a++) o[a] = p[a] + u_hair * nrm[a];
+    float lift = max(u_hair, max(abs(p.x), max(abs(p.y), abs(p.z))) * 9.5367431640625e-7); // voxgi__ls_lift
+    for (int a = 0; a < 3; a++) o[a] = float(double(p[a]) - u_centre[a]) + lift * nrm[a];
     for (int k = u_samples.x; k < u_samples.y; k++) { // voxgi__ls_light_ray, then the ray alone
         float s, t;
         light_st(u_first + i, k, s, t);
@@ -292,7 +293,7 @@ void main()
             d[a] = q - o[a];
         }
         precise float cos_p = (nrm.x * d.x + nrm.y * d.y) + nrm.z * d.z;
-        if (!(cos_p > 0.0) || !ray_set(o, d, 0.0, 1.0 - 1.52587890625e-5)) continue;
+        if (!(cos_p > 0.0) || !ray_set_centred(o, d, 0.0, 1.0 - 1.52587890625e-5)) continue;
         float len2 = dot(d, d), cos_l = -dot(u_light_normal, d), w = cos_l > 0.0 ? (cos_p / len2) * (cos_l / len2) : 0.0;
         sum.rays++;
         sum.weight += w;

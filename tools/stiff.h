@@ -1,0 +1,239 @@
+/* tools/stiff.h - the stiff and extreme cases: every image method at small settings, and the scenes
+ * they are run on (scaled, moved, with more triangles or other materials). Shared by the section
+ * of `voxgi report all` that measures them and by tests/test_stiff.c, which holds each case to its
+ * expectation (docs/stiff-cases.md). */
+#ifndef VXT_STIFF_H
+#define VXT_STIFF_H
+#include "../voxgi.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { VXT_STIFF_METHODS = 10, VXT_STIFF_IMG = 16 };
+static const char *const vxt_stiff_methods[VXT_STIFF_METHODS] = {"reference", "vct", "tsm", "rsm", "sh", "ssgi", "hybrid", "ssao", "vao", "linespace"};
+
+/* Whether method m computes occlusion (its image is not light). */
+static inline int vxt_stiff_is_occlusion(int m) { return m == 7 || m == 8; }
+
+/* Method m's 16 x 16 image of sc through cam (small settings, seed 3) into rgb. */
+static inline voxgi_result vxt_stiff_image(voxgi_context *ctx, int m, const voxgi_scene *sc, voxgi_camera cam, float *rgb)
+{
+    const size_t bytes = sizeof(float) * 3 * VXT_STIFF_IMG * VXT_STIFF_IMG;
+    cam.width = cam.height = VXT_STIFF_IMG;
+    if (m == 0) {
+        voxgi_reference_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = cam; d.samples = 4; d.bounces = 1; d.seed = 3;
+        return voxgi_reference_render(ctx, sc, &d, rgb, bytes, NULL);
+    } else if (m == 1) {
+        voxgi_vct_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = cam; d.resolution = 16; d.cones.cones = 4; d.samples = 4; d.seed = 3;
+        return voxgi_vct_render(ctx, sc, &d, rgb, bytes, NULL);
+    } else if (m == 2) {
+        voxgi_tsm_image_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = cam; d.tsm.size = 64; d.seed = 3;
+        return voxgi_tsm_render(ctx, sc, &d, rgb, bytes, NULL);
+    } else if (m == 3) {
+        voxgi_rsm_image_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = cam; d.rsm.size = 32; d.resolution = 16; d.samples = 4; d.seed = 3;
+        return voxgi_rsm_render(ctx, sc, &d, rgb, bytes, NULL);
+    } else if (m == 4) {
+        voxgi_sh_image_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = cam; d.resolution = 16; d.samples = 4; d.seed = 3;
+        return voxgi_sh_render(ctx, sc, &d, rgb, bytes, NULL);
+    } else if (m == 5 || m == 6) {
+        voxgi_ssgi_image_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = cam; d.method = m == 6 ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN; d.resolution = 16; d.rays = 4; d.steps = 4; d.samples = 4; d.seed = 3;
+        return voxgi_ssgi_render(ctx, sc, &d, rgb, bytes, NULL);
+    } else if (m == 7 || m == 8) {
+        voxgi_ao_image_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = cam; d.method = m == 8 ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN; d.resolution = 16; d.rays = 4; d.steps = 4; d.seed = 3;
+        return voxgi_ao_render(ctx, sc, &d, rgb, bytes, NULL);
+    } else {
+        voxgi_linespace_image_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = cam; d.samples = 4; d.seed = 3;
+        return voxgi_linespace_render(ctx, sc, &d, rgb, bytes, NULL, NULL);
+    }
+}
+
+/* The RMS difference of two images over b's mean (0 when equal); n values. */
+static inline double vxt_stiff_rel_diff(const float *a, const float *b, size_t n)
+{
+    double d2 = 0, mean = 0;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        d2 += ((double)a[i] - b[i]) * ((double)a[i] - b[i]);
+        mean += b[i] / (double)n;
+    }
+    return d2 == 0 ? 0 : sqrt(d2 / (double)n) / mean;
+}
+
+/* Whether every value is finite; their mean into *mean. */
+static inline int vxt_stiff_finite(const float *v, size_t n, double *mean)
+{
+    size_t i;
+    *mean = 0;
+    for (i = 0; i < n; i++) {
+        if (!isfinite(v[i])) return 0;
+        *mean += v[i] / (double)n;
+    }
+    return 1;
+}
+
+/* A scene in float positions p k + offset (the product and sum in double, rounded to float once):
+   meshes and lights (positions; area lights' edges by k; point and spot lights' intensity by k^2,
+   so that irradiance stays). Free with vxt_stiff_placed_free. */
+typedef struct vxt_stiff_placed {
+    voxgi_scene scene;
+    voxgi_mesh *meshes;
+    float **pos;
+    voxgi_light *lights;
+} vxt_stiff_placed;
+
+static inline void vxt_stiff_placed_free(vxt_stiff_placed *m)
+{
+    size_t i;
+    for (i = 0; m->pos && i < m->scene.mesh_count; i++) free(m->pos[i]);
+    free(m->pos);
+    free(m->meshes);
+    free(m->lights);
+    memset(m, 0, sizeof *m);
+}
+
+static inline int vxt_stiff_placed_make(const voxgi_scene *src, double k, double offset, vxt_stiff_placed *m)
+{
+    size_t i, v;
+    int a;
+    memset(m, 0, sizeof *m);
+    m->scene = *src;
+    m->meshes = (voxgi_mesh *)calloc(src->mesh_count + 1, sizeof *m->meshes);
+    m->pos = (float **)calloc(src->mesh_count + 1, sizeof *m->pos);
+    m->lights = (voxgi_light *)calloc(src->light_count + 1, sizeof *m->lights);
+    if (!m->meshes || !m->pos || !m->lights) return 0;
+    for (i = 0; i < src->mesh_count; i++) {
+        const voxgi_mesh *s = &src->meshes[i];
+        m->meshes[i] = *s;
+        if (!(m->pos[i] = (float *)malloc(12 * s->vertex_count + 1))) return 0;
+        for (v = 0; v < s->vertex_count; v++) {
+            const float *p = (const float *)(const void *)((const char *)s->positions + v * (s->position_stride ? s->position_stride : 12));
+            for (a = 0; a < 3; a++) m->pos[i][3 * v + (size_t)a] = (float)(p[a] * k + offset);
+        }
+        m->meshes[i].positions = m->pos[i];
+        m->meshes[i].position_stride = 0;
+    }
+    for (i = 0; i < src->light_count; i++) {
+        voxgi_light L = src->lights[i];
+        for (a = 0; a < 3; a++) {
+            L.position[a] = (float)(L.position[a] * k + offset);
+            L.edge_u[a] = (float)(L.edge_u[a] * k);
+            L.edge_v[a] = (float)(L.edge_v[a] * k);
+            if (L.type == VOXGI_LIGHT_POINT || L.type == VOXGI_LIGHT_SPOT) L.intensity[a] = (float)(L.intensity[a] * k * k);
+        }
+        m->lights[i] = L;
+    }
+    m->scene.meshes = m->meshes;
+    m->scene.lights = m->lights;
+    return 1;
+}
+
+/* The camera that sees the placed scene as cam saw the original. */
+static inline voxgi_camera vxt_stiff_placed_camera(voxgi_camera cam, double k, double offset)
+{
+    int a;
+    for (a = 0; a < 3; a++) {
+        cam.eye[a] = cam.eye[a] * k + offset;
+        cam.target[a] = cam.target[a] * k + offset;
+    }
+    return cam;
+}
+
+/* A scene's meshes as doubles moved by `offset`, the scene's origin at `origin` (the large-world
+   path: voxgi takes position - origin in double). Free with vxt_stiff_far_free. */
+typedef struct vxt_stiff_far {
+    voxgi_scene scene;
+    voxgi_mesh *meshes;
+    double **pos;
+} vxt_stiff_far;
+
+static inline void vxt_stiff_far_free(vxt_stiff_far *m)
+{
+    size_t i;
+    for (i = 0; m->pos && i < m->scene.mesh_count; i++) free(m->pos[i]);
+    free(m->pos);
+    free(m->meshes);
+    memset(m, 0, sizeof *m);
+}
+
+static inline int vxt_stiff_far_make(const voxgi_scene *src, double offset, double origin, vxt_stiff_far *m)
+{
+    size_t i, v;
+    int a;
+    memset(m, 0, sizeof *m);
+    m->scene = *src;
+    m->meshes = (voxgi_mesh *)calloc(src->mesh_count + 1, sizeof *m->meshes);
+    m->pos = (double **)calloc(src->mesh_count + 1, sizeof *m->pos);
+    if (!m->meshes || !m->pos) return 0;
+    for (i = 0; i < src->mesh_count; i++) {
+        const voxgi_mesh *s = &src->meshes[i];
+        m->meshes[i] = *s;
+        if (!(m->pos[i] = (double *)malloc(3 * s->vertex_count * sizeof(double) + 1))) return 0;
+        for (v = 0; v < s->vertex_count; v++) {
+            const float *p = (const float *)(const void *)((const char *)s->positions + v * (s->position_stride ? s->position_stride : 12));
+            for (a = 0; a < 3; a++) m->pos[i][3 * v + (size_t)a] = (double)p[a] + offset;
+        }
+        m->meshes[i].positions = NULL;
+        m->meshes[i].position_stride = 0;
+        m->meshes[i].positions_double = m->pos[i];
+    }
+    m->scene.meshes = m->meshes;
+    for (a = 0; a < 3; a++) m->scene.origin[a] = origin;
+    return 1;
+}
+
+/* A built-in scene with up to 16 more triangles (a mesh of their own, all of material `mat`) and
+   its materials copied into S->mats (up to 32), for a case to change. 0: the scene is too big. */
+typedef struct vxt_stiff_scene {
+    voxgi_scene scene;
+    voxgi_mesh meshes[8];
+    voxgi_material mats[32];
+    float extra[9 * 16];
+    uint32_t extra_mat[16];
+} vxt_stiff_scene;
+
+static inline int vxt_stiff_add(vxt_stiff_scene *S, const voxgi_scene *base, const float *tris, int count, uint32_t mat)
+{
+    int i;
+    if (base->mesh_count >= 8 || base->material_count >= 32 || count > 16) return 0;
+    S->scene = *base;
+    memcpy(S->meshes, base->meshes, base->mesh_count * sizeof *S->meshes);
+    memcpy(S->mats, base->materials, base->material_count * sizeof *S->mats);
+    if (count) memcpy(S->extra, tris, 9 * (size_t)count * sizeof(float));
+    memset(&S->meshes[base->mesh_count], 0, sizeof S->meshes[0]);
+    S->meshes[base->mesh_count].positions = S->extra;
+    S->meshes[base->mesh_count].vertex_count = 3 * (size_t)count;
+    for (i = 0; i < count; i++) S->extra_mat[i] = mat;
+    S->meshes[base->mesh_count].material_ids = S->extra_mat;
+    S->scene.meshes = S->meshes;
+    S->scene.mesh_count = base->mesh_count + (count > 0);
+    S->scene.materials = S->mats;
+    S->scene.material_count = base->material_count;
+    return 1;
+}
+
+/* Degenerate triangles for the Cornell box (its unit frame): a segment and two points (no area),
+   then a needle (0.3 long, 1e-7 wide) and a sliver (1e-9 off a line). */
+static const float vxt_stiff_degenerate[9 * 5] = {
+    0.2f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.25f, 0.3f, 0.3f,        /* a segment */
+    0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f,         /* a point */
+    0.1f, 0.1f, 0.1f, 0.1f, 0.1f, 0.1f, 0.1f, 0.1f, 0.1f,         /* another */
+    0.1f, 0.1f, 0.2f, 0.4f, 0.1f, 0.2f, 0.25f, 0.1f + 1e-7f, 0.2f, /* a needle */
+    0.1f, 0.2f, 0.3f, 0.2f, 0.2f + 1e-9f, 0.3f, 0.3f, 0.2f, 0.3f}; /* a sliver */
+
+#endif
