@@ -272,4 +272,5 @@ int cmd_report_bounce(int method, int argc, char **argv); /* method 0: rsm, 1: s
 int cmd_report_screen(int which, int argc, char **argv); /* which 0: ao, 1: ssgi */
 int cmd_report_linespace(int argc, char **argv);
 int cmd_report_all(int argc, char **argv);
+int cmd_report_stiff(int argc, char **argv);
 #endif

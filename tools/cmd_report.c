@@ -17,7 +17,7 @@ static const char *const report_help =
     "It also times each stage of the tool's default configuration on the CPU and on GL, where a GL\n"
     "4.5 context can be made (--no-stages: not). Times are wall clock on this machine; GL times on a\n"
     "software rasteriser are not GPU times. The other reports: voxgi report tsm|rsm|sh|ao|ssgi|linespace\n"
-    "--help, and every method at once: voxgi report all --help.\n";
+    "--help, every method at once: voxgi report all --help, and stiff input: voxgi report stiff --help.\n";
 
 /* mips: 0 isotropic, 1 anisotropic, 2 octree (the --filters bits 1, 2, 4) */
 static const char *const mips_names[] = {"isotropic", "anisotropic", "octree", NULL}, *const mips_short[3] = {"iso", "aniso", "octree"},
@@ -510,8 +510,9 @@ int cmd_report(int argc, char **argv)
         if (argc >= 1 && strcmp(argv[0], "ssgi") == 0) return cmd_report_screen(1, argc - 1, argv + 1);
         if (argc >= 1 && strcmp(argv[0], "linespace") == 0) return cmd_report_linespace(argc - 1, argv + 1);
         if (argc >= 1 && strcmp(argv[0], "all") == 0) return cmd_report_all(argc - 1, argv + 1);
+        if (argc >= 1 && strcmp(argv[0], "stiff") == 0) return cmd_report_stiff(argc - 1, argv + 1);
         if (argc < 1 || strcmp(argv[0], "vct") != 0)
-            return cli_usage("report", "the reports to make are 'vct', 'tsm', 'rsm', 'sh', 'ao', 'ssgi', 'linespace' and 'all'");
+            return cli_usage("report", "the reports to make are 'vct', 'tsm', 'rsm', 'sh', 'ao', 'ssgi', 'linespace', 'stiff' and 'all'");
         if ((rc = cli_parse(&cmd, argc - 1, argv + 1)) != CLI_CONTINUE) return rc;
     }
     for (list = a.scene_list; (r = cli_next_item(&list, rep.scene_buf[rep.scene_count], sizeof rep.scene_buf[0])) != 0; rep.scene_count++)

@@ -20,8 +20,10 @@ static const char *const all_help =
     "extra voxels). Each image is measured against the reference of what it computes, by the\n"
     "tools' rule (render --compare's: the relative RMSE over the pixels farther than 3 pixels from\n"
     "one that sees an emitter, both images without the emission the camera sees). Writes\n"
-    "DIR/report.md (the fastest method reaching each of a few errors first, then per scene and\n"
-    "quantity a table with each pass's time and the memory), DIR/report.csv, DIR/SCENE-QUANTITY.svg\n"
+    "DIR/report.md (the fastest method reaching each of a few errors first; the cone tracer's\n"
+    "light-only update of a static scene against its full image; per scene and quantity a table\n"
+    "with each pass's time and the memory; the stiff and extreme cases of 'voxgi report stiff'),\n"
+    "DIR/report.csv, DIR/SCENE-QUANTITY.svg\n"
     "(error against time, log scales, the Pareto front across the methods, the path tracer's own\n"
     "curve dashed) and DIR/SCENE-METHOD.png (each method's closest image, the reference and the\n"
     "error's heat map). Progress on stderr. Times are wall clock on this machine; GL on a software\n"
@@ -108,6 +110,7 @@ typedef struct all_state {
     voxgi_info ci;           /* the passes' context */
     all_scene scenes[ALL_MAX_SCENES];
     int nscenes, quantity, stage, stages, discard, out_of_memory;
+    report_stiff stiff;      /* the stiff and extreme cases' section */
     all_row *rows;
     size_t nrows, cap;
     size_t pixels;
@@ -465,6 +468,10 @@ static void write_markdown(FILE *f, const all_state *st, const pareto_point *pts
                 }
         }
     }
+    if (st->stiff.measured) {
+        fprintf(f, "\n## Stiff and extreme input\n\n");
+        report_stiff_markdown(f, &st->stiff, ci);
+    }
 }
 
 /* The plot of scene si's quantity q: its methods in the order they came, the front across them,
@@ -565,7 +572,7 @@ static int all_run(cli_session *s, const all_args *a, const char names[][256], i
     if (!st) return cli_fail(s, "out of memory");
     st->s = s;
     st->a = a;
-    st->stages = (nbuiltin + nmeshes) * (CLI_COUNT(all_methods) + 4);
+    st->stages = (nbuiltin + nmeshes) * (CLI_COUNT(all_methods) + 4) + 1;
     if (cli_context_open(s, &cpu, VOXGI_BACKEND_CPU, VXT_GL_AUTO, a->common.threads, 0) || cli_context_open(s, &c, (voxgi_backend)a->common.backend, VXT_GL_AUTO, a->common.threads, 0))
         goto done;
     voxgi_query_info(c.vx, &st->ci);
@@ -610,6 +617,8 @@ static int all_run(cli_session *s, const all_args *a, const char names[][256], i
         if (r) goto done;
         st->nscenes++;
     }
+    all_stage(st, "stiff and extreme input");
+    if (report_stiff_measure(s, c.vx, &st->stiff)) goto done;
     s->prefix[0] = 0;
     if (!(pts = (pareto_point *)calloc(st->nrows + 1, sizeof *pts))) {
         cli_fail(s, "out of memory");

@@ -52,6 +52,24 @@ int report_png_compare(const char *path, const float *img, const float *ref, con
 /* Appends printf-formatted text to the string in buf (cut at size). */
 void report_append(char *buf, size_t size, const char *fmt, ...) CLI_PRINTF(3, 4);
 
+/* ------------------------------------------------------------------ stiff cases (cmd_report_stiff.c) */
+/* The cases, one column each, for every image method of tools/stiff.h (a row each). */
+enum {
+    REPORT_STIFF_SCALE_EXACT, REPORT_STIFF_SCALE_ROUND, REPORT_STIFF_MOVED_FLOAT, REPORT_STIFF_MOVED_FLOAT_FAR, REPORT_STIFF_MOVED_DOUBLE,
+    REPORT_STIFF_DEGENERATE, REPORT_STIFF_NEEDLES, REPORT_STIFF_BRIGHT, REPORT_STIFF_RANGE, REPORT_STIFF_LEAK, REPORT_STIFF_EMPTY, REPORT_STIFF_CASES
+};
+#define REPORT_STIFF_METHODS 10
+#define REPORT_STIFF_CELL 48
+typedef struct report_stiff {
+    char cells[REPORT_STIFF_METHODS][REPORT_STIFF_CASES][REPORT_STIFF_CELL]; /* what each case gave ("equal", a difference, "black", ...) */
+    double furnace_albedo[2], furnace[2][2];                                /* per albedo: the path tracer's mean, the cone tracer's */
+    int measured;
+} report_stiff;
+/* Every case on ctx, with progress on s: 0, or CLI_EXIT_FAILURE with the library's error said. */
+int report_stiff_measure(cli_session *s, voxgi_context *ctx, report_stiff *out);
+/* The tables, in Markdown (ci: the context's, for where the methods ran). */
+void report_stiff_markdown(FILE *f, const report_stiff *r, const voxgi_info *ci);
+
 /* ------------------------------------------------------------------ report all */
 /* What a row measures, and against what. */
 enum { REPORT_BOUNCE, REPORT_DIRECT, REPORT_AO, REPORT_VOXELS, REPORT_QUANTITIES };

@@ -13,6 +13,7 @@
  *   voxgi report ao|ssgi [--scenes LIST] [--size W H] [--rays LIST] [--steps LIST] [--radii LIST] [--res LIST] [--blurs LIST] [--out DIR]
  *   voxgi report linespace [--scenes LIST] [--meshes LIST] [--size N] [--ns LIST] [--depths LIST] [--samples LIST] [--out DIR]
  *   voxgi plan SCENE|MESH [--method M] [--error E] [--res N] [--dynamic] [--budget MB] [--everything]
+ *   voxgi report stiff [-o FILE] [--backend B]
  *   voxgi report all [-o|--out DIR] [--quick] [--scenes LIST] [--meshes LIST] [--size N] [--spp S] [--threads T] [--backend B]
  *
  * MESH is an OBJ (+MTL), OFF, STL or PLY file, or a built-in shape: builtin:quad,
@@ -41,6 +42,7 @@ static const char *const main_help =
     "                      or left out, and why, with its memory\n"
     "  report all ...      every method's error against run time in one report, the fastest method\n"
     "                      reaching each error first (Markdown, CSV, SVG plots, PNG pictures)\n"
+    "  report stiff ...    every image method on stiff and extreme input against what is expected\n"
     "Exit status, for every command:\n"
     "  0  success (--help and --version too)\n"
     "  1  failure while running: a mesh that cannot be read, an error from the library, no GL\n"
