@@ -1,4 +1,4 @@
-/* voxgi.h - v0.7.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
+/* voxgi.h - v0.8.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
 
    voxgi voxelizes triangle scenes and computes voxel-based lighting from them. Every GPU
    pass has a CPU twin that computes the same result, so the library works where no GL 4.5
@@ -160,6 +160,10 @@
             with a scene origin (voxgi_mesh.positions_double, voxgi_scene.origin); full global
             illumination adds the geometric tail of the bounces still to come; a cone wider than
             its height above the surface strides by that height.
+     0.8.0  a static scene's light-only update (voxgi_vct_voxelize, voxgi_vct_desc.voxels: the
+            cone tracer re-injects the light into kept voxels); the line space's rays start past
+            their point's float rounding and run in the tree's centred frame (scenes far from the
+            origin in float).
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -170,10 +174,10 @@
 
 /* ===================================================================== 1. config */
 #define VOXGI_VERSION_MAJOR 0
-#define VOXGI_VERSION_MINOR 7
+#define VOXGI_VERSION_MINOR 8
 #define VOXGI_VERSION_PATCH 0
 #define VOXGI_VERSION (VOXGI_VERSION_MAJOR * 10000 + VOXGI_VERSION_MINOR * 100 + VOXGI_VERSION_PATCH)
-#define VOXGI_VERSION_STRING "0.7.0"
+#define VOXGI_VERSION_STRING "0.8.0"
 
 #ifndef VOXGI_API
 #ifdef VOXGI_STATIC
