@@ -299,7 +299,9 @@ for i in "${order[@]}"; do
         wait -n 2>/dev/null || sleep 0.1
         print_finished
     done
-    ( eval "${cmds[i]}" > "$tmp/$i.out" 2>&1; echo $? > "$tmp/$i.rc.part"; mv "$tmp/$i.rc.part" "$tmp/$i.rc" ) &
+    ( t0=$(date +%s%N); eval "${cmds[i]}" > "$tmp/$i.out" 2>&1; rc=$?
+      echo $(( ($(date +%s%N) - t0) / 1000000 )) "${names[i]}" > "$tmp/$i.ms"
+      echo $rc > "$tmp/$i.rc.part"; mv "$tmp/$i.rc.part" "$tmp/$i.rc" ) &
     started=$((started + 1))
 done
 while [ "$printed" -lt "$n" ]; do
@@ -309,6 +311,8 @@ done
 wait
 
 echo
+# where the time went: the slowest checks (wall clock, while others ran beside them)
+echo "slowest checks (ms): $(cat "$tmp"/*.ms 2>/dev/null | sort -rn | head -n 8 | awk '{printf "%s%s %d", NR > 1 ? ", " : "", $2, $1}')"
 [ "$skipped" -gt 0 ] && echo "$skipped skipped (see SKIP lines above; a skip is not a pass)"
 # In CI everything can run, so a skip means something is missing: it fails the run.
 if [ "${VOXGI_CI:-0}" = 1 ] && [ "$skipped" -gt 0 ]; then
