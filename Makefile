@@ -48,9 +48,9 @@ $(B)/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/voxgi_impl.o | $(B)
 $(B)/example_voxelize: examples/voxelize.c voxgi.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
 
-$(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)
+$(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tools/image_io.h tests/harness.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
-$(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tests/harness.h | $(B)/asan
+$(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tools/image_io.h tests/harness.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
 
 TEST_H  := $(wildcard tests/*.h) $(TOOL_H)

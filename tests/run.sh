@@ -312,7 +312,7 @@ wait
 
 echo
 # where the time went: the slowest checks (wall clock, while others ran beside them)
-echo "slowest checks (ms): $(cat "$tmp"/*.ms 2>/dev/null | sort -rn | head -n 8 | awk '{printf "%s%s %d", NR > 1 ? ", " : "", $2, $1}')"
+echo "slowest checks (ms): $(cat "$tmp"/*.ms 2>/dev/null | sort -rn | head -n 8 | awk '{printf("%s%s %d", (NR > 1 ? ", " : ""), $2, $1)}')"
 [ "$skipped" -gt 0 ] && echo "$skipped skipped (see SKIP lines above; a skip is not a pass)"
 # In CI everything can run, so a skip means something is missing: it fails the run.
 if [ "${VOXGI_CI:-0}" = 1 ] && [ "$skipped" -gt 0 ]; then

@@ -1,4 +1,4 @@
-/* tests/test_mesh_io.c - the mesh loaders of tools/mesh_io.c.
+/* tests/test_mesh_io.c - the mesh loaders of tools/mesh_io.c, and the PNG writer of tools/image_io.h.
  *
  * First exact results on small files of every format and variant, then hostile input: every
  * truncated prefix and random corruptions of each valid file, garbage, bad indices, non-finite
@@ -7,6 +7,7 @@
 #define _XOPEN_SOURCE 700 /* mkdtemp */
 #include "harness.h"
 #include "../tools/mesh_io.h"
+#include "../tools/image_io.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -590,6 +591,192 @@ static void test_large_obj(void)
     vxt_mesh_free(&m);
 }
 
+/* ---------------------------------------------------------------- PNG */
+/* An inflater written from RFC 1951 for the test alone (stored and fixed-code blocks: what the
+   writer makes; a dynamic block fails), so that the writer's deflate is held to the format, not to
+   itself. */
+typedef struct inflater { const unsigned char *p; size_t n, at; uint32_t bit; int bad; } inflater;
+static unsigned bits_get(inflater *z, int n)
+{
+    unsigned v = 0;
+    int i;
+    for (i = 0; i < n; i++, z->bit++) {
+        if (z->bit / 8 >= z->n) { z->bad = 1; return 0; }
+        v |= (unsigned)((z->p[z->bit / 8] >> (z->bit % 8)) & 1u) << i;
+    }
+    return v;
+}
+typedef struct huff { unsigned short count[16], symbol[320]; } huff;
+static void huff_build(huff *h, const unsigned char *len, int n)
+{
+    unsigned short offs[16];
+    int i;
+    memset(h, 0, sizeof *h);
+    for (i = 0; i < n; i++) h->count[len[i]]++;
+    h->count[0] = 0;
+    offs[1] = 0;
+    for (i = 1; i < 15; i++) offs[i + 1] = (unsigned short)(offs[i] + h->count[i]);
+    for (i = 0; i < n; i++)
+        if (len[i]) h->symbol[offs[len[i]]++] = (unsigned short)i;
+}
+static int huff_decode(inflater *z, const huff *h)
+{
+    int code = 0, first = 0, index = 0, len;
+    for (len = 1; len < 16; len++) {
+        code |= (int)bits_get(z, 1);
+        if (code - first < h->count[len]) return h->symbol[index + code - first];
+        index += h->count[len];
+        first = (first + h->count[len]) << 1;
+        code <<= 1;
+    }
+    z->bad = 1;
+    return 0;
+}
+/* The zlib stream's data into out (cap bytes): its length, or (size_t)-1. Checks the Adler-32. */
+static size_t inflate_zlib(const unsigned char *p, size_t n, unsigned char *out, size_t cap)
+{
+    static const unsigned short lbase[29] = {3, 4, 5, 6, 7, 8, 9, 10, 11, 13, 15, 17, 19, 23, 27, 31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
+    static const unsigned short lext[29] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
+    static const unsigned short dbase[30] = {1, 2, 3, 4, 5, 7, 9, 13, 17, 25, 33, 49, 65, 97, 129, 193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
+    static const unsigned short dext[30] = {0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
+    inflater z = {NULL, 0, 0, 16, 0};
+    size_t o = 0, i;
+    uint32_t s1 = 1, s2 = 0, want;
+    int last = 0;
+    if (n < 6 || (p[0] & 15) != 8 || ((unsigned)p[0] << 8 | p[1]) % 31 != 0) return (size_t)-1;
+    z.p = p;
+    z.n = n - 4;
+    while (!last && !z.bad) {
+        unsigned type;
+        huff lit, dist;
+        last = (int)bits_get(&z, 1);
+        type = bits_get(&z, 2);
+        if (type == 0) {
+            size_t at = (z.bit + 7) / 8, len;
+            if (at + 4 > z.n) return (size_t)-1;
+            len = (size_t)p[at] | (size_t)p[at + 1] << 8;
+            if ((len ^ ((size_t)p[at + 2] | (size_t)p[at + 3] << 8)) != 0xFFFF || at + 4 + len > z.n || o + len > cap) return (size_t)-1;
+            memcpy(out + o, p + at + 4, len);
+            o += len;
+            z.bit = (uint32_t)(8 * (at + 4 + len));
+            continue;
+        }
+        if (type != 1) return (size_t)-1;
+        {
+            unsigned char lens[320];
+            int k;
+            for (k = 0; k < 288; k++) lens[k] = (unsigned char)(k < 144 ? 8 : k < 256 ? 9 : k < 280 ? 7 : 8);
+            for (k = 0; k < 30; k++) lens[288 + k] = 5;
+            huff_build(&lit, lens, 288);
+            huff_build(&dist, lens + 288, 30);
+        }
+        for (;;) {
+            int sym = huff_decode(&z, &lit);
+            if (z.bad) return (size_t)-1;
+            if (sym < 256) {
+                if (o >= cap) return (size_t)-1;
+                out[o++] = (unsigned char)sym;
+            } else if (sym == 256) break;
+            else {
+                size_t len, d;
+                int ds;
+                if (sym > 285) return (size_t)-1;
+                len = lbase[sym - 257] + bits_get(&z, lext[sym - 257]);
+                ds = huff_decode(&z, &dist);
+                if (ds > 29 || z.bad) return (size_t)-1;
+                d = dbase[ds] + bits_get(&z, dext[ds]);
+                if (d > o || o + len > cap) return (size_t)-1;
+                for (i = 0; i < len; i++, o++) out[o] = out[o - d];
+            }
+        }
+    }
+    if (z.bad) return (size_t)-1;
+    for (i = 0; i < o; i++) { s1 = (s1 + out[i]) % 65521u; s2 = (s2 + s1) % 65521u; }
+    want = (uint32_t)p[n - 4] << 24 | (uint32_t)p[n - 3] << 16 | (uint32_t)p[n - 2] << 8 | p[n - 1];
+    return want == (s2 << 16 | s1) ? o : (size_t)-1;
+}
+
+static uint32_t be32(const unsigned char *p) { return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3]; }
+
+/* PNGs of images that compress well and badly (smooth gradients, flat areas, a repeated pattern,
+   noise; sizes down to 1 x 1 and wider than the LZ77 window) read back through the inflater above
+   and PNG's unfiltering to exactly the sRGB bytes written; every chunk's CRC holds; the smooth
+   image takes under half of its raw bytes. */
+static void test_png_round_trip(void)
+{
+    static const int sizes[5][2] = {{1, 1}, {7, 3}, {64, 48}, {300, 40}, {12000, 2}};
+    int k;
+    for (k = 0; k < 5; k++) {
+        int w = sizes[k][0], h = sizes[k][1], x, y, c, filters[5] = {0, 0, 0, 0, 0};
+        size_t n = (size_t)3 * (size_t)w * (size_t)h, size = 0, at = 8, zn = 0, got, row = (size_t)3 * (size_t)w + 1;
+        float *img = (float *)malloc(n * sizeof(float));
+        unsigned char *file = NULL, *zdata = NULL, *raw = (unsigned char *)malloc(row * (size_t)h + 1), *px = (unsigned char *)malloc(n);
+        const char *path = tmp_path("image.png");
+        uint32_t seed = 7;
+        FILE *f;
+        for (y = 0; y < h; y++)
+            for (x = 0; x < w; x++)
+                for (c = 0; c < 3; c++) {
+                    size_t i = ((size_t)y * (size_t)w + (size_t)x) * 3 + (size_t)c;
+                    seed = seed * 1664525u + 1013904223u;
+                    img[i] = x < w / 3 ? (float)x / (float)w + 0.1f * (float)c                     /* a gradient */
+                             : x < w / 2 ? 0.25f                                                  /* flat */
+                             : x < 2 * w / 3 ? (float)((x / 4 + y / 4 + c) % 3) * 0.4f            /* a pattern */
+                             : (float)(seed >> 8) / 16777216.0f * 1.2f - 0.1f;                   /* noise, clamped */
+                }
+        TH_CHECK(vxt_write_png(path, img, w, h, 1.0f) == 0, "%d x %d: not written", w, h);
+        if ((f = fopen(path, "rb")) != NULL) {
+            fseek(f, 0, SEEK_END);
+            size = (size_t)ftell(f);
+            fseek(f, 0, SEEK_SET);
+            file = (unsigned char *)malloc(size + 1);
+            if (file && fread(file, 1, size, f) != size) size = 0;
+            fclose(f);
+        }
+        remove(path);
+        TH_CHECK(file && size > 8 && memcmp(file, "\x89PNG\r\n\x1a\n", 8) == 0, "%d x %d: no PNG signature", w, h);
+        zdata = (unsigned char *)malloc(size + 1);
+        while (file && zdata && at + 12 <= size) { /* chunks: CRC, IHDR, the IDATs gathered */
+            uint32_t len = be32(file + at);
+            if (at + 12 + len > size) break;
+            TH_CHECK(vxt_crc32(0, file + at + 4, 4 + (size_t)len) == be32(file + at + 8 + len), "%d x %d: a chunk's CRC", w, h);
+            if (!memcmp(file + at + 4, "IHDR", 4))
+                TH_CHECK(len == 13 && be32(file + at + 8) == (uint32_t)w && be32(file + at + 12) == (uint32_t)h && file[at + 16] == 8 && file[at + 17] == 2,
+                         "%d x %d: IHDR", w, h);
+            if (!memcmp(file + at + 4, "IDAT", 4)) { memcpy(zdata + zn, file + at + 8, len); zn += len; }
+            at += 12 + len;
+        }
+        got = zdata && raw ? inflate_zlib(zdata, zn, raw, row * (size_t)h) : (size_t)-1;
+        TH_CHECK(got == row * (size_t)h, "%d x %d: the zlib stream does not inflate to its %lu bytes", w, h, (unsigned long)(row * (size_t)h));
+        if (got == row * (size_t)h && px) {
+            size_t bad = 0, i;
+            for (y = 0; y < h; y++) { /* unfilter */
+                unsigned char *cur = raw + row * (size_t)y + 1, *up = y ? raw + row * (size_t)(y - 1) + 1 : NULL;
+                int ft = raw[row * (size_t)y];
+                TH_CHECK(ft <= 4, "row %d: filter %d", y, ft);
+                if (ft <= 4) filters[ft]++;
+                for (i = 0; i < row - 1; i++) {
+                    int a = i >= 3 ? cur[i - 3] : 0, b = up ? up[i] : 0, cc = i >= 3 && up ? up[i - 3] : 0, pred;
+                    int p = a + b - cc, pa = abs(p - a), pb = abs(p - b), pc = abs(p - cc);
+                    pred = ft == 0 ? 0 : ft == 1 ? a : ft == 2 ? b : ft == 3 ? (a + b) / 2 : pa <= pb && pa <= pc ? a : pb <= pc ? b : cc;
+                    cur[i] = (unsigned char)(cur[i] + pred);
+                    px[(size_t)y * (row - 1) + i] = cur[i];
+                }
+            }
+            for (i = 0; i < n; i++) bad += px[i] != vxt_srgb8(img[i]);
+            TH_CHECK(bad == 0, "%d x %d: %lu bytes differ from the sRGB of the image", w, h, (unsigned long)bad);
+        }
+        printf("    %d x %d: %lu bytes of pixels in a %lu-byte file; filters none %d, sub %d, up %d, average %d, paeth %d\n", w, h, (unsigned long)n,
+               (unsigned long)size, filters[0], filters[1], filters[2], filters[3], filters[4]);
+        if (k == 2) TH_CHECK(size < n / 2, "64 x 48: %lu bytes for %lu of pixels", (unsigned long)size, (unsigned long)n);
+        free(img);
+        free(file);
+        free(zdata);
+        free(raw);
+        free(px);
+    }
+}
+
 int main(void)
 {
     const char *base = getenv("TMPDIR");
@@ -618,6 +805,7 @@ int main(void)
     TH_RUN(test_absurd_counts);
     TH_RUN(test_other_failures);
     TH_RUN(test_large_obj);
+    TH_RUN(test_png_round_trip);
     for (i = 0; i < created_count; i++) remove(tmp_path(created[i]));
     rmdir(tmp_path("sub"));
     rmdir(tmp_dir);
