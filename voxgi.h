@@ -1249,8 +1249,9 @@ VOXGI_API void voxgi_linespace_query(const voxgi_linespace *ls, voxgi_linespace_
    are walked to their leaves and their triangles decide, so a surface never shadows itself. */
 typedef enum voxgi_linespace_mode { VOXGI_LINESPACE_EXACT = 0, VOXGI_LINESPACE_FAST } voxgi_linespace_mode;
 
-/* Whether each ray meets something at t in (tmin, tmax): 1 or 0, each ray walking alone (on the
-   CPU, whatever the context). */
+/* Whether each ray meets something at t in (tmin, tmax): 1 or 0, each ray walking alone, on the
+   context's backend (GL: shaders/linespace_rays.glsl, the CPU's float arithmetic: the same answers;
+   a line space made on a CPU context goes up to GL for the call). */
 VOXGI_API voxgi_result voxgi_linespace_occluded(voxgi_context *ctx, const voxgi_linespace *ls, voxgi_linespace_mode mode, size_t count, const voxgi_ray *rays,
                                                 unsigned char *occluded);
 
@@ -1281,7 +1282,7 @@ typedef struct voxgi_linespace_stats {
    the share of the nu x nv samples whose rays are not blocked; weighted (or NULL): the same share
    weighted by cos_point cos_light / r^2, which times the light's unshadowed irradiance is its
    shadowed irradiance (0 where no sample has weight). On a GL context the rays run on GL
-   (shaders/linespace.glsl), each the CPU's ray with the CPU's answer, so visible is the CPU's;
+   (shaders/linespace_light.glsl), each the CPU's ray with the CPU's answer, so visible is the CPU's;
    weighted sums its weights in float there (within 1e-5 of the CPU's). A line space made on a
    CPU context goes up to GL for the call; one too large for GL's storage blocks gives
    VOXGI_ERR_TOO_LARGE (use a CPU context). */
@@ -4351,7 +4352,8 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
                                X(sh_gather, COMPUTE, "voxel_traverse.glsl sh_gather.glsl"))                        \
     VOXGI__GL_WITH_SCREEN_SPACE(X(screen_rays, COMPUTE, "voxel_traverse.glsl screen_rays.glsl")                    \
                                 X(screen_filter, COMPUTE, "screen_filter.glsl"))                                   \
-    VOXGI__GL_WITH_LINE_SPACE(X(linespace, COMPUTE, "linespace.glsl"))
+    VOXGI__GL_WITH_LINE_SPACE(X(linespace, COMPUTE, "linespace.glsl linespace_light.glsl")                         \
+                              X(linespace_rays, COMPUTE, "linespace.glsl linespace_rays.glsl"))
 
 enum { VOXGI__GL_COMPUTE = 0, VOXGI__GL_RASTER = 1, VOXGI__GL_GEOMETRY = 2 };
 typedef enum voxgi__gl_program_id {
@@ -13913,10 +13915,68 @@ static void voxgi__ls_rays_run(void *user, size_t first, size_t end)
     }
 }
 
+#ifndef VOXGI_NO_GL
+/* The rays' line-space uniforms of program p (the walk's: shaders/linespace.glsl). */
+static void voxgi__ls_walk_uniforms_gl(voxgi__gl *gl, unsigned int p, const voxgi_linespace *L, int fast, float near)
+{
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_n, L->info.n);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_depth, L->info.depth);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_words, (unsigned)L->words_per_space);
+    gl->ProgramUniform3d(p, VOXGI__LOC_u_centre, L->centre[0], L->centre[1], L->centre[2]);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_half, L->half);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_scale, L->scale);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_fast, fast);
+    gl->ProgramUniform1f(p, VOXGI__LOC_u_near_ends, near);
+}
+
+/* voxgi__ls_rays_run on GL (shaders/linespace_rays.glsl), in slices of VOXGI__LS_GL_RAYS rays,
+   each finished before the next. */
+#define VOXGI__LS_GL_RAYS 65536
+typedef char voxgi__ray_is_eight_floats[sizeof(voxgi_ray) == 32 ? 1 : -1]; /* the shader reads it so */
+static voxgi_result voxgi__ls_rays_gl(voxgi_context *ctx, const voxgi__ls_job *J, size_t count)
+{
+    voxgi__gl *gl = ctx->gl;
+    const voxgi_linespace *L = J->L;
+    unsigned int own[5] = {0, 0, 0, 0, 0}, io[2] = {0, 0}, p;
+    const unsigned int *lsb = L->gl[0] ? L->gl : own;
+    size_t slice = VOXGI__MIN(count, (size_t)VOXGI__LS_GL_RAYS), first, i;
+    uint32_t *flags;
+    int k;
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_linespace_rays);
+    if (r != VOXGI_OK) return r;
+    if (!L->gl[0] && (r = voxgi__ls_upload_gl(ctx, L, own)) != VOXGI_OK) return r; /* made on a CPU context: for this call */
+    if (!(flags = (uint32_t *)voxgi__alloc_array(ctx, slice, 4, 0))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu rays", (unsigned long)slice);
+    if (r == VOXGI_OK) {
+        p = gl->prog_linespace_rays;
+        io[0] = voxgi__gl_buffer(ctx, slice * sizeof(voxgi_ray), NULL);
+        io[1] = voxgi__gl_buffer(ctx, slice * 4, NULL);
+        for (k = 0; k < 5; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, lsb[k]);
+        for (k = 0; k < 2; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)(5 + k), io[k]);
+        gl->UseProgram(p);
+        voxgi__ls_walk_uniforms_gl(gl, p, L, J->fast, J->near);
+    }
+    for (first = 0; r == VOXGI_OK && first < count; first += slice) {
+        size_t m = VOXGI__MIN(slice, count - first);
+        gl->NamedBufferSubData(io[0], 0, (ptrdiff_t)(m * sizeof(voxgi_ray)), J->rays + first); /* 8 floats a ray, as the shader reads them */
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)m);
+        voxgi__gl_dispatch_items(gl, (uint64_t)m);
+        if ((r = voxgi__gl_read_buffer(ctx, io[1], flags, m * 4)) != VOXGI_OK) break;
+        for (i = 0; i < m; i++) J->occluded[first + i] = (unsigned char)(flags[i] != 0);
+    }
+    voxgi__gl_unbind(gl);
+    for (k = 0; k < 5; k++) voxgi__gl_delete_buffer(ctx, own[k]);
+    for (k = 0; k < 2; k++) voxgi__gl_delete_buffer(ctx, io[k]);
+    voxgi__free(ctx, flags);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the line space's rays");
+    return r;
+}
+#endif
+
 VOXGI_API voxgi_result voxgi_linespace_occluded(voxgi_context *ctx, const voxgi_linespace *ls, voxgi_linespace_mode mode, size_t count, const voxgi_ray *rays,
                                                 unsigned char *occluded)
 {
     voxgi__ls_job J;
+    voxgi_result r = VOXGI_OK;
     size_t i;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!ls || (count && (!rays || !occluded))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "line space, rays or occluded is NULL");
@@ -13932,9 +13992,13 @@ VOXGI_API voxgi_result voxgi_linespace_occluded(voxgi_context *ctx, const voxgi_
     J.chunk = 256;
     if (!(J.counts = (voxgi__ls_counts *)voxgi__alloc_array(ctx, count / J.chunk + 1, sizeof *J.counts, 1)))
         return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu rays", (unsigned long)count);
-    voxgi__parallel(ctx, count, J.chunk, voxgi__ls_rays_run, &J);
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL && count) r = voxgi__ls_rays_gl(ctx, &J, count);
+    else
+#endif
+        voxgi__parallel(ctx, count, J.chunk, voxgi__ls_rays_run, &J);
     voxgi__free(ctx, J.counts);
-    return VOXGI_OK;
+    return r;
 }
 
 /* A hash of 32 bits (the PCG output permutation), the same in GLSL. */
@@ -13958,7 +14022,7 @@ static void voxgi__ls_light_st(uint32_t seed, uint32_t point, int k, int nu, int
 /* How far a point's rays start off its surface: the line space's hair, or where the point's own
    float rounding is larger (far from the origin: p at 1e3 rounds by 3e-5), 2^-20 of its largest
    coordinate: more than that rounding and the origin's, twice over, so the ray never starts
-   behind its surface. Powers of two and a maximum: the same float on GL (shaders/linespace.glsl). */
+   behind its surface. Powers of two and a maximum: the same float on GL (shaders/linespace_light.glsl). */
 static float voxgi__ls_lift(float hair, const float p[3])
 {
     float m = fmaxf(fabsf(p[0]), fmaxf(fabsf(p[1]), fabsf(p[2])));
@@ -14026,7 +14090,7 @@ static void voxgi__ls_light_run(void *user, size_t first, size_t end)
 }
 
 #ifndef VOXGI_NO_GL
-/* voxgi__ls_light_run on GL (shaders/linespace.glsl): each ray walks alone (packets are the
+/* voxgi__ls_light_run on GL (shaders/linespace_light.glsl): each ray walks alone (packets are the
    CPU's; the answers are the same), in slices of points and passes of at most
    VOXGI__LS_GL_SAMPLES samples per point (llvmpipe ends an invocation's loops after 65535
    iterations in all; a ray takes hundreds), each pass finished before the next, so no one
@@ -14057,15 +14121,8 @@ static voxgi_result voxgi__ls_light_gl(voxgi_context *ctx, const voxgi__ls_job *
         for (k = 0; k < 5; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, lsb[k]);
         for (k = 0; k < 3; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)(5 + k), io[k]);
         gl->UseProgram(p);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_n, L->info.n);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_depth, L->info.depth);
-        gl->ProgramUniform1ui(p, VOXGI__LOC_u_words, (unsigned)L->words_per_space);
-        gl->ProgramUniform3d(p, VOXGI__LOC_u_centre, L->centre[0], L->centre[1], L->centre[2]);
-        gl->ProgramUniform1f(p, VOXGI__LOC_u_half, L->half);
-        gl->ProgramUniform1f(p, VOXGI__LOC_u_scale, L->scale);
+        voxgi__ls_walk_uniforms_gl(gl, p, L, J->fast, J->near);
         gl->ProgramUniform1f(p, VOXGI__LOC_u_hair, J->hair);
-        gl->ProgramUniform1f(p, VOXGI__LOC_u_near_ends, J->near);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_fast, J->fast);
         gl->ProgramUniform3f(p, VOXGI__LOC_u_corner, J->corner[0], J->corner[1], J->corner[2]);
         gl->ProgramUniform3f(p, VOXGI__LOC_u_edge_u, J->eu[0], J->eu[1], J->eu[2]);
         gl->ProgramUniform3f(p, VOXGI__LOC_u_edge_v, J->ev[0], J->ev[1], J->ev[2]);

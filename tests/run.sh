@@ -182,7 +182,7 @@ part_symbols=([octree]='^voxgi__?svo_|^voxgi__glsl_(cone_)?svo'
               [light_injection]='^voxgi__?(inject|vct)_|^voxgi__light_(casters|maps_gl)$|^voxgi__glsl_(inject$|light_map)'
               [light_space]='^voxgi__?(tsm|rsm|sh)_|^voxgi__view_|^voxgi__glsl_(tsm|rsm|sh)_'
               [screen_space]='^voxgi_(ao|ssgi|screen_filter|hammersley|radical_inverse)(_|$)|^voxgi__(screen|filter)_|^voxgi__glsl_screen_'
-              [line_space]='^voxgi_(linespace|_ls)_|^voxgi__glsl_linespace$'
+              [line_space]='^voxgi_(linespace|_ls)_|^voxgi__glsl_linespace(_light|_rays)?$'
               [reference]='^voxgi_reference_render$|^voxgi__(path|render_rows|reference_defaults|camera_sees)$')
 part_symbols[cone_tracing]="^voxgi__?cone_|^voxgi_specular_half_angle$|^voxgi__glsl_(cone_|out_rgba)|${part_symbols[light_injection]}"
 part_macros[all_parts]="${part_macros[*]}"

@@ -1348,6 +1348,70 @@ static void test_linespace_rays(void)
     voxgi_destroy(ctx);
 }
 
+/* voxgi_linespace_occluded on GL against the CPU, ray by ray, in both modes: random segments
+   through a line space of 26 triangles (a tenth along an axis, some along the box's edges and
+   through its corner, rays with tmax <= tmin and with no direction), 70,000 of them (two slices);
+   the GL context's own line space and the CPU context's uploaded for the call. */
+static void test_gl_linespace_occluded_equals_cpu(void)
+{
+    static float pos[9 * 26];
+    enum { R = 70000 };
+    static voxgi_ray rays[R];
+    static unsigned char occ[2][R];
+    voxgi_context *ctx[2];
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_linespace_desc d;
+    voxgi_linespace *L[2] = {NULL, NULL};
+    unsigned rnd = 41;
+    int T = ls_scene(pos, 5), b, mode, cells = 16, src;
+    size_t i;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 2);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
+    TH_CHECK(ctx[0] && ctx[1], "contexts");
+    if (!ctx[0] || !ctx[1]) return;
+    scene_of_triangles(&sc, &mesh, pos, 3 * (size_t)T, NULL, 0);
+    for (i = 0; i < R; i++) {
+        float a[3], e[3];
+        int c;
+        ls_point(&rnd, cells, a);
+        ls_point(&rnd, cells, e);
+        if (i % 10 == 0) { /* along an axis */
+            int keep = (int)(ls_unit(&rnd) * 3);
+            for (c = 0; c < 3; c++)
+                if (c != keep) e[c] = a[c];
+        }
+        if (i % 50 == 1) { a[0] = 0.3f; a[1] = 0.3f; e[0] = 0.3f; e[1] = (i % 100 == 1) ? 0.3f : 0.9f; } /* the box's edge, its corner */
+        for (c = 0; c < 3; c++) {
+            rays[i].origin[c] = a[c];
+            rays[i].direction[c] = i % 997 == 3 ? 0.0f : e[c] - a[c];
+        }
+        rays[i].tmin = i % 499 == 7 ? 1.0f : 0.0f;
+        rays[i].tmax = 1;
+    }
+    memset(&d, 0, sizeof d);
+    d.n = 4;
+    d.depth = 2;
+    for (b = 0; b < 2; b++) TH_CHECK(voxgi_linespace_create(ctx[b], &sc, &d, &L[b]) == VOXGI_OK, "%s", voxgi_last_error(ctx[b]));
+    for (src = 0; src < 2 && L[0] && L[1]; src++) /* the GL context's line space, then the CPU context's */
+        for (mode = 0; mode < 2; mode++) {
+            size_t differ = 0, blocked = 0;
+            TH_CHECK(voxgi_linespace_occluded(ctx[0], L[0], (voxgi_linespace_mode)mode, R, rays, occ[0]) == VOXGI_OK, "%s", voxgi_last_error(ctx[0]));
+            memset(occ[1], 7, sizeof occ[1]);
+            TH_CHECK(voxgi_linespace_occluded(ctx[1], L[src ? 0 : 1], (voxgi_linespace_mode)mode, R, rays, occ[1]) == VOXGI_OK, "%s", voxgi_last_error(ctx[1]));
+            for (i = 0; i < R; i++) {
+                differ += occ[0][i] != occ[1][i];
+                blocked += occ[0][i];
+            }
+            printf("    %s, %s line space: %lu of %d rays blocked on the CPU, %lu differ on GL\n", mode ? "fast" : "exact", src ? "the CPU context's" : "GL's",
+                   (unsigned long)blocked, (int)R, (unsigned long)differ);
+            TH_CHECK(differ == 0 && blocked > R / 20 && blocked < R - R / 20, "GL's answers are not the CPU's, or the rays test nothing");
+        }
+    for (b = 0; b < 2; b++) voxgi_linespace_destroy(ctx[b], L[b]);
+    for (b = 0; b < 2; b++) voxgi_destroy(ctx[b]);
+}
+
 /* The GL shadow rays (shaders/linespace.glsl) against the CPU's, per point: line spaces of the
    ray tests' scene (n 4 depth 2, n 3 depth 3), points on its triangles (their normals, either
    side) and in and around it (random normals, some zero), a parallelogram light above the scene
@@ -1477,6 +1541,7 @@ int main(void)
     TH_RUN(test_linespace_build);
     TH_RUN(test_linespace_rays);
     TH_RUN(test_gl_linespace_light_equals_cpu);
+    TH_RUN(test_gl_linespace_occluded_equals_cpu);
     gl_close();
     return th_finish();
 }
