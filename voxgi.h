@@ -1218,8 +1218,8 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
    meets it when six linear bounds in t leave an interval), so a segment between the two patches
    through a filled child always finds its bit set. Each unordered pair is stored once:
    15 N^4 bits per line space. Deterministic whatever the threads. Made on a GL context, it also
-   keeps its arrays in GL storage buffers for voxgi_linespace_light (where they fit GL's largest
-   storage block; info.bytes counts the CPU's copy). */
+   keeps its arrays in GL storage buffers for its rays on GL (where they fit: the bits in up to four
+   of GL's largest storage blocks, each other array in one; info.bytes counts the CPU's copy). */
 typedef struct voxgi_linespace voxgi_linespace;
 typedef struct voxgi_linespace_desc {
     int n;                        /* children per axis of a split node, 2..16; 0 = 4 */
@@ -1284,8 +1284,8 @@ typedef struct voxgi_linespace_stats {
    shadowed irradiance (0 where no sample has weight). On a GL context the rays run on GL
    (shaders/linespace_light.glsl), each the CPU's ray with the CPU's answer, so visible is the CPU's;
    weighted sums its weights in float there (within 1e-5 of the CPU's). A line space made on a
-   CPU context goes up to GL for the call; one too large for GL's storage blocks gives
-   VOXGI_ERR_TOO_LARGE (use a CPU context). */
+   CPU context goes up to GL for the call; one too large for GL's storage blocks (its bits over
+   four, another array over one) gives VOXGI_ERR_TOO_LARGE (use a CPU context). */
 VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_linespace *ls, const voxgi_linespace_light_desc *desc, size_t count,
                                              const float *points, const float *normals, float *visible, float *weighted, voxgi_linespace_stats *stats);
 
@@ -4111,6 +4111,7 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
 #define VOXGI__GL_SHADER_STORAGE_BUFFER 0x90D2
 #define VOXGI__GL_DISPATCH_INDIRECT_BUFFER 0x90EE
 #define VOXGI__GL_MAX_SHADER_STORAGE_BLOCK_SIZE 0x90DE
+#define VOXGI__GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS 0x90DB
 #define VOXGI__GL_DYNAMIC_COPY 0x88EA
 #define VOXGI__GL_STATIC_DRAW 0x88E4
 #define VOXGI__GL_SHADER_STORAGE_BARRIER_BIT 0x2000
@@ -4368,7 +4369,7 @@ typedef enum voxgi__gl_program_id {
    prelude, so that no location is looked up by name at run time. */
 #define VOXGI__GL_UNIFORMS(X) \
     X(u_anisotropic) X(u_atomic) X(u_attr) X(u_attributes) X(u_axis) X(u_back_coverage) X(u_bias) X(u_big)       \
-    X(u_blend) X(u_caster) X(u_casters) X(u_cell_levels) X(u_cells) X(u_centre) X(u_channels) X(u_cones) X(u_corner) X(u_count) X(u_depth) \
+    X(u_bits_part) X(u_blend) X(u_caster) X(u_casters) X(u_cell_levels) X(u_cells) X(u_centre) X(u_channels) X(u_cones) X(u_corner) X(u_count) X(u_depth) \
     X(u_dir) X(u_dst_dims) X(u_dst_res) X(u_edge_u) X(u_edge_v) X(u_eye)                                              \
     X(u_face) X(u_factor) X(u_far) X(u_fast) X(u_first) X(u_first_slice) X(u_forward) X(u_gather) X(u_hair) X(u_half) X(u_half_tan) \
     X(u_has_albedo) X(u_hidden)                                                                                       \
@@ -4409,6 +4410,7 @@ struct voxgi__gl {
     VOXGI__GL_PROGRAMS(VOXGI__GL_PROGRAM_MEMBER)
 #undef VOXGI__GL_PROGRAM_MEMBER
     int64_t max_ssbo_bytes;
+    int max_compute_ssbo_blocks;  /* storage blocks a compute shader may use */
     char prelude_names[VOXGI__GL_UNIFORM_COUNT * 48 + 1024]; /* "#define VOXGI_LOC_<uniform> <location>" and
                                                                "#define VOXGI_BINDING_<role> <binding>" lines */
 };
@@ -4474,6 +4476,7 @@ static voxgi_result voxgi__gl_init(voxgi_context *ctx)
     if (major * 10 + minor < 45)
         return voxgi__fail(ctx, VOXGI_ERR_GL_UNAVAILABLE, "GL %d.%d is current, voxgi needs 4.5 (%s)", major, minor, ctx->gl_version);
     gl->GetInteger64v(VOXGI__GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &gl->max_ssbo_bytes);
+    gl->GetIntegerv(VOXGI__GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &gl->max_compute_ssbo_blocks);
     for (u = 0; u < VOXGI__GL_UNIFORM_COUNT; u++)
         at += (size_t)snprintf(gl->prelude_names + at, sizeof gl->prelude_names - at, "#define VOXGI_LOC_%s %d\n", uniforms[u], u);
 #define VOXGI__GL_BINDING_DEFINE(role, number) \
@@ -12988,6 +12991,14 @@ VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_scree
 /* ===================================================================== 12. line space */
 #ifndef VOXGI_NO_LINE_SPACE
 
+/* GL: the line space's arrays as storage buffers, bound at shaders/linespace.glsl's bindings: the
+   nodes, the bits (in up to four parts, where GL's storage blocks are smaller than they: Mesa's
+   128 MiB), the leaves, their triangle lists, the triangles. A walk takes these eight blocks and
+   its input and output three: 11 of a compute shader's storage blocks. */
+#define VOXGI__LS_GL_BUFFERS 8
+#define VOXGI__LS_GL_BITS_PARTS 4
+#define VOXGI__LS_GL_BLOCKS 11
+
 struct voxgi_linespace {
     voxgi_linespace_info info;
     uint32_t *node;               /* 2 per node: its first child (UINT32_MAX: none; the N^3 children are consecutive, x fastest), then its
@@ -13000,7 +13011,8 @@ struct voxgi_linespace {
     float half, scale;            /* the root cube's half edge, and n / its edge: the root's frame from the centre */
     float leaf_edge;              /* a leaf's edge in the root's frame (fast mode's exact zone at a segment's ends counts them) */
     size_t words_per_space;
-    unsigned int gl[5];           /* made on a GL context: node, bits, leaf, tris and tv as storage buffers (shaders/linespace.glsl) */
+    unsigned int gl[VOXGI__LS_GL_BUFFERS]; /* made on a GL context: node, bits, leaf, tris, tv and the bits' further parts as storage
+                                     buffers (VOXGI__LS_GL_BUFFERS) */
 };
 
 /* Triangles are listed in every leaf they come within this share of the root's edge of (2^-18):
@@ -13151,7 +13163,7 @@ VOXGI_API void voxgi_linespace_destroy(voxgi_context *ctx, voxgi_linespace *ls)
 #ifndef VOXGI_NO_GL
     {
         int k;
-        for (k = 0; k < 5; k++) voxgi__gl_delete_buffer(ctx, ls->gl[k]);
+        for (k = 0; k < VOXGI__LS_GL_BUFFERS; k++) voxgi__gl_delete_buffer(ctx, ls->gl[k]);
     }
 #endif
     voxgi__free(ctx, ls->node);
@@ -13168,39 +13180,65 @@ VOXGI_API void voxgi_linespace_query(const voxgi_linespace *ls, voxgi_linespace_
 }
 
 #ifndef VOXGI_NO_GL
-/* The line space's five arrays in the order of ls->gl, their bytes, and the first of them too
-   large for a GL storage block (-1: none). */
-static int voxgi__ls_arrays_gl(const voxgi_context *ctx, const voxgi_linespace *L, const void *data[5], size_t bytes[5])
+static const unsigned int voxgi__ls_gl_binding[VOXGI__LS_GL_BUFFERS] = {0, 1, 2, 3, 4, 8, 9, 10};
+
+/* The words of each part of the bits (all in one part where they fit a block). */
+static uint64_t voxgi__ls_bits_part_words(const voxgi_context *ctx, const voxgi_linespace *L)
 {
+    uint64_t words = (uint64_t)L->words_per_space * L->info.line_spaces, most = (uint64_t)ctx->gl->max_ssbo_bytes / 4;
+    return words <= most ? VOXGI__MAX(words, (uint64_t)1) : most;
+}
+
+/* The arrays in the order of ls->gl, their bytes; the first too large for GL (-1: none; 1: the
+   bits, in more than four parts). */
+static int voxgi__ls_arrays_gl(const voxgi_context *ctx, const voxgi_linespace *L, const void *data[VOXGI__LS_GL_BUFFERS], size_t bytes[VOXGI__LS_GL_BUFFERS])
+{
+    uint64_t words = (uint64_t)L->words_per_space * L->info.line_spaces, part = voxgi__ls_bits_part_words(ctx, L);
     int k;
     data[0] = L->node; bytes[0] = 8 * L->info.nodes;
-    data[1] = L->bits; bytes[1] = 4 * L->words_per_space * L->info.line_spaces;
     data[2] = L->leaf; bytes[2] = 8 * L->info.leaves;
     data[3] = L->tris; bytes[3] = 4 * L->info.triangle_refs;
     data[4] = L->tv; bytes[4] = 36 * L->info.triangles;
-    for (k = 0; k < 5; k++)
+    for (k = 0; k < VOXGI__LS_GL_BITS_PARTS; k++) { /* part k: buffer 1, then 5, 6, 7 */
+        uint64_t first = VOXGI__MIN(words, (uint64_t)k * part), n = VOXGI__MIN(words - first, part);
+        data[k ? 4 + k : 1] = L->bits + first;
+        bytes[k ? 4 + k : 1] = (size_t)(4 * n);
+    }
+    if (words > VOXGI__LS_GL_BITS_PARTS * part) return 1;
+    for (k = 0; k < VOXGI__LS_GL_BUFFERS; k++)
         if ((int64_t)bytes[k] > ctx->gl->max_ssbo_bytes) return k;
     return -1;
 }
 
-/* The line space as storage buffers (shaders/linespace.glsl's bindings 0 to 4), or none and why. */
-static voxgi_result voxgi__ls_upload_gl(voxgi_context *ctx, const voxgi_linespace *L, unsigned int buf[5])
+/* The line space as storage buffers (in ls->gl's order), or none and why. */
+static voxgi_result voxgi__ls_upload_gl(voxgi_context *ctx, const voxgi_linespace *L, unsigned int buf[VOXGI__LS_GL_BUFFERS])
 {
     static const char *const names[5] = {"nodes", "bits", "leaves", "triangle lists", "triangles"};
-    const void *data[5];
-    size_t bytes[5];
+    const void *data[VOXGI__LS_GL_BUFFERS];
+    size_t bytes[VOXGI__LS_GL_BUFFERS];
     voxgi_result r;
     int k = voxgi__ls_arrays_gl(ctx, L, data, bytes);
+    if (ctx->gl->max_compute_ssbo_blocks < VOXGI__LS_GL_BLOCKS)
+        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "the line space's walk takes %d storage blocks; this GL gives compute shaders %d: use a CPU context",
+                           VOXGI__LS_GL_BLOCKS, ctx->gl->max_compute_ssbo_blocks);
     if (k >= 0)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the line space's %s take %lu bytes, over GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld: use a CPU context",
-                           names[k], (unsigned long)bytes[k], (long long)ctx->gl->max_ssbo_bytes);
-    for (k = 0; k < 5; k++) buf[k] = voxgi__gl_buffer(ctx, bytes[k], bytes[k] ? data[k] : NULL);
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the line space's %s take %lu bytes, over %s GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld: use a CPU context",
+                           names[k < 5 ? k : 1], k == 1 ? (unsigned long)(4 * L->words_per_space * L->info.line_spaces) : (unsigned long)bytes[k],
+                           k == 1 ? "four times" : "", (long long)ctx->gl->max_ssbo_bytes);
+    for (k = 0; k < VOXGI__LS_GL_BUFFERS; k++) buf[k] = voxgi__gl_buffer(ctx, bytes[k], bytes[k] ? data[k] : NULL);
     if ((r = voxgi__gl_check(ctx, "the line space's buffers")) != VOXGI_OK)
-        for (k = 0; k < 5; k++) {
+        for (k = 0; k < VOXGI__LS_GL_BUFFERS; k++) {
             voxgi__gl_delete_buffer(ctx, buf[k]);
             buf[k] = 0;
         }
     return r;
+}
+
+/* Binds the line space's buffers for a walk (shaders/linespace.glsl). */
+static void voxgi__ls_bind_gl(voxgi__gl *gl, const unsigned int buf[VOXGI__LS_GL_BUFFERS])
+{
+    int k;
+    for (k = 0; k < VOXGI__LS_GL_BUFFERS; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, voxgi__ls_gl_binding[k], buf[k]);
 }
 #endif
 
@@ -13439,9 +13477,9 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     L->info.allocated = sizeof *L + 8 * cap_nodes + L->words_per_space * 4 * nspaces + 4 * cap_tris + 4 * cap_leaf + 36 * VOXGI__MAX(f.triangle_count, (size_t)1);
 #ifndef VOXGI_NO_GL
     if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_GL) { /* kept for the GL rays (too large for GL: they fail, and say why) */
-        const void *data[5];
-        size_t bytes[5];
-        if (voxgi__ls_arrays_gl(ctx, L, data, bytes) < 0) r = voxgi__ls_upload_gl(ctx, L, L->gl);
+        const void *data[VOXGI__LS_GL_BUFFERS];
+        size_t bytes[VOXGI__LS_GL_BUFFERS];
+        if (voxgi__ls_arrays_gl(ctx, L, data, bytes) < 0 && ctx->gl->max_compute_ssbo_blocks >= VOXGI__LS_GL_BLOCKS) r = voxgi__ls_upload_gl(ctx, L, L->gl);
     }
 #endif
     L->info.ms = voxgi__now_ms() - t0;
@@ -13917,8 +13955,10 @@ static void voxgi__ls_rays_run(void *user, size_t first, size_t end)
 
 #ifndef VOXGI_NO_GL
 /* The rays' line-space uniforms of program p (the walk's: shaders/linespace.glsl). */
-static void voxgi__ls_walk_uniforms_gl(voxgi__gl *gl, unsigned int p, const voxgi_linespace *L, int fast, float near)
+static void voxgi__ls_walk_uniforms_gl(const voxgi_context *ctx, unsigned int p, const voxgi_linespace *L, int fast, float near)
 {
+    voxgi__gl *gl = ctx->gl;
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_bits_part, (unsigned)voxgi__ls_bits_part_words(ctx, L));
     gl->ProgramUniform1i(p, VOXGI__LOC_u_n, L->info.n);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_depth, L->info.depth);
     gl->ProgramUniform1ui(p, VOXGI__LOC_u_words, (unsigned)L->words_per_space);
@@ -13937,7 +13977,7 @@ static voxgi_result voxgi__ls_rays_gl(voxgi_context *ctx, const voxgi__ls_job *J
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_linespace *L = J->L;
-    unsigned int own[5] = {0, 0, 0, 0, 0}, io[2] = {0, 0}, p;
+    unsigned int own[VOXGI__LS_GL_BUFFERS] = {0, 0, 0, 0, 0, 0, 0, 0}, io[2] = {0, 0}, p;
     const unsigned int *lsb = L->gl[0] ? L->gl : own;
     size_t slice = VOXGI__MIN(count, (size_t)VOXGI__LS_GL_RAYS), first, i;
     uint32_t *flags;
@@ -13950,10 +13990,10 @@ static voxgi_result voxgi__ls_rays_gl(voxgi_context *ctx, const voxgi__ls_job *J
         p = gl->prog_linespace_rays;
         io[0] = voxgi__gl_buffer(ctx, slice * sizeof(voxgi_ray), NULL);
         io[1] = voxgi__gl_buffer(ctx, slice * 4, NULL);
-        for (k = 0; k < 5; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, lsb[k]);
+        voxgi__ls_bind_gl(gl, lsb);
         for (k = 0; k < 2; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)(5 + k), io[k]);
         gl->UseProgram(p);
-        voxgi__ls_walk_uniforms_gl(gl, p, L, J->fast, J->near);
+        voxgi__ls_walk_uniforms_gl(ctx, p, L, J->fast, J->near);
     }
     for (first = 0; r == VOXGI_OK && first < count; first += slice) {
         size_t m = VOXGI__MIN(slice, count - first);
@@ -13964,7 +14004,7 @@ static voxgi_result voxgi__ls_rays_gl(voxgi_context *ctx, const voxgi__ls_job *J
         for (i = 0; i < m; i++) J->occluded[first + i] = (unsigned char)(flags[i] != 0);
     }
     voxgi__gl_unbind(gl);
-    for (k = 0; k < 5; k++) voxgi__gl_delete_buffer(ctx, own[k]);
+    for (k = 0; k < VOXGI__LS_GL_BUFFERS; k++) voxgi__gl_delete_buffer(ctx, own[k]);
     for (k = 0; k < 2; k++) voxgi__gl_delete_buffer(ctx, io[k]);
     voxgi__free(ctx, flags);
     if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the line space's rays");
@@ -14102,7 +14142,7 @@ static voxgi_result voxgi__ls_light_gl(voxgi_context *ctx, const voxgi__ls_job *
 {
     voxgi__gl *gl = ctx->gl;
     const voxgi_linespace *L = J->L;
-    unsigned int own[5] = {0, 0, 0, 0, 0}, io[3] = {0, 0, 0}, p;
+    unsigned int own[VOXGI__LS_GL_BUFFERS] = {0, 0, 0, 0, 0, 0, 0, 0}, io[3] = {0, 0, 0}, p;
     const unsigned int *lsb = L->gl[0] ? L->gl : own;
     const int S = J->nu * J->nv;
     size_t slice = VOXGI__MIN(count, (size_t)VOXGI__LS_GL_POINTS), first, i;
@@ -14118,10 +14158,10 @@ static voxgi_result voxgi__ls_light_gl(voxgi_context *ctx, const voxgi__ls_job *
         io[0] = voxgi__gl_buffer(ctx, slice * 12, NULL);
         io[1] = voxgi__gl_buffer(ctx, slice * 12, NULL);
         io[2] = voxgi__gl_buffer(ctx, slice * 16, NULL);
-        for (k = 0; k < 5; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)k, lsb[k]);
+        voxgi__ls_bind_gl(gl, lsb);
         for (k = 0; k < 3; k++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)(5 + k), io[k]);
         gl->UseProgram(p);
-        voxgi__ls_walk_uniforms_gl(gl, p, L, J->fast, J->near);
+        voxgi__ls_walk_uniforms_gl(ctx, p, L, J->fast, J->near);
         gl->ProgramUniform1f(p, VOXGI__LOC_u_hair, J->hair);
         gl->ProgramUniform3f(p, VOXGI__LOC_u_corner, J->corner[0], J->corner[1], J->corner[2]);
         gl->ProgramUniform3f(p, VOXGI__LOC_u_edge_u, J->eu[0], J->eu[1], J->eu[2]);
@@ -14152,7 +14192,7 @@ static voxgi_result voxgi__ls_light_gl(voxgi_context *ctx, const voxgi__ls_job *
         }
     }
     voxgi__gl_unbind(gl);
-    for (k = 0; k < 5; k++) voxgi__gl_delete_buffer(ctx, own[k]);
+    for (k = 0; k < VOXGI__LS_GL_BUFFERS; k++) voxgi__gl_delete_buffer(ctx, own[k]);
     for (k = 0; k < 3; k++) voxgi__gl_delete_buffer(ctx, io[k]);
     voxgi__free(ctx, sums);
     if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the line space's shadow rays");

@@ -8,7 +8,10 @@
 // embedded unless VOXGI_NO_LINE_SPACE
 layout(local_size_x = VOXGI_LOCAL_SIZE) in;
 layout(std430, binding = 0) readonly buffer Nodes { uint node[]; };       // 2 per node: first child, line space or leaf
-layout(std430, binding = 1) readonly buffer Bits { uint bits[]; };        // the line spaces, u_words each
+layout(std430, binding = 1) readonly buffer Bits0 { uint bits0[]; };      // the line spaces, u_words each, in parts of
+layout(std430, binding = 8) readonly buffer Bits1 { uint bits1[]; };      // u_bits_part words (GL's storage blocks may be
+layout(std430, binding = 9) readonly buffer Bits2 { uint bits2[]; };      // smaller than they)
+layout(std430, binding = 10) readonly buffer Bits3 { uint bits3[]; };
 layout(std430, binding = 2) readonly buffer Leaves { uint leaf[]; };      // 2 per leaf: first triangle reference, count
 layout(std430, binding = 3) readonly buffer Refs { uint tris[]; };        // the leaves' triangles
 layout(std430, binding = 4) readonly buffer Triangles { float tv[]; };    // 9 per triangle, relative to the centre
@@ -16,6 +19,7 @@ layout(location = VOXGI_LOC_u_count) uniform uint u_count;     // points (rays) 
 layout(location = VOXGI_LOC_u_n) uniform int u_n;              // children per axis
 layout(location = VOXGI_LOC_u_depth) uniform int u_depth;
 layout(location = VOXGI_LOC_u_words) uniform uint u_words;     // per line space
+layout(location = VOXGI_LOC_u_bits_part) uniform uint u_bits_part; // words per part of the bits
 layout(location = VOXGI_LOC_u_centre) uniform dvec3 u_centre;
 layout(location = VOXGI_LOC_u_half) uniform float u_half;      // the root's half edge
 layout(location = VOXGI_LOC_u_scale) uniform float u_scale;    // n / the root's edge
@@ -125,7 +129,9 @@ bool crossing_bit(uint space, vec3 o, vec3 d, float ta, float tb, int ea, int xa
         fs = fe; ps = pe; fe = f; pe = p;
     }
     uint bit = uint(((fs * 5 - fs * (fs - 1) / 2 + (fe - fs - 1)) * n2 + ps) * n2 + pe);
-    return ((bits[space * u_words + (bit >> 5u)] >> (bit & 31u)) & 1u) != 0u;
+    uint w = space * u_words + (bit >> 5u), part = w / u_bits_part, at = w - part * u_bits_part;
+    uint word = part == 0u ? bits0[at] : part == 1u ? bits1[at] : part == 2u ? bits2[at] : bits3[at];
+    return ((word >> (bit & 31u)) & 1u) != 0u;
 }
 
 // voxgi__ls_slab over the root [0, n]^3
