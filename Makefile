@@ -89,9 +89,9 @@ $(B)/asan/leak_canary: tests/leak_canary.c voxgi.h tools/headless_gl.h $(B)/asan
 TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(B)/test_rays_scalar \
               $(if $(AVX2_CC),$(B)/test_rays_avx2) \
               $(addprefix $(B)/asan/,$(TESTS)) $(B)/asan/leak_canary
-# CI (VOXGI_CI=1) also builds the tool and the test programs at -O0, -O1 and -O3 (the main build is
+# CI (VOXGI_CI=1) also builds the tool and the test programs at -O0 and -O3 (the main build is
 # -O2), in $(B)/O<level>, and tests/run.sh runs them: no test may depend on the optimiser's mood.
-OPT_LEVELS := 0 1 3
+OPT_LEVELS := 0 3
 test: deps
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(NPROC)) $(TEST_BUILD) \
 	    $(if $(filter 1,$(VOXGI_CI)),$(addprefix opt-level-,$(OPT_LEVELS)))

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test of voxgi and prints "N passed, N failed" last (skips are listed, never passed).
 # Expects `make test` to have built build/ ($VOXGI_BUILD when set: `make B=dir test` sets it), the
-# normal and the ASan+UBSan test programs. VOXGI_CI=1 (CI): also the programs built at -O0, -O1 and
-# -O3, and any skip fails the run.
+# normal and the ASan+UBSan test programs. VOXGI_CI=1 (CI): also the programs built at -O0 and -O3
+# (-O1 is the sanitizers' build), and any skip fails the run.
 #
 # The checks run in parallel, at most one per processor at once (VOXGI_TEST_JOBS=n: n at once).
 # Each check's output is kept apart and printed whole, in the order the checks are listed below
@@ -214,7 +214,7 @@ else
 fi
 # CI (VOXGI_CI=1): the same programs built at the other optimisation levels (the Makefile builds them)
 if [ "${VOXGI_CI:-0}" = 1 ]; then
-    for level in 0 1 3; do
+    for level in $(sed -n 's/^OPT_LEVELS *:= *//p' Makefile); do # the Makefile's list
         for t in $programs; do
             check "O$level/$t" program env VOXGI_TOOL="$B/O$level/voxgi" "$B/O$level/$t"
         done
