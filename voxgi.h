@@ -13222,9 +13222,9 @@ static voxgi_result voxgi__ls_upload_gl(voxgi_context *ctx, const voxgi_linespac
         return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "the line space's walk takes %d storage blocks; this GL gives compute shaders %d: use a CPU context",
                            VOXGI__LS_GL_BLOCKS, ctx->gl->max_compute_ssbo_blocks);
     if (k >= 0)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the line space's %s take %lu bytes, over %s GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld: use a CPU context",
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the line space's %s take %lu bytes, over %sGL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld: use a CPU context",
                            names[k < 5 ? k : 1], k == 1 ? (unsigned long)(4 * L->words_per_space * L->info.line_spaces) : (unsigned long)bytes[k],
-                           k == 1 ? "four times" : "", (long long)ctx->gl->max_ssbo_bytes);
+                           k == 1 ? "four times " : "", (long long)ctx->gl->max_ssbo_bytes);
     for (k = 0; k < VOXGI__LS_GL_BUFFERS; k++) buf[k] = voxgi__gl_buffer(ctx, bytes[k], bytes[k] ? data[k] : NULL);
     if ((r = voxgi__gl_check(ctx, "the line space's buffers")) != VOXGI_OK)
         for (k = 0; k < VOXGI__LS_GL_BUFFERS; k++) {
@@ -14072,8 +14072,9 @@ static float voxgi__ls_lift(float hair, const float p[3])
 /* The segment from point p (unit normal nrm: the side its rays leave) to light point (s, t),
    in the frame of the line space's centre (where the light's corner, J->corner, is kept: far from
    the origin the light's points keep their place to the tree's triangles): origin voxgi__ls_lift
-   off the surface, ending short of the light by 2^-16 of the way (its own triangles never block it); *facing: the cosine at p is positive (else the surface itself is
-   in the way and no ray goes). Also the weight cos_p cos_l / r^2 of the sample. */
+   off the surface, ending short of the light by 2^-16 of the way (its own triangles never block
+   it), and the sample's weight cos_p cos_l / r^2. 0 where the cosine at p is not positive (the
+   surface itself is in the way: no ray goes). */
 static int voxgi__ls_light_ray(const voxgi_linespace *L, const voxgi__ls_job *J, const float p[3], const float nrm[3], float s, float t, voxgi__ls_ray *r,
                                double *weight)
 {
@@ -15034,7 +15035,7 @@ static voxgi_result voxgi__vct_check_voxels(voxgi_context *ctx, const voxgi_scen
     fit.res = desc->resolution;
     fit.padding = 1;
     if ((r = voxgi_fit_grid(ctx, scene, &fit, &g)) != VOXGI_OK) return r;
-    for (m = 0; m < scene->mesh_count; m++) triangles += scene->meshes[m].index_count / 3;
+    for (m = 0; m < scene->mesh_count; m++) triangles += voxgi__mesh_triangles(&scene->meshes[m]);
     if (vi->backend != ctx->backend || vi->method != VOXGI_METHOD_CONSERVATIVE || (vi->attributes & (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL)) !=
         (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.voxels: not from voxgi_vct_voxelize on this context");
