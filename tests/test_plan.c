@@ -317,8 +317,9 @@ static void test_plan_images(void)
 /* A static scene's light-only update: the cone tracer's voxels, made once by voxgi_vct_voxelize,
    give bit for bit the image that voxelizes, under the scene's light and under a moved and
    brighter one, with bounces, on the CPU and on GL (where the moved light's image must differ
-   from the first: the voxels' light is re-injected, not kept). Voxels of another resolution, of
-   a scene with other bounds or fewer triangles, or without normals are refused. */
+   from the first: the voxels' light is re-injected, not kept), and with a mesh of unindexed
+   triangles added. Voxels of another resolution, of a scene with other bounds or fewer
+   triangles, or without normals are refused. */
 static void test_light_only_update(void)
 {
     enum { W = 16 };
@@ -383,6 +384,26 @@ static void test_light_only_update(void)
             voxgi_result r = voxgi_vct_render(ctx, &fewer, &vd, kept, sizeof kept, NULL);
             TH_CHECK(r == VOXGI_ERR_INVALID_ARGUMENT && strstr(voxgi_last_error(ctx), "desc.voxels"), "fewer triangles: %s (%s)", voxgi_result_string(r),
                      voxgi_last_error(ctx));
+        }
+        { /* a second mesh, unindexed: one triangle inside the walls */
+            static const float inside[9] = {0.1f, 0.2f, 0.1f, 0.3f, 0.2f, 0.1f, 0.1f, 0.4f, 0.2f};
+            voxgi_mesh two[2];
+            voxgi_voxels *v2 = NULL;
+            two[0] = bs.scene.meshes[0];
+            memset(&two[1], 0, sizeof two[1]);
+            two[1].positions = inside;
+            two[1].vertex_count = 3;
+            sc = bs.scene;
+            sc.meshes = two;
+            sc.mesh_count = 2;
+            vd.voxels = NULL;
+            TH_CHECK(voxgi_vct_voxelize(ctx, &sc, &vd, &v2) == VOXGI_OK && voxgi_vct_render(ctx, &sc, &vd, fresh, sizeof fresh, NULL) == VOXGI_OK, "%s",
+                     voxgi_last_error(ctx));
+            vd.voxels = v2;
+            TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, kept, sizeof kept, NULL) == VOXGI_OK && !memcmp(fresh, kept, sizeof kept), "unindexed: %s",
+                     voxgi_last_error(ctx));
+            voxgi_voxels_destroy(ctx, v2);
+            vd.voxels = vox;
         }
         memset(&xd, 0, sizeof xd);
         xd.grid = xi.grid;
