@@ -13971,7 +13971,7 @@ static void voxgi__ls_walk_uniforms_gl(const voxgi_context *ctx, unsigned int p,
 
 /* voxgi__ls_rays_run on GL (shaders/linespace_rays.glsl), in slices of VOXGI__LS_GL_RAYS rays,
    each finished before the next. */
-#define VOXGI__LS_GL_RAYS 65536
+#define VOXGI__LS_GL_RAYS 16384
 typedef char voxgi__ray_is_eight_floats[sizeof(voxgi_ray) == 32 ? 1 : -1]; /* the shader reads it so */
 static voxgi_result voxgi__ls_rays_gl(voxgi_context *ctx, const voxgi__ls_job *J, size_t count)
 {

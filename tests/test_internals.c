@@ -1350,15 +1350,15 @@ static void test_linespace_rays(void)
 
 /* voxgi_linespace_occluded on GL against the CPU, ray by ray, in both modes: random segments
    through a line space of 26 triangles (a tenth along an axis, some along the box's edges and
-   through its corner, rays with tmax <= tmin and with no direction), 70,000 of them (two slices);
+   through its corner, rays with tmax <= tmin and with no direction), 20,000 of them (two slices);
    the GL context's own line space (n 4, depth 2), the CPU context's uploaded for the call, and
-   one of n 16, depth 1 (bits four times its nodes) with GL's storage blocks made a third of its
-   bits' size (the bits in three parts, as Mesa's 128 MiB limit splits a large line space); a
-   fifth of it (five parts, one more than the walk has) is refused. */
+   one of n 9, depth 1 (bits twice its nodes) with GL's storage blocks made half its bits' size
+   (the bits in two parts, as Mesa's 128 MiB limit splits a large line space); a fifth of it
+   (five parts, one more than the walk has) is refused. */
 static void test_gl_linespace_occluded_equals_cpu(void)
 {
     static float pos[9 * 26];
-    enum { R = 70000 };
+    enum { R = 20000 };
     static voxgi_ray rays[R];
     static unsigned char occ[2][R];
     voxgi_context *ctx[2];
@@ -1397,7 +1397,7 @@ static void test_gl_linespace_occluded_equals_cpu(void)
     d.n = 4;
     d.depth = 2;
     for (b = 0; b < 2; b++) TH_CHECK(voxgi_linespace_create(ctx[b], &sc, &d, &L[b]) == VOXGI_OK, "%s", voxgi_last_error(ctx[b]));
-    d.n = 16;
+    d.n = 9;
     d.depth = 1;
     TH_CHECK(voxgi_linespace_create(ctx[0], &sc, &d, &L[2]) == VOXGI_OK, "%s", voxgi_last_error(ctx[0]));
     for (src = 0; src < 3 && L[0] && L[1] && L[2]; src++) /* the GL context's line space, then the CPU context's, then in parts */
@@ -1405,14 +1405,14 @@ static void test_gl_linespace_occluded_equals_cpu(void)
             const voxgi_linespace *cpu = L[src == 2 ? 2 : 0], *on_gl = src == 2 ? L[2] : L[src ? 0 : 1];
             int64_t whole = ctx[1]->gl->max_ssbo_bytes;
             uint64_t words = (uint64_t)cpu->words_per_space * cpu->info.line_spaces;
-            if (src == 2) ctx[1]->gl->max_ssbo_bytes = (int64_t)(4 * ((words + 2) / 3));
+            if (src == 2) ctx[1]->gl->max_ssbo_bytes = (int64_t)(4 * ((words + 1) / 2));
             size_t differ = 0, blocked = 0;
             TH_CHECK(voxgi_linespace_occluded(ctx[0], cpu, (voxgi_linespace_mode)mode, R, rays, occ[0]) == VOXGI_OK, "%s", voxgi_last_error(ctx[0]));
             memset(occ[1], 7, sizeof occ[1]);
             TH_CHECK(voxgi_linespace_occluded(ctx[1], on_gl, (voxgi_linespace_mode)mode, R, rays, occ[1]) == VOXGI_OK, "%s", voxgi_last_error(ctx[1]));
             if (src == 2) {
                 unsigned char one;
-                TH_CHECK(voxgi__ls_bits_part_words(ctx[1], cpu) < words && 3 * voxgi__ls_bits_part_words(ctx[1], cpu) >= words, "not three parts");
+                TH_CHECK(voxgi__ls_bits_part_words(ctx[1], cpu) < words && 2 * voxgi__ls_bits_part_words(ctx[1], cpu) >= words, "not two parts");
                 ctx[1]->gl->max_ssbo_bytes = (int64_t)(4 * ((words + 4) / 5));
                 TH_CHECK(voxgi_linespace_occluded(ctx[1], cpu, (voxgi_linespace_mode)mode, 1, rays, &one) == VOXGI_ERR_TOO_LARGE &&
                              strstr(voxgi_last_error(ctx[1]), "bits"), "five parts: %s", voxgi_last_error(ctx[1]));
@@ -1423,7 +1423,7 @@ static void test_gl_linespace_occluded_equals_cpu(void)
                 blocked += occ[0][i];
             }
             printf("    %s, %s line space: %lu of %d rays blocked on the CPU, %lu differ on GL\n", mode ? "fast" : "exact",
-                   src == 2 ? "the CPU context's, its bits in three parts," : src ? "the CPU context's" : "GL's",
+                   src == 2 ? "the CPU context's n 9, its bits in two parts," : src ? "the CPU context's" : "GL's",
                    (unsigned long)blocked, (int)R, (unsigned long)differ);
             TH_CHECK(differ == 0 && blocked > R / 20 && blocked < R - R / 20, "GL's answers are not the CPU's, or the rays test nothing");
         }
