@@ -142,6 +142,12 @@ part_error() { # N
     fi
 }
 
+# The mutants' list (tests/mutations.txt, for `make mutate`) parses, and each mutant's original
+# text is still in its file exactly once: a list the code has moved away from fails here.
+mutation_list() { # N
+    if bash tests/mutate.sh --list > "$tmp/mutation_list.out" 2>&1; then echo pass; else echo fail; tail -n 5 "$tmp/mutation_list.out"; fi > "$tmp/$1.status"
+}
+
 # Every exported symbol of the implementation (the object the tests link) is voxgi_.
 exported_symbols() { # N
     local bad
@@ -197,6 +203,7 @@ for key in octree cone_tracing light_injection light_space screen_space line_spa
 done
 check compile_c99_no_cone_tracing_alone_is_an_error status part_error
 check exported_symbols_are_prefixed status exported_symbols
+check mutation_list_matches_the_code status mutation_list
 
 # 3. the test programs, then again under AddressSanitizer and UndefinedBehaviorSanitizer
 programs=$(sed -n 's/^TESTS *:= *//p' Makefile) # the Makefile's list: one list of the test programs
