@@ -1451,6 +1451,8 @@ typedef struct voxgi_vct_desc {
     const voxgi_voxels *voxels;   /* a static scene's voxels from voxgi_vct_voxelize (this scene's geometry, this
                                      resolution, this context): the image re-injects the light into them and
                                      voxelizes nothing (a light-only update); NULL: it voxelizes */
+    const voxgi_ray_scene *rays;  /* a static scene's ray scene (voxgi_ray_scene_create of this scene, checked): the
+                                     shadow rays use its BVH instead of building one per image; NULL: built */
 } voxgi_vct_desc;
 typedef struct voxgi_vct_info {
     uint64_t voxels;
@@ -3621,6 +3623,7 @@ typedef struct voxgi__tracer {
     double *v;                    /* 9 per triangle, in the scene's order */
     double *n;                    /* unit geometric normal (front: counter-clockwise) per triangle */
     voxgi_ray_scene *rs;
+    int caller_rs;                /* rs is the caller's (kept across images of a static scene): not freed here */
     double hair;                  /* world units */
     int translucent;              /* a material lets light through (transparency > 0) */
 } voxgi__tracer;
@@ -3632,11 +3635,38 @@ static void voxgi__tracer_free(voxgi_context *ctx, voxgi__tracer *tr)
     voxgi__flat_free(ctx, &tr->flat);
     voxgi__free(ctx, tr->v);
     voxgi__free(ctx, tr->n);
-    voxgi__ray_scene_free(ctx, tr->rs);
+    if (!tr->caller_rs) voxgi__ray_scene_free(ctx, tr->rs);
     memset(tr, 0, sizeof *tr);
 }
 
-static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *scene, voxgi__tracer *tr)
+/* Whether rs was made of exactly these triangles (its centre, and every triangle's local floats
+   in its packs): a ray scene of other geometry would answer for that geometry. */
+static int voxgi__ray_scene_is_of(const voxgi_ray_scene *rs, const voxgi__flat *flat)
+{
+    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+    size_t i, seen = 0;
+    int a, j, r;
+    if (rs->triangles != flat->triangle_count) return 0;
+    for (i = 0; i < flat->vertex_count; i++)
+        for (a = 0; a < 3; a++) { lo[a] = VOXGI__MIN(lo[a], (double)flat->pos[3 * i + a]); hi[a] = VOXGI__MAX(hi[a], (double)flat->pos[3 * i + a]); }
+    for (a = 0; a < 3; a++)
+        if (rs->centre[a] != 0.5 * (lo[a] + hi[a])) return 0;
+    for (i = 0; i < rs->pack_count; i++)
+        for (j = 0; j < 4; j++) {
+            uint32_t t = rs->packs[i].tri[j];
+            if (t == UINT32_MAX) continue;
+            if (t >= flat->triangle_count) return 0;
+            for (r = 0; r < 9; r++)
+                if (rs->packs[i].v[r][j] != (float)((double)flat->pos[3 * (size_t)flat->tri[3 * (size_t)t + (size_t)(r / 3)] + (size_t)(r % 3)] - rs->centre[r % 3]))
+                    return 0;
+            seen++;
+        }
+    return seen == flat->triangle_count;
+}
+
+/* The tracer of the scene, its BVH the caller's `rays` (made by voxgi_ray_scene_create of this
+   scene: checked) or built here (NULL). */
+static voxgi_result voxgi__tracer_build_with(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ray_scene *rays, voxgi__tracer *tr)
 {
     size_t t, nt;
     voxgi_result r;
@@ -3646,7 +3676,12 @@ static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *s
     tr->v = (double *)voxgi__alloc_array(ctx, nt, 9 * sizeof(double), 0);
     tr->n = (double *)voxgi__alloc_array(ctx, nt, 3 * sizeof(double), 0);
     if (!tr->v || !tr->n) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu triangles", (unsigned long)nt);
-    if (r == VOXGI_OK) r = voxgi__ray_scene_build(ctx, &tr->flat, &tr->rs);
+    if (r == VOXGI_OK && rays) {
+        tr->rs = (voxgi_ray_scene *)(uintptr_t)rays; /* read only: the tracer never writes its BVH */
+        tr->caller_rs = 1;
+        if (!voxgi__ray_scene_is_of(rays, &tr->flat)) r = voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the ray scene given was made of other triangles");
+    } else if (r == VOXGI_OK)
+        r = voxgi__ray_scene_build(ctx, &tr->flat, &tr->rs);
     if (r != VOXGI_OK) {
         voxgi__tracer_free(ctx, tr);
         return r;
@@ -3664,6 +3699,11 @@ static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *s
         for (a = 0; a < 3; a++) n[a] = len > 0 ? n[a] / len : 0;
     }
     return VOXGI_OK;
+}
+
+static voxgi_result voxgi__tracer_build(voxgi_context *ctx, const voxgi_scene *scene, voxgi__tracer *tr)
+{
+    return voxgi__tracer_build_with(ctx, scene, NULL, tr);
 }
 
 /* The nearest hit of the ray from o along d (world units) before tmax, never triangle skip
@@ -15227,7 +15267,7 @@ VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *s
     q.filter = desc->filter;
     if ((r = voxgi__plan_image(ctx, scene, &q, &plan)) != VOXGI_OK) return r;
     if (!voxgi_plan_find(&plan, "cones")->kept) resolved.no_gi = 1; /* no light to bounce, or nothing reflects it */
-    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
+    if ((r = voxgi__tracer_build_with(ctx, scene, desc->rays, &tr)) != VOXGI_OK) return r;
     if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
     J.desc = desc;
     J.tr = &tr;

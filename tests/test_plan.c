@@ -315,11 +315,12 @@ static void test_plan_images(void)
 }
 
 /* A static scene's light-only update: the cone tracer's voxels, made once by voxgi_vct_voxelize,
-   give bit for bit the image that voxelizes, under the scene's light and under a moved and
-   brighter one, with bounces, on the CPU and on GL (where the moved light's image must differ
-   from the first: the voxels' light is re-injected, not kept), and with a mesh of unindexed
-   triangles added. Voxels of another resolution, of a scene with other bounds or fewer
-   triangles, or without normals are refused. */
+   and its ray scene (voxgi_ray_scene_create) give bit for bit the image that makes its own,
+   under the scene's light and under a moved and brighter one, with bounces, on the CPU and on GL
+   (where the moved light's image must differ from the first: the voxels' light is re-injected,
+   not kept), and with a mesh of unindexed triangles added. Voxels of another resolution, of a
+   scene with other bounds or fewer triangles, or without normals are refused; so is a ray scene
+   of other triangles (the Cornell box's, and the scene's own with one vertex moved). */
 static void test_light_only_update(void)
 {
     enum { W = 16 };
@@ -331,6 +332,7 @@ static void test_light_only_update(void)
         voxgi_vct_info vi;
         voxgi_voxels_info xi;
         voxgi_voxels *vox = NULL, *plain = NULL;
+        voxgi_ray_scene *rays = NULL;
         voxgi_voxelize_desc xd;
         voxgi_light moved[4];
         voxgi_scene sc, fewer;
@@ -360,12 +362,38 @@ static void test_light_only_update(void)
         TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, &vi) == VOXGI_OK && vi.voxels == xi.voxel_count, "%s",
                  voxgi_last_error(ctx));
         TH_CHECK(!memcmp(first, kept, sizeof kept), "%s: the kept voxels' image is not the one that voxelizes", b ? "GL" : "CPU");
+        TH_CHECK(voxgi_ray_scene_create(ctx, &bs.scene, &rays) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        vd.rays = rays;
         TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, kept, sizeof kept, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         vd.voxels = NULL;
+        vd.rays = NULL;
         TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, fresh, sizeof fresh, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         TH_CHECK(!memcmp(fresh, kept, sizeof kept) && memcmp(fresh, first, sizeof first), "%s: the moved light's image %s", b ? "GL" : "CPU",
                  memcmp(fresh, first, sizeof first) ? "with kept voxels is not the one that voxelizes" : "did not change");
-        /* voxels for something else */
+        /* voxels and rays for something else */
+        vd.rays = rays;
+        {
+            voxgi_result r = voxgi_vct_render(ctx, &box.scene, &vd, kept, sizeof kept, NULL);
+            TH_CHECK(r == VOXGI_ERR_INVALID_ARGUMENT && strstr(voxgi_last_error(ctx), "ray scene"), "another scene's rays: %s", voxgi_last_error(ctx));
+        }
+        {
+            voxgi_ray_scene *bent = NULL;
+            voxgi_mesh m1 = bs.scene.meshes[0];
+            voxgi_scene s1 = bs.scene;
+            float *moved_pos = (float *)malloc(12 * m1.vertex_count);
+            size_t v;
+            for (v = 0; moved_pos && v < 3 * m1.vertex_count; v++) moved_pos[v] = m1.positions[v];
+            if (moved_pos) moved_pos[3 * (m1.vertex_count / 2) + 1] += 1e-3f; /* one vertex moved a little */
+            m1.positions = moved_pos;
+            m1.position_stride = 0;
+            s1.meshes = &m1;
+            TH_CHECK(moved_pos && voxgi_ray_scene_create(ctx, &s1, &bent) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            vd.rays = bent;
+            TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a ray scene with a vertex moved taken");
+            voxgi_ray_scene_destroy(ctx, bent);
+            free(moved_pos);
+        }
+        vd.rays = NULL;
         vd.voxels = vox;
         vd.resolution = 32;
         TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "another resolution taken");
@@ -413,6 +441,7 @@ static void test_light_only_update(void)
         TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "voxels without normals taken");
         voxgi_voxels_destroy(ctx, plain);
         voxgi_voxels_destroy(ctx, vox);
+        voxgi_ray_scene_destroy(ctx, rays);
         voxgi_builtin_scene_destroy(ctx, &box);
         voxgi_builtin_scene_destroy(ctx, &bs);
         voxgi_destroy(ctx);

@@ -100,7 +100,7 @@ typedef struct all_scene {
     int nnotes;
     all_picture pictures[ALL_MAX_PICTURES];
     int npictures;
-    double update_ms[3];                 /* the cone tracer's image voxelizing; re-injecting into kept voxels; the voxelization alone */
+    double update_ms[3];                 /* the cone tracer's image making all; re-injecting into kept voxels with a kept BVH; the two made alone */
     int have_update;
 } all_scene;
 
@@ -182,13 +182,15 @@ static void all_stage(all_state *st, const char *what)
 }
 
 /* A static scene's light-only update against the full image: the cone tracer at the tool's
-   defaults (96^3, 24 cones, stride 6, anisotropic) making its voxels per image, and re-injecting
-   the light into voxels kept from voxgi_vct_voxelize; the faster of two runs each. */
+   defaults (96^3, 24 cones, stride 6, anisotropic) making its voxels and BVH per image, and
+   re-injecting the light into voxels kept from voxgi_vct_voxelize with the BVH kept from
+   voxgi_ray_scene_create; the faster of two runs each. */
 static int all_light_update(all_state *st, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *view, all_scene *sc)
 {
     voxgi_vct_desc d;
     voxgi_vct_info vi;
     voxgi_voxels *vox = NULL;
+    voxgi_ray_scene *rays = NULL;
     const size_t pixels = (size_t)view->width * (size_t)view->height;
     float *img = (float *)malloc(pixels * 12);
     double t0;
@@ -202,23 +204,27 @@ static int all_light_update(all_state *st, voxgi_context *ctx, const voxgi_scene
     d.filter = VOXGI_MIPS_ANISOTROPIC;
     d.hide_emitters = 1;
     t0 = cli_now_ms();
-    if (voxgi_vct_voxelize(ctx, scene, &d, &vox) != VOXGI_OK) {
+    if (voxgi_vct_voxelize(ctx, scene, &d, &vox) != VOXGI_OK || voxgi_ray_scene_create(ctx, scene, &rays) != VOXGI_OK) {
+        voxgi_voxels_destroy(ctx, vox);
         free(img);
-        return cli_fail_lib(st->s, ctx, "vct voxels");
+        return cli_fail_lib(st->s, ctx, "vct voxels and rays");
     }
     sc->update_ms[2] = cli_now_ms() - t0;
     sc->update_ms[0] = sc->update_ms[1] = HUGE_VAL;
     for (run = 0; run < 2; run++)
         for (k = 0; k < 2; k++) {
             d.voxels = k ? vox : NULL;
+            d.rays = k ? rays : NULL;
             if (voxgi_vct_render(ctx, scene, &d, img, pixels * 12, &vi) != VOXGI_OK) {
                 voxgi_voxels_destroy(ctx, vox);
+                voxgi_ray_scene_destroy(ctx, rays);
                 free(img);
                 return cli_fail_lib(st->s, ctx, "vct image");
             }
             if (vi.ms < sc->update_ms[k]) sc->update_ms[k] = vi.ms;
         }
     voxgi_voxels_destroy(ctx, vox);
+    voxgi_ray_scene_destroy(ctx, rays);
     free(img);
     sc->have_update = 1;
     return 0;
@@ -413,10 +419,10 @@ static void write_markdown(FILE *f, const all_state *st, const pareto_point *pts
     fprintf(f, "## The fastest method reaching each error\n\nPer scene and quantity, the fastest configuration of any method whose error is at "
                "most the target (it is on the Pareto front across the methods).\n\n");
     write_summary(f, st, pts);
-    fprintf(f, "\n## Static scenes: a light-only update\n\nWhere the geometry stands still the cone tracer's voxels are made once "
-               "(`voxgi_vct_voxelize`) and each image re-injects the light into them (`voxgi_vct_desc.voxels`): the same image, bit for bit. "
-               "The tool's defaults (96^3, 24 cones, stride 6, anisotropic), the faster of two runs each.\n\n| scene | image, voxelizing | image, voxels "
-               "kept | saved | the voxelization on its own |\n|---|---:|---:|---:|---:|\n");
+    fprintf(f, "\n## Static scenes: a light-only update\n\nWhere the geometry stands still the cone tracer's voxels and its shadow rays' BVH are "
+               "made once (`voxgi_vct_voxelize`, `voxgi_ray_scene_create`) and each image re-injects the light into them (`voxgi_vct_desc.voxels`, "
+               "`.rays`): the same image, bit for bit. The tool's defaults (96^3, 24 cones, stride 6, anisotropic), the faster of two runs each."
+               "\n\n| scene | image, making both | image, both kept | saved | voxels and BVH made alone |\n|---|---:|---:|---:|---:|\n");
     for (si = 0; si < st->nscenes; si++) {
         const all_scene *sc = &st->scenes[si];
         if (!sc->have_update) continue;
