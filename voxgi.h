@@ -160,10 +160,11 @@
             with a scene origin (voxgi_mesh.positions_double, voxgi_scene.origin); full global
             illumination adds the geometric tail of the bounces still to come; a cone wider than
             its height above the surface strides by that height.
-     0.8.0  a static scene's light-only update (voxgi_vct_voxelize, voxgi_vct_desc.voxels: the
-            cone tracer re-injects the light into kept voxels); the line space's rays start past
-            their point's float rounding and run in the tree's centred frame (scenes far from the
-            origin in float).
+     0.8.0  a static scene's light-only update (voxgi_vct_voxelize, voxgi_vct_desc.voxels and
+            .rays: the cone tracer re-injects the light into kept voxels, its shadow rays walk a
+            kept BVH); the line space's rays start past their point's float rounding and run in
+            the tree's centred frame (scenes far from the origin in float); its rays on GL
+            (voxgi_linespace_occluded), and line spaces beyond a GL storage block in parts.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
