@@ -42,6 +42,23 @@ static void put_difference(char *cell, size_t size, const float *img, const floa
     else snprintf(cell, size, "%.2g", vxt_stiff_rel_diff(img, base, STIFF_PX));
 }
 
+/* The cell of the box scaled by each of two factors: "equal" when both images are the plain
+   one's, else the larger relative RMS difference. 0, or -1. */
+static int scaled_cell(voxgi_context *ctx, int m, const voxgi_builtin_scene *box, const double k[2], const float *base, char *cell)
+{
+    static float img[STIFF_PX];
+    double worst = 0;
+    int i, same = 1;
+    for (i = 0; i < 2; i++) {
+        if (placed_image(ctx, m, box, k[i], 0, img)) return -1;
+        same &= !memcmp(img, base, sizeof img);
+        worst = fmax(worst, vxt_stiff_rel_diff(img, base, STIFF_PX));
+    }
+    if (same) snprintf(cell, REPORT_STIFF_CELL, "equal");
+    else snprintf(cell, REPORT_STIFF_CELL, "%.2g", worst);
+    return 0;
+}
+
 /* Method m's row: each case's cell. 0, or CLI_EXIT_FAILURE with the library's error said. */
 static int stiff_row(cli_session *s, voxgi_context *ctx, int m, const voxgi_builtin_scene *box, const voxgi_builtin_scene *leak, report_stiff *out)
 {
@@ -51,24 +68,12 @@ static int stiff_row(cli_session *s, voxgi_context *ctx, int m, const voxgi_buil
     vxt_stiff_scene S;
     vxt_stiff_far far;
     voxgi_scene empty;
-    double worst = 0, mean;
+    double mean;
     size_t i, mi, off = 0;
-    int k, c, same = 1;
-    if (vxt_stiff_image(ctx, m, &box->scene, box->camera, base) != VOXGI_OK) return cli_fail_lib(s, ctx, vxt_stiff_methods[m]);
-    for (k = 0; k < 2; k++) { /* scaled by powers of two: exact */
-        if (placed_image(ctx, m, box, scale_exact[k], 0, img)) return cli_fail_lib(s, ctx, vxt_stiff_methods[m]);
-        same &= !memcmp(img, base, sizeof img);
-        worst = fmax(worst, vxt_stiff_rel_diff(img, base, STIFF_PX));
-    }
-    if (same) snprintf(cell[REPORT_STIFF_SCALE_EXACT], REPORT_STIFF_CELL, "equal");
-    else snprintf(cell[REPORT_STIFF_SCALE_EXACT], REPORT_STIFF_CELL, "%.2g", worst);
-    for (k = 0, worst = 0, same = 1; k < 2; k++) {
-        if (placed_image(ctx, m, box, scale_round[k], 0, img)) return cli_fail_lib(s, ctx, vxt_stiff_methods[m]);
-        same &= !memcmp(img, base, sizeof img);
-        worst = fmax(worst, vxt_stiff_rel_diff(img, base, STIFF_PX));
-    }
-    if (same) snprintf(cell[REPORT_STIFF_SCALE_ROUND], REPORT_STIFF_CELL, "equal");
-    else snprintf(cell[REPORT_STIFF_SCALE_ROUND], REPORT_STIFF_CELL, "%.2g", worst);
+    int k, c;
+    if (vxt_stiff_image(ctx, m, &box->scene, box->camera, base) != VOXGI_OK || scaled_cell(ctx, m, box, scale_exact, base, cell[REPORT_STIFF_SCALE_EXACT]) ||
+        scaled_cell(ctx, m, box, scale_round, base, cell[REPORT_STIFF_SCALE_ROUND]))
+        return cli_fail_lib(s, ctx, vxt_stiff_methods[m]);
     for (k = 0; k < 2; k++) {
         if (placed_image(ctx, m, box, 1, k ? 1e6 : 1e3, img)) return cli_fail_lib(s, ctx, vxt_stiff_methods[m]);
         put_difference(cell[k ? REPORT_STIFF_MOVED_FLOAT_FAR : REPORT_STIFF_MOVED_FLOAT], REPORT_STIFF_CELL, img, base);
