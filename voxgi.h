@@ -12627,12 +12627,15 @@ static void voxgi__screen_rows(void *user, size_t first, size_t end)
 
 #ifndef VOXGI_NO_GL
 /* Job J's rays at count points on GL (shaders/screen_rays.glsl, in float): the screen's G-buffer
-   and radiance, and each point's rotation and jitter drawn here as the CPU draws them. */
+   and radiance, and each point's rotation and jitter drawn here as the CPU draws them. Every
+   position goes up relative to the eye (subtracted in double): in float a scene far from the
+   origin would lose the differences the rays are made of (at 1e3 a coordinate rounds by 3e-5,
+   as much as the march's self-occlusion guard). */
 static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job *J, size_t count)
 {
     voxgi__gl *gl = ctx->gl;
     size_t pixels = (size_t)J->cam->width * (size_t)J->cam->height, i, per = J->radiance ? 3 : 1;
-    float *screen = NULL, *random = NULL;
+    float *screen = NULL, *random = NULL, *points = NULL;
     unsigned int buf[8] = {0, 0, 0, 0, 0, 0, 0, 0}, p;
     int a;
     voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_screen_rays);
@@ -12641,10 +12644,13 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
         return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu points or %lu pixels in one GL pass", (unsigned long)count, (unsigned long)pixels);
     screen = (float *)voxgi__alloc_array(ctx, pixels, 36, 1);
     random = (float *)voxgi__alloc_array(ctx, count ? count : 1, 12, 0);
-    if (!screen || !random) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the GL screen");
+    points = (float *)voxgi__alloc_array(ctx, count ? count : 1, 12, 0);
+    if (!screen || !random || !points) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the GL screen");
+    for (i = 0; r == VOXGI_OK && i < count; i++)
+        for (a = 0; a < 3; a++) points[3 * i + (size_t)a] = (float)((double)J->points[3 * i + (size_t)a] - J->eye[a]);
     for (i = 0; r == VOXGI_OK && i < pixels; i++)
         for (a = 0; a < 3; a++) {
-            screen[9 * i + (size_t)a] = J->pos[3 * i + (size_t)a];
+            screen[9 * i + (size_t)a] = (float)((double)J->pos[3 * i + (size_t)a] - J->eye[a]);
             screen[9 * i + 3 + (size_t)a] = J->nrm[3 * i + (size_t)a];
             if (J->radiance) screen[9 * i + 6 + (size_t)a] = J->radiance[3 * i + (size_t)a];
         }
@@ -12655,7 +12661,7 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
     }
     if (r == VOXGI_OK) {
         p = gl->prog_screen_rays;
-        buf[0] = voxgi__gl_buffer(ctx, count * 12, J->points);
+        buf[0] = voxgi__gl_buffer(ctx, count * 12, points);
         buf[1] = voxgi__gl_buffer(ctx, count * 12, J->normals);
         buf[2] = voxgi__gl_buffer(ctx, count * 4 * per, NULL);
         buf[3] = voxgi__gl_buffer(ctx, pixels * 36, screen);
@@ -12667,10 +12673,11 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
         gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, J->O ? J->O->levels : 0);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_hierarchical, J->hierarchical);
         if (J->grid) {
-            gl->ProgramUniform3f(p, VOXGI__LOC_u_origin, (float)J->grid->origin[0], (float)J->grid->origin[1], (float)J->grid->origin[2]);
+            gl->ProgramUniform3f(p, VOXGI__LOC_u_origin, (float)(J->grid->origin[0] - J->eye[0]), (float)(J->grid->origin[1] - J->eye[1]),
+                                 (float)(J->grid->origin[2] - J->eye[2]));
             gl->ProgramUniform1f(p, VOXGI__LOC_u_voxel_size, (float)J->grid->voxel_size);
         }
-        gl->ProgramUniform3f(p, VOXGI__LOC_u_eye, (float)J->eye[0], (float)J->eye[1], (float)J->eye[2]);
+        gl->ProgramUniform3f(p, VOXGI__LOC_u_eye, 0.0f, 0.0f, 0.0f); /* the frame's origin */
         gl->ProgramUniform3f(p, VOXGI__LOC_u_forward, (float)J->forward[0], (float)J->forward[1], (float)J->forward[2]);
         gl->ProgramUniform3f(p, VOXGI__LOC_u_right, (float)J->right[0], (float)J->right[1], (float)J->right[2]);
         gl->ProgramUniform3f(p, VOXGI__LOC_u_up, (float)J->up[0], (float)J->up[1], (float)J->up[2]);
@@ -12692,6 +12699,7 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
     }
     voxgi__free(ctx, screen);
     voxgi__free(ctx, random);
+    voxgi__free(ctx, points);
     return r;
 }
 #endif
