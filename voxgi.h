@@ -164,7 +164,8 @@
             .rays: the cone tracer re-injects the light into kept voxels, its shadow rays walk a
             kept BVH); the line space's rays start past their point's float rounding and run in
             the tree's centred frame (scenes far from the origin in float); its rays on GL
-            (voxgi_linespace_occluded), and line spaces beyond a GL storage block in parts.
+            (voxgi_linespace_occluded), and line spaces beyond a GL storage block in parts; GL's
+            screen-space rays relative to the eye.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
