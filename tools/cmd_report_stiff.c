@@ -124,32 +124,13 @@ static int stiff_row(cli_session *s, voxgi_context *ctx, int m, const voxgi_buil
    tracer and the cone tracer with every bounce, against 1 / (1 - albedo). 0, or CLI_EXIT_FAILURE. */
 static int stiff_furnace(cli_session *s, voxgi_context *ctx, report_stiff *out)
 {
-    static float img[STIFF_PX];
     static const float albedo[2] = {0.5f, 0.999f};
     voxgi_builtin_scene fu;
-    vxt_stiff_scene S;
     int k, rc = 0;
-    size_t mi;
     if (voxgi_builtin_scene_create(ctx, "furnace", &fu) != VOXGI_OK) return cli_fail_lib(s, ctx, "furnace");
     for (k = 0; k < 2 && rc == 0; k++) {
-        voxgi_reference_desc rd;
-        voxgi_vct_desc vd;
-        vxt_stiff_add(&S, &fu.scene, NULL, 0, 0);
-        for (mi = 0; mi < S.scene.material_count; mi++) S.mats[mi].albedo[0] = S.mats[mi].albedo[1] = S.mats[mi].albedo[2] = albedo[k];
         out->furnace_albedo[k] = albedo[k];
-        memset(&rd, 0, sizeof rd);
-        rd.camera = fu.camera;
-        rd.camera.width = rd.camera.height = VXT_STIFF_IMG;
-        rd.samples = 4;
-        rd.bounces = -1;
-        rd.seed = 1;
-        memset(&vd, 0, sizeof vd);
-        vd.camera = rd.camera;
-        vd.resolution = 32;
-        vd.samples = 4;
-        vd.bounces = -1;
-        if (voxgi_reference_render(ctx, &S.scene, &rd, img, sizeof img, NULL) != VOXGI_OK || !vxt_stiff_finite(img, STIFF_PX, &out->furnace[k][0]) ||
-            voxgi_vct_render(ctx, &S.scene, &vd, img, sizeof img, NULL) != VOXGI_OK || !vxt_stiff_finite(img, STIFF_PX, &out->furnace[k][1]))
+        if (vxt_stiff_furnace(ctx, &fu, albedo[k], 0, &out->furnace[k][0]) != VOXGI_OK || vxt_stiff_furnace(ctx, &fu, albedo[k], 1, &out->furnace[k][1]) != VOXGI_OK)
             rc = cli_fail_lib(s, ctx, "the furnace");
     }
     voxgi_builtin_scene_destroy(ctx, &fu);

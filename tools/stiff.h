@@ -227,6 +227,39 @@ static inline int vxt_stiff_add(vxt_stiff_scene *S, const voxgi_scene *base, con
     return 1;
 }
 
+/* The mean radiance of the furnace `fu` (a closed sphere of emission 1 seen from inside) with
+   every material's albedo `albedo`, 16 x 16 through its camera, every bounce: the path tracer's
+   (4 samples per pixel, seed 1) or, with vct, the cone tracer's (32^3); NAN where a value is not
+   finite. */
+static inline voxgi_result vxt_stiff_furnace(voxgi_context *ctx, const voxgi_builtin_scene *fu, float albedo, int vct, double *mean)
+{
+    const size_t n = 3 * VXT_STIFF_IMG * VXT_STIFF_IMG;
+    float *img = (float *)malloc(n * sizeof(float));
+    vxt_stiff_scene S;
+    voxgi_camera cam = fu->camera;
+    voxgi_result r = VOXGI_ERR_OUT_OF_MEMORY;
+    size_t mi;
+    *mean = NAN;
+    cam.width = cam.height = VXT_STIFF_IMG;
+    if (img && vxt_stiff_add(&S, &fu->scene, NULL, 0, 0)) {
+        for (mi = 0; mi < S.scene.material_count; mi++) S.mats[mi].albedo[0] = S.mats[mi].albedo[1] = S.mats[mi].albedo[2] = albedo;
+        if (vct) {
+            voxgi_vct_desc d;
+            memset(&d, 0, sizeof d);
+            d.camera = cam; d.resolution = 32; d.samples = 4; d.bounces = -1;
+            r = voxgi_vct_render(ctx, &S.scene, &d, img, n * sizeof(float), NULL);
+        } else {
+            voxgi_reference_desc d;
+            memset(&d, 0, sizeof d);
+            d.camera = cam; d.samples = 4; d.bounces = -1; d.seed = 1;
+            r = voxgi_reference_render(ctx, &S.scene, &d, img, n * sizeof(float), NULL);
+        }
+        if (r == VOXGI_OK && !vxt_stiff_finite(img, n, mean)) *mean = NAN;
+    }
+    free(img);
+    return r;
+}
+
 /* Degenerate triangles for the Cornell box (its unit frame): a segment and two points (no area),
    then a needle (0.3 long, 1e-7 wide) and a sliver (1e-9 off a line). */
 static const float vxt_stiff_degenerate[9 * 5] = {
