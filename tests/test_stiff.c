@@ -1,7 +1,9 @@
 /* Stiff and extreme input, one test per case, each with what is expected (docs/stiff-cases.md
-   has the table): a large world through double positions; every method's image under scaling;
-   degenerate, needle and sliver triangles; an empty scene; the furnace at albedo 0 to 0.999;
-   emission over twelve orders; lights outside a closed box. */
+   has the table; the scenes and the methods' small settings are tools/stiff.h's, which `voxgi
+   report stiff` measures too): a large world through double positions; every method's image
+   under scaling and moved in float; degenerate, needle and sliver triangles; an empty scene; the
+   furnace at albedo 0 to 0.999; emission over twelve orders; lights outside a closed box;
+   resolutions 1 to 2048; a million triangles. */
 #include "../voxgi.h"
 #include "fixtures.h"
 #include "../tools/stiff.h"
