@@ -13061,6 +13061,8 @@ struct voxgi_linespace {
     float half, scale;            /* the root cube's half edge, and n / its edge: the root's frame from the centre */
     float leaf_edge;              /* a leaf's edge in the root's frame (fast mode's exact zone at a segment's ends counts them) */
     size_t words_per_space;
+    uint32_t pair_bit[6][6][3];   /* the ray entering by face fs and leaving by fe at patches ps, pe reads bit
+                                     [fs][fe][0] + ps x [1] + pe x [2] of a line space (each unordered pair once) */
     unsigned int gl[VOXGI__LS_GL_BUFFERS]; /* made on a GL context: node, bits, leaf, tris, tv and the bits' further parts as storage
                                      buffers (VOXGI__LS_GL_BUFFERS) */
 };
@@ -13392,6 +13394,12 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     L->half = (float)(0.5 * L->info.size);
     L->leaf_edge = (float)(1 / pow(n, depth - 1));
     L->scale = (float)(n / L->info.size);
+    for (i = 0; i < 36; i++) {
+        int fs = (int)i / 6, fe = (int)i % 6, n2 = n * n;
+        L->pair_bit[fs][fe][0] = fs == fe ? 0 : (uint32_t)voxgi__ls_bit(n, fs, 0, fe, 0);
+        L->pair_bit[fs][fe][1] = (uint32_t)(fs < fe ? n2 : 1);
+        L->pair_bit[fs][fe][2] = (uint32_t)(fs < fe ? 1 : n2);
+    }
     if (f.triangle_count >= UINT32_MAX) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles", (unsigned long)f.triangle_count);
     else if (36 * f.triangle_count > budget) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu triangles need %lu bytes, over the budget of %lu", (unsigned long)f.triangle_count,
                                                            (unsigned long)(36 * f.triangle_count), (unsigned long)budget);
@@ -13661,14 +13669,15 @@ static VOXGI__HOT_INLINE int voxgi__ls_leaf_hit(const voxgi_linespace *L, uint32
     return 0;
 }
 
-/* The patch of the face of `axis` (which of its two faces the caller knows) where the ray (o, d
-   in the node's frame) meets it at t. */
-static VOXGI__HOT_INLINE int voxgi__ls_patch_at(int n, const float o[3], const float d[3], float t, int axis)
+/* The axes after a (u = [a], w = [a + 1]): a face's patch (i, j) runs i along u, j along w. */
+static const int voxgi__ls_axis_after[5] = {1, 2, 0, 1, 2};
+
+/* The row of the patch of the face of `axis` (which of its two faces the caller knows) where the
+   ray (o, d in the node's frame) meets it at t: its column along one axis after it. */
+static VOXGI__HOT_INLINE int voxgi__ls_patch_row(int n, const float o[3], const float d[3], float t, int axis)
 {
-    int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    float pu = o[u] + t * d[u], pw = o[w] + t * d[w];
-    int i = pu < 1 ? 0 : (pu >= (float)(n - 1) ? n - 1 : (int)pu), j = pw < 1 ? 0 : (pw >= (float)(n - 1) ? n - 1 : (int)pw);
-    return i * n + j;
+    float p = o[axis] + t * d[axis];
+    return p < 1 ? 0 : (p >= (float)(n - 1) ? n - 1 : (int)p);
 }
 
 /* The bit of line space `space` for the ray (o, d in the node's frame) entering at ta by a face
@@ -13676,53 +13685,66 @@ static VOXGI__HOT_INLINE int voxgi__ls_patch_at(int n, const float o[3], const f
 static VOXGI__HOT_INLINE int voxgi__ls_crossing_bit(const voxgi_linespace *L, uint32_t space, const float o[3], const float d[3], float ta, float tb, int ea, int xa,
                                   voxgi__ls_counts *cnt)
 {
-    int n = L->info.n;
-    size_t bit = voxgi__ls_bit(n, 2 * ea + (d[ea] < 0), voxgi__ls_patch_at(n, o, d, ta, ea), 2 * xa + (d[xa] > 0), voxgi__ls_patch_at(n, o, d, tb, xa));
+    const int n = L->info.n;
+    const uint32_t *pair = L->pair_bit[2 * ea + (d[ea] < 0)][2 * xa + (d[xa] > 0)];
+    uint32_t ps = (uint32_t)(voxgi__ls_patch_row(n, o, d, ta, voxgi__ls_axis_after[ea]) * n + voxgi__ls_patch_row(n, o, d, ta, voxgi__ls_axis_after[ea + 1]));
+    uint32_t pe = (uint32_t)(voxgi__ls_patch_row(n, o, d, tb, voxgi__ls_axis_after[xa]) * n + voxgi__ls_patch_row(n, o, d, tb, voxgi__ls_axis_after[xa + 1]));
+    uint32_t bit = pair[0] + ps * pair[1] + pe * pair[2];
     cnt->bits++;
     return (int)((L->bits[(size_t)space * L->words_per_space + (bit >> 5)] >> (bit & 31)) & 1);
 }
 
-/* Where the ray (o, d, in a frame) is inside the box [lo, hi]^3 of that frame, closed: 0 if
-   nowhere, else its t range and the axes of the faces it enters (ea) and leaves (xa) by; an axis
-   the ray runs along (d 0) is never one of them. */
-static VOXGI__HOT_INLINE int voxgi__ls_slab(const float o[3], const float d[3], const float lo[3], const float hi[3], float *ta, float *tb, int *ea, int *xa)
+/* Where the ray (o, d, in a frame; inv = 1 / d) is inside the box [lo, hi]^3 of that frame,
+   closed: 0 if nowhere, else its t range and the axes of the faces it enters (ea) and leaves (xa)
+   by; an axis the ray runs along (d 0) is never one of them. */
+static VOXGI__HOT_INLINE int voxgi__ls_slab_inv(const float o[3], const float d[3], const float inv[3], const float lo[3], const float hi[3], float *ta, float *tb,
+                                                int *ea, int *xa)
 {
-    int a;
-    *ta = -INFINITY;
-    *tb = INFINITY;
-    *ea = *xa = -1;
+    float t_in = -INFINITY, t_out = INFINITY;
+    int a, e = -1, x = -1;
     for (a = 0; a < 3; a++) {
-        float inv, tn, tf;
+        float tn, tf;
         if (d[a] == 0) {
             if (o[a] < lo[a] || o[a] > hi[a]) return 0;
             continue;
         }
-        inv = 1.0f / d[a];
-        tn = ((d[a] > 0 ? lo[a] : hi[a]) - o[a]) * inv;
-        tf = ((d[a] > 0 ? hi[a] : lo[a]) - o[a]) * inv;
-        if (tn > *ta) { *ta = tn; *ea = a; }
-        if (tf < *tb) { *tb = tf; *xa = a; }
+        tn = ((d[a] > 0 ? lo[a] : hi[a]) - o[a]) * inv[a];
+        tf = ((d[a] > 0 ? hi[a] : lo[a]) - o[a]) * inv[a];
+        if (tn > t_in) { t_in = tn; e = a; }
+        if (tf < t_out) { t_out = tf; x = a; }
     }
-    return *ta <= *tb;
+    *ta = t_in;
+    *tb = t_out;
+    *ea = e;
+    *xa = x;
+    return t_in <= t_out;
 }
 
-/* A split node the DDA walks: the ray in its frame, the child it is in, where that child was
-   entered (t and the axis of the face, -1 where the segment starts in it), the node's exit. */
+static VOXGI__HOT_INLINE int voxgi__ls_slab(const float o[3], const float d[3], const float lo[3], const float hi[3], float *ta, float *tb, int *ea, int *xa)
+{
+    const float inv[3] = {1.0f / d[0], 1.0f / d[1], 1.0f / d[2]};
+    return voxgi__ls_slab_inv(o, d, inv, lo, hi, ta, tb, ea, xa);
+}
+
+/* A split node the DDA walks: the ray in its frame (its direction and 1 / direction are its
+   level's), the child it is in, where that child was entered (t and the axis of the face, -1 where
+   the segment starts in it), the node's exit. */
 typedef struct voxgi__ls_level {
-    uint32_t node;
-    float o[3], d[3], inv[3], next[3]; /* next: t where the ray leaves the current child along each axis */
+    uint32_t first;               /* the node's first child */
+    int child;                    /* the current one among them, (z n + y) n + x */
+    float o[3], next[3];          /* next: t where the ray leaves the current child along each axis */
     int cell[3];
     float t, t_out;
     int entry_axis, exit_axis;    /* exit_axis -1: the segment ends in the node */
 } voxgi__ls_level;
 
-/* Level s walks `node` (its frame o, d) from ta (entered by a face of axis ea, or -1) to tb (left
-   by axis xa, or -1). */
-static VOXGI__HOT_INLINE void voxgi__ls_level_start(voxgi__ls_level *s, int n, uint32_t node, const float o[3], const float d[3], const float inv[3], float ta, float tb,
-                                  int ea, int xa)
+/* Level s walks the node whose children start at `first` (its frame o, d, inv = 1 / d; up[a]: d[a]
+   > 0) from ta (entered by a face of axis ea, or -1) to tb (left by axis xa, or -1). */
+static VOXGI__HOT_INLINE void voxgi__ls_level_start(voxgi__ls_level *s, int n, const int up[3], uint32_t first, const float o[3], const float d[3], const float inv[3],
+                                  float ta, float tb, int ea, int xa)
 {
     int a;
-    s->node = node;
+    s->first = first;
     s->t = ta;
     s->t_out = tb;
     s->entry_axis = ea;
@@ -13730,11 +13752,10 @@ static VOXGI__HOT_INLINE void voxgi__ls_level_start(voxgi__ls_level *s, int n, u
     for (a = 0; a < 3; a++) {
         float p = o[a] + ta * d[a];
         s->o[a] = o[a];
-        s->d[a] = d[a];
-        s->inv[a] = inv[a]; /* 1 / d: +-inf for 0, never used (next is inf) */
         s->cell[a] = p < 1 ? 0 : (p >= (float)(n - 1) ? n - 1 : (int)p);
-        s->next[a] = d[a] == 0 ? INFINITY : ((float)(s->cell[a] + (d[a] > 0)) - o[a]) * s->inv[a];
+        s->next[a] = d[a] == 0 ? INFINITY : ((float)(s->cell[a] + up[a]) - o[a]) * inv[a]; /* inv: +-inf for 0, never used */
     }
+    s->child = (s->cell[2] * n + s->cell[1]) * n + s->cell[0];
 }
 
 /* Whether the ray meets a triangle (exact) or, in fast mode, a set bit of the last line-space
@@ -13744,11 +13765,11 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
     voxgi__ls_level st[8];
     voxgi__ls_mailbox mb;
     float lv_d[8][3], lv_inv[8][3]; /* every node of a level has the same direction in its frame */
-    int levels = 1, a;
+    int levels = 1, a, up[3], step[3], child_step[3];
     const int n = L->info.n, depth = L->info.depth;
     const float lo[3] = {0, 0, 0}, hi[3] = {(float)n, (float)n, (float)n};
     float ta, tb;
-    int ea, xa, top = 0;
+    int ea, xa, top = 0, blocked = 0;
     if (L->node[0] == UINT32_MAX || !voxgi__ls_slab(r->o, r->d, lo, hi, &ta, &tb, &ea, &xa)) return 0; /* an empty scene, or outside */
     if (ta <= r->t0) { ta = r->t0; ea = -1; }
     if (tb >= r->t1) { tb = r->t1; xa = -1; }
@@ -13760,54 +13781,59 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
     }
     memset(&mb, 0xFF, sizeof mb.id);
     mb.next = 0;
-    for (a = 0; a < 3; a++) {
+    for (a = 0; a < 3; a++) { /* the signs are every level's */
         lv_d[0][a] = r->d[a];
         lv_inv[0][a] = 1.0f / r->d[a];
+        up[a] = r->d[a] > 0;
+        step[a] = up[a] ? 1 : -1;
+        child_step[a] = step[a] * (a == 0 ? 1 : (a == 1 ? n : n * n));
     }
-    voxgi__ls_level_start(&st[0], n, 0, r->o, lv_d[0], lv_inv[0], ta, tb, ea, xa);
+    voxgi__ls_level_start(&st[0], n, up, L->node[0], r->o, lv_d[0], lv_inv[0], ta, tb, ea, xa);
     for (;;) {
         voxgi__ls_level *s = &st[top];
         uint32_t child, first, other;
         float ca = s->t, cb, co[3];
-        int m = 0, c[3];
+        int m, c[3];
         if (!(ca <= s->t_out)) { /* this node is done */
-            if (--top < 0) return 0;
+            if (--top < 0) break;
             continue;
         }
-        if (s->next[1] < s->next[m]) m = 1;
+        m = s->next[1] < s->next[0];
         if (s->next[2] < s->next[m]) m = 2;
         cb = s->next[m];
         if (cb >= s->t_out) { cb = s->t_out; xa = s->exit_axis; }
         else xa = m;
         ea = s->entry_axis;
-        memcpy(c, s->cell, sizeof c);
-        s->cell[m] += s->d[m] > 0 ? 1 : -1; /* on to the next child */
-        s->next[m] = ((float)(s->cell[m] + (s->d[m] > 0)) - s->o[m]) * s->inv[m];
+        c[0] = s->cell[0]; c[1] = s->cell[1]; c[2] = s->cell[2];
+        child = s->first + (uint32_t)s->child;
+        s->cell[m] += step[m]; /* on to the next child */
+        s->child += child_step[m];
+        s->next[m] = ((float)(s->cell[m] + up[m]) - s->o[m]) * lv_inv[top][m];
         s->entry_axis = m;
-        s->t = (cb == s->t_out || s->cell[m] < 0 || s->cell[m] >= n) ? INFINITY : cb;
-        child = L->node[2 * s->node] + (uint32_t)((c[2] * n + c[1]) * n + c[0]);
+        s->t = (cb == s->t_out || (unsigned)s->cell[m] >= (unsigned)n) ? INFINITY : cb;
         first = L->node[2 * (size_t)child];
         other = L->node[2 * (size_t)child + 1];
         if (first == UINT32_MAX) { /* a leaf or empty */
-            if (other != UINT32_MAX && voxgi__ls_leaf_hit(L, other, r, &mb, cnt)) return 1;
+            if (other != UINT32_MAX && voxgi__ls_leaf_hit(L, other, r, &mb, cnt)) { blocked = 1; break; }
             continue;
         }
         cnt->nodes++;
         for (a = 0; a < 3; a++) co[a] = (s->o[a] - (float)c[a]) * (float)n;
         if (levels == top + 1) { /* the first node of this level: its direction */
             for (a = 0; a < 3; a++) {
-                lv_d[levels][a] = s->d[a] * (float)n;
+                lv_d[levels][a] = lv_d[top][a] * (float)n;
                 lv_inv[levels][a] = 1.0f / lv_d[levels][a];
             }
             levels++;
         }
         if (ea >= 0 && xa >= 0) { /* crossed face to face: its line space */
             if (!voxgi__ls_crossing_bit(L, other, co, lv_d[top + 1], ca, cb, ea, xa, cnt)) continue;
-            if (fast && top + 2 == depth && ca >= r->tn0 && cb <= r->tn1) return 1;
+            if (fast && top + 2 == depth && ca >= r->tn0 && cb <= r->tn1) { blocked = 1; break; }
         }
         top++;
-        voxgi__ls_level_start(&st[top], n, child, co, lv_d[top], lv_inv[top], ca, cb, ea, xa);
+        voxgi__ls_level_start(&st[top], n, up, first, co, lv_d[top], lv_inv[top], ca, cb, ea, xa);
     }
+    return blocked;
 }
 
 /* ----- packets: the rays from one point to the samples of a light walk each node together,
@@ -13824,6 +13850,7 @@ typedef struct voxgi__ls_packet {
     int count, fast, k;           /* k: the slices' axis, along which every ray goes the same way */
     float rlo[3], rhi[3];         /* the range of d[a] / d[k] over the rays (every frame's) */
     float d[9][3][VOXGI__LS_PACKET]; /* per level the rays' directions in its frame (split nodes' levels 0..7, and their children's) */
+    float inv[8][3][VOXGI__LS_PACKET]; /* 1 / d of the split nodes' levels */
     uint64_t blocked;
     voxgi__ls_mailbox mb[VOXGI__LS_PACKET];
     voxgi__ls_counts *cnt;
@@ -13887,9 +13914,12 @@ static void voxgi__ls_packet_node(voxgi__ls_packet *P, uint32_t node, int level,
                 if (first != UINT32_MAX) P->cnt->nodes++;
                 for (m = active & ~P->blocked; m; m &= m - 1) {
                     int r = voxgi__ctz64(m), ea, xa, a;
-                    float ta, tb, d[3], cd[3];
-                    for (a = 0; a < 3; a++) d[a] = P->d[level][a][r];
-                    if (!voxgi__ls_slab(o, d, lo, hi, &ta, &tb, &ea, &xa)) continue;
+                    float ta, tb, d[3], inv[3], cd[3];
+                    for (a = 0; a < 3; a++) {
+                        d[a] = P->d[level][a][r];
+                        inv[a] = P->inv[level][a][r];
+                    }
+                    if (!voxgi__ls_slab_inv(o, d, inv, lo, hi, &ta, &tb, &ea, &xa)) continue;
                     if (ta <= sp->ta[r]) { ta = sp->ta[r]; ea = sp->ea[r]; }
                     if (tb >= sp->tb[r]) { tb = sp->tb[r]; xa = sp->xa[r]; }
                     if (ta > tb) continue;
@@ -13968,6 +13998,7 @@ static uint64_t voxgi__ls_trace_packet(const voxgi_linespace *L, const voxgi__ls
         for (a = 0; a < 3; a++) {
             P->d[0][a][r] = ray[r].d[a];
             for (lev = 1; lev < L->info.depth; lev++) P->d[lev][a][r] = P->d[lev - 1][a][r] * (float)n;
+            for (lev = 0; lev < L->info.depth; lev++) P->inv[lev][a][r] = 1.0f / P->d[lev][a][r];
         }
         in |= (uint64_t)1 << r;
     }
