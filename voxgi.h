@@ -13676,17 +13676,28 @@ static const int voxgi__ls_axis_after[5] = {1, 2, 0, 1, 2};
    ray (o, d in the node's frame) meets it at t: its column along one axis after it. */
 static VOXGI__HOT_INLINE int voxgi__ls_patch_row(int n, const float o[3], const float d[3], float t, int axis)
 {
-    float p = o[axis] + t * d[axis];
-    return p < 1 ? 0 : (p >= (float)(n - 1) ? n - 1 : (int)p);
+    int i = (int)(o[axis] + t * d[axis]); /* within the node's frame, [0, n] give or take rounding: no overflow */
+    return i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
+}
+
+/* The faces a ray going along d enters (in) and leaves (out) a box by, per axis: the face of axis a
+   at 0 is 2 a, at n 2 a + 1. */
+static VOXGI__HOT_INLINE void voxgi__ls_faces(const float d[3], int in[3], int out[3])
+{
+    int a;
+    for (a = 0; a < 3; a++) {
+        in[a] = 2 * a + (d[a] < 0);
+        out[a] = 2 * a + (d[a] > 0);
+    }
 }
 
 /* The bit of line space `space` for the ray (o, d in the node's frame) entering at ta by a face
-   of axis ea and leaving at tb by one of axis xa. */
-static VOXGI__HOT_INLINE int voxgi__ls_crossing_bit(const voxgi_linespace *L, uint32_t space, const float o[3], const float d[3], float ta, float tb, int ea, int xa,
-                                  voxgi__ls_counts *cnt)
+   of axis ea and leaving at tb by one of axis xa (in, out: its faces, voxgi__ls_faces). */
+static VOXGI__HOT_INLINE int voxgi__ls_crossing_bit(const voxgi_linespace *L, uint32_t space, const float o[3], const float d[3], const int in[3], const int out[3],
+                                                    float ta, float tb, int ea, int xa, voxgi__ls_counts *cnt)
 {
     const int n = L->info.n;
-    const uint32_t *pair = L->pair_bit[2 * ea + (d[ea] < 0)][2 * xa + (d[xa] > 0)];
+    const uint32_t *pair = L->pair_bit[in[ea]][out[xa]];
     uint32_t ps = (uint32_t)(voxgi__ls_patch_row(n, o, d, ta, voxgi__ls_axis_after[ea]) * n + voxgi__ls_patch_row(n, o, d, ta, voxgi__ls_axis_after[ea + 1]));
     uint32_t pe = (uint32_t)(voxgi__ls_patch_row(n, o, d, tb, voxgi__ls_axis_after[xa]) * n + voxgi__ls_patch_row(n, o, d, tb, voxgi__ls_axis_after[xa + 1]));
     uint32_t bit = pair[0] + ps * pair[1] + pe * pair[2];
@@ -13758,14 +13769,27 @@ static VOXGI__HOT_INLINE void voxgi__ls_level_start(voxgi__ls_level *s, int n, c
     s->child = (s->cell[2] * n + s->cell[1]) * n + s->cell[0];
 }
 
+/* Level s's ray steps across the next plane of axis a (t: what it returns) into the next child:
+   s->t is that t, or infinity where the node ends there. */
+static VOXGI__HOT_INLINE float voxgi__ls_advance(voxgi__ls_level *s, int a, int n, const int up[3], const int step[3], const int child_step[3], const float inv[3])
+{
+    float t = s->next[a];
+    s->cell[a] += step[a];
+    s->child += child_step[a];
+    s->next[a] = ((float)(s->cell[a] + up[a]) - s->o[a]) * inv[a];
+    s->entry_axis = a;
+    s->t = (unsigned)s->cell[a] >= (unsigned)n ? INFINITY : t;
+    return t;
+}
+
 /* Whether the ray meets a triangle (exact) or, in fast mode, a set bit of the last line-space
    level: the per-ray walk, each node's children in the order the ray meets them (3D DDA). */
 static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int fast, voxgi__ls_counts *cnt)
 {
-    voxgi__ls_level st[8];
+    voxgi__ls_level st[8], cur;   /* the levels above the one walked, and that one */
     voxgi__ls_mailbox mb;
     float lv_d[8][3], lv_inv[8][3]; /* every node of a level has the same direction in its frame */
-    int levels = 1, a, up[3], step[3], child_step[3];
+    int levels = 1, a, up[3], step[3], child_step[3], face_in[3], face_out[3];
     const int n = L->info.n, depth = L->info.depth;
     const float lo[3] = {0, 0, 0}, hi[3] = {(float)n, (float)n, (float)n};
     float ta, tb;
@@ -13776,11 +13800,13 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
     if (ta > tb) return 0;
     cnt->nodes++;
     if (ea >= 0 && xa >= 0) { /* through the root */
-        if (!voxgi__ls_crossing_bit(L, L->node[1], r->o, r->d, ta, tb, ea, xa, cnt)) return 0;
+        voxgi__ls_faces(r->d, face_in, face_out);
+        if (!voxgi__ls_crossing_bit(L, L->node[1], r->o, r->d, face_in, face_out, ta, tb, ea, xa, cnt)) return 0;
         if (fast && depth == 1 && ta >= r->tn0 && tb <= r->tn1) return 1;
     }
     memset(&mb, 0xFF, sizeof mb.id);
     mb.next = 0;
+    voxgi__ls_faces(r->d, face_in, face_out);
     for (a = 0; a < 3; a++) { /* the signs are every level's */
         lv_d[0][a] = r->d[a];
         lv_inv[0][a] = 1.0f / r->d[a];
@@ -13788,29 +13814,27 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
         step[a] = up[a] ? 1 : -1;
         child_step[a] = step[a] * (a == 0 ? 1 : (a == 1 ? n : n * n));
     }
-    voxgi__ls_level_start(&st[0], n, up, L->node[0], r->o, lv_d[0], lv_inv[0], ta, tb, ea, xa);
+    voxgi__ls_level_start(&cur, n, up, L->node[0], r->o, lv_d[0], lv_inv[0], ta, tb, ea, xa);
     for (;;) {
-        voxgi__ls_level *s = &st[top];
         uint32_t child, first, other;
-        float ca = s->t, cb, co[3];
-        int m, c[3];
-        if (!(ca <= s->t_out)) { /* this node is done */
+        float ca = cur.t, cb, co[3];
+        int c[3];
+        if (!(ca <= cur.t_out)) { /* this node is done */
             if (--top < 0) break;
+            cur = st[top];
             continue;
         }
-        m = s->next[1] < s->next[0];
-        if (s->next[2] < s->next[m]) m = 2;
-        cb = s->next[m];
-        if (cb >= s->t_out) { cb = s->t_out; xa = s->exit_axis; }
-        else xa = m;
-        ea = s->entry_axis;
-        c[0] = s->cell[0]; c[1] = s->cell[1]; c[2] = s->cell[2];
-        child = s->first + (uint32_t)s->child;
-        s->cell[m] += step[m]; /* on to the next child */
-        s->child += child_step[m];
-        s->next[m] = ((float)(s->cell[m] + up[m]) - s->o[m]) * lv_inv[top][m];
-        s->entry_axis = m;
-        s->t = (cb == s->t_out || (unsigned)s->cell[m] >= (unsigned)n) ? INFINITY : cb;
+        c[0] = cur.cell[0]; c[1] = cur.cell[1]; c[2] = cur.cell[2];
+        child = cur.first + (uint32_t)cur.child;
+        ea = cur.entry_axis;
+        /* on to the next child, across the nearest of the three planes (each axis spelt out, so the
+           level stays in registers) */
+        if (cur.next[1] < cur.next[0]) xa = cur.next[2] < cur.next[1] ? 2 : 1;
+        else xa = cur.next[2] < cur.next[0] ? 2 : 0;
+        if (xa == 0) cb = voxgi__ls_advance(&cur, 0, n, up, step, child_step, lv_inv[top]);
+        else if (xa == 1) cb = voxgi__ls_advance(&cur, 1, n, up, step, child_step, lv_inv[top]);
+        else cb = voxgi__ls_advance(&cur, 2, n, up, step, child_step, lv_inv[top]);
+        if (cb >= cur.t_out) { cb = cur.t_out; xa = cur.exit_axis; cur.t = INFINITY; }
         first = L->node[2 * (size_t)child];
         other = L->node[2 * (size_t)child + 1];
         if (first == UINT32_MAX) { /* a leaf or empty */
@@ -13818,7 +13842,7 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
             continue;
         }
         cnt->nodes++;
-        for (a = 0; a < 3; a++) co[a] = (s->o[a] - (float)c[a]) * (float)n;
+        for (a = 0; a < 3; a++) co[a] = (cur.o[a] - (float)c[a]) * (float)n;
         if (levels == top + 1) { /* the first node of this level: its direction */
             for (a = 0; a < 3; a++) {
                 lv_d[levels][a] = lv_d[top][a] * (float)n;
@@ -13827,11 +13851,11 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
             levels++;
         }
         if (ea >= 0 && xa >= 0) { /* crossed face to face: its line space */
-            if (!voxgi__ls_crossing_bit(L, other, co, lv_d[top + 1], ca, cb, ea, xa, cnt)) continue;
+            if (!voxgi__ls_crossing_bit(L, other, co, lv_d[top + 1], face_in, face_out, ca, cb, ea, xa, cnt)) continue;
             if (fast && top + 2 == depth && ca >= r->tn0 && cb <= r->tn1) { blocked = 1; break; }
         }
-        top++;
-        voxgi__ls_level_start(&st[top], n, up, first, co, lv_d[top], lv_inv[top], ca, cb, ea, xa);
+        st[top++] = cur;
+        voxgi__ls_level_start(&cur, n, up, first, co, lv_d[top], lv_inv[top], ca, cb, ea, xa);
     }
     return blocked;
 }
@@ -13928,8 +13952,10 @@ static void voxgi__ls_packet_node(voxgi__ls_packet *P, uint32_t node, int level,
                         continue;
                     }
                     if (ea >= 0 && xa >= 0) {
+                        int in[3], out[3];
                         for (a = 0; a < 3; a++) cd[a] = P->d[level + 1][a][r];
-                        if (!voxgi__ls_crossing_bit(L, other, co, cd, ta, tb, ea, xa, P->cnt)) continue;
+                        voxgi__ls_faces(cd, in, out);
+                        if (!voxgi__ls_crossing_bit(L, other, co, cd, in, out, ta, tb, ea, xa, P->cnt)) continue;
                         if (P->fast && level + 2 == L->info.depth && ta >= P->ray[r].tn0 && tb <= P->ray[r].tn1) { P->blocked |= (uint64_t)1 << r; continue; }
                     }
                     sub.ta[r] = ta;
@@ -13983,7 +14009,9 @@ static uint64_t voxgi__ls_trace_packet(const voxgi_linespace *L, const voxgi__ls
         }
         cnt->nodes++;
         if (ea >= 0 && xa >= 0) {
-            if (!voxgi__ls_crossing_bit(L, L->node[1], ray[r].o, ray[r].d, ta, tb, ea, xa, cnt)) continue;
+            int in[3], out[3];
+            voxgi__ls_faces(ray[r].d, in, out);
+            if (!voxgi__ls_crossing_bit(L, L->node[1], ray[r].o, ray[r].d, in, out, ta, tb, ea, xa, cnt)) continue;
             if (fast && L->info.depth == 1 && ta >= ray[r].tn0 && tb <= ray[r].tn1) { P->blocked |= (uint64_t)1 << r; continue; }
         }
         sp.ta[r] = ta;
