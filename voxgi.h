@@ -13794,7 +13794,8 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
     const float lo[3] = {0, 0, 0}, hi[3] = {(float)n, (float)n, (float)n};
     float ta, tb;
     int ea, xa, top = 0, blocked = 0;
-    if (L->node[0] == UINT32_MAX || !voxgi__ls_slab(r->o, r->d, lo, hi, &ta, &tb, &ea, &xa)) return 0; /* an empty scene, or outside */
+    for (a = 0; a < 3; a++) lv_inv[0][a] = 1.0f / r->d[a];
+    if (L->node[0] == UINT32_MAX || !voxgi__ls_slab_inv(r->o, r->d, lv_inv[0], lo, hi, &ta, &tb, &ea, &xa)) return 0; /* an empty scene, or outside */
     if (ta <= r->t0) { ta = r->t0; ea = -1; }
     if (tb >= r->t1) { tb = r->t1; xa = -1; }
     if (ta > tb) return 0;
@@ -13809,7 +13810,6 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
     voxgi__ls_faces(r->d, face_in, face_out);
     for (a = 0; a < 3; a++) { /* the signs are every level's */
         lv_d[0][a] = r->d[a];
-        lv_inv[0][a] = 1.0f / r->d[a];
         up[a] = r->d[a] > 0;
         step[a] = up[a] ? 1 : -1;
         child_step[a] = step[a] * (a == 0 ? 1 : (a == 1 ? n : n * n));
