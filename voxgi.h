@@ -13674,11 +13674,11 @@ static VOXGI__HOT_INLINE int voxgi__ls_leaf_hit(const voxgi_linespace *L, uint32
 /* The axes after a (u = [a], w = [a + 1]): a face's patch (i, j) runs i along u, j along w. */
 static const int voxgi__ls_axis_after[5] = {1, 2, 0, 1, 2};
 
-/* The row of the patch of the face of `axis` (which of its two faces the caller knows) where the
-   ray (o, d in the node's frame) meets it at t: its column along one axis after it. */
-static VOXGI__HOT_INLINE int voxgi__ls_patch_row(int n, const float o[3], const float d[3], float t, int axis)
+/* Where the ray (o, d in the node's frame) is at t, as a child's (or a face's patch's) index along
+   `axis`: clamped to [0, n - 1], as shaders/linespace.glsl's cell_of. */
+static VOXGI__HOT_INLINE int voxgi__ls_cell_at(int n, const float o[3], const float d[3], float t, int axis)
 {
-    int i = (int)(o[axis] + t * d[axis]); /* within the node's frame, [0, n] give or take rounding: no overflow */
+    int i = (int)(o[axis] + t * d[axis]); /* in [0, n] up to rounding (t lies within the node): no overflow */
     return i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
 }
 
@@ -13700,8 +13700,8 @@ static VOXGI__HOT_INLINE int voxgi__ls_crossing_bit(const voxgi_linespace *L, ui
 {
     const int n = L->info.n;
     const uint32_t *pair = L->pair_bit[in[ea]][out[xa]];
-    uint32_t ps = (uint32_t)(voxgi__ls_patch_row(n, o, d, ta, voxgi__ls_axis_after[ea]) * n + voxgi__ls_patch_row(n, o, d, ta, voxgi__ls_axis_after[ea + 1]));
-    uint32_t pe = (uint32_t)(voxgi__ls_patch_row(n, o, d, tb, voxgi__ls_axis_after[xa]) * n + voxgi__ls_patch_row(n, o, d, tb, voxgi__ls_axis_after[xa + 1]));
+    uint32_t ps = (uint32_t)(voxgi__ls_cell_at(n, o, d, ta, voxgi__ls_axis_after[ea]) * n + voxgi__ls_cell_at(n, o, d, ta, voxgi__ls_axis_after[ea + 1]));
+    uint32_t pe = (uint32_t)(voxgi__ls_cell_at(n, o, d, tb, voxgi__ls_axis_after[xa]) * n + voxgi__ls_cell_at(n, o, d, tb, voxgi__ls_axis_after[xa + 1]));
     uint32_t bit = pair[0] + ps * pair[1] + pe * pair[2];
     cnt->bits++;
     return (int)((L->bits[(size_t)space * L->words_per_space + (bit >> 5)] >> (bit & 31)) & 1);
@@ -13802,14 +13802,13 @@ static int voxgi__ls_trace(const voxgi_linespace *L, const voxgi__ls_ray *r, int
     if (tb >= r->t1) { tb = r->t1; xa = -1; }
     if (ta > tb) return 0;
     cnt->nodes++;
+    voxgi__ls_faces(r->d, face_in, face_out); /* every level's: the signs are */
     if (ea >= 0 && xa >= 0) { /* through the root */
-        voxgi__ls_faces(r->d, face_in, face_out);
         if (!voxgi__ls_crossing_bit(L, L->node[1], r->o, r->d, face_in, face_out, ta, tb, ea, xa, cnt)) return 0;
         if (fast && depth == 1 && ta >= r->tn0 && tb <= r->tn1) return 1;
     }
     memset(&mb, 0xFF, sizeof mb.id);
     mb.next = 0;
-    voxgi__ls_faces(r->d, face_in, face_out);
     for (a = 0; a < 3; a++) { /* the signs are every level's */
         lv_d[0][a] = r->d[a];
         up[a] = r->d[a] > 0;
