@@ -222,6 +222,8 @@ static int ls_mesh_open(cli_session *s, const char *path, int pixels, ls_mesh_sc
     M->meshes[1].index_count = 6;
     M->scene.meshes = M->meshes;
     M->scene.mesh_count = 2;
+    M->scene.materials = M->tm.scene.materials; /* the file's (the floor takes the first) */
+    M->scene.material_count = M->tm.scene.material_count;
     M->light[0] = c[0] - 0.25 * M->size; M->light[1] = hi[1] + 0.8 * M->size; M->light[2] = c[2] - 0.25 * M->size;
     M->light[5] = 0.5 * M->size; /* edge_u along z, edge_v along x: facing down */
     M->light[6] = 0.5 * M->size;
