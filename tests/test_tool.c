@@ -1023,13 +1023,21 @@ static void test_screen_reports(void)
     snprintf(path, sizeof path, "%s/ra/linespace.csv", tmpdir);
     rows = csv_rows(path, &front);
     TH_CHECK(rows == 8, "linespace.csv: %d rows", rows);
-    { /* a mesh with two materials on the floor */
+    { /* a mesh with two materials on the floor; the leak room, whose reference is black inside its box */
         char mesh[600];
         write_file("two.mtl", "newmtl a\nKd 0.8 0.2 0.2\nnewmtl b\nKd 0.2 0.8 0.2\n", path, sizeof path);
         write_file("two.obj", "mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl a\nf 1 3 2\nf 1 2 4\nusemtl b\nf 1 4 3\nf 2 3 4\n", mesh,
                    sizeof mesh);
-        snprintf(args, sizeof args, "report linespace --size 8 --ns 3 --depths 2 --scenes '' --meshes %s --out %s/rm", mesh, tmpdir);
+        snprintf(args, sizeof args, "report linespace --size 8 --spp 16 --ns 3 --depths 2 --samples 1 --supersample 1 --scenes leak-room --meshes %s --out %s/rm",
+                 mesh, tmpdir);
         TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "linespace.md"), "report linespace, a mesh with two materials: %s", out);
+        snprintf(path, sizeof path, "%s/rm/linespace.md", tmpdir);
+        memset(out, 0, sizeof out);
+        f = fopen(path, "r");
+        TH_CHECK(f && fread(out, 1, sizeof out - 1, f) > 0 && strstr(out, "| exact | ") && strstr(out, "| black | black | 0 |") && !strstr(out, "nan") &&
+                     strstr(out, "## two.obj on a floor (6 triangles)"),
+                 "linespace.md: the black reference or the mesh: %.2000s", out);
+        if (f) fclose(f);
     }
     TH_CHECK(run("report ao --rays 0 --out x", out, sizeof out) == 2 && run("report ssgi --blurs 65 --out x", out, sizeof out) == 2 &&
                  run("report ao --size 8 --out x", out, sizeof out) == 2 && run("report ssgi --radii 0 --out x", out, sizeof out) == 2,

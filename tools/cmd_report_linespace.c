@@ -28,6 +28,15 @@ typedef struct ls_args {
     int nns, ndepths, nsamples, nsuper, nends, size, spp;
 } ls_args;
 
+/* A relative error as a table's cell: "black" where the reference is (the error is relative to
+   nothing; the image's mean tells the rest). */
+static const char *error_cell(char *cell, size_t size, double e)
+{
+    if (isfinite(e)) snprintf(cell, size, "%.2f%%", 100 * e);
+    else snprintf(cell, size, "black");
+    return cell;
+}
+
 /* 4 x 4 block means of img and ref (3 floats per pixel), the blocks without a masked pixel: the
    relative RMSE of the means. */
 static double block_error(const cli_error_mask *m, const float *img, const float *ref)
@@ -119,8 +128,10 @@ static int ls_images(cli_session *s, voxgi_context *ctx, const ls_args *a, const
                     mae /= (double)pixels;
                     wrong /= (double)pixels;
                     if (md) {
-                        fprintf(md, "| %d | %d | %.2f | %.0f | %d | %d | %d | %s | %.1f | %.1f | %.2f%% | %.2f%% | %.4g |", td.n, td.depth, info.bytes / 1e6, info.ms,
-                                ss * ss, spl, ss * ss * spl, m ? "fast" : "exact", li.ms_shadows, li.ms - li.ms_build, 100 * err, 100 * blk, mean);
+                        char e1[32], e2[32];
+                        fprintf(md, "| %d | %d | %.2f | %.0f | %d | %d | %d | %s | %.1f | %.1f | %s | %s | %.4g |", td.n, td.depth, info.bytes / 1e6, info.ms,
+                                ss * ss, spl, ss * ss * spl, m ? "fast" : "exact", li.ms_shadows, li.ms - li.ms_build, error_cell(e1, sizeof e1, err),
+                                error_cell(e2, sizeof e2, blk), mean);
                         if (m) fprintf(md, " %d | %.4f | %.2f%% |\n", d.exact_ends, mae, 100 * wrong);
                         else fprintf(md, " | | |\n");
                     }
@@ -157,6 +168,7 @@ static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const 
     voxgi_builtin_scene bs;
     voxgi_camera cam;
     cli_reference R;
+    char ref_error[64] = "black";
     int rc = 1;
     memset(&R, 0, sizeof R);
     if (voxgi_builtin_scene_create(ctx, name, &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, name);
@@ -164,11 +176,12 @@ static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const 
     cam.width = cam.height = a->size;
     cli_status(s, "%s: the reference's direct light, %d spp", name, a->spp);
     if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R)) goto done;
-    fprintf(md, "\n## %s\n\n%d x %d pixels; the reference's direct light at %d spp (its error %.2f%% / sqrt(spp)); %lu pixels near an emitter left "
-                "out. *rel. RMSE*: the tools' rule; *4x4*: on 4 x 4 block means without a masked pixel. Fast mode against exact, the same samples: "
+    if (isfinite(R.c)) snprintf(ref_error, sizeof ref_error, "its error %.2f%% / sqrt(spp)", 100 * R.c);
+    fprintf(md, "\n## %s\n\n%d x %d pixels; the reference's direct light at %d spp (%s); %lu pixels near an emitter left "
+                "out. *rel. RMSE*: the tools' rule (*black*: the reference is, and the mean says the rest); *4x4*: on 4 x 4 block means without a masked pixel. Fast mode against exact, the same samples: "
                 "*MAE* of the pixels' visible share, *wrong*: the share of samples fast mode blocks where exact mode sees the light; *exact ends*: fast mode's "
                 "exact zone at each end of a ray, in leaves' edges.\n\n",
-            name, a->size, a->size, a->spp, 100 * R.c, (unsigned long)R.mask.masked_pixels);
+            name, a->size, a->size, a->spp, ref_error, (unsigned long)R.mask.masked_pixels);
     fprintf(md, "| n | depth | tree MB | build ms | points per pixel | samples | rays per pixel | mode | shadows ms | total ms | rel. RMSE | 4x4 | mean "
                 "| exact ends | MAE | wrong |\n|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     rc = ls_images(s, ctx, a, &bs.scene, name, &cam, &R, md, csv, NULL);
