@@ -1227,7 +1227,8 @@ VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *sc
 typedef struct voxgi_linespace voxgi_linespace;
 typedef struct voxgi_linespace_desc {
     int n;                        /* children per axis of a split node, 2..16; 0 = 4 */
-    int depth;                    /* levels below the root, 1..8 (the leaves' level); 0 = 3 */
+    int depth;                    /* levels below the root, 1..8 (the leaves' level); 0 = from the scene: 2 under 256
+                                     triangles, else 3 */
     size_t memory_budget;         /* bytes the tree, its line spaces and triangle lists may take; 0 = 1 GiB */
 } voxgi_linespace_desc;
 typedef struct voxgi_linespace_info {
@@ -13041,6 +13042,16 @@ VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_scree
 #endif /* VOXGI_NO_SCREEN_SPACE */
 
 /* ===================================================================== 12. line space */
+
+/* The tree's depth where the caller leaves it to the scene (0): 2 under 256 triangles, else 3. A
+   few large triangles (a room, the Cornell box) fill most cells of every level, so a third level
+   only adds steps (exact mode's image is the same, in about half the time); meshes of a thousand
+   triangles and more want the finer leaves (docs/line-space.md). The planner counts with it too. */
+static int voxgi__ls_default_depth(uint64_t triangles)
+{
+    return triangles < 256 ? 2 : 3;
+}
+
 #ifndef VOXGI_NO_LINE_SPACE
 
 /* GL: the line space's arrays as storage buffers, bound at shaders/linespace.glsl's bindings: the
@@ -13368,13 +13379,15 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     if (!scene || !desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or out is NULL");
     *out = NULL;
     n = desc->n ? desc->n : 4;
-    depth = desc->depth ? desc->depth : 3;
+    depth = desc->depth; /* 0: the scene's, once its triangles are counted (at most 16^3 leaves a side) */
     budget = desc->memory_budget ? desc->memory_budget : (size_t)1 << 30;
-    if (n < 2 || n > 16 || depth < 1 || depth > 8) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "n %d (2..16), depth %d (1..8)", n, depth);
+    if (n < 2 || n > 16 || depth < 0 || depth > 8)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "n %d (2..16), depth %d (1..8, 0: from the scene)", n, depth);
     if (pow(n, depth) > 1048576.0) /* the rays' float frames resolve 2^-20 of the root */
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "n %d, depth %d: n^depth leaves per axis, at most 2^20", n, depth);
     children = (size_t)n * (size_t)n * (size_t)n;
     if ((r = voxgi__flatten(ctx, scene, 0, 0, &f)) != VOXGI_OK) return r;
+    if (!depth) depth = voxgi__ls_default_depth(f.triangle_count);
     if (!(L = (voxgi_linespace *)voxgi__alloc_array(ctx, 1, sizeof *L, 1))) {
         voxgi__flat_free(ctx, &f);
         return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a line space");
@@ -14615,11 +14628,11 @@ static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *sce
     return r;
 }
 
-/* A line space's bytes with the defaults (n 4, depth 3), by voxgi_linespace_create's formula with
-   each level's split nodes estimated as the cells its surface crosses. */
+/* A line space's bytes with the defaults (n 4, the scene's depth), by voxgi_linespace_create's
+   formula with each level's split nodes estimated as the cells its surface crosses. */
 static uint64_t voxgi__plan_linespace_bytes(uint64_t triangles, double crossing, double extent)
 {
-    const int n = 4, depth = 3;
+    const int n = 4, depth = voxgi__ls_default_depth(triangles);
     double cells = 1, split = 0, nodes = 1, leaves = 0, refs;
     int l;
     if (!triangles || !(extent > 0)) return 0;

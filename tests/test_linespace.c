@@ -348,6 +348,26 @@ static void test_linespace_input(void)
     td.depth = 7;
     td.n = 10;
     TH_CHECK(voxgi_linespace_create(ctx, &sc, &td, &L) == VOXGI_ERR_INVALID_ARGUMENT && L == NULL, "10^7 leaves a side accepted");
+    td.depth = -1;
+    td.n = 4;
+    TH_CHECK(voxgi_linespace_create(ctx, &sc, &td, &L) == VOXGI_ERR_INVALID_ARGUMENT && L == NULL, "depth -1 accepted");
+    { /* depth 0: the scene's, 2 under 256 triangles, else 3 */
+        static float tris[9 * 256];
+        int t, k;
+        for (t = 0; t < 256; t++) /* a row of small triangles */
+            for (k = 0; k < 9; k++) tris[9 * t + k] = (k % 3 == 0 ? 0.01f * (float)t : 0) + (k == 3 || k == 7 ? 0.005f : 0);
+        for (t = 255; t <= 256; t++) {
+            voxgi_linespace_info info;
+            scene_of_triangles(&sc, &mesh, tris, 3 * (size_t)t, NULL, 0);
+            td.depth = 0;
+            L = NULL;
+            TH_CHECK(voxgi_linespace_create(ctx, &sc, &td, &L) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            voxgi_linespace_query(L, &info);
+            TH_CHECK(info.depth == (t < 256 ? 2 : 3) && info.triangles == (size_t)t, "%d triangles: depth %d (%lu triangles)", t, info.depth,
+                     (unsigned long)info.triangles);
+            voxgi_linespace_destroy(ctx, L);
+        }
+    }
     voxgi_destroy(ctx);
 }
 

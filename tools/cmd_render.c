@@ -16,7 +16,7 @@ static const char *const off_on_names[] = {"off", "on", NULL};
 enum { AO_BLUR = 2, GI_BLUR = 8, GI_HALF_RES = 1, HYBRID_HIDDEN_LIGHT = 1 };
 
 /* The line space's defaults, from `voxgi report linespace` (docs/line-space.md). */
-enum { LS_MODE = VOXGI_LINESPACE_EXACT, LS_N = 4, LS_DEPTH = 3, LS_SAMPLES = 4, LS_SUPERSAMPLE = 2 };
+enum { LS_MODE = VOXGI_LINESPACE_EXACT, LS_N = 4, LS_SAMPLES = 4, LS_SUPERSAMPLE = 2 }; /* the depth: the library's, from the scene */
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -560,7 +560,7 @@ static int render_run(cli_session *s, const render_args *a)
         J.ld.exact_ends = a->exact_ends;
         J.ld.supersample = a->supersample ? a->supersample : LS_SUPERSAMPLE;
         J.ld.tree.n = a->ls_n ? a->ls_n : LS_N;
-        J.ld.tree.depth = a->ls_depth ? a->ls_depth : LS_DEPTH;
+        J.ld.tree.depth = a->ls_depth;
         J.ld.tree.memory_budget = (size_t)a->ls_budget << 20;
         d->bounces = 0;
     }
@@ -679,7 +679,7 @@ int cmd_render(int argc, char **argv)
             {.name = "--ls-mode", .arg = "exact|fast", .kind = CLI_ENUM, .dst = &a.ls_mode, .names = ls_mode_names, .given = &a.ls_mode_given,
              .help = "linespace: exact (the triangles decide) or fast (a set bit of the last\nline-space level blocks the ray) (default exact)"},
             {.name = "--ls-n", .arg = "N", .kind = CLI_INT, .dst = &a.ls_n, .lo = 2, .hi = 16, .help = "linespace: children per axis of a split node (default 4)"},
-            {.name = "--ls-depth", .arg = "D", .kind = CLI_INT, .dst = &a.ls_depth, .lo = 1, .hi = 8, .help = "linespace: the tree's levels below the root (default 3)"},
+            {.name = "--ls-depth", .arg = "D", .kind = CLI_INT, .dst = &a.ls_depth, .lo = 1, .hi = 8, .help = "linespace: the tree's levels below the root (default 2 under 256\ntriangles, else 3)"},
             {.name = "--ls-exact-ends", .arg = "E", .kind = CLI_INT, .dst = &a.exact_ends, .lo = 1, .hi = 1 << 20,
              .help = "linespace, fast: the triangles decide within E leaves' edges of each end\nof a shadow ray (default 3; more: closer to exact, slower)"},
             {.name = "--ls-budget", .arg = "MB", .kind = CLI_INT, .dst = &a.ls_budget, .lo = 1, .hi = 1 << 20,

@@ -93,6 +93,7 @@ static int ls_images(cli_session *s, voxgi_context *ctx, const ls_args *a, const
             }
             if (r != VOXGI_OK) { cli_fail_lib(s, ctx, "line space"); goto done; }
             voxgi_linespace_query(L, &info);
+            td.depth = info.depth; /* 0 asked for the scene's */
             for (k = 0; k < a->nsamples * a->nsuper; k++) {
                 int ss = (int)a->supersample[k / a->nsamples], spl = (int)a->samples[k % a->nsamples];
                 for (m = 0; m <= a->nends; m++) { /* exact, then fast with each exact zone */
@@ -384,14 +385,14 @@ out:
     return rc;
 }
 
-/* report all's line space: one tree (the tool's n 4, depth 3; quick: depth 2), 1 x 1 and 2 x 2
-   points per pixel, 4 and 16 samples, exact and fast (3 leaves exact at each end). */
+/* report all's line space: one tree (the tool's: n 4, the scene's depth; quick: depth 2), 1 x 1
+   and 2 x 2 points per pixel, 4 and 16 samples, exact and fast (3 leaves exact at each end). */
 int report_linespace_all(report_run *run)
 {
     ls_args a;
     memset(&a, 0, sizeof a);
     a.ns[0] = 4;
-    a.depths[0] = run->quick ? 2 : 3;
+    a.depths[0] = run->quick ? 2 : 0;
     a.samples[0] = 4;
     a.samples[1] = 16;
     a.supersample[0] = 1;
