@@ -167,7 +167,8 @@
             (voxgi_linespace_occluded), and line spaces beyond a GL storage block in parts; GL's
             screen-space rays relative to the eye.
      0.8.1  the line space's per-ray walk keeps the level it walks in registers and reads a
-            crossing's bit through a table of face pairs: the same answers, 1.3-1.7x the rays.
+            crossing's bit through a table of face pairs: the same answers, 1.3-1.7x the rays;
+            voxgi_linespace_desc.depth 0 is the scene's (2 under 256 triangles, else 3; was 3).
 */
 #ifndef VOXGI_H
 #define VOXGI_H
