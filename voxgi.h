@@ -13047,8 +13047,9 @@ VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_scree
 /* The tree's depth where the caller leaves it to the scene (0): 2 under 256 triangles, else 3. A
    few large triangles (a room, the Cornell box) fill most cells of every level, so a third level
    only adds steps (exact mode's image is the same, in about half the time); meshes of a thousand
-   triangles and more want the finer leaves (docs/line-space.md). The planner counts with it too. */
-static int voxgi__ls_default_depth(uint64_t triangles)
+   triangles and more want the finer leaves (docs/line-space.md). Outside the part: the planner
+   counts with it too, with or without the line space. */
+static int voxgi__plan_linespace_depth(uint64_t triangles)
 {
     return triangles < 256 ? 2 : 3;
 }
@@ -13388,7 +13389,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "n %d, depth %d: n^depth leaves per axis, at most 2^20", n, depth);
     children = (size_t)n * (size_t)n * (size_t)n;
     if ((r = voxgi__flatten(ctx, scene, 0, 0, &f)) != VOXGI_OK) return r;
-    if (!depth) depth = voxgi__ls_default_depth(f.triangle_count);
+    if (!depth) depth = voxgi__plan_linespace_depth(f.triangle_count);
     if (!(L = (voxgi_linespace *)voxgi__alloc_array(ctx, 1, sizeof *L, 1))) {
         voxgi__flat_free(ctx, &f);
         return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a line space");
@@ -14633,7 +14634,7 @@ static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *sce
    formula with each level's split nodes estimated as the cells its surface crosses. */
 static uint64_t voxgi__plan_linespace_bytes(uint64_t triangles, double crossing, double extent)
 {
-    const int n = 4, depth = voxgi__ls_default_depth(triangles);
+    const int n = 4, depth = voxgi__plan_linespace_depth(triangles);
     double cells = 1, split = 0, nodes = 1, leaves = 0, refs;
     int l;
     if (!triangles || !(extent > 0)) return 0;

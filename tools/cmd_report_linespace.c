@@ -179,7 +179,8 @@ static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const 
     if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R)) goto done;
     if (isfinite(R.c)) snprintf(ref_error, sizeof ref_error, "its error %.2f%% / sqrt(spp)", 100 * R.c);
     fprintf(md, "\n## %s\n\n%d x %d pixels; the reference's direct light at %d spp (%s); %lu pixels near an emitter left "
-                "out. *rel. RMSE*: the tools' rule (*black*: the reference is, and the mean says the rest); *4x4*: on 4 x 4 block means without a masked pixel. Fast mode against exact, the same samples: "
+                "out. *rel. RMSE*: the tools' rule (*black*: the reference is, and the mean says the rest); *4x4*: on 4 x 4 block means "
+                "without a masked pixel. Fast mode against exact, the same samples: "
                 "*MAE* of the pixels' visible share, *wrong*: the share of samples fast mode blocks where exact mode sees the light; *exact ends*: fast mode's "
                 "exact zone at each end of a ray, in leaves' edges.\n\n",
             name, a->size, a->size, a->spp, ref_error, (unsigned long)R.mask.masked_pixels);
