@@ -687,10 +687,10 @@ static int fuzz_rounds(void)
     return n < 1 ? 1 : n;
 }
 
-/* Groups per family in the default run; under ASan every ASAN_SHARE-th of them; on GL every
-   GL_SHARE-th (llvmpipe takes milliseconds a draw). */
+/* Groups per family in the default run; in the reduced builds (FX_REDUCED) every REDUCED_SHARE-th
+   of them; on GL every GL_SHARE-th (llvmpipe takes milliseconds a draw). */
 #define GROUPS_PER_FAMILY 40
-#define ASAN_SHARE 5
+#define REDUCED_SHARE 5
 #define GL_SHARE 4
 
 static void report(const char *what, const ex_stats *st)
@@ -708,7 +708,7 @@ static void fuzz_family(int family, int on_gl)
     voxgi_context *ctx = make_ctx(on_gl ? VOXGI_BACKEND_GL : VOXGI_BACKEND_CPU, 1);
     ox x;
     ex_stats st;
-    int n, groups = GROUPS_PER_FAMILY * fuzz_rounds(), step = (FX_UNDER_ASAN ? ASAN_SHARE : 1) * (on_gl ? GL_SHARE : 1);
+    int n, groups = GROUPS_PER_FAMILY * fuzz_rounds(), step = (FX_REDUCED ? REDUCED_SHARE : 1) * (on_gl ? GL_SHARE : 1);
     char what[80];
     TH_CHECK(ctx != NULL, "no %s context", on_gl ? "GL" : "CPU");
     if (!ctx) return;

@@ -396,7 +396,7 @@ static void test_gl_raster_atlas_equals_cpu(void)
                 g_atomic = 0;
                 g_axis = VOXGI_AXIS_DEFAULT;
                 g_atlas_size = 4000;
-                if (!FX_UNDER_ASAN) compare_method(&shapes[sh], &g, "sphere, 4000^2 atlas"); /* see FX_UNDER_ASAN */
+                if (!FX_REDUCED) compare_method(&shapes[sh], &g, "sphere, 4000^2 atlas"); /* see FX_REDUCED */
                 g_atlas_size = 0;
             }
             g_uvs = NULL; g_atlas_uv = VOXGI_ATLAS_AUTO; g_atlas_size = 0;
@@ -990,14 +990,14 @@ static void test_gl_raster_injection_matches_cpu(void)
 
 /* The leak room on GL (distance maps, the GL mips and cones), as on the CPU (test_vct): inside
    its closed box at most 0.1% of the room view's mean and no pixel above 1%, at 32^3 and 128^3
-   (under ASan, whose job is memory errors, at 32^3: the same paths). */
+   (at 32^3 in the reduced builds, FX_REDUCED: the same paths). */
 static void test_gl_raster_leak_room(void)
 {
     voxgi_context *ctx;
     int res;
     if (!have_gl()) return;
     ctx = make_ctx(VOXGI_BACKEND_GL, 0);
-    for (res = 32; res <= (FX_UNDER_ASAN ? 32 : 128); res *= 4) {
+    for (res = 32; res <= (FX_REDUCED ? 32 : 128); res *= 4) {
         double m = 1, x = 1;
         TH_CHECK(leak_room_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, 0, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
         printf("    GL leak room %3d^3: inside mean %.4f%%, largest %.3f%% of the room view's mean\n", res, 100 * m, 100 * x);
@@ -1008,7 +1008,7 @@ static void test_gl_raster_leak_room(void)
 
 /* The leak box on GL (distance maps, the GL mips and cones), as on the CPU (test_vct): inside at
    most 0.1% of the lit ground's radiance and no pixel above 1%, sun with a point light and with
-   a rectangular light, at 32^3 and 128^3 (under ASan at 32^3), and from an octree. */
+   a rectangular light, at 32^3 and 128^3 (32^3 alone in the reduced builds), and from an octree. */
 static void test_gl_raster_leak_box(void)
 {
     voxgi_context *ctx;
@@ -1016,7 +1016,7 @@ static void test_gl_raster_leak_box(void)
     if (!have_gl()) return;
     ctx = make_ctx(VOXGI_BACKEND_GL, 0);
     for (area = 0; area < 2; area++)
-        for (res = 32; res <= (FX_UNDER_ASAN ? 32 : 128); res *= 4) {
+        for (res = 32; res <= (FX_REDUCED ? 32 : 128); res *= 4) {
             double m = 1, x = 1;
             TH_CHECK(leak_box_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, 0, area, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
             printf("    GL leak box %3d^3 (sun and %s light): inside mean %.4f%%, largest %.3f%% of the lit ground's\n", res,

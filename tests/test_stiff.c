@@ -372,7 +372,7 @@ static void test_million_triangles(void)
     voxgi_voxels_info ic, ig;
     voxgi_ray_scene *rs = NULL;
     uint32_t *bc, *bg = NULL;
-    const int slices = FX_UNDER_ASAN ? 316 : 1000, stacks = slices / 2;
+    const int slices = FX_REDUCED ? 316 : 1000, stacks = slices / 2;
     const double inner = cos(3.14159265358979 / stacks); /* the facets' nearest points are at least this far from the centre */
     size_t i, far = 0;
     int x, y, z, n = 128;

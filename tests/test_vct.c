@@ -300,11 +300,11 @@ static void test_cornell_box_image(void)
    pixel above 1%, at 32^3 to 256^3 (the rectangular light at 64^3), anisotropic mips (the
    tool's default), and from an octree at 256^3 (where a point on the box's ceiling beside a
    wall finds its region only past the mean plane of the voxel on their edge). Isotropic mips
-   are printed, not bounded. Under ASan (memory errors, the same paths) up to 128^3. */
+   are printed, not bounded. In the reduced builds (FX_REDUCED: the same paths) up to 128^3. */
 static void test_leak_box(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    const int largest = FX_UNDER_ASAN ? 128 : 256;
+    const int largest = FX_REDUCED ? 128 : 256;
     int res, area;
     double m = 1, x = 1;
     for (area = 0; area < 2; area++)
@@ -324,14 +324,14 @@ static void test_leak_box(void)
 }
 
 /* No light through closed walls of zero thickness: inside the leak room's box the cone-traced
-   mean stays at most 0.1% of the room view's and no pixel above 1%, at 32^3 to 256^3 (under ASan
-   to 128^3), lit by the lamp's emitting quad (or at 64^3 by a rectangular light), anisotropic
-   mips (the tool's default), and from an octree at 64^3. Each face's inner side is lit on its
+   mean stays at most 0.1% of the room view's and no pixel above 1%, at 32^3 to 256^3 (to 128^3
+   in the reduced builds), lit by the lamp's emitting quad (or at 64^3 by a rectangular light),
+   anisotropic mips (the tool's default), and from an octree at 64^3. Each face's inner side is lit on its
    own (black), cones see the side they come from and keep to the box's region of empty space. */
 static void test_leak_room(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    const int largest = FX_UNDER_ASAN ? 128 : 256;
+    const int largest = FX_REDUCED ? 128 : 256;
     int res, rect;
     for (rect = 0; rect < 2; rect++)
         for (res = 32; res <= largest; res *= 2) {
