@@ -1,4 +1,4 @@
-/* voxgi.h - v0.8.1 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
+/* voxgi.h - v0.9.0 - exact voxelization and voxel-based lighting, OpenGL 4.5 and CPU. MIT licence at the end.
 
    voxgi voxelizes triangle scenes and computes voxel-based lighting from them. Every GPU
    pass has a CPU twin that computes the same result, so the library works where no GL 4.5
@@ -49,24 +49,25 @@
        4. GL core         GL types and the loader table, programs from the embedded shaders,
                           buffers, dispatches, raster state (absent with VOXGI_NO_GL)
        5. voxelization    exact triangle tests, attributes, one sub-part per method (CPU, then
-                          GL), running a voxelization, OR mipmaps
+                          GL), running a voxelization, OR mipmaps, segments through the voxels
+                          (voxel visibility: 3D-DDA and hierarchical)
        6. volumes and mips    dense attribute volumes, isotropic and anisotropic mips, sampling
        7. octree          the sparse voxel octree: build, lookups, bricks, sampling
        8. cone tracing    cones gathering from a radiance volume or octree (below injection,
                           whose further bounces gather with cones)
        9. light injection the direct light into the voxels, and its bounces among them
-      10. light-space passes  a light's view; transmittance shadow maps; voxel visibility (3D-DDA,
-                          hierarchical); reflective shadow maps; the spherical-harmonics volume
+      10. light-space passes  a light's view; transmittance shadow maps; reflective shadow maps;
+                          the spherical-harmonics volume
       11. screen-space passes  low-discrepancy points; ambient occlusion and one bounce from the
                           screen through the depth buffer or the voxels; the edge-aware filter
       12. line space      the N-tree of line spaces: shafts between the patches of a node's faces;
                           shadow rays through it (exact, fast; per ray, packets); area lights'
                           soft shadows (rect lights, emitters paired into parallelograms)
-      13. planner and images  what a scene and a request need (voxgi_plan); voxgi's own G-buffer;
-                          cone-traced, one-bounce, screen-space and line-space images
-      14. reference renderer  the path tracer every image is measured against
+      13. reference renderer  the path tracer every image is measured against
+      14. planner and images  one image by any method (voxgi_render over a table of methods),
+                          what a scene and a desc need (voxgi_plan), voxgi's own G-buffer
       15. built-in scenes and files
-     Parts 7 to 12 and 14 can be left out (CONFIGURATION); a part's images in 13 go with it.
+     Parts 7 to 13 can be left out (CONFIGURATION); voxgi_render then refuses their methods.
 
    METHODS: conservative (default), thin (6-separating), solid (parity / vote / flood), slicemap
    (raster), atlas and atlas-compute (texture atlas points), geometry (conservative by geometry
@@ -75,19 +76,24 @@
    builds OR mipmaps; voxgi_volume_create builds attribute volumes with mipmaps,
    voxgi_volume_sample samples them; voxgi_svo_create builds sparse voxel octrees.
 
-   LIGHTING: voxgi_inject_light puts the direct light into the voxels (a RADIANCE volume);
-   voxgi_cone_trace (diffuse gathers at points), voxgi_cone_trace_each (single glossy or shadow
-   cones) and voxgi_cone_trace_gl (the caller's G-buffer textures) gather it from a radiance
-   source: the volume's mips or an octree of it; voxgi_vct_render makes whole images.
-   voxgi_tsm_create / voxgi_tsm_transmittance give the light through translucent surfaces from
-   transmittance shadow maps, voxgi_tsm_render images of the direct light with them;
-   voxgi_rsm_create / voxgi_rsm_irradiance one bounce from reflective shadow maps (of lights and
-   of area lights' and emitters' points) through the voxels (voxgi_voxels_occluded),
-   voxgi_rsm_render images with it; voxgi_sh_create / voxgi_sh_irradiance one bounce from a
-   spherical-harmonics volume of the direct light, voxgi_sh_render images with it.
-   voxgi_ao ambient occlusion at a G-buffer's pixels from the depth buffer or the voxels
-   (voxgi_hammersley its sampler), voxgi_ao_render images of it.
-   voxgi_reference_render is the path tracer they are measured against.
+   IMAGES: voxgi_render makes an image by any method through one call (voxgi_render_desc: a head
+     every method reads and a part per method; zero fields are each method's measured defaults,
+     and voxgi_render_info.used reports what ran): REFERENCE (the path tracer), VCT (voxel cone
+     tracing), TSM (transmittance shadow maps), RSM (reflective shadow maps), SH (an SH volume of
+     the direct light), SSAO and VAO (ambient occlusion through the depth buffer or the voxels),
+     SSGI and HYBRID (one bounce from the screen), LINESPACE (area lights' soft shadows through
+     the line space). voxgi_plan says what an image keeps and leaves out, and why.
+       voxgi_render_desc d = {0};  d.method = VOXGI_RENDER_VCT;  d.camera = cam;
+       voxgi_render(ctx, &scene, &d, rgb, w * h * 12, &info);   // info.used.vct.cones.cones == 24
+   LIGHTING, the lower-level calls for engines that own their frame: voxgi_inject_light puts the
+   direct light into the voxels (a RADIANCE volume); voxgi_cone_trace (diffuse gathers at points),
+   voxgi_cone_trace_each (single glossy or shadow cones) and voxgi_cone_trace_gl (the caller's
+   G-buffer textures) gather it from a radiance source: the volume's mips or an octree of it.
+   voxgi_tsm_create / voxgi_tsm_transmittance give the light through translucent surfaces;
+   voxgi_rsm_create / voxgi_rsm_irradiance one bounce from reflective shadow maps through the voxels
+   (voxgi_voxels_occluded); voxgi_sh_create / voxgi_sh_irradiance one bounce from an SH volume;
+   voxgi_ao ambient occlusion and voxgi_ssgi one bounce at a G-buffer's pixels; voxgi_linespace_light
+   soft shadows of an area light at points.
 
    SEMANTICS (exact; see the part banners below for each capability)
      Grid: origin o (double[3]), voxel size s (double > 0), resolution n (int[3]). Voxel (i,j,k) is
@@ -106,15 +112,15 @@
      VOXGI_ASSERT(x)       internal assertions (default: assert)
      VOXGI_NO_SIMD         no SSE or AVX2 code: the scalar code, which computes the same
      Do not compile the implementation with -ffast-math: exactness needs IEEE double arithmetic.
-   Parts a program does not need, left out whole: declarations, code and shaders (define these alike
-   wherever voxgi.h is included; the bytes they save: docs/configuration.md):
+   Parts a program does not need, left out of the implementation: code and shaders (the declarations
+   stay, so struct layouts never depend on these; the bytes they save: docs/configuration.md):
      VOXGI_NO_OCTREE           no octree (part 7): cones gather from volumes only
      VOXGI_NO_CONE_TRACING     no cone tracing (8) nor its images; with light injection (its bounces use cones): #error
      VOXGI_NO_LIGHT_INJECTION  no light injection (9), no cone-traced images, no SSGI images' hidden_light
-     VOXGI_NO_LIGHT_SPACE      no tsm, rsm, SH volume (10) nor their images; voxel visibility stays for screen space
+     VOXGI_NO_LIGHT_SPACE      no tsm, rsm, SH volume (10) nor their images
      VOXGI_NO_SCREEN_SPACE     no screen-space passes (11) nor their images
      VOXGI_NO_LINE_SPACE       no line space (12) nor its images
-     VOXGI_NO_REFERENCE        no reference renderer (14)
+     VOXGI_NO_REFERENCE        no reference renderer (13)
 
    GL LOADER (desc.gl_get_proc_address is called only while the GL 4.5 context is current)
      EGL:    desc.gl_get_proc_address = (voxgi_gl_loader)eglGetProcAddress;
@@ -169,6 +175,19 @@
      0.8.1  the line space's per-ray walk keeps the level it walks in registers and reads a
             crossing's bit through a table of face pairs: the same answers, 1.3-1.7x the rays;
             voxgi_linespace_desc.depth 0 is the scene's (2 under 256 triangles, else 3; was 3).
+     0.9.0  one image API: voxgi_render over a table of methods (voxgi_render_desc, _info with the
+            settings used and each stage's time) replaces voxgi_vct_render, voxgi_tsm_render,
+            voxgi_rsm_render, voxgi_sh_render, voxgi_ssgi_render, voxgi_ao_render,
+            voxgi_linespace_render and voxgi_reference_render and their descs (voxgi_vct_voxelize
+            is voxgi_render_voxelize). A zero field is the method's measured default, the one the
+            tool runs (VCT: 96 voxels, 24 cones at every 6th pixel, anisotropic mips; the
+            reference 64 samples; the screen passes' blur and half resolution; the line space's
+            4 shadow rays on 2 x 2 points); a zero camera views the scene's bounds. voxgi_plan
+            plans a render desc (flags DYNAMIC, EVERYTHING; items by typed id), and the image
+            follows it (VCT's octree where the volume is over the budget). Public struct layouts
+            no longer depend on VOXGI_NO_*: a left-out part keeps its declarations, and its
+            methods give VOXGI_ERR_UNSUPPORTED. Voxel visibility (voxgi_voxels_occluded) moved
+            to part 5; the reference renderer is part 13, below the images.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -541,6 +560,21 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
 static inline int voxgi_bit_get(const uint32_t *bits, uint64_t index)
 { return (int)((bits[index >> 5] >> (index & 31u)) & 1u); }
 
+/* Voxel visibility: whether segments pass occupied voxels, by 3D-DDA (Amanatides and Woo 1987:
+   voxel by voxel, in the order the segment enters them) or hierarchically (after Thiedemann
+   2011, in 3D): at each voxel the coarsest empty cell of the occupancy's OR mipmaps that holds
+   it is skipped whole. One rule where a segment leaves the grid: what the grid does not hold does
+   not block (the segment is cut to the grid's box first; the seed's two traversals disagreed
+   there). A voxel counts when the closed segment meets its box in more than a point's width of
+   the traversal's rounding; both traversals compute each boundary crossing afresh from the
+   segment (no sums of steps), so they agree. The voxels of the endpoints count too: a caller
+   testing between two surfaces moves the ends off them first. steps (may be NULL): voxels (DDA)
+   or cells (hierarchical) visited, summed. */
+typedef enum voxgi_traversal { VOXGI_TRAVERSAL_DDA = 0, VOXGI_TRAVERSAL_HIERARCHICAL } voxgi_traversal;
+VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_traversal how, size_t count, const float *from,
+                                             const float *to, unsigned char *blocked, uint64_t *steps);
+
+
 /* ===================================================================== 6. volumes and mips */
 
 /* Dense volumes of the attributes a voxelization averaged, with a mip chain, for the lighting
@@ -612,7 +646,6 @@ VOXGI_API voxgi_result voxgi_volume_gl_texture(voxgi_context *ctx, const voxgi_v
                                                voxgi_direction direction, unsigned int *gl_texture_name);
 
 /* ===================================================================== 7. octree */
-#ifndef VOXGI_NO_OCTREE
 
 /* The voxels of a grid in an octree over the cube of 2^depth voxels (depth = ceil(log2 of the
    largest resolution), at least 1). Levels 0..depth: level 0 is the root, level depth the voxels
@@ -684,10 +717,8 @@ VOXGI_API voxgi_result voxgi_svo_brick(voxgi_context *ctx, const voxgi_svo *svo,
    after one descent (else eight lookups), with the same result bit for bit. */
 VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
                                         const float *positions, const float *lods, float *out);
-#endif /* VOXGI_NO_OCTREE */
 
 /* ===================================================================== 8. cone tracing */
-#ifndef VOXGI_NO_CONE_TRACING
 
 /* Where cones gather from: the RADIANCE of a volume (voxgi_inject_light) or of an octree
    (voxgi_svo_desc.radiance), made on the context's backend; exactly one of the two is set. An
@@ -698,9 +729,7 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
    octree's buffers (shaders/cone_svo.glsl). */
 typedef struct voxgi_radiance_source {
     const voxgi_volume *volume;
-#ifndef VOXGI_NO_OCTREE
     const voxgi_svo *octree;
-#endif
 } voxgi_radiance_source;
 
 /* How cones are traced (voxgi_cone_trace and its relatives, below). */
@@ -775,10 +804,8 @@ VOXGI_API voxgi_result voxgi_cone_trace_each(voxgi_context *ctx, const voxgi_rad
    Phong exponent n = 2 / alpha^2 - 2, the angle where the lobe falls to 0.244 of its peak,
    acos(0.244^(1 / (n + 1))) (a fit common among voxel cone tracers), at least 0.005. */
 VOXGI_API float voxgi_specular_half_angle(float roughness);
-#endif /* VOXGI_NO_CONE_TRACING */
 
 /* ===================================================================== 9. light injection */
-#ifndef VOXGI_NO_LIGHT_INJECTION
 
 /* Light injection: the radiance the voxels send out, for the cone tracer to gather. Per set
    voxel: L = albedo / pi * E + emission (alpha = opacity, 1 when the voxels hold none), E the
@@ -828,10 +855,8 @@ typedef struct voxgi_inject_desc {
 } voxgi_inject_desc;
 VOXGI_API voxgi_result voxgi_inject_light(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_voxels *voxels,
                                           const voxgi_inject_desc *desc, voxgi_volume **out);
-#endif /* VOXGI_NO_LIGHT_INJECTION */
 
 /* ===================================================================== 10. light-space passes */
-#ifndef VOXGI_NO_LIGHT_SPACE
 
 /* Transmittance shadow maps (Buchacher 2014, section 4): the light's view of the scene's
    translucent surfaces as raster slicemaps, and an ordinary shadow map of its opaque ones. A
@@ -873,25 +898,7 @@ VOXGI_API void voxgi_tsm_query(const voxgi_tsm *tsm, voxgi_tsm_info *info);
 VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_tsm *tsm, size_t count, const float *points, const float *normals,
                                                float *out);
 VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm);
-#endif /* VOXGI_NO_LIGHT_SPACE */
 
-#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* the screen-space passes use it too */
-/* Voxel visibility: whether segments pass occupied voxels, by 3D-DDA (Amanatides and Woo 1987:
-   voxel by voxel, in the order the segment enters them) or hierarchically (after Thiedemann
-   2011, in 3D): at each voxel the coarsest empty cell of the occupancy's OR mipmaps that holds
-   it is skipped whole. One rule where a segment leaves the grid: what the grid does not hold does
-   not block (the segment is cut to the grid's box first; the seed's two traversals disagreed
-   there). A voxel counts when the closed segment meets its box in more than a point's width of
-   the traversal's rounding; both traversals compute each boundary crossing afresh from the
-   segment (no sums of steps), so they agree. The voxels of the endpoints count too: a caller
-   testing between two surfaces moves the ends off them first. steps (may be NULL): voxels (DDA)
-   or cells (hierarchical) visited, summed. */
-typedef enum voxgi_traversal { VOXGI_TRAVERSAL_DDA = 0, VOXGI_TRAVERSAL_HIERARCHICAL } voxgi_traversal;
-VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_traversal how, size_t count, const float *from,
-                                             const float *to, unsigned char *blocked, uint64_t *steps);
-#endif
-
-#ifndef VOXGI_NO_LIGHT_SPACE
 /* Reflective shadow maps (Dachsbacher and Stamminger 2005, with voxel visibility after Buchacher
    2014): every texel of a light's view (voxgi_tsm_desc says how it looks: orthographic for a
    DIRECTIONAL light, perspective for a SPOT) holds the surface the light meets there, by ray
@@ -980,84 +987,12 @@ VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *s
                                            size_t count, const float *points, const float *normals, float *irradiance);
 VOXGI_API void voxgi_sh_destroy(voxgi_context *ctx, voxgi_sh *sh);
 
-/* An image of the direct light (exact shadow rays, `samples` camera rays per pixel) and one bounce
-   from reflective shadow maps: the maps of every light but point lights (whose light bounces
-   nowhere) and of the emitters, gathered at each pixel's surface (voxgi's G-buffer: the pixel
-   centre's ray) through the scene's voxels (a conservative grid of `resolution` voxels along its
-   longest side) unless visibility is none. With a gather stride s > 1 (Buchacher 2014's
-   interpolation, its low-resolution image being the anchors) only every s-th pixel across and down
-   gathers, the pixels between taking the bilinear mean of the anchors around them that share
-   their surface (normals within 26 degrees, on its plane within a voxel) where at least three of
-   the four do (all, on an anchor's row or column), the rest gathering their own. rgb as
-   voxgi_reference_render's. */
 /* The traversals agree on every segment; the hierarchy takes half the time (voxgi report rsm). */
 typedef enum voxgi_visibility { VOXGI_VISIBILITY_HIERARCHICAL = 0, VOXGI_VISIBILITY_DDA, VOXGI_VISIBILITY_NONE } voxgi_visibility;
-typedef struct voxgi_rsm_image_desc {
-    voxgi_camera camera;
-    voxgi_rsm_desc rsm;           /* size, samples, radius and seed of every light's map (light: ignored) */
-    voxgi_visibility visibility;  /* 0 = HIERARCHICAL */
-    int resolution;               /* of the visibility's voxels; 0 = 64 */
-    int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
-    uint64_t seed;
-    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
-    int gather_stride;            /* gathers at every s-th pixel, the rest interpolated where they can be; 0 = 4,
-                                     1: every pixel */
-} voxgi_rsm_image_desc;
-typedef struct voxgi_rsm_image_info {
-    int maps;                     /* all lights' and the emitters' */
-    size_t gathered;              /* pixels that gathered (the rest interpolated) */
-    double ms_maps, ms_voxels, ms_direct, ms_gather, ms; /* the maps, the voxels, the direct light, the gathers, all */
-    size_t bytes;                 /* what it built from the scene: the maps, the visibility's voxels and their OR mipmaps */
-} voxgi_rsm_image_info;
-VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
-                                        size_t rgb_bytes, voxgi_rsm_image_info *info);
 
-/* An image of the direct light (as voxgi_rsm_render's) and one bounce from the SH volume of a grid
-   of `resolution` voxels along the scene's longest side, gathered (voxgi_sh_irradiance) at the
-   anchors of a gather stride and interpolated between them as voxgi_rsm_render does, through that
-   grid's conservative voxels unless visibility is none. rgb as voxgi_reference_render's. */
-typedef struct voxgi_sh_image_desc {
-    voxgi_camera camera;
-    voxgi_sh_desc sh;
-    int resolution;               /* of the SH volume and the visibility's voxels; 0 = 64 */
-    voxgi_visibility visibility;  /* 0 = HIERARCHICAL */
-    float opening;                /* the estimator's opening: 0 = 0.5 */
-    int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
-    uint64_t seed;
-    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
-    int gather_stride;            /* gathers at every s-th pixel; 0 = 4, 1: every pixel */
-} voxgi_sh_image_desc;
-typedef struct voxgi_sh_image_info {
-    size_t gathered;              /* pixels that gathered (the rest interpolated) */
-    double ms_sh, ms_voxels, ms_direct, ms_gather, ms; /* the SH volume, the voxels, the direct light, the gathers, all */
-    size_t bytes;                 /* what it built from the scene: the SH volume, the visibility's voxels and their OR mipmaps */
-} voxgi_sh_image_info;
-VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_sh_image_desc *desc, float *rgb, size_t rgb_bytes,
-                                       voxgi_sh_image_info *info);
 
-/* An image of the direct light with transmittance shadow maps: every directional and spot light
-   through its own map, the other lights and emissive triangles through exact shadow rays (which pass
-   translucent surfaces as the reference renderer's do), `samples` camera rays per pixel
-   (stratified over the pixel, the same for every image of a seed), the emission the camera sees
-   added. rgb as voxgi_reference_render's. */
-typedef struct voxgi_tsm_image_desc {
-    voxgi_camera camera;
-    voxgi_tsm_desc tsm;           /* size, slices and sigma of every light's map (light: ignored) */
-    int samples;                  /* camera rays per pixel; 0 = 4 */
-    uint64_t seed;
-    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
-} voxgi_tsm_image_desc;
-typedef struct voxgi_tsm_image_info {
-    int maps;                     /* directional and spot lights, one map each */
-    size_t bytes;                 /* their memory */
-    double ms_maps, ms_shade, ms; /* building the maps, shading the pixels, all */
-} voxgi_tsm_image_info;
-VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
-                                        size_t rgb_bytes, voxgi_tsm_image_info *info);
-#endif /* VOXGI_NO_LIGHT_SPACE */
 
 /* ===================================================================== 11. screen-space passes */
-#ifndef VOXGI_NO_SCREEN_SPACE
 
 /* Low-discrepancy points (Thiedemann 2009's sampler, the one the screen-space passes share): the
    radical inverse of i in base b >= 2 (its digits mirrored about the radix point: Phi_2(1), (2),
@@ -1080,7 +1015,7 @@ VOXGI_API void voxgi_hammersley(uint32_t i, uint32_t n, const double rot[2], dou
    points above itself, however grazing the view.)
    VOXELS: the segment from 1.5 voxels off the surface along its normal to radius along the ray,
    through the voxels (voxgi_voxels_occluded): view-independent, sees what the camera does not.
-   The reference renderer's AO mode (voxgi_reference_desc.ao_radius) is the exact definition. */
+   The reference renderer's AO mode (voxgi_render_desc.reference.ao_radius) is the exact definition. */
 typedef enum voxgi_ao_method { VOXGI_AO_SCREEN = 0, VOXGI_AO_VOXELS } voxgi_ao_method;
 typedef struct voxgi_ao_desc {
     voxgi_camera camera;          /* the G-buffer's view and size */
@@ -1153,65 +1088,9 @@ typedef struct voxgi_screen_filter_desc {
 VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_screen_filter_desc *desc, const float *values, float *out, size_t out_bytes,
                                            unsigned char *unsupported);
 
-/* An image of the direct light (as voxgi_rsm_render's) and one bounce from the screen
-   (voxgi_ssgi: SSGI through the depth buffer, or Hybrid-GI through a conservative grid of
-   `resolution` voxels), the screen's radiance the direct light its surfaces reflect, gathered at
-   every pixel or at half resolution, blurred and upsampled by voxgi_screen_filter.
-   Compare with the reference's one bounce: light from surfaces the camera does not see is
-   missing by design. */
-typedef struct voxgi_ssgi_image_desc {
-    voxgi_camera camera;
-    voxgi_ao_method method;       /* SCREEN: SSGI; VOXELS: Hybrid-GI */
-    int resolution;               /* VOXELS: 0 = 128 */
-    int rays, steps;              /* 0 = 16 each */
-    float radius;                 /* 0 = sqrt(3) x the scene's longest side (the rays reach across it) */
-    int samples;                  /* camera rays per pixel for the direct light; 0 = 24 */
-    uint64_t seed;
-    int hide_emitters;
-    int half_resolution;          /* 1: the rays at every other pixel across and down, upsampled by voxgi_screen_filter */
-    int blur;                     /* voxgi_screen_filter's radius in pixels (0: none, 0..64) */
-#ifndef VOXGI_NO_LIGHT_INJECTION
-    int hidden_light;             /* VOXELS: 1 = hidden and off-screen hits send the direct light injected into their
-                                     voxel (voxgi_inject_light, without emission), from the side the ray meets */
-    int inject_samples;           /* hidden_light: voxgi_inject_desc.samples; 0 = its default */
-#endif
-} voxgi_ssgi_image_desc;
-typedef struct voxgi_ssgi_image_info {
-    float radius;                 /* the radius used */
-    size_t gathered;
-    double ms_direct, ms_voxels, ms_inject, ms_gather, ms;
-    size_t bytes;                 /* what it built from the scene: VOXELS' voxels, their OR mipmaps and the hidden light's volume */
-} voxgi_ssgi_image_info;
-VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ssgi_image_desc *desc, float *rgb, size_t rgb_bytes,
-                                         voxgi_ssgi_image_info *info);
 
-/* An image of ambient occlusion (grey: the occluded share in all three channels, 0 where nothing
-   is): voxgi's G-buffer (the pixel centres' rays), voxgi_ao's rays by `method` at every pixel or
-   at half resolution, blurred and upsampled by voxgi_screen_filter, the voxels (VOXELS) a
-   conservative grid of `resolution` along the scene's longest side. Compare with the reference's
-   AO mode at the same radius. */
-typedef struct voxgi_ao_image_desc {
-    voxgi_camera camera;
-    voxgi_ao_method method;
-    int resolution;               /* VOXELS: 0 = 128 */
-    int rays, steps;              /* as voxgi_ao_desc's */
-    float radius;                 /* 0 = a tenth of the scene's longest side */
-    uint64_t seed;
-    int point_sampling;           /* SCREEN: as voxgi_ao_desc's */
-    int half_resolution, blur;    /* as voxgi_ssgi_image_desc's */
-} voxgi_ao_image_desc;
-typedef struct voxgi_ao_image_info {
-    float radius;                 /* the radius used */
-    size_t gathered;              /* pixels whose rays ran */
-    double ms_gbuffer, ms_voxels, ms_ao, ms;
-    size_t bytes;                 /* what it built from the scene: VOXELS' voxels and their OR mipmaps */
-} voxgi_ao_image_info;
-VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ao_image_desc *desc, float *rgb, size_t rgb_bytes,
-                                       voxgi_ao_image_info *info);
-#endif /* VOXGI_NO_SCREEN_SPACE */
 
 /* ===================================================================== 12. line space */
-#ifndef VOXGI_NO_LINE_SPACE
 
 /* The cascaded line space (Klee 2016, after Keul, Lemke and Mueller): an N-tree over the scene
    (a cube, each filled node split into N^3 children down to `depth` levels below the root; the
@@ -1295,80 +1174,177 @@ typedef struct voxgi_linespace_stats {
 VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_linespace *ls, const voxgi_linespace_light_desc *desc, size_t count,
                                              const float *points, const float *normals, float *visible, float *weighted, voxgi_linespace_stats *stats);
 
-/* An image of the direct light of the scene's area lights with soft shadows through the line
-   space: per pixel the surface the ray through its centre meets first (voxgi_gbuffer_render; or
-   the mean of k x k points over the pixel's square, `supersample`),
-   then per area light (each rect light; emissive triangles, two that share an edge and make a
-   parallelogram as one light; at most 64) its unshadowed irradiance exactly (Lambert's polygon
-   formula) times the share voxgi_linespace_light's weighted output gives: radiance = emission
-   (front faces, unless hidden) + albedo / pi x irradiance. An emitter never lights itself. Other
-   lights are left out. A scene without an area light gets no line space (voxgi_plan): its image is
-   the emission alone, its visible share 0. */
-typedef struct voxgi_linespace_image_desc {
-    voxgi_camera camera;
-    const voxgi_linespace *ls;    /* the scene's line space, or NULL: built from `tree` */
-    voxgi_linespace_desc tree;
-    voxgi_linespace_mode mode;
-    int samples;                  /* per shading point and light (voxgi_linespace_light_desc); 0 = 16 */
-    int packets;
-    uint32_t seed;
-    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
-    int exact_ends;               /* FAST: as voxgi_linespace_light_desc's; 0 = 3 */
-    int supersample;              /* k > 1: k x k shading points per pixel (the G-buffer at k times the size), their
-                                     mean: the pixel's square, as the reference integrates it; 0 or 1: its centre */
-} voxgi_linespace_image_desc;
-typedef struct voxgi_linespace_image_info {
-    voxgi_linespace_info tree;
-    voxgi_linespace_stats rays;   /* over all lights */
-    int lights;
-    double ms_build, ms_gbuffer, ms_shadows, ms;
-} voxgi_linespace_image_info;
-/* rgb: 3 floats per pixel, rows from the top; visible (or NULL): 1 float per pixel, the lights'
-   mean visible share. */
-VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_image_desc *desc, float *rgb, size_t rgb_bytes,
-                                              float *visible, voxgi_linespace_image_info *info);
-#endif /* VOXGI_NO_LINE_SPACE */
 
-/* ===================================================================== 13. planner and images */
+/* ===================================================================== 13. reference renderer */
+
+/* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, through
+   the ray core (voxgi_ray_scene: watertight, hit points refined in double). Surfaces are Lambertian (albedo) and emit
+   their material's emission from their front faces; the scene's lights add point, spot,
+   directional and rectangular light; there is no environment (misses are black) and
+   transparency is ignored (every surface is opaque). Paths gather direct light at every vertex
+   (next-event estimation towards the lights and the emissive triangles) and count emission seen
+   directly from the camera. A pixel is the mean radiance over its square (uniformly jittered
+   samples). Sample s of pixel p draws its random numbers from (seed, p, s) alone, so the image
+   is the same for any thread count; the progress callback sees each pass and may cancel.
+   It is voxgi_render's VOXGI_RENDER_REFERENCE (part 14). */
+
+
+/* ===================================================================== 14. planner and images */
+
+/* ----- one image, any method
+   voxgi_render makes an image of a scene by any of the methods above through one call. Inside,
+   each method is one row of a table: its plan (voxgi_plan), what it builds from the scene (the
+   voxels, the radiance, maps, a line space), the gathers at the camera's pixels that make the
+   image, and the freeing of what it built. The desc has a head every method reads (the view,
+   samples, seed, grid, what to leave out of the image) and a part per method; every zero field
+   means that method's default, the setting its report measured best (docs/ of each method), and
+   info.used gives back every setting that ran, defaults resolved. A method whose part was left
+   out of the build (VOXGI_NO_*) gives VOXGI_ERR_UNSUPPORTED. */
+typedef enum voxgi_render_method {
+    VOXGI_RENDER_REFERENCE = 0,   /* path tracing (part 13): the ground truth the others are measured against */
+    VOXGI_RENDER_VCT,             /* direct light through shadow rays and the indirect light of voxel cone tracing */
+    VOXGI_RENDER_TSM,             /* direct light, directional and spot lights through transmittance shadow maps */
+    VOXGI_RENDER_RSM,             /* direct light and one bounce from reflective shadow maps */
+    VOXGI_RENDER_SH,              /* direct light and one bounce from a spherical-harmonics volume of it */
+    VOXGI_RENDER_SSAO,            /* ambient occlusion through the depth buffer */
+    VOXGI_RENDER_VAO,             /* ambient occlusion through the voxels */
+    VOXGI_RENDER_SSGI,            /* direct light and one bounce from the screen, visibility through the depth buffer */
+    VOXGI_RENDER_HYBRID,          /* the same, visibility through the voxels (Hybrid-GI) */
+    VOXGI_RENDER_LINESPACE,       /* the area lights' direct light, soft shadows through the line space */
+    VOXGI_RENDER_METHOD_COUNT
+} voxgi_render_method;
+
+/* A setting that is on or off, 0 leaving it to the method. */
+typedef enum voxgi_toggle { VOXGI_TOGGLE_DEFAULT = 0, VOXGI_TOGGLE_ON, VOXGI_TOGGLE_OFF } voxgi_toggle;
+
+/* What cone tracing's cones gather from. */
+typedef enum voxgi_vct_radiance {
+    VOXGI_VCT_RADIANCE_DEFAULT = 0, /* the anisotropic volume, or the octree where the plan finds the volume over the memory budget */
+    VOXGI_VCT_ANISOTROPIC,        /* a volume with six-direction mips */
+    VOXGI_VCT_ISOTROPIC,          /* a volume with one mip chain (less memory, more light through thin walls) */
+    VOXGI_VCT_OCTREE              /* a sparse voxel octree of the radiance (isotropic mips) */
+} voxgi_vct_radiance;
+
+typedef struct voxgi_render_vct {
+    voxgi_vct_radiance radiance;
+    voxgi_cone_desc cones;        /* the pixels' diffuse cones; cones 0 = 24, the rest voxgi_cone_desc's defaults */
+    int cone_stride;              /* s > 1: cones at every s-th pixel across and down (and the last row and column); a
+                                     pixel between takes the bilinear mean of the four around it that share its surface
+                                     (normals within 26 degrees, on its plane within a voxel), or traces its own where none
+                                     does. 0 = 6; 1: every pixel */
+    int inject_samples;           /* points per area light and on the emitters for each voxel's light; 0: 4 on the CPU,
+                                     stratified per voxel; 16 on GL, the same points for every voxel */
+    int shadow_rays;              /* GL: inject through exact shadow rays (voxgi_inject_desc) */
+    int sampled_direct;           /* 1: the area lights' and emitters' direct light from the rays alone; 0: where the scene
+                                     has up to 64 emissive triangles, their and the rect lights' unshadowed irradiance
+                                     exactly (Lambert's polygon formula) times the rays' visible share, and a pixel whose
+                                     first half of rays all meet the centre's triangle, lit alike, stops there */
+    int one_sided;                /* 1: one-sided radiance (voxgi_inject_desc.one_sided) */
+    voxgi_cone_desc bounce_cones; /* bounces > 1: the gathers among the voxels (voxgi_inject_desc.gather) */
+    int bounce_block;             /* bounces > 1: one gather per block of this many voxels a side; 0 = 4 */
+    voxgi_svo_format octree_format; /* OCTREE */
+    int octree_bricks;            /* OCTREE: 1 = sampled through bricks */
+} voxgi_render_vct;
+
+typedef struct voxgi_render_tsm {
+    voxgi_tsm_desc maps;          /* every directional and spot light's map: size 0 = 512, slices 0 = 64, sigma (light: ignored) */
+} voxgi_render_tsm;
+
+typedef struct voxgi_render_rsm {
+    voxgi_rsm_desc maps;          /* every light's map but point lights' (which bounce nowhere), and the emitters':
+                                     size, samples, radius, points as voxgi_rsm_desc's; seed 0 = the image's (light: ignored) */
+    voxgi_visibility visibility;  /* of each gather, through the grid's conservative voxels */
+    int gather_stride;            /* gathers at every s-th pixel across and down, the pixels between interpolated from the
+                                     anchors around them that share their surface where at least three of four do; 0 = 4 */
+} voxgi_render_rsm;
+
+typedef struct voxgi_render_sh {
+    voxgi_sh_desc volume;         /* samples as voxgi_sh_desc's; seed 0 = the image's */
+    voxgi_visibility visibility;
+    float opening;                /* a cell counts as one point where its size is at most this times its distance; 0 = 0.5 */
+    int gather_stride;            /* as rsm's; 0 = 4 */
+} voxgi_render_sh;
+
+/* SSAO, VAO, SSGI and HYBRID: the rays from the pixels' surfaces (voxgi_ao, voxgi_ssgi). */
+typedef struct voxgi_render_screen {
+    int rays, steps;              /* per pixel, and along each ray; 0 = 16 each */
+    float radius;                 /* the rays' reach; 0: AO a tenth of the scene's longest side, GI sqrt(3) times it */
+    int point_sampling;           /* SSAO: one point per ray instead of the march (occlusion falling off linearly) */
+    voxgi_toggle half_resolution; /* rays at every other pixel across and down, upsampled by voxgi_screen_filter; default off
+                                     for AO, on for GI */
+    int blur;                     /* voxgi_screen_filter's radius in pixels, 1..64; 0: AO 2, GI 8; -1: none */
+    voxgi_toggle hidden_light;    /* HYBRID: rays meeting a voxel the camera does not see take the direct light injected into
+                                     it (voxgi_inject_light, without emission); default on (off: they send nothing) */
+    int inject_samples;           /* hidden_light: voxgi_inject_desc.samples; 0 = as VCT's */
+} voxgi_render_screen;
+
+typedef struct voxgi_render_linespace {
+    const voxgi_linespace *ls;    /* the scene's line space, kept while the geometry stands still, or NULL: built from tree */
+    voxgi_linespace_desc tree;    /* n 0 = 4, depth 0 = the scene's, memory_budget */
+    voxgi_linespace_mode mode;
+    int samples;                  /* shadow rays per shading point and light (voxgi_linespace_light_desc); 0 = 4 */
+    int packets;                  /* 1: a point's rays walk the tree together (CPU); the same image */
+    int exact_ends;               /* FAST: as voxgi_linespace_light_desc's; 0 = 3 */
+    int supersample;              /* k x k shading points per pixel (the G-buffer k times the size), their mean: the pixel's
+                                     square as the reference integrates it; 0 = 2, 1: the pixel's centre */
+    float *visible;               /* NULL, or width x height floats out: per pixel the lights' mean visible share */
+} voxgi_render_linespace;
+
+typedef struct voxgi_render_reference {
+    float ao_radius;              /* > 0: ambient occlusion within this radius instead of light (voxgi_ao's exact definition) */
+    int screen_light_only;        /* 1 (one bounce): the bounce takes light only from surfaces the camera sees (the most
+                                     one bounce from the screen can find) */
+} voxgi_render_reference;
+
+typedef struct voxgi_render_desc {
+    voxgi_render_method method;
+    voxgi_camera camera;          /* width x height 0 = 256 x 256; fovy 0 = 40 degrees; eye = target (a zero camera):
+                                     the scene's bounds from in front and a little above */
+    int samples;                  /* camera rays per pixel: REFERENCE paths (0 = 64), VCT, RSM, SH, SSGI and HYBRID the direct
+                                     light's rays (0 = 24), TSM (0 = 4); the others take none (their pixel centres) */
+    uint64_t seed;                /* every random number comes from (seed, pixel, sample): the same seed, the same image */
+    int resolution;               /* the method's grid, voxels along the scene's longest side: VCT 0 = 96, RSM and SH 64,
+                                     VAO and HYBRID 128; the other methods have none */
+    int bounces;                  /* REFERENCE, VCT: indirect bounces; 0 = 1; -1: until they converge (full GI) */
+    int direct_only;              /* 1: no indirect light (REFERENCE: bounces 0; VCT, RSM, SH, SSGI, HYBRID: no bounce) */
+    int hide_emitters;            /* 1: leave out the emission the camera sees directly (to compare the lighting alone) */
+    double error;                 /* VCT, > 0: the relative RMSE wanted: the grid, cones and stride not given come from the
+                                     measured front (docs/planner.md); the other methods refuse it */
+    uint64_t memory_budget;       /* bytes the plan may keep; 0: the context's (voxgi_desc.memory_budget) */
+    const voxgi_voxels *voxels;   /* VCT: the static scene's voxels from voxgi_render_voxelize: the light is re-injected into
+                                     them and nothing voxelized (a light-only update) */
+    const voxgi_ray_scene *rays;  /* the static scene's ray scene (voxgi_ray_scene_create of this scene): no BVH built */
+    voxgi_render_vct vct;
+    voxgi_render_tsm tsm;
+    voxgi_render_rsm rsm;
+    voxgi_render_sh sh;
+    voxgi_render_screen screen;   /* SSAO, VAO, SSGI, HYBRID */
+    voxgi_render_linespace linespace;
+    voxgi_render_reference reference;
+} voxgi_render_desc;
 
 /* ----- the planner
-   voxgi_plan looks at a scene and at what is asked of it (a method, a view, an error) and decides
-   which channels, structures and passes can contribute: it names each one it keeps or leaves out
-   and why, and what the kept ones cost in memory, before anything is allocated. The images below
-   plan the same way: voxgi_vct_render, voxgi_tsm_render, voxgi_rsm_render, voxgi_sh_render,
-   voxgi_ssgi_render and voxgi_linespace_render leave out what their plan leaves out and log each
-   such item (VOXGI_LOG_INFO, "plan: <name>: left out - <why>"). */
-typedef enum voxgi_plan_method {
-    VOXGI_PLAN_VCT = 0,           /* voxgi_vct_render */
-    VOXGI_PLAN_TSM,               /* voxgi_tsm_render */
-    VOXGI_PLAN_RSM,               /* voxgi_rsm_render */
-    VOXGI_PLAN_SH,                /* voxgi_sh_render */
-    VOXGI_PLAN_AO,                /* voxgi_ao_render */
-    VOXGI_PLAN_SSGI,              /* voxgi_ssgi_render */
-    VOXGI_PLAN_LINESPACE,         /* voxgi_linespace_render */
-    VOXGI_PLAN_REFERENCE          /* voxgi_reference_render */
-} voxgi_plan_method;
-typedef struct voxgi_plan_request {
-    voxgi_plan_method method;
-    const voxgi_camera *camera;   /* the view, or NULL: whether it sees an emitter stays open */
-    double error;                 /* VCT, > 0: the relative RMSE wanted: grid, cones and stride (with anisotropic
-                                     mips) from the measurements of docs/planner.md (unless resolution is given) */
-    int resolution;               /* voxels along the scene's longest side; 0: from error, else the method's
-                                     default. AO and SSGI: > 0 through the voxels, 0 through the depth buffer */
-    int bounces;                  /* VCT: as voxgi_vct_desc.bounces */
-    int dynamic;                  /* 1: the geometry moves every frame; 0: a static scene, voxelized once */
-    int one_sided;                /* VCT: as voxgi_vct_desc.one_sided */
-    voxgi_mip_filter filter;      /* VCT: as voxgi_vct_desc.filter */
-    int everything;               /* 1: keep every item the method has (to measure what the plan saves) */
-    uint64_t memory_budget;       /* 0: the context's (voxgi_desc.memory_budget) */
-} voxgi_plan_request;
+   voxgi_plan looks at a scene and at what a render desc asks of it and decides which channels,
+   structures and passes can contribute: it names each one it keeps or leaves out and why, and
+   what the kept ones cost in memory, before anything is allocated. voxgi_render follows its plan
+   and returns it. */
 typedef enum voxgi_plan_kind { VOXGI_PLAN_CHANNEL = 0, VOXGI_PLAN_STRUCTURE, VOXGI_PLAN_PASS } voxgi_plan_kind;
+typedef enum voxgi_plan_item_id {
+    VOXGI_PLAN_ALBEDO = 0, VOXGI_PLAN_NORMAL, VOXGI_PLAN_EMISSION, VOXGI_PLAN_OPACITY, VOXGI_PLAN_LIGHTS,   /* channels */
+    VOXGI_PLAN_VOXELS, VOXGI_PLAN_RADIANCE_VOLUME, VOXGI_PLAN_RADIANCE_OCTREE, VOXGI_PLAN_SHADOW_MAPS,      /* structures */
+    VOXGI_PLAN_TRANSMITTANCE_LAYERS, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS, VOXGI_PLAN_SH_VOLUME, VOXGI_PLAN_LINE_SPACE,
+    VOXGI_PLAN_VOXELIZATION, VOXGI_PLAN_LIGHT_INJECTION, VOXGI_PLAN_BOUNCES, VOXGI_PLAN_CONES, VOXGI_PLAN_GATHERS, /* passes */
+    VOXGI_PLAN_SCREEN_BOUNCE, VOXGI_PLAN_OCCLUSION, VOXGI_PLAN_SOFT_SHADOWS, VOXGI_PLAN_PATH_TRACING, VOXGI_PLAN_DIRECT_LIGHT,
+    VOXGI_PLAN_SEEN_EMISSION,
+    VOXGI_PLAN_ITEM_COUNT
+} voxgi_plan_item_id;
 typedef struct voxgi_plan_item {
+    voxgi_plan_item_id id;
     const char *name;             /* "emission", "transmittance maps", "cones", ... */
     voxgi_plan_kind kind;
     int kept;
     const char *why;              /* why it is kept or left out */
-    uint64_t bytes;               /* its memory when kept, with the method's default sizes; 0: none to speak of */
+    uint64_t bytes;               /* its memory when kept; 0: none to speak of */
     int estimated;                /* 1: bytes from the estimated set voxels (below), 0: the formula it is allocated by */
 } voxgi_plan_item;
 #define VOXGI_PLAN_MAX_ITEMS 16
@@ -1376,25 +1352,70 @@ typedef struct voxgi_plan_info {
     uint64_t triangles, emissive_triangles, translucent_triangles, reflective_triangles; /* reflective: albedo > 0 */
     int point_lights, spot_lights, directional_lights, rect_lights;
     int area_lights;              /* rect lights and the emissive triangles' parallelograms (the line space's); -1: over 64 */
-    int emitters_in_view;         /* 1: an emissive front face may be in view, 0: none is, -1: no camera */
+    int emitters_in_view;         /* 1: an emissive front face may be in view, 0: none is */
     double surface_area;
-    int resolution;               /* the method's grid along the longest side (0: it has none) */
-    voxgi_grid grid;              /* that grid (voxgi_fit_grid, a voxel of padding) */
+    voxgi_grid grid;              /* the method's grid (voxgi_fit_grid of the resolution used, a voxel of padding); zero: none */
     uint64_t voxels;              /* estimated set voxels: the sum over triangles of area x (|nx| + |ny| + |nz|) /
                                      voxel size^2, at most the grid's */
     double occupancy;             /* voxels / the grid's voxels */
-    int cones, cone_stride;       /* VCT: diffuse cones per gather, cones at every s-th pixel */
-    int octree;                   /* VCT: 1 the radiance in an octree: the dense volume does not fit the budget */
     double expected_error;        /* VCT with error: what the chosen settings measured on the Cornell box */
     int error_reachable;          /* 0: no measured setting reaches the error asked for (the closest is chosen) */
     int item_count;
     voxgi_plan_item items[VOXGI_PLAN_MAX_ITEMS];
     uint64_t bytes;               /* the kept items' */
 } voxgi_plan_info;
-VOXGI_API voxgi_result voxgi_plan(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_plan_request *request, voxgi_plan_info *plan);
-/* The plan's item of that name, or NULL. */
-VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, const char *name);
+enum { VOXGI_PLAN_DYNAMIC = 1, VOXGI_PLAN_EVERYTHING = 2 }; /* voxgi_plan's flags */
+/* The plan of voxgi_render(ctx, scene, desc): flags DYNAMIC (the geometry moves every frame: what
+   re-runs), EVERYTHING (keep every item the method has, to measure what the plan saves). */
+VOXGI_API voxgi_result voxgi_plan(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, unsigned flags, voxgi_plan_info *plan);
+/* The plan's item of that id, or NULL when the method has none. */
+VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, voxgi_plan_item_id id);
 
+/* ----- rendering */
+#define VOXGI_RENDER_MAX_STAGES 6
+typedef struct voxgi_render_stage {
+    const char *name;             /* "voxelize", "inject", "cones", "direct", "maps", "gather", ... */
+    double ms;                    /* wall time (GL work included: each stage waits for its GL work) */
+} voxgi_render_stage;
+typedef struct voxgi_render_info {
+    voxgi_render_desc used;       /* the settings that ran: every default resolved */
+    voxgi_plan_info plan;
+    double ms;                    /* all */
+    int stage_count;
+    voxgi_render_stage stages[VOXGI_RENDER_MAX_STAGES]; /* the passes in the order they ran, each with its time */
+    size_t bytes;                 /* what was built from the scene: VCT the radiance the cones gather from; TSM, RSM the
+                                     maps; SH its volume; the voxels of visibility and their OR mipmaps; the hidden light */
+    uint64_t voxels;              /* VCT: the voxels set */
+    size_t gathered;              /* pixels that gathered (cones, bounces, occlusion; the rest interpolated) */
+    int maps;                     /* TSM, RSM: the maps made */
+    int lights;                   /* LINESPACE: the area lights */
+    uint64_t rays;                /* REFERENCE: every ray cast (camera, bounce, shadow) */
+    size_t triangles, bvh_nodes;  /* REFERENCE: the scene's ray scene */
+    voxgi_linespace_info tree;    /* LINESPACE: the line space */
+    voxgi_linespace_stats shadow_rays; /* LINESPACE: its rays over all lights */
+} voxgi_render_info;
+/* The image into rgb (3 floats per pixel, linear radiance, rows from the top; SSAO and VAO: the
+   occluded share, grey, 0 where the camera sees nothing; rgb_bytes at least width x height x 12);
+   info may be NULL. On a GL context each method runs its passes on GL where it has them (the
+   direct light's and the reference's rays stay on the CPU). */
+VOXGI_API voxgi_result voxgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, float *rgb, size_t rgb_bytes,
+                                    voxgi_render_info *info);
+/* The settings voxgi_render would run with, every default resolved for this scene (what
+   info.used reports), without rendering. */
+VOXGI_API voxgi_result voxgi_render_resolve(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, voxgi_render_desc *used);
+/* A method's name ("reference", "vct", "tsm", "rsm", "sh", "ssao", "vao", "ssgi", "hybrid",
+   "linespace"), or NULL; voxgi_render_method_find: the method of a name, or -1. */
+VOXGI_API const char *voxgi_render_method_name(voxgi_render_method method);
+VOXGI_API int voxgi_render_method_find(const char *name);
+/* One line naming the method and every setting of `used` it reads (as voxgi_render_resolve or
+   info.used give them), into buf (snprintf's rules); its length. */
+VOXGI_API int voxgi_render_describe(const voxgi_render_desc *used, char *buf, size_t size);
+/* The voxels voxgi_render makes of the scene for VCT with desc's resolution (its grid, albedo
+   and normal), to keep while the geometry stands still: an image given them as desc.voxels is
+   bit for bit the one that voxelizes, whatever its lights. Images with another resolution, or of a
+   scene with other bounds or another triangle count, refuse them (VOXGI_ERR_INVALID_ARGUMENT);
+   geometry moved within the same bounds is the caller's to notice. */
+VOXGI_API voxgi_result voxgi_render_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, voxgi_voxels **out);
 
 /* The G-buffer voxgi renders for its own images: per pixel the surface the ray through the
    pixel's centre meets first: its position (world units), its normal facing the camera, its
@@ -1406,116 +1427,6 @@ VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, co
 VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, float *positions, float *normals,
                                             uint32_t *triangles);
 
-#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
-/* A cone-traced image: the scene voxelized (conservative, with attributes) on a grid of
-   `resolution` voxels along its longest side, direct light injected into the voxels (their
-   emission left out: emitters light the pixels directly), the radiance mipmapped, then per
-   pixel: emission + albedo / pi x (direct irradiance through exact shadow rays, `samples` rays
-   per pixel stratified over the pixel's square and the light (a randomly shifted 4D Kronecker
-   sequence), + the cones' irradiance at the surface the ray met: the one gathered at the
-   nearest of the 3 x 3 pixels whose centre lies on it, so that a pixel across an edge mixes
-   its sides' indirect light as it mixes their direct light). no_gi leaves the cones out:
-   the direct light alone, which the reference renderer's bounces = 0 matches.
-   On a GL context the G-buffer, the voxels, the light injection, the mips and the cones are
-   GL's; the direct light's rays are the CPU's on both. */
-typedef struct voxgi_vct_desc {
-    voxgi_camera camera;
-    int resolution;               /* 0 = 128 */
-    voxgi_mip_filter filter;
-    voxgi_cone_desc cones;
-    int no_gi;                    /* 1: direct light only */
-    int samples;                  /* jittered rays per pixel for the direct light; 0 = 16. With the exact area light
-                                     (below), a pixel whose first half of rays all meet the centre's triangle and see
-                                     all or none of the lights stops there (16: 3.4% -> 3.6% error, 40% less time) */
-    int sampled_direct;           /* 1: the area lights' and emitters' direct light from the rays alone. 0: where the
-                                     scene has up to 64 emissive triangles, their and the rect lights' unshadowed
-                                     irradiance exactly (Lambert's polygon formula) times the rays' visible share */
-    int inject_samples;           /* points per area light and on the emitters for each voxel's light. 0: on the CPU 4,
-                                     stratified per voxel (the mips average their noise: 4 and 16 give the same image
-                                     error on the Cornell box); on GL 16, the same points for every voxel (4 leave
-                                     their shadows' steps: 14.0% against 13.5%) */
-    uint64_t seed;
-    int hide_emitters;            /* 1: leave out the emission the camera sees directly */
-    int shadow_rays;              /* GL context: inject through exact shadow rays (voxgi_inject_desc) */
-    int bounces;                  /* indirect bounces: 0 or 1 = one (the cones at the pixels); B > 1: the
-                                     light bounces B - 1 times among the voxels first (voxgi_inject_desc);
-                                     -1: full global illumination (bounces until they converge) */
-    voxgi_cone_desc bounce_cones; /* the bounces' gathers among the voxels (voxgi_inject_desc.gather) */
-    int bounce_block;             /* the bounces gather once per block of this many voxels a side
-                                     (voxgi_inject_desc.gather_block); 0 = 4 */
-    int cone_stride;              /* s > 1: cones at every s-th pixel across and down (and the last row and
-                                     column); a pixel between takes the bilinear mean of the four around it
-                                     that share its surface (normals within 26 degrees, on its plane within a
-                                     voxel), or traces its own where none does. 0 or 1: every pixel */
-    int one_sided;                /* 1: one-sided radiance (voxgi_inject_desc.one_sided) */
-#ifndef VOXGI_NO_OCTREE
-    int octree;                   /* 1: the cones gather from a sparse voxel octree of the injected radiance
-                                     (isotropic mips, `filter` ignored) instead of the volume */
-    voxgi_svo_format octree_format;
-    int octree_bricks;            /* 1: the octree samples through bricks */
-#endif
-    const voxgi_voxels *voxels;   /* a static scene's voxels from voxgi_vct_voxelize (this scene's geometry, this
-                                     resolution, this context): the image re-injects the light into them and
-                                     voxelizes nothing (a light-only update); NULL: it voxelizes */
-    const voxgi_ray_scene *rays;  /* a static scene's ray scene (voxgi_ray_scene_create of this scene, checked): the
-                                     shadow rays use its BVH instead of building one per image; NULL: built */
-} voxgi_vct_desc;
-typedef struct voxgi_vct_info {
-    uint64_t voxels;
-    size_t cone_points;           /* pixels whose cones were traced */
-    double ms_voxelize, ms_inject, ms_octree, ms_cones, ms_direct, ms; /* inject: with the mips */
-    size_t radiance_bytes;        /* what the cones gather from: the radiance volume, or the octree */
-} voxgi_vct_info;
-VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, float *rgb, size_t rgb_bytes,
-                                        voxgi_vct_info *info);
-/* The voxels voxgi_vct_render makes of the scene for desc (its grid, albedo and normal), to keep
-   while the geometry stands still: an image given them as desc.voxels is bit for bit the one that
-   voxelizes, whatever its lights. Images with another resolution, or of a scene with other
-   bounds or another triangle count, refuse them (VOXGI_ERR_INVALID_ARGUMENT); geometry moved
-   within the same bounds is the caller's to notice. */
-VOXGI_API voxgi_result voxgi_vct_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, voxgi_voxels **out);
-#endif
-
-/* ===================================================================== 14. reference renderer */
-#ifndef VOXGI_NO_REFERENCE
-
-/* Ground truth for the lighting passes: Monte Carlo path tracing of the scene on the CPU, through
-   the ray core (voxgi_ray_scene: watertight, hit points refined in double). Surfaces are Lambertian (albedo) and emit
-   their material's emission from their front faces; the scene's lights add point, spot,
-   directional and rectangular light; there is no environment (misses are black) and
-   transparency is ignored (every surface is opaque). Paths gather direct light at every vertex
-   (next-event estimation towards the lights and the emissive triangles) and count emission seen
-   directly from the camera. A pixel is the mean radiance over its square (uniformly jittered
-   samples). Sample s of pixel p draws its random numbers from (seed, p, s) alone, so the image
-   is the same for any thread count; the progress callback sees each pass and may cancel. */
-
-typedef struct voxgi_reference_desc {
-    voxgi_camera camera;
-    int samples;                  /* per pixel; 0 = 16 */
-    int bounces;                  /* indirect bounces: 0 = direct light only, 1 = one bounce, ...;
-                                     -1 = unlimited (Russian roulette ends paths without bias) */
-    uint64_t seed;
-    int hide_emitters;            /* 1: leave out the emission the camera sees directly (to compare lighting alone) */
-    float ao_radius;              /* > 0: ambient occlusion instead of light: per sample a camera ray and one
-                                     cosine-distributed ray from its surface, occluded when it meets any
-                                     surface within ao_radius; the pixel is the occluded share (grey), 0
-                                     where the camera sees nothing (voxgi_ao's exact definition) */
-    int screen_light_only;        /* 1 (with bounces 1): the bounce takes the light a surface reflects only where the
-                                     camera sees that surface (inside the image, nothing in front): the most that
-                                     one bounce from the screen (voxgi_ssgi) can find */
-} voxgi_reference_desc;
-
-typedef struct voxgi_reference_info {
-    size_t triangles, bvh_nodes;
-    uint64_t rays;                /* camera, bounce and shadow rays */
-    double ms_bvh, ms_render;
-} voxgi_reference_info;
-
-/* Renders into rgb (3 floats per pixel, linear radiance, rows from the top, width * height * 12
-   bytes); info may be NULL. */
-VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc, float *rgb,
-                                              size_t rgb_bytes, voxgi_reference_info *info);
-#endif /* VOXGI_NO_REFERENCE */
 
 /* ===================================================================== 15. built-in scenes and files */
 
@@ -7623,6 +7534,222 @@ VOXGI_API voxgi_result voxgi_voxels_reduce(voxgi_context *ctx, const voxgi_voxel
     return VOXGI_OK;
 }
 
+/* ----- segments through the voxels: 3D-DDA and hierarchical traversal of the OR mipmaps (voxel visibility) */
+
+/* A grid's occupancy and its OR mipmaps (level l: ceil(res / 2^l) per axis, cell set when any of
+   its voxels is), up to one cell. */
+#define VOXGI__MAX_OCC_LEVELS 24
+typedef struct voxgi__occupancy {
+    int levels;
+    int res[VOXGI__MAX_OCC_LEVELS][3];
+    uint32_t *bits[VOXGI__MAX_OCC_LEVELS];
+} voxgi__occupancy;
+
+static int voxgi__occ_get(const voxgi__occupancy *O, int l, const int64_t c[3])
+{
+    const int *r = O->res[l];
+    return voxgi_bit_get(O->bits[l], (uint64_t)c[0] + (uint64_t)r[0] * ((uint64_t)c[1] + (uint64_t)r[1] * (uint64_t)c[2]));
+}
+
+static void voxgi__occ_free(voxgi_context *ctx, voxgi__occupancy *O)
+{
+    int l;
+    for (l = 0; l < O->levels; l++) voxgi__free(ctx, O->bits[l]);
+    memset(O, 0, sizeof *O);
+}
+
+/* The occupancy's memory, every level. */
+static size_t voxgi__occ_bytes(const voxgi__occupancy *O)
+{
+    size_t n = 0;
+    int l;
+    for (l = 0; l < O->levels; l++) n += ((size_t)O->res[l][0] * (size_t)O->res[l][1] * (size_t)O->res[l][2] + 31) / 32 * 4;
+    return n;
+}
+
+static voxgi_result voxgi__occ_build(voxgi_context *ctx, const voxgi_voxels *vox, int mips, voxgi__occupancy *O)
+{
+    const voxgi_grid *g = &vox->info.grid;
+    int l, a;
+    memset(O, 0, sizeof *O);
+    O->levels = 1;
+    for (a = 0; a < 3; a++) O->res[0][a] = g->res[a];
+    O->bits[0] = (uint32_t *)voxgi__alloc_array(ctx, 1, vox->info.bytes, 0);
+    if (!O->bits[0]) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the occupancy");
+    if (voxgi_voxels_read(ctx, vox, O->bits[0], vox->info.bytes, NULL) != VOXGI_OK) { voxgi__occ_free(ctx, O); return VOXGI_ERR_GL; }
+    while (mips && O->levels < VOXGI__MAX_OCC_LEVELS && (O->res[O->levels - 1][0] > 1 || O->res[O->levels - 1][1] > 1 || O->res[O->levels - 1][2] > 1)) {
+        const int *r = O->res[O->levels - 1];
+        int *q = O->res[O->levels];
+        int64_t c[3], k[3];
+        l = O->levels;
+        for (a = 0; a < 3; a++) q[a] = (r[a] + 1) / 2;
+        O->bits[l] = (uint32_t *)voxgi__alloc_array(ctx, ((size_t)q[0] * (size_t)q[1] * (size_t)q[2] + 31) / 32, 4, 1);
+        if (!O->bits[l]) { voxgi__occ_free(ctx, O); return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the occupancy's mips"); }
+        O->levels++;
+        for (c[2] = 0; c[2] < r[2]; c[2]++) /* each set cell sets its parent */
+            for (c[1] = 0; c[1] < r[1]; c[1]++)
+                for (c[0] = 0; c[0] < r[0]; c[0]++)
+                    if (voxgi__occ_get(O, l - 1, c)) {
+                        for (a = 0; a < 3; a++) k[a] = c[a] >> 1;
+                        uint64_t at = (uint64_t)k[0] + (uint64_t)q[0] * ((uint64_t)k[1] + (uint64_t)q[1] * (uint64_t)k[2]);
+                        O->bits[l][at >> 5] |= 1u << (at & 31u);
+                    }
+    }
+    return VOXGI_OK;
+}
+
+/* Where a cell of `size` voxels at integer cell c is left along the segment o + t d (voxel
+   units): the exit t and the axis (the lowest on ties). */
+static double voxgi__cell_exit(const double o[3], const double d[3], const int64_t c[3], int64_t size, int *axis)
+{
+    double best = INFINITY;
+    int a;
+    *axis = 0;
+    for (a = 0; a < 3; a++) {
+        double t;
+        if (d[a] == 0) continue;
+        t = ((double)((c[a] + (d[a] > 0)) * size) - o[a]) / d[a];
+        if (t < best) { best = t; *axis = a; }
+    }
+    return best;
+}
+
+/* The segment o + t d, t in [0, 1] (voxel units), cut to the grid's box: its t range, or 0. */
+static int voxgi__segment_in_grid(const int res[3], const double o[3], const double d[3], double *t0, double *t1)
+{
+    int a;
+    *t0 = 0;
+    *t1 = 1;
+    for (a = 0; a < 3; a++) {
+        if (d[a] == 0) {
+            if (!(o[a] >= 0 && o[a] <= res[a])) return 0;
+            continue;
+        }
+        {
+            double ta = (0 - o[a]) / d[a], tb = ((double)res[a] - o[a]) / d[a];
+            if (ta > tb) { double x = ta; ta = tb; tb = x; }
+            *t0 = VOXGI__MAX(*t0, ta);
+            *t1 = VOXGI__MIN(*t1, tb);
+        }
+    }
+    return *t0 <= *t1;
+}
+
+/* The voxel holding the point at t, each axis clamped into [lo, hi]. */
+static void voxgi__voxel_at(const double o[3], const double d[3], double t, const int64_t lo[3], const int64_t hi[3], int64_t v[3])
+{
+    int a;
+    for (a = 0; a < 3; a++) {
+        double x = floor(o[a] + t * d[a]);
+        v[a] = x < (double)lo[a] ? lo[a] : (x > (double)hi[a] ? hi[a] : (int64_t)x);
+    }
+}
+
+/* 1 when the segment meets an occupied voxel; visited voxels (DDA) or cells (the hierarchical
+   traversal, from the coarsest level: an occupied cell is looked into one level finer, an empty
+   one skipped and the next looked at one level coarser) counted into *steps. visit (or NULL):
+   each voxel the DDA enters, in order. */
+static int voxgi__traverse(const voxgi__occupancy *O, int hierarchical, const double o[3], const double d[3], uint64_t *steps,
+                           void (*visit)(void *user, const int64_t v[3]), void *user)
+{
+    int64_t v[3], lo[3] = {0, 0, 0}, hi[3];
+    double t0, t1, t;
+    int a, l = hierarchical ? O->levels - 1 : 0;
+    for (a = 0; a < 3; a++) hi[a] = O->res[0][a] - 1;
+    if (!voxgi__segment_in_grid(O->res[0], o, d, &t0, &t1)) return 0;
+    voxgi__voxel_at(o, d, t0, lo, hi, v);
+    for (;;) { /* at voxel v, looking at its cell of level l: occupied, finer (or hit at 0); empty, past it and one coarser */
+        int64_t cell[3], size = (int64_t)1 << l, clo[3], chi[3];
+        int axis;
+        ++*steps;
+        for (a = 0; a < 3; a++) cell[a] = v[a] >> l;
+        if (voxgi__occ_get(O, l, cell)) {
+            if (l == 0) {
+                if (visit) visit(user, v);
+                return 1;
+            }
+            l--;
+            continue;
+        }
+        if (visit) visit(user, v);
+        t = voxgi__cell_exit(o, d, cell, size, &axis);
+        if (!(t <= t1)) return 0;
+        for (a = 0; a < 3; a++) { /* the next voxel: across the exit plane, inside the cell's extent on the other axes */
+            clo[a] = cell[a] * size;
+            chi[a] = VOXGI__MIN(clo[a] + size - 1, hi[a]);
+        }
+        voxgi__voxel_at(o, d, t, clo, chi, v);
+        v[axis] = d[axis] > 0 ? (cell[axis] + 1) * size : cell[axis] * size - 1;
+        if (v[axis] < 0 || v[axis] > hi[axis]) return 0;
+        if (hierarchical && l < O->levels - 1) l++;
+    }
+}
+
+VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_traversal how, size_t count, const float *from,
+                                             const float *to, unsigned char *blocked, uint64_t *steps)
+{
+    voxgi__occupancy O;
+    const voxgi_grid *g;
+    uint64_t n = 0;
+    size_t i;
+    int a;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!voxels || (count && (!from || !to || !blocked))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, from, to or blocked is NULL");
+    if (how != VOXGI_TRAVERSAL_DDA && how != VOXGI_TRAVERSAL_HIERARCHICAL) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "traversal %d", (int)how);
+    for (i = 0; i < 3 * count; i++)
+        if (!isfinite(from[i]) || !isfinite(to[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "segment %lu is not finite", (unsigned long)(i / 3));
+    if ((r = voxgi__occ_build(ctx, voxels, how == VOXGI_TRAVERSAL_HIERARCHICAL, &O)) != VOXGI_OK) return r;
+    g = &voxels->info.grid;
+    for (i = 0; i < count; i++) {
+        double o[3], d[3];
+        for (a = 0; a < 3; a++) {
+            o[a] = ((double)from[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size;
+            d[a] = ((double)to[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size - o[a];
+        }
+        blocked[i] = (unsigned char)voxgi__traverse(&O, how == VOXGI_TRAVERSAL_HIERARCHICAL, o, d, &n, NULL, NULL);
+    }
+    voxgi__occ_free(ctx, &O);
+    if (steps) *steps = n;
+    return VOXGI_OK;
+}
+
+#ifndef VOXGI_NO_GL
+/* The occupancy for the GL traversal (shaders/voxel_traverse.glsl): every level's words one
+   after another in *bits, and per level its cells per axis and first word in *levels. */
+static void voxgi__occ_upload(voxgi_context *ctx, const voxgi__occupancy *O, unsigned int *bits, unsigned int *levels)
+{
+    uint32_t info[4 * VOXGI__MAX_OCC_LEVELS];
+    size_t words = 0, n[VOXGI__MAX_OCC_LEVELS];
+    int l;
+    for (l = 0; l < O->levels; l++) {
+        info[4 * l] = (uint32_t)O->res[l][0];
+        info[4 * l + 1] = (uint32_t)O->res[l][1];
+        info[4 * l + 2] = (uint32_t)O->res[l][2];
+        info[4 * l + 3] = (uint32_t)words;
+        n[l] = ((size_t)O->res[l][0] * (size_t)O->res[l][1] * (size_t)O->res[l][2] + 31) / 32;
+        words += n[l];
+    }
+    *bits = voxgi__gl_buffer(ctx, words * 4, NULL);
+    for (l = 0; l < O->levels; l++) ctx->gl->NamedBufferSubData(*bits, (ptrdiff_t)(info[4 * l + 3] * 4u), (ptrdiff_t)(n[l] * 4), O->bits[l]);
+    *levels = voxgi__gl_buffer(ctx, (size_t)O->levels * 16, info);
+}
+
+/* Runs `program` (bound by the caller, with its buffers) over count points in batches of 2^20
+   (u_first, u_count). */
+static void voxgi__gl_dispatch_points(voxgi__gl *gl, unsigned int program, size_t count)
+{
+    size_t first;
+    for (first = 0; first < count; first += (size_t)1 << 20) {
+        size_t n = VOXGI__MIN(count - first, (size_t)1 << 20);
+        gl->ProgramUniform1ui(program, VOXGI__LOC_u_first, (unsigned)first);
+        gl->ProgramUniform1ui(program, VOXGI__LOC_u_count, (unsigned)n);
+        voxgi__gl_dispatch_items(gl, (uint64_t)n);
+    }
+}
+#endif
+
+
 /* ===================================================================== 6. volumes and mips */
 
 /* attribute volumes and mipmaps
@@ -11377,225 +11504,7 @@ VOXGI_API void voxgi_tsm_destroy(voxgi_context *ctx, voxgi_tsm *tsm)
 }
 #endif /* VOXGI_NO_LIGHT_SPACE */
 
-/* ----- 10.3 voxel visibility: 3D-DDA and hierarchical traversal of the OR mipmaps */
-#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* the screen-space passes use it too */
-
-/* A grid's occupancy and its OR mipmaps (level l: ceil(res / 2^l) per axis, cell set when any of
-   its voxels is), up to one cell. */
-#define VOXGI__MAX_OCC_LEVELS 24
-typedef struct voxgi__occupancy {
-    int levels;
-    int res[VOXGI__MAX_OCC_LEVELS][3];
-    uint32_t *bits[VOXGI__MAX_OCC_LEVELS];
-} voxgi__occupancy;
-
-static int voxgi__occ_get(const voxgi__occupancy *O, int l, const int64_t c[3])
-{
-    const int *r = O->res[l];
-    return voxgi_bit_get(O->bits[l], (uint64_t)c[0] + (uint64_t)r[0] * ((uint64_t)c[1] + (uint64_t)r[1] * (uint64_t)c[2]));
-}
-
-static void voxgi__occ_free(voxgi_context *ctx, voxgi__occupancy *O)
-{
-    int l;
-    for (l = 0; l < O->levels; l++) voxgi__free(ctx, O->bits[l]);
-    memset(O, 0, sizeof *O);
-}
-
-/* The occupancy's memory, every level. */
-static size_t voxgi__occ_bytes(const voxgi__occupancy *O)
-{
-    size_t n = 0;
-    int l;
-    for (l = 0; l < O->levels; l++) n += ((size_t)O->res[l][0] * (size_t)O->res[l][1] * (size_t)O->res[l][2] + 31) / 32 * 4;
-    return n;
-}
-
-static voxgi_result voxgi__occ_build(voxgi_context *ctx, const voxgi_voxels *vox, int mips, voxgi__occupancy *O)
-{
-    const voxgi_grid *g = &vox->info.grid;
-    int l, a;
-    memset(O, 0, sizeof *O);
-    O->levels = 1;
-    for (a = 0; a < 3; a++) O->res[0][a] = g->res[a];
-    O->bits[0] = (uint32_t *)voxgi__alloc_array(ctx, 1, vox->info.bytes, 0);
-    if (!O->bits[0]) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the occupancy");
-    if (voxgi_voxels_read(ctx, vox, O->bits[0], vox->info.bytes, NULL) != VOXGI_OK) { voxgi__occ_free(ctx, O); return VOXGI_ERR_GL; }
-    while (mips && O->levels < VOXGI__MAX_OCC_LEVELS && (O->res[O->levels - 1][0] > 1 || O->res[O->levels - 1][1] > 1 || O->res[O->levels - 1][2] > 1)) {
-        const int *r = O->res[O->levels - 1];
-        int *q = O->res[O->levels];
-        int64_t c[3], k[3];
-        l = O->levels;
-        for (a = 0; a < 3; a++) q[a] = (r[a] + 1) / 2;
-        O->bits[l] = (uint32_t *)voxgi__alloc_array(ctx, ((size_t)q[0] * (size_t)q[1] * (size_t)q[2] + 31) / 32, 4, 1);
-        if (!O->bits[l]) { voxgi__occ_free(ctx, O); return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the occupancy's mips"); }
-        O->levels++;
-        for (c[2] = 0; c[2] < r[2]; c[2]++) /* each set cell sets its parent */
-            for (c[1] = 0; c[1] < r[1]; c[1]++)
-                for (c[0] = 0; c[0] < r[0]; c[0]++)
-                    if (voxgi__occ_get(O, l - 1, c)) {
-                        for (a = 0; a < 3; a++) k[a] = c[a] >> 1;
-                        uint64_t at = (uint64_t)k[0] + (uint64_t)q[0] * ((uint64_t)k[1] + (uint64_t)q[1] * (uint64_t)k[2]);
-                        O->bits[l][at >> 5] |= 1u << (at & 31u);
-                    }
-    }
-    return VOXGI_OK;
-}
-
-/* Where a cell of `size` voxels at integer cell c is left along the segment o + t d (voxel
-   units): the exit t and the axis (the lowest on ties). */
-static double voxgi__cell_exit(const double o[3], const double d[3], const int64_t c[3], int64_t size, int *axis)
-{
-    double best = INFINITY;
-    int a;
-    *axis = 0;
-    for (a = 0; a < 3; a++) {
-        double t;
-        if (d[a] == 0) continue;
-        t = ((double)((c[a] + (d[a] > 0)) * size) - o[a]) / d[a];
-        if (t < best) { best = t; *axis = a; }
-    }
-    return best;
-}
-
-/* The segment o + t d, t in [0, 1] (voxel units), cut to the grid's box: its t range, or 0. */
-static int voxgi__segment_in_grid(const int res[3], const double o[3], const double d[3], double *t0, double *t1)
-{
-    int a;
-    *t0 = 0;
-    *t1 = 1;
-    for (a = 0; a < 3; a++) {
-        if (d[a] == 0) {
-            if (!(o[a] >= 0 && o[a] <= res[a])) return 0;
-            continue;
-        }
-        {
-            double ta = (0 - o[a]) / d[a], tb = ((double)res[a] - o[a]) / d[a];
-            if (ta > tb) { double x = ta; ta = tb; tb = x; }
-            *t0 = VOXGI__MAX(*t0, ta);
-            *t1 = VOXGI__MIN(*t1, tb);
-        }
-    }
-    return *t0 <= *t1;
-}
-
-/* The voxel holding the point at t, each axis clamped into [lo, hi]. */
-static void voxgi__voxel_at(const double o[3], const double d[3], double t, const int64_t lo[3], const int64_t hi[3], int64_t v[3])
-{
-    int a;
-    for (a = 0; a < 3; a++) {
-        double x = floor(o[a] + t * d[a]);
-        v[a] = x < (double)lo[a] ? lo[a] : (x > (double)hi[a] ? hi[a] : (int64_t)x);
-    }
-}
-
-/* 1 when the segment meets an occupied voxel; visited voxels (DDA) or cells (the hierarchical
-   traversal, from the coarsest level: an occupied cell is looked into one level finer, an empty
-   one skipped and the next looked at one level coarser) counted into *steps. visit (or NULL):
-   each voxel the DDA enters, in order. */
-static int voxgi__traverse(const voxgi__occupancy *O, int hierarchical, const double o[3], const double d[3], uint64_t *steps,
-                           void (*visit)(void *user, const int64_t v[3]), void *user)
-{
-    int64_t v[3], lo[3] = {0, 0, 0}, hi[3];
-    double t0, t1, t;
-    int a, l = hierarchical ? O->levels - 1 : 0;
-    for (a = 0; a < 3; a++) hi[a] = O->res[0][a] - 1;
-    if (!voxgi__segment_in_grid(O->res[0], o, d, &t0, &t1)) return 0;
-    voxgi__voxel_at(o, d, t0, lo, hi, v);
-    for (;;) { /* at voxel v, looking at its cell of level l: occupied, finer (or hit at 0); empty, past it and one coarser */
-        int64_t cell[3], size = (int64_t)1 << l, clo[3], chi[3];
-        int axis;
-        ++*steps;
-        for (a = 0; a < 3; a++) cell[a] = v[a] >> l;
-        if (voxgi__occ_get(O, l, cell)) {
-            if (l == 0) {
-                if (visit) visit(user, v);
-                return 1;
-            }
-            l--;
-            continue;
-        }
-        if (visit) visit(user, v);
-        t = voxgi__cell_exit(o, d, cell, size, &axis);
-        if (!(t <= t1)) return 0;
-        for (a = 0; a < 3; a++) { /* the next voxel: across the exit plane, inside the cell's extent on the other axes */
-            clo[a] = cell[a] * size;
-            chi[a] = VOXGI__MIN(clo[a] + size - 1, hi[a]);
-        }
-        voxgi__voxel_at(o, d, t, clo, chi, v);
-        v[axis] = d[axis] > 0 ? (cell[axis] + 1) * size : cell[axis] * size - 1;
-        if (v[axis] < 0 || v[axis] > hi[axis]) return 0;
-        if (hierarchical && l < O->levels - 1) l++;
-    }
-}
-
-VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_traversal how, size_t count, const float *from,
-                                             const float *to, unsigned char *blocked, uint64_t *steps)
-{
-    voxgi__occupancy O;
-    const voxgi_grid *g;
-    uint64_t n = 0;
-    size_t i;
-    int a;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!voxels || (count && (!from || !to || !blocked))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, from, to or blocked is NULL");
-    if (how != VOXGI_TRAVERSAL_DDA && how != VOXGI_TRAVERSAL_HIERARCHICAL) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "traversal %d", (int)how);
-    for (i = 0; i < 3 * count; i++)
-        if (!isfinite(from[i]) || !isfinite(to[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "segment %lu is not finite", (unsigned long)(i / 3));
-    if ((r = voxgi__occ_build(ctx, voxels, how == VOXGI_TRAVERSAL_HIERARCHICAL, &O)) != VOXGI_OK) return r;
-    g = &voxels->info.grid;
-    for (i = 0; i < count; i++) {
-        double o[3], d[3];
-        for (a = 0; a < 3; a++) {
-            o[a] = ((double)from[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size;
-            d[a] = ((double)to[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size - o[a];
-        }
-        blocked[i] = (unsigned char)voxgi__traverse(&O, how == VOXGI_TRAVERSAL_HIERARCHICAL, o, d, &n, NULL, NULL);
-    }
-    voxgi__occ_free(ctx, &O);
-    if (steps) *steps = n;
-    return VOXGI_OK;
-}
-
-#ifndef VOXGI_NO_GL
-/* The occupancy for the GL traversal (shaders/voxel_traverse.glsl): every level's words one
-   after another in *bits, and per level its cells per axis and first word in *levels. */
-static void voxgi__occ_upload(voxgi_context *ctx, const voxgi__occupancy *O, unsigned int *bits, unsigned int *levels)
-{
-    uint32_t info[4 * VOXGI__MAX_OCC_LEVELS];
-    size_t words = 0, n[VOXGI__MAX_OCC_LEVELS];
-    int l;
-    for (l = 0; l < O->levels; l++) {
-        info[4 * l] = (uint32_t)O->res[l][0];
-        info[4 * l + 1] = (uint32_t)O->res[l][1];
-        info[4 * l + 2] = (uint32_t)O->res[l][2];
-        info[4 * l + 3] = (uint32_t)words;
-        n[l] = ((size_t)O->res[l][0] * (size_t)O->res[l][1] * (size_t)O->res[l][2] + 31) / 32;
-        words += n[l];
-    }
-    *bits = voxgi__gl_buffer(ctx, words * 4, NULL);
-    for (l = 0; l < O->levels; l++) ctx->gl->NamedBufferSubData(*bits, (ptrdiff_t)(info[4 * l + 3] * 4u), (ptrdiff_t)(n[l] * 4), O->bits[l]);
-    *levels = voxgi__gl_buffer(ctx, (size_t)O->levels * 16, info);
-}
-
-/* Runs `program` (bound by the caller, with its buffers) over count points in batches of 2^20
-   (u_first, u_count). */
-static void voxgi__gl_dispatch_points(voxgi__gl *gl, unsigned int program, size_t count)
-{
-    size_t first;
-    for (first = 0; first < count; first += (size_t)1 << 20) {
-        size_t n = VOXGI__MIN(count - first, (size_t)1 << 20);
-        gl->ProgramUniform1ui(program, VOXGI__LOC_u_first, (unsigned)first);
-        gl->ProgramUniform1ui(program, VOXGI__LOC_u_count, (unsigned)n);
-        voxgi__gl_dispatch_items(gl, (uint64_t)n);
-    }
-}
-#endif
-
-#endif /* voxel visibility */
-
-/* ----- 10.4 reflective shadow maps (voxgi_rsm) */
+/* ----- 10.3 reflective shadow maps (voxgi_rsm) */
 #ifndef VOXGI_NO_LIGHT_SPACE
 struct voxgi_rsm {
     int maps, samples;
@@ -12014,7 +11923,7 @@ VOXGI_API void voxgi_rsm_destroy(voxgi_context *ctx, voxgi_rsm *rsm)
     if (ctx) voxgi__rsm_free(ctx, rsm);
 }
 
-/* ----- 10.5 a spherical-harmonics volume of the direct light (voxgi_sh)
+/* ----- 10.4 a spherical-harmonics volume of the direct light (voxgi_sh)
 
    Per cell: 12 coefficients (rgb x Y00, Y1-1, Y10, Y11) and the weighted centroid (w x, w y,
    w z, w), 16 floats; level l + 1 sums level l's cells two by two per axis. */
@@ -14494,31 +14403,224 @@ static int voxgi__ls_area_lights(voxgi_context *ctx, const voxgi_scene *scene, c
 
 #endif /* VOXGI_NO_LINE_SPACE */
 
-/* ===================================================================== 13. planner and images */
+/* ===================================================================== 13. reference renderer */
+#ifndef VOXGI_NO_REFERENCE
 
-/* ----- the planner */
+/* What a reference image asks for (voxgi_render_desc resolved for REFERENCE). */
+typedef struct voxgi__ref_desc {
+    voxgi_camera camera;
+    int samples;                  /* per pixel */
+    int bounces;                  /* indirect bounces: 0 = direct light only, 1 = one bounce, ...;
+                                     -1 = unlimited (Russian roulette ends paths without bias) */
+    uint64_t seed;
+    int hide_emitters;            /* 1: leave out the emission the camera sees directly (to compare lighting alone) */
+    float ao_radius;              /* > 0: ambient occlusion instead of light: per sample a camera ray and one
+                                     cosine-distributed ray from its surface, occluded when it meets any
+                                     surface within ao_radius; the pixel is the occluded share (grey), 0
+                                     where the camera sees nothing (voxgi_ao's exact definition) */
+    int screen_light_only;        /* 1 (with bounces 1): the bounce takes the light a surface reflects only where the
+                                     camera sees that surface (inside the image, nothing in front): the most that
+                                     one bounce from the screen (voxgi_ssgi) can find */
+} voxgi__ref_desc;
+
+typedef struct voxgi__ref {
+    voxgi_context *ctx;
+    const voxgi__tracer *tr;
+    voxgi__lights lights;
+    const voxgi__ref_desc *desc;
+    double eye[3], right[3], up[3], forward[3], tan_half;
+    double *sum;                  /* 3 per pixel */
+    int first_sample, pass_samples;
+    size_t rays;                  /* summed over the workers */
+} voxgi__ref;
+
+/* Whether the camera sees point p on primitive prim's side `front` (inside the image, nothing in
+   front of it): one ray from the eye. */
+static int voxgi__camera_sees(const voxgi__ref *R, const double p[3], uint32_t prim, int front, uint64_t *rays)
+{
+    const voxgi_camera *cam = &R->desc->camera;
+    double d[3], z = 0, x = 0, y = 0;
+    voxgi__hit h;
+    int a;
+    for (a = 0; a < 3; a++) {
+        d[a] = p[a] - R->eye[a];
+        z += d[a] * R->forward[a];
+        x += d[a] * R->right[a];
+        y += d[a] * R->up[a];
+    }
+    if (!(z > 0) || fabs(x / z) > R->tan_half * cam->width / cam->height || fabs(y / z) > R->tan_half) return 0;
+    ++*rays;
+    return voxgi__trace(R->tr, R->eye, d, DBL_MAX, UINT32_MAX, 0, &h) && h.prim == prim && h.front == front;
+}
+
+/* One path's radiance through the camera ray (o, d). */
+static void voxgi__path(voxgi__ref *R, double o[3], double d[3], voxgi__rng *g, uint64_t *rays, double out[3])
+{
+    const voxgi__tracer *tr = R->tr;
+    double T[3] = {1, 1, 1}, pdf_bsdf = 0; /* the density (per solid angle) of the bounce that led here */
+    uint32_t skip = UINT32_MAX;
+    int depth, a, bounces = R->desc->bounces;
+    out[0] = out[1] = out[2] = 0;
+    for (depth = 0;; depth++) {
+        voxgi__hit h;
+        double ns[3], e[3], t[3], b[3], r1, phi, lx, ly, lz;
+        const voxgi_material *m;
+        const double *n;
+        ++*rays;
+        if (!voxgi__trace(tr, o, d, DBL_MAX, skip, 0, &h)) break;
+        m = voxgi__prim_material(tr, h.prim);
+        n = tr->n + 3 * (size_t)h.prim;
+        for (a = 0; a < 3; a++) ns[a] = h.front ? n[a] : -n[a];
+        if (h.front && R->lights.emitter_pdf[h.prim] > 0) { /* seen by the camera, or found by a bounce (weighted against the direct light) */
+            double mis = depth == 0 && R->desc->hide_emitters ? 0 : 1;
+            if (depth > 0) {
+                double pdf_light = R->lights.emitter_pdf[h.prim] * h.t * h.t / -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
+                mis = pdf_bsdf * pdf_bsdf / (pdf_bsdf * pdf_bsdf + pdf_light * pdf_light);
+            }
+            for (a = 0; a < 3; a++) out[a] += T[a] * mis * m->emission[a];
+        }
+        if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
+        voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, NULL, rays, e, NULL);
+        if (depth == 1 && R->desc->screen_light_only && !voxgi__camera_sees(R, h.p, h.prim, h.front, rays)) e[0] = e[1] = e[2] = 0;
+        for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / VOXGI__PI * e[a];
+        for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
+        if (bounces < 0 && depth >= 2) { /* Russian roulette */
+            double q = VOXGI__MAX(T[0], VOXGI__MAX(T[1], T[2]));
+            if (q < 1) {
+                if (voxgi__rng_unit(g) >= q) break;
+                for (a = 0; a < 3; a++) T[a] /= q;
+            }
+        }
+        if (T[0] == 0 && T[1] == 0 && T[2] == 0) break;
+        voxgi__basis(ns, t, b);
+        r1 = voxgi__rng_unit(g);
+        phi = 2 * VOXGI__PI * voxgi__rng_unit(g);
+        lx = sqrt(r1) * cos(phi);
+        ly = sqrt(r1) * sin(phi);
+        lz = sqrt(1 - r1);
+        for (a = 0; a < 3; a++) d[a] = lx * t[a] + ly * b[a] + lz * ns[a];
+        voxgi__leave(tr, h.p, ns, o);
+        pdf_bsdf = lz / VOXGI__PI;
+        skip = h.prim;
+    }
+}
+
+/* The AO mode's sample through the camera ray (o, d): 1 (in all three channels) when a
+   cosine-distributed ray from the surface meets any surface within ao_radius. */
+static void voxgi__occlusion(voxgi__ref *R, const double o[3], const double d[3], voxgi__rng *g, uint64_t *rays, double out[3])
+{
+    voxgi__hit h, any;
+    double ns[3], t[3], b[3], dir[3], from[3], r1 = voxgi__rng_unit(g), phi = 2 * VOXGI__PI * voxgi__rng_unit(g);
+    int a;
+    out[0] = out[1] = out[2] = 0;
+    ++*rays;
+    if (!voxgi__trace(R->tr, o, d, DBL_MAX, UINT32_MAX, 0, &h)) return;
+    for (a = 0; a < 3; a++) ns[a] = h.front ? R->tr->n[3 * (size_t)h.prim + (size_t)a] : -R->tr->n[3 * (size_t)h.prim + (size_t)a];
+    voxgi__basis(ns, t, b);
+    for (a = 0; a < 3; a++) dir[a] = sqrt(r1) * cos(phi) * t[a] + sqrt(r1) * sin(phi) * b[a] + sqrt(1 - r1) * ns[a];
+    voxgi__leave(R->tr, h.p, ns, from);
+    ++*rays;
+    if (voxgi__trace(R->tr, from, dir, (double)R->desc->ao_radius, h.prim, 1, &any)) out[0] = out[1] = out[2] = 1;
+}
+
+static void voxgi__ref_rows(void *user, size_t first, size_t end)
+{
+    voxgi__ref *R = (voxgi__ref *)user;
+    const voxgi_camera *cam = &R->desc->camera;
+    uint64_t rays = 0;
+    size_t y;
+    for (y = first; y < end; y++) {
+        int x, s;
+        for (x = 0; x < cam->width; x++) {
+            size_t pix = y * (size_t)cam->width + (size_t)x;
+            double *acc = R->sum + 3 * pix;
+            for (s = R->first_sample; s < R->first_sample + R->pass_samples; s++) {
+                voxgi__rng g;
+                double sx, sy, o[3], d[3], L[3];
+                int a;
+                voxgi__rng_seed(&g, R->desc->seed, pix, (uint64_t)s);
+                sx = x + voxgi__rng_unit(&g);
+                sy = (double)y + voxgi__rng_unit(&g);
+                voxgi__camera_ray(cam, R->forward, R->right, R->up, R->tan_half, sx, sy, d);
+                for (a = 0; a < 3; a++) o[a] = R->eye[a];
+                if (R->desc->ao_radius > 0) voxgi__occlusion(R, o, d, &g, &rays, L);
+                else voxgi__path(R, o, d, &g, &rays, L);
+                for (a = 0; a < 3; a++) acc[a] += L[a];
+            }
+        }
+    }
+    VOXGI__ATOMIC_ADD_SIZE(&R->rays, (size_t)rays);
+}
+
+/* The image of the resolved desc into rgb through the tracer tr of the scene (its lights built
+   here), progressively: 1/16 of the samples per pass, each pass reported to the progress
+   callback, which may cancel; *rays: the rays cast. */
+static voxgi_result voxgi__reference_trace(voxgi_context *ctx, const voxgi__tracer *tr, const voxgi_scene *scene, const voxgi__ref_desc *desc, float *rgb,
+                                           uint64_t *rays)
+{
+    voxgi__ref R;
+    const voxgi_camera *cam = &desc->camera;
+    size_t pixels = (size_t)cam->width * (size_t)cam->height, i;
+    int samples = desc->samples;
+    voxgi_result r;
+    memset(&R, 0, sizeof R);
+    if ((r = voxgi__camera_frame(ctx, cam, R.eye, R.forward, R.right, R.up, &R.tan_half)) != VOXGI_OK) return r;
+    R.ctx = ctx;
+    R.tr = tr;
+    R.desc = desc;
+    R.sum = (double *)voxgi__alloc_array(ctx, pixels, 3 * sizeof(double), 1);
+    if (!R.sum) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d render", cam->width, cam->height);
+    r = voxgi__lights_build(ctx, scene, tr, &R.lights);
+    for (R.first_sample = 0; r == VOXGI_OK && R.first_sample < samples; R.first_sample += R.pass_samples) { /* progressive passes */
+        R.pass_samples = VOXGI__MIN(VOXGI__MAX(1, samples / 16), samples - R.first_sample);
+        voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__ref_rows, &R);
+        if (voxgi__progress(ctx, (double)(R.first_sample + R.pass_samples) / samples, "reference render"))
+            r = voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "reference render cancelled by the progress callback after %d samples per pixel",
+                            R.first_sample + R.pass_samples);
+    }
+    for (i = 0; r == VOXGI_OK && i < 3 * pixels; i++) rgb[i] = (float)(R.sum[i] / samples);
+    *rays += R.rays;
+    voxgi__free(ctx, R.sum);
+    voxgi__lights_free(ctx, &R.lights);
+    return r;
+}
+#endif /* VOXGI_NO_REFERENCE */
+
+/* ===================================================================== 14. planner and images */
+
+/* ----- the planner, and every default of voxgi_render in one place */
 
 /* The cone tracer's Pareto front on the Cornell box (256 x 256 against a 1024-spp reference,
-   anisotropic mips, step 0.5; docs/planner.md): the cheapest settings reaching each error. */
+   anisotropic mips, step 0.5; docs/planner.md): the cheapest settings reaching each error. The
+   middle one is the default. */
 static const struct { double error; int resolution, cones, stride; } voxgi__plan_vct_front[] = {
     {0.0805, 64, 32, 6}, {0.0776, 96, 24, 6}, {0.0755, 96, 32, 6}};
+#define VOXGI__PLAN_VCT_DEFAULT 1
 
 /* An octree of two-sided radiance per set voxel (measured: 8.0 MB for the Cornell box's 56,562
    voxels at 96^3, nodes and values). */
 #define VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL 148
+
+static const char *const voxgi__render_method_names[VOXGI_RENDER_METHOD_COUNT] = {"reference", "vct",  "tsm",    "rsm",      "sh",
+                                                                                   "ssao",      "vao", "ssgi", "hybrid", "linespace"};
+static const char *const voxgi__plan_item_names[VOXGI_PLAN_ITEM_COUNT] = {
+    "albedo", "normal", "emission", "opacity", "lights", "voxels", "radiance volume", "radiance octree", "shadow maps", "transmittance layers",
+    "reflective shadow maps", "SH volume", "line space", "voxelization", "light injection", "bounces", "cones", "gathers", "screen bounce",
+    "occlusion", "soft shadows", "path tracing", "direct light", "seen emission"};
 
 static double voxgi__plan_dot(const double a[3], const double b[3])
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void voxgi__plan_add(voxgi_plan_info *P, const char *name, voxgi_plan_kind kind, int kept, const char *why, uint64_t bytes, int estimated)
+static void voxgi__plan_add(voxgi_plan_info *P, voxgi_plan_item_id id, int kept, const char *why, uint64_t bytes, int estimated)
 {
     voxgi_plan_item *it;
     VOXGI_ASSERT(P->item_count < VOXGI_PLAN_MAX_ITEMS);
     it = &P->items[P->item_count++];
-    it->name = name;
-    it->kind = kind;
+    it->id = id;
+    it->name = voxgi__plan_item_names[id];
+    it->kind = id < VOXGI_PLAN_VOXELS ? VOXGI_PLAN_CHANNEL : id < VOXGI_PLAN_VOXELIZATION ? VOXGI_PLAN_STRUCTURE : VOXGI_PLAN_PASS;
     it->kept = kept;
     it->why = why;
     it->bytes = kept ? bytes : 0;
@@ -14550,11 +14652,29 @@ static int voxgi__plan_in_view(const double v[9], const double eye[3], const dou
     return 1;
 }
 
-/* What the scene holds: triangles by material, lights by type, its surface and the estimated set
-   voxels of P->grid (if it has voxels); *crossing: the sum of area x (|nx| + |ny| + |nz|), the
-   number of cells of edge 1 a surface crosses; *extent: the bounds' longest side; *absorptions:
-   the distinct 1 - transparency of translucent triangles (a transmittance map's layers). */
-static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *cam, voxgi_plan_info *P, double *crossing,
+/* The view of a scene whose camera is left zero: the bounds' centre from in front (-Z) and a
+   little above, at 3.2 times the largest half extent, 40 degrees. */
+static void voxgi__plan_fit_camera(const double lo[3], const double hi[3], voxgi_camera *cam)
+{
+    double c[3], r = 0;
+    int a;
+    for (a = 0; a < 3; a++) {
+        c[a] = 0.5 * (lo[a] + hi[a]);
+        r = VOXGI__MAX(r, 0.5 * (hi[a] - lo[a]));
+    }
+    cam->eye[0] = c[0];
+    cam->eye[1] = c[1] + 0.6 * r;
+    cam->eye[2] = c[2] - 3.2 * r;
+    memcpy(cam->target, c, sizeof c);
+    if (!(cam->fovy_degrees > 0)) cam->fovy_degrees = 40;
+}
+
+/* What the scene holds: triangles by material, lights by type, its surface; *crossing: the sum of
+   area x (|nx| + |ny| + |nz|), the number of cells of edge 1 a surface crosses; *extent: the
+   bounds' longest side; *absorptions: the distinct 1 - transparency of translucent triangles (a
+   transmittance map's layers). A camera left zero (eye = target) is fitted to the bounds first;
+   then whether it sees an emitter. */
+static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *scene, voxgi_camera *cam, voxgi_plan_info *P, double *crossing,
                                       double *extent, int *absorptions)
 {
     float sigma[VOXGI__TSM_MAX_MATERIALS];
@@ -14565,44 +14685,48 @@ static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *sce
 #endif
     double eye[3], fw[3], rt[3], up[3], tan_y = 0, tan_x = 0;
     size_t t, i;
+    int pass;
     voxgi_result r;
     *crossing = 0;
     *absorptions = 0;
     if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
-    P->emitters_in_view = cam ? 0 : -1;
-    if (cam && (r = voxgi__camera_frame(ctx, cam, eye, fw, rt, up, &tan_y)) != VOXGI_OK) { voxgi__flat_free(ctx, &f); return r; }
-    if (cam) tan_x = tan_y * cam->width / cam->height;
     P->triangles = f.triangle_count;
-    for (t = 0; t < f.triangle_count; t++) {
-        const voxgi_material *m = voxgi__tri_material(&f, t);
-        double v[9], e1[3], e2[3], n[3], area2;
-        int a;
-        for (a = 0; a < 9; a++) v[a] = f.pos[3 * (size_t)f.tri[3 * t + (size_t)(a / 3)] + (size_t)(a % 3)];
-        for (a = 0; a < 3; a++) { e1[a] = v[3 + a] - v[a]; e2[a] = v[6 + a] - v[a]; }
-        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        for (a = 0; a < 9; a++) {
-            lo[a % 3] = VOXGI__MIN(lo[a % 3], v[a]);
-            hi[a % 3] = VOXGI__MAX(hi[a % 3], v[a]);
+    for (pass = 0; pass < 2 && r == VOXGI_OK; pass++) { /* the scene, then what the camera sees of its emitters */
+        if (pass) { /* the view, fitted to the bounds if left zero */
+            if (!memcmp(cam->eye, cam->target, sizeof cam->eye) && f.triangle_count) voxgi__plan_fit_camera(lo, hi, cam);
+            if ((r = voxgi__camera_frame(ctx, cam, eye, fw, rt, up, &tan_y)) != VOXGI_OK) break;
+            tan_x = tan_y * cam->width / cam->height;
         }
-        area2 = sqrt(voxgi__plan_dot(n, n));
-        P->surface_area += 0.5 * area2;
-        P->reflective_triangles += m->albedo[0] > 0 || m->albedo[1] > 0 || m->albedo[2] > 0;
-        P->translucent_triangles += m->transparency > 0;
-        if (m->transparency > 0 && m->transparency < 1 && *absorptions < VOXGI__TSM_MAX_MATERIALS) {
-            for (a = 0; a < *absorptions && sigma[a] != 1 - m->transparency; a++) continue;
-            if (a == *absorptions) sigma[(*absorptions)++] = 1 - m->transparency;
-        }
-        if ((m->emission[0] > 0 || m->emission[1] > 0 || m->emission[2] > 0) && area2 > 0) {
-            P->emissive_triangles++;
-            if (cam && P->emitters_in_view == 0) {
-                double to[3];
+        for (t = 0; t < f.triangle_count; t++) {
+            const voxgi_material *m = voxgi__tri_material(&f, t);
+            double v[9], e1[3], e2[3], n[3], area2, to[3];
+            int a, emits = m->emission[0] > 0 || m->emission[1] > 0 || m->emission[2] > 0;
+            if (pass && (!emits || P->emitters_in_view)) continue;
+            for (a = 0; a < 9; a++) v[a] = f.pos[3 * (size_t)f.tri[3 * t + (size_t)(a / 3)] + (size_t)(a % 3)];
+            for (a = 0; a < 3; a++) { e1[a] = v[3 + a] - v[a]; e2[a] = v[6 + a] - v[a]; }
+            n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            area2 = sqrt(voxgi__plan_dot(n, n));
+            if (pass) {
                 for (a = 0; a < 3; a++) to[a] = eye[a] - v[a];
-                P->emitters_in_view = voxgi__plan_dot(n, to) > 0 && voxgi__plan_in_view(v, eye, fw, rt, up, tan_y, tan_x);
+                P->emitters_in_view = area2 > 0 && voxgi__plan_dot(n, to) > 0 && voxgi__plan_in_view(v, eye, fw, rt, up, tan_y, tan_x);
+                continue;
             }
+            for (a = 0; a < 9; a++) {
+                lo[a % 3] = VOXGI__MIN(lo[a % 3], v[a]);
+                hi[a % 3] = VOXGI__MAX(hi[a % 3], v[a]);
+            }
+            P->surface_area += 0.5 * area2;
+            P->reflective_triangles += m->albedo[0] > 0 || m->albedo[1] > 0 || m->albedo[2] > 0;
+            P->translucent_triangles += m->transparency > 0;
+            if (m->transparency > 0 && m->transparency < 1 && *absorptions < VOXGI__TSM_MAX_MATERIALS) {
+                for (a = 0; a < *absorptions && sigma[a] != 1 - m->transparency; a++) continue;
+                if (a == *absorptions) sigma[(*absorptions)++] = 1 - m->transparency;
+            }
+            P->emissive_triangles += emits && area2 > 0;
+            *crossing += 0.5 * (fabs(n[0]) + fabs(n[1]) + fabs(n[2])); /* a plane of area A crosses about A (|nx| + |ny| + |nz|) unit cells */
         }
-        *crossing += 0.5 * (fabs(n[0]) + fabs(n[1]) + fabs(n[2])); /* a plane of area A crosses about A (|nx| + |ny| + |nz|) unit cells */
     }
     *extent = 0;
     for (i = 0; i < 3 && f.triangle_count; i++) *extent = VOXGI__MAX(*extent, hi[i] - lo[i]);
@@ -14614,27 +14738,20 @@ static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *sce
         P->rect_lights += ty == VOXGI_LIGHT_RECT;
     }
 #ifndef VOXGI_NO_LINE_SPACE
-    A = (voxgi__ls_area *)voxgi__alloc_array(ctx, VOXGI__LS_AREA_LIGHTS, sizeof *A, 0);
-    if (!A) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the planner");
-    else if ((P->area_lights = voxgi__ls_area_lights(ctx, scene, &f, A)) == -2) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the planner");
+    A = r == VOXGI_OK ? (voxgi__ls_area *)voxgi__alloc_array(ctx, VOXGI__LS_AREA_LIGHTS, sizeof *A, 0) : NULL;
+    if (r == VOXGI_OK && (!A || (P->area_lights = voxgi__ls_area_lights(ctx, scene, &f, A)) == -2)) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the planner");
     voxgi__free(ctx, A);
 #else
     P->area_lights = P->rect_lights + (int)VOXGI__MIN(P->emissive_triangles, (uint64_t)64); /* without the line space's pairing */
 #endif
-    if (P->grid.voxel_size > 0) {
-        double all = (double)voxgi_grid_voxel_count(&P->grid);
-        P->voxels = (uint64_t)VOXGI__MIN(all, ceil(*crossing / (P->grid.voxel_size * P->grid.voxel_size)));
-        P->occupancy = (double)P->voxels / all;
-    }
     voxgi__flat_free(ctx, &f);
     return r;
 }
 
-/* A line space's bytes with the defaults (n 4, the scene's depth), by voxgi_linespace_create's
-   formula with each level's split nodes estimated as the cells its surface crosses. */
-static uint64_t voxgi__plan_linespace_bytes(uint64_t triangles, double crossing, double extent)
+/* A line space's bytes (n, depth), by voxgi_linespace_create's formula with each level's split
+   nodes estimated as the cells its surface crosses. */
+static uint64_t voxgi__plan_linespace_bytes(uint64_t triangles, double crossing, double extent, int n, int depth)
 {
-    const int n = 4, depth = voxgi__plan_linespace_depth(triangles);
     double cells = 1, split = 0, nodes = 1, leaves = 0, refs;
     int l;
     if (!triangles || !(extent > 0)) return 0;
@@ -14648,158 +14765,249 @@ static uint64_t voxgi__plan_linespace_bytes(uint64_t triangles, double crossing,
     return (uint64_t)(8 * nodes + (double)((15 * n * n * n * n + 31) / 32) * 4 * split + 4 * refs + 8 * leaves + 36 * (double)triangles);
 }
 
-VOXGI_API voxgi_result voxgi_plan(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_plan_request *request, voxgi_plan_info *plan)
+/* The settings a desc asks for, checked, every zero that needs no look at the scene resolved (the
+   scene's: the camera, the screen radius, the line space's depth, VCT's radiance store, are the
+   planner's). Each method's defaults are the settings its report measured best. */
+static voxgi_result voxgi__render_defaults(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d)
+{
+    int m = (int)in->method, vct = m == VOXGI_RENDER_VCT, ao = m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO;
+    int gi = m == VOXGI_RENDER_SSGI || m == VOXGI_RENDER_HYBRID;
+    voxgi_render_screen *sc = &d->screen;
+    *d = *in;
+    if ((unsigned)m >= VOXGI_RENDER_METHOD_COUNT) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.method %d: no such method", m);
+    if (d->samples < 0 || d->resolution < 0 || d->resolution > 4096 || d->bounces < -1 || d->bounces > 64 || !(d->error >= 0 && d->error < 1))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d (>= 0), resolution %d (0..4096), bounces %d (-1..64), error %g ([0, 1))", d->samples,
+                           d->resolution, d->bounces, d->error);
+    if (d->error > 0 && !vct) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.error: only vct chooses its settings from an error");
+    if (d->voxels && !vct) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.voxels: only vct re-injects kept voxels");
+    if (!d->camera.width && !d->camera.height) d->camera.width = d->camera.height = 256;
+    if (d->camera.fovy_degrees == 0) d->camera.fovy_degrees = 40;
+    if (!d->bounces) d->bounces = 1;
+    if (d->direct_only) d->bounces = 0;
+    if (m != VOXGI_RENDER_REFERENCE && m != VOXGI_RENDER_VCT) d->bounces = d->direct_only || ao || m == VOXGI_RENDER_TSM || m == VOXGI_RENDER_LINESPACE ? 0 : 1;
+    if (m == VOXGI_RENDER_REFERENCE && !d->samples) d->samples = 64;
+    else if (m == VOXGI_RENDER_TSM && !d->samples) d->samples = 4;
+    else if ((vct || m == VOXGI_RENDER_RSM || m == VOXGI_RENDER_SH || gi) && !d->samples) d->samples = 24;
+    else if (ao || m == VOXGI_RENDER_LINESPACE) d->samples = 0; /* they take the pixels' centres */
+    if (vct) { /* the front's middle, or the cheapest point reaching the error asked for */
+        size_t n = sizeof voxgi__plan_vct_front / sizeof voxgi__plan_vct_front[0], f = VOXGI__PLAN_VCT_DEFAULT;
+        voxgi_render_vct *v = &d->vct;
+        if (d->bounces > 1 && !d->vct.bounce_block) d->vct.bounce_block = 4;
+        if ((unsigned)v->radiance > VOXGI_VCT_OCTREE || (unsigned)v->octree_format > VOXGI_SVO_FLOAT16 || v->cone_stride < 0 || v->cone_stride > 64 ||
+            v->inject_samples < 0 || v->bounce_block < 0 || v->cones.cones < 0)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "vct: radiance %d, octree_format %d, cone_stride %d (0..64), inject_samples %d, bounce_block %d, cones %d",
+                               (int)v->radiance, (int)v->octree_format, v->cone_stride, v->inject_samples, v->bounce_block, v->cones.cones);
+#ifdef VOXGI_NO_OCTREE
+        if (v->radiance == VOXGI_VCT_OCTREE) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "vct: an octree of the radiance, but the octree is left out (VOXGI_NO_OCTREE)");
+#endif
+        if (d->error > 0)
+            for (f = 0; f + 1 < n && voxgi__plan_vct_front[f].error > d->error; f++) continue;
+        if (!d->resolution) d->resolution = voxgi__plan_vct_front[f].resolution;
+        if (!v->cones.cones) v->cones.cones = voxgi__plan_vct_front[f].cones;
+        if (!v->cone_stride) v->cone_stride = voxgi__plan_vct_front[f].stride;
+        if (!v->inject_samples) v->inject_samples = ctx->backend == VOXGI_BACKEND_GL && !v->shadow_rays ? 16 : 4;
+    } else if (m == VOXGI_RENDER_RSM || m == VOXGI_RENDER_SH) {
+        voxgi_visibility vis = m == VOXGI_RENDER_RSM ? d->rsm.visibility : d->sh.visibility;
+        int *stride = m == VOXGI_RENDER_RSM ? &d->rsm.gather_stride : &d->sh.gather_stride;
+        if ((unsigned)vis > VOXGI_VISIBILITY_NONE || *stride < 0 || *stride > 64 || (m == VOXGI_RENDER_SH && (d->resolution > 1024 || !(d->sh.opening >= 0 && d->sh.opening <= 4))))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "%s: visibility %d, gather_stride %d (0..64), resolution %d%s, opening %g (0..4)", voxgi__render_method_names[m], (int)vis,
+                               *stride, d->resolution, m == VOXGI_RENDER_SH ? " (0..1024)" : "", (double)d->sh.opening);
+        if (!d->resolution) d->resolution = 64;
+        if (!*stride) *stride = 4;
+        if (m == VOXGI_RENDER_RSM && !d->rsm.maps.seed) d->rsm.maps.seed = d->seed;
+        if (m == VOXGI_RENDER_SH && !d->sh.volume.seed) d->sh.volume.seed = d->seed;
+        if (m == VOXGI_RENDER_SH && !(d->sh.opening > 0)) d->sh.opening = 0.5f;
+    } else if (ao || gi) {
+        int voxels = m == VOXGI_RENDER_VAO || m == VOXGI_RENDER_HYBRID;
+        if (sc->rays < 0 || sc->steps < 0 || !(sc->radius >= 0 && isfinite(sc->radius)) || (unsigned)sc->half_resolution > VOXGI_TOGGLE_OFF || sc->blur < -1 ||
+            sc->blur > 64 || (unsigned)sc->hidden_light > VOXGI_TOGGLE_OFF || sc->inject_samples < 0 || (sc->point_sampling && m != VOXGI_RENDER_SSAO))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "%s: rays %d, steps %d, radius %g, half_resolution %d, blur %d (-1..64), hidden_light %d, inject_samples %d, "
+                               "point_sampling %d (ssao only)", voxgi__render_method_names[m], sc->rays, sc->steps, (double)sc->radius, (int)sc->half_resolution, sc->blur,
+                               (int)sc->hidden_light, sc->inject_samples, sc->point_sampling);
+        if (!sc->rays) sc->rays = 16;
+        if (!sc->steps) sc->steps = 16;
+        if (!sc->half_resolution) sc->half_resolution = gi ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
+        if (!sc->blur) sc->blur = gi ? 8 : 2; /* the reports' fronts (docs/screen-space.md): AO's edges blurred little, the bounce more */
+        if (m == VOXGI_RENDER_HYBRID && !sc->hidden_light) sc->hidden_light = VOXGI_TOGGLE_ON;
+        if (m != VOXGI_RENDER_HYBRID) sc->hidden_light = VOXGI_TOGGLE_OFF;
+#ifdef VOXGI_NO_LIGHT_INJECTION
+        if (sc->hidden_light == VOXGI_TOGGLE_ON && in->screen.hidden_light == VOXGI_TOGGLE_ON)
+            return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "hybrid: hidden light needs light injection (VOXGI_NO_LIGHT_INJECTION)");
+        sc->hidden_light = VOXGI_TOGGLE_OFF;
+#endif
+        if (sc->hidden_light == VOXGI_TOGGLE_ON && !sc->inject_samples) sc->inject_samples = ctx->backend == VOXGI_BACKEND_GL ? 16 : 4;
+        if (voxels && !d->resolution) d->resolution = 128;
+        if (!voxels) d->resolution = 0;
+    } else if (m == VOXGI_RENDER_LINESPACE) {
+        voxgi_render_linespace *L = &d->linespace;
+        if ((unsigned)L->mode > VOXGI_LINESPACE_FAST || L->samples < 0 || L->exact_ends < 0 || L->supersample < 0 || L->supersample > 16)
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "linespace: mode %d, samples %d, exact_ends %d, supersample %d (0..16)", (int)L->mode, L->samples,
+                               L->exact_ends, L->supersample);
+        if (!L->samples) L->samples = 4; /* voxgi report linespace's front (docs/line-space.md) */
+        if (!L->supersample) L->supersample = 2;
+        if (!L->tree.n) L->tree.n = 4;
+        if (!L->tree.memory_budget) L->tree.memory_budget = (size_t)1 << 30;
+        if (L->mode == VOXGI_LINESPACE_FAST && !L->exact_ends) L->exact_ends = 3;
+    } else if (m == VOXGI_RENDER_REFERENCE) {
+        if (!(d->reference.ao_radius >= 0 && isfinite(d->reference.ao_radius)) || (d->reference.screen_light_only && d->bounces != 1))
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "reference: ao_radius %g, screen_light_only %d (with one bounce only)", (double)d->reference.ao_radius,
+                               d->reference.screen_light_only);
+    }
+    if (m != VOXGI_RENDER_VCT && m != VOXGI_RENDER_RSM && m != VOXGI_RENDER_SH && m != VOXGI_RENDER_VAO && m != VOXGI_RENDER_HYBRID) d->resolution = 0;
+    /* a method reads its own part only: the others' are cleared, so that what is reported is what ran */
+    if (!vct) memset(&d->vct, 0, sizeof d->vct);
+    if (m != VOXGI_RENDER_TSM) memset(&d->tsm, 0, sizeof d->tsm);
+    if (m != VOXGI_RENDER_RSM) memset(&d->rsm, 0, sizeof d->rsm);
+    if (m != VOXGI_RENDER_SH) memset(&d->sh, 0, sizeof d->sh);
+    if (!ao && !gi) memset(&d->screen, 0, sizeof d->screen);
+    if (m != VOXGI_RENDER_LINESPACE) memset(&d->linespace, 0, sizeof d->linespace);
+    if (m != VOXGI_RENDER_REFERENCE) memset(&d->reference, 0, sizeof d->reference);
+    return VOXGI_OK;
+}
+
+/* The plan of a desc (its defaults resolved into *used, the scene's among them) with flags
+   (VOXGI_PLAN_DYNAMIC, _EVERYTHING). */
+static voxgi_result voxgi__plan_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, unsigned flags, voxgi_render_desc *used,
+                                       voxgi_plan_info *plan)
 {
     voxgi_plan_info P;
-    const voxgi_plan_request *q = request;
-    int all, lit, reflective, seen, m, absorptions;
+    voxgi_render_desc *d = used;
+    int all = (flags & VOXGI_PLAN_EVERYTHING) != 0, lit, reflective, seen, m, absorptions, gi;
     double crossing, extent;
     uint64_t budget;
+    const char *no_gi;
     voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!scene || !request || !plan) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, request or plan is NULL");
-    if ((unsigned)q->method > VOXGI_PLAN_REFERENCE) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "unknown method %d", (int)q->method);
-    if (!(q->error >= 0 && q->error < 1e30) || q->resolution < 0 || q->resolution > 4096 || q->bounces < -1 || q->bounces > 64)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "error %g (>= 0), resolution %d (0..4096), bounces %d (-1..64)", q->error, q->resolution, q->bounces);
+    if ((r = voxgi__render_defaults(ctx, desc, d)) != VOXGI_OK) return r;
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     memset(&P, 0, sizeof P);
-    m = (int)q->method;
-    all = q->everything;
-    P.error_reachable = 1;
-    if (m == VOXGI_PLAN_VCT) { /* the grid and cones: asked for, from the error, or the library's zero values */
-        size_t k, n = sizeof voxgi__plan_vct_front / sizeof voxgi__plan_vct_front[0];
-        P.resolution = 128;
-        P.cones = 16;
-        P.cone_stride = 1;
-        if (q->error > 0) {
-            for (k = 0; k + 1 < n && voxgi__plan_vct_front[k].error > q->error; k++) continue;
-            P.resolution = voxgi__plan_vct_front[k].resolution;
-            P.cones = voxgi__plan_vct_front[k].cones;
-            P.cone_stride = voxgi__plan_vct_front[k].stride;
-            P.expected_error = voxgi__plan_vct_front[k].error;
-            P.error_reachable = P.expected_error <= q->error;
-        }
-    } else if (m == VOXGI_PLAN_RSM || m == VOXGI_PLAN_SH)
-        P.resolution = 64;
-    if (q->resolution && (P.resolution || m == VOXGI_PLAN_AO || m == VOXGI_PLAN_SSGI)) P.resolution = q->resolution;
-    if (P.resolution) {
+    m = (int)d->method;
+    if ((r = voxgi__plan_scene(ctx, scene, &d->camera, &P, &crossing, &extent, &absorptions)) != VOXGI_OK) return r;
+    if (d->resolution) {
         voxgi_fit_desc fit;
         memset(&fit, 0, sizeof fit);
-        fit.res = P.resolution;
+        fit.res = d->resolution;
         fit.padding = 1;
         if ((r = voxgi_fit_grid(ctx, scene, &fit, &P.grid)) != VOXGI_OK) return r;
+        P.voxels = (uint64_t)VOXGI__MIN((double)voxgi_grid_voxel_count(&P.grid), ceil(crossing / (P.grid.voxel_size * P.grid.voxel_size)));
+        P.occupancy = (double)P.voxels / (double)voxgi_grid_voxel_count(&P.grid);
     }
-    if ((r = voxgi__plan_scene(ctx, scene, q->camera, &P, &crossing, &extent, &absorptions)) != VOXGI_OK) return r;
-    budget = q->memory_budget ? q->memory_budget : (uint64_t)ctx->desc.memory_budget;
+    if (m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO) { /* the occlusion's reach: a tenth of the scene, the bounce's across it */
+        if (!(d->screen.radius > 0)) d->screen.radius = (float)(0.1 * (extent > 0 ? extent : 1));
+    } else if (m == VOXGI_RENDER_SSGI || m == VOXGI_RENDER_HYBRID) {
+        if (!(d->screen.radius > 0)) d->screen.radius = (float)(sqrt(3.0) * (extent > 0 ? extent : 1));
+    } else if (m == VOXGI_RENDER_LINESPACE && !d->linespace.tree.depth && !d->linespace.ls)
+        d->linespace.tree.depth = voxgi__plan_linespace_depth(P.triangles);
+    P.error_reachable = 1;
+    if (m == VOXGI_RENDER_VCT && d->error > 0) {
+        size_t f;
+        for (f = 0; f + 1 < sizeof voxgi__plan_vct_front / sizeof voxgi__plan_vct_front[0] && voxgi__plan_vct_front[f].error > d->error; f++) continue;
+        P.expected_error = voxgi__plan_vct_front[f].error;
+        P.error_reachable = P.expected_error <= d->error;
+    }
+    budget = d->memory_budget ? d->memory_budget : (uint64_t)ctx->desc.memory_budget;
     lit = all || scene->light_count || P.emissive_triangles;
     reflective = all || P.reflective_triangles;
-    seen = all || P.emitters_in_view != 0;
-    if (m == VOXGI_PLAN_VCT) {
-        int gi = lit && reflective;
-        uint64_t grid_bytes = voxgi_grid_voxel_count(&P.grid) / 8 + 4, dense, octree;
+    seen = all || P.emitters_in_view;
+    gi = lit && reflective && !d->direct_only;
+    no_gi = d->direct_only ? "the direct light alone asked for" : !lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
+    if (m == VOXGI_RENDER_VCT) {
+        int bounces = gi && (all || d->bounces > 1 || d->bounces == -1), octree;
+        uint64_t grid_bytes = voxgi_grid_voxel_count(&P.grid) / 8 + 4, dense, octree_bytes;
         voxgi_volume vol;
-        const char *no_gi = !lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
         memset(&vol, 0, sizeof vol);
-        vol.info.filter = q->error > 0 ? VOXGI_MIPS_ANISOTROPIC : q->filter; /* the measured front's */
-        vol.info.attributes = VOXGI_ATTRIBUTE_RADIANCE | (q->one_sided ? 0u : VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE);
+        vol.info.filter = d->vct.radiance == VOXGI_VCT_ISOTROPIC || d->vct.radiance == VOXGI_VCT_OCTREE ? VOXGI_MIPS_ISOTROPIC : VOXGI_MIPS_ANISOTROPIC;
+        vol.info.attributes = VOXGI_ATTRIBUTE_RADIANCE | (d->vct.one_sided ? 0u : VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE);
         voxgi__volume_levels(&vol, &P.grid, 0);
-        dense = voxgi__volume_bytes(&vol, ctx->backend == VOXGI_BACKEND_GL) + (q->one_sided ? 0u : (uint64_t)vol.voxels * 4u);
-        octree = P.voxels * VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL;
-        P.octree = budget && dense > budget && octree <= budget;
-        voxgi__plan_add(&P, "albedo", VOXGI_PLAN_CHANNEL, gi, gi ? "what the voxels reflect" : no_gi, P.voxels * 28, 1);
-        voxgi__plan_add(&P, "normal", VOXGI_PLAN_CHANNEL, gi, gi ? "the voxels' light and mips face it" : no_gi, P.voxels * 24 + grid_bytes, 1);
-        voxgi__plan_add(&P, "emission", VOXGI_PLAN_CHANNEL, all, all ? "everything asked for" : P.emissive_triangles ? "emitters light the voxels as area lights and the pixels directly" : "no emissive material", P.voxels * 28, 1);
-        voxgi__plan_add(&P, "opacity", VOXGI_PLAN_CHANNEL, all, all ? "everything asked for" : P.translucent_triangles ? "the cone tracer's voxels are opaque" : "no translucent material", P.voxels * 12, 1);
-        voxgi__plan_add(&P, "voxels", VOXGI_PLAN_STRUCTURE, gi, gi ? "conservative, the scene's surface" : no_gi, grid_bytes, 0);
-        voxgi__plan_add(&P, "voxelization", VOXGI_PLAN_PASS, gi, !gi ? no_gi : q->dynamic ? "the geometry moves: every frame" : "a static scene: once (a change of lights re-injects only)", 0, 0);
-        voxgi__plan_add(&P, "light injection", VOXGI_PLAN_PASS, gi, gi ? "the direct light into the voxels" : no_gi, 0, 0);
-        voxgi__plan_add(&P, "bounces", VOXGI_PLAN_PASS, gi && (all || q->bounces > 1 || q->bounces == -1), !gi ? no_gi : (all || q->bounces > 1 || q->bounces == -1) ? "light among the voxels before the cones" : "one bounce: the cones at the pixels", 0, 0);
-        voxgi__plan_add(&P, "radiance volume", VOXGI_PLAN_STRUCTURE, gi && !P.octree, !gi ? no_gi : P.octree ? "over the memory budget: the octree" : "within the budget", dense, 0);
-        voxgi__plan_add(&P, "radiance octree", VOXGI_PLAN_STRUCTURE, gi && P.octree, !gi ? no_gi : P.octree ? "the dense volume is over the memory budget" : "the dense volume fits the budget (and its anisotropic mips are better)", octree, 1);
-        voxgi__plan_add(&P, "cones", VOXGI_PLAN_PASS, gi, gi ? "the indirect light at the pixels" : no_gi, 0, 0);
-        voxgi__plan_add(&P, "direct light", VOXGI_PLAN_PASS, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
-    } else if (m == VOXGI_PLAN_TSM) {
+        dense = voxgi__volume_bytes(&vol, ctx->backend == VOXGI_BACKEND_GL) + (d->vct.one_sided ? 0u : (uint64_t)vol.voxels * 4u);
+        octree_bytes = P.voxels * VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL;
+#ifndef VOXGI_NO_OCTREE
+        if (d->vct.radiance == VOXGI_VCT_RADIANCE_DEFAULT)
+            d->vct.radiance = budget && dense > budget && octree_bytes <= budget ? VOXGI_VCT_OCTREE : VOXGI_VCT_ANISOTROPIC;
+#else
+        if (d->vct.radiance == VOXGI_VCT_RADIANCE_DEFAULT) d->vct.radiance = VOXGI_VCT_ANISOTROPIC;
+        (void)budget;
+#endif
+        octree = d->vct.radiance == VOXGI_VCT_OCTREE;
+        if (!octree) d->vct.octree_format = VOXGI_SVO_FLOAT32, d->vct.octree_bricks = 0;
+        if (d->bounces <= 1) memset(&d->vct.bounce_cones, 0, sizeof d->vct.bounce_cones), d->vct.bounce_block = 0;
+        voxgi__plan_add(&P, VOXGI_PLAN_ALBEDO, gi, gi ? "what the voxels reflect" : no_gi, P.voxels * 28, 1);
+        voxgi__plan_add(&P, VOXGI_PLAN_NORMAL, gi, gi ? "the voxels' light and mips face it" : no_gi, P.voxels * 24 + grid_bytes, 1);
+        voxgi__plan_add(&P, VOXGI_PLAN_EMISSION, all, all ? "everything asked for" : P.emissive_triangles ? "emitters light the voxels as area lights and the pixels directly" : "no emissive material", P.voxels * 28, 1);
+        voxgi__plan_add(&P, VOXGI_PLAN_OPACITY, all, all ? "everything asked for" : P.translucent_triangles ? "the cone tracer's voxels are opaque" : "no translucent material", P.voxels * 12, 1);
+        voxgi__plan_add(&P, VOXGI_PLAN_VOXELS, gi, gi ? "conservative, the scene's surface" : no_gi, grid_bytes, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_VOXELIZATION, gi && !d->voxels, !gi ? no_gi : d->voxels ? "the voxels kept (desc.voxels): the light only is re-injected" : (flags & VOXGI_PLAN_DYNAMIC) ? "the geometry moves: every frame" : "a static scene: once (a change of lights re-injects only)", 0, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_LIGHT_INJECTION, gi, gi ? "the direct light into the voxels" : no_gi, 0, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_BOUNCES, bounces, bounces ? "light among the voxels before the cones" : !gi ? no_gi : "one bounce: the cones at the pixels", 0, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_RADIANCE_VOLUME, gi && !octree, !gi ? no_gi : !octree ? "within the budget" : desc->vct.radiance == VOXGI_VCT_OCTREE ? "the octree asked for" : "over the memory budget: the octree", dense, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_RADIANCE_OCTREE, gi && octree, !gi ? no_gi : !octree ? "the dense volume fits the budget (and its anisotropic mips are better)" : desc->vct.radiance == VOXGI_VCT_OCTREE ? "asked for" : "the dense volume is over the memory budget", octree_bytes, 1);
+        voxgi__plan_add(&P, VOXGI_PLAN_CONES, gi, gi ? "the indirect light at the pixels" : no_gi, 0, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_DIRECT_LIGHT, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
+    } else if (m == VOXGI_RENDER_TSM) {
         int maps = P.directional_lights + P.spot_lights, layers = maps ? absorptions : 0;
-        uint64_t texels = 512u * 512u; /* the default size, 64 slices: 2 words a texel per absorption */
-        voxgi__plan_add(&P, "shadow maps", VOXGI_PLAN_STRUCTURE, maps > 0, maps ? "the directional and spot lights' opaque depth" : "no directional or spot light",
-                        (uint64_t)maps * texels * 4u, 0);
-        voxgi__plan_add(&P, "transmittance layers", VOXGI_PLAN_STRUCTURE, all || layers > 0, !maps ? "no directional or spot light" : layers ? "light through translucent surfaces, a slicemap per absorption" : "no translucent material",
+        uint64_t texels = (uint64_t)(d->tsm.maps.size ? d->tsm.maps.size : 512) * (uint64_t)(d->tsm.maps.size ? d->tsm.maps.size : 512); /* 64 slices: 2 words a texel per absorption */
+        voxgi__plan_add(&P, VOXGI_PLAN_SHADOW_MAPS, maps > 0, maps ? "the directional and spot lights' opaque depth" : "no directional or spot light", (uint64_t)maps * texels * 4u, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_TRANSMITTANCE_LAYERS, all || layers > 0, !maps ? "no directional or spot light" : layers ? "light through translucent surfaces, a slicemap per absorption" : "no translucent material",
                         (uint64_t)maps * (uint64_t)layers * texels * 2u * 4u, 0);
-        voxgi__plan_add(&P, "direct light", VOXGI_PLAN_PASS, lit, lit ? "shadow rays to the other lights and emitters" : "no light and no emitter", 0, 0);
-    } else if (m == VOXGI_PLAN_RSM || m == VOXGI_PLAN_SH) {
-        int gi = lit && reflective, areas = P.rect_lights + (P.emissive_triangles > 0);
-        const char *no_gi = !lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
+        voxgi__plan_add(&P, VOXGI_PLAN_DIRECT_LIGHT, lit, lit ? "shadow rays to the other lights and emitters" : "no light and no emitter", 0, 0);
+    } else if (m == VOXGI_RENDER_RSM || m == VOXGI_RENDER_SH) {
+        int areas = P.rect_lights + (P.emissive_triangles > 0), vis = (m == VOXGI_RENDER_RSM ? d->rsm.visibility : d->sh.visibility) != VOXGI_VISIBILITY_NONE;
         uint64_t gb = voxgi_grid_voxel_count(&P.grid) / 8 + 4;
-        if (m == VOXGI_PLAN_RSM)
-            voxgi__plan_add(&P, "reflective shadow maps", VOXGI_PLAN_STRUCTURE, gi, gi ? "the lit surfaces' points" : no_gi,
+        if (m == VOXGI_RENDER_RSM)
+            voxgi__plan_add(&P, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS, gi, gi ? "the lit surfaces' points" : no_gi,
                             (uint64_t)(P.directional_lights + P.spot_lights) * (256u * 256u * 36u + 100u * 12u) + (uint64_t)areas * (4u * 256u * 256u * 36u + 200u * 12u), 0);
         else
-            voxgi__plan_add(&P, "SH volume", VOXGI_PLAN_STRUCTURE, gi, gi ? "the direct light's spherical harmonics" : no_gi, voxgi_grid_voxel_count(&P.grid) * 64u * 8u / 7u, 1);
-        voxgi__plan_add(&P, "voxels", VOXGI_PLAN_STRUCTURE, gi, gi ? "the bounce's visibility" : no_gi, gb, 0);
-        voxgi__plan_add(&P, "gathers", VOXGI_PLAN_PASS, gi, gi ? "one bounce at the pixels" : no_gi, 0, 0);
-        voxgi__plan_add(&P, "direct light", VOXGI_PLAN_PASS, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
-    } else if (m == VOXGI_PLAN_AO) {
-        voxgi__plan_add(&P, "lights", VOXGI_PLAN_CHANNEL, all, all ? "everything asked for" : "occlusion sees geometry only", 0, 0);
-        voxgi__plan_add(&P, "voxels", VOXGI_PLAN_STRUCTURE, P.resolution > 0, P.resolution > 0 ? "occlusion through the voxels" : "occlusion through the depth buffer", voxgi_grid_voxel_count(&P.grid) / 8 + 4, 0);
-        voxgi__plan_add(&P, "occlusion", VOXGI_PLAN_PASS, 1, "the image", 0, 0);
-    } else if (m == VOXGI_PLAN_SSGI) {
-        int gi = lit && reflective;
-        const char *no_gi = !lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
-        voxgi__plan_add(&P, "voxels", VOXGI_PLAN_STRUCTURE, gi && P.resolution > 0, !gi ? no_gi : P.resolution > 0 ? "the bounce's visibility" : "visibility through the depth buffer", voxgi_grid_voxel_count(&P.grid) / 8 + 4, 0);
-        voxgi__plan_add(&P, "screen bounce", VOXGI_PLAN_PASS, gi, gi ? "one bounce from the screen" : no_gi, 0, 0);
-        voxgi__plan_add(&P, "direct light", VOXGI_PLAN_PASS, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
-    } else if (m == VOXGI_PLAN_LINESPACE) {
+            voxgi__plan_add(&P, VOXGI_PLAN_SH_VOLUME, gi, gi ? "the direct light's spherical harmonics" : no_gi, voxgi_grid_voxel_count(&P.grid) * 64u * 8u / 7u, 1);
+        voxgi__plan_add(&P, VOXGI_PLAN_VOXELS, gi && vis, !gi ? no_gi : vis ? "the bounce's visibility" : "visibility none asked for", gb, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_GATHERS, gi, gi ? "one bounce at the pixels" : no_gi, 0, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_DIRECT_LIGHT, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
+    } else if (m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO) {
+        voxgi__plan_add(&P, VOXGI_PLAN_LIGHTS, all, all ? "everything asked for" : "occlusion sees geometry only", 0, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_VOXELS, d->resolution > 0, d->resolution > 0 ? "occlusion through the voxels" : "occlusion through the depth buffer", voxgi_grid_voxel_count(&P.grid) / 8 + 4, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_OCCLUSION, 1, "the image", 0, 0);
+    } else if (m == VOXGI_RENDER_SSGI || m == VOXGI_RENDER_HYBRID) {
+        voxgi__plan_add(&P, VOXGI_PLAN_VOXELS, gi && d->resolution > 0, !gi ? no_gi : d->resolution > 0 ? "the bounce's visibility" : "visibility through the depth buffer", voxgi_grid_voxel_count(&P.grid) / 8 + 4, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_SCREEN_BOUNCE, gi, gi ? "one bounce from the screen" : no_gi, 0, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_DIRECT_LIGHT, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
+    } else if (m == VOXGI_RENDER_LINESPACE) {
         int keep = all || P.area_lights > 0;
         const char *none = P.area_lights < 0 ? "more than 64 area lights (the image refuses them)" : "no area light (rect light or emissive triangles)";
-        voxgi__plan_add(&P, "line space", VOXGI_PLAN_STRUCTURE, keep, keep ? "soft shadows of the area lights" : none, voxgi__plan_linespace_bytes(P.triangles, crossing, extent), 1);
-        voxgi__plan_add(&P, "soft shadows", VOXGI_PLAN_PASS, keep, keep ? "the area lights' direct light" : none, 0, 0);
+        voxgi__plan_add(&P, VOXGI_PLAN_LINE_SPACE, keep && !d->linespace.ls, !keep ? none : d->linespace.ls ? "the line space kept (desc.linespace.ls)" : "soft shadows of the area lights",
+                        voxgi__plan_linespace_bytes(P.triangles, crossing, extent, d->linespace.tree.n, d->linespace.tree.depth), 1);
+        voxgi__plan_add(&P, VOXGI_PLAN_SOFT_SHADOWS, keep, keep ? "the area lights' direct light" : none, 0, 0);
     } else {
-        voxgi__plan_add(&P, "path tracing", VOXGI_PLAN_PASS, lit, lit ? "the lights' and emitters' light along paths" : "no light and no emitter", 0, 0);
+        int ao = d->reference.ao_radius > 0;
+        voxgi__plan_add(&P, VOXGI_PLAN_PATH_TRACING, ao || lit, ao ? "ambient occlusion within the radius" : lit ? "the lights' and emitters' light along paths" : "no light and no emitter", 0, 0);
     }
-    voxgi__plan_add(&P, "seen emission", VOXGI_PLAN_PASS, seen && P.emissive_triangles && m != VOXGI_PLAN_AO,
-                    m == VOXGI_PLAN_AO ? "occlusion sees geometry only" : !P.emissive_triangles ? "no emissive material" : seen ? "emitters in view" : "the camera sees no emitter", 0, 0);
+    voxgi__plan_add(&P, VOXGI_PLAN_SEEN_EMISSION, seen && P.emissive_triangles && m != VOXGI_RENDER_SSAO && m != VOXGI_RENDER_VAO && !d->hide_emitters,
+                    m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO ? "occlusion sees geometry only" : !P.emissive_triangles ? "no emissive material"
+                    : d->hide_emitters ? "hidden (desc.hide_emitters)" : seen ? "emitters in view" : "the camera sees no emitter", 0, 0);
     *plan = P;
     return VOXGI_OK;
 }
 
-VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, const char *name)
+VOXGI_API voxgi_result voxgi_plan(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, unsigned flags, voxgi_plan_info *plan)
+{
+    voxgi_render_desc used;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !plan) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or plan is NULL");
+    return voxgi__plan_render(ctx, scene, desc, flags, &used, plan);
+}
+
+VOXGI_API voxgi_result voxgi_render_resolve(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, voxgi_render_desc *used)
+{
+    voxgi_plan_info plan;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !used) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or used is NULL");
+    return voxgi__plan_render(ctx, scene, desc, 0, used, &plan);
+}
+
+VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, voxgi_plan_item_id id)
 {
     int i;
-    for (i = 0; plan && name && i < plan->item_count; i++)
-        if (!strcmp(plan->items[i].name, name)) return &plan->items[i];
+    for (i = 0; plan && i < plan->item_count; i++)
+        if (plan->items[i].id == id) return &plan->items[i];
     return NULL;
 }
-
-#if !defined(VOXGI_NO_LIGHT_INJECTION) || !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) || !defined(VOXGI_NO_LINE_SPACE) /* their images */
-/* An image's plan: each item it leaves out logged. */
-static voxgi_result voxgi__plan_image(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_plan_request *q, voxgi_plan_info *plan)
-{
-    voxgi_result r;
-    int i;
-    if ((r = voxgi_plan(ctx, scene, q, plan)) != VOXGI_OK) return r;
-    for (i = 0; i < plan->item_count; i++)
-        if (!plan->items[i].kept) voxgi__log(ctx, VOXGI_LOG_INFO, "plan: %s: left out - %s", plan->items[i].name, plan->items[i].why);
-    return VOXGI_OK;
-}
-
-#endif
-
-#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* the one-bounce and screen images */
-/* An image's plan (method, view, grid) logged, and whether it keeps `item`. */
-static voxgi_result voxgi__plan_keeps(voxgi_context *ctx, const voxgi_scene *scene, voxgi_plan_method method, const voxgi_camera *cam, int resolution,
-                                      const char *item, int *keep)
-{
-    voxgi_plan_request q;
-    voxgi_plan_info plan;
-    voxgi_result r;
-    memset(&q, 0, sizeof q);
-    q.method = method;
-    q.camera = cam;
-    q.resolution = resolution;
-    if ((r = voxgi__plan_image(ctx, scene, &q, &plan)) != VOXGI_OK) return r;
-    *keep = voxgi_plan_find(&plan, item)->kept;
-    return VOXGI_OK;
-}
-#endif
 
 /* ----- the G-buffer of voxgi's own images */
 typedef struct voxgi__gbuffer_job {
@@ -14984,9 +15192,193 @@ VOXGI_API voxgi_result voxgi_gbuffer_render(voxgi_context *ctx, const voxgi_scen
     return r;
 }
 
-#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION) /* cone-traced images */
+/* ----- one image, any method: the rows of voxgi_render's table
+
+   A row makes its method's image in two steps over one voxgi__image: build, what the method
+   takes from the scene (its ray scene and lights, the voxels, the radiance, maps, a line space),
+   then gather, what the camera's pixels take from that (the G-buffer, the method's gathers, the
+   direct light). What both made is freed by voxgi__image_free, also after an error. Every row
+   reads the resolved desc and follows its plan: an item the plan leaves out is not made. */
+typedef struct voxgi__image {
+    voxgi_context *ctx;
+    const voxgi_scene *scene;
+    const voxgi_render_desc *d;   /* every default resolved */
+    const voxgi_plan_info *plan;
+    voxgi_render_info *info;
+    float *rgb;
+    int gi;                       /* the plan keeps the method's indirect light */
+    size_t pixels;
+    voxgi__tracer tr;
+    voxgi__lights Ls;             /* the lights the rays sample (TSM: those without a map) */
+    int have_tr, have_ls;
+    float *pos, *nrm, *irr;       /* the G-buffer (the pixel centres' surfaces) and the indirect irradiance there, 3 per pixel */
+    uint32_t *prim;               /* the G-buffer's triangles (UINT32_MAX: none) */
+    unsigned char *want;          /* the pixels that gather */
+    voxgi_grid grid;              /* the method's grid (its voxel size: the interpolation's plane distance) */
+    const voxgi_voxels *vox;      /* its voxels, made (vox_owned) or kept (desc.voxels) */
+    voxgi_voxels *vox_owned;
+    voxgi__occupancy O;           /* their occupancy, for visibility */
+    int have_occ;
+    voxgi_volume *volume;         /* VCT: the radiance; HYBRID: the hidden light */
+    voxgi_svo *octree;            /* VCT: the radiance in an octree */
+    voxgi_tsm **tsm;              /* TSM: per scene light its map, or NULL */
+    voxgi_light *map_less;        /* TSM: the lights without a map, */
+    voxgi_scene map_less_scene;   /* and the scene with those alone (I->Ls points into it) */
+    voxgi_rsm **rsm;              /* RSM: the maps made */
+    size_t rsm_count;
+    voxgi_sh *sh;
+    float *reflected;             /* SSGI, HYBRID: the direct light the pixels' surfaces reflect */
+    void *areas;                  /* LINESPACE: the area lights (voxgi__ls_area) */
+    int lights;
+    voxgi_linespace *ls_built;
+} voxgi__image;
+
+#if defined(VOXGI__DIRECT_LIGHT) || !defined(VOXGI_NO_LINE_SPACE) /* some method makes images */
+/* A stage of the image done: its name and the time since t0. */
+static void voxgi__image_stage(voxgi__image *I, const char *name, double t0)
+{
+    voxgi_render_info *f = I->info;
+    VOXGI_ASSERT(f->stage_count < VOXGI_RENDER_MAX_STAGES);
+    f->stages[f->stage_count].name = name;
+    f->stages[f->stage_count++].ms = voxgi__now_ms() - t0;
+}
+
+static int voxgi__image_kept(const voxgi__image *I, voxgi_plan_item_id id)
+{
+    const voxgi_plan_item *it = voxgi_plan_find(I->plan, id);
+    return it && it->kept;
+}
+
+/* The ray scene (the caller's kept one, or built) and, with `lights`, the scene's lights. */
+static voxgi_result voxgi__image_rays(voxgi__image *I, int lights)
+{
+    voxgi_result r;
+    if ((r = voxgi__tracer_build_with(I->ctx, I->scene, I->d->rays, &I->tr)) != VOXGI_OK) return r;
+    I->have_tr = 1;
+#ifdef VOXGI__DIRECT_LIGHT
+    if (lights && (r = voxgi__lights_build(I->ctx, I->scene, &I->tr, &I->Ls)) == VOXGI_OK) I->have_ls = 1;
+#else
+    (void)lights;
+#endif
+    return r;
+}
+
+/* The G-buffer of the view (k x k points per pixel: k times the size) and the arrays the gathers fill. */
+static voxgi_result voxgi__image_gbuffer(voxgi__image *I, int k)
+{
+    voxgi_camera cam = I->d->camera;
+    size_t n;
+    cam.width *= k;
+    cam.height *= k;
+    n = (size_t)cam.width * (size_t)cam.height;
+    I->pos = (float *)voxgi__alloc_array(I->ctx, n, 12, 0);
+    I->nrm = (float *)voxgi__alloc_array(I->ctx, n, 12, 0);
+    I->irr = (float *)voxgi__alloc_array(I->ctx, n, 12, 1);
+    I->prim = (uint32_t *)voxgi__alloc_array(I->ctx, n, 4, 0);
+    I->want = (unsigned char *)voxgi__alloc_array(I->ctx, n, 1, 1);
+    if (!I->pos || !I->nrm || !I->irr || !I->prim || !I->want) return voxgi__fail(I->ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d G-buffer", cam.width, cam.height);
+    return voxgi__gbuffer(I->ctx, &I->tr, &cam, I->pos, I->nrm, I->prim);
+}
+
+/* The method's grid (d->resolution voxels along the longest side, `padding` voxels around) and,
+   with `voxels`, its conservative voxels holding `attributes` and their occupancy (with OR mipmaps:
+   `hierarchical`): the stage "voxels". */
+static voxgi_result voxgi__image_voxels(voxgi__image *I, int padding, int voxels, int hierarchical, unsigned attributes)
+{
+    voxgi_voxelize_desc vd;
+    voxgi_fit_desc fit;
+    double t0 = voxgi__now_ms();
+    voxgi_result r;
+    memset(&vd, 0, sizeof vd);
+    memset(&fit, 0, sizeof fit);
+    fit.res = I->d->resolution;
+    fit.padding = padding;
+    if ((r = voxgi_fit_grid(I->ctx, I->scene, &fit, &I->grid)) != VOXGI_OK || !voxels) return r;
+    vd.grid = I->grid;
+    vd.attributes = attributes;
+    if ((r = voxgi_voxelize(I->ctx, I->scene, &vd, &I->vox_owned)) == VOXGI_OK && (r = voxgi__occ_build(I->ctx, I->vox_owned, hierarchical, &I->O)) == VOXGI_OK)
+        I->have_occ = 1;
+    I->vox = I->vox_owned;
+    voxgi__image_stage(I, "voxels", t0);
+    I->info->bytes += (I->vox ? I->vox->info.bytes : 0) + (I->have_occ ? voxgi__occ_bytes(&I->O) : 0);
+    return r;
+}
+
+#endif
+
+static void voxgi__image_free(voxgi__image *I)
+{
+    voxgi_context *ctx = I->ctx;
+    size_t i;
+    if (I->have_occ) voxgi__occ_free(ctx, &I->O);
+    if (I->vox_owned) voxgi_voxels_destroy(ctx, I->vox_owned);
+    voxgi_volume_destroy(ctx, I->volume);
+#ifndef VOXGI_NO_OCTREE
+    voxgi_svo_destroy(ctx, I->octree);
+#endif
+#ifndef VOXGI_NO_LIGHT_SPACE
+    for (i = 0; I->tsm && i < I->scene->light_count; i++) voxgi_tsm_destroy(ctx, I->tsm[i]);
+    for (i = 0; i < I->rsm_count; i++) voxgi_rsm_destroy(ctx, I->rsm[i]);
+    voxgi_sh_destroy(ctx, I->sh);
+#endif
+#ifndef VOXGI_NO_LINE_SPACE
+    voxgi_linespace_destroy(ctx, I->ls_built);
+#endif
+    (void)i;
+    voxgi__free(ctx, I->tsm);
+    voxgi__free(ctx, I->map_less);
+    voxgi__free(ctx, I->rsm);
+    voxgi__free(ctx, I->reflected);
+    voxgi__free(ctx, I->areas);
+    voxgi__free(ctx, I->pos);
+    voxgi__free(ctx, I->nrm);
+    voxgi__free(ctx, I->irr);
+    voxgi__free(ctx, I->prim);
+    voxgi__free(ctx, I->want);
+#ifdef VOXGI__DIRECT_LIGHT
+    if (I->have_ls) voxgi__lights_free(ctx, &I->Ls);
+#endif
+    if (I->have_tr) voxgi__tracer_free(ctx, &I->tr);
+}
+
+/* ----- the reference: path tracing (part 13) */
+#ifndef VOXGI_NO_REFERENCE
+static voxgi_result voxgi__reference_image_build(voxgi__image *I)
+{
+    double t0 = voxgi__now_ms();
+    voxgi_result r = voxgi__image_rays(I, 0);
+    voxgi__image_stage(I, "bvh", t0);
+    if (r == VOXGI_OK) {
+        I->info->triangles = I->tr.flat.triangle_count;
+        I->info->bvh_nodes = I->tr.rs->node_count;
+    }
+    return r;
+}
+
+static voxgi_result voxgi__reference_image_gather(voxgi__image *I)
+{
+    voxgi__ref_desc rd;
+    double t0 = voxgi__now_ms();
+    voxgi_result r;
+    memset(&rd, 0, sizeof rd);
+    rd.camera = I->d->camera;
+    rd.samples = I->d->samples;
+    rd.bounces = I->d->bounces;
+    rd.seed = I->d->seed;
+    rd.hide_emitters = I->d->hide_emitters;
+    rd.ao_radius = I->d->reference.ao_radius;
+    rd.screen_light_only = I->d->reference.screen_light_only;
+    r = voxgi__reference_trace(I->ctx, &I->tr, I->scene, &rd, I->rgb, &I->info->rays);
+    voxgi__image_stage(I, "render", t0);
+    return r;
+}
+#endif
+
+/* ----- cone-traced images */
+#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
 typedef struct voxgi__vct_job {
-    const voxgi_vct_desc *desc;
+    const voxgi_render_desc *d;
+    int gi;                       /* the cones' indirect light */
     const voxgi__tracer *tr;
     const voxgi__lights *lights;
     double eye[3], forward[3], right[3], up[3], tan_half;
@@ -15004,7 +15396,7 @@ typedef struct voxgi__vct_job {
    the pixel's own where none is. */
 static const float *voxgi__vct_ray_irradiance(const voxgi__vct_job *J, int x, int y, double sx, double sy, const double p[3], const double n[3])
 {
-    const voxgi_camera *cam = &J->desc->camera;
+    const voxgi_camera *cam = &J->d->camera;
     const float *best = J->irr + 3 * ((size_t)y * (size_t)cam->width + (size_t)x);
     double best_d = DBL_MAX;
     int dx, dy, a;
@@ -15030,8 +15422,8 @@ static const float *voxgi__vct_ray_irradiance(const voxgi__vct_job *J, int x, in
 static void voxgi__vct_shade(void *user, size_t first, size_t end)
 {
     voxgi__vct_job *J = (voxgi__vct_job *)user;
-    const voxgi_camera *cam = &J->desc->camera;
-    int samples = J->desc->samples;
+    const voxgi_camera *cam = &J->d->camera;
+    int samples = J->d->samples;
     uint64_t rays = 0;
     size_t y;
     for (y = first; y < end; y++) {
@@ -15043,7 +15435,7 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
             double rot[4], centre[3] = {0, 0, 0}; /* the exact unshadowed light at the pixel centre's surface */
             int used = 0, uniform = 1, lit = -1; /* uniform: every ray so far met the centre's triangle, with all or none of the lights */
             voxgi__rng g;
-            voxgi__rng_seed(&g, J->desc->seed, pix, 0);
+            voxgi__rng_seed(&g, J->d->seed, pix, 0);
             for (a = 0; a < 4; a++) rot[a] = voxgi__rng_unit(&g);
             if (J->analytic && J->prim[pix] != UINT32_MAX) {
                 double p[3], n[3];
@@ -15068,13 +15460,13 @@ static void voxgi__vct_shade(void *user, size_t first, size_t end)
                 else if (J->analytic) voxgi__area_irradiance(J->lights, h.p, ns, h.prim, ea);
                 if (h.prim != J->prim[pix] || (area[7] > 0 && area[7] < area[6]) || (lit >= 0 && lit != (area[7] == 0))) uniform = 0;
                 lit = area[7] == 0;
-                if (!J->desc->no_gi) {
+                if (J->gi) {
                     const float *irr = h.prim == J->prim[pix] ? J->irr + 3 * pix : voxgi__vct_ray_irradiance(J, x, (int)y, x + u[0], (double)y + u[1], h.p, ns);
                     for (a = 0; a < 3; a++) indirect[a] += m->albedo[a] / VOXGI__PI * irr[a];
                 }
                 for (a = 0; a < 3; a++) {
                     double k = m->albedo[a] / VOXGI__PI;
-                    L[a] += (h.front && !J->desc->hide_emitters ? m->emission[a] : 0) + k * (e[a] - area[a]);
+                    L[a] += (h.front && !J->d->hide_emitters ? m->emission[a] : 0) + k * (e[a] - area[a]);
                     shadowed[a] += k * area[a];
                     unshadowed[a] += k * area[3 + a];
                     if (J->analytic) exact[a] += k * ea[a];
@@ -15114,32 +15506,16 @@ static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_radi
     return r;
 }
 
-/* Every default of a voxgi_vct_desc: 128 voxels, 16 rays per pixel, cones at every pixel, and
-   the injection's points: 16 shared by every voxel on GL's maps, 4 stratified per voxel on the
-   CPU's shadow rays. */
-static voxgi_vct_desc voxgi__vct_defaults(const voxgi_context *ctx, const voxgi_vct_desc *in)
-{
-    voxgi_vct_desc d = *in;
-    if (!d.resolution) d.resolution = 128;
-    if (!d.samples) d.samples = 16;
-    if (!d.inject_samples) d.inject_samples = ctx->backend == VOXGI_BACKEND_GL && !d.shadow_rays ? 16 : 4;
-    if (d.cone_stride < 1) d.cone_stride = 1;
-    return d;
-}
-
-/* The radiance the cones gather: the scene voxelized on a grid of desc->resolution voxels
-   along its longest side (albedo and normal), the direct light injected (and bounced), in a
-   volume (voxgi__vct_octree moves it into an octree). */
 /* The cone tracer's voxels of the scene (resolved desc): its grid, fitted with a voxel of
    padding, albedo and normal. */
-static voxgi_result voxgi__vct_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc, voxgi_voxels **vox)
+static voxgi_result voxgi__vct_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *d, voxgi_voxels **vox)
 {
     voxgi_fit_desc fit;
     voxgi_voxelize_desc xd;
     voxgi_result r;
     memset(&fit, 0, sizeof fit);
     memset(&xd, 0, sizeof xd);
-    fit.res = desc->resolution;
+    fit.res = d->resolution;
     fit.padding = 1;
     xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
     r = voxgi_fit_grid(ctx, scene, &fit, &xd.grid);
@@ -15147,23 +15523,23 @@ static voxgi_result voxgi__vct_voxelize(voxgi_context *ctx, const voxgi_scene *s
     return r;
 }
 
-/* Whether desc->voxels are what voxgi__vct_voxelize would make of the scene now. */
-static voxgi_result voxgi__vct_check_voxels(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc)
+/* Whether d->voxels are what voxgi__vct_voxelize would make of the scene now. */
+static voxgi_result voxgi__vct_check_voxels(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *d)
 {
-    const voxgi_voxels_info *vi = &desc->voxels->info;
+    const voxgi_voxels_info *vi = &d->voxels->info;
     voxgi_fit_desc fit;
     voxgi_grid g;
     voxgi_result r;
     uint64_t triangles = 0;
     size_t m;
     memset(&fit, 0, sizeof fit);
-    fit.res = desc->resolution;
+    fit.res = d->resolution;
     fit.padding = 1;
     if ((r = voxgi_fit_grid(ctx, scene, &fit, &g)) != VOXGI_OK) return r;
     for (m = 0; m < scene->mesh_count; m++) triangles += voxgi__mesh_triangles(&scene->meshes[m]);
     if (vi->backend != ctx->backend || vi->method != VOXGI_METHOD_CONSERVATIVE || (vi->attributes & (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL)) !=
         (VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.voxels: not from voxgi_vct_voxelize on this context");
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.voxels: not from voxgi_render_voxelize on this context");
     if (memcmp(g.origin, vi->grid.origin, sizeof g.origin) != 0 || g.voxel_size != vi->grid.voxel_size || memcmp(g.res, vi->grid.res, sizeof g.res) != 0 ||
         triangles != vi->triangle_count)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.voxels: made for other geometry or another resolution (%d x %d x %d voxels of %g, %lu triangles; "
@@ -15172,69 +15548,192 @@ static voxgi_result voxgi__vct_check_voxels(voxgi_context *ctx, const voxgi_scen
     return VOXGI_OK;
 }
 
-/* The radiance the cones gather, in the scene's voxels `vox` (made here unless the caller gave
-   them: then *owned stays NULL): the direct light injected (and bounced), in a volume
-   (voxgi__vct_octree moves it into an octree). */
-static voxgi_result voxgi__vct_radiance(voxgi_context *ctx, const voxgi_scene *scene, const voxgi__tracer *tr, const voxgi__lights *Ls,
-                                        const voxgi_vct_desc *desc, voxgi_vct_info *inf, const voxgi_voxels **vox, voxgi_voxels **owned, voxgi_volume **vol)
+/* Anchors and the pixels between (cone tracing's and the reflective shadow maps' gathers at a
+   stride s > 1): the anchors are every s-th pixel across and down and the last row and column
+   (want[i] = 1 where such a pixel has a surface). */
+static void voxgi__anchors(int w, int h, int stride, const uint32_t *prim, unsigned char *want)
 {
-    voxgi_inject_desc id;
-    double t1;
+    size_t i, pixels = (size_t)w * (size_t)h;
+    for (i = 0; i < pixels; i++) {
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
+        want[i] = prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
+    }
+}
+
+/* Every other pixel with a surface: the bilinear mean of the irradiance of the anchors around it
+   (want: 1 at the anchors, on return 1 where a pixel needs its own gather) that share its
+   surface (normals within 26 degrees, within `plane` of its plane), renormalized over them. With
+   `strict` (Buchacher 2014's rule), only where at least three of the four share it (all of them
+   on an anchor's row or column); else wherever one with weight does. */
+static void voxgi__between_anchors(int w, int h, int stride, const float *pos, const float *nrm, const uint32_t *prim, double plane, int strict, float *irr,
+                                   unsigned char *want)
+{
+    size_t i, pixels = (size_t)w * (size_t)h;
+    for (i = 0; i < pixels; i++) {
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a, weighted = 0, shared = 0;
+        int xs[2], ys[2];
+        double sum = 0, e[3] = {0, 0, 0};
+        if (want[i] || prim[i] == UINT32_MAX) { want[i] = 0; continue; }
+        xs[0] = x0; xs[1] = VOXGI__MIN(x0 + stride, w - 1);
+        ys[0] = y0; ys[1] = VOXGI__MIN(y0 + stride, h - 1);
+        for (k = 0; k < 4; k++) {
+            size_t c = (size_t)ys[k >> 1] * (size_t)w + (size_t)xs[k & 1];
+            double wx = xs[1] > xs[0] ? (double)(x - xs[0]) / (xs[1] - xs[0]) : 0, wy = ys[1] > ys[0] ? (double)(y - ys[0]) / (ys[1] - ys[0]) : 0;
+            double wt = ((k & 1) ? wx : 1 - wx) * ((k >> 1) ? wy : 1 - wy), dn = 0, dp = 0;
+            if (wt <= 0) continue;
+            weighted++;
+            if (prim[c] == UINT32_MAX) continue;
+            for (a = 0; a < 3; a++) {
+                dn += (double)nrm[3 * c + (size_t)a] * nrm[3 * i + (size_t)a];
+                dp += ((double)pos[3 * c + (size_t)a] - pos[3 * i + (size_t)a]) * nrm[3 * i + (size_t)a];
+            }
+            if (dn < 0.9 || fabs(dp) > plane) continue; /* another surface: not its light */
+            shared++;
+            sum += wt;
+            for (a = 0; a < 3; a++) e[a] += wt * irr[3 * c + (size_t)a];
+        }
+        if (sum > 1e-3 && (!strict || shared >= VOXGI__MIN(3, weighted))) for (a = 0; a < 3; a++) irr[3 * i + (size_t)a] = (float)(e[a] / sum);
+        else want[i] = 1; /* too few anchors share its surface: its own gather */
+    }
+}
+
+/* The cones' irradiance at every pixel's surface (J->irr), or with a cone stride s > 1 at the
+   anchors (voxgi__anchors), the pixels between interpolated (voxgi__between_anchors, not strict)
+   or tracing their own where no anchor shares their surface. */
+static voxgi_result voxgi__vct_cones(voxgi_context *ctx, const voxgi_render_desc *d, voxgi__vct_job *J, const voxgi_radiance_source *source,
+                                     double voxel_size, size_t *traced)
+{
+    int w = d->camera.width, h = d->camera.height, stride = d->vct.cone_stride;
+    size_t pixels = (size_t)w * (size_t)h, n = 0, more = 0;
+    unsigned char *want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
     voxgi_result r = VOXGI_OK;
-    memset(&id, 0, sizeof id);
-    id.volume.filter = desc->filter;
-    id.samples = desc->inject_samples;
-    id.seed = desc->seed;
-    id.shadow_rays = desc->shadow_rays;
-    id.bounces = desc->bounces;
-    id.gather = desc->bounce_cones;
-    id.gather_block = desc->bounce_block;
-    id.one_sided = desc->one_sided;
-    t1 = voxgi__now_ms();
-    if (desc->voxels) *vox = desc->voxels;
-    else if ((r = voxgi__vct_voxelize(ctx, scene, desc, owned)) == VOXGI_OK) *vox = *owned;
-    inf->ms_voxelize = voxgi__now_ms() - t1;
-    if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.1, "cone-traced image", "vct: light injection")) r = VOXGI_ERR_CANCELLED;
-    if (r == VOXGI_OK) { /* emission is left out: the pixels take it from the direct light */
-        inf->voxels = (*vox)->info.voxel_count;
-        t1 = voxgi__now_ms();
-        r = voxgi__inject_light(ctx, scene, *vox, &id, tr, Ls, vol); /* the image's tracer: one BVH build */
-        inf->ms_inject = voxgi__now_ms() - t1;
+    if (!want) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    voxgi__anchors(w, h, stride, J->prim, want);
+    r = voxgi__vct_trace_pixels(ctx, source, &d->vct.cones, J, pixels, want, &n);
+    if (r == VOXGI_OK && stride > 1) {
+        voxgi__between_anchors(w, h, stride, J->pos, J->nrm, J->prim, voxel_size, 0, J->irr, want);
+        r = voxgi__vct_trace_pixels(ctx, source, &d->vct.cones, J, pixels, want, &more);
     }
-    if (*vol) {
-        voxgi_volume_info vi;
-        voxgi_volume_query(*vol, &vi);
-        inf->radiance_bytes = vi.bytes;
-    }
+    *traced = n + more;
+    voxgi__free(ctx, want);
     return r;
 }
 
-#ifndef VOXGI_NO_OCTREE
-/* With desc->octree the radiance moves into an octree; the volume goes. */
-static voxgi_result voxgi__vct_octree(voxgi_context *ctx, const voxgi_vct_desc *desc, voxgi_vct_info *inf, const voxgi_voxels *vox, voxgi_volume **vol,
-                                      voxgi_svo **svo)
+/* The radiance the cones gather: the scene's voxels (made, or the caller's kept ones), the
+   direct light injected (emission left out: the pixels take it from the direct light) and
+   bounced, in a volume, moved into an octree where the desc says so. */
+static voxgi_result voxgi__vct_image_build(voxgi__image *I)
 {
-    voxgi_svo_desc sd;
-    voxgi_svo_info si;
-    double t1 = voxgi__now_ms();
+    voxgi_context *ctx = I->ctx;
+    const voxgi_render_desc *d = I->d;
+    voxgi_inject_desc id;
+    double t0;
     voxgi_result r;
-    memset(&sd, 0, sizeof sd);
-    sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
-    sd.radiance = *vol;
-    sd.format = desc->octree_format;
-    sd.bricks = desc->octree_bricks;
-    r = voxgi_svo_create(ctx, vox, &sd, svo);
-    inf->ms_octree = voxgi__now_ms() - t1;
-    voxgi_volume_destroy(ctx, *vol);
-    *vol = NULL;
-    if (r == VOXGI_OK) { voxgi_svo_query(*svo, &si); inf->radiance_bytes = si.bytes; }
+    I->gi = voxgi__image_kept(I, VOXGI_PLAN_CONES);
+    if (d->voxels && (r = voxgi__vct_check_voxels(ctx, I->scene, d)) != VOXGI_OK) return r;
+    if ((r = voxgi__image_rays(I, 1)) != VOXGI_OK || !I->gi) return r;
+    if (voxgi__cancelled(ctx, 0.0, "cone-traced image", "vct: voxelization")) return VOXGI_ERR_CANCELLED;
+    t0 = voxgi__now_ms();
+    if (d->voxels) I->vox = d->voxels;
+    else if ((r = voxgi__vct_voxelize(ctx, I->scene, d, &I->vox_owned)) == VOXGI_OK) I->vox = I->vox_owned;
+    voxgi__image_stage(I, "voxelize", t0);
+    if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.1, "cone-traced image", "vct: light injection")) r = VOXGI_ERR_CANCELLED;
+    if (r != VOXGI_OK) return r;
+    memset(&id, 0, sizeof id);
+    id.volume.filter = d->vct.radiance == VOXGI_VCT_ANISOTROPIC ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
+    id.samples = d->vct.inject_samples;
+    id.seed = d->seed;
+    id.shadow_rays = d->vct.shadow_rays;
+    id.bounces = d->bounces;
+    id.gather = d->vct.bounce_cones;
+    id.gather_block = d->vct.bounce_block;
+    id.one_sided = d->vct.one_sided;
+    I->info->voxels = I->vox->info.voxel_count;
+    t0 = voxgi__now_ms();
+    r = voxgi__inject_light(ctx, I->scene, I->vox, &id, &I->tr, &I->Ls, &I->volume); /* the image's tracer: one BVH build */
+    voxgi__image_stage(I, "inject", t0);
+    if (I->volume) {
+        voxgi_volume_info vi;
+        voxgi_volume_query(I->volume, &vi);
+        I->info->bytes = vi.bytes;
+    }
+#ifndef VOXGI_NO_OCTREE
+    if (r == VOXGI_OK && d->vct.radiance == VOXGI_VCT_OCTREE) { /* the radiance moves into an octree; the volume goes */
+        voxgi_svo_desc sd;
+        voxgi_svo_info si;
+        memset(&sd, 0, sizeof sd);
+        sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
+        sd.radiance = I->volume;
+        sd.format = d->vct.octree_format;
+        sd.bricks = d->vct.octree_bricks;
+        t0 = voxgi__now_ms();
+        r = voxgi_svo_create(ctx, I->vox, &sd, &I->octree);
+        voxgi__image_stage(I, "octree", t0);
+        voxgi_volume_destroy(ctx, I->volume);
+        I->volume = NULL;
+        if (r == VOXGI_OK) { voxgi_svo_query(I->octree, &si); I->info->bytes = si.bytes; }
+    }
+#endif
     return r;
 }
-#endif
 
-#endif
+/* The G-buffer, the cones at its pixels, then per pixel emission + albedo / pi x (the direct light
+   through exact shadow rays, `samples` rays stratified over the pixel and the light, + the cones'
+   irradiance at the surface each ray met: the one gathered at the nearest of the 3 x 3 pixels whose
+   centre lies on it, so that a pixel across an edge mixes its sides' indirect light as it mixes
+   their direct light). */
+static voxgi_result voxgi__vct_image_gather(voxgi__image *I)
+{
+    voxgi_context *ctx = I->ctx;
+    voxgi__vct_job J;
+    voxgi_radiance_source source;
+    double t0;
+    voxgi_result r;
+    memset(&J, 0, sizeof J);
+    if ((r = voxgi__camera_frame(ctx, &I->d->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
+    if ((r = voxgi__image_gbuffer(I, 1)) != VOXGI_OK) return r;
+    J.d = I->d;
+    J.gi = I->gi;
+    J.tr = &I->tr;
+    J.lights = &I->Ls;
+    J.rgb = I->rgb;
+    J.analytic = !I->d->vct.sampled_direct && I->Ls.emitter_count <= VOXGI__ANALYTIC_EMITTERS;
+    J.pos = I->pos;
+    J.nrm = I->nrm;
+    J.irr = I->irr;
+    J.prim = I->prim;
+    if (I->gi) {
+        if (voxgi__cancelled(ctx, 0.4, "cone-traced image", "vct: cones")) return VOXGI_ERR_CANCELLED;
+        memset(&source, 0, sizeof source);
+        source.volume = I->volume;
+        source.octree = I->octree;
+        J.voxel_size = I->vox->info.grid.voxel_size;
+        t0 = voxgi__now_ms();
+        r = voxgi__vct_cones(ctx, I->d, &J, &source, J.voxel_size, &I->info->gathered);
+        voxgi__image_stage(I, "cones", t0);
+        if (r != VOXGI_OK) return r;
+    }
+    if (voxgi__cancelled(ctx, 0.8, "cone-traced image", "vct: direct light")) return VOXGI_ERR_CANCELLED;
+    t0 = voxgi__now_ms();
+    voxgi__parallel(ctx, (size_t)I->d->camera.height, 1, voxgi__vct_shade, &J);
+    voxgi__image_stage(I, "direct", t0);
+    voxgi__progress(ctx, 1.0, "vct: done");
+    return VOXGI_OK;
+}
 
-#if (!defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)) || !defined(VOXGI_NO_LIGHT_SPACE)
+VOXGI_API voxgi_result voxgi_render_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, voxgi_voxels **out)
+{
+    voxgi_render_desc d;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or out is NULL");
+    *out = NULL;
+    if (desc->method != VOXGI_RENDER_VCT) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.method: only vct keeps voxels");
+    if ((r = voxgi__render_defaults(ctx, desc, &d)) != VOXGI_OK) return r;
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    return voxgi__vct_voxelize(ctx, scene, &d, out);
+}
+#elif !defined(VOXGI_NO_LIGHT_SPACE)
 /* Anchors and the pixels between (cone tracing's and the reflective shadow maps' gathers at a
    stride s > 1): the anchors are every s-th pixel across and down and the last row and column
    (want[i] = 1 where such a pixel has a surface). */
@@ -15285,142 +15784,8 @@ static void voxgi__between_anchors(int w, int h, int stride, const float *pos, c
 }
 #endif
 
-#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
-/* The cones' irradiance at every pixel's surface (J->irr), or with a cone stride s > 1 at the
-   anchors (voxgi__anchors), the pixels between interpolated (voxgi__between_anchors, not strict)
-   or tracing their own where no anchor shares their surface. */
-static voxgi_result voxgi__vct_cones(voxgi_context *ctx, const voxgi_vct_desc *desc, voxgi__vct_job *J, const voxgi_radiance_source *source,
-                                     double voxel_size, size_t *traced)
-{
-    int w = desc->camera.width, h = desc->camera.height, stride = desc->cone_stride;
-    size_t pixels = (size_t)w * (size_t)h, n = 0, more = 0;
-    unsigned char *want = (unsigned char *)voxgi__alloc_array(ctx, pixels, 1, 1);
-    voxgi_result r = VOXGI_OK;
-    if (!want) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
-    voxgi__anchors(w, h, stride, J->prim, want);
-    r = voxgi__vct_trace_pixels(ctx, source, &desc->cones, J, pixels, want, &n);
-    if (r == VOXGI_OK && stride > 1) {
-        voxgi__between_anchors(w, h, stride, J->pos, J->nrm, J->prim, voxel_size, 0, J->irr, want);
-        r = voxgi__vct_trace_pixels(ctx, source, &desc->cones, J, pixels, want, &more);
-    }
-    *traced = n + more;
-    voxgi__free(ctx, want);
-    return r;
-}
-
-VOXGI_API voxgi_result voxgi_vct_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc_in, float *rgb, size_t rgb_bytes,
-                                        voxgi_vct_info *info)
-{
-    voxgi_vct_desc resolved;
-    const voxgi_vct_desc *desc = desc_in;
-    voxgi_plan_request q;
-    voxgi_plan_info plan;
-    voxgi__tracer tr;
-    voxgi__lights Ls;
-    voxgi__vct_job J;
-    const voxgi_voxels *vox = NULL;
-    voxgi_voxels *vox_owned = NULL;
-    voxgi_volume *vol = NULL;
-#ifndef VOXGI_NO_OCTREE
-    voxgi_svo *svo = NULL;
-#endif
-    voxgi_radiance_source source;
-    voxgi_vct_info inf;
-    size_t pixels;
-    double t0 = voxgi__now_ms(), t1;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
-    memset(&inf, 0, sizeof inf);
-    memset(&J, 0, sizeof J);
-    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
-    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
-    if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (desc->samples < 0 || desc->inject_samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->bounces < -1 || desc->bounces > 64 || desc->cone_stride < 0 ||
-        desc->cone_stride > 64)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, inject_samples %d, resolution %d (0..4096), bounces %d (-1..64), cone_stride %d (0..64)", desc->samples, desc->inject_samples,
-                           desc->resolution, desc->bounces, desc->cone_stride);
-    resolved = voxgi__vct_defaults(ctx, desc_in);
-    desc = &resolved;
-    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
-    if (desc->voxels && (r = voxgi__vct_check_voxels(ctx, scene, desc)) != VOXGI_OK) return r;
-    memset(&q, 0, sizeof q);
-    q.camera = &desc->camera;
-    q.resolution = desc->resolution;
-    q.bounces = desc->bounces;
-    q.one_sided = desc->one_sided;
-    q.filter = desc->filter;
-    if ((r = voxgi__plan_image(ctx, scene, &q, &plan)) != VOXGI_OK) return r;
-    if (!voxgi_plan_find(&plan, "cones")->kept) resolved.no_gi = 1; /* no light to bounce, or nothing reflects it */
-    if ((r = voxgi__tracer_build_with(ctx, scene, desc->rays, &tr)) != VOXGI_OK) return r;
-    if ((r = voxgi__lights_build(ctx, scene, &tr, &Ls)) != VOXGI_OK) { voxgi__tracer_free(ctx, &tr); return r; }
-    J.desc = desc;
-    J.tr = &tr;
-    J.lights = &Ls;
-    J.rgb = rgb;
-    J.analytic = !desc->sampled_direct && Ls.emitter_count <= VOXGI__ANALYTIC_EMITTERS;
-    J.pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-    J.nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-    J.irr = (float *)voxgi__alloc_array(ctx, pixels, 12, 1);
-    J.prim = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
-    if (!J.pos || !J.nrm || !J.irr || !J.prim) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-pixel image", (unsigned long)pixels);
-    if (r == VOXGI_OK) r = voxgi__gbuffer(ctx, &tr, &desc->camera, J.pos, J.nrm, J.prim);
-    if (r == VOXGI_OK && !desc->no_gi) {
-        if (voxgi__cancelled(ctx, 0.0, "cone-traced image", "vct: voxelization")) r = VOXGI_ERR_CANCELLED;
-        if (r == VOXGI_OK) r = voxgi__vct_radiance(ctx, scene, &tr, &Ls, desc, &inf, &vox, &vox_owned, &vol);
-        memset(&source, 0, sizeof source);
-        source.volume = vol;
-#ifndef VOXGI_NO_OCTREE
-        if (r == VOXGI_OK && desc->octree && (r = voxgi__vct_octree(ctx, desc, &inf, vox, &vol, &svo)) == VOXGI_OK) {
-            source.volume = NULL;
-            source.octree = svo;
-        }
-#endif
-        if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.4, "cone-traced image", "vct: cones")) r = VOXGI_ERR_CANCELLED;
-        t1 = voxgi__now_ms();
-        if (r == VOXGI_OK) {
-            J.voxel_size = vox->info.grid.voxel_size;
-            r = voxgi__vct_cones(ctx, desc, &J, &source, vox->info.grid.voxel_size, &inf.cone_points);
-        }
-        inf.ms_cones = voxgi__now_ms() - t1;
-    }
-    if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.8, "cone-traced image", "vct: direct light")) r = VOXGI_ERR_CANCELLED;
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) voxgi__parallel(ctx, (size_t)desc->camera.height, 1, voxgi__vct_shade, &J);
-    inf.ms_direct = voxgi__now_ms() - t1;
-    inf.ms = voxgi__now_ms() - t0;
-    if (r == VOXGI_OK) voxgi__progress(ctx, 1.0, "vct: done");
-    if (info) *info = inf;
-    voxgi_volume_destroy(ctx, vol);
-#ifndef VOXGI_NO_OCTREE
-    voxgi_svo_destroy(ctx, svo);
-#endif
-    if (vox_owned) voxgi_voxels_destroy(ctx, vox_owned);
-    voxgi__free(ctx, J.pos);
-    voxgi__free(ctx, J.nrm);
-    voxgi__free(ctx, J.irr);
-    voxgi__free(ctx, J.prim);
-    voxgi__lights_free(ctx, &Ls);
-    voxgi__tracer_free(ctx, &tr);
-    return r;
-}
-
-VOXGI_API voxgi_result voxgi_vct_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_vct_desc *desc_in, voxgi_voxels **out)
-{
-    voxgi_vct_desc desc;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!desc_in || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or out is NULL");
-    *out = NULL;
-    if (desc_in->resolution < 0 || desc_in->resolution > 4096) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "resolution %d (0..4096)", desc_in->resolution);
-    desc = voxgi__vct_defaults(ctx, desc_in);
-    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
-    return voxgi__vct_voxelize(ctx, scene, &desc, out);
-}
-#endif
-
-/* ----- images of the direct light (with transmittance shadow maps, and under reflective ones) */
-#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* one-bounce images start with it */
+/* ----- images of the direct light (with transmittance shadow maps, and under one-bounce ones) */
+#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE)
 typedef struct voxgi__direct_image_job {
     const voxgi_camera *cam;
     int samples, hide_emitters;   /* camera rays per pixel (stratified, shifted per pixel by the seed) */
@@ -15513,96 +15878,84 @@ static double voxgi__direct_image(voxgi_context *ctx, voxgi__direct_image_job *J
     voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__direct_image_rows, J);
     return voxgi__now_ms() - t0;
 }
+
+/* The bounce's light, albedo / pi x irradiance, added into rgb. */
+static void voxgi__image_add_bounce(const voxgi__image *I)
+{
+    size_t p;
+    for (p = 0; p < I->pixels; p++) {
+        const voxgi_material *m;
+        int a;
+        if (I->prim[p] == UINT32_MAX) continue;
+        m = voxgi__prim_material(&I->tr, I->prim[p]);
+        for (a = 0; a < 3; a++) I->rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * I->irr[3 * p + (size_t)a]);
+    }
+}
+
+/* The direct light through exact shadow rays to the image's lights (and with maps, theirs) into
+   rgb, the light the surfaces reflect into reflected (if not NULL): the stage "direct". */
+static void voxgi__image_direct(voxgi__image *I, voxgi_tsm **maps, float *reflected, const char *stage)
+{
+    voxgi__direct_image_job J;
+    double t0 = voxgi__now_ms();
+    memset(&J, 0, sizeof J);
+    voxgi__camera_frame(I->ctx, &I->d->camera, J.eye, J.forward, J.right, J.up, &J.tan_half); /* checked by the planner */
+#ifndef VOXGI_NO_LIGHT_SPACE
+    J.maps = maps;
+#else
+    (void)maps;
+#endif
+    J.reflected = reflected;
+    voxgi__direct_image(I->ctx, &J, &I->d->camera, I->d->samples, I->d->hide_emitters, I->d->seed, &I->tr, &I->Ls, I->scene, I->rgb);
+    voxgi__image_stage(I, stage, t0);
+}
 #endif
 
 #ifndef VOXGI_NO_LIGHT_SPACE
-VOXGI_API voxgi_result voxgi_tsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_tsm_image_desc *desc, float *rgb,
-                                        size_t rgb_bytes, voxgi_tsm_image_info *info)
+/* ----- images of the direct light with transmittance shadow maps: every directional and spot
+   light through its own map, the other lights and emitters through exact shadow rays */
+static voxgi_result voxgi__tsm_image_build(voxgi__image *I)
 {
-    voxgi_plan_request q;
-    voxgi_plan_info plan;
-    voxgi__direct_image_job J;
-    voxgi__tracer tr;
-    voxgi__lights others;
-    voxgi_scene rest;
-    voxgi_light *kept = NULL;
-    voxgi_tsm_image_info inf;
-    double t0 = voxgi__now_ms(), t1;
-    size_t li, n = 0;
+    voxgi_context *ctx = I->ctx;
+    const voxgi_scene *scene = I->scene;
+    size_t li, n = 0, lc = scene->light_count ? scene->light_count : 1;
+    double t0;
     voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    if (desc->samples < 0) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d", desc->samples);
-    memset(&J, 0, sizeof J);
-    memset(&inf, 0, sizeof inf);
-    memset(&others, 0, sizeof others);
-    if ((r = voxgi__camera_frame(ctx, &desc->camera, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
-    if (rgb_bytes < (size_t)desc->camera.width * (size_t)desc->camera.height * 12)
-        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes,
-                           (unsigned long)((size_t)desc->camera.width * (size_t)desc->camera.height * 12));
-    memset(&q, 0, sizeof q);
-    q.method = VOXGI_PLAN_TSM;
-    q.camera = &desc->camera;
-    if ((r = voxgi__plan_image(ctx, scene, &q, &plan)) != VOXGI_OK) return r; /* the maps make no layers without translucent materials */
-    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    J.maps = (voxgi_tsm **)voxgi__alloc_array(ctx, scene->light_count ? scene->light_count : 1, sizeof *J.maps, 1);
-    kept = (voxgi_light *)voxgi__alloc_array(ctx, scene->light_count ? scene->light_count : 1, sizeof *kept, 0);
-    if (!J.maps || !kept) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
-    t1 = voxgi__now_ms();
+    if ((r = voxgi__image_rays(I, 0)) != VOXGI_OK) return r;
+    I->tsm = (voxgi_tsm **)voxgi__alloc_array(ctx, lc, sizeof *I->tsm, 1);
+    I->map_less = (voxgi_light *)voxgi__alloc_array(ctx, lc, sizeof *I->map_less, 0);
+    if (!I->tsm || !I->map_less) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    t0 = voxgi__now_ms();
     for (li = 0; r == VOXGI_OK && li < scene->light_count; li++) {
-        voxgi_tsm_desc td = desc->tsm;
-        if (scene->lights[li].type != VOXGI_LIGHT_DIRECTIONAL && scene->lights[li].type != VOXGI_LIGHT_SPOT) { kept[n++] = scene->lights[li]; continue; }
+        voxgi_tsm_desc td = I->d->tsm.maps;
+        if (scene->lights[li].type != VOXGI_LIGHT_DIRECTIONAL && scene->lights[li].type != VOXGI_LIGHT_SPOT) { I->map_less[n++] = scene->lights[li]; continue; }
         td.light = li;
-        if ((r = voxgi_tsm_create(ctx, scene, &td, &J.maps[li])) == VOXGI_OK) {
-            inf.maps++;
-            inf.bytes += J.maps[li]->info.bytes;
+        if ((r = voxgi_tsm_create(ctx, scene, &td, &I->tsm[li])) == VOXGI_OK) {
+            I->info->maps++;
+            I->info->bytes += I->tsm[li]->info.bytes;
         }
     }
-    inf.ms_maps = voxgi__now_ms() - t1;
-    rest = *scene;
-    rest.lights = n ? kept : NULL;
-    rest.light_count = n;
-    if (r == VOXGI_OK) r = voxgi__lights_build(ctx, &rest, &tr, &others);
-    if (r == VOXGI_OK) {
-        inf.ms_shade = voxgi__direct_image(ctx, &J, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, &tr, &others, scene, rgb);
-    }
-    for (li = 0; J.maps && li < scene->light_count; li++) voxgi_tsm_destroy(ctx, J.maps[li]);
-    voxgi__free(ctx, J.maps);
-    voxgi__free(ctx, kept);
-    voxgi__lights_free(ctx, &others);
-    voxgi__tracer_free(ctx, &tr);
-    inf.ms = voxgi__now_ms() - t0;
-    if (info) *info = inf;
+    voxgi__image_stage(I, "maps", t0);
+    I->map_less_scene = *scene;
+    I->map_less_scene.lights = n ? I->map_less : NULL;
+    I->map_less_scene.light_count = n;
+    if (r == VOXGI_OK && (r = voxgi__lights_build(ctx, &I->map_less_scene, &I->tr, &I->Ls)) == VOXGI_OK) I->have_ls = 1;
     return r;
 }
-#endif
 
-#ifndef VOXGI_NO_SCREEN_SPACE
-/* The longest side of the box around the scene's triangles (1 when they have no extent): the scale
-   of the screen passes' default radii. */
-static double voxgi__longest_side(const voxgi__tracer *tr)
+static voxgi_result voxgi__tsm_image_gather(voxgi__image *I)
 {
-    double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX}, side = 0;
-    size_t i;
-    int a;
-    for (i = 0; i < 9 * tr->flat.triangle_count; i++) {
-        lo[i % 3] = VOXGI__MIN(lo[i % 3], tr->v[i]);
-        hi[i % 3] = VOXGI__MAX(hi[i % 3], tr->v[i]);
-    }
-    for (a = 0; a < 3; a++) side = VOXGI__MAX(side, hi[a] - lo[a]);
-    return side > 0 ? side : 1;
+    voxgi__image_direct(I, I->tsm, NULL, "shade");
+    return VOXGI_OK;
 }
-#endif
 
 /* ----- one-bounce images: the reflective shadow maps' and the SH volume's
 
-   What both share: the direct light as voxgi_tsm_render's (exact shadow rays), the G-buffer, a
-   grid of `resolution` voxels along the scene's longest side (its voxel size the interpolation's
-   plane distance) and, unless visibility is none, the occupancy of its conservative voxels; the
-   method's gather at the anchors of the gather stride and where interpolation fails; the bounce
-   albedo / pi x irradiance added to the direct light. */
-
-#ifndef VOXGI_NO_LIGHT_SPACE
+   What both share: the direct light as the transmittance maps' image (exact shadow rays), the
+   G-buffer, a grid of `resolution` voxels along the scene's longest side (its voxel size the
+   interpolation's plane distance) and, unless visibility is none, the occupancy of its
+   conservative voxels; the method's gather at the anchors of the gather stride and where
+   interpolation fails; the bounce albedo / pi x irradiance added to the direct light. */
 /* A one-bounce gather at the pixels marked in want: gather(user, count, points, normals, out)
    sets out (3 per point), added into irr (3 per pixel); their number added into *gathered. */
 typedef voxgi_result (*voxgi__gather_fn)(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out);
@@ -15638,119 +15991,27 @@ static voxgi_result voxgi__gather_pixels(voxgi_context *ctx, size_t pixels, cons
     voxgi__free(ctx, e);
     return p && q && e ? r : voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu gathers", (unsigned long)count);
 }
-#endif
 
-#if !defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE) /* the SSGI images too */
-typedef struct voxgi__bounce_image {
-    voxgi__tracer tr;
-    voxgi__lights Ls;
-    voxgi_grid grid;
-    voxgi_voxels *vox;
-    voxgi__occupancy O;
-    int have_occ, w, h;
-    size_t pixels;
-    float *pos, *nrm, *irr;       /* the G-buffer, and the bounce's irradiance (3 per pixel) */
-    uint32_t *prim;
-    unsigned char *want;
-} voxgi__bounce_image;
-
-/* The memory of the voxels and their occupancy. */
-static size_t voxgi__bounce_bytes(const voxgi__bounce_image *B)
+/* The direct light, the G-buffer, the gathers at the anchors, then at the pixels between that
+   cannot be interpolated; the bounce added into rgb. */
+static voxgi_result voxgi__image_bounce(voxgi__image *I, int stride, voxgi__gather_fn gather, void *user)
 {
-    return (B->vox ? B->vox->info.bytes : 0) + (B->have_occ ? voxgi__occ_bytes(&B->O) : 0);
-}
-
-static void voxgi__bounce_free(voxgi_context *ctx, voxgi__bounce_image *B)
-{
-    if (B->have_occ) voxgi__occ_free(ctx, &B->O);
-    voxgi_voxels_destroy(ctx, B->vox);
-    voxgi__free(ctx, B->pos);
-    voxgi__free(ctx, B->nrm);
-    voxgi__free(ctx, B->irr);
-    voxgi__free(ctx, B->prim);
-    voxgi__free(ctx, B->want);
-    voxgi__lights_free(ctx, &B->Ls);
-    voxgi__tracer_free(ctx, &B->tr);
-}
-
-/* The direct light into rgb (and the light the surfaces reflect, without their emission, into
-   reflected, if not NULL) and all the shared parts (B zeroed first, freed by voxgi__bounce_free
-   whatever the result); the times of the direct light and the voxels (holding `attributes`), which
-   with `voxels` also give the occupancy the gathers pass (with its OR mipmaps: `hierarchical`). */
-static voxgi_result voxgi__bounce_begin(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *cam, int samples, int hide_emitters,
-                                        uint64_t seed, int resolution, int voxels, int hierarchical, unsigned attributes, float *rgb, size_t rgb_bytes,
-                                        float *reflected, voxgi__bounce_image *B, double *ms_direct, double *ms_voxels)
-{
-    voxgi__direct_image_job J;
-    voxgi_voxelize_desc vd;
-    voxgi_fit_desc fit;
-    double t1;
+    const voxgi_camera *cam = &I->d->camera;
+    double t0;
     voxgi_result r;
-    memset(B, 0, sizeof *B);
-    memset(&J, 0, sizeof J);
-    if ((r = voxgi__camera_frame(ctx, cam, J.eye, J.forward, J.right, J.up, &J.tan_half)) != VOXGI_OK) return r;
-    B->w = cam->width;
-    B->h = cam->height;
-    B->pixels = (size_t)B->w * (size_t)B->h;
-    if (rgb_bytes < B->pixels * 12)
-        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(B->pixels * 12));
-    if ((r = voxgi__tracer_build(ctx, scene, &B->tr)) != VOXGI_OK) return r;
-    B->pos = (float *)voxgi__alloc_array(ctx, B->pixels, 12, 0);
-    B->nrm = (float *)voxgi__alloc_array(ctx, B->pixels, 12, 0);
-    B->irr = (float *)voxgi__alloc_array(ctx, B->pixels, 12, 1);
-    B->prim = (uint32_t *)voxgi__alloc_array(ctx, B->pixels, 4, 0);
-    B->want = (unsigned char *)voxgi__alloc_array(ctx, B->pixels, 1, 1);
-    if (!B->pos || !B->nrm || !B->irr || !B->prim || !B->want) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", B->w, B->h);
-    if ((r = voxgi__lights_build(ctx, scene, &B->tr, &B->Ls)) != VOXGI_OK) return r;
-    J.reflected = reflected;
-    *ms_direct = voxgi__direct_image(ctx, &J, cam, samples ? samples : 24, hide_emitters, seed, &B->tr, &B->Ls, scene, rgb);
-    if ((r = voxgi__gbuffer(ctx, &B->tr, cam, B->pos, B->nrm, B->prim)) != VOXGI_OK) return r;
-    memset(&vd, 0, sizeof vd);
-    memset(&fit, 0, sizeof fit);
-    fit.res = resolution ? resolution : 64;
-    if ((r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid)) != VOXGI_OK) return r;
-    B->grid = vd.grid;
-    vd.attributes = attributes;
-    if (!voxels) return VOXGI_OK;
-    t1 = voxgi__now_ms(); /* the voxels the gathers pass */
-    if ((r = voxgi_voxelize(ctx, scene, &vd, &B->vox)) == VOXGI_OK && (r = voxgi__occ_build(ctx, B->vox, hierarchical, &B->O)) == VOXGI_OK)
-        B->have_occ = 1;
-    *ms_voxels = voxgi__now_ms() - t1;
-    return r;
-}
-
-/* The bounce's light, albedo / pi x irradiance, added into rgb. */
-static void voxgi__bounce_add(const voxgi__bounce_image *B, float *rgb)
-{
-    size_t p;
-    for (p = 0; p < B->pixels; p++) {
-        const voxgi_material *m;
-        int a;
-        if (B->prim[p] == UINT32_MAX) continue;
-        m = voxgi__prim_material(&B->tr, B->prim[p]);
-        for (a = 0; a < 3; a++) rgb[3 * p + (size_t)a] += (float)(m->albedo[a] / VOXGI__PI * B->irr[3 * p + (size_t)a]);
-    }
-}
-#endif
-
-#ifndef VOXGI_NO_LIGHT_SPACE
-/* The gathers at the anchors, then at the pixels between that cannot be interpolated; the bounce
-   added into rgb. */
-static voxgi_result voxgi__bounce_gather(voxgi_context *ctx, voxgi__bounce_image *B, int stride, voxgi__gather_fn gather, void *user, float *rgb,
-                                         size_t *gathered)
-{
-    voxgi_result r;
-    voxgi__anchors(B->w, B->h, stride, B->prim, B->want);
-    r = voxgi__gather_pixels(ctx, B->pixels, B->pos, B->nrm, B->want, B->irr, gathered, gather, user);
+    voxgi__image_direct(I, NULL, NULL, "direct");
+    if ((r = voxgi__image_gbuffer(I, 1)) != VOXGI_OK || !I->gi) return r;
+    t0 = voxgi__now_ms();
+    voxgi__anchors(cam->width, cam->height, stride, I->prim, I->want);
+    r = voxgi__gather_pixels(I->ctx, I->pixels, I->pos, I->nrm, I->want, I->irr, &I->info->gathered, gather, user);
     if (r == VOXGI_OK && stride > 1) {
-        voxgi__between_anchors(B->w, B->h, stride, B->pos, B->nrm, B->prim, B->grid.voxel_size, 1, B->irr, B->want);
-        r = voxgi__gather_pixels(ctx, B->pixels, B->pos, B->nrm, B->want, B->irr, gathered, gather, user);
+        voxgi__between_anchors(cam->width, cam->height, stride, I->pos, I->nrm, I->prim, I->grid.voxel_size, 1, I->irr, I->want);
+        r = voxgi__gather_pixels(I->ctx, I->pixels, I->pos, I->nrm, I->want, I->irr, &I->info->gathered, gather, user);
     }
-    if (r == VOXGI_OK) voxgi__bounce_add(B, rgb);
+    if (r == VOXGI_OK) voxgi__image_add_bounce(I);
+    voxgi__image_stage(I, "gather", t0);
     return r;
 }
-
-/* ----- images with reflective shadow maps */
 
 /* The bounce from every map of an image (a voxgi__rsm_gather_job). */
 static voxgi_result voxgi__rsm_gather_maps(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
@@ -15762,64 +16023,44 @@ static voxgi_result voxgi__rsm_gather_maps(voxgi_context *ctx, void *user, size_
     return voxgi__rsm_gather_run(ctx, J, count);
 }
 
-VOXGI_API voxgi_result voxgi_rsm_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_rsm_image_desc *desc, float *rgb,
-                                        size_t rgb_bytes, voxgi_rsm_image_info *info)
+static voxgi_result voxgi__rsm_image_build(voxgi__image *I)
 {
-    voxgi__bounce_image B;
-    voxgi__rsm_gather_job G;
-    voxgi_rsm_image_info inf;
-    voxgi_rsm **maps = NULL;
-    size_t li, n = 0;
-    double t0 = voxgi__now_ms(), t1;
-    int gi;
+    const voxgi_render_rsm *q = &I->d->rsm;
+    size_t li;
+    double t0;
     voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || (unsigned)desc->visibility > VOXGI_VISIBILITY_NONE || desc->gather_stride < 0 ||
-        desc->gather_stride > 64)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), visibility %d, gather_stride %d (0..64)", desc->samples,
-                           desc->resolution, (int)desc->visibility, desc->gather_stride);
-    memset(&inf, 0, sizeof inf);
-    if ((r = voxgi__plan_keeps(ctx, scene, VOXGI_PLAN_RSM, &desc->camera, desc->resolution, "gathers", &gi)) != VOXGI_OK) return r;
-    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution,
-                            gi && desc->visibility != VOXGI_VISIBILITY_NONE, desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL, 0, rgb, rgb_bytes,
-                            NULL, &B, &inf.ms_direct, &inf.ms_voxels);
-    if (r == VOXGI_OK && !(maps = (voxgi_rsm **)voxgi__alloc_array(ctx, scene->light_count + 1, sizeof *maps, 1)))
-        r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
-    t1 = voxgi__now_ms();
-    for (li = 0; r == VOXGI_OK && gi && li <= scene->light_count; li++) { /* each light's map, then the emitters' */
-        voxgi_rsm_desc rd = desc->rsm;
+    I->gi = voxgi__image_kept(I, VOXGI_PLAN_GATHERS);
+    if ((r = voxgi__image_rays(I, 1)) != VOXGI_OK) return r;
+    if ((r = voxgi__image_voxels(I, 0, voxgi__image_kept(I, VOXGI_PLAN_VOXELS), q->visibility == VOXGI_VISIBILITY_HIERARCHICAL, 0)) != VOXGI_OK || !I->gi) return r;
+    if (!(I->rsm = (voxgi_rsm **)voxgi__alloc_array(I->ctx, I->scene->light_count + 1, sizeof *I->rsm, 1))) return voxgi__fail(I->ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    t0 = voxgi__now_ms();
+    for (li = 0; r == VOXGI_OK && li <= I->scene->light_count; li++) { /* each light's map, then the emitters' */
+        voxgi_rsm_desc rd = q->maps;
         voxgi_rsm_info ri;
-        if (li == scene->light_count ? !B.Ls.emitter_count : scene->lights[li].type == VOXGI_LIGHT_POINT) continue;
+        if (li == I->scene->light_count ? !I->Ls.emitter_count : I->scene->lights[li].type == VOXGI_LIGHT_POINT) continue;
         rd.light = li;
-        rd.emitters = li == scene->light_count;
-        if ((r = voxgi_rsm_create(ctx, scene, &rd, &maps[n])) != VOXGI_OK) break;
-        voxgi_rsm_query(maps[n++], &ri);
-        inf.maps += ri.maps;
-        inf.bytes += ri.bytes;
+        rd.emitters = li == I->scene->light_count;
+        if ((r = voxgi_rsm_create(I->ctx, I->scene, &rd, &I->rsm[I->rsm_count])) != VOXGI_OK) break;
+        voxgi_rsm_query(I->rsm[I->rsm_count++], &ri);
+        I->info->maps += ri.maps;
+        I->info->bytes += ri.bytes;
     }
-    inf.ms_maps = voxgi__now_ms() - t1;
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK && gi) {
-        memset(&G, 0, sizeof G);
-        G.maps = maps;
-        G.n = n;
-        G.O = B.have_occ ? &B.O : NULL;
-        G.grid = &B.grid;
-        G.hierarchical = desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL;
-        r = voxgi__bounce_gather(ctx, &B, desc->gather_stride ? desc->gather_stride : 4, voxgi__rsm_gather_maps, &G, rgb, &inf.gathered);
-    }
-    inf.ms_gather = voxgi__now_ms() - t1;
-    inf.bytes += voxgi__bounce_bytes(&B);
-    for (li = 0; li < n; li++) voxgi_rsm_destroy(ctx, maps[li]);
-    voxgi__free(ctx, maps);
-    voxgi__bounce_free(ctx, &B);
-    inf.ms = voxgi__now_ms() - t0;
-    if (info) *info = inf;
+    voxgi__image_stage(I, "maps", t0);
     return r;
 }
 
-/* ----- images with the SH volume */
+static voxgi_result voxgi__rsm_image_gather(voxgi__image *I)
+{
+    voxgi__rsm_gather_job G;
+    memset(&G, 0, sizeof G);
+    G.maps = I->rsm;
+    G.n = I->rsm_count;
+    G.O = I->have_occ ? &I->O : NULL;
+    G.grid = &I->grid;
+    G.hierarchical = I->d->rsm.visibility == VOXGI_VISIBILITY_HIERARCHICAL;
+    return voxgi__image_bounce(I, I->d->rsm.gather_stride, voxgi__rsm_gather_maps, &G);
+}
+
 static voxgi_result voxgi__sh_gather_all(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
 {
     voxgi__sh_gather_job *J = (voxgi__sh_gather_job *)user;
@@ -15829,57 +16070,39 @@ static voxgi_result voxgi__sh_gather_all(voxgi_context *ctx, void *user, size_t 
     return voxgi__sh_gather_run(ctx, J, count);
 }
 
-VOXGI_API voxgi_result voxgi_sh_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_sh_image_desc *desc, float *rgb, size_t rgb_bytes,
-                                       voxgi_sh_image_info *info)
+static voxgi_result voxgi__sh_image_build(voxgi__image *I)
 {
-    voxgi__bounce_image B;
-    voxgi__sh_gather_job G;
-    voxgi_sh_image_info inf;
-    voxgi_sh *sh = NULL;
-    double t0 = voxgi__now_ms(), t1;
-    int gi;
+    double t0;
     voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 1024 || (unsigned)desc->visibility > VOXGI_VISIBILITY_NONE || desc->gather_stride < 0 ||
-        desc->gather_stride > 64 || !(desc->opening >= 0 && desc->opening <= 4))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..1024), visibility %d, gather_stride %d (0..64), opening %g (0..4)",
-                           desc->samples, desc->resolution, (int)desc->visibility, desc->gather_stride, (double)desc->opening);
-    memset(&inf, 0, sizeof inf);
-    if ((r = voxgi__plan_keeps(ctx, scene, VOXGI_PLAN_SH, &desc->camera, desc->resolution, "gathers", &gi)) != VOXGI_OK) return r;
-    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution,
-                            gi && desc->visibility != VOXGI_VISIBILITY_NONE, desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL, 0, rgb, rgb_bytes,
-                            NULL, &B, &inf.ms_direct, &inf.ms_voxels);
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK && gi) r = voxgi_sh_create(ctx, scene, &B.grid, &desc->sh, &sh);
-    inf.ms_sh = voxgi__now_ms() - t1;
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK && gi) {
-        memset(&G, 0, sizeof G);
-        G.S = sh;
-        G.O = B.have_occ ? &B.O : NULL;
-        G.hierarchical = desc->visibility == VOXGI_VISIBILITY_HIERARCHICAL;
-        G.opening = desc->opening > 0 ? desc->opening : 0.5;
-        r = voxgi__bounce_gather(ctx, &B, desc->gather_stride ? desc->gather_stride : 4, voxgi__sh_gather_all, &G, rgb, &inf.gathered);
-    }
-    inf.ms_gather = voxgi__now_ms() - t1;
-    if (sh) {
+    I->gi = voxgi__image_kept(I, VOXGI_PLAN_GATHERS);
+    if ((r = voxgi__image_rays(I, 1)) != VOXGI_OK) return r;
+    if ((r = voxgi__image_voxels(I, 0, voxgi__image_kept(I, VOXGI_PLAN_VOXELS), I->d->sh.visibility == VOXGI_VISIBILITY_HIERARCHICAL, 0)) != VOXGI_OK || !I->gi)
+        return r;
+    t0 = voxgi__now_ms();
+    r = voxgi_sh_create(I->ctx, I->scene, &I->grid, &I->d->sh.volume, &I->sh);
+    voxgi__image_stage(I, "sh", t0);
+    if (r == VOXGI_OK) {
         voxgi_sh_info si;
-        voxgi_sh_query(sh, &si);
-        inf.bytes = si.bytes;
+        voxgi_sh_query(I->sh, &si);
+        I->info->bytes += si.bytes;
     }
-    inf.bytes += voxgi__bounce_bytes(&B);
-    voxgi_sh_destroy(ctx, sh);
-    voxgi__bounce_free(ctx, &B);
-    inf.ms = voxgi__now_ms() - t0;
-    if (info) *info = inf;
     return r;
 }
-#endif
 
-/* ----- images from the screen-space passes */
+static voxgi_result voxgi__sh_image_gather(voxgi__image *I)
+{
+    voxgi__sh_gather_job G;
+    memset(&G, 0, sizeof G);
+    G.S = I->sh;
+    G.O = I->have_occ ? &I->O : NULL;
+    G.hierarchical = I->d->sh.visibility == VOXGI_VISIBILITY_HIERARCHICAL;
+    G.opening = I->d->sh.opening;
+    return voxgi__image_bounce(I, I->d->sh.gather_stride, voxgi__sh_gather_all, &G);
+}
+#endif /* VOXGI_NO_LIGHT_SPACE */
+
+/* ----- images from the screen-space passes: ambient occlusion, one bounce from the screen */
 #ifndef VOXGI_NO_SCREEN_SPACE
-
 /* Job J's values (channels per pixel: 1 occlusion, 3 irradiance) into values at every pixel with
    a surface (its G-buffer J->pos, J->nrm), or with `half` at the pixels (2X, 2Y) only; then,
    with `half` or a blur, the edge-aware filter (voxgi_screen_filter) and the pixels it finds no
@@ -15942,159 +16165,103 @@ static voxgi_result voxgi__screen_image(voxgi_context *ctx, voxgi__screen_job *J
     return r;
 }
 
-VOXGI_API voxgi_result voxgi_ssgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ssgi_image_desc *desc, float *rgb, size_t rgb_bytes,
-                                         voxgi_ssgi_image_info *info)
+/* SSAO and VAO: the ray scene, VAO's voxels. */
+static voxgi_result voxgi__ao_image_build(voxgi__image *I)
 {
-    voxgi__bounce_image B;
-    voxgi__screen_job J;
-    voxgi_ssgi_image_info inf;
-    voxgi_volume *light = NULL;
-    float *reflected = NULL;
-#ifndef VOXGI_NO_LIGHT_INJECTION
-    int hidden = desc && desc->hidden_light && desc->method == VOXGI_AO_VOXELS;
-#else
-    int hidden = 0; /* no light injection: no hidden light */
-#endif
-    int gi;
-    double t0 = voxgi__now_ms(), t1;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    if (desc->samples < 0 || desc->resolution < 0 || desc->resolution > 4096 || desc->blur < 0 || desc->blur > 64 ||
-#ifndef VOXGI_NO_LIGHT_INJECTION
-        desc->inject_samples < 0 ||
-#endif
-        (desc->half_resolution != 0 && desc->half_resolution != 1) || !(desc->radius >= 0 && isfinite(desc->radius)))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, resolution %d (0..4096), half_resolution %d (0 or 1), blur %d (0..64), radius %g",
-                           desc->samples, desc->resolution, desc->half_resolution, desc->blur, (double)desc->radius);
-    memset(&inf, 0, sizeof inf);
-    if ((r = voxgi__plan_keeps(ctx, scene, VOXGI_PLAN_SSGI, &desc->camera, desc->method == VOXGI_AO_VOXELS ? (desc->resolution ? desc->resolution : 128) : 0,
-                               "screen bounce", &gi)) != VOXGI_OK)
-        return r;
-    hidden = hidden && gi;
-    reflected = (float *)voxgi__alloc_array(ctx, (size_t)VOXGI__MAX(desc->camera.width, 1) * (size_t)VOXGI__MAX(desc->camera.height, 1), 12, 0);
-    if (!reflected) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the screen's light");
-    r = voxgi__bounce_begin(ctx, scene, &desc->camera, desc->samples, desc->hide_emitters, desc->seed, desc->resolution ? desc->resolution : 128,
-                            gi && desc->method == VOXGI_AO_VOXELS, 1,
-                            hidden ? VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL : 0u, rgb, rgb_bytes, reflected, &B, &inf.ms_direct, &inf.ms_voxels);
-#ifndef VOXGI_NO_LIGHT_INJECTION
-    if (r == VOXGI_OK && hidden) { /* the voxels' direct light, one level: only level 0 is read */
-        voxgi_inject_desc id;
-        memset(&id, 0, sizeof id);
-        id.volume.levels = 1;
-        id.samples = desc->inject_samples ? desc->inject_samples : ctx->backend == VOXGI_BACKEND_GL ? 16 : 4;
-        id.seed = desc->seed;
-        t1 = voxgi__now_ms();
-        r = voxgi__inject_light(ctx, scene, B.vox, &id, &B.tr, &B.Ls, &light);
-        inf.ms_inject = voxgi__now_ms() - t1;
-    }
-#endif
-    inf.radius = desc->radius;
-    if (r == VOXGI_OK && !(inf.radius > 0)) inf.radius = (float)(sqrt(3.0) * voxgi__longest_side(&B.tr)); /* across the scene */
-    if (r == VOXGI_OK && gi) r = voxgi__screen_setup(ctx, &J, &desc->camera, B.pos, B.nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, inf.radius);
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK && gi) {
-        J.radiance = reflected;
-        J.O = B.have_occ ? &B.O : NULL;
-        J.grid = &B.grid;
-        J.seed = desc->seed;
-        J.hidden_light = light;
-        r = voxgi__screen_image(ctx, &J, 3, desc->half_resolution, desc->blur, B.irr, &inf.gathered);
-        if (r == VOXGI_OK) voxgi__bounce_add(&B, rgb);
-    }
-    inf.ms_gather = voxgi__now_ms() - t1;
-    if (light) {
-        voxgi_volume_info vi;
-        voxgi_volume_query(light, &vi);
-        inf.bytes = vi.bytes;
-    }
-    inf.bytes += voxgi__bounce_bytes(&B);
-    voxgi_volume_destroy(ctx, light);
-    voxgi__bounce_free(ctx, &B);
-    voxgi__free(ctx, reflected);
-    inf.ms = voxgi__now_ms() - t0;
-    if (info) *info = inf;
+    voxgi_result r = voxgi__image_rays(I, 0);
+    if (r == VOXGI_OK && I->d->method == VOXGI_RENDER_VAO) r = voxgi__image_voxels(I, 0, 1, 1, 0);
     return r;
 }
 
-/* ----- images of ambient occlusion */
-VOXGI_API voxgi_result voxgi_ao_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_ao_image_desc *desc, float *rgb, size_t rgb_bytes,
-                                       voxgi_ao_image_info *info)
+/* Ambient occlusion (grey: the occluded share in all three channels, 0 where nothing is) at the
+   G-buffer's pixels, by voxgi_ao's rays at every pixel or at half resolution, blurred and
+   upsampled by voxgi_screen_filter. */
+static voxgi_result voxgi__ao_image_gather(voxgi__image *I)
 {
-    voxgi__tracer tr;
+    const voxgi_render_desc *d = I->d;
+    const voxgi_render_screen *sc = &d->screen;
     voxgi__screen_job J;
-    voxgi__occupancy O;
-    voxgi_ao_image_info inf;
-    voxgi_voxels *vox = NULL;
-    float radius;
-    int have_occ = 0;
-    float *pos = NULL, *nrm = NULL, *ao = NULL;
-    uint32_t *tri = NULL;
-    double t0 = voxgi__now_ms(), t1, e[3], f[3], rt[3], u[3], th;
-    size_t pixels, p;
+    double t0 = voxgi__now_ms();
+    size_t p;
+    voxgi_result r = voxgi__image_gbuffer(I, 1);
+    voxgi__image_stage(I, "gbuffer", t0);
+    if (r != VOXGI_OK) return r;
+    t0 = voxgi__now_ms();
+    if ((r = voxgi__screen_setup(I->ctx, &J, &d->camera, I->pos, I->nrm, d->method == VOXGI_RENDER_VAO ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN,
+                                 VOXGI_TRAVERSAL_HIERARCHICAL, sc->rays, sc->steps, sc->radius)) != VOXGI_OK)
+        return r;
+    J.point_sampling = sc->point_sampling != 0;
+    J.O = I->have_occ ? &I->O : NULL;
+    J.grid = I->vox ? &I->vox->info.grid : NULL;
+    J.seed = d->seed;
+    r = voxgi__screen_image(I->ctx, &J, 1, sc->half_resolution == VOXGI_TOGGLE_ON, VOXGI__MAX(sc->blur, 0), I->irr, &I->info->gathered);
+    voxgi__image_stage(I, "ao", t0);
+    for (p = 0; r == VOXGI_OK && p < I->pixels; p++) I->rgb[3 * p] = I->rgb[3 * p + 1] = I->rgb[3 * p + 2] = I->irr[p];
+    return r;
+}
+
+/* SSGI and HYBRID: the ray scene and lights, HYBRID's voxels and, with the hidden light, the
+   direct light injected into them (one level: only level 0 is read). */
+static voxgi_result voxgi__ssgi_image_build(voxgi__image *I)
+{
+    int hidden = I->d->screen.hidden_light == VOXGI_TOGGLE_ON;
     voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    if ((r = voxgi__camera_frame(ctx, &desc->camera, e, f, rt, u, &th)) != VOXGI_OK) return r;
-    if (desc->resolution < 0 || desc->resolution > 4096 || desc->blur < 0 || desc->blur > 64 || (desc->half_resolution != 0 && desc->half_resolution != 1) ||
-        !(desc->radius >= 0 && isfinite(desc->radius)))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "resolution %d (0..4096), half_resolution %d (0 or 1), blur %d (0..64), radius %g",
-                           desc->resolution, desc->half_resolution, desc->blur, (double)desc->radius);
-    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
-    if (rgb_bytes < pixels * 12)
-        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
-    memset(&inf, 0, sizeof inf);
-    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    radius = desc->radius > 0 ? desc->radius : (float)(0.1 * voxgi__longest_side(&tr));
-    pos = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-    nrm = (float *)voxgi__alloc_array(ctx, pixels, 12, 0);
-    ao = (float *)voxgi__alloc_array(ctx, pixels, 4, 0);
-    tri = (uint32_t *)voxgi__alloc_array(ctx, pixels, 4, 0);
-    if (!pos || !nrm || !ao || !tri) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d image", desc->camera.width, desc->camera.height);
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) r = voxgi__gbuffer(ctx, &tr, &desc->camera, pos, nrm, tri);
-    inf.ms_gbuffer = voxgi__now_ms() - t1;
-    if (r == VOXGI_OK && desc->method == VOXGI_AO_VOXELS) {
-        voxgi_voxelize_desc vd;
-        voxgi_fit_desc fit;
-        memset(&vd, 0, sizeof vd);
-        memset(&fit, 0, sizeof fit);
-        fit.res = desc->resolution ? desc->resolution : 128;
-        t1 = voxgi__now_ms();
-        if ((r = voxgi_fit_grid(ctx, scene, &fit, &vd.grid)) == VOXGI_OK && (r = voxgi_voxelize(ctx, scene, &vd, &vox)) == VOXGI_OK &&
-            (r = voxgi__occ_build(ctx, vox, 1, &O)) == VOXGI_OK)
-            have_occ = 1;
-        inf.ms_voxels = voxgi__now_ms() - t1;
+    I->gi = voxgi__image_kept(I, VOXGI_PLAN_SCREEN_BOUNCE);
+    hidden = hidden && I->gi;
+    if ((r = voxgi__image_rays(I, 1)) != VOXGI_OK) return r;
+    if (I->d->method == VOXGI_RENDER_HYBRID &&
+        (r = voxgi__image_voxels(I, 0, I->gi, 1, hidden ? VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL : 0u)) != VOXGI_OK)
+        return r;
+#ifndef VOXGI_NO_LIGHT_INJECTION
+    if (hidden) {
+        voxgi_inject_desc id;
+        double t0 = voxgi__now_ms();
+        memset(&id, 0, sizeof id);
+        id.volume.levels = 1;
+        id.samples = I->d->screen.inject_samples;
+        id.seed = I->d->seed;
+        r = voxgi__inject_light(I->ctx, I->scene, I->vox, &id, &I->tr, &I->Ls, &I->volume);
+        voxgi__image_stage(I, "inject", t0);
+        if (I->volume) {
+            voxgi_volume_info vi;
+            voxgi_volume_query(I->volume, &vi);
+            I->info->bytes += vi.bytes;
+        }
     }
-    if (r == VOXGI_OK &&
-        (r = voxgi__screen_setup(ctx, &J, &desc->camera, pos, nrm, desc->method, VOXGI_TRAVERSAL_HIERARCHICAL, desc->rays, desc->steps, radius)) == VOXGI_OK) {
-        if (desc->point_sampling && desc->method != VOXGI_AO_SCREEN) r = voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point sampling is for SCREEN");
-        J.point_sampling = desc->point_sampling != 0;
-        J.O = have_occ ? &O : NULL;
-        J.grid = vox ? &vox->info.grid : NULL;
-        J.seed = desc->seed;
-        t1 = voxgi__now_ms();
-        if (r == VOXGI_OK) r = voxgi__screen_image(ctx, &J, 1, desc->half_resolution, desc->blur, ao, &inf.gathered);
-        inf.ms_ao = voxgi__now_ms() - t1;
-    }
-    for (p = 0; r == VOXGI_OK && p < pixels; p++) rgb[3 * p] = rgb[3 * p + 1] = rgb[3 * p + 2] = ao[p];
-    inf.bytes = (vox ? vox->info.bytes : 0) + (have_occ ? voxgi__occ_bytes(&O) : 0);
-    if (have_occ) voxgi__occ_free(ctx, &O);
-    voxgi_voxels_destroy(ctx, vox);
-    voxgi__free(ctx, pos);
-    voxgi__free(ctx, nrm);
-    voxgi__free(ctx, ao);
-    voxgi__free(ctx, tri);
-    voxgi__tracer_free(ctx, &tr);
-    inf.radius = radius;
-    inf.ms = voxgi__now_ms() - t0;
-    if (info) *info = inf;
+#endif
+    return r;
+}
+
+/* The direct light (the screen's radiance, the light its surfaces reflect), then one bounce
+   from the screen (voxgi_ssgi) at every pixel or at half resolution, blurred and upsampled. */
+static voxgi_result voxgi__ssgi_image_gather(voxgi__image *I)
+{
+    const voxgi_render_desc *d = I->d;
+    const voxgi_render_screen *sc = &d->screen;
+    voxgi__screen_job J;
+    double t0;
+    voxgi_result r;
+    if (!(I->reflected = (float *)voxgi__alloc_array(I->ctx, I->pixels, 12, 0))) return voxgi__fail(I->ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the screen's light");
+    voxgi__image_direct(I, NULL, I->reflected, "direct");
+    if ((r = voxgi__image_gbuffer(I, 1)) != VOXGI_OK || !I->gi) return r;
+    t0 = voxgi__now_ms();
+    if ((r = voxgi__screen_setup(I->ctx, &J, &d->camera, I->pos, I->nrm, d->method == VOXGI_RENDER_HYBRID ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN,
+                                 VOXGI_TRAVERSAL_HIERARCHICAL, sc->rays, sc->steps, sc->radius)) != VOXGI_OK)
+        return r;
+    J.radiance = I->reflected;
+    J.O = I->have_occ ? &I->O : NULL;
+    J.grid = I->vox ? &I->grid : NULL;
+    J.seed = d->seed;
+    J.hidden_light = I->volume;
+    r = voxgi__screen_image(I->ctx, &J, 3, sc->half_resolution == VOXGI_TOGGLE_ON, VOXGI__MAX(sc->blur, 0), I->irr, &I->info->gathered);
+    if (r == VOXGI_OK) voxgi__image_add_bounce(I);
+    voxgi__image_stage(I, "gather", t0);
     return r;
 }
 #endif /* VOXGI_NO_SCREEN_SPACE */
 
-#ifndef VOXGI_NO_LINE_SPACE
 /* ----- images of the area lights' soft shadows through the line space */
+#ifndef VOXGI_NO_LINE_SPACE
 typedef struct voxgi__ls_shade {
     const voxgi__flat *f;
     const voxgi__ls_area *A;
@@ -16141,318 +16308,253 @@ static void voxgi__ls_shade_run(void *user, size_t first, size_t end)
     }
 }
 
-VOXGI_API voxgi_result voxgi_linespace_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_linespace_image_desc *desc, float *rgb, size_t rgb_bytes,
-                                              float *visible, voxgi_linespace_image_info *info)
+/* The area lights (each rect light; emissive triangles, two sharing an edge as one
+   parallelogram; at most 64) and the line space, kept or built. */
+static voxgi_result voxgi__ls_image_build(voxgi__image *I)
 {
-    voxgi__ls_area A[VOXGI__LS_AREA_LIGHTS];
-    voxgi__ls_shade S;
-    voxgi_plan_request q;
-    voxgi_plan_info plan;
-    voxgi__flat f;
-    voxgi_linespace *built = NULL;
-    const voxgi_linespace *ls;
-    voxgi_linespace_image_info inf;
-    float *pos = NULL, *nrm = NULL, *weighted = NULL, *seen = NULL, *fine = NULL, *fine_seen = NULL;
-    uint32_t *tri = NULL;
-    size_t pixels, points, i;
-    double t0 = voxgi__now_ms(), t1;
-    voxgi_camera cam;
-    int lights, l, k;
+    double t0;
     voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (info) memset(info, 0, sizeof *info);
-    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
-    memset(&inf, 0, sizeof inf);
-    pixels = (size_t)desc->camera.width * (size_t)desc->camera.height;
-    if (desc->camera.width < 1 || desc->camera.height < 1) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "image %d x %d", desc->camera.width, desc->camera.height);
-    if (rgb_bytes < pixels * 12)
-        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the image needs %lu", (unsigned long)rgb_bytes, (unsigned long)(pixels * 12));
-    k = desc->supersample > 1 ? desc->supersample : 1;
-    if (k > 16 || desc->camera.width > 65536 / k || desc->camera.height > 65536 / k)
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "supersample %d (1..16, the image at most 65536 a side)", desc->supersample);
-    cam = desc->camera;
-    cam.width *= k;
-    cam.height *= k;
-    points = pixels * (size_t)k * (size_t)k;
-    if ((r = voxgi__flatten(ctx, scene, 0, 1, &f)) != VOXGI_OK) return r;
-    lights = voxgi__ls_area_lights(ctx, scene, &f, A);
-    if (lights == -2) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
-    else if (lights < 0) r = voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "more than %d area lights (rect lights, emissive triangles paired into parallelograms)", VOXGI__LS_AREA_LIGHTS);
-    memset(&q, 0, sizeof q);
-    q.method = VOXGI_PLAN_LINESPACE;
-    q.camera = &desc->camera;
-    if (r == VOXGI_OK) r = voxgi__plan_image(ctx, scene, &q, &plan); /* no area light: no line space */
-    ls = desc->ls;
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK && voxgi_plan_find(&plan, "line space")->kept && !ls && (r = voxgi_linespace_create(ctx, scene, &desc->tree, &built)) == VOXGI_OK) ls = built;
-    inf.ms_build = voxgi__now_ms() - t1;
-    if (r == VOXGI_OK) {
-        pos = (float *)voxgi__alloc_array(ctx, points, 12, 0);
-        nrm = (float *)voxgi__alloc_array(ctx, points, 12, 0);
-        tri = (uint32_t *)voxgi__alloc_array(ctx, points, 4, 0);
-        weighted = (float *)voxgi__alloc_array(ctx, points * (size_t)VOXGI__MAX(lights, 1), 4, 0);
-        seen = (float *)voxgi__alloc_array(ctx, points, 4, 0);
-        fine = k > 1 ? (float *)voxgi__alloc_array(ctx, points, 12, 0) : rgb;
-        fine_seen = (float *)voxgi__alloc_array(ctx, points, 4, 1);
-        if (!pos || !nrm || !tri || !weighted || !seen || !fine || !fine_seen)
-            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-point image", (unsigned long)points);
+    if ((r = voxgi__image_rays(I, 0)) != VOXGI_OK) return r;
+    if (!(I->areas = voxgi__alloc_array(I->ctx, VOXGI__LS_AREA_LIGHTS, sizeof(voxgi__ls_area), 0))) return voxgi__fail(I->ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    I->lights = voxgi__ls_area_lights(I->ctx, I->scene, &I->tr.flat, (voxgi__ls_area *)I->areas);
+    if (I->lights == -2) return voxgi__fail(I->ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
+    if (I->lights < 0) return voxgi__fail(I->ctx, VOXGI_ERR_UNSUPPORTED, "more than %d area lights (rect lights, emissive triangles paired into parallelograms)", VOXGI__LS_AREA_LIGHTS);
+    t0 = voxgi__now_ms();
+    if (voxgi__image_kept(I, VOXGI_PLAN_LINE_SPACE)) r = voxgi_linespace_create(I->ctx, I->scene, &I->d->linespace.tree, &I->ls_built);
+    voxgi__image_stage(I, "build", t0);
+    return r;
+}
+
+/* Per pixel the surface the ray through its centre meets first (or the mean of k x k points over
+   its square), then per area light its unshadowed irradiance exactly (Lambert's polygon formula)
+   times the share voxgi_linespace_light's weighted output gives: emission (front faces, unless
+   hidden) + albedo / pi x irradiance. An emitter never lights itself. */
+static voxgi_result voxgi__ls_image_gather(voxgi__image *I)
+{
+    const voxgi_render_desc *d = I->d;
+    const voxgi_render_linespace *Ld = &d->linespace;
+    const voxgi_linespace *ls = Ld->ls ? Ld->ls : I->ls_built;
+    voxgi__ls_area *A = (voxgi__ls_area *)I->areas;
+    voxgi_linespace_stats *st = &I->info->shadow_rays;
+    voxgi__ls_shade S;
+    int k = Ld->supersample, l, w = d->camera.width;
+    size_t points = I->pixels * (size_t)k * (size_t)k, i;
+    float *weighted, *seen, *fine, *fine_seen;
+    double t0 = voxgi__now_ms();
+    voxgi_result r;
+    if ((r = voxgi__image_gbuffer(I, k)) != VOXGI_OK) return r;
+    voxgi__image_stage(I, "gbuffer", t0);
+    weighted = (float *)voxgi__alloc_array(I->ctx, points * (size_t)VOXGI__MAX(I->lights, 1), 4, 0);
+    seen = (float *)voxgi__alloc_array(I->ctx, points, 4, 0);
+    fine = k > 1 ? (float *)voxgi__alloc_array(I->ctx, points, 12, 0) : I->rgb;
+    fine_seen = (float *)voxgi__alloc_array(I->ctx, points, 4, 1);
+    if (!weighted || !seen || !fine || !fine_seen) r = voxgi__fail(I->ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %lu-point image", (unsigned long)points);
+    t0 = voxgi__now_ms();
+    for (l = 0; r == VOXGI_OK && l < I->lights; l++) {
+        voxgi_linespace_stats ls_st;
+        A[l].d.mode = Ld->mode;
+        A[l].d.samples = Ld->samples;
+        A[l].d.packets = Ld->packets;
+        A[l].d.seed = (uint32_t)d->seed + (uint32_t)l * 0x9E3779B9u;
+        A[l].d.exact_ends = Ld->exact_ends;
+        if ((r = voxgi_linespace_light(I->ctx, ls, &A[l].d, points, I->pos, I->nrm, seen, weighted + (size_t)l * points, &ls_st)) != VOXGI_OK) break;
+        for (i = 0; i < points; i++) fine_seen[i] += seen[i] / (float)I->lights;
+        st->rays += ls_st.rays;
+        st->nodes += ls_st.nodes;
+        st->bits += ls_st.bits;
+        st->triangle_tests += ls_st.triangle_tests;
+        st->samples = ls_st.samples;
     }
-    t1 = voxgi__now_ms();
-    if (r == VOXGI_OK) r = voxgi_gbuffer_render(ctx, scene, &cam, pos, nrm, tri);
-    inf.ms_gbuffer = voxgi__now_ms() - t1;
-    t1 = voxgi__now_ms();
-    for (l = 0; r == VOXGI_OK && l < lights; l++) {
-        voxgi_linespace_stats st;
-        A[l].d.mode = desc->mode;
-        A[l].d.samples = desc->samples;
-        A[l].d.packets = desc->packets;
-        A[l].d.seed = desc->seed + (uint32_t)l * 0x9E3779B9u;
-        A[l].d.exact_ends = desc->exact_ends;
-        if ((r = voxgi_linespace_light(ctx, ls, &A[l].d, points, pos, nrm, seen, weighted + (size_t)l * points, &st)) != VOXGI_OK) break;
-        for (i = 0; i < points; i++) fine_seen[i] += seen[i] / (float)lights;
-        inf.rays.rays += st.rays;
-        inf.rays.nodes += st.nodes;
-        inf.rays.bits += st.bits;
-        inf.rays.triangle_tests += st.triangle_tests;
-        inf.rays.samples = st.samples;
-    }
-    inf.ms_shadows = inf.rays.ms = voxgi__now_ms() - t1;
+    st->ms = voxgi__now_ms() - t0;
+    voxgi__image_stage(I, "shadows", t0);
     if (r == VOXGI_OK) {
-        S.f = &f;
+        S.f = &I->tr.flat;
         S.A = A;
-        S.lights = lights;
-        S.hide_emitters = desc->hide_emitters;
-        S.pos = pos;
-        S.nrm = nrm;
-        S.tri = tri;
+        S.lights = I->lights;
+        S.hide_emitters = d->hide_emitters;
+        S.pos = I->pos;
+        S.nrm = I->nrm;
+        S.tri = I->prim;
         S.weighted = weighted;
         S.pixels = points;
         S.rgb = fine;
-        voxgi__parallel(ctx, points, 256, voxgi__ls_shade_run, &S);
-        for (i = 0; i < pixels; i++) { /* each pixel the mean of its k x k points */
-            size_t x = i % (size_t)desc->camera.width, y = i / (size_t)desc->camera.width, sx, sy;
+        voxgi__parallel(I->ctx, points, 256, voxgi__ls_shade_run, &S);
+        for (i = 0; i < I->pixels; i++) { /* each pixel the mean of its k x k points */
+            size_t x = i % (size_t)w, y = i / (size_t)w, sx, sy;
             double sum[4] = {0, 0, 0, 0};
             for (sy = 0; sy < (size_t)k; sy++)
                 for (sx = 0; sx < (size_t)k; sx++) {
-                    size_t q = (y * (size_t)k + sy) * (size_t)cam.width + x * (size_t)k + sx;
-                    sum[0] += fine[3 * q];
-                    sum[1] += fine[3 * q + 1];
-                    sum[2] += fine[3 * q + 2];
+                    size_t q = (y * (size_t)k + sy) * (size_t)w * (size_t)k + x * (size_t)k + sx;
+                    for (l = 0; l < 3; l++) sum[l] += fine[3 * q + (size_t)l];
                     sum[3] += fine_seen[q];
                 }
-            if (k > 1) for (l = 0; l < 3; l++) rgb[3 * i + (size_t)l] = (float)(sum[l] / (k * k));
-            if (visible) visible[i] = (float)(sum[3] / (k * k));
+            if (k > 1) for (l = 0; l < 3; l++) I->rgb[3 * i + (size_t)l] = (float)(sum[l] / (k * k));
+            if (Ld->visible) Ld->visible[i] = (float)(sum[3] / (k * k));
         }
-        voxgi_linespace_query(ls, &inf.tree);
-        inf.lights = lights;
-        inf.ms = voxgi__now_ms() - t0;
-        if (info) *info = inf;
+        if (ls) voxgi_linespace_query(ls, &I->info->tree);
+        I->info->lights = I->lights;
     }
-    voxgi__free(ctx, pos);
-    voxgi__free(ctx, nrm);
-    voxgi__free(ctx, tri);
-    voxgi__free(ctx, weighted);
-    voxgi__free(ctx, seen);
-    voxgi__free(ctx, fine_seen);
-    if (fine != rgb) voxgi__free(ctx, fine);
-    voxgi_linespace_destroy(ctx, built);
-    voxgi__flat_free(ctx, &f);
+    voxgi__free(I->ctx, weighted);
+    voxgi__free(I->ctx, seen);
+    voxgi__free(I->ctx, fine_seen);
+    if (fine != I->rgb) voxgi__free(I->ctx, fine);
     return r;
 }
 #endif /* VOXGI_NO_LINE_SPACE */
 
-/* ===================================================================== 14. reference renderer */
+/* ----- the table and the one entry point */
+typedef struct voxgi__render_row {
+    voxgi_result (*build)(voxgi__image *I);  /* what the method takes from the scene */
+    voxgi_result (*gather)(voxgi__image *I); /* what the pixels take from that: the image */
+    const char *left_out;                    /* NULL, or the macro that left the method out of this build */
+} voxgi__render_row;
+
+static const voxgi__render_row voxgi__render_rows[VOXGI_RENDER_METHOD_COUNT] = {
 #ifndef VOXGI_NO_REFERENCE
+    {voxgi__reference_image_build, voxgi__reference_image_gather, NULL},
+#else
+    {NULL, NULL, "VOXGI_NO_REFERENCE"},
+#endif
+#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
+    {voxgi__vct_image_build, voxgi__vct_image_gather, NULL},
+#else
+    {NULL, NULL, "VOXGI_NO_CONE_TRACING or VOXGI_NO_LIGHT_INJECTION"},
+#endif
+#ifndef VOXGI_NO_LIGHT_SPACE
+    {voxgi__tsm_image_build, voxgi__tsm_image_gather, NULL},
+    {voxgi__rsm_image_build, voxgi__rsm_image_gather, NULL},
+    {voxgi__sh_image_build, voxgi__sh_image_gather, NULL},
+#else
+    {NULL, NULL, "VOXGI_NO_LIGHT_SPACE"},
+    {NULL, NULL, "VOXGI_NO_LIGHT_SPACE"},
+    {NULL, NULL, "VOXGI_NO_LIGHT_SPACE"},
+#endif
+#ifndef VOXGI_NO_SCREEN_SPACE
+    {voxgi__ao_image_build, voxgi__ao_image_gather, NULL},
+    {voxgi__ao_image_build, voxgi__ao_image_gather, NULL},
+    {voxgi__ssgi_image_build, voxgi__ssgi_image_gather, NULL},
+    {voxgi__ssgi_image_build, voxgi__ssgi_image_gather, NULL},
+#else
+    {NULL, NULL, "VOXGI_NO_SCREEN_SPACE"},
+    {NULL, NULL, "VOXGI_NO_SCREEN_SPACE"},
+    {NULL, NULL, "VOXGI_NO_SCREEN_SPACE"},
+    {NULL, NULL, "VOXGI_NO_SCREEN_SPACE"},
+#endif
+#ifndef VOXGI_NO_LINE_SPACE
+    {voxgi__ls_image_build, voxgi__ls_image_gather, NULL},
+#else
+    {NULL, NULL, "VOXGI_NO_LINE_SPACE"},
+#endif
+};
 
-typedef struct voxgi__render {
-    voxgi_context *ctx;
-    const voxgi__tracer *tr;
-    voxgi__lights lights;
-    const voxgi_reference_desc *desc;
-    double eye[3], right[3], up[3], forward[3], tan_half;
-    double *sum;                  /* 3 per pixel */
-    int first_sample, pass_samples;
-    size_t rays;                  /* summed over the workers */
-} voxgi__render;
-
-/* Whether the camera sees point p on primitive prim's side `front` (inside the image, nothing in
-   front of it): one ray from the eye. */
-static int voxgi__camera_sees(const voxgi__render *R, const double p[3], uint32_t prim, int front, uint64_t *rays)
+VOXGI_API voxgi_result voxgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, float *rgb, size_t rgb_bytes,
+                                    voxgi_render_info *info)
 {
-    const voxgi_camera *cam = &R->desc->camera;
-    double d[3], z = 0, x = 0, y = 0;
-    voxgi__hit h;
-    int a;
-    for (a = 0; a < 3; a++) {
-        d[a] = p[a] - R->eye[a];
-        z += d[a] * R->forward[a];
-        x += d[a] * R->right[a];
-        y += d[a] * R->up[a];
-    }
-    if (!(z > 0) || fabs(x / z) > R->tan_half * cam->width / cam->height || fabs(y / z) > R->tan_half) return 0;
-    ++*rays;
-    return voxgi__trace(R->tr, R->eye, d, DBL_MAX, UINT32_MAX, 0, &h) && h.prim == prim && h.front == front;
-}
-
-/* One path's radiance through the camera ray (o, d). */
-static void voxgi__path(voxgi__render *R, double o[3], double d[3], voxgi__rng *g, uint64_t *rays, double out[3])
-{
-    const voxgi__tracer *tr = R->tr;
-    double T[3] = {1, 1, 1}, pdf_bsdf = 0; /* the density (per solid angle) of the bounce that led here */
-    uint32_t skip = UINT32_MAX;
-    int depth, a, bounces = R->desc->bounces;
-    out[0] = out[1] = out[2] = 0;
-    for (depth = 0;; depth++) {
-        voxgi__hit h;
-        double ns[3], e[3], t[3], b[3], r1, phi, lx, ly, lz;
-        const voxgi_material *m;
-        const double *n;
-        ++*rays;
-        if (!voxgi__trace(tr, o, d, DBL_MAX, skip, 0, &h)) break;
-        m = voxgi__prim_material(tr, h.prim);
-        n = tr->n + 3 * (size_t)h.prim;
-        for (a = 0; a < 3; a++) ns[a] = h.front ? n[a] : -n[a];
-        if (h.front && R->lights.emitter_pdf[h.prim] > 0) { /* seen by the camera, or found by a bounce (weighted against the direct light) */
-            double mis = depth == 0 && R->desc->hide_emitters ? 0 : 1;
-            if (depth > 0) {
-                double pdf_light = R->lights.emitter_pdf[h.prim] * h.t * h.t / -(d[0] * n[0] + d[1] * n[1] + d[2] * n[2]);
-                mis = pdf_bsdf * pdf_bsdf / (pdf_bsdf * pdf_bsdf + pdf_light * pdf_light);
-            }
-            for (a = 0; a < 3; a++) out[a] += T[a] * mis * m->emission[a];
-        }
-        if (bounces >= 0 && depth > bounces) break; /* this vertex only closed the last bounce's emission */
-        voxgi__direct(&R->lights, h.p, ns, h.prim, g, 1, NULL, rays, e, NULL);
-        if (depth == 1 && R->desc->screen_light_only && !voxgi__camera_sees(R, h.p, h.prim, h.front, rays)) e[0] = e[1] = e[2] = 0;
-        for (a = 0; a < 3; a++) out[a] += T[a] * m->albedo[a] / VOXGI__PI * e[a];
-        for (a = 0; a < 3; a++) T[a] *= m->albedo[a]; /* cosine sampling: albedo/pi x cos / pdf = albedo */
-        if (bounces < 0 && depth >= 2) { /* Russian roulette */
-            double q = VOXGI__MAX(T[0], VOXGI__MAX(T[1], T[2]));
-            if (q < 1) {
-                if (voxgi__rng_unit(g) >= q) break;
-                for (a = 0; a < 3; a++) T[a] /= q;
-            }
-        }
-        if (T[0] == 0 && T[1] == 0 && T[2] == 0) break;
-        voxgi__basis(ns, t, b);
-        r1 = voxgi__rng_unit(g);
-        phi = 2 * VOXGI__PI * voxgi__rng_unit(g);
-        lx = sqrt(r1) * cos(phi);
-        ly = sqrt(r1) * sin(phi);
-        lz = sqrt(1 - r1);
-        for (a = 0; a < 3; a++) d[a] = lx * t[a] + ly * b[a] + lz * ns[a];
-        voxgi__leave(tr, h.p, ns, o);
-        pdf_bsdf = lz / VOXGI__PI;
-        skip = h.prim;
-    }
-}
-
-/* The AO mode's sample through the camera ray (o, d): 1 (in all three channels) when a
-   cosine-distributed ray from the surface meets any surface within ao_radius. */
-static void voxgi__occlusion(voxgi__render *R, const double o[3], const double d[3], voxgi__rng *g, uint64_t *rays, double out[3])
-{
-    voxgi__hit h, any;
-    double ns[3], t[3], b[3], dir[3], from[3], r1 = voxgi__rng_unit(g), phi = 2 * VOXGI__PI * voxgi__rng_unit(g);
-    int a;
-    out[0] = out[1] = out[2] = 0;
-    ++*rays;
-    if (!voxgi__trace(R->tr, o, d, DBL_MAX, UINT32_MAX, 0, &h)) return;
-    for (a = 0; a < 3; a++) ns[a] = h.front ? R->tr->n[3 * (size_t)h.prim + (size_t)a] : -R->tr->n[3 * (size_t)h.prim + (size_t)a];
-    voxgi__basis(ns, t, b);
-    for (a = 0; a < 3; a++) dir[a] = sqrt(r1) * cos(phi) * t[a] + sqrt(r1) * sin(phi) * b[a] + sqrt(1 - r1) * ns[a];
-    voxgi__leave(R->tr, h.p, ns, from);
-    ++*rays;
-    if (voxgi__trace(R->tr, from, dir, (double)R->desc->ao_radius, h.prim, 1, &any)) out[0] = out[1] = out[2] = 1;
-}
-
-static void voxgi__render_rows(void *user, size_t first, size_t end)
-{
-    voxgi__render *R = (voxgi__render *)user;
-    const voxgi_camera *cam = &R->desc->camera;
-    uint64_t rays = 0;
-    size_t y;
-    for (y = first; y < end; y++) {
-        int x, s;
-        for (x = 0; x < cam->width; x++) {
-            size_t pix = y * (size_t)cam->width + (size_t)x;
-            double *acc = R->sum + 3 * pix;
-            for (s = R->first_sample; s < R->first_sample + R->pass_samples; s++) {
-                voxgi__rng g;
-                double sx, sy, o[3], d[3], L[3];
-                int a;
-                voxgi__rng_seed(&g, R->desc->seed, pix, (uint64_t)s);
-                sx = x + voxgi__rng_unit(&g);
-                sy = (double)y + voxgi__rng_unit(&g);
-                voxgi__camera_ray(cam, R->forward, R->right, R->up, R->tan_half, sx, sy, d);
-                for (a = 0; a < 3; a++) o[a] = R->eye[a];
-                if (R->desc->ao_radius > 0) voxgi__occlusion(R, o, d, &g, &rays, L);
-                else voxgi__path(R, o, d, &g, &rays, L);
-                for (a = 0; a < 3; a++) acc[a] += L[a];
-            }
-        }
-    }
-    VOXGI__ATOMIC_ADD_SIZE(&R->rays, (size_t)rays);
-}
-
-/* Every default of a voxgi_reference_desc: 16 samples per pixel. */
-static voxgi_reference_desc voxgi__reference_defaults(const voxgi_reference_desc *in)
-{
-    voxgi_reference_desc d = *in;
-    if (!d.samples) d.samples = 16;
-    return d;
-}
-
-VOXGI_API voxgi_result voxgi_reference_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_reference_desc *desc_in, float *rgb,
-                                              size_t rgb_bytes, voxgi_reference_info *info)
-{
-    voxgi_reference_desc resolved;
-    const voxgi_reference_desc *desc = desc_in;
-    voxgi__tracer tr;
-    voxgi__render R;
-    const voxgi_camera *cam;
+    voxgi_render_info inf;
+    voxgi__image I;
+    const voxgi__render_row *row;
     double t0 = voxgi__now_ms();
-    size_t pixels, i;
-    int samples;
     voxgi_result r;
+    int i;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or rgb is NULL");
     if (info) memset(info, 0, sizeof *info);
-    cam = &desc->camera;
-    memset(&R, 0, sizeof R);
-    if ((r = voxgi__camera_frame(ctx, cam, R.eye, R.forward, R.right, R.up, &R.tan_half)) != VOXGI_OK) return r;
-    pixels = (size_t)cam->width * (size_t)cam->height;
-    if (rgb_bytes < pixels * 12) return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "%lu bytes for %lu pixels", (unsigned long)rgb_bytes, (unsigned long)pixels);
-    if (desc->samples < 0 || desc->bounces < -1 || !(desc->ao_radius >= 0 && isfinite(desc->ao_radius)) ||
-        (desc->screen_light_only && desc->bounces != 1))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d, bounces %d, ao_radius %g, screen_light_only %d (with bounces 1 only)", desc->samples,
-                           desc->bounces, (double)desc->ao_radius, desc->screen_light_only);
-    resolved = voxgi__reference_defaults(desc_in);
-    desc = &resolved;
-    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
-    if ((r = voxgi__tracer_build(ctx, scene, &tr)) != VOXGI_OK) return r;
-    R.ctx = ctx;
-    R.tr = &tr;
-    R.desc = desc;
-    samples = desc->samples;
-    R.sum = (double *)voxgi__alloc_array(ctx, pixels, 3 * sizeof(double), 1);
-    if (!R.sum) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for a %d x %d render", cam->width, cam->height);
-    else r = voxgi__lights_build(ctx, scene, &tr, &R.lights);
-    if (info) { info->triangles = tr.flat.triangle_count; info->bvh_nodes = tr.rs->node_count; info->ms_bvh = voxgi__now_ms() - t0; }
-    t0 = voxgi__now_ms();
-    for (R.first_sample = 0; r == VOXGI_OK && R.first_sample < samples; R.first_sample += R.pass_samples) { /* progressive passes */
-        R.pass_samples = VOXGI__MIN(VOXGI__MAX(1, samples / 16), samples - R.first_sample);
-        voxgi__parallel(ctx, (size_t)cam->height, 1, voxgi__render_rows, &R);
-        if (voxgi__progress(ctx, (double)(R.first_sample + R.pass_samples) / samples, "reference render"))
-            r = voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "reference render cancelled by the progress callback after %d samples per pixel",
-                            R.first_sample + R.pass_samples);
-    }
-    for (i = 0; r == VOXGI_OK && i < 3 * pixels; i++) rgb[i] = (float)(R.sum[i] / samples);
-    if (info) { info->rays = R.rays; info->ms_render = voxgi__now_ms() - t0; }
-    voxgi__free(ctx, R.sum);
-    voxgi__lights_free(ctx, &R.lights);
-    voxgi__tracer_free(ctx, &tr);
+    if (!scene || !desc || !rgb) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or rgb is NULL");
+    memset(&inf, 0, sizeof inf);
+    if ((r = voxgi__plan_render(ctx, scene, desc, 0, &inf.used, &inf.plan)) != VOXGI_OK) return r;
+    row = &voxgi__render_rows[inf.used.method];
+    if (!row->build) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "method %s: left out of this build (%s)", voxgi__render_method_names[inf.used.method], row->left_out);
+    memset(&I, 0, sizeof I);
+    I.pixels = (size_t)inf.used.camera.width * (size_t)inf.used.camera.height;
+    if (rgb_bytes < I.pixels * 12)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "rgb holds %lu bytes, the %d x %d image needs %lu", (unsigned long)rgb_bytes, inf.used.camera.width,
+                           inf.used.camera.height, (unsigned long)(I.pixels * 12));
+    for (i = 0; i < inf.plan.item_count; i++)
+        if (!inf.plan.items[i].kept) voxgi__log(ctx, VOXGI_LOG_DEBUG, "plan: %s: left out - %s", inf.plan.items[i].name, inf.plan.items[i].why);
+    I.ctx = ctx;
+    I.scene = scene;
+    I.d = &inf.used;
+    I.plan = &inf.plan;
+    I.info = &inf;
+    I.rgb = rgb;
+    r = row->build(&I);
+    if (r == VOXGI_OK) r = row->gather(&I);
+    voxgi__image_free(&I);
+    inf.ms = voxgi__now_ms() - t0;
+    if (info) *info = inf;
     return r;
 }
-#endif /* VOXGI_NO_REFERENCE */
+
+VOXGI_API const char *voxgi_render_method_name(voxgi_render_method method)
+{
+    return (unsigned)method < VOXGI_RENDER_METHOD_COUNT ? voxgi__render_method_names[method] : NULL;
+}
+
+VOXGI_API int voxgi_render_method_find(const char *name)
+{
+    int m;
+    for (m = 0; name && m < VOXGI_RENDER_METHOD_COUNT; m++)
+        if (!strcmp(name, voxgi__render_method_names[m])) return m;
+    return -1;
+}
+
+/* snprintf's rules over a running buffer. */
+static void voxgi__describe(char *buf, size_t size, int *len, const char *fmt, ...)
+{
+    va_list ap;
+    int n;
+    va_start(ap, fmt);
+    n = vsnprintf(*len >= 0 && (size_t)*len < size ? buf + *len : NULL, *len >= 0 && (size_t)*len < size ? size - (size_t)*len : 0, fmt, ap);
+    va_end(ap);
+    if (n > 0) *len += n;
+}
+
+VOXGI_API int voxgi_render_describe(const voxgi_render_desc *u, char *buf, size_t size)
+{
+    static const char *const toggles[] = {"default", "on", "off"}, *const radiance[] = {"default", "anisotropic volume", "isotropic volume", "octree"};
+    static const char *const visibility[] = {"hierarchical", "dda", "none"}, *const modes[] = {"exact", "fast"}, *const formats[] = {"float32", "float16"};
+    int len = 0, m;
+    if (buf && size) buf[0] = 0;
+    if (!u || (unsigned)u->method >= VOXGI_RENDER_METHOD_COUNT) return 0;
+    m = (int)u->method;
+    voxgi__describe(buf, size, &len, "%s: %d x %d, fovy %.4g, samples %d, seed %llu", voxgi__render_method_names[m], u->camera.width, u->camera.height,
+                    u->camera.fovy_degrees, u->samples, (unsigned long long)u->seed);
+    if (m == VOXGI_RENDER_REFERENCE || m == VOXGI_RENDER_VCT) voxgi__describe(buf, size, &len, ", bounces %d", u->bounces);
+    if (u->resolution) voxgi__describe(buf, size, &len, ", resolution %d", u->resolution);
+    if (u->hide_emitters) voxgi__describe(buf, size, &len, ", emitters hidden");
+    if (u->error > 0) voxgi__describe(buf, size, &len, ", error %.4g", u->error);
+    if (m == VOXGI_RENDER_VCT) {
+        const voxgi_render_vct *v = &u->vct;
+        voxgi__describe(buf, size, &len, ", radiance %s, cones %d, cone stride %d, inject samples %d", radiance[v->radiance], v->cones.cones, v->cone_stride,
+                        v->inject_samples);
+        if (v->radiance == VOXGI_VCT_OCTREE) voxgi__describe(buf, size, &len, " (%s%s)", formats[v->octree_format], v->octree_bricks ? ", bricks" : "");
+        if (u->bounces > 1 || u->bounces == -1) voxgi__describe(buf, size, &len, ", bounce cones %d, bounce block %d", v->bounce_cones.cones, v->bounce_block);
+        if (v->one_sided) voxgi__describe(buf, size, &len, ", one-sided");
+        if (v->sampled_direct) voxgi__describe(buf, size, &len, ", sampled direct light");
+    } else if (m == VOXGI_RENDER_TSM) {
+        voxgi__describe(buf, size, &len, ", map size %d, slices %d", u->tsm.maps.size ? u->tsm.maps.size : 512, u->tsm.maps.slices ? u->tsm.maps.slices : 64);
+        if (u->tsm.maps.sigma > 0) voxgi__describe(buf, size, &len, ", sigma %.4g", (double)u->tsm.maps.sigma);
+    } else if (m == VOXGI_RENDER_RSM) {
+        voxgi__describe(buf, size, &len, ", visibility %s, gather stride %d, map size %d", visibility[u->rsm.visibility], u->rsm.gather_stride,
+                        u->rsm.maps.size ? u->rsm.maps.size : 256);
+    } else if (m == VOXGI_RENDER_SH) {
+        voxgi__describe(buf, size, &len, ", visibility %s, gather stride %d, opening %.4g", visibility[u->sh.visibility], u->sh.gather_stride, (double)u->sh.opening);
+    } else if (m >= VOXGI_RENDER_SSAO && m <= VOXGI_RENDER_HYBRID) {
+        const voxgi_render_screen *s = &u->screen;
+        voxgi__describe(buf, size, &len, ", rays %d, steps %d, radius %.4g, half resolution %s, blur %d", s->rays, s->steps, (double)s->radius, toggles[s->half_resolution],
+                        VOXGI__MAX(s->blur, 0));
+        if (m == VOXGI_RENDER_SSAO && s->point_sampling) voxgi__describe(buf, size, &len, ", point sampling");
+        if (m == VOXGI_RENDER_HYBRID) voxgi__describe(buf, size, &len, ", hidden light %s", toggles[s->hidden_light]);
+    } else if (m == VOXGI_RENDER_LINESPACE) {
+        const voxgi_render_linespace *L = &u->linespace;
+        voxgi__describe(buf, size, &len, ", %s, n %d, depth %d, shadow samples %d, supersample %d%s", modes[L->mode], L->tree.n, L->tree.depth, L->samples,
+                        L->supersample, L->packets ? ", packets" : "");
+        if (L->mode == VOXGI_LINESPACE_FAST) voxgi__describe(buf, size, &len, ", exact ends %d", L->exact_ends);
+    } else if (u->reference.ao_radius > 0)
+        voxgi__describe(buf, size, &len, ", ambient occlusion within %.4g", (double)u->reference.ao_radius);
+    else if (u->reference.screen_light_only)
+        voxgi__describe(buf, size, &len, ", screen light only");
+    return len;
+}
 
 /* ===================================================================== 15. built-in scenes and files */
 

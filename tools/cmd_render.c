@@ -10,13 +10,12 @@ static const char *const ls_mode_names[] = {"exact", "fast", NULL}; /* voxgi_lin
 static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_visibility's order */
 static const char *const off_on_names[] = {"off", "on", NULL};
 
-/* The screen passes' defaults, from `voxgi report ao` and `voxgi report ssgi` on the Cornell box
-   (docs/screen-space.md): ambient occlusion at full resolution, its sharp bands along the edges
-   blurred little; one bounce at half resolution, blurred more, Hybrid-GI with its hidden light. */
-enum { AO_BLUR = 2, GI_BLUR = 8, GI_HALF_RES = 1, HYBRID_HIDDEN_LIGHT = 1 };
-
-/* The line space's defaults, from `voxgi report linespace` (docs/line-space.md). */
-enum { LS_MODE = VOXGI_LINESPACE_EXACT, LS_N = 4, LS_SAMPLES = 4, LS_SUPERSAMPLE = 2 }; /* the depth: the library's, from the scene */
+static const char *const plan_help =
+    "usage: voxgi plan SCENE|MESH [render's options]\n"
+    "Prints the settings voxgi render runs with for the same options (every default resolved by the\n"
+    "library) and the library's plan: what the scene holds, and each channel, structure and pass\n"
+    "kept or left out with the reason and the memory it costs, before anything is allocated (bytes\n"
+    "marked ~ are estimated from the scene's surface). The image follows the same plan.\n";
 
 static const char *const render_help =
     "usage: voxgi render SCENE|MESH [options] -o OUT.png|OUT.pfm\n"
@@ -36,6 +35,8 @@ typedef struct render_args {
     double step, camera[7], sun[4], exposure, sigma, rsm_radius, opening, ao_radius, radius;
     int rays, march_steps, point_sampling, half_res, half_res_given, blur, blur_given, screen_light_only, hidden_light, hidden_light_given;
     int ls_mode, ls_mode_given, ls_n, ls_depth, ls_budget, samples, packets, supersample, exact_ends;
+    double error, budget_mb;      /* the render desc's error and memory budget */
+    int dynamic, everything;      /* voxgi plan only: its flags */
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -49,23 +50,8 @@ typedef struct render_scene {
     const voxgi_scene *scene;
 } render_scene;
 
-/* The view of a mesh: its bounds' centre from behind and a little above. */
-static void mesh_camera(const cli_mesh *tm, voxgi_camera *cam)
-{
-    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
-    size_t v;
-    double c[3], r = 0;
-    int a;
-    for (v = 0; v < tm->vm.vertex_count; v++)
-        for (a = 0; a < 3; a++) { lo[a] = fminf(lo[a], tm->vm.positions[3 * v + a]); hi[a] = fmaxf(hi[a], tm->vm.positions[3 * v + a]); }
-    for (a = 0; a < 3; a++) { c[a] = 0.5 * ((double)lo[a] + hi[a]); r = fmax(r, 0.5 * ((double)hi[a] - lo[a])); }
-    cam->eye[0] = c[0]; cam->eye[1] = c[1] + 0.6 * r; cam->eye[2] = c[2] - 3.2 * r;
-    memcpy(cam->target, c, sizeof c);
-    cam->fovy_degrees = 40;
-}
-
-/* Sets up rs and the camera d->camera; 0, or says why and returns 1. */
-static int scene_open(cli_session *s, voxgi_context *ctx, const render_args *a, render_scene *rs, voxgi_reference_desc *d)
+/* Sets up rs and the camera d->camera (a mesh's left zero: the library fits it); 0, or says why and returns 1. */
+static int scene_open(cli_session *s, voxgi_context *ctx, const render_args *a, render_scene *rs, voxgi_render_desc *d)
 {
     int i;
     rs->name = a->what;
@@ -81,7 +67,6 @@ static int scene_open(cli_session *s, voxgi_context *ctx, const render_args *a, 
     } else {
         if (cli_mesh_open(s, a->what, &rs->tm)) return CLI_EXIT_FAILURE;
         rs->scene = &rs->tm.scene;
-        mesh_camera(&rs->tm, &d->camera);
     }
     if (a->have_camera) {
         memcpy(d->camera.eye, a->camera, 3 * sizeof(double));
@@ -116,41 +101,13 @@ static void scene_close(voxgi_context *ctx, render_scene *rs)
     if (rs->cm.name[0]) cli_cornell_mesh_close(ctx, &rs->cm);
 }
 
-/* Every method's settings and what it reports (the chosen method's alone are used). */
-typedef struct render_jobs {
-    voxgi_reference_desc d;
-    voxgi_reference_info info;
-    voxgi_vct_desc vd;
-    voxgi_vct_info vinfo;
-    voxgi_tsm_image_desc td;
-    voxgi_tsm_image_info tinfo;
-    voxgi_rsm_image_desc qd;
-    voxgi_rsm_image_info qinfo;
-    voxgi_sh_image_desc hd;
-    voxgi_sh_image_info hinfo;
-    voxgi_ao_image_desc ad;
-    voxgi_ao_image_info ainfo;
-    voxgi_ssgi_image_desc gd;
-    voxgi_ssgi_image_info ginfo;
-    voxgi_linespace_image_desc ld;
-    voxgi_linespace_image_info linfo;
-} render_jobs;
-
-/* The image of `method` with J's settings into rgb (bytes), its report into J. */
-static voxgi_result render_method(voxgi_context *ctx, int method, const voxgi_scene *scene, render_jobs *J, float *rgb, size_t bytes)
+/* Each pass's time in a render's info (0: it did not run). */
+static double stage_ms(const voxgi_render_info *info, const char *name)
 {
-    switch (method) {
-    case METHOD_VCT: return voxgi_vct_render(ctx, scene, &J->vd, rgb, bytes, &J->vinfo);
-    case METHOD_TSM: return voxgi_tsm_render(ctx, scene, &J->td, rgb, bytes, &J->tinfo);
-    case METHOD_RSM: return voxgi_rsm_render(ctx, scene, &J->qd, rgb, bytes, &J->qinfo);
-    case METHOD_SH: return voxgi_sh_render(ctx, scene, &J->hd, rgb, bytes, &J->hinfo);
-    case METHOD_SSAO:
-    case METHOD_VAO: return voxgi_ao_render(ctx, scene, &J->ad, rgb, bytes, &J->ainfo);
-    case METHOD_SSGI:
-    case METHOD_HYBRID: return voxgi_ssgi_render(ctx, scene, &J->gd, rgb, bytes, &J->ginfo);
-    case METHOD_LINESPACE: return voxgi_linespace_render(ctx, scene, &J->ld, rgb, bytes, NULL, &J->linfo);
-    default: return voxgi_reference_render(ctx, scene, &J->d, rgb, bytes, &J->info);
-    }
+    int i;
+    for (i = 0; i < info->stage_count; i++)
+        if (!strcmp(info->stages[i].name, name)) return info->stages[i].ms;
+    return 0;
 }
 
 /* What --compare measured. */
@@ -160,36 +117,61 @@ typedef struct render_compare {
     size_t masked, pixels;        /* pixels left out of the error, of all */
 } render_compare;
 
+/* The reference an image is compared with: the path tracer at the image's view with what the
+   method computes (its bounces, or ambient occlusion within the radius it used). */
+static voxgi_render_desc reference_for(const voxgi_render_desc *used)
+{
+    voxgi_render_desc r;
+    int m = (int)used->method;
+    memset(&r, 0, sizeof r);
+    r.method = VOXGI_RENDER_REFERENCE;
+    r.camera = used->camera;
+    r.seed = used->seed;
+    r.rays = used->rays;
+    if (m == VOXGI_RENDER_REFERENCE) {
+        r.bounces = used->bounces;
+        r.reference = used->reference;
+    } else if (m == VOXGI_RENDER_VCT)
+        r.bounces = used->bounces;
+    else if (m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO) {
+        r.bounces = 1;
+        r.reference.ao_radius = used->screen.radius;
+    } else
+        r.bounces = m == VOXGI_RENDER_TSM || m == VOXGI_RENDER_LINESPACE ? 0 : used->bounces;
+    r.direct_only = r.bounces == 0;
+    return r;
+}
+
 /* --compare: the relative RMSE of the lighting against the reference with `compare` spp (rendered
    with an independent seed) by the tools' one rule (cli_masked_error): both without the emission
    the camera sees, and the pixels within 3 of one whose centre sees an emitter left out (the
    noise at the emitters' edges would swamp the lighting). */
-static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene, const render_jobs *J,
+static int compare_with_reference(cli_session *s, voxgi_context *ctx, const render_args *a, const voxgi_scene *scene, const voxgi_render_desc *used,
                                   render_compare *cmp)
 {
-    size_t n = (size_t)a->size[0] * (size_t)a->size[1] * 3;
+    size_t n = (size_t)used->camera.width * (size_t)used->camera.height * 3;
     float *ref = (float *)malloc(n * 8), *mine = ref ? ref + n : NULL;
-    render_jobs hidden = *J, reference = *J;
+    voxgi_render_desc hidden = *used, reference = reference_for(used);
+    voxgi_render_info ri;
     voxgi_result r;
     cli_error_mask mask;
-    reference.d.samples = a->compare;
-    reference.d.seed = J->d.seed + 1000003; /* independent of the image's own noise */
-    reference.d.hide_emitters = hidden.d.hide_emitters = hidden.vd.hide_emitters = hidden.td.hide_emitters = hidden.qd.hide_emitters =
-        hidden.hd.hide_emitters = hidden.gd.hide_emitters = hidden.ld.hide_emitters = 1;
-    r = ref ? render_method(ctx, METHOD_REFERENCE, scene, &reference, ref, n * 4) : VOXGI_ERR_OUT_OF_MEMORY;
-    if (r == VOXGI_OK) r = render_method(ctx, a->method, scene, &hidden, mine, n * 4);
+    reference.samples = a->compare;
+    reference.seed = used->seed + 1000003; /* independent of the image's own noise */
+    reference.hide_emitters = hidden.hide_emitters = 1;
+    r = ref ? voxgi_render(ctx, scene, &reference, ref, n * 4, &ri) : VOXGI_ERR_OUT_OF_MEMORY;
+    if (r == VOXGI_OK) r = voxgi_render(ctx, scene, &hidden, mine, n * 4, NULL);
     if (r != VOXGI_OK) {
         free(ref);
         return ref ? cli_fail_lib(s, ctx, "the reference") : cli_fail(s, "the reference: out of memory");
     }
-    if (cli_error_mask_make(s, ctx, scene, &J->d.camera, &mask)) {
+    if (cli_error_mask_make(s, ctx, scene, &used->camera, &mask)) {
         free(ref);
         return CLI_EXIT_FAILURE;
     }
     cmp->rmse = cli_masked_error(&mask, mine, ref, &cmp->rms, NULL); /* a black reference (the leak box): NaN, the RMS says it */
     cmp->masked = mask.masked_pixels;
-    cmp->pixels = (size_t)a->size[0] * (size_t)a->size[1];
-    cmp->ref_ms = reference.info.ms_bvh + reference.info.ms_render;
+    cmp->pixels = n / 3;
+    cmp->ref_ms = ri.ms;
     cli_error_mask_free(&mask);
     free(ref);
     return 0;
@@ -206,10 +188,10 @@ static int compare_with_file(cli_session *s, voxgi_context *ctx, const render_ar
     cli_error_mask mask;
     char err[600];
     if (vxt_read_pfm(a->reference, &ref, &w, &h, err, sizeof err)) return cli_fail(s, "--reference %s", err);
-    if (w != a->size[0] || h != a->size[1]) {
+    if (w != camera->width || h != camera->height) {
         free(ref);
-        return cli_fail(s, "--reference %s is %d x %d, the image %d x %d (render it with the same --size and view)", a->reference, w, h, a->size[0],
-                        a->size[1]);
+        return cli_fail(s, "--reference %s is %d x %d, the image %d x %d (render it with the same --size and view)", a->reference, w, h, camera->width,
+                        camera->height);
     }
     if (cli_error_mask_make(s, ctx, scene, camera, &mask)) {
         free(ref);
@@ -225,10 +207,10 @@ static int compare_with_file(cli_session *s, voxgi_context *ctx, const render_ar
 }
 
 /* The --compare (or --reference) line of the text output. */
-static void print_compare(const render_args *a, const voxgi_reference_desc *d, const render_compare *cmp)
+static void print_compare(const render_args *a, const voxgi_render_desc *d, const render_compare *cmp)
 {
     if (a->reference) printf("against %s: ", a->reference);
-    else if (d->ao_radius > 0) printf("against the reference (ambient occlusion within %.4g, %d spp, %.1f ms): ", (double)d->ao_radius, a->compare, cmp->ref_ms);
+    else if (d->reference.ao_radius > 0) printf("against the reference (ambient occlusion within %.4g, %d spp, %.1f ms): ", (double)d->reference.ao_radius, a->compare, cmp->ref_ms);
     else printf("against the reference (%d bounce%s, %d spp, %.1f ms): ", d->bounces, d->bounces == 1 ? "" : "s", a->compare, cmp->ref_ms);
     if (cmp->masked == cmp->pixels) {
         printf("no error measured: all %lu pixels are within %d of one that sees an emitter\n", (unsigned long)cmp->pixels, CLI_EMITTER_MARGIN);
@@ -250,345 +232,204 @@ static void print_compare_json(const render_compare *cmp)
     printf("\"masked_pixels\":%lu,\"reference_ms\":%.3f,", (unsigned long)cmp->masked, cmp->ref_ms);
 }
 
-/* The --method tsm lines, text or JSON. */
-static void print_tsm(const render_args *a, const char *name, const double mean[3], const voxgi_tsm_image_desc *td, const voxgi_tsm_image_info *ti,
-                      const voxgi_reference_desc *d, const render_compare *cmp)
+/* The method's own JSON fields after "size" (the settings it ran with and what it reports). */
+static void print_json_fields(const voxgi_render_info *f)
 {
-    int w = a->size[0], h = a->size[1], size = td->tsm.size ? td->tsm.size : 512, slices = td->tsm.slices ? td->tsm.slices : 64;
-    if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"tsm\",\"size\":[%d,%d],\"spp\":%d,\"maps\":%d,\"map_size\":%d,\"slices\":%d,\"sigma\":%.6g,"
-               "\"map_bytes\":%lu,\"maps_ms\":%.3f,\"shade_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
-               name, w, h, td->samples, ti->maps, size, slices, (double)td->tsm.sigma, (unsigned long)ti->bytes, ti->ms_maps, ti->ms_shade, ti->ms, mean[0],
-               mean[1], mean[2]);
-        if (a->compare || a->reference) print_compare_json(cmp);
-        printf("\"output\":\"%s\"}\n", a->out);
-        return;
+    const voxgi_render_desc *u = &f->used;
+    const voxgi_render_screen *sc = &u->screen;
+    switch (u->method) {
+    case VOXGI_RENDER_VCT:
+        printf("\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,"
+               "\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,",
+               u->resolution, u->vct.cones.cones, !u->direct_only, (unsigned long long)f->voxels, stage_ms(f, "voxelize"), stage_ms(f, "inject"),
+               stage_ms(f, "octree"), (unsigned long long)f->bytes, stage_ms(f, "cones"), stage_ms(f, "direct"), f->ms);
+        break;
+    case VOXGI_RENDER_TSM:
+        printf("\"spp\":%d,\"maps\":%d,\"map_size\":%d,\"slices\":%d,\"sigma\":%.6g,\"map_bytes\":%lu,\"maps_ms\":%.3f,\"shade_ms\":%.3f,\"ms\":%.3f,", u->samples,
+               f->maps, u->tsm.maps.size ? u->tsm.maps.size : 512, u->tsm.maps.slices ? u->tsm.maps.slices : 64, (double)u->tsm.maps.sigma, (unsigned long)f->bytes,
+               stage_ms(f, "maps"), stage_ms(f, "shade"), f->ms);
+        break;
+    case VOXGI_RENDER_RSM:
+        printf("\"maps\":%d,\"map_size\":%d,\"samples\":%d,\"visibility\":\"%s\",\"res\":%d,\"gather_stride\":%d,\"gathered\":%lu,\"maps_ms\":%.3f,"
+               "\"voxels_ms\":%.3f,\"direct_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,",
+               f->maps, u->rsm.maps.size ? u->rsm.maps.size : 256, u->rsm.maps.samples ? u->rsm.maps.samples : 100, visibility_names[u->rsm.visibility],
+               u->resolution, u->rsm.gather_stride, (unsigned long)f->gathered, stage_ms(f, "maps"), stage_ms(f, "voxels"), stage_ms(f, "direct"),
+               stage_ms(f, "gather"), f->ms);
+        break;
+    case VOXGI_RENDER_SH:
+        printf("\"res\":%d,\"opening\":%.6g,\"visibility\":\"%s\",\"gather_stride\":%d,\"gathered\":%lu,\"sh_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,"
+               "\"gather_ms\":%.3f,\"ms\":%.3f,",
+               u->resolution, (double)u->sh.opening, visibility_names[u->sh.visibility], u->sh.gather_stride, (unsigned long)f->gathered, stage_ms(f, "sh"),
+               stage_ms(f, "voxels"), stage_ms(f, "direct"), stage_ms(f, "gather"), f->ms);
+        break;
+    case VOXGI_RENDER_SSAO:
+    case VOXGI_RENDER_VAO:
+        printf("\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"point_sampling\":%d,\"res\":%d,\"gbuffer_ms\":%.3f,\"voxels_ms\":%.3f,\"ao_ms\":%.3f,\"ms\":%.3f,",
+               (double)sc->radius, sc->rays, sc->steps, sc->point_sampling, u->resolution ? u->resolution : 128, stage_ms(f, "gbuffer"), stage_ms(f, "voxels"),
+               stage_ms(f, "ao"), f->ms);
+        break;
+    case VOXGI_RENDER_SSGI:
+    case VOXGI_RENDER_HYBRID:
+        printf("\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"half_res\":%d,\"blur\":%d,\"hidden_light\":%d,\"gathered\":%lu,\"direct_ms\":%.3f,\"voxels_ms\":%.3f,"
+               "\"inject_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,",
+               (double)sc->radius, sc->rays, sc->steps, sc->half_resolution == VOXGI_TOGGLE_ON, sc->blur > 0 ? sc->blur : 0, sc->hidden_light == VOXGI_TOGGLE_ON,
+               (unsigned long)f->gathered, stage_ms(f, "direct"), stage_ms(f, "voxels"), stage_ms(f, "inject"), stage_ms(f, "gather"), f->ms);
+        break;
+    case VOXGI_RENDER_LINESPACE: {
+        const voxgi_linespace_info *t = &f->tree;
+        const voxgi_linespace_stats *r = &f->shadow_rays;
+        double shadows = stage_ms(f, "shadows");
+        printf("\"mode\":\"%s\",\"packets\":%d,\"n\":%d,\"depth\":%d,\"samples\":%d,\"supersample\":%d,\"lights\":%d,\"nodes\":%lu,\"line_spaces\":%lu,\"leaves\":%lu,"
+               "\"triangle_refs\":%lu,\"bytes\":%lu,\"allocated\":%lu,\"rays\":%llu,\"nodes_entered\":%llu,\"bits_read\":%llu,\"triangle_tests\":%llu,"
+               "\"build_ms\":%.3f,\"gbuffer_ms\":%.3f,\"shadows_ms\":%.3f,\"ms\":%.3f,\"mrays_per_s\":%.4g,",
+               ls_mode_names[u->linespace.mode], u->linespace.packets, t->n, t->depth, r->samples, u->linespace.supersample, f->lights, (unsigned long)t->nodes,
+               (unsigned long)t->line_spaces, (unsigned long)t->leaves, (unsigned long)t->triangle_refs, (unsigned long)t->bytes, (unsigned long)t->allocated,
+               (unsigned long long)r->rays, (unsigned long long)r->nodes, (unsigned long long)r->bits, (unsigned long long)r->triangle_tests, stage_ms(f, "build"),
+               stage_ms(f, "gbuffer"), shadows, f->ms, shadows > 0 ? (double)r->rays / shadows / 1000 : 0);
+        break;
     }
-    printf("%s: %d x %d, direct light with transmittance shadow maps (%d map%s of %d x %d texels, %d slices, %.1f MB): maps %.1f ms, "
-           "shading %.1f ms (%d rays per pixel), total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-           name, w, h, ti->maps, ti->maps == 1 ? "" : "s", size, size, slices, ti->bytes / 1e6, ti->ms_maps, ti->ms_shade, td->samples, ti->ms, mean[0],
-           mean[1], mean[2], a->out);
-    if (a->compare || a->reference) print_compare(a, d, cmp);
+    default:
+        printf("\"spp\":%d,\"bounces\":%d,\"seed\":%llu,\"triangles\":%lu,\"bvh_nodes\":%lu,\"rays\":%llu,\"bvh_ms\":%.3f,\"render_ms\":%.3f,", u->samples,
+               u->bounces, (unsigned long long)u->seed, (unsigned long)f->triangles, (unsigned long)f->bvh_nodes, (unsigned long long)f->rays, stage_ms(f, "bvh"),
+               stage_ms(f, "render"));
+    }
 }
 
-/* The --method rsm lines, text or JSON. */
-static void print_rsm(const render_args *a, const char *name, const double mean[3], const voxgi_rsm_image_desc *qd, const voxgi_rsm_image_info *qi,
-                      const voxgi_reference_desc *d, const render_compare *cmp)
+static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const voxgi_render_info *f, const render_compare *cmp)
 {
-    int w = a->size[0], h = a->size[1], size = qd->rsm.size ? qd->rsm.size : 256, samples = qd->rsm.samples ? qd->rsm.samples : 100;
-    if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"rsm\",\"size\":[%d,%d],\"maps\":%d,\"map_size\":%d,\"samples\":%d,\"visibility\":\"%s\",\"res\":%d,"
-               "\"gather_stride\":%d,\"gathered\":%lu,\"maps_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,"
-               "\"mean\":[%.6g,%.6g,%.6g],",
-               name, w, h, qi->maps, size, samples, visibility_names[qd->visibility], qd->resolution ? qd->resolution : 64,
-               qd->gather_stride ? qd->gather_stride : 4, (unsigned long)qi->gathered, qi->ms_maps, qi->ms_voxels, qi->ms_direct, qi->ms_gather, qi->ms,
-               mean[0], mean[1], mean[2]);
-        if (a->compare || a->reference) print_compare_json(cmp);
-        printf("\"output\":\"%s\"}\n", a->out);
-        return;
-    }
-    printf("%s: %d x %d, direct light and one bounce from reflective shadow maps (%d map%s of %d x %d texels, %d samples, visibility %s, "
-           "%lu pixels gathering): maps %.1f ms, voxels %.1f ms, direct light %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-           name, w, h, qi->maps, qi->maps == 1 ? "" : "s", size, size, samples, visibility_names[qd->visibility], (unsigned long)qi->gathered, qi->ms_maps,
-           qi->ms_voxels, qi->ms_direct, qi->ms_gather, qi->ms, mean[0], mean[1], mean[2], a->out);
-    if (a->compare || a->reference) print_compare(a, d, cmp);
-}
-
-/* The --method ssao and vao lines, text or JSON. */
-static void print_ao(const render_args *a, const char *name, const double mean[3], const voxgi_ao_image_desc *ad, const voxgi_ao_image_info *ai,
-                     const voxgi_reference_desc *d, const render_compare *cmp)
-{
-    int w = a->size[0], h = a->size[1], rays = ad->rays ? ad->rays : 16, steps = ad->steps ? ad->steps : 16;
-    const char *method = ad->method == VOXGI_AO_VOXELS ? "vao" : "ssao";
-    if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"%s\",\"size\":[%d,%d],\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"point_sampling\":%d,\"res\":%d,"
-               "\"gbuffer_ms\":%.3f,\"voxels_ms\":%.3f,\"ao_ms\":%.3f,\"ms\":%.3f,\"mean\":%.6g,",
-               name, method, w, h, (double)ai->radius, rays, steps, ad->point_sampling, ad->resolution ? ad->resolution : 128, ai->ms_gbuffer, ai->ms_voxels, ai->ms_ao, ai->ms,
-               mean[0]);
-        if (a->compare || a->reference) print_compare_json(cmp);
-        printf("\"output\":\"%s\"}\n", a->out);
-        return;
-    }
-    printf("%s: %d x %d, ambient occlusion from %s (radius %.4g, %d %s%s): G-buffer %.1f ms, voxels %.1f ms, occlusion %.1f ms, total %.1f ms; "
-           "mean %.4g -> %s\n",
-           name, w, h, ad->method == VOXGI_AO_VOXELS ? "the voxels" : "the depth buffer", (double)ai->radius, rays, ad->point_sampling ? "points" : "rays",
-           ad->method == VOXGI_AO_VOXELS || ad->point_sampling ? "" : " marched in steps", ai->ms_gbuffer, ai->ms_voxels, ai->ms_ao, ai->ms, mean[0], a->out);
-    if (a->compare || a->reference) print_compare(a, d, cmp);
-}
-
-/* The --method ssgi and hybrid lines, text or JSON. */
-static void print_ssgi(const render_args *a, const char *name, const double mean[3], const voxgi_ssgi_image_desc *gd, const voxgi_ssgi_image_info *gi,
-                       const voxgi_reference_desc *d, const render_compare *cmp)
-{
-    int w = a->size[0], h = a->size[1], rays = gd->rays ? gd->rays : 16, steps = gd->steps ? gd->steps : 16;
-    const char *method = gd->method == VOXGI_AO_VOXELS ? "hybrid" : "ssgi";
-    if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"%s\",\"size\":[%d,%d],\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"half_res\":%d,\"blur\":%d,"
-               "\"hidden_light\":%d,\"gathered\":%lu,\"direct_ms\":%.3f,\"voxels_ms\":%.3f,\"inject_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,"
-               "\"mean\":[%.6g,%.6g,%.6g],",
-               name, method, w, h, (double)gi->radius, rays, steps, gd->half_resolution, gd->blur, gd->hidden_light, (unsigned long)gi->gathered, gi->ms_direct,
-               gi->ms_voxels, gi->ms_inject, gi->ms_gather, gi->ms, mean[0], mean[1], mean[2]);
-        if (a->compare || a->reference) print_compare_json(cmp);
-        printf("\"output\":\"%s\"}\n", a->out);
-        return;
-    }
-    printf("%s: %d x %d, direct light and one bounce from the screen, visibility %s%s (radius %.4g, %d rays, %lu pixels gathering%s, blur %d): "
-           "direct light %.1f ms, voxels %.1f ms, their light %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-           name, w, h, gd->method == VOXGI_AO_VOXELS ? "through the voxels (Hybrid-GI)" : "through the depth buffer (SSGI)",
-           gd->hidden_light ? ", hidden hits sending the voxels' light" : "", (double)gi->radius, rays, (unsigned long)gi->gathered,
-           gd->half_resolution ? " at half resolution" : "", gd->blur, gi->ms_direct, gi->ms_voxels, gi->ms_inject, gi->ms_gather, gi->ms, mean[0], mean[1], mean[2],
-           a->out);
-    if (a->compare || a->reference) print_compare(a, d, cmp);
-}
-
-/* The --method sh lines, text or JSON. */
-static void print_sh(const render_args *a, const char *name, const double mean[3], const voxgi_sh_image_desc *hd, const voxgi_sh_image_info *hi,
-                     const voxgi_reference_desc *d, const render_compare *cmp)
-{
-    int w = a->size[0], h = a->size[1], res = hd->resolution ? hd->resolution : 64, stride = hd->gather_stride ? hd->gather_stride : 4;
-    double opening = hd->opening > 0 ? hd->opening : 0.5;
-    if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"sh\",\"size\":[%d,%d],\"res\":%d,\"opening\":%.6g,\"visibility\":\"%s\",\"gather_stride\":%d,"
-               "\"gathered\":%lu,\"sh_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
-               name, w, h, res, opening, visibility_names[hd->visibility], stride, (unsigned long)hi->gathered, hi->ms_sh, hi->ms_voxels, hi->ms_direct,
-               hi->ms_gather, hi->ms, mean[0], mean[1], mean[2]);
-        if (a->compare || a->reference) print_compare_json(cmp);
-        printf("\"output\":\"%s\"}\n", a->out);
-        return;
-    }
-    printf("%s: %d x %d, direct light and one bounce from an SH volume (%d voxels across, opening %.2g, visibility %s, %lu pixels gathering): "
-           "SH volume %.1f ms, voxels %.1f ms, direct light %.1f ms, gathers %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-           name, w, h, res, opening, visibility_names[hd->visibility], (unsigned long)hi->gathered, hi->ms_sh, hi->ms_voxels, hi->ms_direct, hi->ms_gather,
-           hi->ms, mean[0], mean[1], mean[2], a->out);
-    if (a->compare || a->reference) print_compare(a, d, cmp);
-}
-
-/* The --method linespace lines, text or JSON. */
-static void print_linespace(const render_args *a, const char *name, const voxgi_info *ci, const double mean[3], const voxgi_linespace_image_desc *ld,
-                            const voxgi_linespace_image_info *li, const voxgi_reference_desc *d, const render_compare *cmp)
-{
-    int w = a->size[0], h = a->size[1];
-    const voxgi_linespace_info *t = &li->tree;
-    const voxgi_linespace_stats *r = &li->rays;
-    double mrays = li->ms_shadows > 0 ? (double)r->rays / li->ms_shadows / 1000 : 0;
-    if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"linespace\",\"backend\":\"%s\",\"size\":[%d,%d],\"mode\":\"%s\",\"packets\":%d,\"n\":%d,\"depth\":%d,\"samples\":%d,\"supersample\":%d,"
-               "\"lights\":%d,\"nodes\":%lu,\"line_spaces\":%lu,\"leaves\":%lu,\"triangle_refs\":%lu,\"bytes\":%lu,\"allocated\":%lu,"
-               "\"rays\":%llu,\"nodes_entered\":%llu,\"bits_read\":%llu,\"triangle_tests\":%llu,\"build_ms\":%.3f,\"gbuffer_ms\":%.3f,"
-               "\"shadows_ms\":%.3f,\"ms\":%.3f,\"mrays_per_s\":%.4g,\"mean\":[%.6g,%.6g,%.6g],",
-               name, voxgi_backend_name(ci->backend), w, h, ls_mode_names[ld->mode], ld->packets, t->n, t->depth, r->samples, ld->supersample, li->lights, (unsigned long)t->nodes, (unsigned long)t->line_spaces,
-               (unsigned long)t->leaves, (unsigned long)t->triangle_refs, (unsigned long)t->bytes, (unsigned long)t->allocated, (unsigned long long)r->rays,
-               (unsigned long long)r->nodes, (unsigned long long)r->bits, (unsigned long long)r->triangle_tests, li->ms_build, li->ms_gbuffer, li->ms_shadows,
-               li->ms, mrays, mean[0], mean[1], mean[2]);
-        if (a->compare || a->reference) print_compare_json(cmp);
-        printf("\"output\":\"%s\"}\n", a->out);
-        return;
-    }
-    printf("%s: %d x %d, direct light of %d area light%s, soft shadows through the line space (%s mode, %s; n %d, depth %d, %d x %d points "
-           "per pixel, %d samples per point and light): tree %lu nodes, %lu line spaces, %lu leaves, %lu triangle references, %.2f MB by the formula, %.2f MB allocated, "
-           "built in %.1f ms; G-buffer %.1f ms; %llu shadow rays in %.1f ms (%.2f Mrays/s, %s) reading %llu bits, testing %llu triangles; "
-           "total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n",
-           name, w, h, li->lights, li->lights == 1 ? "" : "s", ls_mode_names[ld->mode],
-           ld->packets && ci->backend != VOXGI_BACKEND_GL ? "packets" : "rays alone", t->n, t->depth, ld->supersample, ld->supersample, r->samples,
-           (unsigned long)t->nodes, (unsigned long)t->line_spaces, (unsigned long)t->leaves, (unsigned long)t->triangle_refs, t->bytes / 1e6,
-           t->allocated / 1e6, li->ms_build, li->ms_gbuffer, (unsigned long long)r->rays, li->ms_shadows, mrays, voxgi_backend_name(ci->backend), (unsigned long long)r->bits,
-           (unsigned long long)r->triangle_tests, li->ms, mean[0], mean[1], mean[2], a->out);
-    if (a->compare || a->reference) print_compare(a, d, cmp);
-}
-
-static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const render_jobs *J, const render_compare *cmp)
-{
-    const voxgi_reference_desc *d = &J->d;
-    const voxgi_reference_info *info = &J->info;
-    const voxgi_vct_desc *vd = &J->vd;
-    const voxgi_vct_info *vinfo = &J->vinfo;
+    const voxgi_render_desc *u = &f->used;
+    voxgi_render_desc ref = reference_for(u);
     double mean[3] = {0, 0, 0};
     size_t p;
-    int i, w = a->size[0], h = a->size[1];
+    int i, w = u->camera.width, h = u->camera.height, m = (int)u->method, backend = m == VOXGI_RENDER_VCT || m == VOXGI_RENDER_LINESPACE;
+    char settings[1024];
     for (p = 0; p < (size_t)w * (size_t)h; p++)
         for (i = 0; i < 3; i++) mean[i] += rgb[3 * p + (size_t)i];
     for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
-    if (a->method == METHOD_TSM) print_tsm(a, name, mean, &J->td, &J->tinfo, d, cmp);
-    else if (a->method == METHOD_RSM) print_rsm(a, name, mean, &J->qd, &J->qinfo, d, cmp);
-    else if (a->method == METHOD_SH) print_sh(a, name, mean, &J->hd, &J->hinfo, d, cmp);
-    else if (a->method == METHOD_SSAO || a->method == METHOD_VAO) print_ao(a, name, mean, &J->ad, &J->ainfo, d, cmp);
-    else if (a->method == METHOD_SSGI || a->method == METHOD_HYBRID) print_ssgi(a, name, mean, &J->gd, &J->ginfo, d, cmp);
-    else if (a->method == METHOD_LINESPACE) print_linespace(a, name, ci, mean, &J->ld, &J->linfo, d, cmp);
-    else if (a->method == METHOD_VCT && a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"vct\",\"backend\":\"%s\",\"size\":[%d,%d],\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,"
-               "\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
-               name, voxgi_backend_name(ci->backend), w, h, vd->resolution ? vd->resolution : 128, vd->cones.cones ? vd->cones.cones : 16, !vd->no_gi,
-               (unsigned long long)vinfo->voxels, vinfo->ms_voxelize, vinfo->ms_inject, vinfo->ms_octree, (unsigned long long)vinfo->radiance_bytes,
-               vinfo->ms_cones, vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2]);
+    if (a->common.json) {
+        printf("{\"scene\":\"%s\",\"method\":\"%s\",", name, voxgi_render_method_name(u->method));
+        if (backend) printf("\"backend\":\"%s\",", voxgi_backend_name(ci->backend));
+        printf("\"size\":[%d,%d],", w, h);
+        print_json_fields(f);
+        if (m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO) printf("\"mean\":%.6g,", mean[0]);
+        else printf("\"mean\":[%.6g,%.6g,%.6g],", mean[0], mean[1], mean[2]);
         if (a->compare || a->reference) print_compare_json(cmp);
-        else printf("\"rel_rmse\":-1,\"rms\":0,\"reference_ms\":0.000,"); /* nothing compared */
+        else if (m == VOXGI_RENDER_VCT) printf("\"rel_rmse\":-1,\"rms\":0,\"reference_ms\":0.000,"); /* nothing compared */
         printf("\"output\":\"%s\"}\n", a->out);
-    } else if (a->method == METHOD_VCT) {
-        printf("%s: %d x %d cone-traced (%s%s%s), %llu voxels: voxelize %.1f ms, inject + mips %.1f ms, ", name, w, h, voxgi_backend_name(ci->backend),
-               ci->backend == VOXGI_BACKEND_GL ? ", " : "", ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "", (unsigned long long)vinfo->voxels,
-               vinfo->ms_voxelize, vinfo->ms_inject);
-        if (vd->octree) printf("octree %.1f ms, ", vinfo->ms_octree);
-        printf("cones %.1f ms (over %.1f MB of %s), direct light %.1f ms, total %.1f ms; mean radiance %.4g %.4g %.4g -> %s\n", vinfo->ms_cones,
-               vinfo->radiance_bytes / 1e6, vd->octree ? "octree" : "volume", vinfo->ms_direct, vinfo->ms, mean[0], mean[1], mean[2], a->out);
-        if (a->compare || a->reference) print_compare(a, d, cmp);
-    } else if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"reference\",\"size\":[%d,%d],\"spp\":%d,\"bounces\":%d,\"seed\":%llu,\"triangles\":%lu,"
-               "\"bvh_nodes\":%lu,\"rays\":%llu,\"bvh_ms\":%.3f,\"render_ms\":%.3f,\"mean\":[%.6g,%.6g,%.6g],",
-               name, w, h, d->samples, d->bounces, (unsigned long long)d->seed, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes,
-               (unsigned long long)info->rays, info->ms_bvh, info->ms_render, mean[0], mean[1], mean[2]);
-        if (a->compare || a->reference) print_compare_json(cmp);
-        printf("\"output\":\"%s\"}\n", a->out);
-    } else {
-        printf("%s: %d x %d, %d spp, bounces %d: %lu triangles, BVH %lu nodes in %.1f ms, %llu rays in %.1f ms (%.2f Mrays/s, CPU); "
-               "mean radiance %.4g %.4g %.4g -> %s\n",
-               name, w, h, d->samples, d->bounces, (unsigned long)info->triangles, (unsigned long)info->bvh_nodes, info->ms_bvh,
-               (unsigned long long)info->rays, info->ms_render, info->ms_render > 0 ? (double)info->rays / info->ms_render / 1000 : 0.0, mean[0],
-               mean[1], mean[2], a->out);
-        if (a->compare || a->reference) print_compare(a, d, cmp);
+        return;
     }
+    voxgi_render_describe(u, settings, sizeof settings);
+    printf("%s: %s\n", name, settings);
+    printf("  %s: ", voxgi_backend_name(ci->backend));
+    for (i = 0; i < f->stage_count; i++) printf("%s %.1f ms, ", f->stages[i].name, f->stages[i].ms);
+    printf("total %.1f ms", f->ms);
+    if (f->bytes) printf("; built %.2f MB", f->bytes / 1e6);
+    if (f->gathered) printf("; %lu pixels gathering", (unsigned long)f->gathered);
+    if (f->rays) printf("; %llu rays", (unsigned long long)f->rays);
+    if (m == VOXGI_RENDER_LINESPACE) printf("; %d area light%s, %llu shadow rays", f->lights, f->lights == 1 ? "" : "s", (unsigned long long)f->shadow_rays.rays);
+    printf("\n  mean %s %.4g %.4g %.4g -> %s\n", m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO ? "occlusion" : "radiance", mean[0], mean[1], mean[2], a->out);
+    if (a->compare || a->reference) print_compare(a, &ref, cmp);
+}
+
+/* The render desc of the command line: what was given, every other field zero (the library's
+   default, which the plan and the info report). */
+static void render_desc_of(const render_args *a, voxgi_render_desc *d)
+{
+    static const voxgi_render_method methods[] = {VOXGI_RENDER_REFERENCE, VOXGI_RENDER_VCT,  VOXGI_RENDER_TSM,    VOXGI_RENDER_RSM,   VOXGI_RENDER_SH,
+                                                  VOXGI_RENDER_SSAO,      VOXGI_RENDER_VAO,  VOXGI_RENDER_SSGI,   VOXGI_RENDER_HYBRID, VOXGI_RENDER_LINESPACE};
+    d->method = methods[a->method];
+    d->camera.width = a->size[0];
+    d->camera.height = a->size[1];
+    d->samples = a->spp_given ? a->spp : 0;
+    d->seed = (uint64_t)a->seed;
+    d->resolution = a->res_given ? a->res : 0;
+    d->bounces = a->bounces;
+    d->direct_only = a->bounces == 0 || a->no_gi;
+    d->vct.radiance = a->octree ? VOXGI_VCT_OCTREE : a->isotropic ? VOXGI_VCT_ISOTROPIC : a->anisotropic ? VOXGI_VCT_ANISOTROPIC : VOXGI_VCT_RADIANCE_DEFAULT;
+    d->vct.cones.cones = a->cones;
+    d->vct.cones.step = (float)a->step;
+    d->vct.cone_stride = a->cone_stride;
+    d->vct.inject_samples = a->inject_samples;
+    d->vct.bounce_cones.cones = a->bounce_cones;
+    d->vct.bounce_block = a->bounce_block;
+    d->vct.octree_format = (voxgi_svo_format)a->octree_format;
+    d->vct.octree_bricks = a->bricks;
+    d->tsm.maps.size = a->tsm_size;
+    d->tsm.maps.slices = a->slices;
+    d->tsm.maps.sigma = (float)a->sigma;
+    d->rsm.maps.size = a->rsm_size;
+    d->rsm.maps.samples = a->rsm_samples;
+    d->rsm.maps.radius = (float)a->rsm_radius;
+    d->rsm.maps.points = a->rsm_points;
+    d->rsm.visibility = d->sh.visibility = (voxgi_visibility)a->visibility;
+    d->rsm.gather_stride = d->sh.gather_stride = a->gather_stride;
+    d->sh.opening = (float)a->opening;
+    d->screen.rays = a->rays;
+    d->screen.steps = a->march_steps;
+    d->screen.radius = (float)a->radius;
+    d->screen.point_sampling = a->point_sampling;
+    d->screen.half_resolution = !a->half_res_given ? VOXGI_TOGGLE_DEFAULT : a->half_res ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
+    d->screen.blur = !a->blur_given ? 0 : a->blur ? a->blur : -1;
+    d->screen.hidden_light = !a->hidden_light_given ? VOXGI_TOGGLE_DEFAULT : a->hidden_light ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
+    d->screen.inject_samples = a->inject_samples;
+    d->linespace.mode = (voxgi_linespace_mode)a->ls_mode;
+    d->linespace.samples = a->samples;
+    d->linespace.packets = a->packets;
+    d->linespace.exact_ends = a->exact_ends;
+    d->linespace.supersample = a->supersample;
+    d->linespace.tree.n = a->ls_n;
+    d->linespace.tree.depth = a->ls_depth;
+    d->linespace.tree.memory_budget = (size_t)a->ls_budget << 20;
+    d->reference.ao_radius = (float)a->ao_radius;
+    d->reference.screen_light_only = a->screen_light_only;
+    d->error = a->error;
+    d->memory_budget = (uint64_t)(a->budget_mb * 1048576.0);
 }
 
 static int render_run(cli_session *s, const render_args *a)
 {
-    render_jobs J;
-    voxgi_reference_desc *d = &J.d;
-    voxgi_vct_desc *vd = &J.vd;
-    voxgi_tsm_image_desc *td = &J.td;
-    voxgi_rsm_image_desc *qd = &J.qd;
-    voxgi_sh_image_desc *hd = &J.hd;
+    voxgi_render_desc d;
+    voxgi_render_info info;
     voxgi_info ci;
     render_scene rs;
     cli_context c;
     cli_common options = a->common;
     float *rgb = NULL;
-    size_t bytes = (size_t)a->size[0] * (size_t)a->size[1] * 12;
+    size_t bytes;
     render_compare cmp;
-    int rc = CLI_EXIT_FAILURE;
-    memset(&J, 0, sizeof J);
+    int rc = CLI_EXIT_FAILURE, i;
+    memset(&d, 0, sizeof d);
     memset(&rs, 0, sizeof rs);
     memset(&cmp, 0, sizeof cmp);
-    d->bounces = a->bounces;
-    d->samples = a->spp;
-    d->seed = (uint64_t)a->seed;
-    vd->resolution = a->res;
-    vd->cones.cones = a->cones;
-    vd->cones.step = (float)a->step;
-    vd->filter = a->isotropic ? VOXGI_MIPS_ISOTROPIC : VOXGI_MIPS_ANISOTROPIC;
-    vd->no_gi = a->no_gi;
-    vd->inject_samples = a->inject_samples;
-    vd->cone_stride = a->cone_stride;
-    vd->bounce_cones.cones = a->bounce_cones;
-    vd->bounce_block = a->bounce_block;
-    vd->octree = a->octree;
-    vd->octree_format = (voxgi_svo_format)a->octree_format;
-    vd->octree_bricks = a->bricks;
-    if (a->method == METHOD_REFERENCE) options.backend = VOXGI_BACKEND_CPU; /* the path tracer runs on the CPU */
+    if (a->method == 0) options.backend = VOXGI_BACKEND_CPU; /* the path tracer runs on the CPU */
     if (cli_context_open_options(s, &c, &options)) return CLI_EXIT_FAILURE;
     voxgi_query_info(c.vx, &ci);
-    if (scene_open(s, c.vx, a, &rs, d)) goto done;
+    if (scene_open(s, c.vx, a, &rs, &d)) goto done;
+    render_desc_of(a, &d);
+    if (voxgi_render_resolve(c.vx, rs.scene, &d, &info.used) != VOXGI_OK) {
+        cli_fail_lib(s, c.vx, NULL);
+        goto done;
+    }
+    bytes = (size_t)info.used.camera.width * (size_t)info.used.camera.height * 12;
     if (!(rgb = (float *)malloc(bytes))) {
         cli_fail(s, "out of memory");
         goto done;
     }
-    if (a->method == METHOD_TSM) { /* direct light: compared with the reference's */
-        td->camera = d->camera;
-        td->seed = d->seed;
-        td->samples = a->spp_given ? d->samples : 4;
-        td->tsm.size = a->tsm_size;
-        td->tsm.slices = a->slices;
-        td->tsm.sigma = (float)a->sigma;
-        d->bounces = 0;
-    }
-    if (a->method == METHOD_RSM) { /* direct light and one bounce: compared with the reference's one bounce */
-        qd->camera = d->camera;
-        qd->seed = d->seed;
-        qd->samples = a->spp_given ? d->samples : 0;
-        qd->rsm.size = a->rsm_size;
-        qd->rsm.samples = a->rsm_samples;
-        qd->rsm.radius = (float)a->rsm_radius;
-        qd->rsm.points = a->rsm_points;
-        qd->gather_stride = a->gather_stride;
-        qd->rsm.seed = d->seed;
-        qd->visibility = (voxgi_visibility)a->visibility;
-        qd->resolution = a->res_given ? a->res : 64;
-        d->bounces = 1;
-    }
-    if (a->method == METHOD_SH) { /* direct light and one bounce: compared with the reference's one bounce */
-        hd->camera = d->camera;
-        hd->seed = d->seed;
-        hd->samples = a->spp_given ? d->samples : 0;
-        hd->sh.seed = d->seed;
-        hd->visibility = (voxgi_visibility)a->visibility;
-        hd->resolution = a->res_given ? a->res : 64;
-        hd->opening = (float)a->opening;
-        hd->gather_stride = a->gather_stride;
-        d->bounces = 1;
-    }
-    if (a->method == METHOD_SSAO || a->method == METHOD_VAO) { /* compared with the reference's AO mode at the radius used */
-        J.ad.camera = d->camera;
-        J.ad.seed = d->seed;
-        J.ad.method = a->method == METHOD_VAO ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN;
-        J.ad.resolution = a->res_given ? a->res : 0;
-        J.ad.rays = a->rays;
-        J.ad.steps = a->march_steps;
-        J.ad.radius = (float)a->radius;
-        J.ad.point_sampling = a->point_sampling;
-        J.ad.half_resolution = a->half_res_given ? a->half_res : 0;
-        J.ad.blur = a->blur_given ? a->blur : AO_BLUR;
-    }
-    if (a->method == METHOD_SSGI || a->method == METHOD_HYBRID) { /* direct light and one bounce: compared with the reference's one bounce */
-        J.gd.camera = d->camera;
-        J.gd.seed = d->seed;
-        J.gd.samples = a->spp_given ? d->samples : 0;
-        J.gd.method = a->method == METHOD_HYBRID ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN;
-        J.gd.resolution = a->res_given ? a->res : 0;
-        J.gd.rays = a->rays;
-        J.gd.steps = a->march_steps;
-        J.gd.radius = (float)a->radius;
-        J.gd.half_resolution = a->half_res_given ? a->half_res : GI_HALF_RES;
-        J.gd.hidden_light = a->method == METHOD_HYBRID && (a->hidden_light_given ? a->hidden_light : HYBRID_HIDDEN_LIGHT);
-        J.gd.inject_samples = a->inject_samples;
-        J.gd.blur = a->blur_given ? a->blur : GI_BLUR;
-        d->bounces = 1;
-    }
-    if (a->method == METHOD_LINESPACE) { /* direct light of the area lights: compared with the reference's */
-        J.ld.camera = d->camera;
-        J.ld.seed = (uint32_t)d->seed;
-        J.ld.mode = (voxgi_linespace_mode)(a->ls_mode_given ? a->ls_mode : LS_MODE);
-        J.ld.samples = a->samples ? a->samples : LS_SAMPLES;
-        J.ld.packets = a->packets;
-        J.ld.exact_ends = a->exact_ends;
-        J.ld.supersample = a->supersample ? a->supersample : LS_SUPERSAMPLE;
-        J.ld.tree.n = a->ls_n ? a->ls_n : LS_N;
-        J.ld.tree.depth = a->ls_depth;
-        J.ld.tree.memory_budget = (size_t)a->ls_budget << 20;
-        d->bounces = 0;
-    }
-    if (a->method == METHOD_REFERENCE) {
-        d->ao_radius = (float)a->ao_radius; /* > 0: the AO mode */
-        d->screen_light_only = a->screen_light_only;
-    }
-    if (a->method == METHOD_VCT) { /* the same view and seed; the direct light takes --spp rays per pixel (default 24) */
-        vd->camera = d->camera;
-        vd->seed = d->seed;
-        vd->samples = a->spp_given ? d->samples : 24;
-        vd->bounces = d->bounces;
-        if (vd->no_gi) d->bounces = 0; /* what it is compared against */
-    }
-    if (render_method(c.vx, a->method, rs.scene, &J, rgb, bytes) != VOXGI_OK) {
+    if (voxgi_render(c.vx, rs.scene, &d, rgb, bytes, &info) != VOXGI_OK) {
         cli_fail_lib(s, c.vx, NULL);
         goto done;
     }
-    if (a->method == METHOD_SSAO || a->method == METHOD_VAO) d->ao_radius = J.ainfo.radius;
-    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &J, &cmp)) goto done;
-    if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &d->camera, rgb, &cmp)) goto done;
-    if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, a->size[0], a->size[1])
-                                           : vxt_write_png(a->out, rgb, a->size[0], a->size[1], (float)a->exposure)) != 0) {
+    for (i = 0; i < info.plan.item_count; i++) /* the plan, once: what the image left out, and why */
+        if (!info.plan.items[i].kept) cli_note(s, "plan: %s: left out - %s", info.plan.items[i].name, info.plan.items[i].why);
+    if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &info.used, &cmp)) goto done;
+    if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &info.used.camera, rgb, &cmp)) goto done;
+    if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, info.used.camera.width, info.used.camera.height)
+                                           : vxt_write_png(a->out, rgb, info.used.camera.width, info.used.camera.height, (float)a->exposure)) != 0) {
         cli_fail(s, "cannot write %s", a->out);
         goto done;
     }
     cli_status_clear(s);
-    print_result(a, rs.name, &ci, rgb, &J, &cmp);
+    print_result(a, rs.name, &ci, rgb, &info, &cmp);
     rc = CLI_EXIT_OK;
 done:
     free(rgb);
@@ -597,10 +438,11 @@ done:
     return rc;
 }
 
-int cmd_render(int argc, char **argv)
+/* The command line of `voxgi render` (plan 0) or `voxgi plan` (plan 1: the same options, no image,
+   and the plan's flags): CLI_CONTINUE, or the exit code. */
+static int render_parse(int argc, char **argv, render_args *ap, int plan)
 {
     render_args a;
-    cli_session s;
     int rc;
     memset(&a, 0, sizeof a);
     a.bounces = 1;
@@ -608,9 +450,6 @@ int cmd_render(int argc, char **argv)
     a.seed = 1;
     a.size[0] = a.size[1] = 256;
     a.exposure = 1;
-    a.res = 96; /* vct: the defaults sit on the Pareto front of `voxgi report vct` (docs/cone-tracing.md) */
-    a.cones = 24;
-    a.cone_stride = 6;
     {
         const cli_option options[] = {
             {.name = "--method", .arg = "reference|vct|tsm|rsm|sh|ssao|vao|ssgi|hybrid|linespace", .kind = CLI_ENUM, .dst = &a.method, .names = render_methods,
@@ -733,24 +572,99 @@ int cmd_render(int argc, char **argv)
              .help = "add a directional light travelling along D with irradiance E"},
             {.name = "--exposure", .arg = "X", .kind = CLI_DOUBLE, .dst = &a.exposure, .lo = 0, .hi = HUGE_VAL,
              .help = "PNG only: scale before clamping (default 1)"},
+            {.name = "--error", .arg = "E", .kind = CLI_DOUBLE, .dst = &a.error, .lo = 0, .hi = 1, .lo_open = 1,
+             .help = "vct: the relative RMSE wanted (e.g. 0.08): the grid, cones and stride\nnot given come from the cone tracer's measured front"},
+            {.name = "--budget", .arg = "MB", .kind = CLI_DOUBLE, .dst = &a.budget_mb, .lo = 0, .hi = 1e9, .lo_open = 1,
+             .help = "the memory budget (vct: the octree when the dense volume is over it)"},
+            {.name = "--dynamic", .kind = CLI_FLAG, .dst = &a.dynamic, .help = "plan: the geometry moves every frame (default: a static scene)"},
+            {.name = "--everything", .kind = CLI_FLAG, .dst = &a.everything, .help = "plan: keep every item the method has (what the plan saves)"},
             CLI_OPT_THREADS(&a.common),
             CLI_OPT_JSON(&a.common, "print one JSON object (timings, rays, mean radiance) instead of text"),
             {.name = "-o", .arg = "OUT.png|OUT.pfm", .kind = CLI_STRING, .dst = &a.out,
              .help = "the image (required): PNG, 8-bit sRGB, or PFM, linear float radiance"}};
-        const cli_command cmd = {.name = "render", .help = render_help, .column = 27, .options = options, .option_count = CLI_COUNT(options),
+        const cli_command cmd = {.name = plan ? "plan" : "render", .help = plan ? plan_help : render_help, .column = 27, .options = options, .option_count = CLI_COUNT(options),
                                  .operand = "scene or mesh", .operands = &a.what, .min_operands = 1, .max_operands = 1};
         if ((rc = cli_parse(&cmd, argc, argv)) != CLI_CONTINUE) return rc;
     }
     /* the file type is checked before any work: a typo must not cost a long render */
-    if (!a.out) return cli_usage("render", "-o OUT.png or OUT.pfm is needed");
-    if (!cli_has_extension(a.out, ".png") && !cli_has_extension(a.out, ".pfm"))
+    if (!plan && !a.out) return cli_usage("render", "-o OUT.png or OUT.pfm is needed");
+    if (!plan && !cli_has_extension(a.out, ".png") && !cli_has_extension(a.out, ".pfm"))
         return cli_usage("render", "-o %s: render writes .png or .pfm images only", a.out);
-    if (a.method == METHOD_VCT && a.bounces == 0 && !a.no_gi) return cli_usage("render", "--method vct needs --bounces 1 or more, or -1 (or --no-gi)");
-    if (a.method == METHOD_VCT && a.bounces > 64) return cli_usage("render", "--method vct: --bounces %d, at most 64", a.bounces);
-    if (a.anisotropic && a.isotropic) return cli_usage("render", "--anisotropic and --isotropic: one or the other");
-    if (a.compare && a.reference) return cli_usage("render", "--compare and --reference: one or the other");
+    if (!plan && (a.dynamic || a.everything)) return cli_usage("render", "--dynamic and --everything are voxgi plan's");
+    if (a.method == METHOD_VCT && a.bounces == 0 && !a.no_gi) return cli_usage(plan ? "plan" : "render", "--method vct needs --bounces 1 or more, or -1 (or --no-gi)");
+    if (a.method == METHOD_VCT && a.bounces > 64) return cli_usage(plan ? "plan" : "render", "--method vct: --bounces %d, at most 64", a.bounces);
+    if (a.anisotropic && a.isotropic) return cli_usage(plan ? "plan" : "render", "--anisotropic and --isotropic: one or the other");
+    if (a.compare && a.reference) return cli_usage(plan ? "plan" : "render", "--compare and --reference: one or the other");
     if (a.cornell_mesh && strcmp(a.what, "cornell-box") != 0)
-        return cli_usage("render", "--cornell-mesh replaces the tall block of the scene cornell-box, not of '%s'", a.what);
+        return cli_usage(plan ? "plan" : "render", "--cornell-mesh replaces the tall block of the scene cornell-box, not of '%s'", a.what);
+    *ap = a;
+    return CLI_CONTINUE;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_args a;
+    cli_session s;
+    int rc;
+    if ((rc = render_parse(argc, argv, &a, 0)) != CLI_CONTINUE) return rc;
     cli_session_init(&s, "render");
     return render_run(&s, &a);
+}
+
+static void print_plan_bytes(uint64_t b, int estimated)
+{
+    if (b >= 1048576) printf(" (%s%.1f MB)", estimated ? "~" : "", (double)b / 1048576.0);
+    else if (b >= 1024) printf(" (%s%.1f KB)", estimated ? "~" : "", (double)b / 1024.0);
+    else if (b) printf(" (%s%lu bytes)", estimated ? "~" : "", (unsigned long)b);
+}
+
+/* voxgi plan: the settings and the plan voxgi render would run with for the same options. */
+int cmd_plan(int argc, char **argv)
+{
+    static const char *const kinds[] = {"channel", "structure", "pass"};
+    render_args a;
+    cli_session s;
+    cli_context c;
+    render_scene rs;
+    voxgi_render_desc d, used;
+    voxgi_plan_info p;
+    char settings[1024];
+    int rc, i;
+    if ((rc = render_parse(argc, argv, &a, 1)) != CLI_CONTINUE) return rc;
+    cli_session_init(&s, "plan");
+    memset(&d, 0, sizeof d);
+    memset(&rs, 0, sizeof rs);
+    if (a.method == 0) a.common.backend = VOXGI_BACKEND_CPU;
+    if (cli_context_open_options(&s, &c, &a.common)) return CLI_EXIT_FAILURE;
+    rc = CLI_EXIT_FAILURE;
+    if (scene_open(&s, c.vx, &a, &rs, &d)) goto done;
+    render_desc_of(&a, &d);
+    if (voxgi_render_resolve(c.vx, rs.scene, &d, &used) != VOXGI_OK ||
+        voxgi_plan(c.vx, rs.scene, &d, (a.dynamic ? VOXGI_PLAN_DYNAMIC : 0u) | (a.everything ? VOXGI_PLAN_EVERYTHING : 0u), &p) != VOXGI_OK) {
+        cli_fail_lib(&s, c.vx, "planning");
+        goto done;
+    }
+    voxgi_render_describe(&used, settings, sizeof settings);
+    printf("%s: %s\n", rs.name, settings);
+    printf("scene: %lu triangles (%lu emissive, %lu translucent, %lu reflective), surface %.4g\n", (unsigned long)p.triangles, (unsigned long)p.emissive_triangles,
+           (unsigned long)p.translucent_triangles, (unsigned long)p.reflective_triangles, p.surface_area);
+    printf("lights: %d point, %d spot, %d directional, %d rect; area lights %d; the camera %s\n", p.point_lights, p.spot_lights, p.directional_lights,
+           p.rect_lights, p.area_lights, p.emitters_in_view ? "sees an emitter" : "sees no emitter");
+    if (used.resolution)
+        printf("grid: %d voxels along the longest side (%d x %d x %d with a voxel of padding), ~%llu set (%.2f%%)\n", used.resolution, p.grid.res[0],
+               p.grid.res[1], p.grid.res[2], (unsigned long long)p.voxels, 100 * p.occupancy);
+    if (used.error > 0)
+        printf("error: %.2f%% on the Cornell box against %.2f%% asked%s\n", 100 * p.expected_error, 100 * used.error, p.error_reachable ? "" : " (not reached: the closest)");
+    for (i = 0; i < p.item_count; i++) {
+        const voxgi_plan_item *it = &p.items[i];
+        printf("  %-22s %-9s %s - %s", it->name, kinds[it->kind], it->kept ? "kept" : "left out", it->why);
+        if (it->kept) print_plan_bytes(it->bytes, it->estimated);
+        printf("\n");
+    }
+    printf("memory of what is kept: %.1f MB\n", (double)p.bytes / 1048576.0);
+    rc = CLI_EXIT_OK;
+done:
+    scene_close(c.vx, &rs);
+    cli_context_close(&s, &c);
+    return rc;
 }
