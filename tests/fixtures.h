@@ -247,12 +247,32 @@ static inline uint32_t *shape_bits(voxgi_context *ctx, const vxt_shape *m, const
     return voxelized_bits(ctx, &sc, vd, info);
 }
 
-/* vd: a w x w view through the built-in scene's camera, all else zero. */
-static inline void vct_view(voxgi_vct_desc *vd, const voxgi_builtin_scene *bs, int w)
+/* vd: a cone-traced image (method VCT) through camera, with the settings of the old
+   voxgi_vct_desc's zeros (voxgi_render's zeros are the measured defaults): 128 voxels, 16 rays per
+   pixel, 16 cones at every pixel, isotropic mips; all else zero. */
+static inline void vct_desc_old(voxgi_render_desc *vd, const voxgi_camera *camera)
 {
     memset(vd, 0, sizeof *vd);
-    vd->camera = bs->camera;
+    vd->method = VOXGI_RENDER_VCT;
+    vd->camera = *camera;
+    vd->resolution = 128;
+    vd->samples = 16;
+    vd->vct.cones.cones = 16;
+    vd->vct.cone_stride = 1;
+    vd->vct.radiance = VOXGI_VCT_ISOTROPIC;
+}
+
+/* vd: vct_desc_old of a w x w view through the built-in scene's camera. */
+static inline void vct_view(voxgi_render_desc *vd, const voxgi_builtin_scene *bs, int w)
+{
+    vct_desc_old(vd, &bs->camera);
     vd->camera.width = vd->camera.height = w;
+}
+
+/* The radiance store of the old voxgi_vct_desc's filter and octree flag. */
+static inline voxgi_vct_radiance vct_radiance(voxgi_mip_filter filter, int octree)
+{
+    return octree ? VOXGI_VCT_OCTREE : filter == VOXGI_MIPS_ANISOTROPIC ? VOXGI_VCT_ANISOTROPIC : VOXGI_VCT_ISOTROPIC;
 }
 
 /* The leak-room scene (a closed box of zero-thickness faces on the floor of a closed room with a
@@ -264,7 +284,7 @@ static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter
 {
     enum { W = 24 };
     voxgi_builtin_scene bs;
-    voxgi_vct_desc vd;
+    voxgi_render_desc vd;
     voxgi_light lamp;
     float img[W * W * 3];
     double mean[2] = {0, 0}, top = 0;
@@ -284,8 +304,7 @@ static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter
     for (v = 0; v < 2 && !bad; v++) { /* inside the box, then the room from a corner */
         vct_view(&vd, &bs, W);
         vd.resolution = res;
-        vd.filter = filter;
-        vd.octree = octree;
+        vd.vct.radiance = vct_radiance(filter, octree);
         vd.samples = 1;
         vd.hide_emitters = 1;
         if (v) {
@@ -293,7 +312,7 @@ static inline int leak_room_ratios(voxgi_context *ctx, int res, voxgi_mip_filter
             vd.camera.target[0] = 0; vd.camera.target[1] = 0.4; vd.camera.target[2] = 0;
             vd.camera.fovy_degrees = 75;
         }
-        bad = voxgi_vct_render(ctx, &bs.scene, &vd, img, sizeof img, NULL) != VOXGI_OK;
+        bad = voxgi_render(ctx, &bs.scene, &vd, img, sizeof img, NULL) != VOXGI_OK;
         for (i = 0; i < W * W && !bad; i++) {
             double px = (img[3 * i] + img[3 * i + 1] + img[3 * i + 2]) / 3;
             mean[v] += px / (W * W);
@@ -331,7 +350,7 @@ static inline int leak_box_ratios(voxgi_context *ctx, int res, voxgi_mip_filter 
 {
     enum { W = 64 }; /* fine enough to meet the box's corners, where a point's region is hardest to find */
     voxgi_builtin_scene bs;
-    voxgi_vct_desc vd;
+    voxgi_render_desc vd;
     voxgi_light lights[2];
     float img[W * W * 3];
     double mean = 0, top = 0, ground;
@@ -352,10 +371,9 @@ static inline int leak_box_ratios(voxgi_context *ctx, int res, voxgi_mip_filter 
     bs.scene.lights = lights;
     vct_view(&vd, &bs, W);
     vd.resolution = res;
-    vd.filter = filter;
-    vd.octree = octree;
+    vd.vct.radiance = vct_radiance(filter, octree);
     vd.samples = 1;
-    bad = voxgi_vct_render(ctx, &bs.scene, &vd, img, sizeof img, NULL) != VOXGI_OK;
+    bad = voxgi_render(ctx, &bs.scene, &vd, img, sizeof img, NULL) != VOXGI_OK;
     for (i = 0; i < W * W && !bad; i++) {
         double px = (img[3 * i] + img[3 * i + 1] + img[3 * i + 2]) / 3;
         mean += px / (W * W);

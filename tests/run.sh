@@ -78,20 +78,26 @@ matrix_entry() { # std variant N
 
 # Parts left out (voxgi.h's CONFIGURATION). part_entry: the part's macros in C (the implementation
 # at -O0, where the compiler meets every unused function; its object must hold no symbol of the
-# part and be smaller than the whole one, part_whole's) or C++ (-fsyntax-only). The whole objects
-# come from the first part check queued, which the others wait for.
-part_whole() { # N: the whole implementation's objects, with and without GL; every part's symbols in them
+# part and be smaller than the whole one, part_whole's; tu_use, which renders every method, must
+# find the part's methods refused and the public structs' layout, `tu_use --layout`, the whole
+# build's: a part left out takes its implementation only) or C++ (-fsyntax-only). The whole
+# objects and layouts come from the first part check queued, which the others wait for.
+part_whole() { # N: the whole implementation's objects and layouts, with and without GL; every part's symbols in them
     local gl missing=""
     for gl in "" -DVOXGI_NO_GL; do
         ${CC:-cc} -x c -std=c99 -Wall -Wextra -pedantic -Werror -O0 $gl -c -o "$tmp/part_whole$gl.o" \
             tests/compile/tu_impl.c 2>>"$tmp/part_whole.err" || rm -f "$tmp/part_whole$gl.o"
+        { [ -e "$tmp/part_whole$gl.o" ] &&
+          ${CC:-cc} -x c -std=c99 -Wall -Wextra -pedantic -Werror -O0 $gl -c -o "$tmp/part_whole_use$gl.o" tests/compile/tu_use.c &&
+          ${CC:-cc} -o "$tmp/part_whole_use$gl" "$tmp/part_whole$gl.o" "$tmp/part_whole_use$gl.o" -lm -lpthread &&
+          "$tmp/part_whole_use$gl" --layout > "$tmp/part_whole$gl.layout"; } 2>>"$tmp/part_whole.err" || rm -f "$tmp/part_whole$gl.layout"
     done
     if [ -e "$tmp/part_whole.o" ]; then
         for key in "${!part_symbols[@]}"; do
             nm "$tmp/part_whole.o" | awk '{print $NF}' | grep -qE "${part_symbols[$key]}" || missing="$missing $key"
         done
     fi
-    if [ ! -e "$tmp/part_whole.o" ] || [ ! -e "$tmp/part_whole-DVOXGI_NO_GL.o" ]; then
+    if [ ! -e "$tmp/part_whole.layout" ] || [ ! -e "$tmp/part_whole-DVOXGI_NO_GL.layout" ]; then
         { echo fail; head -c 600 "$tmp/part_whole.err"; } > "$tmp/$1.status"
     elif [ -n "$missing" ]; then
         { echo fail; echo "no symbol of$missing in the whole object: their patterns test nothing"; } > "$tmp/$1.status"
@@ -127,6 +133,9 @@ part_entry() { # std key macros N
         { echo fail; echo "still in the object: $left"; } > "$tmp/$4.status"
     elif [ -z "$whole_size" ] || [ "$size" -ge "$whole_size" ]; then
         { echo fail; echo "the object is not smaller than the whole one (${whole_size:-none})"; } > "$tmp/$4.status"
+    elif ! "$obj" --layout > "$obj.layout" 2>&1 || ! cmp -s "$obj.layout" "${whole%.o}.layout"; then
+        { echo fail; echo "the public structs' layout is not the whole build's:" \
+              $(diff <(tr ' ' '\n' < "${whole%.o}.layout" 2>/dev/null) <(tr ' ' '\n' < "$obj.layout") | grep '^[<>]' | head -n 8); } > "$tmp/$4.status"
     else
         echo pass > "$tmp/$4.status"
     fi
@@ -189,10 +198,10 @@ part_symbols=([octree]='^voxgi__?svo_|^voxgi__glsl_(cone_)?svo'
               [light_space]='^voxgi__?(tsm|rsm|sh)_|^voxgi__view_|^voxgi__glsl_(tsm|rsm|sh)_'
               [screen_space]='^voxgi_(ao|ssgi|screen_filter|hammersley|radical_inverse)(_|$)|^voxgi__(screen|filter)_|^voxgi__glsl_screen_'
               [line_space]='^voxgi_(linespace|_ls)_|^voxgi__glsl_linespace(_light|_rays)?$'
-              [reference]='^voxgi_reference_render$|^voxgi__(path|render_rows|reference_defaults|camera_sees)$')
+              [reference]='^voxgi__(path|ref_rows|reference_trace|camera_sees)$')
 part_symbols[cone_tracing]="^voxgi__?cone_|^voxgi_specular_half_angle$|^voxgi__glsl_(cone_|out_rgba)|${part_symbols[light_injection]}"
 part_macros[all_parts]="${part_macros[*]}"
-part_symbols[all_parts]="$(IFS='|'; echo "${part_symbols[*]}")|^voxgi_voxels_occluded$|^voxgi__(occ_|traverse$)|^voxgi__glsl_voxel_traverse$"
+part_symbols[all_parts]="$(IFS='|'; echo "${part_symbols[*]}")" # voxel visibility (voxgi_voxels_occluded) is part 5's: it stays
 check part_whole_objects status part_whole
 for key in octree cone_tracing light_injection light_space screen_space line_space reference all_parts; do
     for gl in "" " -DVOXGI_NO_GL"; do

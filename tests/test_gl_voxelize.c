@@ -1231,7 +1231,7 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
         for (b = 0; b < 2; b++) {
             voxgi_inject_desc id;
             voxgi_cone_desc cd;
-            voxgi_vct_desc vd;
+            voxgi_render_desc vd;
             voxgi_voxels *vx;
             voxgi_volume *vol;
             memset(&id, 0, sizeof id);
@@ -1247,9 +1247,9 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
             voxgi_voxels_destroy(ctx[b], vx);
             vd.resolution = 32;
             vd.samples = 2;
-            vd.filter = (voxgi_mip_filter)f;
-            vd.shadow_rays = 1;
-            TH_CHECK(voxgi_vct_render(ctx[b], &bs.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx[b]));
+            vd.vct.radiance = vct_radiance((voxgi_mip_filter)f, 0);
+            vd.vct.shadow_rays = 1;
+            TH_CHECK(voxgi_render(ctx[b], &bs.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx[b]));
         }
         for (i = 0; i < 3 * N; i++) { worst_irr = fmax(worst_irr, fabs(irr[0][i] - irr[1][i])); mean_irr += irr[0][i] / (6.0 * N); }
         for (i = 0; i < N; i++) worst_occ = fmax(worst_occ, fabs(occ[0][i] - occ[1][i]));
@@ -1265,14 +1265,14 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
     {   /* three bounces among the voxels, gathered on each backend from the same direct light: each
            bounce's gather differs as the cones do, and so the image by at most three times that */
         double worst_b = 0, mean_b = 0;
-        voxgi_vct_desc vd;
+        voxgi_render_desc vd;
         for (b = 0; b < 2; b++) {
             vct_view(&vd, &bs, W);
             vd.resolution = 32;
             vd.samples = 2;
-            vd.shadow_rays = 1;
+            vd.vct.shadow_rays = 1;
             vd.bounces = 3;
-            TH_CHECK(voxgi_vct_render(ctx[b], &bs.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "bounces: %s", voxgi_last_error(ctx[b]));
+            TH_CHECK(voxgi_render(ctx[b], &bs.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "bounces: %s", voxgi_last_error(ctx[b]));
         }
         for (i = 0; i < 3 * W * W; i++) { worst_b = fmax(worst_b, fabs(img[0][i] - img[1][i])); mean_b += img[0][i] / (3.0 * W * W); }
         printf("    3 bounces, GL vs CPU: image within %.3g (mean %.3g)\n", worst_b, mean_b);
@@ -1287,16 +1287,16 @@ static void test_gl_raster_cone_tracing_equals_cpu(void)
         int bounces;
         TH_CHECK(leak_box_with_lamp(ctx[0], &box, lights) == VOXGI_OK, "leak-box");
         for (bounces = 1; bounces <= 3; bounces += 2) {
-            voxgi_vct_desc vd;
+            voxgi_render_desc vd;
             double worst = 0, mean = 0;
             for (b = 0; b < 2; b++) {
                 vct_view(&vd, &box, W);
                 vd.resolution = 32;
                 vd.samples = 2;
-                vd.shadow_rays = 1;
+                vd.vct.shadow_rays = 1;
                 vd.bounces = bounces;
                 vd.hide_emitters = 1;
-                TH_CHECK(voxgi_vct_render(ctx[b], &box.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "enclosed: %s", voxgi_last_error(ctx[b]));
+                TH_CHECK(voxgi_render(ctx[b], &box.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "enclosed: %s", voxgi_last_error(ctx[b]));
             }
             for (i = 0; i < 3 * W * W; i++) { worst = fmax(worst, fabs(img[0][i] - img[1][i])); mean += img[0][i] / (3.0 * W * W); }
             TH_CHECK(mean > 0.01 && worst <= bounces * cone_tolerance() * mean, "enclosed, %d bounce(s): image differs by %g (mean %g)", bounces, worst, mean);
@@ -1392,15 +1392,15 @@ static void test_gl_octree_cones_equal_cpu(void)
         double worst = 0, mean_img = 0;
         TH_CHECK(leak_box_with_lamp(ctx[0], &box, lights) == VOXGI_OK, "leak-box");
         for (b = 0; b < 2; b++) {
-            voxgi_vct_desc vd;
+            voxgi_render_desc vd;
             img[b] = (float *)malloc(W * W * 12);
             vct_view(&vd, &box, W);
             vd.resolution = 32;
             vd.samples = 2;
-            vd.shadow_rays = 1;
+            vd.vct.shadow_rays = 1;
             vd.hide_emitters = 1;
-            vd.octree = 1;
-            TH_CHECK(voxgi_vct_render(ctx[b], &box.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "enclosed: %s", voxgi_last_error(ctx[b]));
+            vd.vct.radiance = VOXGI_VCT_OCTREE;
+            TH_CHECK(voxgi_render(ctx[b], &box.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "enclosed: %s", voxgi_last_error(ctx[b]));
         }
         for (i = 0; i < 3 * W * W; i++) { worst = fmax(worst, fabs(img[0][i] - img[1][i])); mean_img += img[0][i] / (3.0 * W * W); }
         printf("    GL octree cones from an enclosed region vs CPU: image within %.3g of its mean (%.3g)\n", worst / mean_img, mean_img);

@@ -676,7 +676,8 @@ static void test_exact_area_light_image(void)
     quads q;
     voxgi_mesh mesh;
     voxgi_scene sc;
-    voxgi_vct_desc vd;
+    voxgi_camera cam;
+    voxgi_render_desc vd;
     voxgi__tracer tr;
     voxgi__lights Ls;
     static float img[2][W * W * 3], pos[W * W * 3], nrm[W * W * 3];
@@ -691,14 +692,15 @@ static void test_exact_area_light_image(void)
     rect.edge_u[0] = 0.4f; rect.edge_v[2] = 0.4f; /* u x v = -y: faces the floor */
     rect.intensity[0] = rect.intensity[1] = rect.intensity[2] = 5;
     scene_of_quads(&sc, &mesh, &q, &mat, 1, &rect, 1);
-    memset(&vd, 0, sizeof vd);
-    vd.camera.eye[0] = 0.01; vd.camera.eye[1] = 3; vd.camera.eye[2] = 0.3;
-    vd.camera.fovy_degrees = 30;
-    vd.camera.width = vd.camera.height = W;
-    vd.no_gi = 1;
+    memset(&cam, 0, sizeof cam);
+    cam.eye[0] = 0.01; cam.eye[1] = 3; cam.eye[2] = 0.3;
+    cam.fovy_degrees = 30;
+    cam.width = cam.height = W;
+    vct_desc_old(&vd, &cam);
+    vd.direct_only = 1;
     for (k = 0; k < 2; k++) {
-        vd.sampled_direct = k;
-        TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, img[k], sizeof img[k], NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+        vd.vct.sampled_direct = k;
+        TH_CHECK(voxgi_render(ctx, &sc, &vd, img[k], sizeof img[k], NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
     }
     TH_CHECK(voxgi_gbuffer_render(ctx, &sc, &vd.camera, pos, nrm, tri) == VOXGI_OK && voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK &&
              voxgi__lights_build(ctx, &sc, &tr, &Ls) == VOXGI_OK, "G-buffer: %s", voxgi_last_error(ctx));

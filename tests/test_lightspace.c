@@ -273,7 +273,7 @@ static void test_reference_sees_through_leaves(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     stack_scene S;
-    voxgi_reference_desc d;
+    voxgi_render_desc d;
     float rgb[3 * 9 * 9];
     double worst[2] = {0, 0};
     int second, i;
@@ -281,12 +281,14 @@ static void test_reference_sees_through_leaves(void)
         double want = 0.5 / 3.14159265358979 * 0.343 * (second ? 0.4 : 1);
         stack_make(&S, 0.7f, 0.4f, second, 0);
         memset(&d, 0, sizeof d);
+        d.method = VOXGI_RENDER_REFERENCE;
         d.camera.eye[1] = 0.9; d.camera.eye[2] = -3; /* under the lowest quad, looking at the ground's centre */
         d.camera.fovy_degrees = 4;
         d.camera.width = d.camera.height = 9;
         d.samples = 4;
         d.seed = 1;
-        TH_CHECK(voxgi_reference_render(ctx, &S.scene, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        d.direct_only = 1; /* the old bounces 0: direct light only */
+        TH_CHECK(voxgi_render(ctx, &S.scene, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         for (i = 0; i < 3 * 81; i++) worst[second] = fmax(worst[second], fabs(rgb[i] - want) / want);
     }
     printf("    the ground under three leaves: relative error %.2e; with a fourth of another material %.2e\n", worst[0], worst[1]);
@@ -294,17 +296,16 @@ static void test_reference_sees_through_leaves(void)
     voxgi_destroy(ctx);
 }
 
-/* voxgi_tsm_render of the ground under the stack equals the reference's direct light, for the
-   sun (to 1e-5) and for a spot light (its cone's falloff and the inverse square included; to 1%:
+/* The TSM image (voxgi_render) of the ground under the stack equals the reference's direct light,
+   for the sun (to 1e-5) and for a spot light (its cone's falloff and the inverse square included; to 1%:
    the two sample other points of each pixel, where the spot's light varies): where every layer
    has a slice of its own the maps count them all. */
 static void test_tsm_image_equals_reference(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     stack_scene S;
-    voxgi_reference_desc d;
-    voxgi_tsm_image_desc td;
-    voxgi_tsm_image_info ti;
+    voxgi_render_desc d, td;
+    voxgi_render_info ti;
     float ref[3 * 9 * 9], img[3 * 9 * 9];
     double worst[2] = {0, 0};
     int spot, i;
@@ -318,16 +319,19 @@ static void test_tsm_image_equals_reference(void)
             S.sun.intensity[0] = S.sun.intensity[1] = S.sun.intensity[2] = 20;
         }
         memset(&d, 0, sizeof d);
+        d.method = VOXGI_RENDER_REFERENCE;
         d.camera.eye[1] = 0.9; d.camera.eye[2] = -3;
         d.camera.fovy_degrees = 4;
         d.camera.width = d.camera.height = 9;
         d.samples = 4;
         d.seed = 1;
+        d.direct_only = 1; /* the old bounces 0: direct light only */
         memset(&td, 0, sizeof td);
+        td.method = VOXGI_RENDER_TSM;
         td.camera = d.camera;
-        td.tsm.size = 128;
+        td.tsm.maps.size = 128;
         td.seed = 1;
-        TH_CHECK(voxgi_reference_render(ctx, &S.scene, &d, ref, sizeof ref, NULL) == VOXGI_OK && voxgi_tsm_render(ctx, &S.scene, &td, img, sizeof img, &ti) == VOXGI_OK,
+        TH_CHECK(voxgi_render(ctx, &S.scene, &d, ref, sizeof ref, NULL) == VOXGI_OK && voxgi_render(ctx, &S.scene, &td, img, sizeof img, &ti) == VOXGI_OK,
                  "%s", voxgi_last_error(ctx));
         TH_CHECK(ti.maps == 1, "%d maps", ti.maps);
         for (i = 0; i < 3 * 81; i++) worst[spot] = fmax(worst[spot], fabs(img[i] - ref[i]) / ref[i]);
@@ -656,23 +660,24 @@ static void test_rsm_gather_stride(void)
     enum { W = 48 };
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_builtin_scene bs;
-    voxgi_rsm_image_desc d;
-    voxgi_rsm_image_info full, strided;
+    voxgi_render_desc d;
+    voxgi_render_info full, strided;
     static float a[3 * W * W], b[3 * W * W];
     double diff = 0, sum = 0;
     int i;
     TH_CHECK(voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     memset(&d, 0, sizeof d);
+    d.method = VOXGI_RENDER_RSM;
     d.camera = bs.camera;
     d.camera.width = d.camera.height = W;
-    d.rsm.size = 64;
-    d.visibility = VOXGI_VISIBILITY_NONE;
+    d.rsm.maps.size = 64;
+    d.rsm.visibility = VOXGI_VISIBILITY_NONE;
     d.samples = 1;
     d.hide_emitters = 1;
-    d.gather_stride = 1;
-    TH_CHECK(voxgi_rsm_render(ctx, &bs.scene, &d, a, sizeof a, &full) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    d.gather_stride = 4;
-    TH_CHECK(voxgi_rsm_render(ctx, &bs.scene, &d, b, sizeof b, &strided) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    d.rsm.gather_stride = 1;
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &d, a, sizeof a, &full) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    d.rsm.gather_stride = 4;
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &d, b, sizeof b, &strided) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     for (i = 0; i < 3 * W * W; i++) { diff += fabs((double)a[i] - b[i]); sum += a[i]; }
     printf("    %lu of %lu pixels gather at stride 4 (%lu at 1); mean change %.3f%%\n", (unsigned long)strided.gathered, (unsigned long)(W * W),
            (unsigned long)full.gathered, 100 * diff / sum);
@@ -765,25 +770,26 @@ static void test_sh_image(void)
     enum { W = 32 };
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_builtin_scene bs;
-    voxgi_sh_image_desc d;
-    voxgi_sh_image_info info;
-    voxgi_reference_desc rd;
+    voxgi_render_desc d, rd;
+    voxgi_render_info info;
     static float img[3 * W * W], ref[3 * W * W];
     double a = 0, b = 0;
     int x, y;
     TH_CHECK(voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     memset(&d, 0, sizeof d);
+    d.method = VOXGI_RENDER_SH;
     d.camera = bs.camera;
     d.camera.width = d.camera.height = W;
     d.samples = 4;
     d.hide_emitters = 1;
-    TH_CHECK(voxgi_sh_render(ctx, &bs.scene, &d, img, sizeof img, &info) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &d, img, sizeof img, &info) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     memset(&rd, 0, sizeof rd);
+    rd.method = VOXGI_RENDER_REFERENCE;
     rd.camera = d.camera;
     rd.samples = 256;
     rd.bounces = 1;
     rd.hide_emitters = 1;
-    TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, ref, sizeof ref, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &rd, ref, sizeof ref, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     for (y = 0; y < 3; y++) /* the ceiling's rows, away from the light */
         for (x = 2; x < 8; x++) { a += img[3 * (y * W + x) + 1]; b += ref[3 * (y * W + x) + 1]; }
     printf("    ceiling (green): SH %.4f, reference %.4f; %lu bytes\n", a, b, (unsigned long)info.bytes);
@@ -808,8 +814,7 @@ static void test_bounce_input(void)
     voxgi_fit_desc fit;
     voxgi_voxels *vox = NULL;
     voxgi_voxelize_desc vd;
-    voxgi_sh_image_desc hd;
-    voxgi_rsm_image_desc qd;
+    voxgi_render_desc hd, qd;
     float p[3] = {0, NAN, 0}, q[3] = {0, 0.5f, 0}, far[3] = {1e30f, 0, 0}, up[3] = {0, 1, 0}, e[3], img[3 * 4 * 4];
     stack_make(&S, 0.7f, 0.4f, 0, 0);
     memset(&d, 0, sizeof d);
@@ -869,21 +874,23 @@ static void test_bounce_input(void)
     S.scene.light_count = 1;
 
     memset(&hd, 0, sizeof hd);
+    hd.method = VOXGI_RENDER_SH;
     hd.camera.eye[1] = 5;
     hd.camera.fovy_degrees = 40;
     hd.camera.eye[2] = 0.1;
     hd.camera.width = hd.camera.height = 4;
-    hd.opening = 9;
-    TH_CHECK(voxgi_sh_render(ctx, &S.scene, &hd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "opening 9");
-    hd.opening = 0;
-    TH_CHECK(voxgi_sh_render(ctx, &S.scene, &hd, img, sizeof img - 4, NULL) == VOXGI_ERR_BUFFER_TOO_SMALL, "a short buffer");
+    hd.sh.opening = 9;
+    TH_CHECK(voxgi_render(ctx, &S.scene, &hd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "opening 9");
+    hd.sh.opening = 0;
+    TH_CHECK(voxgi_render(ctx, &S.scene, &hd, img, sizeof img - 4, NULL) == VOXGI_ERR_BUFFER_TOO_SMALL, "a short buffer");
     memset(&qd, 0, sizeof qd);
+    qd.method = VOXGI_RENDER_RSM;
     qd.camera = hd.camera;
-    qd.gather_stride = 65;
-    TH_CHECK(voxgi_rsm_render(ctx, &S.scene, &qd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "stride 65");
-    qd.gather_stride = 0;
-    qd.visibility = (voxgi_visibility)5;
-    TH_CHECK(voxgi_rsm_render(ctx, &S.scene, &qd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "visibility 5");
+    qd.rsm.gather_stride = 65;
+    TH_CHECK(voxgi_render(ctx, &S.scene, &qd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "stride 65");
+    qd.rsm.gather_stride = 0;
+    qd.rsm.visibility = (voxgi_visibility)5;
+    TH_CHECK(voxgi_render(ctx, &S.scene, &qd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "visibility 5");
     voxgi_destroy(ctx);
 }
 

@@ -216,19 +216,19 @@ static void test_cornell_direct_light(void)
     static unsigned char seen[P], masked[P];
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
     voxgi_builtin_scene bs;
-    voxgi_reference_desc rd;
-    voxgi_linespace_image_desc d;
+    voxgi_render_desc rd, d;
     double err[3], mean[3] = {0, 0, 0};
     int m, i, x, y, out_of_range = 0;
     TH_CHECK(voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     bs.camera.width = bs.camera.height = W;
     memset(&rd, 0, sizeof rd);
+    rd.method = VOXGI_RENDER_REFERENCE;
     rd.camera = bs.camera;
     rd.samples = 1024;
-    rd.bounces = 0;
+    rd.direct_only = 1; /* the direct light alone (the old bounces 0) */
     rd.seed = 5;
     rd.hide_emitters = 1;
-    TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, ref, sizeof ref, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &rd, ref, sizeof ref, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     TH_CHECK(voxgi_gbuffer_render(ctx, &bs.scene, &bs.camera, NULL, NULL, tri) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     for (i = 0; i < P; i++) seen[i] = tri[i] != UINT32_MAX && bs.scene.materials[bs.scene.meshes[0].material_ids ? bs.scene.meshes[0].material_ids[tri[i]] : 0].emission[0] > 0;
     for (i = 0; i < P; i++) /* within 3 pixels of the light */
@@ -241,16 +241,18 @@ static void test_cornell_direct_light(void)
         double num = 0, den = 0;
         int bx, by, c;
         memset(&d, 0, sizeof d);
+        d.method = VOXGI_RENDER_LINESPACE;
         d.camera = bs.camera;
-        d.mode = m ? VOXGI_LINESPACE_FAST : VOXGI_LINESPACE_EXACT;
-        d.exact_ends = m == 2 ? 24 : 0;
-        d.samples = 4;
-        d.supersample = 4;
+        d.linespace.mode = m ? VOXGI_LINESPACE_FAST : VOXGI_LINESPACE_EXACT;
+        d.linespace.exact_ends = m == 2 ? 24 : 0;
+        d.linespace.samples = 4;
+        d.linespace.supersample = 4;
         d.seed = 1;
         d.hide_emitters = 1;
-        d.tree.n = 8;
-        d.tree.depth = 2;
-        TH_CHECK(voxgi_linespace_render(ctx, &bs.scene, &d, img[m], sizeof img[m], vis, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        d.linespace.tree.n = 8;
+        d.linespace.tree.depth = 2;
+        d.linespace.visible = vis;
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &d, img[m], sizeof img[m], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         for (i = 0; i < P; i++) out_of_range += !(vis[i] >= 0 && vis[i] <= 1);
         for (by = 0; by < W; by += 4)
             for (bx = 0; bx < W; bx += 4) {
@@ -287,7 +289,7 @@ static void test_linespace_input(void)
     voxgi_linespace *L = NULL;
     voxgi_linespace_desc td;
     voxgi_linespace_light_desc d;
-    voxgi_linespace_image_desc id;
+    voxgi_render_desc id;
     float rgb[3];
     static float rgb4[3 * 16];
     scene_of_triangles(&sc, &mesh, pos, 3 * (size_t)floor_and_box(pos, 0), NULL, 0);
@@ -306,15 +308,20 @@ static void test_linespace_input(void)
     nan_p[1] = NAN;
     TH_CHECK(voxgi_linespace_light(ctx, L, &d, 1, nan_p, nrm, &v, NULL, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a NaN point accepted");
     memset(&id, 0, sizeof id);
+    id.method = VOXGI_RENDER_LINESPACE;
+    id.linespace.samples = 16;    /* the old defaults: 16 shadow rays, */
+    id.linespace.supersample = 1; /* the pixel's centre */
     id.camera.eye[2] = -3; id.camera.eye[1] = 1; id.camera.fovy_degrees = 40; id.camera.width = id.camera.height = 1;
     { /* no area light: the plan leaves the line space out, and the image holds only the (absent) emission */
-        voxgi_linespace_image_info ii;
+        voxgi_render_info ii;
         float vis = -1;
         rgb[0] = rgb[1] = rgb[2] = -1;
-        TH_CHECK(voxgi_linespace_render(ctx, &sc, &id, rgb, sizeof rgb, &vis, &ii) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        id.linespace.visible = &vis;
+        TH_CHECK(voxgi_render(ctx, &sc, &id, rgb, sizeof rgb, &ii) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        id.linespace.visible = NULL;
         TH_CHECK(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0 && vis == 0, "without an area light: %g %g %g, visible %g", rgb[0], rgb[1], rgb[2], vis);
-        TH_CHECK(ii.lights == 0 && ii.tree.bytes == 0 && ii.rays.rays == 0, "without an area light: %d lights, a %lu-byte tree, %lu rays", ii.lights,
-                 (unsigned long)ii.tree.bytes, (unsigned long)ii.rays.rays);
+        TH_CHECK(ii.lights == 0 && ii.tree.bytes == 0 && ii.shadow_rays.rays == 0, "without an area light: %d lights, a %lu-byte tree, %lu rays", ii.lights,
+                 (unsigned long)ii.tree.bytes, (unsigned long)ii.shadow_rays.rays);
     }
     voxgi_linespace_destroy(ctx, L);
     { /* an emissive quad over the floor with a degenerate emissive triangle on its edge: one light; the furnace's
@@ -325,7 +332,7 @@ static void test_linespace_input(void)
                                         -0.2f, 1, -0.2f, -0.2f, 1, 0.2f, 0.2f, 1, 0.2f}; /* the quad's second half */
         static uint32_t ids[5] = {0, 0, 1, 1, 1};
         static const voxgi_material mats[2] = {{{0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0}, {{0.5f, 0.5f, 0.5f}, {5, 5, 5}, 0}};
-        voxgi_linespace_image_info info;
+        voxgi_render_info info;
         voxgi_builtin_scene bs;
         memcpy(lit, pos, sizeof pos);
         memcpy(lit + 18, quadl, sizeof quadl);
@@ -334,15 +341,18 @@ static void test_linespace_input(void)
         sc.materials = mats;
         sc.material_count = 2;
         memset(&id, 0, sizeof id);
+        id.method = VOXGI_RENDER_LINESPACE;
+        id.linespace.samples = 16;    /* the old defaults */
+        id.linespace.supersample = 1;
         id.camera.eye[1] = 3; id.camera.eye[2] = -3; id.camera.fovy_degrees = 40; id.camera.width = id.camera.height = 4;
-        id.tree.n = 4;
-        id.tree.depth = 2;
-        TH_CHECK(voxgi_linespace_render(ctx, &sc, &id, rgb4, sizeof rgb4, NULL, &info) == VOXGI_OK && info.lights == 1, "%s (lights %d)",
+        id.linespace.tree.n = 4;
+        id.linespace.tree.depth = 2;
+        TH_CHECK(voxgi_render(ctx, &sc, &id, rgb4, sizeof rgb4, &info) == VOXGI_OK && info.lights == 1, "%s (lights %d)",
                  voxgi_last_error(ctx), info.lights);
         TH_CHECK(voxgi_builtin_scene_create(ctx, "furnace", &bs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         bs.camera.width = bs.camera.height = 4;
         id.camera = bs.camera;
-        TH_CHECK(voxgi_linespace_render(ctx, &bs.scene, &id, rgb4, sizeof rgb4, NULL, NULL) == VOXGI_ERR_UNSUPPORTED, "the furnace's emitters accepted");
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &id, rgb4, sizeof rgb4, NULL) == VOXGI_ERR_UNSUPPORTED, "the furnace's emitters accepted");
         voxgi_builtin_scene_destroy(ctx, &bs);
     }
     td.depth = 7;

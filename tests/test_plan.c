@@ -2,6 +2,8 @@
    or left out where the scene has or lacks what it needs, its bytes against what the passes then
    allocate (exactly where the formula is the pass's, within a factor where it is an estimate from
    the surface), what the camera sees, the grid and cones from an error, the octree under a budget;
+   the plan following the render desc it is given (its radiance store, direct light only, bounces,
+   hidden emitters) and voxgi_render running exactly the settings voxgi_render_resolve gives;
    and the images following their plans (no voxels where nothing can bounce, no line space without
    an area light), logging what they leave out. */
 #include "../voxgi.h"
@@ -28,25 +30,66 @@ static voxgi_context *plan_ctx(void)
     return voxgi_create(&d, &ctx) == VOXGI_OK ? ctx : NULL;
 }
 
-static int kept(const voxgi_plan_info *p, const char *name)
+/* The item's kept (0 or 1), or -1 (and a line) when the plan has no such item. */
+static int kept(const voxgi_plan_info *p, voxgi_plan_item_id id)
 {
-    const voxgi_plan_item *it = voxgi_plan_find(p, name);
-    if (!it) printf("    no item %s\n", name);
+    const voxgi_plan_item *it = voxgi_plan_find(p, id);
+    if (!it) printf("    no item %d\n", (int)id);
     return it ? it->kept : -1;
 }
 
-static voxgi_result plan_of(voxgi_context *ctx, const voxgi_scene *sc, voxgi_plan_method m, const voxgi_camera *cam, int res, voxgi_plan_info *p)
+/* The item's why, or "(none)" when the plan has no such item. */
+static const char *why(const voxgi_plan_info *p, voxgi_plan_item_id id)
 {
-    voxgi_plan_request q;
-    memset(&q, 0, sizeof q);
-    q.method = m;
-    q.camera = cam;
-    q.resolution = res;
-    return voxgi_plan(ctx, sc, &q, p);
+    const voxgi_plan_item *it = voxgi_plan_find(p, id);
+    return it ? it->why : "(none)";
+}
+
+/* The item's bytes, or 0 when the plan has no such item. */
+static uint64_t item_bytes(const voxgi_plan_info *p, voxgi_plan_item_id id)
+{
+    const voxgi_plan_item *it = voxgi_plan_find(p, id);
+    return it ? it->bytes : 0;
+}
+
+/* d: method m, all else zero, and the camera (NULL: zero, the planner fits one) with resolution res. */
+static void desc_of(voxgi_render_desc *d, voxgi_render_method m, const voxgi_camera *cam, int res)
+{
+    memset(d, 0, sizeof *d); /* the padding too: resolved descs are compared with memcmp */
+    d->method = m;
+    if (cam) d->camera = *cam;
+    d->resolution = res;
+}
+
+static voxgi_result plan_of(voxgi_context *ctx, const voxgi_scene *sc, voxgi_render_method m, const voxgi_camera *cam, int res, voxgi_plan_info *p)
+{
+    voxgi_render_desc d;
+    desc_of(&d, m, cam, res);
+    return voxgi_plan(ctx, sc, &d, 0, p);
+}
+
+/* d: method m, a w x w view through the built-in scene's camera, all else zero. */
+static void view_of(voxgi_render_desc *d, voxgi_render_method m, const voxgi_builtin_scene *bs, int w)
+{
+    desc_of(d, m, &bs->camera, 0);
+    d->camera.width = d->camera.height = w;
+}
+
+/* The cone tracer's old zeros, which the images below were written against (the new zeros are
+   the measured front's middle): 16 camera rays, 16 cones at every pixel, isotropic mips. */
+static void vct_old_zeros(voxgi_render_desc *d)
+{
+    d->samples = 16;
+    d->vct.cones.cones = 16;
+    d->vct.cone_stride = 1;
+    d->vct.radiance = VOXGI_VCT_ISOTROPIC;
 }
 
 /* A floor, an emissive quad, a translucent triangle, a black triangle; a point, a directional and a
-   rect light: every count exact. */
+   rect light: every count exact. No camera given: the planner fits one to the bounds (x and z in
+   [-1, 1], y in [0, 1]: centre (0, 0.5, 0), largest half extent 1, so the eye at (0, 1.1, -3.2)),
+   above the lamp's plane (y = 1), whose quad faces down (its first triangle's (v1 - v0) x (v2 - v0)
+   is -Y): the camera sees its back, no emitter in view. */
 static void test_plan_counts(void)
 {
     voxgi_context *ctx = plan_ctx();
@@ -58,6 +101,9 @@ static void test_plan_counts(void)
     voxgi_scene sc;
     voxgi_mesh mesh;
     voxgi_plan_info p;
+    voxgi_render_desc d, used;
+    voxgi_fit_desc fit;
+    voxgi_grid g;
     quads q;
     memset(mats, 0, sizeof mats);
     memset(lights, 0, sizeof lights);
@@ -78,17 +124,34 @@ static void test_plan_counts(void)
     quad(&q, c_glass, 2);
     quad(&q, c_black, 3);
     scene_of_quads(&sc, &mesh, &q, mats, 4, lights, 3);
-    TH_CHECK(ctx && plan_of(ctx, &sc, VOXGI_PLAN_VCT, NULL, 32, &p) == VOXGI_OK, "%s", ctx ? voxgi_last_error(ctx) : "no context");
+    TH_CHECK(ctx && plan_of(ctx, &sc, VOXGI_RENDER_VCT, NULL, 32, &p) == VOXGI_OK, "%s", ctx ? voxgi_last_error(ctx) : "no context");
     TH_CHECK(p.triangles == 8 && p.emissive_triangles == 2 && p.translucent_triangles == 2 && p.reflective_triangles == 4,
              "triangles %lu, emissive %lu, translucent %lu, reflective %lu", (unsigned long)p.triangles, (unsigned long)p.emissive_triangles,
              (unsigned long)p.translucent_triangles, (unsigned long)p.reflective_triangles);
     TH_CHECK(p.point_lights == 1 && p.directional_lights == 1 && p.rect_lights == 1 && p.spot_lights == 0 && p.area_lights == 2,
              "lights %d %d %d %d, areas %d", p.point_lights, p.directional_lights, p.rect_lights, p.spot_lights, p.area_lights);
     TH_CHECK(fabs(p.surface_area - (4 + 0.16 + 0.3 + 0.3)) < 1e-6, "surface %.9g", p.surface_area);
-    TH_CHECK(p.emitters_in_view == -1 && p.resolution == 32, "in view %d without a camera, resolution %d", p.emitters_in_view, p.resolution);
-    TH_CHECK(!kept(&p, "emission") && !kept(&p, "opacity") && kept(&p, "cones") == 1 && kept(&p, "direct light") == 1, "vct's items");
-    TH_CHECK(!strcmp(voxgi_plan_find(&p, "opacity")->why, "the cone tracer's voxels are opaque"), "opacity: %s", voxgi_plan_find(&p, "opacity")->why);
-    TH_CHECK(plan_of(ctx, &sc, VOXGI_PLAN_TSM, NULL, 0, &p) == VOXGI_OK && kept(&p, "transmittance layers") == 1 && kept(&p, "shadow maps") == 1, "tsm's items");
+    TH_CHECK(p.emitters_in_view == 0, "the fitted camera sees the lamp's back: in view %d", p.emitters_in_view);
+    desc_of(&d, VOXGI_RENDER_VCT, NULL, 32);
+    memset(&used, 0, sizeof used);
+    TH_CHECK(voxgi_render_resolve(ctx, &sc, &d, &used) == VOXGI_OK && used.resolution == 32, "resolution %d", used.resolution);
+    TH_CHECK(fabs(used.camera.eye[0]) < 1e-12 && fabs(used.camera.eye[1] - 1.1) < 1e-12 && fabs(used.camera.eye[2] + 3.2) < 1e-12 &&
+                 fabs(used.camera.target[0]) < 1e-12 && fabs(used.camera.target[1] - 0.5) < 1e-12 && fabs(used.camera.target[2]) < 1e-12 &&
+                 used.camera.fovy_degrees == 40 && used.camera.width == 256 && used.camera.height == 256,
+             "the fitted camera: eye (%g %g %g), target (%g %g %g), fovy %g, %d x %d", used.camera.eye[0], used.camera.eye[1], used.camera.eye[2],
+             used.camera.target[0], used.camera.target[1], used.camera.target[2], used.camera.fovy_degrees, used.camera.width, used.camera.height);
+    memset(&fit, 0, sizeof fit); /* the plan's grid: voxgi_fit_grid of the resolution, a voxel of padding */
+    fit.res = 32;
+    fit.padding = 1;
+    TH_CHECK(voxgi_fit_grid(ctx, &sc, &fit, &g) == VOXGI_OK && !memcmp(g.origin, p.grid.origin, sizeof g.origin) && g.voxel_size == p.grid.voxel_size &&
+                 !memcmp(g.res, p.grid.res, sizeof g.res), "the plan's grid: %d x %d x %d of %g", p.grid.res[0], p.grid.res[1], p.grid.res[2], p.grid.voxel_size);
+    TH_CHECK(!kept(&p, VOXGI_PLAN_EMISSION) && !kept(&p, VOXGI_PLAN_OPACITY) && kept(&p, VOXGI_PLAN_CONES) == 1 && kept(&p, VOXGI_PLAN_DIRECT_LIGHT) == 1, "vct's items");
+    TH_CHECK(!strcmp(why(&p, VOXGI_PLAN_OPACITY), "the cone tracer's voxels are opaque"), "opacity: %s", why(&p, VOXGI_PLAN_OPACITY));
+    TH_CHECK(voxgi_plan_find(&p, VOXGI_PLAN_CONES) && !strcmp(voxgi_plan_find(&p, VOXGI_PLAN_CONES)->name, "cones") &&
+                 voxgi_plan_find(&p, VOXGI_PLAN_CONES)->kind == VOXGI_PLAN_PASS && !voxgi_plan_find(&p, VOXGI_PLAN_SHADOW_MAPS),
+             "the cones' item by its id: its old name, a pass; vct has no shadow maps");
+    TH_CHECK(plan_of(ctx, &sc, VOXGI_RENDER_TSM, NULL, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_TRANSMITTANCE_LAYERS) == 1 && kept(&p, VOXGI_PLAN_SHADOW_MAPS) == 1,
+             "tsm's items");
     voxgi_destroy(ctx);
 }
 
@@ -100,16 +163,16 @@ static void test_plan_emitters_in_view(void)
     voxgi_camera away;
     voxgi_plan_info p;
     TH_CHECK(ctx && voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "cornell-box");
-    TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_REFERENCE, &bs.camera, 0, &p) == VOXGI_OK && p.emitters_in_view == 1 && kept(&p, "seen emission") == 1,
+    TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_RENDER_REFERENCE, &bs.camera, 0, &p) == VOXGI_OK && p.emitters_in_view == 1 && kept(&p, VOXGI_PLAN_SEEN_EMISSION) == 1,
              "the camera's view: %d", p.emitters_in_view);
     away = bs.camera;
     away.target[1] = bs.camera.eye[1] - 10 * (bs.camera.target[1] - bs.camera.eye[1]) - 1000; /* down at the floor from the eye */
     away.target[0] = bs.camera.eye[0];
     away.target[2] = bs.camera.eye[2] + 1;
     away.fovy_degrees = 20;
-    TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_REFERENCE, &away, 0, &p) == VOXGI_OK && p.emitters_in_view == 0 && kept(&p, "seen emission") == 0,
+    TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_RENDER_REFERENCE, &away, 0, &p) == VOXGI_OK && p.emitters_in_view == 0 && kept(&p, VOXGI_PLAN_SEEN_EMISSION) == 0,
              "looking down: %d", p.emitters_in_view);
-    TH_CHECK(!strcmp(voxgi_plan_find(&p, "seen emission")->why, "the camera sees no emitter"), "%s", voxgi_plan_find(&p, "seen emission")->why);
+    TH_CHECK(!strcmp(why(&p, VOXGI_PLAN_SEEN_EMISSION), "the camera sees no emitter"), "%s", why(&p, VOXGI_PLAN_SEEN_EMISSION));
     { /* above the light, looking down at its back: in view, but it emits from its front face only */
         const voxgi_mesh *m;
         size_t mi, t;
@@ -135,112 +198,248 @@ static void test_plan_emitters_in_view(void)
         memcpy(away.eye, c, sizeof c);
         away.eye[1] += 0.5 * fabs(bs.camera.eye[2] - c[2]) + 1e-3;
         away.eye[2] += 1e-3;
-        TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_REFERENCE, &away, 0, &p) == VOXGI_OK && p.emitters_in_view == 0, "the light's back: %d", p.emitters_in_view);
+        TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_RENDER_REFERENCE, &away, 0, &p) == VOXGI_OK && p.emitters_in_view == 0, "the light's back: %d", p.emitters_in_view);
         away.eye[1] = c[1] - 0.5 * fabs(bs.camera.eye[2] - c[2]);
-        TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_REFERENCE, &away, 0, &p) == VOXGI_OK && p.emitters_in_view == 1, "under the light: %d", p.emitters_in_view);
+        TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_RENDER_REFERENCE, &away, 0, &p) == VOXGI_OK && p.emitters_in_view == 1, "under the light: %d", p.emitters_in_view);
     }
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }
 
-/* Bytes: the dense radiance volume and the transmittance maps by their own formulas (exact, but
-   for the radiance volume's few region labels), the set voxels and the line space estimated. */
+/* Bytes: the dense radiance volume (isotropic, the old default, and anisotropic, the new one) and
+   the transmittance maps by their own formulas (exact, but for the radiance volume's few region
+   labels), the set voxels and the line space estimated; each plan is of the very desc rendered. */
 static void test_plan_bytes(void)
 {
     voxgi_context *ctx = plan_ctx();
     voxgi_builtin_scene bs;
     voxgi_plan_info p;
-    voxgi_vct_desc vd;
-    voxgi_vct_info vi;
-    voxgi_tsm_image_desc td;
-    voxgi_tsm_image_info ti;
+    voxgi_render_desc d, used;
+    voxgi_render_info vi;
     voxgi_linespace *L = NULL;
-    voxgi_linespace_desc ld;
     voxgi_linespace_info li;
     static float rgb[3 * 8 * 8];
     const char *names[2] = {"rsm-walls", "foliage"};
     int k;
     TH_CHECK(ctx && voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "cornell-box");
-    TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_VCT, &bs.camera, 40, &p) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    vct_view(&vd, &bs, 8);
-    vd.resolution = 40;
-    vd.cones.cones = 4;
-    TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, rgb, sizeof rgb, &vi) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    {
-        double dense = (double)voxgi_plan_find(&p, "radiance volume")->bytes, ratio = (double)p.voxels / (double)vi.voxels;
-        TH_CHECK(fabs(dense - (double)vi.radiance_bytes) <= 1e-3 * (double)vi.radiance_bytes, "radiance volume: planned %.0f, allocated %lu", dense,
-                 (unsigned long)vi.radiance_bytes);
-        TH_CHECK(ratio > 0.5 && ratio < 2, "set voxels: estimated %lu, voxelized %lu", (unsigned long)p.voxels, (unsigned long)vi.voxels);
-        printf("    cornell-box at 40: voxels estimated %lu, voxelized %lu; radiance %.0f planned, %lu allocated\n", (unsigned long)p.voxels,
-               (unsigned long)vi.voxels, dense, (unsigned long)vi.radiance_bytes);
+    for (k = 0; k < 2; k++) { /* ISOTROPIC; then DEFAULT, anisotropic without a budget */
+        view_of(&d, VOXGI_RENDER_VCT, &bs, 8);
+        vct_old_zeros(&d);
+        d.resolution = 40;
+        d.vct.cones.cones = 4;
+        if (k) d.vct.radiance = VOXGI_VCT_RADIANCE_DEFAULT;
+        TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &d, rgb, sizeof rgb, &vi) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(vi.used.vct.radiance == (k ? VOXGI_VCT_ANISOTROPIC : VOXGI_VCT_ISOTROPIC), "radiance %d", (int)vi.used.vct.radiance);
+        {
+            double dense = (double)item_bytes(&p, VOXGI_PLAN_RADIANCE_VOLUME), ratio = (double)p.voxels / (double)vi.voxels;
+            TH_CHECK(kept(&p, VOXGI_PLAN_RADIANCE_VOLUME) == 1 && fabs(dense - (double)vi.bytes) <= 1e-3 * (double)vi.bytes,
+                     "radiance volume (%s): planned %.0f, allocated %lu", k ? "anisotropic" : "isotropic", dense, (unsigned long)vi.bytes);
+            TH_CHECK(ratio > 0.5 && ratio < 2, "set voxels: estimated %lu, voxelized %lu", (unsigned long)p.voxels, (unsigned long)vi.voxels);
+            printf("    cornell-box at 40 (%s): voxels estimated %lu, voxelized %lu; radiance %.0f planned, %lu allocated\n", k ? "anisotropic" : "isotropic",
+                   (unsigned long)p.voxels, (unsigned long)vi.voxels, dense, (unsigned long)vi.bytes);
+        }
     }
-    memset(&ld, 0, sizeof ld);
-    TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_LINESPACE, NULL, 0, &p) == VOXGI_OK && voxgi_linespace_create(ctx, &bs.scene, &ld, &L) == VOXGI_OK, "%s",
-             voxgi_last_error(ctx));
-    voxgi_linespace_query(L, &li);
-    {
-        double ratio = (double)voxgi_plan_find(&p, "line space")->bytes / (double)li.bytes;
-        TH_CHECK(ratio > 0.5 && ratio < 2, "line space: estimated %lu, built %lu", (unsigned long)voxgi_plan_find(&p, "line space")->bytes, (unsigned long)li.bytes);
+    /* the line space: the tree voxgi_render builds (the resolved desc's: n 4, the scene's depth, 2 under 256 triangles, else 3) */
+    desc_of(&d, VOXGI_RENDER_LINESPACE, NULL, 0);
+    memset(&used, 0, sizeof used);
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && voxgi_render_resolve(ctx, &bs.scene, &d, &used) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(used.linespace.tree.n == 4 && used.linespace.tree.depth == (p.triangles < 256 ? 2 : 3), "the line space's n %d, depth %d (%lu triangles)",
+             used.linespace.tree.n, used.linespace.tree.depth, (unsigned long)p.triangles);
+    TH_CHECK(voxgi_linespace_create(ctx, &bs.scene, &used.linespace.tree, &L) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    if (L) {
+        double ratio;
+        voxgi_linespace_query(L, &li);
+        ratio = (double)item_bytes(&p, VOXGI_PLAN_LINE_SPACE) / (double)li.bytes;
+        TH_CHECK(kept(&p, VOXGI_PLAN_LINE_SPACE) == 1 && ratio > 0.5 && ratio < 2, "line space: estimated %lu, built %lu",
+                 (unsigned long)item_bytes(&p, VOXGI_PLAN_LINE_SPACE), (unsigned long)li.bytes);
+        view_of(&d, VOXGI_RENDER_LINESPACE, &bs, 8);
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &d, rgb, sizeof rgb, &vi) == VOXGI_OK && vi.tree.bytes == li.bytes, "the image's line space: %lu bytes, %lu built (%s)",
+                 (unsigned long)vi.tree.bytes, (unsigned long)li.bytes, voxgi_last_error(ctx));
+        voxgi_linespace_destroy(ctx, L);
     }
-    voxgi_linespace_destroy(ctx, L);
     voxgi_builtin_scene_destroy(ctx, &bs);
     for (k = 0; k < 2; k++) { /* a sun over opaque walls: maps without layers; the foliage's leaves: with them */
         TH_CHECK(voxgi_builtin_scene_create(ctx, names[k], &bs) == VOXGI_OK, "%s", names[k]);
-        TH_CHECK(plan_of(ctx, &bs.scene, VOXGI_PLAN_TSM, NULL, 0, &p) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-        memset(&td, 0, sizeof td);
-        td.camera = bs.camera;
-        td.camera.width = td.camera.height = 8;
-        TH_CHECK(voxgi_tsm_render(ctx, &bs.scene, &td, rgb, sizeof rgb, &ti) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-        TH_CHECK(kept(&p, "transmittance layers") == k && voxgi_plan_find(&p, "shadow maps")->bytes + voxgi_plan_find(&p, "transmittance layers")->bytes == ti.bytes,
-                 "%s: layers %d, planned %lu + %lu, allocated %lu", names[k], kept(&p, "transmittance layers"),
-                 (unsigned long)voxgi_plan_find(&p, "shadow maps")->bytes, (unsigned long)voxgi_plan_find(&p, "transmittance layers")->bytes,
-                 (unsigned long)ti.bytes);
+        view_of(&d, VOXGI_RENDER_TSM, &bs, 8);
+        TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &d, rgb, sizeof rgb, &vi) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(kept(&p, VOXGI_PLAN_TRANSMITTANCE_LAYERS) == k && item_bytes(&p, VOXGI_PLAN_SHADOW_MAPS) + item_bytes(&p, VOXGI_PLAN_TRANSMITTANCE_LAYERS) == vi.bytes,
+                 "%s: layers %d, planned %lu + %lu, allocated %lu", names[k], kept(&p, VOXGI_PLAN_TRANSMITTANCE_LAYERS),
+                 (unsigned long)item_bytes(&p, VOXGI_PLAN_SHADOW_MAPS), (unsigned long)item_bytes(&p, VOXGI_PLAN_TRANSMITTANCE_LAYERS), (unsigned long)vi.bytes);
         voxgi_builtin_scene_destroy(ctx, &bs);
     }
     voxgi_destroy(ctx);
 }
 
-/* The cone tracer's settings from an error (the measured front), and the octree under a budget. */
+/* The cone tracer's settings from an error (the measured front: 8.05% at 64^3, 32 cones, stride 6;
+   7.76% at 96^3, 24 cones; 7.55% at 96^3, 32 cones), its defaults without one (the front's middle),
+   and the octree under a budget. */
 static void test_plan_vct_settings(void)
 {
     voxgi_context *ctx = plan_ctx();
     voxgi_builtin_scene bs;
-    voxgi_plan_request q;
+    voxgi_render_desc q, used;
     voxgi_plan_info p;
     uint64_t dense;
     TH_CHECK(ctx && voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "cornell-box");
-    memset(&q, 0, sizeof q);
+    desc_of(&q, VOXGI_RENDER_VCT, NULL, 0);
+    memset(&used, 0, sizeof used);
     q.error = 0.10;
-    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, &p) == VOXGI_OK && p.resolution == 64 && p.cones == 32 && p.cone_stride == 6 && p.error_reachable,
-             "10%%: %d^3, %d cones, stride %d", p.resolution, p.cones, p.cone_stride);
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_OK && voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_OK && used.resolution == 64 &&
+                 used.vct.cones.cones == 32 && used.vct.cone_stride == 6 && p.expected_error == 0.0805 && p.error_reachable,
+             "10%%: %d^3, %d cones, stride %d (%.4f)", used.resolution, used.vct.cones.cones, used.vct.cone_stride, p.expected_error);
     q.error = 0.08;
-    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, &p) == VOXGI_OK && p.resolution == 96 && p.cones == 24 && p.expected_error <= 0.08 && p.error_reachable,
-             "8%%: %d^3, %d cones (%.4f)", p.resolution, p.cones, p.expected_error);
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_OK && voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_OK && used.resolution == 96 &&
+                 used.vct.cones.cones == 24 && used.vct.cone_stride == 6 && p.expected_error <= 0.08 && p.error_reachable,
+             "8%%: %d^3, %d cones (%.4f)", used.resolution, used.vct.cones.cones, p.expected_error);
     q.error = 0.05;
-    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, &p) == VOXGI_OK && !p.error_reachable && p.resolution == 96 && p.cones == 32, "5%%: reachable %d, %d^3",
-             p.error_reachable, p.resolution);
-    q.error = 0;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_OK && voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_OK && !p.error_reachable &&
+                 used.resolution == 96 && used.vct.cones.cones == 32, "5%%: reachable %d, %d^3", p.error_reachable, used.resolution);
+    q.resolution = 40; /* what is given stays; the error chooses the rest */
+    q.vct.cones.cones = 8;
+    TH_CHECK(voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_OK && used.resolution == 40 && used.vct.cones.cones == 8 && used.vct.cone_stride == 6,
+             "5%% with 40^3 and 8 cones given: %d^3, %d cones, stride %d", used.resolution, used.vct.cones.cones, used.vct.cone_stride);
+    /* no error: the library's default is the front's middle, anisotropic mips without a budget, 24 camera rays, one bounce */
+    desc_of(&q, VOXGI_RENDER_VCT, NULL, 0);
+    TH_CHECK(voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_OK && used.resolution == 96 && used.vct.cones.cones == 24 && used.vct.cone_stride == 6 &&
+                 used.vct.radiance == VOXGI_VCT_ANISOTROPIC && used.samples == 24 && used.bounces == 1 && used.vct.inject_samples == 4,
+             "the default: %d^3, %d cones, stride %d, radiance %d, %d samples, %d bounces, inject %d", used.resolution, used.vct.cones.cones,
+             used.vct.cone_stride, (int)used.vct.radiance, used.samples, used.bounces, used.vct.inject_samples);
     q.resolution = 64;
-    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, &p) == VOXGI_OK && !p.octree && kept(&p, "radiance volume") == 1, "no budget: dense");
-    dense = voxgi_plan_find(&p, "radiance volume")->bytes;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_OK && voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_OK &&
+                 used.vct.radiance != VOXGI_VCT_OCTREE && kept(&p, VOXGI_PLAN_RADIANCE_VOLUME) == 1 && kept(&p, VOXGI_PLAN_RADIANCE_OCTREE) == 0, "no budget: dense");
+    dense = item_bytes(&p, VOXGI_PLAN_RADIANCE_VOLUME);
     q.memory_budget = dense - 1;
-    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, &p) == VOXGI_OK && p.octree && kept(&p, "radiance octree") == 1 && !kept(&p, "radiance volume"),
-             "a budget under the dense volume's %lu bytes: octree %d", (unsigned long)dense, p.octree);
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_OK && voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_OK &&
+                 used.vct.radiance == VOXGI_VCT_OCTREE && kept(&p, VOXGI_PLAN_RADIANCE_OCTREE) == 1 && kept(&p, VOXGI_PLAN_RADIANCE_VOLUME) == 0,
+             "a budget under the dense volume's %lu bytes: radiance %d", (unsigned long)dense, (int)used.vct.radiance);
+    TH_CHECK(!strcmp(why(&p, VOXGI_PLAN_RADIANCE_OCTREE), "the dense volume is over the memory budget"), "%s", why(&p, VOXGI_PLAN_RADIANCE_OCTREE));
     q.memory_budget = 1000;
-    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, &p) == VOXGI_OK && !p.octree, "a budget neither fits: the dense volume stays");
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_OK && voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_OK &&
+                 used.vct.radiance != VOXGI_VCT_OCTREE && kept(&p, VOXGI_PLAN_RADIANCE_VOLUME) == 1, "a budget neither fits: the dense volume stays");
+    q.memory_budget = dense - 1; /* a radiance asked for is kept whatever the budget */
+    q.vct.radiance = VOXGI_VCT_ISOTROPIC;
+    TH_CHECK(voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_OK && used.vct.radiance == VOXGI_VCT_ISOTROPIC, "isotropic asked for: %d", (int)used.vct.radiance);
+    q.vct.radiance = VOXGI_VCT_RADIANCE_DEFAULT;
     q.memory_budget = 0;
-    q.everything = 1;
-    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, &p) == VOXGI_OK && kept(&p, "emission") == 1 && kept(&p, "bounces") == 1, "everything kept");
-    q.everything = 0;
-    q.method = (voxgi_plan_method)99;
-    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, &p) == VOXGI_ERR_INVALID_ARGUMENT, "method 99 accepted");
-    q.method = VOXGI_PLAN_VCT;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, VOXGI_PLAN_EVERYTHING, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_EMISSION) == 1 && kept(&p, VOXGI_PLAN_BOUNCES) == 1,
+             "everything kept");
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_BOUNCES) == 0 && kept(&p, VOXGI_PLAN_VOXELIZATION) == 1 &&
+                 !strcmp(why(&p, VOXGI_PLAN_VOXELIZATION), "a static scene: once (a change of lights re-injects only)"), "static: %s", why(&p, VOXGI_PLAN_VOXELIZATION));
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, VOXGI_PLAN_DYNAMIC, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_VOXELIZATION) == 1 &&
+                 !strcmp(why(&p, VOXGI_PLAN_VOXELIZATION), "the geometry moves: every frame"), "dynamic: %s", why(&p, VOXGI_PLAN_VOXELIZATION));
+    q.method = (voxgi_render_method)99;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_ERR_INVALID_ARGUMENT && voxgi_render_resolve(ctx, &bs.scene, &q, &used) == VOXGI_ERR_INVALID_ARGUMENT,
+             "method 99 accepted");
+    q.method = VOXGI_RENDER_VCT;
     q.error = -1;
-    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, &p) == VOXGI_ERR_INVALID_ARGUMENT, "a negative error accepted");
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_ERR_INVALID_ARGUMENT, "a negative error accepted");
+    q.error = 0.1;
+    q.method = VOXGI_RENDER_REFERENCE;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &q, 0, &p) == VOXGI_ERR_INVALID_ARGUMENT, "an error asked of the path tracer accepted");
+    q.method = VOXGI_RENDER_VCT;
     q.error = 0;
-    TH_CHECK(voxgi_plan(ctx, NULL, &q, &p) == VOXGI_ERR_INVALID_ARGUMENT && voxgi_plan(ctx, &bs.scene, NULL, &p) == VOXGI_ERR_INVALID_ARGUMENT &&
-                 voxgi_plan(ctx, &bs.scene, &q, NULL) == VOXGI_ERR_INVALID_ARGUMENT && voxgi_plan(NULL, &bs.scene, &q, &p) == VOXGI_ERR_INVALID_ARGUMENT,
+    TH_CHECK(voxgi_plan(ctx, NULL, &q, 0, &p) == VOXGI_ERR_INVALID_ARGUMENT && voxgi_plan(ctx, &bs.scene, NULL, 0, &p) == VOXGI_ERR_INVALID_ARGUMENT &&
+                 voxgi_plan(ctx, &bs.scene, &q, 0, NULL) == VOXGI_ERR_INVALID_ARGUMENT && voxgi_plan(NULL, &bs.scene, &q, 0, &p) == VOXGI_ERR_INVALID_ARGUMENT,
              "NULL accepted");
+    TH_CHECK(voxgi_render_resolve(ctx, NULL, &q, &used) == VOXGI_ERR_INVALID_ARGUMENT && voxgi_render_resolve(ctx, &bs.scene, NULL, &used) == VOXGI_ERR_INVALID_ARGUMENT &&
+                 voxgi_render_resolve(ctx, &bs.scene, &q, NULL) == VOXGI_ERR_INVALID_ARGUMENT && voxgi_render_resolve(NULL, &bs.scene, &q, &used) == VOXGI_ERR_INVALID_ARGUMENT,
+             "resolve: NULL accepted");
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
+/* The plan follows the desc: the radiance store asked for (the octree kept, the volume left out;
+   and the other way), the direct light alone (no cones, voxels or injection), bounces, emitters
+   hidden, kept voxels (nothing voxelized); and voxgi_render runs what voxgi_render_resolve gives
+   for the same desc (info.used, byte for byte) and follows the plan voxgi_plan gives: the
+   Cornell box at 16 x 16, 16^3. */
+static void test_plan_follows_request(void)
+{
+    voxgi_context *ctx = plan_ctx();
+    voxgi_builtin_scene bs;
+    voxgi_render_desc d, used;
+    voxgi_render_info info;
+    voxgi_plan_info p;
+    voxgi_voxels *vox = NULL;
+    static float rgb[3 * 16 * 16];
+    int k, i;
+    TH_CHECK(ctx && voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "cornell-box");
+    view_of(&d, VOXGI_RENDER_VCT, &bs, 16);
+    d.resolution = 16;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_RADIANCE_VOLUME) == 1 && kept(&p, VOXGI_PLAN_RADIANCE_OCTREE) == 0 &&
+                 kept(&p, VOXGI_PLAN_CONES) == 1 && kept(&p, VOXGI_PLAN_VOXELS) == 1 && kept(&p, VOXGI_PLAN_LIGHT_INJECTION) == 1,
+             "the default: a dense volume, cones, voxels, injection");
+    d.vct.radiance = VOXGI_VCT_OCTREE;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_RADIANCE_OCTREE) == 1 && kept(&p, VOXGI_PLAN_RADIANCE_VOLUME) == 0 &&
+                 !strcmp(why(&p, VOXGI_PLAN_RADIANCE_OCTREE), "asked for") && !strcmp(why(&p, VOXGI_PLAN_RADIANCE_VOLUME), "the octree asked for"),
+             "the octree asked for: octree %d (%s), volume %d (%s)", kept(&p, VOXGI_PLAN_RADIANCE_OCTREE), why(&p, VOXGI_PLAN_RADIANCE_OCTREE),
+             kept(&p, VOXGI_PLAN_RADIANCE_VOLUME), why(&p, VOXGI_PLAN_RADIANCE_VOLUME));
+    d.memory_budget = 1; /* a volume asked for stays whatever the budget */
+    d.vct.radiance = VOXGI_VCT_ANISOTROPIC;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_RADIANCE_VOLUME) == 1 && kept(&p, VOXGI_PLAN_RADIANCE_OCTREE) == 0,
+             "the volume asked for under a budget of 1 byte");
+    {
+        uint64_t aniso = item_bytes(&p, VOXGI_PLAN_RADIANCE_VOLUME);
+        d.vct.radiance = VOXGI_VCT_ISOTROPIC;
+        TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_RADIANCE_VOLUME) == 1 && item_bytes(&p, VOXGI_PLAN_RADIANCE_VOLUME) < aniso,
+                 "isotropic mips: %lu bytes, anisotropic %lu", (unsigned long)item_bytes(&p, VOXGI_PLAN_RADIANCE_VOLUME), (unsigned long)aniso);
+    }
+    d.memory_budget = 0;
+    d.vct.radiance = VOXGI_VCT_RADIANCE_DEFAULT;
+    d.direct_only = 1;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_CONES) == 0 && kept(&p, VOXGI_PLAN_VOXELS) == 0 &&
+                 kept(&p, VOXGI_PLAN_LIGHT_INJECTION) == 0 && kept(&p, VOXGI_PLAN_RADIANCE_VOLUME) == 0 && kept(&p, VOXGI_PLAN_DIRECT_LIGHT) == 1 &&
+                 !strcmp(why(&p, VOXGI_PLAN_CONES), "the direct light alone asked for"),
+             "direct only: cones %d (%s), voxels %d, injection %d, direct %d", kept(&p, VOXGI_PLAN_CONES), why(&p, VOXGI_PLAN_CONES), kept(&p, VOXGI_PLAN_VOXELS),
+             kept(&p, VOXGI_PLAN_LIGHT_INJECTION), kept(&p, VOXGI_PLAN_DIRECT_LIGHT));
+    TH_CHECK(voxgi_render_resolve(ctx, &bs.scene, &d, &used) == VOXGI_OK && used.bounces == 0, "direct only: %d bounces", used.bounces);
+    d.method = VOXGI_RENDER_RSM; /* the one-bounce methods too */
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_GATHERS) == 0 && kept(&p, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS) == 0,
+             "rsm, direct only: gathers %d, maps %d", kept(&p, VOXGI_PLAN_GATHERS), kept(&p, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS));
+    d.direct_only = 0;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_GATHERS) == 1 && kept(&p, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS) == 1,
+             "rsm: gathers %d, maps %d", kept(&p, VOXGI_PLAN_GATHERS), kept(&p, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS));
+    d.method = VOXGI_RENDER_VCT;
+    d.bounces = 2;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_BOUNCES) == 1, "two bounces: %s", why(&p, VOXGI_PLAN_BOUNCES));
+    d.bounces = 0;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_BOUNCES) == 0 && kept(&p, VOXGI_PLAN_SEEN_EMISSION) == 1,
+             "one bounce: bounces %d; the camera's view: seen emission %d", kept(&p, VOXGI_PLAN_BOUNCES), kept(&p, VOXGI_PLAN_SEEN_EMISSION));
+    d.hide_emitters = 1;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_SEEN_EMISSION) == 0 &&
+                 !strcmp(why(&p, VOXGI_PLAN_SEEN_EMISSION), "hidden (desc.hide_emitters)"), "emitters hidden: %s", why(&p, VOXGI_PLAN_SEEN_EMISSION));
+    d.hide_emitters = 0;
+    TH_CHECK(voxgi_render_voxelize(ctx, &bs.scene, &d, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    d.voxels = vox;
+    TH_CHECK(voxgi_plan(ctx, &bs.scene, &d, 0, &p) == VOXGI_OK && kept(&p, VOXGI_PLAN_VOXELIZATION) == 0 && kept(&p, VOXGI_PLAN_LIGHT_INJECTION) == 1,
+             "kept voxels: voxelization %d (%s)", kept(&p, VOXGI_PLAN_VOXELIZATION), why(&p, VOXGI_PLAN_VOXELIZATION));
+    d.voxels = NULL;
+    for (k = 0; k < 3; k++) { /* the default, the octree asked for, the direct light alone: what ran is what resolve says */
+        voxgi_plan_info planned;
+        view_of(&d, VOXGI_RENDER_VCT, &bs, 16);
+        d.resolution = 16;
+        d.seed = 3;
+        if (k == 1) d.vct.radiance = VOXGI_VCT_OCTREE;
+        if (k == 2) d.direct_only = 1;
+        memset(&used, 0, sizeof used); /* the padding too (info's is zeroed by voxgi_render) */
+        TH_CHECK(voxgi_render_resolve(ctx, &bs.scene, &d, &used) == VOXGI_OK && voxgi_plan(ctx, &bs.scene, &d, 0, &planned) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &d, rgb, sizeof rgb, &info) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(!memcmp(&info.used, &used, sizeof used), "desc %d: info.used is not voxgi_render_resolve's", k);
+        TH_CHECK(used.method == VOXGI_RENDER_VCT && used.resolution == 16 && used.vct.cones.cones == 24 && used.vct.cone_stride == 6 && used.samples == 24 &&
+                     used.vct.radiance == (k == 1 ? VOXGI_VCT_OCTREE : VOXGI_VCT_ANISOTROPIC) && used.bounces == (k == 2 ? 0 : 1),
+                 "desc %d resolved: %d^3, %d cones, stride %d, %d samples, radiance %d, %d bounces", k, used.resolution, used.vct.cones.cones, used.vct.cone_stride,
+                 used.samples, (int)used.vct.radiance, used.bounces);
+        TH_CHECK(info.plan.item_count == planned.item_count && info.plan.bytes == planned.bytes, "desc %d: the image's plan, %d items of %lu bytes; voxgi_plan's %d of %lu", k,
+                 info.plan.item_count, (unsigned long)info.plan.bytes, planned.item_count, (unsigned long)planned.bytes);
+        for (i = 0; i < planned.item_count && i < info.plan.item_count; i++)
+            TH_CHECK(info.plan.items[i].id == planned.items[i].id && info.plan.items[i].kept == planned.items[i].kept && info.plan.items[i].bytes == planned.items[i].bytes,
+                     "desc %d: the image's item %d (%s) is not voxgi_plan's", k, i, info.plan.items[i].name);
+        TH_CHECK(k == 2 ? info.voxels == 0 && info.bytes == 0 && info.gathered == 0 : info.voxels > 0 && info.bytes > 0 && info.gathered > 0,
+                 "desc %d: %lu voxels, %lu radiance bytes, %lu gathers", k, (unsigned long)info.voxels, (unsigned long)info.bytes, (unsigned long)info.gathered);
+    }
+    voxgi_voxels_destroy(ctx, vox);
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }
@@ -254,8 +453,8 @@ static void test_plan_images(void)
     voxgi_builtin_scene bs;
     voxgi_material black[16];
     voxgi_scene dark;
-    voxgi_vct_desc vd;
-    voxgi_vct_info vi;
+    voxgi_render_desc vd;
+    voxgi_render_info vi;
     static float rgb[3 * 8 * 8], direct[3 * 8 * 8];
     size_t m;
     TH_CHECK(ctx && voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "cornell-box");
@@ -266,55 +465,57 @@ static void test_plan_images(void)
     }
     dark = bs.scene;
     dark.materials = black;
-    vct_view(&vd, &bs, 8);
+    view_of(&vd, VOXGI_RENDER_VCT, &bs, 8);
+    vct_old_zeros(&vd);
     vd.resolution = 32;
     g_log[0] = 0;
-    TH_CHECK(voxgi_vct_render(ctx, &dark, &vd, rgb, sizeof rgb, &vi) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    TH_CHECK(vi.voxels == 0 && vi.radiance_bytes == 0, "black surfaces: %lu voxels, %lu radiance bytes", (unsigned long)vi.voxels, (unsigned long)vi.radiance_bytes);
+    TH_CHECK(voxgi_render(ctx, &dark, &vd, rgb, sizeof rgb, &vi) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(vi.voxels == 0 && vi.bytes == 0 && kept(&vi.plan, VOXGI_PLAN_CONES) == 0, "black surfaces: %lu voxels, %lu radiance bytes, cones %d",
+             (unsigned long)vi.voxels, (unsigned long)vi.bytes, kept(&vi.plan, VOXGI_PLAN_CONES));
     TH_CHECK(strstr(g_log, "plan: cones: left out - no reflective surface (every albedo is 0)") != NULL, "the log:\n%s", g_log);
-    vd.no_gi = 1;
-    TH_CHECK(voxgi_vct_render(ctx, &dark, &vd, direct, sizeof direct, NULL) == VOXGI_OK && !memcmp(rgb, direct, sizeof rgb), "not the direct light's image");
-    vd.no_gi = 0;
-    TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, rgb, sizeof rgb, &vi) == VOXGI_OK && vi.voxels > 0, "the lit box voxelized nothing");
+    vd.direct_only = 1;
+    TH_CHECK(voxgi_render(ctx, &dark, &vd, direct, sizeof direct, NULL) == VOXGI_OK && !memcmp(rgb, direct, sizeof rgb), "not the direct light's image");
+    vd.direct_only = 0;
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, rgb, sizeof rgb, &vi) == VOXGI_OK && vi.voxels > 0, "the lit box voxelized nothing");
     { /* the one-bounce images: without a reflective surface no maps, SH volume, voxels or gathers, and the image is the
          transmittance image's (the same direct light: here the emission alone); with one, they gather */
-        voxgi_tsm_image_desc td;
-        voxgi_rsm_image_desc rd;
-        voxgi_rsm_image_info ri;
-        voxgi_sh_image_desc hd;
-        voxgi_sh_image_info hi;
-        voxgi_ssgi_image_desc sd;
-        voxgi_ssgi_image_info si;
+        voxgi_render_desc td, rd, hd, sd;
+        voxgi_render_info ri, hi, si;
         int k;
-        memset(&td, 0, sizeof td);
-        memset(&rd, 0, sizeof rd);
-        memset(&hd, 0, sizeof hd);
-        memset(&sd, 0, sizeof sd);
-        td.camera = rd.camera = hd.camera = sd.camera = vd.camera;
+        view_of(&td, VOXGI_RENDER_TSM, &bs, 8);
+        view_of(&rd, VOXGI_RENDER_RSM, &bs, 8);
+        view_of(&hd, VOXGI_RENDER_SH, &bs, 8);
+        view_of(&sd, VOXGI_RENDER_HYBRID, &bs, 8); /* the old voxgi_ssgi_render through the voxels */
         td.samples = rd.samples = hd.samples = sd.samples = 4;
         td.seed = rd.seed = hd.seed = sd.seed = 7;
         rd.resolution = hd.resolution = 16;
-        sd.method = VOXGI_AO_VOXELS;
         sd.resolution = 16;
-        TH_CHECK(voxgi_tsm_render(ctx, &dark, &td, direct, sizeof direct, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        sd.screen.half_resolution = VOXGI_TOGGLE_OFF; /* the old zeros: full resolution, no blur, no hidden light */
+        sd.screen.blur = -1;
+        sd.screen.hidden_light = VOXGI_TOGGLE_OFF;
+        TH_CHECK(voxgi_render(ctx, &dark, &td, direct, sizeof direct, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         for (k = 0; k < 2; k++) {
             const voxgi_scene *sc = k ? &bs.scene : &dark;
-            TH_CHECK(voxgi_rsm_render(ctx, sc, &rd, rgb, sizeof rgb, &ri) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            TH_CHECK(voxgi_render(ctx, sc, &rd, rgb, sizeof rgb, &ri) == VOXGI_OK, "%s", voxgi_last_error(ctx));
             TH_CHECK(k ? ri.maps > 0 && ri.gathered > 0 : ri.maps == 0 && ri.gathered == 0 && !memcmp(rgb, direct, sizeof rgb), "rsm, %s: %d maps, %lu gathers",
                      k ? "lit" : "black", ri.maps, (unsigned long)ri.gathered);
-            TH_CHECK(voxgi_sh_render(ctx, sc, &hd, rgb, sizeof rgb, &hi) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            TH_CHECK(kept(&ri.plan, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS) == k && kept(&ri.plan, VOXGI_PLAN_GATHERS) == k, "rsm, %s: the plan's maps %d, gathers %d",
+                     k ? "lit" : "black", kept(&ri.plan, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS), kept(&ri.plan, VOXGI_PLAN_GATHERS));
+            TH_CHECK(voxgi_render(ctx, sc, &hd, rgb, sizeof rgb, &hi) == VOXGI_OK, "%s", voxgi_last_error(ctx));
             TH_CHECK(k ? hi.gathered > 0 : hi.gathered == 0 && !memcmp(rgb, direct, sizeof rgb), "sh, %s: %lu gathers", k ? "lit" : "black",
                      (unsigned long)hi.gathered);
-            TH_CHECK(voxgi_ssgi_render(ctx, sc, &sd, rgb, sizeof rgb, &si) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            TH_CHECK(kept(&hi.plan, VOXGI_PLAN_SH_VOLUME) == k, "sh, %s: the plan's volume %d", k ? "lit" : "black", kept(&hi.plan, VOXGI_PLAN_SH_VOLUME));
+            TH_CHECK(voxgi_render(ctx, sc, &sd, rgb, sizeof rgb, &si) == VOXGI_OK, "%s", voxgi_last_error(ctx));
             TH_CHECK(k ? si.gathered > 0 : si.gathered == 0 && !memcmp(rgb, direct, sizeof rgb), "ssgi, %s: %lu gathers", k ? "lit" : "black",
                      (unsigned long)si.gathered);
+            TH_CHECK(kept(&si.plan, VOXGI_PLAN_SCREEN_BOUNCE) == k, "hybrid, %s: the plan's screen bounce %d", k ? "lit" : "black", kept(&si.plan, VOXGI_PLAN_SCREEN_BOUNCE));
         }
     }
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }
 
-/* A static scene's light-only update: the cone tracer's voxels, made once by voxgi_vct_voxelize,
+/* A static scene's light-only update: the cone tracer's voxels, made once by voxgi_render_voxelize,
    and its ray scene (voxgi_ray_scene_create) give bit for bit the image that makes its own,
    under the scene's light and under a moved and brighter one, with bounces, on the CPU and on GL
    (where the moved light's image must differ from the first: the voxels' light is re-injected,
@@ -328,8 +529,8 @@ static void test_light_only_update(void)
     for (b = 0; b < 2; b++) {
         voxgi_context *ctx;
         voxgi_builtin_scene bs, box;
-        voxgi_vct_desc vd;
-        voxgi_vct_info vi;
+        voxgi_render_desc vd;
+        voxgi_render_info vi;
         voxgi_voxels_info xi;
         voxgi_voxels *vox = NULL, *plain = NULL;
         voxgi_ray_scene *rays = NULL;
@@ -344,12 +545,13 @@ static void test_light_only_update(void)
         ctx = make_ctx(b ? VOXGI_BACKEND_GL : VOXGI_BACKEND_CPU, 0);
         voxgi_builtin_scene_create(ctx, "rsm-walls", &bs);
         voxgi_builtin_scene_create(ctx, "cornell-box", &box);
-        vct_view(&vd, &bs, W);
+        view_of(&vd, VOXGI_RENDER_VCT, &bs, W);
+        vct_old_zeros(&vd);
         vd.resolution = 24;
         vd.samples = 2;
         vd.bounces = 2;
-        vd.cone_stride = 2;
-        TH_CHECK(voxgi_vct_voxelize(ctx, &bs.scene, &vd, &vox) == VOXGI_OK, "voxelize: %s", voxgi_last_error(ctx));
+        vd.vct.cone_stride = 2;
+        TH_CHECK(voxgi_render_voxelize(ctx, &bs.scene, &vd, &vox) == VOXGI_OK, "voxelize: %s", voxgi_last_error(ctx));
         voxgi_voxels_query(vox, &xi);
         TH_CHECK(bs.scene.light_count <= 4, "rsm-walls has %lu lights", (unsigned long)bs.scene.light_count);
         memcpy(moved, bs.scene.lights, bs.scene.light_count * sizeof *moved);
@@ -357,23 +559,23 @@ static void test_light_only_update(void)
         moved[0].intensity[1] *= 2;
         sc = bs.scene;
         sc.lights = moved;
-        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, first, sizeof first, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, first, sizeof first, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         vd.voxels = vox;
-        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, &vi) == VOXGI_OK && vi.voxels == xi.voxel_count, "%s",
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, kept, sizeof kept, &vi) == VOXGI_OK && vi.voxels == xi.voxel_count, "%s",
                  voxgi_last_error(ctx));
         TH_CHECK(!memcmp(first, kept, sizeof kept), "%s: the kept voxels' image is not the one that voxelizes", b ? "GL" : "CPU");
         TH_CHECK(voxgi_ray_scene_create(ctx, &bs.scene, &rays) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         vd.rays = rays;
-        TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, kept, sizeof kept, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &sc, &vd, kept, sizeof kept, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         vd.voxels = NULL;
         vd.rays = NULL;
-        TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, fresh, sizeof fresh, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &sc, &vd, fresh, sizeof fresh, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         TH_CHECK(!memcmp(fresh, kept, sizeof kept) && memcmp(fresh, first, sizeof first), "%s: the moved light's image %s", b ? "GL" : "CPU",
                  memcmp(fresh, first, sizeof first) ? "with kept voxels is not the one that voxelizes" : "did not change");
         /* voxels and rays for something else */
         vd.rays = rays;
         {
-            voxgi_result r = voxgi_vct_render(ctx, &box.scene, &vd, kept, sizeof kept, NULL);
+            voxgi_result r = voxgi_render(ctx, &box.scene, &vd, kept, sizeof kept, NULL);
             TH_CHECK(r == VOXGI_ERR_INVALID_ARGUMENT && strstr(voxgi_last_error(ctx), "ray scene"), "another scene's rays: %s", voxgi_last_error(ctx));
         }
         {
@@ -389,16 +591,16 @@ static void test_light_only_update(void)
             s1.meshes = &m1;
             TH_CHECK(moved_pos && voxgi_ray_scene_create(ctx, &s1, &bent) == VOXGI_OK, "%s", voxgi_last_error(ctx));
             vd.rays = bent;
-            TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a ray scene with a vertex moved taken");
+            TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a ray scene with a vertex moved taken");
             voxgi_ray_scene_destroy(ctx, bent);
             free(moved_pos);
         }
         vd.rays = NULL;
         vd.voxels = vox;
         vd.resolution = 32;
-        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "another resolution taken");
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "another resolution taken");
         vd.resolution = 24;
-        TH_CHECK(voxgi_vct_render(ctx, &box.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "another scene taken");
+        TH_CHECK(voxgi_render(ctx, &box.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "another scene taken");
         fewer = bs.scene; /* its first triangle left out: the same bounds, one triangle fewer */
         mesh = bs.scene.meshes[0];
         mesh.indices += 3;
@@ -409,7 +611,7 @@ static void test_light_only_update(void)
         fit.padding = 1;
         TH_CHECK(voxgi_fit_grid(ctx, &fewer, &fit, &g) == VOXGI_OK && !memcmp(g.origin, xi.grid.origin, sizeof g.origin) && g.voxel_size == xi.grid.voxel_size && !memcmp(g.res, xi.grid.res, sizeof g.res), "the first triangle set the bounds");
         {
-            voxgi_result r = voxgi_vct_render(ctx, &fewer, &vd, kept, sizeof kept, NULL);
+            voxgi_result r = voxgi_render(ctx, &fewer, &vd, kept, sizeof kept, NULL);
             TH_CHECK(r == VOXGI_ERR_INVALID_ARGUMENT && strstr(voxgi_last_error(ctx), "desc.voxels"), "fewer triangles: %s (%s)", voxgi_result_string(r),
                      voxgi_last_error(ctx));
         }
@@ -425,10 +627,10 @@ static void test_light_only_update(void)
             sc.meshes = two;
             sc.mesh_count = 2;
             vd.voxels = NULL;
-            TH_CHECK(voxgi_vct_voxelize(ctx, &sc, &vd, &v2) == VOXGI_OK && voxgi_vct_render(ctx, &sc, &vd, fresh, sizeof fresh, NULL) == VOXGI_OK, "%s",
+            TH_CHECK(voxgi_render_voxelize(ctx, &sc, &vd, &v2) == VOXGI_OK && voxgi_render(ctx, &sc, &vd, fresh, sizeof fresh, NULL) == VOXGI_OK, "%s",
                      voxgi_last_error(ctx));
             vd.voxels = v2;
-            TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, kept, sizeof kept, NULL) == VOXGI_OK && !memcmp(fresh, kept, sizeof kept), "unindexed: %s",
+            TH_CHECK(voxgi_render(ctx, &sc, &vd, kept, sizeof kept, NULL) == VOXGI_OK && !memcmp(fresh, kept, sizeof kept), "unindexed: %s",
                      voxgi_last_error(ctx));
             voxgi_voxels_destroy(ctx, v2);
             vd.voxels = vox;
@@ -438,7 +640,7 @@ static void test_light_only_update(void)
         xd.attributes = VOXGI_ATTRIBUTE_ALBEDO;
         TH_CHECK(voxgi_voxelize(ctx, &bs.scene, &xd, &plain) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         vd.voxels = plain;
-        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "voxels without normals taken");
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, kept, sizeof kept, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "voxels without normals taken");
         voxgi_voxels_destroy(ctx, plain);
         voxgi_voxels_destroy(ctx, vox);
         voxgi_ray_scene_destroy(ctx, rays);
@@ -455,6 +657,7 @@ int main(void)
     TH_RUN(test_plan_emitters_in_view);
     TH_RUN(test_plan_bytes);
     TH_RUN(test_plan_vct_settings);
+    TH_RUN(test_plan_follows_request);
     TH_RUN(test_plan_images);
     TH_RUN(test_light_only_update);
     gl_close();

@@ -27,9 +27,10 @@ static void scene_of(voxgi_scene *sc, voxgi_mesh *mesh, const vxt_shape *m, cons
     scene_lighting(sc, mat, 1, lights, nl);
 }
 
-static void camera(voxgi_reference_desc *d, double ex, double ey, double ez, double tx, double ty, double tz, double fovy, int w, int h)
+static void camera(voxgi_render_desc *d, double ex, double ey, double ez, double tx, double ty, double tz, double fovy, int w, int h)
 {
     memset(d, 0, sizeof *d);
+    d->method = VOXGI_RENDER_REFERENCE;
     d->camera.eye[0] = ex; d->camera.eye[1] = ey; d->camera.eye[2] = ez;
     d->camera.target[0] = tx; d->camera.target[1] = ty; d->camera.target[2] = tz;
     d->camera.fovy_degrees = fovy;
@@ -58,7 +59,7 @@ static void test_furnace(void)
     vxt_shape m;
     voxgi_mesh mesh;
     voxgi_scene sc;
-    voxgi_reference_desc d;
+    voxgi_render_desc d;
     voxgi_material mat = {{0.5f, 0.5f, 0.5f}, {1.0f, 2.0f, 0.5f}, 0};
     float *rgb = (float *)malloc(W * W * 12);
     double rhos[2] = {0.5, 0.9};
@@ -70,15 +71,16 @@ static void test_furnace(void)
     for (ri = 0; ri < 2; ri++) {
         for (ch = 0; ch < 3; ch++) mat.albedo[ch] = (float)rhos[ri];
         for (bounces = -1; bounces <= 2; bounces++) {
-            voxgi_reference_info info;
+            voxgi_render_info info;
             double rho = mat.albedo[0], want_factor = 0, worst = 0, worst_se = 0;
             int k;
             if (ri == 1 && bounces >= 0) continue;
             d.bounces = bounces;
+            d.direct_only = bounces == 0; /* bounces 0 was the direct light alone */
             d.samples = bounces < 0 ? (ri ? 64 : 16) : 16;
             if (bounces < 0) want_factor = 1 / (1 - rho);
             else for (k = 0; k <= bounces + 1; k++) want_factor += pow(rho, k);
-            TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, W * W * 12, &info) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+            TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, W * W * 12, &info) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
             for (ch = 0; ch < 3; ch++) {
                 double want = mat.emission[ch] * want_factor, got = mean_channel(rgb, W * W, ch), var = 0, se;
                 size_t i;
@@ -98,9 +100,9 @@ static void test_furnace(void)
         size_t i, off = 0;
         for (ch = 0; ch < 3; ch++) mat.albedo[ch] = 0;
         camera(&d, 0.013, 0.021, -0.017, 0.2, 0.7, 0.3, 120, 64, 64);
-        d.bounces = 0;
+        d.direct_only = 1; /* the direct light alone (the old bounces 0) */
         d.samples = 16;
-        TH_CHECK(voxgi_reference_render(ctx, &sc, &d, big, 64 * 64 * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &sc, &d, big, 64 * 64 * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
         for (i = 0; i < 64 * 64; i++) off += fabsf(big[3 * i] - 1.0f) > 1e-6f || fabsf(big[3 * i + 1] - 2.0f) > 1e-6f;
         TH_CHECK(off == 0, "%lu of 4096 pixels saw through the closed sphere", (unsigned long)off);
         free(big);
@@ -158,7 +160,7 @@ static void test_integrating_sphere(void)
     vxt_shape m;
     voxgi_mesh mesh;
     voxgi_scene sc;
-    voxgi_reference_desc d;
+    voxgi_render_desc d;
     voxgi_material mats[2] = {{{0.8f, 0.8f, 0.8f}, {0, 0, 0}, 0}, {{0, 0, 0}, {1, 1, 1}, 0}}; /* the walls; the cap */
     uint32_t *ids;
     float *rgb = (float *)malloc(W * W * 12);
@@ -243,7 +245,7 @@ static void test_integrating_sphere(void)
     d.bounces = B;
     d.seed = 5;
     d.hide_emitters = 1;
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
     mean = mean_channel(rgb, W * W, 0);
     for (i = 0; i < W * W; i++) var += (rgb[3 * i] - mean) * (rgb[3 * i] - mean) / (W * W - 1);
     se = sqrt(var / (W * W));
@@ -259,7 +261,7 @@ static void test_integrating_sphere(void)
 
 /* A 20 x 20 floor at y = 0 facing up, seen from above: each pixel's mean radiance against the
    analytic radiance averaged over the same pixel square (the camera rebuilt by fx_floor_point). */
-static double floor_pixel_oracle(const voxgi_reference_desc *d, int px, int py, double (*radiance)(const double p[3], const void *), const void *u)
+static double floor_pixel_oracle(const voxgi_render_desc *d, int px, int py, double (*radiance)(const double p[3], const void *), const void *u)
 {
     double sum = 0;
     int i, j, n = 8;
@@ -293,7 +295,7 @@ static void test_lit_floor(void)
     vxt_shape m;
     voxgi_mesh mesh;
     voxgi_scene sc;
-    voxgi_reference_desc d;
+    voxgi_render_desc d;
     voxgi_material mat = {{0.6f, 0.6f, 0.6f}, {0, 0, 0}, 0};
     voxgi_light L;
     float rgb[24 * 16 * 3], rgb2[24 * 16 * 3];
@@ -310,7 +312,7 @@ static void test_lit_floor(void)
         L.type = VOXGI_LIGHT_DIRECTIONAL;
         for (i = 0; i < 3; i++) { L.direction[i] = (float)dir[i]; L.intensity[i] = 2.0f; }
         scene_of(&sc, &mesh, &m, &mat, &L, 1);
-        TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
         want = 0.6 / PI * 2.0 * (1 / len);
         for (i = 0; i < 24 * 16 * 3; i++) worst = fmax(worst, fabs(rgb[i] - want) / want);
         TH_CHECK(worst < 1e-6, "directional light: %.3g relative off the analytic radiance", worst);
@@ -333,7 +335,7 @@ static void test_lit_floor(void)
             L.intensity[0] = L.intensity[1] = L.intensity[2] = 5e6f;
         }
         scene_of(&sc, &mesh, &m, &mat, &L, 1);
-        TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
         {   /* the pixels' only noise is where in the pixel a sample lands: the image mean is tight, each pixel within its noise */
             voxgi_light point = L;
             point.type = VOXGI_LIGHT_POINT;
@@ -356,10 +358,10 @@ static void test_lit_floor(void)
     }
     {   /* the same image for 1 and 2 threads; another seed gives another */
         voxgi_context *one = make_ctx(VOXGI_BACKEND_CPU, 1);
-        TH_CHECK(voxgi_reference_render(one, &sc, &d, rgb2, sizeof rgb2, NULL) == VOXGI_OK && memcmp(rgb, rgb2, sizeof rgb) == 0,
+        TH_CHECK(voxgi_render(one, &sc, &d, rgb2, sizeof rgb2, NULL) == VOXGI_OK && memcmp(rgb, rgb2, sizeof rgb) == 0,
                  "1 and 2 threads differ");
         d.seed = 99;
-        TH_CHECK(voxgi_reference_render(one, &sc, &d, rgb2, sizeof rgb2, NULL) == VOXGI_OK && memcmp(rgb, rgb2, sizeof rgb) != 0,
+        TH_CHECK(voxgi_render(one, &sc, &d, rgb2, sizeof rgb2, NULL) == VOXGI_OK && memcmp(rgb, rgb2, sizeof rgb) != 0,
                  "another seed gives the same image");
         voxgi_destroy(one);
     }
@@ -373,7 +375,7 @@ static void test_convergence(void)
     vxt_shape m;
     voxgi_mesh mesh;
     voxgi_scene sc;
-    voxgi_reference_desc d;
+    voxgi_render_desc d;
     voxgi_material mat = {{0.5f, 0.5f, 0.5f}, {1, 1, 1}, 0};
     float *rgb = (float *)malloc(24 * 24 * 12);
     double err[3];
@@ -386,7 +388,7 @@ static void test_convergence(void)
         double s = 0;
         size_t i;
         d.samples = 4 << (2 * k);
-        voxgi_reference_render(ctx, &sc, &d, rgb, 24 * 24 * 12, NULL);
+        voxgi_render(ctx, &sc, &d, rgb, 24 * 24 * 12, NULL);
         for (i = 0; i < 24 * 24; i++) s += (rgb[3 * i] - 1.75) * (rgb[3 * i] - 1.75);
         err[k] = sqrt(s / (24 * 24));
     }
@@ -412,32 +414,35 @@ static void test_refusals_and_cancel(void)
     vxt_shape m;
     voxgi_mesh mesh;
     voxgi_scene sc;
-    voxgi_reference_desc d;
+    voxgi_render_desc d;
     voxgi_material mat = {{0.5f, 0.5f, 0.5f}, {1, 1, 1}, 0};
     voxgi_light bad;
     m.pos = pos; m.idx = NULL; m.vertex_count = 3; m.triangle_count = 1;
     scene_of(&sc, &mesh, &m, &mat, NULL, 0);
     mesh.indices = NULL; mesh.index_count = 0;
     camera(&d, 0, 5, 0, 0, 0, 0, 60, 4, 4); /* straight down: no up vector */
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "looking along -Y accepted");
+    d.samples = 16;
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "looking along -Y accepted");
     camera(&d, 0, 5, -1, 0, 0, 0, 180, 4, 4);
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "fovy 180 accepted");
+    d.samples = 16;
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "fovy 180 accepted");
     camera(&d, 0, 5, -1, 0, 0, 0, 60, 4, 4);
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, sizeof rgb - 1, NULL) == VOXGI_ERR_BUFFER_TOO_SMALL, "short buffer accepted");
+    d.samples = 16; /* the old default */
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, sizeof rgb - 1, NULL) == VOXGI_ERR_BUFFER_TOO_SMALL, "short buffer accepted");
     memset(&bad, 0, sizeof bad);
     bad.type = VOXGI_LIGHT_RECT; /* no edges */
     sc.lights = &bad; sc.light_count = 1;
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_SCENE, "degenerate rect light accepted");
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_SCENE, "degenerate rect light accepted");
     bad.type = VOXGI_LIGHT_POINT;
     bad.intensity[1] = -1;
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_SCENE, "negative intensity accepted");
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_SCENE, "negative intensity accepted");
     sc.lights = NULL; sc.light_count = 0;
     voxgi_destroy(ctx);
     ctx_desc(&dd, VOXGI_BACKEND_CPU);
     dd.progress.func = cancel_reference;
     voxgi_create(&dd, &ctx);
     d.samples = 64;
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_CANCELLED, "cancel ignored: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_ERR_CANCELLED, "cancel ignored: %s", voxgi_last_error(ctx));
     voxgi_destroy(ctx);
 }
 
@@ -448,7 +453,7 @@ static void test_builtin_scenes(void)
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     const char *names = voxgi_builtin_scene_names();
     voxgi_builtin_scene bs;
-    voxgi_reference_desc d;
+    voxgi_render_desc d;
     float *rgb = (float *)malloc(48 * 48 * 12);
     char name[32];
     const char *at = names;
@@ -462,8 +467,10 @@ static void test_builtin_scenes(void)
         d.camera = bs.camera;
         d.camera.width = d.camera.height = 48;
         d.samples = 8;
+        d.method = VOXGI_RENDER_REFERENCE;
         d.bounces = strcmp(name, "cornell-box") == 0 ? 0 : -1;
-        TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &d, rgb, 48 * 48 * 12, NULL) == VOXGI_OK, "%s: %s", name, voxgi_last_error(ctx));
+        d.direct_only = d.bounces == 0; /* the Cornell box: the direct light alone (the old bounces 0) */
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &d, rgb, 48 * 48 * 12, NULL) == VOXGI_OK, "%s: %s", name, voxgi_last_error(ctx));
         mean = mean_channel(rgb, 48 * 48, 0);
         for (i = 0; i < 48 * 48; i++) {
             lit += rgb[3 * i] > 0;

@@ -55,18 +55,19 @@ static double corner_share(double d, double R)
 /* The reference's AO at the centre pixel of a needle-thin view (0.01 degrees) and the point it sees. */
 static double reference_ao(voxgi_context *ctx, const voxgi_scene *sc, const voxgi_camera *view, double R, int samples, float p[3])
 {
-    voxgi_reference_desc d;
+    voxgi_render_desc d;
     voxgi_camera c = *view;
     float rgb[3], n[3];
     uint32_t tri;
     c.width = c.height = 1;
     c.fovy_degrees = 0.01;
     memset(&d, 0, sizeof d);
+    d.method = VOXGI_RENDER_REFERENCE;
     d.camera = c;
     d.samples = samples;
-    d.ao_radius = (float)R;
+    d.reference.ao_radius = (float)R;
     d.seed = 5;
-    TH_CHECK(voxgi_reference_render(ctx, sc, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, sc, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     TH_CHECK(voxgi_gbuffer_render(ctx, sc, &c, p, n, &tri) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     TH_CHECK(rgb[0] == rgb[1] && rgb[1] == rgb[2], "grey");
     return rgb[0];
@@ -654,8 +655,8 @@ static void test_screen_images_half(void)
     quads q;
     voxgi_scene sc;
     voxgi_mesh mesh;
-    voxgi_ao_image_desc d;
-    voxgi_ao_image_info info[2];
+    voxgi_render_desc d;
+    voxgi_render_info info[2];
     static float rgb[2][3 * W * W];
     int half, i;
     size_t quarter = 0, lost = 0;
@@ -664,12 +665,14 @@ static void test_screen_images_half(void)
     quad(&q, pole, 0);
     scene_of_quads(&sc, &mesh, &q, NULL, 0, NULL, 0);
     memset(&d, 0, sizeof d);
+    d.method = VOXGI_RENDER_SSAO;
     d.camera = look(-2.5, 2, 1.5, 0.6, 0, 0);
-    d.radius = 1;
-    d.rays = 64;
+    d.screen.radius = 1;
+    d.screen.rays = 64;
+    d.screen.blur = -1; /* the old blur 0: none */
     for (half = 0; half < 2; half++) {
-        d.half_resolution = half;
-        TH_CHECK(voxgi_ao_render(ctx, &sc, &d, rgb[half], sizeof rgb[half], &info[half]) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        d.screen.half_resolution = half ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
+        TH_CHECK(voxgi_render(ctx, &sc, &d, rgb[half], sizeof rgb[half], &info[half]) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     }
     for (i = 0; i < W * W; i++) {
         quarter += i % W % 2 == 0 && i / W % 2 == 0;
@@ -682,11 +685,13 @@ static void test_screen_images_half(void)
              (unsigned long)info[0].gathered, (unsigned long)info[1].gathered);
     TH_CHECK(lost == 0, "pixels without a sample on their surface left open");
     TH_CHECK(diff < 0.05, "half resolution is another image");
-    d.blur = 65;
-    TH_CHECK(voxgi_ao_render(ctx, &sc, &d, rgb[0], sizeof rgb[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "blur 65");
-    d.blur = 0;
-    d.half_resolution = 2;
-    TH_CHECK(voxgi_ao_render(ctx, &sc, &d, rgb[0], sizeof rgb[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "half_resolution 2");
+    d.screen.blur = 65;
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb[0], sizeof rgb[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "blur 65");
+    d.screen.blur = -2;
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb[0], sizeof rgb[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "blur -2");
+    d.screen.blur = -1;
+    d.screen.half_resolution = (voxgi_toggle)(VOXGI_TOGGLE_OFF + 1); /* past the toggle's values (the old half_resolution 2) */
+    TH_CHECK(voxgi_render(ctx, &sc, &d, rgb[0], sizeof rgb[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "half_resolution %d", (int)d.screen.half_resolution);
     voxgi_destroy(ctx);
 }
 
@@ -721,7 +726,7 @@ static void test_reference_screen_light_only(void)
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_light sun;
     voxgi_material white;
-    voxgi_reference_desc d;
+    voxgi_render_desc d;
     quads q;
     voxgi_scene sc;
     voxgi_mesh mesh;
@@ -732,14 +737,16 @@ static void test_reference_screen_light_only(void)
         double sum[3] = {0, 0, 0};
         size_t same01 = 0, same02 = 0;
         memset(&d, 0, sizeof d);
+        d.method = VOXGI_RENDER_REFERENCE;
         d.camera = view ? look(-0.5, 1.5, 0, -0.5, 0, 0.001) : look(-4, 3, 0, 0, 0.7, 0);
         d.camera.width = d.camera.height = W;
         d.samples = 16;
         d.seed = 3;
         for (k = 0; k < 3; k++) { /* full one bounce, screen light only, direct light */
-            d.bounces = k == 2 ? 0 : 1;
-            d.screen_light_only = k == 1;
-            TH_CHECK(voxgi_reference_render(ctx, &sc, &d, img[k], sizeof img[k], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            d.bounces = 1;
+            d.direct_only = k == 2; /* the old bounces 0 */
+            d.reference.screen_light_only = k == 1;
+            TH_CHECK(voxgi_render(ctx, &sc, &d, img[k], sizeof img[k], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         }
         for (i = 0; i < 3 * W * W; i++) {
             for (k = 0; k < 3; k++) sum[k] += img[k][i];
@@ -752,8 +759,12 @@ static void test_reference_screen_light_only(void)
         else TH_CHECK(same02 == 3 * W * W && sum[0] > sum[1] * 1.05, "the wall is off the screen: no bounce");
     }
     d.bounces = 2;
-    d.screen_light_only = 1;
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &d, img[0], sizeof img[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "screen light only with bounces 2");
+    d.direct_only = 0;
+    d.reference.screen_light_only = 1;
+    TH_CHECK(voxgi_render(ctx, &sc, &d, img[0], sizeof img[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "screen light only with bounces 2");
+    d.bounces = 1;
+    d.direct_only = 1;
+    TH_CHECK(voxgi_render(ctx, &sc, &d, img[0], sizeof img[0], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "screen light only with direct light only");
     voxgi_destroy(ctx);
 }
 
@@ -769,8 +780,7 @@ static void test_hybrid_hidden_light(void)
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_light sun;
     voxgi_material white;
-    voxgi_reference_desc rd;
-    voxgi_ssgi_image_desc gd;
+    voxgi_render_desc rd, gd;
     quads q;
     voxgi_scene sc;
     voxgi_mesh mesh;
@@ -780,24 +790,28 @@ static void test_hybrid_hidden_light(void)
     for (view = 0; view < 2; view++) {
         double sum[4] = {0, 0, 0, 0}, bounce_ref, bounce_hidden, bounce_screen;
         memset(&rd, 0, sizeof rd);
+        rd.method = VOXGI_RENDER_REFERENCE;
         rd.camera = view ? look(-4, 3, 0, 0, 0.7, 0) : look(-0.5, 1.5, 0, -0.5, 0, 0.001);
         rd.camera.width = rd.camera.height = W;
         rd.samples = 256;
         rd.seed = 3;
         for (k = 0; k < 2; k++) { /* the reference's one bounce, its direct light */
-            rd.bounces = 1 - k;
-            TH_CHECK(voxgi_reference_render(ctx, &sc, &rd, img[k], sizeof img[k], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            rd.bounces = 1;
+            rd.direct_only = k; /* the old bounces 0 */
+            TH_CHECK(voxgi_render(ctx, &sc, &rd, img[k], sizeof img[k], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         }
         memset(&gd, 0, sizeof gd);
+        gd.method = VOXGI_RENDER_HYBRID;
         gd.camera = rd.camera;
-        gd.method = VOXGI_AO_VOXELS;
         gd.resolution = 64;
-        gd.rays = 64;
-        gd.radius = 3;
+        gd.screen.rays = 64;
+        gd.screen.radius = 3;
         gd.seed = 3;
+        gd.screen.half_resolution = VOXGI_TOGGLE_OFF; /* the old zeros: every pixel, no blur */
+        gd.screen.blur = -1;
         for (k = 2; k < 4; k++) { /* Hybrid-GI with hidden light, without */
-            gd.hidden_light = k == 2;
-            TH_CHECK(voxgi_ssgi_render(ctx, &sc, &gd, img[k], sizeof img[k], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            gd.screen.hidden_light = k == 2 ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
+            TH_CHECK(voxgi_render(ctx, &sc, &gd, img[k], sizeof img[k], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         }
         for (k = 0; k < 4; k++)
             for (i = 0; i < 3 * W * W; i++) sum[k] += img[k][i] / (3 * W * W);
@@ -865,10 +879,8 @@ static void test_image_memory(void)
     quads q;
     voxgi_scene sc;
     voxgi_mesh mesh;
-    voxgi_ao_image_desc ad;
-    voxgi_ao_image_info ai[2];
-    voxgi_ssgi_image_desc gd;
-    voxgi_ssgi_image_info gi[3];
+    voxgi_render_desc ad, gd;
+    voxgi_render_info ai[2], gi[3];
     voxgi_voxelize_desc vd;
     voxgi_fit_desc fit;
     voxgi_voxels *vox = NULL;
@@ -892,18 +904,23 @@ static void test_image_memory(void)
     memset(&ad, 0, sizeof ad);
     ad.camera = look(-4, 3, 0, 0, 0.7, 0);
     ad.camera.width = ad.camera.height = W;
-    ad.rays = 4;
+    ad.screen.rays = 4;
     ad.resolution = 20;
+    ad.screen.half_resolution = VOXGI_TOGGLE_OFF; /* the old zeros: every pixel, no blur */
+    ad.screen.blur = -1;
     memset(&gd, 0, sizeof gd);
     gd.camera = ad.camera;
-    gd.rays = 4;
+    gd.screen.rays = 4;
     gd.samples = 1;
     gd.resolution = 20;
+    gd.screen.half_resolution = VOXGI_TOGGLE_OFF;
+    gd.screen.blur = -1;
     for (k = 0; k < 3; k++) {
-        ad.method = gd.method = k ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN;
-        gd.hidden_light = k == 2;
-        TH_CHECK((k == 2 || voxgi_ao_render(ctx, &sc, &ad, img, sizeof img, &ai[k]) == VOXGI_OK) &&
-                     voxgi_ssgi_render(ctx, &sc, &gd, img, sizeof img, &gi[k]) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        ad.method = k ? VOXGI_RENDER_VAO : VOXGI_RENDER_SSAO;
+        gd.method = k ? VOXGI_RENDER_HYBRID : VOXGI_RENDER_SSGI;
+        gd.screen.hidden_light = k == 2 ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
+        TH_CHECK((k == 2 || voxgi_render(ctx, &sc, &ad, img, sizeof img, &ai[k]) == VOXGI_OK) &&
+                     voxgi_render(ctx, &sc, &gd, img, sizeof img, &gi[k]) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     }
     printf("    %d x %d x %d voxels: AO %lu bytes, Hybrid-GI %lu, with the hidden light %lu; expected %lu\n", vd.grid.res[0], vd.grid.res[1], vd.grid.res[2],
            (unsigned long)ai[1].bytes, (unsigned long)gi[1].bytes, (unsigned long)gi[2].bytes, (unsigned long)expect);
@@ -984,7 +1001,7 @@ static void test_ao_input(void)
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_ao_desc d;
     float pos[3] = {0, 0, 0}, nrm[3] = {0, 1, 0}, ao[1], bad[3] = {0, NAN, 0};
-    voxgi_reference_desc rd;
+    voxgi_render_desc rd;
     quads q;
     voxgi_scene sc;
     voxgi_mesh mesh;
@@ -1009,9 +1026,11 @@ static void test_ao_input(void)
     TH_CHECK(voxgi_ao(ctx, &d, ao, sizeof ao) == VOXGI_OK && ao[0] == 0, "one pixel alone: %s", voxgi_last_error(ctx));
     ao_scene(&q, &sc, &mesh, 0, 0);
     memset(&rd, 0, sizeof rd);
+    rd.method = VOXGI_RENDER_REFERENCE;
     rd.camera = d.camera;
-    rd.ao_radius = -1;
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &rd, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "ao_radius -1");
+    rd.samples = 16; /* the old samples 0 */
+    rd.reference.ao_radius = -1;
+    TH_CHECK(voxgi_render(ctx, &sc, &rd, rgb, sizeof rgb, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "ao_radius -1");
     { /* the filter */
         voxgi_screen_filter_desc fd;
         float v[4] = {0.5f, 0.5f, 0.5f, 0.5f}, o[4];

@@ -16,7 +16,7 @@ static void test_large_world(void)
     voxgi_voxelize_desc vd;
     voxgi_fit_desc fit;
     voxgi_voxels_info i0, i1;
-    voxgi_reference_desc rd;
+    voxgi_render_desc rd;
     uint32_t *b0 = NULL, *b1 = NULL;
     static float img0[3 * 16 * 16], img1[3 * 16 * 16];
     float ceiling = -1, light = -1;
@@ -39,13 +39,14 @@ static void test_large_world(void)
     TH_CHECK(b0 && b1 && i0.voxel_count == i1.voxel_count && i0.bytes == i1.bytes && !memcmp(b0, b1, i0.bytes), "voxels at 1e6: %lu against %lu",
              (unsigned long)i1.voxel_count, (unsigned long)i0.voxel_count);
     memset(&rd, 0, sizeof rd);
+    rd.method = VOXGI_RENDER_REFERENCE;
     rd.camera = bs.camera;
     rd.camera.width = rd.camera.height = 16;
     rd.samples = 4;
     rd.bounces = 1;
     rd.seed = 5;
-    TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, img0, sizeof img0, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    TH_CHECK(voxgi_reference_render(ctx, &far.scene, &rd, img1, sizeof img1, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &rd, img0, sizeof img0, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &far.scene, &rd, img1, sizeof img1, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
     TH_CHECK(!memcmp(img0, img1, sizeof img0), "the image at 1e6 differs from the image at the origin");
     { /* bad input: both kinds of positions, a stride shorter than three doubles, an origin that leaves floats behind */
         voxgi_mesh keep = far.meshes[0];

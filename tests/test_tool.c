@@ -224,7 +224,7 @@ static void test_render_command(void)
     voxgi_context *ctx = NULL;
     voxgi_desc d;
     voxgi_builtin_scene bs;
-    voxgi_reference_desc rd;
+    voxgi_render_desc rd;
     float want[6 * 4 * 3], got[6 * 4 * 3];
     unsigned char head[33];
     FILE *f;
@@ -239,10 +239,11 @@ static void test_render_command(void)
     voxgi_create(&d, &ctx);
     memset(&rd, 0, sizeof rd);
     voxgi_builtin_scene_create(ctx, "furnace", &bs);
+    rd.method = VOXGI_RENDER_REFERENCE;
     rd.camera = bs.camera;
     rd.camera.width = 6; rd.camera.height = 4;
     rd.samples = 4; rd.bounces = -1; rd.seed = 5;
-    TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, want, sizeof want, NULL) == VOXGI_OK, "library render");
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &rd, want, sizeof want, NULL) == VOXGI_OK, "library render: %s", voxgi_last_error(ctx));
     f = fopen(pfm, "rb");
     TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 6 && h == 4, "PFM header");
     if (f) {
@@ -264,7 +265,7 @@ static void test_render_command(void)
     voxgi_destroy(ctx);
 }
 
-/* voxgi render --method tsm writes what voxgi_tsm_render gives with the same settings, bit for
+/* voxgi render --method tsm writes what voxgi_render (TSM) gives with the same settings, bit for
    bit, and reports its maps; --compare measures it against direct light. */
 static void test_tsm_command(void)
 {
@@ -273,7 +274,7 @@ static void test_tsm_command(void)
     voxgi_context *ctx = NULL;
     voxgi_desc d;
     voxgi_builtin_scene bs;
-    voxgi_tsm_image_desc td;
+    voxgi_render_desc td;
     float want[8 * 8 * 3], got[8 * 8 * 3];
     FILE *f;
     int w = 0, h = 0, y;
@@ -286,13 +287,14 @@ static void test_tsm_command(void)
     voxgi_create(&d, &ctx);
     voxgi_builtin_scene_create(ctx, "foliage", &bs);
     memset(&td, 0, sizeof td);
+    td.method = VOXGI_RENDER_TSM;
     td.camera = bs.camera;
     td.camera.width = td.camera.height = 8;
-    td.tsm.size = 64;
-    td.tsm.slices = 16;
-    td.tsm.sigma = 0.5f;
+    td.tsm.maps.size = 64;
+    td.tsm.maps.slices = 16;
+    td.tsm.maps.sigma = 0.5f;
     td.seed = 1;
-    TH_CHECK(voxgi_tsm_render(ctx, &bs.scene, &td, want, sizeof want, NULL) == VOXGI_OK, "library tsm render: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &td, want, sizeof want, NULL) == VOXGI_OK, "library tsm render: %s", voxgi_last_error(ctx));
     f = fopen(pfm, "rb");
     TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
     if (f) {
@@ -318,22 +320,23 @@ static void test_tsm_command(void)
     TH_CHECK(run("report tsm --slices 0 --out x", out, sizeof out) == 2, "--slices 0 accepted");
     { /* --method rsm: the library's image, bit for bit */
         voxgi_builtin_scene ts;
-        voxgi_rsm_image_desc qd;
+        voxgi_render_desc qd;
         snprintf(pfm, sizeof pfm, "%s/q.pfm", tmpdir);
         snprintf(args, sizeof args, "render rsm-walls --method rsm --size 8 8 --rsm-size 32 --rsm-samples 16 --visibility hierarchical --res 16 --compare 8 --json -o %s", pfm);
         TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "maps") == 1 && json_number(out, "rel_rmse") > 0 && strstr(out, "\"visibility\":\"hierarchical\""),
                  "rsm render: %s", out);
         voxgi_builtin_scene_create(ctx, "rsm-walls", &ts);
         memset(&qd, 0, sizeof qd);
+        qd.method = VOXGI_RENDER_RSM;
         qd.camera = ts.camera;
         qd.camera.width = qd.camera.height = 8;
-        qd.rsm.size = 32;
-        qd.rsm.samples = 16;
-        qd.rsm.seed = 1;
-        qd.visibility = VOXGI_VISIBILITY_HIERARCHICAL;
+        qd.rsm.maps.size = 32;
+        qd.rsm.maps.samples = 16;
+        qd.rsm.maps.seed = 1;
+        qd.rsm.visibility = VOXGI_VISIBILITY_HIERARCHICAL;
         qd.resolution = 16;
         qd.seed = 1;
-        TH_CHECK(voxgi_rsm_render(ctx, &ts.scene, &qd, want, sizeof want, NULL) == VOXGI_OK, "library rsm render: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &ts.scene, &qd, want, sizeof want, NULL) == VOXGI_OK, "library rsm render: %s", voxgi_last_error(ctx));
         f = fopen(pfm, "rb");
         TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
         if (f) {
@@ -345,7 +348,7 @@ static void test_tsm_command(void)
     }
     { /* --method vao: the library's image, bit for bit, measured against the reference's AO mode */
         voxgi_builtin_scene ts;
-        voxgi_ao_image_desc ad;
+        voxgi_render_desc ad;
         snprintf(pfm, sizeof pfm, "%s/a.pfm", tmpdir);
         snprintf(args, sizeof args, "render cornell-box --method vao --size 8 8 --rays 8 --res 24 --radius 0.1 --compare 16 --json -o %s", pfm);
         TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "radius") > 0.099 && json_number(out, "rel_rmse") > 0, "vao render: %s", out);
@@ -353,15 +356,16 @@ static void test_tsm_command(void)
         TH_CHECK(run(args, out, sizeof out) == 0 && strstr(out, "depth buffer"), "ssao render: %s", out);
         voxgi_builtin_scene_create(ctx, "cornell-box", &ts);
         memset(&ad, 0, sizeof ad);
+        ad.method = VOXGI_RENDER_VAO;
         ad.camera = ts.camera;
         ad.camera.width = ad.camera.height = 8;
-        ad.method = VOXGI_AO_VOXELS;
         ad.resolution = 24;
-        ad.rays = 8;
-        ad.radius = 0.1f;
-        ad.blur = 2; /* the command's default */
+        ad.screen.rays = 8;
+        ad.screen.radius = 0.1f;
+        ad.screen.half_resolution = VOXGI_TOGGLE_OFF;
+        ad.screen.blur = 2; /* the command's default */
         ad.seed = 1;
-        TH_CHECK(voxgi_ao_render(ctx, &ts.scene, &ad, want, sizeof want, NULL) == VOXGI_OK, "library ao render: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &ts.scene, &ad, want, sizeof want, NULL) == VOXGI_OK, "library ao render: %s", voxgi_last_error(ctx));
         f = fopen(pfm, "rb");
         TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
         if (f) {
@@ -373,24 +377,24 @@ static void test_tsm_command(void)
     }
     { /* --method hybrid: the library's image, bit for bit */
         voxgi_builtin_scene ts;
-        voxgi_ssgi_image_desc gd;
+        voxgi_render_desc gd;
         snprintf(pfm, sizeof pfm, "%s/g.pfm", tmpdir);
         snprintf(args, sizeof args, "render cornell-box --method hybrid --size 8 8 --rays 8 --res 24 --radius 0.3 --spp 2 --half-res on --blur 2 --hidden-light on --json -o %s", pfm);
         TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "radius") > 0.299 && strstr(out, "\"method\":\"hybrid\""), "hybrid render: %s", out);
         voxgi_builtin_scene_create(ctx, "cornell-box", &ts);
         memset(&gd, 0, sizeof gd);
+        gd.method = VOXGI_RENDER_HYBRID;
         gd.camera = ts.camera;
         gd.camera.width = gd.camera.height = 8;
-        gd.method = VOXGI_AO_VOXELS;
         gd.resolution = 24;
-        gd.rays = 8;
-        gd.radius = 0.3f;
+        gd.screen.rays = 8;
+        gd.screen.radius = 0.3f;
         gd.samples = 2;
-        gd.half_resolution = 1;
-        gd.blur = 2;
-        gd.hidden_light = 1;
+        gd.screen.half_resolution = VOXGI_TOGGLE_ON;
+        gd.screen.blur = 2;
+        gd.screen.hidden_light = VOXGI_TOGGLE_ON;
         gd.seed = 1;
-        TH_CHECK(voxgi_ssgi_render(ctx, &ts.scene, &gd, want, sizeof want, NULL) == VOXGI_OK, "library ssgi render: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &ts.scene, &gd, want, sizeof want, NULL) == VOXGI_OK, "library ssgi render: %s", voxgi_last_error(ctx));
         f = fopen(pfm, "rb");
         TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
         if (f) {
@@ -402,7 +406,7 @@ static void test_tsm_command(void)
     }
     { /* --method linespace: the library's image, bit for bit, and the tree's memory */
         voxgi_builtin_scene ts;
-        voxgi_linespace_image_desc ld;
+        voxgi_render_desc ld;
         snprintf(pfm, sizeof pfm, "%s/l.pfm", tmpdir);
         snprintf(args, sizeof args, "render cornell-box --method linespace --size 8 8 --ls-mode fast --ls-n 3 --ls-depth 2 --samples 5 --supersample 2 --packets on --backend cpu --json -o %s", pfm);
         TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "bytes") > 0 && json_number(out, "allocated") >= json_number(out, "bytes") &&
@@ -410,16 +414,17 @@ static void test_tsm_command(void)
                  "linespace render: %s", out);
         voxgi_builtin_scene_create(ctx, "cornell-box", &ts);
         memset(&ld, 0, sizeof ld);
+        ld.method = VOXGI_RENDER_LINESPACE;
         ld.camera = ts.camera;
         ld.camera.width = ld.camera.height = 8;
-        ld.mode = VOXGI_LINESPACE_FAST;
-        ld.tree.n = 3;
-        ld.tree.depth = 2;
-        ld.samples = 5;
-        ld.supersample = 2;
-        ld.packets = 1;
+        ld.linespace.mode = VOXGI_LINESPACE_FAST;
+        ld.linespace.tree.n = 3;
+        ld.linespace.tree.depth = 2;
+        ld.linespace.samples = 5;
+        ld.linespace.supersample = 2;
+        ld.linespace.packets = 1;
         ld.seed = 1;
-        TH_CHECK(voxgi_linespace_render(ctx, &ts.scene, &ld, want, sizeof want, NULL, NULL) == VOXGI_OK, "library linespace render: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &ts.scene, &ld, want, sizeof want, NULL) == VOXGI_OK, "library linespace render: %s", voxgi_last_error(ctx));
         f = fopen(pfm, "rb");
         TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
         if (f) {
@@ -433,21 +438,22 @@ static void test_tsm_command(void)
     }
     { /* --method sh: the library's image, bit for bit */
         voxgi_builtin_scene ts;
-        voxgi_sh_image_desc hd;
+        voxgi_render_desc hd;
         snprintf(pfm, sizeof pfm, "%s/h.pfm", tmpdir);
         snprintf(args, sizeof args, "render cornell-box --method sh --size 8 8 --res 16 --spp 2 --gather-stride 2 --opening 0.7 --json -o %s", pfm);
         TH_CHECK(run(args, out, sizeof out) == 0 && json_number(out, "gathered") > 0 && strstr(out, "\"method\":\"sh\""), "sh render: %s", out);
         voxgi_builtin_scene_create(ctx, "cornell-box", &ts);
         memset(&hd, 0, sizeof hd);
+        hd.method = VOXGI_RENDER_SH;
         hd.camera = ts.camera;
         hd.camera.width = hd.camera.height = 8;
         hd.resolution = 16;
         hd.samples = 2;
-        hd.gather_stride = 2;
-        hd.opening = 0.7f;
-        hd.sh.seed = 1;
+        hd.sh.gather_stride = 2;
+        hd.sh.opening = 0.7f;
+        hd.sh.volume.seed = 1;
         hd.seed = 1;
-        TH_CHECK(voxgi_sh_render(ctx, &ts.scene, &hd, want, sizeof want, NULL) == VOXGI_OK, "library sh render: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &ts.scene, &hd, want, sizeof want, NULL) == VOXGI_OK, "library sh render: %s", voxgi_last_error(ctx));
         f = fopen(pfm, "rb");
         TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
         if (f) {
@@ -461,7 +467,7 @@ static void test_tsm_command(void)
     voxgi_destroy(ctx);
 }
 
-/* voxgi render --method vct writes what voxgi_vct_render gives with the same settings, bit for
+/* voxgi render --method vct writes what voxgi_render (VCT) gives with the same settings, bit for
    bit; voxgi report vct writes its table, CSV (a row per configuration, one on the Pareto front
    at least) and SVG. */
 static void test_vct_and_report_commands(void)
@@ -471,7 +477,7 @@ static void test_vct_and_report_commands(void)
     voxgi_context *ctx = NULL;
     voxgi_desc d;
     voxgi_builtin_scene bs;
-    voxgi_vct_desc vd;
+    voxgi_render_desc vd;
     float want[8 * 8 * 3], got[8 * 8 * 3];
     FILE *f;
     int w = 0, h = 0, y, rows = 0, front = 0;
@@ -483,15 +489,16 @@ static void test_vct_and_report_commands(void)
     voxgi_create(&d, &ctx);
     voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
     memset(&vd, 0, sizeof vd);
+    vd.method = VOXGI_RENDER_VCT;
     vd.camera = bs.camera;
     vd.camera.width = vd.camera.height = 8;
     vd.resolution = 16;
-    vd.cones.cones = 6;
+    vd.vct.cones.cones = 6;
     vd.samples = 2;
     vd.seed = 1;
-    vd.filter = VOXGI_MIPS_ANISOTROPIC; /* the tool's defaults, which are not the library's zeros */
-    vd.cone_stride = 6;
-    TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, want, sizeof want, NULL) == VOXGI_OK, "library vct render");
+    vd.vct.radiance = VOXGI_VCT_ANISOTROPIC; /* the tool's defaults, which the library's zeros now are too */
+    vd.vct.cone_stride = 6;
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, want, sizeof want, NULL) == VOXGI_OK, "library vct render: %s", voxgi_last_error(ctx));
     f = fopen(pfm, "rb");
     TH_CHECK(f && fscanf(f, "PF %d %d -1.0", &w, &h) == 2 && fgetc(f) == '\n' && w == 8 && h == 8, "PFM header");
     if (f) {
@@ -1053,8 +1060,23 @@ static void test_plan_command(void)
     TH_CHECK(run("plan foliage --method tsm", out, sizeof out) == 0 && strstr(out, "transmittance layers   structure kept - "), "the foliage: %s", out);
     TH_CHECK(run("plan cornell-box --method linespace", out, sizeof out) == 0 && strstr(out, "line space             structure kept - ") &&
                  strstr(out, "the camera sees an emitter"), "the Cornell box's line space: %s", out);
-    TH_CHECK(run("plan cornell-box --error 0.08", out, sizeof out) == 0 && strstr(out, "grid: 96 voxels") && strstr(out, "cones: 24 per gather, stride 6"),
+    TH_CHECK(run("plan cornell-box --method vct --error 0.08", out, sizeof out) == 0 && strstr(out, "grid: 96 voxels") &&
+                 strstr(out, "resolution 96, error 0.08, radiance anisotropic volume, cones 24, cone stride 6"),
              "the Cornell box at 8%%: %s", out);
+    { /* plan and render report the same settings for the same options (the library resolves them) */
+        static const char *const cmds[] = {"cornell-box --method vct --size 8 8", "cornell-box --method vct --res 12 --octree --size 8 8",
+                                           "cornell-box --method hybrid --size 8 8", "cornell-box --method linespace --size 8 8 --spp 2"};
+        static char planned[16384];
+        char args[1024];
+        size_t k;
+        for (k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+            char *nl;
+            TH_CHECK(run((snprintf(args, sizeof args, "plan %s", cmds[k]), args), planned, sizeof planned) == 0, "plan %s: %s", cmds[k], planned);
+            if ((nl = strchr(planned, '\n')) != NULL) *nl = 0; /* its first line: the settings */
+            snprintf(args, sizeof args, "render %s -o %s/same.pfm", cmds[k], tmpdir);
+            TH_CHECK(run(args, out, sizeof out) == 0 && strlen(planned) > 20 && strstr(out, planned), "plan said '%s', render: %s", planned, out);
+        }
+    }
     TH_CHECK(run("plan cornell-box --method nothing", out, sizeof out) == 2, "an unknown method: %s", out);
     { /* render follows the plan and says what it left out */
         char args[1024];

@@ -9,6 +9,17 @@
 #include "fixtures.h"
 #include "cone_points.h"
 
+/* rd: a path-traced image (method REFERENCE) through camera, with the old voxgi_reference_desc's
+   zeros where they differ from voxgi_render's: 16 paths per pixel; all else zero (bounces 0 is one
+   bounce now: the old direct light alone is direct_only). */
+static void reference_desc_old(voxgi_render_desc *rd, const voxgi_camera *camera)
+{
+    memset(rd, 0, sizeof *rd);
+    rd->method = VOXGI_RENDER_REFERENCE;
+    rd->camera = *camera;
+    rd->samples = 16;
+}
+
 static voxgi_volume *inject(voxgi_context *ctx, const voxgi_scene *sc, const voxgi_grid *g, voxgi_mip_filter filter)
 {
     voxgi_voxelize_desc xd;
@@ -239,28 +250,27 @@ static void test_cornell_box_image(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_builtin_scene bs;
-    voxgi_vct_desc vd;
-    voxgi_reference_desc rd;
+    voxgi_render_desc vd, rd;
     float *v[2], *r[2], *r2;
     double vm[2][3], rm[2][3], ind_v = 0, ind_r = 0, sq = 0, sq_ref = 0, sum = 0, rel, noise, own;
     int k, c, i, W = 32;
     voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
     vct_view(&vd, &bs, W);
-    memset(&rd, 0, sizeof rd);
     vd.resolution = 64;
     vd.samples = 64;
     vd.hide_emitters = 1;
-    rd.camera = vd.camera;
+    reference_desc_old(&rd, &vd.camera);
     rd.samples = 256;
     rd.hide_emitters = 1;
     rd.seed = 9;
     for (k = 0; k < 2; k++) { /* k = 0: direct light only */
         v[k] = (float *)malloc((size_t)W * W * 12);
         r[k] = (float *)malloc((size_t)W * W * 12);
-        vd.no_gi = !k;
+        vd.direct_only = !k;
         rd.bounces = k;
-        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, v[k], (size_t)W * W * 12, NULL) == VOXGI_OK &&
-                 voxgi_reference_render(ctx, &bs.scene, &rd, r[k], (size_t)W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+        rd.direct_only = !k; /* the old bounces 0 */
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, v[k], (size_t)W * W * 12, NULL) == VOXGI_OK &&
+                 voxgi_render(ctx, &bs.scene, &rd, r[k], (size_t)W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
         for (c = 0; c < 3; c++) {
             vm[k][c] = rm[k][c] = 0;
             for (i = 0; i < W * W; i++) { vm[k][c] += v[k][3 * i + c] / (W * W); rm[k][c] += r[k][3 * i + c] / (W * W); }
@@ -276,7 +286,7 @@ static void test_cornell_box_image(void)
     TH_CHECK(ind_v / ind_r > 0.85 && ind_v / ind_r < 1.15, "indirect light %.3f of the reference's", ind_v / ind_r);
     r2 = (float *)malloc((size_t)W * W * 12);
     rd.seed = 10;
-    TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, r2, (size_t)W * W * 12, NULL) == VOXGI_OK, "second reference: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &rd, r2, (size_t)W * W * 12, NULL) == VOXGI_OK, "second reference: %s", voxgi_last_error(ctx));
     for (i = 0; i < 3 * W * W; i++) {
         sq += (double)(v[1][i] - r[1][i]) * (v[1][i] - r[1][i]);
         sq_ref += (double)(r2[i] - r[1][i]) * (r2[i] - r[1][i]);
@@ -357,25 +367,23 @@ static void test_second_bounce(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_builtin_scene bs;
-    voxgi_vct_desc vd;
-    voxgi_reference_desc rd;
+    voxgi_render_desc vd, rd;
     enum { W = 32 };
     float *img = (float *)malloc(W * W * 12);
     double mv[2] = {0, 0}, mr[2] = {0, 0};
     int b, i;
     voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
     vct_view(&vd, &bs, W);
-    memset(&rd, 0, sizeof rd);
     vd.resolution = 32;
     vd.samples = 4;
-    rd.camera = vd.camera;
+    reference_desc_old(&rd, &vd.camera);
     rd.samples = 512;
     rd.seed = 3;
     for (b = 0; b < 2; b++) {
         vd.bounces = rd.bounces = b + 1;
-        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, img, W * W * 12, NULL) == VOXGI_OK, "vct: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, img, W * W * 12, NULL) == VOXGI_OK, "vct: %s", voxgi_last_error(ctx));
         for (i = 0; i < W * W * 3; i++) mv[b] += img[i];
-        TH_CHECK(voxgi_reference_render(ctx, &bs.scene, &rd, img, W * W * 12, NULL) == VOXGI_OK, "reference: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &rd, img, W * W * 12, NULL) == VOXGI_OK, "reference: %s", voxgi_last_error(ctx));
         for (i = 0; i < W * W * 3; i++) mr[b] += img[i];
     }
     printf("    second bounce adds %.4f (cones), %.4f (path tracer): ratio %.3f\n", (mv[1] - mv[0]) / (W * W * 3), (mr[1] - mr[0]) / (W * W * 3),
@@ -394,7 +402,7 @@ static void test_full_gi_furnace(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_builtin_scene bs;
-    voxgi_vct_desc vd;
+    voxgi_render_desc vd;
     enum { W = 16 };
     float img[W * W * 3];
     double mean[2] = {0, 0};
@@ -405,7 +413,7 @@ static void test_full_gi_furnace(void)
         vd.resolution = 32;
         vd.samples = 4;
         vd.bounces = k ? -1 : 2;
-        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, img, sizeof img, NULL) == VOXGI_OK, "vct: %s", voxgi_last_error(ctx));
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, img, sizeof img, NULL) == VOXGI_OK, "vct: %s", voxgi_last_error(ctx));
         for (i = 0; i < W * W * 3; i++) mean[k] += img[i] / (W * W * 3);
     }
     printf("    furnace: 2 bounces %.4f (exact 1.875), full GI %.4f (exact 2)\n", mean[0], mean[1]);
@@ -523,8 +531,8 @@ static void test_cone_stride(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_builtin_scene bs;
-    voxgi_vct_desc vd;
-    voxgi_vct_info info[2];
+    voxgi_render_desc vd;
+    voxgi_render_info info[2];
     enum { W = 48 };
     float *img[2];
     double sq = 0, sum = 0;
@@ -536,14 +544,14 @@ static void test_cone_stride(void)
         vd.resolution = 32;
         vd.samples = 4;
         vd.hide_emitters = 1;
-        vd.cone_stride = k ? 2 : 0;
-        TH_CHECK(voxgi_vct_render(ctx, &bs.scene, &vd, img[k], W * W * 12, &info[k]) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+        vd.vct.cone_stride = k ? 2 : 1; /* the old 0: every pixel */
+        TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, img[k], W * W * 12, &info[k]) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
     }
     for (i = 0; i < W * W * 3; i++) { sq += (img[1][i] - img[0][i]) * (img[1][i] - img[0][i]); sum += img[0][i]; }
-    printf("    cone stride 2: %lu of %lu cone points, image within %.2f%% (relative RMS)\n", (unsigned long)info[1].cone_points,
-           (unsigned long)info[0].cone_points, 100 * sqrt(sq / (W * W * 3)) / (sum / (W * W * 3)));
-    TH_CHECK(info[1].cone_points < info[0].cone_points * 4 / 10 && info[0].cone_points > W * W / 2, "cone points %lu of %lu",
-             (unsigned long)info[1].cone_points, (unsigned long)info[0].cone_points);
+    printf("    cone stride 2: %lu of %lu cone points, image within %.2f%% (relative RMS)\n", (unsigned long)info[1].gathered,
+           (unsigned long)info[0].gathered, 100 * sqrt(sq / (W * W * 3)) / (sum / (W * W * 3)));
+    TH_CHECK(info[1].gathered < info[0].gathered * 4 / 10 && info[0].gathered > W * W / 2, "cone points %lu of %lu",
+             (unsigned long)info[1].gathered, (unsigned long)info[0].gathered);
     TH_CHECK(sqrt(sq / (W * W * 3)) / (sum / (W * W * 3)) < 0.08, "strided image off by %.3f", sqrt(sq / (W * W * 3)) / (sum / (W * W * 3)));
     free(img[0]);
     free(img[1]);
@@ -571,7 +579,7 @@ static void test_octree_cones(void)
     voxgi_cone_desc cd;
     voxgi_svo_desc sd;
     voxgi_svo *svo = NULL;
-    voxgi_vct_desc vd;
+    voxgi_render_desc vd;
     voxgi_cone single[N];
     float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], each[2][4 * N], *img[2];
     double mean = 0, worst16 = 0;
@@ -621,7 +629,7 @@ static void test_octree_cones(void)
         vct_view(&vd, &room, W);
         vd.resolution = sides ? 32 : 24;
         vd.samples = 2;
-        vd.one_sided = !sides;
+        vd.vct.one_sided = !sides;
         if (sides == 2) {
             vd.camera.eye[0] = 0.85f; vd.camera.eye[1] = 1.6f; vd.camera.eye[2] = -0.85f;
             vd.camera.target[0] = 0; vd.camera.target[1] = 0.4f; vd.camera.target[2] = 0;
@@ -629,8 +637,8 @@ static void test_octree_cones(void)
         }
         for (k = 0; k < 2; k++) {
             img[k] = (float *)malloc(W * W * 12);
-            vd.octree = k;
-            TH_CHECK(voxgi_vct_render(ctx, &room.scene, &vd, img[k], W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+            vd.vct.radiance = k ? VOXGI_VCT_OCTREE : VOXGI_VCT_ISOTROPIC; /* the old octree = k (filter isotropic) */
+            TH_CHECK(voxgi_render(ctx, &room.scene, &vd, img[k], W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
         }
         for (i = 0, mean = 0; i < 3 * W * W; i++) mean += img[0][i];
         TH_CHECK(sides == 1 || mean > 0, "a black image");
@@ -723,7 +731,8 @@ static void test_indirect_across_edges(void)
     quads q;
     voxgi_mesh mesh;
     voxgi_scene sc;
-    voxgi_vct_desc vd;
+    voxgi_camera cam;
+    voxgi_render_desc vd;
     static float img[2][W * W * 3];
     double worst = 0, mean = 0;
     int x, y, k, edges = 0;
@@ -735,15 +744,16 @@ static void test_indirect_across_edges(void)
     sun.direction[0] = 0.2f; sun.direction[1] = -1; sun.direction[2] = -0.7f;
     sun.intensity[0] = sun.intensity[1] = sun.intensity[2] = 3;
     scene_of_quads(&sc, &mesh, &q, &mat, 1, &sun, 1);
-    memset(&vd, 0, sizeof vd);
-    vd.camera.eye[0] = 0; vd.camera.eye[1] = 3; vd.camera.eye[2] = 0.4;
-    vd.camera.target[2] = 0.1;
-    vd.camera.fovy_degrees = 40;
-    vd.camera.width = vd.camera.height = W;
+    memset(&cam, 0, sizeof cam);
+    cam.eye[0] = 0; cam.eye[1] = 3; cam.eye[2] = 0.4;
+    cam.target[2] = 0.1;
+    cam.fovy_degrees = 40;
+    cam.width = cam.height = W;
+    vct_desc_old(&vd, &cam);
     vd.resolution = 48;
     for (k = 0; k < 2; k++) {
-        vd.no_gi = k;
-        TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, img[k], sizeof img[k], NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+        vd.direct_only = k;
+        TH_CHECK(voxgi_render(ctx, &sc, &vd, img[k], sizeof img[k], NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
     }
     for (y = W / 2; y < W; y++) /* the floor's near half, away from the wall */
         for (x = 2; x < W; x++) {
@@ -877,8 +887,8 @@ static void test_direct_light_analytic(void)
     voxgi_mesh mesh;
     voxgi_scene sc;
     voxgi_light L;
-    voxgi_vct_desc vd;
-    voxgi_reference_desc rd;
+    voxgi_camera cam;
+    voxgi_render_desc vd, rd;
     float *vct = (float *)malloc(W * W * 12), *ref = (float *)malloc(W * W * 12);
     double aff_lo[2], aff_hi[2], umb_lo[2], umb_hi[2], s = DL_YL / DL_YB, H = DL_YL, worst_exact = 0;
     double pen_v = 0, pen_v2 = 0, pen_r = 0, pen_r2 = 0, pen_bias = 0, pen_quad = 0, all_r = 0, all_r2 = 0, all_quad = 0, se;
@@ -897,20 +907,20 @@ static void test_direct_light_analytic(void)
         umb_lo[a] = (DL_BLOCK[a][0] * s - DL_LIGHT[a][0]) / (s - 1);
         umb_hi[a] = (DL_BLOCK[a][1] * s - DL_LIGHT[a][1]) / (s - 1);
     }
-    memset(&vd, 0, sizeof vd);
-    vd.camera.eye[0] = 0.1; vd.camera.eye[1] = 0.9; vd.camera.eye[2] = 2.0; /* 26.6 degrees down, 40 high: nothing above the eye */
-    vd.camera.target[0] = 0.1; vd.camera.target[1] = 0; vd.camera.target[2] = 0.2;
-    vd.camera.fovy_degrees = 40;
-    vd.camera.width = vd.camera.height = W;
-    vd.no_gi = 1;
+    memset(&cam, 0, sizeof cam);
+    cam.eye[0] = 0.1; cam.eye[1] = 0.9; cam.eye[2] = 2.0; /* 26.6 degrees down, 40 high: nothing above the eye */
+    cam.target[0] = 0.1; cam.target[1] = 0; cam.target[2] = 0.2;
+    cam.fovy_degrees = 40;
+    cam.width = cam.height = W;
+    vct_desc_old(&vd, &cam);
+    vd.direct_only = 1;
     vd.seed = 3;
-    memset(&rd, 0, sizeof rd);
-    rd.camera = vd.camera;
+    reference_desc_old(&rd, &cam);
     rd.samples = 256;
-    rd.bounces = 0;
+    rd.direct_only = 1; /* the old bounces 0: the direct light alone */
     rd.seed = 4;
-    TH_CHECK(voxgi_vct_render(ctx, &sc, &vd, vct, W * W * 12, NULL) == VOXGI_OK, "vct: %s", voxgi_last_error(ctx));
-    TH_CHECK(voxgi_reference_render(ctx, &sc, &rd, ref, W * W * 12, NULL) == VOXGI_OK, "reference: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &sc, &vd, vct, W * W * 12, NULL) == VOXGI_OK, "vct: %s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render(ctx, &sc, &rd, ref, W * W * 12, NULL) == VOXGI_OK, "reference: %s", voxgi_last_error(ctx));
     for (y = 0; y < W; y++)
         for (x = 0; x < W; x++) {
             size_t pix = (size_t)(y * W + x);

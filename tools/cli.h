@@ -206,7 +206,7 @@ double cli_masked_error(const cli_error_mask *m, const float *img, const float *
 
 /* A converged reference of a scene's view for the reports: the path tracer's image with `spp`
    samples per pixel and `bounces` (without the emission the camera sees), or with ao_radius > 0
-   its ambient occlusion within that radius (voxgi_reference_desc.ao_radius), the error mask, and
+   its ambient occlusion within that radius (voxgi_render_desc.reference.ao_radius), the error mask, and
    how the path tracer converges there: c from a 16-spp image, so that k samples measure
    c sqrt(1/k + 1/spp) against it. 0, or says why and returns 1. */
 typedef struct cli_reference {
@@ -231,12 +231,13 @@ double cli_red_excess(const cli_reference *R, const float *img);
 double cli_scene_longest_side(const voxgi_scene *scene);
 /* The tool's default cone tracing (voxgi render --method vct: on report vct's Pareto front) at
    camera's view, without the emission the camera sees: 96 voxels along the longest side,
-   anisotropic mips, 24 cones at every 6th pixel, 24 direct-light rays per pixel, seed 1. */
+   anisotropic mips, 24 cones at every 6th pixel, 24 direct-light rays per pixel, seed 1 (a
+   voxgi_render_desc of method VCT, each of them set explicitly). */
 #define CLI_VCT_RES 96
 #define CLI_VCT_CONES 24
 #define CLI_VCT_STRIDE 6
 #define CLI_VCT_DIRECT_SPP 24
-void cli_vct_defaults(voxgi_vct_desc *vd, const voxgi_camera *camera);
+void cli_vct_defaults(voxgi_render_desc *vd, const voxgi_camera *camera);
 
 /* The built-in Cornell box with a mesh in place of its tall block: the box's triangles but the
    block's (found by geometry: the triangles that do not emit and lie inside the room, the highest

@@ -120,21 +120,32 @@ double cli_masked_error(const cli_error_mask *m, const float *img, const float *
 }
 
 /* ------------------------------------------------------------------ a converged reference */
+/* The time of an image's stage `name` (0 when it did not run). */
+static double stage_ms(const voxgi_render_info *i, const char *name)
+{
+    int k;
+    for (k = 0; k < i->stage_count; k++)
+        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
+    return 0;
+}
+
 int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, int spp, int bounces,
                        double ao_radius, cli_reference *R)
 {
     size_t bytes = (size_t)camera->width * (size_t)camera->height * 12;
-    voxgi_reference_desc rd;
-    voxgi_reference_info ri;
+    voxgi_render_desc rd;
+    voxgi_render_info ri;
     float *quick;
     double e16;
     memset(R, 0, sizeof *R);
     memset(&rd, 0, sizeof rd);
+    rd.method = VOXGI_RENDER_REFERENCE;
     rd.camera = *camera;
     rd.hide_emitters = 1;
-    rd.bounces = bounces;
-    rd.ao_radius = (float)ao_radius;
-    rd.samples = spp;
+    if (bounces == 0) rd.direct_only = 1; /* bounces 0 now means one: the direct light alone is direct_only */
+    else rd.bounces = bounces;
+    rd.reference.ao_radius = (float)ao_radius;
+    rd.samples = spp ? spp : 16; /* the path tracer's old default (now 64) */
     rd.seed = 1000003; /* independent of the images' seeds */
     R->spp = spp;
     if (!(R->image = (float *)malloc(bytes)) || !(quick = (float *)malloc(bytes))) {
@@ -143,7 +154,7 @@ int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *sc
     }
     if (ao_radius > 0) cli_status(s, "the reference's ambient occlusion within %g, %d spp", ao_radius, spp);
     else cli_status(s, "the reference, %d bounce%s, %d spp", bounces, bounces == 1 ? "" : "s", spp);
-    if (voxgi_reference_render(ctx, scene, &rd, R->image, bytes, &ri) != VOXGI_OK) {
+    if (voxgi_render(ctx, scene, &rd, R->image, bytes, &ri) != VOXGI_OK) {
         free(quick);
         cli_reference_free(R);
         return cli_fail_lib(s, ctx, "the reference");
@@ -155,14 +166,14 @@ int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *sc
     }
     rd.samples = 16; /* its convergence */
     rd.seed = 7;
-    if (voxgi_reference_render(ctx, scene, &rd, quick, bytes, &ri) != VOXGI_OK) {
+    if (voxgi_render(ctx, scene, &rd, quick, bytes, &ri) != VOXGI_OK) {
         free(quick);
         cli_reference_free(R);
         return cli_fail_lib(s, ctx, "the reference at 16 spp");
     }
     e16 = cli_masked_error(&R->mask, quick, R->image, NULL, NULL);
     R->c = e16 / sqrt(1.0 / 16 + 1.0 / spp);
-    R->ms_per_spp = (ri.ms_bvh + ri.ms_render) / 16;
+    R->ms_per_spp = (stage_ms(&ri, "bvh") + stage_ms(&ri, "render")) / 16;
     free(quick);
     return 0;
 }
@@ -215,14 +226,15 @@ double cli_scene_longest_side(const voxgi_scene *scene)
     return side > 0 ? side : 1;
 }
 
-void cli_vct_defaults(voxgi_vct_desc *vd, const voxgi_camera *camera)
+void cli_vct_defaults(voxgi_render_desc *vd, const voxgi_camera *camera)
 {
     memset(vd, 0, sizeof *vd);
+    vd->method = VOXGI_RENDER_VCT;
     vd->camera = *camera;
     vd->resolution = CLI_VCT_RES;
-    vd->filter = VOXGI_MIPS_ANISOTROPIC;
-    vd->cones.cones = CLI_VCT_CONES;
-    vd->cone_stride = CLI_VCT_STRIDE;
+    vd->vct.radiance = VOXGI_VCT_ANISOTROPIC;
+    vd->vct.cones.cones = CLI_VCT_CONES;
+    vd->vct.cone_stride = CLI_VCT_STRIDE;
     vd->samples = CLI_VCT_DIRECT_SPP;
     vd->seed = 1;
     vd->hide_emitters = 1;

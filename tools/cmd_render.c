@@ -361,6 +361,7 @@ static void render_desc_of(const render_args *a, voxgi_render_desc *d)
     d->rsm.maps.samples = a->rsm_samples;
     d->rsm.maps.radius = (float)a->rsm_radius;
     d->rsm.maps.points = a->rsm_points;
+    d->rsm.maps.seed = d->sh.volume.seed = d->seed; /* the maps' and the SH volume's patterns from the image's seed */
     d->rsm.visibility = d->sh.visibility = (voxgi_visibility)a->visibility;
     d->rsm.gather_stride = d->sh.gather_stride = a->gather_stride;
     d->sh.opening = (float)a->opening;

@@ -35,11 +35,39 @@ typedef struct report_args {
     unsigned filters;
 } report_args;
 
+/* What a cone-traced image measured (voxgi_render_info's VCT stages and sizes). */
+typedef struct vct_times {
+    uint64_t voxels;              /* info.voxels */
+    size_t radiance_bytes;        /* info.bytes: what the cones gather from, the radiance volume or the octree */
+    double ms_voxelize, ms_inject, ms_octree, ms_cones, ms_direct, ms; /* the stages (inject: with the mips), all */
+} vct_times;
+
+/* The time of an image's stage `name` (0 when it did not run). */
+static double stage_ms(const voxgi_render_info *i, const char *name)
+{
+    int k;
+    for (k = 0; k < i->stage_count; k++)
+        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
+    return 0;
+}
+
+static void vct_times_of(const voxgi_render_info *i, vct_times *t)
+{
+    t->voxels = i->voxels;
+    t->radiance_bytes = i->bytes;
+    t->ms_voxelize = stage_ms(i, "voxelize");
+    t->ms_inject = stage_ms(i, "inject");
+    t->ms_octree = stage_ms(i, "octree");
+    t->ms_cones = stage_ms(i, "cones");
+    t->ms_direct = stage_ms(i, "direct");
+    t->ms = i->ms;
+}
+
 typedef struct report_row {
     const char *scene;
     int res, cones, mips, stride;
     double aperture, half_angle_deg, step;
-    voxgi_vct_info info;
+    vct_times info;
     double rmse, ref_ms;
     int pareto;
 } report_row;
@@ -58,7 +86,7 @@ typedef struct report {
     /* the stages of the tool's defaults: [0] the CPU, [1] GL (each the faster of two runs) */
     voxgi_context *stage_ctx[2];  /* NULL: that backend is not timed */
     voxgi_info stage_ci[2];
-    voxgi_vct_info stages[REPORT_MAX_SCENES][2];
+    vct_times stages[REPORT_MAX_SCENES][2];
 } report;
 
 /* The tools' one rule (cli_masked_error); 0 for a black reference. */
@@ -137,37 +165,40 @@ static int vct_sweep(cli_session *s, voxgi_context *ctx, const report_args *a, c
                 for (ia = 0; ia < a->naps; ia++)
                     for (is = 0; is < a->nsteps; is++)
                         for (ist = 0; ist < a->nstrides; ist++) {
-                            voxgi_vct_desc vd;
+                            static const voxgi_vct_radiance radiance[3] = {VOXGI_VCT_ISOTROPIC, VOXGI_VCT_ANISOTROPIC, VOXGI_VCT_OCTREE};
+                            voxgi_render_desc vd;
+                            voxgi_render_info vi;
                             report_row *row = &rows[*nrows];
                             if (!(a->filters & (1u << f))) continue;
                             memset(&vd, 0, sizeof vd);
+                            vd.method = VOXGI_RENDER_VCT;
                             vd.camera = *cam;
                             vd.resolution = (int)a->res[ir];
-                            vd.filter = f == 1 ? VOXGI_MIPS_ANISOTROPIC : VOXGI_MIPS_ISOTROPIC;
-                            vd.octree = f == 2;
-                            vd.cones.cones = (int)a->cones[ic];
-                            vd.cones.half_angle = (float)(a->apertures[ia] * acos(1 - 1.0 / vd.cones.cones));
-                            vd.cones.step = (float)a->steps[is];
+                            vd.vct.radiance = radiance[f];
+                            vd.vct.cones.cones = (int)a->cones[ic];
+                            vd.vct.cones.half_angle = (float)(a->apertures[ia] * acos(1 - 1.0 / vd.vct.cones.cones));
+                            vd.vct.cones.step = (float)a->steps[is];
                             vd.samples = a->direct_spp;
                             vd.seed = 1;
                             vd.hide_emitters = 1;
-                            vd.cone_stride = (int)a->strides[ist];
-                            if (!(vd.cones.half_angle < 1.5f)) continue;
-                            cli_status(s, "%s: %d^3, %d cones x %.2f, step %.2f, stride %d, %s", name, vd.resolution, vd.cones.cones, a->apertures[ia],
-                                       a->steps[is], vd.cone_stride, mips_names[f]);
-                            if (voxgi_vct_render(ctx, scene, &vd, img, nv * 4, &row->info) != VOXGI_OK) return cli_fail_lib(s, ctx, NULL);
+                            vd.vct.cone_stride = (int)a->strides[ist];
+                            if (!(vd.vct.cones.half_angle < 1.5f)) continue;
+                            cli_status(s, "%s: %d^3, %d cones x %.2f, step %.2f, stride %d, %s", name, vd.resolution, vd.vct.cones.cones, a->apertures[ia],
+                                       a->steps[is], vd.vct.cone_stride, mips_names[f]);
+                            if (voxgi_render(ctx, scene, &vd, img, nv * 4, &vi) != VOXGI_OK) return cli_fail_lib(s, ctx, NULL);
+                            vct_times_of(&vi, &row->info);
                             row->scene = name;
                             row->res = vd.resolution;
-                            row->cones = vd.cones.cones;
+                            row->cones = vd.vct.cones.cones;
                             row->mips = f;
                             row->aperture = a->apertures[ia];
-                            row->half_angle_deg = vd.cones.half_angle * 180 / 3.14159265358979323846;
+                            row->half_angle_deg = vd.vct.cones.half_angle * 180 / 3.14159265358979323846;
                             row->step = a->steps[is];
-                            row->stride = vd.cone_stride;
+                            row->stride = vd.vct.cone_stride;
                             row->rmse = rel_rmse(mask, img, ref);
                             (*nrows)++;
                             if (run) {
-                                const voxgi_vct_info *v = &row->info;
+                                const vct_times *v = &row->info;
                                 report_item it;
                                 memset(&it, 0, sizeof it);
                                 it.method = "vct";
@@ -193,8 +224,8 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
     voxgi_builtin_scene bs;
     const voxgi_scene *scene;
     cli_error_mask mask;
-    voxgi_reference_desc rd;
-    voxgi_reference_info ri;
+    voxgi_render_desc rd;
+    voxgi_render_info ri;
     size_t nv = (size_t)a->size * (size_t)a->size * 3;
     const char *name = rep->scenes[si];
     int k, i, first_row = rep->nrows, rc = CLI_EXIT_FAILURE;
@@ -202,6 +233,7 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
     memset(&bs, 0, sizeof bs);
     memset(&mask, 0, sizeof mask);
     memset(&rd, 0, sizeof rd);
+    rd.method = VOXGI_RENDER_REFERENCE;
     if (cm) {
         scene = &cm->scene;
         rd.camera = cm->bs.camera;
@@ -222,22 +254,22 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
     rd.samples = a->spp;
     rd.seed = 1000;
     cli_note(s, "%s: the reference, %d spp", name, a->spp);
-    if (voxgi_reference_render(ctx, scene, &rd, ref, nv * 4, &ri) != VOXGI_OK) {
+    if (voxgi_render(ctx, scene, &rd, ref, nv * 4, &ri) != VOXGI_OK) {
         cli_fail_lib(s, ctx, NULL);
         goto done;
     }
     for (k = 4; k <= 64; k *= 4) { /* the reference's convergence: a difference of two independent estimates has variance c^2 (1/k + 1/spp) */
         rd.samples = k;
         rd.seed = 7 + (uint64_t)k;
-        if (voxgi_reference_render(ctx, scene, &rd, img, nv * 4, &ri) != VOXGI_OK) {
+        if (voxgi_render(ctx, scene, &rd, img, nv * 4, &ri) != VOXGI_OK) {
             cli_fail_lib(s, ctx, NULL);
             goto done;
         }
         c2 += rel_rmse(&mask, img, ref) * rel_rmse(&mask, img, ref) / (1.0 / k + 1.0 / a->spp) / 3;
     }
     rep->ref_c[si] = sqrt(c2);
-    rep->ref_ms_per_spp[si] = ri.ms_render / 64;
-    rep->ref_bvh_ms[si] = ri.ms_bvh;
+    rep->ref_ms_per_spp[si] = stage_ms(&ri, "render") / 64;
+    rep->ref_bvh_ms[si] = stage_ms(&ri, "bvh");
     rep->ref_floor[si] = rep->ref_c[si] / sqrt((double)a->spp);
     if (vct_sweep(s, ctx, a, scene, &rd.camera, name, &mask, ref, img, rep->rows, &rep->nrows, NULL)) goto done;
     for (i = first_row; i < rep->nrows; i++) { /* the path tracer's spp k whose image measures the same error against the same
@@ -247,18 +279,20 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
         row->ref_ms = rep->ref_bvh_ms[si] + rep->ref_ms_per_spp[si] * (need > 1.0 ? need : 1.0);
     }
     for (k = 0; k < 2; k++) { /* the stages on each backend, the faster of two runs (the first compiles GL's shaders) */
-        voxgi_vct_desc vd;
+        voxgi_render_desc vd;
         int run;
         if (!rep->stage_ctx[k]) continue;
         cli_vct_defaults(&vd, &rd.camera); /* the tool's defaults at the report's size, the grid --stage-res */
         vd.resolution = a->stage_res;
         cli_note(s, "%s: the defaults' stages on %s", name, voxgi_backend_name(rep->stage_ci[k].backend));
         for (run = 0; run < 2; run++) {
-            voxgi_vct_info vi;
-            if (voxgi_vct_render(rep->stage_ctx[k], scene, &vd, img, nv * 4, &vi) != VOXGI_OK) {
+            voxgi_render_info ri_stage;
+            vct_times vi;
+            if (voxgi_render(rep->stage_ctx[k], scene, &vd, img, nv * 4, &ri_stage) != VOXGI_OK) {
                 cli_fail_lib(s, rep->stage_ctx[k], NULL);
                 goto done;
             }
+            vct_times_of(&ri_stage, &vi);
             if (run == 0 || vi.ms < rep->stages[si][k].ms) rep->stages[si][k] = vi;
         }
     }
@@ -324,7 +358,7 @@ static void write_markdown(FILE *md, const report *rep)
             rep->stage_ctx[1] && rep->stage_ci[1].gl_software ? " GL runs on a software rasteriser on the same cores: these are not GPU timings." : "");
     for (s = 0; s < rep->scene_count; s++) {
         static const char *const stage_names[5] = {"voxelize", "inject + mips", "cones", "direct light (CPU rays on both)", "total"};
-        const voxgi_vct_info *c = &rep->stages[s][0], *g = &rep->stages[s][1];
+        const vct_times *c = &rep->stages[s][0], *g = &rep->stages[s][1];
         const double cpu[5] = {c->ms_voxelize, c->ms_inject, c->ms_cones, c->ms_direct, c->ms}, gl[5] = {g->ms_voxelize, g->ms_inject, g->ms_cones, g->ms_direct, g->ms};
         int k;
         for (k = 0; k < 5; k++) {

@@ -183,12 +183,12 @@ static void all_stage(all_state *st, const char *what)
 
 /* A static scene's light-only update against the full image: the cone tracer at the tool's
    defaults (96^3, 24 cones, stride 6, anisotropic) making its voxels and BVH per image, and
-   re-injecting the light into voxels kept from voxgi_vct_voxelize with the BVH kept from
+   re-injecting the light into voxels kept from voxgi_render_voxelize with the BVH kept from
    voxgi_ray_scene_create; the faster of two runs each. */
 static int all_light_update(all_state *st, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *view, all_scene *sc)
 {
-    voxgi_vct_desc d;
-    voxgi_vct_info vi;
+    voxgi_render_desc d;
+    voxgi_render_info vi;
     voxgi_voxels *vox = NULL;
     voxgi_ray_scene *rays = NULL;
     const size_t pixels = (size_t)view->width * (size_t)view->height;
@@ -197,14 +197,16 @@ static int all_light_update(all_state *st, voxgi_context *ctx, const voxgi_scene
     int k, run;
     if (!img) return cli_fail(st->s, "out of memory");
     memset(&d, 0, sizeof d);
+    d.method = VOXGI_RENDER_VCT;
     d.camera = *view;
     d.resolution = 96;
-    d.cones.cones = 24;
-    d.cone_stride = 6;
-    d.filter = VOXGI_MIPS_ANISOTROPIC;
+    d.vct.cones.cones = 24;
+    d.vct.cone_stride = 6;
+    d.vct.radiance = VOXGI_VCT_ANISOTROPIC;
+    d.samples = 16; /* the old zero's: the cone tracer's direct-light rays (the default is now 24) */
     d.hide_emitters = 1;
     t0 = cli_now_ms();
-    if (voxgi_vct_voxelize(ctx, scene, &d, &vox) != VOXGI_OK || voxgi_ray_scene_create(ctx, scene, &rays) != VOXGI_OK) {
+    if (voxgi_render_voxelize(ctx, scene, &d, &vox) != VOXGI_OK || voxgi_ray_scene_create(ctx, scene, &rays) != VOXGI_OK) {
         voxgi_voxels_destroy(ctx, vox);
         free(img);
         return cli_fail_lib(st->s, ctx, "vct voxels and rays");
@@ -215,7 +217,7 @@ static int all_light_update(all_state *st, voxgi_context *ctx, const voxgi_scene
         for (k = 0; k < 2; k++) {
             d.voxels = k ? vox : NULL;
             d.rays = k ? rays : NULL;
-            if (voxgi_vct_render(ctx, scene, &d, img, pixels * 12, &vi) != VOXGI_OK) {
+            if (voxgi_render(ctx, scene, &d, img, pixels * 12, &vi) != VOXGI_OK) {
                 voxgi_voxels_destroy(ctx, vox);
                 voxgi_ray_scene_destroy(ctx, rays);
                 free(img);
@@ -420,7 +422,7 @@ static void write_markdown(FILE *f, const all_state *st, const pareto_point *pts
                "most the target (it is on the Pareto front across the methods).\n\n");
     write_summary(f, st, pts);
     fprintf(f, "\n## Static scenes: a light-only update\n\nWhere the geometry stands still the cone tracer's voxels and its shadow rays' BVH are "
-               "made once (`voxgi_vct_voxelize`, `voxgi_ray_scene_create`) and each image re-injects the light into them (`voxgi_vct_desc.voxels`, "
+               "made once (`voxgi_render_voxelize`, `voxgi_ray_scene_create`) and each image re-injects the light into them (`voxgi_render_desc.voxels`, "
                "`.rays`): the same image, bit for bit. The tool's defaults (96^3, 24 cones, stride 6, anisotropic), the faster of two runs each."
                "\n\n| scene | image, making both | image, both kept | saved | voxels and BVH made alone |\n|---|---:|---:|---:|---:|\n");
     for (si = 0; si < st->nscenes; si++) {

@@ -139,59 +139,57 @@ done:
     return rc;
 }
 
+/* The time of an image's stage `name` (0 when it did not run). */
+static double stage_ms(const voxgi_render_info *i, const char *name)
+{
+    int k;
+    for (k = 0; k < i->stage_count; k++)
+        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
+    return 0;
+}
+
 /* Renders one configuration of scene (its name) into img; its row, and its memory into *bytes. */
 static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a, const voxgi_scene *scene, const char *name, const voxgi_camera *cam,
                         const cli_reference *R, bounce_row *row, float *img, double *bytes)
 {
     size_t img_bytes = (size_t)cam->width * (size_t)cam->height * 12;
+    voxgi_render_desc d;
+    voxgi_render_info info;
     voxgi_result r;
+    memset(&d, 0, sizeof d);
+    memset(&info, 0, sizeof info);
+    d.camera = *cam;
+    d.hide_emitters = 1;
+    d.seed = 1;
     if (a->method == BOUNCE_RSM) {
-        voxgi_rsm_image_desc d;
-        voxgi_rsm_image_info info;
-        memset(&d, 0, sizeof d);
-        d.camera = *cam;
-        d.hide_emitters = 1;
-        d.seed = 1;
-        d.rsm.seed = 1;
-        d.rsm.size = (int)row->p[0];
-        d.rsm.samples = (int)row->p[1];
-        d.rsm.radius = (float)row->p[2];
-        d.rsm.points = (int)row->p[3];
-        d.gather_stride = (int)row->p[4];
+        d.method = VOXGI_RENDER_RSM;
+        d.rsm.maps.seed = 1;
+        d.rsm.maps.size = (int)row->p[0];
+        d.rsm.maps.samples = (int)row->p[1];
+        d.rsm.maps.radius = (float)row->p[2];
+        d.rsm.maps.points = (int)row->p[3];
+        d.rsm.gather_stride = (int)row->p[4];
         d.resolution = (int)row->p[5];
-        d.visibility = (voxgi_visibility)row->visibility;
-        cli_status(s, "%s: rsm, %d texels, %d samples, radius %g, %d points, stride %d, %d voxels, %s", name, d.rsm.size, d.rsm.samples, row->p[2],
-                   d.rsm.points, d.gather_stride, d.resolution, visibility_names[row->visibility]);
-        r = voxgi_rsm_render(ctx, scene, &d, img, img_bytes, &info);
-        *bytes = (double)info.bytes;
-        row->ms = info.ms;
-        row->ms_gather = info.ms_gather;
-        row->gathered = info.gathered;
-        row->ms_passes[0] = info.ms_maps;
-        row->ms_passes[1] = info.ms_voxels;
-        row->ms_passes[2] = info.ms_direct;
+        d.rsm.visibility = (voxgi_visibility)row->visibility;
+        cli_status(s, "%s: rsm, %d texels, %d samples, radius %g, %d points, stride %d, %d voxels, %s", name, d.rsm.maps.size, d.rsm.maps.samples, row->p[2],
+                   d.rsm.maps.points, d.rsm.gather_stride, d.resolution, visibility_names[row->visibility]);
     } else {
-        voxgi_sh_image_desc d;
-        voxgi_sh_image_info info;
-        memset(&d, 0, sizeof d);
-        d.camera = *cam;
-        d.hide_emitters = 1;
-        d.seed = 1;
-        d.sh.seed = 1;
+        d.method = VOXGI_RENDER_SH;
+        d.sh.volume.seed = 1;
         d.resolution = (int)row->p[0];
-        d.opening = (float)row->p[1];
-        d.gather_stride = (int)row->p[2];
-        d.visibility = (voxgi_visibility)row->visibility;
-        cli_status(s, "%s: sh, %d voxels, opening %g, stride %d, %s", name, d.resolution, row->p[1], d.gather_stride, visibility_names[row->visibility]);
-        r = voxgi_sh_render(ctx, scene, &d, img, img_bytes, &info);
-        *bytes = (double)info.bytes;
-        row->ms = info.ms;
-        row->ms_gather = info.ms_gather;
-        row->gathered = info.gathered;
-        row->ms_passes[0] = info.ms_sh;
-        row->ms_passes[1] = info.ms_voxels;
-        row->ms_passes[2] = info.ms_direct;
+        d.sh.opening = (float)row->p[1];
+        d.sh.gather_stride = (int)row->p[2];
+        d.sh.visibility = (voxgi_visibility)row->visibility;
+        cli_status(s, "%s: sh, %d voxels, opening %g, stride %d, %s", name, d.resolution, row->p[1], d.sh.gather_stride, visibility_names[row->visibility]);
     }
+    r = voxgi_render(ctx, scene, &d, img, img_bytes, &info);
+    *bytes = (double)info.bytes;
+    row->ms = info.ms;
+    row->ms_gather = stage_ms(&info, "gather");
+    row->gathered = info.gathered;
+    row->ms_passes[0] = stage_ms(&info, a->method == BOUNCE_RSM ? "maps" : "sh");
+    row->ms_passes[1] = stage_ms(&info, "voxels");
+    row->ms_passes[2] = stage_ms(&info, "direct");
     if (r != VOXGI_OK) return cli_fail_lib(s, ctx, bounce_names[a->method]);
     row->rmse = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
     row->red = cli_red_excess(R, img);

@@ -67,6 +67,15 @@ static double image_mean(const float *img, size_t values)
     return s / (double)values;
 }
 
+/* The time of an image's stage `name` (0 when it did not run). */
+static double stage_ms(const voxgi_render_info *i, const char *name)
+{
+    int k;
+    for (k = 0; k < i->stage_count; k++)
+        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
+    return 0;
+}
+
 /* The line-space image of scene (its name, seen by cam) for every tree, supersampling, sample count
    and mode of a's lists, against R: a row each into md and csv (when not NULL) and, with run,
    handed to report all. 0, or says why and returns 1. */
@@ -97,21 +106,23 @@ static int ls_images(cli_session *s, voxgi_context *ctx, const ls_args *a, const
             for (k = 0; k < a->nsamples * a->nsuper; k++) {
                 int ss = (int)a->supersample[k / a->nsamples], spl = (int)a->samples[k % a->nsamples];
                 for (m = 0; m <= a->nends; m++) { /* exact, then fast with each exact zone */
-                    voxgi_linespace_image_desc d;
-                    voxgi_linespace_image_info li;
-                    double err, blk, mean, mae = 0, wrong = 0;
+                    voxgi_render_desc d;
+                    voxgi_render_info li;
+                    double err, blk, mean, mae = 0, wrong = 0, ms_gbuffer, ms_shadows, ms_build;
                     float *v = vis[m ? 1 : 0];
                     memset(&d, 0, sizeof d);
+                    d.method = VOXGI_RENDER_LINESPACE;
                     d.camera = *cam;
-                    d.ls = L;
-                    d.mode = m ? VOXGI_LINESPACE_FAST : VOXGI_LINESPACE_EXACT;
-                    d.exact_ends = m ? (int)a->ends[m - 1] : 0;
-                    d.samples = spl;
-                    d.supersample = ss;
+                    d.linespace.ls = L;
+                    d.linespace.mode = m ? VOXGI_LINESPACE_FAST : VOXGI_LINESPACE_EXACT;
+                    d.linespace.exact_ends = m ? (int)a->ends[m - 1] : 0;
+                    d.linespace.samples = spl;      /* >= 1 (--samples) */
+                    d.linespace.supersample = ss;   /* >= 1 (--supersample): 1 the pixel's centre */
+                    d.linespace.visible = v;
                     d.seed = 1;
                     d.hide_emitters = 1;
-                    cli_status(s, "%s: n %d depth %d, %d x %d points, %d samples, %s", name, td.n, td.depth, ss, ss, d.samples, m ? "fast" : "exact");
-                    if ((r = voxgi_linespace_render(ctx, scene, &d, img, pixels * 12, v, &li)) != VOXGI_OK) {
+                    cli_status(s, "%s: n %d depth %d, %d x %d points, %d samples, %s", name, td.n, td.depth, ss, ss, d.linespace.samples, m ? "fast" : "exact");
+                    if ((r = voxgi_render(ctx, scene, &d, img, pixels * 12, &li)) != VOXGI_OK) {
                         voxgi_linespace_destroy(ctx, L);
                         if (r == VOXGI_ERR_UNSUPPORTED && run) { /* no area light */
                             snprintf(run->why, sizeof run->why, "%s", voxgi_last_error(ctx));
@@ -119,6 +130,9 @@ static int ls_images(cli_session *s, voxgi_context *ctx, const ls_args *a, const
                         } else cli_fail_lib(s, ctx, "linespace");
                         goto done;
                     }
+                    ms_gbuffer = stage_ms(&li, "gbuffer");
+                    ms_shadows = stage_ms(&li, "shadows");
+                    ms_build = stage_ms(&li, "build");
                     err = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
                     blk = block_error(&R->mask, img, R->image);
                     mean = image_mean(img, 3 * pixels);
@@ -131,22 +145,22 @@ static int ls_images(cli_session *s, voxgi_context *ctx, const ls_args *a, const
                     if (md) {
                         char e1[32], e2[32];
                         fprintf(md, "| %d | %d | %.2f | %.0f | %d | %d | %d | %s | %.1f | %.1f | %s | %s | %.4g |", td.n, td.depth, info.bytes / 1e6, info.ms,
-                                ss * ss, spl, ss * ss * spl, m ? "fast" : "exact", li.ms_shadows, li.ms - li.ms_build, error_cell(e1, sizeof e1, err),
+                                ss * ss, spl, ss * ss * spl, m ? "fast" : "exact", ms_shadows, li.ms - ms_build, error_cell(e1, sizeof e1, err),
                                 error_cell(e2, sizeof e2, blk), mean);
-                        if (m) fprintf(md, " %d | %.4f | %.2f%% |\n", d.exact_ends, mae, 100 * wrong);
+                        if (m) fprintf(md, " %d | %.4f | %.2f%% |\n", d.linespace.exact_ends, mae, 100 * wrong);
                         else fprintf(md, " | | |\n");
                     }
                     if (csv)
                         fprintf(csv, "image,%s,%d,%d,%lu,%.3f,%d,%d,%s,%d,0,%.3f,%.3f,%.6g,%.6g,%.6g,%.6g,%.6g,,,\n", name, td.n, td.depth, (unsigned long)info.bytes,
-                                info.ms, ss, spl, m ? "fast" : "exact", d.exact_ends, li.ms_shadows, li.ms - li.ms_build, err, blk, mean, mae, wrong);
+                                info.ms, ss, spl, m ? "fast" : "exact", d.linespace.exact_ends, ms_shadows, li.ms - ms_build, err, blk, mean, mae, wrong);
                     if (run) { /* the tree is built once for every image: its time counts in each */
                         report_item it;
                         memset(&it, 0, sizeof it);
                         it.method = m ? "linespace-fast" : "linespace-exact";
                         snprintf(it.settings, sizeof it.settings, "n %d, depth %d, %d x %d points per pixel, %d samples", td.n, td.depth, ss, ss, spl);
-                        if (m) report_append(it.settings, sizeof it.settings, ", exact ends %d", d.exact_ends);
-                        snprintf(it.passes, sizeof it.passes, "tree %.1f, G-buffer %.1f, shadows %.1f", info.ms, li.ms_gbuffer, li.ms_shadows);
-                        it.ms = li.ms - li.ms_build + info.ms;
+                        if (m) report_append(it.settings, sizeof it.settings, ", exact ends %d", d.linespace.exact_ends);
+                        snprintf(it.passes, sizeof it.passes, "tree %.1f, G-buffer %.1f, shadows %.1f", info.ms, ms_gbuffer, ms_shadows);
+                        it.ms = li.ms - ms_build + info.ms;
                         it.bytes = (double)info.bytes;
                         it.error = err;
                         run->emit(run, &it, img);

@@ -201,60 +201,58 @@ static void config_columns(FILE *f, const screen_config *c, double longest, cons
     fprintf(f, "%s%s%d", csv ? (c->half ? "1" : "0") : (c->half ? "yes" : ""), sep, c->blur);
 }
 
+/* The time of an image's stage `name` (0 when it did not run). */
+static double stage_ms(const voxgi_render_info *i, const char *name)
+{
+    int k;
+    for (k = 0; k < i->stage_count; k++)
+        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
+    return 0;
+}
+
 /* Renders configuration c of scene (its longest side `longest`) seen by cam into img; its
-   measures of time into row. */
+   measures of time into row. Every setting is given (a zero field of voxgi_render_desc is the
+   method's measured default, not the configuration's): half resolution off or on, blur -1 for
+   none, the hidden light off or on. */
 static voxgi_result render_config(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *cam, double longest, const screen_config *c, float *img,
                                   screen_row *row)
 {
     size_t bytes = (size_t)cam->width * (size_t)cam->height * 12;
+    int ao = c->method == M_SSAO || c->method == M_SSAO_POINTS || c->method == M_VAO;
+    voxgi_render_desc d;
+    voxgi_render_info info;
     voxgi_result r;
-    if (c->method == M_SSAO || c->method == M_SSAO_POINTS || c->method == M_VAO) {
-        voxgi_ao_image_desc d;
-        voxgi_ao_image_info info;
-        memset(&d, 0, sizeof d);
-        memset(&info, 0, sizeof info);
-        d.camera = *cam;
-        d.method = c->method == M_VAO ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN;
-        d.resolution = c->res;
-        d.rays = c->rays;
-        d.steps = c->steps;
-        d.radius = (float)(c->radius * longest);
-        d.seed = 1;
-        d.point_sampling = c->method == M_SSAO_POINTS;
-        d.half_resolution = c->half;
-        d.blur = c->blur;
-        r = voxgi_ao_render(ctx, scene, &d, img, bytes, &info);
-        row->gathered = info.gathered;
-        row->ms_pass = info.ms_ao;
-        row->ms = info.ms;
-        row->ms_parts[0] = info.ms_gbuffer;
-        row->ms_parts[1] = info.ms_voxels;
-        row->bytes = (double)info.bytes;
+    memset(&d, 0, sizeof d);
+    memset(&info, 0, sizeof info);
+    d.camera = *cam;
+    d.resolution = c->res;
+    d.seed = 1;
+    d.screen.rays = c->rays;
+    d.screen.steps = c->steps;
+    d.screen.radius = (float)(c->radius * longest);
+    d.screen.half_resolution = c->half ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
+    d.screen.blur = c->blur > 0 ? c->blur : -1;
+    if (ao) {
+        d.method = c->method == M_VAO ? VOXGI_RENDER_VAO : VOXGI_RENDER_SSAO;
+        d.screen.point_sampling = c->method == M_SSAO_POINTS;
     } else {
-        voxgi_ssgi_image_desc d;
-        voxgi_ssgi_image_info info;
-        memset(&d, 0, sizeof d);
-        memset(&info, 0, sizeof info);
-        d.camera = *cam;
-        d.method = c->method == M_SSGI ? VOXGI_AO_SCREEN : VOXGI_AO_VOXELS;
-        d.resolution = c->res;
-        d.rays = c->rays;
-        d.steps = c->steps;
-        d.radius = (float)(c->radius * longest);
-        d.seed = 1;
+        d.method = c->method == M_SSGI ? VOXGI_RENDER_SSGI : VOXGI_RENDER_HYBRID;
         d.hide_emitters = 1;
-        d.half_resolution = c->half;
-        d.blur = c->blur;
-        d.hidden_light = c->hidden;
-        r = voxgi_ssgi_render(ctx, scene, &d, img, bytes, &info);
-        row->gathered = info.gathered;
-        row->ms_pass = info.ms_gather;
-        row->ms = info.ms;
-        row->ms_parts[0] = info.ms_direct;
-        row->ms_parts[1] = info.ms_voxels;
-        row->ms_parts[2] = info.ms_inject;
-        row->bytes = (double)info.bytes;
+        d.screen.hidden_light = c->hidden ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
     }
+    r = voxgi_render(ctx, scene, &d, img, bytes, &info);
+    row->gathered = info.gathered;
+    row->ms = info.ms;
+    row->ms_parts[1] = stage_ms(&info, "voxels");
+    if (ao) {
+        row->ms_pass = stage_ms(&info, "ao");
+        row->ms_parts[0] = stage_ms(&info, "gbuffer");
+    } else {
+        row->ms_pass = stage_ms(&info, "gather");
+        row->ms_parts[0] = stage_ms(&info, "direct");
+        row->ms_parts[2] = stage_ms(&info, "inject");
+    }
+    row->bytes = (double)info.bytes;
     row->c = *c;
     return r;
 }
@@ -336,22 +334,22 @@ static int screen_scene(cli_session *s, voxgi_context *ctx, const screen_args *a
     if (screen_sweep(s, ctx, a, rep, si, &bs.scene, name, &cam, R, img, NULL)) goto done;
     if (a->which == SCREEN_SSGI) {
         screen_config c = base_config(SCREEN_SSGI, M_HYBRID);
-        voxgi_reference_desc rd;
-        voxgi_vct_desc vd;
-        voxgi_vct_info vi;
+        voxgi_render_desc rd, vd;
+        voxgi_render_info vi;
         /* the direct light alone: the reference's, converged */
         if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &direct)) goto done;
         rep->direct_rmse[si] = cli_masked_error(&R[0].mask, direct.image, R[0].image, NULL, NULL);
         /* the most a bounce from the screen can find: the reference's bounce from the surfaces the camera sees alone */
         memset(&rd, 0, sizeof rd);
+        rd.method = VOXGI_RENDER_REFERENCE;
         rd.camera = cam;
         rd.samples = a->spp;
         rd.bounces = 1;
         rd.seed = 1000003; /* cli_reference_make's: the same noise as the full bounce's where they agree */
         rd.hide_emitters = 1;
-        rd.screen_light_only = 1;
+        rd.reference.screen_light_only = 1;
         cli_status(s, "%s: the reference's bounce from the screen alone, %d spp", name, a->spp);
-        if (voxgi_reference_render(ctx, &bs.scene, &rd, img, pixels * 12, NULL) != VOXGI_OK) {
+        if (voxgi_render(ctx, &bs.scene, &rd, img, pixels * 12, NULL) != VOXGI_OK) {
             cli_fail_lib(s, ctx, "the reference's bounce from the screen alone");
             goto done;
         }
@@ -376,7 +374,7 @@ static int screen_scene(cli_session *s, voxgi_context *ctx, const screen_args *a
         }
         cli_vct_defaults(&vd, &cam);
         cli_status(s, "%s: cone tracing, the tool's defaults", name);
-        if (voxgi_vct_render(ctx, &bs.scene, &vd, img, pixels * 12, &vi) != VOXGI_OK) {
+        if (voxgi_render(ctx, &bs.scene, &vd, img, pixels * 12, &vi) != VOXGI_OK) {
             cli_fail_lib(s, ctx, "cone tracing");
             goto done;
         }

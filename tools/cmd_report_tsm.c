@@ -23,9 +23,25 @@ typedef struct tsm_args {
     int nsizes, nslices, nsamples, size, spp;
 } tsm_args;
 
+/* What an image with maps measured (voxgi_render_info's TSM stages and sizes). */
+typedef struct tsm_times {
+    int maps;                     /* directional and spot lights, one map each */
+    size_t bytes;                 /* their memory */
+    double ms_maps, ms_shade, ms; /* building the maps, shading the pixels, all */
+} tsm_times;
+
+/* The time of an image's stage `name` (0 when it did not run). */
+static double stage_ms(const voxgi_render_info *i, const char *name)
+{
+    int k;
+    for (k = 0; k < i->stage_count; k++)
+        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
+    return 0;
+}
+
 typedef struct tsm_row {
     int scene, map_size, slices, samples, pareto;
-    voxgi_tsm_image_info info;
+    tsm_times info;
     double rmse, ref_ms;
 } tsm_row;
 
@@ -49,20 +65,27 @@ static int tsm_sweep(cli_session *s, voxgi_context *ctx, const tsm_args *a, cons
         for (j = 0; j < a->nslices; j++)
             for (k = 0; k < a->nsamples; k++) {
                 tsm_row *r = &rep->rows[rep->nrows];
-                voxgi_tsm_image_desc td;
+                voxgi_render_desc td;
+                voxgi_render_info ti;
                 memset(&td, 0, sizeof td);
+                td.method = VOXGI_RENDER_TSM;
                 td.camera = *cam;
                 td.hide_emitters = 1;
                 td.seed = 1;
-                td.tsm.size = (int)a->sizes[i];
-                td.tsm.slices = (int)a->slices[j];
+                td.tsm.maps.size = (int)a->sizes[i];
+                td.tsm.maps.slices = (int)a->slices[j];
                 td.samples = (int)a->samples[k];
-                cli_status(s, "%s: maps of %d texels, %d slices, %d rays per pixel", name, td.tsm.size, td.tsm.slices, td.samples);
-                if (voxgi_tsm_render(ctx, scene, &td, img, (size_t)cam->width * (size_t)cam->height * 12, &r->info) != VOXGI_OK)
+                cli_status(s, "%s: maps of %d texels, %d slices, %d rays per pixel", name, td.tsm.maps.size, td.tsm.maps.slices, td.samples);
+                if (voxgi_render(ctx, scene, &td, img, (size_t)cam->width * (size_t)cam->height * 12, &ti) != VOXGI_OK)
                     return cli_fail_lib(s, ctx, "tsm");
+                r->info.maps = ti.maps;
+                r->info.bytes = ti.bytes;
+                r->info.ms_maps = stage_ms(&ti, "maps");
+                r->info.ms_shade = stage_ms(&ti, "shade");
+                r->info.ms = ti.ms;
                 r->scene = si;
-                r->map_size = td.tsm.size;
-                r->slices = td.tsm.slices;
+                r->map_size = td.tsm.maps.size;
+                r->slices = td.tsm.maps.slices;
                 r->samples = td.samples;
                 r->rmse = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
                 r->ref_ms = cli_reference_ms(R, r->rmse);

@@ -15,52 +15,43 @@ static const char *const vxt_stiff_methods[VXT_STIFF_METHODS] = {"reference", "v
 /* Whether method m computes occlusion (its image is not light). */
 static inline int vxt_stiff_is_occlusion(int m) { return m == 7 || m == 8; }
 
-/* Method m's 16 x 16 image of sc through cam (small settings, seed 3) into rgb. */
+/* Method m's 16 x 16 image of sc through cam (small settings, seed 3) into rgb. Where a zero
+   field of voxgi_render_desc now means another default than the per-method calls' zero did, the
+   old value is set: cone tracing's isotropic volume, 16 cones at every pixel; the screen passes
+   at full resolution, unblurred, without hidden light; the line space at the pixel's centre. */
 static inline voxgi_result vxt_stiff_image(voxgi_context *ctx, int m, const voxgi_scene *sc, voxgi_camera cam, float *rgb)
 {
+    static const voxgi_render_method methods[VXT_STIFF_METHODS] = {VOXGI_RENDER_REFERENCE, VOXGI_RENDER_VCT,    VOXGI_RENDER_TSM,  VOXGI_RENDER_RSM,
+                                                                   VOXGI_RENDER_SH,        VOXGI_RENDER_SSGI,   VOXGI_RENDER_HYBRID, VOXGI_RENDER_SSAO,
+                                                                   VOXGI_RENDER_VAO,       VOXGI_RENDER_LINESPACE};
     const size_t bytes = sizeof(float) * 3 * VXT_STIFF_IMG * VXT_STIFF_IMG;
+    voxgi_render_desc d;
+    memset(&d, 0, sizeof d);
     cam.width = cam.height = VXT_STIFF_IMG;
+    d.method = methods[m >= 0 && m < VXT_STIFF_METHODS ? m : VXT_STIFF_METHODS - 1];
+    d.camera = cam;
+    d.seed = 3;
     if (m == 0) {
-        voxgi_reference_desc d;
-        memset(&d, 0, sizeof d);
-        d.camera = cam; d.samples = 4; d.bounces = 1; d.seed = 3;
-        return voxgi_reference_render(ctx, sc, &d, rgb, bytes, NULL);
+        d.samples = 4; d.bounces = 1;
     } else if (m == 1) {
-        voxgi_vct_desc d;
-        memset(&d, 0, sizeof d);
-        d.camera = cam; d.resolution = 16; d.cones.cones = 4; d.samples = 4; d.seed = 3;
-        return voxgi_vct_render(ctx, sc, &d, rgb, bytes, NULL);
+        d.resolution = 16; d.vct.cones.cones = 4; d.samples = 4;
+        d.vct.cone_stride = 1; d.vct.radiance = VOXGI_VCT_ISOTROPIC;
     } else if (m == 2) {
-        voxgi_tsm_image_desc d;
-        memset(&d, 0, sizeof d);
-        d.camera = cam; d.tsm.size = 64; d.seed = 3;
-        return voxgi_tsm_render(ctx, sc, &d, rgb, bytes, NULL);
+        d.tsm.maps.size = 64;
     } else if (m == 3) {
-        voxgi_rsm_image_desc d;
-        memset(&d, 0, sizeof d);
-        d.camera = cam; d.rsm.size = 32; d.resolution = 16; d.samples = 4; d.seed = 3;
-        return voxgi_rsm_render(ctx, sc, &d, rgb, bytes, NULL);
+        d.rsm.maps.size = 32; d.resolution = 16; d.samples = 4;
     } else if (m == 4) {
-        voxgi_sh_image_desc d;
-        memset(&d, 0, sizeof d);
-        d.camera = cam; d.resolution = 16; d.samples = 4; d.seed = 3;
-        return voxgi_sh_render(ctx, sc, &d, rgb, bytes, NULL);
+        d.resolution = 16; d.samples = 4;
     } else if (m == 5 || m == 6) {
-        voxgi_ssgi_image_desc d;
-        memset(&d, 0, sizeof d);
-        d.camera = cam; d.method = m == 6 ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN; d.resolution = 16; d.rays = 4; d.steps = 4; d.samples = 4; d.seed = 3;
-        return voxgi_ssgi_render(ctx, sc, &d, rgb, bytes, NULL);
+        d.resolution = 16; d.screen.rays = 4; d.screen.steps = 4; d.samples = 4;
+        d.screen.half_resolution = VOXGI_TOGGLE_OFF; d.screen.blur = -1; d.screen.hidden_light = VOXGI_TOGGLE_OFF;
     } else if (m == 7 || m == 8) {
-        voxgi_ao_image_desc d;
-        memset(&d, 0, sizeof d);
-        d.camera = cam; d.method = m == 8 ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN; d.resolution = 16; d.rays = 4; d.steps = 4; d.seed = 3;
-        return voxgi_ao_render(ctx, sc, &d, rgb, bytes, NULL);
+        d.resolution = 16; d.screen.rays = 4; d.screen.steps = 4;
+        d.screen.half_resolution = VOXGI_TOGGLE_OFF; d.screen.blur = -1;
     } else {
-        voxgi_linespace_image_desc d;
-        memset(&d, 0, sizeof d);
-        d.camera = cam; d.samples = 4; d.seed = 3;
-        return voxgi_linespace_render(ctx, sc, &d, rgb, bytes, NULL, NULL);
+        d.linespace.samples = 4; d.linespace.supersample = 1;
     }
+    return voxgi_render(ctx, sc, &d, rgb, bytes, NULL);
 }
 
 /* The RMS difference of two images over b's mean (0 when equal); n values. */
@@ -243,17 +234,17 @@ static inline voxgi_result vxt_stiff_furnace(voxgi_context *ctx, const voxgi_bui
     cam.width = cam.height = VXT_STIFF_IMG;
     if (img && vxt_stiff_add(&S, &fu->scene, NULL, 0, 0)) {
         for (mi = 0; mi < S.scene.material_count; mi++) S.mats[mi].albedo[0] = S.mats[mi].albedo[1] = S.mats[mi].albedo[2] = albedo;
-        if (vct) {
-            voxgi_vct_desc d;
-            memset(&d, 0, sizeof d);
-            d.camera = cam; d.resolution = 32; d.samples = 4; d.bounces = -1;
-            r = voxgi_vct_render(ctx, &S.scene, &d, img, n * sizeof(float), NULL);
+        voxgi_render_desc d;
+        memset(&d, 0, sizeof d);
+        d.camera = cam; d.samples = 4; d.bounces = -1;
+        if (vct) { /* the old zeros: an isotropic volume, 16 cones at every pixel */
+            d.method = VOXGI_RENDER_VCT;
+            d.resolution = 32; d.vct.cones.cones = 16; d.vct.cone_stride = 1; d.vct.radiance = VOXGI_VCT_ISOTROPIC;
         } else {
-            voxgi_reference_desc d;
-            memset(&d, 0, sizeof d);
-            d.camera = cam; d.samples = 4; d.bounces = -1; d.seed = 1;
-            r = voxgi_reference_render(ctx, &S.scene, &d, img, n * sizeof(float), NULL);
+            d.method = VOXGI_RENDER_REFERENCE;
+            d.seed = 1;
         }
+        r = voxgi_render(ctx, &S.scene, &d, img, n * sizeof(float), NULL);
         if (r == VOXGI_OK && !vxt_stiff_finite(img, n, mean)) *mean = NAN;
     }
     free(img);
