@@ -7558,6 +7558,7 @@ static void voxgi__occ_free(voxgi_context *ctx, voxgi__occupancy *O)
     memset(O, 0, sizeof *O);
 }
 
+#if defined(VOXGI__DIRECT_LIGHT) || !defined(VOXGI_NO_LINE_SPACE) /* the images' memory */
 /* The occupancy's memory, every level. */
 static size_t voxgi__occ_bytes(const voxgi__occupancy *O)
 {
@@ -7566,6 +7567,7 @@ static size_t voxgi__occ_bytes(const voxgi__occupancy *O)
     for (l = 0; l < O->levels; l++) n += ((size_t)O->res[l][0] * (size_t)O->res[l][1] * (size_t)O->res[l][2] + 31) / 32 * 4;
     return n;
 }
+#endif
 
 static voxgi_result voxgi__occ_build(voxgi_context *ctx, const voxgi_voxels *vox, int mips, voxgi__occupancy *O)
 {
@@ -7714,7 +7716,7 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
     return VOXGI_OK;
 }
 
-#ifndef VOXGI_NO_GL
+#if !defined(VOXGI_NO_GL) && (!defined(VOXGI_NO_LIGHT_SPACE) || !defined(VOXGI_NO_SCREEN_SPACE)) /* their gathers on GL */
 /* The occupancy for the GL traversal (shaders/voxel_traverse.glsl): every level's words one
    after another in *bits, and per level its cells per axis and first word in *levels. */
 static void voxgi__occ_upload(voxgi_context *ctx, const voxgi__occupancy *O, unsigned int *bits, unsigned int *levels)
