@@ -15374,6 +15374,57 @@ static voxgi_result voxgi__reference_image_gather(voxgi__image *I)
 }
 #endif
 
+#if (!defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)) || !defined(VOXGI_NO_LIGHT_SPACE) /* their gather strides */
+/* Anchors and the pixels between (cone tracing's and the reflective shadow maps' gathers at a
+   stride s > 1): the anchors are every s-th pixel across and down and the last row and column
+   (want[i] = 1 where such a pixel has a surface). */
+static void voxgi__anchors(int w, int h, int stride, const uint32_t *prim, unsigned char *want)
+{
+    size_t i, pixels = (size_t)w * (size_t)h;
+    for (i = 0; i < pixels; i++) {
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
+        want[i] = prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
+    }
+}
+
+/* Every other pixel with a surface: the bilinear mean of the irradiance of the anchors around it
+   (want: 1 at the anchors, on return 1 where a pixel needs its own gather) that share its
+   surface (normals within 26 degrees, within `plane` of its plane), renormalized over them. With
+   `strict` (Buchacher 2014's rule), only where at least three of the four share it (all of them
+   on an anchor's row or column); else wherever one with weight does. */
+static void voxgi__between_anchors(int w, int h, int stride, const float *pos, const float *nrm, const uint32_t *prim, double plane, int strict, float *irr,
+                                   unsigned char *want)
+{
+    size_t i, pixels = (size_t)w * (size_t)h;
+    for (i = 0; i < pixels; i++) {
+        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a, weighted = 0, shared = 0;
+        int xs[2], ys[2];
+        double sum = 0, e[3] = {0, 0, 0};
+        if (want[i] || prim[i] == UINT32_MAX) { want[i] = 0; continue; }
+        xs[0] = x0; xs[1] = VOXGI__MIN(x0 + stride, w - 1);
+        ys[0] = y0; ys[1] = VOXGI__MIN(y0 + stride, h - 1);
+        for (k = 0; k < 4; k++) {
+            size_t c = (size_t)ys[k >> 1] * (size_t)w + (size_t)xs[k & 1];
+            double wx = xs[1] > xs[0] ? (double)(x - xs[0]) / (xs[1] - xs[0]) : 0, wy = ys[1] > ys[0] ? (double)(y - ys[0]) / (ys[1] - ys[0]) : 0;
+            double wt = ((k & 1) ? wx : 1 - wx) * ((k >> 1) ? wy : 1 - wy), dn = 0, dp = 0;
+            if (wt <= 0) continue;
+            weighted++;
+            if (prim[c] == UINT32_MAX) continue;
+            for (a = 0; a < 3; a++) {
+                dn += (double)nrm[3 * c + (size_t)a] * nrm[3 * i + (size_t)a];
+                dp += ((double)pos[3 * c + (size_t)a] - pos[3 * i + (size_t)a]) * nrm[3 * i + (size_t)a];
+            }
+            if (dn < 0.9 || fabs(dp) > plane) continue; /* another surface: not its light */
+            shared++;
+            sum += wt;
+            for (a = 0; a < 3; a++) e[a] += wt * irr[3 * c + (size_t)a];
+        }
+        if (sum > 1e-3 && (!strict || shared >= VOXGI__MIN(3, weighted))) for (a = 0; a < 3; a++) irr[3 * i + (size_t)a] = (float)(e[a] / sum);
+        else want[i] = 1; /* too few anchors share its surface: its own gather */
+    }
+}
+#endif
+
 /* ----- cone-traced images */
 #if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
 typedef struct voxgi__vct_job {
@@ -15548,55 +15599,6 @@ static voxgi_result voxgi__vct_check_voxels(voxgi_context *ctx, const voxgi_scen
     return VOXGI_OK;
 }
 
-/* Anchors and the pixels between (cone tracing's and the reflective shadow maps' gathers at a
-   stride s > 1): the anchors are every s-th pixel across and down and the last row and column
-   (want[i] = 1 where such a pixel has a surface). */
-static void voxgi__anchors(int w, int h, int stride, const uint32_t *prim, unsigned char *want)
-{
-    size_t i, pixels = (size_t)w * (size_t)h;
-    for (i = 0; i < pixels; i++) {
-        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
-        want[i] = prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
-    }
-}
-
-/* Every other pixel with a surface: the bilinear mean of the irradiance of the anchors around it
-   (want: 1 at the anchors, on return 1 where a pixel needs its own gather) that share its
-   surface (normals within 26 degrees, within `plane` of its plane), renormalized over them. With
-   `strict` (Buchacher 2014's rule), only where at least three of the four share it (all of them
-   on an anchor's row or column); else wherever one with weight does. */
-static void voxgi__between_anchors(int w, int h, int stride, const float *pos, const float *nrm, const uint32_t *prim, double plane, int strict, float *irr,
-                                   unsigned char *want)
-{
-    size_t i, pixels = (size_t)w * (size_t)h;
-    for (i = 0; i < pixels; i++) {
-        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a, weighted = 0, shared = 0;
-        int xs[2], ys[2];
-        double sum = 0, e[3] = {0, 0, 0};
-        if (want[i] || prim[i] == UINT32_MAX) { want[i] = 0; continue; }
-        xs[0] = x0; xs[1] = VOXGI__MIN(x0 + stride, w - 1);
-        ys[0] = y0; ys[1] = VOXGI__MIN(y0 + stride, h - 1);
-        for (k = 0; k < 4; k++) {
-            size_t c = (size_t)ys[k >> 1] * (size_t)w + (size_t)xs[k & 1];
-            double wx = xs[1] > xs[0] ? (double)(x - xs[0]) / (xs[1] - xs[0]) : 0, wy = ys[1] > ys[0] ? (double)(y - ys[0]) / (ys[1] - ys[0]) : 0;
-            double wt = ((k & 1) ? wx : 1 - wx) * ((k >> 1) ? wy : 1 - wy), dn = 0, dp = 0;
-            if (wt <= 0) continue;
-            weighted++;
-            if (prim[c] == UINT32_MAX) continue;
-            for (a = 0; a < 3; a++) {
-                dn += (double)nrm[3 * c + (size_t)a] * nrm[3 * i + (size_t)a];
-                dp += ((double)pos[3 * c + (size_t)a] - pos[3 * i + (size_t)a]) * nrm[3 * i + (size_t)a];
-            }
-            if (dn < 0.9 || fabs(dp) > plane) continue; /* another surface: not its light */
-            shared++;
-            sum += wt;
-            for (a = 0; a < 3; a++) e[a] += wt * irr[3 * c + (size_t)a];
-        }
-        if (sum > 1e-3 && (!strict || shared >= VOXGI__MIN(3, weighted))) for (a = 0; a < 3; a++) irr[3 * i + (size_t)a] = (float)(e[a] / sum);
-        else want[i] = 1; /* too few anchors share its surface: its own gather */
-    }
-}
-
 /* The cones' irradiance at every pixel's surface (J->irr), or with a cone stride s > 1 at the
    anchors (voxgi__anchors), the pixels between interpolated (voxgi__between_anchors, not strict)
    or tracing their own where no anchor shares their surface. */
@@ -15732,55 +15734,6 @@ VOXGI_API voxgi_result voxgi_render_voxelize(voxgi_context *ctx, const voxgi_sce
     if ((r = voxgi__render_defaults(ctx, desc, &d)) != VOXGI_OK) return r;
     if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
     return voxgi__vct_voxelize(ctx, scene, &d, out);
-}
-#elif !defined(VOXGI_NO_LIGHT_SPACE)
-/* Anchors and the pixels between (cone tracing's and the reflective shadow maps' gathers at a
-   stride s > 1): the anchors are every s-th pixel across and down and the last row and column
-   (want[i] = 1 where such a pixel has a surface). */
-static void voxgi__anchors(int w, int h, int stride, const uint32_t *prim, unsigned char *want)
-{
-    size_t i, pixels = (size_t)w * (size_t)h;
-    for (i = 0; i < pixels; i++) {
-        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
-        want[i] = prim[i] != UINT32_MAX && (stride == 1 || ((x % stride == 0 || x == w - 1) && (y % stride == 0 || y == h - 1)));
-    }
-}
-
-/* Every other pixel with a surface: the bilinear mean of the irradiance of the anchors around it
-   (want: 1 at the anchors, on return 1 where a pixel needs its own gather) that share its
-   surface (normals within 26 degrees, within `plane` of its plane), renormalized over them. With
-   `strict` (Buchacher 2014's rule), only where at least three of the four share it (all of them
-   on an anchor's row or column); else wherever one with weight does. */
-static void voxgi__between_anchors(int w, int h, int stride, const float *pos, const float *nrm, const uint32_t *prim, double plane, int strict, float *irr,
-                                   unsigned char *want)
-{
-    size_t i, pixels = (size_t)w * (size_t)h;
-    for (i = 0; i < pixels; i++) {
-        int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w), x0 = x / stride * stride, y0 = y / stride * stride, k, a, weighted = 0, shared = 0;
-        int xs[2], ys[2];
-        double sum = 0, e[3] = {0, 0, 0};
-        if (want[i] || prim[i] == UINT32_MAX) { want[i] = 0; continue; }
-        xs[0] = x0; xs[1] = VOXGI__MIN(x0 + stride, w - 1);
-        ys[0] = y0; ys[1] = VOXGI__MIN(y0 + stride, h - 1);
-        for (k = 0; k < 4; k++) {
-            size_t c = (size_t)ys[k >> 1] * (size_t)w + (size_t)xs[k & 1];
-            double wx = xs[1] > xs[0] ? (double)(x - xs[0]) / (xs[1] - xs[0]) : 0, wy = ys[1] > ys[0] ? (double)(y - ys[0]) / (ys[1] - ys[0]) : 0;
-            double wt = ((k & 1) ? wx : 1 - wx) * ((k >> 1) ? wy : 1 - wy), dn = 0, dp = 0;
-            if (wt <= 0) continue;
-            weighted++;
-            if (prim[c] == UINT32_MAX) continue;
-            for (a = 0; a < 3; a++) {
-                dn += (double)nrm[3 * c + (size_t)a] * nrm[3 * i + (size_t)a];
-                dp += ((double)pos[3 * c + (size_t)a] - pos[3 * i + (size_t)a]) * nrm[3 * i + (size_t)a];
-            }
-            if (dn < 0.9 || fabs(dp) > plane) continue; /* another surface: not its light */
-            shared++;
-            sum += wt;
-            for (a = 0; a < 3; a++) e[a] += wt * irr[3 * c + (size_t)a];
-        }
-        if (sum > 1e-3 && (!strict || shared >= VOXGI__MIN(3, weighted))) for (a = 0; a < 3; a++) irr[3 * i + (size_t)a] = (float)(e[a] / sum);
-        else want[i] = 1; /* too few anchors share its surface: its own gather */
-    }
 }
 #endif
 
