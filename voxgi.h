@@ -14599,6 +14599,15 @@ static const struct { double error; int resolution, cones, stride; } voxgi__plan
     {0.0805, 64, 32, 6}, {0.0776, 96, 24, 6}, {0.0755, 96, 32, 6}};
 #define VOXGI__PLAN_VCT_DEFAULT 1
 
+/* The front's cheapest setting reaching a relative RMSE (0: the default; the closest where none does). */
+static size_t voxgi__plan_vct_pick(double error)
+{
+    size_t f, n = sizeof voxgi__plan_vct_front / sizeof voxgi__plan_vct_front[0];
+    if (!(error > 0)) return VOXGI__PLAN_VCT_DEFAULT;
+    for (f = 0; f + 1 < n && voxgi__plan_vct_front[f].error > error; f++) continue;
+    return f;
+}
+
 /* An octree of two-sided radiance per set voxel (measured: 8.0 MB for the Cornell box's 56,562
    voxels at 96^3, nodes and values). */
 #define VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL 148
@@ -14792,7 +14801,7 @@ static voxgi_result voxgi__render_defaults(voxgi_context *ctx, const voxgi_rende
     else if ((vct || m == VOXGI_RENDER_RSM || m == VOXGI_RENDER_SH || gi) && !d->samples) d->samples = 24;
     else if (ao || m == VOXGI_RENDER_LINESPACE) d->samples = 0; /* they take the pixels' centres */
     if (vct) { /* the front's middle, or the cheapest point reaching the error asked for */
-        size_t n = sizeof voxgi__plan_vct_front / sizeof voxgi__plan_vct_front[0], f = VOXGI__PLAN_VCT_DEFAULT;
+        size_t f = voxgi__plan_vct_pick(d->error);
         voxgi_render_vct *v = &d->vct;
         if (d->bounces > 1 && !d->vct.bounce_block) d->vct.bounce_block = 4;
         if ((unsigned)v->radiance > VOXGI_VCT_OCTREE || (unsigned)v->octree_format > VOXGI_SVO_FLOAT16 || v->cone_stride < 0 || v->cone_stride > 64 ||
@@ -14802,8 +14811,6 @@ static voxgi_result voxgi__render_defaults(voxgi_context *ctx, const voxgi_rende
 #ifdef VOXGI_NO_OCTREE
         if (v->radiance == VOXGI_VCT_OCTREE) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "vct: an octree of the radiance, but the octree is left out (VOXGI_NO_OCTREE)");
 #endif
-        if (d->error > 0)
-            for (f = 0; f + 1 < n && voxgi__plan_vct_front[f].error > d->error; f++) continue;
         if (!d->resolution) d->resolution = voxgi__plan_vct_front[f].resolution;
         if (!v->cones.cones) v->cones.cones = voxgi__plan_vct_front[f].cones;
         if (!v->cone_stride) v->cone_stride = voxgi__plan_vct_front[f].stride;
@@ -14899,9 +14906,7 @@ static voxgi_result voxgi__plan_render(voxgi_context *ctx, const voxgi_scene *sc
         d->linespace.tree.depth = voxgi__plan_linespace_depth(P.triangles);
     P.error_reachable = 1;
     if (m == VOXGI_RENDER_VCT && d->error > 0) {
-        size_t f;
-        for (f = 0; f + 1 < sizeof voxgi__plan_vct_front / sizeof voxgi__plan_vct_front[0] && voxgi__plan_vct_front[f].error > d->error; f++) continue;
-        P.expected_error = voxgi__plan_vct_front[f].error;
+        P.expected_error = voxgi__plan_vct_front[voxgi__plan_vct_pick(d->error)].error;
         P.error_reachable = P.expected_error <= d->error;
     }
     budget = d->memory_budget ? d->memory_budget : (uint64_t)ctx->desc.memory_budget;
