@@ -1400,6 +1400,8 @@ typedef struct voxgi_render_info {
    direct light's and the reference's rays stay on the CPU). */
 VOXGI_API voxgi_result voxgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, float *rgb, size_t rgb_bytes,
                                     voxgi_render_info *info);
+/* A stage's time in an image's info by its name ("cones", "gather", ...); 0 when it did not run. */
+VOXGI_API double voxgi_render_stage_ms(const voxgi_render_info *info, const char *name);
 /* The settings voxgi_render would run with, every default resolved for this scene (what
    info.used reports), without rendering. */
 VOXGI_API voxgi_result voxgi_render_resolve(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, voxgi_render_desc *used);
@@ -16440,6 +16442,14 @@ VOXGI_API voxgi_result voxgi_render(voxgi_context *ctx, const voxgi_scene *scene
     inf.ms = voxgi__now_ms() - t0;
     if (info) *info = inf;
     return r;
+}
+
+VOXGI_API double voxgi_render_stage_ms(const voxgi_render_info *info, const char *name)
+{
+    int i;
+    for (i = 0; i < info->stage_count; i++)
+        if (!strcmp(info->stages[i].name, name)) return info->stages[i].ms;
+    return 0;
 }
 
 VOXGI_API const char *voxgi_render_method_name(voxgi_render_method method)

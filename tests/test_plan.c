@@ -438,6 +438,9 @@ static void test_plan_follows_request(void)
                      "desc %d: the image's item %d (%s) is not voxgi_plan's", k, i, info.plan.items[i].name);
         TH_CHECK(k == 2 ? info.voxels == 0 && info.bytes == 0 && info.gathered == 0 : info.voxels > 0 && info.bytes > 0 && info.gathered > 0,
                  "desc %d: %lu voxels, %lu radiance bytes, %lu gathers", k, (unsigned long)info.voxels, (unsigned long)info.bytes, (unsigned long)info.gathered);
+        TH_CHECK(info.stage_count >= 1 && voxgi_render_stage_ms(&info, info.stages[info.stage_count - 1].name) == info.stages[info.stage_count - 1].ms && voxgi_render_stage_ms(&info, "no such stage") == 0 &&
+                     (voxgi_render_stage_ms(&info, "cones") > 0) == (k != 2),
+                 "desc %d: the stages by name (%d stages, cones %g ms)", k, info.stage_count, voxgi_render_stage_ms(&info, "cones"));
     }
     voxgi_voxels_destroy(ctx, vox);
     voxgi_builtin_scene_destroy(ctx, &bs);

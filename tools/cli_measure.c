@@ -120,15 +120,6 @@ double cli_masked_error(const cli_error_mask *m, const float *img, const float *
 }
 
 /* ------------------------------------------------------------------ a converged reference */
-/* The time of an image's stage `name` (0 when it did not run). */
-static double stage_ms(const voxgi_render_info *i, const char *name)
-{
-    int k;
-    for (k = 0; k < i->stage_count; k++)
-        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
-    return 0;
-}
-
 int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *camera, int spp, int bounces,
                        double ao_radius, cli_reference *R)
 {
@@ -173,7 +164,7 @@ int cli_reference_make(cli_session *s, voxgi_context *ctx, const voxgi_scene *sc
     }
     e16 = cli_masked_error(&R->mask, quick, R->image, NULL, NULL);
     R->c = e16 / sqrt(1.0 / 16 + 1.0 / spp);
-    R->ms_per_spp = (stage_ms(&ri, "bvh") + stage_ms(&ri, "render")) / 16;
+    R->ms_per_spp = (voxgi_render_stage_ms(&ri, "bvh") + voxgi_render_stage_ms(&ri, "render")) / 16;
     free(quick);
     return 0;
 }

@@ -101,15 +101,6 @@ static void scene_close(voxgi_context *ctx, render_scene *rs)
     if (rs->cm.name[0]) cli_cornell_mesh_close(ctx, &rs->cm);
 }
 
-/* Each pass's time in a render's info (0: it did not run). */
-static double stage_ms(const voxgi_render_info *info, const char *name)
-{
-    int i;
-    for (i = 0; i < info->stage_count; i++)
-        if (!strcmp(info->stages[i].name, name)) return info->stages[i].ms;
-    return 0;
-}
-
 /* What --compare measured. */
 typedef struct render_compare {
     double rmse;                  /* NaN: nothing to relate to (a black reference, or every pixel masked) */
@@ -241,57 +232,57 @@ static void print_json_fields(const voxgi_render_info *f)
     case VOXGI_RENDER_VCT:
         printf("\"res\":%d,\"cones\":%d,\"gi\":%d,\"voxels\":%llu,\"voxelize_ms\":%.3f,\"inject_ms\":%.3f,\"octree_ms\":%.3f,\"radiance_bytes\":%llu,"
                "\"cones_ms\":%.3f,\"direct_ms\":%.3f,\"ms\":%.3f,",
-               u->resolution, u->vct.cones.cones, !u->direct_only, (unsigned long long)f->voxels, stage_ms(f, "voxelize"), stage_ms(f, "inject"),
-               stage_ms(f, "octree"), (unsigned long long)f->bytes, stage_ms(f, "cones"), stage_ms(f, "direct"), f->ms);
+               u->resolution, u->vct.cones.cones, !u->direct_only, (unsigned long long)f->voxels, voxgi_render_stage_ms(f, "voxelize"), voxgi_render_stage_ms(f, "inject"),
+               voxgi_render_stage_ms(f, "octree"), (unsigned long long)f->bytes, voxgi_render_stage_ms(f, "cones"), voxgi_render_stage_ms(f, "direct"), f->ms);
         break;
     case VOXGI_RENDER_TSM:
         printf("\"spp\":%d,\"maps\":%d,\"map_size\":%d,\"slices\":%d,\"sigma\":%.6g,\"map_bytes\":%lu,\"maps_ms\":%.3f,\"shade_ms\":%.3f,\"ms\":%.3f,", u->samples,
                f->maps, u->tsm.maps.size ? u->tsm.maps.size : 512, u->tsm.maps.slices ? u->tsm.maps.slices : 64, (double)u->tsm.maps.sigma, (unsigned long)f->bytes,
-               stage_ms(f, "maps"), stage_ms(f, "shade"), f->ms);
+               voxgi_render_stage_ms(f, "maps"), voxgi_render_stage_ms(f, "shade"), f->ms);
         break;
     case VOXGI_RENDER_RSM:
         printf("\"maps\":%d,\"map_size\":%d,\"samples\":%d,\"visibility\":\"%s\",\"res\":%d,\"gather_stride\":%d,\"gathered\":%lu,\"maps_ms\":%.3f,"
                "\"voxels_ms\":%.3f,\"direct_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,",
                f->maps, u->rsm.maps.size ? u->rsm.maps.size : 256, u->rsm.maps.samples ? u->rsm.maps.samples : 100, visibility_names[u->rsm.visibility],
-               u->resolution, u->rsm.gather_stride, (unsigned long)f->gathered, stage_ms(f, "maps"), stage_ms(f, "voxels"), stage_ms(f, "direct"),
-               stage_ms(f, "gather"), f->ms);
+               u->resolution, u->rsm.gather_stride, (unsigned long)f->gathered, voxgi_render_stage_ms(f, "maps"), voxgi_render_stage_ms(f, "voxels"), voxgi_render_stage_ms(f, "direct"),
+               voxgi_render_stage_ms(f, "gather"), f->ms);
         break;
     case VOXGI_RENDER_SH:
         printf("\"res\":%d,\"opening\":%.6g,\"visibility\":\"%s\",\"gather_stride\":%d,\"gathered\":%lu,\"sh_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,"
                "\"gather_ms\":%.3f,\"ms\":%.3f,",
-               u->resolution, (double)u->sh.opening, visibility_names[u->sh.visibility], u->sh.gather_stride, (unsigned long)f->gathered, stage_ms(f, "sh"),
-               stage_ms(f, "voxels"), stage_ms(f, "direct"), stage_ms(f, "gather"), f->ms);
+               u->resolution, (double)u->sh.opening, visibility_names[u->sh.visibility], u->sh.gather_stride, (unsigned long)f->gathered, voxgi_render_stage_ms(f, "sh"),
+               voxgi_render_stage_ms(f, "voxels"), voxgi_render_stage_ms(f, "direct"), voxgi_render_stage_ms(f, "gather"), f->ms);
         break;
     case VOXGI_RENDER_SSAO:
     case VOXGI_RENDER_VAO:
         printf("\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"point_sampling\":%d,\"res\":%d,\"gbuffer_ms\":%.3f,\"voxels_ms\":%.3f,\"ao_ms\":%.3f,\"ms\":%.3f,",
-               (double)sc->radius, sc->rays, sc->steps, sc->point_sampling, u->resolution ? u->resolution : 128, stage_ms(f, "gbuffer"), stage_ms(f, "voxels"),
-               stage_ms(f, "ao"), f->ms);
+               (double)sc->radius, sc->rays, sc->steps, sc->point_sampling, u->resolution ? u->resolution : 128, voxgi_render_stage_ms(f, "gbuffer"), voxgi_render_stage_ms(f, "voxels"),
+               voxgi_render_stage_ms(f, "ao"), f->ms);
         break;
     case VOXGI_RENDER_SSGI:
     case VOXGI_RENDER_HYBRID:
         printf("\"radius\":%.6g,\"rays\":%d,\"steps\":%d,\"half_res\":%d,\"blur\":%d,\"hidden_light\":%d,\"gathered\":%lu,\"direct_ms\":%.3f,\"voxels_ms\":%.3f,"
                "\"inject_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,",
                (double)sc->radius, sc->rays, sc->steps, sc->half_resolution == VOXGI_TOGGLE_ON, sc->blur > 0 ? sc->blur : 0, sc->hidden_light == VOXGI_TOGGLE_ON,
-               (unsigned long)f->gathered, stage_ms(f, "direct"), stage_ms(f, "voxels"), stage_ms(f, "inject"), stage_ms(f, "gather"), f->ms);
+               (unsigned long)f->gathered, voxgi_render_stage_ms(f, "direct"), voxgi_render_stage_ms(f, "voxels"), voxgi_render_stage_ms(f, "inject"), voxgi_render_stage_ms(f, "gather"), f->ms);
         break;
     case VOXGI_RENDER_LINESPACE: {
         const voxgi_linespace_info *t = &f->tree;
         const voxgi_linespace_stats *r = &f->shadow_rays;
-        double shadows = stage_ms(f, "shadows");
+        double shadows = voxgi_render_stage_ms(f, "shadows");
         printf("\"mode\":\"%s\",\"packets\":%d,\"n\":%d,\"depth\":%d,\"samples\":%d,\"supersample\":%d,\"lights\":%d,\"nodes\":%lu,\"line_spaces\":%lu,\"leaves\":%lu,"
                "\"triangle_refs\":%lu,\"bytes\":%lu,\"allocated\":%lu,\"rays\":%llu,\"nodes_entered\":%llu,\"bits_read\":%llu,\"triangle_tests\":%llu,"
                "\"build_ms\":%.3f,\"gbuffer_ms\":%.3f,\"shadows_ms\":%.3f,\"ms\":%.3f,\"mrays_per_s\":%.4g,",
                ls_mode_names[u->linespace.mode], u->linespace.packets, t->n, t->depth, r->samples, u->linespace.supersample, f->lights, (unsigned long)t->nodes,
                (unsigned long)t->line_spaces, (unsigned long)t->leaves, (unsigned long)t->triangle_refs, (unsigned long)t->bytes, (unsigned long)t->allocated,
-               (unsigned long long)r->rays, (unsigned long long)r->nodes, (unsigned long long)r->bits, (unsigned long long)r->triangle_tests, stage_ms(f, "build"),
-               stage_ms(f, "gbuffer"), shadows, f->ms, shadows > 0 ? (double)r->rays / shadows / 1000 : 0);
+               (unsigned long long)r->rays, (unsigned long long)r->nodes, (unsigned long long)r->bits, (unsigned long long)r->triangle_tests, voxgi_render_stage_ms(f, "build"),
+               voxgi_render_stage_ms(f, "gbuffer"), shadows, f->ms, shadows > 0 ? (double)r->rays / shadows / 1000 : 0);
         break;
     }
     default:
         printf("\"spp\":%d,\"bounces\":%d,\"seed\":%llu,\"triangles\":%lu,\"bvh_nodes\":%lu,\"rays\":%llu,\"bvh_ms\":%.3f,\"render_ms\":%.3f,", u->samples,
-               u->bounces, (unsigned long long)u->seed, (unsigned long)f->triangles, (unsigned long)f->bvh_nodes, (unsigned long long)f->rays, stage_ms(f, "bvh"),
-               stage_ms(f, "render"));
+               u->bounces, (unsigned long long)u->seed, (unsigned long)f->triangles, (unsigned long)f->bvh_nodes, (unsigned long long)f->rays, voxgi_render_stage_ms(f, "bvh"),
+               voxgi_render_stage_ms(f, "render"));
     }
 }
 

@@ -42,24 +42,15 @@ typedef struct vct_times {
     double ms_voxelize, ms_inject, ms_octree, ms_cones, ms_direct, ms; /* the stages (inject: with the mips), all */
 } vct_times;
 
-/* The time of an image's stage `name` (0 when it did not run). */
-static double stage_ms(const voxgi_render_info *i, const char *name)
-{
-    int k;
-    for (k = 0; k < i->stage_count; k++)
-        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
-    return 0;
-}
-
 static void vct_times_of(const voxgi_render_info *i, vct_times *t)
 {
     t->voxels = i->voxels;
     t->radiance_bytes = i->bytes;
-    t->ms_voxelize = stage_ms(i, "voxelize");
-    t->ms_inject = stage_ms(i, "inject");
-    t->ms_octree = stage_ms(i, "octree");
-    t->ms_cones = stage_ms(i, "cones");
-    t->ms_direct = stage_ms(i, "direct");
+    t->ms_voxelize = voxgi_render_stage_ms(i, "voxelize");
+    t->ms_inject = voxgi_render_stage_ms(i, "inject");
+    t->ms_octree = voxgi_render_stage_ms(i, "octree");
+    t->ms_cones = voxgi_render_stage_ms(i, "cones");
+    t->ms_direct = voxgi_render_stage_ms(i, "direct");
     t->ms = i->ms;
 }
 
@@ -268,8 +259,8 @@ static int report_scene(cli_session *s, voxgi_context *ctx, const report_args *a
         c2 += rel_rmse(&mask, img, ref) * rel_rmse(&mask, img, ref) / (1.0 / k + 1.0 / a->spp) / 3;
     }
     rep->ref_c[si] = sqrt(c2);
-    rep->ref_ms_per_spp[si] = stage_ms(&ri, "render") / 64;
-    rep->ref_bvh_ms[si] = stage_ms(&ri, "bvh");
+    rep->ref_ms_per_spp[si] = voxgi_render_stage_ms(&ri, "render") / 64;
+    rep->ref_bvh_ms[si] = voxgi_render_stage_ms(&ri, "bvh");
     rep->ref_floor[si] = rep->ref_c[si] / sqrt((double)a->spp);
     if (vct_sweep(s, ctx, a, scene, &rd.camera, name, &mask, ref, img, rep->rows, &rep->nrows, NULL)) goto done;
     for (i = first_row; i < rep->nrows; i++) { /* the path tracer's spp k whose image measures the same error against the same

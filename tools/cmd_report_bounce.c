@@ -139,15 +139,6 @@ done:
     return rc;
 }
 
-/* The time of an image's stage `name` (0 when it did not run). */
-static double stage_ms(const voxgi_render_info *i, const char *name)
-{
-    int k;
-    for (k = 0; k < i->stage_count; k++)
-        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
-    return 0;
-}
-
 /* Renders one configuration of scene (its name) into img; its row, and its memory into *bytes. */
 static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a, const voxgi_scene *scene, const char *name, const voxgi_camera *cam,
                         const cli_reference *R, bounce_row *row, float *img, double *bytes)
@@ -185,11 +176,11 @@ static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a
     r = voxgi_render(ctx, scene, &d, img, img_bytes, &info);
     *bytes = (double)info.bytes;
     row->ms = info.ms;
-    row->ms_gather = stage_ms(&info, "gather");
+    row->ms_gather = voxgi_render_stage_ms(&info, "gather");
     row->gathered = info.gathered;
-    row->ms_passes[0] = stage_ms(&info, a->method == BOUNCE_RSM ? "maps" : "sh");
-    row->ms_passes[1] = stage_ms(&info, "voxels");
-    row->ms_passes[2] = stage_ms(&info, "direct");
+    row->ms_passes[0] = voxgi_render_stage_ms(&info, a->method == BOUNCE_RSM ? "maps" : "sh");
+    row->ms_passes[1] = voxgi_render_stage_ms(&info, "voxels");
+    row->ms_passes[2] = voxgi_render_stage_ms(&info, "direct");
     if (r != VOXGI_OK) return cli_fail_lib(s, ctx, bounce_names[a->method]);
     row->rmse = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
     row->red = cli_red_excess(R, img);

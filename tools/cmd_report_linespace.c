@@ -67,15 +67,6 @@ static double image_mean(const float *img, size_t values)
     return s / (double)values;
 }
 
-/* The time of an image's stage `name` (0 when it did not run). */
-static double stage_ms(const voxgi_render_info *i, const char *name)
-{
-    int k;
-    for (k = 0; k < i->stage_count; k++)
-        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
-    return 0;
-}
-
 /* The line-space image of scene (its name, seen by cam) for every tree, supersampling, sample count
    and mode of a's lists, against R: a row each into md and csv (when not NULL) and, with run,
    handed to report all. 0, or says why and returns 1. */
@@ -130,9 +121,9 @@ static int ls_images(cli_session *s, voxgi_context *ctx, const ls_args *a, const
                         } else cli_fail_lib(s, ctx, "linespace");
                         goto done;
                     }
-                    ms_gbuffer = stage_ms(&li, "gbuffer");
-                    ms_shadows = stage_ms(&li, "shadows");
-                    ms_build = stage_ms(&li, "build");
+                    ms_gbuffer = voxgi_render_stage_ms(&li, "gbuffer");
+                    ms_shadows = voxgi_render_stage_ms(&li, "shadows");
+                    ms_build = voxgi_render_stage_ms(&li, "build");
                     err = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
                     blk = block_error(&R->mask, img, R->image);
                     mean = image_mean(img, 3 * pixels);

@@ -201,15 +201,6 @@ static void config_columns(FILE *f, const screen_config *c, double longest, cons
     fprintf(f, "%s%s%d", csv ? (c->half ? "1" : "0") : (c->half ? "yes" : ""), sep, c->blur);
 }
 
-/* The time of an image's stage `name` (0 when it did not run). */
-static double stage_ms(const voxgi_render_info *i, const char *name)
-{
-    int k;
-    for (k = 0; k < i->stage_count; k++)
-        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
-    return 0;
-}
-
 /* Renders configuration c of scene (its longest side `longest`) seen by cam into img; its
    measures of time into row. Every setting is given (a zero field of voxgi_render_desc is the
    method's measured default, not the configuration's): half resolution off or on, blur -1 for
@@ -243,14 +234,14 @@ static voxgi_result render_config(voxgi_context *ctx, const voxgi_scene *scene, 
     r = voxgi_render(ctx, scene, &d, img, bytes, &info);
     row->gathered = info.gathered;
     row->ms = info.ms;
-    row->ms_parts[1] = stage_ms(&info, "voxels");
+    row->ms_parts[1] = voxgi_render_stage_ms(&info, "voxels");
     if (ao) {
-        row->ms_pass = stage_ms(&info, "ao");
-        row->ms_parts[0] = stage_ms(&info, "gbuffer");
+        row->ms_pass = voxgi_render_stage_ms(&info, "ao");
+        row->ms_parts[0] = voxgi_render_stage_ms(&info, "gbuffer");
     } else {
-        row->ms_pass = stage_ms(&info, "gather");
-        row->ms_parts[0] = stage_ms(&info, "direct");
-        row->ms_parts[2] = stage_ms(&info, "inject");
+        row->ms_pass = voxgi_render_stage_ms(&info, "gather");
+        row->ms_parts[0] = voxgi_render_stage_ms(&info, "direct");
+        row->ms_parts[2] = voxgi_render_stage_ms(&info, "inject");
     }
     row->bytes = (double)info.bytes;
     row->c = *c;

@@ -30,15 +30,6 @@ typedef struct tsm_times {
     double ms_maps, ms_shade, ms; /* building the maps, shading the pixels, all */
 } tsm_times;
 
-/* The time of an image's stage `name` (0 when it did not run). */
-static double stage_ms(const voxgi_render_info *i, const char *name)
-{
-    int k;
-    for (k = 0; k < i->stage_count; k++)
-        if (i->stages[k].name && strcmp(i->stages[k].name, name) == 0) return i->stages[k].ms;
-    return 0;
-}
-
 typedef struct tsm_row {
     int scene, map_size, slices, samples, pareto;
     tsm_times info;
@@ -80,8 +71,8 @@ static int tsm_sweep(cli_session *s, voxgi_context *ctx, const tsm_args *a, cons
                     return cli_fail_lib(s, ctx, "tsm");
                 r->info.maps = ti.maps;
                 r->info.bytes = ti.bytes;
-                r->info.ms_maps = stage_ms(&ti, "maps");
-                r->info.ms_shade = stage_ms(&ti, "shade");
+                r->info.ms_maps = voxgi_render_stage_ms(&ti, "maps");
+                r->info.ms_shade = voxgi_render_stage_ms(&ti, "shade");
                 r->info.ms = ti.ms;
                 r->scene = si;
                 r->map_size = td.tsm.maps.size;
