@@ -187,7 +187,13 @@
             follows it (VCT's octree where the volume is over the budget). Public struct layouts
             no longer depend on VOXGI_NO_*: a left-out part keeps its declarations, and its
             methods give VOXGI_ERR_UNSUPPORTED. Voxel visibility (voxgi_voxels_occluded) moved
-            to part 5; the reference renderer is part 13, below the images.
+            to part 5; the reference renderer is part 13, below the images. One traversal
+            enum: voxgi_traversal (HIERARCHICAL = 0, DDA, NONE) replaces voxgi_visibility, so
+            the hierarchy (the same answers in half the time) is every zero default. One
+            budget rule: 0 is the context's (voxgi_linespace_desc.memory_budget was 1 GiB;
+            voxgi_render_desc.memory_budget is a size_t). voxgi_ssgi_desc.hidden_light is
+            hidden_radiance (the images' hidden_light is the toggle that builds it).
+            voxgi_render_stage_ms reads a stage's time by name.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -569,10 +575,15 @@ static inline int voxgi_bit_get(const uint32_t *bits, uint64_t index)
    the traversal's rounding; both traversals compute each boundary crossing afresh from the
    segment (no sums of steps), so they agree. The voxels of the endpoints count too: a caller
    testing between two surfaces moves the ends off them first. steps (may be NULL): voxels (DDA)
-   or cells (hierarchical) visited, summed. */
-typedef enum voxgi_traversal { VOXGI_TRAVERSAL_DDA = 0, VOXGI_TRAVERSAL_HIERARCHICAL } voxgi_traversal;
+   or cells (hierarchical) visited, summed. Segments (3 floats from, 3 to, per segment), not the
+   voxgi_ray of the ray and line-space calls: visibility between two surfaces asks about the closed
+   segment between exact points, where a ray's far end (origin + tmax direction) is rounded and its
+   interval open. The two give the same answers; the hierarchy takes
+   half the time (voxgi report rsm), hence the default. NONE: no visibility, where a caller may
+   leave it out (the images' gathers); the calls that test segments refuse it. */
+typedef enum voxgi_traversal { VOXGI_TRAVERSAL_HIERARCHICAL = 0, VOXGI_TRAVERSAL_DDA, VOXGI_TRAVERSAL_NONE } voxgi_traversal;
 VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_traversal how, size_t count, const float *from,
-                                             const float *to, unsigned char *blocked, uint64_t *steps);
+                                             const float *to, unsigned char *occluded, uint64_t *steps);
 
 
 /* ===================================================================== 6. volumes and mips */
@@ -987,9 +998,6 @@ VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *s
                                            size_t count, const float *points, const float *normals, float *irradiance);
 VOXGI_API void voxgi_sh_destroy(voxgi_context *ctx, voxgi_sh *sh);
 
-/* The traversals agree on every segment; the hierarchy takes half the time (voxgi report rsm). */
-typedef enum voxgi_visibility { VOXGI_VISIBILITY_HIERARCHICAL = 0, VOXGI_VISIBILITY_DDA, VOXGI_VISIBILITY_NONE } voxgi_visibility;
-
 
 
 /* ===================================================================== 11. screen-space passes */
@@ -1023,7 +1031,7 @@ typedef struct voxgi_ao_desc {
     const float *normals;         /* per pixel: the unit normal facing the camera; (0, 0, 0): no surface (AO 0) */
     voxgi_ao_method method;
     const voxgi_voxels *voxels;   /* VOXELS: what blocks the rays */
-    voxgi_traversal traversal;    /* VOXELS: DDA or the hierarchy (the same answers) */
+    voxgi_traversal traversal;    /* VOXELS: the hierarchy (0) or DDA, the same answers */
     int rays;                     /* per pixel; 0 = 16 */
     int steps;                    /* SCREEN: per ray; 0 = 16 */
     float radius;                 /* world units, > 0 */
@@ -1043,7 +1051,7 @@ VOXGI_API voxgi_result voxgi_ao(voxgi_context *ctx, const voxgi_ao_desc *desc, f
    first occupied voxel along the ray (from 1.5 voxels off the surface), the radiance of the pixel
    showing the point where the ray enters it, when that point lies within 2 voxels of the plane of
    that pixel's surface; a hit hidden from the camera or off the screen blocks the ray and sends nothing
-   (the one rule for both: only the screen has light), or with hidden_light the light of the voxel
+   (the one rule for both: only the screen has light), or with hidden_radiance the light of the voxel
    it met (an extension of the source's method: the light the screen cannot see, from the voxels).
    Misses send nothing (no environment). */
 typedef struct voxgi_ssgi_desc {
@@ -1056,7 +1064,7 @@ typedef struct voxgi_ssgi_desc {
     int rays, steps;              /* 0 = 16 each */
     float radius;                 /* world units, > 0 */
     uint64_t seed;
-    const voxgi_volume *hidden_light; /* VOXELS: NULL, or the light the voxels send (voxgi_inject_light on the voxels'
+    const voxgi_volume *hidden_radiance; /* VOXELS: NULL, or the light the voxels send (voxgi_inject_light on the voxels'
                                      grid, from voxels without EMISSION, as emitters' light is the direct light's),
                                      read at the centre of the voxel a hidden hit meets: RADIANCE, or RADIANCE_BACK
                                      where the ray meets the side its RADIANCE_SIDE normal turns away */
@@ -1109,7 +1117,8 @@ typedef struct voxgi_linespace_desc {
     int n;                        /* children per axis of a split node, 2..16; 0 = 4 */
     int depth;                    /* levels below the root, 1..8 (the leaves' level); 0 = from the scene: 2 under 256
                                      triangles, else 3 */
-    size_t memory_budget;         /* bytes the tree, its line spaces and triangle lists may take; 0 = 1 GiB */
+    size_t memory_budget;         /* bytes the tree, its line spaces and triangle lists may take; 0: the context's
+                                     (voxgi_desc.memory_budget) */
 } voxgi_linespace_desc;
 typedef struct voxgi_linespace_info {
     int n, depth;
@@ -1253,14 +1262,14 @@ typedef struct voxgi_render_tsm {
 typedef struct voxgi_render_rsm {
     voxgi_rsm_desc maps;          /* every light's map but point lights' (which bounce nowhere), and the emitters':
                                      size, samples, radius, points, seed as voxgi_rsm_desc's (light: ignored) */
-    voxgi_visibility visibility;  /* of each gather, through the grid's conservative voxels */
+    voxgi_traversal visibility;  /* of each gather, through the grid's conservative voxels */
     int gather_stride;            /* gathers at every s-th pixel across and down, the pixels between interpolated from the
                                      anchors around them that share their surface where at least three of four do; 0 = 4 */
 } voxgi_render_rsm;
 
 typedef struct voxgi_render_sh {
     voxgi_sh_desc volume;         /* samples and seed as voxgi_sh_desc's */
-    voxgi_visibility visibility;
+    voxgi_traversal visibility;
     float opening;                /* a cell counts as one point where its size is at most this times its distance; 0 = 0.5 */
     int gather_stride;            /* as rsm's; 0 = 4 */
 } voxgi_render_sh;
@@ -1273,7 +1282,7 @@ typedef struct voxgi_render_screen {
     voxgi_toggle half_resolution; /* rays at every other pixel across and down, upsampled by voxgi_screen_filter; default off
                                      for AO, on for GI */
     int blur;                     /* voxgi_screen_filter's radius in pixels, 1..64; 0: AO 2, GI 8; -1: none */
-    voxgi_toggle hidden_light;    /* HYBRID: rays meeting a voxel the camera does not see take the direct light injected into
+    voxgi_toggle hidden_light;    /* HYBRID: builds voxgi_ssgi_desc.hidden_radiance: rays meeting a voxel the camera does not see take the direct light injected into
                                      it (voxgi_inject_light, without emission); default on (off: they send nothing) */
     int inject_samples;           /* hidden_light: voxgi_inject_desc.samples; 0 = as VCT's */
 } voxgi_render_screen;
@@ -1310,7 +1319,7 @@ typedef struct voxgi_render_desc {
     int hide_emitters;            /* 1: leave out the emission the camera sees directly (to compare the lighting alone) */
     double error;                 /* VCT, > 0: the relative RMSE wanted: the grid, cones and stride not given come from the
                                      measured front (docs/planner.md); the other methods refuse it */
-    uint64_t memory_budget;       /* bytes the plan may keep; 0: the context's (voxgi_desc.memory_budget) */
+    size_t memory_budget;         /* bytes the plan may keep; 0: the context's (voxgi_desc.memory_budget) */
     const voxgi_voxels *voxels;   /* VCT: the static scene's voxels from voxgi_render_voxelize: the light is re-injected into
                                      them and nothing voxelized (a light-only update) */
     const voxgi_ray_scene *rays;  /* the static scene's ray scene (voxgi_ray_scene_create of this scene): no BVH built */
@@ -7690,7 +7699,7 @@ static int voxgi__traverse(const voxgi__occupancy *O, int hierarchical, const do
 }
 
 VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_traversal how, size_t count, const float *from,
-                                             const float *to, unsigned char *blocked, uint64_t *steps)
+                                             const float *to, unsigned char *occluded, uint64_t *steps)
 {
     voxgi__occupancy O;
     const voxgi_grid *g;
@@ -7699,7 +7708,7 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
     int a;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!voxels || (count && (!from || !to || !blocked))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, from, to or blocked is NULL");
+    if (!voxels || (count && (!from || !to || !occluded))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "voxels, from, to or occluded is NULL");
     if (how != VOXGI_TRAVERSAL_DDA && how != VOXGI_TRAVERSAL_HIERARCHICAL) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "traversal %d", (int)how);
     for (i = 0; i < 3 * count; i++)
         if (!isfinite(from[i]) || !isfinite(to[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "segment %lu is not finite", (unsigned long)(i / 3));
@@ -7711,7 +7720,7 @@ VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_vox
             o[a] = ((double)from[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size;
             d[a] = ((double)to[3 * i + (size_t)a] - g->origin[a]) / g->voxel_size - o[a];
         }
-        blocked[i] = (unsigned char)voxgi__traverse(&O, how == VOXGI_TRAVERSAL_HIERARCHICAL, o, d, &n, NULL, NULL);
+        occluded[i] = (unsigned char)voxgi__traverse(&O, how == VOXGI_TRAVERSAL_HIERARCHICAL, o, d, &n, NULL, NULL);
     }
     voxgi__occ_free(ctx, &O);
     if (steps) *steps = n;
@@ -12396,8 +12405,8 @@ typedef struct voxgi__screen_job {
     const uint32_t *pixel_of;     /* NULL, or per point the pixel whose random numbers it draws (else its own index) */
     float *out;
     size_t first_point;           /* the random numbers of point i are those of point first_point + i (pixel_of NULL) */
-    const voxgi_volume *hidden_light; /* VOXELS with radiance: NULL, or the light of the voxels hidden hits meet */
-    float *hidden_hits;           /* with hidden_light, per point and ray: the centre (grid units) of the voxel a
+    const voxgi_volume *hidden_radiance; /* VOXELS with radiance: NULL, or the light of the voxels hidden hits meet */
+    float *hidden_hits;           /* with hidden_radiance, per point and ray: the centre (grid units) of the voxel a
                                      hidden or off-screen hit met and the ray's direction, NAN in the first where
                                      the ray met none such */
 } voxgi__screen_job;
@@ -12633,7 +12642,7 @@ static voxgi_result voxgi__screen_rays_on(voxgi_context *ctx, voxgi__screen_job 
 }
 
 /* Job J's rays at count points (J's points, normals, out) on the context's backend; with
-   J->hidden_light, in parts of about a million rays, the light of the voxels the hidden
+   J->hidden_radiance, in parts of about a million rays, the light of the voxels the hidden
    hits met (voxgi_volume_sample at their centres: RADIANCE, or RADIANCE_BACK where the ray meets
    the side its RADIANCE_SIDE normal turns away) added after each part. */
 static voxgi_result voxgi__screen_rays(voxgi_context *ctx, voxgi__screen_job *J, size_t count)
@@ -12643,8 +12652,8 @@ static voxgi_result voxgi__screen_rays(voxgi_context *ctx, voxgi__screen_job *J,
     uint32_t *owner;
     voxgi_volume_info vi;
     voxgi_result r = VOXGI_OK;
-    if (!J->hidden_light) return voxgi__screen_rays_on(ctx, J, count);
-    voxgi_volume_query(J->hidden_light, &vi);
+    if (!J->hidden_radiance) return voxgi__screen_rays_on(ctx, J, count);
+    voxgi_volume_query(J->hidden_radiance, &vi);
     part = VOXGI__MIN(part, VOXGI__MAX(count, 1));
     hits = (float *)voxgi__alloc_array(ctx, part * (size_t)J->rays, 24, 0);
     pos = (float *)voxgi__alloc_array(ctx, part * (size_t)J->rays, 12, 0);
@@ -12670,7 +12679,7 @@ static voxgi_result voxgi__screen_rays(voxgi_context *ctx, voxgi__screen_job *J,
                 owner[n++] = (uint32_t)(i / (size_t)J->rays);
             }
         for (k = 0; n && r == VOXGI_OK && k < (size_t)(sides == 2 ? 3 : 1); k++)
-            r = voxgi_volume_sample(ctx, J->hidden_light, k == 0 ? VOXGI_ATTRIBUTE_RADIANCE : k == 1 ? VOXGI_ATTRIBUTE_RADIANCE_BACK : VOXGI_ATTRIBUTE_RADIANCE_SIDE,
+            r = voxgi_volume_sample(ctx, J->hidden_radiance, k == 0 ? VOXGI_ATTRIBUTE_RADIANCE : k == 1 ? VOXGI_ATTRIBUTE_RADIANCE_BACK : VOXGI_ATTRIBUTE_RADIANCE_SIDE,
                                     VOXGI_DIR_POS_X, n, pos, lods, L + 4 * k * n);
         for (i = 0; r == VOXGI_OK && i < n; i++) {
             const float *d = hits + 6 * i + 3, *side = L + 8 * n + 4 * i;
@@ -12764,14 +12773,14 @@ VOXGI_API voxgi_result voxgi_ssgi(voxgi_context *ctx, const voxgi_ssgi_desc *des
         return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "irradiance holds %lu bytes, the image needs %lu", (unsigned long)irradiance_bytes,
                            (unsigned long)((size_t)desc->camera.width * (size_t)desc->camera.height * 12));
     J.radiance = desc->radiance;
-    if (desc->hidden_light) {
+    if (desc->hidden_radiance) {
         const voxgi_grid *g = desc->voxels ? &desc->voxels->info.grid : NULL;
         voxgi_volume_info vi;
-        voxgi_volume_query(desc->hidden_light, &vi);
+        voxgi_volume_query(desc->hidden_radiance, &vi);
         if (desc->method != VOXGI_AO_VOXELS || !g || !(vi.attributes & VOXGI_ATTRIBUTE_RADIANCE) || vi.grid.voxel_size != g->voxel_size ||
             memcmp(vi.grid.origin, g->origin, sizeof g->origin) != 0 || memcmp(vi.grid.res, g->res, sizeof g->res) != 0)
-            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "hidden_light needs VOXELS and a RADIANCE volume on the voxels' grid");
-        J.hidden_light = desc->hidden_light;
+            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "hidden_radiance needs VOXELS and a RADIANCE volume on the voxels' grid");
+        J.hidden_radiance = desc->hidden_radiance;
     }
     return voxgi__screen_run(ctx, &J, desc->voxels, desc->seed, irradiance);
 }
@@ -13295,7 +13304,7 @@ VOXGI_API voxgi_result voxgi_linespace_create(voxgi_context *ctx, const voxgi_sc
     *out = NULL;
     n = desc->n ? desc->n : 4;
     depth = desc->depth; /* 0: the scene's, once its triangles are counted (at most 16^3 leaves a side) */
-    budget = desc->memory_budget ? desc->memory_budget : (size_t)1 << 30;
+    budget = desc->memory_budget ? desc->memory_budget : ctx->desc.memory_budget ? ctx->desc.memory_budget : SIZE_MAX;
     if (n < 2 || n > 16 || depth < 0 || depth > 8)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "n %d (2..16), depth %d (1..8, 0: from the scene)", n, depth);
     if (pow(n, depth) > 1048576.0) /* the rays' float frames resolve 2^-20 of the root */
@@ -14818,9 +14827,9 @@ static voxgi_result voxgi__render_defaults(voxgi_context *ctx, const voxgi_rende
         if (!v->cone_stride) v->cone_stride = voxgi__plan_vct_front[f].stride;
         if (!v->inject_samples) v->inject_samples = ctx->backend == VOXGI_BACKEND_GL && !v->shadow_rays ? 16 : 4;
     } else if (m == VOXGI_RENDER_RSM || m == VOXGI_RENDER_SH) {
-        voxgi_visibility vis = m == VOXGI_RENDER_RSM ? d->rsm.visibility : d->sh.visibility;
+        voxgi_traversal vis = m == VOXGI_RENDER_RSM ? d->rsm.visibility : d->sh.visibility;
         int *stride = m == VOXGI_RENDER_RSM ? &d->rsm.gather_stride : &d->sh.gather_stride;
-        if ((unsigned)vis > VOXGI_VISIBILITY_NONE || *stride < 0 || *stride > 64 || (m == VOXGI_RENDER_SH && (d->resolution > 1024 || !(d->sh.opening >= 0 && d->sh.opening <= 4))))
+        if ((unsigned)vis > VOXGI_TRAVERSAL_NONE || *stride < 0 || *stride > 64 || (m == VOXGI_RENDER_SH && (d->resolution > 1024 || !(d->sh.opening >= 0 && d->sh.opening <= 4))))
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "%s: visibility %d, gather_stride %d (0..64), resolution %d%s, opening %g (0..4)", voxgi__render_method_names[m], (int)vis,
                                *stride, d->resolution, m == VOXGI_RENDER_SH ? " (0..1024)" : "", (double)d->sh.opening);
         if (!d->resolution) d->resolution = 64;
@@ -14855,7 +14864,7 @@ static voxgi_result voxgi__render_defaults(voxgi_context *ctx, const voxgi_rende
         if (!L->samples) L->samples = 4; /* voxgi report linespace's front (docs/line-space.md) */
         if (!L->supersample) L->supersample = 2;
         if (!L->tree.n) L->tree.n = 4;
-        if (!L->tree.memory_budget) L->tree.memory_budget = (size_t)1 << 30;
+        if (!L->tree.memory_budget) L->tree.memory_budget = d->memory_budget; /* 0: the context's, as everywhere */
         if (L->mode == VOXGI_LINESPACE_FAST && !L->exact_ends) L->exact_ends = 3;
     } else if (m == VOXGI_RENDER_REFERENCE) {
         if (!(d->reference.ao_radius >= 0 && isfinite(d->reference.ao_radius)) || (d->reference.screen_light_only && d->bounces != 1))
@@ -14911,7 +14920,7 @@ static voxgi_result voxgi__plan_render(voxgi_context *ctx, const voxgi_scene *sc
         P.expected_error = voxgi__plan_vct_front[voxgi__plan_vct_pick(d->error)].error;
         P.error_reachable = P.expected_error <= d->error;
     }
-    budget = d->memory_budget ? d->memory_budget : (uint64_t)ctx->desc.memory_budget;
+    budget = d->memory_budget ? d->memory_budget : ctx->desc.memory_budget;
     lit = all || scene->light_count || P.emissive_triangles;
     reflective = all || P.reflective_triangles;
     seen = all || P.emitters_in_view;
@@ -14957,7 +14966,7 @@ static voxgi_result voxgi__plan_render(voxgi_context *ctx, const voxgi_scene *sc
                         (uint64_t)maps * (uint64_t)layers * texels * 2u * 4u, 0);
         voxgi__plan_add(&P, VOXGI_PLAN_DIRECT_LIGHT, lit, lit ? "shadow rays to the other lights and emitters" : "no light and no emitter", 0, 0);
     } else if (m == VOXGI_RENDER_RSM || m == VOXGI_RENDER_SH) {
-        int areas = P.rect_lights + (P.emissive_triangles > 0), vis = (m == VOXGI_RENDER_RSM ? d->rsm.visibility : d->sh.visibility) != VOXGI_VISIBILITY_NONE;
+        int areas = P.rect_lights + (P.emissive_triangles > 0), vis = (m == VOXGI_RENDER_RSM ? d->rsm.visibility : d->sh.visibility) != VOXGI_TRAVERSAL_NONE;
         uint64_t gb = voxgi_grid_voxel_count(&P.grid) / 8 + 4;
         if (m == VOXGI_RENDER_RSM)
             voxgi__plan_add(&P, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS, gi, gi ? "the lit surfaces' points" : no_gi,
@@ -15991,7 +16000,7 @@ static voxgi_result voxgi__rsm_image_build(voxgi__image *I)
     voxgi_result r;
     I->gi = voxgi__image_kept(I, VOXGI_PLAN_GATHERS);
     if ((r = voxgi__image_rays(I, 1)) != VOXGI_OK) return r;
-    if ((r = voxgi__image_voxels(I, 0, voxgi__image_kept(I, VOXGI_PLAN_VOXELS), q->visibility == VOXGI_VISIBILITY_HIERARCHICAL, 0)) != VOXGI_OK || !I->gi) return r;
+    if ((r = voxgi__image_voxels(I, 0, voxgi__image_kept(I, VOXGI_PLAN_VOXELS), q->visibility == VOXGI_TRAVERSAL_HIERARCHICAL, 0)) != VOXGI_OK || !I->gi) return r;
     if (!(I->rsm = (voxgi_rsm **)voxgi__alloc_array(I->ctx, I->scene->light_count + 1, sizeof *I->rsm, 1))) return voxgi__fail(I->ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory");
     t0 = voxgi__now_ms();
     for (li = 0; r == VOXGI_OK && li <= I->scene->light_count; li++) { /* each light's map, then the emitters' */
@@ -16017,7 +16026,7 @@ static voxgi_result voxgi__rsm_image_gather(voxgi__image *I)
     G.n = I->rsm_count;
     G.O = I->have_occ ? &I->O : NULL;
     G.grid = &I->grid;
-    G.hierarchical = I->d->rsm.visibility == VOXGI_VISIBILITY_HIERARCHICAL;
+    G.hierarchical = I->d->rsm.visibility == VOXGI_TRAVERSAL_HIERARCHICAL;
     return voxgi__image_bounce(I, I->d->rsm.gather_stride, voxgi__rsm_gather_maps, &G);
 }
 
@@ -16036,7 +16045,7 @@ static voxgi_result voxgi__sh_image_build(voxgi__image *I)
     voxgi_result r;
     I->gi = voxgi__image_kept(I, VOXGI_PLAN_GATHERS);
     if ((r = voxgi__image_rays(I, 1)) != VOXGI_OK) return r;
-    if ((r = voxgi__image_voxels(I, 0, voxgi__image_kept(I, VOXGI_PLAN_VOXELS), I->d->sh.visibility == VOXGI_VISIBILITY_HIERARCHICAL, 0)) != VOXGI_OK || !I->gi)
+    if ((r = voxgi__image_voxels(I, 0, voxgi__image_kept(I, VOXGI_PLAN_VOXELS), I->d->sh.visibility == VOXGI_TRAVERSAL_HIERARCHICAL, 0)) != VOXGI_OK || !I->gi)
         return r;
     t0 = voxgi__now_ms();
     r = voxgi_sh_create(I->ctx, I->scene, &I->grid, &I->d->sh.volume, &I->sh);
@@ -16055,7 +16064,7 @@ static voxgi_result voxgi__sh_image_gather(voxgi__image *I)
     memset(&G, 0, sizeof G);
     G.S = I->sh;
     G.O = I->have_occ ? &I->O : NULL;
-    G.hierarchical = I->d->sh.visibility == VOXGI_VISIBILITY_HIERARCHICAL;
+    G.hierarchical = I->d->sh.visibility == VOXGI_TRAVERSAL_HIERARCHICAL;
     G.opening = I->d->sh.opening;
     return voxgi__image_bounce(I, I->d->sh.gather_stride, voxgi__sh_gather_all, &G);
 }
@@ -16212,7 +16221,7 @@ static voxgi_result voxgi__ssgi_image_gather(voxgi__image *I)
     J.O = I->have_occ ? &I->O : NULL;
     J.grid = I->vox ? &I->grid : NULL;
     J.seed = d->seed;
-    J.hidden_light = I->volume;
+    J.hidden_radiance = I->volume;
     r = voxgi__screen_image(I->ctx, &J, 3, sc->half_resolution == VOXGI_TOGGLE_ON, VOXGI__MAX(sc->blur, 0), I->irr, &I->info->gathered);
     if (r == VOXGI_OK) voxgi__image_add_bounce(I);
     voxgi__image_stage(I, "gather", t0);

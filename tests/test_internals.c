@@ -1155,7 +1155,7 @@ static void ls_visit(ls_check *C, uint32_t node, const double corner[3], double 
    2: every triangle in every leaf its clipped polygon meets and in none it misses; every filled
    node has a filled child; no segment between two faces' patches through a filled child finds
    its bit clear, while some bits are clear; the same pools on 1 and 2 threads; the memory as
-   the formula says; a budget too small refused. */
+   the formula says; a budget too small refused, its own or the context's. */
 static void test_linespace_build(void)
 {
     enum { T = 14 };
@@ -1209,6 +1209,15 @@ static void test_linespace_build(void)
     d.memory_budget = 4096;
     TH_CHECK(voxgi_linespace_create(ctx[0], &sc, &d, &L[0]) == VOXGI_ERR_TOO_LARGE && L[0] == NULL, "a 4 KiB budget accepted");
     d.memory_budget = 0;
+    { /* budget 0: the context's, as every budget */
+        voxgi_desc cd;
+        voxgi_context *small = NULL;
+        ctx_desc(&cd, VOXGI_BACKEND_CPU);
+        cd.memory_budget = 4096;
+        TH_CHECK(voxgi_create(&cd, &small) == VOXGI_OK && voxgi_linespace_create(small, &sc, &d, &L[0]) == VOXGI_ERR_TOO_LARGE && L[0] == NULL,
+                 "the context's 4 KiB budget accepted");
+        voxgi_destroy(small);
+    }
     d.n = 1;
     TH_CHECK(voxgi_linespace_create(ctx[0], &sc, &d, &L[0]) == VOXGI_ERR_INVALID_ARGUMENT, "n 1 accepted");
     voxgi_destroy(ctx[0]);

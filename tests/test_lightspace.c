@@ -444,6 +444,8 @@ static void test_voxel_visibility(void)
         TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_HIERARCHICAL, 1, f, t, &b, NULL) == VOXGI_OK && b == 0, "outside the grid");
         f[1] = NAN;
         TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_DDA, 1, f, t, &b, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a NaN segment");
+        f[1] = 3;
+        TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_NONE, 1, f, t, &b, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "no traversal: accepted");
     }
     free(bits);
     voxgi_voxels_destroy(ctx, vox);
@@ -671,7 +673,7 @@ static void test_rsm_gather_stride(void)
     d.camera = bs.camera;
     d.camera.width = d.camera.height = W;
     d.rsm.maps.size = 64;
-    d.rsm.visibility = VOXGI_VISIBILITY_NONE;
+    d.rsm.visibility = VOXGI_TRAVERSAL_NONE;
     d.samples = 1;
     d.hide_emitters = 1;
     d.rsm.gather_stride = 1;
@@ -889,7 +891,7 @@ static void test_bounce_input(void)
     qd.rsm.gather_stride = 65;
     TH_CHECK(voxgi_render(ctx, &S.scene, &qd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "stride 65");
     qd.rsm.gather_stride = 0;
-    qd.rsm.visibility = (voxgi_visibility)5;
+    qd.rsm.visibility = (voxgi_traversal)5;
     TH_CHECK(voxgi_render(ctx, &S.scene, &qd, img, sizeof img, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "visibility 5");
     voxgi_destroy(ctx);
 }

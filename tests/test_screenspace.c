@@ -854,7 +854,7 @@ static void test_hybrid_hidden_light(void)
         d.method = VOXGI_AO_VOXELS;
         d.voxels = vox[1];
         d.radius = 1;
-        d.hidden_light = vol;
+        d.hidden_radiance = vol;
         TH_CHECK(voxgi_ssgi(ctx, &d, out, sizeof out) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         d.voxels = vox[0];
         TH_CHECK(voxgi_ssgi(ctx, &d, out, sizeof out) == VOXGI_ERR_INVALID_ARGUMENT, "hidden light on another grid");
@@ -980,7 +980,7 @@ static void test_hidden_light_gl(void)
         d.traversal = VOXGI_TRAVERSAL_HIERARCHICAL;
         d.rays = 32;
         d.radius = 3;
-        d.hidden_light = vol[b];
+        d.hidden_radiance = vol[b];
         TH_CHECK(voxgi_ssgi(ctx[b], &d, out[b], sizeof out[b]) == VOXGI_OK, "%s", voxgi_last_error(ctx[b]));
     }
     for (i = 0; i < 3 * W * W; i++) {

@@ -333,7 +333,7 @@ static void test_tsm_command(void)
         qd.rsm.maps.size = 32;
         qd.rsm.maps.samples = 16;
         qd.rsm.maps.seed = 1;
-        qd.rsm.visibility = VOXGI_VISIBILITY_HIERARCHICAL;
+        qd.rsm.visibility = VOXGI_TRAVERSAL_HIERARCHICAL;
         qd.resolution = 16;
         qd.seed = 1;
         TH_CHECK(voxgi_render(ctx, &ts.scene, &qd, want, sizeof want, NULL) == VOXGI_OK, "library rsm render: %s", voxgi_last_error(ctx));

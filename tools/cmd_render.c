@@ -7,7 +7,7 @@
 static const char *const render_methods[] = {"reference", "vct", "tsm", "rsm", "sh", "ssao", "vao", "ssgi", "hybrid", "linespace", NULL};
 enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH, METHOD_SSAO, METHOD_VAO, METHOD_SSGI, METHOD_HYBRID, METHOD_LINESPACE };
 static const char *const ls_mode_names[] = {"exact", "fast", NULL}; /* voxgi_linespace_mode's order */
-static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_visibility's order */
+static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_traversal's order */
 static const char *const off_on_names[] = {"off", "on", NULL};
 
 static const char *const plan_help =
@@ -353,7 +353,7 @@ static void render_desc_of(const render_args *a, voxgi_render_desc *d)
     d->rsm.maps.radius = (float)a->rsm_radius;
     d->rsm.maps.points = a->rsm_points;
     d->rsm.maps.seed = d->sh.volume.seed = d->seed; /* the maps' and the SH volume's patterns from the image's seed */
-    d->rsm.visibility = d->sh.visibility = (voxgi_visibility)a->visibility;
+    d->rsm.visibility = d->sh.visibility = (voxgi_traversal)a->visibility;
     d->rsm.gather_stride = d->sh.gather_stride = a->gather_stride;
     d->sh.opening = (float)a->opening;
     d->screen.rays = a->rays;
@@ -375,7 +375,7 @@ static void render_desc_of(const render_args *a, voxgi_render_desc *d)
     d->reference.ao_radius = (float)a->ao_radius;
     d->reference.screen_light_only = a->screen_light_only;
     d->error = a->error;
-    d->memory_budget = (uint64_t)(a->budget_mb * 1048576.0);
+    d->memory_budget = (size_t)(a->budget_mb * 1048576.0);
 }
 
 static int render_run(cli_session *s, const render_args *a)

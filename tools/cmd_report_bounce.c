@@ -6,7 +6,7 @@
 
 enum { BOUNCE_RSM, BOUNCE_SH };
 static const char *const bounce_names[] = {"rsm", "sh"};
-static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_visibility's order */
+static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_traversal's order */
 
 static const char *const rsm_help =
     "usage: voxgi report rsm [options]\n"
@@ -161,7 +161,7 @@ static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a
         d.rsm.maps.points = (int)row->p[3];
         d.rsm.gather_stride = (int)row->p[4];
         d.resolution = (int)row->p[5];
-        d.rsm.visibility = (voxgi_visibility)row->visibility;
+        d.rsm.visibility = (voxgi_traversal)row->visibility;
         cli_status(s, "%s: rsm, %d texels, %d samples, radius %g, %d points, stride %d, %d voxels, %s", name, d.rsm.maps.size, d.rsm.maps.samples, row->p[2],
                    d.rsm.maps.points, d.rsm.gather_stride, d.resolution, visibility_names[row->visibility]);
     } else {
@@ -170,7 +170,7 @@ static int bounce_image(cli_session *s, voxgi_context *ctx, const bounce_args *a
         d.resolution = (int)row->p[0];
         d.sh.opening = (float)row->p[1];
         d.sh.gather_stride = (int)row->p[2];
-        d.sh.visibility = (voxgi_visibility)row->visibility;
+        d.sh.visibility = (voxgi_traversal)row->visibility;
         cli_status(s, "%s: sh, %d voxels, opening %g, stride %d, %s", name, d.resolution, row->p[1], d.sh.gather_stride, visibility_names[row->visibility]);
     }
     r = voxgi_render(ctx, scene, &d, img, img_bytes, &info);
@@ -364,7 +364,7 @@ static int bounce_all(report_run *run, int method)
     a.map_sizes[0] = run->quick ? 128 : 256;
     a.points[0] = run->quick ? 1 : 4;
     a.strides[0] = 4;
-    a.visibility[0] = VOXGI_VISIBILITY_HIERARCHICAL;
+    a.visibility[0] = VOXGI_TRAVERSAL_HIERARCHICAL;
     a.nmap_sizes = a.npoints = a.nstrides = a.nvisibility = 1;
     if (!(rep.rows = (bounce_row *)calloc(bounce_combos(&a), sizeof *rep.rows))) return cli_fail(run->s, "out of memory");
     rc = bounce_sweep(run->s, run->ctx, &a, run->scene, run->scene_name, &run->camera, run->R, &rep, 0, run->img, run);
