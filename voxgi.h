@@ -4317,8 +4317,8 @@ static void voxgi__camera_ray(const voxgi_camera *cam, const double forward[3], 
         X(inject, COMPUTE, "sampling.glsl light_maps.glsl inject.glsl"))                                           \
     X(gbuffer, RASTER, "gbuffer.glsl")                                                                             \
     VOXGI__GL_WITH_LIGHT_SPACE(X(tsm_lookup, COMPUTE, "tsm_lookup.glsl")                                           \
-                               X(rsm_gather, COMPUTE, "voxel_traverse.glsl rsm_gather.glsl")                       \
-                               X(sh_gather, COMPUTE, "voxel_traverse.glsl sh_gather.glsl"))                        \
+                               X(rsm_gather, COMPUTE, "voxel_traverse.glsl point_gather.glsl rsm_gather.glsl")     \
+                               X(sh_gather, COMPUTE, "voxel_traverse.glsl point_gather.glsl sh_gather.glsl"))      \
     VOXGI__GL_WITH_SCREEN_SPACE(X(screen_rays, COMPUTE, "voxel_traverse.glsl screen_rays.glsl")                    \
                                 X(screen_filter, COMPUTE, "screen_filter.glsl"))                                   \
     VOXGI__GL_WITH_LINE_SPACE(X(linespace, COMPUTE, "linespace.glsl linespace_light.glsl")                         \
@@ -7974,72 +7974,6 @@ static voxgi_result voxgi__volume_new(voxgi_context *ctx, const voxgi_grid *g, c
     return VOXGI_OK;
 }
 
-#ifndef VOXGI_NO_GL
-
-/* GL: the base level uploaded into every direction's texture, then each level from the one
-   below by shaders/volume_mip.glsl. */
-static voxgi_result voxgi__volume_build_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
-{
-    voxgi__gl *gl = ctx->gl;
-    int a, d, k, max3d = 0;
-    const float zeros[4] = {0, 0, 0, 0};
-    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_mip);
-    unsigned int p = gl->prog_volume_mip;
-    if (r != VOXGI_OK) return r;
-    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
-    for (a = 0; a < 3; a++) { /* GL halves sizes rounding down: pad so that its chain holds ours */
-        int m = 1 << (vol->info.levels - 1);
-        vol->info.gl_size[a] = (vol->dims[0][a] + m - 1) / m * m;
-    }
-    if (vol->info.gl_size[0] > max3d || vol->info.gl_size[1] > max3d || vol->info.gl_size[2] > max3d)
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d volume texture exceeds GL_MAX_3D_TEXTURE_SIZE %d", vol->info.gl_size[0],
-                           vol->info.gl_size[1], vol->info.gl_size[2], max3d);
-    gl->UseProgram(p);
-    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
-        int dirs = voxgi__slot_dirs(vol, a);
-        if (!base[a]) continue;
-        for (d = 0; d < dirs; d++) {
-            unsigned int t = 0, fmt = a == 3 ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F;
-            gl->CreateTextures(VOXGI__GL_TEXTURE_3D, 1, &t);
-            vol->tex[a][d] = t;
-            gl->TextureStorage3D(t, vol->info.levels, fmt, vol->info.gl_size[0], vol->info.gl_size[1], vol->info.gl_size[2]);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
-            for (k = 0; k < vol->info.levels; k++) gl->ClearTexImage(t, k, a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_S, VOXGI__GL_CLAMP_TO_BORDER);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_T, VOXGI__GL_CLAMP_TO_BORDER);
-            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_R, VOXGI__GL_CLAMP_TO_BORDER);
-            gl->TextureParameterfv(t, VOXGI__GL_TEXTURE_BORDER_COLOR, zeros);
-            gl->TextureSubImage3D(t, 0, 0, 0, 0, vol->dims[0][0], vol->dims[0][1], vol->dims[0][2], a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA,
-                                  VOXGI__GL_FLOAT, base[a]);
-            gl->ProgramUniform1i(p, VOXGI__LOC_u_single, a == 3);
-            gl->ProgramUniform1i(p, VOXGI__LOC_u_dir, dirs == 6 ? d : -1);
-            gl->ProgramUniform1i(p, VOXGI__LOC_u_premultiplied, a >= VOXGI__RADIANCE_SLOT);
-            for (k = 1; k < vol->info.levels; k++) {
-                gl->ProgramUniform3i(p, VOXGI__LOC_u_src_dims, vol->dims[k - 1][0], vol->dims[k - 1][1], vol->dims[k - 1][2]);
-                gl->ProgramUniform3i(p, VOXGI__LOC_u_dst_dims, vol->dims[k][0], vol->dims[k][1], vol->dims[k][2]);
-                gl->ProgramUniform1i(p, VOXGI__LOC_u_src_level, k - 1);
-                gl->BindTextureUnit(0, t);
-                gl->BindImageTexture(a == 3 ? 1 : 0, t, k, 1, 0, VOXGI__GL_WRITE_ONLY, fmt);
-                gl->DispatchCompute((unsigned)((vol->dims[k][0] + 3) / 4), (unsigned)((vol->dims[k][1] + 3) / 4), (unsigned)((vol->dims[k][2] + 3) / 4));
-                gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-            }
-        }
-    }
-    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* ready for sampling: trilinear between levels */
-        for (d = 0; d < 6; d++)
-            if (vol->tex[a][d]) {
-                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_LINEAR_MIPMAP_LINEAR);
-                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_LINEAR);
-            }
-    gl->BindTextureUnit(0, 0);
-    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_RGBA32F);
-    gl->BindImageTexture(1, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32F);
-    voxgi__gl_unbind(gl);
-    return voxgi__gl_check(ctx, "the volume mipmaps");
-}
-#endif /* VOXGI_NO_GL */
-
 typedef struct voxgi__mip_job { const voxgi_volume *vol; const float *src; float *dst, *dst6[6]; int w, dir, premultiplied, k; } voxgi__mip_job;
 
 /* Rows [first, end) (y + dims.y z) of level k from level k - 1. */
@@ -8231,26 +8165,12 @@ no_memory:
     return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions of %lu voxels", (unsigned long)n);
 }
 
-static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
+/* CPU: the base level copied into each direction's chain, then each level from the one below. */
+static voxgi_result voxgi__volume_build_cpu(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
 {
     voxgi_result r = VOXGI_OK;
     int a, d, k;
     size_t base_voxels = (size_t)vol->dims[0][0] * (size_t)vol->dims[0][1] * (size_t)vol->dims[0][2];
-    if (vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_SIDE) r = voxgi__volume_regions(ctx, vol, base);
-#ifndef VOXGI_NO_GL
-    if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_GL) {
-        if (vol->regions) { /* the labels, then the bounds, in one buffer; the CPU's copy is not needed */
-            size_t labels = vol->voxels * 4, bounds = vol->region_count * 24;
-            vol->region_buffer = voxgi__gl_buffer(ctx, labels + bounds, NULL);
-            ctx->gl->NamedBufferSubData(vol->region_buffer, 0, (ptrdiff_t)labels, vol->regions);
-            ctx->gl->NamedBufferSubData(vol->region_buffer, (ptrdiff_t)labels, (ptrdiff_t)bounds, vol->region_boxes);
-            voxgi__free(ctx, vol->regions);
-            voxgi__free(ctx, vol->region_boxes);
-            vol->regions = vol->region_boxes = NULL;
-        }
-        return voxgi__volume_build_gl(ctx, vol, base);
-    }
-#endif
     for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
         int w = a == 3 ? 1 : 4, dirs = voxgi__slot_dirs(vol, a);
         voxgi__mip_job M;
@@ -8284,6 +8204,93 @@ static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, c
         }
     }
     return r;
+}
+
+#ifndef VOXGI_NO_GL
+
+/* GL: the regions' labels and bounds uploaded, the base level into every direction's texture,
+   then each level from the one below by shaders/volume_mip.glsl. */
+static voxgi_result voxgi__volume_build_gl(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
+{
+    voxgi__gl *gl = ctx->gl;
+    int a, d, k, max3d = 0;
+    const float zeros[4] = {0, 0, 0, 0};
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_volume_mip);
+    unsigned int p = gl->prog_volume_mip;
+    if (vol->regions) { /* the labels, then the bounds, in one buffer; the CPU's copy is not needed */
+        size_t labels = vol->voxels * 4, bounds = vol->region_count * 24;
+        vol->region_buffer = voxgi__gl_buffer(ctx, labels + bounds, NULL);
+        gl->NamedBufferSubData(vol->region_buffer, 0, (ptrdiff_t)labels, vol->regions);
+        gl->NamedBufferSubData(vol->region_buffer, (ptrdiff_t)labels, (ptrdiff_t)bounds, vol->region_boxes);
+        voxgi__free(ctx, vol->regions);
+        voxgi__free(ctx, vol->region_boxes);
+        vol->regions = vol->region_boxes = NULL;
+    }
+    if (r != VOXGI_OK) return r;
+    gl->GetIntegerv(VOXGI__GL_MAX_3D_TEXTURE_SIZE, &max3d);
+    for (a = 0; a < 3; a++) { /* GL halves sizes rounding down: pad so that its chain holds ours */
+        int m = 1 << (vol->info.levels - 1);
+        vol->info.gl_size[a] = (vol->dims[0][a] + m - 1) / m * m;
+    }
+    if (vol->info.gl_size[0] > max3d || vol->info.gl_size[1] > max3d || vol->info.gl_size[2] > max3d)
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "a %dx%dx%d volume texture exceeds GL_MAX_3D_TEXTURE_SIZE %d", vol->info.gl_size[0],
+                           vol->info.gl_size[1], vol->info.gl_size[2], max3d);
+    gl->UseProgram(p);
+    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) {
+        int dirs = voxgi__slot_dirs(vol, a);
+        if (!base[a]) continue;
+        for (d = 0; d < dirs; d++) {
+            unsigned int t = 0, fmt = a == 3 ? VOXGI__GL_R32F : VOXGI__GL_RGBA32F;
+            gl->CreateTextures(VOXGI__GL_TEXTURE_3D, 1, &t);
+            vol->tex[a][d] = t;
+            gl->TextureStorage3D(t, vol->info.levels, fmt, vol->info.gl_size[0], vol->info.gl_size[1], vol->info.gl_size[2]);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_NEAREST);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_NEAREST);
+            for (k = 0; k < vol->info.levels; k++) gl->ClearTexImage(t, k, a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA, VOXGI__GL_FLOAT, zeros);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_S, VOXGI__GL_CLAMP_TO_BORDER);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_T, VOXGI__GL_CLAMP_TO_BORDER);
+            gl->TextureParameteri(t, VOXGI__GL_TEXTURE_WRAP_R, VOXGI__GL_CLAMP_TO_BORDER);
+            gl->TextureParameterfv(t, VOXGI__GL_TEXTURE_BORDER_COLOR, zeros);
+            gl->TextureSubImage3D(t, 0, 0, 0, 0, vol->dims[0][0], vol->dims[0][1], vol->dims[0][2], a == 3 ? VOXGI__GL_RED : VOXGI__GL_RGBA,
+                                  VOXGI__GL_FLOAT, base[a]);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_single, a == 3);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_dir, dirs == 6 ? d : -1);
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_premultiplied, a >= VOXGI__RADIANCE_SLOT);
+            for (k = 1; k < vol->info.levels; k++) {
+                gl->ProgramUniform3i(p, VOXGI__LOC_u_src_dims, vol->dims[k - 1][0], vol->dims[k - 1][1], vol->dims[k - 1][2]);
+                gl->ProgramUniform3i(p, VOXGI__LOC_u_dst_dims, vol->dims[k][0], vol->dims[k][1], vol->dims[k][2]);
+                gl->ProgramUniform1i(p, VOXGI__LOC_u_src_level, k - 1);
+                gl->BindTextureUnit(0, t);
+                gl->BindImageTexture(a == 3 ? 1 : 0, t, k, 1, 0, VOXGI__GL_WRITE_ONLY, fmt);
+                gl->DispatchCompute((unsigned)((vol->dims[k][0] + 3) / 4), (unsigned)((vol->dims[k][1] + 3) / 4), (unsigned)((vol->dims[k][2] + 3) / 4));
+                gl->MemoryBarrier(VOXGI__GL_TEXTURE_FETCH_BARRIER_BIT | VOXGI__GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            }
+        }
+    }
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* ready for sampling: trilinear between levels */
+        for (d = 0; d < 6; d++)
+            if (vol->tex[a][d]) {
+                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MIN_FILTER, VOXGI__GL_LINEAR_MIPMAP_LINEAR);
+                gl->TextureParameteri(vol->tex[a][d], VOXGI__GL_TEXTURE_MAG_FILTER, VOXGI__GL_LINEAR);
+            }
+    gl->BindTextureUnit(0, 0);
+    gl->BindImageTexture(0, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_RGBA32F);
+    gl->BindImageTexture(1, 0, 0, 0, 0, VOXGI__GL_READ_WRITE, VOXGI__GL_R32F);
+    voxgi__gl_unbind(gl);
+    return voxgi__gl_check(ctx, "the volume mipmaps");
+}
+#endif /* VOXGI_NO_GL */
+
+/* The regions (two-sided radiance) on the CPU, then the mip chains where the volume lives. */
+static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
+{
+    voxgi_result r = VOXGI_OK;
+    if (vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_SIDE) r = voxgi__volume_regions(ctx, vol, base);
+    if (r != VOXGI_OK) return r;
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__volume_build_gl(ctx, vol, base);
+#endif
+    return voxgi__volume_build_cpu(ctx, vol, base);
 }
 
 VOXGI_API voxgi_result voxgi_volume_create(voxgi_context *ctx, const voxgi_voxels *vx, const voxgi_volume_desc *desc, voxgi_volume **out)
@@ -8743,208 +8750,6 @@ static void voxgi__svo_fill_brick(voxgi_context *ctx, voxgi_svo *svo, int a, int
     }
 }
 
-#ifndef VOXGI_NO_GL
-/* GL: the octree's buffers grow level by level to the size the flag pass counted (a 4-byte
-   read per level), never beyond the memory budget or the largest storage buffer. */
-static voxgi_result voxgi__svo_grow_gl(voxgi_context *ctx, unsigned int *buf, uint64_t *cap, uint64_t need, const char *what)
-{
-    voxgi__gl *gl = ctx->gl;
-    uint64_t bytes;
-    unsigned int b;
-    if (need <= *cap) return VOXGI_OK;
-    bytes = VOXGI__MAX(need, *cap + *cap / 2);
-    if ((int64_t)need > gl->max_ssbo_bytes || (ctx->desc.memory_budget && need > (uint64_t)ctx->desc.memory_budget))
-        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree's %s need %llu bytes, beyond the storage buffer limit %lld or the budget %llu", what,
-                           (unsigned long long)need, (long long)gl->max_ssbo_bytes, (unsigned long long)ctx->desc.memory_budget);
-    if ((int64_t)bytes > gl->max_ssbo_bytes) bytes = need;
-    b = voxgi__gl_buffer(ctx, (size_t)bytes, NULL);
-    if (*buf) {
-        gl->CopyNamedBufferSubData(*buf, b, 0, 0, (ptrdiff_t)*cap);
-        voxgi__gl_delete_buffer(ctx, *buf);
-    }
-    *buf = b;
-    *cap = bytes;
-    return voxgi__gl_check(ctx, "growing the octree");
-}
-
-/* Binds an octree's child and value buffers of attribute a for shaders/svo.glsl. */
-static void voxgi__svo_bind_gl(voxgi_context *ctx, const voxgi_svo *svo, unsigned int p, int a)
-{
-    voxgi__gl *gl = ctx->gl;
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_CHILD, svo->gl_child);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_VALUES, a >= 0 ? svo->gl_values[a] : 0);
-    gl->ProgramUniform1ui(p, VOXGI__LOC_u_svo_leaf_first, a >= 0 ? svo->gl_leaf_first[a] : 0u);
-    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_depth, svo->info.depth);
-    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_format, (int)svo->info.format);
-    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_single, a == 3);
-    gl->ProgramUniform1ui(p, VOXGI__LOC_u_svo_nodes, (unsigned)svo->info.nodes);
-    gl->ProgramUniform1ui(p, VOXGI__LOC_u_svo_inner_tiles, (unsigned)svo->inner_tiles);
-    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_bricks, svo->bricks != 0);
-}
-
-enum { VOXGI__SVO_FLAG, VOXGI__SVO_ARGS, VOXGI__SVO_ALLOCATE, VOXGI__SVO_INIT, VOXGI__SVO_LEAVES, VOXGI__SVO_MIP, VOXGI__SVO_NEIGHBOURS, VOXGI__SVO_BRICKS };
-
-/* The GPU build (shaders/svo_build.glsl) from the voxel fragments (x | y << 16, z) and their
-   attribute means in the same order. */
-static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size_t n, const uint32_t *packed, float *const vals[VOXGI__VOLUME_SLOTS],
-                                        const voxgi_svo_desc *desc)
-{
-    voxgi__gl *gl = ctx->gl;
-    int depth = svo->info.depth, m, a;
-    unsigned int p, frag = 0, list = 0, counters = 0, fvals = 0;
-    uint64_t child_cap = 0, list_cap = 0, tiles = depth > 1 ? 1 : 0, entries = 1, first[VOXGI__MAX_LEVELS + 1];
-    uint32_t init[16], root_tile[9];
-    double t0;
-    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_svo_build);
-    if (r != VOXGI_OK) return r;
-    t0 = voxgi__now_ms();
-    p = gl->prog_svo_build;
-    memset(init, 0, sizeof init);
-    memset(root_tile, 0, sizeof root_tile);
-    root_tile[0] = 1; /* the root always has its tile (a leaf tile when depth is 1), as on the CPU */
-    init[0] = depth > 1 ? 1u : 0u;
-    init[1] = depth > 1 ? 0u : 1u;
-    init[3] = 1; /* the node list holds the root */
-    r = voxgi__svo_grow_gl(ctx, &svo->gl_child, &child_cap, depth > 1 ? 36 : 4, "child pointers");
-    if (r == VOXGI_OK) r = voxgi__svo_grow_gl(ctx, &list, &list_cap, 16, "node list");
-    if (r != VOXGI_OK) goto done;
-    gl->NamedBufferSubData(svo->gl_child, 0, depth > 1 ? 36 : 4, root_tile);
-    gl->NamedBufferSubData(list, 0, 16, init + 4); /* slot 0 at (0, 0, 0) */
-    counters = voxgi__gl_buffer(ctx, sizeof init, init);
-    frag = voxgi__gl_buffer(ctx, n * 8, packed);
-    gl->UseProgram(p);
-    voxgi__svo_bind_gl(ctx, svo, p, -1);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, frag);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
-    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, counters);
-    gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)n);
-    svo->info.level_nodes[0] = 1;
-    first[0] = 0;
-    for (m = 1; m < depth && r == VOXGI_OK; m++) { /* level m's nodes and their tiles */
-        uint32_t flagged = 0;
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_FLAG);
-        voxgi__gl_dispatch_rows(gl, n);
-        gl->GetNamedBufferSubData(counters, 8, 4, &flagged);
-        svo->info.level_nodes[m] = flagged;
-        first[m] = entries;
-        entries += flagged;
-        if (m < depth - 1) tiles += flagged;
-        if (voxgi__cancelled(ctx, 0.5 * m / depth, "octree build", "octree: nodes")) { r = VOXGI_ERR_CANCELLED; break; }
-        r = voxgi__svo_grow_gl(ctx, &svo->gl_child, &child_cap, 4 * (1 + 8 * tiles), "child pointers");
-        if (r == VOXGI_OK) r = voxgi__svo_grow_gl(ctx, &list, &list_cap, 16 * entries, "node list");
-        if (r != VOXGI_OK) break;
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, svo->gl_child);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_ARGS);
-        gl->DispatchCompute(1, 1, 1);
-        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
-        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, counters);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_ALLOCATE);
-        gl->DispatchComputeIndirect(16);
-        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_INIT);
-        gl->DispatchComputeIndirect(32);
-        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
-        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
-    }
-    if (r != VOXGI_OK) goto done;
-    svo->info.level_nodes[depth] = n;
-    if ((r = voxgi__svo_size(ctx, svo, tiles, desc)) != VOXGI_OK) goto done; /* before the values are allocated */
-    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* each value buffer within one storage block (so word indices stay 32-bit too) */
-        if ((svo->info.attributes & (1u << a)) &&
-            ((int64_t)(((svo->info.nodes + 64 * svo->bricks) * (uint64_t)svo->slot_bytes[a] + 3) / 4 * 4 + svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a]) >
-                 gl->max_ssbo_bytes ||
-             (int64_t)(16 * (uint64_t)n) > gl->max_ssbo_bytes)) {
-            r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree's values of attribute %d exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld", a,
-                            (long long)gl->max_ssbo_bytes);
-            goto done;
-        }
-    if (child_cap > svo->info.structure_bytes) { /* give back the growth's slack */
-        unsigned int exact = voxgi__gl_buffer(ctx, svo->info.structure_bytes, NULL);
-        gl->CopyNamedBufferSubData(svo->gl_child, exact, 0, 0, (ptrdiff_t)svo->info.structure_bytes);
-        voxgi__gl_delete_buffer(ctx, svo->gl_child);
-        svo->gl_child = exact;
-    }
-    gl->Finish();
-    svo->info.ms_nodes = voxgi__now_ms() - t0;
-    t0 = voxgi__now_ms();
-    if (desc->neighbours) { /* levels 1 .. depth-1 */
-        unsigned int zero = 0;
-        svo->gl_neighbour = voxgi__gl_buffer(ctx, (size_t)svo->info.nodes * 24, NULL);
-        gl->ClearNamedBufferData(svo->gl_neighbour, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-        voxgi__svo_bind_gl(ctx, svo, p, -1);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 6, svo->gl_neighbour);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_NEIGHBOURS);
-        for (m = 1; m < depth; m++) {
-            gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
-            gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
-            gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)svo->info.level_nodes[m]);
-            voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
-        }
-        gl->Finish();
-        svo->info.ms_neighbours = voxgi__now_ms() - t0;
-        t0 = voxgi__now_ms();
-    }
-    fvals = voxgi__gl_buffer(ctx, n * 16, NULL);
-    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) { /* leaves from the fragments, then the mips bottom up */
-        uint64_t node_bytes = svo->info.nodes * (uint64_t)svo->slot_bytes[a], leaf_bytes = svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a];
-        unsigned int zero = 0;
-        float *v4;
-        size_t i;
-        if (!(svo->info.attributes & (1u << a))) continue;
-        if (!(v4 = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the fragment values"); break; }
-        for (i = 0; i < n; i++) {
-            if (a >= VOXGI__RADIANCE_SLOT) { memcpy(v4 + 4 * i, vals[a] + 4 * i, 16); continue; } /* radiance: as the volume holds it */
-            v4[4 * i] = a < 3 ? vals[a][3 * i] : 0;
-            v4[4 * i + 1] = a < 3 ? vals[a][3 * i + 1] : 0;
-            v4[4 * i + 2] = a < 3 ? vals[a][3 * i + 2] : 0;
-            v4[4 * i + 3] = vals[3] ? vals[3][i] : 1.0f;
-        }
-        gl->NamedBufferSubData(fvals, 0, (ptrdiff_t)(n * 16), v4);
-        voxgi__free(ctx, v4);
-        svo->gl_leaf_first[a] = (uint32_t)((node_bytes + 64 * svo->bricks * (uint64_t)svo->slot_bytes[a] + 3) / 4);
-        svo->gl_values[a] = voxgi__gl_buffer(ctx, (size_t)(4 * (uint64_t)svo->gl_leaf_first[a] + (leaf_bytes + 3) / 4 * 4), NULL);
-        gl->ClearNamedBufferData(svo->gl_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
-        voxgi__svo_bind_gl(ctx, svo, p, a);
-        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, fvals);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_LEAVES);
-        gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)n);
-        voxgi__gl_dispatch_rows(gl, n);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_MIP);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_premultiplied, a >= VOXGI__RADIANCE_SLOT);
-        for (m = depth - 1; m >= 0; m--) {
-            gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
-            gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
-            gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)svo->info.level_nodes[m]);
-            voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
-        }
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_BRICKS);
-        for (m = 0; m < depth && svo->bricks; m++) { /* 64 texels per node, from the finished values */
-            gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
-            gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
-            gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)(64 * svo->info.level_nodes[m]));
-            voxgi__gl_dispatch_rows(gl, 64 * svo->info.level_nodes[m]);
-        }
-        svo->info.bytes += (size_t)(node_bytes + leaf_bytes);
-        svo->info.dense_bytes += (size_t)(voxgi_grid_voxel_count(&svo->info.grid) * (uint64_t)svo->slot_bytes[a]);
-        r = voxgi__gl_check(ctx, "the octree's values");
-        if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree build", "octree: values")) r = VOXGI_ERR_CANCELLED;
-    }
-    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
-    gl->Finish();
-    svo->info.ms_values = voxgi__now_ms() - t0;
-done:
-    voxgi__gl_unbind(gl);
-    voxgi__gl_delete_buffer(ctx, frag);
-    voxgi__gl_delete_buffer(ctx, list);
-    voxgi__gl_delete_buffer(ctx, counters);
-    voxgi__gl_delete_buffer(ctx, fvals);
-    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "building the octree");
-    return r;
-}
-#endif
-
 /* The CPU build's levels: each level's node codes (Morton order, distinct) and counts, the
    inner tiles before each level, and each leaf's index in bit order. */
 typedef struct voxgi__svo_levels {
@@ -9170,6 +8975,208 @@ static voxgi_result voxgi__svo_values_cpu(voxgi_context *ctx, voxgi_svo *svo, co
     }
     return VOXGI_OK;
 }
+
+#ifndef VOXGI_NO_GL
+/* GL: the octree's buffers grow level by level to the size the flag pass counted (a 4-byte
+   read per level), never beyond the memory budget or the largest storage buffer. */
+static voxgi_result voxgi__svo_grow_gl(voxgi_context *ctx, unsigned int *buf, uint64_t *cap, uint64_t need, const char *what)
+{
+    voxgi__gl *gl = ctx->gl;
+    uint64_t bytes;
+    unsigned int b;
+    if (need <= *cap) return VOXGI_OK;
+    bytes = VOXGI__MAX(need, *cap + *cap / 2);
+    if ((int64_t)need > gl->max_ssbo_bytes || (ctx->desc.memory_budget && need > (uint64_t)ctx->desc.memory_budget))
+        return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree's %s need %llu bytes, beyond the storage buffer limit %lld or the budget %llu", what,
+                           (unsigned long long)need, (long long)gl->max_ssbo_bytes, (unsigned long long)ctx->desc.memory_budget);
+    if ((int64_t)bytes > gl->max_ssbo_bytes) bytes = need;
+    b = voxgi__gl_buffer(ctx, (size_t)bytes, NULL);
+    if (*buf) {
+        gl->CopyNamedBufferSubData(*buf, b, 0, 0, (ptrdiff_t)*cap);
+        voxgi__gl_delete_buffer(ctx, *buf);
+    }
+    *buf = b;
+    *cap = bytes;
+    return voxgi__gl_check(ctx, "growing the octree");
+}
+
+/* Binds an octree's child and value buffers of attribute a for shaders/svo.glsl. */
+static void voxgi__svo_bind_gl(voxgi_context *ctx, const voxgi_svo *svo, unsigned int p, int a)
+{
+    voxgi__gl *gl = ctx->gl;
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_CHILD, svo->gl_child);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, VOXGI__BINDING_SVO_VALUES, a >= 0 ? svo->gl_values[a] : 0);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_svo_leaf_first, a >= 0 ? svo->gl_leaf_first[a] : 0u);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_depth, svo->info.depth);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_format, (int)svo->info.format);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_single, a == 3);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_svo_nodes, (unsigned)svo->info.nodes);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_svo_inner_tiles, (unsigned)svo->inner_tiles);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_svo_bricks, svo->bricks != 0);
+}
+
+enum { VOXGI__SVO_FLAG, VOXGI__SVO_ARGS, VOXGI__SVO_ALLOCATE, VOXGI__SVO_INIT, VOXGI__SVO_LEAVES, VOXGI__SVO_MIP, VOXGI__SVO_NEIGHBOURS, VOXGI__SVO_BRICKS };
+
+/* The GPU build (shaders/svo_build.glsl) from the voxel fragments (x | y << 16, z) and their
+   attribute means in the same order. */
+static voxgi_result voxgi__svo_build_gl(voxgi_context *ctx, voxgi_svo *svo, size_t n, const uint32_t *packed, float *const vals[VOXGI__VOLUME_SLOTS],
+                                        const voxgi_svo_desc *desc)
+{
+    voxgi__gl *gl = ctx->gl;
+    int depth = svo->info.depth, m, a;
+    unsigned int p, frag = 0, list = 0, counters = 0, fvals = 0;
+    uint64_t child_cap = 0, list_cap = 0, tiles = depth > 1 ? 1 : 0, entries = 1, first[VOXGI__MAX_LEVELS + 1];
+    uint32_t init[16], root_tile[9];
+    double t0;
+    voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_svo_build);
+    if (r != VOXGI_OK) return r;
+    t0 = voxgi__now_ms();
+    p = gl->prog_svo_build;
+    memset(init, 0, sizeof init);
+    memset(root_tile, 0, sizeof root_tile);
+    root_tile[0] = 1; /* the root always has its tile (a leaf tile when depth is 1), as on the CPU */
+    init[0] = depth > 1 ? 1u : 0u;
+    init[1] = depth > 1 ? 0u : 1u;
+    init[3] = 1; /* the node list holds the root */
+    r = voxgi__svo_grow_gl(ctx, &svo->gl_child, &child_cap, depth > 1 ? 36 : 4, "child pointers");
+    if (r == VOXGI_OK) r = voxgi__svo_grow_gl(ctx, &list, &list_cap, 16, "node list");
+    if (r != VOXGI_OK) goto done;
+    gl->NamedBufferSubData(svo->gl_child, 0, depth > 1 ? 36 : 4, root_tile);
+    gl->NamedBufferSubData(list, 0, 16, init + 4); /* slot 0 at (0, 0, 0) */
+    counters = voxgi__gl_buffer(ctx, sizeof init, init);
+    frag = voxgi__gl_buffer(ctx, n * 8, packed);
+    gl->UseProgram(p);
+    voxgi__svo_bind_gl(ctx, svo, p, -1);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 3, frag);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
+    gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 5, counters);
+    gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)n);
+    svo->info.level_nodes[0] = 1;
+    first[0] = 0;
+    for (m = 1; m < depth && r == VOXGI_OK; m++) { /* level m's nodes and their tiles */
+        uint32_t flagged = 0;
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_FLAG);
+        voxgi__gl_dispatch_rows(gl, n);
+        gl->GetNamedBufferSubData(counters, 8, 4, &flagged);
+        svo->info.level_nodes[m] = flagged;
+        first[m] = entries;
+        entries += flagged;
+        if (m < depth - 1) tiles += flagged;
+        if (voxgi__cancelled(ctx, 0.5 * m / depth, "octree build", "octree: nodes")) { r = VOXGI_ERR_CANCELLED; break; }
+        r = voxgi__svo_grow_gl(ctx, &svo->gl_child, &child_cap, 4 * (1 + 8 * tiles), "child pointers");
+        if (r == VOXGI_OK) r = voxgi__svo_grow_gl(ctx, &list, &list_cap, 16 * entries, "node list");
+        if (r != VOXGI_OK) break;
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 0, svo->gl_child);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 4, list);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_ARGS);
+        gl->DispatchCompute(1, 1, 1);
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, counters);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_ALLOCATE);
+        gl->DispatchComputeIndirect(16);
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_INIT);
+        gl->DispatchComputeIndirect(32);
+        gl->MemoryBarrier(VOXGI__GL_SHADER_STORAGE_BARRIER_BIT | VOXGI__GL_COMMAND_BARRIER_BIT);
+        gl->BindBuffer(VOXGI__GL_DISPATCH_INDIRECT_BUFFER, 0);
+    }
+    if (r != VOXGI_OK) goto done;
+    svo->info.level_nodes[depth] = n;
+    if ((r = voxgi__svo_size(ctx, svo, tiles, desc)) != VOXGI_OK) goto done; /* before the values are allocated */
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) /* each value buffer within one storage block (so word indices stay 32-bit too) */
+        if ((svo->info.attributes & (1u << a)) &&
+            ((int64_t)(((svo->info.nodes + 64 * svo->bricks) * (uint64_t)svo->slot_bytes[a] + 3) / 4 * 4 + svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a]) >
+                 gl->max_ssbo_bytes ||
+             (int64_t)(16 * (uint64_t)n) > gl->max_ssbo_bytes)) {
+            r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree's values of attribute %d exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE %lld", a,
+                            (long long)gl->max_ssbo_bytes);
+            goto done;
+        }
+    if (child_cap > svo->info.structure_bytes) { /* give back the growth's slack */
+        unsigned int exact = voxgi__gl_buffer(ctx, svo->info.structure_bytes, NULL);
+        gl->CopyNamedBufferSubData(svo->gl_child, exact, 0, 0, (ptrdiff_t)svo->info.structure_bytes);
+        voxgi__gl_delete_buffer(ctx, svo->gl_child);
+        svo->gl_child = exact;
+    }
+    gl->Finish();
+    svo->info.ms_nodes = voxgi__now_ms() - t0;
+    t0 = voxgi__now_ms();
+    if (desc->neighbours) { /* levels 1 .. depth-1 */
+        unsigned int zero = 0;
+        svo->gl_neighbour = voxgi__gl_buffer(ctx, (size_t)svo->info.nodes * 24, NULL);
+        gl->ClearNamedBufferData(svo->gl_neighbour, VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        voxgi__svo_bind_gl(ctx, svo, p, -1);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 6, svo->gl_neighbour);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_NEIGHBOURS);
+        for (m = 1; m < depth; m++) {
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)svo->info.level_nodes[m]);
+            voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
+        }
+        gl->Finish();
+        svo->info.ms_neighbours = voxgi__now_ms() - t0;
+        t0 = voxgi__now_ms();
+    }
+    fvals = voxgi__gl_buffer(ctx, n * 16, NULL);
+    for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) { /* leaves from the fragments, then the mips bottom up */
+        uint64_t node_bytes = svo->info.nodes * (uint64_t)svo->slot_bytes[a], leaf_bytes = svo->info.leaf_slots * (uint64_t)svo->slot_bytes[a];
+        unsigned int zero = 0;
+        float *v4;
+        size_t i;
+        if (!(svo->info.attributes & (1u << a))) continue;
+        if (!(v4 = (float *)voxgi__alloc_array(ctx, n ? n : 1, 16, 0))) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the fragment values"); break; }
+        for (i = 0; i < n; i++) {
+            if (a >= VOXGI__RADIANCE_SLOT) { memcpy(v4 + 4 * i, vals[a] + 4 * i, 16); continue; } /* radiance: as the volume holds it */
+            v4[4 * i] = a < 3 ? vals[a][3 * i] : 0;
+            v4[4 * i + 1] = a < 3 ? vals[a][3 * i + 1] : 0;
+            v4[4 * i + 2] = a < 3 ? vals[a][3 * i + 2] : 0;
+            v4[4 * i + 3] = vals[3] ? vals[3][i] : 1.0f;
+        }
+        gl->NamedBufferSubData(fvals, 0, (ptrdiff_t)(n * 16), v4);
+        voxgi__free(ctx, v4);
+        svo->gl_leaf_first[a] = (uint32_t)((node_bytes + 64 * svo->bricks * (uint64_t)svo->slot_bytes[a] + 3) / 4);
+        svo->gl_values[a] = voxgi__gl_buffer(ctx, (size_t)(4 * (uint64_t)svo->gl_leaf_first[a] + (leaf_bytes + 3) / 4 * 4), NULL);
+        gl->ClearNamedBufferData(svo->gl_values[a], VOXGI__GL_R32UI, VOXGI__GL_RED_INTEGER, VOXGI__GL_UNSIGNED_INT, &zero);
+        voxgi__svo_bind_gl(ctx, svo, p, a);
+        gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, 7, fvals);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_LEAVES);
+        gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)n);
+        voxgi__gl_dispatch_rows(gl, n);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_MIP);
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_premultiplied, a >= VOXGI__RADIANCE_SLOT);
+        for (m = depth - 1; m >= 0; m--) {
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)svo->info.level_nodes[m]);
+            voxgi__gl_dispatch_rows(gl, svo->info.level_nodes[m]);
+        }
+        gl->ProgramUniform1i(p, VOXGI__LOC_u_pass, VOXGI__SVO_BRICKS);
+        for (m = 0; m < depth && svo->bricks; m++) { /* 64 texels per node, from the finished values */
+            gl->ProgramUniform1i(p, VOXGI__LOC_u_level, m);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_first, (unsigned)first[m]);
+            gl->ProgramUniform1ui(p, VOXGI__LOC_u_count, (unsigned)(64 * svo->info.level_nodes[m]));
+            voxgi__gl_dispatch_rows(gl, 64 * svo->info.level_nodes[m]);
+        }
+        svo->info.bytes += (size_t)(node_bytes + leaf_bytes);
+        svo->info.dense_bytes += (size_t)(voxgi_grid_voxel_count(&svo->info.grid) * (uint64_t)svo->slot_bytes[a]);
+        r = voxgi__gl_check(ctx, "the octree's values");
+        if (r == VOXGI_OK && voxgi__cancelled(ctx, 0.5 + 0.125 * (a + 1), "octree build", "octree: values")) r = VOXGI_ERR_CANCELLED;
+    }
+    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
+    gl->Finish();
+    svo->info.ms_values = voxgi__now_ms() - t0;
+done:
+    voxgi__gl_unbind(gl);
+    voxgi__gl_delete_buffer(ctx, frag);
+    voxgi__gl_delete_buffer(ctx, list);
+    voxgi__gl_delete_buffer(ctx, counters);
+    voxgi__gl_delete_buffer(ctx, fvals);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "building the octree");
+    return r;
+}
+#endif
 
 /* 5. Regions (a two-sided radiance volume with enclosed regions, voxgi__volume_regions): every
    slot's label as the volume's level holds it, so that cones keep to their region alike. A leaf
@@ -11731,81 +11738,158 @@ VOXGI_API voxgi_result voxgi_rsm_pattern(voxgi_context *ctx, const voxgi_rsm *rs
     return VOXGI_OK;
 }
 
-typedef struct voxgi__rsm_gather_job {
-    voxgi_rsm *const *maps;       /* their light adds up */
-    size_t n;
+/* A gather at points, what the maps' and the SH volume's (10.4) share: per point its surface's
+   position and normal in, the irradiance the method's point function finds there out, each
+   sample's light through the voxels when O is given. A method's job holds it first. */
+typedef struct voxgi__point_gather voxgi__point_gather;
+struct voxgi__point_gather {
+    const float *points, *normals; /* 3 per point */
+    float *irradiance;            /* 3 per point */
     const voxgi__occupancy *O;    /* NULL: no visibility */
-    const voxgi_grid *grid;
     int hierarchical;
-    const float *points, *normals;
-    float *irradiance;
-} voxgi__rsm_gather_job;
+    size_t chunk;                 /* points per CPU task */
+    void (*point)(const voxgi__point_gather *G, const double x[3], const double n[3], double e[3]);
+    voxgi_result (*gl)(voxgi_context *ctx, const voxgi__point_gather *G, size_t count); /* the method's GL twin */
+};
 
-static void voxgi__rsm_gather(void *user, size_t first, size_t end)
+static void voxgi__point_gather_cpu(void *user, size_t first, size_t end)
 {
-    const voxgi__rsm_gather_job *J = (const voxgi__rsm_gather_job *)user;
-    size_t i, ri;
-    uint64_t steps = 0;
-    int k, a, map;
+    const voxgi__point_gather *G = (const voxgi__point_gather *)user;
+    size_t i;
+    int a;
     for (i = first; i < end; i++) {
         double x[3], n[3], e[3] = {0, 0, 0};
-        for (a = 0; a < 3; a++) { x[a] = J->points[3 * i + (size_t)a]; n[a] = J->normals[3 * i + (size_t)a]; }
-        for (ri = 0; ri < J->n; ri++) {
-            const voxgi_rsm *R = J->maps[ri];
-            double disc = VOXGI__PI * R->radius * R->radius;
-            size_t size = (size_t)R->info.size;
-            for (map = 0; map < R->maps; map++) {
-                const voxgi__light_view *V = &R->views[map];
-                /* the singularity: x at least a texel's width from the texel, its width where the texel lies (the square of
-                   its distance from the light times this) */
-                double st[3], spread = V->hemisphere ? VOXGI__PI / ((double)V->size * V->size) : V->perspective ? 4 * V->tan_half * V->tan_half / ((double)V->size * V->size) : 0;
-                voxgi__view_point(V, x, st);
-                for (k = 0; k < R->samples; k++) {
-                    double s = st[0] + R->offset[2 * k], t = st[1] + R->offset[2 * k + 1], d[3], dist2 = 0, cp = 0, cx = 0, f;
-                    size_t at;
-                    const float *xp, *np, *phi;
-                    if (!(s >= 0 && s < V->size && t >= 0 && t < V->size)) continue;
-                    at = 3 * (((size_t)map * size + (size_t)t) * size + (size_t)s);
-                    phi = R->flux + at;
-                    if (phi[0] == 0 && phi[1] == 0 && phi[2] == 0) continue;
-                    xp = R->position + at;
-                    np = R->normal + at;
-                    for (a = 0; a < 3; a++) {
-                        d[a] = x[a] - xp[a];
-                        dist2 += d[a] * d[a];
-                        cp += np[a] * d[a];
-                        cx -= n[a] * d[a];
-                    }
-                    if (cp <= 0 || cx <= 0) continue;
-                    if (spread > 0) {
-                        double r2 = 0;
-                        for (a = 0; a < 3; a++) r2 += (xp[a] - V->eye[a]) * (xp[a] - V->eye[a]);
-                        dist2 = VOXGI__MAX(dist2, r2 * spread);
-                    } else
-                        dist2 = VOXGI__MAX(dist2, V->texel * V->texel);
-                    if (J->O) { /* each end 1.5 voxels off its own surface */
-                        double o[3], dd[3], vs = J->grid->voxel_size;
-                        for (a = 0; a < 3; a++) {
-                            double from = x[a] + 1.5 * vs * n[a], to = xp[a] + 1.5 * vs * np[a];
-                            o[a] = (from - J->grid->origin[a]) / vs;
-                            dd[a] = (to - J->grid->origin[a]) / vs - o[a];
-                        }
-                        if (voxgi__traverse(J->O, J->hierarchical, o, dd, &steps, NULL, NULL)) continue;
-                    }
-                    f = disc * R->weight[k] * cp * cx / (VOXGI__PI * dist2 * dist2);
-                    for (a = 0; a < 3; a++) e[a] += f * phi[a];
-                }
-            }
-        }
-        for (a = 0; a < 3; a++) J->irradiance[3 * i + (size_t)a] = (float)e[a];
+        for (a = 0; a < 3; a++) { x[a] = G->points[3 * i + (size_t)a]; n[a] = G->normals[3 * i + (size_t)a]; }
+        G->point(G, x, n, e);
+        for (a = 0; a < 3; a++) G->irradiance[3 * i + (size_t)a] = (float)e[a];
     }
 }
 
 #ifndef VOXGI_NO_GL
-/* The gather of job J at count points on GL (shaders/rsm_gather.glsl, in float): the maps'
-   texels, views and patterns uploaded as they are, the occupancy too. */
-static voxgi_result voxgi__rsm_gather_gl(voxgi_context *ctx, const voxgi__rsm_gather_job *J, size_t count)
+/* GL: the points, normals and irradiance (buffers 0-2) and the occupancy (6, 7) beside the
+   method's buffers 3-5 in buf, its uniforms set; point_gather.glsl run at every point, the
+   irradiance read back, every buffer deleted. */
+static voxgi_result voxgi__point_gather_gl(voxgi_context *ctx, const voxgi__point_gather *G, unsigned int p, size_t count, unsigned int buf[8], const char *what)
 {
+    voxgi__gl *gl = ctx->gl;
+    voxgi_result r;
+    size_t i;
+    buf[0] = voxgi__gl_buffer(ctx, count * 12, G->points);
+    buf[1] = voxgi__gl_buffer(ctx, count * 12, G->normals);
+    buf[2] = voxgi__gl_buffer(ctx, count * 12, NULL);
+    if (G->O) voxgi__occ_upload(ctx, G->O, &buf[6], &buf[7]);
+    for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i] ? buf[i] : buf[0]);
+    gl->UseProgram(p);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, G->O ? G->O->levels : 0);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_hierarchical, G->hierarchical);
+    voxgi__gl_dispatch_points(gl, p, count);
+    voxgi__gl_unbind(gl);
+    r = voxgi__gl_read_buffer(ctx, buf[2], G->irradiance, count * 12);
+    for (i = 0; i < 8; i++) voxgi__gl_delete_buffer(ctx, buf[i]);
+    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, what);
+    return r;
+}
+#endif
+
+/* The gather at count points on the context's backend. */
+static voxgi_result voxgi__point_gather_run(voxgi_context *ctx, voxgi__point_gather *G, size_t count)
+{
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL) return G->gl(ctx, G, count);
+#endif
+    voxgi__parallel(ctx, count, G->chunk, voxgi__point_gather_cpu, G);
+    return VOXGI_OK;
+}
+
+/* What voxgi_rsm_irradiance and voxgi_sh_irradiance check and set alike: the points, and with
+   voxels the occupancy *O (the caller frees it) the gather sees them through. */
+static voxgi_result voxgi__point_gather_begin(voxgi_context *ctx, voxgi__point_gather *G, const voxgi_voxels *voxels, voxgi_traversal how, size_t count,
+                                              const float *points, const float *normals, float *irradiance, voxgi__occupancy *O)
+{
+    size_t i;
+    voxgi_result r;
+    if (count && (!points || !normals || !irradiance)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "points, normals or irradiance is NULL");
+    if (how != VOXGI_TRAVERSAL_DDA && how != VOXGI_TRAVERSAL_HIERARCHICAL) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "traversal %d", (int)how);
+    for (i = 0; i < 3 * count; i++)
+        if (!isfinite(points[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
+    G->points = points;
+    G->normals = normals;
+    G->irradiance = irradiance;
+    if (!voxels) return VOXGI_OK;
+    if ((r = voxgi__occ_build(ctx, voxels, how == VOXGI_TRAVERSAL_HIERARCHICAL, O)) != VOXGI_OK) return r;
+    G->O = O;
+    G->hierarchical = how == VOXGI_TRAVERSAL_HIERARCHICAL;
+    return VOXGI_OK;
+}
+
+typedef struct voxgi__rsm_gather_job {
+    voxgi__point_gather base;
+    voxgi_rsm *const *maps;       /* their light adds up */
+    size_t n;
+    const voxgi_grid *grid;       /* the voxels' */
+} voxgi__rsm_gather_job;
+
+static void voxgi__rsm_point(const voxgi__point_gather *G, const double x[3], const double n[3], double e[3])
+{
+    const voxgi__rsm_gather_job *J = (const voxgi__rsm_gather_job *)(const void *)G;
+    size_t ri;
+    uint64_t steps = 0;
+    int k, a, map;
+    for (ri = 0; ri < J->n; ri++) {
+        const voxgi_rsm *R = J->maps[ri];
+        double disc = VOXGI__PI * R->radius * R->radius;
+        size_t size = (size_t)R->info.size;
+        for (map = 0; map < R->maps; map++) {
+            const voxgi__light_view *V = &R->views[map];
+            /* the singularity: x at least a texel's width from the texel, its width where the texel lies (the square of
+               its distance from the light times this) */
+            double st[3], spread = V->hemisphere ? VOXGI__PI / ((double)V->size * V->size) : V->perspective ? 4 * V->tan_half * V->tan_half / ((double)V->size * V->size) : 0;
+            voxgi__view_point(V, x, st);
+            for (k = 0; k < R->samples; k++) {
+                double s = st[0] + R->offset[2 * k], t = st[1] + R->offset[2 * k + 1], d[3], dist2 = 0, cp = 0, cx = 0, f;
+                size_t at;
+                const float *xp, *np, *phi;
+                if (!(s >= 0 && s < V->size && t >= 0 && t < V->size)) continue;
+                at = 3 * (((size_t)map * size + (size_t)t) * size + (size_t)s);
+                phi = R->flux + at;
+                if (phi[0] == 0 && phi[1] == 0 && phi[2] == 0) continue;
+                xp = R->position + at;
+                np = R->normal + at;
+                for (a = 0; a < 3; a++) {
+                    d[a] = x[a] - xp[a];
+                    dist2 += d[a] * d[a];
+                    cp += np[a] * d[a];
+                    cx -= n[a] * d[a];
+                }
+                if (cp <= 0 || cx <= 0) continue;
+                if (spread > 0) {
+                    double r2 = 0;
+                    for (a = 0; a < 3; a++) r2 += (xp[a] - V->eye[a]) * (xp[a] - V->eye[a]);
+                    dist2 = VOXGI__MAX(dist2, r2 * spread);
+                } else
+                    dist2 = VOXGI__MAX(dist2, V->texel * V->texel);
+                if (G->O) { /* each end 1.5 voxels off its own surface */
+                    double o[3], dd[3], vs = J->grid->voxel_size;
+                    for (a = 0; a < 3; a++) {
+                        double from = x[a] + 1.5 * vs * n[a], to = xp[a] + 1.5 * vs * np[a];
+                        o[a] = (from - J->grid->origin[a]) / vs;
+                        dd[a] = (to - J->grid->origin[a]) / vs - o[a];
+                    }
+                    if (voxgi__traverse(G->O, G->hierarchical, o, dd, &steps, NULL, NULL)) continue;
+                }
+                f = disc * R->weight[k] * cp * cx / (VOXGI__PI * dist2 * dist2);
+                for (a = 0; a < 3; a++) e[a] += f * phi[a];
+            }
+        }
+    }
+}
+
+#ifndef VOXGI_NO_GL
+/* voxgi__rsm_point at count points on GL (shaders/rsm_gather.glsl, in float): the maps' texels,
+   views and patterns uploaded as they are. */
+static voxgi_result voxgi__rsm_gather_gl(voxgi_context *ctx, const voxgi__point_gather *G, size_t count)
+{
+    const voxgi__rsm_gather_job *J = (const voxgi__rsm_gather_job *)(const void *)G;
     voxgi__gl *gl = ctx->gl;
     size_t texels = 0, samples = 0, maps = 0, i, m, t;
     float *tx = NULL, *views = NULL, *pattern = NULL;
@@ -11863,27 +11947,15 @@ static voxgi_result voxgi__rsm_gather_gl(voxgi_context *ctx, const voxgi__rsm_ga
     }
     if (r == VOXGI_OK) {
         p = gl->prog_rsm_gather;
-        buf[0] = voxgi__gl_buffer(ctx, count * 12, J->points);
-        buf[1] = voxgi__gl_buffer(ctx, count * 12, J->normals);
-        buf[2] = voxgi__gl_buffer(ctx, count * 12, NULL);
         buf[3] = voxgi__gl_buffer(ctx, texels * 36, tx);
         buf[4] = voxgi__gl_buffer(ctx, maps * 24 * sizeof(float), views);
         buf[5] = voxgi__gl_buffer(ctx, samples * 12, pattern);
-        if (J->O) voxgi__occ_upload(ctx, J->O, &buf[6], &buf[7]);
-        for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i] ? buf[i] : buf[0]);
-        gl->UseProgram(p);
         gl->ProgramUniform1i(p, VOXGI__LOC_u_maps, (int)maps);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, J->O ? J->O->levels : 0);
-        gl->ProgramUniform1i(p, VOXGI__LOC_u_hierarchical, J->hierarchical);
         if (J->grid) {
             gl->ProgramUniform3f(p, VOXGI__LOC_u_origin, (float)J->grid->origin[0], (float)J->grid->origin[1], (float)J->grid->origin[2]);
             gl->ProgramUniform1f(p, VOXGI__LOC_u_voxel_size, (float)J->grid->voxel_size);
         }
-        voxgi__gl_dispatch_points(gl, p, count);
-        voxgi__gl_unbind(gl);
-        r = voxgi__gl_read_buffer(ctx, buf[2], J->irradiance, count * 12);
-        for (i = 0; i < 8; i++) voxgi__gl_delete_buffer(ctx, buf[i]);
-        if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the reflective shadow maps' gather");
+        r = voxgi__point_gather_gl(ctx, G, p, count, buf, "the reflective shadow maps' gather");
     }
     voxgi__free(ctx, tx);
     voxgi__free(ctx, views);
@@ -11892,14 +11964,15 @@ static voxgi_result voxgi__rsm_gather_gl(voxgi_context *ctx, const voxgi__rsm_ga
 }
 #endif
 
-/* The gather of job J at count points (J's points, normals, irradiance) on the context's backend. */
-static voxgi_result voxgi__rsm_gather_run(voxgi_context *ctx, voxgi__rsm_gather_job *J, size_t count)
+/* A gather of the maps' light (J->maps, J->n; J->grid: the voxels', when the caller sets base.O). */
+static void voxgi__rsm_gather_init(voxgi__rsm_gather_job *J)
 {
+    memset(J, 0, sizeof *J);
+    J->base.chunk = 64;
+    J->base.point = voxgi__rsm_point;
 #ifndef VOXGI_NO_GL
-    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__rsm_gather_gl(ctx, J, count);
+    J->base.gl = voxgi__rsm_gather_gl;
 #endif
-    voxgi__parallel(ctx, count, 64, voxgi__rsm_gather, J);
-    return VOXGI_OK;
 }
 
 VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm *rsm, const voxgi_voxels *voxels, voxgi_traversal how, size_t count,
@@ -11907,26 +11980,15 @@ VOXGI_API voxgi_result voxgi_rsm_irradiance(voxgi_context *ctx, const voxgi_rsm 
 {
     voxgi__rsm_gather_job J;
     voxgi__occupancy O;
-    size_t i;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!rsm || (count && (!points || !normals || !irradiance))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "rsm, points, normals or irradiance is NULL");
-    if (how != VOXGI_TRAVERSAL_DDA && how != VOXGI_TRAVERSAL_HIERARCHICAL) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "traversal %d", (int)how);
-    for (i = 0; i < 3 * count; i++)
-        if (!isfinite(points[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
-    memset(&J, 0, sizeof J);
-    if (voxels) {
-        if ((r = voxgi__occ_build(ctx, voxels, how == VOXGI_TRAVERSAL_HIERARCHICAL, &O)) != VOXGI_OK) return r;
-        J.O = &O;
-        J.grid = &voxels->info.grid;
-        J.hierarchical = how == VOXGI_TRAVERSAL_HIERARCHICAL;
-    }
+    if (!rsm) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "rsm is NULL");
+    voxgi__rsm_gather_init(&J);
+    if ((r = voxgi__point_gather_begin(ctx, &J.base, voxels, how, count, points, normals, irradiance, &O)) != VOXGI_OK) return r;
     J.maps = (voxgi_rsm *const *)&rsm;
     J.n = 1;
-    J.points = points;
-    J.normals = normals;
-    J.irradiance = irradiance;
-    r = voxgi__rsm_gather_run(ctx, &J, count);
+    J.grid = voxels ? &voxels->info.grid : NULL;
+    r = voxgi__point_gather_run(ctx, &J.base, count);
     if (voxels) voxgi__occ_free(ctx, &O);
     return r;
 }
@@ -12166,27 +12228,24 @@ VOXGI_API voxgi_result voxgi_sh_read(voxgi_context *ctx, const voxgi_sh *sh, int
 }
 
 typedef struct voxgi__sh_gather_job {
+    voxgi__point_gather base;
     const voxgi_sh *S;
-    const voxgi__occupancy *O;    /* NULL: no visibility */
-    int hierarchical;
     double opening;
-    const float *points, *normals;
-    float *irradiance;
 } voxgi__sh_gather_job;
 
 /* The irradiance at x on unit normal n: every cell, from the coarsest, seen whole where its size
    over its centroid's distance is at most the opening (else its children are), as a point at its
    centroid sending its intensity's SH toward x (clamped at 0), the distance at least a voxel, the
    voxels within a voxel of x left out (its own surface). */
-static void voxgi__sh_point(const voxgi__sh_gather_job *J, const double x[3], const double n[3], double e[3])
+static void voxgi__sh_point(const voxgi__point_gather *G, const double x[3], const double n[3], double e[3])
 {
+    const voxgi__sh_gather_job *J = (const voxgi__sh_gather_job *)(const void *)G;
     const voxgi_sh *S = J->S;
     const voxgi_grid *g = &S->grid;
     double vs = g->voxel_size;
     int32_t stack[64 * 8][4];
     int top = 0, a;
     uint64_t steps = 0;
-    e[0] = e[1] = e[2] = 0;
     stack[top][0] = S->levels - 1;
     stack[top][1] = stack[top][2] = stack[top][3] = 0;
     top++;
@@ -12218,7 +12277,7 @@ static void voxgi__sh_point(const voxgi__sh_gather_job *J, const double x[3], co
         for (a = 0; a < 3; a++) w[a] = -d[a] / dist; /* from the cell toward x */
         cr = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / dist;
         if (cr <= 0) continue;
-        if (J->O) { /* from x 1.5 voxels off its surface toward the centroid, up to half a voxel before the cell (what lies
+        if (G->O) { /* from x 1.5 voxels off its surface toward the centroid, up to half a voxel before the cell (what lies
                        inside the cell is its own light's business) */
             double o[3], dd[3], enter = 0, len;
             for (a = 0; a < 3; a++) { /* voxel units */
@@ -12236,7 +12295,7 @@ static void voxgi__sh_point(const voxgi__sh_gather_job *J, const double x[3], co
             enter -= 0.5 / len;
             if (enter > 0) {
                 for (a = 0; a < 3; a++) dd[a] *= enter;
-                if (voxgi__traverse(J->O, J->hierarchical, o, dd, &steps, NULL, NULL)) continue;
+                if (voxgi__traverse(G->O, G->hierarchical, o, dd, &steps, NULL, NULL)) continue;
             }
         }
         for (a = 0; a < 3; a++) {
@@ -12247,28 +12306,16 @@ static void voxgi__sh_point(const voxgi__sh_gather_job *J, const double x[3], co
     }
 }
 
-static void voxgi__sh_gather(void *user, size_t first, size_t end)
-{
-    const voxgi__sh_gather_job *J = (const voxgi__sh_gather_job *)user;
-    size_t i;
-    int a;
-    for (i = first; i < end; i++) {
-        double x[3], n[3], e[3];
-        for (a = 0; a < 3; a++) { x[a] = J->points[3 * i + (size_t)a]; n[a] = J->normals[3 * i + (size_t)a]; }
-        voxgi__sh_point(J, x, n, e);
-        for (a = 0; a < 3; a++) J->irradiance[3 * i + (size_t)a] = (float)e[a];
-    }
-}
-
 #ifndef VOXGI_NO_GL
-/* The gather of job J at count points on GL (shaders/sh_gather.glsl, in float): every level's
-   cells uploaded one after another, the occupancy too. */
-static voxgi_result voxgi__sh_gather_gl(voxgi_context *ctx, const voxgi__sh_gather_job *J, size_t count)
+/* voxgi__sh_point at count points on GL (shaders/sh_gather.glsl, in float): every level's cells
+   uploaded one after another. */
+static voxgi_result voxgi__sh_gather_gl(voxgi_context *ctx, const voxgi__point_gather *G, size_t count)
 {
+    const voxgi__sh_gather_job *J = (const voxgi__sh_gather_job *)(const void *)G;
     voxgi__gl *gl = ctx->gl;
     const voxgi_sh *S = J->S;
     uint32_t info[4 * VOXGI__MAX_OCC_LEVELS];
-    size_t cells = 0, n[VOXGI__MAX_OCC_LEVELS], i;
+    size_t cells = 0, n[VOXGI__MAX_OCC_LEVELS];
     unsigned int buf[8] = {0, 0, 0, 0, 0, 0, 0, 0}, p;
     int l;
     voxgi_result r = voxgi__gl_get_program(ctx, VOXGI__GL_PROGRAM_sh_gather);
@@ -12284,38 +12331,28 @@ static voxgi_result voxgi__sh_gather_gl(voxgi_context *ctx, const voxgi__sh_gath
     }
     if (cells * 16 > (size_t)UINT32_MAX) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu SH cells for one GL gather", (unsigned long)cells);
     p = gl->prog_sh_gather;
-    buf[0] = voxgi__gl_buffer(ctx, count * 12, J->points);
-    buf[1] = voxgi__gl_buffer(ctx, count * 12, J->normals);
-    buf[2] = voxgi__gl_buffer(ctx, count * 12, NULL);
     buf[3] = voxgi__gl_buffer(ctx, cells * 64, NULL);
     for (l = 0; l < S->levels; l++) gl->NamedBufferSubData(buf[3], (ptrdiff_t)((size_t)info[4 * l + 3] * 64), (ptrdiff_t)(n[l] * 64), S->cells[l]);
     buf[4] = voxgi__gl_buffer(ctx, (size_t)S->levels * 16, info);
-    if (J->O) voxgi__occ_upload(ctx, J->O, &buf[6], &buf[7]);
-    for (i = 0; i < 8; i++) gl->BindBufferBase(VOXGI__GL_SHADER_STORAGE_BUFFER, (unsigned)i, buf[i] ? buf[i] : buf[0]);
-    gl->UseProgram(p);
     gl->ProgramUniform1i(p, VOXGI__LOC_u_cell_levels, S->levels);
-    gl->ProgramUniform1i(p, VOXGI__LOC_u_levels, J->O ? J->O->levels : 0);
-    gl->ProgramUniform1i(p, VOXGI__LOC_u_hierarchical, J->hierarchical);
     gl->ProgramUniform3f(p, VOXGI__LOC_u_origin, (float)S->grid.origin[0], (float)S->grid.origin[1], (float)S->grid.origin[2]);
     gl->ProgramUniform1f(p, VOXGI__LOC_u_voxel_size, (float)S->grid.voxel_size);
     gl->ProgramUniform1f(p, VOXGI__LOC_u_opening, (float)J->opening);
-    voxgi__gl_dispatch_points(gl, p, count);
-    voxgi__gl_unbind(gl);
-    r = voxgi__gl_read_buffer(ctx, buf[2], J->irradiance, count * 12);
-    for (i = 0; i < 8; i++) voxgi__gl_delete_buffer(ctx, buf[i]);
-    if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "the SH volume's gather");
-    return r;
+    return voxgi__point_gather_gl(ctx, G, p, count, buf, "the SH volume's gather");
 }
 #endif
 
-/* The gather of job J at count points on the context's backend. */
-static voxgi_result voxgi__sh_gather_run(voxgi_context *ctx, voxgi__sh_gather_job *J, size_t count)
+/* A gather of the SH volume S's light, cells seen whole at `opening`. */
+static void voxgi__sh_gather_init(voxgi__sh_gather_job *J, const voxgi_sh *S, double opening)
 {
+    memset(J, 0, sizeof *J);
+    J->base.chunk = 16;
+    J->base.point = voxgi__sh_point;
 #ifndef VOXGI_NO_GL
-    if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__sh_gather_gl(ctx, J, count);
+    J->base.gl = voxgi__sh_gather_gl;
 #endif
-    voxgi__parallel(ctx, count, 16, voxgi__sh_gather, J);
-    return VOXGI_OK;
+    J->S = S;
+    J->opening = opening;
 }
 
 VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *sh, const voxgi_voxels *voxels, voxgi_traversal how, float opening,
@@ -12323,30 +12360,19 @@ VOXGI_API voxgi_result voxgi_sh_irradiance(voxgi_context *ctx, const voxgi_sh *s
 {
     voxgi__sh_gather_job J;
     voxgi__occupancy O;
-    size_t i;
     voxgi_result r;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!sh || (count && (!points || !normals || !irradiance))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "sh, points, normals or irradiance is NULL");
-    if (how != VOXGI_TRAVERSAL_DDA && how != VOXGI_TRAVERSAL_HIERARCHICAL) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "traversal %d", (int)how);
+    if (!sh) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "sh is NULL");
     if (!(opening >= 0 && opening <= 4)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "opening %g (0..4)", (double)opening);
-    for (i = 0; i < 3 * count; i++)
-        if (!isfinite(points[i]) || !isfinite(normals[i])) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "point %lu is not finite", (unsigned long)(i / 3));
-    memset(&J, 0, sizeof J);
     if (voxels) {
         const voxgi_grid *a = &voxels->info.grid, *b = &sh->grid;
         if (a->voxel_size != b->voxel_size || a->origin[0] != b->origin[0] || a->origin[1] != b->origin[1] || a->origin[2] != b->origin[2] ||
             a->res[0] != b->res[0] || a->res[1] != b->res[1] || a->res[2] != b->res[2])
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the voxels' grid is not the SH volume's");
-        if ((r = voxgi__occ_build(ctx, voxels, how == VOXGI_TRAVERSAL_HIERARCHICAL, &O)) != VOXGI_OK) return r;
-        J.O = &O;
-        J.hierarchical = how == VOXGI_TRAVERSAL_HIERARCHICAL;
     }
-    J.S = sh;
-    J.opening = opening > 0 ? opening : 0.5;
-    J.points = points;
-    J.normals = normals;
-    J.irradiance = irradiance;
-    r = voxgi__sh_gather_run(ctx, &J, count);
+    voxgi__sh_gather_init(&J, sh, opening > 0 ? opening : 0.5);
+    if ((r = voxgi__point_gather_begin(ctx, &J.base, voxels, how, count, points, normals, irradiance, &O)) != VOXGI_OK) return r;
+    r = voxgi__point_gather_run(ctx, &J.base, count);
     if (voxels) voxgi__occ_free(ctx, &O);
     return r;
 }
@@ -15982,14 +16008,14 @@ static voxgi_result voxgi__image_bounce(voxgi__image *I, int stride, voxgi__gath
     return r;
 }
 
-/* The bounce from every map of an image (a voxgi__rsm_gather_job). */
-static voxgi_result voxgi__rsm_gather_maps(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
+/* An image's bounce at its pixels through a gather at points (a voxgi__point_gather). */
+static voxgi_result voxgi__image_point_gather(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
 {
-    voxgi__rsm_gather_job *J = (voxgi__rsm_gather_job *)user;
-    J->points = points;
-    J->normals = normals;
-    J->irradiance = out;
-    return voxgi__rsm_gather_run(ctx, J, count);
+    voxgi__point_gather *G = (voxgi__point_gather *)user;
+    G->points = points;
+    G->normals = normals;
+    G->irradiance = out;
+    return voxgi__point_gather_run(ctx, G, count);
 }
 
 static voxgi_result voxgi__rsm_image_build(voxgi__image *I)
@@ -16021,22 +16047,13 @@ static voxgi_result voxgi__rsm_image_build(voxgi__image *I)
 static voxgi_result voxgi__rsm_image_gather(voxgi__image *I)
 {
     voxgi__rsm_gather_job G;
-    memset(&G, 0, sizeof G);
+    voxgi__rsm_gather_init(&G);
     G.maps = I->rsm;
     G.n = I->rsm_count;
-    G.O = I->have_occ ? &I->O : NULL;
     G.grid = &I->grid;
-    G.hierarchical = I->d->rsm.visibility == VOXGI_TRAVERSAL_HIERARCHICAL;
-    return voxgi__image_bounce(I, I->d->rsm.gather_stride, voxgi__rsm_gather_maps, &G);
-}
-
-static voxgi_result voxgi__sh_gather_all(voxgi_context *ctx, void *user, size_t count, const float *points, const float *normals, float *out)
-{
-    voxgi__sh_gather_job *J = (voxgi__sh_gather_job *)user;
-    J->points = points;
-    J->normals = normals;
-    J->irradiance = out;
-    return voxgi__sh_gather_run(ctx, J, count);
+    G.base.O = I->have_occ ? &I->O : NULL;
+    G.base.hierarchical = I->d->rsm.visibility == VOXGI_TRAVERSAL_HIERARCHICAL;
+    return voxgi__image_bounce(I, I->d->rsm.gather_stride, voxgi__image_point_gather, &G.base);
 }
 
 static voxgi_result voxgi__sh_image_build(voxgi__image *I)
@@ -16061,12 +16078,10 @@ static voxgi_result voxgi__sh_image_build(voxgi__image *I)
 static voxgi_result voxgi__sh_image_gather(voxgi__image *I)
 {
     voxgi__sh_gather_job G;
-    memset(&G, 0, sizeof G);
-    G.S = I->sh;
-    G.O = I->have_occ ? &I->O : NULL;
-    G.hierarchical = I->d->sh.visibility == VOXGI_TRAVERSAL_HIERARCHICAL;
-    G.opening = I->d->sh.opening;
-    return voxgi__image_bounce(I, I->d->sh.gather_stride, voxgi__sh_gather_all, &G);
+    voxgi__sh_gather_init(&G, I->sh, I->d->sh.opening);
+    G.base.O = I->have_occ ? &I->O : NULL;
+    G.base.hierarchical = I->d->sh.visibility == VOXGI_TRAVERSAL_HIERARCHICAL;
+    return voxgi__image_bounce(I, I->d->sh.gather_stride, voxgi__image_point_gather, &G.base);
 }
 #endif /* VOXGI_NO_LIGHT_SPACE */
 

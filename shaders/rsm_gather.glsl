@@ -1,22 +1,14 @@
-// The reflective shadow maps' gather (voxgi__rsm_gather's GL twin, in float): one invocation per
-// point, every map's pattern of texels through equation 5, each sample through the voxels
-// (voxel_traverse.glsl) when u_levels > 0.
+// The reflective shadow maps' gather at a point (voxgi__rsm_point's GL twin, in float; run by
+// point_gather.glsl): every map's pattern of texels through equation 5, each sample through the
+// voxels (voxel_traverse.glsl) when u_levels > 0.
 // embedded unless VOXGI_NO_LIGHT_SPACE
-layout(local_size_x = VOXGI_LOCAL_SIZE) in;
-layout(std430, binding = 0) readonly buffer Points { float points[]; };    // 3 per point
-layout(std430, binding = 1) readonly buffer Normals { float normals[]; };  // 3 per point
-layout(std430, binding = 2) writeonly buffer Irradiance { float irradiance[]; }; // 3 per point
 layout(std430, binding = 3) readonly buffer Texels { float texels[]; };    // 9 per texel: position, normal, flux
 // 24 per map: u 0-2, v 3-5, w 6-8, lo 9-11, texel 12, eye 13-15, tan_half 16, kind 17 (0
 // orthographic, 1 perspective, 2 hemisphere), size 18, radius 19, first sample 20, samples 21,
 // first texel 22, near_z 23
 layout(std430, binding = 4) readonly buffer Maps { float maps[]; };
 layout(std430, binding = 5) readonly buffer Pattern { float pattern[]; }; // 3 per sample: offset, weight
-layout(location = VOXGI_LOC_u_count) uniform uint u_count;
-layout(location = VOXGI_LOC_u_first) uniform uint u_first;
 layout(location = VOXGI_LOC_u_maps) uniform int u_maps;
-layout(location = VOXGI_LOC_u_origin) uniform vec3 u_origin;
-layout(location = VOXGI_LOC_u_voxel_size) uniform float u_voxel_size;
 
 const float PI = 3.14159265358979;
 
@@ -53,12 +45,8 @@ vec2 view_point(int m, vec3 x)
     return (vec2(dot(x, u), dot(x, v)) - mvec(m, 9).xy) / maps[24 * m + 12];
 }
 
-void main()
+vec3 gather(vec3 x, vec3 n)
 {
-    uint at = gl_GlobalInvocationID.x + u_first;
-    if (gl_GlobalInvocationID.x >= u_count) return;
-    vec3 x = vec3(points[3u * at], points[3u * at + 1u], points[3u * at + 2u]);
-    vec3 n = vec3(normals[3u * at], normals[3u * at + 1u], normals[3u * at + 2u]);
     vec3 e = vec3(0.0);
     for (int m = 0; m < u_maps; m++) {
         float kind = maps[24 * m + 17], size = maps[24 * m + 18], radius = maps[24 * m + 19];
@@ -93,7 +81,5 @@ void main()
             e += f * phi;
         }
     }
-    irradiance[3u * at] = e.x;
-    irradiance[3u * at + 1u] = e.y;
-    irradiance[3u * at + 2u] = e.z;
+    return e;
 }

@@ -1,28 +1,16 @@
-// The SH volume's gather (voxgi__sh_point's GL twin, in float): one invocation per point, the
-// Barnes-Hut walk of the levels from the coarsest, each cell seen whole through the voxels
+// The SH volume's gather at a point (voxgi__sh_point's GL twin, in float; run by
+// point_gather.glsl): the Barnes-Hut walk of the levels from the coarsest, each cell seen whole through the voxels
 // (voxel_traverse.glsl) when u_levels > 0, up to half a voxel before the cell.
 // embedded unless VOXGI_NO_LIGHT_SPACE
-layout(local_size_x = VOXGI_LOCAL_SIZE) in;
-layout(std430, binding = 0) readonly buffer Points { float points[]; };    // 3 per point
-layout(std430, binding = 1) readonly buffer Normals { float normals[]; };  // 3 per point
-layout(std430, binding = 2) writeonly buffer Irradiance { float irradiance[]; }; // 3 per point
 layout(std430, binding = 3) readonly buffer Cells { float cells[]; };      // 16 per cell, level after level
 layout(std430, binding = 4) readonly buffer CellLevels { uint cell_level[]; }; // per level: cells per axis, first cell
-layout(location = VOXGI_LOC_u_count) uniform uint u_count;
-layout(location = VOXGI_LOC_u_first) uniform uint u_first;
 layout(location = VOXGI_LOC_u_cell_levels) uniform int u_cell_levels;
-layout(location = VOXGI_LOC_u_origin) uniform vec3 u_origin;
-layout(location = VOXGI_LOC_u_voxel_size) uniform float u_voxel_size;
 layout(location = VOXGI_LOC_u_opening) uniform float u_opening;
 
 const float Y0 = 0.28209479177387814, Y1 = 0.48860251190291992;
 
-void main()
+vec3 gather(vec3 x, vec3 n)
 {
-    uint at = gl_GlobalInvocationID.x + u_first;
-    if (gl_GlobalInvocationID.x >= u_count) return;
-    vec3 x = vec3(points[3u * at], points[3u * at + 1u], points[3u * at + 2u]);
-    vec3 n = vec3(normals[3u * at], normals[3u * at + 1u], normals[3u * at + 2u]);
     vec3 e = vec3(0.0);
     float vs = u_voxel_size;
     ivec4 stack[8 * 24];
@@ -68,7 +56,5 @@ void main()
             if (I > 0.0) e[a] += I * cr / dist2;
         }
     }
-    irradiance[3u * at] = e.x;
-    irradiance[3u * at + 1u] = e.y;
-    irradiance[3u * at + 2u] = e.z;
+    return e;
 }
