@@ -41,18 +41,17 @@
      One exception, declared where it is used: creating a context (2) sets up the GL core (4).
        1. config          version, linkage; allocator, assertion, thread and atomic macros
        2. core            results, the context, memory, logging, progress; numbers (bit counts,
-                          half floats, Morton codes, random numbers, frames); exact arithmetic;
-                          the worker pool
+                          Morton codes, random numbers, frames); the worker pool
        3. scene           validation and flattening, materials per triangle, grids, the BVH and
                           ray casting (the reference renderer's; the ray core: voxgi_ray_scene),
                           lights and direct light, cameras
        4. GL core         GL types and the loader table, programs from the embedded shaders,
                           buffers, dispatches, raster state (absent with VOXGI_NO_GL)
-       5. voxelization    exact triangle tests, attributes, one sub-part per method (CPU, then
-                          GL), running a voxelization, OR mipmaps, segments through the voxels
-                          (voxel visibility: 3D-DDA and hierarchical)
+       5. voxelization    exact arithmetic and triangle tests, attributes, one sub-part per
+                          method (CPU, then GL), running a voxelization, OR mipmaps, segments
+                          through the voxels (voxel visibility: 3D-DDA and hierarchical)
        6. volumes and mips    dense attribute volumes, isotropic and anisotropic mips, sampling
-       7. octree          the sparse voxel octree: build, lookups, bricks, sampling
+       7. octree          the sparse voxel octree: half floats, build, lookups, bricks, sampling
        8. cone tracing    cones gathering from a radiance volume or octree (below injection,
                           whose further bounces gather with cones)
        9. light injection the direct light into the voxels, and its bounces among them
@@ -1825,7 +1824,7 @@ VOXGI_API void voxgi_query_info(const voxgi_context *ctx, voxgi_info *out)
 
 VOXGI_API const char *voxgi_last_error(const voxgi_context *ctx) { return ctx ? ctx->error : ""; }
 
-/* ----- 2.2 numbers: bit counts, half floats, Morton codes, random numbers, frames */
+/* ----- 2.2 numbers: bit counts, Morton codes, random numbers, frames */
 
 static uint32_t voxgi__popcount32(uint32_t x)
 {
@@ -1848,36 +1847,6 @@ static VOXGI__HOT_INLINE int voxgi__ctz64(uint64_t x)
 {
     return (uint32_t)x ? voxgi__ctz32((uint32_t)x) : 32 + voxgi__ctz32((uint32_t)(x >> 32));
 }
-
-#ifndef VOXGI_NO_OCTREE /* half floats: the octree's FLOAT16 values */
-/* float -> half, rounded to the nearest, ties to even (finite input; 65520 and beyond: infinity).
-   Integer steps only, so shaders/svo.glsl rounds exactly alike. */
-static uint16_t voxgi__half_from_float(float f)
-{
-    uint32_t x, ax, sign, h;
-    memcpy(&x, &f, 4);
-    sign = (x >> 16) & 0x8000u;
-    ax = x & 0x7FFFFFFFu;
-    if (ax >= 0x47800000u) return (uint16_t)(sign | 0x7C00u);
-    if (ax < 0x38800000u) { /* below 2^-14: a subnormal half, |f| * 2^24 rounded (the scaling is exact) */
-        float v = fabsf(f) * 16777216.0f, frac;
-        h = (uint32_t)v;
-        frac = v - (float)h;
-        h += frac > 0.5f || (frac == 0.5f && (h & 1u));
-        return (uint16_t)(sign | h);
-    }
-    ax += 0x0FFFu + ((ax >> 13) & 1u); /* round the 13 dropped bits; a carry moves into the exponent */
-    h = (ax >> 13) - (112u << 10);
-    return (uint16_t)(sign | (h > 0x7C00u ? 0x7C00u : h));
-}
-
-static float voxgi__float_from_half(uint16_t h)
-{
-    uint32_t e = (h >> 10) & 31u, m = h & 1023u;
-    float v = e == 0 ? (float)m / 16777216.0f : (e == 31 ? (m ? NAN : INFINITY) : ldexpf((float)(m | 1024u), (int)e - 25));
-    return (h & 0x8000u) ? -v : v;
-}
-#endif
 
 #if !defined(VOXGI_NO_OCTREE) || !defined(VOXGI_NO_LIGHT_INJECTION) /* the octree's and the bounces' orders */
 /* Spreads the low 21 bits of v to every third bit. */
@@ -1984,104 +1953,7 @@ static void voxgi__basis(const double n[3], double t[3], double b[3])
     b[0] = c; b[1] = sgn + n[1] * n[1] * a; b[2] = -n[1];
 }
 
-/* ----- 2.3 exact arithmetic */
-
-/* exact arithmetic
-   Floating-point expansions (Priest; Shewchuk 1997): a real number held exactly as a sum of
-   non-overlapping doubles, smallest first. Sums and products of a few float coordinates and the
-   double grid are exact in this form, so the rare tests the double filter cannot decide are
-   decided here. Every routine drops zero components, so the sign is that of the last one. */
-typedef struct voxgi__xp { int n; double c[512]; } voxgi__xp;
-
-static void voxgi__two_sum(double a, double b, double *s, double *e)
-{
-    double x = a + b, bv = x - a, av = x - bv;
-    *s = x;
-    *e = (a - av) + (b - bv);
-}
-static void voxgi__two_prod(double a, double b, double *p, double *e)
-{
-    *p = a * b;
-    *e = fma(a, b, -*p);
-}
-/* h = e + b (h may alias e). */
-static void voxgi__xp_add1(voxgi__xp *h, const voxgi__xp *e, double b)
-{
-    double q = b, hh;
-    int i, n = 0, en = e->n;
-    for (i = 0; i < en; i++) {
-        voxgi__two_sum(q, e->c[i], &q, &hh);
-        if (hh != 0.0) h->c[n++] = hh;
-    }
-    if (q != 0.0 || n == 0) h->c[n++] = q;
-    h->n = n;
-}
-/* h += f */
-static void voxgi__xp_add(voxgi__xp *h, const voxgi__xp *f)
-{
-    int i;
-    for (i = 0; i < f->n; i++) voxgi__xp_add1(h, h, f->c[i]);
-}
-/* h = e * b */
-static void voxgi__xp_scale(voxgi__xp *h, const voxgi__xp *e, double b)
-{
-    double q, hh, p1, p0, sum;
-    int i, n = 0;
-    voxgi__two_prod(e->c[0], b, &q, &hh);
-    if (hh != 0.0) h->c[n++] = hh;
-    for (i = 1; i < e->n; i++) {
-        voxgi__two_prod(e->c[i], b, &p1, &p0);
-        voxgi__two_sum(q, p0, &sum, &hh);
-        if (hh != 0.0) h->c[n++] = hh;
-        voxgi__two_sum(p1, sum, &q, &hh);
-        if (hh != 0.0) h->c[n++] = hh;
-    }
-    if (q != 0.0 || n == 0) h->c[n++] = q;
-    h->n = n;
-}
-/* h = e * f (h must not alias either) */
-static void voxgi__xp_mul(voxgi__xp *h, const voxgi__xp *e, const voxgi__xp *f)
-{
-    voxgi__xp t;
-    int j;
-    h->n = 1; h->c[0] = 0.0;
-    for (j = 0; j < f->n; j++) {
-        voxgi__xp_scale(&t, e, f->c[j]);
-        voxgi__xp_add(h, &t);
-    }
-}
-static void voxgi__xp_neg(voxgi__xp *e)
-{
-    int i;
-    for (i = 0; i < e->n; i++) e->c[i] = -e->c[i];
-}
-static int voxgi__xp_sign(const voxgi__xp *e)
-{
-    double top = e->c[e->n - 1];
-    return (top > 0.0) - (top < 0.0);
-}
-/* x = a - b exactly */
-static void voxgi__xp_diff(voxgi__xp *x, double a, double b)
-{
-    double s, e;
-    voxgi__two_sum(a, -b, &s, &e);
-    x->n = 0;
-    if (e != 0.0) x->c[x->n++] = e;
-    x->c[x->n++] = s;
-    if (x->n == 2 && s == 0.0) x->n = 1;
-}
-/* x = o + k*s - w exactly: a grid plane's coordinate minus a vertex coordinate */
-static void voxgi__xp_plane_minus(voxgi__xp *x, double o, double k, double s, double w)
-{
-    double p, e;
-    voxgi__two_prod(k, s, &p, &e);
-    x->n = 1; x->c[0] = e;
-    voxgi__xp_add1(x, x, p);
-    voxgi__xp_add1(x, x, o);
-    voxgi__xp_add1(x, x, -w);
-}
-
-/* ----- 2.4 the worker pool: a parallel loop on the calling thread and helpers */
+/* ----- 2.3 the worker pool: a parallel loop on the calling thread and helpers */
 
 /* ----- a parallel loop over items [0, count) in chunks, on the calling thread and
    (thread_count - 1) helpers; fn must be safe to run concurrently on disjoint ranges. */
@@ -4717,7 +4589,102 @@ VOXGI_API const char *voxgi_method_name(voxgi_method m)
     return "unknown";
 }
 
-/* ----- 5.1 exact triangle tests */
+/* ----- 5.1 exact arithmetic and exact triangle tests */
+
+/* exact arithmetic
+   Floating-point expansions (Priest; Shewchuk 1997): a real number held exactly as a sum of
+   non-overlapping doubles, smallest first. Sums and products of a few float coordinates and the
+   double grid are exact in this form, so the rare tests the double filter cannot decide are
+   decided here. Every routine drops zero components, so the sign is that of the last one. */
+typedef struct voxgi__xp { int n; double c[512]; } voxgi__xp;
+
+static void voxgi__two_sum(double a, double b, double *s, double *e)
+{
+    double x = a + b, bv = x - a, av = x - bv;
+    *s = x;
+    *e = (a - av) + (b - bv);
+}
+static void voxgi__two_prod(double a, double b, double *p, double *e)
+{
+    *p = a * b;
+    *e = fma(a, b, -*p);
+}
+/* h = e + b (h may alias e). */
+static void voxgi__xp_add1(voxgi__xp *h, const voxgi__xp *e, double b)
+{
+    double q = b, hh;
+    int i, n = 0, en = e->n;
+    for (i = 0; i < en; i++) {
+        voxgi__two_sum(q, e->c[i], &q, &hh);
+        if (hh != 0.0) h->c[n++] = hh;
+    }
+    if (q != 0.0 || n == 0) h->c[n++] = q;
+    h->n = n;
+}
+/* h += f */
+static void voxgi__xp_add(voxgi__xp *h, const voxgi__xp *f)
+{
+    int i;
+    for (i = 0; i < f->n; i++) voxgi__xp_add1(h, h, f->c[i]);
+}
+/* h = e * b */
+static void voxgi__xp_scale(voxgi__xp *h, const voxgi__xp *e, double b)
+{
+    double q, hh, p1, p0, sum;
+    int i, n = 0;
+    voxgi__two_prod(e->c[0], b, &q, &hh);
+    if (hh != 0.0) h->c[n++] = hh;
+    for (i = 1; i < e->n; i++) {
+        voxgi__two_prod(e->c[i], b, &p1, &p0);
+        voxgi__two_sum(q, p0, &sum, &hh);
+        if (hh != 0.0) h->c[n++] = hh;
+        voxgi__two_sum(p1, sum, &q, &hh);
+        if (hh != 0.0) h->c[n++] = hh;
+    }
+    if (q != 0.0 || n == 0) h->c[n++] = q;
+    h->n = n;
+}
+/* h = e * f (h must not alias either) */
+static void voxgi__xp_mul(voxgi__xp *h, const voxgi__xp *e, const voxgi__xp *f)
+{
+    voxgi__xp t;
+    int j;
+    h->n = 1; h->c[0] = 0.0;
+    for (j = 0; j < f->n; j++) {
+        voxgi__xp_scale(&t, e, f->c[j]);
+        voxgi__xp_add(h, &t);
+    }
+}
+static void voxgi__xp_neg(voxgi__xp *e)
+{
+    int i;
+    for (i = 0; i < e->n; i++) e->c[i] = -e->c[i];
+}
+static int voxgi__xp_sign(const voxgi__xp *e)
+{
+    double top = e->c[e->n - 1];
+    return (top > 0.0) - (top < 0.0);
+}
+/* x = a - b exactly */
+static void voxgi__xp_diff(voxgi__xp *x, double a, double b)
+{
+    double s, e;
+    voxgi__two_sum(a, -b, &s, &e);
+    x->n = 0;
+    if (e != 0.0) x->c[x->n++] = e;
+    x->c[x->n++] = s;
+    if (x->n == 2 && s == 0.0) x->n = 1;
+}
+/* x = o + k*s - w exactly: a grid plane's coordinate minus a vertex coordinate */
+static void voxgi__xp_plane_minus(voxgi__xp *x, double o, double k, double s, double w)
+{
+    double p, e;
+    voxgi__two_prod(k, s, &p, &e);
+    x->n = 1; x->c[0] = e;
+    voxgi__xp_add1(x, x, p);
+    voxgi__xp_add1(x, x, o);
+    voxgi__xp_add1(x, x, -w);
+}
 
 /* voxelization: exact triangle tests
    Conservative: a voxel is set exactly when its closed box meets the closed triangle. The test
@@ -8615,6 +8582,35 @@ struct voxgi_svo {
     size_t region_count;                      /* labels, 0 and OPEN included (0: no regions) */
     unsigned int gl_regions;                  /* GL: the same array in a buffer */
 };
+
+/* half floats: the octree's FLOAT16 values */
+/* float -> half, rounded to the nearest, ties to even (finite input; 65520 and beyond: infinity).
+   Integer steps only, so shaders/svo.glsl rounds exactly alike. */
+static uint16_t voxgi__half_from_float(float f)
+{
+    uint32_t x, ax, sign, h;
+    memcpy(&x, &f, 4);
+    sign = (x >> 16) & 0x8000u;
+    ax = x & 0x7FFFFFFFu;
+    if (ax >= 0x47800000u) return (uint16_t)(sign | 0x7C00u);
+    if (ax < 0x38800000u) { /* below 2^-14: a subnormal half, |f| * 2^24 rounded (the scaling is exact) */
+        float v = fabsf(f) * 16777216.0f, frac;
+        h = (uint32_t)v;
+        frac = v - (float)h;
+        h += frac > 0.5f || (frac == 0.5f && (h & 1u));
+        return (uint16_t)(sign | h);
+    }
+    ax += 0x0FFFu + ((ax >> 13) & 1u); /* round the 13 dropped bits; a carry moves into the exponent */
+    h = (ax >> 13) - (112u << 10);
+    return (uint16_t)(sign | (h > 0x7C00u ? 0x7C00u : h));
+}
+
+static float voxgi__float_from_half(uint16_t h)
+{
+    uint32_t e = (h >> 10) & 31u, m = h & 1023u;
+    float v = e == 0 ? (float)m / 16777216.0f : (e == 31 ? (m ? NAN : INFINITY) : ldexpf((float)(m | 1024u), (int)e - 25));
+    return (h & 0x8000u) ? -v : v;
+}
 
 /* Stores c (value, alpha) into a slot of an attribute array (opacity: alpha alone). */
 static void voxgi__svo_put(const voxgi_svo *svo, int a, unsigned char *base, uint64_t slot, const float c[4])
