@@ -1260,14 +1260,14 @@ typedef struct voxgi_render_tsm {
 
 typedef struct voxgi_render_rsm {
     voxgi_rsm_desc maps;          /* every light's map but point lights' (which bounce nowhere), and the emitters':
-                                     size, samples, radius, points, seed as voxgi_rsm_desc's (light: ignored) */
-    voxgi_traversal visibility;  /* of each gather, through the grid's conservative voxels */
+                                     size, samples, radius, points as voxgi_rsm_desc's; seed 0: the image's (light: ignored) */
+    voxgi_traversal visibility;   /* of each gather, through the grid's conservative voxels */
     int gather_stride;            /* gathers at every s-th pixel across and down, the pixels between interpolated from the
                                      anchors around them that share their surface where at least three of four do; 0 = 4 */
 } voxgi_render_rsm;
 
 typedef struct voxgi_render_sh {
-    voxgi_sh_desc volume;         /* samples and seed as voxgi_sh_desc's */
+    voxgi_sh_desc volume;         /* samples as voxgi_sh_desc's; seed 0: the image's */
     voxgi_traversal visibility;
     float opening;                /* a cell counts as one point where its size is at most this times its distance; 0 = 0.5 */
     int gather_stride;            /* as rsm's; 0 = 4 */
@@ -14857,6 +14857,8 @@ static voxgi_result voxgi__render_defaults(voxgi_context *ctx, const voxgi_rende
         if (!d->resolution) d->resolution = 64;
         if (!*stride) *stride = 4;
         if (m == VOXGI_RENDER_SH && !(d->sh.opening > 0)) d->sh.opening = 0.5f;
+        if (!d->rsm.maps.seed) d->rsm.maps.seed = d->seed; /* the patterns from the image's seed */
+        if (!d->sh.volume.seed) d->sh.volume.seed = d->seed;
     } else if (ao || gi) {
         int voxels = m == VOXGI_RENDER_VAO || m == VOXGI_RENDER_HYBRID;
         if (sc->rays < 0 || sc->steps < 0 || !(sc->radius >= 0 && isfinite(sc->radius)) || (unsigned)sc->half_resolution > VOXGI_TOGGLE_OFF || sc->blur < -1 ||

@@ -352,7 +352,6 @@ static void render_desc_of(const render_args *a, voxgi_render_desc *d)
     d->rsm.maps.samples = a->rsm_samples;
     d->rsm.maps.radius = (float)a->rsm_radius;
     d->rsm.maps.points = a->rsm_points;
-    d->rsm.maps.seed = d->sh.volume.seed = d->seed; /* the maps' and the SH volume's patterns from the image's seed */
     d->rsm.visibility = d->sh.visibility = (voxgi_traversal)a->visibility;
     d->rsm.gather_stride = d->sh.gather_stride = a->gather_stride;
     d->sh.opening = (float)a->opening;
@@ -439,7 +438,6 @@ static int render_parse(int argc, char **argv, render_args *ap, int plan)
     memset(&a, 0, sizeof a);
     a.bounces = 1;
     a.spp = 64;
-    a.seed = 1;
     a.size[0] = a.size[1] = 256;
     a.exposure = 1;
     {
@@ -554,7 +552,7 @@ static int render_parse(int argc, char **argv, render_args *ap, int plan)
              .help = "samples per pixel (default 64); vct: the direct light's rays per pixel\n"
                      "(default 24), as rsm and sh; tsm: camera rays per pixel (default 4)"},
             {.name = "--seed", .arg = "N", .kind = CLI_INT, .dst = &a.seed, .lo = 0, .hi = 2147483647,
-             .help = "random seed (default 1); the same seed gives the same image"},
+             .help = "random seed (default 0); the same seed gives the same image"},
             {.name = "--camera", .arg = "EX EY EZ TX TY TZ FOVY", .kind = CLI_DOUBLE, .count = 7, .dst = a.camera, .lo = -HUGE_VAL, .hi = HUGE_VAL,
              .given = &a.have_camera,
              .help = "eye, target (up +Y) and vertical field of view in degrees\n"
