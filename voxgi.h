@@ -192,7 +192,10 @@
             budget rule: 0 is the context's (voxgi_linespace_desc.memory_budget was 1 GiB;
             voxgi_render_desc.memory_budget is a size_t). voxgi_ssgi_desc.hidden_light is
             hidden_radiance (the images' hidden_light is the toggle that builds it).
-            voxgi_render_stage_ms reads a stage's time by name.
+            voxgi_render_stage_ms reads a stage's time by name. Each method is one row of the
+            images' table (defaults, plan, settings line, build, gather): voxgi_plan and
+            voxgi_render_resolve refuse a left-out method as voxgi_render does
+            (VOXGI_ERR_UNSUPPORTED). The maps' and the SH volume's seeds 0 are the image's.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -12988,17 +12991,16 @@ VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_scree
 
 /* ===================================================================== 12. line space */
 
+#ifndef VOXGI_NO_LINE_SPACE
 /* The tree's depth where the caller leaves it to the scene (0): 2 under 256 triangles, else 3. A
    few large triangles (a room, the Cornell box) fill most cells of every level, so a third level
    only adds steps (exact mode's image is the same, in about half the time); meshes of a thousand
-   triangles and more want the finer leaves (docs/line-space.md). Outside the part: the planner
-   counts with it too, with or without the line space. */
+   triangles and more want the finer leaves (docs/line-space.md). The line-space
+   images' plan counts with it too. */
 static int voxgi__plan_linespace_depth(uint64_t triangles)
 {
     return triangles < 256 ? 2 : 3;
 }
-
-#ifndef VOXGI_NO_LINE_SPACE
 
 /* GL: the line space's arrays as storage buffers, bound at shaders/linespace.glsl's bindings: the
    nodes, the bits (in up to four parts, where GL's storage blocks are smaller than they: Mesa's
@@ -14623,27 +14625,7 @@ static voxgi_result voxgi__reference_trace(voxgi_context *ctx, const voxgi__trac
 
 /* ===================================================================== 14. planner and images */
 
-/* ----- the planner, and every default of voxgi_render in one place */
-
-/* The cone tracer's Pareto front on the Cornell box (256 x 256 against a 1024-spp reference,
-   anisotropic mips, step 0.5; docs/planner.md): the cheapest settings reaching each error. The
-   middle one is the default. */
-static const struct { double error; int resolution, cones, stride; } voxgi__plan_vct_front[] = {
-    {0.0805, 64, 32, 6}, {0.0776, 96, 24, 6}, {0.0755, 96, 32, 6}};
-#define VOXGI__PLAN_VCT_DEFAULT 1
-
-/* The front's cheapest setting reaching a relative RMSE (0: the default; the closest where none does). */
-static size_t voxgi__plan_vct_pick(double error)
-{
-    size_t f, n = sizeof voxgi__plan_vct_front / sizeof voxgi__plan_vct_front[0];
-    if (!(error > 0)) return VOXGI__PLAN_VCT_DEFAULT;
-    for (f = 0; f + 1 < n && voxgi__plan_vct_front[f].error > error; f++) continue;
-    return f;
-}
-
-/* An octree of two-sided radiance per set voxel (measured: 8.0 MB for the Cornell box's 56,562
-   voxels at 96^3, nodes and values). */
-#define VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL 148
+/* ----- the planner: what a scene holds, and the items each method's row plans from it */
 
 static const char *const voxgi__render_method_names[VOXGI_RENDER_METHOD_COUNT] = {"reference", "vct",  "tsm",    "rsm",      "sh",
                                                                                    "ssao",      "vao", "ssgi", "hybrid", "linespace"};
@@ -14792,255 +14774,6 @@ static voxgi_result voxgi__plan_scene(voxgi_context *ctx, const voxgi_scene *sce
     return r;
 }
 
-/* A line space's bytes (n, depth), by voxgi_linespace_create's formula with each level's split
-   nodes estimated as the cells its surface crosses. */
-static uint64_t voxgi__plan_linespace_bytes(uint64_t triangles, double crossing, double extent, int n, int depth)
-{
-    double cells = 1, split = 0, nodes = 1, leaves = 0, refs;
-    int l;
-    if (!triangles || !(extent > 0)) return 0;
-    for (l = 0; l <= depth; l++) { /* level l: n^l cells a side */
-        double edge = extent / cells, occupied = VOXGI__MIN(cells * cells * cells, VOXGI__MAX(1.0, ceil(crossing / (edge * edge))));
-        if (l < depth) { split += occupied; nodes += occupied * n * n * n; }
-        else leaves = occupied;
-        cells *= n;
-    }
-    refs = VOXGI__MAX((double)triangles, leaves) * 1.5;
-    return (uint64_t)(8 * nodes + (double)((15 * n * n * n * n + 31) / 32) * 4 * split + 4 * refs + 8 * leaves + 36 * (double)triangles);
-}
-
-/* The settings a desc asks for, checked, every zero that needs no look at the scene resolved (the
-   scene's: the camera, the screen radius, the line space's depth, VCT's radiance store, are the
-   planner's). Each method's defaults are the settings its report measured best. */
-static voxgi_result voxgi__render_defaults(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d)
-{
-    int m = (int)in->method, vct = m == VOXGI_RENDER_VCT, ao = m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO;
-    int gi = m == VOXGI_RENDER_SSGI || m == VOXGI_RENDER_HYBRID;
-    voxgi_render_screen *sc = &d->screen;
-    *d = *in;
-    if ((unsigned)m >= VOXGI_RENDER_METHOD_COUNT) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.method %d: no such method", m);
-    if (d->samples < 0 || d->resolution < 0 || d->resolution > 4096 || d->bounces < -1 || d->bounces > 64 || !(d->error >= 0 && d->error < 1))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d (>= 0), resolution %d (0..4096), bounces %d (-1..64), error %g ([0, 1))", d->samples,
-                           d->resolution, d->bounces, d->error);
-    if (d->error > 0 && !vct) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.error: only vct chooses its settings from an error");
-    if (d->voxels && !vct) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.voxels: only vct re-injects kept voxels");
-    if (!d->camera.width && !d->camera.height) d->camera.width = d->camera.height = 256;
-    if (d->camera.fovy_degrees == 0) d->camera.fovy_degrees = 40;
-    if (!d->bounces) d->bounces = 1;
-    if (d->direct_only) d->bounces = 0;
-    if (m != VOXGI_RENDER_REFERENCE && m != VOXGI_RENDER_VCT) d->bounces = d->direct_only || ao || m == VOXGI_RENDER_TSM || m == VOXGI_RENDER_LINESPACE ? 0 : 1;
-    if (m == VOXGI_RENDER_REFERENCE && !d->samples) d->samples = 64;
-    else if (m == VOXGI_RENDER_TSM && !d->samples) d->samples = 4;
-    else if ((vct || m == VOXGI_RENDER_RSM || m == VOXGI_RENDER_SH || gi) && !d->samples) d->samples = 24;
-    else if (ao || m == VOXGI_RENDER_LINESPACE) d->samples = 0; /* they take the pixels' centres */
-    if (vct) { /* the front's middle, or the cheapest point reaching the error asked for */
-        size_t f = voxgi__plan_vct_pick(d->error);
-        voxgi_render_vct *v = &d->vct;
-        if (d->bounces > 1 && !d->vct.bounce_block) d->vct.bounce_block = 4;
-        if ((unsigned)v->radiance > VOXGI_VCT_OCTREE || (unsigned)v->octree_format > VOXGI_SVO_FLOAT16 || v->cone_stride < 0 || v->cone_stride > 64 ||
-            v->inject_samples < 0 || v->bounce_block < 0 || v->cones.cones < 0)
-            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "vct: radiance %d, octree_format %d, cone_stride %d (0..64), inject_samples %d, bounce_block %d, cones %d",
-                               (int)v->radiance, (int)v->octree_format, v->cone_stride, v->inject_samples, v->bounce_block, v->cones.cones);
-#ifdef VOXGI_NO_OCTREE
-        if (v->radiance == VOXGI_VCT_OCTREE) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "vct: an octree of the radiance, but the octree is left out (VOXGI_NO_OCTREE)");
-#endif
-        if (!d->resolution) d->resolution = voxgi__plan_vct_front[f].resolution;
-        if (!v->cones.cones) v->cones.cones = voxgi__plan_vct_front[f].cones;
-        if (!v->cone_stride) v->cone_stride = voxgi__plan_vct_front[f].stride;
-        if (!v->inject_samples) v->inject_samples = ctx->backend == VOXGI_BACKEND_GL && !v->shadow_rays ? 16 : 4;
-    } else if (m == VOXGI_RENDER_RSM || m == VOXGI_RENDER_SH) {
-        voxgi_traversal vis = m == VOXGI_RENDER_RSM ? d->rsm.visibility : d->sh.visibility;
-        int *stride = m == VOXGI_RENDER_RSM ? &d->rsm.gather_stride : &d->sh.gather_stride;
-        if ((unsigned)vis > VOXGI_TRAVERSAL_NONE || *stride < 0 || *stride > 64 || (m == VOXGI_RENDER_SH && (d->resolution > 1024 || !(d->sh.opening >= 0 && d->sh.opening <= 4))))
-            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "%s: visibility %d, gather_stride %d (0..64), resolution %d%s, opening %g (0..4)", voxgi__render_method_names[m], (int)vis,
-                               *stride, d->resolution, m == VOXGI_RENDER_SH ? " (0..1024)" : "", (double)d->sh.opening);
-        if (!d->resolution) d->resolution = 64;
-        if (!*stride) *stride = 4;
-        if (m == VOXGI_RENDER_SH && !(d->sh.opening > 0)) d->sh.opening = 0.5f;
-        if (!d->rsm.maps.seed) d->rsm.maps.seed = d->seed; /* the patterns from the image's seed */
-        if (!d->sh.volume.seed) d->sh.volume.seed = d->seed;
-    } else if (ao || gi) {
-        int voxels = m == VOXGI_RENDER_VAO || m == VOXGI_RENDER_HYBRID;
-        if (sc->rays < 0 || sc->steps < 0 || !(sc->radius >= 0 && isfinite(sc->radius)) || (unsigned)sc->half_resolution > VOXGI_TOGGLE_OFF || sc->blur < -1 ||
-            sc->blur > 64 || (unsigned)sc->hidden_light > VOXGI_TOGGLE_OFF || sc->inject_samples < 0 || (sc->point_sampling && m != VOXGI_RENDER_SSAO))
-            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "%s: rays %d, steps %d, radius %g, half_resolution %d, blur %d (-1..64), hidden_light %d, inject_samples %d, "
-                               "point_sampling %d (ssao only)", voxgi__render_method_names[m], sc->rays, sc->steps, (double)sc->radius, (int)sc->half_resolution, sc->blur,
-                               (int)sc->hidden_light, sc->inject_samples, sc->point_sampling);
-        if (!sc->rays) sc->rays = 16;
-        if (!sc->steps) sc->steps = 16;
-        if (!sc->half_resolution) sc->half_resolution = gi ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
-        if (!sc->blur) sc->blur = gi ? 8 : 2; /* the reports' fronts (docs/screen-space.md): AO's edges blurred little, the bounce more */
-        if (m == VOXGI_RENDER_HYBRID && !sc->hidden_light) sc->hidden_light = VOXGI_TOGGLE_ON;
-        if (m != VOXGI_RENDER_HYBRID) sc->hidden_light = VOXGI_TOGGLE_OFF;
-#ifdef VOXGI_NO_LIGHT_INJECTION
-        if (sc->hidden_light == VOXGI_TOGGLE_ON && in->screen.hidden_light == VOXGI_TOGGLE_ON)
-            return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "hybrid: hidden light needs light injection (VOXGI_NO_LIGHT_INJECTION)");
-        sc->hidden_light = VOXGI_TOGGLE_OFF;
-#endif
-        if (sc->hidden_light == VOXGI_TOGGLE_ON && !sc->inject_samples) sc->inject_samples = ctx->backend == VOXGI_BACKEND_GL ? 16 : 4;
-        if (voxels && !d->resolution) d->resolution = 128;
-        if (!voxels) d->resolution = 0;
-    } else if (m == VOXGI_RENDER_LINESPACE) {
-        voxgi_render_linespace *L = &d->linespace;
-        if ((unsigned)L->mode > VOXGI_LINESPACE_FAST || L->samples < 0 || L->exact_ends < 0 || L->supersample < 0 || L->supersample > 16)
-            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "linespace: mode %d, samples %d, exact_ends %d, supersample %d (0..16)", (int)L->mode, L->samples,
-                               L->exact_ends, L->supersample);
-        if (!L->samples) L->samples = 4; /* voxgi report linespace's front (docs/line-space.md) */
-        if (!L->supersample) L->supersample = 2;
-        if (!L->tree.n) L->tree.n = 4;
-        if (!L->tree.memory_budget) L->tree.memory_budget = d->memory_budget; /* 0: the context's, as everywhere */
-        if (L->mode == VOXGI_LINESPACE_FAST && !L->exact_ends) L->exact_ends = 3;
-    } else if (m == VOXGI_RENDER_REFERENCE) {
-        if (!(d->reference.ao_radius >= 0 && isfinite(d->reference.ao_radius)) || (d->reference.screen_light_only && d->bounces != 1))
-            return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "reference: ao_radius %g, screen_light_only %d (with one bounce only)", (double)d->reference.ao_radius,
-                               d->reference.screen_light_only);
-    }
-    if (m != VOXGI_RENDER_VCT && m != VOXGI_RENDER_RSM && m != VOXGI_RENDER_SH && m != VOXGI_RENDER_VAO && m != VOXGI_RENDER_HYBRID) d->resolution = 0;
-    /* a method reads its own part only: the others' are cleared, so that what is reported is what ran */
-    if (!vct) memset(&d->vct, 0, sizeof d->vct);
-    if (m != VOXGI_RENDER_TSM) memset(&d->tsm, 0, sizeof d->tsm);
-    if (m != VOXGI_RENDER_RSM) memset(&d->rsm, 0, sizeof d->rsm);
-    if (m != VOXGI_RENDER_SH) memset(&d->sh, 0, sizeof d->sh);
-    if (!ao && !gi) memset(&d->screen, 0, sizeof d->screen);
-    if (m != VOXGI_RENDER_LINESPACE) memset(&d->linespace, 0, sizeof d->linespace);
-    if (m != VOXGI_RENDER_REFERENCE) memset(&d->reference, 0, sizeof d->reference);
-    return VOXGI_OK;
-}
-
-/* The plan of a desc (its defaults resolved into *used, the scene's among them) with flags
-   (VOXGI_PLAN_DYNAMIC, _EVERYTHING). */
-static voxgi_result voxgi__plan_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, unsigned flags, voxgi_render_desc *used,
-                                       voxgi_plan_info *plan)
-{
-    voxgi_plan_info P;
-    voxgi_render_desc *d = used;
-    int all = (flags & VOXGI_PLAN_EVERYTHING) != 0, lit, reflective, seen, m, absorptions, gi;
-    double crossing, extent;
-    uint64_t budget;
-    const char *no_gi;
-    voxgi_result r;
-    if ((r = voxgi__render_defaults(ctx, desc, d)) != VOXGI_OK) return r;
-    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
-    memset(&P, 0, sizeof P);
-    m = (int)d->method;
-    if ((r = voxgi__plan_scene(ctx, scene, &d->camera, &P, &crossing, &extent, &absorptions)) != VOXGI_OK) return r;
-    if (d->resolution) {
-        voxgi_fit_desc fit;
-        memset(&fit, 0, sizeof fit);
-        fit.res = d->resolution;
-        fit.padding = 1;
-        if ((r = voxgi_fit_grid(ctx, scene, &fit, &P.grid)) != VOXGI_OK) return r;
-        P.voxels = (uint64_t)VOXGI__MIN((double)voxgi_grid_voxel_count(&P.grid), ceil(crossing / (P.grid.voxel_size * P.grid.voxel_size)));
-        P.occupancy = (double)P.voxels / (double)voxgi_grid_voxel_count(&P.grid);
-    }
-    if (m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO) { /* the occlusion's reach: a tenth of the scene, the bounce's across it */
-        if (!(d->screen.radius > 0)) d->screen.radius = (float)(0.1 * (extent > 0 ? extent : 1));
-    } else if (m == VOXGI_RENDER_SSGI || m == VOXGI_RENDER_HYBRID) {
-        if (!(d->screen.radius > 0)) d->screen.radius = (float)(sqrt(3.0) * (extent > 0 ? extent : 1));
-    } else if (m == VOXGI_RENDER_LINESPACE && !d->linespace.tree.depth && !d->linespace.ls)
-        d->linespace.tree.depth = voxgi__plan_linespace_depth(P.triangles);
-    P.error_reachable = 1;
-    if (m == VOXGI_RENDER_VCT && d->error > 0) {
-        P.expected_error = voxgi__plan_vct_front[voxgi__plan_vct_pick(d->error)].error;
-        P.error_reachable = P.expected_error <= d->error;
-    }
-    budget = d->memory_budget ? d->memory_budget : ctx->desc.memory_budget;
-    lit = all || scene->light_count || P.emissive_triangles;
-    reflective = all || P.reflective_triangles;
-    seen = all || P.emitters_in_view;
-    gi = lit && reflective && !d->direct_only;
-    no_gi = d->direct_only ? "the direct light alone asked for" : !lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
-    if (m == VOXGI_RENDER_VCT) {
-        int bounces = gi && (all || d->bounces > 1 || d->bounces == -1), octree;
-        uint64_t grid_bytes = voxgi_grid_voxel_count(&P.grid) / 8 + 4, dense, octree_bytes;
-        voxgi_volume vol;
-        memset(&vol, 0, sizeof vol);
-        vol.info.filter = d->vct.radiance == VOXGI_VCT_ISOTROPIC || d->vct.radiance == VOXGI_VCT_OCTREE ? VOXGI_MIPS_ISOTROPIC : VOXGI_MIPS_ANISOTROPIC;
-        vol.info.attributes = VOXGI_ATTRIBUTE_RADIANCE | (d->vct.one_sided ? 0u : VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE);
-        voxgi__volume_levels(&vol, &P.grid, 0);
-        dense = voxgi__volume_bytes(&vol, ctx->backend == VOXGI_BACKEND_GL) + (d->vct.one_sided ? 0u : (uint64_t)vol.voxels * 4u);
-        octree_bytes = P.voxels * VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL;
-#ifndef VOXGI_NO_OCTREE
-        if (d->vct.radiance == VOXGI_VCT_RADIANCE_DEFAULT)
-            d->vct.radiance = budget && dense > budget && octree_bytes <= budget ? VOXGI_VCT_OCTREE : VOXGI_VCT_ANISOTROPIC;
-#else
-        if (d->vct.radiance == VOXGI_VCT_RADIANCE_DEFAULT) d->vct.radiance = VOXGI_VCT_ANISOTROPIC;
-        (void)budget;
-#endif
-        octree = d->vct.radiance == VOXGI_VCT_OCTREE;
-        if (!octree) d->vct.octree_format = VOXGI_SVO_FLOAT32, d->vct.octree_bricks = 0;
-        if (d->bounces <= 1) memset(&d->vct.bounce_cones, 0, sizeof d->vct.bounce_cones), d->vct.bounce_block = 0;
-        voxgi__plan_add(&P, VOXGI_PLAN_ALBEDO, gi, gi ? "what the voxels reflect" : no_gi, P.voxels * 28, 1);
-        voxgi__plan_add(&P, VOXGI_PLAN_NORMAL, gi, gi ? "the voxels' light and mips face it" : no_gi, P.voxels * 24 + grid_bytes, 1);
-        voxgi__plan_add(&P, VOXGI_PLAN_EMISSION, all, all ? "everything asked for" : P.emissive_triangles ? "emitters light the voxels as area lights and the pixels directly" : "no emissive material", P.voxels * 28, 1);
-        voxgi__plan_add(&P, VOXGI_PLAN_OPACITY, all, all ? "everything asked for" : P.translucent_triangles ? "the cone tracer's voxels are opaque" : "no translucent material", P.voxels * 12, 1);
-        voxgi__plan_add(&P, VOXGI_PLAN_VOXELS, gi, gi ? "conservative, the scene's surface" : no_gi, grid_bytes, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_VOXELIZATION, gi && !d->voxels, !gi ? no_gi : d->voxels ? "the voxels kept (desc.voxels): the light only is re-injected" : (flags & VOXGI_PLAN_DYNAMIC) ? "the geometry moves: every frame" : "a static scene: once (a change of lights re-injects only)", 0, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_LIGHT_INJECTION, gi, gi ? "the direct light into the voxels" : no_gi, 0, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_BOUNCES, bounces, bounces ? "light among the voxels before the cones" : !gi ? no_gi : "one bounce: the cones at the pixels", 0, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_RADIANCE_VOLUME, gi && !octree, !gi ? no_gi : !octree ? "within the budget" : desc->vct.radiance == VOXGI_VCT_OCTREE ? "the octree asked for" : "over the memory budget: the octree", dense, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_RADIANCE_OCTREE, gi && octree, !gi ? no_gi : !octree ? "the dense volume fits the budget (and its anisotropic mips are better)" : desc->vct.radiance == VOXGI_VCT_OCTREE ? "asked for" : "the dense volume is over the memory budget", octree_bytes, 1);
-        voxgi__plan_add(&P, VOXGI_PLAN_CONES, gi, gi ? "the indirect light at the pixels" : no_gi, 0, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_DIRECT_LIGHT, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
-    } else if (m == VOXGI_RENDER_TSM) {
-        int maps = P.directional_lights + P.spot_lights, layers = maps ? absorptions : 0;
-        uint64_t texels = (uint64_t)(d->tsm.maps.size ? d->tsm.maps.size : 512) * (uint64_t)(d->tsm.maps.size ? d->tsm.maps.size : 512); /* 64 slices: 2 words a texel per absorption */
-        voxgi__plan_add(&P, VOXGI_PLAN_SHADOW_MAPS, maps > 0, maps ? "the directional and spot lights' opaque depth" : "no directional or spot light", (uint64_t)maps * texels * 4u, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_TRANSMITTANCE_LAYERS, all || layers > 0, !maps ? "no directional or spot light" : layers ? "light through translucent surfaces, a slicemap per absorption" : "no translucent material",
-                        (uint64_t)maps * (uint64_t)layers * texels * 2u * 4u, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_DIRECT_LIGHT, lit, lit ? "shadow rays to the other lights and emitters" : "no light and no emitter", 0, 0);
-    } else if (m == VOXGI_RENDER_RSM || m == VOXGI_RENDER_SH) {
-        int areas = P.rect_lights + (P.emissive_triangles > 0), vis = (m == VOXGI_RENDER_RSM ? d->rsm.visibility : d->sh.visibility) != VOXGI_TRAVERSAL_NONE;
-        uint64_t gb = voxgi_grid_voxel_count(&P.grid) / 8 + 4;
-        if (m == VOXGI_RENDER_RSM)
-            voxgi__plan_add(&P, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS, gi, gi ? "the lit surfaces' points" : no_gi,
-                            (uint64_t)(P.directional_lights + P.spot_lights) * (256u * 256u * 36u + 100u * 12u) + (uint64_t)areas * (4u * 256u * 256u * 36u + 200u * 12u), 0);
-        else
-            voxgi__plan_add(&P, VOXGI_PLAN_SH_VOLUME, gi, gi ? "the direct light's spherical harmonics" : no_gi, voxgi_grid_voxel_count(&P.grid) * 64u * 8u / 7u, 1);
-        voxgi__plan_add(&P, VOXGI_PLAN_VOXELS, gi && vis, !gi ? no_gi : vis ? "the bounce's visibility" : "visibility none asked for", gb, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_GATHERS, gi, gi ? "one bounce at the pixels" : no_gi, 0, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_DIRECT_LIGHT, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
-    } else if (m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO) {
-        voxgi__plan_add(&P, VOXGI_PLAN_LIGHTS, all, all ? "everything asked for" : "occlusion sees geometry only", 0, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_VOXELS, d->resolution > 0, d->resolution > 0 ? "occlusion through the voxels" : "occlusion through the depth buffer", voxgi_grid_voxel_count(&P.grid) / 8 + 4, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_OCCLUSION, 1, "the image", 0, 0);
-    } else if (m == VOXGI_RENDER_SSGI || m == VOXGI_RENDER_HYBRID) {
-        voxgi__plan_add(&P, VOXGI_PLAN_VOXELS, gi && d->resolution > 0, !gi ? no_gi : d->resolution > 0 ? "the bounce's visibility" : "visibility through the depth buffer", voxgi_grid_voxel_count(&P.grid) / 8 + 4, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_SCREEN_BOUNCE, gi, gi ? "one bounce from the screen" : no_gi, 0, 0);
-        voxgi__plan_add(&P, VOXGI_PLAN_DIRECT_LIGHT, lit, lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
-    } else if (m == VOXGI_RENDER_LINESPACE) {
-        int keep = all || P.area_lights > 0;
-        const char *none = P.area_lights < 0 ? "more than 64 area lights (the image refuses them)" : "no area light (rect light or emissive triangles)";
-        voxgi__plan_add(&P, VOXGI_PLAN_LINE_SPACE, keep && !d->linespace.ls, !keep ? none : d->linespace.ls ? "the line space kept (desc.linespace.ls)" : "soft shadows of the area lights",
-                        voxgi__plan_linespace_bytes(P.triangles, crossing, extent, d->linespace.tree.n, d->linespace.tree.depth), 1);
-        voxgi__plan_add(&P, VOXGI_PLAN_SOFT_SHADOWS, keep, keep ? "the area lights' direct light" : none, 0, 0);
-    } else {
-        int ao = d->reference.ao_radius > 0;
-        voxgi__plan_add(&P, VOXGI_PLAN_PATH_TRACING, ao || lit, ao ? "ambient occlusion within the radius" : lit ? "the lights' and emitters' light along paths" : "no light and no emitter", 0, 0);
-    }
-    voxgi__plan_add(&P, VOXGI_PLAN_SEEN_EMISSION, seen && P.emissive_triangles && m != VOXGI_RENDER_SSAO && m != VOXGI_RENDER_VAO && !d->hide_emitters,
-                    m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO ? "occlusion sees geometry only" : !P.emissive_triangles ? "no emissive material"
-                    : d->hide_emitters ? "hidden (desc.hide_emitters)" : seen ? "emitters in view" : "the camera sees no emitter", 0, 0);
-    *plan = P;
-    return VOXGI_OK;
-}
-
-VOXGI_API voxgi_result voxgi_plan(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, unsigned flags, voxgi_plan_info *plan)
-{
-    voxgi_render_desc used;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!scene || !desc || !plan) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or plan is NULL");
-    return voxgi__plan_render(ctx, scene, desc, flags, &used, plan);
-}
-
-VOXGI_API voxgi_result voxgi_render_resolve(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, voxgi_render_desc *used)
-{
-    voxgi_plan_info plan;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!scene || !desc || !used) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or used is NULL");
-    return voxgi__plan_render(ctx, scene, desc, 0, used, &plan);
-}
-
 VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, voxgi_plan_item_id id)
 {
     int i;
@@ -15048,6 +14781,33 @@ VOXGI_API const voxgi_plan_item *voxgi_plan_find(const voxgi_plan_info *plan, vo
         if (plan->items[i].id == id) return &plan->items[i];
     return NULL;
 }
+
+/* What a method's plan reads: the settings asked for and resolved, the scene's counts in P, and
+   what the scene has (each true with VOXGI_PLAN_EVERYTHING). A method's plan adds its items to P
+   and resolves the defaults that depend on the scene. */
+typedef struct voxgi__plan_job {
+    voxgi_context *ctx;
+    const voxgi_render_desc *asked;
+    voxgi_render_desc *d;         /* the settings, resolved */
+    voxgi_plan_info *P;
+    unsigned flags;
+    int all, lit, reflective, seen, gi, absorptions;
+    const char *no_gi;            /* why there is no indirect light, when gi is 0 */
+    double crossing, extent;      /* the scene's surface crossing a unit square, and its longest side */
+    uint64_t budget;              /* the plan's memory budget (0: none) */
+} voxgi__plan_job;
+
+/* snprintf's rules over a running buffer. */
+static void voxgi__describe(char *buf, size_t size, int *len, const char *fmt, ...)
+{
+    va_list ap;
+    int n;
+    va_start(ap, fmt);
+    n = vsnprintf(*len >= 0 && (size_t)*len < size ? buf + *len : NULL, *len >= 0 && (size_t)*len < size ? size - (size_t)*len : 0, fmt, ap);
+    va_end(ap);
+    if (n > 0) *len += n;
+}
+
 
 /* ----- the G-buffer of voxgi's own images */
 typedef struct voxgi__gbuffer_job {
@@ -15383,6 +15143,28 @@ static void voxgi__image_free(voxgi__image *I)
 
 /* ----- the reference: path tracing (part 13) */
 #ifndef VOXGI_NO_REFERENCE
+static voxgi_result voxgi__reference_defaults(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d)
+{
+    d->reference = in->reference;
+    if (!(d->reference.ao_radius >= 0 && isfinite(d->reference.ao_radius)) || (d->reference.screen_light_only && d->bounces != 1))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "reference: ao_radius %g, screen_light_only %d (with one bounce only)", (double)d->reference.ao_radius,
+                           d->reference.screen_light_only);
+    return VOXGI_OK;
+}
+
+static void voxgi__reference_plan(voxgi__plan_job *J)
+{
+    int ao = J->d->reference.ao_radius > 0;
+    voxgi__plan_add(J->P, VOXGI_PLAN_PATH_TRACING, ao || J->lit, ao ? "ambient occlusion within the radius" : J->lit ? "the lights' and emitters' light along paths" : "no light and no emitter",
+                    0, 0);
+}
+
+static void voxgi__reference_describe(const voxgi_render_desc *u, char *buf, size_t size, int *len)
+{
+    if (u->reference.ao_radius > 0) voxgi__describe(buf, size, len, ", ambient occlusion within %.4g", (double)u->reference.ao_radius);
+    else if (u->reference.screen_light_only) voxgi__describe(buf, size, len, ", screen light only");
+}
+
 static voxgi_result voxgi__reference_image_build(voxgi__image *I)
 {
     double t0 = voxgi__now_ms();
@@ -15467,6 +15249,107 @@ static void voxgi__between_anchors(int w, int h, int stride, const float *pos, c
 
 /* ----- cone-traced images */
 #if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
+/* The cone tracer's Pareto front on the Cornell box (256 x 256 against a 1024-spp reference,
+   anisotropic mips, step 0.5; docs/planner.md): the cheapest settings reaching each error. The
+   middle one is the default. */
+static const struct { double error; int resolution, cones, stride; } voxgi__plan_vct_front[] = {
+    {0.0805, 64, 32, 6}, {0.0776, 96, 24, 6}, {0.0755, 96, 32, 6}};
+#define VOXGI__PLAN_VCT_DEFAULT 1
+
+/* The front's cheapest setting reaching a relative RMSE (0: the default; the closest where none does). */
+static size_t voxgi__plan_vct_pick(double error)
+{
+    size_t f, n = sizeof voxgi__plan_vct_front / sizeof voxgi__plan_vct_front[0];
+    if (!(error > 0)) return VOXGI__PLAN_VCT_DEFAULT;
+    for (f = 0; f + 1 < n && voxgi__plan_vct_front[f].error > error; f++) continue;
+    return f;
+}
+
+/* An octree of two-sided radiance per set voxel (measured: 8.0 MB for the Cornell box's 56,562
+   voxels at 96^3, nodes and values). */
+#define VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL 148
+
+/* The front's middle, or the cheapest point of it reaching the error asked for. */
+static voxgi_result voxgi__vct_defaults(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d)
+{
+    size_t f = voxgi__plan_vct_pick(d->error);
+    voxgi_render_vct *v = &d->vct;
+    *v = in->vct;
+    if (d->bounces > 1 && !v->bounce_block) v->bounce_block = 4;
+    if ((unsigned)v->radiance > VOXGI_VCT_OCTREE || (unsigned)v->octree_format > VOXGI_SVO_FLOAT16 || v->cone_stride < 0 || v->cone_stride > 64 ||
+        v->inject_samples < 0 || v->bounce_block < 0 || v->cones.cones < 0)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "vct: radiance %d, octree_format %d, cone_stride %d (0..64), inject_samples %d, bounce_block %d, cones %d",
+                           (int)v->radiance, (int)v->octree_format, v->cone_stride, v->inject_samples, v->bounce_block, v->cones.cones);
+#ifdef VOXGI_NO_OCTREE
+    if (v->radiance == VOXGI_VCT_OCTREE) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "vct: an octree of the radiance, but the octree is left out (VOXGI_NO_OCTREE)");
+#endif
+    if (!d->resolution) d->resolution = voxgi__plan_vct_front[f].resolution;
+    if (!v->cones.cones) v->cones.cones = voxgi__plan_vct_front[f].cones;
+    if (!v->cone_stride) v->cone_stride = voxgi__plan_vct_front[f].stride;
+    if (!v->inject_samples) v->inject_samples = ctx->backend == VOXGI_BACKEND_GL && !v->shadow_rays ? 16 : 4;
+    return VOXGI_OK;
+}
+
+/* The voxels and what they hold, the radiance's store (the octree where the dense volume is over
+   the budget and the octree within it), the bounces among the voxels, the cones. */
+static void voxgi__vct_plan(voxgi__plan_job *J)
+{
+    voxgi_render_desc *d = J->d;
+    voxgi_plan_info *P = J->P;
+    const char *no_gi = J->no_gi;
+    int gi = J->gi, all = J->all, bounces = gi && (all || d->bounces > 1 || d->bounces == -1), octree;
+    uint64_t grid_bytes = voxgi_grid_voxel_count(&P->grid) / 8 + 4, dense, octree_bytes;
+    voxgi_volume vol;
+    if (d->error > 0) {
+        P->expected_error = voxgi__plan_vct_front[voxgi__plan_vct_pick(d->error)].error;
+        P->error_reachable = P->expected_error <= d->error;
+    }
+    memset(&vol, 0, sizeof vol);
+    vol.info.filter = d->vct.radiance == VOXGI_VCT_ISOTROPIC || d->vct.radiance == VOXGI_VCT_OCTREE ? VOXGI_MIPS_ISOTROPIC : VOXGI_MIPS_ANISOTROPIC;
+    vol.info.attributes = VOXGI_ATTRIBUTE_RADIANCE | (d->vct.one_sided ? 0u : VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE);
+    voxgi__volume_levels(&vol, &P->grid, 0);
+    dense = voxgi__volume_bytes(&vol, J->ctx->backend == VOXGI_BACKEND_GL) + (d->vct.one_sided ? 0u : (uint64_t)vol.voxels * 4u);
+    octree_bytes = P->voxels * VOXGI__PLAN_OCTREE_BYTES_PER_VOXEL;
+#ifndef VOXGI_NO_OCTREE
+    if (d->vct.radiance == VOXGI_VCT_RADIANCE_DEFAULT)
+        d->vct.radiance = J->budget && dense > J->budget && octree_bytes <= J->budget ? VOXGI_VCT_OCTREE : VOXGI_VCT_ANISOTROPIC;
+#else
+    if (d->vct.radiance == VOXGI_VCT_RADIANCE_DEFAULT) d->vct.radiance = VOXGI_VCT_ANISOTROPIC;
+#endif
+    octree = d->vct.radiance == VOXGI_VCT_OCTREE;
+    if (!octree) d->vct.octree_format = VOXGI_SVO_FLOAT32, d->vct.octree_bricks = 0;
+    if (d->bounces <= 1) memset(&d->vct.bounce_cones, 0, sizeof d->vct.bounce_cones), d->vct.bounce_block = 0;
+    voxgi__plan_add(P, VOXGI_PLAN_ALBEDO, gi, gi ? "what the voxels reflect" : no_gi, P->voxels * 28, 1);
+    voxgi__plan_add(P, VOXGI_PLAN_NORMAL, gi, gi ? "the voxels' light and mips face it" : no_gi, P->voxels * 24 + grid_bytes, 1);
+    voxgi__plan_add(P, VOXGI_PLAN_EMISSION, all, all ? "everything asked for" : P->emissive_triangles ? "emitters light the voxels as area lights and the pixels directly" : "no emissive material",
+                    P->voxels * 28, 1);
+    voxgi__plan_add(P, VOXGI_PLAN_OPACITY, all, all ? "everything asked for" : P->translucent_triangles ? "the cone tracer's voxels are opaque" : "no translucent material", P->voxels * 12, 1);
+    voxgi__plan_add(P, VOXGI_PLAN_VOXELS, gi, gi ? "conservative, the scene's surface" : no_gi, grid_bytes, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_VOXELIZATION, gi && !d->voxels,
+                    !gi ? no_gi : d->voxels ? "the voxels kept (desc.voxels): the light only is re-injected" : (J->flags & VOXGI_PLAN_DYNAMIC) ? "the geometry moves: every frame"
+                    : "a static scene: once (a change of lights re-injects only)", 0, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_LIGHT_INJECTION, gi, gi ? "the direct light into the voxels" : no_gi, 0, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_BOUNCES, bounces, bounces ? "light among the voxels before the cones" : !gi ? no_gi : "one bounce: the cones at the pixels", 0, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_RADIANCE_VOLUME, gi && !octree, !gi ? no_gi : !octree ? "within the budget" : J->asked->vct.radiance == VOXGI_VCT_OCTREE ? "the octree asked for"
+                    : "over the memory budget: the octree", dense, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_RADIANCE_OCTREE, gi && octree, !gi ? no_gi : !octree ? "the dense volume fits the budget (and its anisotropic mips are better)"
+                    : J->asked->vct.radiance == VOXGI_VCT_OCTREE ? "asked for" : "the dense volume is over the memory budget", octree_bytes, 1);
+    voxgi__plan_add(P, VOXGI_PLAN_CONES, gi, gi ? "the indirect light at the pixels" : no_gi, 0, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_DIRECT_LIGHT, J->lit, J->lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
+}
+
+static void voxgi__vct_describe(const voxgi_render_desc *u, char *buf, size_t size, int *len)
+{
+    static const char *const radiance[] = {"default", "anisotropic volume", "isotropic volume", "octree"}, *const formats[] = {"float32", "float16"};
+    const voxgi_render_vct *v = &u->vct;
+    voxgi__describe(buf, size, len, ", radiance %s, cones %d, cone stride %d, inject samples %d", radiance[(unsigned)v->radiance % 4u], v->cones.cones, v->cone_stride,
+                    v->inject_samples);
+    if (v->radiance == VOXGI_VCT_OCTREE) voxgi__describe(buf, size, len, " (%s%s)", formats[(unsigned)v->octree_format % 2u], v->octree_bricks ? ", bricks" : "");
+    if (u->bounces > 1 || u->bounces == -1) voxgi__describe(buf, size, len, ", bounce cones %d, bounce block %d", v->bounce_cones.cones, v->bounce_block);
+    if (v->one_sided) voxgi__describe(buf, size, len, ", one-sided");
+    if (v->sampled_direct) voxgi__describe(buf, size, len, ", sampled direct light");
+}
+
 typedef struct voxgi__vct_job {
     const voxgi_render_desc *d;
     int gi;                       /* the cones' indirect light */
@@ -15763,18 +15646,6 @@ static voxgi_result voxgi__vct_image_gather(voxgi__image *I)
     return VOXGI_OK;
 }
 
-VOXGI_API voxgi_result voxgi_render_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, voxgi_voxels **out)
-{
-    voxgi_render_desc d;
-    voxgi_result r;
-    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
-    if (!desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or out is NULL");
-    *out = NULL;
-    if (desc->method != VOXGI_RENDER_VCT) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.method: only vct keeps voxels");
-    if ((r = voxgi__render_defaults(ctx, desc, &d)) != VOXGI_OK) return r;
-    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
-    return voxgi__vct_voxelize(ctx, scene, &d, out);
-}
 #endif
 
 /* ----- images of the direct light (with transmittance shadow maps, and under one-bounce ones) */
@@ -15907,6 +15778,31 @@ static void voxgi__image_direct(voxgi__image *I, voxgi_tsm **maps, float *reflec
 #ifndef VOXGI_NO_LIGHT_SPACE
 /* ----- images of the direct light with transmittance shadow maps: every directional and spot
    light through its own map, the other lights and emitters through exact shadow rays */
+static voxgi_result voxgi__tsm_defaults(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d)
+{
+    (void)ctx;
+    d->tsm = in->tsm;
+    return VOXGI_OK;
+}
+
+static void voxgi__tsm_plan(voxgi__plan_job *J)
+{
+    voxgi_plan_info *P = J->P;
+    int maps = P->directional_lights + P->spot_lights, layers = maps ? J->absorptions : 0, size = J->d->tsm.maps.size ? J->d->tsm.maps.size : 512;
+    uint64_t texels = (uint64_t)size * (uint64_t)size; /* 64 slices: 2 words a texel per absorption */
+    voxgi__plan_add(P, VOXGI_PLAN_SHADOW_MAPS, maps > 0, maps ? "the directional and spot lights' opaque depth" : "no directional or spot light", (uint64_t)maps * texels * 4u, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_TRANSMITTANCE_LAYERS, J->all || layers > 0,
+                    !maps ? "no directional or spot light" : layers ? "light through translucent surfaces, a slicemap per absorption" : "no translucent material",
+                    (uint64_t)maps * (uint64_t)layers * texels * 2u * 4u, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_DIRECT_LIGHT, J->lit, J->lit ? "shadow rays to the other lights and emitters" : "no light and no emitter", 0, 0);
+}
+
+static void voxgi__tsm_describe(const voxgi_render_desc *u, char *buf, size_t size, int *len)
+{
+    voxgi__describe(buf, size, len, ", map size %d, slices %d", u->tsm.maps.size ? u->tsm.maps.size : 512, u->tsm.maps.slices ? u->tsm.maps.slices : 64);
+    if (u->tsm.maps.sigma > 0) voxgi__describe(buf, size, len, ", sigma %.4g", (double)u->tsm.maps.sigma);
+}
+
 static voxgi_result voxgi__tsm_image_build(voxgi__image *I)
 {
     voxgi_context *ctx = I->ctx;
@@ -16014,6 +15910,53 @@ static voxgi_result voxgi__image_point_gather(voxgi_context *ctx, void *user, si
     G->normals = normals;
     G->irradiance = out;
     return voxgi__point_gather_run(ctx, G, count);
+}
+
+/* RSM and SH alike: a grid of 64 for the visibility, every 4th pixel gathering. */
+static voxgi_result voxgi__bounce_defaults(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d)
+{
+    int sh = d->method == VOXGI_RENDER_SH, *stride = sh ? &d->sh.gather_stride : &d->rsm.gather_stride;
+    voxgi_traversal vis;
+    if (sh) d->sh = in->sh;
+    else d->rsm = in->rsm;
+    vis = sh ? d->sh.visibility : d->rsm.visibility;
+    if ((unsigned)vis > VOXGI_TRAVERSAL_NONE || *stride < 0 || *stride > 64 || (sh && (d->resolution > 1024 || !(d->sh.opening >= 0 && d->sh.opening <= 4))))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "%s: visibility %d, gather_stride %d (0..64), resolution %d%s, opening %g (0..4)", sh ? "sh" : "rsm", (int)vis,
+                           *stride, d->resolution, sh ? " (0..1024)" : "", (double)d->sh.opening);
+    if (!d->resolution) d->resolution = 64;
+    if (!*stride) *stride = 4;
+    if (sh && !(d->sh.opening > 0)) d->sh.opening = 0.5f;
+    if (sh && !d->sh.volume.seed) d->sh.volume.seed = d->seed; /* the patterns from the image's seed */
+    if (!sh && !d->rsm.maps.seed) d->rsm.maps.seed = d->seed;
+    return VOXGI_OK;
+}
+
+static void voxgi__bounce_plan(voxgi__plan_job *J)
+{
+    voxgi_plan_info *P = J->P;
+    const char *no_gi = J->no_gi;
+    int sh = J->d->method == VOXGI_RENDER_SH, gi = J->gi, areas = P->rect_lights + (P->emissive_triangles > 0);
+    int vis = (sh ? J->d->sh.visibility : J->d->rsm.visibility) != VOXGI_TRAVERSAL_NONE;
+    uint64_t gb = voxgi_grid_voxel_count(&P->grid) / 8 + 4;
+    if (!sh)
+        voxgi__plan_add(P, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS, gi, gi ? "the lit surfaces' points" : no_gi,
+                        (uint64_t)(P->directional_lights + P->spot_lights) * (256u * 256u * 36u + 100u * 12u) + (uint64_t)areas * (4u * 256u * 256u * 36u + 200u * 12u), 0);
+    else
+        voxgi__plan_add(P, VOXGI_PLAN_SH_VOLUME, gi, gi ? "the direct light's spherical harmonics" : no_gi, voxgi_grid_voxel_count(&P->grid) * 64u * 8u / 7u, 1);
+    voxgi__plan_add(P, VOXGI_PLAN_VOXELS, gi && vis, !gi ? no_gi : vis ? "the bounce's visibility" : "visibility none asked for", gb, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_GATHERS, gi, gi ? "one bounce at the pixels" : no_gi, 0, 0);
+    voxgi__plan_add(P, VOXGI_PLAN_DIRECT_LIGHT, J->lit, J->lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
+}
+
+static void voxgi__bounce_describe(const voxgi_render_desc *u, char *buf, size_t size, int *len)
+{
+    static const char *const visibility[] = {"hierarchical", "dda", "none"};
+    if (u->method == VOXGI_RENDER_RSM)
+        voxgi__describe(buf, size, len, ", visibility %s, gather stride %d, map size %d", visibility[(unsigned)u->rsm.visibility % 3u], u->rsm.gather_stride,
+                        u->rsm.maps.size ? u->rsm.maps.size : 256);
+    else
+        voxgi__describe(buf, size, len, ", visibility %s, gather stride %d, opening %.4g", visibility[(unsigned)u->sh.visibility % 3u], u->sh.gather_stride,
+                        (double)u->sh.opening);
 }
 
 static voxgi_result voxgi__rsm_image_build(voxgi__image *I)
@@ -16148,6 +16091,67 @@ static voxgi_result voxgi__screen_image(voxgi_context *ctx, voxgi__screen_job *J
 }
 
 /* SSAO and VAO: the ray scene, VAO's voxels. */
+/* The screen passes' fronts (docs/screen-space.md): AO's edges blurred little at full resolution,
+   the bounce more at half; Hybrid-GI's hidden light on. */
+static voxgi_result voxgi__screen_defaults(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d)
+{
+    int m = (int)d->method, gi = m == VOXGI_RENDER_SSGI || m == VOXGI_RENDER_HYBRID;
+    voxgi_render_screen *sc = &d->screen;
+    *sc = in->screen;
+    if (sc->rays < 0 || sc->steps < 0 || !(sc->radius >= 0 && isfinite(sc->radius)) || (unsigned)sc->half_resolution > VOXGI_TOGGLE_OFF || sc->blur < -1 ||
+        sc->blur > 64 || (unsigned)sc->hidden_light > VOXGI_TOGGLE_OFF || sc->inject_samples < 0 || (sc->point_sampling && m != VOXGI_RENDER_SSAO))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "%s: rays %d, steps %d, radius %g, half_resolution %d, blur %d (-1..64), hidden_light %d, inject_samples %d, "
+                           "point_sampling %d (ssao only)", voxgi__render_method_names[m], sc->rays, sc->steps, (double)sc->radius, (int)sc->half_resolution, sc->blur,
+                           (int)sc->hidden_light, sc->inject_samples, sc->point_sampling);
+    if (!sc->rays) sc->rays = 16;
+    if (!sc->steps) sc->steps = 16;
+    if (!sc->half_resolution) sc->half_resolution = gi ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
+    if (!sc->blur) sc->blur = gi ? 8 : 2;
+    if (m == VOXGI_RENDER_HYBRID && !sc->hidden_light) sc->hidden_light = VOXGI_TOGGLE_ON;
+    if (m != VOXGI_RENDER_HYBRID) sc->hidden_light = VOXGI_TOGGLE_OFF;
+#ifdef VOXGI_NO_LIGHT_INJECTION
+    if (sc->hidden_light == VOXGI_TOGGLE_ON && in->screen.hidden_light == VOXGI_TOGGLE_ON)
+        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "hybrid: hidden light needs light injection (VOXGI_NO_LIGHT_INJECTION)");
+    sc->hidden_light = VOXGI_TOGGLE_OFF;
+#endif
+    if (sc->hidden_light == VOXGI_TOGGLE_ON && !sc->inject_samples) sc->inject_samples = ctx->backend == VOXGI_BACKEND_GL ? 16 : 4;
+    if ((m == VOXGI_RENDER_VAO || m == VOXGI_RENDER_HYBRID) && !d->resolution) d->resolution = 128;
+    return VOXGI_OK;
+}
+
+/* Occlusion's reach: a tenth of the scene. */
+static void voxgi__ao_plan(voxgi__plan_job *J)
+{
+    voxgi_render_desc *d = J->d;
+    if (!(d->screen.radius > 0)) d->screen.radius = (float)(0.1 * (J->extent > 0 ? J->extent : 1));
+    voxgi__plan_add(J->P, VOXGI_PLAN_LIGHTS, J->all, J->all ? "everything asked for" : "occlusion sees geometry only", 0, 0);
+    voxgi__plan_add(J->P, VOXGI_PLAN_VOXELS, d->resolution > 0, d->resolution > 0 ? "occlusion through the voxels" : "occlusion through the depth buffer",
+                    voxgi_grid_voxel_count(&J->P->grid) / 8 + 4, 0);
+    voxgi__plan_add(J->P, VOXGI_PLAN_OCCLUSION, 1, "the image", 0, 0);
+}
+
+/* The bounce's reach: across the scene. */
+static void voxgi__ssgi_plan(voxgi__plan_job *J)
+{
+    voxgi_render_desc *d = J->d;
+    int gi = J->gi;
+    if (!(d->screen.radius > 0)) d->screen.radius = (float)(sqrt(3.0) * (J->extent > 0 ? J->extent : 1));
+    voxgi__plan_add(J->P, VOXGI_PLAN_VOXELS, gi && d->resolution > 0, !gi ? J->no_gi : d->resolution > 0 ? "the bounce's visibility" : "visibility through the depth buffer",
+                    voxgi_grid_voxel_count(&J->P->grid) / 8 + 4, 0);
+    voxgi__plan_add(J->P, VOXGI_PLAN_SCREEN_BOUNCE, gi, gi ? "one bounce from the screen" : J->no_gi, 0, 0);
+    voxgi__plan_add(J->P, VOXGI_PLAN_DIRECT_LIGHT, J->lit, J->lit ? "shadow rays to the lights and emitters" : "no light and no emitter", 0, 0);
+}
+
+static void voxgi__screen_describe(const voxgi_render_desc *u, char *buf, size_t size, int *len)
+{
+    static const char *const toggles[] = {"default", "on", "off"};
+    const voxgi_render_screen *s = &u->screen;
+    voxgi__describe(buf, size, len, ", rays %d, steps %d, radius %.4g, half resolution %s, blur %d", s->rays, s->steps, (double)s->radius,
+                    toggles[(unsigned)s->half_resolution % 3u], VOXGI__MAX(s->blur, 0));
+    if (u->method == VOXGI_RENDER_SSAO && s->point_sampling) voxgi__describe(buf, size, len, ", point sampling");
+    if (u->method == VOXGI_RENDER_HYBRID) voxgi__describe(buf, size, len, ", hidden light %s", toggles[(unsigned)s->hidden_light % 3u]);
+}
+
 static voxgi_result voxgi__ao_image_build(voxgi__image *I)
 {
     voxgi_result r = voxgi__image_rays(I, 0);
@@ -16244,6 +16248,61 @@ static voxgi_result voxgi__ssgi_image_gather(voxgi__image *I)
 
 /* ----- images of the area lights' soft shadows through the line space */
 #ifndef VOXGI_NO_LINE_SPACE
+/* A line space's bytes (n, depth), by voxgi_linespace_create's formula with each level's split
+   nodes estimated as the cells its surface crosses. */
+static uint64_t voxgi__plan_linespace_bytes(uint64_t triangles, double crossing, double extent, int n, int depth)
+{
+    double cells = 1, split = 0, nodes = 1, leaves = 0, refs;
+    int l;
+    if (!triangles || !(extent > 0)) return 0;
+    for (l = 0; l <= depth; l++) { /* level l: n^l cells a side */
+        double edge = extent / cells, occupied = VOXGI__MIN(cells * cells * cells, VOXGI__MAX(1.0, ceil(crossing / (edge * edge))));
+        if (l < depth) { split += occupied; nodes += occupied * n * n * n; }
+        else leaves = occupied;
+        cells *= n;
+    }
+    refs = VOXGI__MAX((double)triangles, leaves) * 1.5;
+    return (uint64_t)(8 * nodes + (double)((15 * n * n * n * n + 31) / 32) * 4 * split + 4 * refs + 8 * leaves + 36 * (double)triangles);
+}
+
+/* voxgi report linespace's front (docs/line-space.md): 4 shadow rays on 2 x 2 points. */
+static voxgi_result voxgi__ls_defaults(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d)
+{
+    voxgi_render_linespace *L = &d->linespace;
+    *L = in->linespace;
+    if ((unsigned)L->mode > VOXGI_LINESPACE_FAST || L->samples < 0 || L->exact_ends < 0 || L->supersample < 0 || L->supersample > 16)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "linespace: mode %d, samples %d, exact_ends %d, supersample %d (0..16)", (int)L->mode, L->samples,
+                           L->exact_ends, L->supersample);
+    if (!L->samples) L->samples = 4;
+    if (!L->supersample) L->supersample = 2;
+    if (!L->tree.n) L->tree.n = 4;
+    if (!L->tree.memory_budget) L->tree.memory_budget = d->memory_budget; /* 0: the context's, as everywhere */
+    if (L->mode == VOXGI_LINESPACE_FAST && !L->exact_ends) L->exact_ends = 3;
+    return VOXGI_OK;
+}
+
+/* The tree's depth from the scene's triangles. */
+static void voxgi__ls_plan(voxgi__plan_job *J)
+{
+    voxgi_plan_info *P = J->P;
+    voxgi_render_linespace *L = &J->d->linespace;
+    int keep = J->all || P->area_lights > 0;
+    const char *none = P->area_lights < 0 ? "more than 64 area lights (the image refuses them)" : "no area light (rect light or emissive triangles)";
+    if (!L->tree.depth && !L->ls) L->tree.depth = voxgi__plan_linespace_depth(P->triangles);
+    voxgi__plan_add(P, VOXGI_PLAN_LINE_SPACE, keep && !L->ls, !keep ? none : L->ls ? "the line space kept (desc.linespace.ls)" : "soft shadows of the area lights",
+                    voxgi__plan_linespace_bytes(P->triangles, J->crossing, J->extent, L->tree.n, L->tree.depth), 1);
+    voxgi__plan_add(P, VOXGI_PLAN_SOFT_SHADOWS, keep, keep ? "the area lights' direct light" : none, 0, 0);
+}
+
+static void voxgi__ls_describe(const voxgi_render_desc *u, char *buf, size_t size, int *len)
+{
+    static const char *const modes[] = {"exact", "fast"};
+    const voxgi_render_linespace *L = &u->linespace;
+    voxgi__describe(buf, size, len, ", %s, n %d, depth %d, shadow samples %d, supersample %d%s", modes[(unsigned)L->mode % 2u], L->tree.n, L->tree.depth, L->samples,
+                    L->supersample, L->packets ? ", packets" : "");
+    if (L->mode == VOXGI_LINESPACE_FAST) voxgi__describe(buf, size, len, ", exact ends %d", L->exact_ends);
+}
+
 typedef struct voxgi__ls_shade {
     const voxgi__flat *f;
     const voxgi__ls_area *A;
@@ -16386,48 +16445,188 @@ static voxgi_result voxgi__ls_image_gather(voxgi__image *I)
 
 /* ----- the table and the one entry point */
 typedef struct voxgi__render_row {
+    voxgi_result (*defaults)(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d); /* its part of the desc, checked and resolved */
+    void (*plan)(voxgi__plan_job *J);        /* its items, and the defaults that depend on the scene */
+    void (*describe)(const voxgi_render_desc *u, char *buf, size_t size, int *len); /* its part of the settings */
     voxgi_result (*build)(voxgi__image *I);  /* what the method takes from the scene */
     voxgi_result (*gather)(voxgi__image *I); /* what the pixels take from that: the image */
+    int samples;                             /* desc.samples' default; 0: it takes none (the pixels' centres) */
+    int bounce;                              /* the indirect bounces it makes: 0, 1, or -1: desc.bounces */
+    int voxels;                              /* 1: it reads desc.resolution */
     const char *left_out;                    /* NULL, or the macro that left the method out of this build */
 } voxgi__render_row;
+#define VOXGI__LEFT_OUT(macro) {NULL, NULL, NULL, NULL, NULL, 0, 0, 0, macro}
 
 static const voxgi__render_row voxgi__render_rows[VOXGI_RENDER_METHOD_COUNT] = {
 #ifndef VOXGI_NO_REFERENCE
-    {voxgi__reference_image_build, voxgi__reference_image_gather, NULL},
+    {voxgi__reference_defaults, voxgi__reference_plan, voxgi__reference_describe, voxgi__reference_image_build, voxgi__reference_image_gather, 64, -1, 0, NULL},
 #else
-    {NULL, NULL, "VOXGI_NO_REFERENCE"},
+    VOXGI__LEFT_OUT("VOXGI_NO_REFERENCE"),
 #endif
 #if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
-    {voxgi__vct_image_build, voxgi__vct_image_gather, NULL},
+    {voxgi__vct_defaults, voxgi__vct_plan, voxgi__vct_describe, voxgi__vct_image_build, voxgi__vct_image_gather, 24, -1, 1, NULL},
 #else
-    {NULL, NULL, "VOXGI_NO_CONE_TRACING or VOXGI_NO_LIGHT_INJECTION"},
+    VOXGI__LEFT_OUT("VOXGI_NO_CONE_TRACING or VOXGI_NO_LIGHT_INJECTION"),
 #endif
 #ifndef VOXGI_NO_LIGHT_SPACE
-    {voxgi__tsm_image_build, voxgi__tsm_image_gather, NULL},
-    {voxgi__rsm_image_build, voxgi__rsm_image_gather, NULL},
-    {voxgi__sh_image_build, voxgi__sh_image_gather, NULL},
+    {voxgi__tsm_defaults, voxgi__tsm_plan, voxgi__tsm_describe, voxgi__tsm_image_build, voxgi__tsm_image_gather, 4, 0, 0, NULL},
+    {voxgi__bounce_defaults, voxgi__bounce_plan, voxgi__bounce_describe, voxgi__rsm_image_build, voxgi__rsm_image_gather, 24, 1, 1, NULL},
+    {voxgi__bounce_defaults, voxgi__bounce_plan, voxgi__bounce_describe, voxgi__sh_image_build, voxgi__sh_image_gather, 24, 1, 1, NULL},
 #else
-    {NULL, NULL, "VOXGI_NO_LIGHT_SPACE"},
-    {NULL, NULL, "VOXGI_NO_LIGHT_SPACE"},
-    {NULL, NULL, "VOXGI_NO_LIGHT_SPACE"},
+    VOXGI__LEFT_OUT("VOXGI_NO_LIGHT_SPACE"),
+    VOXGI__LEFT_OUT("VOXGI_NO_LIGHT_SPACE"),
+    VOXGI__LEFT_OUT("VOXGI_NO_LIGHT_SPACE"),
 #endif
 #ifndef VOXGI_NO_SCREEN_SPACE
-    {voxgi__ao_image_build, voxgi__ao_image_gather, NULL},
-    {voxgi__ao_image_build, voxgi__ao_image_gather, NULL},
-    {voxgi__ssgi_image_build, voxgi__ssgi_image_gather, NULL},
-    {voxgi__ssgi_image_build, voxgi__ssgi_image_gather, NULL},
+    {voxgi__screen_defaults, voxgi__ao_plan, voxgi__screen_describe, voxgi__ao_image_build, voxgi__ao_image_gather, 0, 0, 0, NULL},
+    {voxgi__screen_defaults, voxgi__ao_plan, voxgi__screen_describe, voxgi__ao_image_build, voxgi__ao_image_gather, 0, 0, 1, NULL},
+    {voxgi__screen_defaults, voxgi__ssgi_plan, voxgi__screen_describe, voxgi__ssgi_image_build, voxgi__ssgi_image_gather, 24, 1, 0, NULL},
+    {voxgi__screen_defaults, voxgi__ssgi_plan, voxgi__screen_describe, voxgi__ssgi_image_build, voxgi__ssgi_image_gather, 24, 1, 1, NULL},
 #else
-    {NULL, NULL, "VOXGI_NO_SCREEN_SPACE"},
-    {NULL, NULL, "VOXGI_NO_SCREEN_SPACE"},
-    {NULL, NULL, "VOXGI_NO_SCREEN_SPACE"},
-    {NULL, NULL, "VOXGI_NO_SCREEN_SPACE"},
+    VOXGI__LEFT_OUT("VOXGI_NO_SCREEN_SPACE"),
+    VOXGI__LEFT_OUT("VOXGI_NO_SCREEN_SPACE"),
+    VOXGI__LEFT_OUT("VOXGI_NO_SCREEN_SPACE"),
+    VOXGI__LEFT_OUT("VOXGI_NO_SCREEN_SPACE"),
 #endif
 #ifndef VOXGI_NO_LINE_SPACE
-    {voxgi__ls_image_build, voxgi__ls_image_gather, NULL},
+    {voxgi__ls_defaults, voxgi__ls_plan, voxgi__ls_describe, voxgi__ls_image_build, voxgi__ls_image_gather, 0, 0, 0, NULL},
 #else
-    {NULL, NULL, "VOXGI_NO_LINE_SPACE"},
+    VOXGI__LEFT_OUT("VOXGI_NO_LINE_SPACE"),
 #endif
 };
+
+/* The settings a desc asks for, checked, every zero that needs no look at the scene resolved (the
+   scene's: the camera, the screen radius, the line space's depth, VCT's radiance store, are the
+   methods' plans'). A method reads its own part of the desc only: the others stay zero, so that
+   what is reported is what ran. */
+static voxgi_result voxgi__render_defaults(voxgi_context *ctx, const voxgi_render_desc *in, voxgi_render_desc *d)
+{
+    const voxgi__render_row *row;
+    int m = (int)in->method;
+    if ((unsigned)m >= VOXGI_RENDER_METHOD_COUNT) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.method %d: no such method", m);
+    row = &voxgi__render_rows[m];
+    if (!row->build) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "method %s: left out of this build (%s)", voxgi__render_method_names[m], row->left_out);
+    *d = *in;
+    if (d->samples < 0 || d->resolution < 0 || d->resolution > 4096 || d->bounces < -1 || d->bounces > 64 || !(d->error >= 0 && d->error < 1))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "samples %d (>= 0), resolution %d (0..4096), bounces %d (-1..64), error %g ([0, 1))", d->samples,
+                           d->resolution, d->bounces, d->error);
+    if (d->error > 0 && m != VOXGI_RENDER_VCT) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.error: only vct chooses its settings from an error");
+    if (d->voxels && m != VOXGI_RENDER_VCT) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.voxels: only vct re-injects kept voxels");
+    memset(&d->vct, 0, sizeof d->vct);
+    memset(&d->tsm, 0, sizeof d->tsm);
+    memset(&d->rsm, 0, sizeof d->rsm);
+    memset(&d->sh, 0, sizeof d->sh);
+    memset(&d->screen, 0, sizeof d->screen);
+    memset(&d->linespace, 0, sizeof d->linespace);
+    memset(&d->reference, 0, sizeof d->reference);
+    if (!d->camera.width && !d->camera.height) d->camera.width = d->camera.height = 256;
+    if (d->camera.fovy_degrees == 0) d->camera.fovy_degrees = 40;
+    if (!d->bounces) d->bounces = 1;
+    if (d->direct_only) d->bounces = 0;
+    if (row->bounce >= 0) d->bounces = d->direct_only ? 0 : row->bounce;
+    if (!row->samples) d->samples = 0;
+    else if (!d->samples) d->samples = row->samples;
+    if (!row->voxels) d->resolution = 0;
+    return row->defaults(ctx, in, d);
+}
+
+/* The plan of a desc (its defaults resolved into *used, the scene's among them) with flags
+   (VOXGI_PLAN_DYNAMIC, _EVERYTHING). */
+static voxgi_result voxgi__plan_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, unsigned flags, voxgi_render_desc *used,
+                                       voxgi_plan_info *plan)
+{
+    voxgi_plan_info P;
+    voxgi__plan_job J;
+    voxgi_render_desc *d = used;
+    int m, ao;
+    voxgi_result r;
+    if ((r = voxgi__render_defaults(ctx, desc, d)) != VOXGI_OK) return r;
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+    memset(&P, 0, sizeof P);
+    memset(&J, 0, sizeof J);
+    m = (int)d->method;
+    ao = m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO;
+    if ((r = voxgi__plan_scene(ctx, scene, &d->camera, &P, &J.crossing, &J.extent, &J.absorptions)) != VOXGI_OK) return r;
+    if (d->resolution) {
+        voxgi_fit_desc fit;
+        memset(&fit, 0, sizeof fit);
+        fit.res = d->resolution;
+        fit.padding = 1;
+        if ((r = voxgi_fit_grid(ctx, scene, &fit, &P.grid)) != VOXGI_OK) return r;
+        P.voxels = (uint64_t)VOXGI__MIN((double)voxgi_grid_voxel_count(&P.grid), ceil(J.crossing / (P.grid.voxel_size * P.grid.voxel_size)));
+        P.occupancy = (double)P.voxels / (double)voxgi_grid_voxel_count(&P.grid);
+    }
+    P.error_reachable = 1;
+    J.ctx = ctx;
+    J.asked = desc;
+    J.d = d;
+    J.P = &P;
+    J.flags = flags;
+    J.all = (flags & VOXGI_PLAN_EVERYTHING) != 0;
+    J.budget = d->memory_budget ? d->memory_budget : ctx->desc.memory_budget;
+    J.lit = J.all || scene->light_count || P.emissive_triangles;
+    J.reflective = J.all || P.reflective_triangles;
+    J.seen = J.all || P.emitters_in_view;
+    J.gi = J.lit && J.reflective && !d->direct_only;
+    J.no_gi = d->direct_only ? "the direct light alone asked for" : !J.lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
+    voxgi__render_rows[m].plan(&J);
+    voxgi__plan_add(&P, VOXGI_PLAN_SEEN_EMISSION, J.seen && P.emissive_triangles && !ao && !d->hide_emitters,
+                    ao ? "occlusion sees geometry only" : !P.emissive_triangles ? "no emissive material"
+                    : d->hide_emitters ? "hidden (desc.hide_emitters)" : J.seen ? "emitters in view" : "the camera sees no emitter", 0, 0);
+    *plan = P;
+    return VOXGI_OK;
+}
+
+VOXGI_API voxgi_result voxgi_plan(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, unsigned flags, voxgi_plan_info *plan)
+{
+    voxgi_render_desc used;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !plan) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or plan is NULL");
+    return voxgi__plan_render(ctx, scene, desc, flags, &used, plan);
+}
+
+VOXGI_API voxgi_result voxgi_render_resolve(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, voxgi_render_desc *used)
+{
+    voxgi_plan_info plan;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!scene || !desc || !used) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "scene, desc or used is NULL");
+    return voxgi__plan_render(ctx, scene, desc, 0, used, &plan);
+}
+
+VOXGI_API int voxgi_render_describe(const voxgi_render_desc *u, char *buf, size_t size)
+{
+    const voxgi__render_row *row;
+    int len = 0, m;
+    if (buf && size) buf[0] = 0;
+    if (!u || (unsigned)u->method >= VOXGI_RENDER_METHOD_COUNT) return 0;
+    m = (int)u->method;
+    row = &voxgi__render_rows[m];
+    voxgi__describe(buf, size, &len, "%s: %d x %d, fovy %.4g, samples %d, seed %llu", voxgi__render_method_names[m], u->camera.width, u->camera.height,
+                    u->camera.fovy_degrees, u->samples, (unsigned long long)u->seed);
+    if (row->bounce < 0) voxgi__describe(buf, size, &len, ", bounces %d", u->bounces);
+    if (u->resolution) voxgi__describe(buf, size, &len, ", resolution %d", u->resolution);
+    if (u->hide_emitters) voxgi__describe(buf, size, &len, ", emitters hidden");
+    if (u->error > 0) voxgi__describe(buf, size, &len, ", error %.4g", u->error);
+    if (row->describe) row->describe(u, buf, size, &len);
+    return len;
+}
+
+VOXGI_API voxgi_result voxgi_render_voxelize(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, voxgi_voxels **out)
+{
+    voxgi_render_desc d;
+    voxgi_result r;
+    if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
+    if (!desc || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc or out is NULL");
+    *out = NULL;
+    if (desc->method != VOXGI_RENDER_VCT) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "desc.method: only vct keeps voxels");
+    if ((r = voxgi__render_defaults(ctx, desc, &d)) != VOXGI_OK) return r; /* refuses vct where it is left out */
+    if ((r = voxgi__validate(ctx, scene, NULL, NULL)) != VOXGI_OK) return r;
+#if !defined(VOXGI_NO_CONE_TRACING) && !defined(VOXGI_NO_LIGHT_INJECTION)
+    return voxgi__vct_voxelize(ctx, scene, &d, out);
+#else
+    return VOXGI_ERR_UNSUPPORTED;
+#endif
+}
 
 VOXGI_API voxgi_result voxgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, float *rgb, size_t rgb_bytes,
                                     voxgi_render_info *info)
@@ -16444,7 +16643,6 @@ VOXGI_API voxgi_result voxgi_render(voxgi_context *ctx, const voxgi_scene *scene
     memset(&inf, 0, sizeof inf);
     if ((r = voxgi__plan_render(ctx, scene, desc, 0, &inf.used, &inf.plan)) != VOXGI_OK) return r;
     row = &voxgi__render_rows[inf.used.method];
-    if (!row->build) return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "method %s: left out of this build (%s)", voxgi__render_method_names[inf.used.method], row->left_out);
     memset(&I, 0, sizeof I);
     I.pixels = (size_t)inf.used.camera.width * (size_t)inf.used.camera.height;
     if (rgb_bytes < I.pixels * 12)
@@ -16485,65 +16683,6 @@ VOXGI_API int voxgi_render_method_find(const char *name)
     for (m = 0; name && m < VOXGI_RENDER_METHOD_COUNT; m++)
         if (!strcmp(name, voxgi__render_method_names[m])) return m;
     return -1;
-}
-
-/* snprintf's rules over a running buffer. */
-static void voxgi__describe(char *buf, size_t size, int *len, const char *fmt, ...)
-{
-    va_list ap;
-    int n;
-    va_start(ap, fmt);
-    n = vsnprintf(*len >= 0 && (size_t)*len < size ? buf + *len : NULL, *len >= 0 && (size_t)*len < size ? size - (size_t)*len : 0, fmt, ap);
-    va_end(ap);
-    if (n > 0) *len += n;
-}
-
-VOXGI_API int voxgi_render_describe(const voxgi_render_desc *u, char *buf, size_t size)
-{
-    static const char *const toggles[] = {"default", "on", "off"}, *const radiance[] = {"default", "anisotropic volume", "isotropic volume", "octree"};
-    static const char *const visibility[] = {"hierarchical", "dda", "none"}, *const modes[] = {"exact", "fast"}, *const formats[] = {"float32", "float16"};
-    int len = 0, m;
-    if (buf && size) buf[0] = 0;
-    if (!u || (unsigned)u->method >= VOXGI_RENDER_METHOD_COUNT) return 0;
-    m = (int)u->method;
-    voxgi__describe(buf, size, &len, "%s: %d x %d, fovy %.4g, samples %d, seed %llu", voxgi__render_method_names[m], u->camera.width, u->camera.height,
-                    u->camera.fovy_degrees, u->samples, (unsigned long long)u->seed);
-    if (m == VOXGI_RENDER_REFERENCE || m == VOXGI_RENDER_VCT) voxgi__describe(buf, size, &len, ", bounces %d", u->bounces);
-    if (u->resolution) voxgi__describe(buf, size, &len, ", resolution %d", u->resolution);
-    if (u->hide_emitters) voxgi__describe(buf, size, &len, ", emitters hidden");
-    if (u->error > 0) voxgi__describe(buf, size, &len, ", error %.4g", u->error);
-    if (m == VOXGI_RENDER_VCT) {
-        const voxgi_render_vct *v = &u->vct;
-        voxgi__describe(buf, size, &len, ", radiance %s, cones %d, cone stride %d, inject samples %d", radiance[v->radiance], v->cones.cones, v->cone_stride,
-                        v->inject_samples);
-        if (v->radiance == VOXGI_VCT_OCTREE) voxgi__describe(buf, size, &len, " (%s%s)", formats[v->octree_format], v->octree_bricks ? ", bricks" : "");
-        if (u->bounces > 1 || u->bounces == -1) voxgi__describe(buf, size, &len, ", bounce cones %d, bounce block %d", v->bounce_cones.cones, v->bounce_block);
-        if (v->one_sided) voxgi__describe(buf, size, &len, ", one-sided");
-        if (v->sampled_direct) voxgi__describe(buf, size, &len, ", sampled direct light");
-    } else if (m == VOXGI_RENDER_TSM) {
-        voxgi__describe(buf, size, &len, ", map size %d, slices %d", u->tsm.maps.size ? u->tsm.maps.size : 512, u->tsm.maps.slices ? u->tsm.maps.slices : 64);
-        if (u->tsm.maps.sigma > 0) voxgi__describe(buf, size, &len, ", sigma %.4g", (double)u->tsm.maps.sigma);
-    } else if (m == VOXGI_RENDER_RSM) {
-        voxgi__describe(buf, size, &len, ", visibility %s, gather stride %d, map size %d", visibility[u->rsm.visibility], u->rsm.gather_stride,
-                        u->rsm.maps.size ? u->rsm.maps.size : 256);
-    } else if (m == VOXGI_RENDER_SH) {
-        voxgi__describe(buf, size, &len, ", visibility %s, gather stride %d, opening %.4g", visibility[u->sh.visibility], u->sh.gather_stride, (double)u->sh.opening);
-    } else if (m >= VOXGI_RENDER_SSAO && m <= VOXGI_RENDER_HYBRID) {
-        const voxgi_render_screen *s = &u->screen;
-        voxgi__describe(buf, size, &len, ", rays %d, steps %d, radius %.4g, half resolution %s, blur %d", s->rays, s->steps, (double)s->radius, toggles[s->half_resolution],
-                        VOXGI__MAX(s->blur, 0));
-        if (m == VOXGI_RENDER_SSAO && s->point_sampling) voxgi__describe(buf, size, &len, ", point sampling");
-        if (m == VOXGI_RENDER_HYBRID) voxgi__describe(buf, size, &len, ", hidden light %s", toggles[s->hidden_light]);
-    } else if (m == VOXGI_RENDER_LINESPACE) {
-        const voxgi_render_linespace *L = &u->linespace;
-        voxgi__describe(buf, size, &len, ", %s, n %d, depth %d, shadow samples %d, supersample %d%s", modes[L->mode], L->tree.n, L->tree.depth, L->samples,
-                        L->supersample, L->packets ? ", packets" : "");
-        if (L->mode == VOXGI_LINESPACE_FAST) voxgi__describe(buf, size, &len, ", exact ends %d", L->exact_ends);
-    } else if (u->reference.ao_radius > 0)
-        voxgi__describe(buf, size, &len, ", ambient occlusion within %.4g", (double)u->reference.ao_radius);
-    else if (u->reference.screen_light_only)
-        voxgi__describe(buf, size, &len, ", screen light only");
-    return len;
 }
 
 /* ===================================================================== 15. built-in scenes and files */

@@ -272,6 +272,47 @@ static void test_plan_bytes(void)
     voxgi_destroy(ctx);
 }
 
+/* Every method's zero desc resolves to the defaults the header and docs/ name (the settings each
+   report measured best), and the settings line names the bounces only of the methods that read
+   them (the reference's and the cone tracer's). */
+static void test_render_defaults(void)
+{
+    /* per method: samples, bounces, resolution, the settings line's expected parts */
+    static const struct { voxgi_render_method m; int samples, bounces, resolution; const char *has[3]; } want[] = {
+        {VOXGI_RENDER_REFERENCE, 64, 1, 0, {"samples 64", "bounces 1", NULL}},
+        {VOXGI_RENDER_VCT, 24, 1, 96, {"radiance anisotropic volume, cones 24, cone stride 6", "bounces 1", NULL}},
+        {VOXGI_RENDER_TSM, 4, 0, 0, {"map size 512, slices 64", NULL, NULL}},
+        {VOXGI_RENDER_RSM, 24, 1, 64, {"visibility hierarchical, gather stride 4, map size 256", NULL, NULL}},
+        {VOXGI_RENDER_SH, 24, 1, 64, {"visibility hierarchical, gather stride 4, opening 0.5", NULL, NULL}},
+        {VOXGI_RENDER_SSAO, 0, 0, 0, {"rays 16, steps 16", "half resolution off, blur 2", NULL}},
+        {VOXGI_RENDER_VAO, 0, 0, 128, {"rays 16, steps 16", "half resolution off, blur 2", NULL}},
+        {VOXGI_RENDER_SSGI, 24, 1, 0, {"rays 16, steps 16", "half resolution on, blur 8", NULL}},
+        {VOXGI_RENDER_HYBRID, 24, 1, 128, {"half resolution on, blur 8", "hidden light on", NULL}},
+        {VOXGI_RENDER_LINESPACE, 0, 0, 0, {"exact, n 4, depth 2, shadow samples 4, supersample 2", NULL, NULL}},
+    };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
+    voxgi_builtin_scene bs;
+    size_t k;
+    int i;
+    TH_CHECK(ctx && voxgi_builtin_scene_create(ctx, "cornell-box", &bs) == VOXGI_OK, "the Cornell box");
+    if (!ctx) return;
+    TH_CHECK(sizeof want / sizeof want[0] == VOXGI_RENDER_METHOD_COUNT, "a method without its expected defaults");
+    for (k = 0; k < sizeof want / sizeof want[0]; k++) {
+        voxgi_render_desc d, u;
+        char line[512];
+        memset(&d, 0, sizeof d);
+        d.method = want[k].m;
+        TH_CHECK(voxgi_render_resolve(ctx, &bs.scene, &d, &u) == VOXGI_OK, "%s: %s", voxgi_render_method_name(d.method), voxgi_last_error(ctx));
+        voxgi_render_describe(&u, line, sizeof line);
+        TH_CHECK(u.samples == want[k].samples && u.bounces == want[k].bounces && u.resolution == want[k].resolution && u.camera.width == 256 && u.camera.height == 256,
+                 "%s: samples %d, bounces %d, resolution %d, %d x %d", line, u.samples, u.bounces, u.resolution, u.camera.width, u.camera.height);
+        for (i = 0; i < 3 && want[k].has[i]; i++) TH_CHECK(strstr(line, want[k].has[i]) != NULL, "'%s' lacks '%s'", line, want[k].has[i]);
+        TH_CHECK((strstr(line, "bounces") != NULL) == (want[k].m == VOXGI_RENDER_REFERENCE || want[k].m == VOXGI_RENDER_VCT), "'%s': bounces it does not read", line);
+    }
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
 /* The cone tracer's settings from an error (the measured front: 8.05% at 64^3, 32 cones, stride 6;
    7.76% at 96^3, 24 cones; 7.55% at 96^3, 32 cones), its defaults without one (the front's middle),
    and the octree under a budget. */
@@ -659,6 +700,7 @@ int main(void)
     TH_RUN(test_plan_counts);
     TH_RUN(test_plan_emitters_in_view);
     TH_RUN(test_plan_bytes);
+    TH_RUN(test_render_defaults);
     TH_RUN(test_plan_vct_settings);
     TH_RUN(test_plan_follows_request);
     TH_RUN(test_plan_images);

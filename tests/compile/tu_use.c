@@ -105,10 +105,12 @@ static int tu_left_out(int m)
 }
 
 /* Every method once at 4 x 4 (a grid of 8 where it has one), and VCT from an octree: a left-out
-   part's methods refused (VOXGI_ERR_UNSUPPORTED), the rest rendered. 0 when all are as expected. */
+   part's methods refused (VOXGI_ERR_UNSUPPORTED) by voxgi_render and voxgi_plan, the rest rendered
+   and planned. 0 when all are as expected. */
 static int tu_render(voxgi_context *ctx, const voxgi_scene *scene)
 {
     float rgb[4 * 4 * 3];
+    voxgi_plan_info plan;
     int m, bad = 0;
     for (m = 0; m <= VOXGI_RENDER_METHOD_COUNT; m++) { /* the last: VCT from an octree */
         voxgi_render_desc d;
@@ -130,6 +132,12 @@ static int tu_render(voxgi_context *ctx, const voxgi_scene *scene)
         r = voxgi_render(ctx, scene, &d, rgb, sizeof rgb, NULL);
         if (r != want) {
             fprintf(stderr, "voxgi_render %s%s: %s (%s), expected %s\n", voxgi_render_method_name(d.method), m == VOXGI_RENDER_METHOD_COUNT ? " (octree)" : "",
+                    voxgi_result_string(r), voxgi_last_error(ctx), voxgi_result_string(want));
+            bad = 1;
+        }
+        r = voxgi_plan(ctx, scene, &d, 0, &plan);
+        if (r != want) {
+            fprintf(stderr, "voxgi_plan %s%s: %s (%s), expected %s\n", voxgi_render_method_name(d.method), m == VOXGI_RENDER_METHOD_COUNT ? " (octree)" : "",
                     voxgi_result_string(r), voxgi_last_error(ctx), voxgi_result_string(want));
             bad = 1;
         }
