@@ -17,9 +17,11 @@ $(B)/test_exact $(B)/asan/test_exact: LDLIBS += -lgmp
 NPROC   := $(shell nproc 2>/dev/null || echo 2)
 TOOL_SRC := tools/voxgi.c $(wildcard tools/cli*.c tools/cmd_*.c) tools/mesh_io.c
 TOOL_H   := $(wildcard tools/*.h)
+# The examples (examples/*.c; tests/run.sh runs each); quickstart.c is the README's, built by its test.
+EXAMPLES := $(addprefix $(B)/example_,voxelize octree render ambient_occlusion gl_cone_trace)
 
 .PHONY: all deps test mutate demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
-all: deps $(B)/voxgi $(B)/example_voxelize
+all: deps $(B)/voxgi $(EXAMPLES)
 
 # Installs missing system packages (headless GL) with apt-get; silent when all is there.
 deps:
@@ -45,8 +47,17 @@ $(B)/asan/voxgi_impl.o: tools/voxgi_impl.c voxgi.h shaders.h | $(B)/asan
 $(B)/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/voxgi_impl.o | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $(TOOL_SRC) $(B)/voxgi_impl.o $(LDLIBS)
 
+# voxelize.c is a whole program (it defines VOXGI_IMPLEMENTATION, as one file of a project does);
+# the other examples link the implementation object, render.c also the tool's mesh loader, and
+# gl_cone_trace.c libEGL, with which it makes its own GL context (libegl-dev: tools/deps.sh).
 $(B)/example_voxelize: examples/voxelize.c voxgi.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
+$(B)/example_octree $(B)/example_ambient_occlusion: $(B)/example_%: examples/%.c voxgi.h $(B)/voxgi_impl.o | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS)
+$(B)/example_render: examples/render.c voxgi.h tools/mesh_io.c tools/mesh_io.h tools/image_io.h $(B)/voxgi_impl.o | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< tools/mesh_io.c $(B)/voxgi_impl.o $(LDLIBS)
+$(B)/example_gl_cone_trace: examples/gl_cone_trace.c voxgi.h tools/image_io.h $(B)/voxgi_impl.o | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS) -lEGL
 
 $(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tools/image_io.h tests/harness.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
@@ -86,7 +97,7 @@ $(B)/asan/leak_canary: tests/leak_canary.c voxgi.h tools/headless_gl.h $(B)/asan
 
 # Builds everything the tests run, in parallel (one job per processor unless make was given -j),
 # then runs them (tests/run.sh, in parallel too).
-TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(B)/example_voxelize $(addprefix $(B)/,$(TESTS)) $(B)/test_rays_scalar \
+TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(EXAMPLES) $(addprefix $(B)/,$(TESTS)) $(B)/test_rays_scalar \
               $(if $(AVX2_CC),$(B)/test_rays_avx2) \
               $(addprefix $(B)/asan/,$(TESTS)) $(B)/asan/leak_canary
 # CI (VOXGI_CI=1) also builds the tool and the test programs at -O0 and -O3 (the main build is

@@ -250,6 +250,147 @@ check leak_checks_catch_a_voxgi_leak canary "$B/asan/leak_canary"
 # 4. the README's quickstart compiles, runs and prints what the README says
 check readme_snippet readme bash tests/readme_snippet.sh
 
+# 5. the examples (examples/*.c, which the Makefile builds): each runs, shows what it printed,
+# and is held to an oracle of its own
+# The conservative voxels of the tetrahedron (0,0,0) (1,0,0) (0,1,0) (0,0,1) of voxelize.c and
+# octree.c on voxgi_fit_grid's n^3 grid (voxel 1/n and a hair, centred on the tetrahedron),
+# exactly: voxel (i,j,k) meets the face z = 0 when k = 0 and i + j <= n (the faces y = 0 and
+# x = 0 alike), and the face x + y + z = 1 when its box straddles the plane, n - 2 <= i + j + k
+# <= n (at i + j + k = n - 3 its far corner would touch the plane; the hair moves it off).
+tet_awk='function tet(i, j, k, n) { return (k == 0 && i + j <= n) || (j == 0 && i + k <= n) || (i == 0 && j + k <= n) || (n - 2 <= i + j + k && i + j + k <= n) }'
+example_run() { # NAME OUT ARGS...: build/example_NAME ARGS, its output into OUT and shown indented; its exit status
+    local name=$1 out=$2 rc
+    shift 2
+    "$B/example_$name" "$@" > "$out" 2>&1
+    rc=$?
+    sed 's/^/    /' "$out"
+    return $rc
+}
+example_status() { # N WHY: pass when WHY is empty, else fail for WHY
+    if [ -z "$2" ]; then echo pass; else printf 'fail\n%s\n' "$2"; fi > "$tmp/$1.status"
+}
+# png_check FILE W H: nothing when FILE is a PNG of W x H 8-bit RGB pixels that are not all black,
+# else why. The IDAT chunks' zlib stream, less its 2-byte header, is the deflate data that gzip
+# inflates behind a gzip header (complaining of the missing trailer). A black image's filtered
+# rows are all zero bytes after each row's filter type, whichever filter a row took; any other
+# image's are not.
+png_hex() { od -An -v -tx1 -j "$2" -N "$3" "$1" | tr -d ' \n'; } # FILE OFFSET COUNT
+png_check() {
+    local f=$1 w=$2 h=$3 off=8 size len
+    [ -s "$f" ] || { echo "no PNG at $f"; return; }
+    [ "$(png_hex "$f" 0 8)" = 89504e470d0a1a0a ] || { echo "$f is not a PNG"; return; }
+    [ "$(png_hex "$f" 12 14)" = "$(printf '49484452%08x%08x0802' "$w" "$h")" ] || { echo "$f is not $w x $h 8-bit RGB: IHDR $(png_hex "$f" 12 14)"; return; }
+    size=$(wc -c < "$f")
+    : > "$f.idat"
+    while [ $((off + 8)) -le "$size" ]; do
+        len=$((16#$(png_hex "$f" "$off" 4)))
+        [ "$(png_hex "$f" $((off + 4)) 4)" = 49444154 ] && tail -c +$((off + 9)) "$f" | head -c "$len" >> "$f.idat"
+        off=$((off + 12 + len))
+    done
+    { printf '\037\213\010\000\000\000\000\000\000\377'; tail -c +3 "$f.idat"; } | gzip -dc 2>/dev/null |
+        od -An -v -tu1 -w$((1 + 3 * w)) | awk -v w="$w" -v h="$h" '
+            NF != 1 + 3 * w { bad = 1 }
+            { rows++; for (i = 2; i <= NF; i++) if ($i != 0) lit++ }
+            END { if (bad || rows != h) print "its pixels do not inflate to " h " rows of " w; else if (!lit) print "all black" }'
+}
+example_voxelize() { # N: the voxel count and the slices z = 0, 3, 6 of the 8^3 grid are the exact set's
+    local out=$tmp/example_voxelize.txt rc
+    example_run voxelize "$out"
+    rc=$?
+    [ $rc -ne 0 ] && { example_status "$1" "exit status $rc"; return; }
+    example_status "$1" "$(awk "$tet_awk"'
+        bad { next }
+        NR == 1 { if ($0 !~ /^[0-9]+ of 8\^3 voxels touch/) { bad = "no voxel count: " $0 } count = $1; next }
+        /^slice z=/ { k = substr($2, 3) + 0; j = 8; slices++; next }
+        { if (length($0) != 8 || j < 1) { bad = "not a row of slice z=" k ": " $0; next }
+          j--; rows++
+          for (i = 0; i < 8; i++) if ((substr($0, i + 1, 1) == "#") != tet(i, j, k, 8)) bad = "slice z=" k ", voxel (" i ", " j "): not the exact set" }
+        END { if (bad) { print bad; exit }
+              for (i = 0; i < 8; i++) for (j = 0; j < 8; j++) for (k = 0; k < 8; k++) exact += tet(i, j, k, 8)
+              if (count != exact) print count " voxels where the exact set has " exact
+              else if (slices != 3 || rows != 24) print slices " slices of " rows " rows in all, not 3 of 8 rows" }' "$out")"
+}
+example_octree() { # N: the nodes per level are the exact voxels' cells; the points' voxels set or empty as the exact set's
+    local out=$tmp/example_octree.txt rc
+    example_run octree "$out"
+    rc=$?
+    [ $rc -ne 0 ] && { example_status "$1" "exit status $rc"; return; }
+    example_status "$1" "$(awk "$tet_awk"'
+        /^octree of depth/ { depth = $4 + 0; leaves = $5 }
+        /^  level / { nodes[$2 + 0] = $3; levels++ }
+        /^memory:/ { bytes = $2; dense = $7 }
+        /^point / { s = $0; sub(/.*voxel \(/, "", s); split(s, f, /[ ),]+/) # i j k set|empty albedo r g b alpha a
+            if ((f[4] == "set") != tet(f[1], f[2], f[3], 32)) bad = "voxel (" f[1] " " f[2] " " f[3] ") " f[4] ": not the exact set"
+            else if (f[4] == "set" && (f[6] f[7] f[8] f[10] != "0.900.200.101.00")) bad = "a set voxel of albedo " f[6] " " f[7] " " f[8] " alpha " f[10]
+            else if (f[4] == "empty" && f[10] != "0.00") bad = "an empty voxel of alpha " f[10]
+            points[f[4]]++ }
+        END { if (bad) { print bad; exit }
+              if (depth != 5 || levels != 6) { print "depth " depth " with " levels " levels, not 5 with 6"; exit }
+              for (i = 0; i < 32; i++) for (j = 0; j < 32; j++) for (k = 0; k < 32; k++) if (tet(i, j, k, 32))
+                  for (l = 0; l <= 5; l++) { c = l SUBSEP int(i / 2 ^ (5 - l)) SUBSEP int(j / 2 ^ (5 - l)) SUBSEP int(k / 2 ^ (5 - l)); if (!(c in cell)) { cell[c]; want[l]++ } }
+              for (l = 0; l <= 5; l++) if (nodes[l] != want[l]) { print "level " l ": " nodes[l] " nodes where the exact voxels fill " want[l] " cells"; exit }
+              if (leaves != want[5]) print leaves " leaf voxels where the exact set has " want[5]
+              else if (!(bytes > 0 && bytes < dense)) print "memory " bytes " bytes, the dense grid " dense
+              else if (!points["set"] || !points["empty"]) print "no set and empty point both" }' "$out")"
+}
+example_render() { # N: a floor and a box on it (no bottom) as OBJ, rendered by vct at 64 x 64: the settings used, the stages' times, a PNG of that size not all black
+    local dir=$tmp/example_render rc why
+    mkdir -p "$dir"
+    printf '%s\n' 'v -2 0 -2' 'v 2 0 -2' 'v 2 0 2' 'v -2 0 2' 'f 1 4 3 2' \
+        'v -0.5 0 -0.5' 'v 0.5 0 -0.5' 'v 0.5 1 -0.5' 'v -0.5 1 -0.5' 'v -0.5 0 0.5' 'v 0.5 0 0.5' 'v 0.5 1 0.5' 'v -0.5 1 0.5' \
+        'f 5 8 7 6' 'f 9 10 11 12' 'f 8 12 11 7' 'f 5 9 12 8' 'f 6 7 11 10' > "$dir/scene.obj"
+    example_run render "$dir/out.txt" "$dir/scene.obj" vct "$dir/vct.png" 64
+    rc=$?
+    if [ $rc -ne 0 ]; then why="exit status $rc"
+    elif ! grep -q '^vct: 64 x 64, .*resolution 96, .*cones 24' "$dir/out.txt"; then why="no line of the settings used (the library's defaults)"
+    elif ! grep -qE '^  cones +[0-9]+\.[0-9]+ ms$' "$dir/out.txt"; then why="no time of the stage cones"
+    else why=$(png_check "$dir/vct.png" 64 64)
+    fi
+    if [ -z "$why" ]; then
+        "$B/example_render" "$dir/scene.obj" no-such-method "$dir/x.png" > "$dir/usage.txt" 2>&1
+        rc=$?
+        [ $rc -eq 2 ] || why="an unknown method: exit status $rc, not 2 (usage)"
+    fi
+    example_status "$1" "$why"
+}
+example_ambient_occlusion() { # N: the corner occluded, the open floor and wall not at all
+    local out=$tmp/example_ambient_occlusion.txt rc
+    example_run ambient_occlusion "$out"
+    rc=$?
+    [ $rc -ne 0 ] && { example_status "$1" "exit status $rc"; return; }
+    example_status "$1" "$(awk '
+        /^occlusion / { split($0, s, ": "); split(s[2], v, /[ (]+/); ao[s[1]] = v[1] + 0; px[s[1]] = v[2] + 0; n++ }
+        END { c = "occlusion at the corner"; f = "occlusion on the open floor"; w = "occlusion on the open wall"
+              if (n != 3 || !px[c] || !px[f] || !px[w]) print "not three regions with pixels"
+              else if (!(ao[c] >= 0.25)) print "the corner occluded " ao[c] ", not at least 0.25"
+              else if (!(ao[f] <= 0.01 && ao[w] <= 0.01)) print "the open floor and wall occluded " ao[f] " and " ao[w] ", not at most 0.01" }' "$out")"
+}
+example_gl_cone_trace() { # N: its own GL context and G-buffer: irradiance seen at some pixels, positive and finite, as a PNG
+    local dir=$tmp/example_gl_cone_trace rc why
+    mkdir -p "$dir"
+    example_run gl_cone_trace "$dir/out.txt" "$dir/irradiance.png"
+    rc=$?
+    if [ $rc -eq 77 ] && [ "$VOXGI_REQUIRE_GL" != 1 ]; then
+        printf 'skip\n%s\n' "no GL 4.5 context through EGL" > "$tmp/$1.status"
+        return
+    elif [ $rc -eq 77 ]; then why="no GL 4.5 context through EGL, and VOXGI_REQUIRE_GL=1"
+    elif [ $rc -ne 0 ]; then why="exit status $rc"
+    else
+        why=$(awk '/pixels see a surface; mean irradiance/ { seen = 1
+                if (!($1 > 0)) print "no pixel sees a surface"
+                else if ($12 !~ /^[0-9]+\.[0-9]+$/ || $13 !~ /^[0-9]+\.[0-9]+$/ || $14 !~ /^[0-9]+\.[0-9]+,$/ || !($12 > 0 && $13 > 0 && $14 + 0 > 0) ||
+                         $15 " " $16 != "all finite")
+                    print "the mean irradiance is not positive and finite: " $12 " " $13 " " $14 " " $15 " " $16 }
+            END { if (!seen) print "no mean irradiance" }' "$dir/out.txt")
+        [ -z "$why" ] && why=$(png_check "$dir/irradiance.png" 64 64)
+    fi
+    example_status "$1" "$why"
+}
+heading "== examples"
+for e in voxelize octree render ambient_occlusion gl_cone_trace; do
+    check "example_$e" status "example_$e"
+done
+
 # ---------------------------------------------------------------- the reports
 report_status() { # N: what the check printed, then its status
     local status
