@@ -821,7 +821,7 @@ static void test_usage_errors_named(void)
 {
     static char out[8192];
     const char *cmds[] = {"voxelize builtin:cube", "info", "bench voxelize", "svo builtin:cube", "render cornell-box -o x.png", "report vct"};
-    const char *names[] = {"voxelize", "info", "bench", "svo", "render", "report"};
+    const char *names[] = {"voxelize", "info", "bench", "svo", "render", "report vct"};
     char args[256], want[128];
     size_t i;
     int rc;

@@ -267,10 +267,12 @@ int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
 int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);
 int cmd_render(int argc, char **argv);
-int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm", "sh", "ao", "ssgi", "linespace" or "all" */
+int cmd_report(int argc, char **argv); /* argv[0] names the report: its table is in cmd_report.c */
 int cmd_report_tsm(int argc, char **argv);
-int cmd_report_bounce(int method, int argc, char **argv); /* method 0: rsm, 1: sh */
-int cmd_report_screen(int which, int argc, char **argv); /* which 0: ao, 1: ssgi */
+int cmd_report_rsm(int argc, char **argv); /* rsm and sh: cmd_report_bounce.c */
+int cmd_report_sh(int argc, char **argv);
+int cmd_report_ao(int argc, char **argv); /* ao and ssgi: cmd_report_screen.c */
+int cmd_report_ssgi(int argc, char **argv);
 int cmd_report_linespace(int argc, char **argv);
 int cmd_report_all(int argc, char **argv);
 int cmd_report_stiff(int argc, char **argv);
