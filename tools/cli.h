@@ -229,10 +229,11 @@ double cli_red_excess(const cli_reference *R, const float *img);
 /* The longest side of the box around the scene's triangles (1 when they have no extent), as the
    library takes it for the screen passes' default radii. */
 double cli_scene_longest_side(const voxgi_scene *scene);
-/* The tool's default cone tracing (voxgi render --method vct: on report vct's Pareto front) at
-   camera's view, without the emission the camera sees: 96 voxels along the longest side,
-   anisotropic mips, 24 cones at every 6th pixel, 24 direct-light rays per pixel, seed 1 (a
-   voxgi_render_desc of method VCT, each of them set explicitly). */
+/* The default cone tracing (voxgi render --method vct: the library's zero desc, the middle of
+   report vct's Pareto front) at camera's view, without the emission the camera sees, seed 1.
+   CLI_VCT_* name its settings for the reports' text and sweeps: 96 voxels along the longest side,
+   anisotropic mips, 24 cones at every 6th pixel, 24 direct-light rays per pixel (test_tool holds
+   them to what voxgi_render_resolve gives). */
 #define CLI_VCT_RES 96
 #define CLI_VCT_CONES 24
 #define CLI_VCT_STRIDE 6
