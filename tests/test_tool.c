@@ -5,6 +5,7 @@
 #define _XOPEN_SOURCE 700 /* popen, mkdtemp, realpath */
 #include "../voxgi.h"
 #include "../tools/pareto.h"
+#include "../tools/cli.h"
 #include "harness.h"
 #include <math.h>
 #include <stdlib.h>
@@ -821,7 +822,7 @@ static void test_usage_errors_named(void)
 {
     static char out[8192];
     const char *cmds[] = {"voxelize builtin:cube", "info", "bench voxelize", "svo builtin:cube", "render cornell-box -o x.png", "report vct"};
-    const char *names[] = {"voxelize", "info", "bench", "svo", "render", "report"};
+    const char *names[] = {"voxelize", "info", "bench", "svo", "render", "report vct"};
     char args[256], want[128];
     size_t i;
     int rc;
@@ -1078,6 +1079,15 @@ static void test_default_image_is_the_librarys(void)
         for (i = 0; i < sizeof want / sizeof want[0]; i++) lit += want[i];
         TH_CHECK(lit > 0 && memcmp(got, want, sizeof want) == 0, "%s: the tool's default image is not the library's zero desc's (library's sum %g)",
                  voxgi_render_method_name(rd.method), lit);
+    }
+    { /* the names the reports give the cone tracer's defaults are the library's */
+        voxgi_render_desc rd, used;
+        memset(&rd, 0, sizeof rd);
+        rd.method = VOXGI_RENDER_VCT;
+        TH_CHECK(voxgi_render_resolve(ctx, &bs.scene, &rd, &used) == VOXGI_OK && used.resolution == CLI_VCT_RES && used.vct.cones.cones == CLI_VCT_CONES &&
+                     used.vct.cone_stride == CLI_VCT_STRIDE && used.samples == CLI_VCT_DIRECT_SPP && used.vct.radiance == VOXGI_VCT_ANISOTROPIC,
+                 "CLI_VCT_*: %d voxels, %d cones, stride %d, %d rays; the library's: %d, %d, %d, %d", CLI_VCT_RES, CLI_VCT_CONES, CLI_VCT_STRIDE,
+                 CLI_VCT_DIRECT_SPP, used.resolution, used.vct.cones.cones, used.vct.cone_stride, used.samples);
     }
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);

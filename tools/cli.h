@@ -229,10 +229,11 @@ double cli_red_excess(const cli_reference *R, const float *img);
 /* The longest side of the box around the scene's triangles (1 when they have no extent), as the
    library takes it for the screen passes' default radii. */
 double cli_scene_longest_side(const voxgi_scene *scene);
-/* The tool's default cone tracing (voxgi render --method vct: on report vct's Pareto front) at
-   camera's view, without the emission the camera sees: 96 voxels along the longest side,
-   anisotropic mips, 24 cones at every 6th pixel, 24 direct-light rays per pixel, seed 1 (a
-   voxgi_render_desc of method VCT, each of them set explicitly). */
+/* The default cone tracing (voxgi render --method vct: the library's zero desc, the middle of
+   report vct's Pareto front) at camera's view, without the emission the camera sees, seed 1.
+   CLI_VCT_* name its settings for the reports' text and sweeps: 96 voxels along the longest side,
+   anisotropic mips, 24 cones at every 6th pixel, 24 direct-light rays per pixel (test_tool holds
+   them to what voxgi_render_resolve gives). */
 #define CLI_VCT_RES 96
 #define CLI_VCT_CONES 24
 #define CLI_VCT_STRIDE 6
@@ -267,10 +268,12 @@ int cmd_bench(int argc, char **argv);  /* argv[0] is "voxelize" or "rays" */
 int cmd_bench_rays(int argc, char **argv);
 int cmd_svo(int argc, char **argv);
 int cmd_render(int argc, char **argv);
-int cmd_report(int argc, char **argv); /* argv[0] is "vct", "tsm", "rsm", "sh", "ao", "ssgi", "linespace" or "all" */
+int cmd_report(int argc, char **argv); /* argv[0] names the report: its table is in cmd_report.c */
 int cmd_report_tsm(int argc, char **argv);
-int cmd_report_bounce(int method, int argc, char **argv); /* method 0: rsm, 1: sh */
-int cmd_report_screen(int which, int argc, char **argv); /* which 0: ao, 1: ssgi */
+int cmd_report_rsm(int argc, char **argv); /* rsm and sh: cmd_report_bounce.c */
+int cmd_report_sh(int argc, char **argv);
+int cmd_report_ao(int argc, char **argv); /* ao and ssgi: cmd_report_screen.c */
+int cmd_report_ssgi(int argc, char **argv);
 int cmd_report_linespace(int argc, char **argv);
 int cmd_report_all(int argc, char **argv);
 int cmd_report_stiff(int argc, char **argv);

@@ -221,12 +221,7 @@ void cli_vct_defaults(voxgi_render_desc *vd, const voxgi_camera *camera)
 {
     memset(vd, 0, sizeof *vd);
     vd->method = VOXGI_RENDER_VCT;
-    vd->camera = *camera;
-    vd->resolution = CLI_VCT_RES;
-    vd->vct.radiance = VOXGI_VCT_ANISOTROPIC;
-    vd->vct.cones.cones = CLI_VCT_CONES;
-    vd->vct.cone_stride = CLI_VCT_STRIDE;
-    vd->samples = CLI_VCT_DIRECT_SPP;
+    vd->camera = *camera; /* the rest zero: the library's defaults, which CLI_VCT_* name */
     vd->seed = 1;
     vd->hide_emitters = 1;
 }

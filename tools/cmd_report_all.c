@@ -76,12 +76,6 @@ static const all_quantity quantities[REPORT_QUANTITIES] = {
      "Not light, and each method has its own definition: thin is 6-separating (a subset by design), the raster methods sample",
      {0, 0.05, 0.25}, 3}};
 
-typedef struct all_row {
-    int scene, quantity, group, front; /* group: the front's (scene and quantity) */
-    report_item it;
-    double ref_ms; /* the path tracer's time for an image that measures that error (HUGE_VAL: beyond its reference; NAN: voxel sets) */
-} all_row;
-
 /* A method's closest image of a scene, and where it went. */
 typedef struct all_picture {
     const char *method;
@@ -111,7 +105,7 @@ typedef struct all_state {
     all_scene scenes[ALL_MAX_SCENES];
     int nscenes, quantity, stage, stages, discard, out_of_memory;
     report_stiff stiff;      /* the stiff and extreme cases' section */
-    all_row *rows;
+    report_row *rows;
     size_t nrows, cap;
     size_t pixels;
 } all_state;
@@ -122,25 +116,18 @@ static void all_emit(report_run *run, const report_item *it, const float *img)
 {
     all_state *st = (all_state *)run->user;
     all_scene *sc = &st->scenes[st->nscenes];
+    report_row *r;
     int k;
-    if (st->discard) return;
-    if (st->nrows == st->cap) {
-        size_t cap = st->cap ? 2 * st->cap : 256;
-        all_row *rows = (all_row *)realloc(st->rows, cap * sizeof *rows);
-        if (!rows) {
-            st->out_of_memory = 1;
-            return;
-        }
-        st->rows = rows;
-        st->cap = cap;
+    if (st->discard || it->note[0]) return;
+    if (!(r = report_row_add(&st->rows, &st->nrows, &st->cap))) {
+        st->out_of_memory = 1;
+        return;
     }
-    memset(&st->rows[st->nrows], 0, sizeof st->rows[0]);
-    st->rows[st->nrows].scene = st->nscenes;
-    st->rows[st->nrows].quantity = st->quantity;
-    st->rows[st->nrows].group = st->nscenes * REPORT_QUANTITIES + st->quantity;
-    st->rows[st->nrows].it = *it;
-    st->rows[st->nrows].ref_ms = run->R ? cli_reference_ms(run->R, it->error) : NAN;
-    st->nrows++;
+    r->scene = st->nscenes;
+    r->quantity = st->quantity;
+    r->group = st->nscenes * REPORT_QUANTITIES + st->quantity;
+    r->it = *it;
+    r->ref_ms = run->R ? cli_reference_ms(run->R, it->error) : NAN;
     if (!img || !isfinite(it->error)) return;
     for (k = 0; k < sc->npictures && strcmp(sc->pictures[k].method, it->method) != 0; k++) {}
     if (k == ALL_MAX_PICTURES) return;
@@ -329,7 +316,7 @@ static void write_csv(FILE *f, const all_state *st)
     size_t i;
     fprintf(f, "scene,quantity,method,settings,backend,ms,passes_ms,bytes,rel_error,detail,reference_ms,pareto\n");
     for (i = 0; i < st->nrows; i++) {
-        const all_row *r = &st->rows[i];
+        const report_row *r = &st->rows[i];
         csv_field(f, st->scenes[r->scene].name);
         fprintf(f, ",%s,%s,", quantities[r->quantity].key, r->it.method);
         csv_field(f, r->it.settings);
@@ -347,12 +334,6 @@ static void put_time(FILE *f, double ms)
     if (!isfinite(ms)) fprintf(f, "beyond its reference");
     else if (ms < 1000) fprintf(f, "%.1f ms", ms);
     else fprintf(f, "%.2f s", ms / 1000);
-}
-
-static void put_error(FILE *f, double e)
-{
-    if (isfinite(e)) fprintf(f, "%.2f%%", 100 * e);
-    else fprintf(f, "-");
 }
 
 /* The summary: per scene and quantity, for each target error the fastest row reaching it (on the
@@ -379,11 +360,11 @@ static void write_summary(FILE *f, const all_state *st, const pareto_point *pts)
                 }
                 if (b < 0) fprintf(f, " | none reaches it | | | | ");
                 else {
-                    const all_row *r = &st->rows[b];
+                    const report_row *r = &st->rows[b];
                     fprintf(f, " | %s | %s | ", r->it.method, r->it.settings);
                     put_time(f, r->it.ms);
                     fprintf(f, " | ");
-                    put_error(f, r->it.error);
+                    report_percent(f, r->it.error, "");
                     fprintf(f, " | ");
                 }
                 for (i = (size_t)t; i < (size_t)u && q != REPORT_VOXELS; i++) { /* c^2 (1/k + 1/spp) = target^2 */
@@ -454,10 +435,10 @@ static void write_markdown(FILE *f, const all_state *st, const pareto_point *pts
                     sc->name, quantities[q].title, quantities[q].reference, sc->name, quantities[q].key, svg,
                     q == REPORT_VOXELS ? "missed + extra" : "rel. RMSE");
             for (i = 0; i < st->nrows; i++) {
-                const all_row *r = &st->rows[i];
+                const report_row *r = &st->rows[i];
                 if (r->group != si * REPORT_QUANTITIES + q) continue;
                 fprintf(f, "| %s | %s | %.1f ms | %s | %.3g | ", r->it.method, r->it.settings, r->it.ms, r->it.passes, r->it.bytes / 1e6);
-                put_error(f, r->it.error);
+                report_percent(f, r->it.error, "");
                 if (r->it.detail[0]) fprintf(f, " (%s)", r->it.detail);
                 fprintf(f, " | ");
                 if (q == REPORT_VOXELS) fprintf(f, "-");
@@ -471,7 +452,7 @@ static void write_markdown(FILE *f, const all_state *st, const pareto_point *pts
                                    "mean: black 0, red, yellow, white %g%% and above; grey: left out near an emitter).\n\n",
                                 100 * REPORT_HEAT_WHITE);
                     fprintf(f, "- %s (%s): ", sc->pictures[k].method, sc->pictures[k].settings);
-                    put_error(f, sc->pictures[k].error);
+                    report_percent(f, sc->pictures[k].error, "");
                     fprintf(f, "\n\n  ![%s, %s](%s)\n", sc->name, sc->pictures[k].method, sc->pictures[k].file);
                 }
         }
@@ -497,7 +478,7 @@ static void write_svg(FILE *f, const all_state *st, int si, int q)
     int k, series = 0;
     if (!points) return;
     for (i = 0; i < st->nrows; i++) {
-        const all_row *r = &st->rows[i];
+        const report_row *r = &st->rows[i];
         if (r->group != si * REPORT_QUANTITIES + q) continue;
         for (k = 0; k < series && strcmp(legend[k], r->it.method) != 0; k++) {}
         if (k == series && series < ALL_MAX_PICTURES) legend[series++] = r->it.method;
@@ -595,32 +576,21 @@ static int all_run(cli_session *s, const all_args *a, const char names[][256], i
         goto done;
     }
     for (si = 0; si < nbuiltin + nmeshes; si++) {
+        const char *name = si < nbuiltin ? names[si] : cm[si - nbuiltin].name;
         voxgi_builtin_scene bs;
         const voxgi_scene *scene;
-        voxgi_camera view;
-        int r;
-        memset(&bs, 0, sizeof bs);
-        if (si < nbuiltin) {
-            if (voxgi_builtin_scene_create(cpu.vx, names[si], &bs) != VOXGI_OK) {
-                cli_fail_lib(s, cpu.vx, names[si]);
-                goto done;
-            }
-            scene = &bs.scene;
-            view = bs.camera;
-        } else {
-            scene = &cm[si - nbuiltin].scene;
-            view = cm[si - nbuiltin].bs.camera;
-        }
-        r = 0;
+        voxgi_camera view, warm;
+        int r = 0;
+        if (report_scene_open(s, cpu.vx, names[si], si < nbuiltin ? NULL : &cm[si - nbuiltin], &bs, &scene, &view, a->size, a->size)) goto done;
         if (st->ci.backend == VOXGI_BACKEND_GL) { /* every method once at 8 x 8 first: no time includes compiling GL's shaders */
-            view.width = view.height = 8;
+            warm = view;
+            warm.width = warm.height = 8;
             st->discard = 1;
-            cli_status(s, "%s: GL's shaders", si < nbuiltin ? names[si] : cm[si - nbuiltin].name);
-            r = all_one_scene(st, c.vx, cpu.vx, "warm-up", scene, &view, 16, 1);
+            cli_status(s, "%s: GL's shaders", name);
+            r = all_one_scene(st, c.vx, cpu.vx, "warm-up", scene, &warm, 16, 1);
             st->discard = 0;
         }
-        view.width = view.height = a->size;
-        if (r == 0) r = all_one_scene(st, c.vx, cpu.vx, si < nbuiltin ? names[si] : cm[si - nbuiltin].name, scene, &view, a->spp, a->quick);
+        if (r == 0) r = all_one_scene(st, c.vx, cpu.vx, name, scene, &view, a->spp, a->quick);
         voxgi_builtin_scene_destroy(cpu.vx, &bs);
         if (r) goto done;
         st->nscenes++;

@@ -18,24 +18,31 @@ static const char *const ls_help =
     "triangle tests (Table 2). Writes DIR/linespace.md and DIR/linespace.csv. Times are wall\n"
     "clock on this machine's CPU.\n";
 
-#define LS_MAX 8
-#define LS_MAX_ITEMS 16
+typedef struct ls_report {
+    report_opts o;
+    const char *mesh_list;
+    report_list ns, depths, samples, supersample, ends;
+} ls_report;
 
-typedef struct ls_args {
-    cli_common common;
-    const char *out_dir, *scene_list, *mesh_list;
-    double ns[LS_MAX_ITEMS], depths[LS_MAX_ITEMS], samples[LS_MAX_ITEMS], supersample[LS_MAX_ITEMS], ends[LS_MAX_ITEMS];
-    int nns, ndepths, nsamples, nsuper, nends, size, spp;
-} ls_args;
+/* A row's values (report_item.v). */
+enum { V_N, V_DEPTH, V_BUILD_MS, V_SUPERSAMPLE, V_POINTS, V_SAMPLES, V_RAYS, V_MODE, V_ENDS, V_SHADOWS_MS, V_MS, V_BLOCK, V_MEAN, V_MAE, V_WRONG };
+static const char *const mode_names[] = {"exact", "fast"};
 
-/* A relative error as a table's cell: "black" where the reference is (the error is relative to
-   nothing; the image's mean tells the rest). */
-static const char *error_cell(char *cell, size_t size, double e)
-{
-    if (isfinite(e)) snprintf(cell, size, "%.2f%%", 100 * e);
-    else snprintf(cell, size, "black");
-    return cell;
-}
+/* Exact mode's rows leave fast mode's columns blank (0 in the CSV); the image rows have had one
+   field more than the head, as the rays' rows below have. */
+static const report_column ls_columns[] = {
+    {.csv = "part", .at = REPORT_AT_NONE, .csv_none = "image"}, REPORT_COL_SCENE, REPORT_COL_INT("n", "n", V_N), REPORT_COL_INT("depth", "depth", V_DEPTH),
+    {.md = "tree MB", .align = "---:", .csv = "bytes", .at = REPORT_AT_BYTES, .md_fmt = "%.2f", .csv_fmt = "%.0f", .md_unit = 'M'},
+    REPORT_COL("build ms", "build_ms", V_BUILD_MS, "%.0f", "%.3f"), REPORT_COL_INT(NULL, "supersample", V_SUPERSAMPLE),
+    REPORT_COL_INT("points per pixel", NULL, V_POINTS), REPORT_COL_INT("samples", "samples", V_SAMPLES), REPORT_COL_INT("rays per pixel", NULL, V_RAYS),
+    {.md = "mode", .align = "---", .csv = "mode", .at = V_MODE, .names = mode_names, .csv_names = mode_names},
+    {.csv = "exact_ends", .at = V_ENDS, .csv_fmt = "%.0f", .csv_none = "0"}, {.csv = "packets", .at = REPORT_AT_NONE, .csv_none = "0"},
+    REPORT_COL("shadows ms", "shadows_ms", V_SHADOWS_MS, "%.1f", "%.3f"), REPORT_COL("total ms", "ms", V_MS, "%.1f", "%.3f"), REPORT_COL_ERROR("black"),
+    {.md = "4x4", .align = "---:", .csv = "block_rmse", .at = V_BLOCK, .md_fmt = "%.2f%%", .csv_fmt = "%.6g", .md_unit = '%', .md_none = "black"},
+    REPORT_COL("mean", "mean", V_MEAN, "%.4g", "%.6g"), {.md = "exact ends", .align = "---:", .at = V_ENDS, .md_fmt = "%.0f", .md_none = ""},
+    {.md = "MAE", .align = "---:", .csv = "mae", .at = V_MAE, .md_fmt = "%.4f", .csv_fmt = "%.6g", .md_none = "", .csv_none = "0"},
+    {.md = "wrong", .align = "---:", .csv = "wrong", .at = V_WRONG, .md_fmt = "%.2f%%", .csv_fmt = "%.6g", .md_unit = '%', .md_none = "", .csv_none = "0"},
+    {.csv = "agree_with_core", .at = REPORT_AT_NONE, .csv_none = ""}, {.csv = "core_ms", .at = REPORT_AT_NONE, .csv_none = ","}};
 
 /* 4 x 4 block means of img and ref (3 floats per pixel), the blocks without a masked pixel: the
    relative RMSE of the means. */
@@ -67,135 +74,123 @@ static double image_mean(const float *img, size_t values)
     return s / (double)values;
 }
 
-/* The line-space image of scene (its name, seen by cam) for every tree, supersampling, sample count
-   and mode of a's lists, against R: a row each into md and csv (when not NULL) and, with run,
-   handed to report all. 0, or says why and returns 1. */
-static int ls_images(cli_session *s, voxgi_context *ctx, const ls_args *a, const voxgi_scene *scene, const char *name, const voxgi_camera *cam,
-                     const cli_reference *R, FILE *md, FILE *csv, report_run *run)
+/* The line-space image for every tree, supersampling, sample count and mode of run->args' lists;
+   a tree the library refuses is a row of its own. */
+static int ls_images(report_run *run)
 {
+    const ls_report *a = (const ls_report *)run->args;
+    const voxgi_camera *cam = &run->camera;
     size_t pixels = (size_t)cam->width * (size_t)cam->height, p;
-    float *img = (float *)malloc(pixels * 12), *vis[2] = {(float *)malloc(pixels * 4), (float *)malloc(pixels * 4)};
+    float *vis[2] = {(float *)malloc(pixels * 4), (float *)malloc(pixels * 4)};
     int i, j, k, m, rc = 1;
-    if (!img || !vis[0] || !vis[1]) { cli_fail(s, "out of memory"); goto done; }
-    for (i = 0; i < a->nns; i++)
-        for (j = 0; j < a->ndepths; j++) {
+    if (!vis[0] || !vis[1]) { cli_fail(run->s, "out of memory"); goto done; }
+    for (i = 0; i < a->ns.n; i++)
+        for (j = 0; j < a->depths.n; j++) {
             voxgi_linespace_desc td;
             voxgi_linespace *L = NULL;
             voxgi_linespace_info info;
             voxgi_result r;
             memset(&td, 0, sizeof td);
-            td.n = (int)a->ns[i];
-            td.depth = (int)a->depths[j];
-            cli_status(s, "%s: line space n %d depth %d", name, td.n, td.depth);
-            if ((r = voxgi_linespace_create(ctx, scene, &td, &L)) == VOXGI_ERR_TOO_LARGE || r == VOXGI_ERR_INVALID_ARGUMENT) {
-                if (md) fprintf(md, "| %d | %d | - | - | - | refused: %s | | | | | | | |\n", td.n, td.depth, voxgi_last_error(ctx));
+            td.n = (int)a->ns.v[i];
+            td.depth = (int)a->depths.v[j];
+            cli_status(run->s, "%s: line space n %d depth %d", run->scene_name, td.n, td.depth);
+            if ((r = voxgi_linespace_create(run->ctx, run->scene, &td, &L)) == VOXGI_ERR_TOO_LARGE || r == VOXGI_ERR_INVALID_ARGUMENT) {
+                report_item it;
+                memset(&it, 0, sizeof it);
+                it.ms = it.error = NAN;
+                snprintf(it.note, sizeof it.note, "| %d | %d | - | - | - | refused: %s | | | | | | | |", td.n, td.depth, voxgi_last_error(run->ctx));
+                run->emit(run, &it, NULL);
                 continue;
             }
-            if (r != VOXGI_OK) { cli_fail_lib(s, ctx, "line space"); goto done; }
+            if (r != VOXGI_OK) { cli_fail_lib(run->s, run->ctx, "line space"); goto done; }
             voxgi_linespace_query(L, &info);
             td.depth = info.depth; /* 0 asked for the scene's */
-            for (k = 0; k < a->nsamples * a->nsuper; k++) {
-                int ss = (int)a->supersample[k / a->nsamples], spl = (int)a->samples[k % a->nsamples];
-                for (m = 0; m <= a->nends; m++) { /* exact, then fast with each exact zone */
+            for (k = 0; k < a->samples.n * a->supersample.n; k++) {
+                int ss = (int)a->supersample.v[k / a->samples.n], spl = (int)a->samples.v[k % a->samples.n];
+                for (m = 0; m <= a->ends.n; m++) { /* exact, then fast with each exact zone */
                     voxgi_render_desc d;
                     voxgi_render_info li;
-                    double err, blk, mean, mae = 0, wrong = 0, ms_gbuffer, ms_shadows, ms_build;
-                    float *v = vis[m ? 1 : 0];
+                    report_item it;
+                    double *v = it.v, mae = 0, wrong = 0, ms_gbuffer, ms_build;
                     memset(&d, 0, sizeof d);
                     d.method = VOXGI_RENDER_LINESPACE;
                     d.camera = *cam;
                     d.linespace.ls = L;
                     d.linespace.mode = m ? VOXGI_LINESPACE_FAST : VOXGI_LINESPACE_EXACT;
-                    d.linespace.exact_ends = m ? (int)a->ends[m - 1] : 0;
+                    d.linespace.exact_ends = m ? (int)a->ends.v[m - 1] : 0;
                     d.linespace.samples = spl;      /* >= 1 (--samples) */
                     d.linespace.supersample = ss;   /* >= 1 (--supersample): 1 the pixel's centre */
-                    d.linespace.visible = v;
+                    d.linespace.visible = vis[m ? 1 : 0];
                     d.seed = 1;
                     d.hide_emitters = 1;
-                    cli_status(s, "%s: n %d depth %d, %d x %d points, %d samples, %s", name, td.n, td.depth, ss, ss, d.linespace.samples, m ? "fast" : "exact");
-                    if ((r = voxgi_render(ctx, scene, &d, img, pixels * 12, &li)) != VOXGI_OK) {
-                        voxgi_linespace_destroy(ctx, L);
-                        if (r == VOXGI_ERR_UNSUPPORTED && run) { /* no area light */
-                            snprintf(run->why, sizeof run->why, "%s", voxgi_last_error(ctx));
+                    cli_status(run->s, "%s: n %d depth %d, %d x %d points, %d samples, %s", run->scene_name, td.n, td.depth, ss, ss, d.linespace.samples,
+                               m ? "fast" : "exact");
+                    if ((r = voxgi_render(run->ctx, run->scene, &d, run->img, pixels * 12, &li)) != VOXGI_OK) {
+                        voxgi_linespace_destroy(run->ctx, L);
+                        if (r == VOXGI_ERR_UNSUPPORTED) { /* no area light */
+                            snprintf(run->why, sizeof run->why, "%s", voxgi_last_error(run->ctx));
                             rc = REPORT_NOT_APPLICABLE;
-                        } else cli_fail_lib(s, ctx, "linespace");
+                        } else cli_fail_lib(run->s, run->ctx, "linespace");
                         goto done;
                     }
+                    memset(&it, 0, sizeof it);
                     ms_gbuffer = voxgi_render_stage_ms(&li, "gbuffer");
-                    ms_shadows = voxgi_render_stage_ms(&li, "shadows");
                     ms_build = voxgi_render_stage_ms(&li, "build");
-                    err = cli_masked_error(&R->mask, img, R->image, NULL, NULL);
-                    blk = block_error(&R->mask, img, R->image);
-                    mean = image_mean(img, 3 * pixels);
                     for (p = 0; m && p < pixels; p++) { /* fast against exact, the same samples */
                         mae += fabs((double)vis[1][p] - vis[0][p]);
                         wrong += (double)vis[0][p] - vis[1][p];
                     }
-                    mae /= (double)pixels;
-                    wrong /= (double)pixels;
-                    if (md) {
-                        char e1[32], e2[32];
-                        fprintf(md, "| %d | %d | %.2f | %.0f | %d | %d | %d | %s | %.1f | %.1f | %s | %s | %.4g |", td.n, td.depth, info.bytes / 1e6, info.ms,
-                                ss * ss, spl, ss * ss * spl, m ? "fast" : "exact", ms_shadows, li.ms - ms_build, error_cell(e1, sizeof e1, err),
-                                error_cell(e2, sizeof e2, blk), mean);
-                        if (m) fprintf(md, " %d | %.4f | %.2f%% |\n", d.linespace.exact_ends, mae, 100 * wrong);
-                        else fprintf(md, " | | |\n");
-                    }
-                    if (csv)
-                        fprintf(csv, "image,%s,%d,%d,%lu,%.3f,%d,%d,%s,%d,0,%.3f,%.3f,%.6g,%.6g,%.6g,%.6g,%.6g,,,\n", name, td.n, td.depth, (unsigned long)info.bytes,
-                                info.ms, ss, spl, m ? "fast" : "exact", d.linespace.exact_ends, ms_shadows, li.ms - ms_build, err, blk, mean, mae, wrong);
-                    if (run) { /* the tree is built once for every image: its time counts in each */
-                        report_item it;
-                        memset(&it, 0, sizeof it);
-                        it.method = m ? "linespace-fast" : "linespace-exact";
-                        snprintf(it.settings, sizeof it.settings, "n %d, depth %d, %d x %d points per pixel, %d samples", td.n, td.depth, ss, ss, spl);
-                        if (m) report_append(it.settings, sizeof it.settings, ", exact ends %d", d.linespace.exact_ends);
-                        snprintf(it.passes, sizeof it.passes, "tree %.1f, G-buffer %.1f, shadows %.1f", info.ms, ms_gbuffer, ms_shadows);
-                        it.ms = li.ms - ms_build + info.ms;
-                        it.bytes = (double)info.bytes;
-                        it.error = err;
-                        run->emit(run, &it, img);
-                    }
+                    v[V_N] = td.n;
+                    v[V_DEPTH] = td.depth;
+                    v[V_BUILD_MS] = info.ms;
+                    v[V_SUPERSAMPLE] = ss;
+                    v[V_POINTS] = ss * ss;
+                    v[V_SAMPLES] = spl;
+                    v[V_RAYS] = ss * ss * spl;
+                    v[V_MODE] = m != 0;
+                    v[V_ENDS] = m ? d.linespace.exact_ends : NAN;
+                    v[V_SHADOWS_MS] = voxgi_render_stage_ms(&li, "shadows");
+                    v[V_MS] = li.ms - ms_build;
+                    v[V_BLOCK] = block_error(&run->R->mask, run->img, run->R->image);
+                    v[V_MEAN] = image_mean(run->img, 3 * pixels);
+                    v[V_MAE] = m ? mae / (double)pixels : NAN;
+                    v[V_WRONG] = m ? wrong / (double)pixels : NAN;
+                    /* the tree is built once for every image: its time counts in each */
+                    it.method = m ? "linespace-fast" : "linespace-exact";
+                    snprintf(it.settings, sizeof it.settings, "n %d, depth %d, %d x %d points per pixel, %d samples", td.n, td.depth, ss, ss, spl);
+                    if (m) report_append(it.settings, sizeof it.settings, ", exact ends %d", d.linespace.exact_ends);
+                    snprintf(it.passes, sizeof it.passes, "tree %.1f, G-buffer %.1f, shadows %.1f", info.ms, ms_gbuffer, v[V_SHADOWS_MS]);
+                    it.ms = li.ms - ms_build + info.ms;
+                    it.bytes = (double)info.bytes;
+                    report_measured(run, &it);
                 }
             }
-            voxgi_linespace_destroy(ctx, L);
+            voxgi_linespace_destroy(run->ctx, L);
         }
     rc = 0;
 done:
-    free(img);
     free(vis[0]);
     free(vis[1]);
     return rc;
 }
 
-/* The images of one scene. */
-static int ls_scene(cli_session *s, voxgi_context *ctx, const ls_args *a, const char *name, FILE *md, FILE *csv)
+static void ls_md_head(FILE *md, const report *rep)
 {
-    voxgi_builtin_scene bs;
-    voxgi_camera cam;
-    cli_reference R;
+    fprintf(md, "# Line space: soft shadows, error against run time\n\nCPU, %d threads; wall clock on this machine.\n", rep->ci.thread_count);
+}
+
+static void ls_md_scene(FILE *md, const report *rep, int si, int end)
+{
+    const report_scene *sc = &rep->scenes[si];
     char ref_error[64] = "black";
-    int rc = 1;
-    memset(&R, 0, sizeof R);
-    if (voxgi_builtin_scene_create(ctx, name, &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, name);
-    cam = bs.camera;
-    cam.width = cam.height = a->size;
-    cli_status(s, "%s: the reference's direct light, %d spp", name, a->spp);
-    if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R)) goto done;
-    if (isfinite(R.c)) snprintf(ref_error, sizeof ref_error, "its error %.2f%% / sqrt(spp)", 100 * R.c);
+    if (end) return;
+    if (isfinite(sc->c[0])) snprintf(ref_error, sizeof ref_error, "its error %.2f%% / sqrt(spp)", 100 * sc->c[0]);
     fprintf(md, "\n## %s\n\n%d x %d pixels; the reference's direct light at %d spp (%s); %lu pixels near an emitter left "
                 "out. *rel. RMSE*: the tools' rule (*black*: the reference is, and the mean says the rest); *4x4*: on 4 x 4 block means "
                 "without a masked pixel. Fast mode against exact, the same samples: "
                 "*MAE* of the pixels' visible share, *wrong*: the share of samples fast mode blocks where exact mode sees the light; *exact ends*: fast mode's "
                 "exact zone at each end of a ray, in leaves' edges.\n\n",
-            name, a->size, a->size, a->spp, ref_error, (unsigned long)R.mask.masked_pixels);
-    fprintf(md, "| n | depth | tree MB | build ms | points per pixel | samples | rays per pixel | mode | shadows ms | total ms | rel. RMSE | 4x4 | mean "
-                "| exact ends | MAE | wrong |\n|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    rc = ls_images(s, ctx, a, &bs.scene, name, &cam, &R, md, csv, NULL);
-done:
-    cli_reference_free(&R);
-    voxgi_builtin_scene_destroy(ctx, &bs);
-    return rc;
+            sc->name, rep->o->size[0], rep->o->size[0], rep->o->spp, ref_error, (unsigned long)sc->masked);
 }
 
 /* A mesh on a floor (3 x its longest side, under it) and a square light (half its longest side)
@@ -282,22 +277,20 @@ static size_t ls_mesh_rays(const ls_mesh_scene *M, const float *pos, const float
     return n;
 }
 
-static int ls_mesh(cli_session *s, voxgi_context *ctx, const ls_args *a, const char *path, FILE *md, FILE *csv)
+static int ls_mesh(cli_session *s, voxgi_context *ctx, const ls_report *a, const char *path, FILE *md, FILE *csv)
 {
     ls_mesh_scene M;
-    size_t pixels = (size_t)a->size * (size_t)a->size, nrays = 0, i;
+    size_t pixels = (size_t)a->o.size[0] * (size_t)a->o.size[0], nrays = 0, i;
     float *pos = (float *)malloc(pixels * 12), *nrm = (float *)malloc(pixels * 12), *vis = (float *)malloc(pixels * 4);
     voxgi_ray *rays = (voxgi_ray *)malloc(pixels * 16 * sizeof *rays);
-    unsigned char *occ[3];
+    unsigned char *occ[3], *all = (unsigned char *)malloc(pixels * 48); /* exact, fast, the ray core */
     voxgi_ray_scene *rs = NULL;
     double core_ms = 0, t;
     int j, k, rc = 1;
     const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
-    occ[0] = (unsigned char *)malloc(pixels * 16);
-    occ[1] = (unsigned char *)malloc(pixels * 16);
-    occ[2] = (unsigned char *)malloc(pixels * 16);
-    if (!pos || !nrm || !vis || !rays || !occ[0] || !occ[1] || !occ[2]) { cli_fail(s, "out of memory"); goto out; }
-    if (ls_mesh_open(s, path, a->size, &M)) goto out;
+    if (!pos || !nrm || !vis || !rays || !all) { cli_fail(s, "out of memory"); goto out; }
+    for (j = 0; j < 3; j++) occ[j] = all + (size_t)j * pixels * 16;
+    if (ls_mesh_open(s, path, a->o.size[0], &M)) goto out;
     cli_status(s, "%s: G-buffer and the ray core", base);
     if (voxgi_gbuffer_render(ctx, &M.scene, &M.cam, pos, nrm, NULL) != VOXGI_OK || voxgi_ray_scene_create(ctx, &M.scene, &rs) != VOXGI_OK) {
         cli_fail_lib(s, ctx, base);
@@ -309,12 +302,12 @@ static int ls_mesh(cli_session *s, voxgi_context *ctx, const ls_args *a, const c
     core_ms = cli_now_ms() - t;
     fprintf(md, "\n## %s on a floor (%lu triangles)\n\n%d x %d pixels, 16 shadow rays per pixel to random points of a square light "
                 "above it (%lu rays). The ray core (4-wide BVH, packets) casts them in %.1f ms: %.2f M rays/s.\n\n",
-            base, (unsigned long)(M.tm.vm.index_count ? M.tm.vm.index_count / 3 : M.tm.vm.vertex_count / 3) + 2, a->size, a->size, (unsigned long)nrays,
+            base, (unsigned long)(M.tm.vm.index_count ? M.tm.vm.index_count / 3 : M.tm.vm.vertex_count / 3) + 2, a->o.size[0], a->o.size[0], (unsigned long)nrays,
             core_ms, nrays / core_ms / 1000);
     fprintf(md, "| n | depth | tree MB | build ms | exact ms | exact M rays/s | vs core | exact = core | fast ms | fast M rays/s | vs core | wrong "
                 "| fast light ms: rays alone, packets, at 4 / 9 / 16 / 100 samples |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
-    for (i = 0; i < (size_t)a->nns; i++)
-        for (j = 0; j < a->ndepths; j++) {
+    for (i = 0; i < (size_t)a->ns.n; i++)
+        for (j = 0; j < a->depths.n; j++) {
             voxgi_linespace_desc td;
             voxgi_linespace *L = NULL;
             voxgi_linespace_info info;
@@ -322,8 +315,8 @@ static int ls_mesh(cli_session *s, voxgi_context *ctx, const ls_args *a, const c
             double ms[2];
             size_t agree = 0, wrong = 0, q;
             memset(&td, 0, sizeof td);
-            td.n = (int)a->ns[i];
-            td.depth = (int)a->depths[j];
+            td.n = (int)a->ns.v[i];
+            td.depth = (int)a->depths.v[j];
             cli_status(s, "%s: line space n %d depth %d", base, td.n, td.depth);
             if ((r = voxgi_linespace_create(ctx, &M.scene, &td, &L)) == VOXGI_ERR_TOO_LARGE || r == VOXGI_ERR_INVALID_ARGUMENT) {
                 fprintf(md, "| %d | %d | refused: %s | | | | | | | | | | |\n", td.n, td.depth, voxgi_last_error(ctx));
@@ -385,116 +378,58 @@ out:
     free(nrm);
     free(vis);
     free(rays);
-    free(occ[0]);
-    free(occ[1]);
-    free(occ[2]);
+    free(all);
     return rc;
+}
+
+/* After the scenes' tables: the rays of each mesh of --meshes (measured here, as they are written). */
+static int ls_md_end(report *rep, FILE *md, FILE *csv)
+{
+    const ls_report *a = (const ls_report *)rep->own;
+    char item[1024];
+    const char *list;
+    int r;
+    for (list = a->mesh_list; *a->mesh_list && (r = cli_next_item(&list, item, sizeof item)) != 0;) {
+        FILE *f;
+        if (r < 0) return cli_usage("report", "--meshes: '%s'", a->mesh_list) != 0;
+        if (!(f = fopen(item, "rb"))) {
+            fprintf(md, "\n(%s: not found, left out)\n", item);
+            continue;
+        }
+        fclose(f);
+        if (ls_mesh(&rep->s, rep->c.vx, a, item, md, csv)) return 1;
+    }
+    return 0;
 }
 
 /* report all's line space: one tree (the tool's: n 4, the scene's depth; quick: depth 2), 1 x 1
    and 2 x 2 points per pixel, 4 and 16 samples, exact and fast (3 leaves exact at each end). */
 int report_linespace_all(report_run *run)
 {
-    ls_args a;
-    memset(&a, 0, sizeof a);
-    a.ns[0] = 4;
-    a.depths[0] = run->quick ? 2 : 0;
-    a.samples[0] = 4;
-    a.samples[1] = 16;
-    a.supersample[0] = 1;
-    a.supersample[1] = 2;
-    a.ends[0] = 3;
-    a.nns = a.ndepths = a.nends = 1;
-    a.nsamples = run->quick ? 1 : 2;
-    a.nsuper = 2;
-    return ls_images(run->s, run->ctx, &a, run->scene, run->scene_name, &run->camera, run->R, NULL, NULL, run);
+    static const ls_report all = {.ns = REPORT_L(4), .depths = REPORT_L(0), .samples = REPORT_L(4, 16), .supersample = REPORT_L(1, 2), .ends = REPORT_L(3)},
+                           quick = {.ns = REPORT_L(4), .depths = REPORT_L(2), .samples = REPORT_L(4), .supersample = REPORT_L(1, 2), .ends = REPORT_L(3)};
+    run->args = run->quick ? &quick : &all;
+    return ls_images(run);
 }
 
 int cmd_report_linespace(int argc, char **argv)
 {
-    static const double ns[] = {4, 8}, depths[] = {2, 3}, samples[] = {4, 16, 64}, supersample[] = {1, 4}, ends[] = {3, 12};
-    ls_args a;
-    cli_session s;
-    cli_context c;
-    char item[1024], path[1100];
-    const char *list;
-    FILE *md = NULL, *csv = NULL;
-    voxgi_info ci;
-    int r, rc;
-    memset(&a, 0, sizeof a);
-    a.common.backend = VOXGI_BACKEND_CPU;
-    a.out_dir = "build/report";
-    a.scene_list = "cornell-box";
-    a.mesh_list = "../shared/meshes/bunny.obj,../shared/meshes/dragon.obj";
-    a.size = 128;
-    a.spp = 1024;
-    memcpy(a.ns, ns, sizeof ns);
-    memcpy(a.depths, depths, sizeof depths);
-    memcpy(a.samples, samples, sizeof samples);
-    memcpy(a.supersample, supersample, sizeof supersample);
-    memcpy(a.ends, ends, sizeof ends);
-    a.nends = 2;
-    a.nsuper = 2;
-    a.nns = 2;
-    a.ndepths = 2;
-    a.nsamples = 3;
-    {
-#define LIST(opt, field, count, lo_, top, text) \
-    {.name = opt, .arg = "LIST", .kind = CLI_NUMBERS, .dst = a.field, .items = &a.count, .min_items = 1, .max_items = LS_MAX_ITEMS, \
-     .lo = lo_, .hi = top, .whole = 1, .help = text}
-        const cli_option options[] = {
-            {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list,
-             .help = "built-in scenes with area lights, comma-separated (default cornell-box;\n'' for none)"},
-            {.name = "--meshes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.mesh_list,
-             .help = "mesh files, comma-separated (default the bunny and the dragon of\n../shared/meshes, where present; '' for none)"},
-            {.name = "--size", .arg = "N", .kind = CLI_INT, .dst = &a.size, .lo = 4, .hi = 4096, .help = "N x N pixels (default 128)"},
-            {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 16, .hi = 1 << 20,
-             .help = "samples per pixel of the converged reference (default 1024)"},
-            LIST("--ns", ns, nns, 2, 16, "children per axis (default 4,8)"),
-            LIST("--depths", depths, ndepths, 1, 8, "levels below the root (default 2,3)"),
-            LIST("--samples", samples, nsamples, 1, 4096, "the images' shadow rays per shading point (default 4,16,64)"),
-            LIST("--supersample", supersample, nsuper, 1, 16, "the images' shading points, K x K per pixel (default 1,4)"),
-            LIST("--exact-ends", ends, nends, 1, 1 << 20, "fast mode's exact zones, leaves' edges at each end (default 3,12)"),
-            {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
-            CLI_OPT_THREADS(&a.common)};
-#undef LIST
-        const cli_command cmd = {.name = "report linespace", .help = ls_help, .column = 27, .options = options, .option_count = CLI_COUNT(options)};
-        if ((rc = cli_parse(&cmd, argc, argv)) != CLI_CONTINUE) return rc;
-    }
-    cli_session_init(&s, "report");
-    if (cli_context_open_options(&s, &c, &a.common)) return CLI_EXIT_FAILURE;
-    rc = CLI_EXIT_FAILURE;
-    snprintf(path, sizeof path, "%s/linespace.md", a.out_dir);
-    if (cli_make_dirs(a.out_dir) != 0 || !(md = fopen(path, "w"))) {
-        cli_fail(&s, "cannot write %s", path);
-        goto done;
-    }
-    snprintf(path, sizeof path, "%s/linespace.csv", a.out_dir);
-    if (!(csv = fopen(path, "w"))) {
-        cli_fail(&s, "cannot write %s", path);
-        goto done;
-    }
-    voxgi_query_info(c.vx, &ci);
-    fprintf(md, "# Line space: soft shadows, error against run time\n\nCPU, %d threads; wall clock on this machine.\n", ci.thread_count);
-    fprintf(csv, "part,scene,n,depth,bytes,build_ms,supersample,samples,mode,exact_ends,packets,shadows_ms,ms,rel_rmse,block_rmse,mean,mae,wrong,agree_with_core,core_ms\n");
-    for (list = a.scene_list; *a.scene_list && (r = cli_next_item(&list, item, sizeof item)) != 0;) { /* '' : none */
-        if (r < 0) { cli_usage("report", "--scenes: '%s'", a.scene_list); goto done; }
-        if (ls_scene(&s, c.vx, &a, item, md, csv)) goto done;
-    }
-    for (list = a.mesh_list; *a.mesh_list && (r = cli_next_item(&list, item, sizeof item)) != 0;) {
-        FILE *f;
-        if (r < 0) { cli_usage("report", "--meshes: '%s'", a.mesh_list); goto done; }
-        if (!(f = fopen(item, "rb"))) { fprintf(md, "\n(%s: not found, left out)\n", item); continue; }
-        fclose(f);
-        if (ls_mesh(&s, c.vx, &a, item, md, csv)) goto done;
-    }
-    if (ferror(md) || ferror(csv)) { cli_fail(&s, "cannot write to %s", a.out_dir); goto done; }
-    cli_status_clear(&s);
-    printf("wrote %s/linespace.md, %s/linespace.csv\n", a.out_dir, a.out_dir);
-    rc = CLI_EXIT_OK;
-done:
-    if (md) fclose(md);
-    if (csv) fclose(csv);
-    cli_context_close(&s, &c);
-    return rc;
+    static const report_def def = {.name = "linespace", .help = ls_help, .bounces = 0, .scenes_optional = 1, .columns = ls_columns,
+                                   .ncolumns = CLI_COUNT(ls_columns), .sweep = ls_images, .md_head = ls_md_head, .md_scene = ls_md_scene,
+                                   .md_end = ls_md_end};
+    ls_report a = {.o = REPORT_OPTS("cornell-box", 128, 1024), .mesh_list = "../shared/meshes/bunny.obj,../shared/meshes/dragon.obj", .ns = REPORT_L(4, 8),
+                   .depths = REPORT_L(2, 3), .samples = REPORT_L(4, 16, 64), .supersample = REPORT_L(1, 4), .ends = REPORT_L(3, 12)};
+    const cli_option options[] = {
+        REPORT_OPT_SCENES(&a.o, "built-in scenes with area lights, comma-separated (default cornell-box;\n'' for none)"),
+        {.name = "--meshes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.mesh_list,
+         .help = "mesh files, comma-separated (default the bunny and the dragon of\n../shared/meshes, where present; '' for none)"},
+        REPORT_OPT_SIZE(&a.o, 4, "N x N pixels (default 128)"),
+        REPORT_OPT_SPP(&a.o, 16, "samples per pixel of the converged reference (default 1024)"),
+        REPORT_LIST("--ns", a.ns, 2, 0, 16, 1, "children per axis (default 4,8)"),
+        REPORT_LIST("--depths", a.depths, 1, 0, 8, 1, "levels below the root (default 2,3)"),
+        REPORT_LIST("--samples", a.samples, 1, 0, 4096, 1, "the images' shadow rays per shading point (default 4,16,64)"),
+        REPORT_LIST("--supersample", a.supersample, 1, 0, 16, 1, "the images' shading points, K x K per pixel (default 1,4)"),
+        REPORT_LIST("--exact-ends", a.ends, 1, 0, 1 << 20, 1, "fast mode's exact zones, leaves' edges at each end (default 3,12)"),
+        REPORT_OPT_OUT(&a.o), CLI_OPT_THREADS(&a.o.common)};
+    return report_main(&def, &a.o, &a, options, CLI_COUNT(options), argc, argv);
 }

@@ -9,7 +9,6 @@
 #define SCREEN_PI 3.14159265358979323846
 
 enum { SCREEN_AO, SCREEN_SSGI };
-static const char *const report_names[] = {"ao", "ssgi"};
 
 /* The methods, as the rows name them. */
 enum { M_SSAO, M_SSAO_POINTS, M_VAO, M_SSGI, M_HYBRID, M_HYBRID_LIGHT };
@@ -48,32 +47,12 @@ static const char *const ssgi_help =
     "the red light each method bleeds onto the rest, a share of the reference's. Writes\n"
     "DIR/ssgi.md and DIR/ssgi.csv, the Pareto front marked. Wall clock on this machine.\n";
 
-#define SCREEN_MAX_SCENES 8
-#define SCREEN_MAX_LIST 16
-#define SCREEN_MAX_RADII (SCREEN_MAX_LIST + 1) /* the base's and --radii's */
-
-typedef struct screen_args {
-    cli_common common;
-    int which;
-    const char *out_dir, *scene_list;
-    double rays[SCREEN_MAX_LIST], steps[SCREEN_MAX_LIST], radii[SCREEN_MAX_LIST], res[SCREEN_MAX_LIST], blurs[SCREEN_MAX_LIST];
-    int nrays, nsteps, nradii, nres, nblurs, size[2], spp;
-} screen_args;
-
 /* One configuration; a parameter its method does not use is 0 (steps for the voxels and for point
    sampling, res for the depth buffer). radius: a share of the scene's longest side. */
 typedef struct screen_config {
     int method, rays, steps, res, half, blur, hidden; /* hidden: hybrid+light's hidden light */
     double radius;
 } screen_config;
-
-typedef struct screen_row {
-    int scene, pareto, group; /* group: the front's (the scene's, and for ao its radius's) */
-    screen_config c;
-    size_t gathered;
-    double ms_pass, ms, rmse, red, ref_ms; /* ms_pass: the occlusion's or the gathers' */
-    double ms_parts[3], bytes;             /* ao: G-buffer, voxels; ssgi: direct light, voxels, their light; the memory */
-} screen_row;
 
 /* AO at fixed points over several passes (views or seeds): the points seen by two passes or more,
    the passes that see each (mean), and the spread (max - min) of each point's AO over them. */
@@ -107,24 +86,46 @@ typedef struct wall_view {
     double rmse[WALL_METHODS], bleed[WALL_METHODS], colour[WALL_METHODS];
 } wall_view;
 
+typedef struct screen_measure { /* an image beside the rows: its error and time */
+    double rmse, ms;
+} screen_measure;
+
 typedef struct screen_report {
-    char scenes[SCREEN_MAX_SCENES][64];
-    int scene_count, nrows, nradii;
-    double radii[SCREEN_MAX_RADII];        /* ao: the references' radii (shares), the base's first */
-    double longest[SCREEN_MAX_SCENES];
-    double ref_c[SCREEN_MAX_SCENES][SCREEN_MAX_RADII], ref_ms_per_spp[SCREEN_MAX_SCENES][SCREEN_MAX_RADII];
-    size_t masked[SCREEN_MAX_SCENES];
-    double direct_rmse[SCREEN_MAX_SCENES];  /* ssgi: the direct light alone */
-    double screen_rmse[SCREEN_MAX_SCENES];  /* ssgi: the reference's bounce from the surfaces the camera sees alone */
-    screen_row converged[SCREEN_MAX_SCENES], hidden[SCREEN_MAX_SCENES]; /* ssgi: Hybrid-GI converged, without and with the hidden light */
-    double vct_rmse[SCREEN_MAX_SCENES], vct_ms[SCREEN_MAX_SCENES];
+    report_opts o;
+    int which;
+    report_list rays, steps, radii, res, blurs;
+    double ref_radii[REPORT_MAX_REFS];      /* the references' radii (shares): ao the base's first, then --radii's; ssgi the base's */
+    int nref_radii;
+    double longest[REPORT_MAX_SCENES];
+    double direct_rmse[REPORT_MAX_SCENES];  /* ssgi: the direct light alone */
+    double screen_rmse[REPORT_MAX_SCENES];  /* ssgi: the reference's bounce from the surfaces the camera sees alone */
+    screen_measure converged[REPORT_MAX_SCENES][2]; /* ssgi: Hybrid-GI converged, without and with the hidden light */
+    screen_measure vct[REPORT_MAX_SCENES];          /* ssgi: cone tracing's defaults */
+    int converged_res;                              /* ssgi: Hybrid-GI converged's voxels, the finest of --res */
     view_spread views[2][2][2];             /* ao: [the orbit, the seeds][at the pixel, at the point][depth buffer, voxels] */
     int view_rays;
     double view_radius;
     wall_view walls[3];                     /* ssgi */
-    voxgi_info ci;
-    screen_row *rows;
 } screen_report;
+
+/* A row's values (report_item.v). */
+enum { V_METHOD, V_RAYS, V_STEPS, V_RADIUS, V_RADIUS_ABS, V_RES, V_HALF, V_BLUR, V_GATHERED, V_PASS_MS, V_RED };
+static const char *const half_csv[] = {"0", "1"};
+#define SCREEN_COLUMNS(pass_md, pass_csv) \
+    REPORT_COL_SCENE, {.md = "method", .align = "---", .csv = "method", .at = V_METHOD, .names = method_names, .csv_names = method_names}, \
+        REPORT_COL_INT("rays", "rays", V_RAYS), \
+        {.md = "steps", .align = "---:", .csv = "steps", .at = V_STEPS, .md_fmt = "%.0f", .csv_fmt = "%.0f", .md_none = "-", .csv_none = ""}, \
+        REPORT_COL("radius", "radius_share", V_RADIUS, "%g", "%g"), REPORT_COL(NULL, "radius", V_RADIUS_ABS, NULL, "%.6g"), \
+        {.md = "voxels", .align = "---:", .csv = "res", .at = V_RES, .md_fmt = "%.0f", .csv_fmt = "%.0f", .md_none = "-", .csv_none = ""}, \
+        {.md = "half res.", .align = ":-:", .csv = "half_res", .at = V_HALF, .names = report_yes, .csv_names = half_csv}, \
+        REPORT_COL_INT("blur", "blur", V_BLUR), REPORT_COL_INT("pixels computed", "gathered", V_GATHERED), \
+        REPORT_COL(pass_md, pass_csv, V_PASS_MS, "%.1f", "%.3f"), REPORT_COL("total ms", "ms", REPORT_AT_MS, "%.1f", "%.3f"), \
+        REPORT_COL_ERROR("-")
+static const report_column ao_columns[] = {SCREEN_COLUMNS("occlusion ms", "ao_ms"), REPORT_COL_REF, REPORT_COL_FRONT};
+static const report_column ssgi_columns[] = {
+    SCREEN_COLUMNS("gathers ms", "gather_ms"),
+    {.md = "red excess", .align = "---:", .csv = "red_excess", .at = V_RED, .md_fmt = "%.2f%%", .csv_fmt = "%.6g", .md_unit = '%', .md_none = "-"},
+    REPORT_COL_REF, REPORT_COL_FRONT};
 
 /* ------------------------------------------------------------------ configurations */
 static int uses_steps(int m) { return m == M_SSAO || m == M_SSGI; }
@@ -159,21 +160,21 @@ static int add_config(screen_config *list, int n, const screen_config *c)
     return n + 1;
 }
 
-#define SWEEP_MAX (6 * SCREEN_MAX_LIST)
+#define SWEEP_MAX (6 * REPORT_MAX_LIST)
 
 /* The configurations of a method: each list's values with the rest at the base (the lists of
    parameters it does not use left out), then half resolution with each blur; each once. */
-static int sweep(const screen_args *a, int method, screen_config *out)
+static int sweep(const screen_report *a, int method, screen_config *out)
 {
     const screen_config base = base_config(a->which, method);
     screen_config c;
     int i, half, n = 0;
-    for (i = 0; i < a->nrays; i++) { c = base; c.rays = (int)a->rays[i]; n = add_config(out, n, &c); }
-    for (i = 0; i < a->nsteps && uses_steps(method); i++) { c = base; c.steps = (int)a->steps[i]; n = add_config(out, n, &c); }
-    for (i = 0; i < a->nradii; i++) { c = base; c.radius = a->radii[i]; n = add_config(out, n, &c); }
-    for (i = 0; i < a->nres && uses_res(method); i++) { c = base; c.res = (int)a->res[i]; n = add_config(out, n, &c); }
+    for (i = 0; i < a->rays.n; i++) { c = base; c.rays = (int)a->rays.v[i]; n = add_config(out, n, &c); }
+    for (i = 0; i < a->steps.n && uses_steps(method); i++) { c = base; c.steps = (int)a->steps.v[i]; n = add_config(out, n, &c); }
+    for (i = 0; i < a->radii.n; i++) { c = base; c.radius = a->radii.v[i]; n = add_config(out, n, &c); }
+    for (i = 0; i < a->res.n && uses_res(method); i++) { c = base; c.res = (int)a->res.v[i]; n = add_config(out, n, &c); }
     for (half = 0; half < 2; half++)
-        for (i = 0; i < a->nblurs; i++) { c = base; c.half = half; c.blur = (int)a->blurs[i]; n = add_config(out, n, &c); }
+        for (i = 0; i < a->blurs.n; i++) { c = base; c.half = half; c.blur = (int)a->blurs.v[i]; n = add_config(out, n, &c); }
     return n;
 }
 
@@ -187,32 +188,20 @@ static void config_text(const screen_config *c, char *buf, size_t size)
         snprintf(buf + n, size - (size_t)n, ", radius %g%s, blur %d%s", c->radius, c->half ? ", half resolution" : "", c->blur, c->hidden ? ", hidden light" : "");
 }
 
-/* The parameter columns of a row, for Markdown (sep " | ", "-" where unused) or CSV (sep ",", empty). */
-static void config_columns(FILE *f, const screen_config *c, double longest, const char *sep, int csv)
-{
-    const char *none = csv ? "" : "-";
-    fprintf(f, "%s%s%d%s", method_names[c->method], sep, c->rays, sep);
-    if (c->steps) fprintf(f, "%d%s", c->steps, sep);
-    else fprintf(f, "%s%s", none, sep);
-    if (csv) fprintf(f, "%g,%.6g,", c->radius, c->radius * longest);
-    else fprintf(f, "%g%s", c->radius, sep);
-    if (c->res) fprintf(f, "%d%s", c->res, sep);
-    else fprintf(f, "%s%s", none, sep);
-    fprintf(f, "%s%s%d", csv ? (c->half ? "1" : "0") : (c->half ? "yes" : ""), sep, c->blur);
-}
-
-/* Renders configuration c of scene (its longest side `longest`) seen by cam into img; its
-   measures of time into row. Every setting is given (a zero field of voxgi_render_desc is the
-   method's measured default, not the configuration's): half resolution off or on, blur -1 for
-   none, the hidden light off or on. */
+/* Renders configuration c of scene (its longest side `longest`) seen by cam into img; what it
+   is and took into it. Every setting is given (a zero field of voxgi_render_desc is the method's
+   measured default, not the configuration's): half resolution off or on, blur -1 for none, the
+   hidden light off or on. */
 static voxgi_result render_config(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_camera *cam, double longest, const screen_config *c, float *img,
-                                  screen_row *row)
+                                  report_item *it)
 {
     size_t bytes = (size_t)cam->width * (size_t)cam->height * 12;
     int ao = c->method == M_SSAO || c->method == M_SSAO_POINTS || c->method == M_VAO;
     voxgi_render_desc d;
     voxgi_render_info info;
     voxgi_result r;
+    double *v = it->v, voxels;
+    char text[160];
     memset(&d, 0, sizeof d);
     memset(&info, 0, sizeof info);
     d.camera = *cam;
@@ -232,165 +221,142 @@ static voxgi_result render_config(voxgi_context *ctx, const voxgi_scene *scene, 
         d.screen.hidden_light = c->hidden ? VOXGI_TOGGLE_ON : VOXGI_TOGGLE_OFF;
     }
     r = voxgi_render(ctx, scene, &d, img, bytes, &info);
-    row->gathered = info.gathered;
-    row->ms = info.ms;
-    row->ms_parts[1] = voxgi_render_stage_ms(&info, "voxels");
-    if (ao) {
-        row->ms_pass = voxgi_render_stage_ms(&info, "ao");
-        row->ms_parts[0] = voxgi_render_stage_ms(&info, "gbuffer");
-    } else {
-        row->ms_pass = voxgi_render_stage_ms(&info, "gather");
-        row->ms_parts[0] = voxgi_render_stage_ms(&info, "direct");
-        row->ms_parts[2] = voxgi_render_stage_ms(&info, "inject");
-    }
-    row->bytes = (double)info.bytes;
-    row->c = *c;
+    it->method = method_names[c->method];
+    config_text(c, text, sizeof text);
+    snprintf(it->settings, sizeof it->settings, "%s", text + strlen(it->method) + 2); /* without "method, " */
+    it->ms = info.ms;
+    it->bytes = (double)info.bytes;
+    v[V_METHOD] = c->method;
+    v[V_RAYS] = c->rays;
+    v[V_STEPS] = c->steps ? c->steps : NAN;
+    v[V_RADIUS] = c->radius;
+    v[V_RADIUS_ABS] = c->radius * longest;
+    v[V_RES] = c->res ? c->res : NAN;
+    v[V_HALF] = c->half;
+    v[V_BLUR] = c->blur;
+    v[V_GATHERED] = (double)info.gathered;
+    v[V_PASS_MS] = voxgi_render_stage_ms(&info, ao ? "ao" : "gather");
+    voxels = voxgi_render_stage_ms(&info, "voxels");
+    if (ao)
+        snprintf(it->passes, sizeof it->passes, "G-buffer %.1f, voxels %.1f, occlusion %.1f", voxgi_render_stage_ms(&info, "gbuffer"), voxels, v[V_PASS_MS]);
+    else
+        snprintf(it->passes, sizeof it->passes, "direct %.1f, voxels %.1f, their light %.1f, gathers %.1f", voxgi_render_stage_ms(&info, "direct"), voxels,
+                 voxgi_render_stage_ms(&info, "inject"), v[V_PASS_MS]);
     return r;
 }
 
 /* ------------------------------------------------------------------ the sweeps */
-/* Every configuration of each of the report's methods on scene si (its name, seen by cam), each
-   measured against the reference at its radius (R[k] at rep->radii[k] for ao; R[0] for ssgi),
-   appended to rep's rows; with run, each also handed to report all. 0, or says why and returns 1. */
-static int screen_sweep(cli_session *s, voxgi_context *ctx, const screen_args *a, screen_report *rep, int si, const voxgi_scene *scene, const char *name,
-                        const voxgi_camera *cam, const cli_reference *R, float *img, report_run *run)
+/* Every configuration of each of the report's methods, each measured against the reference at its
+   radius (ao: R[k] at ref_radii[k]; ssgi: R[0]). */
+static int screen_sweep(report_run *run)
 {
-    screen_config configs[SWEEP_MAX];
+    const screen_report *a = (const screen_report *)run->args;
+    const double longest = cli_scene_longest_side(run->scene);
     const int *methods = a->which == SCREEN_AO ? ao_methods : gi_methods;
-    int nmethods = a->which == SCREEN_AO ? CLI_COUNT(ao_methods) : CLI_COUNT(gi_methods), m, i, k, n;
+    const int nmethods = a->which == SCREEN_AO ? CLI_COUNT(ao_methods) : CLI_COUNT(gi_methods);
+    screen_config configs[SWEEP_MAX];
     char text[160];
+    int m, i, k, n;
     for (m = 0; m < nmethods; m++) {
         n = sweep(a, methods[m], configs);
         for (i = 0; i < n; i++) {
-            screen_row *row = &rep->rows[rep->nrows];
-            for (k = 0; a->which == SCREEN_AO && rep->radii[k] != configs[i].radius; k++) {}
+            report_item it;
+            for (k = 0; a->which == SCREEN_AO && a->ref_radii[k] != configs[i].radius; k++) {}
             config_text(&configs[i], text, sizeof text);
-            cli_status(s, "%s: %s", name, text);
-            memset(row, 0, sizeof *row);
-            if (render_config(ctx, scene, cam, rep->longest[si], &configs[i], img, row) != VOXGI_OK) return cli_fail_lib(s, ctx, text);
-            row->scene = si;
-            row->rmse = cli_masked_error(&R[k].mask, img, R[k].image, NULL, NULL);
-            row->ref_ms = cli_reference_ms(&R[k], row->rmse);
-            row->red = a->which == SCREEN_SSGI ? cli_red_excess(&R[k], img) : 0;
-            rep->nrows++;
-            if (run) {
-                report_item it;
-                memset(&it, 0, sizeof it);
-                it.method = method_names[configs[i].method];
-                config_text(&configs[i], text, sizeof text);
-                snprintf(it.settings, sizeof it.settings, "%s", text + strlen(it.method) + 2); /* without "method, " */
-                if (a->which == SCREEN_AO)
-                    snprintf(it.passes, sizeof it.passes, "G-buffer %.1f, voxels %.1f, occlusion %.1f", row->ms_parts[0], row->ms_parts[1], row->ms_pass);
-                else
-                    snprintf(it.passes, sizeof it.passes, "direct %.1f, voxels %.1f, their light %.1f, gathers %.1f", row->ms_parts[0], row->ms_parts[1],
-                             row->ms_parts[2], row->ms_pass);
-                it.ms = row->ms;
-                it.bytes = row->bytes;
-                it.error = row->rmse;
-                run->emit(run, &it, img);
-            }
+            cli_status(run->s, "%s: %s", run->scene_name, text);
+            memset(&it, 0, sizeof it);
+            if (render_config(run->ctx, run->scene, &run->camera, longest, &configs[i], run->img, &it) != VOXGI_OK) return cli_fail_lib(run->s, run->ctx, text);
+            it.ref = k;
+            it.v[V_RED] = a->which == SCREEN_SSGI ? cli_red_excess(&run->R[k], run->img) : 0;
+            report_measured(run, &it);
         }
     }
     return 0;
 }
 
-/* Scene si: its references, then a row per configuration of each method; for ssgi also the
-   direct light alone, Hybrid-GI converged and cone tracing's defaults. */
-static int screen_scene(cli_session *s, voxgi_context *ctx, const screen_args *a, screen_report *rep, int si, float *img)
+/* ao: the references' radii, the base's first, then --radii's. */
+static int screen_open(report *rep)
 {
-    cli_reference R[SCREEN_MAX_RADII], direct;
-    voxgi_builtin_scene bs;
-    voxgi_camera cam;
-    const char *name = rep->scenes[si];
-    size_t pixels = (size_t)a->size[0] * (size_t)a->size[1];
-    int nrefs = a->which == SCREEN_AO ? rep->nradii : 1, k, rc = 1;
-    double longest;
-    memset(R, 0, sizeof R);
-    memset(&direct, 0, sizeof direct);
-    if (voxgi_builtin_scene_create(ctx, name, &bs) != VOXGI_OK) return cli_fail_lib(s, ctx, name);
-    cam = bs.camera;
-    cam.width = a->size[0];
-    cam.height = a->size[1];
-    longest = rep->longest[si] = cli_scene_longest_side(&bs.scene);
-    for (k = 0; k < nrefs; k++) { /* ao: one reference per radius, each method measured at its own */
-        if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 1, a->which == SCREEN_AO ? rep->radii[k] * longest : 0, &R[k])) goto done;
-        if (R[k].mask.masked_pixels == pixels) {
-            cli_fail(s, "%s: every pixel is within %d pixels of one that sees an emitter: no error to measure", name, CLI_EMITTER_MARGIN);
-            goto done;
-        }
-        rep->ref_c[si][k] = R[k].c;
-        rep->ref_ms_per_spp[si][k] = R[k].ms_per_spp;
+    screen_report *a = (screen_report *)rep->own;
+    int i, k;
+    a->ref_radii[0] = base_config(a->which, M_SSAO).radius;
+    a->nref_radii = 1;
+    for (i = 0; i < a->radii.n && a->which == SCREEN_AO; i++) {
+        for (k = 0; k < a->nref_radii && a->ref_radii[k] != a->radii.v[i]; k++) {}
+        if (k == a->nref_radii) a->ref_radii[a->nref_radii++] = a->radii.v[i];
     }
-    rep->masked[si] = R[0].mask.masked_pixels;
-    if (screen_sweep(s, ctx, a, rep, si, &bs.scene, name, &cam, R, img, NULL)) goto done;
-    if (a->which == SCREEN_SSGI) {
-        screen_config c = base_config(SCREEN_SSGI, M_HYBRID);
-        voxgi_render_desc rd, vd;
-        voxgi_render_info vi;
-        /* the direct light alone: the reference's, converged */
-        if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &direct)) goto done;
-        rep->direct_rmse[si] = cli_masked_error(&R[0].mask, direct.image, R[0].image, NULL, NULL);
-        /* the most a bounce from the screen can find: the reference's bounce from the surfaces the camera sees alone */
-        memset(&rd, 0, sizeof rd);
-        rd.method = VOXGI_RENDER_REFERENCE;
-        rd.camera = cam;
-        rd.samples = a->spp;
-        rd.bounces = 1;
-        rd.seed = 1000003; /* cli_reference_make's: the same noise as the full bounce's where they agree */
-        rd.hide_emitters = 1;
-        rd.reference.screen_light_only = 1;
-        cli_status(s, "%s: the reference's bounce from the screen alone, %d spp", name, a->spp);
-        if (voxgi_render(ctx, &bs.scene, &rd, img, pixels * 12, NULL) != VOXGI_OK) {
-            cli_fail_lib(s, ctx, "the reference's bounce from the screen alone");
-            goto done;
-        }
-        rep->screen_rmse[si] = cli_masked_error(&R[0].mask, img, R[0].image, NULL, NULL);
-        /* Hybrid-GI converged: what it still misses is light from surfaces the camera does not see;
-           with the hidden light, what the voxels' injected light gives of it */
-        c.rays = 256;
-        c.res = 0;
-        for (k = 0; k < a->nres; k++) c.res = c.res > (int)a->res[k] ? c.res : (int)a->res[k]; /* the finest of --res: 256 by default */
-        c.radius = 1.75;
-        for (k = 0; k < 2; k++) {
-            screen_row *row = k ? &rep->hidden[si] : &rep->converged[si];
-            c.hidden = k;
-            cli_status(s, "%s: Hybrid-GI converged%s", name, k ? ", hidden light" : "");
-            if (render_config(ctx, &bs.scene, &cam, longest, &c, img, row) != VOXGI_OK) {
-                cli_fail_lib(s, ctx, "Hybrid-GI converged");
-                goto done;
-            }
-            row->scene = si;
-            row->rmse = cli_masked_error(&R[0].mask, img, R[0].image, NULL, NULL);
-            row->red = cli_red_excess(&R[0], img);
-        }
-        cli_vct_defaults(&vd, &cam);
-        cli_status(s, "%s: cone tracing, the tool's defaults", name);
-        if (voxgi_render(ctx, &bs.scene, &vd, img, pixels * 12, &vi) != VOXGI_OK) {
-            cli_fail_lib(s, ctx, "cone tracing");
-            goto done;
-        }
-        rep->vct_rmse[si] = cli_masked_error(&R[0].mask, img, R[0].image, NULL, NULL);
-        rep->vct_ms[si] = vi.ms;
-    }
-    rc = 0;
-done:
-    for (k = 0; k < nrefs; k++) cli_reference_free(&R[k]);
-    cli_reference_free(&direct);
-    voxgi_builtin_scene_destroy(ctx, &bs);
-    return rc;
+    return 0;
 }
 
-/* A row is on the front when no other row of its scene (and for ao of its radius: another
-   reference) is at once faster and better. */
-static void screen_pareto(screen_report *rep, int by_radius)
+/* ao: a reference per radius, each method measured at its own; ssgi: the one bounce. */
+static int screen_references(report *rep, report_run *run, cli_reference *R)
 {
-    int i, k;
-    for (i = 0; i < rep->nrows; i++) {
-        screen_row *r = &rep->rows[i];
-        for (k = 0; by_radius && k < rep->nradii - 1 && rep->radii[k] != r->c.radius; k++) {}
-        r->group = r->scene * SCREEN_MAX_RADII + k;
+    screen_report *a = (screen_report *)rep->own;
+    const double longest = a->longest[rep->si] = cli_scene_longest_side(run->scene);
+    int k;
+    for (k = 0; k < a->nref_radii; k++) {
+        if (cli_reference_make(run->s, run->ctx, run->scene, &run->camera, a->o.spp, 1, a->which == SCREEN_AO ? a->ref_radii[k] * longest : 0, &R[k]))
+            return 1;
+        if (R[k].mask.masked_pixels == (size_t)run->camera.width * (size_t)run->camera.height)
+            return cli_fail(run->s, "%s: every pixel is within %d pixels of one that sees an emitter: no error to measure", run->scene_name, CLI_EMITTER_MARGIN);
     }
-    PARETO_MARK(rep->rows, (size_t)rep->nrows, screen_row, ms, rmse, group, pareto);
+    rep->nrefs = a->nref_radii;
+    return 0;
+}
+
+/* ssgi: the direct light alone, the reference's bounce from the screen alone, Hybrid-GI converged
+   (with and without the hidden light) and cone tracing's defaults, against R[0]. */
+static int screen_scene_done(report *rep, report_run *run)
+{
+    screen_report *a = (screen_report *)rep->own;
+    const int si = rep->si;
+    const size_t bytes = (size_t)run->camera.width * (size_t)run->camera.height * 12;
+    const cli_reference *R = run->R;
+    screen_config c = base_config(SCREEN_SSGI, M_HYBRID);
+    cli_reference direct;
+    voxgi_render_desc rd, vd;
+    voxgi_render_info vi;
+    int k;
+    if (a->which != SCREEN_SSGI) return 0;
+    /* the direct light alone: the reference's, converged */
+    if (cli_reference_make(run->s, run->ctx, run->scene, &run->camera, a->o.spp, 0, 0, &direct)) return 1;
+    a->direct_rmse[si] = cli_masked_error(&R[0].mask, direct.image, R[0].image, NULL, NULL);
+    cli_reference_free(&direct);
+    /* the most a bounce from the screen can find: the reference's bounce from the surfaces the camera sees alone */
+    memset(&rd, 0, sizeof rd);
+    rd.method = VOXGI_RENDER_REFERENCE;
+    rd.camera = run->camera;
+    rd.samples = a->o.spp;
+    rd.bounces = 1;
+    rd.seed = 1000003; /* cli_reference_make's: the same noise as the full bounce's where they agree */
+    rd.hide_emitters = 1;
+    rd.reference.screen_light_only = 1;
+    cli_status(run->s, "%s: the reference's bounce from the screen alone, %d spp", run->scene_name, a->o.spp);
+    if (voxgi_render(run->ctx, run->scene, &rd, run->img, bytes, NULL) != VOXGI_OK)
+        return cli_fail_lib(run->s, run->ctx, "the reference's bounce from the screen alone");
+    a->screen_rmse[si] = cli_masked_error(&R[0].mask, run->img, R[0].image, NULL, NULL);
+    /* Hybrid-GI converged: what it still misses is light from surfaces the camera does not see;
+       with the hidden light, what the voxels' injected light gives of it */
+    c.rays = 256;
+    c.res = 0;
+    for (k = 0; k < a->res.n; k++) c.res = c.res > (int)a->res.v[k] ? c.res : (int)a->res.v[k]; /* the finest of --res: 256 by default */
+    c.radius = 1.75;
+    a->converged_res = c.res;
+    for (k = 0; k < 2; k++) {
+        report_item it;
+        c.hidden = k;
+        cli_status(run->s, "%s: Hybrid-GI converged%s", run->scene_name, k ? ", hidden light" : "");
+        if (render_config(run->ctx, run->scene, &run->camera, a->longest[si], &c, run->img, &it) != VOXGI_OK)
+            return cli_fail_lib(run->s, run->ctx, "Hybrid-GI converged");
+        a->converged[si][k].rmse = cli_masked_error(&R[0].mask, run->img, R[0].image, NULL, NULL);
+        a->converged[si][k].ms = it.ms;
+    }
+    cli_vct_defaults(&vd, &run->camera);
+    cli_status(run->s, "%s: cone tracing, the tool's defaults", run->scene_name);
+    if (voxgi_render(run->ctx, run->scene, &vd, run->img, bytes, &vi) != VOXGI_OK) return cli_fail_lib(run->s, run->ctx, "cone tracing");
+    a->vct[si].rmse = cli_masked_error(&R[0].mask, run->img, R[0].image, NULL, NULL);
+    a->vct[si].ms = vi.ms;
+    return 0;
 }
 
 /* ------------------------------------------------------------------ view-independence of AO */
@@ -465,13 +431,14 @@ static int compare_doubles(const void *p, const void *q)
    ways: at the surface of the pixel that shows the point (what an image shows there), and at the
    point itself, put in that pixel's G-buffer in place of its surface (the same world point in
    every view: what differs is what the view shows and the pixel's random rotation). */
-static int ao_views(cli_session *s, voxgi_context *ctx, const screen_args *a, screen_report *rep)
+static int ao_views(cli_session *s, voxgi_context *ctx, screen_report *a)
 {
-    const int w = a->size[0], h = a->size[1];
+    const int w = a->o.size[0], h = a->o.size[1];
     const size_t pixels = (size_t)w * (size_t)h;
     voxgi_builtin_scene bs;
     voxgi_voxelize_desc vd;
     voxgi_voxels *vox = NULL;
+    const voxgi_scene *box;
     voxgi_camera def;
     float *pos = (float *)malloc(pixels * 12), *nrm = (float *)malloc(pixels * 12), *moved = (float *)malloc(pixels * 12),
           *turned = (float *)malloc(pixels * 12), *sparse = (float *)malloc(pixels * 12), *ao = (float *)malloc(pixels * 4);
@@ -482,8 +449,8 @@ static int ao_views(cli_session *s, voxgi_context *ctx, const screen_args *a, sc
     size_t np = 0, x, y, most = (size_t)((w + VIEW_STRIDE - 1) / VIEW_STRIDE) * (size_t)((h + VIEW_STRIDE - 1) / VIEW_STRIDE);
     memset(&bs, 0, sizeof bs);
     memset(&vd, 0, sizeof vd);
-    rep->view_rays = 0;
-    for (i = 0; i < a->nrays; i++) rep->view_rays = rep->view_rays > (int)a->rays[i] ? rep->view_rays : (int)a->rays[i];
+    a->view_rays = 0;
+    for (i = 0; i < a->rays.n; i++) a->view_rays = a->view_rays > (int)a->rays.v[i] ? a->view_rays : (int)a->rays.v[i];
     pts = (double *)malloc(most * 3 * sizeof *pts);
     pnrm = (double *)malloc(most * 3 * sizeof *pnrm);
     lo = (double *)malloc(most * 8 * sizeof *lo);
@@ -495,14 +462,8 @@ static int ao_views(cli_session *s, voxgi_context *ctx, const screen_args *a, sc
         cli_fail(s, "the views: out of memory");
         goto done;
     }
-    if (voxgi_builtin_scene_create(ctx, "cornell-box", &bs) != VOXGI_OK) {
-        cli_fail_lib(s, ctx, "cornell-box");
-        goto done;
-    }
-    def = bs.camera;
-    def.width = w;
-    def.height = h;
-    rep->view_radius = 0.1 * cli_scene_longest_side(&bs.scene);
+    if (report_scene_open(s, ctx, "cornell-box", NULL, &bs, &box, &def, w, h)) goto done;
+    a->view_radius = 0.1 * cli_scene_longest_side(&bs.scene);
     cli_status(s, "the views: %d^3 voxels", VIEW_RES);
     if (cli_fit_grid(ctx, &bs.scene, VIEW_RES, 0, 0, &vd.grid) != VOXGI_OK || voxgi_voxelize(ctx, &bs.scene, &vd, &vox) != VOXGI_OK) {
         cli_fail_lib(s, ctx, "the views' voxels");
@@ -566,9 +527,9 @@ static int ao_views(cli_session *s, voxgi_context *ctx, const screen_args *a, sc
                 d.method = m ? VOXGI_AO_VOXELS : VOXGI_AO_SCREEN;
                 d.voxels = vox;
                 d.traversal = VOXGI_TRAVERSAL_HIERARCHICAL;
-                d.rays = rep->view_rays;
+                d.rays = a->view_rays;
                 d.steps = 16;
-                d.radius = (float)rep->view_radius;
+                d.radius = (float)a->view_radius;
                 d.seed = group ? (uint64_t)(pass - VIEW_COUNT + 1) : 1;
                 cli_status(s, "the views: %s %d of %d, %s, %s", group ? "seed" : "view", pass % VIEW_COUNT + 1, VIEW_COUNT, m ? "voxels" : "depth buffer",
                            reading ? "at the points" : "at the pixels");
@@ -587,7 +548,7 @@ static int ao_views(cli_session *s, voxgi_context *ctx, const screen_args *a, sc
     for (g = 0; g < 2; g++)
         for (reading = 0; reading < 2; reading++)
             for (m = 0; m < 2; m++) {
-                view_spread *V = &rep->views[g][reading][m];
+                view_spread *V = &a->views[g][reading][m];
                 size_t k, n = 0, passes = 0;
                 double sum = 0;
                 for (k = 0; k < np; k++)
@@ -697,11 +658,12 @@ static int wall_gbuffer(cli_session *s, voxgi_context *ctx, const voxgi_scene *s
    (the light's own tint, red over green, bounces off every white surface too; the green wall
    bleeds green). The direct light elsewhere does not depend on the wall's albedo: with the same
    seeds it cancels. */
-static int ssgi_wall(cli_session *s, voxgi_context *ctx, const screen_args *a, screen_report *rep, float *img)
+static int ssgi_wall(cli_session *s, voxgi_context *ctx, screen_report *a, float *img)
 {
-    const int w = a->size[0], h = a->size[1];
+    const int w = a->o.size[0], h = a->o.size[1];
     const size_t pixels = (size_t)w * (size_t)h;
     voxgi_builtin_scene bs;
+    const voxgi_scene *box;
     voxgi_scene grey_scene;
     voxgi_material *grey_materials = NULL;
     voxgi_camera def;
@@ -720,13 +682,7 @@ static int ssgi_wall(cli_session *s, voxgi_context *ctx, const screen_args *a, s
         cli_fail(s, "the wall: out of memory");
         goto done;
     }
-    if (voxgi_builtin_scene_create(ctx, "cornell-box", &bs) != VOXGI_OK) {
-        cli_fail_lib(s, ctx, "cornell-box");
-        goto done;
-    }
-    def = bs.camera;
-    def.width = w;
-    def.height = h;
+    if (report_scene_open(s, ctx, "cornell-box", NULL, &bs, &box, &def, w, h)) goto done;
     longest = cli_scene_longest_side(&bs.scene);
     grey_scene = bs.scene;
     if (!(grey_materials = (voxgi_material *)malloc((bs.scene.material_count ? bs.scene.material_count : 1) * sizeof *grey_materials))) {
@@ -741,9 +697,9 @@ static int ssgi_wall(cli_session *s, voxgi_context *ctx, const screen_args *a, s
         }
     }
     grey_scene.materials = grey_materials;
-    rep->walls[0].yaw = 0;
-    rep->walls[1].yaw = rep->walls[2].yaw = -1;
-    for (step = 0; step * WALL_YAW_STEP <= 90 && rep->walls[2].yaw < 0; step++) { /* the first yaws at which the wall is a sliver, then gone */
+    a->walls[0].yaw = 0;
+    a->walls[1].yaw = a->walls[2].yaw = -1;
+    for (step = 0; step * WALL_YAW_STEP <= 90 && a->walls[2].yaw < 0; step++) { /* the first yaws at which the wall is a sliver, then gone */
         const double yaw = step * WALL_YAW_STEP;
         size_t count;
         int widest;
@@ -753,23 +709,23 @@ static int ssgi_wall(cli_session *s, voxgi_context *ctx, const screen_args *a, s
             cli_fail(s, "the Cornell box's red wall is not in its view");
             goto done;
         }
-        if (count && widest <= WALL_SLIVER && rep->walls[1].yaw < 0) rep->walls[1].yaw = yaw;
+        if (count && widest <= WALL_SLIVER && a->walls[1].yaw < 0) a->walls[1].yaw = yaw;
         if (count) last_seen = yaw;
-        else rep->walls[2].yaw = yaw;
+        else a->walls[2].yaw = yaw;
     }
-    if (rep->walls[2].yaw < 0) {
+    if (a->walls[2].yaw < 0) {
         cli_fail(s, "the Cornell box's red wall stays in view however far the camera turns");
         goto done;
     }
-    if (rep->walls[1].yaw < 0) rep->walls[1].yaw = last_seen; /* it left between two steps: its last sight */
-    rep->walls[2].yaw += def.fovy_degrees / h; /* a pixel further: no ray of the direct light, spread over the pixel, meets it */
+    if (a->walls[1].yaw < 0) a->walls[1].yaw = last_seen; /* it left between two steps: its last sight */
+    a->walls[2].yaw += def.fovy_degrees / h; /* a pixel further: no ray of the direct light, spread over the pixel, meets it */
     for (v = 0; v < 3; v++) {
-        wall_view *W = &rep->walls[v];
+        wall_view *W = &a->walls[v];
         const voxgi_camera cam = turned_camera(&def, W->yaw);
         if (wall_gbuffer(s, ctx, &bs.scene, &def, W->yaw, tri)) goto done;
         red_pixels(&bs.scene, tri, w, h, WALL_FINE, red, &W->red_pixels, &W->widest);
-        if (cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 1, 0, &R1) || cli_reference_make(s, ctx, &bs.scene, &cam, a->spp, 0, 0, &R0) ||
-            cli_reference_make(s, ctx, &grey_scene, &cam, a->spp, 1, 0, &G1))
+        if (cli_reference_make(s, ctx, &bs.scene, &cam, a->o.spp, 1, 0, &R1) || cli_reference_make(s, ctx, &bs.scene, &cam, a->o.spp, 0, 0, &R0) ||
+            cli_reference_make(s, ctx, &grey_scene, &cam, a->o.spp, 1, 0, &G1))
             goto done;
         W->rmse[WALL_REFERENCE] = 0;
         W->bleed[WALL_REFERENCE] = red_bleeding(R1.image, R0.image, red, &R1.mask);
@@ -778,13 +734,12 @@ static int ssgi_wall(cli_session *s, voxgi_context *ctx, const screen_args *a, s
         W->bleed[WALL_DIRECT] = W->colour[WALL_DIRECT] = 0;
         for (k = WALL_SSGI; k < WALL_METHODS; k++) {
             screen_config c = base_config(SCREEN_SSGI, k == WALL_SSGI ? M_SSGI : M_HYBRID);
-            screen_row row;
-            memset(&row, 0, sizeof row);
+            report_item it;
             c.rays = WALL_RAYS;
             c.hidden = k == WALL_HIDDEN;
             cli_status(s, "the wall %s: %s", wall_view_names[v], wall_method_names[k]);
-            if (render_config(ctx, &grey_scene, &cam, longest, &c, grey, &row) != VOXGI_OK ||
-                render_config(ctx, &bs.scene, &cam, longest, &c, img, &row) != VOXGI_OK) {
+            if (render_config(ctx, &grey_scene, &cam, longest, &c, grey, &it) != VOXGI_OK ||
+                render_config(ctx, &bs.scene, &cam, longest, &c, img, &it) != VOXGI_OK) {
                 cli_fail_lib(s, ctx, wall_method_names[k]);
                 goto done;
             }
@@ -810,16 +765,9 @@ done:
 }
 
 /* ------------------------------------------------------------------ output */
-/* A percentage, or "-" when there is none. */
-static void put_percent(FILE *f, double v, const char *after)
-{
-    if (isfinite(v)) fprintf(f, "%.2f%%%s", 100 * v, after);
-    else fprintf(f, "-%s", after);
-}
-
 static const char *const view_method_names[2] = {"SSAO (ray marching, 16 steps)", "voxel AO (128^3)"}, *const view_reading_names[2] = {"the pixel's surface", "the point"};
 
-static void write_views(FILE *f, const screen_args *a, const screen_report *rep)
+static void write_views(FILE *f, const screen_report *a)
 {
     int m, reading;
     fprintf(f, "\n## View-independence: the Cornell box from 9 views\n\nNine cameras on an arc before the box's open front: the default eye's "
@@ -833,19 +781,19 @@ static void write_views(FILE *f, const screen_args *a, const screen_report *rep)
                "last columns: the middle view alone with 9 seeds, the part of the spread that is Monte Carlo noise (each pixel rotates its "
                "rays by its own random numbers).\n\n| occlusion | read at | points | views per point | mean spread | 95th percentile | 9 seeds: "
                "mean spread | 95th percentile |\n|---|---|---:|---:|---:|---:|---:|---:|\n",
-            a->size[0], a->size[1], VIEW_STRIDE, rep->view_rays, rep->view_radius);
+            a->o.size[0], a->o.size[1], VIEW_STRIDE, a->view_rays, a->view_radius);
     for (reading = 0; reading < 2; reading++)
         for (m = 0; m < 2; m++) {
-            const view_spread *O = &rep->views[0][reading][m], *S = &rep->views[1][reading][m];
+            const view_spread *O = &a->views[0][reading][m], *S = &a->views[1][reading][m];
             fprintf(f, "| %s | %s | %lu | %.1f | %.4f | %.4f | %.4f | %.4f |\n", view_method_names[m], view_reading_names[reading], (unsigned long)O->points,
                     O->passes, O->mean, O->p95, S->mean, S->p95);
         }
 }
 
 /* x / of, a percentage; "-" without a share. */
-static void put_share(FILE *f, double x, double of, const char *after) { put_percent(f, of != 0 ? x / of : NAN, after); }
+static void put_share(FILE *f, double x, double of, const char *after) { report_percent(f, of != 0 ? x / of : NAN, after); }
 
-static void write_wall(FILE *f, const screen_args *a, const screen_report *rep)
+static void write_wall(FILE *f, const screen_report *a)
 {
     int v, k;
     fprintf(f, "\n## A wall barely in view: the Cornell box\n\nThe camera at the box's eye turned towards the green wall (about +Y, %d x %d): "
@@ -859,15 +807,15 @@ static void write_wall(FILE *f, const screen_args *a, const screen_report *rep)
                "rest. Each also as a share of the reference's one bounce. SSGI and Hybrid-GI (also with the hidden light): %d rays, the rest the "
                "base. Error: against the reference's one bounce.\n\n| view | yaw | red wall pixels (widest row) | method | rel. RMSE | red - green | share | from the "
                "wall's colour | share |\n|---|---:|---:|---|---:|---:|---:|---:|---:|\n",
-            a->size[0], a->size[1], WALL_YAW_STEP, WALL_SLIVER, WALL_FINE, WALL_FINE, a->spp, WALL_RAYS);
+            a->o.size[0], a->o.size[1], WALL_YAW_STEP, WALL_SLIVER, WALL_FINE, WALL_FINE, a->o.spp, WALL_RAYS);
     for (v = 0; v < 3; v++) {
-        const wall_view *W = &rep->walls[v];
+        const wall_view *W = &a->walls[v];
         for (k = 0; k < WALL_METHODS; k++) {
             if (k == 0) fprintf(f, "| %s | %g° | %lu (%d) | ", wall_view_names[v], W->yaw, (unsigned long)W->red_pixels, W->widest);
             else fprintf(f, "| | | | ");
             fprintf(f, "%s | ", wall_method_names[k]);
             if (k == WALL_REFERENCE) fprintf(f, "- | ");
-            else put_percent(f, W->rmse[k], " | ");
+            else report_percent(f, W->rmse[k], " | ");
             fprintf(f, "%.5f | ", W->bleed[k]);
             put_share(f, W->bleed[k], W->bleed[WALL_REFERENCE], " | ");
             fprintf(f, "%.5f | ", W->colour[k]);
@@ -876,144 +824,125 @@ static void write_wall(FILE *f, const screen_args *a, const screen_report *rep)
     }
 }
 
-static int screen_write(cli_session *s, const screen_args *a, const screen_report *rep)
+static void screen_md_head(FILE *md, const report *rep)
 {
-    const int ao = a->which == SCREEN_AO;
+    const screen_report *a = (const screen_report *)rep->own;
     const voxgi_info *ci = &rep->ci;
-    const char *name = report_names[a->which];
-    char path[1100];
-    FILE *md, *csv;
-    int si, i, k;
-    snprintf(path, sizeof path, "%s/%s.md", a->out_dir, name);
-    if (!(md = fopen(path, "w"))) return cli_fail(s, "cannot write %s", path);
-    snprintf(path, sizeof path, "%s/%s.csv", a->out_dir, name);
-    if (!(csv = fopen(path, "w"))) {
-        fclose(md);
-        return cli_fail(s, "cannot write %s", path);
-    }
-    if (ao)
-        fprintf(md, "# Ambient occlusion from the screen and from the voxels: error against run time\n\n%d x %d pixels; occlusion against the "
-                    "reference's ambient occlusion at the same radius (%d spp); %s%s%s (%d threads). One parameter at a time around the base (16 "
-                    "rays, 16 steps, radius 0.1 of the scene's longest side, 128 voxels, full resolution, no blur), and half resolution with each "
-                    "blur. *Radius*: a share of the scene's longest side. Error: relative RMSE by the tools' rule (`voxgi render --compare`); it "
-                    "is relative to the mean occlusion, which is small: small absolute errors weigh heavily. *Reference at the same error*: the "
-                    "time the path tracer's AO needs for an image that measures that error (from its own convergence). The Pareto front: of each "
-                    "scene and radius. Wall clock on this machine%s.\n",
-                a->size[0], a->size[1], a->spp, voxgi_backend_name(ci->backend), ci->backend == VOXGI_BACKEND_GL ? ", " : "",
-                ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "", ci->thread_count,
-                ci->backend == VOXGI_BACKEND_GL && ci->gl_software ? " (GL on a software rasteriser: not GPU timings)" : "");
-    else
-        fprintf(md, "# One bounce from the screen (SSGI, Hybrid-GI): error against run time\n\n%d x %d pixels; direct light and one bounce against "
-                    "the reference's one bounce (%d spp); %s%s%s (%d threads). One parameter at a time around the base (16 rays, 16 steps, radius "
-                    "1 x the scene's longest side, 128 voxels, full resolution, no blur), and half resolution with each blur. *Radius*: a share of "
-                    "the scene's longest side. Error: relative RMSE by the tools' rule (`voxgi render --compare`). *Red excess*: red light beyond "
-                    "the reference's, a share of its mean. *Reference at the same error*: the time the path tracer needs for an image that "
-                    "measures that error (from its own convergence). Wall clock on this machine%s.\n",
-                a->size[0], a->size[1], a->spp, voxgi_backend_name(ci->backend), ci->backend == VOXGI_BACKEND_GL ? ", " : "",
-                ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "", ci->thread_count,
-                ci->backend == VOXGI_BACKEND_GL && ci->gl_software ? " (GL on a software rasteriser: not GPU timings)" : "");
-    fprintf(csv, "scene,method,rays,steps,radius_share,radius,res,half_res,blur,gathered,%s,ms,rel_rmse,%sreference_ms,pareto\n", ao ? "ao_ms" : "gather_ms",
-            ao ? "" : "red_excess,");
-    for (si = 0; si < rep->scene_count; si++) {
-        fprintf(md, "\n## %s\n\nThe longest side: %.4g. %lu pixels near an emitter left out. Reference: ", rep->scenes[si], rep->longest[si],
-                (unsigned long)rep->masked[si]);
-        for (k = 0; k < (ao ? rep->nradii : 1); k++) {
-            if (ao) fprintf(md, "%sradius %g (%.4g): ", k ? "; " : "", rep->radii[k], rep->radii[k] * rep->longest[si]);
-            fprintf(md, "its error is %.2f%% / sqrt(spp), %.2f ms per sample per pixel", 100 * rep->ref_c[si][k], rep->ref_ms_per_spp[si][k]);
-        }
-        if (!ao) {
-            fprintf(md, ". The direct light alone measures ");
-            put_percent(md, rep->direct_rmse[si], "");
-        }
-        fprintf(md, ".\n\n| method | rays | steps | radius | voxels | half res. | blur | pixels computed | %s ms | total ms | rel. RMSE | %sreference at the "
-                    "same error | Pareto |\n|---|---:|---:|---:|---:|:-:|---:|---:|---:|---:|---:|%s---:|:-:|\n",
-                ao ? "occlusion" : "gathers", ao ? "" : "red excess | ", ao ? "" : "---:|");
-        for (i = 0; i < rep->nrows; i++) {
-            const screen_row *r = &rep->rows[i];
-            if (r->scene != si) continue;
-            fprintf(md, "| ");
-            config_columns(md, &r->c, rep->longest[si], " | ", 0);
-            fprintf(md, " | %lu | %.1f | %.1f | ", (unsigned long)r->gathered, r->ms_pass, r->ms);
-            put_percent(md, r->rmse, " | ");
-            if (!ao) put_percent(md, r->red, " | ");
-            if (isfinite(r->ref_ms)) fprintf(md, "%.0f ms | %s |\n", r->ref_ms, r->pareto ? "yes" : "");
-            else fprintf(md, "beyond its reference | %s |\n", r->pareto ? "yes" : "");
-            fprintf(csv, "%s,", rep->scenes[si]);
-            config_columns(csv, &r->c, rep->longest[si], ",", 1);
-            fprintf(csv, ",%lu,%.3f,%.3f,%.6g,", (unsigned long)r->gathered, r->ms_pass, r->ms, r->rmse);
-            if (!ao) fprintf(csv, "%.6g,", r->red);
-            fprintf(csv, "%.6g,%d\n", isfinite(r->ref_ms) ? r->ref_ms : -1.0, r->pareto);
-        }
-    }
-    if (ao) write_views(md, a, rep);
-    else {
-        fprintf(md, "\n## Light the screen cannot see\n\nWhat no bounce from the screen can find is light from surfaces the camera does "
-                    "not see. *Screen light alone*: the reference's bounce from the surfaces the camera sees only (`voxgi render "
-                    "--screen-light-only`, %d spp), the floor of every screen method's error. *Hybrid-GI converged*: 256 rays, %d voxels (the finest of "
-                    "--res), radius 1.75, full resolution, no blur; *with the hidden light*: the same with hits the camera does not see sending the direct light "
-                    "injected into their voxels (`--hidden-light`, an extension beyond the screen). Beside them the direct light alone and cone "
-                    "tracing with the tool's defaults (`voxgi render --method vct`: %d^3, anisotropic, %d cones at every %dth pixel, %d "
-                    "direct-light rays per pixel), the same scene and size.\n\n| scene | direct light alone | screen light alone | Hybrid-GI "
-                    "converged | its time | with the hidden light | its time | cone tracing | its time |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
-                a->spp, rep->scene_count ? rep->converged[0].c.res : 0, CLI_VCT_RES, CLI_VCT_CONES, CLI_VCT_STRIDE, CLI_VCT_DIRECT_SPP);
-        for (si = 0; si < rep->scene_count; si++) {
-            fprintf(md, "| %s | ", rep->scenes[si]);
-            put_percent(md, rep->direct_rmse[si], " | ");
-            put_percent(md, rep->screen_rmse[si], " | ");
-            put_percent(md, rep->converged[si].rmse, "");
-            fprintf(md, " | %.0f ms | ", rep->converged[si].ms);
-            put_percent(md, rep->hidden[si].rmse, "");
-            fprintf(md, " | %.0f ms | ", rep->hidden[si].ms);
-            put_percent(md, rep->vct_rmse[si], "");
-            fprintf(md, " | %.0f ms |\n", rep->vct_ms[si]);
-        }
-        write_wall(md, a, rep);
-    }
-    i = ferror(md) || ferror(csv);
-    i |= fclose(md) != 0;
-    i |= fclose(csv) != 0;
-    return i ? cli_fail(s, "cannot write to %s", a->out_dir) : 0;
+    fprintf(md,
+            a->which == SCREEN_AO
+                ? "# Ambient occlusion from the screen and from the voxels: error against run time\n\n%d x %d pixels; occlusion against the "
+                  "reference's ambient occlusion at the same radius (%d spp); %s%s%s (%d threads). One parameter at a time around the base (16 "
+                  "rays, 16 steps, radius 0.1 of the scene's longest side, 128 voxels, full resolution, no blur), and half resolution with each "
+                  "blur. *Radius*: a share of the scene's longest side. Error: relative RMSE by the tools' rule (`voxgi render --compare`); it "
+                  "is relative to the mean occlusion, which is small: small absolute errors weigh heavily. *Reference at the same error*: the "
+                  "time the path tracer's AO needs for an image that measures that error (from its own convergence). The Pareto front: of each "
+                  "scene and radius. Wall clock on this machine%s.\n"
+                : "# One bounce from the screen (SSGI, Hybrid-GI): error against run time\n\n%d x %d pixels; direct light and one bounce against "
+                  "the reference's one bounce (%d spp); %s%s%s (%d threads). One parameter at a time around the base (16 rays, 16 steps, radius "
+                  "1 x the scene's longest side, 128 voxels, full resolution, no blur), and half resolution with each blur. *Radius*: a share of "
+                  "the scene's longest side. Error: relative RMSE by the tools' rule (`voxgi render --compare`). *Red excess*: red light beyond "
+                  "the reference's, a share of its mean. *Reference at the same error*: the time the path tracer needs for an image that "
+                  "measures that error (from its own convergence). Wall clock on this machine%s.\n",
+            a->o.size[0], a->o.size[1], a->o.spp, voxgi_backend_name(ci->backend), ci->backend == VOXGI_BACKEND_GL ? ", " : "",
+            ci->backend == VOXGI_BACKEND_GL ? ci->gl_renderer : "", ci->thread_count,
+            ci->backend == VOXGI_BACKEND_GL && ci->gl_software ? " (GL on a software rasteriser: not GPU timings)" : "");
 }
 
-/* The fronts and the sections' numbers on stdout. */
-static void screen_print(const screen_args *a, const screen_report *rep)
+static void screen_md_scene(FILE *md, const report *rep, int si, int end)
 {
-    char text[160];
-    int si, i, v, k;
-    for (si = 0; si < rep->scene_count; si++) {
-        printf("%s (%lu pixels near an emitter left out)", rep->scenes[si], (unsigned long)rep->masked[si]);
+    const screen_report *a = (const screen_report *)rep->own;
+    const report_scene *sc = &rep->scenes[si];
+    int k;
+    if (end) return;
+    fprintf(md, "\n## %s\n\nThe longest side: %.4g. %lu pixels near an emitter left out. Reference: ", sc->name, a->longest[si], (unsigned long)sc->masked);
+    for (k = 0; k < a->nref_radii; k++) {
+        if (a->which == SCREEN_AO) fprintf(md, "%sradius %g (%.4g): ", k ? "; " : "", a->ref_radii[k], a->ref_radii[k] * a->longest[si]);
+        fprintf(md, "its error is %.2f%% / sqrt(spp), %.2f ms per sample per pixel", 100 * sc->c[k], sc->ms_per_spp[k]);
+    }
+    if (a->which == SCREEN_SSGI) {
+        fprintf(md, ". The direct light alone measures ");
+        report_percent(md, a->direct_rmse[si], "");
+    }
+    fprintf(md, ".\n\n");
+}
+
+static int screen_md_end(report *rep, FILE *md, FILE *csv)
+{
+    const screen_report *a = (const screen_report *)rep->own;
+    int si;
+    (void)csv;
+    if (a->which == SCREEN_AO) {
+        write_views(md, a);
+        return 0;
+    }
+    fprintf(md, "\n## Light the screen cannot see\n\nWhat no bounce from the screen can find is light from surfaces the camera does "
+                "not see. *Screen light alone*: the reference's bounce from the surfaces the camera sees only (`voxgi render "
+                "--screen-light-only`, %d spp), the floor of every screen method's error. *Hybrid-GI converged*: 256 rays, %d voxels (the finest of "
+                "--res), radius 1.75, full resolution, no blur; *with the hidden light*: the same with hits the camera does not see sending the direct light "
+                "injected into their voxels (`--hidden-light`, an extension beyond the screen). Beside them the direct light alone and cone "
+                "tracing with the tool's defaults (`voxgi render --method vct`: %d^3, anisotropic, %d cones at every %dth pixel, %d "
+                "direct-light rays per pixel), the same scene and size.\n\n| scene | direct light alone | screen light alone | Hybrid-GI "
+                "converged | its time | with the hidden light | its time | cone tracing | its time |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+            a->o.spp, a->converged_res, CLI_VCT_RES, CLI_VCT_CONES, CLI_VCT_STRIDE, CLI_VCT_DIRECT_SPP);
+    for (si = 0; si < rep->nscenes; si++) {
+        fprintf(md, "| %s | ", rep->scenes[si].name);
+        report_percent(md, a->direct_rmse[si], " | ");
+        report_percent(md, a->screen_rmse[si], " | ");
+        report_percent(md, a->converged[si][0].rmse, "");
+        fprintf(md, " | %.0f ms | ", a->converged[si][0].ms);
+        report_percent(md, a->converged[si][1].rmse, "");
+        fprintf(md, " | %.0f ms | ", a->converged[si][1].ms);
+        report_percent(md, a->vct[si].rmse, "");
+        fprintf(md, " | %.0f ms |\n", a->vct[si].ms);
+    }
+    write_wall(md, a);
+    return 0;
+}
+
+static void screen_print_scene(const report *rep, int si, int end)
+{
+    const screen_report *a = (const screen_report *)rep->own;
+    if (!end) {
+        printf("%s (%lu pixels near an emitter left out)", rep->scenes[si].name, (unsigned long)rep->scenes[si].masked);
         if (a->which == SCREEN_SSGI) {
             printf("; direct light alone ");
-            put_percent(stdout, rep->direct_rmse[si], "");
+            report_percent(stdout, a->direct_rmse[si], "");
         }
         printf("; the front%s:\n", a->which == SCREEN_AO ? " of each radius" : "");
-        for (i = 0; i < rep->nrows; i++) {
-            const screen_row *q = &rep->rows[i];
-            if (q->scene != si || !q->pareto) continue;
-            config_text(&q->c, text, sizeof text);
-            printf("  %-62s %8.1f ms  ", text, q->ms);
-            put_percent(stdout, q->rmse, "\n");
-        }
-        if (a->which == SCREEN_SSGI) {
-            printf("  screen light alone (the reference's) ");
-            put_percent(stdout, rep->screen_rmse[si], "");
-            printf("; Hybrid-GI converged %.1f ms  ", rep->converged[si].ms);
-            put_percent(stdout, rep->converged[si].rmse, "");
-            printf(", with the hidden light %.1f ms  ", rep->hidden[si].ms);
-            put_percent(stdout, rep->hidden[si].rmse, "");
-            printf("; cone tracing (the tool's defaults) %.1f ms  ", rep->vct_ms[si]);
-            put_percent(stdout, rep->vct_rmse[si], "\n");
-        }
+    } else if (a->which == SCREEN_SSGI) {
+        printf("  screen light alone (the reference's) ");
+        report_percent(stdout, a->screen_rmse[si], "");
+        printf("; Hybrid-GI converged %.1f ms  ", a->converged[si][0].ms);
+        report_percent(stdout, a->converged[si][0].rmse, "");
+        printf(", with the hidden light %.1f ms  ", a->converged[si][1].ms);
+        report_percent(stdout, a->converged[si][1].rmse, "");
+        printf("; cone tracing (the tool's defaults) %.1f ms  ", a->vct[si].ms);
+        report_percent(stdout, a->vct[si].rmse, "\n");
     }
+}
+
+static void screen_print_row(const report *rep, const report_row *q)
+{
+    char text[200];
+    (void)rep;
+    snprintf(text, sizeof text, "%s, %s", q->it.method, q->it.settings);
+    printf("  %-62s %8.1f ms  ", text, q->it.ms);
+    report_percent(stdout, q->it.error, "\n");
+}
+
+static void screen_print_end(const report *rep)
+{
+    const screen_report *a = (const screen_report *)rep->own;
+    int v, k;
     if (a->which == SCREEN_AO)
         for (k = 0; k < 4; k++) {
-            const view_spread *O = &rep->views[0][k / 2][k % 2], *S = &rep->views[1][k / 2][k % 2];
+            const view_spread *O = &a->views[0][k / 2][k % 2], *S = &a->views[1][k / 2][k % 2];
             printf("view-independence (cornell-box, %d rays), %s at %s: %lu points, spread over 9 views mean %.4f, 95th percentile %.4f; over 9 seeds %.4f, %.4f\n",
-                   rep->view_rays, view_method_names[k % 2], view_reading_names[k / 2], (unsigned long)O->points, O->mean, O->p95, S->mean, S->p95);
+                   a->view_rays, view_method_names[k % 2], view_reading_names[k / 2], (unsigned long)O->points, O->mean, O->p95, S->mean, S->p95);
         }
     else
         for (v = 0; v < 3; v++) {
-            const wall_view *W = &rep->walls[v];
+            const wall_view *W = &a->walls[v];
             printf("red wall %s (yaw %g, %lu pixels), a share of the reference's: red - green SSGI ", wall_view_names[v], W->yaw, (unsigned long)W->red_pixels);
             put_share(stdout, W->bleed[WALL_SSGI], W->bleed[WALL_REFERENCE], ", Hybrid-GI ");
             put_share(stdout, W->bleed[WALL_HYBRID], W->bleed[WALL_REFERENCE], "; from the wall's colour SSGI ");
@@ -1023,139 +952,75 @@ static void screen_print(const screen_args *a, const screen_report *rep)
         }
 }
 
+/* ao: the view-independence; ssgi: the red wall. */
+static int screen_done(report *rep)
+{
+    screen_report *a = (screen_report *)rep->own;
+    return a->which == SCREEN_AO ? ao_views(&rep->s, rep->c.vx, a) : ssgi_wall(&rep->s, rep->c.vx, a, rep->img);
+}
+
+static const report_def screen_defs[2] = {
+    {.name = "ao", .help = ao_help, .columns = ao_columns, .ncolumns = CLI_COUNT(ao_columns), .sweep = screen_sweep, .open = screen_open,
+     .references = screen_references, .done = screen_done, .md_head = screen_md_head, .md_scene = screen_md_scene, .md_end = screen_md_end,
+     .print_scene = screen_print_scene, .print_row = screen_print_row, .print_end = screen_print_end},
+    {.name = "ssgi", .help = ssgi_help, .columns = ssgi_columns, .ncolumns = CLI_COUNT(ssgi_columns), .sweep = screen_sweep, .open = screen_open,
+     .references = screen_references, .scene_done = screen_scene_done, .done = screen_done, .md_head = screen_md_head, .md_scene = screen_md_scene,
+     .md_end = screen_md_end, .print_scene = screen_print_scene, .print_row = screen_print_row, .print_end = screen_print_end}};
+
 /* report all's screen passes: the one-parameter sweeps around the base over rays and voxels, at
    the base's radius (its reference's), and half resolution with the tools' blur (ao 2, ssgi 8). */
 static int screen_all(report_run *run, int which)
 {
-    static const double rays[] = {4, 16, 64}, quick_rays[] = {16}, res[] = {64, 128}, quick_res[] = {64};
-    screen_args a;
-    screen_report *rep = (screen_report *)calloc(1, sizeof *rep);
-    int rc;
-    if (!rep || !(rep->rows = (screen_row *)calloc(CLI_COUNT(ao_methods) * SWEEP_MAX, sizeof *rep->rows))) {
-        free(rep);
-        return cli_fail(run->s, "out of memory");
-    }
+    screen_report a;
     memset(&a, 0, sizeof a);
     a.which = which;
-#define SET(field, count, from) (memcpy(a.field, from, sizeof from), a.count = CLI_COUNT(from))
-    if (run->quick) SET(rays, nrays, quick_rays), SET(res, nres, quick_res);
-    else SET(rays, nrays, rays), SET(res, nres, res);
-#undef SET
-    a.steps[0] = 16;
-    a.blurs[0] = which == SCREEN_AO ? 2 : 8;
-    a.radii[0] = rep->radii[0] = base_config(which, M_SSAO).radius;
-    a.nsteps = a.nblurs = a.nradii = rep->nradii = 1;
-    rep->longest[0] = cli_scene_longest_side(run->scene);
-    rc = screen_sweep(run->s, run->ctx, &a, rep, 0, run->scene, run->scene_name, &run->camera, run->R, run->img, run);
-    free(rep->rows);
-    free(rep);
-    return rc;
+    a.rays = run->quick ? (report_list)REPORT_L(16) : (report_list)REPORT_L(4, 16, 64);
+    a.res = run->quick ? (report_list)REPORT_L(64) : (report_list)REPORT_L(64, 128);
+    a.steps = (report_list)REPORT_L(16);
+    a.blurs = which == SCREEN_AO ? (report_list)REPORT_L(2) : (report_list)REPORT_L(8);
+    a.radii.v[0] = a.ref_radii[0] = base_config(which, M_SSAO).radius;
+    a.radii.n = a.nref_radii = 1;
+    run->args = &a;
+    return screen_sweep(run);
 }
 
 int report_ao_all(report_run *run) { return screen_all(run, SCREEN_AO); }
 int report_ssgi_all(report_run *run) { return screen_all(run, SCREEN_SSGI); }
 
-int cmd_report_screen(int which, int argc, char **argv)
+static int screen_main(int which, int argc, char **argv)
 {
-    static const double ao_rays[] = {4, 16, 64, 256}, ao_steps[] = {8, 16, 32}, ao_radii[] = {0.05, 0.1, 0.2}, ao_res[] = {64, 128, 256, 512}, ao_blurs[] = {0, 2, 4};
-    static const double gi_rays[] = {4, 16, 64}, gi_steps[] = {8, 16, 32}, gi_radii[] = {0.5, 1, 1.75}, gi_res[] = {64, 128, 256}, gi_blurs[] = {0, 2, 4, 8};
+    static const screen_report defaults[2] = {
+        {.o = REPORT_OPTS("cornell-box", 128, 1024), .which = SCREEN_AO, .rays = REPORT_L(4, 16, 64, 256), .steps = REPORT_L(8, 16, 32),
+         .radii = REPORT_L(0.05, 0.1, 0.2), .res = REPORT_L(64, 128, 256, 512), .blurs = REPORT_L(0, 2, 4)},
+        {.o = REPORT_OPTS("cornell-box,rsm-walls", 128, 4096), .which = SCREEN_SSGI, .rays = REPORT_L(4, 16, 64), .steps = REPORT_L(8, 16, 32),
+         .radii = REPORT_L(0.5, 1, 1.75), .res = REPORT_L(64, 128, 256), .blurs = REPORT_L(0, 2, 4, 8)}};
     const int ao = which == SCREEN_AO;
-    screen_args a;
-    screen_report rep;
-    cli_session s;
-    cli_context c;
-    const char *list;
-    float *img = NULL;
-    size_t per_scene;
-    int r, rc, i, si;
-    memset(&a, 0, sizeof a);
-    memset(&rep, 0, sizeof rep);
-    a.which = which;
-    a.common.backend = VOXGI_BACKEND_CPU;
-    a.out_dir = "build/report";
-    a.scene_list = ao ? "cornell-box" : "cornell-box,rsm-walls";
-    a.size[0] = a.size[1] = 128;
-    a.spp = ao ? 1024 : 4096;
-#define SET(field, count, from) (memcpy(a.field, from, sizeof from), a.count = (int)(sizeof from / sizeof from[0]))
-    if (ao) {
-        SET(rays, nrays, ao_rays);
-        SET(steps, nsteps, ao_steps);
-        SET(radii, nradii, ao_radii);
-        SET(res, nres, ao_res);
-        SET(blurs, nblurs, ao_blurs);
-    } else {
-        SET(rays, nrays, gi_rays);
-        SET(steps, nsteps, gi_steps);
-        SET(radii, nradii, gi_radii);
-        SET(res, nres, gi_res);
-        SET(blurs, nblurs, gi_blurs);
-    }
-#undef SET
+    screen_report *a = (screen_report *)malloc(sizeof *a);
+    int rc;
+    if (!a) return CLI_EXIT_FAILURE;
+    *a = defaults[which];
     {
-#define LIST(opt, field, count, lo_, open_, top, whole_, text) \
-    {.name = opt, .arg = "LIST", .kind = CLI_NUMBERS, .dst = a.field, .items = &a.count, .min_items = 1, .max_items = SCREEN_MAX_LIST, \
-     .lo = lo_, .lo_open = open_, .hi = top, .whole = whole_, .help = text}
         const cli_option options[] = {
-            {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &a.scene_list,
-             .help = ao ? "built-in scenes, comma-separated (default cornell-box)" : "built-in scenes, comma-separated (default cornell-box,rsm-walls)"},
-            {.name = "--size", .arg = "W H", .kind = CLI_INT, .count = 2, .dst = a.size, .lo = 1, .hi = 4096, .help = "image size (default 128 128)"},
-            {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &a.spp, .lo = 64, .hi = 1 << 20,
-             .help = ao ? "samples per pixel of the converged references (default 1024)" : "samples per pixel of the converged references (default 4096)"},
-            LIST("--rays", rays, nrays, 0, 1, 65536, 1,
-                 ao ? "rays per pixel (default 4,16,64,256; the largest also for the views)" : "rays per pixel (default 4,16,64)"),
-            LIST("--steps", steps, nsteps, 0, 1, 4096, 1, ao ? "ssao: steps along each ray (default 8,16,32)" : "ssgi: steps along each ray (default 8,16,32)"),
-            LIST("--radii", radii, nradii, 0, 1, 10, 0,
-                 ao ? "radii, shares of the scene's longest side (default 0.05,0.1,0.2)" : "radii, shares of the scene's longest side (default 0.5,1,1.75)"),
-            LIST("--res", res, nres, 0, 1, 4096, 1,
-                 ao ? "vao: voxels along the scene's longest side (default 64,128,256,512)"
-                    : "hybrid: voxels along the scene's longest side (default 64,128,256; the\nfinest also for Hybrid-GI converged)"),
-            LIST("--blurs", blurs, nblurs, 0, 0, 64, 1,
-                 ao ? "edge-aware blur radii in pixels, at full and at half resolution (default\n0,2,4)"
-                    : "edge-aware blur radii in pixels, at full and at half resolution (default\n0,2,4,8)"),
-            CLI_OPT_BACKEND(&a.common, "where the passes run (default cpu; the references always on the CPU)"),
-            {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &a.out_dir, .help = "where the files go (default build/report)"},
-            CLI_OPT_THREADS(&a.common)};
-#undef LIST
-        const cli_command cmd = {.name = ao ? "report ao" : "report ssgi", .help = ao ? ao_help : ssgi_help, .column = 27, .options = options,
-                                 .option_count = CLI_COUNT(options)};
-        if ((rc = cli_parse(&cmd, argc, argv)) != CLI_CONTINUE) return rc;
+            REPORT_OPT_SCENES(&a->o, ao ? "built-in scenes, comma-separated (default cornell-box)" : "built-in scenes, comma-separated (default cornell-box,rsm-walls)"),
+            {.name = "--size", .arg = "W H", .kind = CLI_INT, .count = 2, .dst = a->o.size, .lo = 1, .hi = 4096, .help = "image size (default 128 128)"},
+            REPORT_OPT_SPP(&a->o, 64, ao ? "samples per pixel of the converged references (default 1024)" : "samples per pixel of the converged references (default 4096)"),
+            REPORT_LIST("--rays", a->rays, 0, 1, 65536, 1, ao ? "rays per pixel (default 4,16,64,256; the largest also for the views)" : "rays per pixel (default 4,16,64)"),
+            REPORT_LIST("--steps", a->steps, 0, 1, 4096, 1, ao ? "ssao: steps along each ray (default 8,16,32)" : "ssgi: steps along each ray (default 8,16,32)"),
+            REPORT_LIST("--radii", a->radii, 0, 1, 10, 0,
+                        ao ? "radii, shares of the scene's longest side (default 0.05,0.1,0.2)" : "radii, shares of the scene's longest side (default 0.5,1,1.75)"),
+            REPORT_LIST("--res", a->res, 0, 1, 4096, 1,
+                        ao ? "vao: voxels along the scene's longest side (default 64,128,256,512)"
+                           : "hybrid: voxels along the scene's longest side (default 64,128,256; the\nfinest also for Hybrid-GI converged)"),
+            REPORT_LIST("--blurs", a->blurs, 0, 0, 64, 1,
+                        ao ? "edge-aware blur radii in pixels, at full and at half resolution (default\n0,2,4)"
+                           : "edge-aware blur radii in pixels, at full and at half resolution (default\n0,2,4,8)"),
+            CLI_OPT_BACKEND(&a->o.common, "where the passes run (default cpu; the references always on the CPU)"), REPORT_OPT_OUT(&a->o),
+            CLI_OPT_THREADS(&a->o.common)};
+        rc = report_main(&screen_defs[which], &a->o, a, options, CLI_COUNT(options), argc, argv);
     }
-    for (list = a.scene_list; (r = cli_next_item(&list, rep.scenes[rep.scene_count], sizeof rep.scenes[0])) != 0; rep.scene_count++)
-        if (r < 0 || rep.scene_count == SCREEN_MAX_SCENES)
-            return cli_usage("report", "--scenes needs 1 to %d comma-separated built-in scenes, got '%s'", SCREEN_MAX_SCENES, a.scene_list);
-    rep.radii[rep.nradii++] = base_config(which, M_SSAO).radius; /* the references' radii: the base's, then --radii's */
-    for (i = 0; i < a.nradii; i++) {
-        int k;
-        for (k = 0; k < rep.nradii && rep.radii[k] != a.radii[i]; k++) {}
-        if (k == rep.nradii) rep.radii[rep.nradii++] = a.radii[i];
-    }
-    per_scene = (size_t)(ao ? CLI_COUNT(ao_methods) : CLI_COUNT(gi_methods)) * SWEEP_MAX;
-    cli_session_init(&s, "report");
-    if (cli_context_open_options(&s, &c, &a.common)) return CLI_EXIT_FAILURE;
-    voxgi_query_info(c.vx, &rep.ci);
-    rc = CLI_EXIT_FAILURE;
-    rep.rows = (screen_row *)calloc((size_t)rep.scene_count * per_scene, sizeof *rep.rows);
-    img = (float *)malloc((size_t)a.size[0] * (size_t)a.size[1] * 12);
-    if (!rep.rows || !img) {
-        cli_fail(&s, "out of memory");
-        goto done;
-    }
-    if (cli_make_dirs(a.out_dir) != 0) {
-        cli_fail(&s, "cannot make %s", a.out_dir);
-        goto done;
-    }
-    for (si = 0; si < rep.scene_count; si++)
-        if (screen_scene(&s, c.vx, &a, &rep, si, img)) goto done;
-    if (ao ? ao_views(&s, c.vx, &a, &rep) : ssgi_wall(&s, c.vx, &a, &rep, img)) goto done;
-    screen_pareto(&rep, ao);
-    if (screen_write(&s, &a, &rep)) goto done;
-    cli_status_clear(&s);
-    screen_print(&a, &rep);
-    printf("wrote %s/%s.md, %s/%s.csv\n", a.out_dir, report_names[which], a.out_dir, report_names[which]);
-    rc = CLI_EXIT_OK;
-done:
-    free(rep.rows);
-    free(img);
-    cli_context_close(&s, &c);
+    free(a);
     return rc;
 }
+
+int cmd_report_ao(int argc, char **argv) { return screen_main(SCREEN_AO, argc, argv); }
+int cmd_report_ssgi(int argc, char **argv) { return screen_main(SCREEN_SSGI, argc, argv); }

@@ -1,7 +1,8 @@
-/* tools/report.h - what the reports share: the plot of error against time (SVG), the picture of an
- * image beside its reference with the error's heat map (PNG), and the interface through which
- * voxgi report all runs each method's sweep (each report's file keeps its sweep and the settings
- * report all gives it). */
+/* tools/report.h - what the reports share: the one skeleton of the single reports (voxgi report
+ * vct|tsm|rsm|sh|ao|ssgi|linespace: their options, the scene loop with the references, the Pareto
+ * front, the Markdown, CSV and SVG), the sweeps that report all runs too (each in its report's
+ * file), the plot of error against time (SVG) and the picture of an image beside its reference
+ * with the error's heat map (PNG). */
 #ifndef VXT_REPORT_H
 #define VXT_REPORT_H
 #include "cli.h"
@@ -49,6 +50,8 @@ float report_exposure(const float *ref, const cli_error_mask *m);
    (REPORT_HEAT_WHITE and above), pixels the mask leaves out mid grey. 0, or -1. */
 int report_png_compare(const char *path, const float *img, const float *ref, const cli_error_mask *m, float exposure);
 
+/* 100 v as "12.34%", or "-" when v is not finite; then after. */
+void report_percent(FILE *f, double v, const char *after);
 /* Appends printf-formatted text to the string in buf (cut at size). */
 void report_append(char *buf, size_t size, const char *fmt, ...) CLI_PRINTF(3, 4);
 
@@ -70,10 +73,11 @@ int report_stiff_measure(cli_session *s, voxgi_context *ctx, report_stiff *out);
 /* The tables, in Markdown (ci: the context's, for where the methods ran). */
 void report_stiff_markdown(FILE *f, const report_stiff *r, const voxgi_info *ci);
 
-/* ------------------------------------------------------------------ report all */
-/* What a row measures, and against what. */
+/* ------------------------------------------------------------------ the sweeps (report all and the single reports) */
+/* What a row measures, and against what (report all). */
 enum { REPORT_BOUNCE, REPORT_DIRECT, REPORT_AO, REPORT_VOXELS, REPORT_QUANTITIES };
 #define REPORT_AO_RADIUS 0.1 /* report all's ambient occlusion: within this share of the scene's longest side */
+#define REPORT_VALUES 20     /* a row's own values (report_item.v) */
 
 /* One measured configuration. */
 typedef struct report_item {
@@ -85,6 +89,9 @@ typedef struct report_item {
     double error;         /* relative RMSE by the tools' rule against the run's reference; voxel
                              sets: (missed + extra) / the exact set's voxels */
     char detail[96];      /* voxel sets: "missed M, extra E of N" */
+    int ref;              /* the reference it is measured against: report_run.R[ref] */
+    double v[REPORT_VALUES]; /* the columns of its own report's tables (report_column.at) */
+    char note[320];       /* not measured (the line space's refused trees): its own report's Markdown row */
 } report_item;
 
 /* One method's sweep on one scene. */
@@ -95,7 +102,8 @@ typedef struct report_run {
     const voxgi_scene *scene;
     const char *scene_name;
     voxgi_camera camera;         /* the scene's view at the report's size */
-    const cli_reference *R;      /* the reference of the method's quantity (NULL for voxel sets) */
+    const cli_reference *R;      /* the references of the method's quantity (NULL for voxel sets) */
+    const void *args;            /* the settings to sweep: the method's report struct */
     int quick;                   /* --quick: the few settings */
     float *img;                  /* scratch: one image */
     /* each configuration measured, with its image (NULL for voxel sets) */
@@ -105,7 +113,8 @@ typedef struct report_run {
 } report_run;
 #define REPORT_NOT_APPLICABLE 3  /* what a sweep returns for a scene it does not apply to */
 
-/* The sweeps, each in its report's file: 0, CLI_EXIT_FAILURE (said why), or REPORT_NOT_APPLICABLE. */
+/* report all's settings of each method's sweep, each in its report's file: 0, CLI_EXIT_FAILURE
+   (said why), or REPORT_NOT_APPLICABLE. */
 int report_vct_all(report_run *run);                    /* REPORT_BOUNCE */
 int report_rsm_all(report_run *run);                    /* REPORT_BOUNCE */
 int report_sh_all(report_run *run);                     /* REPORT_BOUNCE */
@@ -114,4 +123,134 @@ int report_tsm_all(report_run *run);                    /* REPORT_DIRECT */
 int report_linespace_all(report_run *run);              /* REPORT_DIRECT: linespace-exact, linespace-fast */
 int report_ao_all(report_run *run);                     /* REPORT_AO: ssao, ssao-points, vao */
 int report_voxels_all(report_run *run);                 /* REPORT_VOXELS: the surface voxelizers */
+
+/* it, the image in run->img, measured against its reference (run->R[it->ref]) and handed on. */
+void report_measured(report_run *run, report_item *it);
+
+/* A measured row of a report. */
+typedef struct report_row {
+    int scene, quantity;  /* quantity: report all's */
+    int group, front;     /* its front's (scene, and reference or quantity); 1: on it */
+    double ref_ms;        /* the path tracer's time for an image at its error (HUGE_VAL: beyond its reference; NAN: voxel sets) */
+    report_item it;
+} report_row;
+/* A new zeroed row at the end of *rows (grown as needed), or NULL when out of memory. */
+report_row *report_row_add(report_row **rows, size_t *n, size_t *cap);
+
+/* ------------------------------------------------------------------ the single reports (cli_report.c) */
+#define REPORT_MAX_LIST 16   /* numbers of a LIST option */
+#define REPORT_MAX_SCENES 9  /* --scenes' 8 and --cornell-mesh's */
+#define REPORT_MAX_REFS 17   /* references of a scene (ao: one per radius, the base's and --radii's) */
+
+typedef struct report_list {
+    double v[REPORT_MAX_LIST];
+    int n;
+} report_list;
+/* A LIST option: 1 to REPORT_MAX_LIST comma-separated numbers in [lo, hi] ((lo, hi] when open), whole ones when whole. */
+#define REPORT_LIST(opt, list, lo_, open_, hi_, whole_, text) \
+    {.name = opt, .arg = "LIST", .kind = CLI_NUMBERS, .dst = (list).v, .items = &(list).n, .min_items = 1, .max_items = REPORT_MAX_LIST, \
+     .lo = lo_, .lo_open = open_, .hi = hi_, .whole = whole_, .help = text}
+/* A report_list of the numbers given: REPORT_L(8, 16, 32) */
+#define REPORT_L(...) {{__VA_ARGS__}, (int)(sizeof((double[]){__VA_ARGS__}) / sizeof(double))}
+
+/* The next combination of the lists' values, the last list varying fastest: at[k] indexes lists[k]
+   (all 0 for the first). 1, or 0 after the last. */
+int report_next(const report_list *const *lists, int n, int *at);
+
+/* What every single report takes; each report's struct starts with it. */
+typedef struct report_opts {
+    cli_common common;  /* --backend, --threads */
+    const char *out_dir, *scene_list, *cornell_mesh;
+    int size[2], spp;   /* size[1] 0: size[0] (--size N) */
+} report_opts;
+/* The defaults: the CPU, build/report, these scenes, size x size pixels, references of spp. */
+#define REPORT_OPTS(scenes, size_, spp_) \
+    {.common = {.backend = VOXGI_BACKEND_CPU}, .out_dir = "build/report", .scene_list = scenes, .size = {size_}, .spp = spp_}
+#define REPORT_OPT_SCENES(o, text) {.name = "--scenes", .arg = "LIST", .kind = CLI_STRING, .dst = &(o)->scene_list, .help = text}
+#define REPORT_OPT_SIZE(o, lo_, text) {.name = "--size", .arg = "N", .kind = CLI_INT, .dst = (o)->size, .lo = lo_, .hi = 4096, .help = text}
+#define REPORT_OPT_SPP(o, lo_, text) {.name = "--spp", .arg = "S", .kind = CLI_INT, .dst = &(o)->spp, .lo = lo_, .hi = 1 << 20, .help = text}
+#define REPORT_OPT_OUT(o) {.name = "--out", .arg = "DIR", .kind = CLI_STRING, .dst = &(o)->out_dir, .help = "where the files go (default build/report)"}
+
+/* A column of a report's tables. Its heads (NULL: not in that file; a column may sit at another
+   place in each file as two columns, one in each), the value it shows, and how: names[value]
+   (csv_names in the CSV), else for a value that is not finite md_none / csv_none where given
+   (md_none "": the cell left blank), else printf of the value (in the Markdown times 100 for
+   md_unit '%', over 1e6 for 'M'). A Markdown cell is " text |" after the row's "|". */
+typedef struct report_column {
+    const char *md, *align, *csv;
+    int at;                    /* report_item.v[at], or one of REPORT_AT_* */
+    const char *md_fmt, *csv_fmt;
+    const char *const *names, *const *csv_names;
+    char md_unit;
+    const char *md_none, *csv_none;
+} report_column;
+enum { REPORT_AT_SCENE = REPORT_VALUES, REPORT_AT_MS, REPORT_AT_BYTES, REPORT_AT_ERROR, REPORT_AT_REF_MS, REPORT_AT_SPEEDUP, REPORT_AT_FRONT,
+       REPORT_AT_NONE /* always not finite: the none texts */ };
+extern const char *const report_yes[]; /* "", "yes" */
+#define REPORT_COL(md_, csv_, at_, md_fmt_, csv_fmt_) {.md = md_, .align = "---:", .csv = csv_, .at = at_, .md_fmt = md_fmt_, .csv_fmt = csv_fmt_}
+#define REPORT_COL_INT(md_, csv_, at_) REPORT_COL(md_, csv_, at_, "%.0f", "%.0f")
+#define REPORT_COL_SCENE {.csv = "scene", .at = REPORT_AT_SCENE}
+#define REPORT_COL_ERROR(md_none_) \
+    {.md = "rel. RMSE", .align = "---:", .csv = "rel_rmse", .at = REPORT_AT_ERROR, .md_fmt = "%.2f%%", .csv_fmt = "%.6g", .md_unit = '%', .md_none = md_none_}
+#define REPORT_COL_REF \
+    {.md = "reference at the same error", .align = "---:", .csv = "reference_ms", .at = REPORT_AT_REF_MS, .md_fmt = "%.0f ms", .csv_fmt = "%.6g", \
+     .md_none = "beyond its reference", .csv_none = "-1"}
+#define REPORT_COL_FRONT {.md = "Pareto", .align = ":-:", .csv = "pareto", .at = REPORT_AT_FRONT, .csv_fmt = "%.0f", .names = report_yes}
+
+typedef struct report report;
+/* A single report: its name, its columns, its sweep (report all's), and what it adds to the
+   skeleton (each optional), in the order they run. */
+typedef struct report_def {
+    const char *name, *help;   /* "tsm": 'voxgi report tsm', DIR/tsm.md, DIR/tsm.csv */
+    int bounces;               /* the path tracer's reference (no references hook): 0 the direct light, 1 one bounce */
+    int scenes_optional;       /* --scenes '' (none) is taken */
+    const report_column *columns;
+    int ncolumns;
+    int (*sweep)(report_run *run);
+    int (*open)(report *rep);                                       /* after the context */
+    int (*references)(report *rep, report_run *run, cli_reference *R); /* into R[0..rep->nrefs) */
+    void (*row)(report *rep, report_row *r);                        /* a row's error and ref_ms (else cli_reference_ms) */
+    int (*scene_done)(report *rep, report_run *run);                /* after the sweep */
+    int (*done)(report *rep);                                       /* after every scene */
+    void (*close)(report *rep);
+    void (*md_head)(FILE *f, const report *rep);
+    void (*md_scene)(FILE *f, const report *rep, int si, int end);  /* before its table, after it (end) */
+    int (*md_end)(report *rep, FILE *md, FILE *csv);
+    void (*svg)(FILE *f, const report *rep);                        /* DIR/NAME.svg (NULL: none) */
+    void (*print_scene)(const report *rep, int si, int end);        /* stdout: around the scene's front */
+    void (*print_row)(const report *rep, const report_row *r);      /* a row of the front */
+    void (*print_end)(const report *rep);
+} report_def;
+
+typedef struct report_scene {
+    char name[288];
+    size_t masked;                                          /* pixels left out near an emitter */
+    double c[REPORT_MAX_REFS], ms_per_spp[REPORT_MAX_REFS]; /* each reference's convergence */
+} report_scene;
+
+struct report {
+    const report_def *def;
+    report_opts *o;
+    void *own;                  /* the report's struct: its options and what it measures beyond the rows */
+    cli_session s;
+    cli_context c;
+    voxgi_info ci;              /* the context's */
+    report_scene scenes[REPORT_MAX_SCENES];
+    int nscenes, si, nrefs;     /* si: the scene being measured; nrefs: its references */
+    cli_cornell_mesh cm;        /* --cornell-mesh's, the last scene */
+    float *img;                 /* scratch: one image */
+    report_row *rows;
+    size_t nrows, cap;
+    int out_of_memory;          /* a row could not be kept */
+};
+
+/* voxgi report NAME with options (those of o and of own): the scenes, each one's references, the
+   sweep and the hooks, the front, DIR/NAME.md, .csv (and .svg), the front on stdout. The exit status. */
+int report_main(const report_def *def, report_opts *o, void *own, const cli_option *options, int count, int argc, char **argv);
+/* The scene of a report: cm's when given, else the built-in one named (made into bs, for the caller
+   to destroy); its camera at w x h. 0, or says why and returns 1. */
+int report_scene_open(cli_session *s, voxgi_context *ctx, const char *name, const cli_cornell_mesh *cm, voxgi_builtin_scene *bs, const voxgi_scene **scene,
+                      voxgi_camera *camera, int w, int h);
+/* A md_scene: "## NAME" and its reference's convergence. */
+void report_md_scene(FILE *f, const report *rep, int si, int end);
 #endif
