@@ -8014,6 +8014,26 @@ static uint32_t voxgi__region_unite(uint32_t *parent, uint32_t a, uint32_t b)
     return a < b ? a : b;
 }
 
+/* The region of the first empty voxel from the centre of voxel c along unit n (level-0 labels
+   lab of a grid of dm voxels), within four voxels; MIXED where there is none. */
+static uint32_t voxgi__region_along(const int *dm, const uint32_t *lab, const int c[3], const double n[3])
+{
+    int s, a;
+    for (s = 0; s < 5; s++) {
+        double t = s ? 0.5 + (double)s : 0.8660254037844386;
+        int v[3], ok = 1;
+        uint32_t r;
+        for (a = 0; a < 3; a++) {
+            v[a] = (int)floor((double)c[a] + 0.5 + t * n[a]);
+            ok = ok && v[a] >= 0 && v[a] < dm[a];
+        }
+        if (!ok) break;
+        r = lab[(size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])];
+        if (r && !(r & VOXGI__REGION_BORDER)) return r;
+    }
+    return VOXGI__REGION_MIXED;
+}
+
 /* The region each lit side of surface voxel c sends its light into (0: the side is dark): the
    first empty voxel from the centre along that side's normal, within four voxels; MIXED where
    none is found (or the normals cancelled), which the caller takes as unknown. A wall on a voxel
@@ -8023,26 +8043,27 @@ static uint32_t voxgi__region_unite(uint32_t *parent, uint32_t a, uint32_t b)
 static void voxgi__regions_of_sides(const int *dm, const uint32_t *lab, const int c[3], const float *rad, const float *back, const float *side,
                                     uint32_t out[2])
 {
-    double len = sqrt((double)side[0] * side[0] + (double)side[1] * side[1] + (double)side[2] * side[2]);
-    int sd, a, s;
+    double len = sqrt((double)side[0] * side[0] + (double)side[1] * side[1] + (double)side[2] * side[2]), n[3];
+    int sd, a;
     for (sd = 0; sd < 2; sd++) {
         const float *l = sd ? back : rad;
         out[sd] = 0;
         if (!(l[0] > 0 || l[1] > 0 || l[2] > 0)) continue;
-        out[sd] = VOXGI__REGION_MIXED;
-        for (s = 0; s < 5 && len > 0 && out[sd] == VOXGI__REGION_MIXED; s++) {
-            double t = s ? 0.5 + (double)s : 0.8660254037844386;
-            int v[3], ok = 1;
-            uint32_t r;
-            for (a = 0; a < 3; a++) {
-                v[a] = (int)floor((double)c[a] + 0.5 + (sd ? -t : t) * side[a] / len);
-                ok = ok && v[a] >= 0 && v[a] < dm[a];
-            }
-            if (!ok) break;
-            r = lab[(size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])];
-            if (r && !(r & VOXGI__REGION_BORDER)) out[sd] = r;
-        }
+        for (a = 0; a < 3; a++) n[a] = len > 0 ? (sd ? -side[a] : side[a]) / len : 0;
+        out[sd] = len > 0 ? voxgi__region_along(dm, lab, c, n) : VOXGI__REGION_MIXED;
     }
+}
+
+/* Whether voxel c has an empty neighbour (of six) in region r. */
+static int voxgi__region_beside(const int *dm, const uint32_t *lab, const int c[3], uint32_t r)
+{
+    int q, v[3];
+    for (q = 0; q < 6; q++) {
+        memcpy(v, c, sizeof v);
+        v[q >> 1] += q & 1 ? 1 : -1;
+        if (v[q >> 1] >= 0 && v[q >> 1] < dm[q >> 1] && lab[(size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])] == r) return 1;
+    }
+    return 0;
 }
 
 static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
@@ -8107,21 +8128,41 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
             }
     voxgi__free(ctx, parent);
     parent = NULL;
-    for (k = 0; k < 2; k++) /* 0: the regions the surfaces light; 1: a surface's voxel whose light is one region's takes it, marked */
+    for (k = 0; k < 2; k++) /* 0: the regions the surfaces light; 1: a surface's voxel whose light is one region's takes it, marked
+                               (voxgi__regions_of_sides; where that is unknown, one lit region beside it alone) */
         for (z = 0, i = 0; z < dm[2]; z++)
             for (y = 0; y < dm[1]; y++)
                 for (x = 0; x < dm[0]; x++, i++) {
                     int c[3];
-                    uint32_t sides[2];
+                    uint32_t sides[2], only = 0;
                     if (lab[i] || !(radiance0[4 * i + 3] > 0)) continue;
                     c[0] = x; c[1] = y; c[2] = z;
                     voxgi__regions_of_sides(dm, lab, c, radiance0 + 4 * i, back0 + 4 * i, side0 + 4 * i, sides);
-                    if (k == 0) {
-                        for (q = 0; q < 2; q++)
-                            if (sides[q] && sides[q] != VOXGI__REGION_MIXED) lit[sides[q]] = 1;
-                    } else if (sides[0] != VOXGI__REGION_MIXED && sides[1] != VOXGI__REGION_MIXED && (sides[0] | sides[1]) &&
-                               (!sides[0] || !sides[1] || sides[0] == sides[1]))
-                        lab[i] = VOXGI__REGION_BORDER | (sides[0] | sides[1]);
+                    if (sides[0] != VOXGI__REGION_MIXED && sides[1] != VOXGI__REGION_MIXED) { /* where each lit side's light goes is known */
+                        uint32_t into = 0;
+                        for (q = 0; q < 2; q++) {
+                            if (k == 0 && sides[q] && voxgi__region_beside(dm, lab, c, sides[q])) lit[sides[q]] = 1;
+                            if (k == 1 && sides[q] && lit[sides[q]]) into = !into || into == sides[q] ? sides[q] : VOXGI__REGION_MIXED;
+                        }
+                        if (k == 0) continue;
+                        if (into) {
+                            if (into != VOXGI__REGION_MIXED) lab[i] = VOXGI__REGION_BORDER | into;
+                            continue;
+                        }
+                    }
+                    for (q = 0; q < 6; q++) { /* else: the regions beside it (a corner's ground, below a wall) */
+                        int ax = q >> 1, up = q & 1;
+                        size_t j = ax == 0 ? 1 : (ax == 1 ? nx : nxy);
+                        float facing = up ? side0[4 * i + (size_t)ax] : -side0[4 * i + (size_t)ax];
+                        const float *rad = facing > 0 ? radiance0 : back0;
+                        if (up ? c[ax] + 1 == dm[ax] : c[ax] == 0) continue;
+                        j = up ? i + j : i - j;
+                        if (!lab[j] || (lab[j] & VOXGI__REGION_BORDER)) continue;
+                        if (k == 0 && !lit[lab[j]] && facing != 0) /* by the side facing it; a neighbour along the surface is on neither */
+                            lit[lab[j]] = rad[4 * i] > 0 || rad[4 * i + 1] > 0 || rad[4 * i + 2] > 0;
+                        if (k == 1 && lit[lab[j]] && lab[j] != only) only = only ? VOXGI__REGION_MIXED : lab[j];
+                    }
+                    if (k == 1 && only && only != VOXGI__REGION_MIXED) lab[i] = VOXGI__REGION_BORDER | only;
                 }
     for (k = 1; k < vol->info.levels; k++) { /* each level from its children: the outermost region */
         const int *pd = vol->dims[k - 1], *cd = vol->dims[k];
@@ -10898,7 +10939,8 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
             for (sd = 0; sd < sides; sd++)
                 for (i = 0; i < n; i++) {
                     float *o = (sd ? J->back : J->rgba) + 4 * J->index[i];
-                    for (a = 0; a < 3; a++) o[a] += tail * step[3 * ((size_t)sd * n + i) + (size_t)a];
+                    for (a = 0; a < 3; a++) o[a] += tail * VOXGI__MAX(step[3 * ((size_t)sd * n + i) + (size_t)a], 0.0f); /* a voxel whose light
+                                                                                        fell (rounding) has no tail to come: never below 0 */
                 }
         }
         if (converged) voxgi__log(ctx, VOXGI_LOG_INFO, "light injection: the bounces still to come add about %.2g%% of the light: %d bounces and their geometric tail", 100 * share, b + 1);

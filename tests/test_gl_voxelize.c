@@ -1006,6 +1006,28 @@ static void test_gl_raster_leak_room(void)
     voxgi_destroy(ctx);
 }
 
+/* The held-out closed spaces on GL, as on the CPU (test_vct): the rooms split by a zero-thickness
+   wall at 32^3 and 95^3, full GI at 32^3, from an octree; the box on the floor with full GI. */
+static void test_gl_raster_held_out_closed_spaces(void)
+{
+    static const struct { int kind; int res; voxgi_vct_radiance radiance; int bounces; } cases[] = {
+        {HELD_ROOMS, 32, VOXGI_VCT_ANISOTROPIC, 1}, {HELD_ROOMS, 95, VOXGI_VCT_ANISOTROPIC, 1}, {HELD_ROOMS, 32, VOXGI_VCT_ANISOTROPIC, -1},
+        {HELD_ROOMS, 32, VOXGI_VCT_OCTREE, 1},      {HELD_BOX, 32, VOXGI_VCT_ANISOTROPIC, -1}};
+    voxgi_context *ctx;
+    size_t k;
+    if (!have_gl()) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
+    for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double m = 1, x = 1;
+        if (FX_REDUCED && cases[k].res > 32) continue;
+        TH_CHECK(held_ratios(ctx, cases[k].kind, 0, cases[k].res, cases[k].radiance, cases[k].bounces, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+        printf("    GL %s %3d^3%s%s: dark mean %.4f%%, largest %.3f%% of the lit view's mean\n", cases[k].kind == HELD_ROOMS ? "rooms" : "box", cases[k].res,
+               cases[k].radiance == VOXGI_VCT_OCTREE ? ", octree" : "", cases[k].bounces < 0 ? ", full GI" : "", 100 * m, 100 * x);
+        TH_CHECK(m <= 0.001 && x <= 0.01, "case %lu: mean %.4f%%, largest %.3f%%", (unsigned long)k, 100 * m, 100 * x);
+    }
+    voxgi_destroy(ctx);
+}
+
 /* The leak box on GL (distance maps, the GL mips and cones), as on the CPU (test_vct): inside at
    most 0.1% of the lit ground's radiance and no pixel above 1%, sun with a point light and with
    a rectangular light, at 32^3 and 128^3 (32^3 alone in the reduced builds), and from an octree. */
@@ -1455,6 +1477,7 @@ int main(void)
     TH_RUN(test_gl_raster_gbuffer);
     TH_RUN(test_gl_raster_leak_box);
     TH_RUN(test_gl_raster_leak_room);
+    TH_RUN(test_gl_raster_held_out_closed_spaces);
     TH_RUN(test_gl_raster_volume_buffer);
     TH_RUN(test_gl_raster_attributes_equal_cpu);
     TH_RUN(test_gl_interop_and_backends);
