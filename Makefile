@@ -8,10 +8,16 @@ B       := build
 ASAN    := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
 
 GLSL    := $(sort $(wildcard shaders/*.glsl))
-TESTS   := test_voxelize test_gl_voxelize test_reference test_vct test_internals test_mesh_io test_headless_gl test_tool test_exact test_rays test_lightspace test_screenspace test_linespace test_plan test_stiff
+# The test programs, on one line (tests/run.sh reads it), in the order tests/run.sh starts them:
+# the tool's first (test_tool runs longest), then one per part of voxgi.h, each with its GL twins
+# (test_core: parts 2 and 4, test_rays 3, test_voxelize 5 and test_exact its GMP oracle,
+# test_volumes 6, test_octree 7, test_vct 8-9, test_lightspace 10, test_screenspace 11,
+# test_linespace 12, test_reference 13, test_plan 14, test_files 15), then the stiff cases across
+# the parts and the private helpers' tests (test_internals, ordered by part).
+TESTS   := test_tool test_mesh_io test_headless_gl test_core test_rays test_voxelize test_exact test_volumes test_octree test_vct test_lightspace test_screenspace test_linespace test_reference test_plan test_files test_stiff test_internals
 # The test programs that link the implementation object (they include voxgi.h for the declarations
 # only); test_internals (private helpers) compiles the implementation itself.
-LINKED_TESTS := test_voxelize test_gl_voxelize test_reference test_vct test_tool test_exact test_rays test_lightspace test_screenspace test_linespace test_plan test_stiff
+LINKED_TESTS := $(filter-out test_internals test_mesh_io test_headless_gl,$(TESTS))
 # test_exact's oracle computes in GMP rationals (libgmp-dev, a test-only dependency).
 $(B)/test_exact $(B)/asan/test_exact: LDLIBS += -lgmp
 NPROC   := $(shell nproc 2>/dev/null || echo 2)

@@ -247,6 +247,38 @@ static inline uint32_t *shape_bits(voxgi_context *ctx, const vxt_shape *m, const
     return voxelized_bits(ctx, &sc, vd, info);
 }
 
+/* The triangles at pos (idx NULL: unindexed) voxelized on grid g by method on ctx: as voxelized_bits. */
+static inline uint32_t *voxelize_bits_method(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t ntri,
+                                             const voxgi_grid *g, voxgi_method method, voxgi_voxels_info *info)
+{
+    voxgi_mesh m;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    scene_of_triangles(&sc, &m, pos, nv, idx, ntri);
+    memset(&vd, 0, sizeof vd);
+    vd.grid = *g;
+    vd.method = method;
+    return voxelized_bits(ctx, &sc, &vd, info);
+}
+
+/* The same by the conservative method. */
+static inline uint32_t *voxelize_bits(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t ntri,
+                                      const voxgi_grid *g, voxgi_voxels_info *info)
+{
+    return voxelize_bits_method(ctx, pos, nv, idx, ntri, g, VOXGI_METHOD_CONSERVATIVE, info);
+}
+
+/* One attribute of voxels read back (malloc'd: free it), or NULL. */
+static inline float *attr_read(voxgi_context *ctx, const voxgi_voxels *vox, voxgi_attribute which)
+{
+    size_t need = 0;
+    float *out;
+    if (voxgi_voxels_read_attribute(ctx, vox, which, NULL, 0, &need) != VOXGI_OK) return NULL;
+    out = (float *)malloc(need ? need : 4);
+    if (voxgi_voxels_read_attribute(ctx, vox, which, out, need, NULL) != VOXGI_OK) { free(out); return NULL; }
+    return out;
+}
+
 /* vd: a cone-traced image (method VCT) through camera, with the settings of the old
    voxgi_vct_desc's zeros (voxgi_render's zeros are the measured defaults): 128 voxels, 16 rays per
    pixel, 16 cones at every pixel, isotropic mips; all else zero. */
@@ -383,6 +415,46 @@ static inline int leak_box_ratios(voxgi_context *ctx, int res, voxgi_mip_filter 
     *mean_ratio = mean / ground;
     *max_ratio = top / ground;
     return bad;
+}
+
+/* A scene voxelized (albedo, normal) on a fitted grid of res voxels with `padding` empty ones
+   around it and lit (voxgi_inject_light with id); 1 when it all worked, else the error is printed. */
+static inline int lit_voxels_padded(voxgi_context *ctx, const voxgi_scene *sc, int res, int padding, const voxgi_inject_desc *id, voxgi_voxels **vx,
+                                    voxgi_volume **vol)
+{
+    voxgi_fit_desc fit;
+    voxgi_voxelize_desc xd;
+    memset(&fit, 0, sizeof fit);
+    memset(&xd, 0, sizeof xd);
+    fit.res = res;
+    fit.padding = padding;
+    xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+    *vx = NULL;
+    *vol = NULL;
+    if (voxgi_fit_grid(ctx, sc, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, sc, &xd, vx) == VOXGI_OK && voxgi_inject_light(ctx, sc, *vx, id, vol) == VOXGI_OK)
+        return 1;
+    printf("    %s\n", voxgi_last_error(ctx));
+    return 0;
+}
+
+static inline int lit_voxels(voxgi_context *ctx, const voxgi_scene *sc, int res, const voxgi_inject_desc *id, voxgi_voxels **vx, voxgi_volume **vol)
+{
+    return lit_voxels_padded(ctx, sc, res, 1, id, vx, vol);
+}
+
+/* The leak box with a lamp inside its closed box as well (lights: 3, the scene's two and the lamp). */
+static inline voxgi_result leak_box_with_lamp(voxgi_context *ctx, voxgi_builtin_scene *box, voxgi_light lights[3])
+{
+    voxgi_result r = voxgi_builtin_scene_create(ctx, "leak-box", box);
+    if (r != VOXGI_OK) return r;
+    memcpy(lights, box->scene.lights, 2 * sizeof *lights);
+    memset(&lights[2], 0, sizeof lights[2]);
+    lights[2].type = VOXGI_LIGHT_POINT;
+    lights[2].position[0] = -0.2f; lights[2].position[1] = 0.7f; lights[2].position[2] = 0.1f;
+    lights[2].intensity[0] = lights[2].intensity[1] = lights[2].intensity[2] = 0.5f;
+    box->scene.lights = lights;
+    box->scene.light_count = 3;
+    return VOXGI_OK;
 }
 
 /* Where cones gather from: a volume's radiance, or an octree's. */

@@ -1,4 +1,6 @@
-/* Conservative and thin voxelization against their definitions on ARBITRARY float vertices and
+/* tests/test_exact.c - part 5: voxelization's exact tests against GMP (apart: it links -lgmp).
+
+   Conservative and thin voxelization against their definitions on ARBITRARY float vertices and
    double grids, decided exactly in GMP rationals (mpq_t, a test-only dependency).
 
    tests/test_voxelize.c's integer oracle takes only coordinates on a 2^-20 lattice, where the

@@ -1,52 +1,251 @@
-/* tests/test_internals.c - the tests of voxgi's private helpers (voxgi__*): half-float rounding,
-   the volume mip filters against parents worked out by hand (one parent, one level, a whole
-   chain on the CPU and on GL), the diffuse cone set (directions, distribution, weights),
-   Lambert's polygon formula against the lights' own samples, the exact area light of
-   cone-traced images, GL octree footprints, shader error mapping and which GL renderers are
-   software rasterizers. Random numbers come from fixtures.h's fx_rng, one generator seeded in
-   each test.
+/* tests/test_internals.c - the tests of voxgi's private helpers (voxgi__*), ordered by the header's
+   parts: 3 scene (rays leaving surfaces; Lambert's polygon formula against the lights' own
+   samples), 4 GL core (shader error mapping, which GL renderers are software rasterizers), 5
+   voxelization (the 3D-DDA of voxel visibility), 6 volumes and mips (the mip filters against
+   parents worked out by hand: one parent, one level, a whole chain on the CPU and on GL; the
+   region labels of empty space), 7 octree (half-float rounding, the GPU-built octree), 8 cone
+   tracing (the diffuse cone set: directions, distribution, weights; the exact area light of
+   cone-traced images), 12 line space (the build, shadow rays, GL against the CPU). Random numbers
+   come from fixtures.h's fx_rng, one generator seeded in each test.
 
    They live here, apart, because those helpers are static inside the implementation: this program
    defines VOXGI_IMPLEMENTATION and compiles the implementation itself, while every other test
    program includes voxgi.h for the declarations only and links the implementation compiled once
    (build/voxgi_impl.o), so it sees nothing but the public API. Keep a test here only while it
-   calls a voxgi__ function; the shared fixtures are tests/fixtures.h. The GL tests skip (loudly)
-   when no GL 4.5 context can be made; VOXGI_TEST_GL and VOXGI_REQUIRE_GL work as in
-   tests/test_gl_voxelize.c. */
+   calls a voxgi__ function or reads a private field; its part's public tests are in the part's
+   file (tests/test_<part>.c); the shared fixtures are tests/fixtures.h. The GL tests skip
+   (loudly) when no GL 4.5 context can be made; VOXGI_TEST_GL and VOXGI_REQUIRE_GL work as in
+   every GL test (tests/fixtures.h). */
 #define VOXGI_IMPLEMENTATION
 #include "../voxgi.h"
 #include "fixtures.h"
 #include "svo_checks.h"
 
-/* ---------------------------------------------------------------- formats */
-/* Every finite half survives float and back; every midpoint between neighbours rounds to the
-   even one, and a float just above or below it to the nearer; beyond the range: infinity. */
-static void test_half_rounding(void)
+/* ===================================================================== 3. scene */
+
+/* Rays leaving a surface (voxgi__leave, voxgi__trace skipping the triangle left) find nothing on
+   the surface itself: a tilted plane of 2 x 40 x 40 triangles, 1e3 m from the origin (floats
+   there are 6e-5 m apart), left from points on it at grazing angles, 2 to 0.01 degrees. Started
+   on the plane instead, float rounding puts some origins behind it and they hit its neighbours. */
+static void test_rays_leave_surfaces(void)
 {
-    uint32_t h;
-    int bad = 0;
-    for (h = 0; h < 0x10000u; h++) {
-        uint16_t hh = (uint16_t)h, up = (uint16_t)(h + 1);
-        double v, next, mid;
-        float f;
-        if ((h & 0x7C00u) == 0x7C00u) continue; /* infinities and NaNs */
-        v = voxgi__float_from_half(hh);
-        bad += voxgi__half_from_float((float)v) != hh;
-        if ((h & 0x7FFFu) == 0x7BFFu) { /* the largest finite: beyond its midpoint to 65536 is infinity */
-            double away = v < 0 ? -1 : 1;
-            bad += voxgi__half_from_float((float)(v + 15.99 * away)) != hh || voxgi__half_from_float((float)(v + 16 * away)) != ((hh & 0x8000u) | 0x7C00u);
-            continue;
+    enum { M = 40 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    static float pos[3 * (M + 1) * (M + 1)];
+    static uint32_t idx[6 * M * M];
+    const double u[3] = {0.8, 0.6, 0}, v[3] = {-0.36, 0.48, 0.8}, off[3] = {1000.3, -700.1, 400.7};
+    double n[3];
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi__tracer tr;
+    fx_rng rng;
+    int i, j, a, hits = 0, rays = 0;
+    n[0] = u[1] * v[2] - u[2] * v[1]; n[1] = u[2] * v[0] - u[0] * v[2]; n[2] = u[0] * v[1] - u[1] * v[0];
+    for (j = 0; j <= M; j++)
+        for (i = 0; i <= M; i++)
+            for (a = 0; a < 3; a++) pos[3 * (j * (M + 1) + i) + a] = (float)(off[a] + (i - M / 2) * 0.25 * u[a] + (j - M / 2) * 0.25 * v[a]);
+    for (j = 0; j < M; j++)
+        for (i = 0; i < M; i++) {
+            uint32_t q = (uint32_t)(j * (M + 1) + i), *t = idx + 6 * (j * M + i);
+            t[0] = q; t[1] = q + 1; t[2] = q + M + 2; t[3] = q; t[4] = q + M + 2; t[5] = q + M + 1;
         }
-        next = voxgi__float_from_half(up);
-        mid = (v + next) / 2; /* exact in float: halves have 11 significant bits */
-        f = (float)mid;
-        bad += voxgi__half_from_float(f) != ((h & 1u) ? up : hh);
-        bad += voxgi__half_from_float(nextafterf(f, (float)next)) != up || voxgi__half_from_float(nextafterf(f, (float)v)) != hh;
+    scene_of_triangles(&sc, &mesh, pos, (M + 1) * (M + 1), idx, 2 * M * M);
+    TH_CHECK(voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK, "tracer: %s", voxgi_last_error(ctx));
+    rng = fx_rng_seeded(5);
+    for (i = 0; i < 20000; i++) {
+        double o[3], d[3], p[3], ns[3], phi = fx_rng_range(&rng, 0, 6.283185307179586), el = pow(10, fx_rng_range(&rng, -2, log10(2.0))) * 3.141592653589793 / 180;
+        double su = fx_rng_range(&rng, -4, 4), sv = fx_rng_range(&rng, -4, 4);
+        voxgi__hit h, h2;
+        for (a = 0; a < 3; a++) { /* down onto the plane, then away from it along it */
+            o[a] = off[a] + su * u[a] + sv * v[a] + n[a];
+            d[a] = -n[a];
+        }
+        if (!voxgi__trace(&tr, o, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
+        for (a = 0; a < 3; a++) {
+            ns[a] = h.front ? tr.n[3 * (size_t)h.prim + (size_t)a] : -tr.n[3 * (size_t)h.prim + (size_t)a];
+            d[a] = cos(el) * (cos(phi) * u[a] + sin(phi) * v[a]) + sin(el) * ns[a];
+        }
+        voxgi__leave(&tr, h.p, ns, p);
+        rays++;
+        hits += voxgi__trace(&tr, p, d, DBL_MAX, h.prim, 1, &h2);
     }
-    TH_CHECK(bad == 0, "%d half conversions wrong", bad);
-    TH_CHECK(voxgi__half_from_float(1e-9f) == 0 && voxgi__half_from_float(-1e-9f) == 0x8000u && voxgi__half_from_float(1e30f) == 0x7C00u,
-             "tiny and huge values");
+    printf("    %d rays leaving a plane 1e3 m out at 0.01-2 degrees: %d hit it\n", rays, hits);
+    TH_CHECK(rays > 19000 && hits == 0, "%d of %d rays leaving the plane hit it", hits, rays);
+    voxgi__tracer_free(ctx, &tr);
+    voxgi_destroy(ctx);
 }
+
+/* Lambert's polygon formula (the cone-traced image's exact unshadowed light from rect lights and
+   emitters) against what is known: a huge square overhead gives pi, half of it under the
+   horizon pi / 2; a point behind a light or with the light below its horizon gets 0; and at random points and normals, lights cut by the
+   horizon included, it equals the mean of voxgi__direct's own light samples without shadow rays
+   (65536 stratified points per shading point: within 0.2% of the larger of the two and 0.05). */
+static void test_polygon_irradiance(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    double big[4][3] = {{-1e4, 1, -1e4}, {1e4, 1, -1e4}, {1e4, 1, 1e4}, {-1e4, 1, 1e4}}, down[3] = {0, -1, 0}, up[3] = {0, 1, 0}, o[3] = {0, 0, 0};
+    double side[3] = {1, 0, 0}, below[3] = {0, 2, 0}, worst = 0;
+    voxgi_material mats[2] = {{{0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0}, {{0.5f, 0.5f, 0.5f}, {3, 2, 1}, 0}};
+    float emit_q[12] = {-0.3f, 1, -0.2f, 0.2f, 1, -0.2f, 0.2f, 1, 0.4f, -0.3f, 1, 0.4f}; /* faces down: seen from below */
+    float floor_q[12] = {-9, -5, -9, -9, -5, 9, 9, -5, 9, 9, -5, -9};
+    voxgi_light rect;
+    quads q;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    int i, k, a;
+    fx_rng rng = fx_rng_seeded(3);
+    double f = voxgi__polygon_irradiance((const double(*)[3])big, 4, down, o, up);
+    printf("    huge square overhead: irradiance %.9f (pi %.9f)\n", f, 3.14159265358979323846);
+    TH_CHECK(fabs(f / 3.14159265358979323846 - 1) < 1e-6, "huge square: %.9f", f);
+    TH_CHECK(voxgi__polygon_irradiance((const double(*)[3])big, 4, down, below, down) == 0, "a point behind the light is lit");
+    TH_CHECK(voxgi__polygon_irradiance((const double(*)[3])big, 4, down, o, down) == 0, "a light below the horizon lights");
+    f = voxgi__polygon_irradiance((const double(*)[3])big, 4, down, o, side);
+    TH_CHECK(fabs(f / (3.14159265358979323846 / 2) - 1) < 1e-3, "a huge square half under the horizon: %.9f, not pi / 2", f); /* less its far edge */
+    q.n = 0;
+    quad(&q, emit_q, 1);
+    quad(&q, floor_q, 0);
+    memset(&rect, 0, sizeof rect);
+    rect.type = VOXGI_LIGHT_RECT;
+    rect.position[0] = 0.5f; rect.position[1] = 0.2f; rect.position[2] = -0.5f;
+    rect.edge_u[2] = 0.6f; rect.edge_v[1] = 0.5f; /* a wall light at x = 0.5 facing -x (edge_u x edge_v) */
+    rect.intensity[0] = 1; rect.intensity[1] = 4; rect.intensity[2] = 2;
+    scene_of_quads(&sc, &mesh, &q, mats, 2, &rect, 1);
+    TH_CHECK(voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK && voxgi__lights_build(ctx, &sc, &tr, &Ls) == VOXGI_OK, "lights");
+    for (i = 0; i < 40; i++) {
+        double p[3], n[3], len = 0, exact[3], mean[6] = {0, 0, 0, 0, 0, 0}, e[3];
+        uint64_t rays = 0;
+        voxgi__rng g;
+        for (a = 0; a < 3; a++) { p[a] = fx_rng_range(&rng, -0.8, 0.8); n[a] = fx_rng_range(&rng, -1, 1); len += n[a] * n[a]; }
+        p[1] = fx_rng_range(&rng, -0.5, 0.2);
+        len = sqrt(len);
+        for (a = 0; a < 3; a++) n[a] /= len;
+        voxgi__area_irradiance(&Ls, p, n, UINT32_MAX, exact);
+        voxgi__rng_seed(&g, 5, (uint64_t)i, 0);
+        for (k = 0; k < 65536; k++) { /* stratified: a 2D Kronecker sequence */
+            double area[8] = {0, 0, 0, 0, 0, 0, 0, 0}, xi[2];
+            xi[0] = fmod(0.5 + (k + 1) * 0.7548776662466927, 1.0);
+            xi[1] = fmod(0.5 + (k + 1) * 0.5698402909980532, 1.0);
+            voxgi__direct(&Ls, p, n, UINT32_MAX, &g, 0, xi, &rays, e, area);
+            for (a = 0; a < 6; a++) mean[a] += area[a] / 65536;
+        }
+        for (a = 0; a < 3; a++) worst = fmax(worst, fabs(mean[3 + a] - exact[a]) / fmax(exact[a], 0.05));
+    }
+    printf("    rect light and emitters at 40 random points: the exact irradiance within %.3f%% of the sampled mean\n", 100 * worst);
+    TH_CHECK(worst < 0.002, "polygon irradiance off by %.3g", worst);
+    voxgi__lights_free(ctx, &Ls);
+    voxgi__tracer_free(ctx, &tr);
+    voxgi_destroy(ctx);
+}
+
+/* ===================================================================== 4. GL core */
+
+/* A shader that fails to compile gives VOXGI_ERR_GL_SHADER with the log mapped to file:line. */
+static void test_gl_shader_error_mapping(void)
+{
+    voxgi_context *ctx;
+    unsigned int prog = 0;
+    const char *files[2] = {"good.glsl", "broken.glsl"};
+    const char *texts[2] = {"layout(local_size_x = 1) in;\nint one() { return 1; }\n",
+                            "void main()\n{\n    undefined_thing = one();\n}\n"};
+    if (!have_gl()) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
+    TH_CHECK(voxgi__gl_program(ctx, 0, 2, files, texts, &prog) == VOXGI_ERR_GL_SHADER, "broken shader compiled");
+    TH_CHECK(strstr(voxgi_last_error(ctx), "broken.glsl:3") != NULL, "log not mapped to broken.glsl:3: %s", voxgi_last_error(ctx));
+    voxgi_destroy(ctx);
+}
+
+/* Which GL renderers AUTO turns down for the CPU: the software rasterizers, by name in any case,
+   and nothing else (real renderer strings of GPUs, and look-alikes). */
+static void test_gl_software_renderers(void)
+{
+    static const char *const software[] = {"llvmpipe (LLVM 15.0.6, 256 bits)", "LLVMPIPE", "softpipe", "Gallium 0.4 on softpipe",
+                                           "Software Rasterizer", "Mesa X11 swrast", "Google SwiftShader", "SwiftShader Device (Subzero)",
+                                           "ANGLE (Google, Vulkan 1.3.0 (SwiftShader Device (Subzero) (0x0000C0DE)), SwiftShader driver)",
+                                           "D3D12 (Microsoft Basic Render Driver)", "microsoft basic render driver"};
+    static const char *const hardware[] = {"", "NVIDIA GeForce RTX 3080/PCIe/SSE2", "AMD Radeon RX 6800 XT (radeonsi, navi21, LLVM 15.0.7, DRM 3.49)",
+                                           "Mesa Intel(R) UHD Graphics 620 (KBL GT2)", "Apple M1", "D3D12 (NVIDIA GeForce RTX 3060)",
+                                           "virgl (Mesa Intel(R) Xe Graphics)", "llvm pipe", "Soft Rasterizer", "swift shader"};
+    size_t k;
+    for (k = 0; k < sizeof software / sizeof software[0]; k++)
+        TH_CHECK(voxgi__gl_is_software(software[k]), "'%s' not taken for a software rasterizer", software[k]);
+    for (k = 0; k < sizeof hardware / sizeof hardware[0]; k++)
+        TH_CHECK(!voxgi__gl_is_software(hardware[k]), "'%s' taken for a software rasterizer", hardware[k]);
+}
+
+/* ===================================================================== 5. voxelization */
+
+/* 3D-DDA through an empty grid visits exactly the voxels a brute-force slab test finds for the
+   segment (those whose box it crosses for more than 1e-9 of its length), in the order it enters
+   them; 4000 random segments inside, across and beside a 7 x 5 x 9 grid. */
+typedef struct dda_log { int64_t v[64][3]; int n; } dda_log;
+static void dda_record(void *user, const int64_t v[3])
+{
+    dda_log *L = (dda_log *)user;
+    if (L->n < 64) memcpy(L->v[L->n], v, sizeof L->v[0]);
+    L->n++;
+}
+
+static void test_dda_visits_the_slab_voxels(void)
+{
+    voxgi__occupancy O;
+    fx_rng g = fx_rng_seeded(21);
+    int trial, bad = 0, visited = 0;
+    memset(&O, 0, sizeof O);
+    O.levels = 1;
+    O.res[0][0] = 7; O.res[0][1] = 5; O.res[0][2] = 9;
+    O.bits[0] = (uint32_t *)calloc((7 * 5 * 9 + 31) / 32, 4);
+    for (trial = 0; trial < 4000 && !bad; trial++) {
+        double o[3], d[3], entry[64];
+        int64_t want[64][3];
+        int n = 0, a, i, j, k;
+        uint64_t steps = 0;
+        dda_log L;
+        for (a = 0; a < 3; a++) {
+            o[a] = fx_rng_range(&g, -2, O.res[0][a] + 2);
+            d[a] = fx_rng_range(&g, -2, O.res[0][a] + 2) - o[a];
+        }
+        if (trial % 5 == 0) d[trial % 3] = 0; /* parallel to an axis */
+        for (k = 0; k < 9; k++) /* brute force: each voxel's slab interval */
+            for (j = 0; j < 5; j++)
+                for (i = 0; i < 7; i++) {
+                    double t0 = 0, t1 = 1;
+                    int c[3];
+                    c[0] = i; c[1] = j; c[2] = k;
+                    for (a = 0; a < 3; a++) {
+                        if (d[a] == 0) {
+                            if (!(o[a] >= c[a] && o[a] <= c[a] + 1)) t1 = -1;
+                            continue;
+                        }
+                        {
+                            double ta = (c[a] - o[a]) / d[a], tb = (c[a] + 1 - o[a]) / d[a];
+                            if (ta > tb) { double x = ta; ta = tb; tb = x; }
+                            if (ta > t0) t0 = ta;
+                            if (tb < t1) t1 = tb;
+                        }
+                    }
+                    if (t1 - t0 > 1e-9) { /* in order of entry */
+                        int at = n++;
+                        while (at > 0 && entry[at - 1] > t0) { entry[at] = entry[at - 1]; memcpy(want[at], want[at - 1], sizeof want[0]); at--; }
+                        entry[at] = t0;
+                        want[at][0] = i; want[at][1] = j; want[at][2] = k;
+                    }
+                }
+        L.n = 0;
+        voxgi__traverse(&O, 0, o, d, &steps, dda_record, &L);
+        visited += L.n;
+        if (L.n != n) bad = 1;
+        for (i = 0; i < n && !bad; i++)
+            for (a = 0; a < 3; a++) bad |= L.v[i][a] != want[i][a];
+        if (bad) printf("    segment %d: DDA visited %d voxels, the slabs %d\n", trial, L.n, n);
+    }
+    printf("    %d segments: %d voxels visited, every one the brute force's, in its order\n", trial, visited);
+    TH_CHECK(!bad && visited > 10000, "DDA differs from the slab test");
+    free(O.bits[0]);
+}
+
+/* ===================================================================== 6. volumes and mips */
 
 /* ---------------------------------------------------------------- volume mips, by hand */
 /* The mip filters against parents worked out by hand from their definition (voxgi.h, part 6,
@@ -348,6 +547,20 @@ static void test_volume_mips_by_hand(void)
     voxgi_destroy(ctx);
 }
 
+/* The GL volumes' compute pass (shaders/volume_mip.glsl) against the same hand-worked 4^3 chain
+   as the CPU's (test_volume_mips_by_hand). */
+static void test_gl_volume_mips_by_hand(void)
+{
+    voxgi_context *ctx;
+    int bad;
+    if (!have_gl()) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
+    bad = mip_chain_wrong(ctx, "GL");
+    printf("    GL: a 4^3 chain, isotropic and anisotropic, albedo, radiance and opacity, every level: %d values wrong\n", bad);
+    TH_CHECK(bad == 0, "%d GL volume values differ from the hand-worked ones", bad);
+    voxgi_destroy(ctx);
+}
+
 
 /* ---------------------------------------------------------------- regions and rays leaving surfaces */
 /* The region labels of a volume's empty space (voxgi__volume_regions) against a flood fill:
@@ -431,300 +644,36 @@ static void test_region_labels_flood_fill(void)
     voxgi_destroy(ctx);
 }
 
-/* Rays leaving a surface (voxgi__leave, voxgi__trace skipping the triangle left) find nothing on
-   the surface itself: a tilted plane of 2 x 40 x 40 triangles, 1e3 m from the origin (floats
-   there are 6e-5 m apart), left from points on it at grazing angles, 2 to 0.01 degrees. Started
-   on the plane instead, float rounding puts some origins behind it and they hit its neighbours. */
-static void test_rays_leave_surfaces(void)
-{
-    enum { M = 40 };
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    static float pos[3 * (M + 1) * (M + 1)];
-    static uint32_t idx[6 * M * M];
-    const double u[3] = {0.8, 0.6, 0}, v[3] = {-0.36, 0.48, 0.8}, off[3] = {1000.3, -700.1, 400.7};
-    double n[3];
-    voxgi_mesh mesh;
-    voxgi_scene sc;
-    voxgi__tracer tr;
-    fx_rng rng;
-    int i, j, a, hits = 0, rays = 0;
-    n[0] = u[1] * v[2] - u[2] * v[1]; n[1] = u[2] * v[0] - u[0] * v[2]; n[2] = u[0] * v[1] - u[1] * v[0];
-    for (j = 0; j <= M; j++)
-        for (i = 0; i <= M; i++)
-            for (a = 0; a < 3; a++) pos[3 * (j * (M + 1) + i) + a] = (float)(off[a] + (i - M / 2) * 0.25 * u[a] + (j - M / 2) * 0.25 * v[a]);
-    for (j = 0; j < M; j++)
-        for (i = 0; i < M; i++) {
-            uint32_t q = (uint32_t)(j * (M + 1) + i), *t = idx + 6 * (j * M + i);
-            t[0] = q; t[1] = q + 1; t[2] = q + M + 2; t[3] = q; t[4] = q + M + 2; t[5] = q + M + 1;
-        }
-    scene_of_triangles(&sc, &mesh, pos, (M + 1) * (M + 1), idx, 2 * M * M);
-    TH_CHECK(voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK, "tracer: %s", voxgi_last_error(ctx));
-    rng = fx_rng_seeded(5);
-    for (i = 0; i < 20000; i++) {
-        double o[3], d[3], p[3], ns[3], phi = fx_rng_range(&rng, 0, 6.283185307179586), el = pow(10, fx_rng_range(&rng, -2, log10(2.0))) * 3.141592653589793 / 180;
-        double su = fx_rng_range(&rng, -4, 4), sv = fx_rng_range(&rng, -4, 4);
-        voxgi__hit h, h2;
-        for (a = 0; a < 3; a++) { /* down onto the plane, then away from it along it */
-            o[a] = off[a] + su * u[a] + sv * v[a] + n[a];
-            d[a] = -n[a];
-        }
-        if (!voxgi__trace(&tr, o, d, DBL_MAX, UINT32_MAX, 0, &h)) continue;
-        for (a = 0; a < 3; a++) {
-            ns[a] = h.front ? tr.n[3 * (size_t)h.prim + (size_t)a] : -tr.n[3 * (size_t)h.prim + (size_t)a];
-            d[a] = cos(el) * (cos(phi) * u[a] + sin(phi) * v[a]) + sin(el) * ns[a];
-        }
-        voxgi__leave(&tr, h.p, ns, p);
-        rays++;
-        hits += voxgi__trace(&tr, p, d, DBL_MAX, h.prim, 1, &h2);
-    }
-    printf("    %d rays leaving a plane 1e3 m out at 0.01-2 degrees: %d hit it\n", rays, hits);
-    TH_CHECK(rays > 19000 && hits == 0, "%d of %d rays leaving the plane hit it", hits, rays);
-    voxgi__tracer_free(ctx, &tr);
-    voxgi_destroy(ctx);
-}
+/* ===================================================================== 7. octree */
 
-/* ---------------------------------------------------------------- cone tracing and light */
-/* qsort's order of doubles. */
-static int cmp_double(const void *a, const void *b)
+/* ---------------------------------------------------------------- formats */
+/* Every finite half survives float and back; every midpoint between neighbours rounds to the
+   even one, and a float just above or below it to the nearer; beyond the range: infinity. */
+static void test_half_rounding(void)
 {
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The diffuse cone set: n directions (voxgi__cone_direction, in the frame whose z is the normal)
-   that split the cosine-weighted hemisphere into n equal shares, each cone weighted pi / n in the
-   irradiance, with the default half-angle acos(1 - 1/n). What that promises, tested as such:
-   - unit directions in the upper hemisphere;
-   - cosine-distributed: projected onto the disc (x, y) a cosine-distributed direction is uniform
-     over the unit disc (Malley), so r^2 = sin^2(theta) is uniform on [0, 1]: the largest gap
-     between the share of the set with r^2 <= t and t (Kolmogorov-Smirnov) is at most 1 / (2n),
-     the least n points can have (one per equal share); and over the disc, every polar box of an
-     8 x 8 grid of equal-area cells (r^2 and the azimuth in eighths) holds its area's share of the
-     points within 4 / n (low discrepancy; a random set is off by about 1 / sqrt(n));
-   - the set's mean of f, (1/n) sum f(d_k), is a quadrature of the cosine-weighted mean
-     (1/pi) int f cos(theta) dw; by hand, with dw = sin(theta) dtheta dphi and s = sin(theta):
-     f = 1: 1; cos(theta): 2 int cos^2 sin = 2/3; cos^2: 2 int cos^3 sin = 1/2; x^2 = s^2 cos^2(phi):
-     (1/pi) pi int s^3 ds = 1/4, y^2 the same; x, y, xy: 0 (odd in phi); x^2 y^2: (1/pi) (pi/4)
-     int s^5 ds = 1/24. Each within 1 / n of it from n = 8 on, so converging as n grows;
-   - the weights sum to 1: under a uniform opaque radiance L every cone sees L, and
-     voxgi_cone_trace gives pi L and occlusion 1 for any n, isotropic or anisotropic;
-   - the default half-angle gives each cone 1/n of the hemisphere's solid angle: n 2 pi (1 - cos) = 2 pi. */
-static void test_cone_set(void)
-{
-    static const int ns[] = {1, 2, 3, 5, 8, 16, 64, 256, 1024};
-    static const double exact[9] = {1, 2.0 / 3, 0.5, 0.25, 0.25, 0, 0, 0, 1.0 / 24};
-    static const char *fname[9] = {"1", "cos", "cos^2", "x^2", "y^2", "x", "y", "xy", "x^2 y^2"};
-    static double u[1024];
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    double worst_err[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, worst_ks = 0, worst_box = 0, worst_irr = 0, worst_cover = 0;
-    float rad[64 * 4], pos[3] = {0.625f, 0.625f, 0.25f}, nrm[3] = {0, 0, 1};
-    voxgi_grid g;
-    int i, k, f, bad = 0, filter;
-    for (i = 0; i < (int)(sizeof ns / sizeof ns[0]); i++) {
-        int n = ns[i], cell[8][8], a, b, c, e;
-        double mean[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-        memset(cell, 0, sizeof cell);
-        for (k = 0; k < n; k++) {
-            double d[3], x, y, z, phi;
-            voxgi__cone_direction(k, n, d);
-            x = d[0]; y = d[1]; z = d[2];
-            bad += fabs(x * x + y * y + z * z - 1) > 1e-12 || !(z > 0);
-            u[k] = x * x + y * y;
-            phi = atan2(y, x) / (2 * PI);
-            if (phi < 0) phi += 1;
-            a = (int)(u[k] * 8); b = (int)(phi * 8);
-            cell[a > 7 ? 7 : a][b > 7 ? 7 : b]++;
-            mean[0] += 1.0 / n; mean[1] += z / n; mean[2] += z * z / n; mean[3] += x * x / n; mean[4] += y * y / n;
-            mean[5] += x / n; mean[6] += y / n; mean[7] += x * y / n; mean[8] += x * x * y * y / n;
+    uint32_t h;
+    int bad = 0;
+    for (h = 0; h < 0x10000u; h++) {
+        uint16_t hh = (uint16_t)h, up = (uint16_t)(h + 1);
+        double v, next, mid;
+        float f;
+        if ((h & 0x7C00u) == 0x7C00u) continue; /* infinities and NaNs */
+        v = voxgi__float_from_half(hh);
+        bad += voxgi__half_from_float((float)v) != hh;
+        if ((h & 0x7FFFu) == 0x7BFFu) { /* the largest finite: beyond its midpoint to 65536 is infinity */
+            double away = v < 0 ? -1 : 1;
+            bad += voxgi__half_from_float((float)(v + 15.99 * away)) != hh || voxgi__half_from_float((float)(v + 16 * away)) != ((hh & 0x8000u) | 0x7C00u);
+            continue;
         }
-        qsort(u, (size_t)n, sizeof u[0], cmp_double);
-        for (k = 0; k < n; k++) { /* the empirical distribution of r^2 against the uniform one, both sides of each step */
-            double ks = fmax(fabs((k + 1.0) / n - u[k]), fabs((double)k / n - u[k]));
-            if (ks > 0.5 / n + 1e-12) bad++;
-            worst_ks = fmax(worst_ks, ks * n);
-        }
-        for (a = 0; a < 8 && n >= 16; a++) /* every box [a, b) x [c, e) of cells */
-            for (b = a + 1; b <= 8; b++)
-                for (c = 0; c < 8; c++)
-                    for (e = c + 1; e <= 8; e++) {
-                        int cnt = 0, r, s;
-                        double off;
-                        for (r = a; r < b; r++) for (s = c; s < e; s++) cnt += cell[r][s];
-                        off = fabs((double)cnt / n - (b - a) * (e - c) / 64.0) * n;
-                        worst_box = fmax(worst_box, off);
-                        bad += off > 4;
-                    }
-        for (f = 0; f < 9 && n >= 8; f++) {
-            double err = fabs(mean[f] - exact[f]);
-            worst_err[f] = fmax(worst_err[f], err * n);
-            if (err > 1.0 / n) { bad++; printf("    n %d: the mean of %s is %.6f, not %.6f\n", n, fname[f], mean[f], exact[f]); }
-        }
+        next = voxgi__float_from_half(up);
+        mid = (v + next) / 2; /* exact in float: halves have 11 significant bits */
+        f = (float)mid;
+        bad += voxgi__half_from_float(f) != ((h & 1u) ? up : hh);
+        bad += voxgi__half_from_float(nextafterf(f, (float)next)) != up || voxgi__half_from_float(nextafterf(f, (float)v)) != hh;
     }
-    printf("    n up to 1024: r^2 within %.3f / n of uniform, polar boxes within %.2f / n of their share; "
-           "means within n x (1 %.2g, cos %.2g, cos^2 %.2g, x^2 %.2g, y^2 %.2g, x %.2g, y %.2g, xy %.2g, x^2y^2 %.2g) / n\n",
-           worst_ks, worst_box, worst_err[0], worst_err[1], worst_err[2], worst_err[3], worst_err[4], worst_err[5], worst_err[6], worst_err[7],
-           worst_err[8]);
-    TH_CHECK(bad == 0, "%d failures of the cone set's directions or distribution", bad);
-    /* the weights and the default half-angle, through the library: a 4^3 radiance volume, opaque and
-       uniform, L = (0.5, 1, 2); a point whose first samples (1.5 voxels along the normal) fall on a
-       voxel centre, (2.5, 2.5, 2.5) in grid units */
-    cubic(&g, 0, 1, 4);
-    for (k = 0; k < 64; k++) { rad[4 * k] = 0.5f; rad[4 * k + 1] = 1; rad[4 * k + 2] = 2; rad[4 * k + 3] = 1; }
-    for (filter = 0; filter < 2; filter++) {
-        voxgi_volume *vol = radiance_volume(ctx, &g, (voxgi_mip_filter)filter, rad);
-        static const int cones[5] = {1, 2, 7, 0, 64}; /* 0: the default, 16 */
-        TH_CHECK(vol != NULL, "radiance volume: %s", voxgi_last_error(ctx));
-        for (i = 0; i < 5 && vol; i++) {
-            voxgi_cone_desc cd;
-            voxgi__cone_job J;
-            float irr[3] = {0, 0, 0}, occ = 0;
-            int a;
-            memset(&cd, 0, sizeof cd);
-            cd.cones = cones[i];
-            TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, 1, pos, nrm, irr, &occ) == VOXGI_OK && voxgi__cone_job_init(ctx, VOLUME_SOURCE(vol), &cd, &J) == VOXGI_OK,
-                     "cone trace: %s", voxgi_last_error(ctx));
-            for (a = 0; a < 3; a++) worst_irr = fmax(worst_irr, fabs(irr[a] / (PI * rad[a]) - 1));
-            worst_irr = fmax(worst_irr, fabs(occ - 1));
-            worst_cover = fmax(worst_cover, fabs(J.cones * 2 * PI * (1 - cos(atan(J.half_tan))) / (2 * PI) - 1));
-            TH_CHECK(J.cones == (cones[i] ? cones[i] : 16), "%d cones asked for, %d traced", cones[i], J.cones);
-        }
-        voxgi_volume_destroy(ctx, vol);
-    }
-    printf("    under uniform opaque radiance: irradiance / (pi L) and occlusion within %.2g of 1; default half-angles cover the hemisphere within %.2g\n",
-           worst_irr, worst_cover);
-    TH_CHECK(worst_irr < 1e-6, "the cone weights do not sum to 1: off by %.3g", worst_irr);
-    TH_CHECK(worst_cover < 1e-9, "the default half-angles cover the hemisphere's solid angle only to %.3g", worst_cover);
-    voxgi_destroy(ctx);
-}
-
-/* Lambert's polygon formula (the cone-traced image's exact unshadowed light from rect lights and
-   emitters) against what is known: a huge square overhead gives pi, half of it under the
-   horizon pi / 2; a point behind a light or with the light below its horizon gets 0; and at random points and normals, lights cut by the
-   horizon included, it equals the mean of voxgi__direct's own light samples without shadow rays
-   (65536 stratified points per shading point: within 0.2% of the larger of the two and 0.05). */
-static void test_polygon_irradiance(void)
-{
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    double big[4][3] = {{-1e4, 1, -1e4}, {1e4, 1, -1e4}, {1e4, 1, 1e4}, {-1e4, 1, 1e4}}, down[3] = {0, -1, 0}, up[3] = {0, 1, 0}, o[3] = {0, 0, 0};
-    double side[3] = {1, 0, 0}, below[3] = {0, 2, 0}, worst = 0;
-    voxgi_material mats[2] = {{{0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0}, {{0.5f, 0.5f, 0.5f}, {3, 2, 1}, 0}};
-    float emit_q[12] = {-0.3f, 1, -0.2f, 0.2f, 1, -0.2f, 0.2f, 1, 0.4f, -0.3f, 1, 0.4f}; /* faces down: seen from below */
-    float floor_q[12] = {-9, -5, -9, -9, -5, 9, 9, -5, 9, 9, -5, -9};
-    voxgi_light rect;
-    quads q;
-    voxgi_mesh mesh;
-    voxgi_scene sc;
-    voxgi__tracer tr;
-    voxgi__lights Ls;
-    int i, k, a;
-    fx_rng rng = fx_rng_seeded(3);
-    double f = voxgi__polygon_irradiance((const double(*)[3])big, 4, down, o, up);
-    printf("    huge square overhead: irradiance %.9f (pi %.9f)\n", f, 3.14159265358979323846);
-    TH_CHECK(fabs(f / 3.14159265358979323846 - 1) < 1e-6, "huge square: %.9f", f);
-    TH_CHECK(voxgi__polygon_irradiance((const double(*)[3])big, 4, down, below, down) == 0, "a point behind the light is lit");
-    TH_CHECK(voxgi__polygon_irradiance((const double(*)[3])big, 4, down, o, down) == 0, "a light below the horizon lights");
-    f = voxgi__polygon_irradiance((const double(*)[3])big, 4, down, o, side);
-    TH_CHECK(fabs(f / (3.14159265358979323846 / 2) - 1) < 1e-3, "a huge square half under the horizon: %.9f, not pi / 2", f); /* less its far edge */
-    q.n = 0;
-    quad(&q, emit_q, 1);
-    quad(&q, floor_q, 0);
-    memset(&rect, 0, sizeof rect);
-    rect.type = VOXGI_LIGHT_RECT;
-    rect.position[0] = 0.5f; rect.position[1] = 0.2f; rect.position[2] = -0.5f;
-    rect.edge_u[2] = 0.6f; rect.edge_v[1] = 0.5f; /* a wall light at x = 0.5 facing -x (edge_u x edge_v) */
-    rect.intensity[0] = 1; rect.intensity[1] = 4; rect.intensity[2] = 2;
-    scene_of_quads(&sc, &mesh, &q, mats, 2, &rect, 1);
-    TH_CHECK(voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK && voxgi__lights_build(ctx, &sc, &tr, &Ls) == VOXGI_OK, "lights");
-    for (i = 0; i < 40; i++) {
-        double p[3], n[3], len = 0, exact[3], mean[6] = {0, 0, 0, 0, 0, 0}, e[3];
-        uint64_t rays = 0;
-        voxgi__rng g;
-        for (a = 0; a < 3; a++) { p[a] = fx_rng_range(&rng, -0.8, 0.8); n[a] = fx_rng_range(&rng, -1, 1); len += n[a] * n[a]; }
-        p[1] = fx_rng_range(&rng, -0.5, 0.2);
-        len = sqrt(len);
-        for (a = 0; a < 3; a++) n[a] /= len;
-        voxgi__area_irradiance(&Ls, p, n, UINT32_MAX, exact);
-        voxgi__rng_seed(&g, 5, (uint64_t)i, 0);
-        for (k = 0; k < 65536; k++) { /* stratified: a 2D Kronecker sequence */
-            double area[8] = {0, 0, 0, 0, 0, 0, 0, 0}, xi[2];
-            xi[0] = fmod(0.5 + (k + 1) * 0.7548776662466927, 1.0);
-            xi[1] = fmod(0.5 + (k + 1) * 0.5698402909980532, 1.0);
-            voxgi__direct(&Ls, p, n, UINT32_MAX, &g, 0, xi, &rays, e, area);
-            for (a = 0; a < 6; a++) mean[a] += area[a] / 65536;
-        }
-        for (a = 0; a < 3; a++) worst = fmax(worst, fabs(mean[3 + a] - exact[a]) / fmax(exact[a], 0.05));
-    }
-    printf("    rect light and emitters at 40 random points: the exact irradiance within %.3f%% of the sampled mean\n", 100 * worst);
-    TH_CHECK(worst < 0.002, "polygon irradiance off by %.3g", worst);
-    voxgi__lights_free(ctx, &Ls);
-    voxgi__tracer_free(ctx, &tr);
-    voxgi_destroy(ctx);
-}
-
-/* A floor under a rect light, seen from above, GI off: nothing shadows the floor, so the shadow
-   rays' visible share is 1, and a pixel whose rays all meet the triangle its centre shows stops
-   after half of them with albedo / pi x the exact (polygon) irradiance at its centre: within
-   1e-5 of it at every pixel away from the floor's diagonal (whose pixels average the exact light
-   over their square: within 1%). The sampled estimate (sampled_direct) is noisier by far. */
-static void test_exact_area_light_image(void)
-{
-    enum { W = 24 };
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    voxgi_material mat = {{0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0};
-    float floor_q[12] = {-2, 0, -2, -2, 0, 2, 2, 0, 2, 2, 0, -2};
-    voxgi_light rect;
-    quads q;
-    voxgi_mesh mesh;
-    voxgi_scene sc;
-    voxgi_camera cam;
-    voxgi_render_desc vd;
-    voxgi__tracer tr;
-    voxgi__lights Ls;
-    static float img[2][W * W * 3], pos[W * W * 3], nrm[W * W * 3];
-    static uint32_t tri[W * W];
-    double worst[2] = {0, 0}, worst_edge = 0, mean = 0;
-    int i, k, a, inner = 0;
-    q.n = 0;
-    quad(&q, floor_q, 0);
-    memset(&rect, 0, sizeof rect);
-    rect.type = VOXGI_LIGHT_RECT;
-    rect.position[0] = -0.2f; rect.position[1] = 1; rect.position[2] = -0.2f;
-    rect.edge_u[0] = 0.4f; rect.edge_v[2] = 0.4f; /* u x v = -y: faces the floor */
-    rect.intensity[0] = rect.intensity[1] = rect.intensity[2] = 5;
-    scene_of_quads(&sc, &mesh, &q, &mat, 1, &rect, 1);
-    memset(&cam, 0, sizeof cam);
-    cam.eye[0] = 0.01; cam.eye[1] = 3; cam.eye[2] = 0.3;
-    cam.fovy_degrees = 30;
-    cam.width = cam.height = W;
-    vct_desc_old(&vd, &cam);
-    vd.direct_only = 1;
-    for (k = 0; k < 2; k++) {
-        vd.vct.sampled_direct = k;
-        TH_CHECK(voxgi_render(ctx, &sc, &vd, img[k], sizeof img[k], NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
-    }
-    TH_CHECK(voxgi_gbuffer_render(ctx, &sc, &vd.camera, pos, nrm, tri) == VOXGI_OK && voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK &&
-             voxgi__lights_build(ctx, &sc, &tr, &Ls) == VOXGI_OK, "G-buffer: %s", voxgi_last_error(ctx));
-    for (i = 0; i < W * W; i++) {
-        double p[3], n[3], e[3];
-        for (a = 0; a < 3; a++) { p[a] = pos[3 * i + a]; n[a] = nrm[3 * i + a]; }
-        int x = i % W, y = i / W, one = 1;
-        voxgi__area_irradiance(&Ls, p, n, UINT32_MAX, e);
-        mean += 0.5 / PI * e[0] / (W * W);
-        for (k = -1; k <= 1; k++) /* the pixel and its neighbours on one triangle */
-            for (a = -1; a <= 1; a++)
-                if (x + a >= 0 && x + a < W && y + k >= 0 && y + k < W) one &= tri[(y + k) * W + x + a] == tri[i];
-        inner += one;
-        if (one) worst[0] = fmax(worst[0], fabs(img[0][3 * i] - 0.5 / PI * e[0]) / (0.5 / PI * e[0]));
-        else worst_edge = fmax(worst_edge, fabs(img[0][3 * i] - 0.5 / PI * e[0]) / (0.5 / PI * e[0]));
-        worst[1] = fmax(worst[1], fabs(img[1][3 * i] - 0.5 / PI * e[0]) / (0.5 / PI * e[0]));
-    }
-    printf("    floor under a rect light: exact area light within %.2g of albedo / pi x the polygon irradiance at %d pixels (%.2g on the diagonal), "
-           "the sampled estimate within %.2g (mean %.3f)\n", worst[0], inner, worst_edge, worst[1], mean);
-    TH_CHECK(mean > 0.05 && inner > W * W / 2 && worst[0] < 1e-5 && worst_edge < 0.01, "exact area light off by %.3g (diagonal %.3g)", worst[0], worst_edge);
-    TH_CHECK(worst[1] > 5 * worst[0], "the sampled estimate (%.3g) is not noisier than the exact one (%.3g)", worst[1], worst[0]);
-    voxgi__lights_free(ctx, &Ls);
-    voxgi__tracer_free(ctx, &tr);
-    voxgi_destroy(ctx);
+    TH_CHECK(bad == 0, "%d half conversions wrong", bad);
+    TH_CHECK(voxgi__half_from_float(1e-9f) == 0 && voxgi__half_from_float(-1e-9f) == 0x8000u && voxgi__half_from_float(1e30f) == 0x7C00u,
+             "tiny and huge values");
 }
 
 /* ---------------------------------------------------------------- GL */
@@ -878,121 +827,189 @@ static void test_gl_svo_equals_cpu(void)
     voxgi_destroy(gl);
 }
 
-/* The GL volumes' compute pass (shaders/volume_mip.glsl) against the same hand-worked 4^3 chain
-   as the CPU's (test_volume_mips_by_hand). */
-static void test_gl_volume_mips_by_hand(void)
+/* ===================================================================== 8. cone tracing */
+
+/* ---------------------------------------------------------------- cone tracing and light */
+/* qsort's order of doubles. */
+static int cmp_double(const void *a, const void *b)
 {
-    voxgi_context *ctx;
-    int bad;
-    if (!have_gl()) return;
-    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
-    bad = mip_chain_wrong(ctx, "GL");
-    printf("    GL: a 4^3 chain, isotropic and anisotropic, albedo, radiance and opacity, every level: %d values wrong\n", bad);
-    TH_CHECK(bad == 0, "%d GL volume values differ from the hand-worked ones", bad);
-    voxgi_destroy(ctx);
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
 }
 
-/* A shader that fails to compile gives VOXGI_ERR_GL_SHADER with the log mapped to file:line. */
-static void test_gl_shader_error_mapping(void)
+/* The diffuse cone set: n directions (voxgi__cone_direction, in the frame whose z is the normal)
+   that split the cosine-weighted hemisphere into n equal shares, each cone weighted pi / n in the
+   irradiance, with the default half-angle acos(1 - 1/n). What that promises, tested as such:
+   - unit directions in the upper hemisphere;
+   - cosine-distributed: projected onto the disc (x, y) a cosine-distributed direction is uniform
+     over the unit disc (Malley), so r^2 = sin^2(theta) is uniform on [0, 1]: the largest gap
+     between the share of the set with r^2 <= t and t (Kolmogorov-Smirnov) is at most 1 / (2n),
+     the least n points can have (one per equal share); and over the disc, every polar box of an
+     8 x 8 grid of equal-area cells (r^2 and the azimuth in eighths) holds its area's share of the
+     points within 4 / n (low discrepancy; a random set is off by about 1 / sqrt(n));
+   - the set's mean of f, (1/n) sum f(d_k), is a quadrature of the cosine-weighted mean
+     (1/pi) int f cos(theta) dw; by hand, with dw = sin(theta) dtheta dphi and s = sin(theta):
+     f = 1: 1; cos(theta): 2 int cos^2 sin = 2/3; cos^2: 2 int cos^3 sin = 1/2; x^2 = s^2 cos^2(phi):
+     (1/pi) pi int s^3 ds = 1/4, y^2 the same; x, y, xy: 0 (odd in phi); x^2 y^2: (1/pi) (pi/4)
+     int s^5 ds = 1/24. Each within 1 / n of it from n = 8 on, so converging as n grows;
+   - the weights sum to 1: under a uniform opaque radiance L every cone sees L, and
+     voxgi_cone_trace gives pi L and occlusion 1 for any n, isotropic or anisotropic;
+   - the default half-angle gives each cone 1/n of the hemisphere's solid angle: n 2 pi (1 - cos) = 2 pi. */
+static void test_cone_set(void)
 {
-    voxgi_context *ctx;
-    unsigned int prog = 0;
-    const char *files[2] = {"good.glsl", "broken.glsl"};
-    const char *texts[2] = {"layout(local_size_x = 1) in;\nint one() { return 1; }\n",
-                            "void main()\n{\n    undefined_thing = one();\n}\n"};
-    if (!have_gl()) return;
-    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
-    TH_CHECK(voxgi__gl_program(ctx, 0, 2, files, texts, &prog) == VOXGI_ERR_GL_SHADER, "broken shader compiled");
-    TH_CHECK(strstr(voxgi_last_error(ctx), "broken.glsl:3") != NULL, "log not mapped to broken.glsl:3: %s", voxgi_last_error(ctx));
-    voxgi_destroy(ctx);
-}
-
-/* Which GL renderers AUTO turns down for the CPU: the software rasterizers, by name in any case,
-   and nothing else (real renderer strings of GPUs, and look-alikes). */
-static void test_gl_software_renderers(void)
-{
-    static const char *const software[] = {"llvmpipe (LLVM 15.0.6, 256 bits)", "LLVMPIPE", "softpipe", "Gallium 0.4 on softpipe",
-                                           "Software Rasterizer", "Mesa X11 swrast", "Google SwiftShader", "SwiftShader Device (Subzero)",
-                                           "ANGLE (Google, Vulkan 1.3.0 (SwiftShader Device (Subzero) (0x0000C0DE)), SwiftShader driver)",
-                                           "D3D12 (Microsoft Basic Render Driver)", "microsoft basic render driver"};
-    static const char *const hardware[] = {"", "NVIDIA GeForce RTX 3080/PCIe/SSE2", "AMD Radeon RX 6800 XT (radeonsi, navi21, LLVM 15.0.7, DRM 3.49)",
-                                           "Mesa Intel(R) UHD Graphics 620 (KBL GT2)", "Apple M1", "D3D12 (NVIDIA GeForce RTX 3060)",
-                                           "virgl (Mesa Intel(R) Xe Graphics)", "llvm pipe", "Soft Rasterizer", "swift shader"};
-    size_t k;
-    for (k = 0; k < sizeof software / sizeof software[0]; k++)
-        TH_CHECK(voxgi__gl_is_software(software[k]), "'%s' not taken for a software rasterizer", software[k]);
-    for (k = 0; k < sizeof hardware / sizeof hardware[0]; k++)
-        TH_CHECK(!voxgi__gl_is_software(hardware[k]), "'%s' taken for a software rasterizer", hardware[k]);
-}
-
-/* 3D-DDA through an empty grid visits exactly the voxels a brute-force slab test finds for the
-   segment (those whose box it crosses for more than 1e-9 of its length), in the order it enters
-   them; 4000 random segments inside, across and beside a 7 x 5 x 9 grid. */
-typedef struct dda_log { int64_t v[64][3]; int n; } dda_log;
-static void dda_record(void *user, const int64_t v[3])
-{
-    dda_log *L = (dda_log *)user;
-    if (L->n < 64) memcpy(L->v[L->n], v, sizeof L->v[0]);
-    L->n++;
-}
-
-static void test_dda_visits_the_slab_voxels(void)
-{
-    voxgi__occupancy O;
-    fx_rng g = fx_rng_seeded(21);
-    int trial, bad = 0, visited = 0;
-    memset(&O, 0, sizeof O);
-    O.levels = 1;
-    O.res[0][0] = 7; O.res[0][1] = 5; O.res[0][2] = 9;
-    O.bits[0] = (uint32_t *)calloc((7 * 5 * 9 + 31) / 32, 4);
-    for (trial = 0; trial < 4000 && !bad; trial++) {
-        double o[3], d[3], entry[64];
-        int64_t want[64][3];
-        int n = 0, a, i, j, k;
-        uint64_t steps = 0;
-        dda_log L;
-        for (a = 0; a < 3; a++) {
-            o[a] = fx_rng_range(&g, -2, O.res[0][a] + 2);
-            d[a] = fx_rng_range(&g, -2, O.res[0][a] + 2) - o[a];
+    static const int ns[] = {1, 2, 3, 5, 8, 16, 64, 256, 1024};
+    static const double exact[9] = {1, 2.0 / 3, 0.5, 0.25, 0.25, 0, 0, 0, 1.0 / 24};
+    static const char *fname[9] = {"1", "cos", "cos^2", "x^2", "y^2", "x", "y", "xy", "x^2 y^2"};
+    static double u[1024];
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    double worst_err[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, worst_ks = 0, worst_box = 0, worst_irr = 0, worst_cover = 0;
+    float rad[64 * 4], pos[3] = {0.625f, 0.625f, 0.25f}, nrm[3] = {0, 0, 1};
+    voxgi_grid g;
+    int i, k, f, bad = 0, filter;
+    for (i = 0; i < (int)(sizeof ns / sizeof ns[0]); i++) {
+        int n = ns[i], cell[8][8], a, b, c, e;
+        double mean[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        memset(cell, 0, sizeof cell);
+        for (k = 0; k < n; k++) {
+            double d[3], x, y, z, phi;
+            voxgi__cone_direction(k, n, d);
+            x = d[0]; y = d[1]; z = d[2];
+            bad += fabs(x * x + y * y + z * z - 1) > 1e-12 || !(z > 0);
+            u[k] = x * x + y * y;
+            phi = atan2(y, x) / (2 * PI);
+            if (phi < 0) phi += 1;
+            a = (int)(u[k] * 8); b = (int)(phi * 8);
+            cell[a > 7 ? 7 : a][b > 7 ? 7 : b]++;
+            mean[0] += 1.0 / n; mean[1] += z / n; mean[2] += z * z / n; mean[3] += x * x / n; mean[4] += y * y / n;
+            mean[5] += x / n; mean[6] += y / n; mean[7] += x * y / n; mean[8] += x * x * y * y / n;
         }
-        if (trial % 5 == 0) d[trial % 3] = 0; /* parallel to an axis */
-        for (k = 0; k < 9; k++) /* brute force: each voxel's slab interval */
-            for (j = 0; j < 5; j++)
-                for (i = 0; i < 7; i++) {
-                    double t0 = 0, t1 = 1;
-                    int c[3];
-                    c[0] = i; c[1] = j; c[2] = k;
-                    for (a = 0; a < 3; a++) {
-                        if (d[a] == 0) {
-                            if (!(o[a] >= c[a] && o[a] <= c[a] + 1)) t1 = -1;
-                            continue;
-                        }
-                        {
-                            double ta = (c[a] - o[a]) / d[a], tb = (c[a] + 1 - o[a]) / d[a];
-                            if (ta > tb) { double x = ta; ta = tb; tb = x; }
-                            if (ta > t0) t0 = ta;
-                            if (tb < t1) t1 = tb;
-                        }
+        qsort(u, (size_t)n, sizeof u[0], cmp_double);
+        for (k = 0; k < n; k++) { /* the empirical distribution of r^2 against the uniform one, both sides of each step */
+            double ks = fmax(fabs((k + 1.0) / n - u[k]), fabs((double)k / n - u[k]));
+            if (ks > 0.5 / n + 1e-12) bad++;
+            worst_ks = fmax(worst_ks, ks * n);
+        }
+        for (a = 0; a < 8 && n >= 16; a++) /* every box [a, b) x [c, e) of cells */
+            for (b = a + 1; b <= 8; b++)
+                for (c = 0; c < 8; c++)
+                    for (e = c + 1; e <= 8; e++) {
+                        int cnt = 0, r, s;
+                        double off;
+                        for (r = a; r < b; r++) for (s = c; s < e; s++) cnt += cell[r][s];
+                        off = fabs((double)cnt / n - (b - a) * (e - c) / 64.0) * n;
+                        worst_box = fmax(worst_box, off);
+                        bad += off > 4;
                     }
-                    if (t1 - t0 > 1e-9) { /* in order of entry */
-                        int at = n++;
-                        while (at > 0 && entry[at - 1] > t0) { entry[at] = entry[at - 1]; memcpy(want[at], want[at - 1], sizeof want[0]); at--; }
-                        entry[at] = t0;
-                        want[at][0] = i; want[at][1] = j; want[at][2] = k;
-                    }
-                }
-        L.n = 0;
-        voxgi__traverse(&O, 0, o, d, &steps, dda_record, &L);
-        visited += L.n;
-        if (L.n != n) bad = 1;
-        for (i = 0; i < n && !bad; i++)
-            for (a = 0; a < 3; a++) bad |= L.v[i][a] != want[i][a];
-        if (bad) printf("    segment %d: DDA visited %d voxels, the slabs %d\n", trial, L.n, n);
+        for (f = 0; f < 9 && n >= 8; f++) {
+            double err = fabs(mean[f] - exact[f]);
+            worst_err[f] = fmax(worst_err[f], err * n);
+            if (err > 1.0 / n) { bad++; printf("    n %d: the mean of %s is %.6f, not %.6f\n", n, fname[f], mean[f], exact[f]); }
+        }
     }
-    printf("    %d segments: %d voxels visited, every one the brute force's, in its order\n", trial, visited);
-    TH_CHECK(!bad && visited > 10000, "DDA differs from the slab test");
-    free(O.bits[0]);
+    printf("    n up to 1024: r^2 within %.3f / n of uniform, polar boxes within %.2f / n of their share; "
+           "means within n x (1 %.2g, cos %.2g, cos^2 %.2g, x^2 %.2g, y^2 %.2g, x %.2g, y %.2g, xy %.2g, x^2y^2 %.2g) / n\n",
+           worst_ks, worst_box, worst_err[0], worst_err[1], worst_err[2], worst_err[3], worst_err[4], worst_err[5], worst_err[6], worst_err[7],
+           worst_err[8]);
+    TH_CHECK(bad == 0, "%d failures of the cone set's directions or distribution", bad);
+    /* the weights and the default half-angle, through the library: a 4^3 radiance volume, opaque and
+       uniform, L = (0.5, 1, 2); a point whose first samples (1.5 voxels along the normal) fall on a
+       voxel centre, (2.5, 2.5, 2.5) in grid units */
+    cubic(&g, 0, 1, 4);
+    for (k = 0; k < 64; k++) { rad[4 * k] = 0.5f; rad[4 * k + 1] = 1; rad[4 * k + 2] = 2; rad[4 * k + 3] = 1; }
+    for (filter = 0; filter < 2; filter++) {
+        voxgi_volume *vol = radiance_volume(ctx, &g, (voxgi_mip_filter)filter, rad);
+        static const int cones[5] = {1, 2, 7, 0, 64}; /* 0: the default, 16 */
+        TH_CHECK(vol != NULL, "radiance volume: %s", voxgi_last_error(ctx));
+        for (i = 0; i < 5 && vol; i++) {
+            voxgi_cone_desc cd;
+            voxgi__cone_job J;
+            float irr[3] = {0, 0, 0}, occ = 0;
+            int a;
+            memset(&cd, 0, sizeof cd);
+            cd.cones = cones[i];
+            TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, 1, pos, nrm, irr, &occ) == VOXGI_OK && voxgi__cone_job_init(ctx, VOLUME_SOURCE(vol), &cd, &J) == VOXGI_OK,
+                     "cone trace: %s", voxgi_last_error(ctx));
+            for (a = 0; a < 3; a++) worst_irr = fmax(worst_irr, fabs(irr[a] / (PI * rad[a]) - 1));
+            worst_irr = fmax(worst_irr, fabs(occ - 1));
+            worst_cover = fmax(worst_cover, fabs(J.cones * 2 * PI * (1 - cos(atan(J.half_tan))) / (2 * PI) - 1));
+            TH_CHECK(J.cones == (cones[i] ? cones[i] : 16), "%d cones asked for, %d traced", cones[i], J.cones);
+        }
+        voxgi_volume_destroy(ctx, vol);
+    }
+    printf("    under uniform opaque radiance: irradiance / (pi L) and occlusion within %.2g of 1; default half-angles cover the hemisphere within %.2g\n",
+           worst_irr, worst_cover);
+    TH_CHECK(worst_irr < 1e-6, "the cone weights do not sum to 1: off by %.3g", worst_irr);
+    TH_CHECK(worst_cover < 1e-9, "the default half-angles cover the hemisphere's solid angle only to %.3g", worst_cover);
+    voxgi_destroy(ctx);
 }
+
+/* A floor under a rect light, seen from above, GI off: nothing shadows the floor, so the shadow
+   rays' visible share is 1, and a pixel whose rays all meet the triangle its centre shows stops
+   after half of them with albedo / pi x the exact (polygon) irradiance at its centre: within
+   1e-5 of it at every pixel away from the floor's diagonal (whose pixels average the exact light
+   over their square: within 1%). The sampled estimate (sampled_direct) is noisier by far. */
+static void test_exact_area_light_image(void)
+{
+    enum { W = 24 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    voxgi_material mat = {{0.5f, 0.5f, 0.5f}, {0, 0, 0}, 0};
+    float floor_q[12] = {-2, 0, -2, -2, 0, 2, 2, 0, 2, 2, 0, -2};
+    voxgi_light rect;
+    quads q;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_camera cam;
+    voxgi_render_desc vd;
+    voxgi__tracer tr;
+    voxgi__lights Ls;
+    static float img[2][W * W * 3], pos[W * W * 3], nrm[W * W * 3];
+    static uint32_t tri[W * W];
+    double worst[2] = {0, 0}, worst_edge = 0, mean = 0;
+    int i, k, a, inner = 0;
+    q.n = 0;
+    quad(&q, floor_q, 0);
+    memset(&rect, 0, sizeof rect);
+    rect.type = VOXGI_LIGHT_RECT;
+    rect.position[0] = -0.2f; rect.position[1] = 1; rect.position[2] = -0.2f;
+    rect.edge_u[0] = 0.4f; rect.edge_v[2] = 0.4f; /* u x v = -y: faces the floor */
+    rect.intensity[0] = rect.intensity[1] = rect.intensity[2] = 5;
+    scene_of_quads(&sc, &mesh, &q, &mat, 1, &rect, 1);
+    memset(&cam, 0, sizeof cam);
+    cam.eye[0] = 0.01; cam.eye[1] = 3; cam.eye[2] = 0.3;
+    cam.fovy_degrees = 30;
+    cam.width = cam.height = W;
+    vct_desc_old(&vd, &cam);
+    vd.direct_only = 1;
+    for (k = 0; k < 2; k++) {
+        vd.vct.sampled_direct = k;
+        TH_CHECK(voxgi_render(ctx, &sc, &vd, img[k], sizeof img[k], NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
+    }
+    TH_CHECK(voxgi_gbuffer_render(ctx, &sc, &vd.camera, pos, nrm, tri) == VOXGI_OK && voxgi__tracer_build(ctx, &sc, &tr) == VOXGI_OK &&
+             voxgi__lights_build(ctx, &sc, &tr, &Ls) == VOXGI_OK, "G-buffer: %s", voxgi_last_error(ctx));
+    for (i = 0; i < W * W; i++) {
+        double p[3], n[3], e[3];
+        for (a = 0; a < 3; a++) { p[a] = pos[3 * i + a]; n[a] = nrm[3 * i + a]; }
+        int x = i % W, y = i / W, one = 1;
+        voxgi__area_irradiance(&Ls, p, n, UINT32_MAX, e);
+        mean += 0.5 / PI * e[0] / (W * W);
+        for (k = -1; k <= 1; k++) /* the pixel and its neighbours on one triangle */
+            for (a = -1; a <= 1; a++)
+                if (x + a >= 0 && x + a < W && y + k >= 0 && y + k < W) one &= tri[(y + k) * W + x + a] == tri[i];
+        inner += one;
+        if (one) worst[0] = fmax(worst[0], fabs(img[0][3 * i] - 0.5 / PI * e[0]) / (0.5 / PI * e[0]));
+        else worst_edge = fmax(worst_edge, fabs(img[0][3 * i] - 0.5 / PI * e[0]) / (0.5 / PI * e[0]));
+        worst[1] = fmax(worst[1], fabs(img[1][3 * i] - 0.5 / PI * e[0]) / (0.5 / PI * e[0]));
+    }
+    printf("    floor under a rect light: exact area light within %.2g of albedo / pi x the polygon irradiance at %d pixels (%.2g on the diagonal), "
+           "the sampled estimate within %.2g (mean %.3f)\n", worst[0], inner, worst_edge, worst[1], mean);
+    TH_CHECK(mean > 0.05 && inner > W * W / 2 && worst[0] < 1e-5 && worst_edge < 0.01, "exact area light off by %.3g (diagonal %.3g)", worst[0], worst_edge);
+    TH_CHECK(worst[1] > 5 * worst[0], "the sampled estimate (%.3g) is not noisier than the exact one (%.3g)", worst[1], worst[0]);
+    voxgi__lights_free(ctx, &Ls);
+    voxgi__tracer_free(ctx, &tr);
+    voxgi_destroy(ctx);
+}
+
+/* ===================================================================== 12. line space */
 
 /* ---------------------------------------------------------------- line space */
 
@@ -1359,90 +1376,6 @@ static void test_linespace_rays(void)
     voxgi_destroy(ctx);
 }
 
-/* voxgi_linespace_occluded on GL against the CPU, ray by ray, in both modes: random segments
-   through a line space of 26 triangles (a tenth along an axis, some along the box's edges and
-   through its corner, rays with tmax <= tmin and with no direction), 20,000 of them (two slices);
-   the GL context's own line space (n 4, depth 2), the CPU context's uploaded for the call, and
-   one of n 9, depth 1 (bits twice its nodes) with GL's storage blocks made half its bits' size
-   (the bits in two parts, as Mesa's 128 MiB limit splits a large line space); a fifth of it
-   (five parts, one more than the walk has) is refused. */
-static void test_gl_linespace_occluded_equals_cpu(void)
-{
-    static float pos[9 * 26];
-    enum { R = 20000 };
-    static voxgi_ray rays[R];
-    static unsigned char occ[2][R];
-    voxgi_context *ctx[2];
-    voxgi_scene sc;
-    voxgi_mesh mesh;
-    voxgi_linespace_desc d;
-    voxgi_linespace *L[3] = {NULL, NULL, NULL};
-    unsigned rnd = 41;
-    int T = ls_scene(pos, 5), b, mode, cells = 16, src;
-    size_t i;
-    if (!have_gl()) return;
-    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 2);
-    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
-    TH_CHECK(ctx[0] && ctx[1], "contexts");
-    if (!ctx[0] || !ctx[1]) return;
-    scene_of_triangles(&sc, &mesh, pos, 3 * (size_t)T, NULL, 0);
-    for (i = 0; i < R; i++) {
-        float a[3], e[3];
-        int c;
-        ls_point(&rnd, cells, a);
-        ls_point(&rnd, cells, e);
-        if (i % 10 == 0) { /* along an axis */
-            int keep = (int)(ls_unit(&rnd) * 3);
-            for (c = 0; c < 3; c++)
-                if (c != keep) e[c] = a[c];
-        }
-        if (i % 50 == 1) { a[0] = 0.3f; a[1] = 0.3f; e[0] = 0.3f; e[1] = (i % 100 == 1) ? 0.3f : 0.9f; } /* the box's edge, its corner */
-        for (c = 0; c < 3; c++) {
-            rays[i].origin[c] = a[c];
-            rays[i].direction[c] = i % 997 == 3 ? 0.0f : e[c] - a[c];
-        }
-        rays[i].tmin = i % 499 == 7 ? 1.0f : 0.0f;
-        rays[i].tmax = 1;
-    }
-    memset(&d, 0, sizeof d);
-    d.n = 4;
-    d.depth = 2;
-    for (b = 0; b < 2; b++) TH_CHECK(voxgi_linespace_create(ctx[b], &sc, &d, &L[b]) == VOXGI_OK, "%s", voxgi_last_error(ctx[b]));
-    d.n = 9;
-    d.depth = 1;
-    TH_CHECK(voxgi_linespace_create(ctx[0], &sc, &d, &L[2]) == VOXGI_OK, "%s", voxgi_last_error(ctx[0]));
-    for (src = 0; src < 3 && L[0] && L[1] && L[2]; src++) /* the GL context's line space, then the CPU context's, then in parts */
-        for (mode = 0; mode < 2; mode++) {
-            const voxgi_linespace *cpu = L[src == 2 ? 2 : 0], *on_gl = src == 2 ? L[2] : L[src ? 0 : 1];
-            int64_t whole = ctx[1]->gl->max_ssbo_bytes;
-            uint64_t words = (uint64_t)cpu->words_per_space * cpu->info.line_spaces;
-            if (src == 2) ctx[1]->gl->max_ssbo_bytes = (int64_t)(4 * ((words + 1) / 2));
-            size_t differ = 0, blocked = 0;
-            TH_CHECK(voxgi_linespace_occluded(ctx[0], cpu, (voxgi_linespace_mode)mode, R, rays, occ[0]) == VOXGI_OK, "%s", voxgi_last_error(ctx[0]));
-            memset(occ[1], 7, sizeof occ[1]);
-            TH_CHECK(voxgi_linespace_occluded(ctx[1], on_gl, (voxgi_linespace_mode)mode, R, rays, occ[1]) == VOXGI_OK, "%s", voxgi_last_error(ctx[1]));
-            if (src == 2) {
-                unsigned char one;
-                TH_CHECK(voxgi__ls_bits_part_words(ctx[1], cpu) < words && 2 * voxgi__ls_bits_part_words(ctx[1], cpu) >= words, "not two parts");
-                ctx[1]->gl->max_ssbo_bytes = (int64_t)(4 * ((words + 4) / 5));
-                TH_CHECK(voxgi_linespace_occluded(ctx[1], cpu, (voxgi_linespace_mode)mode, 1, rays, &one) == VOXGI_ERR_TOO_LARGE &&
-                             strstr(voxgi_last_error(ctx[1]), "bits"), "five parts: %s", voxgi_last_error(ctx[1]));
-                ctx[1]->gl->max_ssbo_bytes = whole;
-            }
-            for (i = 0; i < R; i++) {
-                differ += occ[0][i] != occ[1][i];
-                blocked += occ[0][i];
-            }
-            printf("    %s, %s line space: %lu of %d rays blocked on the CPU, %lu differ on GL\n", mode ? "fast" : "exact",
-                   src == 2 ? "the CPU context's n 9, its bits in two parts," : src ? "the CPU context's" : "GL's",
-                   (unsigned long)blocked, (int)R, (unsigned long)differ);
-            TH_CHECK(differ == 0 && blocked > R / 20 && blocked < R - R / 20, "GL's answers are not the CPU's, or the rays test nothing");
-        }
-    for (b = 0; b < 2; b++) voxgi_linespace_destroy(ctx[b], L[b]);
-    voxgi_linespace_destroy(ctx[0], L[2]);
-    for (b = 0; b < 2; b++) voxgi_destroy(ctx[b]);
-}
-
 /* The GL shadow rays (shaders/linespace.glsl) against the CPU's, per point: line spaces of the
    ray tests' scene (n 4 depth 2, n 3 depth 3), points on its triangles (their normals, either
    side) and in and around it (random normals, some zero), a parallelogram light above the scene
@@ -1552,23 +1485,107 @@ static void test_gl_linespace_light_equals_cpu(void)
     voxgi_destroy(ctx[1]);
 }
 
+/* voxgi_linespace_occluded on GL against the CPU, ray by ray, in both modes: random segments
+   through a line space of 26 triangles (a tenth along an axis, some along the box's edges and
+   through its corner, rays with tmax <= tmin and with no direction), 20,000 of them (two slices);
+   the GL context's own line space (n 4, depth 2), the CPU context's uploaded for the call, and
+   one of n 9, depth 1 (bits twice its nodes) with GL's storage blocks made half its bits' size
+   (the bits in two parts, as Mesa's 128 MiB limit splits a large line space); a fifth of it
+   (five parts, one more than the walk has) is refused. */
+static void test_gl_linespace_occluded_equals_cpu(void)
+{
+    static float pos[9 * 26];
+    enum { R = 20000 };
+    static voxgi_ray rays[R];
+    static unsigned char occ[2][R];
+    voxgi_context *ctx[2];
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_linespace_desc d;
+    voxgi_linespace *L[3] = {NULL, NULL, NULL};
+    unsigned rnd = 41;
+    int T = ls_scene(pos, 5), b, mode, cells = 16, src;
+    size_t i;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 2);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
+    TH_CHECK(ctx[0] && ctx[1], "contexts");
+    if (!ctx[0] || !ctx[1]) return;
+    scene_of_triangles(&sc, &mesh, pos, 3 * (size_t)T, NULL, 0);
+    for (i = 0; i < R; i++) {
+        float a[3], e[3];
+        int c;
+        ls_point(&rnd, cells, a);
+        ls_point(&rnd, cells, e);
+        if (i % 10 == 0) { /* along an axis */
+            int keep = (int)(ls_unit(&rnd) * 3);
+            for (c = 0; c < 3; c++)
+                if (c != keep) e[c] = a[c];
+        }
+        if (i % 50 == 1) { a[0] = 0.3f; a[1] = 0.3f; e[0] = 0.3f; e[1] = (i % 100 == 1) ? 0.3f : 0.9f; } /* the box's edge, its corner */
+        for (c = 0; c < 3; c++) {
+            rays[i].origin[c] = a[c];
+            rays[i].direction[c] = i % 997 == 3 ? 0.0f : e[c] - a[c];
+        }
+        rays[i].tmin = i % 499 == 7 ? 1.0f : 0.0f;
+        rays[i].tmax = 1;
+    }
+    memset(&d, 0, sizeof d);
+    d.n = 4;
+    d.depth = 2;
+    for (b = 0; b < 2; b++) TH_CHECK(voxgi_linespace_create(ctx[b], &sc, &d, &L[b]) == VOXGI_OK, "%s", voxgi_last_error(ctx[b]));
+    d.n = 9;
+    d.depth = 1;
+    TH_CHECK(voxgi_linespace_create(ctx[0], &sc, &d, &L[2]) == VOXGI_OK, "%s", voxgi_last_error(ctx[0]));
+    for (src = 0; src < 3 && L[0] && L[1] && L[2]; src++) /* the GL context's line space, then the CPU context's, then in parts */
+        for (mode = 0; mode < 2; mode++) {
+            const voxgi_linespace *cpu = L[src == 2 ? 2 : 0], *on_gl = src == 2 ? L[2] : L[src ? 0 : 1];
+            int64_t whole = ctx[1]->gl->max_ssbo_bytes;
+            uint64_t words = (uint64_t)cpu->words_per_space * cpu->info.line_spaces;
+            if (src == 2) ctx[1]->gl->max_ssbo_bytes = (int64_t)(4 * ((words + 1) / 2));
+            size_t differ = 0, blocked = 0;
+            TH_CHECK(voxgi_linespace_occluded(ctx[0], cpu, (voxgi_linespace_mode)mode, R, rays, occ[0]) == VOXGI_OK, "%s", voxgi_last_error(ctx[0]));
+            memset(occ[1], 7, sizeof occ[1]);
+            TH_CHECK(voxgi_linespace_occluded(ctx[1], on_gl, (voxgi_linespace_mode)mode, R, rays, occ[1]) == VOXGI_OK, "%s", voxgi_last_error(ctx[1]));
+            if (src == 2) {
+                unsigned char one;
+                TH_CHECK(voxgi__ls_bits_part_words(ctx[1], cpu) < words && 2 * voxgi__ls_bits_part_words(ctx[1], cpu) >= words, "not two parts");
+                ctx[1]->gl->max_ssbo_bytes = (int64_t)(4 * ((words + 4) / 5));
+                TH_CHECK(voxgi_linespace_occluded(ctx[1], cpu, (voxgi_linespace_mode)mode, 1, rays, &one) == VOXGI_ERR_TOO_LARGE &&
+                             strstr(voxgi_last_error(ctx[1]), "bits"), "five parts: %s", voxgi_last_error(ctx[1]));
+                ctx[1]->gl->max_ssbo_bytes = whole;
+            }
+            for (i = 0; i < R; i++) {
+                differ += occ[0][i] != occ[1][i];
+                blocked += occ[0][i];
+            }
+            printf("    %s, %s line space: %lu of %d rays blocked on the CPU, %lu differ on GL\n", mode ? "fast" : "exact",
+                   src == 2 ? "the CPU context's n 9, its bits in two parts," : src ? "the CPU context's" : "GL's",
+                   (unsigned long)blocked, (int)R, (unsigned long)differ);
+            TH_CHECK(differ == 0 && blocked > R / 20 && blocked < R - R / 20, "GL's answers are not the CPU's, or the rays test nothing");
+        }
+    for (b = 0; b < 2; b++) voxgi_linespace_destroy(ctx[b], L[b]);
+    voxgi_linespace_destroy(ctx[0], L[2]);
+    for (b = 0; b < 2; b++) voxgi_destroy(ctx[b]);
+}
+
 int main(void)
 {
     gl_open();
-    TH_RUN(test_half_rounding);
+    TH_RUN(test_rays_leave_surfaces);
+    TH_RUN(test_polygon_irradiance);
+    TH_RUN(test_gl_shader_error_mapping);
+    TH_RUN(test_gl_software_renderers);
+    TH_RUN(test_dda_visits_the_slab_voxels);
     TH_RUN(test_mip_combine_by_hand);
     TH_RUN(test_mip_voxel_by_hand);
     TH_RUN(test_volume_mips_by_hand);
-    TH_RUN(test_region_labels_flood_fill);
-    TH_RUN(test_rays_leave_surfaces);
-    TH_RUN(test_dda_visits_the_slab_voxels);
-    TH_RUN(test_polygon_irradiance);
-    TH_RUN(test_exact_area_light_image);
-    TH_RUN(test_cone_set);
-    TH_RUN(test_gl_svo_equals_cpu);
     TH_RUN(test_gl_volume_mips_by_hand);
-    TH_RUN(test_gl_shader_error_mapping);
-    TH_RUN(test_gl_software_renderers);
+    TH_RUN(test_region_labels_flood_fill);
+    TH_RUN(test_half_rounding);
+    TH_RUN(test_gl_svo_equals_cpu);
+    TH_RUN(test_cone_set);
+    TH_RUN(test_exact_area_light_image);
     TH_RUN(test_linespace_build);
     TH_RUN(test_linespace_rays);
     TH_RUN(test_gl_linespace_light_equals_cpu);

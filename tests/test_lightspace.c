@@ -1,10 +1,12 @@
-/* The light-space passes against their definitions. Transmittance shadow maps: a stack of
+/* tests/test_lightspace.c - part 10: the light-space passes, CPU and GL.
+
+   The light-space passes against their definitions. Transmittance shadow maps: a stack of
    horizontal translucent quads over an opaque ground under a sun or a spot light straight above,
    where every answer is known: no translucent layer lets all light through (sigma 0), sigma = 1
    casts a binary shadow, k layers pass (1 - sigma)^k, a point's own slice never counts, two
    materials multiply, an opaque quad casts a full shadow; maps and lookups on GL give the very
-   same answers; images equal the reference's direct light; bad input is refused. Voxel
-   visibility: 3D-DDA and the hierarchical traversal against a brute-force slab test. Reflective
+   same answers; images equal the reference's direct light; bad input is refused. (Voxel
+   visibility, part 5, which the reflective shadow maps use: tests/test_voxelize.c.) Reflective
    shadow maps: the flux they hold (a light's map, an area's hemisphere maps), the gather against
    equation 5 by hand, the divider of rsm-walls stopping the red wall's light, the gather stride's
    interpolation. The SH volume: its projection and evaluation against the closed forms, lights
@@ -369,86 +371,6 @@ static void test_tsm_input(void)
     TH_CHECK(voxgi_tsm_transmittance(ctx, NULL, 1, p, NULL, &out) == VOXGI_ERR_INVALID_ARGUMENT, "no map");
     TH_CHECK(voxgi_tsm_create(ctx, NULL, &d, &tsm) == VOXGI_ERR_INVALID_ARGUMENT, "no scene");
     voxgi_tsm_destroy(ctx, tsm);
-    voxgi_destroy(ctx);
-}
-
-/* Voxel visibility: on the voxels of 40 random triangles in a 24 x 17 x 30 grid, 20000 random
-   segments inside, across and beside it are blocked by 3D-DDA exactly when by the hierarchical
-   traversal of the OR mipmaps, and exactly when a brute-force slab test finds an occupied voxel
-   whose box they cross; the hierarchy visits fewer cells than DDA voxels. Beyond the grid nothing
-   blocks. */
-static void test_voxel_visibility(void)
-{
-    enum { T = 40, N = 20000 };
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    voxgi_scene sc;
-    voxgi_mesh mesh;
-    voxgi_voxelize_desc vd;
-    voxgi_voxels *vox = NULL;
-    static float tri[9 * T], from[3 * N], to[3 * N];
-    static unsigned char dda[N], hier[N];
-    uint32_t *bits;
-    size_t bytes;
-    uint64_t steps_dda = 0, steps_hier = 0;
-    fx_rng g = fx_rng_seeded(17);
-    int i, a, wrong = 0, disagree = 0, blocked = 0;
-    const int res[3] = {24, 17, 30};
-    for (i = 0; i < 9 * T; i++) tri[i] = (float)fx_rng_range(&g, 0.5, res[i % 3] - 0.5);
-    for (i = 0; i < T; i++) /* small triangles: a corner and two near it */
-        for (a = 3; a < 9; a++) tri[9 * i + a] = tri[9 * i + a % 3] + (float)fx_rng_range(&g, -2.5, 2.5);
-    scene_of_triangles(&sc, &mesh, tri, 3 * T, NULL, 0);
-    memset(&vd, 0, sizeof vd);
-    vd.grid.voxel_size = 1;
-    for (a = 0; a < 3; a++) vd.grid.res[a] = res[a];
-    TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    voxgi_voxels_read(ctx, vox, NULL, 0, &bytes);
-    bits = (uint32_t *)malloc(bytes);
-    voxgi_voxels_read(ctx, vox, bits, bytes, NULL);
-    for (i = 0; i < 3 * N; i++) {
-        from[i] = (float)fx_rng_range(&g, -3, res[i % 3] + 3);
-        to[i] = (float)fx_rng_range(&g, -3, res[i % 3] + 3);
-    }
-    TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_DDA, N, from, to, dda, &steps_dda) == VOXGI_OK &&
-                 voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_HIERARCHICAL, N, from, to, hier, &steps_hier) == VOXGI_OK,
-             "%s", voxgi_last_error(ctx));
-    for (i = 0; i < N; i++) { /* brute force */
-        double o[3], d[3];
-        int x, y, z, hit = 0;
-        for (a = 0; a < 3; a++) { o[a] = from[3 * i + a]; d[a] = (double)to[3 * i + a] - o[a]; }
-        for (z = 0; z < res[2] && !hit; z++)
-            for (y = 0; y < res[1] && !hit; y++)
-                for (x = 0; x < res[0] && !hit; x++) {
-                    double t0 = 0, t1 = 1;
-                    int c[3];
-                    if (!voxgi_bit_get(bits, (uint64_t)x + (uint64_t)res[0] * ((uint64_t)y + (uint64_t)res[1] * (uint64_t)z))) continue;
-                    c[0] = x; c[1] = y; c[2] = z;
-                    for (a = 0; a < 3; a++) {
-                        double ta = (c[a] - o[a]) / d[a], tb = (c[a] + 1 - o[a]) / d[a];
-                        if (ta > tb) { double q = ta; ta = tb; tb = q; }
-                        if (ta > t0) t0 = ta;
-                        if (tb < t1) t1 = tb;
-                    }
-                    hit = t1 - t0 > 1e-9;
-                }
-        blocked += hit;
-        wrong += dda[i] != hit;
-        disagree += dda[i] != hier[i];
-    }
-    printf("    %d segments (%d blocked): DDA %d off the brute force, hierarchical %d off DDA; %llu voxels by DDA, %llu cells by the hierarchy\n", N,
-           blocked, wrong, disagree, (unsigned long long)steps_dda, (unsigned long long)steps_hier);
-    TH_CHECK(wrong == 0 && disagree == 0 && blocked > N / 10 && blocked < N - N / 10, "the traversals disagree");
-    TH_CHECK(steps_hier < steps_dda, "the hierarchy visits more");
-    {   /* beside the grid: nothing blocks, whatever lies at its border */
-        float f[3] = {-5, 3, 3}, t[3] = {-1, 10, 20};
-        unsigned char b = 1;
-        TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_HIERARCHICAL, 1, f, t, &b, NULL) == VOXGI_OK && b == 0, "outside the grid");
-        f[1] = NAN;
-        TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_DDA, 1, f, t, &b, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a NaN segment");
-        f[1] = 3;
-        TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_NONE, 1, f, t, &b, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "no traversal: accepted");
-    }
-    free(bits);
-    voxgi_voxels_destroy(ctx, vox);
     voxgi_destroy(ctx);
 }
 
@@ -983,7 +905,6 @@ int main(void)
     TH_RUN(test_reference_sees_through_leaves);
     TH_RUN(test_tsm_image_equals_reference);
     TH_RUN(test_tsm_input);
-    TH_RUN(test_voxel_visibility);
     TH_RUN(test_rsm_walls);
     TH_RUN(test_rsm_flux);
     TH_RUN(test_rsm_area_flux);

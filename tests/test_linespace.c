@@ -1,4 +1,6 @@
-/* The line space's soft shadows against what is known exactly: a plane under an area light with
+/* tests/test_linespace.c - part 12: the line space, CPU and GL.
+
+   The line space's soft shadows against what is known exactly: a plane under an area light with
    nothing between sees all of it, in both modes, packets or not; under a box occluder each point
    sees the light minus the box's shadow on it (the convex hull of the box's corners projected from
    the point onto the light's plane, clipped to the light: the analytic penumbra), fast mode never

@@ -1,4 +1,6 @@
-/* The ray core (voxgi_ray_scene: a 4-wide BVH, the watertight triangle test) against what is
+/* tests/test_rays.c - part 3: the scene's ray core, on every SIMD width.
+
+   The ray core (voxgi_ray_scene: a 4-wide BVH, the watertight triangle test) against what is
    known: rays from inside a closed mesh always hit it, also when aimed exactly at its vertices
    and the midpoints of its edges, and also 1e6 away from the origin; rays onto a flat fan of
    triangles hit it at every shared vertex and edge; every closest hit is the brute-force one

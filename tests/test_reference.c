@@ -1,4 +1,6 @@
-/* The reference renderer against what is known exactly: a furnace (a closed sphere of albedo rho
+/* tests/test_reference.c - part 13: the reference renderer (built-in scenes: tests/test_files.c).
+
+   The reference renderer against what is known exactly: a furnace (a closed sphere of albedo rho
    and emission E has radiance E / (1 - rho) everywhere; E (1 + rho + ... + rho^(B+1)) with B
    bounces), an integrating sphere (a glowing cap lights every point of a sphere alike; its
    bounces depend on how the path tracer draws their directions), planes lit by directional,
@@ -446,56 +448,8 @@ static void test_refusals_and_cancel(void)
     voxgi_destroy(ctx);
 }
 
-/* The built-in scenes: valid; the furnace at radiance 2; the leak box black inside exactly; the
-   Cornell box's light seen at its radiance, the room lit. */
-static void test_builtin_scenes(void)
-{
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    const char *names = voxgi_builtin_scene_names();
-    voxgi_builtin_scene bs;
-    voxgi_render_desc d;
-    float *rgb = (float *)malloc(48 * 48 * 12);
-    char name[32];
-    const char *at = names;
-    int n = 0;
-    while (sscanf(at, "%31s", name) == 1) {
-        size_t i, lit = 0, light_pixels = 0;
-        double mean;
-        TH_CHECK(voxgi_builtin_scene_create(ctx, name, &bs) == VOXGI_OK && voxgi_validate_scene(ctx, &bs.scene) == VOXGI_OK, "%s: %s", name,
-                 voxgi_last_error(ctx));
-        memset(&d, 0, sizeof d);
-        d.camera = bs.camera;
-        d.camera.width = d.camera.height = 48;
-        d.samples = 8;
-        d.method = VOXGI_RENDER_REFERENCE;
-        d.bounces = strcmp(name, "cornell-box") == 0 ? 0 : -1;
-        d.direct_only = d.bounces == 0; /* the Cornell box: the direct light alone (the old bounces 0) */
-        TH_CHECK(voxgi_render(ctx, &bs.scene, &d, rgb, 48 * 48 * 12, NULL) == VOXGI_OK, "%s: %s", name, voxgi_last_error(ctx));
-        mean = mean_channel(rgb, 48 * 48, 0);
-        for (i = 0; i < 48 * 48; i++) {
-            lit += rgb[3 * i] > 0;
-            light_pixels += rgb[3 * i] == 17.0f && rgb[3 * i + 1] == 12.0f && rgb[3 * i + 2] == 4.0f;
-        }
-        printf("    %-12s %lu triangles, mean red radiance %.4f, %lu of 2304 pixels lit\n", name, (unsigned long)(bs.scene.meshes[0].index_count / 3), mean,
-               (unsigned long)lit);
-        if (strcmp(name, "furnace") == 0) TH_CHECK(fabs(mean - 2) < 0.02, "furnace mean %g", mean);
-        else if (strcmp(name, "leak-box") == 0 || strcmp(name, "leak-room") == 0) TH_CHECK(lit == 0, "%s: %lu pixels lit inside the closed box", name, (unsigned long)lit);
-        else if (strcmp(name, "cornell-box") == 0) TH_CHECK(light_pixels >= 4 && lit > 1200, "Cornell box: %lu light pixels, %lu lit", (unsigned long)light_pixels, (unsigned long)lit);
-        else if (strcmp(name, "foliage") == 0) TH_CHECK(lit > 1400 && lit < 2000, "foliage: %lu lit (the sky above the ground is black)", (unsigned long)lit);
-        else TH_CHECK(lit > 1800, "%s: %lu lit", name, (unsigned long)lit);
-        voxgi_builtin_scene_destroy(ctx, &bs);
-        at = strstr(at, name) + strlen(name);
-        n++;
-    }
-    TH_CHECK(n == 6, "%d built-in scenes", n);
-    TH_CHECK(voxgi_builtin_scene_create(ctx, "no-such", &bs) == VOXGI_ERR_INVALID_ARGUMENT, "an unknown name accepted");
-    free(rgb);
-    voxgi_destroy(ctx);
-}
-
 int main(void)
 {
-    TH_RUN(test_builtin_scenes);
     TH_RUN(test_furnace);
     TH_RUN(test_integrating_sphere);
     TH_RUN(test_lit_floor);

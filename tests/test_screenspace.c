@@ -1,4 +1,6 @@
-/* The screen-space passes against what is known. The sampler: radical inverses by hand, the
+/* tests/test_screenspace.c - part 11: the screen-space passes, CPU and GL.
+
+   The screen-space passes against what is known. The sampler: radical inverses by hand, the
    Hammersley set and its rotation. Ambient occlusion (the occluded share of the cosine-weighted
    hemisphere within a radius): on an open plane 0, inside a closed box 1, at a floor beside a
    wall the analytic share (acos c - c sqrt(1 - c^2)) / pi, c = the distance to the wall over the

@@ -1,4 +1,6 @@
-/* Stiff and extreme input, one test per case, each with what is expected (docs/stiff-cases.md
+/* tests/test_stiff.c - stiff and extreme input across the parts, CPU and GL.
+
+   Stiff and extreme input, one test per case, each with what is expected (docs/stiff-cases.md
    has the table; the scenes and the methods' small settings are tools/stiff.h's, which `voxgi
    report stiff` measures too): a large world through double positions; every method's image
    under scaling and moved in float; degenerate, needle and sliver triangles; an empty scene; the

@@ -1,10 +1,13 @@
-/* Light injection and cone tracing on the CPU against what is known: a floor under a
-   directional light injects albedo E cos / pi exactly; ambient occlusion is 0 over an open
-   floor, about 1/2 at the foot of a wall and 1 inside a closed box; a uniformly glowing ceiling
-   over a floor gives the analytic irradiance; the cone-traced Cornell box without GI is the
-   reference's direct light, with GI close to its one-bounce light; cones over an octree of the
-   radiance are the volume's. (The cone set and the exact area light, which call private
-   helpers, are tested in tests/test_internals.c.) */
+/* tests/test_vct.c - parts 8 and 9: cone tracing and light injection, CPU and GL, against what is
+   known: a floor under a directional light injects albedo E cos / pi exactly; ambient occlusion is
+   0 over an open floor, about 1/2 at the foot of a wall and 1 inside a closed box; a uniformly
+   glowing ceiling over a floor gives the analytic irradiance; the cone-traced Cornell box without
+   GI is the reference's direct light, with GI close to its one-bounce light; no light leaks into
+   closed boxes; injection, cones and the leak tests on GL as on the CPU, and cones at the caller's
+   G-buffer textures (voxgi_cone_trace_gl) as at its points. (Cones over an octree:
+   tests/test_octree.c; the cone set and the exact area light, which call private helpers:
+   tests/test_internals.c.) The GL tests skip (loudly) only when no GL 4.5 context can be made;
+   VOXGI_TEST_GL=egl|osmesa picks the kind, VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
 #include "../voxgi.h"
 #include "fixtures.h"
 #include "cone_points.h"
@@ -409,6 +412,28 @@ static void test_held_out_closed_spaces(void)
     voxgi_destroy(ctx);
 }
 
+/* The held-out closed spaces on GL, as on the CPU (test_held_out_closed_spaces): the rooms split by a zero-thickness
+   wall at 32^3 and 95^3, full GI at 32^3, from an octree; the box on the floor with full GI. */
+static void test_gl_raster_held_out_closed_spaces(void)
+{
+    static const struct { int kind; int res; voxgi_vct_radiance radiance; int bounces; } cases[] = {
+        {HELD_ROOMS, 32, VOXGI_VCT_ANISOTROPIC, 1}, {HELD_ROOMS, 95, VOXGI_VCT_ANISOTROPIC, 1}, {HELD_ROOMS, 32, VOXGI_VCT_ANISOTROPIC, -1},
+        {HELD_ROOMS, 32, VOXGI_VCT_OCTREE, 1},      {HELD_BOX, 32, VOXGI_VCT_ANISOTROPIC, -1}};
+    voxgi_context *ctx;
+    size_t k;
+    if (!have_gl()) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
+    for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double m = 1, x = 1;
+        if (FX_REDUCED && cases[k].res > 32) continue;
+        TH_CHECK(held_ratios(ctx, cases[k].kind, 0, cases[k].res, cases[k].radiance, cases[k].bounces, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+        printf("    GL %s %3d^3%s%s: dark mean %.4f%%, largest %.3f%% of the lit view's mean\n", cases[k].kind == HELD_ROOMS ? "rooms" : "box", cases[k].res,
+               cases[k].radiance == VOXGI_VCT_OCTREE ? ", octree" : "", cases[k].bounces < 0 ? ", full GI" : "", 100 * m, 100 * x);
+        TH_CHECK(m <= 0.001 && x <= 0.01, "case %lu: mean %.4f%%, largest %.3f%%", (unsigned long)k, 100 * m, 100 * x);
+    }
+    voxgi_destroy(ctx);
+}
+
 /* A second bounce among the voxels adds what the path tracer's second bounce adds, in mean
    (the Cornell box at 32^3, isotropic mips; measured 1.02-1.09 of it per channel). */
 static void test_second_bounce(void)
@@ -603,161 +628,6 @@ static void test_cone_stride(void)
     TH_CHECK(sqrt(sq / (W * W * 3)) / (sum / (W * W * 3)) < 0.08, "strided image off by %.3f", sqrt(sq / (W * W * 3)) / (sum / (W * W * 3)));
     free(img[0]);
     free(img[1]);
-    voxgi_builtin_scene_destroy(ctx, &bs);
-    voxgi_destroy(ctx);
-}
-
-/* Cone tracing over an octree of the radiance: the octree's mips are the isotropic volume's
-   (premultiplied, plain means), and the march is the volume's, so a float32 octree gives the
-   volume's irradiance, occlusion and single cones bit for bit, with or without bricks, on a grid
-   that is not a power of two (24^3 in a 32^3 cube), one-sided and two-sided; a float16 octree
-   stays within 1% of the mean irradiance; a cone-traced image through the octree equals the
-   volume's bit for bit, also where cones keep to enclosed regions (the leak room, from inside
-   its closed box and from the room). Bad radiance inputs are refused. */
-static void test_octree_cones(void)
-{
-    enum { N = 200, W = 16 };
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    voxgi_builtin_scene bs;
-    voxgi_fit_desc fit;
-    voxgi_voxelize_desc xd;
-    voxgi_inject_desc id;
-    voxgi_voxels *vox = NULL;
-    voxgi_volume *vol = NULL, *albedo = NULL;
-    voxgi_cone_desc cd;
-    voxgi_svo_desc sd;
-    voxgi_svo *svo = NULL;
-    voxgi_render_desc vd;
-    voxgi_cone single[N];
-    float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], each[2][4 * N], *img[2];
-    double mean = 0, worst16 = 0;
-    int i, k, sides;
-    voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
-    for (sides = 1; sides <= 2; sides++) {
-        memset(&fit, 0, sizeof fit);
-        memset(&xd, 0, sizeof xd);
-        memset(&id, 0, sizeof id);
-        memset(&cd, 0, sizeof cd);
-        fit.res = 24;
-        fit.padding = 1;
-        xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
-        id.samples = 4;
-        id.one_sided = sides == 1;
-        TH_CHECK(voxgi_fit_grid(ctx, &bs.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &bs.scene, &xd, &vox) == VOXGI_OK &&
-                 voxgi_inject_light(ctx, &bs.scene, vox, &id, &vol) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-        cornell_cone_points(11, N, pos, nrm, single);
-        TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, N, pos, nrm, irr[0], occ[0]) == VOXGI_OK && voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, N, single, each[0]) == VOXGI_OK,
-                 "volume: %s", voxgi_last_error(ctx));
-        for (i = 0, mean = worst16 = 0; i < 3 * N; i++) mean += irr[0][i] / (3.0 * N);
-        for (k = 0; k < 3; k++) { /* float32, float32 with bricks, float16 */
-            memset(&sd, 0, sizeof sd);
-            sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
-            sd.radiance = vol;
-            sd.bricks = k == 1;
-            sd.format = k == 2 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
-            TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr[1], occ[1]) == VOXGI_OK &&
-                     voxgi_cone_trace_each(ctx, OCTREE_SOURCE(svo), &cd, N, single, each[1]) == VOXGI_OK, "octree %d: %s", k, voxgi_last_error(ctx));
-            if (k < 2)
-                TH_CHECK(!memcmp(irr[0], irr[1], sizeof irr[0]) && !memcmp(occ[0], occ[1], sizeof occ[0]) && !memcmp(each[0], each[1], sizeof each[0]),
-                         "%s-sided float32 octree%s: cones differ from the volume's", sides == 1 ? "one" : "two", k ? " with bricks" : "");
-            else {
-                for (i = 0; i < 3 * N; i++) worst16 = fmax(worst16, fabs(irr[0][i] - irr[1][i]) / mean);
-                printf("    %s-sided octree cones: float32 (and with bricks) == the isotropic volume bit for bit; float16 within %.2g of the mean irradiance %.3g\n",
-                       sides == 1 ? "one" : "two", worst16, mean);
-                TH_CHECK(mean > 0.05 && worst16 < 0.01, "float16 octree off by %.3g of the mean", worst16);
-            }
-            voxgi_svo_destroy(ctx, svo);
-            svo = NULL;
-        }
-        if (sides == 1) { voxgi_volume_destroy(ctx, vol); voxgi_voxels_destroy(ctx, vox); }
-    }
-    for (sides = 0; sides < 3; sides++) { /* images through the octree: the Cornell box one-sided; the leak room from its box and from the room */
-        voxgi_builtin_scene room;
-        TH_CHECK(voxgi_builtin_scene_create(ctx, sides ? "leak-room" : "cornell-box", &room) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-        vct_view(&vd, &room, W);
-        vd.resolution = sides ? 32 : 24;
-        vd.samples = 2;
-        vd.vct.one_sided = !sides;
-        if (sides == 2) {
-            vd.camera.eye[0] = 0.85f; vd.camera.eye[1] = 1.6f; vd.camera.eye[2] = -0.85f;
-            vd.camera.target[0] = 0; vd.camera.target[1] = 0.4f; vd.camera.target[2] = 0;
-            vd.camera.fovy_degrees = 75;
-        }
-        for (k = 0; k < 2; k++) {
-            img[k] = (float *)malloc(W * W * 12);
-            vd.vct.radiance = k ? VOXGI_VCT_OCTREE : VOXGI_VCT_ISOTROPIC; /* the old octree = k (filter isotropic) */
-            TH_CHECK(voxgi_render(ctx, &room.scene, &vd, img[k], W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx));
-        }
-        for (i = 0, mean = 0; i < 3 * W * W; i++) mean += img[0][i];
-        TH_CHECK(sides == 1 || mean > 0, "a black image");
-        TH_CHECK(!memcmp(img[0], img[1], W * W * 12), "%s: the image through the octree differs from the volume's", sides ? "leak room" : "Cornell box");
-        free(img[0]);
-        free(img[1]);
-        voxgi_builtin_scene_destroy(ctx, &room);
-    }
-    { /* the leak room in a shell of empty space 4 voxels thick: no surface lights the shell, so its empty
-         cubes above level 0 count as no region, in the octree as in the volume's levels */
-        enum { M = LEAK_ROOM_POINTS };
-        voxgi_builtin_scene room;
-        voxgi_voxels *rvox = NULL;
-        voxgi_volume *rvol = NULL;
-        float rpos[3 * M], rnrm[3 * M], rirr[2][3 * M];
-        TH_CHECK(voxgi_builtin_scene_create(ctx, "leak-room", &room) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-        leak_room_points(rpos, rnrm);
-        fit.res = 32;
-        fit.padding = 4;
-        id.one_sided = 0;
-        memset(&sd, 0, sizeof sd);
-        TH_CHECK(voxgi_fit_grid(ctx, &room.scene, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &room.scene, &xd, &rvox) == VOXGI_OK &&
-                 voxgi_inject_light(ctx, &room.scene, rvox, &id, &rvol) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-        sd.radiance = rvol;
-        TH_CHECK(voxgi_svo_create(ctx, rvox, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx, VOLUME_SOURCE(rvol), &cd, M, rpos, rnrm, rirr[0], NULL) == VOXGI_OK &&
-                 voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), &cd, M, rpos, rnrm, rirr[1], NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-        for (i = 0, mean = 0; i < 3 * M; i++) mean += rirr[0][i];
-        TH_CHECK(mean > 0 && !memcmp(rirr[0], rirr[1], sizeof rirr[0]), "leak room in a dark shell: the octree's cones differ from the volume's");
-        voxgi_svo_destroy(ctx, svo);
-        svo = NULL;
-        voxgi_volume_destroy(ctx, rvol);
-        voxgi_voxels_destroy(ctx, rvox);
-        voxgi_builtin_scene_destroy(ctx, &room);
-    }
-    /* refusals: RADIANCE without a volume, a volume without RADIANCE, another grid, an octree without radiance */
-    memset(&sd, 0, sizeof sd);
-    sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
-    TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_ERR_INVALID_ARGUMENT && !svo, "RADIANCE without desc.radiance accepted");
-    {
-        voxgi_volume_desc ad;
-        memset(&ad, 0, sizeof ad);
-        ad.attributes = VOXGI_ATTRIBUTE_ALBEDO;
-        TH_CHECK(voxgi_volume_create(ctx, vox, &ad, &albedo) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    }
-    sd.attributes = 0;
-    sd.radiance = albedo;
-    TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_ERR_INVALID_ARGUMENT && !svo, "a volume without RADIANCE accepted");
-    {
-        voxgi_voxels *other = NULL;
-        xd.grid.res[0] -= 1;
-        TH_CHECK(voxgi_voxelize(ctx, &bs.scene, &xd, &other) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-        sd.radiance = vol;
-        TH_CHECK(voxgi_svo_create(ctx, other, &sd, &svo) == VOXGI_ERR_INVALID_ARGUMENT && !svo, "radiance on another grid accepted");
-        voxgi_voxels_destroy(ctx, other);
-    }
-    sd.radiance = NULL;
-    TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK, "%s", voxgi_last_error(ctx));
-    TH_CHECK(voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr[1], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "an octree without radiance traced");
-    TH_CHECK(voxgi_cone_trace(ctx, OCTREE_SOURCE(NULL), &cd, N, pos, nrm, irr[1], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a NULL octree traced");
-    { /* a source names exactly one of a volume and an octree */
-        voxgi_radiance_source both;
-        both.volume = vol;
-        both.octree = svo;
-        TH_CHECK(voxgi_cone_trace(ctx, &both, &cd, N, pos, nrm, irr[1], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a source of both traced");
-        TH_CHECK(voxgi_cone_trace_each(ctx, &both, &cd, 0, NULL, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "single cones from both");
-        TH_CHECK(voxgi_cone_trace(ctx, NULL, &cd, N, pos, nrm, irr[1], NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a NULL source traced");
-    }
-    voxgi_svo_destroy(ctx, svo);
-    voxgi_volume_destroy(ctx, albedo);
-    voxgi_volume_destroy(ctx, vol);
-    voxgi_voxels_destroy(ctx, vox);
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }
@@ -1043,23 +913,374 @@ static void test_direct_light_analytic(void)
     voxgi_destroy(ctx);
 }
 
+/* ---------------------------------------------------------------- on GL */
+
+/* Light injection on GL (distance maps, a gather per voxel) against the CPU's exact shadow rays
+   on the same voxels: where a voxel is lit or dark alike, both are the same analytic irradiance
+   (within float rounding); they differ only within a map texel or two of a shadow's edge, and
+   for area lights and emitters by their sampling (fixed stratified points on GL, random per
+   voxel on the CPU). Checked: the share of voxels that agree to 1e-4, and the total power. */
+static void test_gl_raster_injection_matches_cpu(void)
+{
+    static const char *const scenes[2] = {"rsm-walls", "cornell-box"};
+    voxgi_context *ctx[2];
+    int sc, b;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 0);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
+    for (sc = 0; sc < 2; sc++) {
+        voxgi_builtin_scene bs;
+        float *rad[2] = {NULL, NULL};
+        size_t need = 0, i, n, agree = 0, set = 0, far = 0;
+        double power[2] = {0, 0};
+        voxgi_builtin_scene_create(ctx[0], scenes[sc], &bs);
+        for (b = 0; b < 2; b++) {
+            voxgi_inject_desc id;
+            voxgi_voxels *vx;
+            voxgi_volume *vol;
+            memset(&id, 0, sizeof id);
+            id.samples = 64;
+            TH_CHECK(lit_voxels(ctx[b], &bs.scene, 48, &id, &vx, &vol) &&
+                     voxgi_volume_read(ctx[b], vol, VOXGI_ATTRIBUTE_RADIANCE, VOXGI_DIR_POS_X, 0, NULL, 0, &need) == VOXGI_OK,
+                     "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
+            rad[b] = (float *)malloc(need ? need : 4);
+            TH_CHECK(voxgi_volume_read(ctx[b], vol, VOXGI_ATTRIBUTE_RADIANCE, VOXGI_DIR_POS_X, 0, rad[b], need, NULL) == VOXGI_OK, "read");
+            voxgi_volume_destroy(ctx[b], vol);
+            voxgi_voxels_destroy(ctx[b], vx);
+        }
+        n = need / 16;
+        for (i = 0; i < n; i++) {
+            double d = 0, m = 0;
+            int c;
+            if (rad[0][4 * i + 3] == 0) continue;
+            set++;
+            for (c = 0; c < 3; c++) {
+                d = fmax(d, fabs((double)rad[0][4 * i + c] - rad[1][4 * i + c]));
+                m = fmax(m, fabs(rad[0][4 * i + c]));
+                power[0] += rad[0][4 * i + c];
+                power[1] += rad[1][4 * i + c];
+            }
+            agree += d <= 1e-4 * fmax(m, 1e-3);
+            far += d > 0.5 * fmax(m, 1e-3);
+        }
+        printf("    %s 48^3: %lu of %lu voxels lit alike (to 1e-4), %lu differ by more than half, total radiance GL / CPU %.4f\n", scenes[sc],
+               (unsigned long)agree, (unsigned long)set, (unsigned long)far, power[1] / power[0]);
+        TH_CHECK(set > 1000 && fabs(power[1] / power[0] - 1) < (sc ? 0.03 : 0.01), "%s: power ratio %.4f", scenes[sc], power[1] / power[0]);
+        if (sc == 0) /* measured: 98.6% alike; 1.4% differ by more than half, along the shadows' edges (a texel of about 0.7 voxels) */
+            TH_CHECK(agree > 0.95 * set && far < 0.03 * set, "two spheres: %lu of %lu voxels agree, %lu far off", (unsigned long)agree, (unsigned long)set,
+                     (unsigned long)far);
+        free(rad[0]);
+        free(rad[1]);
+        voxgi_builtin_scene_destroy(ctx[0], &bs);
+    }
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
+/* The leak room on GL (distance maps, the GL mips and cones), as on the CPU (test_vct): inside
+   its closed box at most 0.1% of the room view's mean and no pixel above 1%, at 32^3 and 128^3
+   (at 32^3 in the reduced builds, FX_REDUCED: the same paths). */
+static void test_gl_raster_leak_room(void)
+{
+    voxgi_context *ctx;
+    int res;
+    if (!have_gl()) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
+    for (res = 32; res <= (FX_REDUCED ? 32 : 128); res *= 4) {
+        double m = 1, x = 1;
+        TH_CHECK(leak_room_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, 0, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+        printf("    GL leak room %3d^3: inside mean %.4f%%, largest %.3f%% of the room view's mean\n", res, 100 * m, 100 * x);
+        TH_CHECK(m <= 0.001 && x <= 0.01, "%d^3: mean %.4f%%, largest %.3f%%", res, 100 * m, 100 * x);
+    }
+    voxgi_destroy(ctx);
+}
+
+/* The leak box on GL (distance maps, the GL mips and cones), as on the CPU (test_vct): inside at
+   most 0.1% of the lit ground's radiance and no pixel above 1%, sun with a point light and with
+   a rectangular light, at 32^3 and 128^3 (32^3 alone in the reduced builds), and from an octree. */
+static void test_gl_raster_leak_box(void)
+{
+    voxgi_context *ctx;
+    int res, area;
+    if (!have_gl()) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
+    for (area = 0; area < 2; area++)
+        for (res = 32; res <= (FX_REDUCED ? 32 : 128); res *= 4) {
+            double m = 1, x = 1;
+            TH_CHECK(leak_box_ratios(ctx, res, VOXGI_MIPS_ANISOTROPIC, 0, area, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+            printf("    GL leak box %3d^3 (sun and %s light): inside mean %.4f%%, largest %.3f%% of the lit ground's\n", res,
+                   area ? "rectangular" : "point", 100 * m, 100 * x);
+            TH_CHECK(m <= 0.001 && x <= 0.01, "%d^3: mean %.4f%%, largest %.3f%%", res, 100 * m, 100 * x);
+        }
+    {
+        double m = 1, x = 1;
+        TH_CHECK(leak_box_ratios(ctx, 64, VOXGI_MIPS_ISOTROPIC, 1, 0, &m, &x) == 0, "render: %s", voxgi_last_error(ctx));
+        printf("    GL leak box  64^3 (sun and point light), octree: inside mean %.4f%%, largest %.3f%% of the lit ground's\n", 100 * m, 100 * x);
+        TH_CHECK(m <= 0.001 && x <= 0.01, "octree: mean %.4f%%, largest %.3f%%", 100 * m, 100 * x);
+    }
+    voxgi_destroy(ctx);
+}
+
+/* How far GL cones may be from the CPU's, relative to the mean irradiance (occlusion: absolute).
+   Both march in float32 (2^-24 per operation; GLSL's exp2 and log2 within 3 ulp), at most a few
+   hundred samples of some ten operations each on these grids: S * 30 * 2^-24 < 1e-4 for S < 300.
+   That holds where the texture filter computes in float, as llvmpipe's does; a GPU may quantise
+   its filter weights to 8 bits, which moves each lerp by up to 2^-9 of its two values' difference:
+   there 2^-8 of the mean. */
+static double cone_tolerance(void)
+{
+    return g_gl && strstr(vxt_gl_renderer(g_gl), "llvmpipe") ? 1e-4 : 1.0 / 256;
+}
+
+/* Cone tracing on GL (a compute pass, hardware filtering of premultiplied radiance) against the
+   CPU's march over the same voxels: the Cornell box voxelized and lit on each backend (the
+   voxels equal, the light injected through the same exact shadow rays, the mips equal to float
+   rounding), then the same
+   points traced, and the whole cone-traced image rendered on both; isotropic and anisotropic. */
+static void test_gl_raster_cone_tracing_equals_cpu(void)
+{
+    enum { N = 300, W = 20 };
+    voxgi_context *ctx[2];
+    voxgi_builtin_scene bs;
+    float pos[3 * N], nrm[3 * N], irr[2][3 * N], occ[2][N], *img[2], each[2][4 * N];
+    voxgi_cone single[N];
+    double worst_irr = 0, worst_occ = 0, worst_img = 0, mean_irr = 0, mean_img = 0, worst_each = 0;
+    int b, f, i, a;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 0);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
+    TH_CHECK(voxgi_builtin_scene_create(ctx[0], "cornell-box", &bs) == VOXGI_OK, "scene");
+    fx_rng rng = fx_rng_seeded(12);
+    cornell_cone_points(5, N, pos, nrm, single);
+    for (i = 0; i < N; i++) { /* half of the single cones leave a surface; some have a reach */
+        for (a = 0; a < 3; a++) single[i].normal[a] = i % 2 ? nrm[3 * ((i + 1) % N) + a] : 0;
+        single[i].max_distance = i % 3 ? (float)fx_rng_range(&rng, 0, 0.6) : 0;
+    }
+    img[0] = (float *)malloc(W * W * 12);
+    img[1] = (float *)malloc(W * W * 12);
+    for (f = 0; f < 2; f++) {
+        for (b = 0; b < 2; b++) {
+            voxgi_inject_desc id;
+            voxgi_cone_desc cd;
+            voxgi_render_desc vd;
+            voxgi_voxels *vx;
+            voxgi_volume *vol;
+            memset(&id, 0, sizeof id);
+            memset(&cd, 0, sizeof cd);
+            vct_view(&vd, &bs, W);
+            id.volume.filter = (voxgi_mip_filter)f;
+            id.samples = 4;
+            id.shadow_rays = 1; /* the same radiance on both */
+            TH_CHECK(lit_voxels(ctx[b], &bs.scene, 32, &id, &vx, &vol) &&
+                     voxgi_cone_trace(ctx[b], VOLUME_SOURCE(vol), &cd, N, pos, nrm, irr[b], occ[b]) == VOXGI_OK &&
+                     voxgi_cone_trace_each(ctx[b], VOLUME_SOURCE(vol), &cd, N, single, each[b]) == VOXGI_OK, "%s: %s", b ? "GL" : "CPU", voxgi_last_error(ctx[b]));
+            voxgi_volume_destroy(ctx[b], vol);
+            voxgi_voxels_destroy(ctx[b], vx);
+            vd.resolution = 32;
+            vd.samples = 2;
+            vd.vct.radiance = vct_radiance((voxgi_mip_filter)f, 0);
+            vd.vct.shadow_rays = 1;
+            TH_CHECK(voxgi_render(ctx[b], &bs.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "render: %s", voxgi_last_error(ctx[b]));
+        }
+        for (i = 0; i < 3 * N; i++) { worst_irr = fmax(worst_irr, fabs(irr[0][i] - irr[1][i])); mean_irr += irr[0][i] / (6.0 * N); }
+        for (i = 0; i < N; i++) worst_occ = fmax(worst_occ, fabs(occ[0][i] - occ[1][i]));
+        for (i = 0; i < 4 * N; i++) worst_each = fmax(worst_each, fabs(each[0][i] - each[1][i]) / (i % 4 == 3 ? 1 : fmax(mean_irr, 1e-3)));
+        for (i = 0; i < 3 * W * W; i++) { worst_img = fmax(worst_img, fabs(img[0][i] - img[1][i])); mean_img += img[0][i] / (6.0 * W * W); }
+    }
+    printf("    GL cone tracing vs CPU: irradiance within %.3g (mean %.3g), occlusion within %.3g, single cones within %.3g (relative), image within %.3g "
+           "(mean %.3g)\n", worst_irr, mean_irr, worst_occ, worst_each, worst_img, mean_img);
+    TH_CHECK(worst_each <= cone_tolerance(), "single cones differ by %g", worst_each);
+    TH_CHECK(mean_irr > 0.05 && worst_irr <= cone_tolerance() * mean_irr, "irradiance differs by %g (mean %g)", worst_irr, mean_irr);
+    TH_CHECK(worst_occ <= cone_tolerance(), "occlusion differs by %g", worst_occ);
+    TH_CHECK(worst_img <= cone_tolerance() * mean_img, "image differs by %g (mean %g)", worst_img, mean_img);
+    {   /* three bounces among the voxels, gathered on each backend from the same direct light: each
+           bounce's gather differs as the cones do, and so the image by at most three times that */
+        double worst_b = 0, mean_b = 0;
+        voxgi_render_desc vd;
+        for (b = 0; b < 2; b++) {
+            vct_view(&vd, &bs, W);
+            vd.resolution = 32;
+            vd.samples = 2;
+            vd.vct.shadow_rays = 1;
+            vd.bounces = 3;
+            TH_CHECK(voxgi_render(ctx[b], &bs.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "bounces: %s", voxgi_last_error(ctx[b]));
+        }
+        for (i = 0; i < 3 * W * W; i++) { worst_b = fmax(worst_b, fabs(img[0][i] - img[1][i])); mean_b += img[0][i] / (3.0 * W * W); }
+        printf("    3 bounces, GL vs CPU: image within %.3g (mean %.3g)\n", worst_b, mean_b);
+        TH_CHECK(mean_b > mean_img && worst_b <= 3 * cone_tolerance() * mean_b, "3 bounces: image differs by %g (mean %g)", worst_b, mean_b);
+    }
+    {   /* cones from an enclosed region (the regions' rule: the cones stop where they leave it, stay
+           at levels that do not reach beyond it and leave out the voxels lit from outside only):
+           the leak box with a lamp inside as well, seen from inside, one and three bounces */
+        voxgi_builtin_scene box;
+        voxgi_light lights[3];
+        double worst_r = 0, mean_r = 0;
+        int bounces;
+        TH_CHECK(leak_box_with_lamp(ctx[0], &box, lights) == VOXGI_OK, "leak-box");
+        for (bounces = 1; bounces <= 3; bounces += 2) {
+            voxgi_render_desc vd;
+            double worst = 0, mean = 0;
+            for (b = 0; b < 2; b++) {
+                vct_view(&vd, &box, W);
+                vd.resolution = 32;
+                vd.samples = 2;
+                vd.vct.shadow_rays = 1;
+                vd.bounces = bounces;
+                vd.hide_emitters = 1;
+                TH_CHECK(voxgi_render(ctx[b], &box.scene, &vd, img[b], W * W * 12, NULL) == VOXGI_OK, "enclosed: %s", voxgi_last_error(ctx[b]));
+            }
+            for (i = 0; i < 3 * W * W; i++) { worst = fmax(worst, fabs(img[0][i] - img[1][i])); mean += img[0][i] / (3.0 * W * W); }
+            TH_CHECK(mean > 0.01 && worst <= bounces * cone_tolerance() * mean, "enclosed, %d bounce(s): image differs by %g (mean %g)", bounces, worst, mean);
+            worst_r = fmax(worst_r, worst / mean);
+            mean_r += mean / 2;
+        }
+        printf("    cones from an enclosed region, 1 and 3 bounces, GL vs CPU: image within %.3g of its mean (%.3g)\n", worst_r, mean_r);
+        voxgi_builtin_scene_destroy(ctx[0], &box);
+    }
+    free(img[0]);
+    free(img[1]);
+    voxgi_builtin_scene_destroy(ctx[0], &bs);
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
+/* The caller's G-buffer as GL textures (voxgi_cone_trace_gl): positions and normals in RGBA32F
+   textures, the result in the caller's RGBA32F texture equals voxgi_cone_trace on the same
+   points (the positions go to grid units in float on the GPU instead of double: within 1e-4);
+   a pixel without a normal is written 0; with an albedo texture and an RGBA16F target the
+   result is albedo / pi x irradiance within half precision. */
+typedef void (*vx_create_textures)(unsigned int, int, unsigned int *);
+typedef void (*vx_texture_storage_2d)(unsigned int, int, unsigned int, int, int);
+typedef void (*vx_texture_sub_image_2d)(unsigned int, int, int, int, int, int, unsigned int, unsigned int, const void *);
+typedef void (*vx_get_texture_image)(unsigned int, int, unsigned int, unsigned int, int, void *);
+typedef void (*vx_delete_textures)(int, const unsigned int *);
+
+static void test_gl_raster_gbuffer_textures(void)
+{
+    enum { W = 20, H = 15, N = W * H };
+    voxgi_context *ctx;
+    voxgi_builtin_scene bs;
+    voxgi_inject_desc id;
+    voxgi_cone_desc cd;
+    voxgi_voxels *vx = NULL;
+    voxgi_volume *vol = NULL;
+    voxgi_gl_gbuffer gb;
+    vx_create_textures create;
+    vx_texture_storage_2d storage;
+    vx_texture_sub_image_2d sub;
+    vx_get_texture_image get;
+    vx_delete_textures del;
+    static float pos[3 * N], nrm[3 * N], irr[3 * N], occ[N], tex_in[3][4 * N], out[4 * N];
+    unsigned int tex[5];
+    double worst = 0, worst_occ = 0, worst_albedo = 0, mean = 0;
+    int i, a;
+    fx_rng rng = fx_rng_seeded(11);
+    if (!have_gl()) return;
+    create = (vx_create_textures)vxt_gl_get_proc("glCreateTextures", g_gl);
+    storage = (vx_texture_storage_2d)vxt_gl_get_proc("glTextureStorage2D", g_gl);
+    sub = (vx_texture_sub_image_2d)vxt_gl_get_proc("glTextureSubImage2D", g_gl);
+    get = (vx_get_texture_image)vxt_gl_get_proc("glGetTextureImage", g_gl);
+    del = (vx_delete_textures)vxt_gl_get_proc("glDeleteTextures", g_gl);
+    TH_CHECK(create && storage && sub && get && del, "GL texture functions");
+    if (!create || !storage || !sub || !get || !del) return;
+    ctx = make_ctx(VOXGI_BACKEND_GL, 0);
+    voxgi_builtin_scene_create(ctx, "cornell-box", &bs);
+    memset(&id, 0, sizeof id);
+    memset(&cd, 0, sizeof cd);
+    TH_CHECK(lit_voxels(ctx, &bs.scene, 32, &id, &vx, &vol), "lit voxels");
+    for (i = 0; i < N; i++)
+        for (a = 0; a < 3; a++) {
+            pos[3 * i + a] = (float)fx_rng_range(&rng, 0.03, 0.53);
+            nrm[3 * i + a] = i == 0 ? 0.0f : (float)fx_rng_range(&rng, -1, 1);
+            tex_in[0][4 * i + a] = pos[3 * i + a];
+            tex_in[1][4 * i + a] = nrm[3 * i + a];
+            tex_in[2][4 * i + a] = (float)(0.2 + 0.7 * a / 2.0);
+            tex_in[0][4 * i + 3] = tex_in[1][4 * i + 3] = tex_in[2][4 * i + 3] = 1;
+        }
+    TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, N, pos, nrm, irr, occ) == VOXGI_OK, "arrays: %s", voxgi_last_error(ctx));
+    create(0x0DE1, 5, tex); /* GL_TEXTURE_2D */
+    for (i = 0; i < 5; i++) storage(tex[i], 1, i == 4 ? 0x881A : 0x8814, W, H); /* RGBA16F for the last, RGBA32F */
+    for (i = 0; i < 3; i++) sub(tex[i], 0, 0, 0, W, H, 0x1908, 0x1406, tex_in[i]); /* GL_RGBA, GL_FLOAT */
+    memset(&gb, 0, sizeof gb);
+    gb.position_texture = tex[0];
+    gb.normal_texture = tex[1];
+    gb.width = W;
+    gb.height = H;
+    gb.irradiance_texture = tex[3];
+    TH_CHECK(voxgi_cone_trace_gl(ctx, VOLUME_SOURCE(vol), &cd, &gb) == VOXGI_OK, "textures: %s", voxgi_last_error(ctx));
+    get(tex[3], 0, 0x1908, 0x1406, (int)sizeof out, out);
+    for (i = 0; i < 3 * N; i++) mean += irr[i] / (3.0 * N);
+    for (i = 0; i < N; i++) {
+        for (a = 0; a < 3; a++) worst = fmax(worst, fabs(out[4 * i + a] - (i ? irr[3 * i + a] : 0)));
+        worst_occ = fmax(worst_occ, fabs(out[4 * i + 3] - (i ? occ[i] : 0)));
+    }
+    gb.albedo_texture = tex[2];
+    gb.irradiance_texture = tex[4];
+    gb.irradiance_rgba16f = 1;
+    TH_CHECK(voxgi_cone_trace_gl(ctx, VOLUME_SOURCE(vol), &cd, &gb) == VOXGI_OK, "albedo, half: %s", voxgi_last_error(ctx));
+    get(tex[4], 0, 0x1908, 0x1406, (int)sizeof out, out);
+    for (i = 0; i < N; i++)
+        for (a = 0; a < 3; a++)
+            worst_albedo = fmax(worst_albedo, fabs(out[4 * i + a] - (i ? tex_in[2][4 * i + a] / 3.14159265358979323846 * irr[3 * i + a] : 0)) / fmax(mean, 1e-3));
+    printf("    G-buffer textures: irradiance within %.3g (mean %.3g), occlusion within %.3g; with albedo into RGBA16F within %.3g (relative)\n", worst, mean,
+           worst_occ, worst_albedo);
+    TH_CHECK(mean > 0.05 && worst <= 1e-4 * mean && worst_occ <= 1e-4 && worst_albedo <= 2e-3, "G-buffer textures differ");
+    TH_CHECK(out[0] == 0 && out[1] == 0 && out[2] == 0 && out[3] == 0, "the pixel without a normal was written");
+    { /* the same over an octree of the radiance */
+        voxgi_svo_desc sd;
+        voxgi_svo *svo = NULL;
+        double worst_svo = 0;
+        memset(&sd, 0, sizeof sd);
+        sd.attributes = VOXGI_ATTRIBUTE_RADIANCE;
+        sd.radiance = vol;
+        TH_CHECK(voxgi_svo_create(ctx, vx, &sd, &svo) == VOXGI_OK && voxgi_cone_trace(ctx, OCTREE_SOURCE(svo), &cd, N, pos, nrm, irr, occ) == VOXGI_OK,
+                 "octree arrays: %s", voxgi_last_error(ctx));
+        gb.albedo_texture = 0;
+        gb.irradiance_texture = tex[3];
+        gb.irradiance_rgba16f = 0;
+        TH_CHECK(voxgi_cone_trace_gl(ctx, OCTREE_SOURCE(svo), &cd, &gb) == VOXGI_OK, "octree textures: %s", voxgi_last_error(ctx));
+        get(tex[3], 0, 0x1908, 0x1406, (int)sizeof out, out);
+        for (i = 0; i < N; i++) {
+            for (a = 0; a < 3; a++) worst_svo = fmax(worst_svo, fabs(out[4 * i + a] - (i ? irr[3 * i + a] : 0)) / fmax(mean, 1e-3));
+            worst_svo = fmax(worst_svo, fabs(out[4 * i + 3] - (i ? occ[i] : 0)));
+        }
+        printf("    G-buffer textures over the octree: within %.3g of its array path\n", worst_svo);
+        TH_CHECK(worst_svo <= 1e-4, "octree G-buffer textures differ by %g", worst_svo);
+        voxgi_svo_destroy(ctx, svo);
+    }
+    gb.width = 0;
+    TH_CHECK(voxgi_cone_trace_gl(ctx, VOLUME_SOURCE(vol), &cd, &gb) == VOXGI_ERR_INVALID_ARGUMENT, "an empty G-buffer accepted");
+    del(5, tex);
+    voxgi_volume_destroy(ctx, vol);
+    voxgi_voxels_destroy(ctx, vx);
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
 int main(void)
 {
+    gl_open();
     TH_RUN(test_cornell_box_image);
     TH_RUN(test_leak_box);
+    TH_RUN(test_gl_raster_leak_box);
     TH_RUN(test_leak_room);
+    TH_RUN(test_gl_raster_leak_room);
     TH_RUN(test_held_out_closed_spaces);
+    TH_RUN(test_gl_raster_held_out_closed_spaces);
     TH_RUN(test_full_gi_furnace);
     TH_RUN(test_second_bounce);
     TH_RUN(test_bounce_blocks);
     TH_RUN(test_single_cones);
     TH_RUN(test_cone_stride);
-    TH_RUN(test_octree_cones);
     TH_RUN(test_indirect_across_edges);
     TH_RUN(test_injection_is_exact_on_a_lit_floor);
+    TH_RUN(test_gl_raster_injection_matches_cpu);
     TH_RUN(test_ambient_occlusion);
     TH_RUN(test_glowing_ceiling);
     TH_RUN(test_cone_apertures_extreme);
     TH_RUN(test_direct_light_analytic);
+    TH_RUN(test_gl_raster_cone_tracing_equals_cpu);
+    TH_RUN(test_gl_raster_gbuffer_textures);
+    gl_close();
     return th_finish();
 }

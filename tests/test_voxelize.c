@@ -1,8 +1,14 @@
-/* CPU conservative voxelization against an independent brute-force evaluation of the definition,
-   plus scene validation, grids, binvox and the result API. */
+/* tests/test_voxelize.c - part 5: voxelization, CPU and GL. Every method against an independent
+   brute-force evaluation of its definition (conservative, thin, the Volume Buffer and the slicemap's
+   drawn voxels exactly in 128-bit integers; solid against the winding number; the atlas's points),
+   the same voxels wherever the scene sits, attributes and their blend modes, OR mipmaps, voxel
+   visibility (3D-DDA and the hierarchical traversal against a brute-force slab test); each GL pass
+   (compute, geometry shader, raster) bit for bit its CPU twin, right after it. (The exact tests on
+   arbitrary floats and double grids, in GMP rationals: tests/test_exact.c.) The GL tests skip
+   (loudly) only when no GL 4.5 context can be made; VOXGI_TEST_GL=egl|osmesa picks the kind,
+   VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
 #include "../voxgi.h"
 #include "fixtures.h"
-#include "svo_checks.h"
 #include <stdlib.h>
 
 /* ---------------------------------------------------------------- the oracle
@@ -147,26 +153,6 @@ static void oracle_set(uint32_t *bits, const voxgi_grid *g, const int v[3])
 {
     uint64_t l = (uint64_t)v[0] + (uint64_t)g->res[0] * ((uint64_t)v[1] + (uint64_t)g->res[1] * (uint64_t)v[2]);
     bits[l >> 5] |= 1u << (l & 31);
-}
-
-/* ---------------------------------------------------------------- helpers */
-static uint32_t *voxelize_bits_method(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t ntri,
-                                      const voxgi_grid *g, voxgi_method method, voxgi_voxels_info *info)
-{
-    voxgi_mesh m;
-    voxgi_scene sc;
-    voxgi_voxelize_desc vd;
-    scene_of_triangles(&sc, &m, pos, nv, idx, ntri);
-    memset(&vd, 0, sizeof vd);
-    vd.grid = *g;
-    vd.method = method;
-    return voxelized_bits(ctx, &sc, &vd, info);
-}
-
-static uint32_t *voxelize_bits(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t ntri,
-                               const voxgi_grid *g, voxgi_voxels_info *info)
-{
-    return voxelize_bits_method(ctx, pos, nv, idx, ntri, g, VOXGI_METHOD_CONSERVATIVE, info);
 }
 
 /* Compares with the oracle; returns the number of differing voxels (and reports a few). */
@@ -395,305 +381,6 @@ static void test_literal_scales(void)
     voxgi_destroy(ctx);
 }
 
-/* 1, 2 and 7 threads give identical bits. */
-static void test_thread_determinism(void)
-{
-    vxt_shape m;
-    voxgi_grid g;
-    uint32_t *b[3];
-    int i, threads[3] = {1, 2, 7};
-    vxt_shape_sphere(&m, 48, 32, 1.0, 0, 0, 0);
-    g.origin[0] = g.origin[1] = g.origin[2] = -1.1;
-    g.voxel_size = 2.2 / 40;
-    g.res[0] = g.res[1] = g.res[2] = 40;
-    for (i = 0; i < 3; i++) {
-        voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, threads[i]);
-        b[i] = voxelize_bits(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, NULL);
-        voxgi_destroy(ctx);
-    }
-    TH_CHECK(b[0] && b[1] && b[2] && memcmp(b[0], b[1], (40 * 40 * 40 + 31) / 32 * 4) == 0 &&
-             memcmp(b[0], b[2], (40 * 40 * 40 + 31) / 32 * 4) == 0, "thread counts disagree");
-    for (i = 0; i < 3; i++) free(b[i]);
-    vxt_shape_free(&m);
-}
-
-/* ---------------------------------------------------------------- bad input */
-static voxgi_result try_scene(voxgi_context *ctx, const voxgi_mesh *m, size_t nm, const voxgi_grid *g)
-{
-    voxgi_scene sc;
-    voxgi_voxelize_desc vd;
-    voxgi_voxels *vox = (voxgi_voxels *)1;
-    voxgi_result r;
-    memset(&sc, 0, sizeof sc);
-    memset(&vd, 0, sizeof vd);
-    sc.meshes = m; sc.mesh_count = nm;
-    vd.grid = *g;
-    r = voxgi_voxelize(ctx, &sc, &vd, &vox);
-    if (r != VOXGI_OK && vox != NULL) return (voxgi_result)-1; /* no partial output */
-    if (r == VOXGI_OK) voxgi_voxels_destroy(ctx, vox);
-    return r;
-}
-
-static void test_bad_input(void)
-{
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 1);
-    float p[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
-    uint32_t idx[6] = {0, 1, 2, 1, 3, 2};
-    voxgi_mesh m;
-    voxgi_grid g;
-    g.origin[0] = g.origin[1] = g.origin[2] = -0.5;
-    g.voxel_size = 0.25;
-    g.res[0] = g.res[1] = g.res[2] = 8;
-    memset(&m, 0, sizeof m);
-    m.positions = p; m.vertex_count = 4; m.indices = idx; m.index_count = 6;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_OK, "good scene rejected: %s", voxgi_last_error(ctx));
-
-    p[4] = NAN;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "NaN accepted");
-    TH_CHECK(strstr(voxgi_last_error(ctx), "triangle 0") && strstr(voxgi_last_error(ctx), "vertex 1"),
-             "NaN message does not name the triangle and vertex: %s", voxgi_last_error(ctx));
-    p[4] = INFINITY;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "infinity accepted");
-    p[4] = 0;
-    idx[4] = 4;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "index out of range accepted");
-    TH_CHECK(strstr(voxgi_last_error(ctx), "triangle 1") && strstr(voxgi_last_error(ctx), "out of range"),
-             "message: %s", voxgi_last_error(ctx));
-    idx[4] = 3;
-    m.index_count = 5;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "index_count 5 accepted");
-    m.index_count = 6;
-    m.vertex_count = (size_t)-1 / 4;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_TOO_LARGE, "overflowing vertex count accepted");
-    m.vertex_count = 4;
-    m.position_stride = 8;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "stride 8 accepted");
-    m.position_stride = 0;
-    m.material = 3;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "material out of range accepted");
-    m.material = 0;
-    m.index_count = 0;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_EMPTY_SCENE, "empty mesh accepted");
-    TH_CHECK(try_scene(ctx, &m, 0, &g) == VOXGI_ERR_EMPTY_SCENE, "no meshes accepted");
-    m.index_count = 6;
-    m.positions = NULL;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_SCENE, "NULL positions accepted");
-    m.positions = p;
-    /* grids */
-    g.res[1] = 0;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "zero resolution accepted");
-    g.res[1] = VOXGI_MAX_RES + 1;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "huge resolution accepted");
-    g.res[1] = 8;
-    g.voxel_size = 0;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "zero voxel size accepted");
-    g.voxel_size = NAN;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "NaN voxel size accepted");
-    g.voxel_size = 0.25;
-    g.origin[2] = INFINITY;
-    TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_INVALID_GRID, "infinite origin accepted");
-    g.origin[2] = -0.5;
-    voxgi_destroy(ctx);
-    {   /* a grid beyond the memory budget is a clear error, not an allocation failure half-way */
-        voxgi_desc d;
-        memset(&d, 0, sizeof d);
-        d.backend = VOXGI_BACKEND_CPU;
-        d.memory_budget = 1 << 20;
-        voxgi_create(&d, &ctx);
-        g.res[0] = g.res[1] = g.res[2] = 2048;
-        TH_CHECK(try_scene(ctx, &m, 1, &g) == VOXGI_ERR_TOO_LARGE, "over-budget grid accepted");
-        TH_CHECK(strstr(voxgi_last_error(ctx), "budget") != NULL, "message: %s", voxgi_last_error(ctx));
-        voxgi_destroy(ctx);
-    }
-    TH_CHECK(voxgi_create(NULL, &ctx) == VOXGI_ERR_INVALID_ARGUMENT, "NULL desc accepted");
-    TH_CHECK(voxgi_voxelize(NULL, NULL, NULL, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "NULL context accepted");
-}
-
-/* Every allocation failure is reported as VOXGI_ERR_OUT_OF_MEMORY, never a crash or a leak. */
-typedef struct fail_alloc { int countdown, live; } fail_alloc;
-static void *fa_alloc(size_t n, void *u)
-{
-    fail_alloc *f = (fail_alloc *)u;
-    if (f->countdown-- == 0) return NULL;
-    f->live++;
-    return malloc(n);
-}
-static void fa_free(void *p, void *u) { ((fail_alloc *)u)->live--; free(p); }
-
-/* A CPU context allocating through fa, whose allocation number `countdown` (from 0) fails. */
-static voxgi_result failing_ctx(fail_alloc *fa, int countdown, voxgi_context **ctx)
-{
-    voxgi_desc d;
-    ctx_desc(&d, VOXGI_BACKEND_CPU);
-    d.allocator.alloc = fa_alloc; d.allocator.free = fa_free; d.allocator.user = fa;
-    fa->countdown = countdown;
-    return voxgi_create(&d, ctx);
-}
-
-/* The allocation tests' scene: the n triangles at p, on a 14^3 grid of 0.1 from -0.1. */
-static void failure_scene(voxgi_scene *sc, voxgi_mesh *m, voxgi_voxelize_desc *vd, const float *p, size_t n)
-{
-    scene_of_triangles(sc, m, p, 3 * n, NULL, 0);
-    memset(vd, 0, sizeof *vd);
-    vd->grid.origin[0] = vd->grid.origin[1] = vd->grid.origin[2] = -0.1;
-    vd->grid.voxel_size = 0.1;
-    vd->grid.res[0] = vd->grid.res[1] = vd->grid.res[2] = 14;
-}
-
-static void test_failing_allocator(void)
-{
-    float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0.5f};
-    voxgi_mesh m;
-    voxgi_scene sc;
-    voxgi_voxelize_desc vd;
-    int n, ok_at = -1;
-    failure_scene(&sc, &m, &vd, p, 1);
-    for (n = 0; n < 20 && ok_at < 0; n++) {
-        fail_alloc fa = {0, 0};
-        voxgi_context *ctx = NULL;
-        voxgi_voxels *vox = NULL;
-        voxgi_result r = failing_ctx(&fa, n, &ctx);
-        if (r == VOXGI_OK) {
-            r = voxgi_voxelize(ctx, &sc, &vd, &vox);
-            TH_CHECK(r == VOXGI_OK || r == VOXGI_ERR_OUT_OF_MEMORY, "failure %d gave %s", n, voxgi_result_string(r));
-            TH_CHECK((r == VOXGI_OK) == (vox != NULL), "failure %d: result and output disagree", n);
-            if (r == VOXGI_OK) ok_at = n;
-            voxgi_voxels_destroy(ctx, vox);
-            voxgi_destroy(ctx);
-        } else TH_CHECK(r == VOXGI_ERR_OUT_OF_MEMORY, "create failure gave %s", voxgi_result_string(r));
-        TH_CHECK(fa.live == 0, "failure %d leaked %d blocks", n, fa.live);
-    }
-    TH_CHECK(ok_at > 0, "never succeeded");
-}
-
-static int cancel_at_once(double f, const char *stage, void *u) { (void)f; (void)stage; (void)u; return 1; }
-
-static int cancel_octree_values(double fraction, const char *stage, void *user)
-{
-    (void)fraction;
-    ++*(int *)user;
-    return strcmp(stage, "octree: values") == 0;
-}
-
-static void test_cancel_and_api(void)
-{
-    vxt_shape m;
-    voxgi_desc d;
-    voxgi_context *ctx = NULL;
-    voxgi_mesh mesh;
-    voxgi_scene sc;
-    voxgi_voxelize_desc vd;
-    voxgi_voxels *vox = NULL;
-    voxgi_voxels_info info;
-    uint32_t small[4];
-    size_t need = 0;
-    vxt_shape_sphere(&m, 64, 48, 1.0, 0, 0, 0);
-    ctx_desc(&d, VOXGI_BACKEND_CPU);
-    memset(&vd, 0, sizeof vd);
-    d.progress.func = cancel_at_once;
-    voxgi_create(&d, &ctx);
-    scene_of_shape(&sc, &mesh, &m);
-    {
-        voxgi_fit_desc fit;
-        memset(&fit, 0, sizeof fit);
-        fit.res = 32;
-        fit.padding = 1;
-        TH_CHECK(voxgi_fit_grid(ctx, &sc, &fit, &vd.grid) == VOXGI_OK, "fit failed");
-        TH_CHECK(vd.grid.res[0] == 32 && vd.grid.res[2] == 32, "cubic fit gave %d %d %d", vd.grid.res[0], vd.grid.res[1], vd.grid.res[2]);
-        /* the scene (radius 1) sits inside with a voxel of padding */
-        TH_CHECK(vd.grid.origin[0] + vd.grid.voxel_size <= -1.0 && vd.grid.origin[0] + 31 * vd.grid.voxel_size >= 1.0,
-                 "fit does not pad: origin %g size %g", vd.grid.origin[0], vd.grid.voxel_size);
-    }
-    TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_ERR_CANCELLED && vox == NULL, "cancel ignored");
-    voxgi_destroy(ctx);
-    {   /* an octree build reports its stages and stops cleanly when asked to */
-        int calls = 0;
-        voxgi_svo_desc sd;
-        voxgi_svo *svo = NULL;
-        d.progress.func = cancel_octree_values;
-        d.progress.user = &calls;
-        voxgi_create(&d, &ctx);
-        vd.attributes = VOXGI_ATTRIBUTE_ALBEDO;
-        memset(&sd, 0, sizeof sd);
-        TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK && voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_ERR_CANCELLED && !svo &&
-                 calls > 2, "octree cancel: %s", voxgi_last_error(ctx));
-        voxgi_voxels_destroy(ctx, vox);
-        vox = NULL;
-        vd.attributes = 0;
-        voxgi_destroy(ctx);
-        d.progress.user = NULL;
-    }
-    d.progress.func = NULL;
-    voxgi_create(&d, &ctx);
-    TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "voxelize failed");
-    voxgi_voxels_query(vox, &info);
-    TH_CHECK(info.voxel_count > 0 && info.triangle_count == m.triangle_count && info.bytes == (32 * 32 * 32) / 8,
-             "info wrong: %llu voxels", (unsigned long long)info.voxel_count);
-    TH_CHECK(voxgi_voxels_read(ctx, vox, NULL, 0, &need) == VOXGI_OK && need == info.bytes, "size query wrong");
-    TH_CHECK(voxgi_voxels_read(ctx, vox, small, sizeof small, NULL) == VOXGI_ERR_BUFFER_TOO_SMALL, "small buffer accepted");
-    {
-        unsigned name = 0;
-        TH_CHECK(voxgi_voxels_gl_buffer(ctx, vox, &name) == VOXGI_ERR_UNSUPPORTED, "CPU voxels gave a GL buffer");
-    }
-    voxgi_voxels_destroy(ctx, vox);
-    voxgi_destroy(ctx);
-    vxt_shape_free(&m);
-}
-
-/* binvox write then read gives the same grid and bits; a truncated file is an error. */
-static void test_binvox_roundtrip(void)
-{
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 1);
-    vxt_shape m;
-    voxgi_grid g, g2;
-    uint32_t *bits, *back;
-    size_t need = 0, bytes;
-    FILE *f = tmpfile();
-    long len;
-    vxt_shape_sphere(&m, 20, 14, 1.0, 0, 0, 0);
-    memset(&g2, 0, sizeof g2);
-    g.origin[0] = -1.25; g.origin[1] = -1.5; g.origin[2] = -1.125;
-    g.voxel_size = 0.125;
-    g.res[0] = 21; g.res[1] = 24; g.res[2] = 19; /* non-cubic: checks the axis order */
-    bits = voxelize_bits(ctx, m.pos, m.vertex_count, m.idx, m.triangle_count, &g, NULL);
-    bytes = (voxgi_grid_voxel_count(&g) + 31) / 32 * 4;
-    TH_CHECK(voxgi_binvox_write(f, &g, bits) == VOXGI_OK, "write failed");
-    len = ftell(f);
-    rewind(f);
-    TH_CHECK(voxgi_binvox_read(f, &g2, NULL, 0, &need) == VOXGI_OK && need == bytes, "header read failed");
-    rewind(f);
-    back = (uint32_t *)malloc(need);
-    TH_CHECK(voxgi_binvox_read(f, &g2, back, need, NULL) == VOXGI_OK, "read failed");
-    /* field by field: the struct's padding is not part of the grid (and no read writes it) */
-    TH_CHECK(g2.origin[0] == g.origin[0] && g2.origin[1] == g.origin[1] && g2.origin[2] == g.origin[2] &&
-             g2.voxel_size == g.voxel_size && g2.res[0] == g.res[0] && g2.res[1] == g.res[1] && g2.res[2] == g.res[2],
-             "grid differs after the round trip: origin %g %g %g, size %g, res %d %d %d",
-             g2.origin[0], g2.origin[1], g2.origin[2], g2.voxel_size, g2.res[0], g2.res[1], g2.res[2]);
-    TH_CHECK(memcmp(bits, back, bytes) == 0, "bits differ after the round trip");
-    {   /* truncated: every shorter prefix must fail cleanly */
-        char *buf = (char *)malloc((size_t)len);
-        long cut;
-        int bad = 0;
-        rewind(f);
-        if (fread(buf, 1, (size_t)len, f) != (size_t)len) bad++;
-        for (cut = 0; cut < len; cut += 1 + cut / 8) {
-            FILE *t = tmpfile();
-            voxgi_grid gt;
-            fwrite(buf, 1, (size_t)cut, t);
-            rewind(t);
-            if (voxgi_binvox_read(t, &gt, back, need, NULL) == VOXGI_OK) bad++;
-            fclose(t);
-        }
-        TH_CHECK(bad == 0, "%d truncated files accepted", bad);
-        free(buf);
-    }
-    fclose(f);
-    free(bits);
-    free(back);
-    vxt_shape_free(&m);
-    voxgi_destroy(ctx);
-}
-
 /* The thin method on every oracle scene above, and thin within conservative. */
 static void test_thin_vs_oracle(void)
 {
@@ -731,6 +418,210 @@ static void test_thin_vs_oracle(void)
         vxt_shape_free(&m);
         voxgi_destroy(ctx);
     }
+}
+
+/* ---------------------------------------------------------------- conservative and thin on GL
+   The GL conservative voxelizer equals the CPU voxelizer bit for bit (compute, and the geometry
+   shader's raster pass). */
+
+static voxgi_method g_method; /* what compare() runs */
+static voxgi_solid_mode g_solid_mode;
+static voxgi_axis g_axis;
+static int g_atomic;
+static int g_atlas_size;
+static voxgi_atlas_uv g_atlas_uv;
+static const float *g_uvs;
+
+static uint32_t *run(voxgi_context *ctx, const vxt_shape *m, const voxgi_grid *g, voxgi_voxels_info *info)
+{
+    voxgi_voxelize_desc vd;
+    memset(&vd, 0, sizeof vd);
+    vd.grid = *g;
+    vd.method = g_method;
+    vd.solid_mode = g_solid_mode;
+    vd.axis = g_axis;
+    vd.atomic = g_atomic;
+    vd.atlas_size = g_atlas_size;
+    vd.atlas_uv = g_atlas_uv;
+    return shape_bits(ctx, m, g_uvs, &vd, info);
+}
+
+/* Triangles of m whose normal has a component the double filter may not be able to sign
+   (zero, or within 1e-9 of the normal's largest, from the vertices in double) or no normal at
+   all: the only ones the GL compute pass is meant to hand whole to the CPU's exact referee. */
+static uint64_t undecidable_normals(const vxt_shape *m)
+{
+    uint64_t count = 0;
+    size_t t;
+    for (t = 0; t < m->triangle_count; t++) {
+        const float *v[3];
+        double e1[3], e2[3], n[3], big;
+        int a;
+        for (a = 0; a < 3; a++) v[a] = m->pos + 3 * (size_t)m->idx[3 * t + a];
+        for (a = 0; a < 3; a++) { e1[a] = (double)v[1][a] - v[0][a]; e2[a] = (double)v[2][a] - v[0][a]; }
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        big = fmax(fabs(n[0]), fmax(fabs(n[1]), fabs(n[2])));
+        count += big == 0 || fabs(n[0]) <= 1e-9 * big || fabs(n[1]) <= 1e-9 * big || fabs(n[2]) <= 1e-9 * big;
+    }
+    return count;
+}
+
+/* GL and CPU bits must be identical, and the GL count must equal the CPU popcount. */
+static void compare_method(const vxt_shape *m, const voxgi_grid *g, const char *what)
+{
+    voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU, 0), *gl = make_ctx(VOXGI_BACKEND_GL, 0);
+    voxgi_voxels_info ic, ig;
+    uint32_t *a, *b;
+    size_t bytes = (size_t)((voxgi_grid_voxel_count(g) + 31) / 32 * 4);
+    uint64_t handover_bound = undecidable_normals(m) * (g_method == VOXGI_METHOD_SOLID && g_solid_mode == VOXGI_SOLID_VOTE ? 3 : 1);
+    TH_CHECK(gl != NULL, "%s: no GL voxgi context", what);
+    if (!gl) { voxgi_destroy(cpu); return; }
+    a = run(cpu, m, g, &ic);
+    b = run(gl, m, g, &ig);
+    TH_CHECK(a && b, "%s: a run failed", what);
+    if (a && b) {
+        size_t w, diff = 0;
+        for (w = 0; w < bytes / 4; w++) diff += a[w] != b[w];
+        TH_CHECK(diff == 0, "%s: %lu words differ between GL and CPU", what, (unsigned long)diff);
+        TH_CHECK(ic.voxel_count == ig.voxel_count, "%s: counts %llu (CPU) vs %llu (GL)", what,
+                 (unsigned long long)ic.voxel_count, (unsigned long long)ig.voxel_count);
+        TH_CHECK(ic.voxel_count > 0, "%s: nothing voxelized", what);
+        /* the GL pass must do the work itself: it hands over only triangles whose normal it cannot
+           sign (a vote runs the solid pass along each of the three axes) */
+        TH_CHECK(ig.exact_triangles <= handover_bound, "%s: %llu triangles handed to the CPU, at most %llu may be",
+                 what, (unsigned long long)ig.exact_triangles, (unsigned long long)handover_bound);
+        static const char *modes[3] = {"parity", "vote", "flood"};
+        printf("    %s%s%s %s: %llu voxels, GL exact tests %llu, triangles handed to the CPU %llu\n", voxgi_method_name(g_method),
+               g_method == VOXGI_METHOD_SOLID ? " " : "", g_method == VOXGI_METHOD_SOLID ? modes[g_solid_mode] : "", what,
+               (unsigned long long)ig.voxel_count, (unsigned long long)ig.exact_tests, (unsigned long long)ig.exact_triangles);
+    }
+    free(a);
+    free(b);
+    voxgi_destroy(cpu);
+    voxgi_destroy(gl);
+}
+
+/* Every exact surface method with a GL pass: conservative and thin by compute; or, from the
+   raster test (rasterizing tests run apart, see tests/run.sh), the conservative set by
+   geometry-shader rasterization. */
+static int g_geometry;
+static void compare(const vxt_shape *m, const voxgi_grid *g, const char *what)
+{
+    if (g_geometry) {
+        g_method = VOXGI_METHOD_GEOMETRY;
+        compare_method(m, g, what);
+    } else
+        for (g_method = VOXGI_METHOD_CONSERVATIVE; g_method <= VOXGI_METHOD_THIN; g_method = (voxgi_method)(g_method + 1))
+            compare_method(m, g, what);
+    g_method = VOXGI_METHOD_CONSERVATIVE;
+}
+
+static void test_gl_equals_cpu_sphere(void)
+{
+    vxt_shape m;
+    voxgi_grid g;
+    if (!have_gl()) return;
+    vxt_shape_sphere(&m, 40, 28, 1.0, 0.013, -0.021, 0.007);
+    cubic(&g, -1.1, 2.2, 32);
+    compare(&m, &g, "sphere 32^3");
+    cubic(&g, -1.1, 2.2, 100);
+    compare(&m, &g, "sphere 100^3");
+    g.res[0] = 70; g.res[1] = 45; g.res[2] = 33; /* non-cubic, cut through the scene */
+    compare(&m, &g, "sphere 70x45x33");
+    vxt_shape_free(&m);
+}
+
+/* The grid of vxt_shape_box_and_tilted's ties: half voxels from -1, every integer coordinate on
+   a voxel boundary; 51 x 50 x nz. */
+static void half_voxel_grid(voxgi_grid *g, int nz)
+{
+    g->origin[0] = g->origin[1] = g->origin[2] = -1;
+    g->voxel_size = 0.5;
+    g->res[0] = 51; g->res[1] = 50; g->res[2] = nz;
+}
+
+static void test_gl_equals_cpu_ties(void)
+{
+    vxt_shape m;
+    voxgi_grid g;
+    if (!have_gl()) return;
+    vxt_shape_box_and_tilted(&m); /* lattice coordinates: every face on voxel boundaries */
+    g.origin[0] = g.origin[1] = g.origin[2] = -1;
+    g.voxel_size = 1.5;
+    g.res[0] = 19; g.res[1] = 18; g.res[2] = 17;
+    compare(&m, &g, "box on voxel faces");
+    half_voxel_grid(&g, 52); /* every integer coordinate on a boundary */
+    compare(&m, &g, "box at half voxels");
+    g.origin[0] = -1.1; g.origin[1] = -0.9; g.origin[2] = -1.05; /* generic: filter with exact fallbacks */
+    g.voxel_size = 0.3;
+    g.res[0] = 85; g.res[1] = 80; g.res[2] = 87;
+    compare(&m, &g, "box generic grid");
+    vxt_shape_free(&m);
+}
+
+static void test_gl_equals_cpu_quads_and_huge(void)
+{
+    vxt_shape m;
+    voxgi_grid g;
+    if (!have_gl()) return;
+    vxt_shape_quad(&m, 1); /* two triangles, each far larger than the small-triangle limit */
+    m.pos[2] = 0.3f; m.pos[5] = -0.2f;
+    cubic(&g, -1.05, 2.1, 256);
+    compare(&m, &g, "tilted simple quad 256^3");
+    /* 1024^3: about a million columns per triangle, so each pass-1 lane must keep its share
+       small (llvmpipe cuts off invocations that loop too long, losing their voxels) */
+    g_method = VOXGI_METHOD_THIN;
+    cubic(&g, -1.05, 2.1, 1024);
+    compare_method(&m, &g, "tilted simple quad 1024^3");
+    g_method = VOXGI_METHOD_CONSERVATIVE;
+    vxt_shape_free(&m);
+    vxt_shape_quad(&m, 40);
+    cubic(&g, -1.05, 2.1, 64);
+    compare(&m, &g, "subdivided quad 64^3");
+    vxt_shape_free(&m);
+    {   /* one triangle much larger than the grid */
+        vxt_shape big;
+        float p[9] = {-1000, -1000, 2.25f, 3000, -1000, 3.125f, -1000, 3000, 3.875f};
+        vxt_shape_alloc(&big, 3, 1);
+        memcpy(big.pos, p, sizeof p);
+        big.idx[0] = 0; big.idx[1] = 1; big.idx[2] = 2;
+        g.origin[0] = -2; g.origin[1] = -3; g.origin[2] = 0;
+        g.voxel_size = 0.0625;
+        g.res[0] = 300; g.res[1] = 256; g.res[2] = 100;
+        compare(&big, &g, "one huge triangle");
+        vxt_shape_free(&big);
+    }
+}
+
+static void test_gl_equals_cpu_degenerate(void)
+{
+    /* segments, points and collinear triangles go to the exact CPU path whole */
+    vxt_shape m;
+    voxgi_grid g;
+    float p[] = {0.1f, 0.2f, 0.3f, 3.7f, 2.9f, 1.3f, 1.9f, 1.55f, 0.8f, /* collinear */
+                 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f,  /* point on voxel corners */
+                 0.5f, 3.5f, 0.25f, 3.5f, 0.5f, 3.75f, 0.5f, 3.5f, 0.25f}; /* segment */
+    size_t i;
+    if (!have_gl()) return;
+    vxt_shape_alloc(&m, 9, 3);
+    memcpy(m.pos, p, sizeof p);
+    for (i = 0; i < 9; i++) m.idx[i] = (uint32_t)i;
+    cubic(&g, 0, 4, 16);
+    compare(&m, &g, "degenerate triangles");
+    vxt_shape_free(&m);
+}
+
+/* The geometry-shader voxelizer on every shape of the compute tests: bit for bit the CPU's. */
+static void test_gl_raster_geometry_equals_cpu(void)
+{
+    g_geometry = 1;
+    test_gl_equals_cpu_sphere();
+    test_gl_equals_cpu_ties();
+    test_gl_equals_cpu_quads_and_huge();
+    test_gl_equals_cpu_degenerate();
+    g_geometry = 0;
 }
 
 /* ---------------------------------------------------------------- solid */
@@ -967,6 +858,60 @@ static void test_solid_open_mesh_robust_modes(void)
     voxgi_destroy(ctx);
 }
 
+/* Every solid mode (parity along each axis, vote, flood). */
+static void compare_solid(const vxt_shape *m, const voxgi_grid *g, const char *what)
+{
+    g_method = VOXGI_METHOD_SOLID;
+    for (g_axis = VOXGI_AXIS_X; g_axis <= VOXGI_AXIS_Z; g_axis = (voxgi_axis)(g_axis + 1)) compare_method(m, g, what);
+    g_axis = VOXGI_AXIS_DEFAULT;
+    g_solid_mode = VOXGI_SOLID_VOTE;
+    compare_method(m, g, what);
+    g_solid_mode = VOXGI_SOLID_FLOOD;
+    compare_method(m, g, what);
+    g_solid_mode = VOXGI_SOLID_PARITY;
+    g_method = VOXGI_METHOD_CONSERVATIVE;
+}
+
+static void test_gl_equals_cpu_solid(void)
+{
+    vxt_shape m, big;
+    voxgi_grid g;
+    if (!have_gl()) return;
+    vxt_shape_sphere(&m, 40, 28, 1.0, 0.013, -0.021, 0.007);
+    g.origin[0] = -1.13; g.origin[1] = -1.07; g.origin[2] = -1.2;
+    g.voxel_size = 0.031;
+    g.res[0] = 75; g.res[1] = 70; g.res[2] = 60; /* cut through the sphere: crossings below the grid count */
+    compare_solid(&m, &g, "sphere");
+    vxt_shape_free(&m);
+    vxt_shape_box_and_tilted(&m); /* ties: lattice box, and an open quad */
+    half_voxel_grid(&g, 52);
+    compare_solid(&m, &g, "box and quad");
+    vxt_shape_free(&m);
+    {   /* a box far larger than a few triangles' worth of columns: the big-triangle pass */
+        const float lo[3] = {-0.9f, -0.8f, -0.7f}, hi[3] = {0.85f, 0.9f, 0.8f};
+        vxt_shape_alloc(&big, 8, 12);
+        vxt_shape_put_box(&big, 0, 0, lo, hi);
+        g.origin[0] = g.origin[1] = g.origin[2] = -1.0;
+        g.voxel_size = 2.0 / 96;
+        g.res[0] = g.res[1] = g.res[2] = 96;
+        compare_solid(&big, &g, "big box");
+        vxt_shape_free(&big);
+    }
+    {   /* ties: faces on planes of centres, edges and face diagonals through columns' centres */
+        const float lo[3] = {2, 2, 2}, hi[3] = {6, 6, 6}, lo2[3] = {1, 3, 2}, hi2[3] = {9, 5, 8};
+        vxt_shape_alloc(&big, 16, 24);
+        vxt_shape_put_box(&big, 0, 0, lo, hi);
+        vxt_shape_put_box(&big, 8, 12, lo2, hi2);
+        g.origin[0] = g.origin[1] = g.origin[2] = -0.5;
+        g.voxel_size = 1;
+        g.res[0] = g.res[1] = g.res[2] = 11;
+        compare_solid(&big, &g, "boxes on centre planes");
+        vxt_shape_free(&big);
+    }
+}
+
+/* ---------------------------------------------------------------- OR mipmaps */
+
 /* OR-reduction: every level of 3D occupancy mips and of the column OR-mipmap equals a direct
    OR over the source blocks, down to one voxel, on a non-power-of-two grid. */
 static void test_or_mips(void)
@@ -1038,6 +983,50 @@ static void test_or_mips(void)
     voxgi_destroy(ctx);
 }
 
+/* GL OR-reduction equals the CPU's level by level (bits and GPU popcount). */
+static void test_gl_reduce_equals_cpu(void)
+{
+    vxt_shape m;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_context *ctx[2];
+    voxgi_voxels *cur[2] = {NULL, NULL};
+    int b, level, variant;
+    if (!have_gl()) return;
+    ctx[0] = make_ctx(VOXGI_BACKEND_CPU, 0);
+    ctx[1] = make_ctx(VOXGI_BACKEND_GL, 0);
+    reduce_scene(&m, &sc, &mesh, &vd);
+    for (variant = 0; variant < 2; variant++) {
+        const int f[3] = {2, 2, variant ? 1 : 2};
+        for (b = 0; b < 2; b++) TH_CHECK(voxgi_voxelize(ctx[b], &sc, &vd, &cur[b]) == VOXGI_OK, "voxelize");
+        for (level = 1; level <= 6; level++) {
+            voxgi_voxels *next[2];
+            voxgi_voxels_info info[2];
+            uint32_t *bits[2];
+            size_t need = 0;
+            for (b = 0; b < 2; b++) {
+                TH_CHECK(voxgi_voxels_reduce(ctx[b], cur[b], f, &next[b]) == VOXGI_OK, "reduce: %s", voxgi_last_error(ctx[b]));
+                voxgi_voxels_destroy(ctx[b], cur[b]);
+                cur[b] = next[b];
+                voxgi_voxels_query(cur[b], &info[b]);
+                voxgi_voxels_read(ctx[b], cur[b], NULL, 0, &need);
+                bits[b] = (uint32_t *)malloc(need);
+                voxgi_voxels_read(ctx[b], cur[b], bits[b], need, NULL);
+            }
+            TH_CHECK(memcmp(bits[0], bits[1], need) == 0 && info[0].voxel_count == info[1].voxel_count,
+                     "factor %d%d%d level %d: GL differs (%llu vs %llu voxels)", f[0], f[1], f[2], level,
+                     (unsigned long long)info[0].voxel_count, (unsigned long long)info[1].voxel_count);
+            free(bits[0]);
+            free(bits[1]);
+        }
+        for (b = 0; b < 2; b++) voxgi_voxels_destroy(ctx[b], cur[b]);
+    }
+    vxt_shape_free(&m);
+    voxgi_destroy(ctx[0]);
+    voxgi_destroy(ctx[1]);
+}
+
 /* ---------------------------------------------------------------- raster slicemap */
 /* A triangle drawn along an axis, as the rasterizer draws it, in 128-bit integers: corners
    rounded half up to 1/256 of a voxel in the other two axes, pixel centres covered under the fill
@@ -1103,12 +1092,25 @@ static uint32_t *oracle_drawn_along(const float *pos, const uint32_t *idx, size_
     return bits;
 }
 
-static uint32_t *oracle_volume_buffer(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g)
+/* Voxels set in a but in no 26-neighbourhood (or itself) of a voxel of b. */
+static uint64_t outside_dilated(const uint32_t *a, const uint32_t *b, const voxgi_grid *g)
 {
-    return oracle_drawn_along(pos, idx, ntri, g, -1);
+    uint64_t n = voxgi_grid_voxel_count(g), l, out = 0;
+    for (l = 0; l < n; l++) {
+        int x = (int)(l % (uint64_t)g->res[0]), y = (int)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]);
+        int z = (int)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1])), dx, dy, dz, near = 0;
+        if (!voxgi_bit_get(a, l)) continue;
+        for (dz = -1; dz <= 1 && !near; dz++)
+            for (dy = -1; dy <= 1 && !near; dy++)
+                for (dx = -1; dx <= 1 && !near; dx++) {
+                    int X = x + dx, Y = y + dy, Z = z + dz;
+                    if (X < 0 || Y < 0 || Z < 0 || X >= g->res[0] || Y >= g->res[1] || Z >= g->res[2]) continue;
+                    near = voxgi_bit_get(b, (uint64_t)X + (uint64_t)g->res[0] * ((uint64_t)Y + (uint64_t)g->res[1] * (uint64_t)Z));
+                }
+        out += (uint64_t)!near;
+    }
+    return out;
 }
-
-static uint64_t outside_dilated(const uint32_t *a, const uint32_t *b, const voxgi_grid *g);
 
 static void test_slicemap_vs_oracle_and_relations(void)
 {
@@ -1181,6 +1183,67 @@ static void test_slicemap_vs_oracle_and_relations(void)
     voxgi_destroy(ctx);
 }
 
+/* The raster slicemap on GL (logic op and atomic) equals its CPU twin bit for bit: the corners
+   reach the rasterizer on its subpixel grid and the CPU samples the same rounded triangles. Shape
+   3 is a bumpy sphere of 19200 small triangles at 128^3, like a scanned mesh: before the corners
+   were rounded, CPU and GL split a voxel or two of such meshes (pixel centres within the
+   rasterizer's snapping of an edge). Shape 2's vertices sit on the subpixel lattice (edges
+   through pixel centres, horizontal and vertical ones included): the fill rules must agree. */
+static void test_gl_raster_slicemap_equals_cpu(void)
+{
+    vxt_shape shapes[4];
+    voxgi_grid g;
+    int sh, variant, axis;
+    size_t v;
+    static const float square[] = {1.5f, 1.5f, 1.3f, 5.5f, 1.5f, 1.3f, 5.5f, 5.5f, 1.3f, 1.5f, 5.5f, 1.3f,
+                                   2.5f, 2.5f, 2.6f, 6.5f, 2.5f, 2.6f, 4.5f, 6.5f, 2.6f};
+    static const uint32_t square_idx[] = {0, 1, 2, 0, 2, 3, 4, 5, 6};
+    if (!have_gl()) return;
+    vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
+    vxt_shape_box_and_tilted(&shapes[1]);
+    vxt_shape_alloc(&shapes[2], 7, 3);
+    memcpy(shapes[2].pos, square, sizeof square);
+    memcpy(shapes[2].idx, square_idx, sizeof square_idx);
+    vxt_shape_sphere(&shapes[3], 160, 60, 1.0, 0.0, 0.0, 0.0);
+    for (v = 0; v < shapes[3].vertex_count; v++) { /* radius 1 +- 4%, in a pattern no grid lines up with */
+        float *p = shapes[3].pos + 3 * v;
+        double bump = 1 + 0.04 * sin(17.3 * p[0] + 3.1 * p[1]) * cos(13.7 * p[2] - 5.3 * p[0]) + 0.01 * sin(91.0 * p[1]);
+        int k;
+        for (k = 0; k < 3; k++) p[k] = (float)(p[k] * bump);
+    }
+    for (sh = 0; sh < 4; sh++)
+        for (axis = VOXGI_AXIS_X; axis <= VOXGI_AXIS_Z; axis++)
+            for (variant = 0; variant < 2 && (sh != 2 || axis == VOXGI_AXIS_Z); variant++) { /* the square faces z */
+                voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU, 0), *gl = make_ctx(VOXGI_BACKEND_GL, 0);
+                voxgi_voxels_info ic, ig;
+                uint32_t *c, *q;
+                uint64_t l, n, diff = 0;
+                if (sh == 0) { cubic(&g, -1.1, 2.2, 64); g.res[2] = 300; /* > 256 slices: several MRT layers */ }
+                else if (sh == 1) half_voxel_grid(&g, 52);
+                else if (sh == 2) cubic(&g, 0, 8, 8);
+                else cubic(&g, -1.1, 2.2, 128);
+                g_method = VOXGI_METHOD_SLICEMAP;
+                g_axis = (voxgi_axis)axis;
+                g_atomic = variant;
+                c = run(cpu, &shapes[sh], &g, &ic);
+                q = run(gl, &shapes[sh], &g, &ig);
+                n = voxgi_grid_voxel_count(&g);
+                for (l = 0; c && q && l < n; l++) diff += voxgi_bit_get(c, l) != voxgi_bit_get(q, l);
+                TH_CHECK(c && q && diff == 0, "shape %d axis %d %s: %llu voxels differ", sh, axis, variant ? "atomic" : "logic op", (unsigned long long)diff);
+                TH_CHECK(ic.voxel_count > 0 && ig.voxel_count > 0, "empty slicemap");
+                printf("    slicemap shape %d axis %c %s: %llu voxels CPU, %llu GL, %llu differ\n", sh, "xyz"[axis - 1], variant ? "atomic" : "logic-op",
+                       (unsigned long long)ic.voxel_count, (unsigned long long)ig.voxel_count, (unsigned long long)diff);
+                free(c);
+                free(q);
+                voxgi_destroy(cpu);
+                voxgi_destroy(gl);
+            }
+    g_method = VOXGI_METHOD_CONSERVATIVE;
+    g_axis = VOXGI_AXIS_DEFAULT;
+    g_atomic = 0;
+    for (sh = 0; sh < 4; sh++) vxt_shape_free(&shapes[sh]);
+}
+
 /* ---------------------------------------------------------------- texture atlas */
 static uint32_t *atlas_bits(voxgi_context *ctx, const voxgi_scene *sc, const voxgi_grid *g, voxgi_method method, int size,
                             voxgi_atlas_uv uv, voxgi_voxels_info *info)
@@ -1192,26 +1255,6 @@ static uint32_t *atlas_bits(voxgi_context *ctx, const voxgi_scene *sc, const vox
     vd.atlas_size = size;
     vd.atlas_uv = uv;
     return voxelized_bits(ctx, sc, &vd, info);
-}
-
-/* Voxels set in a but in no 26-neighbourhood (or itself) of a voxel of b. */
-static uint64_t outside_dilated(const uint32_t *a, const uint32_t *b, const voxgi_grid *g)
-{
-    uint64_t n = voxgi_grid_voxel_count(g), l, out = 0;
-    for (l = 0; l < n; l++) {
-        int x = (int)(l % (uint64_t)g->res[0]), y = (int)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]);
-        int z = (int)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1])), dx, dy, dz, near = 0;
-        if (!voxgi_bit_get(a, l)) continue;
-        for (dz = -1; dz <= 1 && !near; dz++)
-            for (dy = -1; dy <= 1 && !near; dy++)
-                for (dx = -1; dx <= 1 && !near; dx++) {
-                    int X = x + dx, Y = y + dy, Z = z + dz;
-                    if (X < 0 || Y < 0 || Z < 0 || X >= g->res[0] || Y >= g->res[1] || Z >= g->res[2]) continue;
-                    near = voxgi_bit_get(b, (uint64_t)X + (uint64_t)g->res[0] * ((uint64_t)Y + (uint64_t)g->res[1] * (uint64_t)Z));
-                }
-        out += (uint64_t)!near;
-    }
-    return out;
 }
 
 /* The mesh's own uvs: texel ownership (highest covering triangle) and each point's voxel
@@ -1399,33 +1442,53 @@ static void test_atlas_auto_relations(void)
     voxgi_destroy(one);
 }
 
-/* ---------------------------------------------------------------- attributes */
-static voxgi_voxels *attr_run(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t nt, const uint32_t *mat_ids,
-                              const voxgi_material *mats, size_t nm, const voxgi_grid *g, unsigned attributes, voxgi_method method,
-                              const voxgi_blend blend[4])
+/* Both atlas methods (points drawn, and one compute invocation per point) equal the CPU twin
+   bit for bit: the charts' corners are on the rasterizer's subpixel grid, and the points are
+   computed in double in the same order. */
+static void test_gl_raster_atlas_equals_cpu(void)
 {
-    voxgi_mesh m;
-    voxgi_scene sc;
-    voxgi_voxelize_desc vd;
-    voxgi_voxels *vox = NULL;
-    scene_of_triangles(&sc, &m, pos, nv, idx, nt);
-    m.material_ids = mat_ids;
-    scene_lighting(&sc, mats, nm, NULL, 0);
-    memset(&vd, 0, sizeof vd);
-    vd.grid = *g; vd.attributes = attributes; vd.method = method;
-    memcpy(vd.blend, blend, sizeof vd.blend);
-    if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) printf("    voxelize: %s\n", voxgi_last_error(ctx));
-    return vox;
+    vxt_shape shapes[3];
+    voxgi_grid g;
+    int sh, c;
+    float *uv;
+    fx_rng rng = fx_rng_seeded(1);
+    if (!have_gl()) return;
+    vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
+    vxt_shape_box_and_tilted(&shapes[1]);
+    vxt_shape_alloc(&shapes[2], 90, 30); /* random triangles with random, overlapping uvs */
+    uv = (float *)malloc(90 * 2 * sizeof(float));
+    for (c = 0; c < 270; c++) shapes[2].pos[c] = (float)fx_rng_range(&rng, -1, 1);
+    for (c = 0; c < 90; c++) shapes[2].idx[c] = (uint32_t)c;
+    for (c = 0; c < 180; c++) uv[c] = (float)fx_rng_unit(&rng);
+    for (sh = 0; sh < 3; sh++) {
+        cubic(&g, -1.1, 2.2, sh == 1 ? 40 : 64);
+        if (sh == 1) half_voxel_grid(&g, 300);
+        for (g_method = VOXGI_METHOD_ATLAS; g_method <= VOXGI_METHOD_ATLAS_COMPUTE; g_method = (voxgi_method)(g_method + 1)) {
+            if (sh == 2) { g_uvs = uv; g_atlas_uv = VOXGI_ATLAS_MESH; g_atlas_size = 300; }
+            compare_method(&shapes[sh], &g, sh == 0 ? "sphere, default atlas" : (sh == 1 ? "box and tilted box, 300 slices" : "random triangles, mesh uvs"));
+            if (sh == 0 && g_method == VOXGI_METHOD_ATLAS) { /* the atomic variant, another axis, a large atlas */
+                g_atomic = 1;
+                g_axis = VOXGI_AXIS_X;
+                compare_method(&shapes[sh], &g, "sphere, atomic, along x");
+                g_atomic = 0;
+                g_axis = VOXGI_AXIS_DEFAULT;
+                g_atlas_size = 4000;
+                if (!FX_REDUCED) compare_method(&shapes[sh], &g, "sphere, 4000^2 atlas"); /* see FX_REDUCED */
+                g_atlas_size = 0;
+            }
+            g_uvs = NULL; g_atlas_uv = VOXGI_ATLAS_AUTO; g_atlas_size = 0;
+        }
+    }
+    g_method = VOXGI_METHOD_CONSERVATIVE;
+    free(uv);
+    for (sh = 0; sh < 3; sh++) vxt_shape_free(&shapes[sh]);
 }
 
-static float *attr_read(voxgi_context *ctx, const voxgi_voxels *vox, voxgi_attribute which)
+/* ---------------------------------------------------------------- Volume Buffer */
+
+static uint32_t *oracle_volume_buffer(const float *pos, const uint32_t *idx, size_t ntri, const voxgi_grid *g)
 {
-    size_t need = 0;
-    float *out;
-    if (voxgi_voxels_read_attribute(ctx, vox, which, NULL, 0, &need) != VOXGI_OK) return NULL;
-    out = (float *)malloc(need ? need : 4);
-    if (voxgi_voxels_read_attribute(ctx, vox, which, out, need, NULL) != VOXGI_OK) { free(out); return NULL; }
-    return out;
+    return oracle_drawn_along(pos, idx, ntri, g, -1);
 }
 
 /* The Volume Buffer on the CPU equals its integer definition, triangle by triangle and for a
@@ -1467,6 +1530,139 @@ static void test_volume_buffer_vs_oracle(void)
     }
     vxt_shape_free(&m);
     voxgi_destroy(ctx);
+}
+
+/* Attribute `which` of the CPU's voxels vox[0] and the GL's vox[1]: *a and *c (malloc'd with 4
+   bytes to spare: free them), *na and *nb bytes. */
+static void read_attribute_twins(voxgi_context *cpu, voxgi_context *gl, voxgi_voxels *const vox[2], voxgi_attribute which, float **a, size_t *na,
+                                 float **c, size_t *nb)
+{
+    *na = *nb = 0;
+    voxgi_voxels_read_attribute(cpu, vox[0], which, NULL, 0, na);
+    voxgi_voxels_read_attribute(gl, vox[1], which, NULL, 0, nb);
+    *a = (float *)malloc(*na + 4);
+    *c = (float *)malloc(*nb + 4);
+    voxgi_voxels_read_attribute(cpu, vox[0], which, *a, *na, NULL);
+    voxgi_voxels_read_attribute(gl, vox[1], which, *c, *nb, NULL);
+}
+
+/* The Volume Buffer: M2 sets the CPU twin's voxels bit for bit; M1 (sliced triangles) differs
+   only by a slice, next to a CPU voxel of the same column, and rarely; attributes blended in
+   float targets match the CPU's integer sums within float rounding (count * 2^-24 relative). */
+static void test_gl_raster_volume_buffer(void)
+{
+    static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
+    static const voxgi_blend blends[2][4] = {{VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE},
+                                             {VOXGI_BLEND_MAX, VOXGI_BLEND_MAX, VOXGI_BLEND_ADD, VOXGI_BLEND_MAX}};
+    vxt_shape shapes[3];
+    static const float tilted[] = {0.5f, 0.5f, 0.3f, 99.5f, 0.5f, 70.0f, 0.5f, 99.5f, 1.0f, 99.5f, 99.5f, 71.0f};
+    static const uint32_t tilted_idx[] = {0, 1, 2, 2, 1, 3};
+    voxgi_material mats[3] = {{{0.9f, 0.1f, 0.2f}, {0, 0, 0}, 0}, {{0.3f, 0.7f, 0.5f}, {40, 20, 5}, 0.25f}, {{1, 1, 1}, {0, 0, 0}, 1}};
+    int sh, variant;
+    if (!have_gl()) return;
+    vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
+    vxt_shape_box_and_tilted(&shapes[1]);
+    vxt_shape_alloc(&shapes[2], 4, 2); /* two big triangles over ~70 slices: the 32-invocation pass */
+    memcpy(shapes[2].pos, tilted, sizeof tilted);
+    memcpy(shapes[2].idx, tilted_idx, sizeof tilted_idx);
+    for (sh = 0; sh < 3; sh++)
+        for (variant = 0; variant < 3; variant++) { /* M2 mean, M2 max/add, M1 mean */
+            voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU, 0), *gl = make_ctx(VOXGI_BACKEND_GL, 0);
+            voxgi_voxels *vox[2] = {NULL, NULL};
+            uint32_t *ids = material_ids_in_turn(&shapes[sh], 3), *bits[2] = {NULL, NULL};
+            voxgi_voxels_info info[2];
+            voxgi_grid g;
+            size_t need = 0;
+            uint64_t l, n, diff = 0, far = 0;
+            int b, k;
+            double worst = 0;
+            if (sh == 0) cubic(&g, -1.1, 2.2, 48);
+            else if (sh == 1) half_voxel_grid(&g, 52);
+            else cubic(&g, 0, 100, 100);
+            n = voxgi_grid_voxel_count(&g);
+            for (b = 0; b < 2; b++) {
+                voxgi_mesh mesh;
+                voxgi_scene sc;
+                voxgi_voxelize_desc vd;
+                scene_of_materials(&sc, &mesh, &shapes[sh], ids, mats, 3);
+                memset(&vd, 0, sizeof vd);
+                vd.grid = g; vd.method = VOXGI_METHOD_VOLUME_BUFFER; vd.attributes = 15;
+                vd.volume_slicing = variant == 2 ? 1 : 2;
+                memcpy(vd.blend, blends[variant == 1], sizeof vd.blend);
+                if (voxgi_voxelize(b ? gl : cpu, &sc, &vd, &vox[b]) != VOXGI_OK) { printf("    %s\n", voxgi_last_error(b ? gl : cpu)); continue; }
+                voxgi_voxels_query(vox[b], &info[b]);
+                voxgi_voxels_read(b ? gl : cpu, vox[b], NULL, 0, &need);
+                bits[b] = (uint32_t *)malloc(need);
+                voxgi_voxels_read(b ? gl : cpu, vox[b], bits[b], need, NULL);
+            }
+            TH_CHECK(bits[0] && bits[1], "shape %d variant %d: volume buffer failed", sh, variant);
+            if (!bits[0] || !bits[1]) continue;
+            for (l = 0; l < n; l++)
+                if (voxgi_bit_get(bits[0], l) != voxgi_bit_get(bits[1], l)) {
+                    /* M1: the CPU (exact depth) has a voxel one slice away in some axis' column */
+                    int x = (int)(l % (uint64_t)g.res[0]), y = (int)(l / (uint64_t)g.res[0] % (uint64_t)g.res[1]);
+                    int z = (int)(l / ((uint64_t)g.res[0] * (uint64_t)g.res[1])), d, a, near = 0;
+                    diff++;
+                    for (a = 0; a < 3 && !near; a++)
+                        for (d = -1; d <= 1; d += 2) {
+                            int v[3] = {x, y, z};
+                            v[a] += d;
+                            if (v[a] < 0 || v[a] >= g.res[a]) continue;
+                            near |= voxgi_bit_get(bits[voxgi_bit_get(bits[0], l) ? 1 : 0],
+                                                  (uint64_t)v[0] + (uint64_t)g.res[0] * ((uint64_t)v[1] + (uint64_t)g.res[1] * (uint64_t)v[2]));
+                        }
+                    far += (uint64_t)!near;
+                }
+            if (variant < 2) TH_CHECK(diff == 0, "shape %d: M2 differs from the CPU in %llu voxels", sh, (unsigned long long)diff);
+            else TH_CHECK(far == 0 && diff * 100 <= info[0].voxel_count, "shape %d: M1 differs in %llu voxels, %llu not next to a CPU voxel",
+                          sh, (unsigned long long)diff, (unsigned long long)far);
+            for (k = 0; k < 4 && variant < 2; k++) {
+                size_t na, nb, i;
+                float *a, *c;
+                read_attribute_twins(cpu, gl, vox, kinds[k], &a, &na, &c, &nb);
+                TH_CHECK(na == nb && na > 0, "attribute sizes %lu vs %lu", (unsigned long)na, (unsigned long)nb);
+                for (i = 0; na == nb && i < na / 4; i++) { /* relative to the larger of 1 and the value */
+                    double e = fabs((double)a[i] - c[i]) / (fabs(a[i]) > 1 ? fabs(a[i]) : 1);
+                    if (e > worst) worst = e;
+                }
+                free(a); free(c);
+            }
+            if (variant < 2) TH_CHECK(worst <= 64 * ldexp(1, -24), "shape %d: GL attributes off by %g", sh, worst);
+            printf("    volume buffer %s shape %d%s: %llu voxels CPU, %llu GL, %llu differ", variant == 2 ? "M1" : "M2", sh,
+                   variant == 1 ? " (max/add)" : "", (unsigned long long)info[0].voxel_count, (unsigned long long)info[1].voxel_count,
+                   (unsigned long long)diff);
+            if (variant < 2) printf("; attributes within %.3g (relative)", worst);
+            printf("; %llu triangles in the big pass\n", (unsigned long long)info[1].big_triangles);
+            if (sh == 2) TH_CHECK(info[1].big_triangles == 2 && info[1].lost_slices == 0, "big pass: %llu triangles, %llu slices lost",
+                                  (unsigned long long)info[1].big_triangles, (unsigned long long)info[1].lost_slices);
+            voxgi_voxels_destroy(cpu, vox[0]);
+            voxgi_voxels_destroy(gl, vox[1]);
+            free(bits[0]); free(bits[1]); free(ids);
+            voxgi_destroy(cpu);
+            voxgi_destroy(gl);
+        }
+    vxt_shape_free(&shapes[0]);
+    vxt_shape_free(&shapes[1]);
+    vxt_shape_free(&shapes[2]);
+}
+
+/* ---------------------------------------------------------------- attributes */
+static voxgi_voxels *attr_run(voxgi_context *ctx, const float *pos, size_t nv, const uint32_t *idx, size_t nt, const uint32_t *mat_ids,
+                              const voxgi_material *mats, size_t nm, const voxgi_grid *g, unsigned attributes, voxgi_method method,
+                              const voxgi_blend blend[4])
+{
+    voxgi_mesh m;
+    voxgi_scene sc;
+    voxgi_voxelize_desc vd;
+    voxgi_voxels *vox = NULL;
+    scene_of_triangles(&sc, &m, pos, nv, idx, nt);
+    m.material_ids = mat_ids;
+    scene_lighting(&sc, mats, nm, NULL, 0);
+    memset(&vd, 0, sizeof vd);
+    vd.grid = *g; vd.attributes = attributes; vd.method = method;
+    memcpy(vd.blend, blend, sizeof vd.blend);
+    if (voxgi_voxelize(ctx, &sc, &vd, &vox) != VOXGI_OK) printf("    voxelize: %s\n", voxgi_last_error(ctx));
+    return vox;
 }
 
 /* Each voxel's attributes against the blend (mean, maximum or sum) over the triangles whose
@@ -1583,39 +1779,6 @@ static void check_attributes(voxgi_method method, const voxgi_blend blend[4])
     voxgi_destroy(one);
 }
 
-/* The faults of 8-bit moving averages (truncation bias, updates below one step lost, the
-   counter wrapping at 256) cannot happen: 300 triangles inside one voxel, one of albedo 1 and
-   299 of albedo 0, give 1/300; 300 of albedo 0.2 + 1e-6 give exactly that. */
-static void test_attributes_many_small_updates(void)
-{
-    enum { NT = 300 };
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
-    static float pos[NT * 9];
-    static uint32_t idx[NT * 3], ids[NT];
-    voxgi_material mats[3] = {{{0, 0, 0}, {0, 0, 0}, 0}, {{1, 1, 1}, {0, 0, 0}, 0}, {{0.200001f, 0.200001f, 0.200001f}, {0, 0, 0}, 0}};
-    static const voxgi_blend mean[4] = {VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE};
-    voxgi_grid g;
-    int t, c, pass;
-    g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1; g.res[0] = g.res[1] = g.res[2] = 3;
-    for (t = 0; t < NT; t++) { /* small triangles strictly inside voxel (1,1,1) */
-        for (c = 0; c < 9; c++) pos[9 * t + c] = (float)(1.25 + 0.5 * rnd());
-        for (c = 0; c < 3; c++) idx[3 * t + c] = (uint32_t)(3 * t + c);
-    }
-    for (pass = 0; pass < 2; pass++) {
-        voxgi_voxels *vox;
-        float *albedo;
-        double want = pass == 0 ? 1.0 / NT : (double)0.200001f;
-        for (t = 0; t < NT; t++) ids[t] = pass == 0 ? (t == NT / 2 ? 1u : 0u) : 2u;
-        vox = attr_run(ctx, pos, NT * 3, idx, NT, ids, mats, 3, &g, VOXGI_ATTRIBUTE_ALBEDO, VOXGI_METHOD_CONSERVATIVE, mean);
-        albedo = vox ? attr_read(ctx, vox, VOXGI_ATTRIBUTE_ALBEDO) : NULL;
-        TH_CHECK(albedo && fabs(albedo[0] - want) <= ldexp(1, -24), "%d triangles in one voxel: albedo %.9g, want %.9g", NT,
-                 albedo ? albedo[0] : -1.0, want);
-        free(albedo);
-        voxgi_voxels_destroy(ctx, vox);
-    }
-    voxgi_destroy(ctx);
-}
-
 static void test_attributes_vs_oracle_and_order(void)
 {
     static const voxgi_blend mean[4] = {VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE};
@@ -1655,557 +1818,215 @@ static void test_attributes_vs_oracle_and_order(void)
     voxgi_destroy(ctx);
 }
 
-/* ---------------------------------------------------------------- attribute volumes and mips */
-static float *volume_level(voxgi_context *ctx, const voxgi_volume *vol, voxgi_attribute which, voxgi_direction dir, int level)
+/* The faults of 8-bit moving averages (truncation bias, updates below one step lost, the
+   counter wrapping at 256) cannot happen: 300 triangles inside one voxel, one of albedo 1 and
+   299 of albedo 0, give 1/300; 300 of albedo 0.2 + 1e-6 give exactly that. */
+static void test_attributes_many_small_updates(void)
 {
-    size_t need = 0;
-    float *out;
-    if (voxgi_volume_read(ctx, vol, which, dir, level, NULL, 0, &need) != VOXGI_OK) return NULL;
-    out = (float *)malloc(need);
-    if (voxgi_volume_read(ctx, vol, which, dir, level, out, need, NULL) != VOXGI_OK) { free(out); return NULL; }
-    return out;
-}
-
-/* A constant field stays constant (and full parents keep its alpha); a lone voxel keeps its
-   colour at every level with alpha / 8 per level (isotropic) or / 4 (anisotropic, in every
-   direction); two opaque voxels along x show the near one's colour in each direction; the
-   base level of a voxelization's volume is its attribute means. */
-static void test_volume_mips(void)
-{
+    enum { NT = 300 };
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
+    static float pos[NT * 9];
+    static uint32_t idx[NT * 3], ids[NT];
+    voxgi_material mats[3] = {{{0, 0, 0}, {0, 0, 0}, 0}, {{1, 1, 1}, {0, 0, 0}, 0}, {{0.200001f, 0.200001f, 0.200001f}, {0, 0, 0}, 0}};
+    static const voxgi_blend mean[4] = {VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE, VOXGI_BLEND_AVERAGE};
     voxgi_grid g;
-    voxgi_volume_desc vd;
-    voxgi_volume *vol = NULL;
-    voxgi_volume_info info;
-    float *albedo, *opacity;
-    const float *base[4];
-    size_t n, i;
-    int k, dir, bad = 0;
-    g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1;
-    g.res[0] = 9; g.res[1] = 6; g.res[2] = 5; /* odd sizes: parents at the far faces lack children */
-    n = (size_t)voxgi_grid_voxel_count(&g);
-    albedo = (float *)malloc(n * 16);
-    opacity = (float *)malloc(n * 4);
-    for (i = 0; i < n; i++) { albedo[4 * i] = 0.3f; albedo[4 * i + 1] = 0.6f; albedo[4 * i + 2] = 0.9f; albedo[4 * i + 3] = 0.5f; opacity[i] = 0.5f; }
-    base[0] = albedo; base[1] = NULL; base[2] = NULL; base[3] = opacity;
-    memset(&vd, 0, sizeof vd);
-    TH_CHECK(voxgi_volume_create_dense(ctx, &g, &vd, base, &vol) == VOXGI_OK, "dense volume: %s", voxgi_last_error(ctx));
-    voxgi_volume_query(vol, &info);
-    TH_CHECK(info.levels == 5, "9x6x5 has 5 levels down to one voxel, got %d", info.levels);
-    for (k = 0; k < info.levels; k++) {
-        float *lv = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, k), *op = volume_level(ctx, vol, VOXGI_ATTRIBUTE_OPACITY, 0, k);
-        int d[3], x, y, z, a;
-        for (a = 0; a < 3; a++) { d[a] = g.res[a]; for (x = 0; x < k; x++) d[a] = (d[a] + 1) / 2; }
-        for (z = 0; z < d[2]; z++)
-            for (y = 0; y < d[1]; y++)
-                for (x = 0; x < d[0]; x++) {
-                    size_t l = (size_t)x + (size_t)d[0] * ((size_t)y + (size_t)d[1] * (size_t)z);
-                    int full = ((x + 1) << k) <= g.res[0] && ((y + 1) << k) <= g.res[1] && ((z + 1) << k) <= g.res[2];
-                    bad += fabs(lv[4 * l] - 0.3f) > 1e-6 || fabs(lv[4 * l + 1] - 0.6f) > 1e-6 || fabs(lv[4 * l + 2] - 0.9f) > 1e-6;
-                    bad += full && (fabs(lv[4 * l + 3] - 0.5f) > 1e-6 || fabs(op[l] - 0.5f) > 1e-6);
-                    bad += !full && !(lv[4 * l + 3] < 0.5f && fabs(op[l] - lv[4 * l + 3]) < 1e-6);
-                }
-        free(lv); free(op);
+    int t, c, pass;
+    g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1; g.res[0] = g.res[1] = g.res[2] = 3;
+    for (t = 0; t < NT; t++) { /* small triangles strictly inside voxel (1,1,1) */
+        for (c = 0; c < 9; c++) pos[9 * t + c] = (float)(1.25 + 0.5 * rnd());
+        for (c = 0; c < 3; c++) idx[3 * t + c] = (uint32_t)(3 * t + c);
     }
-    TH_CHECK(bad == 0, "constant field: %d values changed through the mips", bad);
-    voxgi_volume_destroy(ctx, vol);
-    for (dir = -1; dir < 6; dir++) { /* a lone voxel at (5, 3, 2), red, alpha 0.8 */
-        memset(albedo, 0, n * 16);
-        i = 5 + 9 * (3 + 6 * 2);
-        albedo[4 * i] = 1; albedo[4 * i + 3] = 0.8f;
-        base[3] = NULL;
-        vd.filter = dir < 0 ? VOXGI_MIPS_ISOTROPIC : VOXGI_MIPS_ANISOTROPIC;
-        voxgi_volume_create_dense(ctx, &g, &vd, base, &vol);
-        for (k = 0; k < 5; k++) {
-            float *lv = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, (voxgi_direction)(dir < 0 ? 0 : dir), k);
-            int d0 = g.res[0], d1 = g.res[1], x;
-            size_t l;
-            double want = 0.8 / pow(dir < 0 ? 8.0 : 4.0, k);
-            for (x = 0; x < k; x++) { d0 = (d0 + 1) / 2; d1 = (d1 + 1) / 2; }
-            l = (size_t)(5 >> k) + (size_t)d0 * ((size_t)(3 >> k) + (size_t)d1 * (size_t)(2 >> k));
-            bad += !lv || fabs(lv[4 * l] - 1.0f) > 1e-6 || lv[4 * l + 1] != 0 || fabs(lv[4 * l + 3] - want) > 1e-6 * want;
-            free(lv);
-        }
-        voxgi_volume_destroy(ctx, vol);
-    }
-    TH_CHECK(bad == 0, "a lone voxel lost its colour or alpha in the mips (%d)", bad);
-    {   /* red opaque at x = 0, blue opaque at x = 1: +x sees red, -x blue, alpha 1/4 at level 1 */
-        float *px, *nx;
-        memset(albedo, 0, n * 16);
-        albedo[0] = 1; albedo[3] = 1;
-        albedo[4 * 1 + 2] = 1; albedo[4 * 1 + 3] = 1;
-        vd.filter = VOXGI_MIPS_ANISOTROPIC;
-        voxgi_volume_create_dense(ctx, &g, &vd, base, &vol);
-        px = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, VOXGI_DIR_POS_X, 1);
-        nx = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, VOXGI_DIR_NEG_X, 1);
-        TH_CHECK(px && nx && px[0] == 1 && px[2] == 0 && px[3] == 0.25f && nx[0] == 0 && nx[2] == 1 && nx[3] == 0.25f,
-                 "anisotropic front-to-back: +x (%g %g %g %g), -x (%g %g %g %g)", px ? px[0] : -1, px ? px[1] : -1, px ? px[2] : -1,
-                 px ? px[3] : -1, nx ? nx[0] : -1, nx ? nx[1] : -1, nx ? nx[2] : -1, nx ? nx[3] : -1);
-        free(px); free(nx);
-        TH_CHECK(voxgi_volume_read(ctx, vol, VOXGI_ATTRIBUTE_NORMAL, 0, 0, NULL, 0, &i) == VOXGI_ERR_INVALID_ARGUMENT, "absent attribute read");
-        TH_CHECK(voxgi_volume_read(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 9, NULL, 0, &i) == VOXGI_ERR_INVALID_ARGUMENT, "level 9 read");
-        voxgi_volume_destroy(ctx, vol);
-    }
-    {   /* from a voxelization: level 0 holds the attribute means at the set voxels, alpha = opacity */
-        vxt_shape m;
-        voxgi_mesh mesh;
-        voxgi_scene sc;
-        voxgi_voxelize_desc xd;
-        voxgi_voxels *vox = NULL;
-        voxgi_material mat = {{0.25f, 0.5f, 0.75f}, {0, 0, 0}, 0.5f};
-        float *lv, *means;
-        uint32_t *bits;
-        size_t need = 0, slot = 0, l;
-        vxt_shape_sphere(&m, 24, 12, 1.0, 0, 0, 0);
-        scene_of_shape(&sc, &mesh, &m);
-        scene_lighting(&sc, &mat, 1, NULL, 0);
-        memset(&xd, 0, sizeof xd);
-        xd.grid.origin[0] = xd.grid.origin[1] = xd.grid.origin[2] = -1.2; xd.grid.voxel_size = 0.1;
-        xd.grid.res[0] = xd.grid.res[1] = xd.grid.res[2] = 24;
-        xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_OPACITY;
-        voxgi_voxelize(ctx, &sc, &xd, &vox);
-        memset(&vd, 0, sizeof vd);
-        TH_CHECK(voxgi_volume_create(ctx, vox, &vd, &vol) == VOXGI_OK, "volume from voxels: %s", voxgi_last_error(ctx));
-        lv = volume_level(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 0);
-        means = attr_read(ctx, vox, VOXGI_ATTRIBUTE_ALBEDO);
-        voxgi_voxels_read(ctx, vox, NULL, 0, &need);
-        bits = (uint32_t *)malloc(need);
-        voxgi_voxels_read(ctx, vox, bits, need, NULL);
-        for (l = 0, bad = 0; lv && means && l < 24 * 24 * 24; l++) {
-            if (!voxgi_bit_get(bits, l)) { bad += lv[4 * l + 3] != 0; continue; }
-            bad += lv[4 * l] != means[3 * slot] || lv[4 * l + 2] != means[3 * slot + 2] || fabs(lv[4 * l + 3] - 0.5f) > 1e-6;
-            slot++;
-        }
-        TH_CHECK(lv && means && bad == 0 && slot > 0, "volume base level differs from the voxels' means (%d)", bad);
-        free(lv); free(means); free(bits);
-        voxgi_volume_destroy(ctx, vol);
+    for (pass = 0; pass < 2; pass++) {
+        voxgi_voxels *vox;
+        float *albedo;
+        double want = pass == 0 ? 1.0 / NT : (double)0.200001f;
+        for (t = 0; t < NT; t++) ids[t] = pass == 0 ? (t == NT / 2 ? 1u : 0u) : 2u;
+        vox = attr_run(ctx, pos, NT * 3, idx, NT, ids, mats, 3, &g, VOXGI_ATTRIBUTE_ALBEDO, VOXGI_METHOD_CONSERVATIVE, mean);
+        albedo = vox ? attr_read(ctx, vox, VOXGI_ATTRIBUTE_ALBEDO) : NULL;
+        TH_CHECK(albedo && fabs(albedo[0] - want) <= ldexp(1, -24), "%d triangles in one voxel: albedo %.9g, want %.9g", NT,
+                 albedo ? albedo[0] : -1.0, want);
+        free(albedo);
         voxgi_voxels_destroy(ctx, vox);
-        vxt_shape_free(&m);
     }
-    free(albedo); free(opacity);
     voxgi_destroy(ctx);
 }
 
-/* Sampling: trilinear between voxel centres and linear between levels reproduce a linear field
-   (red = x) at every lod in the interior, whatever the level; beyond the grid the volume is empty. */
-static void test_volume_sampling(void)
+/* Attribute averages: GL (sums on the GPU, undecided pairs and flagged triangles on the CPU)
+   equals the CPU bit for bit, since both add the same fixed-point integers. */
+static void test_gl_raster_attributes_equal_cpu(void)
 {
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 1);
-    voxgi_grid g;
-    voxgi_volume_desc vd;
-    voxgi_volume *vol = NULL;
-    float *albedo, pos[3 * 200], lods[200], out[4 * 200];
-    const float *base[4];
-    size_t i, n;
-    double worst = 0;
-    g.origin[0] = g.origin[1] = g.origin[2] = 0; g.voxel_size = 1;
-    g.res[0] = 32; g.res[1] = 16; g.res[2] = 16;
-    n = (size_t)voxgi_grid_voxel_count(&g);
-    albedo = (float *)malloc(n * 16);
-    for (i = 0; i < n; i++) {
-        albedo[4 * i] = (float)(i % 32) + 0.5f;
-        albedo[4 * i + 1] = 0.25f; albedo[4 * i + 2] = 0.5f; albedo[4 * i + 3] = 1;
-    }
-    base[0] = albedo; base[1] = base[2] = base[3] = NULL;
-    memset(&vd, 0, sizeof vd);
-    voxgi_volume_create_dense(ctx, &g, &vd, base, &vol);
-    for (i = 0; i < 200; i++) { /* lod l needs 2^l voxels of margin for its centres to straddle p */
-        lods[i] = (float)(3.0 * rnd());
-        pos[3 * i] = (float)(8 + 16 * rnd());
-        pos[3 * i + 1] = (float)(8 + 0.1 * rnd());
-        pos[3 * i + 2] = (float)(8 + 0.1 * rnd());
-    }
-    TH_CHECK(voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 200, pos, lods, out) == VOXGI_OK, "sample: %s", voxgi_last_error(ctx));
-    for (i = 0; i < 200; i++) {
-        double e = fabs(out[4 * i] - pos[3 * i]) + fabs(out[4 * i + 1] - 0.25) + fabs(out[4 * i + 3] - 1);
-        if (e > worst) worst = e;
-    }
-    TH_CHECK(worst < 1e-4, "a linear field sampled off by %g", worst);
-    pos[0] = -3; pos[1] = 5; pos[2] = 5; lods[0] = 0;
-    voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 1, pos, lods, out);
-    TH_CHECK(out[0] == 0 && out[3] == 0, "outside the grid: %g %g", out[0], out[3]);
-    pos[0] = 0.5f; /* half way between the border and the first centre column: alpha half */
-    voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 1, pos, lods, out);
-    TH_CHECK(fabs(out[3] - 1) < 1e-6 && out[0] == 0.5f, "on the first centre: %g %g", out[0], out[3]);
-    pos[0] = 0; voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 1, pos, lods, out);
-    TH_CHECK(fabs(out[3] - 0.5) < 1e-6, "at the grid's face alpha %g, want 0.5", out[3]);
-    voxgi_volume_destroy(ctx, vol);
-    free(albedo);
-    voxgi_destroy(ctx);
+    static const voxgi_attribute kinds[4] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
+    vxt_shape shapes[3];
+    voxgi_material mats[3] = {{{0.9f, 0.1f, 0.2f}, {0, 0, 0}, 0}, {{0.3f, 0.7f, 0.5f}, {40, 20, 5}, 0.25f}, {{1, 1, 1}, {0, 0, 0}, 1}};
+    int sh, method, k0;
+    fx_rng rng = fx_rng_seeded(2);
+    if (!have_gl()) return;
+    vxt_shape_sphere(&shapes[0], 40, 28, 1.0, 0.013, -0.021, 0.007);
+    vxt_shape_box_and_tilted(&shapes[1]); /* big triangles: the row-chunk pass */
+    vxt_shape_alloc(&shapes[2], 900, 300); /* 300 small triangles inside one voxel: no counter wraps */
+    for (k0 = 0; k0 < 2700; k0++) shapes[2].pos[k0] = (float)fx_rng_range(&rng, 1.25, 1.75);
+    for (k0 = 0; k0 < 900; k0++) shapes[2].idx[k0] = (uint32_t)k0;
+    for (sh = 0; sh < 3; sh++)
+        for (method = 0; method < 3; method++) {
+            static const voxgi_method methods[3] = {VOXGI_METHOD_CONSERVATIVE, VOXGI_METHOD_THIN, VOXGI_METHOD_GEOMETRY};
+            voxgi_context *cpu = make_ctx(VOXGI_BACKEND_CPU, 0), *gl = make_ctx(VOXGI_BACKEND_GL, 0);
+            voxgi_voxels *vox[2] = {NULL, NULL};
+            uint32_t *ids = material_ids_in_turn(&shapes[sh], 3);
+            voxgi_grid g;
+            int b, k, same = 1;
+            if (sh == 0) cubic(&g, -1.1, 2.2, 48);
+            else if (sh == 1) half_voxel_grid(&g, 52);
+            else cubic(&g, 0, 3, 3);
+            for (b = 0; b < 2; b++) {
+                voxgi_mesh mesh;
+                voxgi_scene sc;
+                voxgi_voxelize_desc vd;
+                scene_of_materials(&sc, &mesh, &shapes[sh], ids, mats, 3);
+                memset(&vd, 0, sizeof vd);
+                vd.grid = g; vd.method = methods[method]; vd.attributes = 15;
+                if (voxgi_voxelize(b ? gl : cpu, &sc, &vd, &vox[b]) != VOXGI_OK) printf("    %s\n", voxgi_last_error(b ? gl : cpu));
+            }
+            TH_CHECK(vox[0] && vox[1], "shape %d: attribute voxelization failed", sh);
+            for (k = 0; k < 4 && vox[0] && vox[1]; k++) {
+                size_t na, nb;
+                float *a, *c;
+                read_attribute_twins(cpu, gl, vox, kinds[k], &a, &na, &c, &nb);
+                same = same && na == nb && na > 0 && memcmp(a, c, na) == 0;
+                free(a); free(c);
+            }
+            TH_CHECK(same, "shape %d %s: GL attributes differ from the CPU's", sh, voxgi_method_name(methods[method]));
+            if (vox[1]) {
+                voxgi_voxels_info info;
+                voxgi_voxels_query(vox[1], &info);
+                printf("    attributes shape %d %s: %llu voxels, %llu (triangle, voxel) pairs averaged, GL == CPU\n", sh,
+                       voxgi_method_name(methods[method]), (unsigned long long)info.voxel_count, (unsigned long long)info.attribute_pairs);
+            }
+            voxgi_voxels_destroy(cpu, vox[0]);
+            voxgi_voxels_destroy(gl, vox[1]);
+            free(ids);
+            voxgi_destroy(cpu);
+            voxgi_destroy(gl);
+        }
+    vxt_shape_free(&shapes[0]);
+    vxt_shape_free(&shapes[1]);
+    vxt_shape_free(&shapes[2]);
 }
 
-/* Every allocation of the attribute, volume, octree, atlas and Volume Buffer paths may fail: the result
-   is VOXGI_ERR_OUT_OF_MEMORY (never a crash or a half result) and nothing leaks. Bad points and
-   voxels without attributes are refused. */
-static void test_volume_and_attribute_failures(void)
+/* ---------------------------------------------------------------- voxel visibility */
+
+/* Voxel visibility: on the voxels of 40 random triangles in a 24 x 17 x 30 grid, 20000 random
+   segments inside, across and beside it are blocked by 3D-DDA exactly when by the hierarchical
+   traversal of the OR mipmaps, and exactly when a brute-force slab test finds an occupied voxel
+   whose box they cross; the hierarchy visits fewer cells than DDA voxels. Beyond the grid nothing
+   blocks. */
+static void test_voxel_visibility(void)
 {
-    float p[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0.5f, 0.2f, 0.1f, 0.3f, 1.1f, 0.4f, 0.2f, 0.3f, 1.2f, 0.9f};
-    voxgi_mesh m;
+    enum { T = 40, N = 20000 };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
     voxgi_scene sc;
+    voxgi_mesh mesh;
     voxgi_voxelize_desc vd;
-    int n, full_at = -1;
-    failure_scene(&sc, &m, &vd, p, 2);
-    for (n = 0; n < 200 && full_at < 0; n++) {
-        fail_alloc fa = {0, 0};
-        voxgi_context *ctx = NULL;
-        voxgi_voxels *vox = NULL, *other = NULL;
-        voxgi_volume *vol = NULL;
-        voxgi_volume_desc vold;
-        voxgi_result r, r2 = VOXGI_ERR_OUT_OF_MEMORY, r3 = VOXGI_ERR_OUT_OF_MEMORY, r4 = VOXGI_ERR_OUT_OF_MEMORY;
-        if (failing_ctx(&fa, n, &ctx) != VOXGI_OK) continue;
-        vd.attributes = 15; vd.method = VOXGI_METHOD_CONSERVATIVE;
-        r = voxgi_voxelize(ctx, &sc, &vd, &vox);
-        if (r == VOXGI_OK) {
-            memset(&vold, 0, sizeof vold);
-            vold.filter = VOXGI_MIPS_ANISOTROPIC;
-            r2 = voxgi_volume_create(ctx, vox, &vold, &vol);
-            TH_CHECK((r2 == VOXGI_OK) == (vol != NULL) && (r2 == VOXGI_OK || r2 == VOXGI_ERR_OUT_OF_MEMORY), "volume: %s", voxgi_result_string(r2));
-        }
-        if (r2 == VOXGI_OK) {
-            voxgi_svo_desc sd;
-            voxgi_svo *svo = NULL;
-            voxgi_result rs;
-            memset(&sd, 0, sizeof sd);
-            sd.neighbours = 1;
-            rs = voxgi_svo_create(ctx, vox, &sd, &svo);
-            TH_CHECK((rs == VOXGI_OK) == (svo != NULL) && (rs == VOXGI_OK || rs == VOXGI_ERR_OUT_OF_MEMORY), "octree: %s", voxgi_result_string(rs));
-            voxgi_svo_destroy(ctx, svo);
-            if (rs != VOXGI_OK) r2 = rs;
-        }
-        if (r2 == VOXGI_OK) {
-            vd.method = VOXGI_METHOD_ATLAS; vd.attributes = 0;
-            r3 = voxgi_voxelize(ctx, &sc, &vd, &other);
-            TH_CHECK((r3 == VOXGI_OK) == (other != NULL) && (r3 == VOXGI_OK || r3 == VOXGI_ERR_OUT_OF_MEMORY), "atlas: %s", voxgi_result_string(r3));
-            voxgi_voxels_destroy(ctx, other);
-            other = NULL;
-        }
-        if (r3 == VOXGI_OK) {
-            vd.method = VOXGI_METHOD_VOLUME_BUFFER; vd.attributes = 15;
-            r4 = voxgi_voxelize(ctx, &sc, &vd, &other);
-            TH_CHECK((r4 == VOXGI_OK) == (other != NULL) && (r4 == VOXGI_OK || r4 == VOXGI_ERR_OUT_OF_MEMORY), "volume buffer: %s", voxgi_result_string(r4));
-            voxgi_voxels_destroy(ctx, other);
-        }
-        TH_CHECK(r == VOXGI_OK || r == VOXGI_ERR_OUT_OF_MEMORY, "attributes: failure %d gave %s", n, voxgi_result_string(r));
-        if (r4 == VOXGI_OK) full_at = n;
-        voxgi_volume_destroy(ctx, vol);
-        voxgi_voxels_destroy(ctx, vox);
-        voxgi_destroy(ctx);
-        TH_CHECK(fa.live == 0, "failure %d leaked %d blocks", n, fa.live);
-    }
-    TH_CHECK(full_at > 0, "never got through");
-    {   /* refusals */
-        voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 1);
-        voxgi_voxels *vox = NULL;
-        voxgi_volume *vol = NULL;
-        voxgi_volume_desc vold;
-        float pos[3] = {1, 1, 1}, lod = 0, nan_pos[3], out[4];
-        nan_pos[0] = (float)sqrt(-1.0); nan_pos[1] = nan_pos[2] = 1;
-        memset(&vold, 0, sizeof vold);
-        vd.method = VOXGI_METHOD_CONSERVATIVE; vd.attributes = 0;
-        voxgi_voxelize(ctx, &sc, &vd, &vox);
-        TH_CHECK(voxgi_volume_create(ctx, vox, &vold, &vol) == VOXGI_ERR_INVALID_ARGUMENT && !vol, "a volume from voxels without attributes");
-        voxgi_voxels_destroy(ctx, vox);
-        vd.attributes = VOXGI_ATTRIBUTE_ALBEDO;
-        voxgi_voxelize(ctx, &sc, &vd, &vox);
-        vold.attributes = VOXGI_ATTRIBUTE_NORMAL;
-        TH_CHECK(voxgi_volume_create(ctx, vox, &vold, &vol) == VOXGI_ERR_INVALID_ARGUMENT && !vol, "a volume of an attribute not voxelized");
-        vold.attributes = 0; vold.levels = 99;
-        TH_CHECK(voxgi_volume_create(ctx, vox, &vold, &vol) == VOXGI_ERR_INVALID_ARGUMENT && !vol, "99 levels accepted");
-        vold.levels = 2;
-        TH_CHECK(voxgi_volume_create(ctx, vox, &vold, &vol) == VOXGI_OK && vol, "2 levels: %s", voxgi_last_error(ctx));
-        TH_CHECK(voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, 0, 1, nan_pos, &lod, out) == VOXGI_ERR_INVALID_ARGUMENT, "NaN point sampled");
-        TH_CHECK(voxgi_volume_sample(ctx, vol, VOXGI_ATTRIBUTE_ALBEDO, VOXGI_DIR_NEG_Y, 1, pos, &lod, out) == VOXGI_ERR_INVALID_ARGUMENT,
-                 "an isotropic volume sampled in a direction");
-        voxgi_volume_destroy(ctx, vol);
-        voxgi_voxels_destroy(ctx, vox);
-        voxgi_destroy(ctx);
-    }
-}
-
-/* ---------------------------------------------------------------- sparse voxel octree */
-/* 500 random points in and around the octree tests' grid (27 x 25 x 30), and lods past the root. */
-static void svo_sample_points(float pos[3 * 500], float lods[500])
-{
-    size_t q;
-    for (q = 0; q < 500; q++) {
-        pos[3 * q] = (float)(-2 + 31 * rnd()); pos[3 * q + 1] = (float)(-2 + 29 * rnd()); pos[3 * q + 2] = (float)(-2 + 34 * rnd());
-        lods[q] = (float)(-0.5 + 6.5 * rnd());
-    }
-}
-
-/* Octree lookups equal the dense isotropic volume at every level, bit for bit (the same float
-   formulas in the same child order); the nodes of level l are exactly the distinct
-   coordinates >> (depth - l) of the voxels; child pointers never use 0 for a tile; the
-   structure costs at most 8 bytes per voxel. */
-static void test_svo_equals_dense(void)
-{
-    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
-    material_sphere s;
-    voxgi_voxelize_desc xd;
     voxgi_voxels *vox = NULL;
-    voxgi_volume *vol = NULL;
-    voxgi_volume_desc vd;
-    voxgi_svo *svo = NULL;
-    voxgi_svo_desc sd;
-    voxgi_svo_info info;
+    static float tri[9 * T], from[3 * N], to[3 * N];
+    static unsigned char dda[N], hier[N];
     uint32_t *bits;
-    size_t need = 0;
-    int lev, bad = 0, a;
-    material_sphere_make(&s);
-    memset(&xd, 0, sizeof xd);
-    xd.grid.origin[0] = -1.1; xd.grid.origin[1] = -1.2; xd.grid.origin[2] = -1.05;
-    xd.grid.voxel_size = 0.09;
-    xd.grid.res[0] = 27; xd.grid.res[1] = 25; xd.grid.res[2] = 30; /* not powers of two */
-    xd.attributes = 15;
-    voxgi_voxelize(ctx, &s.scene, &xd, &vox);
-    memset(&vd, 0, sizeof vd); memset(&sd, 0, sizeof sd);
-    sd.neighbours = 1;
-    TH_CHECK(vox && voxgi_volume_create(ctx, vox, &vd, &vol) == VOXGI_OK, "volume: %s", voxgi_last_error(ctx));
-    TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK, "octree: %s", voxgi_last_error(ctx));
-    if (!vol || !svo) return;
-    voxgi_svo_query(svo, &info);
-    TH_CHECK(info.depth == 5 && info.leaf_voxels > 0 && info.level_nodes[5] == info.leaf_voxels && info.level_nodes[0] == 1, "depth %d", info.depth);
-    voxgi_voxels_read(ctx, vox, NULL, 0, &need);
-    bits = (uint32_t *)malloc(need);
-    voxgi_voxels_read(ctx, vox, bits, need, NULL);
-    for (lev = 0; lev <= info.depth; lev++) {
-        int k = info.depth - lev, d[3], x, y, z;
-        uint64_t distinct = 0, l;
-        unsigned char *seen;
-        for (a = 0; a < 3; a++) { d[a] = xd.grid.res[a]; for (x = 0; x < k; x++) d[a] = (d[a] + 1) / 2; }
-        seen = (unsigned char *)calloc((size_t)d[0] * (size_t)d[1] * (size_t)d[2], 1);
-        for (l = 0; l < 27u * 25u * 30u; l++)
-            if (voxgi_bit_get(bits, l)) {
-                size_t at = (size_t)((l % 27) >> k) + (size_t)d[0] * ((size_t)((l / 27 % 25) >> k) + (size_t)d[1] * (size_t)((l / 675) >> k));
-                distinct += !seen[at];
-                seen[at] = 1;
-            }
-        bad += distinct != info.level_nodes[lev];
-        for (a = 0; a < 4; a++) {
-            voxgi_attribute which = (voxgi_attribute)(1 << a);
-            int w = a == 3 ? 1 : 4;
-            size_t nd = (size_t)d[0] * (size_t)d[1] * (size_t)d[2], i;
-            float *dense = (float *)malloc(nd * (size_t)w * 4), *got = (float *)malloc(nd * (size_t)w * 4);
-            uint32_t *coords = (uint32_t *)malloc(nd * 12);
-            voxgi_volume_read(ctx, vol, which, 0, k, dense, nd * (size_t)w * 4, NULL);
-            for (z = 0, i = 0; z < d[2]; z++)
-                for (y = 0; y < d[1]; y++)
-                    for (x = 0; x < d[0]; x++, i++) {
-                        coords[3 * i] = (uint32_t)x << k; coords[3 * i + 1] = (uint32_t)y << k; coords[3 * i + 2] = (uint32_t)z << k;
+    size_t bytes;
+    uint64_t steps_dda = 0, steps_hier = 0;
+    fx_rng g = fx_rng_seeded(17);
+    int i, a, wrong = 0, disagree = 0, blocked = 0;
+    const int res[3] = {24, 17, 30};
+    for (i = 0; i < 9 * T; i++) tri[i] = (float)fx_rng_range(&g, 0.5, res[i % 3] - 0.5);
+    for (i = 0; i < T; i++) /* small triangles: a corner and two near it */
+        for (a = 3; a < 9; a++) tri[9 * i + a] = tri[9 * i + a % 3] + (float)fx_rng_range(&g, -2.5, 2.5);
+    scene_of_triangles(&sc, &mesh, tri, 3 * T, NULL, 0);
+    memset(&vd, 0, sizeof vd);
+    vd.grid.voxel_size = 1;
+    for (a = 0; a < 3; a++) vd.grid.res[a] = res[a];
+    TH_CHECK(voxgi_voxelize(ctx, &sc, &vd, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    voxgi_voxels_read(ctx, vox, NULL, 0, &bytes);
+    bits = (uint32_t *)malloc(bytes);
+    voxgi_voxels_read(ctx, vox, bits, bytes, NULL);
+    for (i = 0; i < 3 * N; i++) {
+        from[i] = (float)fx_rng_range(&g, -3, res[i % 3] + 3);
+        to[i] = (float)fx_rng_range(&g, -3, res[i % 3] + 3);
+    }
+    TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_DDA, N, from, to, dda, &steps_dda) == VOXGI_OK &&
+                 voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_HIERARCHICAL, N, from, to, hier, &steps_hier) == VOXGI_OK,
+             "%s", voxgi_last_error(ctx));
+    for (i = 0; i < N; i++) { /* brute force */
+        double o[3], d[3];
+        int x, y, z, hit = 0;
+        for (a = 0; a < 3; a++) { o[a] = from[3 * i + a]; d[a] = (double)to[3 * i + a] - o[a]; }
+        for (z = 0; z < res[2] && !hit; z++)
+            for (y = 0; y < res[1] && !hit; y++)
+                for (x = 0; x < res[0] && !hit; x++) {
+                    double t0 = 0, t1 = 1;
+                    int c[3];
+                    if (!voxgi_bit_get(bits, (uint64_t)x + (uint64_t)res[0] * ((uint64_t)y + (uint64_t)res[1] * (uint64_t)z))) continue;
+                    c[0] = x; c[1] = y; c[2] = z;
+                    for (a = 0; a < 3; a++) {
+                        double ta = (c[a] - o[a]) / d[a], tb = (c[a] + 1 - o[a]) / d[a];
+                        if (ta > tb) { double q = ta; ta = tb; tb = q; }
+                        if (ta > t0) t0 = ta;
+                        if (tb < t1) t1 = tb;
                     }
-            voxgi_svo_lookup(ctx, svo, which, lev, nd, coords, got);
-            bad += memcmp(dense, got, nd * (size_t)w * 4) != 0;
-            free(dense); free(got); free(coords);
-        }
-        free(seen);
-    }
-    TH_CHECK(bad == 0, "octree and dense volume differ (%d level/attribute pairs)", bad);
-    printf("    octree 27x25x30, depth %d: %llu voxels, %llu node slots, %llu leaf slots, structure %.2f bytes per voxel, %lu bytes vs %lu dense\n",
-           info.depth, (unsigned long long)info.leaf_voxels, (unsigned long long)info.nodes, (unsigned long long)info.leaf_slots,
-           (double)info.structure_bytes / (double)info.leaf_voxels, (unsigned long)info.bytes, (unsigned long)info.dense_bytes);
-    TH_CHECK(info.structure_bytes <= 8 * info.leaf_voxels, "structure %lu bytes for %llu voxels", (unsigned long)info.structure_bytes,
-             (unsigned long long)info.leaf_voxels);
-    {   /* sampling through the octree equals sampling the dense volume, bit for bit */
-        float pos[3 * 500], lods[500], a_out[4 * 500], b_out[4 * 500];
-        svo_sample_points(pos, lods);
-        for (a = 0; a < 4; a++) {
-            voxgi_attribute which = (voxgi_attribute)(1 << a);
-            int w = a == 3 ? 1 : 4;
-            TH_CHECK(voxgi_volume_sample(ctx, vol, which, 0, 500, pos, lods, a_out) == VOXGI_OK &&
-                     voxgi_svo_sample(ctx, svo, which, 500, pos, lods, b_out) == VOXGI_OK, "sampling failed");
-            TH_CHECK(memcmp(a_out, b_out, 500 * (size_t)w * 4) == 0, "attribute %d: octree and dense samples differ", a);
-        }
-    }
-    {   /* neighbour pointers: at the same level, exactly the node one step away, symmetric */
-        int nodes = 0, wrong = svo_wrong_neighbours(ctx, svo, info.depth, &nodes);
-        TH_CHECK(nodes > 0 && wrong == 0, "%d wrong neighbour pointers over %d nodes", wrong, nodes);
-        TH_CHECK(info.neighbour_bytes == 24 * info.nodes, "neighbour bytes %lu", (unsigned long)info.neighbour_bytes);
-    }
-    {   /* outside the grid's cube and at empty places: empty */
-        uint32_t c[6] = {40, 1, 1, 0, 0, 0};
-        float o[8];
-        voxgi_svo_lookup(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, info.depth, 2, c, o);
-        TH_CHECK(o[3] == 0 && o[7] == 0, "empty places are not empty");
-        TH_CHECK(voxgi_svo_lookup(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, 9, 1, c, o) == VOXGI_ERR_INVALID_ARGUMENT, "level 9 accepted");
-    }
-    {   /* bricks: every texel is the dense volume's value at its place one level down (empty
-           outside); the texels a brick shares with its +x/+y/+z neighbour's are equal; sampling
-           through bricks equals sampling the dense volume bit for bit */
-        voxgi_svo *bk = NULL;
-        voxgi_svo_info bi;
-        int wrong = 0, bricks = 0, shared = 0;
-        sd.bricks = 1;
-        TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &bk) == VOXGI_OK, "octree with bricks: %s", voxgi_last_error(ctx));
-        sd.bricks = 0;
-        if (bk) {
-            uint64_t inner = 0;
-            voxgi_svo_query(bk, &bi);
-            for (lev = 0; lev < bi.depth; lev++) inner += bi.level_nodes[lev];
-            TH_CHECK(bi.brick_bytes == inner * 64 * (16 * 3 + 4) && bi.bytes == info.bytes + bi.brick_bytes, "brick bytes %lu for %llu inner nodes",
-                     (unsigned long)bi.brick_bytes, (unsigned long long)inner);
-            for (a = 0; a < 4; a++) {
-                voxgi_attribute which = (voxgi_attribute)(1 << a);
-                int w = a == 3 ? 1 : 4;
-                for (lev = 0; lev < bi.depth; lev++) {
-                    int k = bi.depth - lev - 1, d[3], ax;
-                    uint32_t n = 1u << lev, sh = (uint32_t)(bi.depth - lev), x, y, z;
-                    float *dense, brick[64 * 4], other[64 * 4];
-                    for (ax = 0; ax < 3; ax++) { d[ax] = xd.grid.res[ax]; for (x = 0; x < (uint32_t)k; x++) d[ax] = (d[ax] + 1) / 2; }
-                    dense = (float *)malloc((size_t)d[0] * (size_t)d[1] * (size_t)d[2] * (size_t)w * 4);
-                    voxgi_volume_read(ctx, vol, which, 0, k, dense, (size_t)d[0] * (size_t)d[1] * (size_t)d[2] * (size_t)w * 4, NULL);
-                    for (z = 0; z < n; z++)
-                        for (y = 0; y < n; y++)
-                            for (x = 0; x < n; x++) {
-                                uint32_t c[3], slot = 0;
-                                int t, ch, dir;
-                                c[0] = x << sh; c[1] = y << sh; c[2] = z << sh;
-                                if (lev > 0 && (voxgi_svo_node(ctx, bk, lev, c, &slot), !slot)) continue;
-                                voxgi_svo_brick(ctx, bk, which, lev, c, brick);
-                                bricks++;
-                                for (t = 0; t < 64; t++) {
-                                    int q[3], inside = 1;
-                                    q[0] = 2 * (int)x - 1 + (t & 3); q[1] = 2 * (int)y - 1 + ((t >> 2) & 3); q[2] = 2 * (int)z - 1 + (t >> 4);
-                                    for (ax = 0; ax < 3; ax++) inside &= q[ax] >= 0 && q[ax] < d[ax];
-                                    for (ch = 0; ch < w; ch++)
-                                        wrong += brick[w * t + ch] !=
-                                                 (inside ? dense[((size_t)q[0] + (size_t)d[0] * ((size_t)q[1] + (size_t)d[1] * (size_t)q[2])) * (size_t)w + (size_t)ch] : 0.0f);
-                                }
-                                for (dir = 0; dir < 3; dir++) { /* the shared layers: mine at 2, 3; the neighbour's at 0, 1 */
-                                    uint32_t e[3], nslot = 0;
-                                    e[0] = x; e[1] = y; e[2] = z;
-                                    if (++e[dir] >= n) continue;
-                                    e[0] <<= sh; e[1] <<= sh; e[2] <<= sh;
-                                    voxgi_svo_node(ctx, bk, lev, e, &nslot);
-                                    if (!nslot) continue;
-                                    voxgi_svo_brick(ctx, bk, which, lev, e, other);
-                                    for (t = 0; t < 64; t++) {
-                                        int along = (t >> (2 * dir)) & 3;
-                                        if (along >= 2) {
-                                            shared++;
-                                            wrong += memcmp(brick + w * t, other + w * (t - (2 << (2 * dir))), (size_t)w * 4) != 0;
-                                        }
-                                    }
-                                }
-                            }
-                    free(dense);
+                    hit = t1 - t0 > 1e-9;
                 }
-            }
-            TH_CHECK(bricks > 0 && shared > 0 && wrong == 0, "%d wrong brick texels over %d bricks (%d shared)", wrong, bricks, shared);
-            {
-                float pos[3 * 500], lods[500], a_out[4 * 500], b_out[4 * 500];
-                svo_sample_points(pos, lods);
-                for (a = 0; a < 4; a++) {
-                    voxgi_attribute which = (voxgi_attribute)(1 << a);
-                    TH_CHECK(voxgi_volume_sample(ctx, vol, which, 0, 500, pos, lods, a_out) == VOXGI_OK &&
-                             voxgi_svo_sample(ctx, bk, which, 500, pos, lods, b_out) == VOXGI_OK, "sampling failed");
-                    TH_CHECK(memcmp(a_out, b_out, 500 * (size_t)(a == 3 ? 1 : 4) * 4) == 0, "attribute %d: brick and dense samples differ", a);
-                }
-            }
-        }
-        voxgi_svo_destroy(ctx, bk);
-        {
-            uint32_t c[3] = {0, 0, 0};
-            float texels[64 * 4];
-            TH_CHECK(voxgi_svo_brick(ctx, svo, VOXGI_ATTRIBUTE_ALBEDO, 0, c, texels) == VOXGI_ERR_UNSUPPORTED, "bricks of an octree without them");
-        }
+        blocked += hit;
+        wrong += dda[i] != hit;
+        disagree += dda[i] != hier[i];
     }
-    {   /* half-float values: every lookup within (levels above the voxels + 1) x 2^-10 relative of
-           the float octree's (a rounding per level: half has 11 significant bits), a quarter of the
-           value bytes, the same nodes */
-        voxgi_svo *h = NULL;
-        voxgi_svo_info hi;
-        double worst = 0;
-        int over = 0;
-        sd.format = VOXGI_SVO_FLOAT16;
-        TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &h) == VOXGI_OK, "half octree: %s", voxgi_last_error(ctx));
-        sd.format = VOXGI_SVO_FLOAT32;
-        if (h) {
-            voxgi_svo_query(h, &hi);
-            TH_CHECK(hi.nodes == info.nodes && hi.leaf_slots == info.leaf_slots && hi.format == VOXGI_SVO_FLOAT16 &&
-                     hi.bytes - hi.structure_bytes - hi.neighbour_bytes == (info.bytes - info.structure_bytes - info.neighbour_bytes) / 2 &&
-                     hi.dense_bytes == info.dense_bytes / 2, "half octree sizes: %lu of %lu bytes", (unsigned long)hi.bytes, (unsigned long)info.bytes);
-            for (lev = 0; lev <= info.depth; lev++) {
-                uint32_t n = 1u << lev, sh = (uint32_t)(info.depth - lev), q = 0, x, y, z;
-                uint32_t *coords = (uint32_t *)malloc((size_t)n * n * n * 12);
-                float *f32 = (float *)malloc((size_t)n * n * n * 16), *f16 = (float *)malloc((size_t)n * n * n * 16);
-                for (z = 0; z < n; z++)
-                    for (y = 0; y < n; y++)
-                        for (x = 0; x < n; x++, q++) { coords[3 * q] = x << sh; coords[3 * q + 1] = y << sh; coords[3 * q + 2] = z << sh; }
-                for (a = 0; a < 4; a++) {
-                    voxgi_attribute which = (voxgi_attribute)(1 << a);
-                    size_t e, ne = (size_t)q * (a == 3 ? 1u : 4u);
-                    voxgi_svo_lookup(ctx, svo, which, lev, q, coords, f32);
-                    voxgi_svo_lookup(ctx, h, which, lev, q, coords, f16);
-                    for (e = 0; e < ne; e++) {
-                        double d = fabs((double)f32[e] - f16[e]), tol = (sh + 1) * ldexp(1, -10) * fmax(1, fabs(f32[e]));
-                        over += d > tol || ((a == 3 || e % 4 == 3) && (f32[e] == 0) != (f16[e] == 0)); /* empty stays empty */
-                        worst = fmax(worst, d / fmax(1, fabs(f32[e])));
-                    }
-                }
-                free(coords); free(f32); free(f16);
-            }
-            TH_CHECK(over == 0, "%d half values beyond the bound", over);
-            printf("    half-float octree: %lu bytes (float: %lu), worst relative difference %.2e over every level\n", (unsigned long)hi.bytes,
-                   (unsigned long)info.bytes, worst);
-        }
-        voxgi_svo_destroy(ctx, h);
-        sd.format = (voxgi_svo_format)7;
-        TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &h) == VOXGI_ERR_INVALID_ARGUMENT && !h, "format 7 accepted");
-        sd.format = VOXGI_SVO_FLOAT32;
-    }
-    {   /* a memory budget below the octree's size: refused before anything is built, nothing leaks */
-        voxgi_desc d;
-        voxgi_context *small = NULL;
-        voxgi_svo *none = NULL;
-        memset(&d, 0, sizeof d);
-        d.backend = VOXGI_BACKEND_CPU;
-        d.memory_budget = info.bytes / 2;
-        voxgi_create(&d, &small);
-        TH_CHECK(voxgi_svo_create(small, vox, &sd, &none) == VOXGI_ERR_TOO_LARGE && !none, "budget %lu: %s", (unsigned long)d.memory_budget,
-                 voxgi_last_error(small));
-        d.memory_budget = info.bytes;
-        voxgi_destroy(small);
-        voxgi_create(&d, &small);
-        TH_CHECK(voxgi_svo_create(small, vox, &sd, &none) == VOXGI_OK && none, "the exact budget refused: %s", voxgi_last_error(small));
-        voxgi_svo_destroy(small, none);
-        voxgi_destroy(small);
+    printf("    %d segments (%d blocked): DDA %d off the brute force, hierarchical %d off DDA; %llu voxels by DDA, %llu cells by the hierarchy\n", N,
+           blocked, wrong, disagree, (unsigned long long)steps_dda, (unsigned long long)steps_hier);
+    TH_CHECK(wrong == 0 && disagree == 0 && blocked > N / 10 && blocked < N - N / 10, "the traversals disagree");
+    TH_CHECK(steps_hier < steps_dda, "the hierarchy visits more");
+    {   /* beside the grid: nothing blocks, whatever lies at its border */
+        float f[3] = {-5, 3, 3}, t[3] = {-1, 10, 20};
+        unsigned char b = 1;
+        TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_HIERARCHICAL, 1, f, t, &b, NULL) == VOXGI_OK && b == 0, "outside the grid");
+        f[1] = NAN;
+        TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_DDA, 1, f, t, &b, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "a NaN segment");
+        f[1] = 3;
+        TH_CHECK(voxgi_voxels_occluded(ctx, vox, VOXGI_TRAVERSAL_NONE, 1, f, t, &b, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "no traversal: accepted");
     }
     free(bits);
-    voxgi_svo_destroy(ctx, svo);
-    voxgi_volume_destroy(ctx, vol);
     voxgi_voxels_destroy(ctx, vox);
-    material_sphere_free(&s);
     voxgi_destroy(ctx);
 }
 
 int main(void)
 {
+    gl_open();
     TH_RUN(test_random_triangles_vs_oracle);
     TH_RUN(test_adversarial_vs_oracle);
     TH_RUN(test_big_triangles_vs_oracle);
     TH_RUN(test_mesh_vs_oracle);
     TH_RUN(test_thin_vs_oracle);
+    TH_RUN(test_gl_equals_cpu_sphere);
+    TH_RUN(test_gl_equals_cpu_ties);
+    TH_RUN(test_gl_equals_cpu_quads_and_huge);
+    TH_RUN(test_gl_equals_cpu_degenerate);
+    TH_RUN(test_gl_raster_geometry_equals_cpu);
     TH_RUN(test_solid_closed_vs_inside_test);
     TH_RUN(test_solid_box_exact);
     TH_RUN(test_solid_ties);
     TH_RUN(test_solid_open_mesh_robust_modes);
+    TH_RUN(test_gl_equals_cpu_solid);
     TH_RUN(test_or_mips);
+    TH_RUN(test_gl_reduce_equals_cpu);
     TH_RUN(test_slicemap_vs_oracle_and_relations);
+    TH_RUN(test_gl_raster_slicemap_equals_cpu);
     TH_RUN(test_atlas_mesh_uvs_vs_oracle);
     TH_RUN(test_atlas_auto_relations);
+    TH_RUN(test_gl_raster_atlas_equals_cpu);
     TH_RUN(test_volume_buffer_vs_oracle);
+    TH_RUN(test_gl_raster_volume_buffer);
     TH_RUN(test_attributes_vs_oracle_and_order);
     TH_RUN(test_attributes_many_small_updates);
-    TH_RUN(test_volume_mips);
-    TH_RUN(test_volume_sampling);
-    TH_RUN(test_volume_and_attribute_failures);
-    TH_RUN(test_svo_equals_dense);
+    TH_RUN(test_gl_raster_attributes_equal_cpu);
     TH_RUN(test_offset_and_scale_invariance);
     TH_RUN(test_literal_scales);
-    TH_RUN(test_thread_determinism);
-    TH_RUN(test_bad_input);
-    TH_RUN(test_failing_allocator);
-    TH_RUN(test_cancel_and_api);
-    TH_RUN(test_binvox_roundtrip);
+    TH_RUN(test_voxel_visibility);
+    gl_close();
     return th_finish();
 }
