@@ -8014,58 +8014,6 @@ static uint32_t voxgi__region_unite(uint32_t *parent, uint32_t a, uint32_t b)
     return a < b ? a : b;
 }
 
-/* The region of the first empty voxel from the centre of voxel c along unit n (level-0 labels
-   lab of a grid of dm voxels), within four voxels; MIXED where there is none. */
-static uint32_t voxgi__region_along(const int *dm, const uint32_t *lab, const int c[3], const double n[3])
-{
-    int s, a;
-    for (s = 0; s < 5; s++) {
-        double t = s ? 0.5 + (double)s : 0.8660254037844386;
-        int v[3], ok = 1;
-        uint32_t r;
-        for (a = 0; a < 3; a++) {
-            v[a] = (int)floor((double)c[a] + 0.5 + t * n[a]);
-            ok = ok && v[a] >= 0 && v[a] < dm[a];
-        }
-        if (!ok) break;
-        r = lab[(size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])];
-        if (r && !(r & VOXGI__REGION_BORDER)) return r;
-    }
-    return VOXGI__REGION_MIXED;
-}
-
-/* The region each lit side of surface voxel c sends its light into (0: the side is dark): the
-   first empty voxel from the centre along that side's normal, within four voxels; MIXED where
-   none is found (or the normals cancelled), which the caller takes as unknown. A wall on a voxel
-   boundary fills two voxels, and the one on the far side of the wall from the light holds the
-   light all the same (its lookup point lies across the wall): its light is the lit room's, not
-   the room it borders. (rad, back, side: the voxel's RADIANCE, RADIANCE_BACK, RADIANCE_SIDE.) */
-static void voxgi__regions_of_sides(const int *dm, const uint32_t *lab, const int c[3], const float *rad, const float *back, const float *side,
-                                    uint32_t out[2])
-{
-    double len = sqrt((double)side[0] * side[0] + (double)side[1] * side[1] + (double)side[2] * side[2]), n[3];
-    int sd, a;
-    for (sd = 0; sd < 2; sd++) {
-        const float *l = sd ? back : rad;
-        out[sd] = 0;
-        if (!(l[0] > 0 || l[1] > 0 || l[2] > 0)) continue;
-        for (a = 0; a < 3; a++) n[a] = len > 0 ? (sd ? -side[a] : side[a]) / len : 0;
-        out[sd] = len > 0 ? voxgi__region_along(dm, lab, c, n) : VOXGI__REGION_MIXED;
-    }
-}
-
-/* Whether voxel c has an empty neighbour (of six) in region r. */
-static int voxgi__region_beside(const int *dm, const uint32_t *lab, const int c[3], uint32_t r)
-{
-    int q, v[3];
-    for (q = 0; q < 6; q++) {
-        memcpy(v, c, sizeof v);
-        v[q >> 1] += q & 1 ? 1 : -1;
-        if (v[q >> 1] >= 0 && v[q >> 1] < dm[q >> 1] && lab[(size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])] == r) return 1;
-    }
-    return 0;
-}
-
 static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
 {
     const float *radiance0 = base[VOXGI__RADIANCE_SLOT], *back0 = base[VOXGI__BACK_SLOT], *side0 = base[VOXGI__SIDE_SLOT];
@@ -8128,29 +8076,16 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
             }
     voxgi__free(ctx, parent);
     parent = NULL;
-    for (k = 0; k < 2; k++) /* 0: the regions the surfaces light; 1: a surface's voxel whose light is one region's takes it, marked
-                               (voxgi__regions_of_sides; where that is unknown, one lit region beside it alone) */
+    for (k = 0; k < 2; k++) /* 0: a region is lit where a surface beside it sends light its way (by the side facing it);
+                               1: a surface's voxel beside one lit region alone takes that region, marked */
         for (z = 0, i = 0; z < dm[2]; z++)
             for (y = 0; y < dm[1]; y++)
                 for (x = 0; x < dm[0]; x++, i++) {
                     int c[3];
-                    uint32_t sides[2], only = 0;
+                    uint32_t only = 0;
                     if (lab[i] || !(radiance0[4 * i + 3] > 0)) continue;
                     c[0] = x; c[1] = y; c[2] = z;
-                    voxgi__regions_of_sides(dm, lab, c, radiance0 + 4 * i, back0 + 4 * i, side0 + 4 * i, sides);
-                    if (sides[0] != VOXGI__REGION_MIXED && sides[1] != VOXGI__REGION_MIXED) { /* where each lit side's light goes is known */
-                        uint32_t into = 0;
-                        for (q = 0; q < 2; q++) {
-                            if (k == 0 && sides[q] && voxgi__region_beside(dm, lab, c, sides[q])) lit[sides[q]] = 1;
-                            if (k == 1 && sides[q] && lit[sides[q]]) into = !into || into == sides[q] ? sides[q] : VOXGI__REGION_MIXED;
-                        }
-                        if (k == 0) continue;
-                        if (into) {
-                            if (into != VOXGI__REGION_MIXED) lab[i] = VOXGI__REGION_BORDER | into;
-                            continue;
-                        }
-                    }
-                    for (q = 0; q < 6; q++) { /* else: the regions beside it (a corner's ground, below a wall) */
+                    for (q = 0; q < 6; q++) {
                         int ax = q >> 1, up = q & 1;
                         size_t j = ax == 0 ? 1 : (ax == 1 ? nx : nxy);
                         float facing = up ? side0[4 * i + (size_t)ax] : -side0[4 * i + (size_t)ax];
@@ -8158,7 +8093,7 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
                         if (up ? c[ax] + 1 == dm[ax] : c[ax] == 0) continue;
                         j = up ? i + j : i - j;
                         if (!lab[j] || (lab[j] & VOXGI__REGION_BORDER)) continue;
-                        if (k == 0 && !lit[lab[j]] && facing != 0) /* by the side facing it; a neighbour along the surface is on neither */
+                        if (k == 0 && !lit[lab[j]] && facing != 0) /* a neighbour along the surface is on neither side */
                             lit[lab[j]] = rad[4 * i] > 0 || rad[4 * i + 1] > 0 || rad[4 * i + 2] > 0;
                         if (k == 1 && lit[lab[j]] && lab[j] != only) only = only ? VOXGI__REGION_MIXED : lab[j];
                     }
@@ -8178,8 +8113,7 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
                         uint32_t w;
                         if (cx >= pd[0] || cy >= pd[1] || cz >= pd[2]) continue;
                         w = src[(size_t)cx + (size_t)pd[0] * ((size_t)cy + (size_t)pd[1] * (size_t)cz)];
-                        if (k == 1) w = w & VOXGI__REGION_BORDER ? w & ~VOXGI__REGION_BORDER : lit[w] ? w : 0; /* a surface's light is its region's;
-                                                                                                            nothing leaks from a dark region */
+                        if (k == 1 && (w & VOXGI__REGION_BORDER ? 1 : !lit[w])) w = 0; /* nothing to leak from a dark region */
                         if (!w || w == v) continue;
                         v = !v || voxgi__region_inside(box, w, v) ? w : (voxgi__region_inside(box, v, w) ? v : VOXGI__REGION_MIXED);
                     }
@@ -9278,7 +9212,7 @@ static uint32_t voxgi__svo_region_slot(const voxgi__svo_region_walk *W, int lev,
         uint32_t w;
         cc[0] = 2 * c[0] + (d & 1); cc[1] = 2 * c[1] + (d >> 1 & 1); cc[2] = 2 * c[2] + (d >> 2);
         w = voxgi__svo_region_slot(W, lev + 1, (lev + 1 == depth ? 0u : 1u) + 8 * (uint64_t)(ptr - 1) + (uint64_t)d, cc);
-        if (k == 1) w = w & VOXGI__REGION_BORDER ? w & ~VOXGI__REGION_BORDER : W->lit[w] ? w : 0; /* as voxgi__volume_regions */
+        if (k == 1 && (w & VOXGI__REGION_BORDER ? 1 : !W->lit[w])) w = 0; /* as voxgi__volume_regions */
         if (!w || w == v) continue;
         v = !v || voxgi__region_inside(W->box, w, v) ? w : (voxgi__region_inside(W->box, v, w) ? v : VOXGI__REGION_MIXED);
     }
