@@ -196,6 +196,10 @@
             images' table (defaults, plan, settings line, build, gather): voxgi_plan and
             voxgi_render_resolve refuse a left-out method as voxgi_render does
             (VOXGI_ERR_UNSUPPORTED). The maps' and the SH volume's seeds 0 are the image's.
+            Regions of empty space: a surface's voxel belongs to the region its lit sides'
+            light goes into, also above level 0 (two closed rooms sharing a zero-thickness wall
+            leaked through the voxels the wall fills); the bounces' geometric tail never takes a
+            voxel's light below zero.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -8475,6 +8479,20 @@ static int voxgi__volume_fetch(const void *source, int k, const int v[3], float 
     return 1;
 }
 
+/* Slot a's direction d of vol at count points (grid units) and levels of detail, trilinear
+   within a level and linear between two. */
+static void voxgi__volume_sample_cpu(const voxgi_volume *vol, int a, int d, size_t count, const float *pos, const float *lods, float *out)
+{
+    voxgi__volume_source src;
+    size_t i;
+    src.vol = vol;
+    src.a = a;
+    src.d = d;
+    src.w = a == 3 ? 1 : 4;
+    for (i = 0; i < count; i++)
+        voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, src.w, vol->info.levels, pos + 3 * i, lods[i], out + (size_t)src.w * i);
+}
+
 #ifndef VOXGI_NO_GL
 
 /* The GLSL sampler over a batch of points (shaders/volume_sample.glsl). */
@@ -8538,15 +8556,7 @@ VOXGI_API voxgi_result voxgi_volume_sample(voxgi_context *ctx, const voxgi_volum
 #ifndef VOXGI_NO_GL
     if (vol->tex[a][d]) return voxgi__volume_sample_gl(ctx, vol, a, d, count, pos, lods, out);
 #endif
-    {
-        voxgi__volume_source src;
-        src.vol = vol;
-        src.a = a;
-        src.d = d;
-        src.w = a == 3 ? 1 : 4;
-        for (i = 0; i < count; i++)
-            voxgi__sample_lod(voxgi__volume_fetch, NULL, &src, src.w, vol->info.levels, pos + 3 * i, lods[i], out + (size_t)src.w * i);
-    }
+    voxgi__volume_sample_cpu(vol, a, d, count, pos, lods, out);
     return VOXGI_OK;
 }
 
@@ -11458,6 +11468,21 @@ static float voxgi__tsm_point(const voxgi_tsm *T, const double x_in[3], const do
     return (float)light;
 }
 
+/* voxgi__tsm_point at count points (normals may be NULL). */
+static void voxgi__tsm_transmittance_cpu(const voxgi_tsm *tsm, size_t count, const float *points, const float *normals, float *out)
+{
+    size_t i;
+    int a;
+    for (i = 0; i < count; i++) {
+        double x[3], n[3];
+        for (a = 0; a < 3; a++) {
+            x[a] = points[3 * i + (size_t)a];
+            n[a] = normals ? normals[3 * i + (size_t)a] : 0;
+        }
+        out[i] = voxgi__tsm_point(tsm, x, normals ? n : NULL);
+    }
+}
+
 #ifndef VOXGI_NO_GL
 /* The same lookups on GL (shaders/tsm_lookup.glsl). */
 static voxgi_result voxgi__tsm_transmittance_gl(voxgi_context *ctx, const voxgi_tsm *T, size_t count, const float *points, const float *normals,
@@ -11498,7 +11523,6 @@ VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_t
                                                float *out)
 {
     size_t i;
-    int a;
     if (!ctx) return VOXGI_ERR_INVALID_ARGUMENT;
     if (!tsm || (count && (!points || !out))) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "tsm, points or out is NULL");
     for (i = 0; i < 3 * count; i++)
@@ -11507,14 +11531,7 @@ VOXGI_API voxgi_result voxgi_tsm_transmittance(voxgi_context *ctx, const voxgi_t
 #ifndef VOXGI_NO_GL
     if (ctx->backend == VOXGI_BACKEND_GL && tsm->gl_params && count) return voxgi__tsm_transmittance_gl(ctx, tsm, count, points, normals, out);
 #endif
-    for (i = 0; i < count; i++) {
-        double x[3], n[3];
-        for (a = 0; a < 3; a++) {
-            x[a] = points[3 * i + (size_t)a];
-            n[a] = normals ? normals[3 * i + (size_t)a] : 0;
-        }
-        out[i] = voxgi__tsm_point(tsm, x, normals ? n : NULL);
-    }
+    voxgi__tsm_transmittance_cpu(tsm, count, points, normals, out);
     return VOXGI_OK;
 }
 
@@ -12528,7 +12545,7 @@ static int voxgi__screen_voxels(const voxgi__screen_job *J, const double p[3], c
     return 1;
 }
 
-static void voxgi__screen_rows(void *user, size_t first, size_t end)
+static void voxgi__screen_cpu(void *user, size_t first, size_t end)
 {
     const voxgi__screen_job *J = (const voxgi__screen_job *)user;
     uint64_t steps = 0;
@@ -12607,7 +12624,7 @@ static voxgi_result voxgi__screen_gl(voxgi_context *ctx, const voxgi__screen_job
             screen[9 * i + 3 + (size_t)a] = J->nrm[3 * i + (size_t)a];
             if (J->radiance) screen[9 * i + 6 + (size_t)a] = J->radiance[3 * i + (size_t)a];
         }
-    for (i = 0; r == VOXGI_OK && i < count; i++) { /* voxgi__screen_rows' draws */
+    for (i = 0; r == VOXGI_OK && i < count; i++) { /* voxgi__screen_cpu' draws */
         voxgi__rng g;
         voxgi__rng_seed(&g, J->seed, J->pixel_of ? J->pixel_of[i] : J->first_point + i, 0);
         for (a = 0; a < 3; a++) random[3 * i + (size_t)a] = (float)voxgi__rng_unit(&g);
@@ -12663,7 +12680,7 @@ static voxgi_result voxgi__screen_rays_on(voxgi_context *ctx, voxgi__screen_job 
 #ifndef VOXGI_NO_GL
     if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__screen_gl(ctx, J, count);
 #endif
-    voxgi__parallel(ctx, count, 16, voxgi__screen_rows, J);
+    voxgi__parallel(ctx, count, 16, voxgi__screen_cpu, J);
     return VOXGI_OK;
 }
 
@@ -12887,6 +12904,13 @@ static void voxgi__filter_columns(void *user, size_t first, size_t end)
     }
 }
 
+/* The filter on the CPU: the row pass into F->mid, then the column pass. */
+static void voxgi__filter_cpu(voxgi_context *ctx, voxgi__filter_job *F)
+{
+    voxgi__parallel(ctx, (size_t)F->ih, 1, voxgi__filter_rows, F);
+    voxgi__parallel(ctx, (size_t)F->h, 1, voxgi__filter_columns, F);
+}
+
 #ifndef VOXGI_NO_GL
 /* Both passes on GL (shaders/screen_filter.glsl, in float). */
 static voxgi_result voxgi__filter_gl(voxgi_context *ctx, voxgi__filter_job *F)
@@ -12981,10 +13005,7 @@ VOXGI_API voxgi_result voxgi_screen_filter(voxgi_context *ctx, const voxgi_scree
     if (ctx->backend == VOXGI_BACKEND_GL) r = voxgi__filter_gl(ctx, &F);
     else
 #endif
-    {
-        voxgi__parallel(ctx, (size_t)F.ih, 1, voxgi__filter_rows, &F);
-        voxgi__parallel(ctx, (size_t)F.h, 1, voxgi__filter_columns, &F);
-    }
+        voxgi__filter_cpu(ctx, &F);
     voxgi__free(ctx, F.mid);
     return r;
 }
@@ -14011,7 +14032,7 @@ typedef struct voxgi__ls_job {
     voxgi__ls_counts *counts;     /* one per chunk */
 } voxgi__ls_job;
 
-static void voxgi__ls_rays_run(void *user, size_t first, size_t end)
+static void voxgi__ls_rays_cpu(void *user, size_t first, size_t end)
 {
     voxgi__ls_job *J = (voxgi__ls_job *)user;
     voxgi__ls_counts *cnt = &J->counts[first / J->chunk];
@@ -14041,7 +14062,7 @@ static void voxgi__ls_walk_uniforms_gl(const voxgi_context *ctx, unsigned int p,
     gl->ProgramUniform1f(p, VOXGI__LOC_u_near_ends, near);
 }
 
-/* voxgi__ls_rays_run on GL (shaders/linespace_rays.glsl), in slices of VOXGI__LS_GL_RAYS rays,
+/* voxgi__ls_rays_cpu on GL (shaders/linespace_rays.glsl), in slices of VOXGI__LS_GL_RAYS rays,
    each finished before the next. */
 #define VOXGI__LS_GL_RAYS 16384
 typedef char voxgi__ray_is_eight_floats[sizeof(voxgi_ray) == 32 ? 1 : -1]; /* the shader reads it so */
@@ -14108,7 +14129,7 @@ VOXGI_API voxgi_result voxgi_linespace_occluded(voxgi_context *ctx, const voxgi_
     if (ctx->backend == VOXGI_BACKEND_GL && count) r = voxgi__ls_rays_gl(ctx, &J, count);
     else
 #endif
-        voxgi__parallel(ctx, count, J.chunk, voxgi__ls_rays_run, &J);
+        voxgi__parallel(ctx, count, J.chunk, voxgi__ls_rays_cpu, &J);
     voxgi__free(ctx, J.counts);
     return r;
 }
@@ -14168,7 +14189,7 @@ static int voxgi__ls_light_ray(const voxgi_linespace *L, const voxgi__ls_job *J,
     return 1;
 }
 
-static void voxgi__ls_light_run(void *user, size_t first, size_t end)
+static void voxgi__ls_light_cpu(void *user, size_t first, size_t end)
 {
     voxgi__ls_job *J = (voxgi__ls_job *)user;
     voxgi__ls_counts *cnt = &J->counts[first / J->chunk];
@@ -14203,7 +14224,7 @@ static void voxgi__ls_light_run(void *user, size_t first, size_t end)
 }
 
 #ifndef VOXGI_NO_GL
-/* voxgi__ls_light_run on GL (shaders/linespace_light.glsl): each ray walks alone (packets are the
+/* voxgi__ls_light_cpu on GL (shaders/linespace_light.glsl): each ray walks alone (packets are the
    CPU's; the answers are the same), in slices of points and passes of at most
    VOXGI__LS_GL_SAMPLES samples per point (llvmpipe ends an invocation's loops after 65535
    iterations in all; a ray takes hundreds), each pass finished before the next, so no one
@@ -14324,7 +14345,7 @@ VOXGI_API voxgi_result voxgi_linespace_light(voxgi_context *ctx, const voxgi_lin
         r = voxgi__ls_light_gl(ctx, &J, count, nl, &J.counts[0].rays);
     } else
 #endif
-        voxgi__parallel(ctx, count, J.chunk, voxgi__ls_light_run, &J);
+        voxgi__parallel(ctx, count, J.chunk, voxgi__ls_light_cpu, &J);
     if (r == VOXGI_OK && stats) {
         for (i = 0; i < chunks; i++) {
             stats->rays += J.counts[i].rays;

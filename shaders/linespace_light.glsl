@@ -1,4 +1,4 @@
-// An area light's shadow rays through the line space (voxgi__ls_light_run's GL twin; the walk is
+// An area light's shadow rays through the line space (voxgi__ls_light_cpu's GL twin; the walk is
 // linespace.glsl's): per point the light's samples [u_samples.x, u_samples.y), their sums added to
 // the point's. The weights alone are float, not the CPU's double: they may differ in the last bits.
 // embedded unless VOXGI_NO_LINE_SPACE

@@ -1,4 +1,4 @@
-// Given rays through the line space (voxgi__ls_rays_run's GL twin; the walk is linespace.glsl's):
+// Given rays through the line space (voxgi__ls_rays_cpu's GL twin; the walk is linespace.glsl's):
 // per ray whether something lies on it at t in (tmin, tmax).
 // embedded unless VOXGI_NO_LINE_SPACE
 layout(std430, binding = 5) readonly buffer Rays { float rays[]; };      // 8 per ray of this slice: voxgi_ray

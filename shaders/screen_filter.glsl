@@ -1,4 +1,4 @@
-// The edge-aware blur and upsampling (voxgi__filter_rows and voxgi__filter_columns' GL twin, in
+// The edge-aware blur and upsampling (voxgi__filter_cpu's GL twin, in
 // float): u_pass 0, one invocation per element of the row pass (full column, input row); u_pass 1,
 // one per full-resolution pixel, down the row pass's columns.
 // embedded unless VOXGI_NO_SCREEN_SPACE

@@ -1,4 +1,4 @@
-// Rays through the screen or the voxels (voxgi__screen_rows' GL twin, in float): ambient occlusion
+// Rays through the screen or the voxels (voxgi__screen_cpu' GL twin, in float): ambient occlusion
 // (u_gather 0: the occluded share) or one bounce from the screen's radiance (u_gather 1: pi / rays
 // x the radiance met), at count points; the per-point rotation and jitter come from the CPU (the
 // same random numbers), the rays from the Hammersley set.
