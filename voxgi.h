@@ -196,10 +196,7 @@
             images' table (defaults, plan, settings line, build, gather): voxgi_plan and
             voxgi_render_resolve refuse a left-out method as voxgi_render does
             (VOXGI_ERR_UNSUPPORTED). The maps' and the SH volume's seeds 0 are the image's.
-            Regions of empty space: a surface's voxel belongs to the region its lit sides'
-            light goes into, also above level 0 (two closed rooms sharing a zero-thickness wall
-            leaked through the voxels the wall fills); the bounces' geometric tail never takes a
-            voxel's light below zero.
+            The bounces' geometric tail never takes a voxel's light below zero.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
