@@ -581,9 +581,9 @@ static inline int voxgi_bit_get(const uint32_t *bits, uint64_t index)
    or cells (hierarchical) visited, summed. Segments (3 floats from, 3 to, per segment), not the
    voxgi_ray of the ray and line-space calls: visibility between two surfaces asks about the closed
    segment between exact points, where a ray's far end (origin + tmax direction) is rounded and its
-   interval open. The two give the same answers; the hierarchy takes
-   half the time (voxgi report rsm), hence the default. NONE: no visibility, where a caller may
-   leave it out (the images' gathers); the calls that test segments refuse it. */
+   interval open. The two traversals give the same answers; the hierarchy takes half the time
+   (voxgi report rsm), hence the default. NONE: no visibility, where a caller may leave it out
+   (the images' gathers); the calls that test segments refuse it. */
 typedef enum voxgi_traversal { VOXGI_TRAVERSAL_HIERARCHICAL = 0, VOXGI_TRAVERSAL_DDA, VOXGI_TRAVERSAL_NONE } voxgi_traversal;
 VOXGI_API voxgi_result voxgi_voxels_occluded(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_traversal how, size_t count, const float *from,
                                              const float *to, unsigned char *occluded, uint64_t *steps);
@@ -1285,8 +1285,9 @@ typedef struct voxgi_render_screen {
     voxgi_toggle half_resolution; /* rays at every other pixel across and down, upsampled by voxgi_screen_filter; default off
                                      for AO, on for GI */
     int blur;                     /* voxgi_screen_filter's radius in pixels, 1..64; 0: AO 2, GI 8; -1: none */
-    voxgi_toggle hidden_light;    /* HYBRID: builds voxgi_ssgi_desc.hidden_radiance: rays meeting a voxel the camera does not see take the direct light injected into
-                                     it (voxgi_inject_light, without emission); default on (off: they send nothing) */
+    voxgi_toggle hidden_light;    /* HYBRID: builds voxgi_ssgi_desc.hidden_radiance: rays meeting a voxel the camera does not
+                                     see take the direct light injected into it (voxgi_inject_light, without emission);
+                                     default on (off: they send nothing) */
     int inject_samples;           /* hidden_light: voxgi_inject_desc.samples; 0 = as VCT's */
 } voxgi_render_screen;
 
