@@ -277,7 +277,7 @@ static void vct_svg(FILE *f, const report *rep)
     const vct_report *a = (const vct_report *)rep->own;
     report_plot_point *points = (report_plot_point *)calloc(rep->nrows + 1, sizeof *points);
     char (*labels)[32] = (char (*)[32])calloc(rep->nrows + 1, sizeof *labels);
-    char legend_text[REPORT_MAX_SCENES][160];
+    char legend_text[REPORT_MAX_SCENES][400]; /* the scene's name (up to 287 bytes) and the text */
     const char *legend[REPORT_MAX_SCENES];
     double curve_ms[REPORT_MAX_SCENES][41], curve_error[REPORT_MAX_SCENES][41];
     report_plot_curve curves[REPORT_MAX_SCENES];
