@@ -196,7 +196,13 @@
             images' table (defaults, plan, settings line, build, gather): voxgi_plan and
             voxgi_render_resolve refuse a left-out method as voxgi_render does
             (VOXGI_ERR_UNSUPPORTED). The maps' and the SH volume's seeds 0 are the image's.
-            The bounces' geometric tail never takes a voxel's light below zero.
+            The bounces' geometric tail never takes a voxel's light below zero. Closed spaces:
+            a surface's voxel belongs to the region its light goes into (unseen at level 0
+            where it does not border it), every region closes the mips to the others, the
+            labels come from the direct light and serve every bounce, and the bounces' groups
+            keep to one region (two closed rooms sharing a zero-thickness wall are black with
+            full GI). A voxel of surfaces facing apart (a bottom resting on a floor) takes its
+            nearest surface's normal. Full GI keeps vct.bounce_block and .bounce_cones.
 */
 #ifndef VOXGI_H
 #define VOXGI_H
@@ -7758,9 +7764,9 @@ struct voxgi_volume {
     unsigned int tex[VOXGI__VOLUME_SLOTS][6];
     uint32_t *regions;                 /* two-sided radiance: the empty space's regions, level after level, */
     uint32_t *region_boxes;            /* and their bounds (voxgi__volume_regions) */
-    unsigned char *region_lit;         /* and whether a surface beside them lights them (kept on GL too, for octrees) */
     size_t region_count;               /* labels, 0 and OPEN included */
     unsigned int region_buffer;        /* GL: both in one storage buffer */
+    int regions_given;                 /* taken from the volume of the light before the bounces (voxgi__volume_take_regions) */
 };
 
 static int voxgi__attr_index(voxgi_attribute a)
@@ -7977,17 +7983,27 @@ static void voxgi__mip_rows(void *user, size_t first, size_t end)
    cone from there ends where it enters a region that is not inside its own, and samples no level
    whose voxels reach into one (voxgi__cone_march). Region b lies inside region a when a is open
    or b's bounds (level-0 voxels) lie within a's: a pocket such as a closed box on a room's floor
-   lies inside the room, the room not inside the box. Level k > 0 holds its children's outermost
-   region where one holds all the others, VOXGI__REGION_MIXED where none does, 0 where they have
-   none; a region no surface beside it lights counts as none there. A surface's voxel of level 0
-   that borders one lit region alone holds VOXGI__REGION_BORDER | that region: a cone from a
-   region that is not it, nor outside it, leaves the voxel out of its samples of level 0 (the outer
-   of two voxels a wall on a voxel boundary fills, or the ground beside a box's corner). The
-   labels, then each enclosed region's bounds (6 per label, from label 0), are kept while they
-   fit the storage buffer every GL 4.5 has (2^27 bytes: a 300^3 grid), on both backends alike. */
+   lies inside the room, the room not inside the box. A surface's voxel of level 0 belongs to the
+   region its light goes into: each side's is that of the first empty voxel along the side's
+   normal (voxgi__regions_of_sides), and a region is lit where a side with light goes into it from
+   a voxel beside it. A voxel whose lit sides' regions are one region holds VOXGI__REGION_BORDER |
+   that region, and VOXGI__REGION_UNSEEN besides where it does not border it (the outer of two
+   voxels a wall on a voxel boundary fills, the outer layer of a curved shell); where a side's
+   region is unknown, the one lit region it borders (the ground beside a box's corner). A cone
+   from another region, not outside it, leaves it out of its samples of level 0, and an unseen
+   voxel from every region. Level k > 0 holds its children's outermost region where one holds all
+   the others (a surface's voxel counting as its region), VOXGI__REGION_MIXED where none does, 0
+   where they have none: a cone keeps within its enclosure whether light lies beyond it or not
+   (through a closed sphere's shell, mips that reached the dark outside lost light a bounce). The
+   labels come from the direct light and serve every bounce (voxgi__volume_take_regions): a
+   closed region is lit only by what its surfaces receive directly. They, then each enclosed
+   region's bounds (6 per label, from label 0), are kept while they fit the storage buffer every
+   GL 4.5 has (2^27 bytes: a 300^3 grid), on both backends alike. */
 #define VOXGI__REGION_OPEN 1u
 #define VOXGI__REGION_MIXED 0xFFFFFFFFu
 #define VOXGI__REGION_BORDER 0x80000000u
+#define VOXGI__REGION_UNSEEN 0x20000000u
+#define VOXGI__REGION_OF(label) ((label) & ~(VOXGI__REGION_BORDER | VOXGI__REGION_UNSEEN))
 #define VOXGI__REGION_BYTES ((size_t)1 << 27)
 
 /* Whether region b lies inside region a (box: the bounds, 6 per label). */
@@ -8014,6 +8030,54 @@ static uint32_t voxgi__region_unite(uint32_t *parent, uint32_t a, uint32_t b)
     if (a < b) parent[b] = a;
     else parent[a] = b;
     return a < b ? a : b;
+}
+
+/* The region of the first empty voxel from the centre of voxel c along unit n (level-0 labels
+   lab of a grid of dm voxels), within four voxels; 0 where n leaves the grid first, MIXED where
+   there is none. */
+static uint32_t voxgi__region_along(const int *dm, const uint32_t *lab, const int c[3], const double n[3])
+{
+    int s, a;
+    for (s = 0; s < 5; s++) {
+        double t = s ? 0.5 + (double)s : 0.8660254037844386;
+        int v[3], ok = 1;
+        uint32_t r;
+        for (a = 0; a < 3; a++) {
+            v[a] = (int)floor((double)c[a] + 0.5 + t * n[a]);
+            ok = ok && v[a] >= 0 && v[a] < dm[a];
+        }
+        if (!ok) return 0;
+        r = lab[(size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])];
+        if (r && !(r & VOXGI__REGION_BORDER)) return r;
+    }
+    return VOXGI__REGION_MIXED;
+}
+
+/* The region each side of surface voxel c (front, back) sends its light into: that of the first
+   empty voxel from the centre along the side's normal (voxgi__region_along); MIXED where the
+   voxel has no side plane. A wall on a voxel boundary fills two voxels, and the one on the far
+   side of the wall from the light holds the light all the same (its lookup point lies across the
+   wall): its light is the lit room's, not the room it borders. (side: its RADIANCE_SIDE.) */
+static void voxgi__regions_of_sides(const int *dm, const uint32_t *lab, const int c[3], const float *side, uint32_t out[2])
+{
+    double len = sqrt((double)side[0] * side[0] + (double)side[1] * side[1] + (double)side[2] * side[2]), n[3];
+    int sd, a;
+    for (sd = 0; sd < 2; sd++) {
+        for (a = 0; a < 3; a++) n[a] = len > 0 ? (sd ? -side[a] : side[a]) / len : 0;
+        out[sd] = len > 0 ? voxgi__region_along(dm, lab, c, n) : VOXGI__REGION_MIXED;
+    }
+}
+
+/* Whether voxel c has an empty neighbour (of six) in region r. */
+static int voxgi__region_beside(const int *dm, const uint32_t *lab, const int c[3], uint32_t r)
+{
+    int q, v[3];
+    for (q = 0; q < 6; q++) {
+        memcpy(v, c, sizeof v);
+        v[q >> 1] += q & 1 ? 1 : -1;
+        if (v[q >> 1] >= 0 && v[q >> 1] < dm[q >> 1] && lab[(size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])] == r) return 1;
+    }
+    return 0;
 }
 
 static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
@@ -8078,16 +8142,31 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
             }
     voxgi__free(ctx, parent);
     parent = NULL;
-    for (k = 0; k < 2; k++) /* 0: a region is lit where a surface beside it sends light its way (by the side facing it);
-                               1: a surface's voxel beside one lit region alone takes that region, marked */
+    for (k = 0; k < 2; k++) /* 0: the regions the surfaces light; 1: a surface's voxel whose light goes into one lit region takes it, marked
+                               (voxgi__regions_of_sides; where that is unknown, one lit region beside it alone) */
         for (z = 0, i = 0; z < dm[2]; z++)
             for (y = 0; y < dm[1]; y++)
                 for (x = 0; x < dm[0]; x++, i++) {
                     int c[3];
-                    uint32_t only = 0;
+                    uint32_t sides[2], only = 0;
                     if (lab[i] || !(radiance0[4 * i + 3] > 0)) continue;
                     c[0] = x; c[1] = y; c[2] = z;
-                    for (q = 0; q < 6; q++) {
+                    voxgi__regions_of_sides(dm, lab, c, side0 + 4 * i, sides);
+                    if (sides[0] != VOXGI__REGION_MIXED && sides[1] != VOXGI__REGION_MIXED) { /* where each side's light goes is known */
+                        uint32_t into = 0;
+                        for (q = 0; q < 2; q++) {
+                            const float *l = (q ? back0 : radiance0) + 4 * i;
+                            if (k == 0 && sides[q] && (l[0] > 0 || l[1] > 0 || l[2] > 0) && voxgi__region_beside(dm, lab, c, sides[q])) lit[sides[q]] = 1;
+                            if (k == 1 && sides[q] && lit[sides[q]]) into = !into || into == sides[q] ? sides[q] : VOXGI__REGION_MIXED;
+                        }
+                        if (k == 0) continue;
+                        if (into) {
+                            if (into != VOXGI__REGION_MIXED)
+                                lab[i] = VOXGI__REGION_BORDER | into | (voxgi__region_beside(dm, lab, c, into) ? 0u : VOXGI__REGION_UNSEEN);
+                            continue;
+                        }
+                    }
+                    for (q = 0; q < 6; q++) { /* else: the regions beside it (a corner's ground, below a wall) */
                         int ax = q >> 1, up = q & 1;
                         size_t j = ax == 0 ? 1 : (ax == 1 ? nx : nxy);
                         float facing = up ? side0[4 * i + (size_t)ax] : -side0[4 * i + (size_t)ax];
@@ -8095,7 +8174,7 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
                         if (up ? c[ax] + 1 == dm[ax] : c[ax] == 0) continue;
                         j = up ? i + j : i - j;
                         if (!lab[j] || (lab[j] & VOXGI__REGION_BORDER)) continue;
-                        if (k == 0 && !lit[lab[j]] && facing != 0) /* a neighbour along the surface is on neither side */
+                        if (k == 0 && !lit[lab[j]] && facing != 0) /* by the side facing it; a neighbour along the surface is on neither */
                             lit[lab[j]] = rad[4 * i] > 0 || rad[4 * i + 1] > 0 || rad[4 * i + 2] > 0;
                         if (k == 1 && lit[lab[j]] && lab[j] != only) only = only ? VOXGI__REGION_MIXED : lab[j];
                     }
@@ -8115,7 +8194,7 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
                         uint32_t w;
                         if (cx >= pd[0] || cy >= pd[1] || cz >= pd[2]) continue;
                         w = src[(size_t)cx + (size_t)pd[0] * ((size_t)cy + (size_t)pd[1] * (size_t)cz)];
-                        if (k == 1 && (w & VOXGI__REGION_BORDER ? 1 : !lit[w])) w = 0; /* nothing to leak from a dark region */
+                        if (k == 1) w = w & VOXGI__REGION_BORDER ? VOXGI__REGION_OF(w) : w; /* a surface's light is its region's */
                         if (!w || w == v) continue;
                         v = !v || voxgi__region_inside(box, w, v) ? w : (voxgi__region_inside(box, v, w) ? v : VOXGI__REGION_MIXED);
                     }
@@ -8124,9 +8203,9 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
     }
     vol->regions = lab;
     vol->region_boxes = box;
-    vol->region_lit = lit;
+    voxgi__free(ctx, lit);
     vol->region_count = kept;
-    vol->info.bytes += (vol->voxels + 6 * kept) * 4 + kept;
+    vol->info.bytes += (vol->voxels + 6 * kept) * 4;
     return VOXGI_OK;
 no_memory:
     voxgi__free(ctx, lab);
@@ -8257,7 +8336,7 @@ static voxgi_result voxgi__volume_build_gl(voxgi_context *ctx, voxgi_volume *vol
 static voxgi_result voxgi__volume_build(voxgi_context *ctx, voxgi_volume *vol, const float *const base[VOXGI__VOLUME_SLOTS])
 {
     voxgi_result r = VOXGI_OK;
-    if (vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_SIDE) r = voxgi__volume_regions(ctx, vol, base);
+    if ((vol->info.attributes & VOXGI_ATTRIBUTE_RADIANCE_SIDE) && !vol->regions_given) r = voxgi__volume_regions(ctx, vol, base);
     if (r != VOXGI_OK) return r;
 #ifndef VOXGI_NO_GL
     if (ctx->backend == VOXGI_BACKEND_GL) return voxgi__volume_build_gl(ctx, vol, base);
@@ -8329,7 +8408,6 @@ VOXGI_API void voxgi_volume_destroy(voxgi_context *ctx, voxgi_volume *vol)
         }
     voxgi__free(ctx, vol->regions);
     voxgi__free(ctx, vol->region_boxes);
-    voxgi__free(ctx, vol->region_lit);
 #ifndef VOXGI_NO_GL
     if (vol->region_buffer && ctx->gl) voxgi__gl_delete_buffer(ctx, vol->region_buffer);
 #endif
@@ -9188,13 +9266,11 @@ done:
 /* 5. Regions (a two-sided radiance volume with enclosed regions, voxgi__volume_regions): every
    slot's label as the volume's level holds it, so that cones keep to their region alike. A leaf
    slot holds level 0's label; a node the outermost of its children's (the same rule); an empty
-   slot, which stands for every level below it, the region of its cube's voxels, marked DARK where
-   no surface lights it (above level 0 such a region counts as none). The bounds follow. */
-#define VOXGI__REGION_DARK 0x40000000u
+   slot, which stands for every level below it, the region of its cube's voxels. The bounds
+   follow. */
 typedef struct voxgi__svo_region_walk {
     const voxgi_svo *svo;
     const uint32_t *child, *level0, *box; /* the child pointers, the volume's level-0 labels and bounds */
-    const unsigned char *lit;
     uint32_t *out;
 } voxgi__svo_region_walk;
 
@@ -9211,8 +9287,7 @@ static uint32_t voxgi__svo_region_slot(const voxgi__svo_region_walk *W, int lev,
                          ? W->level0[(size_t)(c[0] << k) + (size_t)res[0] * ((size_t)(c[1] << k) + (size_t)res[1] * (size_t)(c[2] << k))]
                          : 0;
         if (lev == depth) return W->out[svo->info.nodes + slot] = r;
-        W->out[slot] = r && !W->lit[r] ? r | VOXGI__REGION_DARK : r;
-        return r && W->lit[r] ? r : 0;
+        return W->out[slot] = r;
     }
     ptr = W->child[slot];
     for (d = 0; d < 8; d++) {
@@ -9220,7 +9295,7 @@ static uint32_t voxgi__svo_region_slot(const voxgi__svo_region_walk *W, int lev,
         uint32_t w;
         cc[0] = 2 * c[0] + (d & 1); cc[1] = 2 * c[1] + (d >> 1 & 1); cc[2] = 2 * c[2] + (d >> 2);
         w = voxgi__svo_region_slot(W, lev + 1, (lev + 1 == depth ? 0u : 1u) + 8 * (uint64_t)(ptr - 1) + (uint64_t)d, cc);
-        if (k == 1 && (w & VOXGI__REGION_BORDER ? 1 : !W->lit[w])) w = 0; /* as voxgi__volume_regions */
+        if (k == 1) w = w & VOXGI__REGION_BORDER ? VOXGI__REGION_OF(w) : w; /* as voxgi__volume_regions */
         if (!w || w == v) continue;
         v = !v || voxgi__region_inside(W->box, w, v) ? w : (voxgi__region_inside(W->box, v, w) ? v : VOXGI__REGION_MIXED);
     }
@@ -9241,7 +9316,6 @@ static voxgi_result voxgi__svo_regions(voxgi_context *ctx, voxgi_svo *svo, const
     W.child = svo->child;
     W.level0 = vol->regions;
     W.box = vol->region_boxes;
-    W.lit = vol->region_lit;
     W.out = svo->regions;
 #ifndef VOXGI_NO_GL
     if (!vol->regions) { /* a GL volume's and octree's: read back for the walk */
@@ -9784,11 +9858,9 @@ static uint32_t voxgi__svo_region(const voxgi_svo *svo, int k, const int v[3])
 {
     int depth = svo->info.depth, level = depth - k;
     uint64_t slot;
-    uint32_t label;
     if (voxgi__svo_descend(svo, level, v, &slot) == level && (level == depth || svo->child[slot])) /* a voxel's label, or a node's */
         return svo->regions[(level == depth ? svo->info.nodes : 0u) + slot];
-    label = svo->regions[slot]; /* v lies in the empty cube of slot */
-    return k == 0 ? label & ~VOXGI__REGION_DARK : (label & VOXGI__REGION_DARK ? 0 : label);
+    return svo->regions[slot]; /* v lies in the empty cube of slot */
 }
 #endif
 
@@ -9837,7 +9909,8 @@ static void voxgi__cone_sample(const voxgi__cone_job *J, const voxgi__cone_axes 
         if (home && k0 + lev == 0)
             for (ch = 0; ch < 8; ch++) { /* a surface's voxel lit from another region only is not seen from this one */
                 uint32_t r = at[ch] >= 0 ? voxgi__region_label(J, 0, v[ch]) : 0;
-                if ((r & VOXGI__REGION_BORDER) && (r &= ~VOXGI__REGION_BORDER) != home && !voxgi__region_inside(J->boxes, home, r)) at[ch] = -1;
+                if ((r & VOXGI__REGION_BORDER) && ((r & VOXGI__REGION_UNSEEN) || ((r = VOXGI__REGION_OF(r)) != home && !voxgi__region_inside(J->boxes, home, r))))
+                    at[ch] = -1;
             }
         if (J->two_sided) {
             voxgi__cone_level(J, VOXGI__SIDE_SLOT, X, k0 + lev, at, wt, b);
@@ -10437,6 +10510,7 @@ typedef struct voxgi__inject {
     float *const *vals;           /* attribute means, bit order */
     float *rgba;                  /* level 0 of the radiance volume */
     float *back, *side;           /* level 0 of RADIANCE_BACK and RADIANCE_SIDE, or NULL (one-sided) */
+    unsigned char *own_plane;     /* set voxel i: its normal is its nearest surface's (voxgi__inject_planes), or NULL */
     size_t rays;
 } voxgi__inject;
 
@@ -10455,6 +10529,51 @@ static int voxgi__inject_point(const voxgi__inject *J, size_t i, double p[3], do
     len = sqrt(len);
     for (a = 0; a < 3; a++) { nl[a] = len > 0 ? nl[a] / len : 0; p[a] = c[a] + off * nl[a]; }
     return len > 0;
+}
+
+/* Two-sided voxels whose surfaces face apart (a box's bottom resting on a floor, a plate thinner
+   than a voxel: their mean normal is cancelled) take the normal of the surface nearest the centre
+   instead, its largest component positive (upwards for a floor): the lookup points then lie on
+   either side of the surfaces, where the cancelled mean lit neither (the light through a hole in
+   a resting box's top reached its inner floor as black). The surfaces are found by rays along
+   the axes within half a voxel diagonal, and only where all they meet are parallel (at a wall's
+   foot the mean stays). Such a voxel stores no side plane (voxgi__inject_store): a plane of its
+   own, mixed by the cones' trilinear samples with a neighbouring wall foot's, turned cones from
+   inside a closed box to that foot's outer, lit side. It shows its positive side's light both
+   ways. */
+static void voxgi__inject_planes(voxgi__inject *J, size_t n)
+{
+    const double reach = 0.8660254037844386 * J->g->voxel_size;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        float *m = J->vals[1] + 3 * i;
+        double c[3], len = sqrt((double)m[0] * m[0] + (double)m[1] * m[1] + (double)m[2] * m[2]), best = reach, d[3];
+        const double *pick = NULL, *hits[6];
+        int found = 0, parallel = 1;
+        uint64_t l = J->index[i];
+        int q, a;
+        if (len >= 0.1) continue; /* a corner's or an edge's mean (1/3 or more) is a plane between its surfaces */
+        c[0] = J->g->origin[0] + ((double)(l % (uint64_t)J->g->res[0]) + 0.5) * J->g->voxel_size;
+        c[1] = J->g->origin[1] + ((double)(l / (uint64_t)J->g->res[0] % (uint64_t)J->g->res[1]) + 0.5) * J->g->voxel_size;
+        c[2] = J->g->origin[2] + ((double)(l / ((uint64_t)J->g->res[0] * (uint64_t)J->g->res[1])) + 0.5) * J->g->voxel_size;
+        for (q = 0; q < 6; q++) {
+            voxgi__hit hit;
+            for (a = 0; a < 3; a++) d[a] = a == q >> 1 ? (q & 1 ? 1.0 : -1.0) : 0.0;
+            if (!voxgi__trace(J->lights->tr, c, d, reach, UINT32_MAX, 0, &hit) || !(hit.t < reach)) continue;
+            hits[found++] = J->lights->tr->n + 3 * (size_t)hit.prim;
+            if (hit.t < best) {
+                best = hit.t;
+                pick = hits[found - 1];
+            }
+        }
+        for (q = 0; q < found; q++) parallel = parallel && fabs(hits[q][0] * pick[0] + hits[q][1] * pick[1] + hits[q][2] * pick[2]) > 0.999;
+        if (!pick || !parallel) continue;
+        for (q = 0, a = 1; a < 3; a++)
+            if (fabs(pick[a]) > fabs(pick[q])) q = a;
+        q = pick[q] < 0 ? -1 : 1;
+        for (a = 0; a < 3; a++) m[a] = (float)(q * pick[a]);
+        J->own_plane[i] = 1;
+    }
 }
 
 /* Where the surface of a voxel (centre c, unit mean normal nl, world units) crosses the line
@@ -10503,23 +10622,24 @@ static void voxgi__inject_store(const voxgi__inject *J, size_t i, const double e
     uint64_t l = J->index[i];
     float *o = J->rgba + 4 * l, *b, *sd;
     double p[3], nl[3], c[3];
-    int a, has_normal;
+    int a, has_normal, plane;
     o[3] = J->vals[3] ? J->vals[3][i] : 1.0f;
     for (a = 0; a < 3; a++)
         o[a] = o[3] * (float)(J->vals[0][3 * i + (size_t)a] / VOXGI__PI * e[a] + (J->vals[2] ? J->vals[2][3 * i + (size_t)a] : 0.0f));
     if (!J->back) return;
     has_normal = voxgi__inject_point(J, i, p, nl);
+    plane = has_normal && !(J->own_plane && J->own_plane[i]); /* a voxel of surfaces facing apart has none (voxgi__inject_planes) */
     b = J->back + 4 * l;
     sd = J->side + 4 * l;
     for (a = 0; a < 3; a++) c[a] = p[a] - 0.8660254037844386 * g->voxel_size * nl[a]; /* the centre, world units */
     b[3] = o[3];
     for (a = 0; a < 3; a++) {
         b[a] = has_normal ? o[3] * (float)(J->vals[0][3 * i + (size_t)a] / VOXGI__PI * e_back[a]) : o[a];
-        sd[a] = o[3] * (float)nl[a];
+        sd[a] = plane ? o[3] * (float)nl[a] : 0.0f;
     }
-    sd[3] = has_normal ? o[3] * (float)(nl[0] * (c[0] - g->origin[0]) / g->voxel_size + nl[1] * (c[1] - g->origin[1]) / g->voxel_size +
-                                        nl[2] * (c[2] - g->origin[2]) / g->voxel_size + (isnan(surface) ? voxgi__surface_offset(J, c, nl) : surface))
-                       : 0.0f;
+    sd[3] = plane ? o[3] * (float)(nl[0] * (c[0] - g->origin[0]) / g->voxel_size + nl[1] * (c[1] - g->origin[1]) / g->voxel_size +
+                                   nl[2] * (c[2] - g->origin[2]) / g->voxel_size + (isnan(surface) ? voxgi__surface_offset(J, c, nl) : surface))
+                  : 0.0f;
 }
 
 /* The irradiance at p on unit normal nl from the lights, `samples` points on area lights and
@@ -10760,11 +10880,14 @@ static voxgi_result voxgi__inject_gl(voxgi_context *ctx, const voxgi__tracer *tr
    of `block`^3 voxels whose normals share their dominant axis and its sign (a wall's voxels in a
    block, apart from a floor's meeting it there). A group gathers once, at its members' mean
    centre on their mean normal; indirect light varies slowly over a block, and a block of a
-   plane holds about block^2 voxels, so the bounces cost that much less. group[i]: voxel i's
-   group, or SIZE_MAX without a normal. sides 2: the *count groups are followed by the same
-   points on the reverse normals (the back sides' gathers). */
-static voxgi_result voxgi__bounce_groups(voxgi_context *ctx, const voxgi__inject *J, size_t n, int block, int sides, size_t *group,
-                                         float **pos_out, float **nrm_out, size_t *count)
+   plane holds about block^2 voxels, so the bounces cost that much less. With the regions of
+   empty space (labels: level 0's, or NULL), a group holds one region's voxels, by the region
+   their normal points into (voxgi__region_along): a floor running under a wall between two
+   closed rooms is two groups, each gathering in its own room. group[i]: voxel i's group, or
+   SIZE_MAX without a normal. sides 2: the *count groups are followed by the same points on the
+   reverse normals (the back sides' gathers). */
+static voxgi_result voxgi__bounce_groups(voxgi_context *ctx, const voxgi__inject *J, size_t n, int block, int sides, const uint32_t *labels,
+                                         size_t region_count, size_t *group, float **pos_out, float **nrm_out, size_t *count)
 {
     const double off = 0.8660254037844386 * J->g->voxel_size;
     uint64_t *code = (uint64_t *)voxgi__alloc_array(ctx, n ? n : 1, 8, 0);
@@ -10772,7 +10895,11 @@ static voxgi_result voxgi__bounce_groups(voxgi_context *ctx, const voxgi__inject
     float *pos = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12 * (size_t)sides, 0), *nrm = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12 * (size_t)sides, 0);
     size_t i, lit = 0, ng = 0, k;
     voxgi_result r = VOXGI_OK;
-    int a;
+    int a, bits = 0, shift, dm[3];
+    for (a = 0; a < 3; a++) dm[a] = J->g->res[a];
+    while ((1 << bits) < VOXGI__MAX(dm[0], VOXGI__MAX(dm[1], dm[2]))) bits++;
+    shift = 3 + 3 * bits; /* the region goes above the block's Morton code and its class */
+    if (shift + 1 + (int)floor(log2((double)region_count + 1)) > 64) labels = NULL; /* no room for it: blocks alone */
     if ((uint64_t)n > UINT32_MAX) r = voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "%lu voxels: the bounces sort at most 2^32 of them", (unsigned long)n);
     else if (!code || !order || !pos || !nrm) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
     for (i = 0; r == VOXGI_OK && i < n; i++) {
@@ -10781,12 +10908,15 @@ static voxgi_result voxgi__bounce_groups(voxgi_context *ctx, const voxgi__inject
         uint32_t x = (uint32_t)(l % (uint64_t)g->res[0]), y = (uint32_t)(l / (uint64_t)g->res[0] % (uint64_t)g->res[1]),
                  z = (uint32_t)(l / ((uint64_t)g->res[0] * (uint64_t)g->res[1]));
         double p[3], nl[3];
-        int axis = 0;
+        int axis = 0, c[3];
+        uint64_t region = 0;
         group[i] = SIZE_MAX;
         if (!voxgi__inject_point(J, i, p, nl)) continue;
+        c[0] = (int)x; c[1] = (int)y; c[2] = (int)z;
+        if (labels && (region = voxgi__region_along(dm, labels, c, nl)) == VOXGI__REGION_MIXED) region = 0;
         for (a = 1; a < 3; a++)
             if (fabs(nl[a]) > fabs(nl[axis])) axis = a;
-        code[lit] = voxgi__morton(x / (uint32_t)block, y / (uint32_t)block, z / (uint32_t)block) << 3 | (uint64_t)(2 * axis + (nl[axis] < 0));
+        code[lit] = region << shift | voxgi__morton(x / (uint32_t)block, y / (uint32_t)block, z / (uint32_t)block) << 3 | (uint64_t)(2 * axis + (nl[axis] < 0));
         order[lit++] = (uint32_t)i;
     }
     if (r == VOXGI_OK) r = voxgi__sort_codes(ctx, code, order, lit, 64);
@@ -10819,6 +10949,22 @@ static voxgi_result voxgi__bounce_groups(voxgi_context *ctx, const voxgi__inject
     return r;
 }
 
+/* The regions of volume `from` moved to `to` (of the same grid): a bounce's volume keeps the
+   regions of the direct light's, since a closed region's light is what its own surfaces receive
+   directly; labels taken from the bounces would follow their leaks. */
+static void voxgi__volume_take_regions(voxgi_volume *to, voxgi_volume *from)
+{
+    to->regions = from->regions;
+    to->region_boxes = from->region_boxes;
+    to->region_count = from->region_count;
+    to->region_buffer = from->region_buffer;
+    to->regions_given = 1;
+    if (to->region_count) to->info.bytes += (to->voxels + 6 * to->region_count) * 4;
+    from->regions = from->region_boxes = NULL;
+    from->region_count = 0;
+    from->region_buffer = 0;
+}
+
 /* The light's further bounces among the voxels (desc->bounces > 1, or -1: until one adds less
    than VOXGI_CONVERGED_BOUNCE of the light): each group of voxels (voxgi__bounce_groups) gathers
    from *vol, on its normal for the front and on the reverse for the back, its voxels' radiance
@@ -10831,9 +10977,20 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
     double share = 1, last_added = 0;
     float *pos = NULL, *nrm = NULL, *irr = NULL, *step = NULL, *direct = (float *)voxgi__alloc_array(ctx, n ? n : 1, 12 * (size_t)sides, 0);
     const float *slots[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    const uint32_t *labels = (*vol)->regions;
+    uint32_t *read = NULL;
     voxgi_result r = VOXGI_OK;
     if (!group || !direct) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
-    if (r == VOXGI_OK) r = voxgi__bounce_groups(ctx, J, n, desc->gather_block, sides, group, &pos, &nrm, &ng);
+    if (r == VOXGI_OK && (*vol)->region_count && !labels) { /* GL keeps the labels in its buffer: level 0's read back */
+#ifndef VOXGI_NO_GL
+        size_t level0 = (size_t)voxgi_grid_voxel_count(g);
+        if (!(read = (uint32_t *)voxgi__alloc_array(ctx, level0, 4, 0))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the regions' labels");
+        else ctx->gl->GetNamedBufferSubData((*vol)->region_buffer, 0, (ptrdiff_t)(level0 * 4), read);
+        labels = read;
+#endif
+    }
+    if (r == VOXGI_OK) r = voxgi__bounce_groups(ctx, J, n, desc->gather_block, sides, labels, (*vol)->region_count, group, &pos, &nrm, &ng);
+    voxgi__free(ctx, read);
     if (r == VOXGI_OK && !(irr = (float *)voxgi__alloc_array(ctx, ng ? ng : 1, 12 * (size_t)sides, 0)))
         r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the bounces of %lu voxels", (unsigned long)n);
     for (i = 0; r == VOXGI_OK && i < n; i++)
@@ -10892,6 +11049,7 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
         slots[VOXGI__BACK_SLOT] = J->back;
         slots[VOXGI__SIDE_SLOT] = J->side;
         if (r == VOXGI_OK) r = voxgi__volume_new(ctx, g, &desc->volume, (*vol)->info.attributes, &next);
+        if (r == VOXGI_OK) voxgi__volume_take_regions(next, *vol);
         if (r == VOXGI_OK) r = voxgi__volume_build(ctx, next, slots);
         if (r == VOXGI_OK) { voxgi_volume_destroy(ctx, *vol); *vol = next; }
         else voxgi_volume_destroy(ctx, next);
@@ -10992,6 +11150,9 @@ static voxgi_result voxgi__inject_light(voxgi_context *ctx, const voxgi_scene *s
         J.back = level0[1];
         J.side = level0[2];
         J.rays = 0;
+        if (sides == 2 && !(J.own_plane = (unsigned char *)voxgi__alloc_array(ctx, n ? n : 1, 1, 1)))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the planes of %lu voxels", (unsigned long)n);
+        if (sides == 2 && r == VOXGI_OK) voxgi__inject_planes(&J, n);
 #ifndef VOXGI_NO_GL
         if (ctx->backend == VOXGI_BACKEND_GL && !desc->shadow_rays) { /* lookup points up (the backs' after the fronts'),
                                                                          irradiance down, the rest as on the CPU */
@@ -11025,6 +11186,7 @@ static voxgi_result voxgi__inject_light(voxgi_context *ctx, const voxgi_scene *s
         if (r == VOXGI_OK) r = voxgi__volume_build(ctx, vol, slots);
         if (r == VOXGI_OK && (desc->bounces > 1 || desc->bounces < 0)) r = voxgi__inject_bounces(ctx, &J, n, desc, &vol);
         if (r == VOXGI_OK) vol->info.ms = voxgi__now_ms() - t0;
+        voxgi__free(ctx, J.own_plane);
     }
     if (r != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); vol = NULL; }
     for (a = 0; a < 4; a++) voxgi__free(ctx, vals[a]);
@@ -15295,7 +15457,8 @@ static voxgi_result voxgi__vct_defaults(voxgi_context *ctx, const voxgi_render_d
     size_t f = voxgi__plan_vct_pick(d->error);
     voxgi_render_vct *v = &d->vct;
     *v = in->vct;
-    if (d->bounces > 1 && !v->bounce_block) v->bounce_block = 4;
+    if ((d->bounces > 1 || d->bounces < 0) && !v->bounce_block) v->bounce_block = 4; /* voxgi__inject_defaults' */
+    if ((d->bounces > 1 || d->bounces < 0) && !v->bounce_cones.cones) v->bounce_cones.cones = 4;
     if ((unsigned)v->radiance > VOXGI_VCT_OCTREE || (unsigned)v->octree_format > VOXGI_SVO_FLOAT16 || v->cone_stride < 0 || v->cone_stride > 64 ||
         v->inject_samples < 0 || v->bounce_block < 0 || v->cones.cones < 0)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "vct: radiance %d, octree_format %d, cone_stride %d (0..64), inject_samples %d, bounce_block %d, cones %d",
@@ -15338,7 +15501,7 @@ static void voxgi__vct_plan(voxgi__plan_job *J)
 #endif
     octree = d->vct.radiance == VOXGI_VCT_OCTREE;
     if (!octree) d->vct.octree_format = VOXGI_SVO_FLOAT32, d->vct.octree_bricks = 0;
-    if (d->bounces <= 1) memset(&d->vct.bounce_cones, 0, sizeof d->vct.bounce_cones), d->vct.bounce_block = 0;
+    if (d->bounces >= 0 && d->bounces <= 1) memset(&d->vct.bounce_cones, 0, sizeof d->vct.bounce_cones), d->vct.bounce_block = 0;
     voxgi__plan_add(P, VOXGI_PLAN_ALBEDO, gi, gi ? "what the voxels reflect" : no_gi, P->voxels * 28, 1);
     voxgi__plan_add(P, VOXGI_PLAN_NORMAL, gi, gi ? "the voxels' light and mips face it" : no_gi, P->voxels * 24 + grid_bytes, 1);
     voxgi__plan_add(P, VOXGI_PLAN_EMISSION, all, all ? "everything asked for" : P->emissive_triangles ? "emitters light the voxels as area lights and the pixels directly" : "no emissive material",
@@ -15812,7 +15975,8 @@ static void voxgi__tsm_plan(voxgi__plan_job *J)
     uint64_t texels = (uint64_t)size * (uint64_t)size; /* 64 slices: 2 words a texel per absorption */
     voxgi__plan_add(P, VOXGI_PLAN_SHADOW_MAPS, maps > 0, maps ? "the directional and spot lights' opaque depth" : "no directional or spot light", (uint64_t)maps * texels * 4u, 0);
     voxgi__plan_add(P, VOXGI_PLAN_TRANSMITTANCE_LAYERS, J->all || layers > 0,
-                    !maps ? "no directional or spot light" : layers ? "light through translucent surfaces, a slicemap per absorption" : "no translucent material",
+                    layers ? "light through translucent surfaces, a slicemap per absorption" : J->all ? "everything asked for" /* kept without a map or an absorption */
+                    : !maps ? "no directional or spot light" : "no translucent material",
                     (uint64_t)maps * (uint64_t)layers * texels * 2u * 4u, 0);
     voxgi__plan_add(P, VOXGI_PLAN_DIRECT_LIGHT, J->lit, J->lit ? "shadow rays to the other lights and emitters" : "no light and no emitter", 0, 0);
 }

@@ -63,7 +63,7 @@ float back_share(vec4 side, vec3 o)
     return clamp(0.5 - 4096.0 * (dot(side.xyz, o) - side.w) / len, 0.0, 1.0);
 }
 
-const uint REGION_OPEN = 1u, REGION_MIXED = 0xFFFFFFFFu, REGION_BORDER = 0x80000000u, REGION_DARK = 0x40000000u;
+const uint REGION_OPEN = 1u, REGION_MIXED = 0xFFFFFFFFu, REGION_BORDER = 0x80000000u, REGION_UNSEEN = 0x20000000u;
 
 // Where level k's labels start, and its size.
 uint region_level(int k, out ivec3 dk)
@@ -96,16 +96,13 @@ uint region_label(int k, ivec3 v)
 #ifdef VOXGI_CONE_SVO // voxgi__svo_region
     int level = u_svo_depth - k;
     uint node = 0u;
-    bool empty = false;
     for (int m = 1; m <= level; m++) {
         uint ptr = svo_child[node];
-        if (ptr == 0u) { empty = true; break; } // in the empty cube of node
+        if (ptr == 0u) break; // in the empty cube of node
         ivec3 b = (v >> (level - m)) & 1;
         node = (m == u_svo_depth ? u_svo_nodes : 1u) + 8u * (ptr - 1u) + uint(b.x | (b.y << 1) | (b.z << 2));
     }
-    uint label = regions[node];
-    if (!empty && (level == u_svo_depth || svo_child[node] != 0u)) return label;
-    return k == 0 ? label & ~REGION_DARK : ((label & REGION_DARK) != 0u ? 0u : label);
+    return regions[node]; // a voxel's label, a node's, or that of the empty cube holding v
 #else
     return regions[first + uint(v.x) + uint(dk.x) * (uint(v.y) + uint(dk.y) * uint(v.z))];
 #endif
@@ -222,7 +219,8 @@ bool region_clear(int k, vec3 p, uint home)
 bool region_left_out(ivec3 v, uint home)
 {
     uint r = region_of(v);
-    return (r & REGION_BORDER) != 0u && (r & ~REGION_BORDER) != home && !region_inside(home, r & ~REGION_BORDER);
+    uint of = r & ~(REGION_BORDER | REGION_UNSEEN);
+    return (r & REGION_BORDER) != 0u && ((r & REGION_UNSEEN) != 0u || (of != home && !region_inside(home, of)));
 }
 
 #ifdef VOXGI_CONE_SVO

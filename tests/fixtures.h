@@ -492,4 +492,173 @@ static inline void cubic(voxgi_grid *g, double lo, double size, int n)
     g->res[0] = g->res[1] = g->res[2] = n;
 }
 
+/* ---------------------------------------------------------------- held-out closed spaces */
+/* Scenes the cone tracer's leak defences were not built on, made here: HELD_ROOMS, two closed
+   rooms of one building (floor, ceiling and the long walls run through both) split by one wall of
+   no thickness, a rectangular lamp under the ceiling of the first, the camera in the second;
+   HELD_BOX, a closed box of zero-thickness faces standing on a lit room's floor (its bottom face
+   on the floor), the camera inside; HELD_RESTING, that box with its bottom 1 mm above the floor
+   and a 4 cm square hole in the middle of its top, the lamp over it, the camera inside looking at
+   a wall (lit by what the hole lets onto the box's floor, whose voxels also hold the room's
+   floor). Each turned by `turn` degrees about the vertical (their walls then cross the voxels).
+   The second view sees the lit space. */
+enum { HELD_ROOMS, HELD_BOX, HELD_RESTING };
+typedef struct held_scene {
+    float pos[3 * 4 * 16];
+    uint32_t idx[6 * 16];
+    int quads;
+    voxgi_mesh mesh;
+    voxgi_material mat;
+    voxgi_light lamp;
+    voxgi_scene scene;
+    voxgi_camera dark, lit;
+} held_scene;
+
+/* A quad a b c d (counter-clockwise from its front) turned by (c, s) about the vertical. */
+static inline void held_quad(held_scene *h, const float q[12], double c, double s)
+{
+    int k;
+    for (k = 0; k < 4; k++) {
+        float *v = h->pos + 3 * (4 * h->quads + k);
+        v[0] = (float)(c * q[3 * k] - s * q[3 * k + 2]);
+        v[1] = q[3 * k + 1];
+        v[2] = (float)(s * q[3 * k] + c * q[3 * k + 2]);
+    }
+    for (k = 0; k < 6; k++) h->idx[6 * h->quads + k] = (uint32_t)(4 * h->quads) + (uint32_t)"\0\1\2\0\2\3"[k];
+    h->quads++;
+}
+
+/* An axis box's six faces, inward (in) or outward; with `top` 0 all but its top. */
+static inline void held_box(held_scene *h, const float lo[3], const float hi[3], int in, int top, double c, double s)
+{
+    const float x0 = lo[0], y0 = lo[1], z0 = lo[2], x1 = hi[0], y1 = hi[1], z1 = hi[2];
+    const float f[6][12] = {{x0, y0, z0, x1, y0, z0, x1, y0, z1, x0, y0, z1}, {x0, y1, z0, x0, y1, z1, x1, y1, z1, x1, y1, z0},
+                            {x0, y0, z0, x0, y1, z0, x1, y1, z0, x1, y0, z0}, {x0, y0, z1, x1, y0, z1, x1, y1, z1, x0, y1, z1},
+                            {x0, y0, z0, x0, y0, z1, x0, y1, z1, x0, y1, z0}, {x1, y0, z0, x1, y1, z0, x1, y1, z1, x1, y0, z1}};
+    int k, v;
+    for (k = 0; k < 6; k++) {
+        float q[12];
+        if (k == 1 && !top) continue;
+        for (v = 0; v < 4; v++) memcpy(q + 3 * v, f[k] + 3 * (in ? (4 - v) % 4 : v), 12); /* the table faces out; inward: reversed */
+        held_quad(h, q, c, s);
+    }
+}
+
+static inline void held_camera(voxgi_camera *cam, double ex, double ey, double ez, double tx, double ty, double tz, double c, double s)
+{
+    memset(cam, 0, sizeof *cam);
+    cam->eye[0] = c * ex - s * ez; cam->eye[1] = ey; cam->eye[2] = s * ex + c * ez;
+    cam->target[0] = c * tx - s * tz; cam->target[1] = ty; cam->target[2] = s * tx + c * tz;
+    cam->fovy_degrees = 90;
+}
+
+static inline void held_scene_make(held_scene *h, int kind, double turn)
+{
+    const double c = cos(turn * 3.141592653589793 / 180), s = sin(turn * 3.141592653589793 / 180);
+    memset(h, 0, sizeof *h);
+    h->mat.albedo[0] = h->mat.albedo[1] = h->mat.albedo[2] = 0.7f;
+    h->lamp.type = VOXGI_LIGHT_RECT;
+    h->lamp.intensity[0] = h->lamp.intensity[1] = h->lamp.intensity[2] = 10;
+    if (kind == HELD_ROOMS) {
+        const float lo[3] = {-2, 0, -1}, hi[3] = {2, 2, 1}, wall[12] = {0, 0, -1, 0, 0, 1, 0, 2, 1, 0, 2, -1};
+        held_box(h, lo, hi, 1, 1, c, s);
+        held_quad(h, wall, c, s);
+        h->lamp.position[0] = -1.2f; h->lamp.position[1] = 1.9f; h->lamp.position[2] = -0.2f;
+        held_camera(&h->dark, 1.8, 1.2, 0.7, 0, 0.6, -0.3, c, s);
+        held_camera(&h->lit, -1.8, 1.2, 0.7, 0, 0.6, -0.3, c, s);
+    } else {
+        const float lo[3] = {-2.1f, 0, -1.7f}, hi[3] = {1.9f, 2.6f, 2.2f}, blo[3] = {0.37f, kind == HELD_RESTING ? 0.001f : 0, -0.61f},
+                    bhi[3] = {1.13f, 0.57f, 0.23f};
+        held_box(h, lo, hi, 1, 1, c, s);
+        held_box(h, blo, bhi, 0, kind == HELD_BOX, c, s);
+        h->lamp.position[0] = 0.3f; h->lamp.position[1] = 2.5f; h->lamp.position[2] = -0.5f;
+        held_camera(&h->dark, 0.5, 0.45, 0.1, 0.9, 0.1, -0.5, c, s);
+        held_camera(&h->lit, -1.5, 1.8, 1.8, 0.5, 0.3, -0.2, c, s);
+        if (kind == HELD_RESTING) { /* the top around its hole (x 0.73-0.77, z -0.21 to -0.17): four quads */
+            const float y = bhi[1], top[4][12] = {{0.37f, y, -0.61f, 0.37f, y, 0.23f, 0.73f, y, 0.23f, 0.73f, y, -0.61f},
+                                                  {0.77f, y, -0.61f, 0.77f, y, 0.23f, 1.13f, y, 0.23f, 1.13f, y, -0.61f},
+                                                  {0.73f, y, -0.61f, 0.73f, y, -0.21f, 0.77f, y, -0.21f, 0.77f, y, -0.61f},
+                                                  {0.73f, y, -0.17f, 0.73f, y, 0.23f, 0.77f, y, 0.23f, 0.77f, y, -0.17f}};
+            int k;
+            for (k = 0; k < 4; k++) held_quad(h, top[k], c, s);
+            h->lamp.position[0] = 0.5f; h->lamp.position[2] = -0.44f;
+            held_camera(&h->dark, 0.75, 0.08, -0.19, 1.13, 0.45, -0.19, c, s);
+        }
+    }
+    { /* the lamp, a 0.5 x 0.5 (rooms: 0.4) square facing down, turned with the rest */
+        float e = kind == HELD_ROOMS ? 0.4f : 0.5f, p0 = h->lamp.position[0], p2 = h->lamp.position[2];
+        h->lamp.position[0] = (float)(c * p0 - s * p2);
+        h->lamp.position[2] = (float)(s * p0 + c * p2);
+        h->lamp.edge_u[0] = (float)(c * e); h->lamp.edge_u[2] = (float)(s * e);
+        h->lamp.edge_v[0] = (float)(-s * e); h->lamp.edge_v[2] = (float)(c * e);
+    }
+    h->mesh.positions = h->pos;
+    h->mesh.vertex_count = 4 * (size_t)h->quads;
+    h->mesh.indices = h->idx;
+    h->mesh.index_count = 6 * (size_t)h->quads;
+    h->scene.meshes = &h->mesh;
+    h->scene.mesh_count = 1;
+    h->scene.materials = &h->mat;
+    h->scene.material_count = 1;
+    h->scene.lights = &h->lamp;
+    h->scene.light_count = 1;
+}
+
+/* The held-out scene cone traced at res^3 (radiance: its store; bounces as voxgi_render_desc's)
+   from the dark space, where the exact image is black, and from the lit one: the dark view's mean
+   and largest pixel over the lit view's mean (infinite where a pixel is below 0). 0 on success. */
+static inline int held_ratios(voxgi_context *ctx, int kind, double turn, int res, voxgi_vct_radiance radiance, int bounces, double *mean_ratio, double *max_ratio)
+{
+    enum { W = 24 };
+    held_scene h;
+    voxgi_render_desc d;
+    float img[W * W * 3];
+    double mean[2] = {0, 0}, top = 0;
+    int v, i, bad = 0;
+    held_scene_make(&h, kind, turn);
+    for (v = 0; v < 2 && !bad; v++) {
+        memset(&d, 0, sizeof d);
+        d.method = VOXGI_RENDER_VCT;
+        d.camera = v ? h.lit : h.dark;
+        d.camera.width = d.camera.height = W;
+        d.resolution = res;
+        d.vct.radiance = radiance;
+        d.bounces = bounces;
+        d.samples = 1;
+        d.hide_emitters = 1;
+        bad = voxgi_render(ctx, &h.scene, &d, img, sizeof img, NULL) != VOXGI_OK;
+        for (i = 0; i < W * W && !bad; i++) {
+            double px = (img[3 * i] + img[3 * i + 1] + img[3 * i + 2]) / 3;
+            mean[v] += px / (W * W);
+            if (!v && (px > top || px < 0)) top = px < 0 ? HUGE_VAL : px; /* light below zero is no image: the largest pixel fails */
+        }
+    }
+    *mean_ratio = mean[1] > 0 ? mean[0] / mean[1] : 1;
+    *max_ratio = mean[1] > 0 ? top / mean[1] : 1;
+    return bad;
+}
+
+/* The held-out scene's dark view (24 x 24, emitters hidden) by `method` at res^3 (0: its
+   default), bounces as voxgi_render_desc's, `samples` per pixel: its mean radiance. 0 on success. */
+static inline int held_dark_mean(voxgi_context *ctx, int kind, double turn, voxgi_render_method method, int res, int bounces, int samples, double *mean)
+{
+    enum { W = 24 };
+    held_scene h;
+    voxgi_render_desc d;
+    float img[W * W * 3];
+    int i, bad;
+    held_scene_make(&h, kind, turn);
+    memset(&d, 0, sizeof d);
+    d.method = method;
+    d.camera = h.dark;
+    d.camera.width = d.camera.height = W;
+    d.resolution = res;
+    d.bounces = bounces;
+    d.samples = samples;
+    d.hide_emitters = 1;
+    bad = voxgi_render(ctx, &h.scene, &d, img, sizeof img, NULL) != VOXGI_OK;
+    for (*mean = 0, i = 0; i < W * W * 3 && !bad; i++) *mean += img[i] / (W * W * 3);
+    return bad;
+}
+
 #endif

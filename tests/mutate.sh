@@ -245,11 +245,12 @@ run_prog() {
 }
 
 # judge OUT STATUS: nothing when the run passed, else why not: the failed tests, and the first
-# reason given (the harness prints it indented under the FAIL line).
+# reason given (the harness prints it indented under the FAIL line). A FAIL may follow a progress
+# line that did not end, so it is found anywhere in a line.
 judge() {
     local out=$1 rc=$2 fails reason
-    fails=$(sed -n 's/^FAIL \([^ :]*\).*/\1/p' "$out" | awk '!seen[$0]++' | tr '\n' ' ')
-    reason=$(awk '/^FAIL /{f = 1; next} f && /^    /{sub(/^ +/, ""); print; exit}' "$out" | cut -c 1-160)
+    fails=$(sed -n 's/.*FAIL \(test_[A-Za-z0-9_]*\).*/\1/p' "$out" | awk '!seen[$0]++' | tr '\n' ' ')
+    reason=$(awk '/FAIL test_/{f = 1; next} f && /^    /{sub(/^ +/, ""); print; exit}' "$out" | cut -c 1-160)
     if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then echo "timed out"
     elif [ -n "$fails" ]; then echo "FAIL ${fails% }${reason:+ [$reason]}"
     elif [ "$rc" -ne 0 ]; then echo "exit status $rc"

@@ -644,6 +644,83 @@ static void test_region_labels_flood_fill(void)
     voxgi_destroy(ctx);
 }
 
+/* The surfaces' labels (voxgi__volume_regions), built by hand: a closed box of 12 x 6 x 6 voxels,
+   its shell one voxel thick facing in, split by a wall of no thickness on the boundary x = 6,
+   which fills the columns x = 5 and 6, its lit side facing -x into room A (x 1-4); room B (x 7-10)
+   has no light. Each voxel's side plane is its surfaces' (the wall's: x = 6), its front lit where
+   it faces A. The wall's voxel beside A holds BORDER | A; the one beside B, whose light goes into
+   A across its twin, BORDER | A | UNSEEN (seen from no region at level 0); B's shell, dark, no
+   label; A's shell BORDER | A. Level 1: a voxel holding the wall's unseen layer and B's space is
+   MIXED (the wall counts as A, not as no region), one of B's space and dark shell B (a dark region
+   closes the mips too). With every voxel's light turned off, no surface is labelled at all. */
+static void test_region_labels_of_surfaces(void)
+{
+    enum { X = 12, Y = 6, Z = 6, N = X * Y * Z };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    static float rad[4 * N], back[4 * N], side[4 * N];
+    int x, y, z, a, lit, bad = 0;
+    for (lit = 1; lit >= 0; lit--) {
+        voxgi_grid g;
+        voxgi_volume_desc vd;
+        voxgi_volume *vol = NULL;
+        const float *base[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+        uint32_t ra = 0, rb = 0;
+        memset(&g, 0, sizeof g);
+        g.res[0] = X; g.res[1] = Y; g.res[2] = Z;
+        g.voxel_size = 1;
+        memset(&vd, 0, sizeof vd);
+        memset(rad, 0, sizeof rad);
+        memset(back, 0, sizeof back);
+        memset(side, 0, sizeof side);
+        for (z = 0; z < Z; z++)
+            for (y = 0; y < Y; y++)
+                for (x = 0; x < X; x++) {
+                    int i = x + X * (y + Y * z), c[3], n[3] = {0, 0, 0};
+                    float plane;
+                    c[0] = x; c[1] = y; c[2] = z;
+                    if (x == 5 || x == 6) { n[0] = -1; plane = -6; } /* the wall, facing A */
+                    else {
+                        for (a = 0; a < 3; a++) /* the shell: the face it lies on, facing in */
+                            if (!n[0] && !n[1] && !n[2] && (c[a] == 0 || c[a] == g.res[a] - 1)) n[a] = c[a] == 0 ? 1 : -1;
+                        if (!n[0] && !n[1] && !n[2]) continue; /* empty */
+                        a = n[0] ? 0 : n[1] ? 1 : 2;
+                        plane = (float)(n[a] * (c[a] == 0 ? 1 : c[a]));
+                    }
+                    rad[4 * i + 3] = back[4 * i + 3] = side[4 * i + 3] = 1;
+                    for (a = 0; a < 3; a++) side[4 * i + a] = (float)n[a];
+                    side[4 * i + 3] = plane;
+                    if (lit && (x == 5 || x == 6 || (x >= 1 && x <= 4))) rad[4 * i] = rad[4 * i + 1] = rad[4 * i + 2] = 1;
+                }
+        base[VOXGI__RADIANCE_SLOT] = rad;
+        base[VOXGI__BACK_SLOT] = back;
+        base[VOXGI__SIDE_SLOT] = side;
+        TH_CHECK(voxgi__volume_new(ctx, &g, &vd, VOXGI__RADIANCE_FAMILY, &vol) == VOXGI_OK && voxgi__volume_regions(ctx, vol, base) == VOXGI_OK &&
+                     vol->regions, "regions: %s", voxgi_last_error(ctx));
+        if (!vol || !vol->regions) { voxgi_volume_destroy(ctx, vol); continue; }
+        ra = vol->regions[2 + X * (2 + Y * 2)];
+        rb = vol->regions[8 + X * (2 + Y * 2)];
+        TH_CHECK(ra > VOXGI__REGION_OPEN && rb > VOXGI__REGION_OPEN && ra != rb && !(ra & VOXGI__REGION_BORDER), "rooms labelled %x and %x", ra, rb);
+        for (z = 1; z < Z - 1; z++)
+            for (y = 1; y < Y - 1; y++) {
+                uint32_t beside_a = vol->regions[5 + X * (y + Y * z)], beside_b = vol->regions[6 + X * (y + Y * z)];
+                uint32_t floor_a = vol->regions[3 + X * (Y * z)], floor_b = vol->regions[9 + X * (Y * z)];
+                if (lit) bad += beside_a != (VOXGI__REGION_BORDER | ra) || beside_b != (VOXGI__REGION_BORDER | VOXGI__REGION_UNSEEN | ra) ||
+                                floor_a != (VOXGI__REGION_BORDER | ra) || floor_b != 0;
+                else bad += beside_a || beside_b || floor_a || floor_b;
+            }
+        if (lit) { /* level 1 (6 x 3 x 3): x = 3 holds x 6-7 (the unseen layer and B), x = 4 holds x 8-9 (B's space, y 2-3) */
+            const uint32_t *l1 = vol->regions + vol->first[1];
+            int dx = vol->dims[1][0], dy = vol->dims[1][1];
+            TH_CHECK(l1[3 + dx * (1 + dy * 1)] == VOXGI__REGION_MIXED && l1[4 + dx * (1 + dy * 1)] == rb, "level 1: %x beside the wall, %x in B (B %x)",
+                     l1[3 + dx * (1 + dy * 1)], l1[4 + dx * (1 + dy * 1)], rb);
+        }
+        voxgi_volume_destroy(ctx, vol);
+    }
+    printf("    two rooms split by a wall on a voxel boundary: %d surface labels wrong\n", bad);
+    TH_CHECK(bad == 0, "%d surface labels wrong", bad);
+    voxgi_destroy(ctx);
+}
+
 /* ===================================================================== 7. octree */
 
 /* ---------------------------------------------------------------- formats */
@@ -1582,6 +1659,7 @@ int main(void)
     TH_RUN(test_volume_mips_by_hand);
     TH_RUN(test_gl_volume_mips_by_hand);
     TH_RUN(test_region_labels_flood_fill);
+    TH_RUN(test_region_labels_of_surfaces);
     TH_RUN(test_half_rounding);
     TH_RUN(test_gl_svo_equals_cpu);
     TH_RUN(test_cone_set);

@@ -9,7 +9,9 @@
 #include "../tools/mesh_io.h"
 #include "../tools/image_io.h"
 
+#include <float.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -369,6 +371,240 @@ static void test_ply_binary(void)
     TH_CHECK(m.normals && m.uvs, "normals and uvs expected");
     if (m.normals && m.uvs) TH_CHECK(near(m.normals[10], 3) && near(m.uvs[6], 0.75f) && near(m.uvs[7], 1), "vertex 3 attributes");
     vxt_mesh_free(&m);
+}
+
+/* ---- every PLY scalar type ---- */
+
+/* The test's own table of the PLY scalar types (names, aliases, sizes; ranges follow from them). */
+static const struct ply_kind { const char *name, *alias; int size, is_signed, is_float; } ply_kinds[8] = {
+    {"char", "int8", 1, 1, 0}, {"uchar", "uint8", 1, 0, 0}, {"short", "int16", 2, 1, 0}, {"ushort", "uint16", 2, 0, 0},
+    {"int", "int32", 4, 1, 0}, {"uint", "uint32", 4, 0, 0}, {"float", "float32", 4, 1, 1}, {"double", "float64", 8, 1, 1}};
+enum { KIND_CHAR, KIND_UCHAR, KIND_SHORT, KIND_USHORT, KIND_INT, KIND_UINT, KIND_FLOAT, KIND_DOUBLE };
+static double kind_lo(int k) { return ply_kinds[k].is_signed ? -ldexp(1, 8 * ply_kinds[k].size - 1) : 0; }
+static double kind_hi(int k) { return ldexp(1, 8 * ply_kinds[k].size - ply_kinds[k].is_signed) - 1; }
+static const char *kind_spelling(int k, int alias) { return alias ? ply_kinds[k].alias : ply_kinds[k].name; }
+
+/* A growing file image: binary values little-endian two's complement / IEEE, ASCII as %.17g (exact). */
+typedef struct growing { unsigned char *data; size_t size, cap; } growing;
+static void grow_put(growing *g, const void *p, size_t n)
+{
+    if (g->size + n > g->cap) {
+        size_t cap = 2 * (g->size + n) + 4096;
+        unsigned char *d = (unsigned char *)realloc(g->data, cap);
+        if (!d) { printf("out of memory\n"); exit(1); }
+        g->data = d;
+        g->cap = cap;
+    }
+    memcpy(g->data + g->size, p, n);
+    g->size += n;
+}
+static void grow_printf(growing *g, const char *fmt, ...)
+{
+    char line[512];
+    va_list ap;
+    int n;
+    va_start(ap, fmt);
+    n = vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    grow_put(g, line, (size_t)n);
+}
+static void grow_value(growing *g, int binary, int kind, double v)
+{
+    unsigned char b[8];
+    uint64_t bits;
+    int i;
+    if (!binary) { grow_printf(g, " %.17g", v); return; }
+    if (kind == KIND_FLOAT) {
+        float f = (float)v;
+        uint32_t u;
+        memcpy(&u, &f, 4);
+        bits = u;
+    } else if (kind == KIND_DOUBLE) {
+        memcpy(&bits, &v, 8);
+    } else {
+        bits = (uint64_t)(int64_t)v; /* two's complement, wrapped to the type's size below */
+    }
+    for (i = 0; i < ply_kinds[kind].size; i++) b[i] = (unsigned char)(bits >> (8 * i));
+    grow_put(g, b, (size_t)ply_kinds[kind].size);
+}
+static void grow_header(growing *g, int binary) { g->size = 0; grow_printf(g, "ply\nformat %s 1.0\n", binary ? "binary_little_endian" : "ascii"); }
+
+/* Eight values of each type: its extremes, the values around half an unsigned type's range, and for
+   the floating types the largest float, a denormal, values float rounds and one it flushes to -0. */
+static double kind_value(int k, int i)
+{
+    double lo = kind_lo(k), hi = kind_hi(k), half = ldexp(1, 8 * ply_kinds[k].size - 1);
+    const double floats[8] = {-FLT_MAX, FLT_MAX, -ldexp(1, -149), -1.5, (double)0.1f, -2147483648.0, 4294967296.0, -16777216.0};
+    const double doubles[8] = {-FLT_MAX, -0.1, -1e-300, 4294967295.0, -2147483649.0, 1e10 + 0.5, ldexp(1.5, 127), -65535.75};
+    if (k == KIND_FLOAT) return floats[i];
+    if (k == KIND_DOUBLE) return doubles[i];
+    if (ply_kinds[k].is_signed) {
+        const double v[8] = {lo, lo + 1, -1, 0, 1, hi - 1, hi, lo / 2};
+        return v[i];
+    } else {
+        const double v[8] = {0, 1, half - 1, half, half + 1, hi - 1, hi, 1.5 * half};
+        return v[i];
+    }
+}
+
+/* Vertex coordinates of every PLY scalar type (name and alias), ASCII and binary_little_endian
+   (the loader refuses binary_big_endian: test_other_failures): file k has x, y, z of types k, k+1,
+   k+2 (mod 8) with unused scalars of the five other types between and after them, so each type is
+   read as x, y, z and skipped, in every spelling and format. The 8 vertices take each type's 8
+   values (signed: its negative extreme, -1 and its maximum; unsigned: 2^(n-1) - 1, 2^(n-1),
+   2^(n-1) + 1 and 2^n - 1; floats: -FLT_MAX, a denormal, values float rounds) in every axis; each
+   loaded coordinate must be bit for bit the C conversion (float)value: 32 files x 24 coordinates. */
+static void test_ply_coordinate_types(void)
+{
+    static const uint32_t expect_indices[12] = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
+    growing g = {NULL, 0, 0};
+    int k, alias, binary, bad = 0;
+    for (k = 0; k < 8; k++)
+        for (alias = 0; alias < 2; alias++)
+            for (binary = 0; binary < 2; binary++) {
+                /* property order: x, pad, y, pad, z, pad, pad, pad; the kind of each */
+                const int kinds[8] = {k, (k + 3) % 8, (k + 1) % 8, (k + 4) % 8, (k + 2) % 8, (k + 5) % 8, (k + 6) % 8, (k + 7) % 8};
+                const int axis_of[8] = {0, -1, 1, -1, 2, -1, -1, -1};
+                float expect[24];
+                char name[64];
+                vxt_mesh m;
+                int v, p;
+                grow_header(&g, binary);
+                grow_printf(&g, "element vertex 8\n");
+                for (p = 0; p < 8; p++)
+                    if (axis_of[p] < 0) grow_printf(&g, "property %s pad%d\n", kind_spelling(kinds[p], alias), p);
+                    else grow_printf(&g, "property %s %c\n", kind_spelling(kinds[p], alias), "xyz"[axis_of[p]]);
+                grow_printf(&g, "element face 2\nproperty list uchar uint vertex_indices\nend_header\n");
+                for (v = 0; v < 8; v++) {
+                    for (p = 0; p < 8; p++) {
+                        /* slot 3v + axis: by the Chinese remainder theorem every (value, axis) pair occurs */
+                        double value = kind_value(kinds[p], axis_of[p] < 0 ? (v + p) % 8 : (3 * v + axis_of[p]) % 8);
+                        grow_value(&g, binary, kinds[p], value);
+                        if (axis_of[p] >= 0) expect[3 * v + axis_of[p]] = (float)value;
+                    }
+                    if (!binary) grow_printf(&g, "\n");
+                }
+                for (v = 0; v < 2; v++) {
+                    grow_value(&g, binary, KIND_UCHAR, 4);
+                    for (p = 0; p < 4; p++) grow_value(&g, binary, KIND_UINT, 4 * v + p);
+                    if (!binary) grow_printf(&g, "\n");
+                }
+                snprintf(name, sizeof name, "types_%s_%s.ply", kind_spelling(k, alias), binary ? "binary" : "ascii");
+                if (!load_ok(write_file("types.ply", g.data, g.size), &m)) { TH_CHECK(0, "%s did not load", name); bad++; continue; }
+                TH_CHECK(m.vertex_count == 8 && m.triangle_count == 4 && !memcmp(m.indices, expect_indices, sizeof expect_indices), "%s: %zu vertices, %zu triangles",
+                         name, m.vertex_count, m.triangle_count);
+                for (v = 0; v < 24 && m.vertex_count == 8; v++)
+                    if (memcmp(&m.positions[v], &expect[v], sizeof expect[v])) {
+                        TH_CHECK(0, "%s: vertex %d %c (%s) is %.9g, not %.9g", name, v / 3, "xyz"[v % 3], kind_spelling(kinds[2 * (v % 3)], alias),
+                                 (double)m.positions[v], (double)expect[v]);
+                        bad++;
+                        break;
+                    }
+                vxt_mesh_free(&m);
+            }
+    printf("    32 files (8 types x 2 spellings x ASCII/binary): %d with a wrong coordinate\n", bad);
+    free(g.data);
+}
+
+/* A vertex element of n vertices (uchar x = v mod 256, y = v / 256, z = 7) and the face header. */
+static void grow_vertices(growing *g, int binary, uint32_t n, int count_kind, int index_kind, int alias, int faces)
+{
+    uint32_t v;
+    grow_printf(g, "element vertex %lu\nproperty uchar x\nproperty uint8 y\nproperty uchar z\nelement face %d\nproperty list %s %s vertex_indices\nend_header\n",
+                (unsigned long)n, faces, kind_spelling(count_kind, alias), kind_spelling(index_kind, !alias));
+    for (v = 0; v < n; v++) {
+        grow_value(g, binary, KIND_UCHAR, v & 255);
+        grow_value(g, binary, KIND_UCHAR, v >> 8);
+        grow_value(g, binary, KIND_UCHAR, 7);
+        if (!binary) grow_printf(g, "\n");
+    }
+}
+
+/* Face lists with every integer index type under every integer count type, ASCII and binary (72
+   files): 256 vertices for 8-bit indices, else 65536, a triangle of the largest valid indices
+   (uchar 255 254 128, char 127 126 64, 16- and 32-bit 65535 65534 32768) and a polygon whose length
+   is at or above half the count type's unsigned range (uchar 200, ushort 40000; char 127, short 300,
+   int 70000, uint 5), its indices spread over the valid range; the fan of each must come back
+   index for index. Refused, binary and ASCII: a signed index type's negative extreme where its
+   unsigned reading (128, 32768) would be a valid vertex, a signed count type's negative extreme
+   followed by as many valid indices as its unsigned reading would take, and in ASCII each integer
+   type's maximum + 1 and minimum - 1. */
+static void test_ply_index_types(void)
+{
+    static const uint32_t big_counts[6] = {127, 200, 300, 40000, 70000, 5};
+    growing g = {NULL, 0, 0};
+    uint32_t *expect = (uint32_t *)malloc(3 * 70000 * sizeof *expect), *face = (uint32_t *)malloc(70000 * sizeof *face);
+    int ik, ck, binary, loaded = 0;
+    char name[64];
+    if (!expect || !face) { TH_CHECK(0, "out of memory"); free(expect); free(face); return; }
+    for (ik = 0; ik <= KIND_UINT; ik++)
+        for (ck = 0; ck <= KIND_UINT; ck++)
+            for (binary = 0; binary < 2; binary++) {
+                uint32_t n = ply_kinds[ik].size == 1 ? 256 : 65536, top = (uint32_t)(kind_hi(ik) < n - 1 ? kind_hi(ik) : n - 1), count = big_counts[ck], k;
+                size_t triangles = 1 + (count - 2), t;
+                vxt_mesh m;
+                grow_header(&g, binary);
+                grow_vertices(&g, binary, n, ck, ik, (ik + ck + binary) % 2, 2);
+                face[0] = top; face[1] = top - 1; face[2] = (top + 1) / 2;
+                grow_value(&g, binary, ck, 3);
+                for (k = 0; k < 3; k++) grow_value(&g, binary, ik, face[k]), expect[k] = face[k];
+                if (!binary) grow_printf(&g, "\n");
+                grow_value(&g, binary, ck, count);
+                for (k = 0; k < count; k++) grow_value(&g, binary, ik, face[k] = (uint32_t)(((uint64_t)k * 7919 + 3) % ((uint64_t)top + 1)));
+                if (!binary) grow_printf(&g, "\n");
+                for (k = 1; k + 1 < count; k++) { expect[3 * k] = face[0]; expect[3 * k + 1] = face[k]; expect[3 * k + 2] = face[k + 1]; }
+                snprintf(name, sizeof name, "indices_%s_%s_%s.ply", ply_kinds[ck].name, ply_kinds[ik].name, binary ? "binary" : "ascii");
+                if (!load_ok(write_file("indices.ply", g.data, g.size), &m)) { TH_CHECK(0, "%s did not load", name); continue; }
+                TH_CHECK(m.vertex_count == n && m.triangle_count == triangles, "%s: %zu vertices, %zu triangles (expected %lu, %zu)", name, m.vertex_count,
+                         m.triangle_count, (unsigned long)n, triangles);
+                if (m.triangle_count == triangles) {
+                    for (t = 0; t < 3 * triangles && m.indices[t] == expect[t]; t++) {}
+                    TH_CHECK(t == 3 * triangles, "%s: index %zu is %u, not %u", name, t, m.indices[t], expect[t]);
+                    loaded += t == 3 * triangles;
+                }
+                if (m.vertex_count == n) /* a vertex near the end: its low byte, high byte, 7 */
+                    TH_CHECK(m.positions[3 * (n - 56)] == (float)((n - 56) & 255) && m.positions[3 * (n - 56) + 1] == (float)((n - 56) >> 8) &&
+                             m.positions[3 * (n - 56) + 2] == 7, "%s: vertex %lu", name, (unsigned long)(n - 56));
+                vxt_mesh_free(&m);
+            }
+    printf("    72 files (6 count x 6 index types x ASCII/binary): %d with every index right\n", loaded);
+    for (binary = 0; binary < 2; binary++) {
+        for (ik = KIND_CHAR; ik <= KIND_INT; ik += 2) { /* the signed index types' negative extreme */
+            grow_header(&g, binary);
+            grow_vertices(&g, binary, ply_kinds[ik].size == 1 ? 256 : 65536, KIND_UCHAR, ik, binary, 1);
+            grow_value(&g, binary, KIND_UCHAR, 3);
+            grow_value(&g, binary, ik, 0);
+            grow_value(&g, binary, ik, 1);
+            grow_value(&g, binary, ik, kind_lo(ik));
+            snprintf(name, sizeof name, "negative_index_%s_%s.ply", ply_kinds[ik].name, binary ? "binary" : "ascii");
+            expect_error(name, g.data, g.size, "out of range");
+        }
+        for (ck = KIND_CHAR; ck <= KIND_INT; ck += 2) { /* the signed count types' negative extreme */
+            uint32_t k, follow = ck == KIND_INT ? 3 : (uint32_t)-kind_lo(ck);
+            grow_header(&g, binary);
+            grow_vertices(&g, binary, 3, ck, KIND_UCHAR, binary, 1);
+            grow_value(&g, binary, ck, kind_lo(ck));
+            for (k = 0; k < follow; k++) grow_value(&g, binary, KIND_UCHAR, k % 3);
+            snprintf(name, sizeof name, "negative_count_%s_%s.ply", ply_kinds[ck].name, binary ? "binary" : "ascii");
+            expect_error(name, g.data, g.size, "negative list length");
+        }
+    }
+    for (ik = 0; ik <= KIND_UINT; ik++) { /* ASCII values just outside each integer type */
+        int side;
+        for (side = 0; side < 2; side++) {
+            char expect_text[64];
+            double v = side ? kind_hi(ik) + 1 : kind_lo(ik) - 1;
+            grow_header(&g, 0);
+            grow_printf(&g, "element vertex 3\nproperty %s x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                        "end_header\n0 0 0\n1 0 0\n%.17g 1 0\n3 0 1 2\n", kind_spelling(ik, side), v);
+            snprintf(name, sizeof name, "outside_%s.ply", ply_kinds[ik].name);
+            snprintf(expect_text, sizeof expect_text, "is not a valid %s", ply_kinds[ik].name);
+            expect_error(name, g.data, g.size, expect_text);
+        }
+    }
+    free(expect);
+    free(face);
+    free(g.data);
 }
 
 /* ---- hostile input ---- */
@@ -798,6 +1034,8 @@ int main(void)
     TH_RUN(test_stl_binary);
     TH_RUN(test_ply_ascii);
     TH_RUN(test_ply_binary);
+    TH_RUN(test_ply_coordinate_types);
+    TH_RUN(test_ply_index_types);
     TH_RUN(test_truncated_prefixes);
     TH_RUN(test_corrupted_and_garbage);
     TH_RUN(test_bad_indices);

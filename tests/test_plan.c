@@ -6,6 +6,8 @@
    the surface), what the camera sees, the grid and cones from an error, the octree under a budget;
    the plan following the render desc it is given (its radiance store, direct light only, bounces,
    hidden emitters) and voxgi_render running exactly the settings voxgi_render_resolve gives;
+   every method's items, kept or left out with a reason that agrees, over a table of scenes and
+   descs against rules derived from what each method reads;
    and the images following their plans (no voxels where nothing can bounce, no line space without
    an area light), logging what they leave out; voxgi's own G-buffer rasterized on GL against the
    CPU's ray cast. */
@@ -312,6 +314,22 @@ static void test_render_defaults(void)
         for (i = 0; i < 3 && want[k].has[i]; i++) TH_CHECK(strstr(line, want[k].has[i]) != NULL, "'%s' lacks '%s'", line, want[k].has[i]);
         TH_CHECK((strstr(line, "bounces") != NULL) == (want[k].m == VOXGI_RENDER_REFERENCE || want[k].m == VOXGI_RENDER_VCT), "'%s': bounces it does not read", line);
     }
+    for (i = -1; i <= 2; i++) { /* the cone tracer's bounces among the voxels: 4 cones a 4^3 block where there are any, full GI included */
+        voxgi_render_desc d, u;
+        char line[512];
+        int among = i < 0 || i > 1;
+        memset(&d, 0, sizeof d);
+        d.method = VOXGI_RENDER_VCT;
+        d.bounces = i;
+        TH_CHECK(voxgi_render_resolve(ctx, &bs.scene, &d, &u) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        voxgi_render_describe(&u, line, sizeof line);
+        TH_CHECK(u.vct.bounce_block == (among ? 4 : 0) && u.vct.bounce_cones.cones == (among ? 4 : 0) &&
+                     (strstr(line, "bounce cones 4, bounce block 4") != NULL) == among, "bounces %d: block %d, cones %d ('%s')", i, u.vct.bounce_block,
+                 u.vct.bounce_cones.cones, line);
+        d.vct.bounce_block = 2;
+        TH_CHECK(voxgi_render_resolve(ctx, &bs.scene, &d, &u) == VOXGI_OK && u.vct.bounce_block == (among ? 2 : 0), "bounces %d, block 2 asked: %d", i,
+                 u.vct.bounce_block);
+    }
     voxgi_builtin_scene_destroy(ctx, &bs);
     voxgi_destroy(ctx);
 }
@@ -488,6 +506,267 @@ static void test_plan_follows_request(void)
     }
     voxgi_voxels_destroy(ctx, vox);
     voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
+/* ----- every item's state and reason against the rules, over the conditions that decide them */
+
+/* One cell of the table: the desc's bounces (-1, 0, 1, 2; or the direct light alone) and flag
+   VOXGI_PLAN_EVERYTHING, and what the scene has: emitters, translucent materials, an area (rect)
+   light, another light (none, a point, a directional one), any albedo, a camera. */
+typedef struct plan_case {
+    int bounces, direct_only, everything;
+    int emitters, translucent, area, other, reflective, camera;
+} plan_case;
+
+/* What the planner reads of a case, derived from the case itself (not from a plan). */
+typedef struct plan_facts {
+    int lit, gi, seen, maps, areas, bounce_pass;
+    const char *no_gi;
+} plan_facts;
+
+/* The item a rule expects: kept, and the reason that must come with it. */
+typedef struct plan_expect {
+    voxgi_plan_item_id id;
+    int kept;
+    const char *why;
+} plan_expect;
+
+/* Every reason the plans give, each a reason to keep (1) or to leave out (0): an item whose reason
+   is of the other kind contradicts itself. */
+static const struct { const char *why; int keeps; } plan_reasons[] = {
+    {"everything asked for", 1}, {"what the voxels reflect", 1}, {"the voxels' light and mips face it", 1}, {"conservative, the scene's surface", 1},
+    {"a static scene: once (a change of lights re-injects only)", 1}, {"the direct light into the voxels", 1}, {"light among the voxels before the cones", 1},
+    {"within the budget", 1}, {"the indirect light at the pixels", 1}, {"shadow rays to the lights and emitters", 1},
+    {"shadow rays to the other lights and emitters", 1}, {"the directional and spot lights' opaque depth", 1},
+    {"light through translucent surfaces, a slicemap per absorption", 1}, {"the lit surfaces' points", 1}, {"the direct light's spherical harmonics", 1},
+    {"the bounce's visibility", 1}, {"one bounce at the pixels", 1}, {"occlusion through the voxels", 1}, {"the image", 1}, {"one bounce from the screen", 1},
+    {"soft shadows of the area lights", 1}, {"the area lights' direct light", 1}, {"the lights' and emitters' light along paths", 1}, {"emitters in view", 1},
+    {"the direct light alone asked for", 0}, {"no light and no emitter", 0}, {"no reflective surface (every albedo is 0)", 0}, {"no emissive material", 0},
+    {"emitters light the voxels as area lights and the pixels directly", 0}, {"no translucent material", 0}, {"the cone tracer's voxels are opaque", 0},
+    {"one bounce: the cones at the pixels", 0}, {"the dense volume fits the budget (and its anisotropic mips are better)", 0},
+    {"no directional or spot light", 0}, {"occlusion sees geometry only", 0}, {"occlusion through the depth buffer", 0},
+    {"visibility through the depth buffer", 0}, {"no area light (rect light or emissive triangles)", 0}, {"the camera sees no emitter", 0}};
+
+/* 1: the reason keeps, 0: it leaves out, -1: a reason this table does not know. */
+static int plan_reason_keeps(const char *why)
+{
+    size_t i;
+    for (i = 0; i < sizeof plan_reasons / sizeof plan_reasons[0]; i++)
+        if (why && !strcmp(why, plan_reasons[i].why)) return plan_reasons[i].keeps;
+    return -1;
+}
+
+/* The case's scene: a floor (y = 0), a lamp quad at y = 1 facing down (emissive or not), a pane
+   at z = 0 (translucent or not), every albedo 0.5 or 0; a rect light above, and a point or a
+   directional light. mats and lights are the caller's (3 each). */
+static void plan_case_scene(const plan_case *c, voxgi_scene *sc, voxgi_mesh *mesh, quads *q, voxgi_material mats[3], voxgi_light lights[3])
+{
+    static const float c_floor[12] = {-1, 0, -1, -1, 0, 1, 1, 0, 1, 1, 0, -1}, c_lamp[12] = {-0.2f, 1, -0.2f, 0.2f, 1, -0.2f, 0.2f, 1, 0.2f, -0.2f, 1, 0.2f};
+    static const float c_pane[12] = {-0.5f, 0.3f, 0, 0.5f, 0.3f, 0, 0.5f, 0.6f, 0, -0.5f, 0.6f, 0};
+    float albedo = c->reflective ? 0.5f : 0;
+    size_t nl = 0;
+    int k;
+    memset(mats, 0, 3 * sizeof *mats);
+    memset(lights, 0, 3 * sizeof *lights);
+    memset(q, 0, sizeof *q);
+    for (k = 0; k < 3; k++) {
+        mats[0].albedo[k] = mats[1].albedo[k] = mats[2].albedo[k] = albedo;
+        mats[1].emission[k] = c->emitters ? 5.0f : 0.0f;
+    }
+    mats[2].transparency = c->translucent ? 0.6f : 0.0f;
+    if (c->area) {
+        lights[nl].type = VOXGI_LIGHT_RECT;
+        lights[nl].position[1] = 2;
+        lights[nl].edge_u[0] = 0.1f;
+        lights[nl].edge_v[2] = 0.1f;
+        lights[nl++].intensity[0] = 1;
+    }
+    if (c->other) {
+        lights[nl].type = c->other == 1 ? VOXGI_LIGHT_POINT : VOXGI_LIGHT_DIRECTIONAL;
+        lights[nl].position[1] = 0.8f;
+        lights[nl].direction[1] = -1;
+        lights[nl++].intensity[0] = 1;
+    }
+    quad(q, c_floor, 0);
+    quad(q, c_lamp, 1);
+    quad(q, c_pane, 2);
+    scene_of_quads(sc, mesh, q, mats, 3, lights, nl);
+}
+
+/* The facts the rules read. The camera given looks from below the lamp's plane (eye y = 0.2) at
+   its front, 7 degrees off its axis in a 40-degree view; the zero camera fitted to the bounds
+   looks from y = 1.1, above it, at its back: an emitter is in view with the camera only. The lamp
+   quad is one parallelogram: an area light of the line space's besides the rect light. */
+static plan_facts plan_case_facts(const plan_case *c)
+{
+    plan_facts f;
+    f.lit = c->everything || c->emitters || c->area || c->other;
+    f.gi = f.lit && (c->everything || c->reflective) && !c->direct_only;
+    f.no_gi = c->direct_only ? "the direct light alone asked for" : !f.lit ? "no light and no emitter" : "no reflective surface (every albedo is 0)";
+    f.seen = c->everything || (c->emitters && c->camera);
+    f.maps = c->other == 2;
+    f.areas = c->area + c->emitters;
+    f.bounce_pass = c->bounces == -1 || c->bounces > 1; /* 0 is the default: one bounce */
+    return f;
+}
+
+static int plan_expect_add(plan_expect *e, int n, voxgi_plan_item_id id, int keep, const char *kept_why, const char *left_why)
+{
+    e[n].id = id;
+    e[n].kept = keep;
+    e[n].why = keep ? kept_why : left_why;
+    return n + 1;
+}
+
+/* The items method m must plan for case c, from what each reads (part 14's rows): their number. */
+static int plan_case_expect(voxgi_render_method m, const plan_case *c, plan_expect *e)
+{
+    plan_facts f = plan_case_facts(c);
+    const char *all = "everything asked for", *dark = "no light and no emitter", *no_area = "no area light (rect light or emissive triangles)";
+    int n = 0, ao = m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO, layers = f.maps && c->translucent;
+    switch (m) {
+    case VOXGI_RENDER_REFERENCE:
+        n = plan_expect_add(e, n, VOXGI_PLAN_PATH_TRACING, f.lit, "the lights' and emitters' light along paths", dark);
+        break;
+    case VOXGI_RENDER_VCT:
+        n = plan_expect_add(e, n, VOXGI_PLAN_ALBEDO, f.gi, "what the voxels reflect", f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_NORMAL, f.gi, "the voxels' light and mips face it", f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_EMISSION, c->everything, all,
+                            c->emitters ? "emitters light the voxels as area lights and the pixels directly" : "no emissive material");
+        n = plan_expect_add(e, n, VOXGI_PLAN_OPACITY, c->everything, all, c->translucent ? "the cone tracer's voxels are opaque" : "no translucent material");
+        n = plan_expect_add(e, n, VOXGI_PLAN_VOXELS, f.gi, "conservative, the scene's surface", f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_VOXELIZATION, f.gi, "a static scene: once (a change of lights re-injects only)", f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_LIGHT_INJECTION, f.gi, "the direct light into the voxels", f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_BOUNCES, f.gi && (c->everything || f.bounce_pass), "light among the voxels before the cones",
+                            f.gi ? "one bounce: the cones at the pixels" : f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_RADIANCE_VOLUME, f.gi, "within the budget", f.no_gi); /* no budget: the dense volume */
+        n = plan_expect_add(e, n, VOXGI_PLAN_RADIANCE_OCTREE, 0, "", f.gi ? "the dense volume fits the budget (and its anisotropic mips are better)" : f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_CONES, f.gi, "the indirect light at the pixels", f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_DIRECT_LIGHT, f.lit, "shadow rays to the lights and emitters", dark);
+        break;
+    case VOXGI_RENDER_TSM: /* a map per directional light, a layer per translucent absorption (one here) */
+        n = plan_expect_add(e, n, VOXGI_PLAN_SHADOW_MAPS, f.maps, "the directional and spot lights' opaque depth", "no directional or spot light");
+        n = plan_expect_add(e, n, VOXGI_PLAN_TRANSMITTANCE_LAYERS, c->everything || layers, layers ? "light through translucent surfaces, a slicemap per absorption" : all,
+                            !f.maps ? "no directional or spot light" : "no translucent material");
+        n = plan_expect_add(e, n, VOXGI_PLAN_DIRECT_LIGHT, f.lit, "shadow rays to the other lights and emitters", dark);
+        break;
+    case VOXGI_RENDER_RSM:
+    case VOXGI_RENDER_SH:
+        if (m == VOXGI_RENDER_RSM) n = plan_expect_add(e, n, VOXGI_PLAN_REFLECTIVE_SHADOW_MAPS, f.gi, "the lit surfaces' points", f.no_gi);
+        else n = plan_expect_add(e, n, VOXGI_PLAN_SH_VOLUME, f.gi, "the direct light's spherical harmonics", f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_VOXELS, f.gi, "the bounce's visibility", f.no_gi); /* visibility hierarchical by default */
+        n = plan_expect_add(e, n, VOXGI_PLAN_GATHERS, f.gi, "one bounce at the pixels", f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_DIRECT_LIGHT, f.lit, "shadow rays to the lights and emitters", dark);
+        break;
+    case VOXGI_RENDER_SSAO:
+    case VOXGI_RENDER_VAO: /* VAO reads desc.resolution (128 by default), SSAO does not */
+        n = plan_expect_add(e, n, VOXGI_PLAN_LIGHTS, c->everything, all, "occlusion sees geometry only");
+        n = plan_expect_add(e, n, VOXGI_PLAN_VOXELS, m == VOXGI_RENDER_VAO, "occlusion through the voxels", "occlusion through the depth buffer");
+        n = plan_expect_add(e, n, VOXGI_PLAN_OCCLUSION, 1, "the image", "");
+        break;
+    case VOXGI_RENDER_SSGI:
+    case VOXGI_RENDER_HYBRID: /* HYBRID reads desc.resolution (128 by default), SSGI does not */
+        n = plan_expect_add(e, n, VOXGI_PLAN_VOXELS, f.gi && m == VOXGI_RENDER_HYBRID, "the bounce's visibility", f.gi ? "visibility through the depth buffer" : f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_SCREEN_BOUNCE, f.gi, "one bounce from the screen", f.no_gi);
+        n = plan_expect_add(e, n, VOXGI_PLAN_DIRECT_LIGHT, f.lit, "shadow rays to the lights and emitters", dark);
+        break;
+    case VOXGI_RENDER_LINESPACE:
+        n = plan_expect_add(e, n, VOXGI_PLAN_LINE_SPACE, c->everything || f.areas > 0, "soft shadows of the area lights", no_area);
+        n = plan_expect_add(e, n, VOXGI_PLAN_SOFT_SHADOWS, c->everything || f.areas > 0, "the area lights' direct light", no_area);
+        break;
+    default:
+        break;
+    }
+    return plan_expect_add(e, n, VOXGI_PLAN_SEEN_EMISSION, f.seen && c->emitters && !ao, "emitters in view",
+                           ao ? "occlusion sees geometry only" : !c->emitters ? "no emissive material" : "the camera sees no emitter");
+}
+
+/* Every method's plan of every case (bounces -1, 0, 1, 2 and the direct light alone; with and
+   without emitters, translucent materials, a rect light, a point or directional light, albedo,
+   a camera; VOXGI_PLAN_EVERYTHING or not: 960 cases, 9,600 plans): the scene's counts as built;
+   the plan's items exactly the rules' (derived from what each row reads: the lights, emitters,
+   reflective surfaces, the view, desc.bounces with 0 meaning one), each kept or left out as they
+   say, with the reason they name; and no item's reason of the other kind (plan_reasons).
+   Measured: 9,600 plans, 0 disagree, in under 0.1 s. */
+static void test_plan_items_follow_rules(void)
+{
+    static const int bounce_cases[5][2] = {{-1, 0}, {0, 0}, {1, 0}, {2, 0}, {1, 1}}; /* bounces, direct_only */
+    voxgi_context *ctx = plan_ctx();
+    voxgi_camera cam;
+    unsigned bits;
+    static const char *const methods[VOXGI_RENDER_METHOD_COUNT] = {"reference", "vct", "tsm", "rsm", "sh", "ssao", "vao", "ssgi", "hybrid", "linespace"};
+    int m, bad = 0, plans = 0;
+    memset(&cam, 0, sizeof cam);
+    cam.eye[1] = 0.2f;
+    cam.eye[2] = -3;
+    cam.target[1] = 0.6f;
+    cam.fovy_degrees = 40;
+    cam.width = cam.height = 16;
+    TH_CHECK(ctx != NULL, "no context");
+    for (bits = 0; ctx && bits < 5u * 3u * 64u && bad < 20; bits++) {
+        plan_case c;
+        voxgi_material mats[3];
+        voxgi_light lights[3];
+        voxgi_scene sc;
+        voxgi_mesh mesh;
+        quads q;
+        unsigned b = bits / 192u, rest = bits % 192u;
+        c.bounces = bounce_cases[b][0];
+        c.direct_only = bounce_cases[b][1];
+        c.other = (int)(rest % 3u);
+        rest /= 3u;
+        c.emitters = rest & 1u;
+        c.translucent = rest >> 1 & 1u;
+        c.area = rest >> 2 & 1u;
+        c.reflective = rest >> 3 & 1u;
+        c.camera = rest >> 4 & 1u;
+        c.everything = rest >> 5 & 1u;
+        plan_case_scene(&c, &sc, &mesh, &q, mats, lights);
+        for (m = 0; m < VOXGI_RENDER_METHOD_COUNT && bad < 20; m++) {
+            plan_expect e[VOXGI_PLAN_MAX_ITEMS + 1];
+            voxgi_render_desc d;
+            voxgi_plan_info p;
+            int n = plan_case_expect((voxgi_render_method)m, &c, e), i, found = 0;
+            char label[160];
+            desc_of(&d, (voxgi_render_method)m, c.camera ? &cam : NULL, 0);
+            d.bounces = c.bounces;
+            d.direct_only = c.direct_only;
+            snprintf(label, sizeof label, "%s, bounces %d%s, emitters %d, translucent %d, rect %d, other light %d, albedo %d, camera %d, everything %d",
+                     methods[m], c.bounces, c.direct_only ? " (direct only)" : "", c.emitters, c.translucent, c.area, c.other, c.reflective,
+                     c.camera, c.everything);
+            if (voxgi_plan(ctx, &sc, &d, c.everything ? VOXGI_PLAN_EVERYTHING : 0, &p) != VOXGI_OK) {
+                TH_CHECK(0, "%s: %s", label, voxgi_last_error(ctx));
+                bad++;
+                continue;
+            }
+            plans++;
+            if (p.emissive_triangles != (uint64_t)(2 * c.emitters) || p.translucent_triangles != (uint64_t)(2 * c.translucent) || p.rect_lights != c.area ||
+                p.area_lights != c.area + c.emitters || p.emitters_in_view != (c.emitters && c.camera)) {
+                TH_CHECK(0, "%s: emissive %lu, translucent %lu, rect %d, areas %d, in view %d", label, (unsigned long)p.emissive_triangles,
+                         (unsigned long)p.translucent_triangles, p.rect_lights, p.area_lights, p.emitters_in_view);
+                bad++;
+            }
+            for (i = 0; i < p.item_count; i++) { /* every item: of the rules, in agreement with its reason */
+                const voxgi_plan_item *it = &p.items[i];
+                int k, keeps = plan_reason_keeps(it->why);
+                for (k = 0; k < n && e[k].id != it->id; k++) continue;
+                if (keeps != (it->kept != 0) || k == n || it->kept != e[k].kept || strcmp(it->why, e[k].why) != 0) {
+                    TH_CHECK(0, "%s: %s %s - %s (a reason that %s); the rules: %s - %s", label, it->name, it->kept ? "kept" : "left out", it->why,
+                             keeps < 0 ? "no table knows" : keeps ? "keeps" : "leaves out", k == n ? "no such item" : e[k].kept ? "kept" : "left out",
+                             k == n ? "" : e[k].why);
+                    bad++;
+                }
+                found += k < n;
+            }
+            if (found != n || p.item_count != n) {
+                TH_CHECK(0, "%s: %d items, %d of the rules' %d", label, p.item_count, found, n);
+                bad++;
+            }
+        }
+    }
+    printf("    %d plans, %d disagree\n", plans, bad);
+    TH_CHECK(plans == 960 * VOXGI_RENDER_METHOD_COUNT || bad, "%d plans", plans);
     voxgi_destroy(ctx);
 }
 
@@ -697,6 +976,148 @@ static void test_light_only_update(void)
     }
 }
 
+/* Whether two grids are the same, field by field (a struct's padding is not). */
+static int same_grid(const voxgi_grid *a, const voxgi_grid *b)
+{
+    return a->origin[0] == b->origin[0] && a->origin[1] == b->origin[1] && a->origin[2] == b->origin[2] && a->voxel_size == b->voxel_size &&
+           a->res[0] == b->res[0] && a->res[1] == b->res[1] && a->res[2] == b->res[2];
+}
+
+/* Renders bs's scene with desc.voxels = offered: the API promises VOXGI_ERR_INVALID_ARGUMENT naming
+   desc.voxels for voxels made for other geometry or another grid. Were they taken, the message
+   gives how far the image is from the fresh render (relative RMS). */
+static void expect_voxels_refused(voxgi_context *ctx, const voxgi_scene *scene, voxgi_render_desc vd, const voxgi_voxels *offered, const float *fresh,
+                                  size_t floats, const char *what)
+{
+    float *img = (float *)calloc(floats, sizeof *img);
+    voxgi_result r;
+    if (!img) { TH_CHECK(0, "no memory"); return; }
+    vd.voxels = offered;
+    r = voxgi_render(ctx, scene, &vd, img, floats * sizeof *img, NULL);
+    if (r == VOXGI_OK) {
+        double d2 = 0, f2 = 0;
+        size_t i;
+        for (i = 0; i < floats; i++) { d2 += (img[i] - fresh[i]) * (double)(img[i] - fresh[i]); f2 += fresh[i] * (double)fresh[i]; }
+        TH_CHECK(0, "%s: taken, the image %.2f%% (relative RMS) from the fresh render", what, f2 > 0 ? 100 * sqrt(d2 / f2) : -1.0);
+    } else {
+        TH_CHECK(r == VOXGI_ERR_INVALID_ARGUMENT && strstr(voxgi_last_error(ctx), "desc.voxels"), "%s: %s (%s)", what, voxgi_result_string(r),
+                 voxgi_last_error(ctx));
+    }
+    free(img);
+}
+
+/* Each field of the kept voxels' check refuses on its own (rsm-walls, 16 x 16, 24 voxels, CPU):
+   the voxels of the scene translated by 0.5 along x (the same 24^3 grid of the same voxel size and
+   as many triangles: only the origin differs); the scene's own grid with the voxel size 1.1 x, or
+   2 more voxels along y; the scene without its first triangle (the same bounds and grid, one
+   triangle fewer); the thin instead of the conservative method, or albedo or normal alone, on the
+   same grid; and (with GL) the CPU's voxels offered to a GL context. The scene's own voxels give
+   the fresh render bit for bit, so the refusals are not of everything. With one check dropped the
+   image is off by (relative RMS) 10.3% translated, 2.8% of 1.1 x voxels, 6.0% a triangle fewer,
+   0.9% thin; 0.00% with 2 more voxels along y and on GL, where only the refusal tells. */
+static void test_light_only_update_checks_each_field(void)
+{
+    enum { W = 16 };
+    static float fresh[W * W * 3], kept_img[W * W * 3];
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    voxgi_builtin_scene bs;
+    voxgi_render_desc vd;
+    voxgi_voxels *own = NULL, *other = NULL;
+    voxgi_voxels_info own_info, oi;
+    voxgi_voxelize_desc xd;
+    voxgi_scene sc;
+    voxgi_mesh meshes[8];
+    float *moved[8];
+    size_t m, v;
+    int field;
+    voxgi_builtin_scene_create(ctx, "rsm-walls", &bs);
+    view_of(&vd, VOXGI_RENDER_VCT, &bs, W);
+    vct_old_zeros(&vd);
+    vd.resolution = 24;
+    vd.samples = 2;
+    vd.vct.cone_stride = 2;
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, fresh, sizeof fresh, NULL) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(voxgi_render_voxelize(ctx, &bs.scene, &vd, &own) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    voxgi_voxels_query(own, &own_info);
+    vd.voxels = own;
+    TH_CHECK(voxgi_render(ctx, &bs.scene, &vd, kept_img, sizeof kept_img, NULL) == VOXGI_OK && !memcmp(fresh, kept_img, sizeof fresh),
+             "the scene's own voxels: %s", voxgi_last_error(ctx));
+    vd.voxels = NULL;
+    /* origin: every vertex 0.5 further along x */
+    TH_CHECK(bs.scene.mesh_count <= 8, "%lu meshes", (unsigned long)bs.scene.mesh_count);
+    sc = bs.scene;
+    sc.meshes = meshes;
+    memset(moved, 0, sizeof moved);
+    for (m = 0; m < bs.scene.mesh_count && m < 8; m++) {
+        const voxgi_mesh *src = &bs.scene.meshes[m];
+        size_t stride = src->position_stride ? src->position_stride : 12;
+        meshes[m] = *src;
+        moved[m] = (float *)malloc(12 * src->vertex_count + 1);
+        TH_CHECK(moved[m] && src->positions && !src->positions_double, "mesh %lu: float positions expected", (unsigned long)m);
+        if (!moved[m] || !src->positions) continue;
+        for (v = 0; v < src->vertex_count; v++) {
+            const float *p = (const float *)(const void *)((const char *)src->positions + v * stride);
+            moved[m][3 * v] = p[0] + 0.5f;
+            moved[m][3 * v + 1] = p[1];
+            moved[m][3 * v + 2] = p[2];
+        }
+        meshes[m].positions = moved[m];
+        meshes[m].position_stride = 0;
+    }
+    TH_CHECK(voxgi_render_voxelize(ctx, &sc, &vd, &other) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    if (other) {
+        voxgi_voxels_query(other, &oi);
+        TH_CHECK(oi.grid.voxel_size == own_info.grid.voxel_size && !memcmp(oi.grid.res, own_info.grid.res, sizeof oi.grid.res) &&
+                 oi.triangle_count == own_info.triangle_count && oi.grid.origin[0] != own_info.grid.origin[0] &&
+                 oi.grid.origin[1] == own_info.grid.origin[1] && oi.grid.origin[2] == own_info.grid.origin[2],
+                 "the translated grid differs in more than its origin's x (%.17g vs %.17g)", oi.grid.voxel_size, own_info.grid.voxel_size);
+        expect_voxels_refused(ctx, &bs.scene, vd, other, fresh, W * W * 3, "the scene's voxels translated by 0.5");
+        voxgi_voxels_destroy(ctx, other);
+        other = NULL;
+    }
+    for (m = 0; m < 8; m++) free(moved[m]);
+    /* triangle count: the first triangle left out, the bounds kept */
+    sc = bs.scene;
+    meshes[0] = bs.scene.meshes[0];
+    meshes[0].indices += 3;
+    meshes[0].index_count -= 3;
+    sc.meshes = meshes;
+    TH_CHECK(bs.scene.meshes[0].indices && voxgi_render_voxelize(ctx, &sc, &vd, &other) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    if (other) {
+        voxgi_voxels_query(other, &oi);
+        TH_CHECK(same_grid(&oi.grid, &own_info.grid) && oi.triangle_count + 1 == own_info.triangle_count,
+                 "without the first triangle: another grid, or %lu triangles", (unsigned long)oi.triangle_count);
+        expect_voxels_refused(ctx, &bs.scene, vd, other, fresh, W * W * 3, "one triangle fewer");
+        voxgi_voxels_destroy(ctx, other);
+        other = NULL;
+    }
+    /* the grid's voxel size, its resolution, the method and the attributes, one at a time */
+    for (field = 0; field < 5; field++) {
+        static const char *const what[5] = {"voxel size 1.1 x", "2 more voxels along y", "the thin method", "albedo alone", "normal alone"};
+        memset(&xd, 0, sizeof xd);
+        xd.grid = own_info.grid;
+        xd.attributes = field == 3 ? VOXGI_ATTRIBUTE_ALBEDO : field == 4 ? VOXGI_ATTRIBUTE_NORMAL : VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+        if (field == 0) xd.grid.voxel_size *= 1.1;
+        if (field == 1) xd.grid.res[1] += 2;
+        if (field == 2) xd.method = VOXGI_METHOD_THIN;
+        TH_CHECK(voxgi_voxelize(ctx, &bs.scene, &xd, &other) == VOXGI_OK, "%s: %s", what[field], voxgi_last_error(ctx));
+        if (other) expect_voxels_refused(ctx, &bs.scene, vd, other, fresh, W * W * 3, what[field]);
+        voxgi_voxels_destroy(ctx, other);
+        other = NULL;
+    }
+    if (have_gl()) { /* the backend: the CPU's voxels on a GL context */
+        voxgi_context *gl = make_ctx(VOXGI_BACKEND_GL, 0);
+        TH_CHECK(voxgi_render(gl, &bs.scene, &vd, fresh, sizeof fresh, NULL) == VOXGI_OK, "GL: %s", voxgi_last_error(gl));
+        expect_voxels_refused(gl, &bs.scene, vd, own, fresh, W * W * 3, "the CPU's voxels on GL");
+        voxgi_destroy(gl);
+    } else {
+        printf("    no GL: the backend field left unchecked\n");
+    }
+    voxgi_voxels_destroy(ctx, own);
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
 /* ---------------------------------------------------------------- the G-buffer */
 
 /* voxgi's own G-buffer rasterized on GL against the CPU's ray cast (the Cornell box, 64 x 48,
@@ -749,8 +1170,10 @@ int main(void)
     TH_RUN(test_render_defaults);
     TH_RUN(test_plan_vct_settings);
     TH_RUN(test_plan_follows_request);
+    TH_RUN(test_plan_items_follow_rules);
     TH_RUN(test_plan_images);
     TH_RUN(test_light_only_update);
+    TH_RUN(test_light_only_update_checks_each_field);
     TH_RUN(test_gl_raster_gbuffer);
     gl_close();
     return th_finish();
