@@ -56,14 +56,19 @@ static inline double fx_rng_range(fx_rng *g, double lo, double hi) { return lo +
 /* The program's GL 4.5 context: NULL until gl_open(), and when none could be made (g_gl_error says why). */
 static vxt_gl *g_gl;
 static char g_gl_error[512];
-static int g_gl_bad_kind; /* VOXGI_TEST_GL names no kind: every GL test fails */
+static int g_gl_bad_kind; /* VOXGI_TEST_GL names no kind (nor none): every GL test fails */
 
-/* Makes the program's GL context: the kind VOXGI_TEST_GL names (egl or osmesa), else the first
-   that works; prints which, or why there is none. */
+/* Makes the program's GL context: the kind VOXGI_TEST_GL names (egl or osmesa; none: no context,
+   as on a machine without GL), else the first that works; prints which, or why there is none. */
 static inline void gl_open(void)
 {
     vxt_gl_kind kind = VXT_GL_AUTO;
     const char *want = getenv("VOXGI_TEST_GL");
+    if (want && !strcmp(want, "none")) {
+        snprintf(g_gl_error, sizeof g_gl_error, "VOXGI_TEST_GL=none");
+        printf("NO GL CONTEXT: %s\n", g_gl_error);
+        return;
+    }
     if (want && *want && vxt_gl_kind_parse(want, &kind) != 0) { /* a typo must not test another kind */
         g_gl_bad_kind = 1;
         snprintf(g_gl_error, sizeof g_gl_error, "VOXGI_TEST_GL=%s is not egl, osmesa or auto", want);
@@ -82,7 +87,8 @@ static inline void gl_close(void)
 }
 
 /* 1 when the program has its GL context. Else 0, and the running test is skipped (loudly), or
-   fails when VOXGI_REQUIRE_GL=1 (CI, where a GL context must exist) or VOXGI_TEST_GL is a typo. */
+   fails when VOXGI_REQUIRE_GL=1 (CI, where a GL context must exist) or VOXGI_TEST_GL is a typo
+   (not egl, osmesa, auto or none). */
 static inline int have_gl(void)
 {
     if (g_gl) return 1;

@@ -7,7 +7,7 @@
    function), the AUTO backend's choice and fallback, GL buffers handed to the caller. (Shader error
    mapping and the software-renderer list, which call private helpers, are tested in
    tests/test_internals.c.) The GL tests skip (loudly) only when no GL 4.5 context can be made;
-   VOXGI_TEST_GL=egl|osmesa picks the kind, VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
+   VOXGI_TEST_GL=egl|osmesa|none picks the kind (none: no context), VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
 #include "../voxgi.h"
 #include "fixtures.h"
 #include <ctype.h>

@@ -7,7 +7,7 @@
    G-buffer textures (voxgi_cone_trace_gl) as at its points. (Cones over an octree:
    tests/test_octree.c; the cone set and the exact area light, which call private helpers:
    tests/test_internals.c.) The GL tests skip (loudly) only when no GL 4.5 context can be made;
-   VOXGI_TEST_GL=egl|osmesa picks the kind, VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
+   VOXGI_TEST_GL=egl|osmesa|none picks the kind (none: no context), VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
 #include "../voxgi.h"
 #include "fixtures.h"
 #include "cone_points.h"

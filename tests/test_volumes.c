@@ -5,7 +5,7 @@
    faces, lods between levels); the GL mips and samples equal the CPU's. (The mip filters against
    parents worked out by hand, which call private helpers, and the region labels: in
    tests/test_internals.c.) The GL tests skip (loudly) only when no GL 4.5 context can be made;
-   VOXGI_TEST_GL=egl|osmesa picks the kind, VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
+   VOXGI_TEST_GL=egl|osmesa|none picks the kind (none: no context), VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
 #include "../voxgi.h"
 #include "fixtures.h"
 #include <stdlib.h>
