@@ -237,8 +237,12 @@ static int float_edge_lost(const int64_t a[2], const int64_t b[2], const int64_t
    edge function often rounds to 0 (taken as it is, both triangles would claim the ray, and the
    lower numbered one win): the band must send those to the double test. A band narrowed but not
    below 0 still does, so on the CPU it is the same test (see float_edge_lost).
-   Measured: 11745 rays (10669 inside), 3892 rounding to 0; 0 wrong, 0 slipped, 0 outside. */
-static void test_watertight_rounding_band(void)
+   The fan lies at the origin on a grid of 2^-22 (radius ~2^22 steps), or 1e6 from it on the
+   floats' own grid there, 2^-4 (radius ~2^18 steps: a fan 100 times smaller than its distance);
+   relative to the scene's centre both are exact in float, so the integer oracle holds for both.
+   Measured: 11745 rays each, 8395 rounding to 0 at the origin and 2415 1e6 away; 0 wrong, 0
+   slipped, 0 outside. */
+static void rounding_band_fan(const char *where, double offset, int radius_bits, int step_bits)
 {
     enum { K = 24, ON_SPOKE = 400, ON_RIM = 80, R = K * (ON_SPOKE + ON_RIM) + 9 * (K + 1) };
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -255,18 +259,19 @@ static void test_watertight_rounding_band(void)
     fx_rng g = fx_rng_seeded(31);
     size_t n = 0, i, lost = 0, wrong_tri = 0, slipped = 0, phantom = 0, inside = 0;
     int k, j, a;
-    const double unit = 4194304.0; /* 2^22 grid steps per world unit */
-    v[K][0] = llround(fx_rng_range(&g, -0.05, 0.05) * unit); /* the hub */
-    v[K][1] = llround(fx_rng_range(&g, -0.05, 0.05) * unit);
+    const double radius = ldexp(1, radius_bits), step = ldexp(1, step_bits); /* grid steps to the rim; world units per step */
+    v[K][0] = llround(fx_rng_range(&g, -0.05, 0.05) * radius); /* the hub */
+    v[K][1] = llround(fx_rng_range(&g, -0.05, 0.05) * radius);
     for (k = 0; k < K; k++) {
         double th = 2 * 3.14159265358979 * (k + fx_rng_range(&g, -0.3, 0.3)) / K, r = fx_rng_range(&g, 0.85, 0.95);
-        v[k][0] = llround(r * cos(th) * unit);
-        v[k][1] = llround(r * sin(th) * unit);
+        v[k][0] = llround(r * cos(th) * radius);
+        v[k][1] = llround(r * sin(th) * radius);
     }
-    for (k = 0; k <= K; k++) {
-        pos[3 * k] = (float)(v[k][0] / unit);
-        pos[3 * k + 1] = (float)(v[k][1] / unit);
-        pos[3 * k + 2] = 0;
+    for (k = 0; k <= K; k++) { /* exact floats: offset and steps on the grid */
+        pos[3 * k] = (float)(offset + (double)v[k][0] * step);
+        pos[3 * k + 1] = (float)(-offset + (double)v[k][1] * step);
+        pos[3 * k + 2] = (float)offset;
+        TH_CHECK((double)pos[3 * k] == offset + (double)v[k][0] * step && (double)pos[3 * k + 1] == -offset + (double)v[k][1] * step, "vertex %d is not on the grid", k);
     }
     for (k = 0; k < K; k++) slot[k] = k;
     for (k = K - 1; k > 0; k--) { /* the triangles in shuffled order, so that a tie of two is decided either way */
@@ -284,7 +289,7 @@ static void test_watertight_rounding_band(void)
             const int64_t *e0 = edges[j >= ON_SPOKE][0], *e1 = edges[j >= ON_SPOKE][1];
             int64_t best = INT64_MAX;
             int m;
-            for (m = 0; m < 32; m++) { /* of 32 grid points by the edge, the nearest to its line */
+            for (m = 0; m < 256; m++) { /* of 256 grid points by the edge, the nearest to its line */
                 double s = fx_rng_range(&g, 0.02, 0.98);
                 int64_t p[2], c;
                 p[0] = llround((double)e0[0] + s * (double)(e1[0] - e0[0]));
@@ -304,8 +309,9 @@ static void test_watertight_rounding_band(void)
             n++;
         }
     for (i = 0; i < n; i++) {
-        for (a = 0; a < 2; a++) rays[i].origin[a] = (float)(at[i][a] / unit);
-        rays[i].origin[2] = 1;
+        rays[i].origin[0] = (float)(offset + (double)at[i][0] * step);
+        rays[i].origin[1] = (float)(-offset + (double)at[i][1] * step);
+        rays[i].origin[2] = (float)(offset + 64 * step);
         rays[i].direction[0] = rays[i].direction[1] = 0;
         rays[i].direction[2] = -1;
         rays[i].tmin = 0;
@@ -327,14 +333,20 @@ static void test_watertight_rounding_band(void)
         else if (!holds) phantom++;
         else if (!named) wrong_tri++;
     }
-    printf("    fan of %d triangles on a 2^-22 grid: %lu vertical rays (%lu inside), %lu whose edge function rounds to 0 in float; %lu on "
+    printf("    fan of %d triangles %s: %lu vertical rays (%lu inside), %lu whose edge function rounds to 0 in float; %lu on "
            "a triangle that does not hold their point, %lu slipped through, %lu hit outside\n",
-           K, (unsigned long)n, (unsigned long)inside, (unsigned long)lost, (unsigned long)wrong_tri, (unsigned long)slipped, (unsigned long)phantom);
+           K, where, (unsigned long)n, (unsigned long)inside, (unsigned long)lost, (unsigned long)wrong_tri, (unsigned long)slipped, (unsigned long)phantom);
     TH_CHECK(lost > n / 20 && inside > n / 2 && inside < n, "the rays do not test the band");
     TH_CHECK(!wrong_tri && !slipped && !phantom, "the triangle test takes a float edge function within rounding of 0 as it is (%lu wrong, %lu slipped, %lu outside)",
              (unsigned long)wrong_tri, (unsigned long)slipped, (unsigned long)phantom);
     voxgi_ray_scene_destroy(ctx, rs);
     voxgi_destroy(ctx);
+}
+
+static void test_watertight_rounding_band(void)
+{
+    rounding_band_fan("at the origin, on a 2^-22 grid", 0, 22, -22);
+    rounding_band_fan("1e6 from the origin, on a 2^-4 grid", 1e6, 18, -4);
 }
 
 /* Random rays through a soup of random triangles and a sphere: the closest hit is the brute
