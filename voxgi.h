@@ -759,6 +759,10 @@ typedef struct voxgi_cone_desc {
     float step;                   /* fraction of the diameter per step; 0 = 0.5 */
     float offset;                 /* start, in voxels along the normal; 0 = 1.5 */
     float max_distance;           /* in voxels; 0 = the grid's diagonal */
+    int seen_from_eye;            /* 1: every point is a surface seen from `eye` (a camera's pixels), so the
+                                     empty voxels on the line to the eye tell which closed space its cones
+                                     start in, where its voxel's neighbours leave that open (a corner) */
+    double eye[3];                /* with seen_from_eye: world units */
 } voxgi_cone_desc;
 
 /* Diffuse cone tracing: the irradiance at points (world positions, unit normals) gathered from a
@@ -4227,7 +4231,7 @@ typedef enum voxgi__gl_program_id {
     X(u_hierarchical) X(u_image) X(u_inv_s) X(u_level) X(u_levels) X(u_light_normal) X(u_lookup) X(u_maps) X(u_max_channels) \
     X(u_max_distance) X(u_max_lod) X(u_n)                                                                             \
     X(u_near) X(u_near_ends) X(u_offset) X(u_op) X(u_opening) X(u_origin) X(u_pair_capacity) X(u_pass) X(u_per_layer) X(u_point_sampling) X(u_premultiplied) X(u_radius) X(u_rays)     \
-    X(u_regions) X(u_res) X(u_right) X(u_samples) X(u_scale) X(u_seed) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) \
+    X(u_regions) X(u_res) X(u_right) X(u_samples) X(u_scale) X(u_seed) X(u_seen_from_eye) X(u_single) X(u_size) X(u_slicing) X(u_solid_axis) X(u_src_dims) \
     X(u_src_level)                                                                                                    \
     X(u_src_res) X(u_step) X(u_steps) X(u_svo_bricks) X(u_svo_depth) X(u_svo_format) X(u_svo_inner_tiles) X(u_svo_leaf_first) \
     X(u_svo_nodes) X(u_svo_single) X(u_tan) X(u_thin) X(u_through_voxels) X(u_triangle) X(u_tri_count) X(u_tri_offset) X(u_two_sided) X(u_up) \
@@ -8068,6 +8072,27 @@ static void voxgi__regions_of_sides(const int *dm, const uint32_t *lab, const in
     }
 }
 
+/* Where a side's normal finds no empty voxel (it runs along another wall's voxels, as a long
+   wall's does at the foot of a wall meeting it): the one lit region with an empty voxel within
+   two voxels of c in front of the side (centre offset . n > 0); 0 where none is lit, MIXED where
+   two are. */
+static uint32_t voxgi__region_lit_ahead(const int *dm, const uint32_t *lab, const unsigned char *lit, const int c[3], const double n[3])
+{
+    uint32_t found = 0;
+    int e[3];
+    for (e[2] = c[2] - 2; e[2] <= c[2] + 2; e[2]++)
+        for (e[1] = c[1] - 2; e[1] <= c[1] + 2; e[1]++)
+            for (e[0] = c[0] - 2; e[0] <= c[0] + 2; e[0]++) {
+                uint32_t r;
+                if (e[0] < 0 || e[1] < 0 || e[2] < 0 || e[0] >= dm[0] || e[1] >= dm[1] || e[2] >= dm[2] ||
+                    !((e[0] - c[0]) * n[0] + (e[1] - c[1]) * n[1] + (e[2] - c[2]) * n[2] > 0))
+                    continue;
+                r = lab[(size_t)e[0] + (size_t)dm[0] * ((size_t)e[1] + (size_t)dm[1] * (size_t)e[2])];
+                if (r && !(r & VOXGI__REGION_BORDER) && lit[r] && r != found) found = found ? VOXGI__REGION_MIXED : r;
+            }
+    return found;
+}
+
 /* Whether voxel c has an empty neighbour (of six) in region r. */
 static int voxgi__region_beside(const int *dm, const uint32_t *lab, const int c[3], uint32_t r)
 {
@@ -8152,6 +8177,12 @@ static voxgi_result voxgi__volume_regions(voxgi_context *ctx, voxgi_volume *vol,
                     if (lab[i] || !(radiance0[4 * i + 3] > 0)) continue;
                     c[0] = x; c[1] = y; c[2] = z;
                     voxgi__regions_of_sides(dm, lab, c, side0 + 4 * i, sides);
+                    for (q = 0; k == 1 && q < 2; q++)
+                        if (sides[q] == VOXGI__REGION_MIXED && (side0[4 * i] != 0 || side0[4 * i + 1] != 0 || side0[4 * i + 2] != 0)) {
+                            double n[3];
+                            for (a = 0; a < 3; a++) n[a] = q ? -side0[4 * i + (size_t)a] : side0[4 * i + (size_t)a];
+                            sides[q] = voxgi__region_lit_ahead(dm, lab, lit, c, n);
+                        }
                     if (sides[0] != VOXGI__REGION_MIXED && sides[1] != VOXGI__REGION_MIXED) { /* where each side's light goes is known */
                         uint32_t into = 0;
                         for (q = 0; q < 2; q++) {
@@ -9739,6 +9770,8 @@ typedef struct voxgi__cone_job {
     int dims[VOXGI__MAX_LEVELS][3]; /* each level's size */
     const float *level_at[3][6][VOXGI__MAX_LEVELS]; /* a volume's levels: [slot - RADIANCE_SLOT][direction][level] */
     double half_tan, step, offset, max_dist;
+    int seen_from_eye;            /* desc's, and its eye in grid units (float, as GL has it) */
+    float eye[3];
 } voxgi__cone_job;
 
 /* How much more a sample covers where its surfaces face away from the cone's origin: a cone
@@ -9955,15 +9988,59 @@ static void voxgi__side_at(const voxgi__cone_job *J, const int v[3], float side[
     memcpy(side, J->vol->cpu[VOXGI__SIDE_SLOT][0] + 4 * ((size_t)v[0] + (size_t)dm[0] * ((size_t)v[1] + (size_t)dm[1] * (size_t)v[2])), 16);
 }
 
-/* The region of the first empty voxel along unit normal n from o within 4 voxels (in float, as
-   GL finds it), 0 if there is none. */
-static uint32_t voxgi__home_along(const voxgi__cone_job *J, const double o[3], const double n[3])
+/* Voxel o + (0.5 + s) n of level 0 (in float, as GL finds it) in v; 0 where it lies beyond the grid. */
+static int voxgi__along_voxel(const voxgi__cone_job *J, const double o[3], const double n[3], int s, int v[3])
 {
-    int s, a;
+    int a;
+    for (a = 0; a < 3; a++) {
+        float q = (float)o[a] + (0.5f + (float)s) * (float)n[a];
+        if (!(q >= 0 && q < (float)J->dims[0][a])) return 0;
+        v[a] = (int)q;
+    }
+    return 1;
+}
+
+/* The region of the first empty voxel along unit normal n from o within 4 voxels, 0 if there is
+   none; with `no_crossing`, 0 also where a surface's voxel passed on the way has its plane between
+   o + n/4 and that voxel's centre: the walk crossed a wall (a closed box a few voxels wide, seen
+   from inside). */
+static uint32_t voxgi__home_along(const voxgi__cone_job *J, const double o[3], const double n[3], int no_crossing)
+{
+    float start[3], pl[4];
+    int s, k, a, v[3], w[3];
+    for (a = 0; a < 3; a++) start[a] = (float)o[a] + 0.25f * (float)n[a];
     for (s = 0; s < 4; s++) {
+        uint32_t r = voxgi__along_voxel(J, o, n, s, v) ? voxgi__region_label(J, 0, v) : 0;
+        if (!r || (r & VOXGI__REGION_BORDER)) continue;
+        for (k = 0; no_crossing && k < s; k++) {
+            float at_start, at_v;
+            if (!voxgi__along_voxel(J, o, n, k, w)) continue;
+            voxgi__side_at(J, w, pl);
+            at_start = pl[0] * start[0] + pl[1] * start[1] + pl[2] * start[2] - pl[3];
+            at_v = pl[0] * ((float)v[0] + 0.5f) + pl[1] * ((float)v[1] + 0.5f) + pl[2] * ((float)v[2] + 0.5f) - pl[3];
+            if ((at_start > 0 && at_v < 0) || (at_start < 0 && at_v > 0)) return 0;
+        }
+        return r;
+    }
+    return 0;
+}
+
+/* Where the eye sees o (J->seen_from_eye): the region of the first empty voxel on the segment from
+   o to the eye, within four voxels, in float as GL. The segment holds no surface, so that voxel's
+   region is o's, exactly; OPEN where the segment leaves the grid first, 0 where it finds none. */
+static uint32_t voxgi__home_toward_eye(const voxgi__cone_job *J, const double o[3])
+{
+    float p[3], d[3], len;
+    int s, a;
+    for (a = 0; a < 3; a++) { p[a] = (float)o[a]; d[a] = J->eye[a] - p[a]; }
+    len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (s = 0; s < 4 && 0.5f + (float)s < len; s++) {
         float q[3];
         uint32_t r;
-        for (a = 0; a < 3; a++) q[a] = (float)o[a] + (0.5f + (float)s) * (float)n[a];
+        for (a = 0; a < 3; a++) {
+            q[a] = p[a] + (0.5f + (float)s) / len * d[a];
+            if (!(q[a] >= 0 && q[a] < (float)J->dims[0][a])) return VOXGI__REGION_OPEN;
+        }
         r = voxgi__region_at(J, 0, q);
         if (r && !(r & VOXGI__REGION_BORDER)) return r;
     }
@@ -9990,18 +10067,21 @@ static int voxgi__segment_meets(const float a[3], const float b[3], const int v[
     return 1;
 }
 
-/* The enclosed region the cones from o on unit normal n start in: voxgi__home_along's; where
-   there is none (o near a corner, the other wall's voxels all along n), that of the nearest empty
-   voxel within 2 voxels of q = o + n/4 which no surface's plane in the voxels around q separates
-   from q; where none is, the planes of those voxels alone that the segment between them passes
-   (a voxel on an edge holds the mean plane of two surfaces, which can cut off both sides). 0
-   where that region is open or there is none. */
+/* The enclosed region the cones from o on unit normal n start in: where the eye sees o, the one
+   on the way to it (voxgi__home_toward_eye); else voxgi__home_along's (for a point the eye sees,
+   one not across a wall: its walk found none in a space that narrow); where there is none (o near
+   a corner, the other wall's voxels all along n), that of the nearest empty voxel within 2 voxels
+   of q = o + n/4 which no surface's plane in the voxels around q separates from q; where none is,
+   the planes of those voxels alone that the segment between them passes (a voxel on an edge holds
+   the mean plane of two surfaces, which can cut off both sides). 0 where that region is open or
+   there is none. */
 static uint32_t voxgi__home_region(const voxgi__cone_job *J, const double o[3], const double n[3])
 {
     const int *dm = J->dims[0];
     float q[3], best_d2 = 1e30f;
-    uint32_t best = voxgi__home_along(J, o, n);
+    uint32_t best = J->seen_from_eye ? voxgi__home_toward_eye(J, o) : 0;
     int a, c[3], e[3], v[3], strict;
+    if (!best) best = voxgi__home_along(J, o, n, J->seen_from_eye);
     if (best) return best == VOXGI__REGION_OPEN ? 0 : best;
     for (a = 0; a < 3; a++) {
         q[a] = (float)o[a] + 0.25f * (float)n[a];
@@ -10189,6 +10269,8 @@ static void voxgi__cone_uniforms(voxgi__gl *gl, unsigned int p, const voxgi__con
     gl->ProgramUniform1f(p, VOXGI__LOC_u_step, (float)J->step);
     gl->ProgramUniform1f(p, VOXGI__LOC_u_offset, (float)J->offset);
     gl->ProgramUniform1f(p, VOXGI__LOC_u_max_distance, (float)J->max_dist);
+    gl->ProgramUniform1i(p, VOXGI__LOC_u_seen_from_eye, J->seen_from_eye);
+    gl->ProgramUniform3f(p, VOXGI__LOC_u_eye, J->eye[0], J->eye[1], J->eye[2]);
 }
 
 /* The radiance, a volume's textures on units 0-5 (front), 9-14 (back) and 15 (side) or an
@@ -10377,6 +10459,8 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radianc
     J->offset = desc->offset > 0 ? desc->offset : 1.5;
     J->max_dist = desc->max_distance > 0 ? desc->max_distance
                                          : sqrt((double)g->res[0] * g->res[0] + (double)g->res[1] * g->res[1] + (double)g->res[2] * g->res[2]);
+    J->seen_from_eye = desc->seen_from_eye != 0;
+    for (a = 0; a < 3; a++) J->eye[a] = J->seen_from_eye ? (float)((desc->eye[a] - g->origin[a]) / g->voxel_size) : 0.0f;
     return VOXGI_OK;
 }
 
@@ -15644,7 +15728,10 @@ static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_radi
 {
     size_t i, n = 0;
     float *pos, *nrm, *irr;
+    voxgi_cone_desc seen = *cd; /* the pixels' surfaces are seen from the eye */
     voxgi_result r = VOXGI_OK;
+    seen.seen_from_eye = 1;
+    memcpy(seen.eye, J->eye, sizeof seen.eye);
     for (i = 0; i < pixels; i++) n += want[i];
     *traced = n;
     if (!n) return VOXGI_OK;
@@ -15654,7 +15741,7 @@ static voxgi_result voxgi__vct_trace_pixels(voxgi_context *ctx, const voxgi_radi
     if (!pos || !nrm || !irr) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %lu cone points", (unsigned long)n);
     for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
         if (want[i]) { memcpy(pos + 3 * n, J->pos + 3 * i, 12); memcpy(nrm + 3 * n, J->nrm + 3 * i, 12); n++; }
-    if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, source, cd, n, pos, nrm, irr, NULL);
+    if (r == VOXGI_OK) r = voxgi_cone_trace(ctx, source, &seen, n, pos, nrm, irr, NULL);
     for (i = 0, n = 0; r == VOXGI_OK && i < pixels; i++)
         if (want[i]) { memcpy(J->irr + 3 * i, irr + 3 * n, 12); n++; }
     voxgi__free(ctx, pos);

@@ -38,6 +38,8 @@ layout(location = VOXGI_LOC_u_half_tan) uniform float u_half_tan;
 layout(location = VOXGI_LOC_u_step) uniform float u_step;
 layout(location = VOXGI_LOC_u_offset) uniform float u_offset;
 layout(location = VOXGI_LOC_u_max_distance) uniform float u_max_distance;
+layout(location = VOXGI_LOC_u_seen_from_eye) uniform int u_seen_from_eye; // the points are seen from u_eye (grid units)
+layout(location = VOXGI_LOC_u_eye) uniform vec3 u_eye;
 
 #ifndef VOXGI_CONE_SVO
 // Level k of the front (or the back) at texture coordinates uv along d: voxgi__cone_level.
@@ -154,12 +156,49 @@ bool segment_meets(vec3 a, vec3 b, ivec3 v)
     return true;
 }
 
+// Voxel o + (0.5 + s) n of level 0 in v; false beyond the grid: voxgi__along_voxel.
+bool along_voxel(vec3 o, vec3 n, int s, out ivec3 v)
+{
+    vec3 q = o + (0.5 + float(s)) * n;
+    v = ivec3(q);
+    return all(greaterThanEqual(q, vec3(0.0))) && all(lessThan(q, vec3(u_res)));
+}
+
+// Where the eye sees o, the region of the first empty voxel on the way to it: voxgi__home_toward_eye.
+uint home_toward_eye(vec3 o)
+{
+    vec3 d = u_eye - o;
+    float len = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    for (int s = 0; s < 4 && 0.5 + float(s) < len; s++) {
+        vec3 q = o + (0.5 + float(s)) / len * d;
+        if (any(lessThan(q, vec3(0.0))) || any(greaterThanEqual(q, vec3(u_res)))) return REGION_OPEN;
+        uint r = region_at(0, q);
+        if (r != 0u && (r & REGION_BORDER) == 0u) return r;
+    }
+    return 0u;
+}
+
 // The enclosed region the cones from o on unit normal n start in: voxgi__home_region.
 uint home_region(vec3 o, vec3 n)
 {
-    for (int s = 0; s < 4; s++) {
-        uint r = region_at(0, o + (0.5 + float(s)) * n);
-        if (r != 0u && (r & REGION_BORDER) == 0u) return r == REGION_OPEN ? 0u : r;
+    uint seen = u_seen_from_eye != 0 ? home_toward_eye(o) : 0u;
+    if (seen != 0u) return seen == REGION_OPEN ? 0u : seen;
+    vec3 start = o + 0.25 * n;
+    for (int s = 0; s < 4; s++) { // voxgi__home_along: a point the eye sees takes no region across a wall
+        ivec3 v;
+        uint r = along_voxel(o, n, s, v) ? region_of(v) : 0u;
+        if (r == 0u || (r & REGION_BORDER) != 0u) continue;
+        bool crossed = false;
+        for (int k = 0; u_seen_from_eye != 0 && k < s && !crossed; k++) {
+            ivec3 w;
+            if (!along_voxel(o, n, k, w)) continue;
+            vec4 pl = side_at(w);
+            vec3 vc = vec3(v) + 0.5;
+            float at_start = pl.x * start.x + pl.y * start.y + pl.z * start.z - pl.w, at_v = pl.x * vc.x + pl.y * vc.y + pl.z * vc.z - pl.w;
+            crossed = (at_start > 0.0 && at_v < 0.0) || (at_start < 0.0 && at_v > 0.0);
+        }
+        if (crossed) break;
+        return r == REGION_OPEN ? 0u : r;
     }
     vec3 q = o + 0.25 * n;
     ivec3 c = ivec3(floor(q));

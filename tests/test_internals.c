@@ -722,6 +722,38 @@ static void test_region_labels_of_surfaces(void)
     voxgi_destroy(ctx);
 }
 
+/* Where a side's normal finds no empty voxel (voxgi__region_lit_ahead): the one lit region with an
+   empty voxel within two voxels in front of the side. A 7^3 grid split by a surface's column at
+   x = 3 (regions 2 left, 3 right): the side facing -x finds 2 when 2 is lit, nothing when only 3
+   is (3 lies behind it); a side along the column (+y) has both in front, so two lit regions make it
+   MIXED; the surfaces' own voxels (BORDER) never count. */
+static void test_region_lit_ahead(void)
+{
+    enum { S = 7 };
+    static uint32_t lab[S * S * S];
+    const int dm[3] = {S, S, S}, c[3] = {3, 3, 3};
+    const double left[3] = {-1, 0, 0}, right[3] = {1, 0, 0}, up[3] = {0, 1, 0};
+    unsigned char lit[4] = {0, 0, 0, 0};
+    int x, y, z, bad = 0;
+    for (z = 0; z < S; z++)
+        for (y = 0; y < S; y++)
+            for (x = 0; x < S; x++)
+                lab[x + S * (y + S * z)] = x < 3 ? 2u : x > 3 ? 3u : (y == 5 ? VOXGI__REGION_BORDER | 3u : 0u);
+    lit[2] = 1;
+    bad += voxgi__region_lit_ahead(dm, lab, lit, c, left) != 2;
+    bad += voxgi__region_lit_ahead(dm, lab, lit, c, right) != 0;
+    bad += voxgi__region_lit_ahead(dm, lab, lit, c, up) != 2;
+    lit[2] = 0;
+    lit[3] = 1;
+    bad += voxgi__region_lit_ahead(dm, lab, lit, c, left) != 0;
+    bad += voxgi__region_lit_ahead(dm, lab, lit, c, right) != 3;
+    lit[2] = 1;
+    bad += voxgi__region_lit_ahead(dm, lab, lit, c, up) != VOXGI__REGION_MIXED;
+    bad += voxgi__region_lit_ahead(dm, lab, lit, c, left) != 2;
+    printf("    a surface's column between two regions: %d of 7 sides wrong\n", bad);
+    TH_CHECK(bad == 0, "%d of 7 sides find the wrong lit region", bad);
+}
+
 /* ===================================================================== 7. octree */
 
 /* ---------------------------------------------------------------- formats */
@@ -1259,6 +1291,73 @@ static void test_regions_alone(void)
     voxgi_volume_destroy(ctx, vol);
     voxgi_voxels_destroy(ctx, vx);
     voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
+/* A cone from an enclosed region ends, opaque, where it enters a region not inside its own,
+   whatever lies beyond. Two rooms split by a wall on a voxel boundary (as in
+   test_region_labels_of_surfaces), the wall lit from B alone, so that room A's cones leave both
+   its voxels out of level 0 and pass it; B's far wall lit too, its voxels' labels then cleared (a
+   surface whose region is unknown, seen from every region). A narrow cone from A along +x:
+   colour 0 and opacity 1; marched on past the wall it would reach the far wall's light. */
+static void test_cone_ends_leaving_its_region(void)
+{
+    enum { X = 12, Y = 6, Z = 6, N = X * Y * Z };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    static float rad[4 * N], back[4 * N], side[4 * N];
+    const float *base[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    voxgi_grid g;
+    voxgi_volume_desc vd;
+    voxgi_volume *vol = NULL;
+    voxgi_cone_desc cd;
+    voxgi_cone cone;
+    float got[4] = {1, 1, 1, 0};
+    int x, y, z, a;
+    memset(&g, 0, sizeof g);
+    g.res[0] = X; g.res[1] = Y; g.res[2] = Z;
+    g.voxel_size = 1;
+    memset(&vd, 0, sizeof vd);
+    for (z = 0; z < Z; z++)
+        for (y = 0; y < Y; y++)
+            for (x = 0; x < X; x++) {
+                int i = x + X * (y + Y * z), c[3], n[3] = {0, 0, 0};
+                float plane;
+                c[0] = x; c[1] = y; c[2] = z;
+                if (x == 5 || x == 6) { n[0] = -1; plane = -6; } /* the wall, its front facing A */
+                else {
+                    for (a = 0; a < 3; a++)
+                        if (!n[0] && !n[1] && !n[2] && (c[a] == 0 || c[a] == g.res[a] - 1)) n[a] = c[a] == 0 ? 1 : -1;
+                    if (!n[0] && !n[1] && !n[2]) continue;
+                    a = n[0] ? 0 : n[1] ? 1 : 2;
+                    plane = (float)(n[a] * (c[a] == 0 ? 1 : c[a]));
+                }
+                rad[4 * i + 3] = back[4 * i + 3] = 1;
+                for (a = 0; a < 3; a++) side[4 * i + a] = (float)n[a];
+                side[4 * i + 3] = plane;
+                if (x == 5 || x == 6) back[4 * i] = back[4 * i + 1] = back[4 * i + 2] = 1; /* B's side of the wall */
+                if (x == X - 1) rad[4 * i] = rad[4 * i + 1] = rad[4 * i + 2] = 1;    /* B's far wall */
+            }
+    base[VOXGI__RADIANCE_SLOT] = rad;
+    base[VOXGI__BACK_SLOT] = back;
+    base[VOXGI__SIDE_SLOT] = side;
+    TH_CHECK(voxgi__volume_new(ctx, &g, &vd, VOXGI__RADIANCE_FAMILY, &vol) == VOXGI_OK && voxgi__volume_build(ctx, vol, base) == VOXGI_OK && vol->regions,
+             "volume: %s", voxgi_last_error(ctx));
+    if (!vol || !vol->regions) goto done;
+    TH_CHECK((vol->regions[5 + X * (3 + Y * 3)] & VOXGI__REGION_BORDER) && VOXGI__REGION_OF(vol->regions[5 + X * (3 + Y * 3)]) == vol->regions[8 + X * (3 + Y * 3)],
+             "the wall's voxel is labelled %x, B %x", vol->regions[5 + X * (3 + Y * 3)], vol->regions[8 + X * (3 + Y * 3)]);
+    for (z = 0; z < Z; z++)
+        for (y = 0; y < Y; y++) vol->regions[X - 1 + X * (y + Y * z)] = 0;
+    memset(&cd, 0, sizeof cd);
+    memset(&cone, 0, sizeof cone);
+    cone.origin[0] = 2.5f;
+    cone.origin[1] = cone.origin[2] = 3;
+    cone.direction[0] = cone.normal[0] = 1;
+    cone.half_angle = 0.1f;
+    TH_CHECK(voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, 1, &cone, got) == VOXGI_OK, "cone: %s", voxgi_last_error(ctx));
+    printf("    a cone from room A past the wall lit from B: colour %.3g %.3g %.3g, opacity %.3g\n", got[0], got[1], got[2], got[3]);
+    TH_CHECK(got[0] == 0 && got[1] == 0 && got[2] == 0 && got[3] == 1, "colour %g %g %g, opacity %g", got[0], got[1], got[2], got[3]);
+done:
+    voxgi_volume_destroy(ctx, vol);
     voxgi_destroy(ctx);
 }
 
@@ -1902,12 +2001,14 @@ int main(void)
     TH_RUN(test_gl_volume_mips_by_hand);
     TH_RUN(test_region_labels_flood_fill);
     TH_RUN(test_region_labels_of_surfaces);
+    TH_RUN(test_region_lit_ahead);
     TH_RUN(test_half_rounding);
     TH_RUN(test_gl_svo_equals_cpu);
     TH_RUN(test_cone_set);
     TH_RUN(test_two_sided_radiance_alone);
     TH_RUN(test_back_coverage_alone);
     TH_RUN(test_regions_alone);
+    TH_RUN(test_cone_ends_leaving_its_region);
     TH_RUN(test_exact_area_light_image);
     TH_RUN(test_linespace_build);
     TH_RUN(test_linespace_rays);
