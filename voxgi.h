@@ -7989,8 +7989,9 @@ static void voxgi__mip_rows(void *user, size_t first, size_t end)
    or b's bounds (level-0 voxels) lie within a's: a pocket such as a closed box on a room's floor
    lies inside the room, the room not inside the box. A surface's voxel of level 0 belongs to the
    region its light goes into: each side's is that of the first empty voxel along the side's
-   normal (voxgi__regions_of_sides), and a region is lit where a side with light goes into it from
-   a voxel beside it. A voxel whose lit sides' regions are one region holds VOXGI__REGION_BORDER |
+   normal (voxgi__regions_of_sides; where that normal runs along other surfaces' voxels, the one
+   lit region ahead of the side, voxgi__region_lit_ahead), and a region is lit where a side with
+   light goes into it from a voxel beside it. A voxel whose lit sides' regions are one region holds VOXGI__REGION_BORDER |
    that region, and VOXGI__REGION_UNSEEN besides where it does not border it (the outer of two
    voxels a wall on a voxel boundary fills, the outer layer of a curved shell); where a side's
    region is unknown, the one lit region it borders (the ground beside a box's corner). A cone
@@ -10430,6 +10431,8 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radianc
         !(desc->offset >= 0) || !(desc->max_distance >= 0))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "cones %d (0..1024), half_angle %g (0..1.5), step %g (0..4), offset %g, max_distance %g",
                            desc->cones, desc->half_angle, desc->step, desc->offset, desc->max_distance);
+    if (desc->seen_from_eye && !(isfinite(desc->eye[0]) && isfinite(desc->eye[1]) && isfinite(desc->eye[2])))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "seen_from_eye with an eye that is not finite");
     if (vol) {
         J->levels = vol->info.levels;
         J->enclosed = vol->region_count > 2;

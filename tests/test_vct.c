@@ -196,8 +196,9 @@ static void test_glowing_ceiling(void)
    to 72 degrees from the vertical): single cones straight up of half-angle 1e-6, 1e-3, 1.4 and
    1.4999 rad (86 degrees) all see its radiance 2 (within 5%), fully opaque; a diffuse gather with
    one cone of 1e-5 or 1.49 rad gives a finite irradiance, at most the ceiling's pi x 2;
-   half-angles 0, 1.5 and NaN are refused. (An 86-degree cone used to stride from 1.5 voxels to
-   22.5 at its first step, over the ceiling: radiance 0, opacity 0.) */
+   half-angles 0, 1.5 and NaN are refused, and so is an eye of NaN for points seen from it. (An
+   86-degree cone used to stride from 1.5 voxels to 22.5 at its first step, over the ceiling:
+   radiance 0, opacity 0.) */
 static void test_cone_apertures_extreme(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -238,6 +239,9 @@ static void test_cone_apertures_extreme(void)
         c[0].half_angle = bad[k];
         TH_CHECK(voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, 1, c, out) == VOXGI_ERR_INVALID_ARGUMENT, "half-angle %g accepted", (double)bad[k]);
     }
+    cd.seen_from_eye = 1; /* points seen from an eye that is not finite */
+    cd.eye[1] = NAN;
+    TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, 1, pos, nrm, irr, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "an eye of NaN accepted");
     voxgi_volume_destroy(ctx, vol);
     voxgi_destroy(ctx);
 }
