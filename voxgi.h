@@ -11052,6 +11052,15 @@ static void voxgi__volume_take_regions(voxgi_volume *to, voxgi_volume *from)
     from->region_buffer = 0;
 }
 
+/* The bounces still to come added to a voxel's light rgb: tail x its last bounce's step, per
+   channel. A channel whose light fell in the last bounce (rounding: the bounces only add light)
+   has no tail to come; extrapolated, it went below zero (full GI's dark voxels). */
+static void voxgi__add_bounce_tail(float rgb[3], const float last_step[3], float tail)
+{
+    int a;
+    for (a = 0; a < 3; a++) rgb[a] += tail * VOXGI__MAX(last_step[a], 0.0f);
+}
+
 /* The light's further bounces among the voxels (desc->bounces > 1, or -1: until one adds less
    than VOXGI_CONVERGED_BOUNCE of the light): each group of voxels (voxgi__bounce_groups) gathers
    from *vol, on its normal for the front and on the reverse for the back, its voxels' radiance
@@ -11124,9 +11133,7 @@ static voxgi_result voxgi__inject_bounces(voxgi_context *ctx, voxgi__inject *J, 
             float tail = (float)(ratio / (1 - ratio));
             for (sd = 0; sd < sides; sd++)
                 for (i = 0; i < n; i++) {
-                    float *o = (sd ? J->back : J->rgba) + 4 * J->index[i];
-                    for (a = 0; a < 3; a++) o[a] += tail * VOXGI__MAX(step[3 * ((size_t)sd * n + i) + (size_t)a], 0.0f); /* a voxel whose light
-                                                                                        fell (rounding) has no tail to come: never below 0 */
+                    voxgi__add_bounce_tail((sd ? J->back : J->rgba) + 4 * J->index[i], step + 3 * ((size_t)sd * n + i), tail);
                 }
         }
         if (converged) voxgi__log(ctx, VOXGI_LOG_INFO, "light injection: the bounces still to come add about %.2g%% of the light: %d bounces and their geometric tail", 100 * share, b + 1);

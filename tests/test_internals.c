@@ -1294,6 +1294,18 @@ static void test_regions_alone(void)
     voxgi_destroy(ctx);
 }
 
+/* The bounces' geometric tail (voxgi__add_bounce_tail): a channel whose last bounce added light
+   gets tail x that step; one whose light fell by rounding (the bounces only add light) keeps its
+   light, so a dark voxel never goes below zero (at a ratio of 0.999 a bounce the tail is 999). */
+static void test_bounce_tail(void)
+{
+    float rgb[3] = {1e-7f, 0.5f, 0.25f};
+    const float step[3] = {-2e-7f, 0.001f, 0};
+    voxgi__add_bounce_tail(rgb, step, 999.0f);
+    printf("    tail 999 on steps -2e-7, 0.001, 0: %g %g %g\n", rgb[0], rgb[1], rgb[2]);
+    TH_CHECK(rgb[0] == 1e-7f && fabsf(rgb[1] - 1.499f) < 1e-5f && rgb[2] == 0.25f, "light %g %g %g, not 1e-7 1.499 0.25", rgb[0], rgb[1], rgb[2]);
+}
+
 /* A cone from an enclosed region ends, opaque, where it enters a region not inside its own,
    whatever lies beyond. Two rooms split by a wall on a voxel boundary (as in
    test_region_labels_of_surfaces), the wall lit from B alone, so that room A's cones leave both
@@ -2009,6 +2021,7 @@ int main(void)
     TH_RUN(test_back_coverage_alone);
     TH_RUN(test_regions_alone);
     TH_RUN(test_cone_ends_leaving_its_region);
+    TH_RUN(test_bounce_tail);
     TH_RUN(test_exact_area_light_image);
     TH_RUN(test_linespace_build);
     TH_RUN(test_linespace_rays);
