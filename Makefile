@@ -15,16 +15,17 @@ GLSL    := $(sort $(wildcard shaders/*.glsl))
 # test_linespace 12, test_reference 13, test_plan 14, test_files 15), then the stiff cases across
 # the parts and the private helpers' tests (test_internals, ordered by part).
 TESTS   := test_tool test_mesh_io test_headless_gl test_core test_rays test_voxelize test_exact test_volumes test_octree test_vct test_lightspace test_screenspace test_linespace test_reference test_plan test_files test_stiff test_internals
-# The test programs that link the implementation object (they include voxgi.h for the declarations
-# only); test_internals (private helpers) compiles the implementation itself.
-LINKED_TESTS := $(filter-out test_internals test_mesh_io test_headless_gl,$(TESTS))
+# The test programs that link the implementation object (voxgi.h's and voxgi_io.h's; they include
+# the headers for the declarations only); test_internals (private helpers) compiles the
+# implementation itself.
+LINKED_TESTS := $(filter-out test_internals test_headless_gl,$(TESTS))
 # test_exact's oracle computes in GMP rationals (libgmp-dev, a test-only dependency).
 $(B)/test_exact $(B)/asan/test_exact: LDLIBS += -lgmp
 NPROC   := $(shell nproc 2>/dev/null || echo 2)
-TOOL_SRC := tools/voxgi.c $(wildcard tools/cli*.c tools/cmd_*.c) tools/mesh_io.c
+TOOL_SRC := tools/voxgi.c $(wildcard tools/cli*.c tools/cmd_*.c)
 TOOL_H   := $(wildcard tools/*.h)
 # The examples (examples/*.c; tests/run.sh runs each); quickstart.c is the README's, built by its test.
-EXAMPLES := $(addprefix $(B)/example_,voxelize octree render ambient_occlusion gl_cone_trace)
+EXAMPLES := $(addprefix $(B)/example_,voxelize octree render ambient_occlusion gl_cone_trace own_mesh)
 
 .PHONY: all deps test mutate demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
 all: deps $(B)/voxgi $(EXAMPLES)
@@ -45,36 +46,34 @@ shaders.h: $(GLSL) $(B)/embed_shaders
 	$(B)/embed_shaders $@ $(GLSL)
 
 # The implementation, compiled once per configuration; the tool and the tests link it.
-$(B)/voxgi_impl.o: tools/voxgi_impl.c voxgi.h shaders.h | $(B)
+$(B)/voxgi_impl.o: tools/voxgi_impl.c voxgi.h voxgi_io.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -c -o $@ $<
-$(B)/asan/voxgi_impl.o: tools/voxgi_impl.c voxgi.h shaders.h | $(B)/asan
+$(B)/asan/voxgi_impl.o: tools/voxgi_impl.c voxgi.h voxgi_io.h shaders.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -c -o $@ $<
 
-$(B)/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/voxgi_impl.o | $(B)
+$(B)/voxgi: $(TOOL_SRC) $(TOOL_H) voxgi_io.h $(B)/voxgi_impl.o | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $(TOOL_SRC) $(B)/voxgi_impl.o $(LDLIBS)
 
-# voxelize.c is a whole program (it defines VOXGI_IMPLEMENTATION, as one file of a project does);
-# the other examples link the implementation object, render.c also the tool's mesh loader, and
-# gl_cone_trace.c libEGL, with which it makes its own GL context (libegl-dev: tools/deps.sh).
+# voxelize.c and own_mesh.c are whole programs (they define VOXGI_IMPLEMENTATION, as one file of a
+# project does; own_mesh.c, the README's "your own mesh", also VOXGI_IO_IMPLEMENTATION); the other
+# examples link the implementation object (with voxgi_io.h's loaders), and gl_cone_trace.c libEGL,
+# with which it makes its own GL context (libegl-dev: tools/deps.sh).
 $(B)/example_voxelize: examples/voxelize.c voxgi.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(LDLIBS)
+$(B)/example_own_mesh: examples/own_mesh.c voxgi.h voxgi_io.h | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -DVOXGI_NO_GL -o $@ $< $(LDLIBS)
 $(B)/example_octree $(B)/example_ambient_occlusion: $(B)/example_%: examples/%.c voxgi.h $(B)/voxgi_impl.o | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS)
-$(B)/example_render: examples/render.c voxgi.h tools/mesh_io.c tools/mesh_io.h tools/image_io.h $(B)/voxgi_impl.o | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< tools/mesh_io.c $(B)/voxgi_impl.o $(LDLIBS)
+$(B)/example_render: examples/render.c voxgi.h voxgi_io.h tools/image_io.h $(B)/voxgi_impl.o | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS)
 $(B)/example_gl_cone_trace: examples/gl_cone_trace.c voxgi.h tools/image_io.h $(B)/voxgi_impl.o | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS) -lEGL
 
-$(B)/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tools/image_io.h tests/harness.h | $(B)
-	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
-$(B)/asan/test_mesh_io: tests/test_mesh_io.c tools/mesh_io.c tools/mesh_io.h tools/image_io.h tests/harness.h | $(B)/asan
-	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ tests/test_mesh_io.c tools/mesh_io.c $(LDLIBS)
-
 TEST_H  := $(wildcard tests/*.h) $(TOOL_H)
 
-$(addprefix $(B)/,$(LINKED_TESTS)): $(B)/%: tests/%.c voxgi.h $(TEST_H) $(B)/voxgi_impl.o | $(B)
+$(addprefix $(B)/,$(LINKED_TESTS)): $(B)/%: tests/%.c voxgi.h voxgi_io.h $(TEST_H) $(B)/voxgi_impl.o | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS)
-$(addprefix $(B)/asan/,$(LINKED_TESTS)): $(B)/asan/%: tests/%.c voxgi.h $(TEST_H) $(B)/asan/voxgi_impl.o | $(B)/asan
+$(addprefix $(B)/asan/,$(LINKED_TESTS)): $(B)/asan/%: tests/%.c voxgi.h voxgi_io.h $(TEST_H) $(B)/asan/voxgi_impl.o | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(B)/asan/voxgi_impl.o $(LDLIBS)
 
 # The rest are whole programs: test_internals with the implementation inside,
@@ -94,7 +93,7 @@ AVX2_CC := $(shell echo 'int main(void) { return 0; }' | $(CC) -mavx2 -mfma -x c
 $(B)/test_rays_avx2: tests/test_rays.c tools/voxgi_impl.c voxgi.h $(TEST_H) shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -mavx2 -mfma -o $@ tests/test_rays.c tools/voxgi_impl.c $(LDLIBS)
 
-$(B)/asan/voxgi: $(TOOL_SRC) $(TOOL_H) $(B)/asan/voxgi_impl.o | $(B)/asan
+$(B)/asan/voxgi: $(TOOL_SRC) $(TOOL_H) voxgi_io.h $(B)/asan/voxgi_impl.o | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(B)/asan/voxgi_impl.o $(LDLIBS)
 
 # Leaks on purpose: tests/run.sh checks that the leak checks report it.

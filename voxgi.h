@@ -385,6 +385,12 @@ typedef struct voxgi_camera {
     double fovy_degrees;          /* vertical field of view */
     int width, height;            /* pixels */
 } voxgi_camera;
+/* A view that shows the whole box [lo, hi]: its bounding sphere from a three-quarter view above
+   the front (+Z toward the viewer, +Y up: the eye 30 degrees toward +X and 25 degrees above the
+   centre), just inside the narrower side of the image. Reads cam's fovy_degrees (0 = 40) and
+   width x height (0 = square) and sets eye, target and fovy_degrees. Turn a model whose up is
+   another axis into +Y first (a voxgi_camera is always +Y up). */
+VOXGI_API void voxgi_camera_frame_bounds(const double lo[3], const double hi[3], voxgi_camera *cam);
 
 /* ----- ray casting
    A scene made ready for rays (voxgi_ray_scene_create: a 4-wide BVH) answers closest hits and
@@ -1420,7 +1426,10 @@ typedef struct voxgi_render_info {
 /* The image into rgb (3 floats per pixel, linear radiance, rows from the top; SSAO and VAO: the
    occluded share, grey, 0 where the camera sees nothing; rgb_bytes at least width x height x 12);
    info may be NULL. On a GL context each method runs its passes on GL where it has them (the
-   direct light's and the reference's rays stay on the CPU). */
+   direct light's and the reference's rays stay on the CPU). A scene with no light and no emissive
+   material is rendered, black as it is (VOXGI_OK: a light switched off is a scene too), and a
+   VOXGI_LOG_WARNING through the context's logger says so; occlusion (SSAO, VAO, the reference's
+   ao_radius) needs no light and gives none. */
 VOXGI_API voxgi_result voxgi_render(voxgi_context *ctx, const voxgi_scene *scene, const voxgi_render_desc *desc, float *rgb, size_t rgb_bytes,
                                     voxgi_render_info *info);
 /* A stage's time in an image's info by its name ("cones", "gather", ...); 0 when it did not run. */
@@ -3896,6 +3905,31 @@ static void voxgi__area_irradiance(const voxgi__lights *R, const double p[3], co
 
 /* ----- 3.7 cameras */
 
+VOXGI_API void voxgi_camera_frame_bounds(const double lo[3], const double hi[3], voxgi_camera *cam)
+{
+    /* the unit direction from the centre to the eye: front +Z turned 30 degrees toward +X, 25 up */
+    const double yaw = 30 * VOXGI__PI / 180, pitch = 25 * VOXGI__PI / 180;
+    double dir[3], c[3], r2 = 0, r, half_y, half, dist;
+    int a;
+    dir[0] = sin(yaw) * cos(pitch);
+    dir[1] = sin(pitch);
+    dir[2] = cos(yaw) * cos(pitch);
+    for (a = 0; a < 3; a++) {
+        c[a] = 0.5 * (lo[a] + hi[a]);
+        r2 += 0.25 * (hi[a] - lo[a]) * (hi[a] - lo[a]);
+    }
+    r = sqrt(r2) > 0 ? sqrt(r2) : 1; /* a point: a unit sphere around it */
+    if (!(cam->fovy_degrees > 0 && cam->fovy_degrees < 180)) cam->fovy_degrees = 40;
+    half_y = cam->fovy_degrees * VOXGI__PI / 360;
+    half = half_y;
+    if (cam->width > 0 && cam->height > 0 && cam->width < cam->height) half = atan(tan(half_y) * cam->width / cam->height);
+    dist = 1.05 * r / sin(half); /* the sphere touches the narrower half-angle's cone, with 5% to spare */
+    for (a = 0; a < 3; a++) {
+        cam->target[a] = c[a];
+        cam->eye[a] = c[a] + dist * dir[a];
+    }
+}
+
 /* The camera's frame (gluLookAt, up +Y); fails where the view is along +-Y. */
 static voxgi_result voxgi__camera_frame(voxgi_context *ctx, const voxgi_camera *cam, double eye[3], double forward[3], double right[3],
                                         double up[3], double *tan_half)
@@ -4270,7 +4304,16 @@ struct voxgi__gl {
                                                                "#define VOXGI_BINDING_<role> <binding>" lines */
 };
 
+/* where the compiler can tell (C23, C++17, GCC 5 and Clang before them), a missing shaders.h says what to do */
+#if defined(__has_include)
+#if __has_include("shaders.h")
 #include "shaders.h"
+#else
+#error "voxgi.h: shaders.h (the embedded GLSL) is not beside voxgi.h: copy shaders.h next to voxgi.h (or run make shaders.h), or define VOXGI_NO_GL to build the CPU backend alone"
+#endif
+#else
+#include "shaders.h"
+#endif
 
 static voxgi_gl_proc voxgi__gl_lookup(voxgi_context *ctx, const char *name)
 {
@@ -16931,6 +16974,9 @@ VOXGI_API voxgi_result voxgi_render(voxgi_context *ctx, const voxgi_scene *scene
                            inf.used.camera.height, (unsigned long)(I.pixels * 12));
     for (i = 0; i < inf.plan.item_count; i++)
         if (!inf.plan.items[i].kept) voxgi__log(ctx, VOXGI_LOG_DEBUG, "plan: %s: left out - %s", inf.plan.items[i].name, inf.plan.items[i].why);
+    if (!scene->light_count && !inf.plan.emissive_triangles && inf.used.method != VOXGI_RENDER_SSAO && inf.used.method != VOXGI_RENDER_VAO &&
+        !(inf.used.method == VOXGI_RENDER_REFERENCE && desc->reference.ao_radius > 0))
+        voxgi__log(ctx, VOXGI_LOG_WARNING, "no light and no emitter in the scene: the image is black (add a voxgi_light or a material with emission)");
     I.ctx = ctx;
     I.scene = scene;
     I.d = &inf.used;

@@ -8,8 +8,7 @@
 // `voxgi bench rays --json`, plus each kernel's rate.
 //
 // Build (Debian 12: apt-get install libembree-dev):
-//   cc -O2 -c tools/mesh_io.c -o mesh_io.o
-//   g++ -std=c++17 -O2 -Itools bench/anchor_embree.cpp mesh_io.o -lembree3 -lpthread
+//   g++ -std=c++17 -O2 -Itools bench/anchor_embree.cpp -lembree3 -lpthread
 
 #include <embree3/rtcore.h>
 
@@ -22,7 +21,8 @@
 #include <thread>
 #include <vector>
 
-#include "mesh_io.h"
+#define VOXGI_IO_IMPLEMENTATION /* the mesh loaders (voxgi_io.h) compiled into this program */
+#include "../voxgi_io.h"
 #include "ray_sets.h"
 
 namespace {
@@ -114,9 +114,9 @@ int main(int argc, char **argv)
     }
     size_t nrays = argc > 2 ? (size_t)std::strtoull(argv[2], nullptr, 10) : 1000000;
     int threads = argc > 3 ? std::atoi(argv[3]) : (int)std::thread::hardware_concurrency(), runs = argc > 4 ? std::atoi(argv[4]) : 3;
-    vxt_mesh m;
+    voxgi_io_mesh m;
     char err[512];
-    if (vxt_mesh_load(argv[1], &m, err, sizeof err)) {
+    if (voxgi_io_load_mesh(argv[1], &m, err, sizeof err)) {
         std::fprintf(stderr, "anchor_embree: %s\n", err);
         return 1;
     }
@@ -202,6 +202,6 @@ int main(int argc, char **argv)
     std::printf("}}\n");
     rtcReleaseScene(scene);
     rtcReleaseDevice(device);
-    vxt_mesh_free(&m);
+    voxgi_io_mesh_free(&m);
     return 0;
 }

@@ -19,8 +19,7 @@
 //
 // Build (Debian 12: apt-get install libopenvdb-dev libboost-dev; the OpenVDB
 // package does not pull in the Boost headers its own headers include):
-//   cc -O2 -c tools/mesh_io.c -o mesh_io.o
-//   g++ -std=c++17 -O2 -Itools bench/anchor_openvdb.cpp mesh_io.o -lopenvdb -ltbb
+//   g++ -std=c++17 -O2 -Itools bench/anchor_openvdb.cpp -lopenvdb -ltbb
 
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
@@ -38,7 +37,8 @@
 #include <exception>
 #include <vector>
 
-#include "mesh_io.h"
+#define VOXGI_IO_IMPLEMENTATION /* the mesh loaders (voxgi_io.h) compiled into this program */
+#include "../voxgi_io.h"
 
 namespace {
 
@@ -86,7 +86,7 @@ bool parse_int(const char *s, long lo, long hi, int *out)
 
 // Cubic grid of n voxels per axis, centred on the mesh bounds, with at least
 // one empty voxel on every side (the longest axis spans exactly n-2 voxels).
-Grid fit_grid(const vxt_mesh &m, int n)
+Grid fit_grid(const voxgi_io_mesh &m, int n)
 {
     double lo[3], hi[3];
     for (int a = 0; a < 3; ++a) lo[a] = hi[a] = m.positions[a];
@@ -166,16 +166,16 @@ int run(int argc, char **argv)
         return 2;
     }
 
-    vxt_mesh mesh;
+    voxgi_io_mesh mesh;
     char err[256] = "";
-    if (vxt_mesh_load(mesh_path, &mesh, err, sizeof err) != 0) {
+    if (voxgi_io_load_mesh(mesh_path, &mesh, err, sizeof err) != 0) {
         std::fprintf(stderr, "anchor_openvdb: %s\n", err); // err names the file
         return 1;
     }
 
     if (fit) {
         Grid g = fit_grid(mesh, fit);
-        vxt_mesh_free(&mesh);
+        voxgi_io_mesh_free(&mesh);
         // 9 digits keep a float exact; both tools then parse this same text.
         std::printf("%.9g %.9g %.9g %.9g %d %d %d\n", g.origin[0], g.origin[1], g.origin[2],
                     g.size, g.dims[0], g.dims[1], g.dims[2]);
@@ -190,7 +190,7 @@ int run(int argc, char **argv)
     // The loader guarantees at least one triangle and in-range indices.
     for (size_t t = 0; t < mesh.triangle_count; ++t)
         triangles[t] = openvdb::Vec3I(mesh.indices + 3 * t);
-    vxt_mesh_free(&mesh);
+    voxgi_io_mesh_free(&mesh);
 
     openvdb::initialize();
     openvdb::math::Transform::Ptr xform =

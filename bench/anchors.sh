@@ -57,7 +57,7 @@ if ! echo '#include <openvdb/tools/MeshToVolume.h>' |
 fi
 
 # Rebuild the anchor when it is missing or older than its sources.
-srcs=("$root/bench/anchor_openvdb.cpp" "$root/tools/mesh_io.c" "$root/tools/mesh_io.h")
+srcs=("$root/bench/anchor_openvdb.cpp" "$root/voxgi_io.h" "$root/voxgi.h")
 stale=0
 [[ -x $anchor ]] || stale=1
 for s in "${srcs[@]}"; do
@@ -66,10 +66,9 @@ done
 if ((stale)); then
     echo "anchors: building $(basename "$anchor")" >&2
     mkdir -p "$build"
-    "$CC" -O2 -c "$root/tools/mesh_io.c" -o "$build/anchor_mesh_io.o"
     # shellcheck disable=SC2086
     "$CXX" -std=c++17 -O2 -Wall -Wextra -pedantic $OPENVDB_CFLAGS -I"$root/tools" \
-        "$root/bench/anchor_openvdb.cpp" "$build/anchor_mesh_io.o" \
+        "$root/bench/anchor_openvdb.cpp" \
         -o "$anchor" $OPENVDB_LIBS
 fi
 

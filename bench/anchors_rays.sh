@@ -51,7 +51,7 @@ if ! echo '#include <embree3/rtcore.h>' | "$CXX" -std=c++17 $EMBREE_CFLAGS -x c+
     echo "anchors_rays: on Debian/Ubuntu: apt-get install libembree-dev" >&2
     exit 0
 fi
-srcs=("$root/bench/anchor_embree.cpp" "$root/tools/ray_sets.h" "$root/tools/mesh_io.c" "$root/tools/mesh_io.h")
+srcs=("$root/bench/anchor_embree.cpp" "$root/tools/ray_sets.h" "$root/voxgi_io.h" "$root/voxgi.h")
 stale=0
 [[ -x $anchor ]] || stale=1
 for s in "${srcs[@]}"; do
@@ -60,10 +60,9 @@ done
 if ((stale)); then
     echo "anchors_rays: building $(basename "$anchor")" >&2
     mkdir -p "$build"
-    "$CC" -O2 -c "$root/tools/mesh_io.c" -o "$build/anchor_mesh_io.o"
     # shellcheck disable=SC2086
     "$CXX" -std=c++17 -O2 -Wall -Wextra -pedantic $EMBREE_CFLAGS -I"$root/tools" "$root/bench/anchor_embree.cpp" \
-        "$build/anchor_mesh_io.o" -o "$anchor" $EMBREE_LIBS -lpthread
+        -o "$anchor" $EMBREE_LIBS -lpthread
 fi
 json_num() { sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\([-+0-9.eE]*\).*/\1/p" <<<"$1" | head -n 1; }
 json_str() { sed -n "s/.*\"$2\"[[:space:]]*:[[:space:]]*\"\([^\"]*\)\".*/\1/p" <<<"$1" | head -n 1; }

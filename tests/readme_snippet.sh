@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Keeps the README's quickstart honest.
 #
-# README.md marks two fenced blocks with an HTML comment on the line before them (blank lines
+# README.md marks three fenced blocks with an HTML comment on the line before them (blank lines
 # between are allowed):
 #   <!-- quickstart: examples/quickstart.c -->   a ```c block: must equal that file byte for byte
+#   <!-- own-mesh: examples/own_mesh.c -->       a ```c block: likewise
 #   <!-- quickstart-output -->                   a ```text block: exactly what the program prints
 # The script also wants the README to show the compile command below, then compiles the file
-# with it, runs it and compares its standard output with the second block.
+# with it, runs it and compares its standard output with the quickstart-output block.
 # Prints "PASS readme_snippet" and exits 0, or prints "FAIL readme_snippet: why" and exits 1.
 set -u
 cd "$(dirname "$0")/.." || { echo "FAIL readme_snippet: cannot enter the repository root"; exit 1; }
@@ -46,6 +47,11 @@ if ! cmp -s "$tmp/snippet.c" "$example"; then
     where=$(cmp "$tmp/snippet.c" "$example" 2>&1 | sed -n '1{s/^.*differ: //;s/^cmp: //;p;}')
     fail "the README's quickstart block differs from $example${where:+ (first difference: $where)}"
 fi
+# The "your own mesh" block is examples/own_mesh.c byte for byte (the Makefile builds that file,
+# tests/run.sh runs it).
+own_mesh=examples/own_mesh.c
+block "<!-- own-mesh: $own_mesh -->" '```c' "$tmp/own_mesh.c" || fail "$(cat "$tmp/why")"
+cmp -s "$tmp/own_mesh.c" "$own_mesh" || fail "the README's \"your own mesh\" block differs from $own_mesh"
 block "$output_marker" '```text' "$tmp/expected" || fail "$(cat "$tmp/why")"
 [ -s "$tmp/expected" ] || fail "the block after $output_marker is empty"
 grep -qF -- "$compile" "$readme" || fail "the README does not show the compile command: $compile"

@@ -353,6 +353,25 @@ example_render() { # N: a floor and a box on it (no bottom) as OBJ, rendered by 
     fi
     example_status "$1" "$why"
 }
+example_own_mesh() { # N: the README's "your own mesh": a floor and a box as OBJ, loaded with voxgi_io.h and rendered: a 128 x 128 PPM not all black; a bad file refused with its line
+    local dir=$tmp/example_own_mesh rc why=
+    mkdir -p "$dir"
+    printf '%s\n' 'v -2 0 -2' 'v 2 0 -2' 'v 2 0 2' 'v -2 0 2' 'f 1 4 3 2' \
+        'v -0.5 0 -0.5' 'v 0.5 0 -0.5' 'v 0.5 1 -0.5' 'v -0.5 1 -0.5' 'v -0.5 0 0.5' 'v 0.5 0 0.5' 'v 0.5 1 0.5' 'v -0.5 1 0.5' \
+        'f 5 8 7 6' 'f 9 10 11 12' 'f 8 12 11 7' 'f 5 9 12 8' 'f 6 7 11 10' > "$dir/scene.obj"
+    example_run own_mesh "$dir/out.txt" "$dir/scene.obj" "$dir/scene.ppm"
+    rc=$?
+    if [ $rc -ne 0 ]; then why="exit status $rc"
+    elif [ "$(head -c 15 "$dir/scene.ppm" | od -An -c | tr -d ' \n')" != 'P6\n128128\n255\n' ]; then why="no 128 x 128 PPM header"
+    elif [ "$(wc -c < "$dir/scene.ppm")" -ne $((15 + 3 * 128 * 128)) ]; then why="the PPM is not 15 + 3 x 128 x 128 bytes"
+    elif [ -z "$(tail -c +16 "$dir/scene.ppm" | tr -d '\000' | head -c 1)" ]; then why="all black"
+    else
+        printf 'v 0 0 0\nf 1 2 3\n' > "$dir/bad.obj"
+        "$B/example_own_mesh" "$dir/bad.obj" "$dir/bad.ppm" > "$dir/bad.txt" 2>&1 && why="a bad OBJ rendered"
+        grep -q 'bad.obj: line 2: ' "$dir/bad.txt" || why="a bad OBJ's message lacks its line: $(head -c 200 "$dir/bad.txt")"
+    fi
+    example_status "$1" "$why"
+}
 example_ambient_occlusion() { # N: the corner occluded, the open floor and wall not at all
     local out=$tmp/example_ambient_occlusion.txt rc
     example_run ambient_occlusion "$out"
@@ -387,7 +406,7 @@ example_gl_cone_trace() { # N: its own GL context and G-buffer: irradiance seen 
     example_status "$1" "$why"
 }
 heading "== examples"
-for e in voxelize octree render ambient_occlusion gl_cone_trace; do
+for e in voxelize octree render own_mesh ambient_occlusion gl_cone_trace; do
     check "example_$e" status "example_$e"
 done
 

@@ -770,6 +770,129 @@ static void test_plan_items_follow_rules(void)
     voxgi_destroy(ctx);
 }
 
+/* The warnings a context logged (keep_warnings), one a line. */
+static char g_warnings[2048];
+
+static void keep_warnings(voxgi_log_level level, const char *message, void *user)
+{
+    (void)user;
+    if (level == VOXGI_LOG_WARNING && strlen(g_warnings) + strlen(message) + 2 < sizeof g_warnings) {
+        strcat(g_warnings, message);
+        strcat(g_warnings, "\n");
+    }
+}
+
+/* voxgi_render's doc: a scene with no light and no emitter renders (VOXGI_OK), black, and one
+   VOXGI_LOG_WARNING says so; with a directional light, or an emissive material, or for occlusion
+   (SSAO, the reference's ao_radius) no warning. A floor quad (y = 0, facing up) seen from above
+   at 8 x 8: unlit every pixel is 0 exactly; under a sun of irradiance 1 along -Y the floor's
+   radiance is albedo / pi = 0.8 / pi everywhere (the floor fills the view; measured mean 0.2546,
+   within 1e-4 of 0.25465). */
+static void test_render_warns_without_light(void)
+{
+    static const float pos[12] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
+    static const uint32_t idx[6] = {0, 2, 1, 0, 3, 2};
+    static float rgb[8 * 8 * 3];
+    voxgi_desc cd;
+    voxgi_context *ctx = NULL;
+    voxgi_mesh mesh;
+    voxgi_scene sc;
+    voxgi_light sun;
+    voxgi_material mats[2];
+    voxgi_render_desc d;
+    double sum;
+    size_t i;
+    int variant;
+    ctx_desc(&cd, VOXGI_BACKEND_CPU);
+    cd.logger.func = keep_warnings;
+    TH_CHECK(voxgi_create(&cd, &ctx) == VOXGI_OK, "context");
+    if (!ctx) return;
+    memset(&mesh, 0, sizeof mesh);
+    mesh.positions = pos;
+    mesh.vertex_count = 4;
+    mesh.indices = idx;
+    mesh.index_count = 6;
+    memset(&sun, 0, sizeof sun);
+    sun.type = VOXGI_LIGHT_DIRECTIONAL;
+    sun.direction[1] = -1;
+    sun.intensity[0] = sun.intensity[1] = sun.intensity[2] = 1;
+    memset(mats, 0, sizeof mats);
+    mats[0].albedo[0] = mats[0].albedo[1] = mats[0].albedo[2] = 0.8f;
+    mats[1] = mats[0];
+    mats[1].emission[0] = 1;
+    for (variant = 0; variant < 5; variant++) { /* unlit, a sun, an emitter, unlit SSAO, unlit reference AO */
+        memset(&sc, 0, sizeof sc);
+        sc.meshes = &mesh;
+        sc.mesh_count = 1;
+        if (variant == 1) {
+            sc.lights = &sun;
+            sc.light_count = 1;
+        }
+        if (variant == 2) {
+            sc.materials = mats;
+            sc.material_count = 2;
+            mesh.material = 1;
+        } else mesh.material = 0;
+        memset(&d, 0, sizeof d);
+        d.method = variant == 3 ? VOXGI_RENDER_SSAO : VOXGI_RENDER_REFERENCE;
+        d.camera.eye[0] = 0.01;
+        d.camera.eye[1] = 3;
+        d.camera.width = d.camera.height = 8;
+        d.camera.fovy_degrees = 30;
+        d.samples = 4;
+        d.direct_only = 1;
+        if (variant == 4) d.reference.ao_radius = 0.5f;
+        g_warnings[0] = 0;
+        TH_CHECK(voxgi_render(ctx, &sc, &d, rgb, sizeof rgb, NULL) == VOXGI_OK, "variant %d: %s", variant, voxgi_last_error(ctx));
+        for (sum = 0, i = 0; i < sizeof rgb / sizeof rgb[0]; i++) sum += rgb[i];
+        printf("    variant %d: mean %.4g, warnings: %s", variant, sum / (sizeof rgb / sizeof rgb[0]), g_warnings[0] ? g_warnings : "none\n");
+        if (variant == 0)
+            TH_CHECK(sum == 0 && strstr(g_warnings, "no light and no emitter") && !strchr(strchr(g_warnings, '\n') + 1, '\n'),
+                     "unlit: sum %g, warnings '%s'", sum, g_warnings);
+        else TH_CHECK(g_warnings[0] == 0 && (variant != 1 || fabs(sum / (sizeof rgb / sizeof rgb[0]) - 0.8 / 3.14159265358979) < 1e-4), "variant %d: sum %g, warnings '%s'", variant, sum, g_warnings);
+    }
+    voxgi_destroy(ctx);
+}
+
+/* voxgi_camera_frame_bounds against a projection written here: for boxes of many shapes and
+   places (a flat one, a thin one, a point) and images wider and taller than square, the bounding
+   sphere's every silhouette direction lies inside the image (the sphere's angular radius at most
+   the narrower half field of view) and fills it to at least 90% (so not a tiny speck); the eye is in
+   front (+Z), above (+Y) and right (+X) of the centre, looking at it. Measured: the angular radius
+   is 1/1.05 = 95.2% of the narrower half-angle's sine in each case. */
+static void test_camera_frame_bounds(void)
+{
+    static const double boxes[][6] = {{-1, -1, -1, 1, 1, 1}, {1, 1, 2, 24, 23, 24}, {-5, 0, -5, 5, 0, 5}, {0, 0, 0, 0.001, 100, 0.001}, {3, 4, 5, 3, 4, 5}};
+    static const int sizes[][2] = {{256, 256}, {640, 360}, {200, 500}, {0, 0}};
+    size_t b, z;
+    for (b = 0; b < sizeof boxes / sizeof boxes[0]; b++)
+        for (z = 0; z < sizeof sizes / sizeof sizes[0]; z++) {
+            voxgi_camera cam;
+            double c[3], r = 0, dist = 0, aspect, half_y, half_x, half, s;
+            int a;
+            memset(&cam, 0, sizeof cam);
+            cam.width = sizes[z][0];
+            cam.height = sizes[z][1];
+            voxgi_camera_frame_bounds(boxes[b], boxes[b] + 3, &cam);
+            for (a = 0; a < 3; a++) {
+                c[a] = 0.5 * (boxes[b][a] + boxes[b][3 + a]);
+                r += 0.25 * (boxes[b][3 + a] - boxes[b][a]) * (boxes[b][3 + a] - boxes[b][a]);
+                dist += (cam.eye[a] - c[a]) * (cam.eye[a] - c[a]);
+            }
+            r = sqrt(r) > 0 ? sqrt(r) : 1;
+            dist = sqrt(dist);
+            aspect = cam.width > 0 ? (double)cam.width / cam.height : 1;
+            half_y = cam.fovy_degrees * 3.14159265358979 / 360;
+            half_x = atan(tan(half_y) * aspect);
+            half = fmin(half_x, half_y);
+            s = r / dist; /* the sine of the sphere's angular radius seen from the eye */
+            TH_CHECK(cam.fovy_degrees == 40 && s <= sin(half) && s >= 0.9 * sin(half), "box %lu, %d x %d: sphere's sine %g, the narrower half-angle's %g",
+                     (unsigned long)b, cam.width, cam.height, s, sin(half));
+            TH_CHECK(!memcmp(cam.target, c, sizeof c) && cam.eye[2] - c[2] > 0.5 * dist && cam.eye[1] - c[1] > 0.2 * dist && cam.eye[0] - c[0] > 0.2 * dist,
+                     "box %lu: eye %g %g %g, target %g %g %g", (unsigned long)b, cam.eye[0], cam.eye[1], cam.eye[2], cam.target[0], cam.target[1], cam.target[2]);
+        }
+}
+
 /* Images follow their plans: the Cornell box with every albedo 0 has nothing to bounce, so the
    cone tracer voxelizes nothing and its image is the direct light's; the one-bounce images gather
    nothing and give the transmittance image's direct light; the log names what was left out. */
@@ -1193,6 +1316,8 @@ int main(void)
     TH_RUN(test_plan_follows_request);
     TH_RUN(test_plan_items_follow_rules);
     TH_RUN(test_plan_images);
+    TH_RUN(test_render_warns_without_light);
+    TH_RUN(test_camera_frame_bounds);
     TH_RUN(test_light_only_update);
     TH_RUN(test_light_only_update_checks_each_field);
     TH_RUN(test_gl_raster_kept_voxels_backend_checked);

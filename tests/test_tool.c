@@ -6,7 +6,10 @@
 #include "../voxgi.h"
 #include "../tools/pareto.h"
 #include "../tools/cli.h"
+#include "../tools/shapes.h"
 #include "harness.h"
+#include <ctype.h>
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -168,7 +171,9 @@ static void test_bad_files_and_arguments(void)
     rc = run("voxelize builtin:nothing", out, sizeof out);
     TH_CHECK(rc == 1 && strstr(out, "builtin:"), "unknown built-in: exit %d: %s", rc, out);
     rc = run("voxelize builtin:cube --backend cpu -o /nonexistent/dir/x.binvox", out, sizeof out);
-    TH_CHECK(rc == 1 && strstr(out, "cannot write"), "unwritable output: exit %d: %s", rc, out);
+    TH_CHECK(rc == 1 && strstr(out, "cannot write") && strstr(out, strerror(ENOENT)), "unwritable output: exit %d: %s", rc, out);
+    rc = run("render builtin:cube --size 4 4 --spp 1 -o /nonexistent/dir/x.png", out, sizeof out);
+    TH_CHECK(rc == 1 && strstr(out, "cannot write /nonexistent/dir/x.png: ") && strstr(out, strerror(ENOENT)), "unwritable image: exit %d: %s", rc, out);
 }
 
 /* --method: thin is within conservative; solid of the closed cube is its 8^3 interior centres. */
@@ -1093,6 +1098,217 @@ static void test_default_image_is_the_librarys(void)
     voxgi_destroy(ctx);
 }
 
+/* A JSON value at *p (RFC 8259's grammar, numbers loosely): 1 and *p past it, else 0. The
+   tool's JSON is checked with it, and with python3's parser where there is one. */
+static int json_value(const char **p)
+{
+    const char *s = *p;
+    while (*s == ' ' || *s == '\n' || *s == '\t' || *s == '\r') s++;
+    if (*s == '"') {
+        for (s++; *s != '"'; s++) {
+            if (!*s || (unsigned char)*s < 0x20) return 0;
+            if (*s == '\\') {
+                s++;
+                if (*s == 'u') {
+                    int k;
+                    for (k = 1; k <= 4; k++)
+                        if (!isxdigit((unsigned char)s[k])) return 0;
+                    s += 4;
+                } else if (!strchr("\"\\/bfnrt", *s) || !*s) return 0;
+            }
+        }
+        s++;
+    } else if (*s == '{' || *s == '[') {
+        char close = *s == '{' ? '}' : ']';
+        int first = 1;
+        for (s++;; first = 0) {
+            while (*s == ' ' || *s == '\n') s++;
+            if (*s == close && first) break;
+            if (close == '}') {
+                if (*s != '"' || !json_value(&s)) return 0;
+                while (*s == ' ') s++;
+                if (*s++ != ':') return 0;
+            }
+            if (!json_value(&s)) return 0;
+            while (*s == ' ' || *s == '\n') s++;
+            if (*s == close) break;
+            if (*s++ != ',') return 0;
+        }
+        s++;
+    } else if (!strncmp(s, "true", 4) || !strncmp(s, "null", 4)) s += 4;
+    else if (!strncmp(s, "false", 5)) s += 5;
+    else {
+        char *end;
+        strtod(s, &end);
+        if (end == s || isalpha((unsigned char)*s)) return 0; /* strtod's nan and inf are not JSON */
+        s = end;
+    }
+    *p = s;
+    return 1;
+}
+
+/* 1 when text is one JSON value and nothing but white space after it. */
+static int json_valid(const char *text)
+{
+    const char *s = text;
+    if (!json_value(&s)) return 0;
+    while (*s == ' ' || *s == '\n') s++;
+    return *s == 0;
+}
+
+/* Strings in the JSON are escaped: a mesh named `sp "x\y".obj` (a quote, a backslash and a
+   space) gives valid JSON from voxelize, svo and render, whose "mesh" or "scene" and "output" hold
+   the names back; the checker itself refuses the unescaped name. Measured: each output parses. */
+static void test_json_strings_escaped(void)
+{
+    static char out[16384];
+    static const char *const cmds[] = {"voxelize '%s/sp \"x\\y\".obj' --res 8 --backend cpu --json -o '%s/sp \"x\\y\".binvox'",
+                                       "svo '%s/sp \"x\\y\".obj' --res 8 --backend cpu --json",
+                                       "render '%s/sp \"x\\y\".obj' --size 4 4 --spp 1 --json -o '%s/sp \"x\\y\".pfm'"};
+    char path[512], args[2048], name[600];
+    size_t k;
+    int python = system("command -v python3 >/dev/null 2>&1") == 0;
+    write_file("sp \"x\\y\".obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", path, sizeof path);
+    TH_CHECK(!json_valid("{\"mesh\":\"sp \"x\\y\".obj\"}") && json_valid("{\"mesh\":\"sp \\\"x\\\\y\\\".obj\",\"n\":[1,-2.5e3,true,null]}"),
+             "the JSON checker takes an unescaped quote or refuses a good object");
+    snprintf(name, sizeof name, "\"%s/sp \\\"x\\\\y\\\".obj\"", tmpdir); /* the name as a JSON string */
+    for (k = 0; k < sizeof cmds / sizeof cmds[0]; k++) {
+        char *nl;
+        snprintf(args, sizeof args, cmds[k], tmpdir, tmpdir);
+        TH_CHECK(run(args, out, sizeof out) == 0, "%s: %s", args, out);
+        nl = strstr(out, k == 2 ? "{\"scene\"" : "{\"mesh\""); /* the JSON object (stderr's notes come first) */
+        TH_CHECK(nl && json_valid(nl) && strstr(nl, name), "%s: not valid JSON holding %s: %s", args, name, out);
+        if (python && nl) {
+            char cmd[3000], file[600];
+            FILE *f;
+            snprintf(file, sizeof file, "%s/out.json", tmpdir);
+            f = fopen(file, "w");
+            if (f) {
+                fputs(nl, f);
+                fclose(f);
+            }
+            snprintf(cmd, sizeof cmd, "python3 -c 'import json,sys; json.load(open(sys.argv[1]))' %s/out.json", tmpdir);
+            TH_CHECK(system(cmd) == 0, "%s: python3's json refuses %s", args, nl);
+        }
+    }
+}
+
+/* World point p through the camera (gluLookAt, up +Y, fovy, w x h) into pixels (x right, y down from
+   the top); 0 when p is behind the eye. Written here from the definition, not the library's. */
+static int project(const double cam[7], int w, int h, const double p[3], double px[2])
+{
+    double f[3], r[3], u[3], d[3], lf = 0, lr = 0, z, t = tan(cam[6] * 3.14159265358979 / 360);
+    int k;
+    for (k = 0; k < 3; k++) {
+        f[k] = cam[3 + k] - cam[k];
+        d[k] = p[k] - cam[k];
+        lf += f[k] * f[k];
+    }
+    r[0] = -f[2]; r[1] = 0; r[2] = f[0];
+    lr = sqrt(r[0] * r[0] + r[2] * r[2]);
+    lf = sqrt(lf);
+    for (k = 0; k < 3; k++) {
+        f[k] /= lf;
+        r[k] /= lr;
+    }
+    u[0] = r[1] * f[2] - r[2] * f[1];
+    u[1] = r[2] * f[0] - r[0] * f[2];
+    u[2] = r[0] * f[1] - r[1] * f[0];
+    z = d[0] * f[0] + d[1] * f[1] + d[2] * f[2];
+    if (!(z > 0)) return 0;
+    px[0] = 0.5 * w * (1 + (d[0] * r[0] + d[1] * r[1] + d[2] * r[2]) / (z * t * w / h));
+    px[1] = 0.5 * h * (1 - (d[0] * u[0] + d[1] * u[1] + d[2] * u[2]) / (z * t));
+    return 1;
+}
+
+/* The "camera: --camera EX EY EZ TX TY TZ FOVY" line of render's or plan's text; 1 when found. */
+static int camera_line(const char *text, double cam[7])
+{
+    const char *at = strstr(text, "camera: --camera ");
+    return at && sscanf(at + 17, "%lf %lf %lf %lf %lf %lf %lf", &cam[0], &cam[1], &cam[2], &cam[3], &cam[4], &cam[5], &cam[6]) == 7;
+}
+
+/* A mesh file of the shape, each vertex turned by up (0: as it is; 2: so that +Y becomes +Z). */
+static void write_shape_obj(const vxt_shape *m, const char *name, int up, char *path, size_t path_size)
+{
+    FILE *f;
+    size_t i;
+    snprintf(path, path_size, "%s/%s", tmpdir, name);
+    f = fopen(path, "w");
+    if (!f) return;
+    for (i = 0; i < m->vertex_count; i++) {
+        const float *v = m->pos + 3 * i;
+        if (up == 2) fprintf(f, "v %.9g %.9g %.9g\n", v[0], -v[2], v[1]);
+        else fprintf(f, "v %.9g %.9g %.9g\n", v[0], v[1], v[2]);
+    }
+    for (i = 0; i < m->triangle_count; i++) fprintf(f, "f %u %u %u\n", m->idx[3 * i] + 1, m->idx[3 * i + 1] + 1, m->idx[3 * i + 2] + 1);
+    fclose(f);
+}
+
+/* `voxgi render MESH -o OUT` with no other option, a mesh of no light and no emitter off the origin
+   (tools/shapes.h's box and tilted quad, x 1..24, y 1..20, z 2..24): the tool says it added a sun,
+   the image is lit (mean radiance > 0), and the camera it prints frames the mesh: its bounding box's
+   8 corners, projected here, lie inside the 256 x 256 image (measured: 22..222 across, 44..243
+   down; mean radiance 0.0298), the eye in front (+Z), above and to the right of the centre, and no pixel of the image's
+   border sees the mesh (the background is black). voxgi plan prints the same camera and a lit
+   plan (no "no light and no emitter"). The same mesh written with +Z up and rendered with --up z
+   gives the same image, bit for bit. */
+static void test_render_own_mesh_framed_and_lit(void)
+{
+    enum { W = 256, H = 256, S = 24 };
+    static char out[16384], planned[16384];
+    static float rgb[W * H * 3], small[2][S * S * 3];
+    vxt_shape m;
+    char path[512], zpath[512], args[2048];
+    double cam[7], plan_cam[7], mean = 0, lo[3] = {1e30, 1e30, 1e30}, hi[3] = {-1e30, -1e30, -1e30}, xmin = 1e30, xmax = -1e30, ymin = 1e30, ymax = -1e30;
+    size_t i;
+    int c, k, border_lit = 0, rc;
+    vxt_shape_box_and_tilted(&m);
+    write_shape_obj(&m, "own.obj", 0, path, sizeof path);
+    write_shape_obj(&m, "own_z.obj", 2, zpath, sizeof zpath);
+    for (i = 0; i < m.vertex_count; i++)
+        for (k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], m.pos[3 * i + (size_t)k]);
+            hi[k] = fmax(hi[k], m.pos[3 * i + (size_t)k]);
+        }
+    snprintf(args, sizeof args, "render %s -o %s/own.pfm", path, tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "voxgi render: no light or emitter in the scene: added a sun from the camera's upper left") && camera_line(out, cam),
+             "%s: exit %d: %s", args, rc, out);
+    snprintf(args, sizeof args, "%s/own.pfm", tmpdir);
+    if (rc == 0 && read_pfm(args, W, H, rgb)) {
+        for (i = 0; i < (size_t)W * H * 3; i++) mean += rgb[i] / (W * H * 3.0);
+        for (c = 0; c < W; c++)
+            for (k = 0; k < 3; k++) border_lit += rgb[3 * (size_t)c + (size_t)k] != 0 || rgb[3 * ((size_t)(H - 1) * W + (size_t)c) + (size_t)k] != 0 ||
+                                                  rgb[3 * ((size_t)c * W) + (size_t)k] != 0 || rgb[3 * ((size_t)c * W + W - 1) + (size_t)k] != 0;
+    } else TH_CHECK(0, "no %dx%d image %s", W, H, args);
+    for (c = 0; c < 8; c++) {
+        double p[3], px[2] = {-1, -1};
+        for (k = 0; k < 3; k++) p[k] = (c >> k) & 1 ? hi[k] : lo[k];
+        TH_CHECK(project(cam, W, H, p, px), "corner %d behind the eye", c);
+        xmin = fmin(xmin, px[0]);
+        xmax = fmax(xmax, px[0]);
+        ymin = fmin(ymin, px[1]);
+        ymax = fmax(ymax, px[1]);
+    }
+    printf("    mean radiance %.4g, corners %.1f..%.1f across, %.1f..%.1f down, %d border pixels lit\n", mean, xmin, xmax, ymin, ymax, border_lit);
+    TH_CHECK(mean > 0 && border_lit == 0, "mean radiance %g, %d border channels lit", mean, border_lit);
+    TH_CHECK(xmin >= 0 && ymin >= 0 && xmax <= W && ymax <= H && xmax - xmin > W / 3 && ymax - ymin > H / 3, "the box's corners %g..%g x %g..%g", xmin, xmax, ymin, ymax);
+    TH_CHECK(cam[2] > 0.5 * (lo[2] + hi[2]) + 1 && cam[1] > 0.5 * (lo[1] + hi[1]) + 1 && cam[0] > 0.5 * (lo[0] + hi[0]), "not a three-quarter view from above the front: eye %g %g %g",
+             cam[0], cam[1], cam[2]);
+    snprintf(args, sizeof args, "plan %s --method vct", path);
+    TH_CHECK(run(args, planned, sizeof planned) == 0 && camera_line(planned, plan_cam) && !memcmp(plan_cam, cam, sizeof cam) &&
+                 !strstr(planned, "no light and no emitter") && strstr(planned, "1 directional"), "%s: %s", args, planned);
+    for (k = 0; k < 2; k++) {
+        snprintf(args, sizeof args, "render %s%s --size %d %d --spp 2 -o %s/own%d.pfm", k ? zpath : path, k ? " --up z" : "", S, S, tmpdir, k);
+        TH_CHECK(run(args, out, sizeof out) == 0, "%s: %s", args, out);
+        snprintf(args, sizeof args, "%s/own%d.pfm", tmpdir, k);
+        TH_CHECK(read_pfm(args, S, S, small[k]), "no image %s", args);
+    }
+    TH_CHECK(!memcmp(small[0], small[1], sizeof small[0]), "--up z of the mesh turned to +Z up is not the +Y up mesh's image");
+    vxt_shape_free(&m);
+}
+
 static void test_plan_command(void)
 {
     static char out[16384];
@@ -1433,6 +1649,8 @@ int main(int argc, char **argv)
     TH_RUN(test_exit_codes);
     TH_RUN(test_default_image_is_the_librarys);
     TH_RUN(test_plan_command);
+    TH_RUN(test_json_strings_escaped);
+    TH_RUN(test_render_own_mesh_framed_and_lit);
     {
         char cmd[300];
         snprintf(cmd, sizeof cmd, "rm -rf %s", tmpdir);

@@ -292,6 +292,28 @@ int cli_fail(cli_session *s, const char *fmt, ...)
     return CLI_EXIT_FAILURE;
 }
 
+const char *cli_io_why(int err) { return err ? strerror(err) : "I/O error"; }
+
+const char *cli_json(const char *s)
+{
+    static char ring[8][4096 + 8];
+    static int next;
+    char *out = ring[next++ & 7];
+    size_t n = 0;
+    out[n++] = '"';
+    for (; s && *s && n < 4090; s++) { /* room for one escape (6 bytes) and the closing quote */
+        unsigned char ch = (unsigned char)*s;
+        if (ch == '"' || ch == '\\') {
+            out[n++] = '\\';
+            out[n++] = (char)ch;
+        } else if (ch < 0x20 || ch == 0x7f) n += (size_t)sprintf(out + n, "\\u%04x", (unsigned)ch);
+        else out[n++] = (char)ch;
+    }
+    out[n++] = '"';
+    out[n] = 0;
+    return out;
+}
+
 int cli_fail_lib(cli_session *s, const voxgi_context *ctx, const char *what)
 {
     /* the context's own record of the failure, else what the logger kept (a failed voxgi_create has no context) */
@@ -399,27 +421,9 @@ int cli_mesh_open(cli_session *s, const char *path, cli_mesh *t)
         t->vm.indices = t->shape.idx;
         t->vm.index_count = 3 * t->shape.triangle_count;
     } else {
-        size_t i;
-        if (vxt_mesh_load(path, &t->m, err, sizeof err) != 0) return cli_fail(s, "%s", err);
-        t->vm.positions = t->m.positions;
-        t->vm.vertex_count = t->m.vertex_count;
-        t->vm.indices = t->m.indices;
-        t->vm.index_count = 3 * t->m.triangle_count;
-        t->vm.normals = t->m.normals;
-        t->vm.uvs = t->m.uvs;
-        t->vm.material_ids = t->m.material_ids;
-        t->materials = (voxgi_material *)calloc(t->m.material_count, sizeof *t->materials);
-        if (!t->materials) {
-            cli_mesh_close(t);
-            return cli_fail(s, "out of memory");
-        }
-        for (i = 0; i < t->m.material_count; i++) {
-            memcpy(t->materials[i].albedo, t->m.materials[i].albedo, sizeof t->materials[i].albedo);
-            memcpy(t->materials[i].emission, t->m.materials[i].emission, sizeof t->materials[i].emission);
-            t->materials[i].transparency = 1.0f - t->m.materials[i].opacity;
-        }
-        t->scene.materials = t->materials;
-        t->scene.material_count = t->m.material_count;
+        if (voxgi_io_load_mesh(path, &t->m, err, sizeof err) != 0) return cli_fail(s, "%s", err);
+        t->scene = voxgi_io_mesh_scene(&t->m); /* with the file's materials */
+        t->vm = t->m.mesh;
     }
     t->scene.meshes = &t->vm;
     t->scene.mesh_count = 1;
@@ -428,9 +432,8 @@ int cli_mesh_open(cli_session *s, const char *path, cli_mesh *t)
 
 void cli_mesh_close(cli_mesh *t)
 {
-    vxt_mesh_free(&t->m);
+    voxgi_io_mesh_free(&t->m);
     vxt_shape_free(&t->shape);
-    free(t->materials);
     memset(t, 0, sizeof *t);
 }
 

@@ -10,8 +10,9 @@
 #define VXT_CLI_H
 #include "../voxgi.h"
 #include "headless_gl.h"
-#include "mesh_io.h"
+#include "../voxgi_io.h"
 #include "shapes.h"
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 
@@ -135,6 +136,15 @@ void cli_note(cli_session *s, const char *fmt, ...) CLI_PRINTF(2, 3);
 int cli_fail(cli_session *s, const char *fmt, ...) CLI_PRINTF(2, 3);
 /* A failed library call on ctx, said once: "voxgi NAME: what: the library's reason" (what may be NULL). */
 int cli_fail_lib(cli_session *s, const voxgi_context *ctx, const char *what);
+/* Why a file operation failed, for "cannot write PATH: why": strerror(err), or a plain "I/O
+   error" when err is 0 (a short write the C library left no errno for). */
+const char *cli_io_why(int err);
+
+/* ------------------------------------------------------------------ JSON */
+/* s as a JSON string, quotes included, with '"', '\\' and control characters escaped: every text
+   the commands put in JSON goes through it (a file may be named `sp "x\y".obj`). The result lives
+   in one of 8 rotating buffers: up to 8 in one printf; text over 4000 bytes is cut (still valid). */
+const char *cli_json(const char *s);
 
 /* ------------------------------------------------------------------ contexts */
 typedef struct cli_context {
@@ -156,11 +166,10 @@ void cli_context_close(cli_session *s, cli_context *c);
 /* ------------------------------------------------------------------ meshes */
 typedef struct cli_mesh {
     char name[256];
-    vxt_mesh m;            /* file meshes */
+    voxgi_io_mesh m;       /* file meshes */
     vxt_shape shape;       /* built-in shapes */
     voxgi_mesh vm;
     voxgi_scene scene;
-    voxgi_material *materials;
 } cli_mesh;
 
 /* Loads a file (OBJ+MTL, OFF, STL, PLY) or built-in shape into a one-mesh scene; 0 on success,

@@ -361,7 +361,7 @@ static int report_write(report *rep)
     for (i = 0; i < (d->svg ? 3 : 2); i++) {
         snprintf(path[i], sizeof path[i], "%s/%s.%s", rep->o->out_dir, d->name, i == 0 ? "md" : i == 1 ? "csv" : "svg");
         if (!(f[i] = fopen(path[i], "w"))) {
-            rc = cli_fail(&rep->s, "cannot write %s", path[i]);
+            rc = cli_fail(&rep->s, "cannot write %s: %s", path[i], cli_io_why(errno));
             break;
         }
     }
@@ -379,7 +379,7 @@ static int report_write(report *rep)
         if (f[2]) d->svg(f[2], rep);
     }
     for (i = 0; i < 3; i++)
-        if (f[i] && (ferror(f[i]) | fclose(f[i])) && rc == 0) rc = cli_fail(&rep->s, "cannot write %s", path[i]);
+        if (f[i] && (ferror(f[i]) | fclose(f[i])) && rc == 0) rc = cli_fail(&rep->s, "cannot write %s: %s", path[i], cli_io_why(errno));
     return rc;
 }
 

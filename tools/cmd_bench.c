@@ -302,7 +302,7 @@ static int bench_run(cli_session *s, const bench_args *a)
     for (m = 0; m < a->nmesh; m++)
         if (cli_mesh_open(s, a->meshes[m], &meshes[m])) goto done;
     if (a->csv_path && !(csv = fopen(a->csv_path, "w"))) {
-        cli_fail(s, "cannot write %s", a->csv_path);
+        cli_fail(s, "cannot write %s: %s", a->csv_path, cli_io_why(errno));
         goto done;
     }
     if (cli_context_open(s, &ctx[0], VOXGI_BACKEND_CPU, (vxt_gl_kind)a->common.gl, 1, 0) || cli_context_open(s, &ctx[1], VOXGI_BACKEND_CPU, (vxt_gl_kind)a->common.gl, 0, 0))
@@ -339,7 +339,7 @@ static int bench_run(cli_session *s, const bench_args *a)
     if (mismatch) printf("\nWARNING: %d cells where a backend's voxel count differs from the CPU's\n", mismatch);
     rc = mismatch ? CLI_EXIT_FAILURE : CLI_EXIT_OK;
 done:
-    if (csv && fclose(csv) != 0 && rc == CLI_EXIT_OK) rc = cli_fail(s, "cannot write %s", a->csv_path);
+    if (csv && fclose(csv) != 0 && rc == CLI_EXIT_OK) rc = cli_fail(s, "cannot write %s: %s", a->csv_path, cli_io_why(errno));
     free(b.cells);
     for (m = 0; m < 3; m++) cli_context_close(s, &ctx[m]);
     for (m = 0; m < a->nmesh; m++) cli_mesh_close(&meshes[m]);

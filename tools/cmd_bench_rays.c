@@ -94,16 +94,16 @@ static int rays_run(cli_session *s, const rays_args *a)
         voxgi_info ci;
         voxgi_query_info(c.vx, &ci);
         if (a->common.json)
-            printf("{\"mesh\":\"%s\",\"triangles\":%lu,\"threads\":%d,\"build_ms\":%.3f,\"coherent_rays\":%lu,\"coherent_ms\":%.3f,"
+            printf("{\"mesh\":%s,\"triangles\":%lu,\"threads\":%d,\"build_ms\":%.3f,\"coherent_rays\":%lu,\"coherent_ms\":%.3f,"
                    "\"coherent_intersect_mrays\":%.3f,\"coherent_hits\":%lu,\"incoherent_rays\":%lu,\"incoherent_ms\":%.3f,"
                    "\"incoherent_occluded_mrays\":%.3f,\"incoherent_occluded\":%lu}\n",
-                   a->mesh, (unsigned long)cli_mesh_triangles(&tm), ci.thread_count, build_ms, (unsigned long)nc, mc, nc / mc / 1e3,
+                   cli_json(a->mesh), (unsigned long)cli_mesh_triangles(&tm), ci.thread_count, build_ms, (unsigned long)nc, mc, nc / mc / 1e3,
                    (unsigned long)hit_count, (unsigned long)ni, mi, ni / mi / 1e3, (unsigned long)occluded_count);
         if (a->common.json && L) { /* the same object, with the line space's fields */
             double me = cli_median(ms[2], a->runs), mf = cli_median(ms[3], a->runs);
-            printf("{\"mesh\":\"%s\",\"linespace_n\":%d,\"linespace_depth\":%d,\"linespace_build_ms\":%.3f,\"linespace_exact_mrays\":%.3f,"
+            printf("{\"mesh\":%s,\"linespace_n\":%d,\"linespace_depth\":%d,\"linespace_build_ms\":%.3f,\"linespace_exact_mrays\":%.3f,"
                    "\"linespace_fast_mrays\":%.3f,\"linespace_exact_disagree\":%lu,\"linespace_fast_wrong\":%lu}\n",
-                   a->mesh, (int)a->linespace[0], (int)a->linespace[1], ls_build_ms, ni / me / 1e3, ni / mf / 1e3, (unsigned long)ls_disagree,
+                   cli_json(a->mesh), (int)a->linespace[0], (int)a->linespace[1], ls_build_ms, ni / me / 1e3, ni / mf / 1e3, (unsigned long)ls_disagree,
                    (unsigned long)ls_wrong);
         }
         if (!a->common.json) {

@@ -9,16 +9,6 @@ static const char *const info_help =
     "rasteriser (llvmpipe, SwiftShader, ...) runs on the CPU's own cores: --backend auto then\n"
     "picks the CPU, which is faster there.\n";
 
-/* s as the inside of a JSON string: why a context failed may quote a driver or a shader log */
-static void json_text(const char *s)
-{
-    for (; *s; s++) {
-        if (*s == '"' || *s == '\\') printf("\\%c", *s);
-        else if ((unsigned char)*s < 0x20) printf("\\u%04x", (unsigned)(unsigned char)*s);
-        else putchar(*s);
-    }
-}
-
 int cmd_info(int argc, char **argv)
 {
     static const vxt_gl_kind kinds[2] = {VXT_GL_EGL, VXT_GL_OSMESA};
@@ -38,7 +28,7 @@ int cmd_info(int argc, char **argv)
     cli_session_init(&s, "info");
     if (cli_context_open(&s, &cpu, VOXGI_BACKEND_CPU, VXT_GL_AUTO, 0, 0)) return CLI_EXIT_FAILURE;
     voxgi_query_info(cpu.vx, &ci);
-    if (common.json) printf("{\"version\":\"%s\",\"capabilities\":\"%s\",\"cpu_threads\":%d,\"gl\":[", VOXGI_VERSION_STRING, ci.capabilities, ci.thread_count);
+    if (common.json) printf("{\"version\":%s,\"capabilities\":%s,\"cpu_threads\":%d,\"gl\":[", cli_json(VOXGI_VERSION_STRING), cli_json(ci.capabilities), ci.thread_count);
     else printf("voxgi %s\ncapabilities: %s\ncpu: %d worker threads\n", VOXGI_VERSION_STRING, ci.capabilities, ci.thread_count);
     cli_context_close(&s, &cpu);
     for (k = 0; k < 2; k++) {
@@ -48,10 +38,9 @@ int cmd_info(int argc, char **argv)
         ok = cli_context_try(&s, &c, VOXGI_BACKEND_GL, kinds[k], 0, 0) == 0;
         if (ok) voxgi_query_info(c.vx, &ci);
         if (common.json) {
-            printf("%s{\"context\":\"%s\",\"ok\":%s,\"version\":\"%s\",\"renderer\":\"%s\",\"software\":%s,\"error\":\"", listed++ ? "," : "",
-                   k ? "osmesa" : "egl", ok ? "true" : "false", ok ? ci.gl_version : "", ok ? ci.gl_renderer : "", ok && ci.gl_software ? "true" : "false");
-            json_text(ok ? "" : s.error);
-            printf("\"}");
+            printf("%s{\"context\":%s,\"ok\":%s,\"version\":%s,\"renderer\":%s,\"software\":%s,\"error\":%s}", listed++ ? "," : "",
+                   cli_json(k ? "osmesa" : "egl"), ok ? "true" : "false", cli_json(ok ? ci.gl_version : ""), cli_json(ok ? ci.gl_renderer : ""),
+                   ok && ci.gl_software ? "true" : "false", cli_json(ok ? "" : s.error));
         } else if (ok)
             printf("gl (%s): %s, %s%s\n", k ? "osmesa" : "egl", ci.gl_version, ci.gl_renderer,
                    ci.gl_software ? " (software rasteriser on the CPU's cores: --backend auto picks the CPU; GL timings are not GPU timings)" : "");

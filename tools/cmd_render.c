@@ -9,6 +9,8 @@ enum { METHOD_REFERENCE, METHOD_VCT, METHOD_TSM, METHOD_RSM, METHOD_SH, METHOD_S
 static const char *const ls_mode_names[] = {"exact", "fast", NULL}; /* voxgi_linespace_mode's order */
 static const char *const visibility_names[] = {"hierarchical", "dda", "none", NULL}; /* voxgi_traversal's order */
 static const char *const off_on_names[] = {"off", "on", NULL};
+static const char *const up_names[] = {"x", "y", "z", "-x", "-y", "-z", NULL};
+enum { UP_Y = 1 };
 
 static const char *const plan_help =
     "usage: voxgi plan SCENE|MESH [render's options]\n"
@@ -37,6 +39,7 @@ typedef struct render_args {
     int ls_mode, ls_mode_given, ls_n, ls_depth, ls_budget, samples, packets, supersample, exact_ends;
     double error, budget_mb;      /* the render desc's error and memory budget */
     int dynamic, everything;      /* voxgi plan only: its flags */
+    int up;                       /* a mesh's up axis, an index of up_names */
 } render_args;
 
 /* What is rendered: a built-in scene or a mesh, the camera, and the scene's lights plus --sun. */
@@ -50,10 +53,82 @@ typedef struct render_scene {
     const voxgi_scene *scene;
 } render_scene;
 
+/* Turns a mesh so that its up axis (an index of up_names) points along +Y, the camera's up: a
+   rotation (determinant 1), so nothing is mirrored and the faces keep their sides. */
+static void mesh_turn_up(float *v, size_t count, int up)
+{
+    size_t i;
+    for (i = 0; v && i < count; i++, v += 3) {
+        float x = v[0], y = v[1], z = v[2];
+        switch (up) {
+        case 0: v[0] = -y; v[1] = x; break;          /* +X up */
+        case 2: v[1] = z; v[2] = -y; break;          /* +Z up: -Y, the front, toward the viewer */
+        case 3: v[0] = y; v[1] = -x; break;          /* -X up */
+        case 4: v[1] = -y; v[2] = -z; break;         /* -Y up */
+        case 5: v[1] = -z; v[2] = y; break;          /* -Z up */
+        default: break;
+        }
+    }
+}
+
+/* The view of a mesh without --camera: its bounds framed as voxgi_camera_frame_bounds does. */
+static void mesh_frame(const voxgi_mesh *m, voxgi_camera *cam)
+{
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    size_t i;
+    int k;
+    for (i = 0; i < m->vertex_count; i++)
+        for (k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], m->positions[3 * i + (size_t)k]);
+            hi[k] = fmax(hi[k], m->positions[3 * i + (size_t)k]);
+        }
+    voxgi_camera_frame_bounds(lo, hi, cam);
+}
+
+/* 1 when something lights the scene: a light, or a triangle of an emissive material. */
+static int scene_lit(const voxgi_scene *sc)
+{
+    size_t i, t;
+    int k;
+    if (sc->light_count) return 1;
+    for (i = 0; i < sc->mesh_count && sc->materials; i++) {
+        const voxgi_mesh *m = &sc->meshes[i];
+        size_t n = m->indices ? m->index_count / 3 : m->vertex_count / 3;
+        for (t = 0; t < n; t++) {
+            uint32_t id = m->material_ids ? m->material_ids[t] : m->material;
+            for (k = 0; k < 3 && id < sc->material_count; k++)
+                if (sc->materials[id].emission[k] > 0) return 1;
+        }
+    }
+    return 0;
+}
+
+/* The sun added to an unlit scene: from above, left of and behind the camera (the usual studio
+   key light), irradiance pi (a surface of albedo a facing it has radiance a). */
+static void default_sun(const voxgi_camera *cam, double sun[4])
+{
+    double fw[3], rt[3], up[3], len = 0;
+    int k;
+    for (k = 0; k < 3; k++) fw[k] = cam->target[k] - cam->eye[k];
+    rt[0] = -fw[2]; rt[1] = 0; rt[2] = fw[0]; /* fw x +Y, as the library's camera frame */
+    up[0] = rt[1] * fw[2] - rt[2] * fw[1];
+    up[1] = rt[2] * fw[0] - rt[0] * fw[2];
+    up[2] = rt[0] * fw[1] - rt[1] * fw[0];
+    for (k = 0; k < 3; k++) { /* each unit: the light travels forward, to the right and down */
+        double f = sqrt(fw[0] * fw[0] + fw[1] * fw[1] + fw[2] * fw[2]), r = sqrt(rt[0] * rt[0] + rt[2] * rt[2]);
+        double u = sqrt(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
+        sun[k] = fw[k] / f + (r > 0 ? rt[k] / r : 0) - (u > 0 ? up[k] / u : 0); /* along +-Y the library refuses the camera */
+        len += sun[k] * sun[k];
+    }
+    for (k = 0; k < 3; k++) sun[k] /= sqrt(len);
+    sun[3] = 3.14159265358979;
+}
+
 /* Sets up rs and the camera d->camera (a mesh's left zero: the library fits it); 0, or says why and returns 1. */
 static int scene_open(cli_session *s, voxgi_context *ctx, const render_args *a, render_scene *rs, voxgi_render_desc *d)
 {
-    int i;
+    double sun[4];
+    int i, add_sun;
     rs->name = a->what;
     if (a->cornell_mesh) { /* the Cornell box with the mesh for its tall block */
         if (cli_cornell_mesh_open(s, ctx, a->cornell_mesh, &rs->cm)) return CLI_EXIT_FAILURE;
@@ -66,7 +141,14 @@ static int scene_open(cli_session *s, voxgi_context *ctx, const render_args *a, 
         d->camera = rs->bs.camera;
     } else {
         if (cli_mesh_open(s, a->what, &rs->tm)) return CLI_EXIT_FAILURE;
+        mesh_turn_up(rs->tm.m.positions ? rs->tm.m.positions : rs->tm.shape.pos, rs->tm.vm.vertex_count, a->up);
+        mesh_turn_up(rs->tm.m.normals, rs->tm.vm.vertex_count, a->up);
         rs->scene = &rs->tm.scene;
+        if (!a->have_camera) { /* the whole mesh, from a three-quarter view above its front */
+            d->camera.width = a->size[0];
+            d->camera.height = a->size[1];
+            mesh_frame(&rs->tm.vm, &d->camera);
+        }
     }
     if (a->have_camera) {
         memcpy(d->camera.eye, a->camera, 3 * sizeof(double));
@@ -75,7 +157,15 @@ static int scene_open(cli_session *s, voxgi_context *ctx, const render_args *a, 
     }
     d->camera.width = a->size[0];
     d->camera.height = a->size[1];
-    if (a->have_sun) { /* the scene's lights and one more */
+    sun[0] = a->sun[0]; sun[1] = a->sun[1]; sun[2] = a->sun[2]; sun[3] = a->sun[3];
+    add_sun = a->have_sun;
+    if (!add_sun && !scene_lit(rs->scene) && a->method != METHOD_SSAO && a->method != METHOD_VAO && !(a->ao_radius > 0)) {
+        /* a black image would say nothing: light it, and say how to choose the light */
+        default_sun(&d->camera, sun);
+        add_sun = 1;
+        cli_note(s, "no light or emitter in the scene: added a sun from the camera's upper left; give --sun or an emissive material to choose");
+    }
+    if (add_sun) { /* the scene's lights and one more */
         const voxgi_scene *scene = rs->scene;
         rs->with_sun = *scene;
         rs->lights = (voxgi_light *)calloc(scene->light_count + 1, sizeof *rs->lights);
@@ -83,8 +173,8 @@ static int scene_open(cli_session *s, voxgi_context *ctx, const render_args *a, 
         if (scene->light_count) memcpy(rs->lights, scene->lights, scene->light_count * sizeof *rs->lights);
         rs->lights[scene->light_count].type = VOXGI_LIGHT_DIRECTIONAL;
         for (i = 0; i < 3; i++) {
-            rs->lights[scene->light_count].direction[i] = (float)a->sun[i];
-            rs->lights[scene->light_count].intensity[i] = (float)a->sun[3];
+            rs->lights[scene->light_count].direction[i] = (float)sun[i];
+            rs->lights[scene->light_count].intensity[i] = (float)sun[3];
         }
         rs->with_sun.lights = rs->lights;
         rs->with_sun.light_count = scene->light_count + 1;
@@ -241,16 +331,16 @@ static void print_json_fields(const voxgi_render_info *f)
                voxgi_render_stage_ms(f, "maps"), voxgi_render_stage_ms(f, "shade"), f->ms);
         break;
     case VOXGI_RENDER_RSM:
-        printf("\"maps\":%d,\"map_size\":%d,\"samples\":%d,\"visibility\":\"%s\",\"res\":%d,\"gather_stride\":%d,\"gathered\":%lu,\"maps_ms\":%.3f,"
+        printf("\"maps\":%d,\"map_size\":%d,\"samples\":%d,\"visibility\":%s,\"res\":%d,\"gather_stride\":%d,\"gathered\":%lu,\"maps_ms\":%.3f,"
                "\"voxels_ms\":%.3f,\"direct_ms\":%.3f,\"gather_ms\":%.3f,\"ms\":%.3f,",
-               f->maps, u->rsm.maps.size ? u->rsm.maps.size : 256, u->rsm.maps.samples ? u->rsm.maps.samples : 100, visibility_names[u->rsm.visibility],
+               f->maps, u->rsm.maps.size ? u->rsm.maps.size : 256, u->rsm.maps.samples ? u->rsm.maps.samples : 100, cli_json(visibility_names[u->rsm.visibility]),
                u->resolution, u->rsm.gather_stride, (unsigned long)f->gathered, voxgi_render_stage_ms(f, "maps"), voxgi_render_stage_ms(f, "voxels"), voxgi_render_stage_ms(f, "direct"),
                voxgi_render_stage_ms(f, "gather"), f->ms);
         break;
     case VOXGI_RENDER_SH:
-        printf("\"res\":%d,\"opening\":%.6g,\"visibility\":\"%s\",\"gather_stride\":%d,\"gathered\":%lu,\"sh_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,"
+        printf("\"res\":%d,\"opening\":%.6g,\"visibility\":%s,\"gather_stride\":%d,\"gathered\":%lu,\"sh_ms\":%.3f,\"voxels_ms\":%.3f,\"direct_ms\":%.3f,"
                "\"gather_ms\":%.3f,\"ms\":%.3f,",
-               u->resolution, (double)u->sh.opening, visibility_names[u->sh.visibility], u->sh.gather_stride, (unsigned long)f->gathered, voxgi_render_stage_ms(f, "sh"),
+               u->resolution, (double)u->sh.opening, cli_json(visibility_names[u->sh.visibility]), u->sh.gather_stride, (unsigned long)f->gathered, voxgi_render_stage_ms(f, "sh"),
                voxgi_render_stage_ms(f, "voxels"), voxgi_render_stage_ms(f, "direct"), voxgi_render_stage_ms(f, "gather"), f->ms);
         break;
     case VOXGI_RENDER_SSAO:
@@ -270,10 +360,10 @@ static void print_json_fields(const voxgi_render_info *f)
         const voxgi_linespace_info *t = &f->tree;
         const voxgi_linespace_stats *r = &f->shadow_rays;
         double shadows = voxgi_render_stage_ms(f, "shadows");
-        printf("\"mode\":\"%s\",\"packets\":%d,\"n\":%d,\"depth\":%d,\"samples\":%d,\"supersample\":%d,\"lights\":%d,\"nodes\":%lu,\"line_spaces\":%lu,\"leaves\":%lu,"
+        printf("\"mode\":%s,\"packets\":%d,\"n\":%d,\"depth\":%d,\"samples\":%d,\"supersample\":%d,\"lights\":%d,\"nodes\":%lu,\"line_spaces\":%lu,\"leaves\":%lu,"
                "\"triangle_refs\":%lu,\"bytes\":%lu,\"allocated\":%lu,\"rays\":%llu,\"nodes_entered\":%llu,\"bits_read\":%llu,\"triangle_tests\":%llu,"
                "\"build_ms\":%.3f,\"gbuffer_ms\":%.3f,\"shadows_ms\":%.3f,\"ms\":%.3f,\"mrays_per_s\":%.4g,",
-               ls_mode_names[u->linespace.mode], u->linespace.packets, t->n, t->depth, r->samples, u->linespace.supersample, f->lights, (unsigned long)t->nodes,
+               cli_json(ls_mode_names[u->linespace.mode]), u->linespace.packets, t->n, t->depth, r->samples, u->linespace.supersample, f->lights, (unsigned long)t->nodes,
                (unsigned long)t->line_spaces, (unsigned long)t->leaves, (unsigned long)t->triangle_refs, (unsigned long)t->bytes, (unsigned long)t->allocated,
                (unsigned long long)r->rays, (unsigned long long)r->nodes, (unsigned long long)r->bits, (unsigned long long)r->triangle_tests, voxgi_render_stage_ms(f, "build"),
                voxgi_render_stage_ms(f, "gbuffer"), shadows, f->ms, shadows > 0 ? (double)r->rays / shadows / 1000 : 0);
@@ -284,6 +374,13 @@ static void print_json_fields(const voxgi_render_info *f)
                u->bounces, (unsigned long long)u->seed, (unsigned long)f->triangles, (unsigned long)f->bvh_nodes, (unsigned long long)f->rays, voxgi_render_stage_ms(f, "bvh"),
                voxgi_render_stage_ms(f, "render"));
     }
+}
+
+/* The view as the option that gives it back. */
+static void print_camera(const char *indent, const voxgi_camera *c)
+{
+    printf("%scamera: --camera %.9g %.9g %.9g %.9g %.9g %.9g %.9g\n", indent, c->eye[0], c->eye[1], c->eye[2], c->target[0], c->target[1], c->target[2],
+           c->fovy_degrees);
 }
 
 static void print_result(const render_args *a, const char *name, const voxgi_info *ci, const float *rgb, const voxgi_render_info *f, const render_compare *cmp)
@@ -298,19 +395,21 @@ static void print_result(const render_args *a, const char *name, const voxgi_inf
         for (i = 0; i < 3; i++) mean[i] += rgb[3 * p + (size_t)i];
     for (i = 0; i < 3; i++) mean[i] /= (double)w * h;
     if (a->common.json) {
-        printf("{\"scene\":\"%s\",\"method\":\"%s\",", name, voxgi_render_method_name(u->method));
-        if (backend) printf("\"backend\":\"%s\",", voxgi_backend_name(ci->backend));
-        printf("\"size\":[%d,%d],", w, h);
+        printf("{\"scene\":%s,\"method\":%s,", cli_json(name), cli_json(voxgi_render_method_name(u->method)));
+        if (backend) printf("\"backend\":%s,", cli_json(voxgi_backend_name(ci->backend)));
+        printf("\"size\":[%d,%d],\"camera\":[%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g],", w, h, u->camera.eye[0], u->camera.eye[1], u->camera.eye[2],
+               u->camera.target[0], u->camera.target[1], u->camera.target[2], u->camera.fovy_degrees);
         print_json_fields(f);
         if (m == VOXGI_RENDER_SSAO || m == VOXGI_RENDER_VAO) printf("\"mean\":%.6g,", mean[0]);
         else printf("\"mean\":[%.6g,%.6g,%.6g],", mean[0], mean[1], mean[2]);
         if (a->compare || a->reference) print_compare_json(cmp);
         else if (m == VOXGI_RENDER_VCT) printf("\"rel_rmse\":-1,\"rms\":0,\"reference_ms\":0.000,"); /* nothing compared */
-        printf("\"output\":\"%s\"}\n", a->out);
+        printf("\"output\":%s}\n", cli_json(a->out));
         return;
     }
     voxgi_render_describe(u, settings, sizeof settings);
     printf("%s: %s\n", name, settings);
+    print_camera("  ", &u->camera);
     printf("  %s: ", voxgi_backend_name(ci->backend));
     for (i = 0; i < f->stage_count; i++) printf("%s %.1f ms, ", f->stages[i].name, f->stages[i].ms);
     printf("total %.1f ms", f->ms);
@@ -414,9 +513,10 @@ static int render_run(cli_session *s, const render_args *a)
         if (!info.plan.items[i].kept) cli_note(s, "plan: %s: left out - %s", info.plan.items[i].name, info.plan.items[i].why);
     if (a->compare && compare_with_reference(s, c.vx, a, rs.scene, &info.used, &cmp)) goto done;
     if (a->reference && compare_with_file(s, c.vx, a, rs.scene, &info.used.camera, rgb, &cmp)) goto done;
+    errno = 0; /* a short write may leave none */
     if ((cli_has_extension(a->out, ".pfm") ? vxt_write_pfm(a->out, rgb, info.used.camera.width, info.used.camera.height)
                                            : vxt_write_png(a->out, rgb, info.used.camera.width, info.used.camera.height, (float)a->exposure)) != 0) {
-        cli_fail(s, "cannot write %s", a->out);
+        cli_fail(s, "cannot write %s: %s", a->out, cli_io_why(errno));
         goto done;
     }
     cli_status_clear(s);
@@ -438,6 +538,7 @@ static int render_parse(int argc, char **argv, render_args *ap, int plan)
     memset(&a, 0, sizeof a);
     a.bounces = 1;
     a.spp = 64;
+    a.up = UP_Y;
     a.size[0] = a.size[1] = 256;
     a.exposure = 1;
     {
@@ -559,7 +660,9 @@ static int render_parse(int argc, char **argv, render_args *ap, int plan)
                      "(default: the scene's view; for a mesh, a view of its bounds)"},
             {.name = "--size", .arg = "W H", .kind = CLI_INT, .count = 2, .dst = a.size, .lo = 1, .hi = 16384, .help = "image size (default 256 256)"},
             {.name = "--sun", .arg = "DX DY DZ E", .kind = CLI_DOUBLE, .count = 4, .dst = a.sun, .lo = -HUGE_VAL, .hi = HUGE_VAL, .given = &a.have_sun,
-             .help = "add a directional light travelling along D with irradiance E"},
+             .help = "add a directional light travelling along D with irradiance E (without\nit an unlit scene gets a sun from the camera's upper left, said on stderr)"},
+            {.name = "--up", .arg = "x|y|z|-x|-y|-z", .kind = CLI_ENUM, .dst = &a.up, .names = up_names,
+             .help = "a mesh's up axis (default y): the mesh is turned so that it points up, and\nwithout --camera seen from a three-quarter view above its front (+Z for\ny up, -Y for z up) framing its whole bounding sphere"},
             {.name = "--exposure", .arg = "X", .kind = CLI_DOUBLE, .dst = &a.exposure, .lo = 0, .hi = HUGE_VAL,
              .help = "PNG only: scale before clamping (default 1)"},
             {.name = "--error", .arg = "E", .kind = CLI_DOUBLE, .dst = &a.error, .lo = 0, .hi = 1, .lo_open = 1,
@@ -640,6 +743,7 @@ int cmd_plan(int argc, char **argv)
            (unsigned long)p.translucent_triangles, (unsigned long)p.reflective_triangles, p.surface_area);
     printf("lights: %d point, %d spot, %d directional, %d rect; area lights %d; the camera %s\n", p.point_lights, p.spot_lights, p.directional_lights,
            p.rect_lights, p.area_lights, p.emitters_in_view ? "sees an emitter" : "sees no emitter");
+    print_camera("", &used.camera);
     if (used.resolution)
         printf("grid: %d voxels along the longest side (%d x %d x %d with a voxel of padding), ~%llu set (%.2f%%)\n", used.resolution, p.grid.res[0],
                p.grid.res[1], p.grid.res[2], (unsigned long long)p.voxels, 100 * p.occupancy);

@@ -284,7 +284,7 @@ static int all_one_scene(all_state *st, voxgi_context *ctx, voxgi_context *cpu, 
         file_name(p->file, sizeof p->file, name, p->method, "png");
         snprintf(path, sizeof path, "%s/%s", st->a->out_dir, p->file);
         if (report_png_compare(path, p->img, R[p->quantity].image, &R[p->quantity].mask, report_exposure(R[p->quantity].image, &R[p->quantity].mask)) != 0)
-            rc = cli_fail(st->s, "cannot write %s", path);
+            rc = cli_fail(st->s, "cannot write %s: %s", path, cli_io_why(errno));
     }
     for (k = 0; k < sc->npictures; k++) {
         free(sc->pictures[k].img);
@@ -525,11 +525,11 @@ static int write_files(all_state *st, const pareto_point *pts)
     int si, q, bad = 0;
     size_t i;
     snprintf(path, sizeof path, "%s/report.csv", st->a->out_dir);
-    if (!(f = fopen(path, "w"))) return cli_fail(st->s, "cannot write %s", path);
+    if (!(f = fopen(path, "w"))) return cli_fail(st->s, "cannot write %s: %s", path, cli_io_why(errno));
     write_csv(f, st);
     bad |= ferror(f) | (fclose(f) != 0);
     snprintf(path, sizeof path, "%s/report.md", st->a->out_dir);
-    if (bad || !(f = fopen(path, "w"))) return cli_fail(st->s, "cannot write %s", path);
+    if (bad || !(f = fopen(path, "w"))) return cli_fail(st->s, "cannot write %s: %s", path, cli_io_why(errno));
     write_markdown(f, st, pts);
     bad |= ferror(f) | (fclose(f) != 0);
     for (si = 0; si < st->nscenes && !bad; si++)
@@ -540,11 +540,11 @@ static int write_files(all_state *st, const pareto_point *pts)
             if (!any) continue;
             file_name(name, sizeof name, st->scenes[si].name, quantities[q].key, "svg");
             snprintf(path, sizeof path, "%s/%s", st->a->out_dir, name);
-            if (!(f = fopen(path, "w"))) return cli_fail(st->s, "cannot write %s", path);
+            if (!(f = fopen(path, "w"))) return cli_fail(st->s, "cannot write %s: %s", path, cli_io_why(errno));
             write_svg(f, st, si, q);
             bad |= ferror(f) | (fclose(f) != 0);
         }
-    return bad ? cli_fail(st->s, "cannot write %s", path) : 0;
+    return bad ? cli_fail(st->s, "cannot write %s: %s", path, cli_io_why(errno)) : 0;
 }
 
 /* ------------------------------------------------------------------ the command */

@@ -221,9 +221,9 @@ int cmd_report_stiff(int argc, char **argv)
         cli_status_clear(&s);
         report_stiff_markdown(f, r, &ci);
         rc = CLI_EXIT_OK;
-        if (out && (ferror(f) | fclose(f))) rc = cli_fail(&s, "cannot write %s", out);
+        if (out && (ferror(f) | fclose(f))) rc = cli_fail(&s, "cannot write %s: %s", out, cli_io_why(errno));
     } else if (out && !f)
-        cli_fail(&s, "cannot write %s", out);
+        cli_fail(&s, "cannot write %s: %s", out, cli_io_why(errno));
     cli_context_close(&s, &c);
     free(r);
     return rc;

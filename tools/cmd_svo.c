@@ -24,13 +24,13 @@ static void print_tables(const svo_args *a, const cli_mesh *tm, const voxgi_grid
 {
     int lev;
     if (a->common.json) {
-        printf("{\"mesh\":\"%s\",\"triangles\":%lu,\"res\":[%d,%d,%d],\"depth\":%d,\"leaf_voxels\":%llu,\"nodes\":%llu,\"leaf_slots\":%llu,"
-               "\"format\":\"%s\",\"bytes\":%lu,\"structure_bytes\":%lu,\"neighbour_bytes\":%lu,\"brick_bytes\":%lu,\"dense_bytes\":%lu,\"dense_rgba8_bytes\":%.0f,"
+        printf("{\"mesh\":%s,\"triangles\":%lu,\"res\":[%d,%d,%d],\"depth\":%d,\"leaf_voxels\":%llu,\"nodes\":%llu,\"leaf_slots\":%llu,"
+               "\"format\":%s,\"bytes\":%lu,\"structure_bytes\":%lu,\"neighbour_bytes\":%lu,\"brick_bytes\":%lu,\"dense_bytes\":%lu,\"dense_rgba8_bytes\":%.0f,"
                "\"voxelize_ms\":%.3f,\"ms\":%.3f,"
                "\"sort_ms\":%.3f,\"nodes_ms\":%.3f,\"neighbours_ms\":%.3f,\"values_ms\":%.3f,\"level_nodes\":[",
-               a->mesh, (unsigned long)cli_mesh_triangles(tm), grid->res[0], grid->res[1], grid->res[2], info->depth,
+               cli_json(a->mesh), (unsigned long)cli_mesh_triangles(tm), grid->res[0], grid->res[1], grid->res[2], info->depth,
                (unsigned long long)info->leaf_voxels, (unsigned long long)info->nodes, (unsigned long long)info->leaf_slots,
-               info->format == VOXGI_SVO_FLOAT16 ? "float16" : "float32", (unsigned long)info->bytes, (unsigned long)info->structure_bytes,
+               cli_json(info->format == VOXGI_SVO_FLOAT16 ? "float16" : "float32"), (unsigned long)info->bytes, (unsigned long)info->structure_bytes,
                (unsigned long)info->neighbour_bytes, (unsigned long)info->brick_bytes, (unsigned long)info->dense_bytes, dense8, vinfo->ms, info->ms,
                info->ms_sort, info->ms_nodes, info->ms_neighbours, info->ms_values);
         for (lev = 0; lev <= info->depth; lev++) printf("%s%llu", lev ? "," : "", (unsigned long long)info->level_nodes[lev]);

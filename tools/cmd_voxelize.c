@@ -101,30 +101,31 @@ static int voxelize_run(cli_session *s, const voxelize_args *a)
         FILE *f;
         voxgi_voxels_read(c.vx, vox, NULL, 0, &need);
         bits = (uint32_t *)malloc(need);
+        errno = 0; /* a short write may leave none */
         f = fopen(a->out, "wb");
         if (!bits || !f || voxgi_voxels_read(c.vx, vox, bits, need, NULL) != VOXGI_OK || voxgi_binvox_write(f, &vd.grid, bits) != VOXGI_OK) {
+            int err = errno;
             if (f) fclose(f);
             free(bits);
-            cli_fail(s, "cannot write %s", a->out);
+            cli_fail(s, "cannot write %s: %s", a->out, cli_io_why(err));
             goto done;
         }
         free(bits);
         if (fclose(f) != 0) {
-            cli_fail(s, "cannot write %s", a->out);
+            cli_fail(s, "cannot write %s: %s", a->out, cli_io_why(errno));
             goto done;
         }
     }
     cli_status_clear(s);
     if (a->common.json)
-        printf("{\"mesh\":\"%s\",\"triangles\":%lu,\"voxels\":%llu,\"ms\":%.3f,\"runs\":%d,\"backend\":\"%s\",\"renderer\":\"%s\","
-               "\"threads\":%d,\"method\":\"%s\",\"origin\":[%.17g,%.17g,%.17g],\"voxel_size\":%.17g,"
-               "\"res\":[%d,%d,%d],\"exact_tests\":%llu,\"exact_triangles\":%llu,\"atlas_size\":%d,\"atlas_points\":%llu,\"attribute_pairs\":%llu%s%s%s}\n",
-               a->mesh, (unsigned long)cli_mesh_triangles(&tm), (unsigned long long)info.voxel_count, info.ms, a->runs,
-               voxgi_backend_name(ci.backend), ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : "", ci.thread_count,
-               voxgi_method_name(vd.method), vd.grid.origin[0], vd.grid.origin[1], vd.grid.origin[2], vd.grid.voxel_size, vd.grid.res[0], vd.grid.res[1],
+        printf("{\"mesh\":%s,\"triangles\":%lu,\"voxels\":%llu,\"ms\":%.3f,\"runs\":%d,\"backend\":%s,\"renderer\":%s,"
+               "\"threads\":%d,\"method\":%s,\"origin\":[%.17g,%.17g,%.17g],\"voxel_size\":%.17g,"
+               "\"res\":[%d,%d,%d],\"exact_tests\":%llu,\"exact_triangles\":%llu,\"atlas_size\":%d,\"atlas_points\":%llu,\"attribute_pairs\":%llu%s%s}\n",
+               cli_json(a->mesh), (unsigned long)cli_mesh_triangles(&tm), (unsigned long long)info.voxel_count, info.ms, a->runs,
+               cli_json(voxgi_backend_name(ci.backend)), cli_json(ci.backend == VOXGI_BACKEND_GL ? ci.gl_renderer : ""), ci.thread_count,
+               cli_json(voxgi_method_name(vd.method)), vd.grid.origin[0], vd.grid.origin[1], vd.grid.origin[2], vd.grid.voxel_size, vd.grid.res[0], vd.grid.res[1],
                vd.grid.res[2], (unsigned long long)info.exact_tests, (unsigned long long)info.exact_triangles, info.atlas_size,
-               (unsigned long long)info.atlas_points, (unsigned long long)info.attribute_pairs, a->out ? ",\"output\":\"" : "", a->out ? a->out : "",
-               a->out ? "\"" : "");
+               (unsigned long long)info.atlas_points, (unsigned long long)info.attribute_pairs, a->out ? ",\"output\":" : "", a->out ? cli_json(a->out) : "");
     else {
         printf("%s: %lu triangles -> %llu voxels of %dx%dx%d in %.2f ms (%s%s%s)\n", a->mesh, (unsigned long)cli_mesh_triangles(&tm),
                (unsigned long long)info.voxel_count, vd.grid.res[0], vd.grid.res[1], vd.grid.res[2], info.ms, voxgi_backend_name(ci.backend),

@@ -34,7 +34,9 @@ else
 fi
 
 # sudo resets the environment, so the settings go through env.
-apt_get() { "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive DEBCONF_NOWARNINGS=yes apt-get -qq "$@"; }
+# DPkg::Lock::Timeout: wait up to 10 minutes for another apt or dpkg (an unattended upgrade) to let go of
+# its lock instead of failing at once.
+apt_get() { "${as_root[@]}" env DEBIAN_FRONTEND=noninteractive DEBCONF_NOWARNINGS=yes apt-get -qq -o DPkg::Lock::Timeout=600 "$@"; }
 
 echo "deps.sh: installing ${missing[*]}"
 apt_get update

@@ -2,6 +2,7 @@
    PFM back. */
 #ifndef VXT_IMAGE_IO_H
 #define VXT_IMAGE_IO_H
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -40,7 +41,7 @@ static inline int vxt_read_pfm(const char *path, float **rgb, int *w, int *h, ch
     uint32_t one;
     *rgb = NULL;
     memcpy(&one, probe, 4);
-    if (!f) { snprintf(err, err_size, "%s: cannot open it", path); return -1; }
+    if (!f) { snprintf(err, err_size, "%s: cannot open it: %s", path, strerror(errno)); return -1; }
     if (fread(magic, 1, 2, f) != 2 || strcmp(magic, "PF") != 0) snprintf(err, err_size, "%s: not a colour PFM (no \"PF\")", path);
     else if (fscanf(f, "%d %d %lf", w, h, &scale) != 3 || *w < 1 || *h < 1 || *w > 65536 || *h > 65536 || scale == 0 || !isfinite(scale) ||
              fgetc(f) == EOF)
