@@ -1,8 +1,8 @@
-/* voxgi_io.h - v0.1.0 - mesh files into voxgi.h's scenes: OBJ (with MTL), OFF, STL, PLY. MIT licence at the end.
+/* voxgi_io.h - v0.1.0 - mesh files into voxgi.h's scenes: OBJ (with MTL), OFF, STL, PLY, glTF. MIT licence at the end.
 
    An optional second single header beside voxgi.h: the loaders that get a mesh file into a
-   voxgi_scene, with its materials. It needs voxgi.h (its public types only) and the C standard
-   library; C99 or C++.
+   voxgi_scene, with its materials. It needs voxgi.h (its public types; the exports also its voxel
+   readers) and the C standard library; C99 or C++.
 
    USAGE
      In exactly one C or C++ file (it may be the one that defines VOXGI_IMPLEMENTATION):
@@ -21,7 +21,9 @@
    FORMATS (chosen by content, then by extension)
      Wavefront OBJ with its MTL files (Kd, Ke, d or Tr), polygons split as fans, negative indices,
      vertices split where their normal or texture coordinate differs; OFF; STL, ASCII and binary;
-     PLY, ASCII and binary_little_endian, every scalar type. Every loader treats its input as
+     PLY, ASCII and binary_little_endian, every scalar type; glTF 2.0, .gltf (external or data-URI
+     buffers) and .glb: triangle primitives under the scene's node transforms, base colour and
+     emissive factors as materials (part 3 lists what is read and refused). Every loader treats its input as
      hostile: a malformed, truncated or absurd file gives an error naming the file and the line
      (text formats) or byte offset (binary formats), never a crash or a leak. Numbers are parsed
      with strtod, so the program must run in the "C" numeric locale (the default unless it calls
@@ -31,6 +33,9 @@
      1. config          linkage
      2. mesh files      the loaded mesh, loading and freeing it, its scene; the loaders' shared
                         builder, the text cursor, MTL, OBJ, OFF, STL, PLY, the choice of format
+     3. glTF            what is read of glTF 2.0; a JSON tokeniser, buffers, accessors, materials,
+                        the node tree, GLB chunks
+     4. exports         voxels out to MagicaVoxel .vox, NumPy .npy, a PLY point cloud, an OBJ of outer faces
 
    VERSION HISTORY
      0.1.0  the voxgi tool's loaders (tools/mesh_io.c) moved here; a loaded mesh gives its
@@ -75,11 +80,11 @@ typedef struct voxgi_io_mesh {
     voxgi_material *scene_materials;  /* material_count of them: albedo, emission, transparency = 1 - opacity */
 } voxgi_io_mesh;
 
-/* Loads OBJ(+MTL), OFF, STL (ASCII and binary) or PLY (ASCII and binary_little_endian), chosen by
-   content and extension. Returns 0 on success. On failure returns non-zero, leaves *out empty (all
-   zero, nothing to free), and writes into err a message naming the file and the line (text formats)
-   or byte offset (binary formats) and what is wrong. err may be NULL. A mesh without any triangle
-   is an error. */
+/* Loads OBJ(+MTL), OFF, STL (ASCII and binary), PLY (ASCII and binary_little_endian) or glTF 2.0
+   (.gltf, .glb; part 3), chosen by content and extension. Returns 0 on success. On failure returns
+   non-zero, leaves *out empty (all zero, nothing to free), and writes into err a message naming
+   the file and the line (text formats) or byte offset (binary formats) and what is wrong. err may
+   be NULL. A mesh without any triangle is an error. */
 VOXGI_IO_API int voxgi_io_load_mesh(const char *path, voxgi_io_mesh *out, char *err, size_t err_size);
 /* Frees what voxgi_io_load_mesh allocated and zeroes *m; safe on an empty or zeroed mesh and NULL. */
 VOXGI_IO_API void voxgi_io_mesh_free(voxgi_io_mesh *m);
@@ -91,6 +96,66 @@ VOXGI_IO_API voxgi_scene voxgi_io_mesh_scene(const voxgi_io_mesh *m);
 /* Hash-map slots visited by every load so far (the loader's work, for tests and benchmarks: a
    load visits a few slots per face corner; a search that degrades to a scan visits thousands). */
 VOXGI_IO_API unsigned long long voxgi_io_probes(void);
+
+/* ===================================================================== 3. glTF */
+
+/* voxgi_io_load_mesh also reads glTF 2.0: a .gltf (JSON, its buffers in files beside it named by
+   relative URIs, or base64 data URIs) or a .glb (a binary container: header, JSON chunk, BIN
+   chunk). It takes the triangle primitives (mode 4 or none) of every mesh reached from the default
+   scene's nodes (every root node when there is no scene), with the nodes' transforms (matrix, or
+   translation * rotation * scale) composed down the tree and applied to positions, and to normals
+   by the inverse transpose; a mirroring transform keeps the faces counter-clockwise. Indices of
+   any type (uint8, uint16, uint32) or none; POSITION and NORMAL must be float VEC3. Each glTF
+   material is the material of the same index: pbrMetallicRoughness.baseColorFactor's rgb is the
+   albedo, its alpha the opacity (in BLEND or MASK mode; OPAQUE ignores it), emissiveFactor times
+   KHR_materials_emissive_strength the emission. Textures are ignored. Other primitive modes,
+   sparse accessors, accessors without a bufferView, non-float positions, Draco or meshopt
+   compression and other required extensions are refused by name; absolute or ".." buffer URIs are
+   refused; malformed JSON or GLB structure gives its byte offset (in a .glb, from the file's start). */
+
+/* ===================================================================== 4. exports */
+
+/* Writers of a voxel grid (voxgi_voxelize's result, on either backend: ctx reads its bits and
+   its ALBEDO) to files other programs open. Each returns 0, or non-zero with a message in err
+   (may be NULL) naming the file and the reason (the C library's, strerror, for a failed open or
+   write; a partly written file may remain). voxels NULL or holding no data is refused; an empty
+   grid (no voxel set) is not: it gives a valid file without voxels. Colours are the voxels' mean
+   ALBEDO when they hold it (voxgi_voxelize_desc.attributes), else 0.8 grey, encoded to sRGB
+   bytes (the .vox palette, the PLY colours) as viewers show bytes. Positions (PLY, OBJ) are in
+   world units: voxel (i,j,k) spans origin + voxel_size * [i, i+1] x [j, j+1] x [k, k+1]. */
+
+/* MagicaVoxel .vox, version 150. Axes: MagicaVoxel's z is up and voxgi's y, so voxel (i,j,k)
+   becomes (x,y,z) = (i, res[2]-1-k, j) (a rotation, not a mirror: +x stays +x, voxgi's up +y
+   becomes +z, +z becomes -y). Palette: a uniform 6 x 7 x 6 cube over sRGB (levels 0, 51, ...,
+   255 for red and blue, 0, 42.5, ... for green), 252 colours at indices 1..252 (index = 1 +
+   (r * 7 + g) * 6 + b; index 0 is MagicaVoxel's empty), each voxel's colour rounded to its
+   nearest level per channel. A grid up to 256 voxels per (MagicaVoxel) axis is one model; a
+   larger one is split into models of at most 256^3 (blocks from the minimum corner, x fastest,
+   empty ones included) placed by a scene graph: root nTRN 0 -> nGRP 1 -> per model m an nTRN
+   2+2m with translation _t -> nSHP 3+2m of model m. MagicaVoxel places a model of size s with
+   its voxel v at _t + v - floor(s / 2), so a block whose minimum corner is c gets
+   _t = c + floor(s / 2) and the models tile the grid from (0,0,0). */
+VOXGI_IO_API int voxgi_io_write_vox(voxgi_context *ctx, const voxgi_voxels *voxels, const char *path, char *err, size_t err_size);
+
+/* NumPy .npy (format 1.0): the occupancy as dtype uint8 (1 set, 0 empty), shape
+   (res[0], res[1], res[2]) in C order, so numpy.load(path)[i, j, k] is voxel (i, j, k). */
+VOXGI_IO_API int voxgi_io_write_npy(voxgi_context *ctx, const voxgi_voxels *voxels, const char *path, char *err, size_t err_size);
+/* The same for one attribute the voxels hold (ALBEDO, NORMAL, EMISSION: dtype little-endian
+   float32, shape (res[0], res[1], res[2], 3); OPACITY: shape (res[0], res[1], res[2])), C order,
+   the value as voxgi_voxels_read_attribute gives it (linear, not sRGB), 0 at empty voxels. */
+VOXGI_IO_API int voxgi_io_write_npy_attribute(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_attribute which, const char *path,
+                                              char *err, size_t err_size);
+
+/* PLY point cloud, binary_little_endian 1.0: one vertex per set voxel at its centre (float x, y,
+   z) with its colour (uchar red, green, blue), in the order of the bit grid. */
+VOXGI_IO_API int voxgi_io_write_ply_points(voxgi_context *ctx, const voxgi_voxels *voxels, const char *path, char *err, size_t err_size);
+
+/* Wavefront OBJ surface of the voxels: one quad per outer face, a face between a set voxel and an
+   empty one (outside the grid counts as empty), counter-clockwise seen from outside; faces between
+   two set voxels are left out. Four vertices per quad (not shared: the file stays a stream); with
+   an MTL-free per-vertex colour (x y z r g b, as MeshLab and Blender read it) from the voxel's
+   albedo in [0,1] sRGB. */
+VOXGI_IO_API int voxgi_io_write_obj_faces(voxgi_context *ctx, const voxgi_voxels *voxels, const char *path, char *err, size_t err_size);
 
 #ifdef __cplusplus
 }
@@ -1150,6 +1215,9 @@ static int voxgi_io__has_extension(const char *path, const char *ext)
     return dot[1 + i] == 0;
 }
 
+static int voxgi_io__is_gltf(const char *path, const char *data, size_t size);        /* part 3 */
+static int voxgi_io__load_gltf(voxgi_io__loader *L, const char *path, const char *data, size_t size);
+
 static int voxgi_io__load_any(voxgi_io__loader *L, const char *path, const char *data, size_t size)
 {
     voxgi_io__text t;
@@ -1161,13 +1229,14 @@ static int voxgi_io__load_any(voxgi_io__loader *L, const char *path, const char 
     voxgi_io__text_init(&t, data, size, 0);
     /* content first; the extension only decides for files without a signature (OBJ has none) */
     if (stl_binary_size) return voxgi_io__load_stl_binary(L, (const unsigned char *)data, size);
+    if (voxgi_io__is_gltf(path, data, size)) return voxgi_io__load_gltf(L, path, data, size);
     if (ply) return voxgi_io__load_ply(L, &t);
     if (stl_ascii) return voxgi_io__load_stl_ascii(L, &t);
     if (voxgi_io__starts_with_word(data, "OFF") || voxgi_io__has_extension(path, "off")) return voxgi_io__load_off(L, &t);
     if (voxgi_io__has_extension(path, "stl")) return voxgi_io__load_stl_binary(L, (const unsigned char *)data, size);
     if (voxgi_io__has_extension(path, "ply")) return voxgi_io__load_ply(L, &t);
     if (voxgi_io__has_extension(path, "obj")) return voxgi_io__load_obj(L, &t);
-    return voxgi_io__fail_at(L, NULL, 0, "unrecognised mesh format (expected OBJ, OFF, STL or PLY)");
+    return voxgi_io__fail_at(L, NULL, 0, "unrecognised mesh format (expected OBJ, OFF, STL, PLY, glTF or GLB)");
 }
 
 /* The mesh's arrays as voxgi.h takes them: the voxgi_mesh over them, and its materials as
@@ -1261,6 +1330,1277 @@ VOXGI_IO_API voxgi_scene voxgi_io_mesh_scene(const voxgi_io_mesh *m)
     scene.materials = m->scene_materials;
     scene.material_count = m->material_count;
     return scene;
+}
+
+/* ===================================================================== 3. glTF */
+
+/* glTF 2.0: the JSON is tokenised once into a flat array (no recursion: an explicit stack whose
+   depth is limited), then read by index. Buffers are the GLB's BIN chunk, data URIs (base64) or
+   files beside the .gltf. The node tree is walked with an explicit stack; every triangle primitive
+   of every mesh it reaches is appended with its node's world transform applied. Every error names
+   a byte offset: of the JSON value at fault (in a .glb, counted from the file's start) or of the
+   GLB structure. */
+
+#define VOXGI_IO__JSON_MAX_DEPTH 64
+#define VOXGI_IO__NONE ((size_t)-1)
+
+enum { VOXGI_IO__J_OBJECT, VOXGI_IO__J_ARRAY, VOXGI_IO__J_STRING, VOXGI_IO__J_NUMBER, VOXGI_IO__J_LITERAL };
+
+typedef struct voxgi_io__jtok {
+    int type;
+    size_t start, end; /* the value's bytes in the JSON text; a string's without its quotes */
+    size_t count;      /* an object's members (key-value pairs) or an array's elements */
+    size_t next;       /* the token after this value and everything inside it */
+} voxgi_io__jtok;
+
+typedef struct voxgi_io__gltf_buffer { const unsigned char *data; size_t size; char *owned; } voxgi_io__gltf_buffer;
+
+/* A top-level array of the glTF JSON (accessors, nodes, ...): the token of each element. */
+typedef struct voxgi_io__jlist { size_t *item, count; } voxgi_io__jlist;
+
+typedef struct voxgi_io__gltf {
+    voxgi_io__loader *L;
+    const char *path;
+    const char *json;
+    size_t json_size, json_base; /* json[0] is at byte json_base of the file */
+    voxgi_io__jtok *tok;
+    size_t tok_count;
+    const unsigned char *bin;    /* a .glb's BIN chunk, or NULL */
+    size_t bin_size;
+    voxgi_io__gltf_buffer *buffers;
+    voxgi_io__jlist buffer_list, views, accessors, meshes, nodes, materials, scenes;
+    uint32_t default_material;   /* NO_INDEX until a primitive without a material needs it */
+} voxgi_io__gltf;
+
+typedef struct voxgi_io__accessor {
+    const unsigned char *data;
+    size_t count, stride;
+    uint32_t component; /* componentType: 5121 uint8, 5123 uint16, 5125 uint32, 5126 float, ... */
+    int components;     /* 1 SCALAR, 3 VEC3, ... */
+} voxgi_io__accessor;
+
+/* Fails at the byte offset of token tok (NONE: no offset). */
+static int voxgi_io__gltf_fail(voxgi_io__gltf *G, size_t tok, const char *fmt, ...) VOXGI_IO__PRINTF_LIKE(3, 4);
+static int voxgi_io__gltf_fail(voxgi_io__gltf *G, size_t tok, const char *fmt, ...)
+{
+    char msg[384];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (tok == VOXGI_IO__NONE) return voxgi_io__fail_at(G->L, NULL, 0, "%s", msg);
+    return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, G->json_base + G->tok[tok].start - (G->tok[tok].type == VOXGI_IO__J_STRING), "%s", msg);
+}
+
+/* ---- JSON ------------------------------------------------------------------------------- */
+
+static int voxgi_io__json_error(voxgi_io__gltf *G, size_t at, const char *what)
+{
+    return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, G->json_base + at, "malformed JSON: %s", what);
+}
+
+static int voxgi_io__is_digit(char c) { return c >= '0' && c <= '9'; }
+static int voxgi_io__hex_value(char c)
+{
+    return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+}
+
+/* Scans the string starting at the quote s[*i]; *i ends one past the closing quote. */
+static int voxgi_io__json_scan_string(voxgi_io__gltf *G, size_t *i)
+{
+    const char *s = G->json;
+    size_t n = G->json_size, j = *i + 1;
+    for (;; j++) {
+        if (j >= n) return voxgi_io__json_error(G, *i, "unterminated string");
+        if (s[j] == '"') break;
+        if ((unsigned char)s[j] < 0x20) return voxgi_io__json_error(G, j, "control character in a string");
+        if (s[j] == '\\') {
+            if (++j >= n) return voxgi_io__json_error(G, *i, "unterminated string");
+            if (s[j] == 'u') {
+                int k;
+                for (k = 1; k <= 4; k++)
+                    if (j + k >= n || voxgi_io__hex_value(s[j + k]) < 0) return voxgi_io__json_error(G, j, "bad \\u escape");
+                j += 4;
+            } else if (!strchr("\"\\/bfnrt", s[j]) || !s[j]) return voxgi_io__json_error(G, j - 1, "bad escape");
+        }
+    }
+    *i = j + 1;
+    return 0;
+}
+
+static int voxgi_io__json_scan_number(voxgi_io__gltf *G, size_t *i)
+{
+    const char *s = G->json;
+    size_t n = G->json_size, j = *i;
+    if (j < n && s[j] == '-') j++;
+    if (j < n && s[j] == '0') j++;
+    else if (j < n && voxgi_io__is_digit(s[j])) while (j < n && voxgi_io__is_digit(s[j])) j++;
+    else return voxgi_io__json_error(G, *i, "malformed number");
+    if (j < n && s[j] == '.') {
+        if (++j >= n || !voxgi_io__is_digit(s[j])) return voxgi_io__json_error(G, *i, "malformed number");
+        while (j < n && voxgi_io__is_digit(s[j])) j++;
+    }
+    if (j < n && (s[j] == 'e' || s[j] == 'E')) {
+        if (++j < n && (s[j] == '+' || s[j] == '-')) j++;
+        if (j >= n || !voxgi_io__is_digit(s[j])) return voxgi_io__json_error(G, *i, "malformed number");
+        while (j < n && voxgi_io__is_digit(s[j])) j++;
+    }
+    *i = j;
+    return 0;
+}
+
+/* Tokenises G->json; the root must be an object. */
+static int voxgi_io__json_parse(voxgi_io__gltf *G)
+{
+    enum { VALUE, KEY, COLON, AFTER } state = VALUE;
+    const char *s = G->json;
+    size_t n = G->json_size, i = 0, stack[VOXGI_IO__JSON_MAX_DEPTH];
+    int depth = 0, may_close = 0;
+    voxgi_io__vec toks;
+    memset(&toks, 0, sizeof toks);
+#define VOXGI_IO__TOKS ((voxgi_io__jtok *)toks.data)
+#define VOXGI_IO__JFAIL(at, what) do { voxgi_io__vec_free(&toks); return voxgi_io__json_error(G, (at), (what)); } while (0)
+    for (;;) {
+        char c;
+        voxgi_io__jtok *t;
+        while (i < n && (s[i] == ' ' || s[i] == '\t' || s[i] == '\n' || s[i] == '\r')) i++;
+        if (i >= n) {
+            if (state == AFTER && depth == 0) break;
+            VOXGI_IO__JFAIL(n, "the text ends inside a value");
+        }
+        c = s[i];
+        if (state == COLON) {
+            if (c != ':') VOXGI_IO__JFAIL(i, "expected ':'");
+            state = VALUE; may_close = 0; i++;
+            continue;
+        }
+        if (state == AFTER) {
+            int in_object = depth && VOXGI_IO__TOKS[stack[depth - 1]].type == VOXGI_IO__J_OBJECT;
+            if (!depth) VOXGI_IO__JFAIL(i, "text after the end of the JSON value");
+            if (c == ',') { state = in_object ? KEY : VALUE; may_close = 0; i++; continue; }
+            if (c != (in_object ? '}' : ']')) VOXGI_IO__JFAIL(i, in_object ? "expected ',' or '}'" : "expected ',' or ']'");
+        }
+        if ((state == AFTER || (may_close && state == (c == '}' ? KEY : VALUE))) && (c == '}' || c == ']')) {
+            t = &VOXGI_IO__TOKS[stack[--depth]];
+            if ((c == '}') != (t->type == VOXGI_IO__J_OBJECT)) VOXGI_IO__JFAIL(i, "mismatched bracket");
+            t->end = i + 1;
+            t->next = toks.count;
+            state = AFTER; i++;
+            continue;
+        }
+        if (state == KEY && c != '"') VOXGI_IO__JFAIL(i, "expected a string key");
+        if (!(t = (voxgi_io__jtok *)voxgi_io__vec_push(&toks, 1, sizeof *t))) {
+            voxgi_io__vec_free(&toks);
+            return voxgi_io__fail_at(G->L, NULL, 0, "out of memory");
+        }
+        memset(t, 0, sizeof *t);
+        t->start = i;
+        t->next = toks.count;
+        if (depth && (state == KEY || VOXGI_IO__TOKS[stack[depth - 1]].type == VOXGI_IO__J_ARRAY)) VOXGI_IO__TOKS[stack[depth - 1]].count++;
+        if (c == '{' || c == '[') {
+            if (depth == VOXGI_IO__JSON_MAX_DEPTH) VOXGI_IO__JFAIL(i, "nested deeper than 64 levels");
+            t->type = c == '{' ? VOXGI_IO__J_OBJECT : VOXGI_IO__J_ARRAY;
+            stack[depth++] = toks.count - 1;
+            state = c == '{' ? KEY : VALUE; may_close = 1; i++;
+            continue;
+        }
+        if (c == '"') {
+            t->type = VOXGI_IO__J_STRING;
+            t->start = i + 1;
+            if (voxgi_io__json_scan_string(G, &i)) { voxgi_io__vec_free(&toks); return -1; }
+            VOXGI_IO__TOKS[toks.count - 1].end = i - 1;
+            state = state == KEY ? COLON : AFTER;
+            continue;
+        }
+        if (state == KEY) VOXGI_IO__JFAIL(i, "expected a string key");
+        if (c == '-' || voxgi_io__is_digit(c)) {
+            t->type = VOXGI_IO__J_NUMBER;
+            if (voxgi_io__json_scan_number(G, &i)) { voxgi_io__vec_free(&toks); return -1; }
+        } else {
+            static const char *const words[3] = {"true", "false", "null"};
+            int w;
+            for (w = 0; w < 3; w++)
+                if (n - i >= strlen(words[w]) && !memcmp(s + i, words[w], strlen(words[w]))) break;
+            if (w == 3) VOXGI_IO__JFAIL(i, "expected a value");
+            t->type = VOXGI_IO__J_LITERAL;
+            i += strlen(words[w]);
+        }
+        VOXGI_IO__TOKS[toks.count - 1].end = i;
+        state = AFTER;
+    }
+#undef VOXGI_IO__JFAIL
+    G->tok = VOXGI_IO__TOKS;
+    G->tok_count = toks.count;
+#undef VOXGI_IO__TOKS
+    if (G->tok[0].type != VOXGI_IO__J_OBJECT) return voxgi_io__json_error(G, G->tok[0].start, "the top level is not an object");
+    return 0;
+}
+
+static int voxgi_io__json_is(const voxgi_io__gltf *G, size_t t, const char *word)
+{
+    size_t n = strlen(word);
+    return t != VOXGI_IO__NONE && G->tok[t].type == VOXGI_IO__J_STRING && G->tok[t].end - G->tok[t].start == n &&
+           !memcmp(G->json + G->tok[t].start, word, n);
+}
+
+/* The value of obj's member key; NONE when obj is not an object or has no such member. */
+static size_t voxgi_io__json_get(const voxgi_io__gltf *G, size_t obj, const char *key)
+{
+    size_t i, k;
+    if (obj == VOXGI_IO__NONE || G->tok[obj].type != VOXGI_IO__J_OBJECT) return VOXGI_IO__NONE;
+    for (i = obj + 1, k = 0; k < G->tok[obj].count; k++, i = G->tok[i + 1].next)
+        if (voxgi_io__json_is(G, i, key)) return i + 1;
+    return VOXGI_IO__NONE;
+}
+
+/* The elements of the array at t (NONE: an empty list); an error when t is not an array. */
+static int voxgi_io__json_list(voxgi_io__gltf *G, size_t t, const char *what, voxgi_io__jlist *list)
+{
+    size_t i, k;
+    list->item = NULL;
+    list->count = 0;
+    if (t == VOXGI_IO__NONE) return 0;
+    if (G->tok[t].type != VOXGI_IO__J_ARRAY) return voxgi_io__gltf_fail(G, t, "%s is not an array", what);
+    if (!(list->item = (size_t *)malloc((G->tok[t].count ? G->tok[t].count : 1) * sizeof *list->item)))
+        return voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory");
+    for (i = t + 1, k = 0; k < G->tok[t].count; k++, i = G->tok[i].next) list->item[k] = i;
+    list->count = G->tok[t].count;
+    return 0;
+}
+
+static int voxgi_io__json_number(voxgi_io__gltf *G, size_t t, const char *what, double *v)
+{
+    if (G->tok[t].type != VOXGI_IO__J_NUMBER) return voxgi_io__gltf_fail(G, t, "%s is not a number", what);
+    *v = strtod(G->json + G->tok[t].start, NULL); /* the scan checked the grammar, so strtod stops where it did */
+    if (!(fabs(*v) <= FLT_MAX)) return voxgi_io__gltf_fail(G, t, "%s is too large for a float", what);
+    return 0;
+}
+
+/* obj.key as an integer in [0, max]; def when absent (NONE: it is required). */
+static int voxgi_io__json_uint(voxgi_io__gltf *G, size_t obj, const char *key, size_t def, size_t max, const char *what, size_t *v)
+{
+    size_t t = voxgi_io__json_get(G, obj, key);
+    double d;
+    if (t == VOXGI_IO__NONE) {
+        if (def == VOXGI_IO__NONE) return voxgi_io__gltf_fail(G, obj, "%s has no %s", what, key);
+        *v = def;
+        return 0;
+    }
+    if (G->tok[t].type != VOXGI_IO__J_NUMBER) return voxgi_io__gltf_fail(G, t, "%s.%s is not a number", what, key);
+    d = strtod(G->json + G->tok[t].start, NULL);
+    if (!(d >= 0 && d <= (double)max && d == floor(d))) return voxgi_io__gltf_fail(G, t, "%s.%s is not an integer in 0..%zu", what, key, max);
+    *v = (size_t)d;
+    return 0;
+}
+
+/* obj.key as n numbers (an array of exactly n); out keeps its defaults when absent. */
+static int voxgi_io__json_numbers(voxgi_io__gltf *G, size_t obj, const char *key, size_t n, const char *what, double *out)
+{
+    size_t t = voxgi_io__json_get(G, obj, key), i, k;
+    if (t == VOXGI_IO__NONE) return 0;
+    if (G->tok[t].type != VOXGI_IO__J_ARRAY || G->tok[t].count != n) return voxgi_io__gltf_fail(G, t, "%s.%s is not an array of %zu numbers", what, key, n);
+    for (i = t + 1, k = 0; k < n; k++, i = G->tok[i].next)
+        if (voxgi_io__json_number(G, i, what, &out[k])) return -1;
+    return 0;
+}
+
+/* The string at t with its escapes decoded, NUL-terminated, from malloc; NULL after an error. */
+static char *voxgi_io__json_string(voxgi_io__gltf *G, size_t t, const char *what)
+{
+    const char *s = G->json + G->tok[t].start, *e = G->json + G->tok[t].end;
+    char *out, *o;
+    if (G->tok[t].type != VOXGI_IO__J_STRING) { voxgi_io__gltf_fail(G, t, "%s is not a string", what); return NULL; }
+    if (!(o = out = (char *)malloc((size_t)(e - s) + 1))) { voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory"); return NULL; }
+    while (s < e) {
+        if (*s != '\\') { *o++ = *s++; continue; }
+        switch (s[1]) {
+        case 'b': *o++ = '\b'; break;
+        case 'f': *o++ = '\f'; break;
+        case 'n': *o++ = '\n'; break;
+        case 'r': *o++ = '\r'; break;
+        case 't': *o++ = '\t'; break;
+        case 'u': {
+            unsigned u = (unsigned)(voxgi_io__hex_value(s[2]) << 12 | voxgi_io__hex_value(s[3]) << 8 | voxgi_io__hex_value(s[4]) << 4 | voxgi_io__hex_value(s[5]));
+            if (u < 0x80) *o++ = (char)u; /* UTF-8, at most 3 bytes: no longer than the 6-byte escape */
+            else if (u < 0x800) { *o++ = (char)(0xC0 | u >> 6); *o++ = (char)(0x80 | (u & 63)); }
+            else { *o++ = (char)(0xE0 | u >> 12); *o++ = (char)(0x80 | (u >> 6 & 63)); *o++ = (char)(0x80 | (u & 63)); }
+            s += 4;
+            break;
+        }
+        default: *o++ = s[1];
+        }
+        s += 2;
+    }
+    *o = 0;
+    return out;
+}
+
+/* ---- buffers ---------------------------------------------------------------------------- */
+
+static int voxgi_io__base64_value(char c)
+{
+    return c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26 : c >= '0' && c <= '9' ? c - '0' + 52 : c == '+' ? 62 : c == '/' ? 63 : -1;
+}
+
+/* Decodes base64 text in place; returns the byte count, or NONE with *bad at the first bad character. */
+static size_t voxgi_io__base64_decode(char *text, size_t *bad)
+{
+    size_t n = strlen(text), i, out = 0;
+    uint32_t acc = 0;
+    int bits = 0;
+    while (n && text[n - 1] == '=' && n + 2 > strlen(text)) n--; /* up to two '=' of padding */
+    for (i = 0; i < n; i++) {
+        int v = voxgi_io__base64_value(text[i]);
+        if (v < 0) { *bad = i; return VOXGI_IO__NONE; }
+        acc = acc << 6 | (uint32_t)v;
+        if ((bits += 6) >= 8) { bits -= 8; text[out++] = (char)(acc >> bits & 0xFF); }
+    }
+    return out;
+}
+
+/* A uri to read beside the glTF file: relative, without "..", percent-decoded in place. */
+static int voxgi_io__gltf_file_uri(voxgi_io__gltf *G, size_t t, size_t index, char *uri)
+{
+    const char *p;
+    char *o;
+    if (uri[0] == '/' || uri[0] == '\\' || strchr(uri, ':'))
+        return voxgi_io__gltf_fail(G, t, "buffers[%zu].uri '%s' is absolute or has a scheme; only file names relative to the glTF file are read", index, uri);
+    for (p = uri; *p; p++)
+        if (p[0] == '.' && p[1] == '.' && (p == uri || p[-1] == '/' || p[-1] == '\\') && (!p[2] || p[2] == '/' || p[2] == '\\'))
+            return voxgi_io__gltf_fail(G, t, "buffers[%zu].uri '%s' climbs out of the glTF file's folder ('..')", index, uri);
+    for (p = o = uri; *p; p++) {
+        if (*p == '%' && voxgi_io__hex_value(p[1]) >= 0 && voxgi_io__hex_value(p[2]) >= 0) {
+            *o++ = (char)(voxgi_io__hex_value(p[1]) << 4 | voxgi_io__hex_value(p[2]));
+            p += 2;
+        } else *o++ = *p;
+    }
+    *o = 0;
+    if (!uri[0] || strlen(uri) != (size_t)(o - uri)) return voxgi_io__gltf_fail(G, t, "buffers[%zu].uri is empty or holds a NUL", index);
+    return 0;
+}
+
+static int voxgi_io__gltf_load_buffers(voxgi_io__gltf *G)
+{
+    size_t i;
+    if (G->buffer_list.count && !(G->buffers = (voxgi_io__gltf_buffer *)calloc(G->buffer_list.count, sizeof *G->buffers)))
+        return voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory");
+    for (i = 0; i < G->buffer_list.count; i++) {
+        voxgi_io__gltf_buffer *b = &G->buffers[i];
+        size_t buf = G->buffer_list.item[i], uri_tok = voxgi_io__json_get(G, buf, "uri"), length, got;
+        char what[48], *uri;
+        snprintf(what, sizeof what, "buffers[%zu]", i);
+        if (voxgi_io__json_uint(G, buf, "byteLength", VOXGI_IO__NONE, SIZE_MAX / 2, what, &length)) return -1;
+        if (uri_tok == VOXGI_IO__NONE) {
+            if (i != 0 || !G->bin) return voxgi_io__gltf_fail(G, buf, "%s has no uri (only a .glb's first buffer may have none)", what);
+            b->data = G->bin;
+            got = G->bin_size;
+        } else {
+            if (!(uri = voxgi_io__json_string(G, uri_tok, "uri"))) return -1;
+            b->owned = uri;
+            if (!strncmp(uri, "data:", 5)) {
+                char *comma = strchr(uri, ','), *payload;
+                size_t bad = 0;
+                if (!comma || comma - uri < 12 || memcmp(comma - 7, ";base64", 7))
+                    return voxgi_io__gltf_fail(G, uri_tok, "%s: a data URI must be base64 (data:...;base64,...)", what);
+                payload = comma + 1;
+                if ((got = voxgi_io__base64_decode(payload, &bad)) == VOXGI_IO__NONE)
+                    return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, G->json_base + G->tok[uri_tok].start + (size_t)(payload - uri) + bad,
+                                             "%s: bad base64 character", what);
+                b->data = (const unsigned char *)payload;
+            } else {
+                const char *slash = strrchr(G->path, '/'), *back = strrchr(G->path, '\\');
+                size_t dir_len;
+                char *file;
+                int rc;
+                int open_failed;
+                if (back && (!slash || back > slash)) slash = back;
+                dir_len = slash ? (size_t)(slash - G->path) + 1 : 0;
+                if (voxgi_io__gltf_file_uri(G, uri_tok, i, uri)) return -1;
+                if (!(file = (char *)malloc(dir_len + strlen(uri) + 1))) return voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory");
+                memcpy(file, G->path, dir_len);
+                strcpy(file + dir_len, uri);
+                b->owned = NULL;
+                rc = voxgi_io__read_file(file, &b->owned, &got, &open_failed);
+                free(file);
+                if (rc) {
+                    voxgi_io__gltf_fail(G, uri_tok, "%s: cannot %s '%s': %s", what, open_failed ? "open" : "read", uri, strerror(rc));
+                    free(uri);
+                    return -1;
+                }
+                free(uri);
+                b->data = (const unsigned char *)b->owned;
+            }
+        }
+        if (got < length) return voxgi_io__gltf_fail(G, buf, "%s: byteLength is %zu but its data holds %zu bytes", what, length, got);
+        b->size = length;
+    }
+    return 0;
+}
+
+/* ---- accessors -------------------------------------------------------------------------- */
+
+/* Resolves accessors[index] (what it is for names it in errors) to a checked view of its elements. */
+static int voxgi_io__gltf_accessor(voxgi_io__gltf *G, size_t ref_tok, size_t index, const char *role, voxgi_io__accessor *a)
+{
+    static const char *const types[7] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+    static const int type_components[7] = {1, 2, 3, 4, 4, 9, 16};
+    size_t acc, view_index, view, buffer_index, component_type, view_offset, view_length, stride, offset, elem, size, k;
+    const voxgi_io__gltf_buffer *buffer;
+    char what[48], view_what[48];
+    if (index >= G->accessors.count) return voxgi_io__gltf_fail(G, ref_tok, "%s refers to accessors[%zu], which does not exist", role, index);
+    acc = G->accessors.item[index];
+    snprintf(what, sizeof what, "accessors[%zu]", index);
+    if (voxgi_io__json_get(G, acc, "sparse") != VOXGI_IO__NONE) return voxgi_io__gltf_fail(G, acc, "%s (%s): sparse accessors are not supported", what, role);
+    if (voxgi_io__json_uint(G, acc, "componentType", VOXGI_IO__NONE, 1u << 16, what, &component_type) ||
+        voxgi_io__json_uint(G, acc, "count", VOXGI_IO__NONE, SIZE_MAX / 2, what, &a->count) ||
+        voxgi_io__json_uint(G, acc, "byteOffset", 0, SIZE_MAX / 2, what, &offset))
+        return -1;
+    a->component = (uint32_t)component_type;
+    size = component_type == 5120 || component_type == 5121 ? 1 : component_type == 5122 || component_type == 5123 ? 2 : component_type == 5125 || component_type == 5126 ? 4 : 0;
+    if (!size) return voxgi_io__gltf_fail(G, acc, "%s: unknown componentType %zu", what, component_type);
+    for (k = 0; k < 7 && !voxgi_io__json_is(G, voxgi_io__json_get(G, acc, "type"), types[k]); k++) {}
+    if (k == 7) return voxgi_io__gltf_fail(G, acc, "%s has no valid type (SCALAR, VEC2, VEC3, ...)", what);
+    a->components = type_components[k];
+    elem = size * (size_t)a->components;
+    if (!a->count) return voxgi_io__gltf_fail(G, acc, "%s has no elements", what);
+    if (voxgi_io__json_get(G, acc, "bufferView") == VOXGI_IO__NONE) return voxgi_io__gltf_fail(G, acc, "%s (%s) has no bufferView (all zeros), which is not supported", what, role);
+    if (voxgi_io__json_uint(G, acc, "bufferView", 0, SIZE_MAX / 2, what, &view_index)) return -1;
+    if (view_index >= G->views.count) return voxgi_io__gltf_fail(G, acc, "%s refers to bufferViews[%zu], which does not exist", what, view_index);
+    view = G->views.item[view_index];
+    snprintf(view_what, sizeof view_what, "bufferViews[%zu]", view_index);
+    if (voxgi_io__json_uint(G, view, "buffer", VOXGI_IO__NONE, SIZE_MAX / 2, view_what, &buffer_index) ||
+        voxgi_io__json_uint(G, view, "byteOffset", 0, SIZE_MAX / 2, view_what, &view_offset) ||
+        voxgi_io__json_uint(G, view, "byteLength", VOXGI_IO__NONE, SIZE_MAX / 2, view_what, &view_length) ||
+        voxgi_io__json_uint(G, view, "byteStride", elem, 252, view_what, &stride))
+        return -1;
+    if (buffer_index >= G->buffer_list.count) return voxgi_io__gltf_fail(G, view, "%s refers to buffers[%zu], which does not exist", view_what, buffer_index);
+    buffer = &G->buffers[buffer_index];
+    if (view_offset > buffer->size || view_length > buffer->size - view_offset)
+        return voxgi_io__gltf_fail(G, view, "%s: bytes %zu..%zu lie outside buffers[%zu] (%zu bytes)", view_what, view_offset, view_offset + view_length, buffer_index, buffer->size);
+    if (stride < elem) return voxgi_io__gltf_fail(G, view, "%s: byteStride %zu is smaller than an element of %s (%zu bytes)", view_what, stride, what, elem);
+    if (offset > view_length || elem > view_length - offset || a->count - 1 > (view_length - offset - elem) / stride)
+        return voxgi_io__gltf_fail(G, acc, "%s: %zu elements of %zu bytes, %zu apart from byte %zu, overrun %s (%zu bytes)", what, a->count, elem, stride, offset, view_what, view_length);
+    a->data = buffer->data + view_offset + offset;
+    a->stride = stride;
+    return 0;
+}
+
+static uint32_t voxgi_io__gltf_index_at(const voxgi_io__accessor *a, size_t i)
+{
+    const unsigned char *p = a->data + i * a->stride;
+    return a->component == 5121 ? p[0] : a->component == 5123 ? (uint32_t)(p[0] | p[1] << 8) : voxgi_io__le32(p);
+}
+
+static float voxgi_io__gltf_float_at(const voxgi_io__accessor *a, size_t i, int k)
+{
+    uint32_t bits = voxgi_io__le32(a->data + i * a->stride + 4 * (size_t)k);
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+/* ---- meshes, materials, nodes -------------------------------------------------------------- */
+
+/* Column-major 4x4 matrices, as glTF stores them: m[4 * column + row]. */
+static void voxgi_io__mat4_mul(const double *a, const double *b, double *out)
+{
+    int r, c, k;
+    for (c = 0; c < 4; c++)
+        for (r = 0; r < 4; r++) {
+            double s = 0;
+            for (k = 0; k < 4; k++) s += a[4 * k + r] * b[4 * c + k];
+            out[4 * c + r] = s;
+        }
+}
+
+/* A node's local matrix: its matrix, or translation * rotation * scale. */
+static int voxgi_io__gltf_local_matrix(voxgi_io__gltf *G, size_t node, const char *what, double *m)
+{
+    double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1}, len, x, y, z, w;
+    int k;
+    static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    memcpy(m, identity, sizeof identity);
+    if (voxgi_io__json_get(G, node, "matrix") != VOXGI_IO__NONE) return voxgi_io__json_numbers(G, node, "matrix", 16, what, m);
+    if (voxgi_io__json_numbers(G, node, "translation", 3, what, t) || voxgi_io__json_numbers(G, node, "rotation", 4, what, q) ||
+        voxgi_io__json_numbers(G, node, "scale", 3, what, s))
+        return -1;
+    len = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!(len > 0)) return voxgi_io__gltf_fail(G, voxgi_io__json_get(G, node, "rotation"), "%s.rotation is not a unit quaternion", what);
+    x = q[0] / len; y = q[1] / len; z = q[2] / len; w = q[3] / len;
+    m[0] = 1 - 2 * (y * y + z * z); m[4] = 2 * (x * y - z * w);     m[8] = 2 * (x * z + y * w);
+    m[1] = 2 * (x * y + z * w);     m[5] = 1 - 2 * (x * x + z * z); m[9] = 2 * (y * z - x * w);
+    m[2] = 2 * (x * z - y * w);     m[6] = 2 * (y * z + x * w);     m[10] = 1 - 2 * (x * x + y * y);
+    for (k = 0; k < 3; k++) {
+        m[4 * k + 0] *= s[k]; m[4 * k + 1] *= s[k]; m[4 * k + 2] *= s[k];
+        m[12 + k] = t[k];
+    }
+    return 0;
+}
+
+/* Every glTF material becomes the builder's material of the same index. */
+static int voxgi_io__gltf_materials(voxgi_io__gltf *G)
+{
+    size_t i;
+    for (i = 0; i < G->materials.count; i++) {
+        size_t mat = G->materials.item[i], pbr = voxgi_io__json_get(G, mat, "pbrMetallicRoughness"), name = voxgi_io__json_get(G, mat, "name");
+        size_t mode = voxgi_io__json_get(G, mat, "alphaMode");
+        size_t strength_ext = voxgi_io__json_get(G, voxgi_io__json_get(G, mat, "extensions"), "KHR_materials_emissive_strength");
+        size_t strength_tok = voxgi_io__json_get(G, strength_ext, "emissiveStrength");
+        double base[4] = {1, 1, 1, 1}, emissive[3] = {0, 0, 0}, strength = 1;
+        char what[48];
+        voxgi_io_material *m;
+        int k;
+        snprintf(what, sizeof what, "materials[%zu]", i);
+        if (voxgi_io__json_numbers(G, pbr, "baseColorFactor", 4, what, base) || voxgi_io__json_numbers(G, mat, "emissiveFactor", 3, what, emissive) ||
+            (strength_tok != VOXGI_IO__NONE && voxgi_io__json_number(G, strength_tok, "emissiveStrength", &strength)))
+            return -1;
+        if (!(m = VOXGI_IO__PUSH(G->L, G->L->b.materials, voxgi_io_material, 1))) return -1;
+        memset(m, 0, sizeof *m);
+        if (name != VOXGI_IO__NONE && G->tok[name].type == VOXGI_IO__J_STRING) {
+            size_t len = G->tok[name].end - G->tok[name].start;
+            memcpy(m->name, G->json + G->tok[name].start, len < sizeof m->name - 1 ? len : sizeof m->name - 1);
+        } else snprintf(m->name, sizeof m->name, "material%zu", i);
+        for (k = 0; k < 3; k++) {
+            m->albedo[k] = (float)base[k];
+            m->emission[k] = (float)(emissive[k] * strength);
+        }
+        /* alpha counts only in BLEND and MASK modes: OPAQUE (the default) ignores it */
+        m->opacity = mode == VOXGI_IO__NONE || voxgi_io__json_is(G, mode, "OPAQUE") ? 1.0f : (float)base[3];
+    }
+    return 0;
+}
+
+/* Appends every triangle primitive of meshes[index] with the world matrix m applied. */
+static int voxgi_io__gltf_mesh(voxgi_io__gltf *G, size_t node, size_t index, const double *m)
+{
+    voxgi_io__builder *b = &G->L->b;
+    voxgi_io__jlist prims;
+    size_t p, mesh, i;
+    double normal_m[9], det;
+    int rc = 0;
+    if (index >= G->meshes.count) return voxgi_io__gltf_fail(G, node, "a node refers to meshes[%zu], which does not exist", index);
+    mesh = G->meshes.item[index];
+    /* normals go by the inverse transpose, the transpose of this adjugate (rows of cofactors) over
+       the determinant; only the determinant's sign matters as normals are normalised */
+    normal_m[0] = m[5] * m[10] - m[6] * m[9]; normal_m[1] = m[6] * m[8] - m[4] * m[10]; normal_m[2] = m[4] * m[9] - m[5] * m[8];
+    normal_m[3] = m[9] * m[2] - m[10] * m[1]; normal_m[4] = m[10] * m[0] - m[8] * m[2]; normal_m[5] = m[8] * m[1] - m[9] * m[0];
+    normal_m[6] = m[1] * m[6] - m[2] * m[5];  normal_m[7] = m[2] * m[4] - m[0] * m[6]; normal_m[8] = m[0] * m[5] - m[1] * m[4];
+    det = m[0] * normal_m[0] + m[1] * normal_m[1] + m[2] * normal_m[2];
+    if (voxgi_io__json_list(G, voxgi_io__json_get(G, mesh, "primitives"), "a mesh's primitives", &prims)) return -1;
+    for (p = 0; p < prims.count && !rc; p++) {
+        size_t prim = prims.item[p], attrs = voxgi_io__json_get(G, prim, "attributes"), mode, material, pos_index, normal_index, index_index = 0;
+        size_t base = b->positions.count / 3, triangles, has_indices = voxgi_io__json_get(G, prim, "indices") != VOXGI_IO__NONE;
+        voxgi_io__accessor pos, nrm, idx;
+        char what[64];
+        uint32_t material_id;
+        memset(&idx, 0, sizeof idx);
+        snprintf(what, sizeof what, "meshes[%zu].primitives[%zu]", index, p);
+        if ((rc = voxgi_io__json_uint(G, prim, "mode", 4, 6, what, &mode)) != 0) break;
+        if (mode != 4) {
+            static const char *const names[7] = {"points", "lines", "line loop", "line strip", "triangles", "triangle strip", "triangle fan"};
+            rc = voxgi_io__gltf_fail(G, voxgi_io__json_get(G, prim, "mode"), "%s: primitive mode %zu (%s) is not supported, only triangles (4)", what, mode, names[mode]);
+            break;
+        }
+        if ((rc = voxgi_io__json_uint(G, attrs, "POSITION", VOXGI_IO__NONE, SIZE_MAX / 2, what, &pos_index)) != 0 ||
+            (rc = voxgi_io__gltf_accessor(G, prim, pos_index, "POSITION", &pos)) != 0)
+            break;
+        if (pos.component != 5126 || pos.components != 3) {
+            rc = voxgi_io__gltf_fail(G, attrs, "%s: POSITION of componentType %u with %d components is not supported, only float VEC3", what, pos.component, pos.components);
+            break;
+        }
+        if (pos.count >= VOXGI_IO__NO_INDEX - base) { rc = voxgi_io__gltf_fail(G, prim, "too many vertices for 32-bit indices"); break; }
+        nrm.data = NULL;
+        if (voxgi_io__json_get(G, attrs, "NORMAL") != VOXGI_IO__NONE) {
+            if ((rc = voxgi_io__json_uint(G, attrs, "NORMAL", 0, SIZE_MAX / 2, what, &normal_index)) != 0 ||
+                (rc = voxgi_io__gltf_accessor(G, prim, normal_index, "NORMAL", &nrm)) != 0)
+                break;
+            if (nrm.component != 5126 || nrm.components != 3 || nrm.count != pos.count) {
+                rc = voxgi_io__gltf_fail(G, attrs, "%s: NORMAL must be float VEC3 with one per position", what);
+                break;
+            }
+        }
+        if (voxgi_io__json_get(G, prim, "material") == VOXGI_IO__NONE) {
+            if (G->default_material == VOXGI_IO__NO_INDEX) {
+                voxgi_io_material *dm = VOXGI_IO__PUSH(G->L, b->materials, voxgi_io_material, 1);
+                if (!dm) { rc = -1; break; }
+                memset(dm, 0, sizeof *dm);
+                strcpy(dm->name, "default");
+                dm->albedo[0] = dm->albedo[1] = dm->albedo[2] = 1.0f; /* glTF's default base colour */
+                dm->opacity = 1.0f;
+                G->default_material = (uint32_t)(b->materials.count - 1);
+            }
+            material_id = G->default_material;
+        } else {
+            if ((rc = voxgi_io__json_uint(G, prim, "material", 0, G->materials.count ? G->materials.count - 1 : 0, what, &material)) != 0) break;
+            if (material >= G->materials.count) { rc = voxgi_io__gltf_fail(G, prim, "%s refers to a material that does not exist", what); break; }
+            material_id = (uint32_t)material;
+        }
+        if (has_indices) {
+            if ((rc = voxgi_io__json_uint(G, prim, "indices", 0, SIZE_MAX / 2, what, &index_index)) != 0 ||
+                (rc = voxgi_io__gltf_accessor(G, prim, index_index, "indices", &idx)) != 0)
+                break;
+            if (idx.components != 1 || (idx.component != 5121 && idx.component != 5123 && idx.component != 5125)) {
+                rc = voxgi_io__gltf_fail(G, prim, "%s: indices must be SCALAR of componentType 5121, 5123 or 5125, not %u", what, idx.component);
+                break;
+            }
+        } else idx.count = pos.count;
+        if (idx.count % 3) { rc = voxgi_io__gltf_fail(G, prim, "%s: %zu corners do not make whole triangles", what, idx.count); break; }
+        triangles = idx.count / 3;
+        for (i = 0; i < pos.count; i++) {
+            double v[3];
+            float out[3];
+            int k;
+            for (k = 0; k < 3; k++) v[k] = voxgi_io__gltf_float_at(&pos, i, k);
+            for (k = 0; k < 3; k++) {
+                double w = m[k] * v[0] + m[4 + k] * v[1] + m[8 + k] * v[2] + m[12 + k];
+                if (!(fabs(w) <= FLT_MAX)) { rc = voxgi_io__gltf_fail(G, attrs, "%s: POSITION %zu is not finite", what, i); break; }
+                out[k] = (float)w;
+            }
+            if (rc || (rc = voxgi_io__add_vertex(G->L, out)) != 0) break;
+        }
+        if (rc) break;
+        if (nrm.data || b->normals.count) {
+            /* normals for every vertex once any primitive has them; zeros where one has none */
+            size_t have = b->normals.count / 3;
+            float *dst = VOXGI_IO__PUSH(G->L, b->normals, float, 3 * (base + pos.count - have));
+            if (!dst) { rc = -1; break; }
+            memset(dst, 0, 3 * (base + pos.count - have) * sizeof *dst);
+            for (i = 0; nrm.data && i < pos.count; i++) {
+                double v[3], w[3], len;
+                int k;
+                for (k = 0; k < 3; k++) v[k] = voxgi_io__gltf_float_at(&nrm, i, k);
+                for (k = 0; k < 3; k++) w[k] = (normal_m[k] * v[0] + normal_m[3 + k] * v[1] + normal_m[6 + k] * v[2]) * (det < 0 ? -1 : 1);
+                len = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+                for (k = 0; k < 3 && len > 0 && len <= FLT_MAX; k++) dst[3 * (base - have + i) + (size_t)k] = (float)(w[k] / len);
+            }
+        }
+        for (i = 0; i < triangles; i++) {
+            uint32_t *tri = VOXGI_IO__PUSH(G->L, b->indices, uint32_t, 3), *mat;
+            int k;
+            if (!tri || !(mat = VOXGI_IO__PUSH(G->L, b->material_ids, uint32_t, 1))) { rc = -1; break; }
+            *mat = material_id;
+            for (k = 0; k < 3; k++) {
+                uint32_t v = has_indices ? voxgi_io__gltf_index_at(&idx, 3 * i + (size_t)k) : (uint32_t)(3 * i + (size_t)k);
+                if (v >= pos.count) {
+                    rc = voxgi_io__gltf_fail(G, voxgi_io__json_get(G, prim, "indices"), "%s: index %u (element %zu of accessors[%zu]) is out of range: the primitive has %zu vertices",
+                                             what, v, 3 * i + (size_t)k, index_index, pos.count);
+                    break;
+                }
+                tri[k] = (uint32_t)base + v;
+            }
+            if (rc) break;
+            /* a mirroring transform turns the winding over; glTF keeps faces counter-clockwise */
+            if (det < 0) { uint32_t swap = tri[1]; tri[1] = tri[2]; tri[2] = swap; }
+        }
+    }
+    free(prims.item);
+    return rc;
+}
+
+/* Walks the default scene's node trees (or every root node when there is no scene) depth first. */
+static int voxgi_io__gltf_nodes(voxgi_io__gltf *G)
+{
+    typedef struct { size_t node; double parent[16]; } entry;
+    static const double identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    voxgi_io__vec stack;
+    unsigned char *seen = (unsigned char *)calloc(G->nodes.count + 1, 1);
+    size_t *roots = (size_t *)malloc((G->nodes.count + 1) * sizeof *roots), root_count = 0, scene, k, i;
+    int rc = 0;
+    memset(&stack, 0, sizeof stack);
+    if (!seen || !roots) rc = voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory");
+    else rc = voxgi_io__json_uint(G, 0, "scene", 0, G->scenes.count ? G->scenes.count - 1 : 0, "the glTF", &scene);
+    if (!rc && G->scenes.count) {
+        size_t list = voxgi_io__json_get(G, G->scenes.item[scene], "nodes"), c;
+        if (list != VOXGI_IO__NONE && G->tok[list].type != VOXGI_IO__J_ARRAY) rc = voxgi_io__gltf_fail(G, list, "scenes[%zu].nodes is not an array", scene);
+        for (c = list + 1, k = 0; !rc && list != VOXGI_IO__NONE && k < G->tok[list].count; k++, c = G->tok[c].next) {
+            double d;
+            if ((rc = voxgi_io__json_number(G, c, "a scene's node", &d)) != 0) break;
+            if (!(d >= 0 && d < (double)G->nodes.count && d == floor(d))) rc = voxgi_io__gltf_fail(G, c, "a scene refers to a node that does not exist");
+            else if (root_count == G->nodes.count) rc = voxgi_io__gltf_fail(G, c, "a scene lists a node twice");
+            else roots[root_count++] = (size_t)d;
+        }
+    } else if (!rc) {
+        /* no scene: every node that is nobody's child is a root */
+        for (i = 0; i < G->nodes.count; i++) {
+            size_t children = voxgi_io__json_get(G, G->nodes.item[i], "children"), c;
+            if (children == VOXGI_IO__NONE || G->tok[children].type != VOXGI_IO__J_ARRAY) continue;
+            for (c = children + 1, k = 0; k < G->tok[children].count; k++, c = G->tok[c].next) {
+                double d;
+                if (G->tok[c].type == VOXGI_IO__J_NUMBER && (d = strtod(G->json + G->tok[c].start, NULL)) >= 0 && d < (double)G->nodes.count)
+                    seen[(size_t)d] = 1;
+            }
+        }
+        for (i = 0; i < G->nodes.count; i++)
+            if (!seen[i]) roots[root_count++] = i;
+        memset(seen, 0, G->nodes.count + 1);
+    }
+    /* roots go on the stack last first, so the first root's triangles come first */
+    for (k = root_count; !rc && k-- > 0;) {
+        entry *e = (entry *)voxgi_io__vec_push(&stack, 1, sizeof *e);
+        if (!e) { rc = voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory"); break; }
+        memcpy(e->parent, identity, sizeof identity);
+        e->node = roots[k];
+    }
+    while (!rc && stack.count) {
+        entry e = ((entry *)stack.data)[--stack.count];
+        size_t node = G->nodes.item[e.node], children, mesh, c;
+        double local[16], world[16];
+        char what[48];
+        snprintf(what, sizeof what, "nodes[%zu]", e.node);
+        if (seen[e.node]) { rc = voxgi_io__gltf_fail(G, node, "%s is reached twice: the node hierarchy has a cycle or a shared child", what); break; }
+        seen[e.node] = 1;
+        if ((rc = voxgi_io__gltf_local_matrix(G, node, what, local)) != 0) break;
+        voxgi_io__mat4_mul(e.parent, local, world);
+        if (voxgi_io__json_get(G, node, "mesh") != VOXGI_IO__NONE &&
+            ((rc = voxgi_io__json_uint(G, node, "mesh", 0, SIZE_MAX / 2, what, &mesh)) != 0 || (rc = voxgi_io__gltf_mesh(G, node, mesh, world)) != 0))
+            break;
+        children = voxgi_io__json_get(G, node, "children");
+        if (children == VOXGI_IO__NONE) continue;
+        if (G->tok[children].type != VOXGI_IO__J_ARRAY) { rc = voxgi_io__gltf_fail(G, children, "%s.children is not an array", what); break; }
+        {
+            size_t count = G->tok[children].count;
+            entry *pushed = (entry *)voxgi_io__vec_push(&stack, count ? count : 1, sizeof *pushed);
+            if (!pushed) { rc = voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory"); break; }
+            if (!count) stack.count--;
+            for (c = children + 1, k = 0; k < count; k++, c = G->tok[c].next) {
+                double d;
+                if ((rc = voxgi_io__json_number(G, c, "a child", &d)) != 0) break;
+                if (!(d >= 0 && d < (double)G->nodes.count && d == floor(d))) { rc = voxgi_io__gltf_fail(G, c, "%s has a child that does not exist", what); break; }
+                pushed[count - 1 - k].node = (size_t)d; /* reversed: the first child comes off the stack first */
+                memcpy(pushed[count - 1 - k].parent, world, sizeof world);
+            }
+        }
+    }
+    free(seen);
+    free(roots);
+    voxgi_io__vec_free(&stack);
+    return rc;
+}
+
+/* ---- the file ------------------------------------------------------------------------------- */
+
+/* The JSON (and BIN) chunks of a .glb: a 12-byte header (magic, version 2, length), then chunks of
+   a 4-byte length, a 4-byte type and their bytes, the JSON chunk first. */
+static int voxgi_io__glb_chunks(voxgi_io__gltf *G, const unsigned char *d, size_t size)
+{
+    size_t at = 12, length;
+    if (size < 12) return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, size, "truncated glb: the 12-byte header ends early");
+    if (voxgi_io__le32(d + 4) != 2) return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, 4, "glb version %u is not supported, only 2", (unsigned)voxgi_io__le32(d + 4));
+    length = voxgi_io__le32(d + 8);
+    if (length > size) return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, size, "truncated glb: its header gives %zu bytes, the file has %zu", length, size);
+    while (at < length) {
+        size_t chunk, type;
+        if (length - at < 8) return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, at, "truncated glb: a chunk header runs past the end");
+        chunk = voxgi_io__le32(d + at);
+        type = voxgi_io__le32(d + at + 4);
+        if (chunk > length - at - 8) return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, at, "truncated glb: a chunk of %zu bytes runs past the end (%zu)", chunk, length);
+        if (at == 12 && type != 0x4E4F534Au) return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, at, "the first glb chunk is not JSON");
+        if (at == 12) { G->json = (const char *)d + at + 8; G->json_size = chunk; G->json_base = at + 8; }
+        else if (type == 0x004E4942u && !G->bin) { G->bin = d + at + 8; G->bin_size = chunk; }
+        at += 8 + chunk;
+    }
+    if (!G->json) return voxgi_io__fail_at(G->L, VOXGI_IO__OFFSET, at, "the glb has no JSON chunk");
+    return 0;
+}
+
+static int voxgi_io__gltf_check_header(voxgi_io__gltf *G)
+{
+    size_t version = voxgi_io__json_get(G, voxgi_io__json_get(G, 0, "asset"), "version"), req = voxgi_io__json_get(G, 0, "extensionsRequired"), i, k;
+    if (version == VOXGI_IO__NONE || G->tok[version].type != VOXGI_IO__J_STRING)
+        return voxgi_io__gltf_fail(G, 0, "no asset.version: not a glTF file");
+    if (G->tok[version].end - G->tok[version].start < 2 || memcmp(G->json + G->tok[version].start, "2.", 2))
+        return voxgi_io__gltf_fail(G, version, "glTF version %.*s is not supported, only 2.x", (int)(G->tok[version].end - G->tok[version].start) & 63,
+                                  G->json + G->tok[version].start);
+    if (req == VOXGI_IO__NONE) return 0;
+    if (G->tok[req].type != VOXGI_IO__J_ARRAY) return voxgi_io__gltf_fail(G, req, "extensionsRequired is not an array");
+    for (i = req + 1, k = 0; k < G->tok[req].count; k++, i = G->tok[i].next) {
+        int len = (int)(G->tok[i].end - G->tok[i].start) & 127;
+        if (voxgi_io__json_is(G, i, "KHR_materials_emissive_strength")) continue;
+        if (voxgi_io__json_is(G, i, "KHR_draco_mesh_compression")) return voxgi_io__gltf_fail(G, i, "Draco compression (KHR_draco_mesh_compression) is not supported");
+        if (voxgi_io__json_is(G, i, "EXT_meshopt_compression") || voxgi_io__json_is(G, i, "KHR_meshopt_compression"))
+            return voxgi_io__gltf_fail(G, i, "meshopt compression (%.*s) is not supported", len, G->json + G->tok[i].start);
+        return voxgi_io__gltf_fail(G, i, "the file requires extension %.*s, which is not supported", len, G->json + G->tok[i].start);
+    }
+    return 0;
+}
+
+static int voxgi_io__is_gltf(const char *path, const char *data, size_t size)
+{
+    while (size && (*data == ' ' || *data == '\t' || *data == '\n' || *data == '\r')) data++, size--;
+    return (size >= 4 && !memcmp(data, "glTF", 4)) || (size && *data == '{') || voxgi_io__has_extension(path, "gltf") || voxgi_io__has_extension(path, "glb");
+}
+
+static int voxgi_io__load_gltf(voxgi_io__loader *L, const char *path, const char *data, size_t size)
+{
+    voxgi_io__gltf G;
+    size_t i;
+    int rc;
+    memset(&G, 0, sizeof G);
+    G.L = L;
+    G.path = path;
+    G.default_material = VOXGI_IO__NO_INDEX;
+    if (size >= 4 && !memcmp(data, "glTF", 4)) rc = voxgi_io__glb_chunks(&G, (const unsigned char *)data, size);
+    else { G.json = data; G.json_size = size; rc = 0; }
+    rc = rc || voxgi_io__json_parse(&G) || voxgi_io__gltf_check_header(&G) ||
+         voxgi_io__json_list(&G, voxgi_io__json_get(&G, 0, "buffers"), "buffers", &G.buffer_list) ||
+         voxgi_io__json_list(&G, voxgi_io__json_get(&G, 0, "bufferViews"), "bufferViews", &G.views) ||
+         voxgi_io__json_list(&G, voxgi_io__json_get(&G, 0, "accessors"), "accessors", &G.accessors) ||
+         voxgi_io__json_list(&G, voxgi_io__json_get(&G, 0, "meshes"), "meshes", &G.meshes) ||
+         voxgi_io__json_list(&G, voxgi_io__json_get(&G, 0, "nodes"), "nodes", &G.nodes) ||
+         voxgi_io__json_list(&G, voxgi_io__json_get(&G, 0, "materials"), "materials", &G.materials) ||
+         voxgi_io__json_list(&G, voxgi_io__json_get(&G, 0, "scenes"), "scenes", &G.scenes) ||
+         voxgi_io__gltf_load_buffers(&G) || voxgi_io__gltf_materials(&G) || voxgi_io__gltf_nodes(&G);
+    for (i = 0; G.buffers && i < G.buffer_list.count; i++) free(G.buffers[i].owned);
+    free(G.buffers);
+    free(G.buffer_list.item); free(G.views.item); free(G.accessors.item); free(G.meshes.item);
+    free(G.nodes.item); free(G.materials.item); free(G.scenes.item);
+    free(G.tok);
+    return rc ? -1 : 0;
+}
+
+/* ===================================================================== 4. exports */
+
+/* Every writer reads the grid into memory once (its bits; its attribute; per 32-bit word the set
+   voxels before it, which turns a voxel's linear index into its row of the attribute, stored in
+   the order of the bit grid), then streams the file through stdio. The first failed call's errno
+   is the reason reported. */
+
+typedef struct voxgi_io__export {
+    const char *path;
+    char *err;
+    size_t err_size;
+    voxgi_voxels_info info;
+    uint64_t voxels;  /* res[0] * res[1] * res[2] */
+    uint64_t set;     /* set voxels (counted in the bits) */
+    uint32_t *bits;
+    uint64_t *rank;   /* set voxels before each word */
+    float *attr;      /* width floats per set voxel, or NULL */
+    int width;
+    FILE *f;
+    int failed, why;  /* a write failed, and its errno (0: unknown) */
+} voxgi_io__export;
+
+static int voxgi_io__export_fail(voxgi_io__export *x, const char *fmt, ...) VOXGI_IO__PRINTF_LIKE(2, 3);
+static int voxgi_io__export_fail(voxgi_io__export *x, const char *fmt, ...)
+{
+    va_list ap;
+    size_t used;
+    if (!x->err || !x->err_size) return -1;
+    snprintf(x->err, x->err_size, "%s: ", x->path);
+    used = strlen(x->err);
+    va_start(ap, fmt);
+    vsnprintf(x->err + used, x->err_size - used, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+static unsigned voxgi_io__x_popcount(uint32_t w)
+{
+    unsigned n = 0;
+    for (; w; w &= w - 1u) n++;
+    return n;
+}
+
+static int voxgi_io__x_is_set(const voxgi_io__export *x, uint64_t idx) { return (int)((x->bits[idx >> 5] >> (idx & 31u)) & 1u); }
+
+/* The row of set voxel idx in the attribute arrays: the set voxels before it. */
+static uint64_t voxgi_io__x_row(const voxgi_io__export *x, uint64_t idx)
+{
+    return x->rank[idx >> 5] + voxgi_io__x_popcount(x->bits[idx >> 5] & ((1u << (idx & 31u)) - 1u));
+}
+
+static uint64_t voxgi_io__x_index(const voxgi_io__export *x, uint64_t i, uint64_t j, uint64_t k)
+{
+    return i + (uint64_t)x->info.grid.res[0] * (j + (uint64_t)x->info.grid.res[1] * k);
+}
+
+/* Reads the grid and, when which is not 0, that attribute (required: refused without it; else
+   ALBEDO when held, for colours), then creates path. */
+static int voxgi_io__export_begin(voxgi_io__export *x, voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_attribute which, int required,
+                                  const char *path, char *err, size_t err_size)
+{
+    size_t need = 0, words, w;
+    const voxgi_grid *g;
+    memset(x, 0, sizeof *x);
+    x->path = path ? path : "(no path)";
+    x->err = err;
+    x->err_size = err_size;
+    if (err && err_size) err[0] = '\0';
+    if (!path) return voxgi_io__export_fail(x, "the path is NULL");
+    if (!ctx) return voxgi_io__export_fail(x, "the voxgi context is NULL");
+    if (!voxels) return voxgi_io__export_fail(x, "the voxels are NULL");
+    voxgi_voxels_query(voxels, &x->info);
+    g = &x->info.grid;
+    if (g->res[0] < 1 || g->res[1] < 1 || g->res[2] < 1) return voxgi_io__export_fail(x, "the voxels' grid has no voxel");
+    x->voxels = (uint64_t)g->res[0] * (uint64_t)g->res[1] * (uint64_t)g->res[2];
+    words = (size_t)((x->voxels + 31u) / 32u);
+    if (voxgi_voxels_read(ctx, voxels, NULL, 0, &need) != VOXGI_OK) return voxgi_io__export_fail(x, "%s", voxgi_last_error(ctx));
+    if (need < words * 4u) return voxgi_io__export_fail(x, "the bit grid holds %lu bytes, not the %lu of its grid", (unsigned long)need, (unsigned long)(words * 4u));
+    x->bits = (uint32_t *)malloc(need);
+    x->rank = (uint64_t *)malloc((words + 1u) * sizeof *x->rank);
+    if (!x->bits || !x->rank) return voxgi_io__export_fail(x, "out of memory for the bit grid (%lu bytes)", (unsigned long)need);
+    if (voxgi_voxels_read(ctx, voxels, x->bits, need, NULL) != VOXGI_OK) return voxgi_io__export_fail(x, "%s", voxgi_last_error(ctx));
+    if (x->voxels & 31u) x->bits[words - 1u] &= (1u << (x->voxels & 31u)) - 1u; /* no bit past the grid */
+    for (w = 0; w < words; w++) x->rank[w + 1u] = (x->rank[w] = x->set) + voxgi_io__x_popcount(x->bits[w]), x->set = x->rank[w + 1u];
+    if (which && (x->info.attributes & (unsigned)which)) {
+        x->width = which == VOXGI_ATTRIBUTE_OPACITY ? 1 : 3;
+        if (x->set != x->info.voxel_count) return voxgi_io__export_fail(x, "the bit grid holds %llu voxels, its attributes %llu", (unsigned long long)x->set, (unsigned long long)x->info.voxel_count);
+        need = 0;
+        if (voxgi_voxels_read_attribute(ctx, voxels, which, NULL, 0, &need) != VOXGI_OK) return voxgi_io__export_fail(x, "%s", voxgi_last_error(ctx));
+        if (!(x->attr = (float *)malloc(need ? need : 1u))) return voxgi_io__export_fail(x, "out of memory for the attribute (%lu bytes)", (unsigned long)need);
+        if (voxgi_voxels_read_attribute(ctx, voxels, which, x->attr, need, NULL) != VOXGI_OK) return voxgi_io__export_fail(x, "%s", voxgi_last_error(ctx));
+    } else if (required)
+        return voxgi_io__export_fail(x, "the voxels hold no attribute %d (held: 0x%x; ask for it in voxgi_voxelize_desc.attributes)", (int)which, x->info.attributes);
+    errno = 0;
+    if (!(x->f = fopen(path, "wb"))) return voxgi_io__export_fail(x, "cannot open for writing: %s", errno ? strerror(errno) : "unknown reason");
+    return 0;
+}
+
+static void voxgi_io__x_put(voxgi_io__export *x, const void *data, size_t n)
+{
+    if (x->failed || !n) return;
+    errno = 0;
+    if (fwrite(data, 1, n, x->f) != n) x->failed = 1, x->why = errno;
+}
+
+static void voxgi_io__x_print(voxgi_io__export *x, const char *fmt, ...) VOXGI_IO__PRINTF_LIKE(2, 3);
+static void voxgi_io__x_print(voxgi_io__export *x, const char *fmt, ...)
+{
+    va_list ap;
+    if (x->failed) return;
+    errno = 0;
+    va_start(ap, fmt);
+    if (vfprintf(x->f, fmt, ap) < 0) x->failed = 1, x->why = errno;
+    va_end(ap);
+}
+
+/* Closes the file (a failed write or close becomes the error when rc is 0) and frees the grid. */
+static int voxgi_io__export_end(voxgi_io__export *x, int rc)
+{
+    if (x->f) {
+        errno = 0;
+        if (fclose(x->f) != 0 && !x->failed) x->failed = 1, x->why = errno;
+        x->f = NULL;
+        if (rc == 0 && x->failed) rc = voxgi_io__export_fail(x, "cannot write: %s", x->why ? strerror(x->why) : "I/O error");
+    }
+    free(x->bits);
+    free(x->rank);
+    free(x->attr);
+    x->bits = NULL, x->rank = NULL, x->attr = NULL;
+    return rc;
+}
+
+static unsigned char *voxgi_io__x_le32(unsigned char *p, uint32_t v)
+{
+    p[0] = (unsigned char)v, p[1] = (unsigned char)(v >> 8), p[2] = (unsigned char)(v >> 16), p[3] = (unsigned char)(v >> 24);
+    return p + 4;
+}
+
+/* Linear [0,1] to the sRGB curve, clamped (NaN to 0). */
+static float voxgi_io__x_srgb(float c)
+{
+    if (!(c > 0.0f)) return 0.0f;
+    if (c >= 1.0f) return 1.0f;
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+}
+
+/* Voxel idx's colour in sRGB [0,1]: its albedo, else 0.8 grey. */
+static void voxgi_io__x_colour(const voxgi_io__export *x, uint64_t idx, float srgb[3])
+{
+    int c;
+    for (c = 0; c < 3; c++) srgb[c] = voxgi_io__x_srgb(x->attr ? x->attr[3u * voxgi_io__x_row(x, idx) + (uint64_t)c] : 0.8f);
+}
+
+static unsigned char voxgi_io__x_byte(float unit) { return (unsigned char)floorf(unit * 255.0f + 0.5f); }
+
+/* ---- MagicaVoxel .vox ---------------------------------------------------------------------- */
+
+#define VOXGI_IO__X_VOX_BLOCK 256
+
+/* The uniform 6 x 7 x 6 palette: the index (1..252) of an sRGB colour, and the colour of an index. */
+static unsigned char voxgi_io__x_vox_index(const float srgb[3])
+{
+    int r = (int)floorf(srgb[0] * 5.0f + 0.5f), g = (int)floorf(srgb[1] * 6.0f + 0.5f), b = (int)floorf(srgb[2] * 5.0f + 0.5f);
+    return (unsigned char)(1 + (r * 7 + g) * 6 + b);
+}
+
+static void voxgi_io__x_vox_palette_colour(int index, unsigned char rgba[4])
+{
+    int e = index - 1, r = e / 42, g = e / 6 % 7, b = e % 6;
+    rgba[0] = (unsigned char)((r * 255 + 2) / 5);
+    rgba[1] = (unsigned char)((g * 255 + 3) / 6);
+    rgba[2] = (unsigned char)((b * 255 + 2) / 5);
+    rgba[3] = 255;
+}
+
+static unsigned char *voxgi_io__x_chunk(unsigned char *p, const char *id, uint32_t content, uint32_t children)
+{
+    memcpy(p, id, 4);
+    return voxgi_io__x_le32(voxgi_io__x_le32(p + 4, content), children);
+}
+
+static unsigned char *voxgi_io__x_vox_string(unsigned char *p, const char *s)
+{
+    size_t n = strlen(s);
+    p = voxgi_io__x_le32(p, (uint32_t)n);
+    memcpy(p, s, n);
+    return p + n;
+}
+
+/* MagicaVoxel coordinates of voxel (i,j,k) and back: x = i, y = res[2]-1-k, z = j. */
+static void voxgi_io__x_vox_size(const voxgi_io__export *x, int m[3])
+{
+    m[0] = x->info.grid.res[0], m[1] = x->info.grid.res[2], m[2] = x->info.grid.res[1];
+}
+
+VOXGI_IO_API int voxgi_io_write_vox(voxgi_context *ctx, const voxgi_voxels *voxels, const char *path, char *err, size_t err_size)
+{
+    voxgi_io__export x;
+    int m[3], blocks[3], models, model, c;
+    uint64_t *counts = NULL, i, j, k, children;
+    unsigned char *scene = NULL, *p, head[64], entry[4 * 256];
+    size_t scene_size;
+    if (voxgi_io__export_begin(&x, ctx, voxels, VOXGI_ATTRIBUTE_ALBEDO, 0, path, err, err_size)) return voxgi_io__export_end(&x, -1);
+    voxgi_io__x_vox_size(&x, m);
+    for (c = 0; c < 3; c++) blocks[c] = (m[c] + VOXGI_IO__X_VOX_BLOCK - 1) / VOXGI_IO__X_VOX_BLOCK;
+    models = blocks[0] * blocks[1] * blocks[2];
+    counts = (uint64_t *)calloc((size_t)models, sizeof *counts);
+    /* the scene graph: 40 (root nTRN) + 24 (LAYR) + 24 + 4 per model (nGRP) + at most 86 (nTRN) + 32 (nSHP) per model */
+    scene = (unsigned char *)malloc(88u + 130u * (size_t)models);
+    if (!counts || !scene) {
+        free(counts);
+        free(scene);
+        return voxgi_io__export_end(&x, voxgi_io__export_fail(&x, "out of memory for %d models", models));
+    }
+    for (k = 0; k < (uint64_t)x.info.grid.res[2]; k++)
+        for (j = 0; j < (uint64_t)x.info.grid.res[1]; j++)
+            for (i = 0; i < (uint64_t)x.info.grid.res[0]; i++)
+                if (voxgi_io__x_is_set(&x, voxgi_io__x_index(&x, i, j, k))) {
+                    uint64_t y = (uint64_t)m[1] - 1u - k;
+                    counts[i / VOXGI_IO__X_VOX_BLOCK + (uint64_t)blocks[0] * (y / VOXGI_IO__X_VOX_BLOCK + (uint64_t)blocks[1] * (j / VOXGI_IO__X_VOX_BLOCK))]++;
+                }
+    /* root transform 0 -> group 1 -> (transform 2+2m -> shape 3+2m of model m) per model, all on layer 0 */
+    p = scene;
+    p = voxgi_io__x_chunk(p, "nTRN", 28, 0);
+    p = voxgi_io__x_le32(p, 0), p = voxgi_io__x_le32(p, 0), p = voxgi_io__x_le32(p, 1), p = voxgi_io__x_le32(p, UINT32_MAX);
+    p = voxgi_io__x_le32(p, UINT32_MAX), p = voxgi_io__x_le32(p, 1), p = voxgi_io__x_le32(p, 0);
+    p = voxgi_io__x_chunk(p, "nGRP", 12u + 4u * (uint32_t)models, 0);
+    p = voxgi_io__x_le32(p, 1), p = voxgi_io__x_le32(p, 0), p = voxgi_io__x_le32(p, (uint32_t)models);
+    for (model = 0; model < models; model++) p = voxgi_io__x_le32(p, 2u + 2u * (uint32_t)model);
+    for (model = 0; model < models; model++) {
+        int block[3] = {model % blocks[0], model / blocks[0] % blocks[1], model / (blocks[0] * blocks[1])}, t[3];
+        char translation[48];
+        for (c = 0; c < 3; c++) {
+            int lo = block[c] * VOXGI_IO__X_VOX_BLOCK, size = m[c] - lo < VOXGI_IO__X_VOX_BLOCK ? m[c] - lo : VOXGI_IO__X_VOX_BLOCK;
+            t[c] = lo + size / 2;
+        }
+        snprintf(translation, sizeof translation, "%d %d %d", t[0], t[1], t[2]);
+        p = voxgi_io__x_chunk(p, "nTRN", 38u + (uint32_t)strlen(translation), 0);
+        p = voxgi_io__x_le32(p, 2u + 2u * (uint32_t)model), p = voxgi_io__x_le32(p, 0), p = voxgi_io__x_le32(p, 3u + 2u * (uint32_t)model);
+        p = voxgi_io__x_le32(p, UINT32_MAX), p = voxgi_io__x_le32(p, 0), p = voxgi_io__x_le32(p, 1), p = voxgi_io__x_le32(p, 1);
+        p = voxgi_io__x_vox_string(p, "_t"), p = voxgi_io__x_vox_string(p, translation);
+        p = voxgi_io__x_chunk(p, "nSHP", 20, 0);
+        p = voxgi_io__x_le32(p, 3u + 2u * (uint32_t)model), p = voxgi_io__x_le32(p, 0), p = voxgi_io__x_le32(p, 1);
+        p = voxgi_io__x_le32(p, (uint32_t)model), p = voxgi_io__x_le32(p, 0);
+    }
+    p = voxgi_io__x_chunk(p, "LAYR", 12, 0);
+    p = voxgi_io__x_le32(p, 0), p = voxgi_io__x_le32(p, 0), p = voxgi_io__x_le32(p, UINT32_MAX);
+    scene_size = (size_t)(p - scene);
+    children = scene_size + 12u + 1024u;
+    for (model = 0; model < models; model++) children += 24u + 16u + 4u * counts[model];
+    if (children > UINT32_MAX) {
+        free(counts);
+        free(scene);
+        return voxgi_io__export_end(&x, voxgi_io__export_fail(&x, "%llu bytes of voxels exceed the .vox format's 4 GiB", (unsigned long long)children));
+    }
+    memcpy(head, "VOX ", 4);
+    voxgi_io__x_chunk(voxgi_io__x_le32(head + 4, 150), "MAIN", 0, (uint32_t)children);
+    voxgi_io__x_put(&x, head, 20);
+    for (model = 0; model < models; model++) {
+        int block[3] = {model % blocks[0], model / blocks[0] % blocks[1], model / (blocks[0] * blocks[1])}, lo[3], size[3];
+        uint64_t xx, yy, zz;
+        for (c = 0; c < 3; c++) {
+            lo[c] = block[c] * VOXGI_IO__X_VOX_BLOCK;
+            size[c] = m[c] - lo[c] < VOXGI_IO__X_VOX_BLOCK ? m[c] - lo[c] : VOXGI_IO__X_VOX_BLOCK;
+        }
+        p = voxgi_io__x_chunk(head, "SIZE", 12, 0);
+        p = voxgi_io__x_le32(p, (uint32_t)size[0]), p = voxgi_io__x_le32(p, (uint32_t)size[1]), p = voxgi_io__x_le32(p, (uint32_t)size[2]);
+        p = voxgi_io__x_chunk(p, "XYZI", 4u + 4u * (uint32_t)counts[model], 0);
+        p = voxgi_io__x_le32(p, (uint32_t)counts[model]);
+        voxgi_io__x_put(&x, head, (size_t)(p - head));
+        for (zz = 0; zz < (uint64_t)size[2]; zz++)
+            for (yy = 0; yy < (uint64_t)size[1]; yy++)
+                for (xx = 0; xx < (uint64_t)size[0]; xx++) {
+                    uint64_t idx = voxgi_io__x_index(&x, (uint64_t)lo[0] + xx, (uint64_t)lo[2] + zz, (uint64_t)m[1] - 1u - ((uint64_t)lo[1] + yy));
+                    if (voxgi_io__x_is_set(&x, idx)) {
+                        float srgb[3];
+                        unsigned char v[4];
+                        voxgi_io__x_colour(&x, idx, srgb);
+                        v[0] = (unsigned char)xx, v[1] = (unsigned char)yy, v[2] = (unsigned char)zz, v[3] = voxgi_io__x_vox_index(srgb);
+                        voxgi_io__x_put(&x, v, 4);
+                    }
+                }
+    }
+    voxgi_io__x_put(&x, scene, scene_size);
+    voxgi_io__x_put(&x, voxgi_io__x_chunk(head, "RGBA", 1024, 0) - 12, 12);
+    /* entry e is the colour of index e + 1; the last 4 (indices 253..255, and 256 = 0) are unused, black */
+    for (c = 0; c < 256; c++) {
+        if (c < 252) voxgi_io__x_vox_palette_colour(c + 1, entry + 4 * c);
+        else entry[4 * c] = entry[4 * c + 1] = entry[4 * c + 2] = 0, entry[4 * c + 3] = 255;
+    }
+    voxgi_io__x_put(&x, entry, sizeof entry);
+    free(counts);
+    free(scene);
+    return voxgi_io__export_end(&x, 0);
+}
+
+/* ---- NumPy .npy -------------------------------------------------------------------------- */
+
+/* The format 1.0 header: magic, version, header length, then the dict padded with spaces and a
+   newline to a multiple of 64 bytes (what numpy writes; 1.0 asks for 16). */
+static void voxgi_io__x_npy_header(voxgi_io__export *x, const char *descr, int width)
+{
+    char dict[256];
+    unsigned char head[10];
+    const int *r = x->info.grid.res;
+    int n;
+    if (width > 1) n = snprintf(dict, sizeof dict, "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d, %d, %d), }", descr, r[0], r[1], r[2], width);
+    else n = snprintf(dict, sizeof dict, "{'descr': '%s', 'fortran_order': False, 'shape': (%d, %d, %d), }", descr, r[0], r[1], r[2]);
+    while ((10 + n + 1) % 64) dict[n++] = ' ';
+    dict[n++] = '\n';
+    memcpy(head, "\x93NUMPY\x01\x00", 8);
+    head[8] = (unsigned char)n, head[9] = (unsigned char)(n >> 8);
+    voxgi_io__x_put(x, head, 10);
+    voxgi_io__x_put(x, dict, (size_t)n);
+}
+
+/* C order: k (the last index) fastest, one row of k per (i, j). */
+static int voxgi_io__x_npy_write(voxgi_io__export *x, int width)
+{
+    const int *r = x->info.grid.res;
+    size_t row_bytes = (size_t)r[2] * (size_t)(x->attr ? 4 * width : 1);
+    unsigned char *row = (unsigned char *)malloc(row_bytes), *p;
+    uint64_t i, j, k;
+    int c;
+    if (!row) return voxgi_io__export_fail(x, "out of memory for a row of %lu bytes", (unsigned long)row_bytes);
+    voxgi_io__x_npy_header(x, x->attr ? "<f4" : "|u1", x->attr ? width : 1);
+    for (i = 0; i < (uint64_t)r[0]; i++)
+        for (j = 0; j < (uint64_t)r[1]; j++) {
+            for (p = row, k = 0; k < (uint64_t)r[2]; k++) {
+                uint64_t idx = voxgi_io__x_index(x, i, j, k);
+                int set = voxgi_io__x_is_set(x, idx);
+                if (!x->attr) *p++ = (unsigned char)set;
+                else
+                    for (c = 0; c < width; c++) {
+                        float v = set ? x->attr[(uint64_t)width * voxgi_io__x_row(x, idx) + (uint64_t)c] : 0.0f;
+                        uint32_t u;
+                        memcpy(&u, &v, 4);
+                        p = voxgi_io__x_le32(p, u);
+                    }
+            }
+            voxgi_io__x_put(x, row, row_bytes);
+        }
+    free(row);
+    return 0;
+}
+
+VOXGI_IO_API int voxgi_io_write_npy(voxgi_context *ctx, const voxgi_voxels *voxels, const char *path, char *err, size_t err_size)
+{
+    voxgi_io__export x;
+    if (voxgi_io__export_begin(&x, ctx, voxels, (voxgi_attribute)0, 0, path, err, err_size)) return voxgi_io__export_end(&x, -1);
+    return voxgi_io__export_end(&x, voxgi_io__x_npy_write(&x, 1));
+}
+
+VOXGI_IO_API int voxgi_io_write_npy_attribute(voxgi_context *ctx, const voxgi_voxels *voxels, voxgi_attribute which, const char *path,
+                                              char *err, size_t err_size)
+{
+    voxgi_io__export x;
+    if (which != VOXGI_ATTRIBUTE_ALBEDO && which != VOXGI_ATTRIBUTE_NORMAL && which != VOXGI_ATTRIBUTE_EMISSION && which != VOXGI_ATTRIBUTE_OPACITY) {
+        memset(&x, 0, sizeof x);
+        x.path = path ? path : "(no path)", x.err = err, x.err_size = err_size;
+        return voxgi_io__export_fail(&x, "attribute %d is not one of ALBEDO, NORMAL, EMISSION, OPACITY", (int)which);
+    }
+    if (voxgi_io__export_begin(&x, ctx, voxels, which, 1, path, err, err_size)) return voxgi_io__export_end(&x, -1);
+    return voxgi_io__export_end(&x, voxgi_io__x_npy_write(&x, x.width));
+}
+
+/* ---- PLY points and OBJ faces ------------------------------------------------------------ */
+
+VOXGI_IO_API int voxgi_io_write_ply_points(voxgi_context *ctx, const voxgi_voxels *voxels, const char *path, char *err, size_t err_size)
+{
+    voxgi_io__export x;
+    const voxgi_grid *g;
+    uint64_t i, j, k;
+    if (voxgi_io__export_begin(&x, ctx, voxels, VOXGI_ATTRIBUTE_ALBEDO, 0, path, err, err_size)) return voxgi_io__export_end(&x, -1);
+    g = &x.info.grid;
+    voxgi_io__x_print(&x, "ply\nformat binary_little_endian 1.0\ncomment voxgi voxel centres: grid %dx%dx%d, voxel size %.17g\n"
+                        "element vertex %llu\nproperty float x\nproperty float y\nproperty float z\n"
+                        "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n",
+                    g->res[0], g->res[1], g->res[2], g->voxel_size, (unsigned long long)x.set);
+    for (k = 0; k < (uint64_t)g->res[2]; k++)
+        for (j = 0; j < (uint64_t)g->res[1]; j++)
+            for (i = 0; i < (uint64_t)g->res[0]; i++) {
+                uint64_t idx = voxgi_io__x_index(&x, i, j, k), ijk[3];
+                unsigned char v[15], *p = v;
+                float srgb[3];
+                int c;
+                if (!voxgi_io__x_is_set(&x, idx)) continue;
+                ijk[0] = i, ijk[1] = j, ijk[2] = k;
+                for (c = 0; c < 3; c++) {
+                    float centre = (float)(g->origin[c] + g->voxel_size * ((double)ijk[c] + 0.5));
+                    uint32_t u;
+                    memcpy(&u, &centre, 4);
+                    p = voxgi_io__x_le32(p, u);
+                }
+                voxgi_io__x_colour(&x, idx, srgb);
+                for (c = 0; c < 3; c++) *p++ = voxgi_io__x_byte(srgb[c]);
+                voxgi_io__x_put(&x, v, sizeof v);
+            }
+    return voxgi_io__export_end(&x, 0);
+}
+
+VOXGI_IO_API int voxgi_io_write_obj_faces(voxgi_context *ctx, const voxgi_voxels *voxels, const char *path, char *err, size_t err_size)
+{
+    voxgi_io__export x;
+    const voxgi_grid *g;
+    int64_t ijk[3];
+    unsigned long long faces = 0;
+    if (voxgi_io__export_begin(&x, ctx, voxels, VOXGI_ATTRIBUTE_ALBEDO, 0, path, err, err_size)) return voxgi_io__export_end(&x, -1);
+    g = &x.info.grid;
+    voxgi_io__x_print(&x, "# voxgi: the outer faces of %llu voxels (grid %dx%dx%d, voxel size %.17g); v x y z r g b\n",
+                    (unsigned long long)x.set, g->res[0], g->res[1], g->res[2], g->voxel_size);
+    for (ijk[2] = 0; ijk[2] < g->res[2]; ijk[2]++)
+        for (ijk[1] = 0; ijk[1] < g->res[1]; ijk[1]++)
+            for (ijk[0] = 0; ijk[0] < g->res[0]; ijk[0]++) {
+                uint64_t idx = voxgi_io__x_index(&x, (uint64_t)ijk[0], (uint64_t)ijk[1], (uint64_t)ijk[2]);
+                float srgb[3];
+                int axis, side;
+                if (!voxgi_io__x_is_set(&x, idx)) continue;
+                voxgi_io__x_colour(&x, idx, srgb);
+                for (axis = 0; axis < 3; axis++)
+                    for (side = 0; side < 2; side++) {
+                        int64_t n[3], corner[3];
+                        int u = (axis + 1) % 3, v = (axis + 2) % 3, q;
+                        n[0] = ijk[0], n[1] = ijk[1], n[2] = ijk[2];
+                        n[axis] += side ? 1 : -1;
+                        if (n[axis] >= 0 && n[axis] < g->res[axis] && voxgi_io__x_is_set(&x, voxgi_io__x_index(&x, (uint64_t)n[0], (uint64_t)n[1], (uint64_t)n[2])))
+                            continue; /* a face between two set voxels is inside */
+                        /* corners base, +u, +u+v, +v turn around +axis (e_u x e_v = e_axis); reversed on the low side */
+                        for (q = 0; q < 4; q++) {
+                            int du = q == 1 || q == 2, dv = q >= 2, c;
+                            if (!side) c = du, du = dv, dv = c;
+                            corner[0] = ijk[0], corner[1] = ijk[1], corner[2] = ijk[2];
+                            corner[axis] += side;
+                            corner[u] += du, corner[v] += dv;
+                            voxgi_io__x_print(&x, "v %.9g %.9g %.9g %.4f %.4f %.4f\n", g->origin[0] + g->voxel_size * (double)corner[0],
+                                            g->origin[1] + g->voxel_size * (double)corner[1], g->origin[2] + g->voxel_size * (double)corner[2],
+                                            (double)srgb[0], (double)srgb[1], (double)srgb[2]);
+                        }
+                        voxgi_io__x_print(&x, "f %llu %llu %llu %llu\n", 4 * faces + 1, 4 * faces + 2, 4 * faces + 3, 4 * faces + 4);
+                        faces++;
+                    }
+            }
+    return voxgi_io__export_end(&x, 0);
 }
 
 #endif /* VOXGI_IO__IMPLEMENTED */

@@ -1,4 +1,4 @@
-/* tests/test_mesh_io.c - the mesh loaders of voxgi_io.h, and the PNG writer of tools/image_io.h.
+/* tests/test_mesh_io.c - the mesh loaders of voxgi_io.h (OBJ, OFF, STL, PLY, glTF), and the PNG writer of tools/image_io.h.
  *
  * First exact results on small files of every format and variant, then hostile input: every
  * truncated prefix and random corruptions of each valid file, garbage, bad indices, non-finite
@@ -17,7 +17,7 @@
 #include <unistd.h>
 
 static char tmp_dir[512];
-static char created[128][64];
+static char created[256][64];
 static int created_count;
 
 /* Paths come from a ring of buffers so a test can hold a few at once. */
@@ -44,7 +44,7 @@ static const char *write_file(const char *name, const void *data, size_t size)
     TH_CHECK(fwrite(data, 1, size, f) == size, "cannot write %s", path);
     fclose(f);
     for (i = 0; i < created_count && strcmp(created[i], name); i++) {}
-    if (i == created_count && created_count < 128) snprintf(created[created_count++], sizeof created[0], "%s", name);
+    if (i == created_count && created_count < 256) snprintf(created[created_count++], sizeof created[0], "%s", name);
     return path;
 }
 
@@ -885,6 +885,401 @@ static void test_large_obj(void)
     voxgi_io_mesh_free(&m);
 }
 
+/* ---------------------------------------------------------------- glTF */
+
+/* The test's own glTF writer: a JSON body (everything but asset and buffers) and one binary
+   buffer, stored as a base64 data URI, an external .bin beside the .gltf, or a .glb. */
+enum { GLTF_DATA_URI, GLTF_EXTERNAL, GLTF_GLB };
+static const char *const gltf_container_names[3] = {"data URI", "external .bin", "glb"};
+
+static void grow_f32(growing *g, float f) { unsigned char b[4]; uint32_t u; int k; memcpy(&u, &f, 4); for (k = 0; k < 4; k++) b[k] = (unsigned char)(u >> 8 * k); grow_put(g, b, 4); }
+static void grow_uint(growing *g, uint32_t v, int n) { unsigned char b[4]; int k; for (k = 0; k < n; k++) b[k] = (unsigned char)(v >> 8 * k); grow_put(g, b, (size_t)n); }
+static void grow_str(growing *g, const char *s) { grow_put(g, s, strlen(s)); }
+
+static char *base64(const unsigned char *d, size_t n)
+{
+    static const char abc[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    char *out = (char *)malloc(4 * (n / 3 + 1) + 1), *o = out;
+    size_t i;
+    if (!out) { printf("out of memory\n"); exit(1); }
+    for (i = 0; i < n; i += 3) {
+        uint32_t v = (uint32_t)d[i] << 16 | (i + 1 < n ? (uint32_t)d[i + 1] << 8 : 0) | (i + 2 < n ? d[i + 2] : 0);
+        *o++ = abc[v >> 18]; *o++ = abc[v >> 12 & 63];
+        *o++ = i + 1 < n ? abc[v >> 6 & 63] : '=';
+        *o++ = i + 2 < n ? abc[v & 63] : '=';
+    }
+    *o = 0;
+    return out;
+}
+
+/* The whole JSON text (NUL-terminated in a growing), its buffer named by uri (NULL: a data URI;
+   "": none, the glb's BIN chunk). */
+static growing gltf_json(const char *body, const growing *bin, const char *uri)
+{
+    growing j = {0, 0, 0};
+    grow_str(&j, "{\"asset\":{\"version\":\"2.0\"},");
+    grow_str(&j, body); /* may be longer than grow_printf's line */
+    grow_printf(&j, ",\"buffers\":[{\"byteLength\":%lu", (unsigned long)bin->size);
+    if (!uri) {
+        char *b = base64(bin->data, bin->size);
+        grow_str(&j, ",\"uri\":\"data:application/octet-stream;base64,");
+        grow_str(&j, b);
+        grow_str(&j, "\"");
+        free(b);
+    } else if (*uri) grow_printf(&j, ",\"uri\":\"%s\"", uri);
+    grow_str(&j, "}]}");
+    grow_put(&j, "", 1);
+    j.size--;
+    return j;
+}
+
+static growing glb_image(const growing *json, const growing *bin)
+{
+    growing g = {0, 0, 0};
+    size_t json_len = (json->size + 3) & ~(size_t)3, bin_len = (bin->size + 3) & ~(size_t)3;
+    grow_str(&g, "glTF");
+    grow_uint(&g, 2, 4);
+    grow_uint(&g, (uint32_t)(12 + 8 + json_len + 8 + bin_len), 4);
+    grow_uint(&g, (uint32_t)json_len, 4);
+    grow_str(&g, "JSON");
+    grow_put(&g, json->data, json->size);
+    while (g.size % 4) grow_str(&g, " ");
+    grow_uint(&g, (uint32_t)bin_len, 4);
+    grow_put(&g, "BIN", 4);
+    grow_put(&g, bin->data, bin->size);
+    while (g.size % 4) grow_put(&g, "", 1);
+    return g;
+}
+
+/* Writes name.gltf (with name.bin when external) or name.glb and returns its path. */
+static const char *write_gltf(const char *name, const char *body, const growing *bin, int container)
+{
+    char file[64], bin_name[64];
+    growing j, glb;
+    const char *path;
+    snprintf(bin_name, sizeof bin_name, "%s.bin", name);
+    snprintf(file, sizeof file, "%s.%s", name, container == GLTF_GLB ? "glb" : "gltf");
+    j = gltf_json(body, bin, container == GLTF_DATA_URI ? NULL : container == GLTF_EXTERNAL ? bin_name : "");
+    if (container == GLTF_GLB) {
+        glb = glb_image(&j, bin);
+        path = write_file(file, glb.data, glb.size);
+        free(glb.data);
+    } else {
+        if (container == GLTF_EXTERNAL) write_file(bin_name, bin->data, bin->size);
+        path = write_file(file, j.data, j.size);
+    }
+    free(j.data);
+    return path;
+}
+
+/* The test's vertices: distinct, exact in float, and each preceded by a 4-byte pad that must be
+   skipped (accessor byteOffset 4, byteStride 16). */
+static void gltf_vertex(size_t i, float v[3]) { v[0] = 0.5f * (float)i; v[1] = (float)(i % 17) - 8.0f; v[2] = 1.0f / (float)(1 + i); }
+static void grow_padded_vertices(growing *bin, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++) {
+        float v[3];
+        gltf_vertex(i, v);
+        grow_f32(bin, -999.0f);
+        grow_f32(bin, v[0]); grow_f32(bin, v[1]); grow_f32(bin, v[2]);
+    }
+}
+static uint32_t gltf_corner(size_t t, int k, size_t n) { return (uint32_t)(k == 0 ? t : k == 1 ? n - 1 - t : (t * 37 + 5) % n); }
+
+/* Each index type (uint8 with 200 vertices, uint16 and uint32 with 300, so indices above 255
+   exist) and no indices, each in each container (data URI, external .bin, .glb): 12 loads. The
+   positions come through an accessor with byteOffset 4 and byteStride 16; every position and
+   every index must arrive exactly as the test wrote it (float equality; no transform). */
+static void test_gltf_index_types(void)
+{
+    static const unsigned types[4] = {5121, 5123, 5125, 0};
+    int ti, c;
+    for (ti = 0; ti < 4; ti++)
+        for (c = 0; c < 3; c++) {
+            size_t n = types[ti] == 5121 ? 200 : 300, tris = 100, i, index_size = types[ti] == 5121 ? 1 : types[ti] == 5123 ? 2 : 4;
+            size_t vertex_count = types[ti] ? n : 3 * tris, bad = 0;
+            growing bin = {0, 0, 0};
+            char body[1024], name[32];
+            voxgi_io_mesh m;
+            grow_padded_vertices(&bin, vertex_count);
+            if (types[ti]) {
+                for (i = 0; i < 3 * tris; i++) grow_uint(&bin, gltf_corner(i / 3, (int)(i % 3), n), (int)index_size);
+                while (bin.size % 4) grow_put(&bin, "", 1);
+                snprintf(body, sizeof body,
+                         "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],"
+                         "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"mode\":4}]}],"
+                         "\"bufferViews\":[{\"buffer\":0,\"byteLength\":%lu,\"byteStride\":16},{\"buffer\":0,\"byteOffset\":%lu,\"byteLength\":%lu}],"
+                         "\"accessors\":[{\"bufferView\":0,\"byteOffset\":4,\"componentType\":5126,\"count\":%lu,\"type\":\"VEC3\"},"
+                         "{\"bufferView\":1,\"componentType\":%u,\"count\":%lu,\"type\":\"SCALAR\"}]",
+                         (unsigned long)(16 * vertex_count), (unsigned long)(16 * vertex_count), (unsigned long)(bin.size - 16 * vertex_count),
+                         (unsigned long)vertex_count, types[ti], (unsigned long)(3 * tris));
+            } else
+                snprintf(body, sizeof body,
+                         "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+                         "\"bufferViews\":[{\"buffer\":0,\"byteLength\":%lu,\"byteStride\":16}],"
+                         "\"accessors\":[{\"bufferView\":0,\"byteOffset\":4,\"componentType\":5126,\"count\":%lu,\"type\":\"VEC3\"}]",
+                         (unsigned long)bin.size, (unsigned long)vertex_count);
+            snprintf(name, sizeof name, "index%u_%d", types[ti], c);
+            if (!load_ok(write_gltf(name, body, &bin, c), &m)) { free(bin.data); continue; }
+            TH_CHECK(m.vertex_count == vertex_count && m.triangle_count == tris && m.material_count == 1, "%s (%s): %zu vertices, %zu triangles, %zu materials",
+                     name, gltf_container_names[c], m.vertex_count, m.triangle_count, m.material_count);
+            for (i = 0; m.vertex_count == vertex_count && i < vertex_count; i++) {
+                float v[3];
+                gltf_vertex(i, v);
+                bad += m.positions[3 * i] != v[0] || m.positions[3 * i + 1] != v[1] || m.positions[3 * i + 2] != v[2];
+            }
+            for (i = 0; m.triangle_count == tris && i < 3 * tris; i++)
+                bad += m.indices[i] != (types[ti] ? gltf_corner(i / 3, (int)(i % 3), n) : (uint32_t)i);
+            TH_CHECK(bad == 0, "%s (%s): %zu positions or indices differ from those written", name, gltf_container_names[c], bad);
+            voxgi_io_mesh_free(&m);
+            free(bin.data);
+        }
+}
+
+/* Rotates v by the unit quaternion q (x, y, z, w): v + 2 w (q x v) + 2 q x (q x v), a route
+   independent of the loader's rotation matrix. */
+static void quat_rotate(const double q[4], const double v[3], double out[3])
+{
+    double c1[3], c2[3];
+    int k;
+    c1[0] = q[1] * v[2] - q[2] * v[1]; c1[1] = q[2] * v[0] - q[0] * v[2]; c1[2] = q[0] * v[1] - q[1] * v[0];
+    c2[0] = q[1] * c1[2] - q[2] * c1[1]; c2[1] = q[2] * c1[0] - q[0] * c1[2]; c2[2] = q[0] * c1[1] - q[1] * c1[0];
+    for (k = 0; k < 3; k++) out[k] = v[k] + 2 * q[3] * c1[k] + 2 * c2[k];
+}
+
+/* A scene of three nodes over one mesh (two triangles, no indices, a normal per vertex): node 0 has
+   translation (1, -2, 3), rotation 0.7 rad about (1, 2, 2)/3 and scale (2, 0.5, 1.5); its child
+   node 1 has a matrix (90 degrees about z, x scaled by 3, then moved by (0.5, 0, -1)); node 2 is
+   another root, mirrored in x and moved by (100, 0, 0), outside the scene. The test transforms the vertices itself
+   in double precision (scale, quaternion rotation, translation; the child's matrix first):
+   positions within 1e-5 relative, normals (the inverse transpose: rotation of n / scale, the
+   child's x component over 3 before its turn) within 1e-5. With the scene, node 2 is not loaded (4
+   triangles); without any scene every root is (6), node 2's mirrored triangles with their last two
+   corners swapped so that they still face the way their normals do. */
+static void test_gltf_node_transforms(void)
+{
+    static const float tri[6][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.25f, -0.5f, 2}, {-1, 3, 0.5f}, {2, 2, -2}};
+    const double half = 0.35, t0[3] = {1, -2, 3}, s0[3] = {2, 0.5, 1.5}, nrm[3] = {0.48, 0.6, 0.64};
+    double q[4] = {sin(half) / 3, 2 * sin(half) / 3, 2 * sin(half) / 3, cos(half)};
+    growing bin = {0, 0, 0};
+    char body[2048];
+    int with_scene;
+    size_t i;
+    for (i = 0; i < 6; i++) { grow_f32(&bin, tri[i][0]); grow_f32(&bin, tri[i][1]); grow_f32(&bin, tri[i][2]); }
+    for (i = 0; i < 6; i++) { grow_f32(&bin, (float)nrm[0]); grow_f32(&bin, (float)nrm[1]); grow_f32(&bin, (float)nrm[2]); }
+    for (with_scene = 1; with_scene >= 0; with_scene--) {
+        voxgi_io_mesh m;
+        double worst_p = 0, worst_n = 0;
+        size_t expect_tris = with_scene ? 4 : 6;
+        snprintf(body, sizeof body,
+                 "%s\"nodes\":[{\"mesh\":0,\"children\":[1],\"translation\":[1,-2,3],\"rotation\":[%.17g,%.17g,%.17g,%.17g],\"scale\":[2,0.5,1.5]},"
+                 "{\"mesh\":0,\"matrix\":[0,3,0,0, -1,0,0,0, 0,0,1,0, 0.5,0,-1,1]},{\"mesh\":0,\"translation\":[100,0,0],\"scale\":[-1,1,1]}],"
+                 "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1}}]}],"
+                 "\"bufferViews\":[{\"buffer\":0,\"byteLength\":72},{\"buffer\":0,\"byteOffset\":72,\"byteLength\":72}],"
+                 "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":6,\"type\":\"VEC3\"},{\"bufferView\":1,\"componentType\":5126,\"count\":6,\"type\":\"VEC3\"}]",
+                 with_scene ? "\"scene\":0,\"scenes\":[{\"nodes\":[0]}]," : "", q[0], q[1], q[2], q[3]);
+        if (!load_ok(write_gltf(with_scene ? "nodes_scene" : "nodes_roots", body, &bin, GLTF_DATA_URI), &m)) continue;
+        TH_CHECK(m.triangle_count == expect_tris && m.vertex_count == 3 * expect_tris && m.normals, "%s scene: %zu triangles, %zu vertices, normals %s",
+                 with_scene ? "with a" : "without", m.triangle_count, m.vertex_count, m.normals ? "present" : "missing");
+        for (i = 0; m.vertex_count == 3 * expect_tris && m.normals && i < m.vertex_count; i++) {
+            double p[3] = {tri[i % 6][0], tri[i % 6][1], tri[i % 6][2]}, n[3] = {nrm[0], nrm[1], nrm[2]}, scaled[3], e[3], en[3], len;
+            int k;
+            if (i >= 12) { p[0] = 100 - p[0]; n[0] = -n[0]; } /* node 2: a mirror in x, then a move */
+            else {
+                if (i >= 6) { /* node 1's matrix: x' = -y + 0.5, y' = 3x, z' = z - 1; its normals: (-n.y, n.x / 3, n.z) */
+                    double x = p[0], nx = n[0];
+                    p[0] = -p[1] + 0.5; p[1] = 3 * x; p[2] = p[2] - 1;
+                    n[0] = -n[1]; n[1] = nx / 3;
+                }
+                for (k = 0; k < 3; k++) scaled[k] = p[k] * s0[k];
+                quat_rotate(q, scaled, e);
+                for (k = 0; k < 3; k++) p[k] = e[k] + t0[k];
+                for (k = 0; k < 3; k++) scaled[k] = n[k] / s0[k];
+                quat_rotate(q, scaled, n);
+            }
+            len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (k = 0; k < 3; k++) en[k] = n[k] / len;
+            for (k = 0; k < 3; k++) {
+                double dp = fabs(m.positions[3 * i + (size_t)k] - p[k]) / (1 + fabs(p[k])), dn = fabs(m.normals[3 * i + (size_t)k] - en[k]);
+                if (dp > worst_p) worst_p = dp;
+                if (dn > worst_n) worst_n = dn;
+            }
+        }
+        if (!with_scene && m.triangle_count == 6)
+            TH_CHECK(m.indices[12] == 12 && m.indices[13] == 14 && m.indices[14] == 13 && m.indices[15] == 15 && m.indices[16] == 17 && m.indices[17] == 16,
+                     "the mirrored node's triangles keep their winding: %u %u %u", m.indices[12], m.indices[13], m.indices[14]);
+        printf("    %s scene: worst position error %.2g (relative), worst normal error %.2g\n", with_scene ? "with a" : "without", worst_p, worst_n);
+        TH_CHECK(worst_p < 1e-5 && worst_n < 1e-5, "%s scene: positions off by %g, normals by %g", with_scene ? "with a" : "without", worst_p, worst_n);
+        voxgi_io_mesh_free(&m);
+    }
+    free(bin.data);
+}
+
+/* Three primitives over one triangle: the first takes material 1 (base colour (0.9, 0.1, 0.3),
+   alpha 0.3 ignored as OPAQUE is the default), the second material 0 (base colour (0.2, 0.4, 0.6)
+   with alpha 0.5 in BLEND mode, emissive (1, 0.5, 0.25) times KHR_materials_emissive_strength 4),
+   the third none (glTF's default: white, opaque). Each must arrive on its triangle, and the scene's
+   materials carry the same albedo, emission (4, 2, 1) and transparency (0.5, 0, 0). */
+static void test_gltf_materials(void)
+{
+    growing bin = {0, 0, 0};
+    voxgi_io_mesh m;
+    const voxgi_io_material *a, *b, *d;
+    grow_f32(&bin, 0); grow_f32(&bin, 0); grow_f32(&bin, 0);
+    grow_f32(&bin, 1); grow_f32(&bin, 0); grow_f32(&bin, 0);
+    grow_f32(&bin, 0); grow_f32(&bin, 1); grow_f32(&bin, 0);
+    if (!load_ok(write_gltf("materials",
+                            "\"extensionsUsed\":[\"KHR_materials_emissive_strength\"],\"extensionsRequired\":[\"KHR_materials_emissive_strength\"],"
+                            "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"material\":1},"
+                            "{\"attributes\":{\"POSITION\":0},\"material\":0},{\"attributes\":{\"POSITION\":0}}]}],"
+                            "\"materials\":[{\"name\":\"glow\",\"alphaMode\":\"BLEND\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.2,0.4,0.6,0.5]},"
+                            "\"emissiveFactor\":[1,0.5,0.25],\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4}}},"
+                            "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.9,0.1,0.3,0.3],\"metallicFactor\":0}}],"
+                            "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}]",
+                            &bin, GLTF_GLB), &m)) { free(bin.data); return; }
+    free(bin.data);
+    TH_CHECK(m.triangle_count == 3 && m.material_count == 3, "%zu triangles, %zu materials", m.triangle_count, m.material_count);
+    if (m.triangle_count != 3 || m.material_count != 3) { voxgi_io_mesh_free(&m); return; }
+    TH_CHECK(m.material_ids[0] == 1 && m.material_ids[1] == 0 && m.material_ids[2] == 2, "material ids %u %u %u", m.material_ids[0], m.material_ids[1], m.material_ids[2]);
+    a = &m.materials[0]; b = &m.materials[1]; d = &m.materials[2];
+    TH_CHECK(!strcmp(a->name, "glow") && near(a->albedo[0], 0.2f) && near(a->albedo[1], 0.4f) && near(a->albedo[2], 0.6f) && near(a->opacity, 0.5f),
+             "glow: %s albedo %g %g %g opacity %g", a->name, a->albedo[0], a->albedo[1], a->albedo[2], a->opacity);
+    TH_CHECK(near(a->emission[0], 4) && near(a->emission[1], 2) && near(a->emission[2], 1), "glow: emission %g %g %g", a->emission[0], a->emission[1], a->emission[2]);
+    TH_CHECK(near(b->albedo[0], 0.9f) && near(b->albedo[1], 0.1f) && near(b->albedo[2], 0.3f) && b->opacity == 1 && b->emission[0] == 0,
+             "material 1: albedo %g %g %g opacity %g emission %g", b->albedo[0], b->albedo[1], b->albedo[2], b->opacity, b->emission[0]);
+    TH_CHECK(d->albedo[0] == 1 && d->albedo[1] == 1 && d->albedo[2] == 1 && d->opacity == 1 && d->emission[1] == 0, "default: albedo %g opacity %g", d->albedo[0], d->opacity);
+    TH_CHECK(near(m.scene_materials[0].emission[0], 4) && near(m.scene_materials[0].albedo[2], 0.6f) && near(m.scene_materials[0].transparency, 0.5f) &&
+             m.scene_materials[1].transparency == 0, "scene materials: emission %g albedo %g transparency %g %g", m.scene_materials[0].emission[0],
+             m.scene_materials[0].albedo[2], m.scene_materials[0].transparency, m.scene_materials[1].transparency);
+    voxgi_io_mesh_free(&m);
+}
+
+/* A one-triangle mesh (indices uint16 0 1 2) for the failure tests, as a complete JSON text. */
+static const char gltf_small_body[] =
+    "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+    "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
+    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]";
+static growing gltf_small_bin(uint32_t last_index)
+{
+    growing bin = {0, 0, 0};
+    grow_f32(&bin, 0); grow_f32(&bin, 0); grow_f32(&bin, 0);
+    grow_f32(&bin, 1); grow_f32(&bin, 0); grow_f32(&bin, 0);
+    grow_f32(&bin, 0); grow_f32(&bin, 1); grow_f32(&bin, 0);
+    grow_uint(&bin, 0, 2); grow_uint(&bin, 1, 2); grow_uint(&bin, last_index, 2);
+    grow_uint(&bin, 0, 2);
+    return bin;
+}
+
+/* The small file with `from` replaced by `to` (once) must fail with `expect` in the message. */
+static void expect_gltf_edit_error(const char *name, const char *from, const char *to, const char *expect)
+{
+    growing bin = gltf_small_bin(2), j = gltf_json(gltf_small_body, &bin, NULL), edited = {0, 0, 0};
+    const char *at = strstr((const char *)j.data, from);
+    TH_CHECK(at != NULL, "%s: '%s' not in the file", name, from);
+    if (at) {
+        grow_put(&edited, j.data, (size_t)(at - (const char *)j.data));
+        grow_str(&edited, to);
+        grow_str(&edited, at + strlen(from));
+        expect_error(name, edited.data, edited.size, expect);
+    }
+    free(edited.data);
+    free(j.data);
+    free(bin.data);
+}
+
+/* Buffer URIs: a percent-encoded name beside the file loads; "..", an absolute path, a scheme and
+   a missing file are refused by name; a bad base64 character is refused at its byte offset. */
+static void test_gltf_buffer_uris(void)
+{
+    growing bin = gltf_small_bin(2), j = gltf_json(gltf_small_body, &bin, "my%20data.bin");
+    voxgi_io_mesh m;
+    char expect[64];
+    size_t at;
+    write_file("my data.bin", bin.data, bin.size);
+    if (load_ok(write_file("encoded.gltf", j.data, j.size), &m)) {
+        TH_CHECK(m.triangle_count == 1 && m.positions[3] == 1 && m.positions[7] == 1, "%zu triangles", m.triangle_count);
+        voxgi_io_mesh_free(&m);
+    }
+    free(j.data);
+    free(bin.data);
+    expect_gltf_edit_error("parent.gltf", "data:application/octet-stream;base64,", "../x.bin?", "'..'");
+    expect_gltf_edit_error("absolute.gltf", "data:application/octet-stream;base64,", "/x.bin?", "absolute");
+    expect_gltf_edit_error("scheme.gltf", "data:application/octet-stream;base64,", "http://example.com/x?", "absolute or has a scheme");
+    expect_gltf_edit_error("missing.gltf", "data:application/octet-stream;base64,", "missing", "cannot open");
+    bin = gltf_small_bin(2);
+    j = gltf_json(gltf_small_body, &bin, NULL);
+    at = (size_t)(strstr((const char *)j.data, "base64,") - (const char *)j.data) + 7 + 5;
+    j.data[at] = '!';
+    snprintf(expect, sizeof expect, "byte offset %lu: buffers[0]: bad base64", (unsigned long)at);
+    expect_error("bad_base64.gltf", j.data, j.size, expect);
+    free(j.data);
+    free(bin.data);
+}
+
+/* Hostile and unsupported glTF: every prefix of a valid .glb fails with a byte offset (a cut
+   header or chunk: "truncated glb" at the file's size); bad JSON at the offset of the defect; an
+   index out of range; each unsupported feature by name; nesting 100000 deep; a node cycle; and 3000
+   random corruptions of the .glb and .gltf load or fail cleanly (under ASan). */
+static void test_gltf_bad_files(void)
+{
+    growing bin = gltf_small_bin(2), j = gltf_json(gltf_small_body, &bin, ""), glb = glb_image(&j, &bin), deep = {0, 0, 0};
+    growing text = gltf_json(gltf_small_body, &bin, NULL);
+    voxgi_io_mesh m;
+    char expect[96], err[512];
+    size_t n, i, at;
+    int k;
+    if (load_ok(write_file("small.glb", glb.data, glb.size), &m)) voxgi_io_mesh_free(&m);
+    for (n = 0; n < glb.size; n++) {
+        snprintf(expect, sizeof expect, n >= 12 ? "byte offset %lu: truncated glb" : "byte offset", (unsigned long)n);
+        expect_error("cut.glb", glb.data, n, expect);
+    }
+    for (i = 0; i < 3000; i++) {
+        growing *src = i % 2 ? &glb : &text;
+        unsigned char *copy = (unsigned char *)malloc(src->size);
+        memcpy(copy, src->data, src->size);
+        for (k = 0; k < 1 + (int)(rng() % 4); k++) copy[rng() % src->size] = (unsigned char)rng();
+        write_file(i % 2 ? "fuzz.glb" : "fuzz.gltf", copy, src->size);
+        if (voxgi_io_load_mesh(tmp_path(i % 2 ? "fuzz.glb" : "fuzz.gltf"), &m, err, sizeof err) == 0) { check_consistent(&m, "fuzz"); voxgi_io_mesh_free(&m); }
+        else TH_CHECK(is_empty(&m) && strstr(err, "fuzz"), "a failed load: %s", err);
+        free(copy);
+    }
+    at = (size_t)(strstr((const char *)text.data, ",\"meshes\"") - (const char *)text.data);
+    text.data[at] = ';';
+    snprintf(expect, sizeof expect, "byte offset %lu: malformed JSON: expected ',' or '}'", (unsigned long)at);
+    expect_error("bad_json.gltf", text.data, text.size, expect);
+    expect_text_error("cut_json.gltf", "{\"asset\":{\"version\":\"2.0\"", "byte offset 25: malformed JSON");
+    expect_text_error("not_gltf.gltf", "{\"asset\":{}}", "no asset.version");
+    expect_text_error("version3.gltf", "{\"asset\":{\"version\":\"3.0\"}}", "byte offset 20: glTF version 3.0 is not supported");
+    for (n = 0; n < 100000; n++) grow_str(&deep, "[");
+    expect_error("deep.gltf", deep.data, deep.size, "byte offset 64: malformed JSON: nested deeper than 64 levels");
+    expect_gltf_edit_error("lines.gltf", "\"indices\":1", "\"indices\":1,\"mode\":1", "primitive mode 1 (lines) is not supported");
+    expect_gltf_edit_error("strip.gltf", "\"indices\":1", "\"indices\":1,\"mode\":5", "primitive mode 5 (triangle strip) is not supported");
+    expect_gltf_edit_error("sparse.gltf", "\"type\":\"VEC3\"", "\"type\":\"VEC3\",\"sparse\":{\"count\":1}", "sparse accessors are not supported");
+    expect_gltf_edit_error("draco.gltf", "\"nodes\"", "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],\"nodes\"", "Draco compression");
+    expect_gltf_edit_error("meshopt.gltf", "\"nodes\"", "\"extensionsRequired\":[\"EXT_meshopt_compression\"],\"nodes\"", "meshopt compression");
+    expect_gltf_edit_error("required.gltf", "\"nodes\"", "\"extensionsRequired\":[\"KHR_texture_basisu\"],\"nodes\"", "requires extension KHR_texture_basisu");
+    expect_gltf_edit_error("int_positions.gltf", "\"componentType\":5126", "\"componentType\":5122", "only float VEC3");
+    expect_gltf_edit_error("overrun.gltf", "\"count\":3,\"type\":\"VEC3\"", "\"count\":4,\"type\":\"VEC3\"", "overrun bufferViews[0]");
+    expect_gltf_edit_error("no_buffer.gltf", "\"byteOffset\":36,\"byteLength\":6", "\"byteOffset\":36,\"byteLength\":60", "lie outside buffers[0]");
+    expect_gltf_edit_error("cycle.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[1]},{\"children\":[0]}],\"scenes\":[{\"nodes\":[0]}]", "reached twice");
+    expect_gltf_edit_error("bad_child.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[7]}]", "child that does not exist");
+    bin.data[40] = 3; /* the last index, 2, becomes 3 of 3 vertices */
+    free(text.data);
+    text = gltf_json(gltf_small_body, &bin, NULL);
+    expect_error("out_of_range.gltf", text.data, text.size, "index 3 (element 2 of accessors[1]) is out of range: the primitive has 3 vertices");
+    glb.data[4] = 3;
+    expect_error("version.glb", glb.data, glb.size, "byte offset 4: glb version 3");
+    glb.data[4] = 2;
+    glb.data[12] = 0xF0; /* the JSON chunk's length runs past the end */
+    expect_error("chunk.glb", glb.data, glb.size, "byte offset 12: truncated glb: a chunk");
+    free(deep.data);
+    free(text.data);
+    free(glb.data);
+    free(j.data);
+    free(bin.data);
+}
+
 /* ---------------------------------------------------------------- PNG */
 /* An inflater written from RFC 1951 for the test alone (stored and fixed-code blocks: what the
    writer makes; a dynamic block fails), so that the writer's deflate is held to the format, not to
@@ -1102,6 +1497,11 @@ int main(void)
     TH_RUN(test_absurd_counts);
     TH_RUN(test_other_failures);
     TH_RUN(test_large_obj);
+    TH_RUN(test_gltf_index_types);
+    TH_RUN(test_gltf_node_transforms);
+    TH_RUN(test_gltf_materials);
+    TH_RUN(test_gltf_buffer_uris);
+    TH_RUN(test_gltf_bad_files);
     TH_RUN(test_png_round_trip);
     for (i = 0; i < created_count; i++) remove(tmp_path(created[i]));
     rmdir(tmp_path("sub"));

@@ -172,7 +172,7 @@ typedef struct cli_mesh {
     voxgi_scene scene;
 } cli_mesh;
 
-/* Loads a file (OBJ+MTL, OFF, STL, PLY) or built-in shape into a one-mesh scene; 0 on success,
+/* Loads a file (OBJ+MTL, OFF, STL, PLY, glTF) or built-in shape into a one-mesh scene; 0 on success,
    else says why and returns 1. */
 int cli_mesh_open(cli_session *s, const char *path, cli_mesh *t);
 void cli_mesh_close(cli_mesh *t);

@@ -1,4 +1,4 @@
-/* tools/cmd_voxelize.c - voxgi voxelize: a mesh into a voxel grid, as text, JSON and binvox. */
+/* tools/cmd_voxelize.c - voxgi voxelize: a mesh into a voxel grid, as text, JSON and files (binvox, .vox, .npy, .ply, .obj). */
 #include "cli.h"
 #include <stdlib.h>
 #include <string.h>
@@ -27,11 +27,16 @@ static const char *const voxelize_help =
     "usage: voxgi voxelize MESH [options]\n"
     "Voxelizes a mesh. conservative: a voxel is set exactly when its closed box meets a triangle;\n"
     "thin: Schwarz & Seidel's 6-separating subset; solid: the interior (see --solid-mode).\n"
-    "MESH: an OBJ (+MTL), OFF, STL or PLY file, or builtin:quad|subdivided-quad|cube|sphere.\n";
+    "MESH: an OBJ (+MTL), OFF, STL, PLY or glTF (.gltf, .glb) file, or builtin:quad|subdivided-quad|cube|sphere.\n";
+
+/* -o by extension: the voxels as binvox, MagicaVoxel, NumPy occupancy, PLY points, OBJ outer faces */
+typedef enum out_format { OUT_BINVOX, OUT_VOX, OUT_NPY, OUT_PLY, OUT_OBJ } out_format;
+static const char *const out_extensions[] = {".binvox", ".vox", ".npy", ".ply", ".obj"}; /* out_format order */
 
 typedef struct voxelize_args {
     cli_common common;
     const char *mesh, *out;
+    out_format out_format;
     int res, per_axis, runs, method, atlas_size, atlas_uv, solid_mode, axis, have_grid, blend[4], nblend;
     unsigned attributes;
     double pad;
@@ -68,6 +73,11 @@ static int voxelize_run(cli_session *s, const voxelize_args *a)
     vd.atlas_size = a->atlas_size;
     vd.atlas_uv = (voxgi_atlas_uv)a->atlas_uv;
     vd.attributes = a->attributes;
+    /* coloured outputs take the albedo where the method blends attributes */
+    if ((a->out_format == OUT_VOX || a->out_format == OUT_PLY || a->out_format == OUT_OBJ) &&
+        (vd.method == VOXGI_METHOD_CONSERVATIVE || vd.method == VOXGI_METHOD_THIN || vd.method == VOXGI_METHOD_GEOMETRY ||
+         vd.method == VOXGI_METHOD_VOLUME_BUFFER))
+        vd.attributes |= VOXGI_ATTRIBUTE_ALBEDO;
     vd.solid_mode = (voxgi_solid_mode)a->solid_mode;
     vd.axis = (voxgi_axis)a->axis;
     for (i = 0; i < 4; i++) vd.blend[i] = (voxgi_blend)a->blend[i];
@@ -95,7 +105,17 @@ static int voxelize_run(cli_session *s, const voxelize_args *a)
     info.ms = cli_median(times, a->runs);
     free(times);
     voxgi_query_info(c.vx, &ci);
-    if (a->out) {
+    if (a->out && a->out_format != OUT_BINVOX) {
+        char err[1024];
+        int r = a->out_format == OUT_VOX   ? voxgi_io_write_vox(c.vx, vox, a->out, err, sizeof err)
+                : a->out_format == OUT_NPY ? voxgi_io_write_npy(c.vx, vox, a->out, err, sizeof err)
+                : a->out_format == OUT_PLY ? voxgi_io_write_ply_points(c.vx, vox, a->out, err, sizeof err)
+                                           : voxgi_io_write_obj_faces(c.vx, vox, a->out, err, sizeof err);
+        if (r != 0) {
+            cli_fail(s, "%s", err);
+            goto done;
+        }
+    } else if (a->out) {
         size_t need = 0;
         uint32_t *bits;
         FILE *f;
@@ -193,16 +213,21 @@ int cmd_voxelize(int argc, char **argv)
             CLI_OPT_THREADS(&a.common),
             {.name = "--runs", .arg = "R", .kind = CLI_INT, .dst = &a.runs, .lo = 1, .hi = 1000,
              .help = "repeat R times and report the median time (default 1)"},
-            {.name = "-o", .arg = "FILE.binvox", .kind = CLI_STRING, .dst = &a.out, .help = "write the voxels"},
+            {.name = "-o", .arg = "FILE", .kind = CLI_STRING, .dst = &a.out,
+             .help = "write the voxels, by extension: .binvox, .vox (MagicaVoxel), .npy\n"
+                     "(uint8 occupancy [x,y,z]), .ply (coloured voxel centres), .obj\n"
+                     "(outer faces); colours from the albedo (conservative, thin,\n"
+                     "geometry, volume-buffer), else grey"},
             CLI_OPT_JSON(&a.common, "print one JSON object instead of text")};
         const cli_command cmd = {.name = "voxelize", .help = voxelize_help, .column = 27, .options = options, .option_count = CLI_COUNT(options),
                                  .operand = "mesh", .operands = &a.mesh, .min_operands = 1, .max_operands = 1};
         if ((rc = cli_parse(&cmd, argc, argv)) != CLI_CONTINUE) return rc;
     }
-    if (a.out && !cli_has_extension(a.out, ".binvox")) {
-        if (cli_has_extension(a.out, ".vox"))
-            return cli_usage("voxelize", "-o %s: the .vox format is not supported; voxelize writes .binvox files", a.out);
-        return cli_usage("voxelize", "-o %s: voxelize writes .binvox files only", a.out);
+    if (a.out) {
+        for (i = 0; i < CLI_COUNT(out_extensions) && !cli_has_extension(a.out, out_extensions[i]); i++) {}
+        if (i == CLI_COUNT(out_extensions))
+            return cli_usage("voxelize", "-o %s: voxelize writes .binvox, .vox, .npy, .ply or .obj files", a.out);
+        a.out_format = (out_format)i;
     }
     cli_session_init(&s, "voxelize");
     return voxelize_run(&s, &a);

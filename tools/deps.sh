@@ -13,9 +13,10 @@
 #   libosmesa6-dev, libegl-dev   osmesa.h, EGL/egl.h and the libraries to link against
 # the C++ compiler the tests build the header with (g++; the C compiler comes with it), and
 #   libgmp-dev       GMP's rationals, in which tests/test_exact.c's oracle decides exactly
+#   python3-numpy    numpy.load, the independent reader of the .npy exports (tests/test_io_export.c)
 set -euo pipefail
 
-packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev g++ libgmp-dev)
+packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev g++ libgmp-dev python3-numpy)
 
 missing=()
 for p in "${packages[@]}"; do

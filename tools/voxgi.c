@@ -16,7 +16,7 @@
  *   voxgi report stiff [-o FILE] [--backend B]
  *   voxgi report all [-o|--out DIR] [--quick] [--scenes LIST] [--meshes LIST] [--size N] [--spp S] [--threads T] [--backend B]
  *
- * MESH is an OBJ (+MTL), OFF, STL or PLY file, or a built-in shape: builtin:quad,
+ * MESH is an OBJ (+MTL), OFF, STL, PLY or glTF (.gltf, .glb) file, or a built-in shape: builtin:quad,
  * builtin:subdivided-quad, builtin:cube, builtin:sphere. Every command takes --help; tools/cli.h
  * has what they share. */
 #include "cli.h"
