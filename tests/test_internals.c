@@ -645,6 +645,26 @@ static void test_region_labels_flood_fill(void)
     voxgi_destroy(ctx);
 }
 
+/* Two rooms in a res[0] x res[1] x res[2] shell of voxels whose faces face in, split by a wall on
+   the boundary x = 6 filling voxels 5 and 6 (room A x 1-4, B x 7 on): whether voxel c is a
+   surface's, and then its side plane (n . p = plane, n facing A at the wall, in elsewhere). */
+static int two_rooms_surface(const int res[3], const int c[3], int n[3], float *plane)
+{
+    int a;
+    n[0] = n[1] = n[2] = 0;
+    if (c[0] == 5 || c[0] == 6) {
+        n[0] = -1;
+        *plane = -6;
+        return 1;
+    }
+    for (a = 0; a < 3; a++)
+        if (!n[0] && !n[1] && !n[2] && (c[a] == 0 || c[a] == res[a] - 1)) n[a] = c[a] == 0 ? 1 : -1;
+    if (!n[0] && !n[1] && !n[2]) return 0;
+    a = n[0] ? 0 : n[1] ? 1 : 2;
+    *plane = (float)(n[a] * (c[a] == 0 ? 1 : c[a]));
+    return 1;
+}
+
 /* The surfaces' labels (voxgi__volume_regions), built by hand: a closed box of 12 x 6 x 6 voxels,
    its shell one voxel thick facing in, split by a wall of no thickness on the boundary x = 6,
    which fills the columns x = 5 and 6, its lit side facing -x into room A (x 1-4); room B (x 7-10)
@@ -676,17 +696,10 @@ static void test_region_labels_of_surfaces(void)
         for (z = 0; z < Z; z++)
             for (y = 0; y < Y; y++)
                 for (x = 0; x < X; x++) {
-                    int i = x + X * (y + Y * z), c[3], n[3] = {0, 0, 0};
+                    int i = x + X * (y + Y * z), c[3], n[3];
                     float plane;
                     c[0] = x; c[1] = y; c[2] = z;
-                    if (x == 5 || x == 6) { n[0] = -1; plane = -6; } /* the wall, facing A */
-                    else {
-                        for (a = 0; a < 3; a++) /* the shell: the face it lies on, facing in */
-                            if (!n[0] && !n[1] && !n[2] && (c[a] == 0 || c[a] == g.res[a] - 1)) n[a] = c[a] == 0 ? 1 : -1;
-                        if (!n[0] && !n[1] && !n[2]) continue; /* empty */
-                        a = n[0] ? 0 : n[1] ? 1 : 2;
-                        plane = (float)(n[a] * (c[a] == 0 ? 1 : c[a]));
-                    }
+                    if (!two_rooms_surface(g.res, c, n, &plane)) continue;
                     rad[4 * i + 3] = back[4 * i + 3] = side[4 * i + 3] = 1;
                     for (a = 0; a < 3; a++) side[4 * i + a] = (float)n[a];
                     side[4 * i + 3] = plane;
@@ -1307,11 +1320,11 @@ static void test_bounce_tail(void)
 }
 
 /* A cone from an enclosed region ends, opaque, where it enters a region not inside its own,
-   whatever lies beyond. Two rooms split by a wall on a voxel boundary (as in
-   test_region_labels_of_surfaces), the wall lit from B alone, so that room A's cones leave both
-   its voxels out of level 0 and pass it; B's far wall lit too, its voxels' labels then cleared (a
-   surface whose region is unknown, seen from every region). A narrow cone from A along +x:
-   colour 0 and opacity 1; marched on past the wall it would reach the far wall's light. */
+   whatever lies beyond. Two rooms split by a wall on a voxel boundary (two_rooms_surface), the
+   wall lit from B alone, so that room A's cones leave both its voxels out of level 0 and pass it;
+   B's far wall lit too, its voxels' labels then cleared (a surface whose region is unknown, seen
+   from every region). A narrow cone from A along +x: colour 0 and opacity 1; marched on past the
+   wall it would reach the far wall's light. */
 static void test_cone_ends_leaving_its_region(void)
 {
     enum { X = 12, Y = 6, Z = 6, N = X * Y * Z };
@@ -1332,17 +1345,10 @@ static void test_cone_ends_leaving_its_region(void)
     for (z = 0; z < Z; z++)
         for (y = 0; y < Y; y++)
             for (x = 0; x < X; x++) {
-                int i = x + X * (y + Y * z), c[3], n[3] = {0, 0, 0};
+                int i = x + X * (y + Y * z), c[3], n[3];
                 float plane;
                 c[0] = x; c[1] = y; c[2] = z;
-                if (x == 5 || x == 6) { n[0] = -1; plane = -6; } /* the wall, its front facing A */
-                else {
-                    for (a = 0; a < 3; a++)
-                        if (!n[0] && !n[1] && !n[2] && (c[a] == 0 || c[a] == g.res[a] - 1)) n[a] = c[a] == 0 ? 1 : -1;
-                    if (!n[0] && !n[1] && !n[2]) continue;
-                    a = n[0] ? 0 : n[1] ? 1 : 2;
-                    plane = (float)(n[a] * (c[a] == 0 ? 1 : c[a]));
-                }
+                if (!two_rooms_surface(g.res, c, n, &plane)) continue;
                 rad[4 * i + 3] = back[4 * i + 3] = 1;
                 for (a = 0; a < 3; a++) side[4 * i + a] = (float)n[a];
                 side[4 * i + 3] = plane;
