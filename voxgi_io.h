@@ -1580,7 +1580,7 @@ static int voxgi_io__json_number(voxgi_io__gltf *G, size_t t, const char *what, 
 static int voxgi_io__json_uint(voxgi_io__gltf *G, size_t obj, const char *key, size_t def, size_t max, const char *what, size_t *v)
 {
     size_t t = voxgi_io__json_get(G, obj, key);
-    double d;
+    double d = 0;
     if (t == VOXGI_IO__NONE) {
         if (def == VOXGI_IO__NONE) return voxgi_io__gltf_fail(G, obj, "%s has no %s", what, key);
         *v = def;
@@ -2013,7 +2013,7 @@ static int voxgi_io__gltf_nodes(voxgi_io__gltf *G)
         size_t list = voxgi_io__json_get(G, G->scenes.item[scene], "nodes"), c;
         if (list != VOXGI_IO__NONE && G->tok[list].type != VOXGI_IO__J_ARRAY) rc = voxgi_io__gltf_fail(G, list, "scenes[%zu].nodes is not an array", scene);
         for (c = list + 1, k = 0; !rc && list != VOXGI_IO__NONE && k < G->tok[list].count; k++, c = G->tok[c].next) {
-            double d;
+            double d = 0;
             if ((rc = voxgi_io__json_number(G, c, "a scene's node", &d)) != 0) break;
             if (!(d >= 0 && d < (double)G->nodes.count && d == floor(d))) rc = voxgi_io__gltf_fail(G, c, "a scene refers to a node that does not exist");
             else if (root_count == G->nodes.count) rc = voxgi_io__gltf_fail(G, c, "a scene lists a node twice");
@@ -2025,7 +2025,7 @@ static int voxgi_io__gltf_nodes(voxgi_io__gltf *G)
             size_t children = voxgi_io__json_get(G, G->nodes.item[i], "children"), c;
             if (children == VOXGI_IO__NONE || G->tok[children].type != VOXGI_IO__J_ARRAY) continue;
             for (c = children + 1, k = 0; k < G->tok[children].count; k++, c = G->tok[c].next) {
-                double d;
+                double d = 0;
                 if (G->tok[c].type == VOXGI_IO__J_NUMBER && (d = strtod(G->json + G->tok[c].start, NULL)) >= 0 && d < (double)G->nodes.count)
                     seen[(size_t)d] = 1;
             }
@@ -2063,7 +2063,7 @@ static int voxgi_io__gltf_nodes(voxgi_io__gltf *G)
             if (!pushed) { rc = voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory"); break; }
             if (!count) stack.count--;
             for (c = children + 1, k = 0; k < count; k++, c = G->tok[c].next) {
-                double d;
+                double d = 0;
                 if ((rc = voxgi_io__json_number(G, c, "a child", &d)) != 0) break;
                 if (!(d >= 0 && d < (double)G->nodes.count && d == floor(d))) { rc = voxgi_io__gltf_fail(G, c, "%s has a child that does not exist", what); break; }
                 pushed[count - 1 - k].node = (size_t)d; /* reversed: the first child comes off the stack first */
