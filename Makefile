@@ -28,7 +28,7 @@ TOOL_H   := $(wildcard tools/*.h)
 EXAMPLES := $(addprefix $(B)/example_,voxelize octree render ambient_occlusion gl_cone_trace own_mesh)
 
 .PHONY: all deps test mutate demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
-all: deps $(B)/voxgi $(EXAMPLES)
+all: deps $(B)/voxgi $(EXAMPLES) $(VIEWER)
 
 # Installs missing system packages (headless GL) with apt-get; silent when all is there.
 deps:
@@ -68,6 +68,20 @@ $(B)/example_render: examples/render.c voxgi.h voxgi_io.h tools/image_io.h $(B)/
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS)
 $(B)/example_gl_cone_trace: examples/gl_cone_trace.c voxgi.h tools/image_io.h $(B)/voxgi_impl.o | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS) -lEGL
+
+# The viewer (examples/viewer.c, a GLFW window) only where GLFW's header is (libglfw3-dev:
+# tools/deps.sh); `make all` says when it is left out. GLFW and VIEWER are looked up when used, so
+# `make test`, whose recipe runs after deps.sh, finds a header that deps.sh has just installed
+# (`make all` reads its prerequisites first: there the next run builds the viewer).
+# GLFW_LIBS: pkg-config's, else -lglfw.
+GLFW     = $(shell $(CC) $$(pkg-config --cflags glfw3 2>/dev/null) -E -x c -include GLFW/glfw3.h /dev/null >/dev/null 2>&1 && echo yes)
+GLFW_LIBS := $(or $(shell pkg-config --libs glfw3 2>/dev/null),-lglfw)
+VIEWER   = $(if $(GLFW),$(B)/example_viewer,viewer-missing)
+$(B)/example_viewer: examples/viewer.c voxgi.h voxgi_io.h tools/image_io.h $(B)/voxgi_impl.o | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) $$(pkg-config --cflags glfw3 2>/dev/null) -o $@ $< $(B)/voxgi_impl.o $(GLFW_LIBS) $(LDLIBS)
+.PHONY: viewer-missing
+viewer-missing:
+	@echo "make: examples/viewer.c not built: GLFW's header (GLFW/glfw3.h) is missing; bash tools/deps.sh installs libglfw3-dev"
 
 TEST_H  := $(wildcard tests/*.h) $(TOOL_H)
 
@@ -109,7 +123,7 @@ TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(EXAMPLES) $(addpre
 # -O2), in $(B)/O<level>, and tests/run.sh runs them: no test may depend on the optimiser's mood.
 OPT_LEVELS := 0 3
 test: deps
-	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(NPROC)) $(TEST_BUILD) \
+	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(NPROC)) $(TEST_BUILD) $(VIEWER) \
 	    $(if $(filter 1,$(VOXGI_CI)),$(addprefix opt-level-,$(OPT_LEVELS)))
 	@VOXGI_BUILD=$(B) bash tests/run.sh
 

@@ -743,6 +743,19 @@ VOXGI_API voxgi_result voxgi_svo_brick(voxgi_context *ctx, const voxgi_svo *svo,
    after one descent (else eight lookups), with the same result bit for bit. */
 VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo, voxgi_attribute which, size_t count,
                                         const float *positions, const float *lods, float *out);
+/* Octree files (docs/volumes-and-octrees.md, "Octree files"): a versioned little-endian format with
+   the grid, depth, attributes, value format, child pointers, neighbours, values, bricks and region
+   labels, so a read octree answers every query and traces every cone as the written one did.
+   The core works on memory (a file is the same bytes): write with data == NULL (or capacity too
+   small: VOXGI_ERR_BUFFER_TOO_SMALL) sets *size to the bytes needed. A GL octree is read back from
+   its buffers; read makes a CPU octree and refuses a GL context (VOXGI_ERR_UNSUPPORTED: read it on a
+   CPU context). A bad file gives VOXGI_ERR_FORMAT (truncated, wrong magic, unknown version,
+   counts that disagree with the size, pointers or labels out of range) with the byte offset in
+   voxgi_last_error, before anything larger than the file is allocated. */
+VOXGI_API voxgi_result voxgi_svo_write_memory(voxgi_context *ctx, const voxgi_svo *svo, void *data, size_t capacity, size_t *size);
+VOXGI_API voxgi_result voxgi_svo_read_memory(voxgi_context *ctx, const void *data, size_t size, voxgi_svo **out);
+VOXGI_API voxgi_result voxgi_svo_write(voxgi_context *ctx, const voxgi_svo *svo, const char *path);
+VOXGI_API voxgi_result voxgi_svo_read(voxgi_context *ctx, const char *path, voxgi_svo **out);
 
 /* ===================================================================== 8. cone tracing */
 
@@ -1519,6 +1532,7 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bi
 #include <stdarg.h>
 #include <float.h>
 #include <limits.h>
+#include <errno.h>
 
 /* ===================================================================== 1. config */
 
@@ -9779,6 +9793,431 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
     for (i = 0; i < count; i++)
         voxgi__sample_lod(voxgi__svo_fetch, svo->info.brick_bytes ? voxgi__svo_brick_trilinear : NULL, &src, src.w, svo->info.depth + 1, pos + 3 * i, lods[i], out + (size_t)src.w * i);
     return VOXGI_OK;
+}
+
+/* ----- octree files: the header (VOXGI__SVO_HEADER bytes, little-endian), then the arrays in the
+   order docs/volumes-and-octrees.md lists. Values keep their stored format (half floats stay
+   half), so a read octree is the written one bit for bit. */
+#define VOXGI__SVO_MAGIC "VOXGISVO"
+#define VOXGI__SVO_VERSION 1u
+#define VOXGI__SVO_HEADER 232
+#define VOXGI__SVO_NEIGHBOURS 1u
+#define VOXGI__SVO_BRICKS 2u
+
+/* Where the bytes go: memory, a file, or nowhere (counting). */
+typedef struct voxgi__svo_sink {
+    unsigned char *buf;
+    FILE *f;
+    uint64_t at;
+    int failed;
+} voxgi__svo_sink;
+
+static void voxgi__svo_put_bytes(voxgi__svo_sink *w, const void *p, size_t n)
+{
+    if (w->buf) memcpy(w->buf + w->at, p, n);
+    if (w->f && !w->failed && fwrite(p, 1, n, w->f) != n) w->failed = 1;
+    w->at += n;
+}
+
+/* n words of `width` bytes (1, 2, 4 or 8) from host order to little-endian, through a staging buffer. */
+static void voxgi__svo_put_words(voxgi__svo_sink *w, const void *src, uint64_t n, int width)
+{
+    unsigned char stage[4096];
+    const unsigned char *s = (const unsigned char *)src;
+    uint64_t i;
+    size_t k = 0;
+    for (i = 0; i < n; i++) {
+        uint64_t v = 0;
+        int b;
+        if (width == 2) { uint16_t x; memcpy(&x, s + 2 * i, 2); v = x; }
+        else if (width == 4) { uint32_t x; memcpy(&x, s + 4 * i, 4); v = x; }
+        else { memcpy(&v, s + 8 * i, 8); }
+        for (b = 0; b < width; b++) stage[k++] = (unsigned char)(v >> (8 * b));
+        if (k + 8 > sizeof stage) { voxgi__svo_put_bytes(w, stage, k); k = 0; }
+    }
+    if (k) voxgi__svo_put_bytes(w, stage, k);
+}
+
+static uint64_t voxgi__svo_le(const unsigned char *p, int width)
+{
+    uint64_t v = 0;
+    int b;
+    for (b = width - 1; b >= 0; b--) v = v << 8 | p[b];
+    return v;
+}
+
+/* n little-endian words of `width` bytes into host order. */
+static void voxgi__svo_get_words(void *dst, const unsigned char *p, uint64_t n, int width)
+{
+    unsigned char *d = (unsigned char *)dst;
+    uint64_t i;
+    for (i = 0; i < n; i++) {
+        uint64_t v = voxgi__svo_le(p + (size_t)i * (size_t)width, width);
+        if (width == 2) { uint16_t x = (uint16_t)v; memcpy(d + 2 * i, &x, 2); }
+        else { uint32_t x = (uint32_t)v; memcpy(d + 4 * i, &x, 4); }
+    }
+}
+
+/* The arrays' sizes in bytes, from the header's counts (all below 2^40 after the header checks). */
+typedef struct voxgi__svo_layout {
+    uint64_t nodes, leaf_slots, bricks, region_words, total;
+    int slot_bytes[VOXGI__VOLUME_SLOTS];
+} voxgi__svo_layout;
+
+static void voxgi__svo_layout_of(const voxgi_svo_info *info, uint64_t inner_tiles, unsigned flags, uint64_t region_count, voxgi__svo_layout *L)
+{
+    int a, lev;
+    L->nodes = 1 + 8 * inner_tiles;
+    L->leaf_slots = 8 * info->level_nodes[info->depth - 1];
+    L->bricks = 0;
+    if (flags & VOXGI__SVO_BRICKS)
+        for (lev = 0; lev < info->depth; lev++) L->bricks += info->level_nodes[lev];
+    L->region_words = region_count ? L->nodes + L->leaf_slots + 6 * region_count : 0;
+    L->total = VOXGI__SVO_HEADER + 4 * L->nodes + (flags & VOXGI__SVO_NEIGHBOURS ? 24 * L->nodes : 0) + 4 * L->region_words;
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) {
+        L->slot_bytes[a] = (a == 3 ? 4 : 16) >> (info->format == VOXGI_SVO_FLOAT16);
+        if (info->attributes & (1u << a)) L->total += (L->nodes + 64 * L->bricks + L->leaf_slots) * (uint64_t)L->slot_bytes[a];
+    }
+}
+
+/* Writes the whole file to w from CPU arrays (a GL octree's are read back first). */
+static void voxgi__svo_emit(voxgi__svo_sink *w, const voxgi_svo *svo, uint32_t *arrays[3], unsigned char *values[VOXGI__VOLUME_SLOTS][2])
+{
+    const voxgi_svo_info *info = &svo->info;
+    unsigned flags = (svo->info.neighbour_bytes ? VOXGI__SVO_NEIGHBOURS : 0u) | (svo->bricks ? VOXGI__SVO_BRICKS : 0u);
+    uint32_t u[7];
+    uint64_t v[20];
+    voxgi__svo_layout L;
+    int a, width = info->format == VOXGI_SVO_FLOAT16 ? 2 : 4;
+    voxgi__svo_layout_of(info, svo->inner_tiles, flags, svo->region_count, &L);
+    voxgi__svo_put_bytes(w, VOXGI__SVO_MAGIC, 8);
+    u[0] = VOXGI__SVO_VERSION;
+    u[1] = flags;
+    voxgi__svo_put_words(w, u, 2, 4);
+    voxgi__svo_put_words(w, info->grid.origin, 3, 8);
+    voxgi__svo_put_words(w, &info->grid.voxel_size, 1, 8);
+    u[0] = (uint32_t)info->grid.res[0]; u[1] = (uint32_t)info->grid.res[1]; u[2] = (uint32_t)info->grid.res[2];
+    u[3] = (uint32_t)info->depth; u[4] = info->attributes; u[5] = (uint32_t)info->format;
+    voxgi__svo_put_words(w, u, 6, 4);
+    v[0] = svo->inner_tiles;
+    memcpy(v + 1, info->level_nodes, sizeof info->level_nodes);
+    v[18] = svo->region_count;
+    v[19] = L.total;
+    voxgi__svo_put_words(w, v, 20, 8);
+    voxgi__svo_put_words(w, arrays[0], L.nodes, 4);
+    if (flags & VOXGI__SVO_NEIGHBOURS) voxgi__svo_put_words(w, arrays[1], 6 * L.nodes, 4);
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++)
+        if (info->attributes & (1u << a)) {
+            voxgi__svo_put_words(w, values[a][0], (L.nodes + 64 * L.bricks) * (uint64_t)L.slot_bytes[a] / (uint64_t)width, width);
+            voxgi__svo_put_words(w, values[a][1], L.leaf_slots * (uint64_t)L.slot_bytes[a] / (uint64_t)width, width);
+        }
+    if (L.region_words) voxgi__svo_put_words(w, arrays[2], L.region_words, 4);
+}
+
+/* Writes through the sink; a GL octree's buffers are read back into temporary arrays first. */
+static voxgi_result voxgi__svo_write_to(voxgi_context *ctx, const voxgi_svo *svo, voxgi__svo_sink *w)
+{
+    uint32_t *arrays[3];
+    unsigned char *values[VOXGI__VOLUME_SLOTS][2];
+    voxgi_result r = VOXGI_OK;
+    int a;
+    (void)ctx; /* used by the GL read-back alone */
+    arrays[0] = svo->child; arrays[1] = svo->neighbour; arrays[2] = svo->regions;
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) { values[a][0] = svo->node_values[a]; values[a][1] = svo->leaf_values[a]; }
+#ifndef VOXGI_NO_GL
+    if (svo->gl_child) {
+        voxgi__gl *gl = ctx && ctx->backend == VOXGI_BACKEND_GL ? ctx->gl : NULL;
+        voxgi__svo_layout L;
+        voxgi__svo_layout_of(&svo->info, svo->inner_tiles, (svo->info.neighbour_bytes ? VOXGI__SVO_NEIGHBOURS : 0u) | (svo->bricks ? VOXGI__SVO_BRICKS : 0u),
+                             svo->region_count, &L);
+        memset(arrays, 0, sizeof arrays);
+        memset(values, 0, sizeof values);
+        if (!gl) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "a GL octree is written with its GL context");
+        gl->MemoryBarrier(VOXGI__GL_BUFFER_UPDATE_BARRIER_BIT);
+        if (!(arrays[0] = (uint32_t *)voxgi__alloc_array(ctx, (size_t)L.nodes, 4, 0)) ||
+            (svo->gl_neighbour && !(arrays[1] = (uint32_t *)voxgi__alloc_array(ctx, (size_t)L.nodes, 24, 0))) ||
+            (L.region_words && !(arrays[2] = (uint32_t *)voxgi__alloc_array(ctx, (size_t)L.region_words, 4, 0))))
+            r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to read the octree back");
+        if (r == VOXGI_OK) {
+            gl->GetNamedBufferSubData(svo->gl_child, 0, (ptrdiff_t)(4 * L.nodes), arrays[0]);
+            if (arrays[1]) gl->GetNamedBufferSubData(svo->gl_neighbour, 0, (ptrdiff_t)(24 * L.nodes), arrays[1]);
+            if (arrays[2]) gl->GetNamedBufferSubData(svo->gl_regions, 0, (ptrdiff_t)(4 * L.region_words), arrays[2]);
+        }
+        for (a = 0; a < VOXGI__VOLUME_SLOTS && r == VOXGI_OK; a++) { /* node values and bricks, then the leaves from gl_leaf_first */
+            uint64_t node_bytes = (L.nodes + 64 * L.bricks) * (uint64_t)L.slot_bytes[a], leaf_bytes = L.leaf_slots * (uint64_t)L.slot_bytes[a];
+            if (!(svo->info.attributes & (1u << a))) continue;
+            if (!(values[a][0] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)node_bytes, 1, 0)) ||
+                !(values[a][1] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)(leaf_bytes ? leaf_bytes : 1), 1, 0))) {
+                r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to read the octree back");
+                break;
+            }
+            gl->GetNamedBufferSubData(svo->gl_values[a], 0, (ptrdiff_t)node_bytes, values[a][0]);
+            if (leaf_bytes) gl->GetNamedBufferSubData(svo->gl_values[a], (ptrdiff_t)(4 * (uint64_t)svo->gl_leaf_first[a]), (ptrdiff_t)leaf_bytes, values[a][1]);
+        }
+        if (r == VOXGI_OK) r = voxgi__gl_check(ctx, "reading the octree back");
+        if (r == VOXGI_OK) voxgi__svo_emit(w, svo, arrays, values);
+        for (a = 0; a < 3; a++) voxgi__free(ctx, arrays[a]);
+        for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) { voxgi__free(ctx, values[a][0]); voxgi__free(ctx, values[a][1]); }
+        return r;
+    }
+#endif
+    voxgi__svo_emit(w, svo, arrays, values);
+    return r;
+}
+
+VOXGI_API voxgi_result voxgi_svo_write_memory(voxgi_context *ctx, const voxgi_svo *svo, void *data, size_t capacity, size_t *size)
+{
+    voxgi__svo_sink w;
+    voxgi__svo_layout L;
+    if (!svo || !size) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "svo or size is NULL");
+    voxgi__svo_layout_of(&svo->info, svo->inner_tiles, (svo->info.neighbour_bytes ? VOXGI__SVO_NEIGHBOURS : 0u) | (svo->bricks ? VOXGI__SVO_BRICKS : 0u),
+                         svo->region_count, &L);
+    if (L.total > (uint64_t)(size_t)-1) return voxgi__fail(ctx, VOXGI_ERR_TOO_LARGE, "the octree's file needs %llu bytes", (unsigned long long)L.total);
+    *size = (size_t)L.total;
+    if (!data) return VOXGI_OK;
+    if (capacity < *size)
+        return voxgi__fail(ctx, VOXGI_ERR_BUFFER_TOO_SMALL, "the octree needs %lu bytes, the buffer holds %lu", (unsigned long)*size, (unsigned long)capacity);
+    memset(&w, 0, sizeof w);
+    w.buf = (unsigned char *)data;
+    return voxgi__svo_write_to(ctx, svo, &w);
+}
+
+VOXGI_API voxgi_result voxgi_svo_write(voxgi_context *ctx, const voxgi_svo *svo, const char *path)
+{
+    voxgi__svo_sink w;
+    voxgi_result r;
+    if (!svo || !path) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "svo or path is NULL");
+    memset(&w, 0, sizeof w);
+    if (!(w.f = fopen(path, "wb"))) return voxgi__fail(ctx, VOXGI_ERR_IO, "cannot write %s: %s", path, strerror(errno));
+    r = voxgi__svo_write_to(ctx, svo, &w);
+    if (fclose(w.f) != 0) w.failed = 1;
+    if (r == VOXGI_OK && w.failed) r = voxgi__fail(ctx, VOXGI_ERR_IO, "writing %s failed after byte %llu: %s", path, (unsigned long long)w.at, strerror(errno));
+    return r;
+}
+
+/* The header's refusals, against the file's length `size`: *info, the tiles, flags and region
+   count on success. Nothing is allocated before this has passed, and then no more than the file. */
+static voxgi_result voxgi__svo_header(voxgi_context *ctx, const unsigned char *h, uint64_t size, voxgi_svo_info *info, uint64_t *inner_tiles,
+                                      unsigned *flags, uint64_t *region_count, voxgi__svo_layout *L)
+{
+    uint64_t tiles = 0, at;
+    unsigned version, side = VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE, family;
+    int a, lev, depth = 1, maxres = 0;
+    if (size < VOXGI__SVO_HEADER)
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "octree file truncated at byte %llu: the header has %d bytes", (unsigned long long)size, VOXGI__SVO_HEADER);
+    if (memcmp(h, VOXGI__SVO_MAGIC, 8)) return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 0: not a voxgi octree file (no magic \"%s\")", VOXGI__SVO_MAGIC);
+    if ((version = (unsigned)voxgi__svo_le(h + 8, 4)) != VOXGI__SVO_VERSION)
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 8: octree file version %u, this library reads version %u", version, VOXGI__SVO_VERSION);
+    if ((*flags = (unsigned)voxgi__svo_le(h + 12, 4)) & ~(VOXGI__SVO_NEIGHBOURS | VOXGI__SVO_BRICKS))
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 12: unknown flags 0x%x", *flags);
+    memset(info, 0, sizeof *info);
+    for (a = 0; a < 4; a++) {
+        uint64_t bits = voxgi__svo_le(h + 16 + 8 * a, 8);
+        double d;
+        memcpy(&d, &bits, 8);
+        if (!isfinite(d) || (a == 3 && !(d > 0))) return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %d: grid %s %g", 16 + 8 * a, a == 3 ? "voxel size" : "origin", d);
+        if (a < 3) info->grid.origin[a] = d;
+        else info->grid.voxel_size = d;
+    }
+    for (a = 0; a < 3; a++) {
+        uint64_t r = voxgi__svo_le(h + 48 + 4 * a, 4);
+        if (r < 1 || r > VOXGI_MAX_RES) return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %d: grid resolution %llu outside 1..%d", 48 + 4 * a, (unsigned long long)r, VOXGI_MAX_RES);
+        info->grid.res[a] = (int)r;
+        maxres = VOXGI__MAX(maxres, (int)r);
+    }
+    while ((1 << depth) < maxres) depth++;
+    if (voxgi__svo_le(h + 60, 4) != (uint64_t)depth)
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 60: depth %llu, the grid's is %d", (unsigned long long)voxgi__svo_le(h + 60, 4), depth);
+    info->depth = depth;
+    info->attributes = (unsigned)voxgi__svo_le(h + 64, 4);
+    family = info->attributes & VOXGI__RADIANCE_FAMILY;
+    if (!info->attributes || info->attributes >> VOXGI__VOLUME_SLOTS || (family && family != VOXGI_ATTRIBUTE_RADIANCE && family != VOXGI__RADIANCE_FAMILY))
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 64: attributes 0x%x (none, unknown bits, or a radiance side without the rest)", info->attributes);
+    if (voxgi__svo_le(h + 68, 4) > 1) return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 68: value format %llu", (unsigned long long)voxgi__svo_le(h + 68, 4));
+    info->format = (voxgi_svo_format)voxgi__svo_le(h + 68, 4);
+    *inner_tiles = voxgi__svo_le(h + 72, 8);
+    for (lev = 0; lev < 17; lev++) {
+        uint64_t n = voxgi__svo_le(h + 80 + 8 * lev, 8);
+        /* one root; at most 8 children per node (so no count passes 2^52); nothing below the leaves */
+        if ((lev == 0 && n != 1) || (lev > 0 && n > 8 * info->level_nodes[lev - 1]) || (lev > depth && n))
+            return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %d: %llu nodes at level %d", 80 + 8 * lev, (unsigned long long)n, lev);
+        info->level_nodes[lev] = n;
+        if (lev < depth - 1) tiles += n;
+    }
+    if (*inner_tiles != tiles)
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 72: %llu inner tiles, the levels' nodes make %llu", (unsigned long long)*inner_tiles, (unsigned long long)tiles);
+    if (info->level_nodes[depth] > 8 * info->level_nodes[depth - 1] || 1 + 8 * tiles > (uint64_t)UINT32_MAX || 8 * info->level_nodes[depth - 1] > (uint64_t)UINT32_MAX)
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 80: %llu node slots exceed the 32-bit indices", (unsigned long long)(1 + 8 * tiles));
+    *region_count = voxgi__svo_le(h + 216, 8);
+    if (*region_count && (*region_count <= 2 || (info->attributes & side) != side || *region_count > VOXGI__REGION_BYTES / 24))
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 216: %llu regions in an octree of attributes 0x%x", (unsigned long long)*region_count, info->attributes);
+    voxgi__svo_layout_of(info, tiles, *flags, *region_count, L);
+    if ((at = voxgi__svo_le(h + 224, 8)) != L->total)
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte 224: the file claims %llu bytes, its counts make %llu", (unsigned long long)at, (unsigned long long)L->total);
+    if (size != L->total)
+        return voxgi__fail(ctx, VOXGI_ERR_FORMAT, size < L->total ? "octree file truncated at byte %llu of %llu" : "octree file has %llu bytes, its counts make %llu",
+                           (unsigned long long)size, (unsigned long long)L->total);
+    return VOXGI_OK;
+}
+
+/* The child pointers form the tree the counts say: from the root down, a node of an inner level
+   points to an unused inner tile, one of level depth - 1 to an unused leaf tile, and each level
+   has its number of nodes; so every descent stays in the arrays. */
+static voxgi_result voxgi__svo_check_tree(voxgi_context *ctx, const voxgi_svo *svo, uint64_t child_at)
+{
+    const uint32_t *child = svo->child;
+    int depth = svo->info.depth, lev;
+    uint64_t leaf_tiles = svo->info.level_nodes[depth - 1], head = 0, tail = 0, level_end, slot, seen_leaves = 0;
+    uint32_t *queue = (uint32_t *)voxgi__alloc_array(ctx, (size_t)(svo->inner_tiles ? svo->inner_tiles : 1), 4, 0);
+    unsigned char *used = (unsigned char *)voxgi__alloc_array(ctx, (size_t)(svo->inner_tiles + leaf_tiles + 1), 1, 1);
+    voxgi_result r = VOXGI_OK;
+    if (!queue || !used) { r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory to check the octree"); goto done; }
+    for (lev = 0; lev < depth && r == VOXGI_OK; lev++) {
+        uint64_t found = 0;
+        level_end = tail;
+        for (slot = 0; ; slot++) { /* level 0: the root; below: the slots of the tiles queued by the level above */
+            uint64_t s, t;
+            uint32_t ptr;
+            if (lev == 0) { if (slot) break; s = 0; }
+            else { if (head >= level_end) break; s = 1 + 8 * (uint64_t)queue[head] + (slot & 7u); if ((slot & 7u) == 7u) head++; }
+            if (!(ptr = child[s])) continue;
+            found++;
+            t = (uint64_t)ptr - 1;
+            if (lev < depth - 1 ? t >= svo->inner_tiles || used[t] : t >= leaf_tiles || used[svo->inner_tiles + t]) {
+                r = voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %llu: child pointer %u of a level-%d node is out of range or used twice",
+                                (unsigned long long)(child_at + 4 * s), ptr, lev);
+                break;
+            }
+            if (lev < depth - 1) { used[t] = 1; queue[tail++] = (uint32_t)t; }
+            else { used[svo->inner_tiles + t] = 1; seen_leaves++; }
+        }
+        if (r == VOXGI_OK && lev > 0 && found != svo->info.level_nodes[lev])
+            r = voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %d: %llu nodes at level %d, the child pointers make %llu", 80 + 8 * lev,
+                            (unsigned long long)svo->info.level_nodes[lev], lev, (unsigned long long)found);
+    }
+    if (r == VOXGI_OK && (tail != svo->inner_tiles || seen_leaves != leaf_tiles))
+        r = voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %llu: the child pointers reach %llu of %llu tiles", (unsigned long long)child_at,
+                        (unsigned long long)(tail + seen_leaves), (unsigned long long)(svo->inner_tiles + leaf_tiles));
+done:
+    voxgi__free(ctx, queue);
+    voxgi__free(ctx, used);
+    return r;
+}
+
+VOXGI_API voxgi_result voxgi_svo_read_memory(voxgi_context *ctx, const void *data, size_t size, voxgi_svo **out)
+{
+    const unsigned char *p = (const unsigned char *)data;
+    voxgi_svo_info info;
+    voxgi_svo_desc desc;
+    voxgi__svo_layout L;
+    voxgi_svo *svo;
+    uint64_t tiles, region_count, at, i;
+    unsigned flags;
+    voxgi_result r;
+    int a, width;
+    if (out) *out = NULL;
+    if (!ctx || !out || (!data && size)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "ctx, data or out is NULL");
+    if (ctx->backend == VOXGI_BACKEND_GL)
+        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "octree files are read on a CPU context (VOXGI_BACKEND_CPU); this one is GL");
+    if ((r = voxgi__svo_header(ctx, p, size, &info, &tiles, &flags, &region_count, &L)) != VOXGI_OK) return r;
+    if (!(svo = (voxgi_svo *)voxgi__alloc_array(ctx, 1, sizeof *svo, 1))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree");
+    svo->info = info;
+    svo->info.backend = VOXGI_BACKEND_CPU;
+    memset(&desc, 0, sizeof desc);
+    desc.neighbours = (flags & VOXGI__SVO_NEIGHBOURS) != 0;
+    desc.bricks = (flags & VOXGI__SVO_BRICKS) != 0;
+    width = info.format == VOXGI_SVO_FLOAT16 ? 2 : 4;
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) svo->slot_bytes[a] = L.slot_bytes[a];
+    if ((r = voxgi__svo_size(ctx, svo, tiles, &desc)) != VOXGI_OK) goto fail; /* the 32-bit indices and the memory budget */
+    at = VOXGI__SVO_HEADER;
+    if (!(svo->child = (uint32_t *)voxgi__alloc_array(ctx, (size_t)L.nodes, 4, 0))) goto oom;
+    voxgi__svo_get_words(svo->child, p + at, L.nodes, 4);
+    if ((r = voxgi__svo_check_tree(ctx, svo, at)) != VOXGI_OK) goto fail;
+    at += 4 * L.nodes;
+    if (desc.neighbours) {
+        if (!(svo->neighbour = (uint32_t *)voxgi__alloc_array(ctx, (size_t)L.nodes, 24, 0))) goto oom;
+        voxgi__svo_get_words(svo->neighbour, p + at, 6 * L.nodes, 4);
+        for (i = 0; i < 6 * L.nodes; i++)
+            if (svo->neighbour[i] >= L.nodes) {
+                r = voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %llu: neighbour slot %u of %llu", (unsigned long long)(at + 4 * i), svo->neighbour[i], (unsigned long long)L.nodes);
+                goto fail;
+            }
+        at += 24 * L.nodes;
+    }
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) {
+        uint64_t b = (uint64_t)L.slot_bytes[a], node_bytes = (L.nodes + 64 * L.bricks) * b, leaf_bytes = L.leaf_slots * b;
+        if (!(info.attributes & (1u << a))) continue;
+        if (!(svo->node_values[a] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)node_bytes, 1, 0)) ||
+            !(svo->leaf_values[a] = (unsigned char *)voxgi__alloc_array(ctx, (size_t)(leaf_bytes ? leaf_bytes : b), 1, 0)))
+            goto oom;
+        voxgi__svo_get_words(svo->node_values[a], p + at, node_bytes / (uint64_t)width, width);
+        voxgi__svo_get_words(svo->leaf_values[a], p + at + node_bytes, leaf_bytes / (uint64_t)width, width);
+        at += node_bytes + leaf_bytes;
+        svo->info.bytes += (size_t)((L.nodes + L.leaf_slots) * b);
+        svo->info.dense_bytes += (size_t)(voxgi_grid_voxel_count(&info.grid) * b);
+    }
+    svo->info.bytes += svo->info.structure_bytes + svo->info.neighbour_bytes + svo->info.brick_bytes;
+    if (region_count) {
+        uint64_t labels = L.nodes + L.leaf_slots;
+        if (!(svo->regions = (uint32_t *)voxgi__alloc_array(ctx, (size_t)L.region_words, 4, 0))) goto oom;
+        voxgi__svo_get_words(svo->regions, p + at, L.region_words, 4);
+        for (i = 0; i < labels; i++) /* labels index the bounds: MIXED, or a label (with its flags) below the count */
+            if (svo->regions[i] != VOXGI__REGION_MIXED && VOXGI__REGION_OF(svo->regions[i]) >= region_count) {
+                r = voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %llu: region label 0x%x of %llu regions", (unsigned long long)(at + 4 * i), svo->regions[i],
+                                (unsigned long long)region_count);
+                goto fail;
+            }
+        svo->region_count = (size_t)region_count;
+        svo->info.bytes += (size_t)(4 * L.region_words);
+    }
+    *out = svo;
+    return VOXGI_OK;
+oom:
+    r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree read");
+fail:
+    voxgi_svo_destroy(ctx, svo);
+    return r;
+}
+
+VOXGI_API voxgi_result voxgi_svo_read(voxgi_context *ctx, const char *path, voxgi_svo **out)
+{
+    unsigned char head[VOXGI__SVO_HEADER], *all = NULL;
+    voxgi_svo_info info;
+    voxgi__svo_layout L;
+    uint64_t tiles, region_count;
+    unsigned flags;
+    long length;
+    size_t got;
+    voxgi_result r;
+    FILE *f;
+    if (out) *out = NULL;
+    if (!ctx || !path || !out) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "ctx, path or out is NULL");
+    if (!(f = fopen(path, "rb"))) return voxgi__fail(ctx, VOXGI_ERR_IO, "cannot read %s: %s", path, strerror(errno));
+    if (fseek(f, 0, SEEK_END) != 0 || (length = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        return voxgi__fail(ctx, VOXGI_ERR_IO, "cannot find the length of %s: %s", path, strerror(errno));
+    }
+    /* the header against the file's length first, so that no count in it sizes an allocation */
+    got = fread(head, 1, sizeof head, f);
+    r = voxgi__svo_header(ctx, head, (uint64_t)length < got ? got : (uint64_t)length, &info, &tiles, &flags, &region_count, &L);
+    if (r == VOXGI_OK && !(all = (unsigned char *)voxgi__alloc(ctx, (size_t)length))) r = voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for %s", path);
+    if (r == VOXGI_OK) {
+        memcpy(all, head, sizeof head);
+        if (fread(all + sizeof head, 1, (size_t)length - sizeof head, f) != (size_t)length - sizeof head)
+            r = voxgi__fail(ctx, VOXGI_ERR_IO, "reading %s failed: %s", path, ferror(f) ? strerror(errno) : "it ended early");
+    }
+    fclose(f);
+    if (r == VOXGI_OK) r = voxgi_svo_read_memory(ctx, all, (size_t)length, out);
+    voxgi__free(ctx, all);
+    if (r != VOXGI_OK && r != VOXGI_ERR_IO && r != VOXGI_ERR_OUT_OF_MEMORY) { /* name the file in the message */
+        size_t n = strlen(path) + 2, len = strlen(ctx->error);
+        if (n + len < sizeof ctx->error) {
+            memmove(ctx->error + n, ctx->error, len + 1);
+            memcpy(ctx->error, path, n - 2);
+            memcpy(ctx->error + n - 2, ": ", 2);
+        }
+    }
+    return r;
 }
 #endif /* VOXGI_NO_OCTREE */
 

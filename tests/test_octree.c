@@ -5,6 +5,7 @@
    GPU-built octree against the CPU's, which call private helpers: tests/test_internals.c.) The GL
    tests skip (loudly) only when no GL 4.5 context can be made; VOXGI_TEST_GL=egl|osmesa picks the
    kind, VOXGI_REQUIRE_GL=1 turns a skip into a failure. */
+#define _XOPEN_SOURCE 700 /* mkdtemp */
 #include "../voxgi.h"
 #include "fixtures.h"
 #include "svo_checks.h"
@@ -551,12 +552,512 @@ static void test_gl_octree_cones_equal_cpu(void)
     voxgi_destroy(ctx[1]);
 }
 
+/* ---------------------------------------------------------------- octree files */
+static uint64_t le_at(const unsigned char *p, size_t at, int width) /* the test's own little-endian reader */
+{
+    uint64_t v = 0;
+    int b;
+    for (b = width - 1; b >= 0; b--) v = v << 8 | p[at + (size_t)b];
+    return v;
+}
+
+static void le_put(unsigned char *p, size_t at, int width, uint64_t v)
+{
+    int b;
+    for (b = 0; b < width; b++) p[at + (size_t)b] = (unsigned char)(v >> (8 * b));
+}
+
+/* The octree's file in a fresh malloc'd buffer of exactly its size (*size); NULL on failure. */
+static unsigned char *svo_bytes(voxgi_context *ctx, const voxgi_svo *svo, size_t *size)
+{
+    unsigned char *d;
+    *size = 0;
+    if (voxgi_svo_write_memory(ctx, svo, NULL, 0, size) != VOXGI_OK || !(d = (unsigned char *)malloc(*size))) return NULL;
+    if (voxgi_svo_write_memory(ctx, svo, d, *size, size) != VOXGI_OK) { free(d); return NULL; }
+    return d;
+}
+
+/* Whether b (a CPU octree) answers every query as a does: its info (all but the build times and the backend), lookups of every
+   voxel of the grid at every level and attribute, the node slots of every cell of every level,
+   the neighbours of every slot, every brick, and 500 samples; bit for bit. Counts the queries. */
+static int svo_same(voxgi_context *ctx, const voxgi_svo *a, const voxgi_svo *b, const char *what, long *queries)
+{
+    voxgi_svo_info ia, ib;
+    const voxgi_svo *s[2];
+    uint32_t *coords, x, y, z;
+    float *out[2], pos[3 * 500], lods[500];
+    size_t nvox, i;
+    int lev, at, k, same = 1;
+    voxgi_svo_query(a, &ia);
+    voxgi_svo_query(b, &ib);
+    s[0] = a; s[1] = b;
+    if (memcmp(ia.grid.origin, ib.grid.origin, sizeof ia.grid.origin) || ia.grid.voxel_size != ib.grid.voxel_size ||
+        memcmp(ia.grid.res, ib.grid.res, sizeof ia.grid.res) || ib.backend != VOXGI_BACKEND_CPU || ia.attributes != ib.attributes || ia.format != ib.format ||
+        ia.depth != ib.depth || ia.leaf_voxels != ib.leaf_voxels || ia.nodes != ib.nodes || ia.leaf_slots != ib.leaf_slots ||
+        memcmp(ia.level_nodes, ib.level_nodes, sizeof ia.level_nodes) || ia.structure_bytes != ib.structure_bytes ||
+        ia.neighbour_bytes != ib.neighbour_bytes || ia.brick_bytes != ib.brick_bytes || ia.bytes != ib.bytes || ia.dense_bytes != ib.dense_bytes) {
+        printf("    %s: the info differs (nodes %llu/%llu, bytes %lu/%lu, bricks %lu/%lu)\n", what, (unsigned long long)ia.nodes, (unsigned long long)ib.nodes,
+               (unsigned long)ia.bytes, (unsigned long)ib.bytes, (unsigned long)ia.brick_bytes, (unsigned long)ib.brick_bytes);
+        return 0;
+    }
+    nvox = (size_t)voxgi_grid_voxel_count(&ia.grid);
+    coords = (uint32_t *)malloc(nvox * 12);
+    out[0] = (float *)malloc(nvox * 16);
+    out[1] = (float *)malloc(nvox * 16);
+    for (i = 0, z = 0; z < (uint32_t)ia.grid.res[2]; z++)
+        for (y = 0; y < (uint32_t)ia.grid.res[1]; y++)
+            for (x = 0; x < (uint32_t)ia.grid.res[0]; x++, i++) { coords[3 * i] = x; coords[3 * i + 1] = y; coords[3 * i + 2] = z; }
+    svo_sample_points(pos, lods);
+    for (at = 0; at < 7 && same; at++) {
+        voxgi_attribute which = (voxgi_attribute)(1 << at);
+        if (!(ia.attributes & (unsigned)which)) continue;
+        for (lev = 0; lev <= ia.depth && same; lev++) { /* lookups of every voxel */
+            for (k = 0; k < 2; k++)
+                if (voxgi_svo_lookup(ctx, s[k], which, lev, nvox, coords, out[k]) != VOXGI_OK) same = 0;
+            same = same && !memcmp(out[0], out[1], nvox * (which == VOXGI_ATTRIBUTE_OPACITY ? 4 : 16));
+            *queries += (long)nvox;
+            if (!same) printf("    %s: lookups of attribute 0x%x at level %d differ\n", what, (unsigned)which, lev);
+        }
+        for (lev = 0; lev < ia.depth && ia.brick_bytes && same; lev++) { /* every brick */
+            uint32_t sh = (uint32_t)(ia.depth - lev), c[3];
+            for (z = 0; z < (uint32_t)ia.grid.res[2] && same; z += 1u << sh)
+                for (y = 0; y < (uint32_t)ia.grid.res[1]; y += 1u << sh)
+                    for (x = 0; x < (uint32_t)ia.grid.res[0]; x += 1u << sh) {
+                        c[0] = x; c[1] = y; c[2] = z;
+                        for (k = 0; k < 2; k++)
+                            if (voxgi_svo_brick(ctx, s[k], which, lev, c, out[k]) != VOXGI_OK) same = 0;
+                        if (memcmp(out[0], out[1], 64 * (which == VOXGI_ATTRIBUTE_OPACITY ? 4 : 16))) same = 0;
+                        (*queries)++;
+                    }
+            if (!same) printf("    %s: bricks of attribute 0x%x at level %d differ\n", what, (unsigned)which, lev);
+        }
+        for (k = 0; k < 2 && ia.backend == VOXGI_BACKEND_CPU; k++) /* (GL samples in a shader, which test_internals compares with the CPU's) */
+            if (voxgi_svo_sample(ctx, s[k], which, 500, pos, lods, out[k]) != VOXGI_OK) same = 0;
+        if (same && memcmp(out[0], out[1], 500 * (which == VOXGI_ATTRIBUTE_OPACITY ? 4 : 16))) { same = 0; printf("    %s: samples differ\n", what); }
+        *queries += 500;
+    }
+    for (lev = 1; lev < ia.depth && same; lev++) { /* the node slot of every cell */
+        uint32_t sh = (uint32_t)(ia.depth - lev), c[3], slot[2];
+        for (z = 0; z < (uint32_t)ia.grid.res[2]; z += 1u << sh)
+            for (y = 0; y < (uint32_t)ia.grid.res[1]; y += 1u << sh)
+                for (x = 0; x < (uint32_t)ia.grid.res[0]; x += 1u << sh) {
+                    c[0] = x; c[1] = y; c[2] = z;
+                    for (k = 0; k < 2; k++)
+                        if (voxgi_svo_node(ctx, s[k], lev, c, &slot[k]) != VOXGI_OK) same = 0;
+                    if (slot[0] != slot[1]) same = 0;
+                    (*queries)++;
+                }
+        if (!same) printf("    %s: node slots at level %d differ\n", what, lev);
+    }
+    for (i = 0; i < ia.nodes && ia.neighbour_bytes && same; i++) { /* the neighbours of every slot */
+        uint32_t nb[2][6];
+        for (k = 0; k < 2; k++)
+            if (voxgi_svo_neighbours(ctx, s[k], (uint32_t)i, nb[k]) != VOXGI_OK) same = 0;
+        if (memcmp(nb[0], nb[1], sizeof nb[0])) { same = 0; printf("    %s: the neighbours of slot %lu differ\n", what, (unsigned long)i); }
+        (*queries)++;
+    }
+    free(coords);
+    free(out[0]);
+    free(out[1]);
+    return same;
+}
+
+/* Whether cones over a and b (diffuse gathers and single cones at n points) agree bit for bit. */
+static int svo_same_cones(voxgi_context *ctx, const voxgi_svo *a, const voxgi_svo *b, size_t n, const float *pos, const float *nrm, const voxgi_cone *single)
+{
+    voxgi_cone_desc cd;
+    float *irr[2], *occ[2], *each[2];
+    int k, same = 1;
+    memset(&cd, 0, sizeof cd);
+    for (k = 0; k < 2; k++) {
+        const voxgi_svo *s = k ? b : a;
+        irr[k] = (float *)malloc(n * 12); occ[k] = (float *)malloc(n * 4); each[k] = (float *)malloc(n * 16);
+        if (voxgi_cone_trace(ctx, OCTREE_SOURCE(s), &cd, n, pos, nrm, irr[k], occ[k]) != VOXGI_OK ||
+            (single && voxgi_cone_trace_each(ctx, OCTREE_SOURCE(s), &cd, n, single, each[k]) != VOXGI_OK)) {
+            printf("    cones: %s\n", voxgi_last_error(ctx));
+            same = 0;
+        }
+    }
+    if (same) same = !memcmp(irr[0], irr[1], n * 12) && !memcmp(occ[0], occ[1], n * 4) && (!single || !memcmp(each[0], each[1], n * 16));
+    for (k = 0; k < 2; k++) { free(irr[k]); free(occ[k]); free(each[k]); }
+    return same;
+}
+
+/* Writes svo, reads it back and checks the read one answers as svo does (svo_same) and writes the
+   same bytes again. Returns the read octree (NULL on failure); *size: the file's bytes. */
+static voxgi_svo *svo_round_trip(voxgi_context *ctx, const voxgi_svo *svo, const char *what, long *queries, size_t *size)
+{
+    unsigned char *d = svo_bytes(ctx, svo, size), *again;
+    voxgi_svo *back = NULL;
+    size_t size2 = 0;
+    TH_CHECK(d != NULL, "%s: write: %s", what, voxgi_last_error(ctx));
+    if (!d) return NULL;
+    { /* the header as docs/volumes-and-octrees.md lays it out, read by the test's own reader */
+        voxgi_svo_info info;
+        double vs;
+        uint64_t bits = le_at(d, 40, 8);
+        memcpy(&vs, &bits, 8);
+        voxgi_svo_query(svo, &info);
+        TH_CHECK(!memcmp(d, "VOXGISVO", 8) && le_at(d, 8, 4) == 1 && vs == info.grid.voxel_size && le_at(d, 48, 4) == (uint64_t)info.grid.res[0] &&
+                     le_at(d, 56, 4) == (uint64_t)info.grid.res[2] && le_at(d, 60, 4) == (uint64_t)info.depth && le_at(d, 64, 4) == info.attributes &&
+                     le_at(d, 68, 4) == (uint64_t)info.format && le_at(d, 80 + 8 * (size_t)info.depth, 8) == info.leaf_voxels &&
+                     le_at(d, 12, 4) == (info.neighbour_bytes ? 1u : 0u) + (info.brick_bytes ? 2u : 0u) && le_at(d, 224, 8) == *size &&
+                     1 + 8 * le_at(d, 72, 8) == info.nodes,
+                 "%s: the header is not as documented", what);
+    }
+    TH_CHECK(voxgi_svo_read_memory(ctx, d, *size, &back) == VOXGI_OK, "%s: read: %s", what, voxgi_last_error(ctx));
+    if (back) {
+        TH_CHECK(svo_same(ctx, svo, back, what, queries), "%s: the read octree answers otherwise", what);
+        again = svo_bytes(ctx, back, &size2);
+        TH_CHECK(again && size2 == *size && !memcmp(again, d, *size), "%s: the read octree writes other bytes", what);
+        free(again);
+    }
+    free(d);
+    return back;
+}
+
+/* Octree files round-trip: the material sphere's octree (albedo, normal, emission, opacity on
+   27 x 25 x 30) in float32 and float16, plain and with neighbours and bricks, and radiance octrees
+   (the lit Cornell box one-sided with bricks and neighbours, two-sided in float16; the leak room
+   two-sided in a dark shell, whose octree holds region labels): the read octree's info, lookups
+   of every voxel at every level, node slots, neighbours, bricks and samples equal the written
+   one's bit for bit, its cones too, and it writes the same bytes again; the file functions on a
+   path give the same; a too small buffer is refused. */
+static void test_svo_file_round_trip(void)
+{
+    enum { N = 200, M = LEAK_ROOM_POINTS };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
+    material_sphere s;
+    voxgi_voxelize_desc xd;
+    voxgi_voxels *vox = NULL;
+    voxgi_svo_desc sd;
+    voxgi_svo *svo = NULL, *back = NULL;
+    voxgi_cone single[N];
+    float pos[3 * N], nrm[3 * N], rpos[3 * M], rnrm[3 * M];
+    long queries = 0;
+    size_t size = 0;
+    int k;
+    char dir[512], path[600], what[80];
+    const char *base = getenv("TMPDIR");
+    material_sphere_make(&s);
+    memset(&xd, 0, sizeof xd);
+    xd.grid.origin[0] = -1.1; xd.grid.origin[1] = -1.2; xd.grid.origin[2] = -1.05;
+    xd.grid.voxel_size = 0.09;
+    xd.grid.res[0] = 27; xd.grid.res[1] = 25; xd.grid.res[2] = 30;
+    xd.attributes = 15;
+    TH_CHECK(voxgi_voxelize(ctx, &s.scene, &xd, &vox) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    for (k = 0; k < 4 && vox; k++) {
+        memset(&sd, 0, sizeof sd);
+        sd.format = k & 1 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
+        sd.neighbours = sd.bricks = k >> 1;
+        snprintf(what, sizeof what, "sphere %s%s", k & 1 ? "float16" : "float32", k >> 1 ? " with neighbours and bricks" : "");
+        TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        back = svo_round_trip(ctx, svo, what, &queries, &size);
+        printf("    %s: %lu bytes\n", what, (unsigned long)size);
+        voxgi_svo_destroy(ctx, back);
+        back = NULL;
+        if (k == 3) { /* the path functions, and a buffer one byte short */
+            unsigned char *small = (unsigned char *)malloc(size);
+            size_t need = 0;
+            TH_CHECK(voxgi_svo_write_memory(ctx, svo, small, size - 1, &need) == VOXGI_ERR_BUFFER_TOO_SMALL && need == size, "a short buffer: %lu", (unsigned long)need);
+            free(small);
+            snprintf(dir, sizeof dir, "%s/voxgi_svo_XXXXXX", base && *base ? base : "/tmp");
+            TH_CHECK(mkdtemp(dir) != NULL, "cannot create a temporary directory");
+            snprintf(path, sizeof path, "%s/sphere.svo", dir);
+            TH_CHECK(voxgi_svo_write(ctx, svo, path) == VOXGI_OK && voxgi_svo_read(ctx, path, &back) == VOXGI_OK, "path: %s", voxgi_last_error(ctx));
+            TH_CHECK(back && svo_same(ctx, svo, back, "sphere through a file", &queries), "the octree read from a file answers otherwise");
+            voxgi_svo_destroy(ctx, back);
+            back = NULL;
+            TH_CHECK(voxgi_svo_read(ctx, dir, &back) != VOXGI_OK && !back, "a directory read as an octree");
+            remove(path);
+            snprintf(path, sizeof path, "%s/missing.svo", dir);
+            TH_CHECK(voxgi_svo_read(ctx, path, &back) == VOXGI_ERR_IO && strstr(voxgi_last_error(ctx), "missing.svo"), "a missing file: %s", voxgi_last_error(ctx));
+            remove(dir);
+        }
+        voxgi_svo_destroy(ctx, svo);
+        svo = NULL;
+    }
+    voxgi_voxels_destroy(ctx, vox);
+    vox = NULL;
+    material_sphere_free(&s);
+    { /* radiance octrees: their cones from the read octree equal the written one's */
+        voxgi_builtin_scene bs;
+        voxgi_inject_desc id;
+        voxgi_volume *vol = NULL;
+        int sides;
+        cornell_cone_points(11, N, pos, nrm, single);
+        leak_room_points(rpos, rnrm);
+        for (sides = 1; sides <= 3; sides++) { /* 3: the leak room in a dark shell, with regions */
+            memset(&id, 0, sizeof id);
+            id.samples = 4;
+            id.one_sided = sides == 1;
+            TH_CHECK(voxgi_builtin_scene_create(ctx, sides < 3 ? "cornell-box" : "leak-room", &bs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            if (!lit_voxels_padded(ctx, &bs.scene, sides < 3 ? 16 : 32, sides < 3 ? 1 : 4, &id, &vox, &vol)) { TH_CHECK(0, "lighting failed"); break; }
+            memset(&sd, 0, sizeof sd);
+            sd.radiance = vol;
+            sd.bricks = sd.neighbours = sides != 2;
+            sd.format = sides == 2 ? VOXGI_SVO_FLOAT16 : VOXGI_SVO_FLOAT32;
+            snprintf(what, sizeof what, "%s %s-sided radiance", sides < 3 ? "Cornell box" : "leak room", sides == 1 ? "one" : "two");
+            TH_CHECK(voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+            back = svo_round_trip(ctx, svo, what, &queries, &size);
+            if (size > 224) { /* the regions count, read by the test's own reader at the documented offset */
+                unsigned char *d = svo_bytes(ctx, svo, &size);
+                printf("    %s: %lu bytes, %llu regions\n", what, (unsigned long)size, d ? (unsigned long long)le_at(d, 216, 8) : 0ull);
+                TH_CHECK(d && (sides < 3 || le_at(d, 216, 8) > 2), "%s: no regions in the file", what);
+                free(d);
+            }
+            TH_CHECK(back && (sides < 3 ? svo_same_cones(ctx, svo, back, N, pos, nrm, single) : svo_same_cones(ctx, svo, back, M, rpos, rnrm, NULL)),
+                     "%s: the read octree's cones differ", what);
+            voxgi_svo_destroy(ctx, back);
+            voxgi_svo_destroy(ctx, svo);
+            back = svo = NULL;
+            voxgi_volume_destroy(ctx, vol);
+            voxgi_voxels_destroy(ctx, vox);
+            voxgi_builtin_scene_destroy(ctx, &bs);
+            vox = NULL;
+        }
+    }
+    printf("    %ld queries equal between written and read octrees\n", queries);
+    voxgi_destroy(ctx);
+}
+
+/* Loads data (size bytes, copied into a buffer of exactly that size, so that ASan sees any read
+   past it): VOXGI_OK with a usable octree, or a refusal with its message; never more. */
+static voxgi_result svo_load_exact(voxgi_context *ctx, const unsigned char *data, size_t size, voxgi_svo **out)
+{
+    unsigned char *copy = (unsigned char *)malloc(size ? size : 1);
+    voxgi_result r;
+    memcpy(copy, data, size);
+    r = voxgi_svo_read_memory(ctx, copy, size, out);
+    free(copy);
+    return r;
+}
+
+/* Whether a refusal is FORMAT and its message names `needle` (a byte offset or the reason). */
+static int refused_with(voxgi_context *ctx, voxgi_result r, const voxgi_svo *svo, const char *needle)
+{
+    if (r == VOXGI_ERR_FORMAT && !svo && strstr(voxgi_last_error(ctx), needle)) return 1;
+    printf("    expected a refusal naming \"%s\", got %s: %s\n", needle, voxgi_result_string(r), voxgi_last_error(ctx));
+    return 0;
+}
+
+/* Hostile octree files: the leak room's two-sided radiance octree at 16^3 (neighbours, bricks,
+   region labels; every section of the format) truncated at every 97th byte offset is refused as
+   truncated; single bytes flipped at 300 random offsets (and at every header byte) are refused or
+   load into an octree whose lookups of every voxel and cones run (ASan: no read outside the
+   arrays); and crafted files each give their reason with the byte offset: wrong magic, unknown
+   version, a trailing byte, a count that disagrees with the size, a child pointer out of range
+   or used twice, a neighbour slot out of range, a region label out of range, huge counts (refused
+   before any allocation). A GL context refuses to read (when GL is there). */
+static void test_svo_file_refusals(void)
+{
+    enum { M = LEAK_ROOM_POINTS };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 2);
+    voxgi_builtin_scene bs;
+    voxgi_inject_desc id;
+    voxgi_voxels *vox = NULL;
+    voxgi_volume *vol = NULL;
+    voxgi_svo_desc sd;
+    voxgi_svo *svo = NULL, *got = NULL;
+    voxgi_svo_info info;
+    voxgi_cone_desc cd;
+    unsigned char *d = NULL, *bad;
+    float rpos[3 * M], rnrm[3 * M], irr[3 * M];
+    uint32_t *coords;
+    float *vals;
+    size_t size = 0, off, nvox, i, truncations = 0, refused = 0, loaded = 0, wrong = 0, values_at;
+    uint64_t nodes, leaf_slots, regions, neighbours_at, regions_at;
+    int flip;
+    memset(&id, 0, sizeof id);
+    memset(&sd, 0, sizeof sd);
+    memset(&cd, 0, sizeof cd);
+    id.samples = 2;
+    TH_CHECK(voxgi_builtin_scene_create(ctx, "leak-room", &bs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+    TH_CHECK(lit_voxels_padded(ctx, &bs.scene, 16, 3, &id, &vox, &vol), "lighting failed");
+    sd.radiance = vol;
+    sd.neighbours = sd.bricks = 1;
+    sd.attributes = VOXGI_ATTRIBUTE_RADIANCE | VOXGI_ATTRIBUTE_RADIANCE_BACK | VOXGI_ATTRIBUTE_RADIANCE_SIDE;
+    TH_CHECK(vol && voxgi_svo_create(ctx, vox, &sd, &svo) == VOXGI_OK && (d = svo_bytes(ctx, svo, &size)) != NULL, "%s", voxgi_last_error(ctx));
+    if (!d) goto done;
+    voxgi_svo_query(svo, &info);
+    nodes = info.nodes;
+    leaf_slots = info.leaf_slots;
+    regions = le_at(d, 216, 8);
+    neighbours_at = 232 + 4 * nodes;
+    regions_at = size - 4 * (nodes + leaf_slots + 6 * regions);
+    values_at = (size_t)(neighbours_at + 24 * nodes);
+    TH_CHECK(regions > 2 && le_at(d, 224, 8) == size && le_at(d, 232, 4) != 0, "the file's header: %llu regions, %llu bytes claimed of %lu",
+             (unsigned long long)regions, (unsigned long long)le_at(d, 224, 8), (unsigned long)size);
+    nvox = (size_t)voxgi_grid_voxel_count(&info.grid);
+    coords = (uint32_t *)malloc(nvox * 12);
+    vals = (float *)malloc(nvox * 16);
+    for (i = 0; i < nvox; i++) {
+        coords[3 * i] = (uint32_t)(i % (size_t)info.grid.res[0]);
+        coords[3 * i + 1] = (uint32_t)(i / (size_t)info.grid.res[0] % (size_t)info.grid.res[1]);
+        coords[3 * i + 2] = (uint32_t)(i / ((size_t)info.grid.res[0] * (size_t)info.grid.res[1]));
+    }
+    leak_room_points(rpos, rnrm);
+    for (off = 0; off < size; off += 97, truncations++) {
+        voxgi_result r = svo_load_exact(ctx, d, off, &got);
+        if (!refused_with(ctx, r, got, "truncated")) { TH_CHECK(0, "a file truncated at byte %lu of %lu", (unsigned long)off, (unsigned long)size); break; }
+    }
+    bad = (unsigned char *)malloc(size);
+    for (flip = 0; flip < 300 + 232; flip++) { /* every header byte, then 300 random ones */
+        voxgi_result r;
+        off = flip < 232 ? (size_t)flip : (size_t)(rnd() * (double)size);
+        memcpy(bad, d, size);
+        bad[off] ^= (unsigned char)(flip < 232 ? 0xFF : 1u + (unsigned)(rnd() * 255));
+        r = svo_load_exact(ctx, bad, size, &got);
+        /* must load: a value; must be refused: a header byte but the grid's doubles and the leaf voxel count */
+        if (r == VOXGI_OK ? off < 16 || (off >= 48 && off < 216 && off / 8 != (size_t)(10 + info.depth)) || (off >= 216 && off < 232)
+                          : off >= values_at && off < regions_at) {
+            wrong++;
+            printf("    a flip at byte %lu: %s (%s)\n", (unsigned long)off, voxgi_result_string(r), voxgi_last_error(ctx));
+        }
+        if (r == VOXGI_OK) { /* values or the grid changed: it must still answer */
+            int at;
+            loaded++;
+            for (at = 4; at < 7; at++)
+                TH_CHECK(voxgi_svo_lookup(ctx, got, (voxgi_attribute)(1 << at), info.depth, nvox, coords, vals) == VOXGI_OK, "lookup: %s", voxgi_last_error(ctx));
+            voxgi_cone_trace(ctx, OCTREE_SOURCE(got), &cd, M, rpos, rnrm, irr, NULL);
+            voxgi_svo_destroy(ctx, got);
+            got = NULL;
+        } else {
+            refused++;
+            TH_CHECK(r == VOXGI_ERR_FORMAT && !got && strlen(voxgi_last_error(ctx)) > 10, "a flip at byte %lu: %s", (unsigned long)off, voxgi_result_string(r));
+        }
+    }
+    printf("    %lu bytes (%llu node slots, %llu leaf slots, %llu regions): %lu truncations refused; %d flipped bytes: %lu refused, %lu loaded\n",
+           (unsigned long)size, (unsigned long long)nodes, (unsigned long long)leaf_slots, (unsigned long long)regions, (unsigned long)truncations,
+           300 + 232, (unsigned long)refused, (unsigned long)loaded);
+    TH_CHECK(!wrong && refused > 200 && loaded > 200, "flips: %lu refused, %lu loaded, %lu of them wrongly", (unsigned long)refused, (unsigned long)loaded, (unsigned long)wrong);
+    /* crafted files */
+    memcpy(bad, d, size); bad[3] = 'x';
+    TH_CHECK(refused_with(ctx, svo_load_exact(ctx, bad, size, &got), got, "byte 0:"), "wrong magic");
+    memcpy(bad, d, size); le_put(bad, 8, 4, 2);
+    TH_CHECK(refused_with(ctx, svo_load_exact(ctx, bad, size, &got), got, "byte 8: octree file version 2"), "version 2");
+    {
+        unsigned char *longer = (unsigned char *)malloc(size + 1);
+        memcpy(longer, d, size); longer[size] = 0;
+        TH_CHECK(refused_with(ctx, svo_load_exact(ctx, longer, size + 1, &got), got, "its counts make"), "a trailing byte");
+        free(longer);
+    }
+    memcpy(bad, d, size); le_put(bad, 80 + 8 * (size_t)info.depth, 8, le_at(d, 80 + 8 * (size_t)info.depth, 8) + 1); /* one leaf voxel more: the same size */
+    TH_CHECK(voxgi_svo_read_memory(ctx, bad, size, &got) == VOXGI_OK, "the leaf voxel count is no size: %s", voxgi_last_error(ctx));
+    voxgi_svo_destroy(ctx, got);
+    got = NULL;
+    memcpy(bad, d, size); le_put(bad, 80 + 8 * (size_t)(info.depth - 1), 8, le_at(d, 80 + 8 * (size_t)(info.depth - 1), 8) + 1); /* a leaf tile more */
+    TH_CHECK(refused_with(ctx, svo_load_exact(ctx, bad, size, &got), got, "byte 224:"), "a leaf tile more than the file holds");
+    memcpy(bad, d, size); le_put(bad, 232, 4, 0xFFFFFFFFu); /* the root's child pointer */
+    TH_CHECK(refused_with(ctx, svo_load_exact(ctx, bad, size, &got), got, "byte 232: child pointer 4294967295"), "a child pointer out of range");
+    memcpy(bad, d, size); /* two level-1 nodes pointing to the same tile: the first with a child and the next */
+    {
+        size_t first = 232 + 4 * (1 + 8 * (size_t)(le_at(d, 232, 4) - 1));
+        for (i = 0; i < 7 && !le_at(d, first + 4 * i, 4); i++) continue;
+        le_put(bad, first + 4 * ((i + 1) % 8), 4, le_at(d, first + 4 * i, 4));
+    }
+    TH_CHECK(refused_with(ctx, svo_load_exact(ctx, bad, size, &got), got, "used twice"), "a tile used twice");
+    memcpy(bad, d, size); le_put(bad, (size_t)neighbours_at + 8, 4, nodes);
+    TH_CHECK(refused_with(ctx, svo_load_exact(ctx, bad, size, &got), got, "neighbour slot"), "a neighbour slot out of range");
+    memcpy(bad, d, size); le_put(bad, (size_t)regions_at + 4, 4, regions);
+    TH_CHECK(refused_with(ctx, svo_load_exact(ctx, bad, size, &got), got, "region label"), "a region label out of range");
+    memcpy(bad, d, size); le_put(bad, 80 + 8, 8, 8); le_put(bad, 80 + 16, 8, 64); le_put(bad, 80 + 24, 8, 512); /* huge counts, the claimed size to match */
+    le_put(bad, 72, 8, 1 + 8 + 64 + (info.depth > 4 ? 512 : 0));
+    TH_CHECK(voxgi_svo_read_memory(ctx, bad, size, &got) == VOXGI_ERR_FORMAT && !got, "counts that do not fit the size: %s", voxgi_last_error(ctx));
+    memcpy(bad, d, size); le_put(bad, 72, 8, 0xFFFFFFFFFFull);
+    TH_CHECK(refused_with(ctx, svo_load_exact(ctx, bad, size, &got), got, "byte 72:"), "inner tiles that disagree with the levels");
+    TH_CHECK(refused_with(ctx, voxgi_svo_read_memory(ctx, NULL, 0, &got), got, "truncated at byte 0"), "an empty file");
+    if (have_gl()) {
+        voxgi_context *gl = make_ctx(VOXGI_BACKEND_GL, 0);
+        TH_CHECK(gl && voxgi_svo_read_memory(gl, d, size, &got) == VOXGI_ERR_UNSUPPORTED && !got && strstr(voxgi_last_error(gl), "CPU"),
+                 "a GL context read an octree: %s", gl ? voxgi_last_error(gl) : "no context");
+        voxgi_destroy(gl);
+    }
+    free(bad);
+    free(coords);
+    free(vals);
+done:
+    free(d);
+    voxgi_svo_destroy(ctx, svo);
+    voxgi_volume_destroy(ctx, vol);
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_builtin_scene_destroy(ctx, &bs);
+    voxgi_destroy(ctx);
+}
+
+/* A GL octree's file (its buffers read back) read on a CPU context answers every query as the GL
+   octree does (svo_same: lookups, node slots, neighbours and bricks, bit for bit): the
+   material sphere's in float16 with neighbours and bricks, and the lit leak room's two-sided
+   radiance with its region labels; the file of the read octree is the GL one's, byte for byte. */
+static void test_gl_svo_file_read_on_cpu(void)
+{
+    voxgi_context *gl, *cpu;
+    material_sphere s;
+    voxgi_builtin_scene bs;
+    voxgi_inject_desc id;
+    voxgi_voxelize_desc xd;
+    voxgi_voxels *vox = NULL;
+    voxgi_volume *vol = NULL;
+    voxgi_svo_desc sd;
+    voxgi_svo *svo = NULL, *back = NULL;
+    unsigned char *d = NULL, *again = NULL;
+    size_t size = 0, size2 = 0;
+    long queries = 0;
+    int k;
+    if (!have_gl()) return;
+    gl = make_ctx(VOXGI_BACKEND_GL, 0);
+    cpu = make_ctx(VOXGI_BACKEND_CPU, 2);
+    material_sphere_make(&s);
+    TH_CHECK(voxgi_builtin_scene_create(gl, "leak-room", &bs) == VOXGI_OK, "%s", voxgi_last_error(gl));
+    for (k = 0; k < 2; k++) {
+        memset(&sd, 0, sizeof sd);
+        memset(&xd, 0, sizeof xd);
+        memset(&id, 0, sizeof id);
+        if (k == 0) {
+            xd.grid.origin[0] = -1.1; xd.grid.origin[1] = -1.2; xd.grid.origin[2] = -1.05;
+            xd.grid.voxel_size = 0.09;
+            xd.grid.res[0] = 27; xd.grid.res[1] = 25; xd.grid.res[2] = 30;
+            xd.attributes = 15;
+            TH_CHECK(voxgi_voxelize(gl, &s.scene, &xd, &vox) == VOXGI_OK, "%s", voxgi_last_error(gl));
+            sd.format = VOXGI_SVO_FLOAT16;
+            sd.neighbours = sd.bricks = 1;
+        } else {
+            id.samples = 2;
+            id.shadow_rays = 1;
+            TH_CHECK(lit_voxels_padded(gl, &bs.scene, 16, 3, &id, &vox, &vol), "lighting failed");
+            sd.radiance = vol;
+            sd.bricks = 1;
+        }
+        TH_CHECK(vox && voxgi_svo_create(gl, vox, &sd, &svo) == VOXGI_OK && (d = svo_bytes(gl, svo, &size)) != NULL, "%s", voxgi_last_error(gl));
+        TH_CHECK(d && voxgi_svo_read_memory(cpu, d, size, &back) == VOXGI_OK, "read: %s", voxgi_last_error(cpu));
+        TH_CHECK(back && svo_same(gl, svo, back, k ? "GL leak room radiance" : "GL sphere", &queries), "the read octree answers otherwise than the GL one");
+        TH_CHECK(back && (again = svo_bytes(cpu, back, &size2)) && size2 == size && !memcmp(again, d, size), "the read octree writes other bytes");
+        printf("    %s: %lu bytes%s\n", k ? "GL leak room radiance" : "GL sphere", (unsigned long)size, k && d ? (le_at(d, 216, 8) > 2 ? ", with regions" : ", no regions") : "");
+        free(d); free(again);
+        d = again = NULL;
+        voxgi_svo_destroy(cpu, back);
+        voxgi_svo_destroy(gl, svo);
+        back = svo = NULL;
+        voxgi_volume_destroy(gl, vol);
+        voxgi_voxels_destroy(gl, vox);
+        vol = NULL; vox = NULL;
+    }
+    printf("    %ld queries equal\n", queries);
+    voxgi_builtin_scene_destroy(gl, &bs);
+    material_sphere_free(&s);
+    voxgi_destroy(cpu);
+    voxgi_destroy(gl);
+}
+
 int main(void)
 {
     gl_open();
     TH_RUN(test_svo_equals_dense);
     TH_RUN(test_octree_cones);
+    TH_RUN(test_svo_file_round_trip);
+    TH_RUN(test_svo_file_refusals);
     TH_RUN(test_gl_octree_cones_equal_cpu);
+    TH_RUN(test_gl_svo_file_read_on_cpu);
     gl_close();
     return th_finish();
 }

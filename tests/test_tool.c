@@ -1,13 +1,15 @@
 /* The voxgi command-line tool, run as a user runs it: help, exact grids, JSON, binvox output,
    backends, and bad files and arguments (clear message, non-zero exit, never a crash).
    VOXGI_TOOL names the binary (default: the voxgi beside this program, which the Makefile builds
-   there). Works from any directory: the tests run in their own temporary directory. */
+   there). Works from any directory: the tests run in their own temporary directory. The reports'
+   figures (tools/cli_figures.c: the font, the picture, the plot) are also drawn in process. */
 #define _XOPEN_SOURCE 700 /* popen, mkdtemp, realpath */
 #include "../voxgi.h"
 #include "../tools/pareto.h"
 #include "../tools/cli.h"
 #include "../tools/shapes.h"
 #include "harness.h"
+#include "../tools/cli_figures.c" /* the reports' figures, drawn in process (the tool's own code) */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -204,7 +206,8 @@ static void test_voxelize_methods(void)
 }
 
 /* voxgi svo: as many leaves as the voxelization sets, a root, and at most 8 structure bytes
-   per voxel; the per-level node counts end with the leaves. */
+   per voxel; the per-level node counts end with the leaves; -o saves the octree the JSON
+   describes (voxgi_svo_read gives the same leaves, nodes and bytes). */
 static void test_svo_command(void)
 {
     static char out[8192];
@@ -219,6 +222,30 @@ static void test_svo_command(void)
     rc = run("svo builtin:cube --res 16 --backend cpu", out, sizeof out);
     TH_CHECK(rc == 0 && strstr(out, "Table 5.1") && strstr(out, "Table 5.2"), "svo tables: %s", out);
     TH_CHECK(run("svo builtin:cube --attributes colour", out, sizeof out) == 2, "unknown attribute accepted");
+    { /* -o FILE.svo: voxgi_svo_read loads the octree the JSON describes; another extension exits 2 */
+        char path[512], args[1200];
+        voxgi_context *ctx = NULL;
+        voxgi_desc d;
+        voxgi_svo *svo = NULL;
+        voxgi_svo_info info;
+        snprintf(path, sizeof path, "%s/sphere.svo", tmpdir);
+        snprintf(args, sizeof args, "svo builtin:sphere --res 40 --backend cpu --bricks --neighbours --format float16 --json -o %s", path);
+        rc = run(args, out, sizeof out);
+        memset(&d, 0, sizeof d);
+        d.backend = VOXGI_BACKEND_CPU;
+        voxgi_create(&d, &ctx);
+        TH_CHECK(rc == 0 && strstr(out, "\"output\":") && voxgi_svo_read(ctx, path, &svo) == VOXGI_OK, "svo -o: %s / %s", out, voxgi_last_error(ctx));
+        voxgi_svo_query(svo, &info);
+        TH_CHECK(svo && (double)info.leaf_voxels == json_number(out, "leaf_voxels") && (double)info.nodes == json_number(out, "nodes") &&
+                     (double)info.bytes == json_number(out, "bytes") && (double)info.brick_bytes == json_number(out, "brick_bytes") &&
+                     info.format == VOXGI_SVO_FLOAT16 && info.neighbour_bytes > 0,
+                 "the saved octree is not the one described: %s", out);
+        voxgi_svo_destroy(ctx, svo);
+        voxgi_destroy(ctx);
+        remove(path);
+        snprintf(args, sizeof args, "svo builtin:cube --res 8 -o %s/cube.txt", tmpdir);
+        TH_CHECK(run(args, out, sizeof out) == 2 && strstr(out, ".svo"), "svo -o cube.txt: %s", out);
+    }
 }
 
 /* voxgi render: the PFM holds exactly what the library renders with the same settings; the PNG
@@ -1484,6 +1511,237 @@ static void test_report_stiff(void)
     TH_CHECK(run("report stiff --help", out, sizeof out) == 0 && strstr(out, "usage: voxgi report stiff"), "help: %s", out);
 }
 
+/* ------------------------------------------------------------------ the reports' figures */
+/* The font against glyphs drawn here by hand: "F" and "4" (neither symmetric) at scale 2 must
+   light exactly these cells and no pixel beside them; every character the figures use has a glyph
+   of its own (none blank, none another's, none the '?' of a missing one), lower case as upper. */
+static void test_report_font(void)
+{
+    static const char *const art[7] = {"#####....#.", "#.......##.", "#......#.#.", "####..#..#.", "#.....#####", "#........#.", "#........#."};
+    static const char chars[] = "!%()*+,-./0123456789:<=>?ABCDEFGHIJKLMNOPQRSTUVWXYZ^_";
+    static const unsigned char ink[3] = {0, 0, 0};
+    unsigned char px[3 * 26 * 18];
+    report_canvas cv = {px, 26, 18};
+    int x, y, wrong = 0, same = 0, blank = 0, i, j;
+    memset(px, 255, sizeof px);
+    report_text(&cv, 2, 2, 26, "F4", 2, ink);
+    for (y = 0; y < 18; y++)
+        for (x = 0; x < 26; x++) { /* "F" at columns 2..11, "4" at 14..23 (advance 6 cells), rows 2..15 */
+            int gx = (x - 2) / 2, gy = (y - 2) / 2, want = x >= 2 && y >= 2 && y < 16 && gx < 11 && art[gy][gx] == '#';
+            wrong += (px[3 * (y * 26 + x)] == 0) != want;
+        }
+    TH_CHECK(wrong == 0, "\"F4\" at scale 2: %d pixels differ from the hand-drawn glyphs", wrong);
+    for (i = 0; chars[i]; i++) {
+        const unsigned char *g = report_glyph(chars[i]);
+        int lit = 0;
+        for (y = 0; y < 7; y++) lit += g[y] != 0;
+        blank += lit == 0;
+        if (chars[i] != '?' && g == report_glyph('?')) same++;
+        for (j = 0; j < i; j++) same += memcmp(g, report_glyph(chars[j]), 7) == 0;
+    }
+    TH_CHECK(blank == 0 && same == 0, "%d glyphs blank, %d the same as another or as the missing glyph's", blank, same);
+    TH_CHECK(report_glyph('q') == report_glyph('Q') && report_glyph('~') == report_glyph('?'), "lower case or a missing glyph");
+    TH_CHECK(report_text_width("abc", 2) == 34 && report_text_width("", 1) == 0, "text width %d", report_text_width("abc", 2));
+    printf("    \"F4\" drawn as by hand; %d glyphs, all distinct\n", (int)strlen(chars));
+}
+
+/* Dark pixels (every channel below 64) in a rectangle of an 8-bit RGB picture of width w. */
+static int dark_pixels(const unsigned char *px, int w, int x0, int y0, int x1, int y1)
+{
+    int x, y, n = 0;
+    for (y = y0; y < y1; y++)
+        for (x = x0; x < x1; x++) {
+            const unsigned char *p = px + 3 * ((size_t)y * (size_t)w + (size_t)x);
+            n += p[0] < 64 && p[1] < 64 && p[2] < 64;
+        }
+    return n;
+}
+
+/* The report's picture (report all's SCENE-METHOD.png), made in process from an image whose error
+   against a reference of 1 grows along x from 0 to REPORT_HEAT_WHITE of the reference's mean:
+   the colour bar runs black to white, each channel never falling along it, and the heat map's
+   column x has the bar's colour at x (the bar's scale is the map's, within 1 of 255); each panel's
+   label is dark on white, inside its text box, with exactly its glyphs' cells lit; "0" and "50%"
+   lie under the bar's ends; the images keep their sRGB; the PNG has the picture's size. At 64 x 40
+   (scale 1: a 200 x 70 picture; "vct" 37 dark pixels = its 37 cells, "reference" 152, "error" 88)
+   and 200 x 30 (scale 2: 608 x 90, each label 4 x its cells); the heat map within 1 of the bar
+   in every channel, the bar's channels never falling. */
+static void test_report_picture_labels_and_bar(void)
+{
+    static const int sizes[2][2] = {{64, 40}, {200, 30}};
+    static const char *const titles[3] = {"vct", "reference", "error"};
+    int si;
+    for (si = 0; si < 2; si++) {
+        const int w = sizes[si][0], h = sizes[si][1];
+        float *img = (float *)malloc(sizeof(float) * 3 * (size_t)(w * h)), *ref = (float *)malloc(sizeof(float) * 3 * (size_t)(w * h));
+        unsigned char *masked = (unsigned char *)calloc((size_t)(w * h), 1), *px;
+        cli_error_mask m;
+        report_compare_layout l;
+        int x, y, c, k, falls = 0, heat_off = 0, bar_rows_differ = 0, label_ok = 1, image_off = 0;
+        char path[400], head[24] = {0};
+        FILE *f;
+        for (y = 0; y < h; y++)
+            for (x = 0; x < w; x++)
+                for (c = 0; c < 3; c++) {
+                    ref[3 * (y * w + x) + c] = 1;
+                    img[3 * (y * w + x) + c] = (float)(1 + REPORT_HEAT_WHITE * x / (w - 1));
+                }
+        m.masked = masked, m.width = w, m.height = h, m.masked_pixels = 0;
+        px = report_compare_rgb8(img, ref, &m, 0.5f, titles[0], &l);
+        TH_CHECK(px != NULL, "no picture");
+        if (!px) return;
+        TH_CHECK(l.width == 3 * w + 2 * l.gap && l.height > h + l.panel_y && l.bar_y >= l.panel_y + h && l.bar_text_y >= l.bar_y + l.bar_h, "layout");
+        for (x = 0; x < w; x++) {
+            const unsigned char *b = px + 3 * ((size_t)l.bar_y * (size_t)l.width + (size_t)(l.bar_x + x));
+            const unsigned char *heat = px + 3 * ((size_t)(l.panel_y + h / 2) * (size_t)l.width + (size_t)(l.bar_x + x));
+            for (y = 1; y < l.bar_h; y++) bar_rows_differ += memcmp(b, b + 3 * (size_t)y * (size_t)l.width, 3) != 0;
+            for (c = 0; c < 3; c++) {
+                if (x && b[c] < b[c - 3]) falls++;
+                if (abs(heat[c] - b[c]) > 1) heat_off++;
+            }
+        }
+        {
+            const unsigned char *b0 = px + 3 * ((size_t)l.bar_y * (size_t)l.width + (size_t)l.bar_x), *b1 = b0 + 3 * (size_t)(w - 1);
+            TH_CHECK(b0[0] == 0 && b0[1] == 0 && b0[2] == 0 && b1[0] == 255 && b1[1] == 255 && b1[2] == 255, "%d x %d: the bar runs %d,%d,%d to %d,%d,%d", w, h, b0[0],
+                     b0[1], b0[2], b1[0], b1[1], b1[2]);
+        }
+        TH_CHECK(falls == 0 && bar_rows_differ == 0, "%d x %d: the bar's channels fall %d times; %d bar pixels differ from its top row", w, h, falls, bar_rows_differ);
+        TH_CHECK(heat_off == 0, "%d x %d: %d channels of the heat map differ from the bar's colour at the same error", w, h, heat_off);
+        for (k = 0; k < 3; k++) { /* each label: its glyphs' cells and nothing else dark in its band */
+            const int x0 = k * (w + l.gap), tw = report_text_width(titles[k], l.scale);
+            int cells = 0, i, r, in_box, in_band;
+            for (i = 0; titles[k][i]; i++)
+                for (r = 0; r < 7; r++)
+                    for (c = 0; c < 5; c++) cells += (report_glyph(titles[k][i])[r] >> c) & 1;
+            in_box = dark_pixels(px, l.width, x0 + l.pad, l.pad, x0 + l.pad + tw, l.pad + 7 * l.scale);
+            in_band = dark_pixels(px, l.width, x0, 0, x0 + w, l.panel_y);
+            if (in_box != cells * l.scale * l.scale || in_band != in_box || x0 + l.pad + tw > x0 + w) label_ok = 0;
+            printf("    %d x %d: label \"%s\": %d dark pixels, its glyphs' %d cells x %d^2\n", w, h, titles[k], in_band, cells, l.scale);
+        }
+        TH_CHECK(label_ok, "%d x %d: a label's pixels are not its glyphs'", w, h);
+        TH_CHECK(dark_pixels(px, l.width, l.bar_x, l.bar_text_y, l.bar_x + 5 * l.scale, l.bar_text_y + 7 * l.scale) > 0 &&
+                         dark_pixels(px, l.width, l.bar_x + w - report_text_width("50%", l.scale), l.bar_text_y, l.bar_x + w, l.bar_text_y + 7 * l.scale) > 0,
+                 "%d x %d: no \"0\" or \"50%%\" under the bar's ends", w, h);
+        for (y = 0; y < h; y++)
+            for (x = 0; x < w; x++)
+                for (c = 0; c < 3; c++) {
+                    const unsigned char *o = px + 3 * ((size_t)(l.panel_y + y) * (size_t)l.width + (size_t)x) + c;
+                    image_off += *o != vxt_srgb8(0.5f * img[3 * (y * w + x) + c]) || o[3 * (w + l.gap)] != vxt_srgb8(0.5f * ref[3 * (y * w + x) + c]);
+                }
+        TH_CHECK(image_off == 0, "%d x %d: %d image bytes are not the images' sRGB at the exposure", w, h, image_off);
+        snprintf(path, sizeof path, "%s/picture.png", tmpdir);
+        TH_CHECK(report_png_compare(path, img, ref, &m, 0.5f, titles[0]) == 0, "PNG not written");
+        f = fopen(path, "rb");
+        TH_CHECK(f && fread(head, 1, 24, f) == 24 && memcmp(head + 12, "IHDR", 4) == 0 &&
+                         ((unsigned char)head[18] << 8 | (unsigned char)head[19]) == l.width && ((unsigned char)head[22] << 8 | (unsigned char)head[23]) == l.height,
+                 "%d x %d: the PNG is not %d x %d", w, h, l.width, l.height);
+        if (f) fclose(f);
+        remove(path);
+        printf("    %d x %d panels: a %d x %d picture, text at scale %d; bar black to white, monotonic, the heat map's colours within 1\n", w, h, l.width, l.height,
+               l.scale);
+        free(px);
+        free(img);
+        free(ref);
+        free(masked);
+    }
+}
+
+/* A text element of an SVG: its box by the rule report.h states (0.6 font size a character, 0.8
+   above the baseline, 0.2 below), and whether it is a point label. */
+typedef struct svg_text { double x0, y0, x1, y1; int point_label; char text[200]; } svg_text;
+
+static double svg_attr(const char *el, const char *end, const char *name, double fallback)
+{
+    char pat[40];
+    const char *at;
+    snprintf(pat, sizeof pat, " %s=\"", name);
+    at = strstr(el, pat);
+    return at && at < end ? strtod(at + strlen(pat), NULL) : fallback;
+}
+
+static int double_order(const void *a, const void *b) { return *(const double *)a < *(const double *)b ? -1 : *(const double *)a > *(const double *)b; }
+
+/* The report's plot (report_plot_svg) of crowded points: 3 series over 0.5..3000 ms and errors
+   0.2%..40% with an exact point, 14 front points close together each with a long label. The x axis
+   spans 0.1..10^4 ms (5 decades) and has 8 minor ticks a decade (40), y 10^-3..1 and the exact
+   row, 24 (none between the exact row and 0.1%); each minor tick at log10(m) of its decade's
+   width (within 0.2 units); no two texts' boxes overlap; some minor ticks and point labels are
+   labelled (else the check is empty). Measured: 40 and 24 minor ticks, 35 texts, none overlapping
+   (188 pairs without the collision check), 14 minor ticks and 1 of the 14 point labels placed. */
+static void test_report_plot_ticks_and_labels(void)
+{
+    static report_plot_point pts[40];
+    static const char *const legend[3] = {"cone tracing", "radiosity maps", "screen space"};
+    static svg_text texts[400];
+    double minor_x[100], major_x[20];
+    size_t n = 0, i, j, nt = 0, nmx = 0, nMx = 0, nmy = 0;
+    int overlaps = 0, placed = 0, minor_labels = 0, given = 0, misplaced = 0, expect_x, expect_y;
+    char path[400], *svg, *at;
+    report_plot plot;
+    FILE *f;
+    for (i = 0; i < 14; i++, n++) { /* the crowded front */
+        pts[n].ms = 10 * pow(1.06, (double)i), pts[n].error = 0.05 / pow(1.04, (double)i), pts[n].series = (int)(i % 3), pts[n].front = 1;
+        pts[n].label = "64^3, 16 cones, step 0.5, aniso";
+        given++;
+    }
+    for (i = 0; i < 20; i++, n++) /* the rest, spread out */
+        pts[n].ms = 0.5 * pow(6000, (double)i / 19), pts[n].error = 0.002 * pow(200, (double)((i * 7) % 20) / 19), pts[n].series = (int)(i % 3), pts[n].front = 0,
+        pts[n].label = NULL;
+    pts[n].ms = 5, pts[n].error = 0, pts[n].series = 0, pts[n].front = 0, pts[n].label = NULL, n++; /* exact */
+    memset(&plot, 0, sizeof plot);
+    plot.y_title = "relative RMSE", plot.x_title = "time per image", plot.legend = legend, plot.series_count = 3, plot.points = pts, plot.count = n;
+    snprintf(path, sizeof path, "%s/plot.svg", tmpdir);
+    f = fopen(path, "w");
+    TH_CHECK(f != NULL, "cannot write %s", path);
+    if (!f) return;
+    report_plot_svg(f, &plot);
+    fclose(f);
+    svg = read_text(path, NULL);
+    TH_CHECK(svg != NULL, "no SVG");
+    if (!svg) return;
+    for (at = svg; (at = strstr(at, "<line class=\"")) != NULL; at++) {
+        const char *end = strchr(at, '>');
+        if (!strncmp(at + 13, "minor-x", 7) && nmx < 100) minor_x[nmx++] = svg_attr(at, end, "x1", 0);
+        if (!strncmp(at + 13, "major-x", 7) && nMx < 20) major_x[nMx++] = svg_attr(at, end, "x1", 0);
+        if (!strncmp(at + 13, "minor-y", 7)) nmy++;
+    }
+    for (at = svg; (at = strstr(at, "<text ")) != NULL && nt < 400; at++) {
+        const char *end = strchr(at, '>'), *close = end ? strstr(end, "</text>") : NULL;
+        double x, y, fs, w;
+        svg_text *t = &texts[nt];
+        if (!end || !close || (strstr(at, "transform=") && strstr(at, "transform=") < end)) continue; /* the rotated axis title: beside the plot */
+        snprintf(t->text, sizeof t->text, "%.*s", (int)(close - end - 1), end + 1);
+        x = svg_attr(at, end, "x", 0), y = svg_attr(at, end, "y", 0), fs = svg_attr(at, end, "font-size", 11);
+        w = 0.6 * fs * (double)strlen(t->text);
+        t->x0 = strstr(at, "\"middle\"") && strstr(at, "\"middle\"") < end ? x - w / 2 : strstr(at, "\"end\"") && strstr(at, "\"end\"") < end ? x - w : x;
+        t->x1 = t->x0 + w, t->y0 = y - 0.8 * fs, t->y1 = y + 0.2 * fs;
+        t->point_label = strstr(at, "point-label") && strstr(at, "point-label") < end;
+        placed += t->point_label;
+        minor_labels += !t->point_label && (t->text[0] >= '2' && t->text[0] <= '9');
+        nt++;
+    }
+    for (i = 0; i < nt; i++)
+        for (j = 0; j < i; j++)
+            if (texts[i].x0 < texts[j].x1 && texts[j].x0 < texts[i].x1 && texts[i].y0 < texts[j].y1 && texts[j].y0 < texts[i].y1) {
+                if (overlaps++ < 3) printf("    overlap: \"%s\" and \"%s\"\n", texts[i].text, texts[j].text);
+            }
+    expect_x = 8 * (int)(ceil(log10(3000.0)) - floor(log10(0.5))), expect_y = 8 * (int)(ceil(log10(0.4)) - floor(log10(0.002)));
+    TH_CHECK((int)nmx == expect_x && (int)nmy == expect_y, "minor ticks: x %lu (want %d), y %lu (want %d)", (unsigned long)nmx, expect_x, (unsigned long)nmy, expect_y);
+    qsort(minor_x, nmx, sizeof(double), double_order);
+    qsort(major_x, nMx, sizeof(double), double_order);
+    for (i = 0; i < nmx && i / 8 + 1 < nMx; i++) {
+        double want = major_x[i / 8] + log10((double)(i % 8 + 2)) * (major_x[i / 8 + 1] - major_x[i / 8]);
+        misplaced += fabs(minor_x[i] - want) > 0.2;
+    }
+    TH_CHECK(nMx == 6 && misplaced == 0, "%lu decades on x; %d minor ticks away from log10(m) of their decade", (unsigned long)nMx, misplaced);
+    TH_CHECK(overlaps == 0, "%d pairs of texts overlap", overlaps);
+    TH_CHECK(placed > 0 && placed <= given && minor_labels > 0, "%d of %d point labels placed, %d minor ticks labelled", placed, given, minor_labels);
+    printf("    minor ticks x %lu, y %lu; %lu texts, none overlapping; %d of %d point labels placed, %d minor ticks labelled\n", (unsigned long)nmx,
+           (unsigned long)nmy, (unsigned long)nt, placed, given, minor_labels);
+    free(svg);
+    remove(path);
+}
+
 /* voxgi report all --quick at 16 x 16: progress on stderr, report.md, the CSV, a plot per scene and
    quantity, pictures; every method of every report in it; the CSV's front the front of its own
    rows per scene and quantity; every row of report.md the CSV's numbers, and the summary's
@@ -1642,6 +1900,9 @@ int main(int argc, char **argv)
     TH_RUN(test_bounce_reports);
     TH_RUN(test_screen_reports);
     TH_RUN(test_pareto_front);
+    TH_RUN(test_report_font);
+    TH_RUN(test_report_picture_labels_and_bar);
+    TH_RUN(test_report_plot_ticks_and_labels);
     TH_RUN(test_report_all);
     TH_RUN(test_report_stiff);
     TH_RUN(test_vct_and_report_commands);

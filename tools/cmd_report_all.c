@@ -283,7 +283,7 @@ static int all_one_scene(all_state *st, voxgi_context *ctx, voxgi_context *cpu, 
         char path[1400];
         file_name(p->file, sizeof p->file, name, p->method, "png");
         snprintf(path, sizeof path, "%s/%s", st->a->out_dir, p->file);
-        if (report_png_compare(path, p->img, R[p->quantity].image, &R[p->quantity].mask, report_exposure(R[p->quantity].image, &R[p->quantity].mask)) != 0)
+        if (report_png_compare(path, p->img, R[p->quantity].image, &R[p->quantity].mask, report_exposure(R[p->quantity].image, &R[p->quantity].mask), p->method) != 0)
             rc = cli_fail(st->s, "cannot write %s: %s", path, cli_io_why(errno));
     }
     for (k = 0; k < sc->npictures; k++) {

@@ -7,11 +7,12 @@ static const char *const svo_help =
     "Voxelizes a mesh with its material attributes and builds the sparse voxel octree: prints\n"
     "its nodes per level, bytes per occupied voxel against the dense equivalent, and the time of\n"
     "each pass (the rows of Pracuch 2016, Tables 5.1 and 5.2). --backend picks where the\n"
-    "voxelization and the octree build run (GL: flag, allocate and initialise passes per level).\n";
+    "voxelization and the octree build run (GL: flag, allocate and initialise passes per level).\n"
+    "-o FILE.svo saves the octree (voxgi_svo_write; the format: docs/volumes-and-octrees.md).\n";
 
 typedef struct svo_args {
     cli_common common;
-    const char *mesh;
+    const char *mesh, *out;
     int res, neighbours, bricks, format;
     unsigned attributes;
 } svo_args;
@@ -34,7 +35,7 @@ static void print_tables(const svo_args *a, const cli_mesh *tm, const voxgi_grid
                (unsigned long)info->neighbour_bytes, (unsigned long)info->brick_bytes, (unsigned long)info->dense_bytes, dense8, vinfo->ms, info->ms,
                info->ms_sort, info->ms_nodes, info->ms_neighbours, info->ms_values);
         for (lev = 0; lev <= info->depth; lev++) printf("%s%llu", lev ? "," : "", (unsigned long long)info->level_nodes[lev]);
-        printf("]}\n");
+        printf("]%s%s}\n", a->out ? ",\"output\":" : "", a->out ? cli_json(a->out) : "");
         return;
     }
     printf("%s: %lu triangles, %dx%dx%d voxels, depth %d\n", a->mesh, (unsigned long)cli_mesh_triangles(tm), grid->res[0], grid->res[1],
@@ -88,8 +89,13 @@ static int svo_run(cli_session *s, const svo_args *a)
     voxgi_svo_query(svo, &info);
     for (lev = 0; lev < 4; lev++) /* the dense RGBA8 (R8) equivalent, the usual yardstick */
         if (info.attributes & (1u << lev)) dense8 += (double)voxgi_grid_voxel_count(&vd.grid) * (lev == 3 ? 1 : 4);
+    if (a->out && voxgi_svo_write(c.vx, svo, a->out) != VOXGI_OK) {
+        cli_fail(s, "%s", voxgi_last_error(c.vx)); /* names the file and the reason */
+        goto done;
+    }
     cli_status_clear(s);
     print_tables(a, &tm, &vd.grid, &info, &vinfo, dense8);
+    if (a->out && !a->common.json) printf("\nwrote %s\n", a->out);
     rc = CLI_EXIT_OK;
 done:
     voxgi_svo_destroy(c.vx, svo);
@@ -118,11 +124,14 @@ int cmd_svo(int argc, char **argv)
             {.name = "--bricks", .kind = CLI_FLAG, .dst = &a.bricks, .help = "also a 4x4x4 brick per inner node (seamless trilinear sampling)"},
             {.name = "--format", .arg = "float32|float16", .kind = CLI_ENUM, .dst = &a.format, .names = cli_svo_format_names,
              .help = "how values are stored (default float32)"},
+            {.name = "-o", .arg = "FILE.svo", .kind = CLI_STRING, .dst = &a.out,
+             .help = "save the octree there (voxgi_svo_read loads it)"},
             CLI_OPT_JSON(&a.common, "one JSON object: leaf_voxels, nodes, bytes, structure_bytes, ms, ...")};
         const cli_command cmd = {.name = "svo", .help = svo_help, .column = 27, .options = options, .option_count = CLI_COUNT(options),
                                  .operand = "mesh", .operands = &a.mesh, .min_operands = 1, .max_operands = 1};
         if ((rc = cli_parse(&cmd, argc, argv)) != CLI_CONTINUE) return rc;
     }
+    if (a.out && !cli_has_extension(a.out, ".svo")) return cli_usage("svo", "-o %s: svo writes .svo files", a.out);
     cli_session_init(&s, "svo");
     return svo_run(&s, &a);
 }

@@ -14,9 +14,12 @@
 # the C++ compiler the tests build the header with (g++; the C compiler comes with it), and
 #   libgmp-dev       GMP's rationals, in which tests/test_exact.c's oracle decides exactly
 #   python3-numpy    numpy.load, the independent reader of the .npy exports (tests/test_io_export.c)
+#   libglfw3-dev     GLFW's header and library, for the windowed viewer (examples/viewer.c)
+#   xvfb, xauth      a virtual X server (and the cookie xvfb-run hands it) in which the viewer's
+#                    test opens its window headless
 set -euo pipefail
 
-packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev g++ libgmp-dev python3-numpy)
+packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev g++ libgmp-dev python3-numpy libglfw3-dev xvfb xauth)
 
 missing=()
 for p in "${packages[@]}"; do

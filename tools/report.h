@@ -2,13 +2,13 @@
  * vct|tsm|rsm|sh|ao|ssgi|linespace: their options, the scene loop with the references, the Pareto
  * front, the Markdown, CSV and SVG), the sweeps that report all runs too (each in its report's
  * file), the plot of error against time (SVG) and the picture of an image beside its reference
- * with the error's heat map (PNG). */
+ * with the error's heat map and its colour bar (PNG). */
 #ifndef VXT_REPORT_H
 #define VXT_REPORT_H
 #include "cli.h"
 #include "pareto.h"
 
-/* ------------------------------------------------------------------ the plot (cli_report.c) */
+/* ------------------------------------------------------------------ the plot (cli_figures.c) */
 typedef struct report_plot_point {
     double ms, error;     /* error <= 0 (exact) sits on a row of its own below the lowest decade */
     int series;           /* its colour and legend entry */
@@ -35,20 +35,59 @@ typedef struct report_plot {
 } report_plot;
 
 /* Error against time, log scales, the front joined, the curves dashed and clipped to the points'
-   range of errors. */
+   range of errors. Each decade a tick (class "major-x"/"major-y") and a label; 2..9 times each
+   decade a light tick ("minor-x"/"minor-y"; on y none between the exact row and the lowest
+   decade), labelled where the label's box overlaps none placed before it (3 units apart); a front
+   point's label (class "point-label") at the first of six places beside the point whose box lies
+   in the plot and clears every label and point placed before it, else left out. A text's box is
+   report_text_box's. */
 void report_plot_svg(FILE *f, const report_plot *p);
 
-/* ------------------------------------------------------------------ pictures (cli_report.c) */
+/* The box a text is taken to fill: REPORT_CHAR_WIDTH x font size per character (sans-serif's
+   average, a little wide), from 0.8 font size above its baseline to 0.2 below; anchor -1 start,
+   0 middle, 1 end. */
+#define REPORT_CHAR_WIDTH 0.6
+typedef struct report_box { double x0, y0, x1, y1; } report_box;
+report_box report_text_box(double x, double y, const char *text, double font_size, int anchor);
+/* 1 when the boxes share area (touching edges do not). */
+int report_boxes_overlap(const report_box *a, const report_box *b);
+
+/* ------------------------------------------------------------------ pictures (cli_report.c, cli_figures.c) */
 /* The exposure that puts the 95th percentile of the reference's brightest channel, over the pixels
    the mask keeps, at 0.8 (1 for a black reference). */
 float report_exposure(const float *ref, const cli_error_mask *m);
 /* The error heat map's white: a pixel's RMS difference over its channels at this share of the
-   reference's mean (over the pixels the mask keeps). */
+   reference's mean (over the pixels the mask keeps). The scale is fixed, so that pictures compare. */
 #define REPORT_HEAT_WHITE 0.5
-/* PNG at path: img, ref and the heat map of their difference side by side (4 white pixels between),
-   the images at exposure; the heat map black (no difference) through red and yellow to white
-   (REPORT_HEAT_WHITE and above), pixels the mask leaves out mid grey. 0, or -1. */
-int report_png_compare(const char *path, const float *img, const float *ref, const cli_error_mask *m, float exposure);
+/* The heat map's colour (8-bit sRGB) at t = error / REPORT_HEAT_WHITE: black at 0 through red and
+   yellow to white at 1 and above, in thirds. */
+void report_heat_rgb8(double t, unsigned char o[3]);
+
+/* An 8-bit RGB canvas (rows from the top) and text on it in a 5 x 7 bitmap font: each glyph 5 x 7
+   cells of scale x scale pixels, REPORT_GLYPH_ADVANCE cells apart; lower case drawn as upper
+   case, characters without a glyph as '?'. */
+typedef struct report_canvas { unsigned char *rgb; int w, h; } report_canvas;
+#define REPORT_GLYPH_ADVANCE 6
+/* ch's seven rows from the top, the leftmost column in bit 4. */
+const unsigned char *report_glyph(char ch);
+/* The width of text in pixels (no space after its last glyph). */
+int report_text_width(const char *text, int scale);
+/* text with its top left at (x, y) in colour, clipped to the canvas and to columns before x_end. */
+void report_text(const report_canvas *c, int x, int y, int x_end, const char *text, int scale, const unsigned char colour[3]);
+
+/* Where the picture's parts lie, for panels of w x h: a white band of labels (text at (pad, pad)
+   in each panel, the panels at x = k (w + gap) from panel_y down); under the heat map its colour
+   bar (w x bar_h at (bar_x, bar_y): 0 at its left end, REPORT_HEAT_WHITE at its right) with "0"
+   and "50%" under its ends at bar_text_y, and left of it what the bar measures. Text at scale 2
+   from w = 192 up, else 1. */
+typedef struct report_compare_layout { int width, height, scale, pad, gap, panel_y, bar_x, bar_y, bar_h, bar_text_y; } report_compare_layout;
+report_compare_layout report_compare_layout_of(int w, int h);
+/* The picture, 8-bit RGB (free() it; NULL without memory), its layout in *out: img (labelled
+   label, "method" when NULL), ref ("reference") and the heat map of their difference ("error"),
+   the images at exposure, the pixels the mask leaves out mid grey in the heat map. */
+unsigned char *report_compare_rgb8(const float *img, const float *ref, const cli_error_mask *m, float exposure, const char *label, report_compare_layout *out);
+/* The picture as a PNG at path. 0, or -1. */
+int report_png_compare(const char *path, const float *img, const float *ref, const cli_error_mask *m, float exposure, const char *label);
 
 /* 100 v as "12.34%", or "-" when v is not finite; then after. */
 void report_percent(FILE *f, double v, const char *after);

@@ -4,7 +4,7 @@
  *   voxgi info [--gl KIND] [--json]
  *   voxgi bench voxelize [MESH ...] [--methods LIST] [--min-res N] [--max-res N] [--runs R] [--csv FILE]
  *   voxgi bench rays MESH [--rays N] [--runs R] [--threads T] [--json]
- *   voxgi svo MESH [--res N] [--backend B] [--format F] [--bricks] [--neighbours] [--json]
+ *   voxgi svo MESH [--res N] [--backend B] [--format F] [--bricks] [--neighbours] [-o FILE.svo] [--json]
  *   voxgi render SCENE|MESH [--method reference|vct|tsm|rsm|sh] [--bounces B] [--spp S] [--camera EX EY EZ TX TY TZ FOVY] [--size W H] -o OUT.png|OUT.pfm
  *   voxgi report vct [--scenes LIST] [--size N] [--res LIST] [--cones LIST] [--apertures LIST] [--steps LIST] [--out DIR]
  *   voxgi report tsm [--scenes LIST] [--size N] [--map-sizes LIST] [--slices LIST] [--samples LIST] [--out DIR]
