@@ -1,4 +1,4 @@
-/* Renders your own mesh file (OBJ+MTL, OFF, STL, PLY) lit by a sun and writes a PPM image. */
+/* Renders your own mesh file (OBJ+MTL, OFF, STL, PLY, glTF) lit by a sun and writes a PPM image. */
 #define VOXGI_IMPLEMENTATION               /* in exactly one .c file of your project */
 #define VOXGI_IO_IMPLEMENTATION            /* likewise: voxgi_io.h's loaders */
 #include "../voxgi_io.h"                   /* includes voxgi.h; next to your file: "voxgi_io.h" */
