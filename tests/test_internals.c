@@ -1307,6 +1307,135 @@ static void test_regions_alone(void)
     voxgi_destroy(ctx);
 }
 
+/* Surfaces facing apart store no side plane (voxgi__inject_planes, voxgi__inject_store): a floor
+   (facing up) under a plate 1 mm above it (facing down, 1 x 1 of the floor's 2 x 2), both in one
+   layer of a 16^3 grid (a ledge 0.3 up keeps a voxel boundary from falling between them), lit by
+   a sun from above. Every voxel that holds both has a zero
+   RADIANCE_SIDE (a plane of the nearest surface's, mixed by the cones with a wall foot's mean plane,
+   let full GI through a resting box's bottom); every voxel of the floor alone keeps the floor's
+   plane (its normal up): the rule is not "no plane anywhere". */
+static void test_facing_apart_store_no_side(void)
+{
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    const float floor_q[12] = {-1, 0, -1, -1, 0, 1, 1, 0, 1, 1, 0, -1}, plate[12] = {-0.5f, 0.001f, -0.5f, 0.5f, 0.001f, -0.5f, 0.5f, 0.001f, 0.5f, -0.5f, 0.001f, 0.5f},
+                ledge[12] = {0.8f, 0.3f, 0.8f, 0.8f, 0.3f, 1, 1, 0.3f, 1, 1, 0.3f, 0.8f}; /* off-centres the grid: no voxel boundary between the two */
+    voxgi_material mat;
+    voxgi_light sun;
+    quads q;
+    voxgi_scene sc;
+    voxgi_mesh mesh;
+    voxgi_fit_desc fit;
+    voxgi_voxelize_desc xd;
+    voxgi_voxels *vox = NULL;
+    voxgi_inject_desc id;
+    voxgi_volume *vol = NULL;
+    int x, y, z, both = 0, both_bad = 0, alone = 0, alone_bad = 0;
+    memset(&mat, 0, sizeof mat);
+    mat.albedo[0] = mat.albedo[1] = mat.albedo[2] = 0.5f;
+    memset(&sun, 0, sizeof sun);
+    sun.type = VOXGI_LIGHT_DIRECTIONAL;
+    sun.direction[1] = -1;
+    sun.intensity[0] = sun.intensity[1] = sun.intensity[2] = 1;
+    q.n = 0;
+    quad(&q, floor_q, 0);
+    quad(&q, plate, 0);
+    quad(&q, ledge, 0);
+    scene_of_quads(&sc, &mesh, &q, &mat, 1, &sun, 1);
+    memset(&fit, 0, sizeof fit);
+    fit.res = 16;
+    fit.padding = 1;
+    memset(&xd, 0, sizeof xd);
+    xd.attributes = VOXGI_ATTRIBUTE_ALBEDO | VOXGI_ATTRIBUTE_NORMAL;
+    memset(&id, 0, sizeof id);
+    TH_CHECK(voxgi_fit_grid(ctx, &sc, &fit, &xd.grid) == VOXGI_OK && voxgi_voxelize(ctx, &sc, &xd, &vox) == VOXGI_OK &&
+                 voxgi_inject_light(ctx, &sc, vox, &id, &vol) == VOXGI_OK && vol->cpu[VOXGI__SIDE_SLOT][0],
+             "inject: %s", voxgi_last_error(ctx));
+    if (vol && vol->cpu[VOXGI__SIDE_SLOT][0]) {
+        const float *side = vol->cpu[VOXGI__SIDE_SLOT][0], *rad = vol->cpu[VOXGI__RADIANCE_SLOT][0];
+        const int *dm = vol->dims[0];
+        for (z = 0; z < dm[2]; z++)
+            for (y = 0; y < dm[1]; y++)
+                for (x = 0; x < dm[0]; x++) {
+                    size_t i = (size_t)x + (size_t)dm[0] * ((size_t)y + (size_t)dm[1] * (size_t)z);
+                    double cx = xd.grid.origin[0] + (x + 0.5) * xd.grid.voxel_size, cz = xd.grid.origin[2] + (z + 0.5) * xd.grid.voxel_size;
+                    double h = 0.5 * xd.grid.voxel_size, ylo = xd.grid.origin[1] + y * xd.grid.voxel_size;
+                    int under_plate = cx - h > -0.5 && cx + h < 0.5 && cz - h > -0.5 && cz + h < 0.5 && ylo < 0 && ylo + 2 * h > 0.001,
+                        off_plate = cx + h < -0.5 || cx - h > 0.5 || cz + h < -0.5 || cz - h > 0.5;
+                    if (!(rad[4 * i + 3] > 0)) continue;
+                    if (under_plate) {
+                        both++;
+                        both_bad += side[4 * i] != 0 || side[4 * i + 1] != 0 || side[4 * i + 2] != 0 || side[4 * i + 3] != 0;
+                    } else if (off_plate) {
+                        alone++;
+                        alone_bad += !(side[4 * i + 1] > 0.99f);
+                    }
+                }
+    }
+    printf("    floor and plate 1 mm apart: %d voxels hold both (%d with a side plane), %d the floor alone (%d without its plane)\n", both, both_bad, alone,
+           alone_bad);
+    TH_CHECK(both >= 16 && alone >= 16, "the scene makes %d voxels of both and %d of the floor alone", both, alone);
+    TH_CHECK(!both_bad && !alone_bad, "%d voxels of both surfaces store a side plane, %d of the floor alone store none", both_bad, alone_bad);
+    voxgi_volume_destroy(ctx, vol);
+    voxgi_voxels_destroy(ctx, vox);
+    voxgi_destroy(ctx);
+}
+
+/* The region search's second pass (voxgi__home_region): where every candidate some plane around
+   the point cuts off, the planes of the voxels between the point and a candidate alone decide. The
+   two rooms (two_rooms_surface, A lit); a point inside the wall's voxels (x 5.3) whose normal runs
+   up the wall, so the walk along it meets only surfaces; beside it a voxel of the wall's far half
+   given an odd mean plane (x = 5.2, facing +x, as an edge's voxel holds) that cuts A's voxels off
+   from the point. No segment from the point to A passes that voxel: the point's region is A. */
+static void test_home_region_second_pass(void)
+{
+    enum { X = 12, Y = 6, Z = 6, N = X * Y * Z };
+    voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
+    static float rad[4 * N], back[4 * N], side[4 * N];
+    const float *base[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    const double o[3] = {5.3, 2.5, 2.5}, up[3] = {0, 1, 0};
+    voxgi_grid g;
+    voxgi_volume_desc vd;
+    voxgi_volume *vol = NULL;
+    voxgi_cone_desc cd;
+    voxgi__cone_job J;
+    uint32_t home = 0, ra = 0;
+    int x, y, z, a;
+    memset(&g, 0, sizeof g);
+    g.res[0] = X; g.res[1] = Y; g.res[2] = Z;
+    g.voxel_size = 1;
+    memset(&vd, 0, sizeof vd);
+    for (z = 0; z < Z; z++)
+        for (y = 0; y < Y; y++)
+            for (x = 0; x < X; x++) {
+                int i = x + X * (y + Y * z), c[3], n[3];
+                float plane;
+                c[0] = x; c[1] = y; c[2] = z;
+                if (!two_rooms_surface(g.res, c, n, &plane)) continue;
+                rad[4 * i + 3] = back[4 * i + 3] = 1;
+                for (a = 0; a < 3; a++) side[4 * i + a] = (float)n[a];
+                side[4 * i + 3] = plane;
+                if (x >= 1 && x <= 6) rad[4 * i] = rad[4 * i + 1] = rad[4 * i + 2] = 1; /* A's side lit */
+            }
+    base[VOXGI__RADIANCE_SLOT] = rad;
+    base[VOXGI__BACK_SLOT] = back;
+    base[VOXGI__SIDE_SLOT] = side;
+    memset(&cd, 0, sizeof cd);
+    TH_CHECK(voxgi__volume_new(ctx, &g, &vd, VOXGI__RADIANCE_FAMILY, &vol) == VOXGI_OK && voxgi__volume_build(ctx, vol, base) == VOXGI_OK && vol->regions &&
+                 voxgi__cone_job_init(ctx, VOLUME_SOURCE(vol), &cd, &J) == VOXGI_OK && J.regions,
+             "volume: %s", voxgi_last_error(ctx));
+    if (vol && vol->regions && J.regions) {
+        float *odd = vol->cpu[VOXGI__SIDE_SLOT][0] + 4 * (size_t)(6 + X * (2 + Y * 3)); /* voxel (6, 2, 3), beside the point's (5, 2, 2) */
+        ra = vol->regions[2 + X * (2 + Y * 2)];
+        odd[0] = 1; odd[1] = odd[2] = 0; odd[3] = 5.2f;
+        TH_CHECK(voxgi__home_along(&J, o, up, 0) == 0, "the walk up the wall found a region");
+        home = voxgi__home_region(&J, o, up);
+    }
+    printf("    a point in the wall, its walk up the wall meeting only surfaces: region %u (room A %u)\n", home, ra);
+    TH_CHECK(ra > VOXGI__REGION_OPEN && home == ra, "region %u, not room A's %u", home, ra);
+    voxgi_volume_destroy(ctx, vol);
+    voxgi_destroy(ctx);
+}
+
 /* The bounces' geometric tail (voxgi__add_bounce_tail): a channel whose last bounce added light
    gets tail x that step; one whose light fell by rounding (the bounces only add light) keeps its
    light, so a dark voxel never goes below zero (at a ratio of 0.999 a bounce the tail is 999). */
@@ -2028,6 +2157,8 @@ int main(void)
     TH_RUN(test_regions_alone);
     TH_RUN(test_cone_ends_leaving_its_region);
     TH_RUN(test_bounce_tail);
+    TH_RUN(test_home_region_second_pass);
+    TH_RUN(test_facing_apart_store_no_side);
     TH_RUN(test_exact_area_light_image);
     TH_RUN(test_linespace_build);
     TH_RUN(test_linespace_rays);
