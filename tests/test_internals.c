@@ -665,6 +665,48 @@ static int two_rooms_surface(const int res[3], const int c[3], int n[3], float *
     return 1;
 }
 
+/* The two rooms' volume (two_rooms_surface; 12 x 6 x 6 voxels of 1, RADIANCE, BACK and SIDE, its
+   levels and regions): lit from A (the front of every voxel of x 1-6), or from B (the wall's back,
+   facing B, and the front of B's far wall). NULL where it cannot be made. */
+static voxgi_volume *two_rooms_volume(voxgi_context *ctx, int from_b)
+{
+    enum { X = 12, Y = 6, Z = 6, N = X * Y * Z };
+    static float rad[4 * N], back[4 * N], side[4 * N];
+    const float *base[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    voxgi_grid g;
+    voxgi_volume_desc vd;
+    voxgi_volume *vol = NULL;
+    int x, y, z, a;
+    memset(&g, 0, sizeof g);
+    g.res[0] = X; g.res[1] = Y; g.res[2] = Z;
+    g.voxel_size = 1;
+    memset(&vd, 0, sizeof vd);
+    memset(rad, 0, sizeof rad);
+    memset(back, 0, sizeof back);
+    memset(side, 0, sizeof side);
+    for (z = 0; z < Z; z++)
+        for (y = 0; y < Y; y++)
+            for (x = 0; x < X; x++) {
+                int i = x + X * (y + Y * z), c[3], n[3];
+                float plane, *lit = NULL;
+                c[0] = x; c[1] = y; c[2] = z;
+                if (!two_rooms_surface(g.res, c, n, &plane)) continue;
+                rad[4 * i + 3] = back[4 * i + 3] = 1;
+                for (a = 0; a < 3; a++) side[4 * i + a] = (float)n[a];
+                side[4 * i + 3] = plane;
+                if (!from_b && x >= 1 && x <= 6) lit = rad + 4 * i;
+                if (from_b && (x == 5 || x == 6)) lit = back + 4 * i;
+                if (from_b && x == X - 1) lit = rad + 4 * i;
+                if (lit) lit[0] = lit[1] = lit[2] = 1;
+            }
+    base[VOXGI__RADIANCE_SLOT] = rad;
+    base[VOXGI__BACK_SLOT] = back;
+    base[VOXGI__SIDE_SLOT] = side;
+    if (voxgi__volume_new(ctx, &g, &vd, VOXGI__RADIANCE_FAMILY, &vol) != VOXGI_OK) return NULL;
+    if (voxgi__volume_build(ctx, vol, base) != VOXGI_OK) { voxgi_volume_destroy(ctx, vol); return NULL; }
+    return vol;
+}
+
 /* The surfaces' labels (voxgi__volume_regions), built by hand: a closed box of 12 x 6 x 6 voxels,
    its shell one voxel thick facing in, split by a wall of no thickness on the boundary x = 6,
    which fills the columns x = 5 and 6, its lit side facing -x into room A (x 1-4); room B (x 7-10)
@@ -1381,49 +1423,24 @@ static void test_facing_apart_store_no_side(void)
 }
 
 /* The region search's second pass (voxgi__home_region): where every candidate some plane around
-   the point cuts off, the planes of the voxels between the point and a candidate alone decide. The
-   two rooms (two_rooms_surface, A lit); a point inside the wall's voxels (x 5.3) whose normal runs
-   up the wall, so the walk along it meets only surfaces; beside it a voxel of the wall's far half
+   the point cuts off, the planes of the voxels between the point and a candidate alone decide.
+   The two rooms (two_rooms_volume, lit from A); a point inside the wall's voxels (x 5.3) whose
+   normal runs up the wall, so the walk along it meets only surfaces; beside it a voxel of the wall's far half
    given an odd mean plane (x = 5.2, facing +x, as an edge's voxel holds) that cuts A's voxels off
    from the point. No segment from the point to A passes that voxel: the point's region is A. */
 static void test_home_region_second_pass(void)
 {
-    enum { X = 12, Y = 6, Z = 6, N = X * Y * Z };
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    static float rad[4 * N], back[4 * N], side[4 * N];
-    const float *base[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     const double o[3] = {5.3, 2.5, 2.5}, up[3] = {0, 1, 0};
-    voxgi_grid g;
-    voxgi_volume_desc vd;
-    voxgi_volume *vol = NULL;
+    voxgi_volume *vol = two_rooms_volume(ctx, 0);
     voxgi_cone_desc cd;
     voxgi__cone_job J;
     uint32_t home = 0, ra = 0;
-    int x, y, z, a;
-    memset(&g, 0, sizeof g);
-    g.res[0] = X; g.res[1] = Y; g.res[2] = Z;
-    g.voxel_size = 1;
-    memset(&vd, 0, sizeof vd);
-    for (z = 0; z < Z; z++)
-        for (y = 0; y < Y; y++)
-            for (x = 0; x < X; x++) {
-                int i = x + X * (y + Y * z), c[3], n[3];
-                float plane;
-                c[0] = x; c[1] = y; c[2] = z;
-                if (!two_rooms_surface(g.res, c, n, &plane)) continue;
-                rad[4 * i + 3] = back[4 * i + 3] = 1;
-                for (a = 0; a < 3; a++) side[4 * i + a] = (float)n[a];
-                side[4 * i + 3] = plane;
-                if (x >= 1 && x <= 6) rad[4 * i] = rad[4 * i + 1] = rad[4 * i + 2] = 1; /* A's side lit */
-            }
-    base[VOXGI__RADIANCE_SLOT] = rad;
-    base[VOXGI__BACK_SLOT] = back;
-    base[VOXGI__SIDE_SLOT] = side;
     memset(&cd, 0, sizeof cd);
-    TH_CHECK(voxgi__volume_new(ctx, &g, &vd, VOXGI__RADIANCE_FAMILY, &vol) == VOXGI_OK && voxgi__volume_build(ctx, vol, base) == VOXGI_OK && vol->regions &&
-                 voxgi__cone_job_init(ctx, VOLUME_SOURCE(vol), &cd, &J) == VOXGI_OK && J.regions,
-             "volume: %s", voxgi_last_error(ctx));
+    memset(&J, 0, sizeof J);
+    TH_CHECK(vol && vol->regions && voxgi__cone_job_init(ctx, VOLUME_SOURCE(vol), &cd, &J) == VOXGI_OK && J.regions, "volume: %s", voxgi_last_error(ctx));
     if (vol && vol->regions && J.regions) {
+        const int X = vol->dims[0][0], Y = vol->dims[0][1];
         float *odd = vol->cpu[VOXGI__SIDE_SLOT][0] + 4 * (size_t)(6 + X * (2 + Y * 3)); /* voxel (6, 2, 3), beside the point's (5, 2, 2) */
         ra = vol->regions[2 + X * (2 + Y * 2)];
         odd[0] = 1; odd[1] = odd[2] = 0; odd[3] = 5.2f;
@@ -1449,47 +1466,22 @@ static void test_bounce_tail(void)
 }
 
 /* A cone from an enclosed region ends, opaque, where it enters a region not inside its own,
-   whatever lies beyond. Two rooms split by a wall on a voxel boundary (two_rooms_surface), the
+   whatever lies beyond. Two rooms split by a wall on a voxel boundary (two_rooms_volume), the
    wall lit from B alone, so that room A's cones leave both its voxels out of level 0 and pass it;
    B's far wall lit too, its voxels' labels then cleared (a surface whose region is unknown, seen
    from every region). A narrow cone from A along +x: colour 0 and opacity 1; marched on past the
    wall it would reach the far wall's light. */
 static void test_cone_ends_leaving_its_region(void)
 {
-    enum { X = 12, Y = 6, Z = 6, N = X * Y * Z };
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
-    static float rad[4 * N], back[4 * N], side[4 * N];
-    const float *base[VOXGI__VOLUME_SLOTS] = {NULL, NULL, NULL, NULL, NULL, NULL, NULL};
-    voxgi_grid g;
-    voxgi_volume_desc vd;
-    voxgi_volume *vol = NULL;
+    voxgi_volume *vol = two_rooms_volume(ctx, 1);
     voxgi_cone_desc cd;
     voxgi_cone cone;
     float got[4] = {1, 1, 1, 0};
-    int x, y, z, a;
-    memset(&g, 0, sizeof g);
-    g.res[0] = X; g.res[1] = Y; g.res[2] = Z;
-    g.voxel_size = 1;
-    memset(&vd, 0, sizeof vd);
-    for (z = 0; z < Z; z++)
-        for (y = 0; y < Y; y++)
-            for (x = 0; x < X; x++) {
-                int i = x + X * (y + Y * z), c[3], n[3];
-                float plane;
-                c[0] = x; c[1] = y; c[2] = z;
-                if (!two_rooms_surface(g.res, c, n, &plane)) continue;
-                rad[4 * i + 3] = back[4 * i + 3] = 1;
-                for (a = 0; a < 3; a++) side[4 * i + a] = (float)n[a];
-                side[4 * i + 3] = plane;
-                if (x == 5 || x == 6) back[4 * i] = back[4 * i + 1] = back[4 * i + 2] = 1; /* B's side of the wall */
-                if (x == X - 1) rad[4 * i] = rad[4 * i + 1] = rad[4 * i + 2] = 1;    /* B's far wall */
-            }
-    base[VOXGI__RADIANCE_SLOT] = rad;
-    base[VOXGI__BACK_SLOT] = back;
-    base[VOXGI__SIDE_SLOT] = side;
-    TH_CHECK(voxgi__volume_new(ctx, &g, &vd, VOXGI__RADIANCE_FAMILY, &vol) == VOXGI_OK && voxgi__volume_build(ctx, vol, base) == VOXGI_OK && vol->regions,
-             "volume: %s", voxgi_last_error(ctx));
+    int X, Y, Z, y, z;
+    TH_CHECK(vol && vol->regions, "volume: %s", voxgi_last_error(ctx));
     if (!vol || !vol->regions) goto done;
+    X = vol->dims[0][0]; Y = vol->dims[0][1]; Z = vol->dims[0][2];
     TH_CHECK((vol->regions[5 + X * (3 + Y * 3)] & VOXGI__REGION_BORDER) && VOXGI__REGION_OF(vol->regions[5 + X * (3 + Y * 3)]) == vol->regions[8 + X * (3 + Y * 3)],
              "the wall's voxel is labelled %x, B %x", vol->regions[5 + X * (3 + Y * 3)], vol->regions[8 + X * (3 + Y * 3)]);
     for (z = 0; z < Z; z++)
