@@ -748,8 +748,8 @@ VOXGI_API voxgi_result voxgi_svo_sample(voxgi_context *ctx, const voxgi_svo *svo
    labels, so a read octree answers every query and traces every cone as the written one did.
    The core works on memory (a file is the same bytes): write with data == NULL (or capacity too
    small: VOXGI_ERR_BUFFER_TOO_SMALL) sets *size to the bytes needed. A GL octree is read back from
-   its buffers; read makes a CPU octree and refuses a GL context (VOXGI_ERR_UNSUPPORTED: read it on a
-   CPU context). A bad file gives VOXGI_ERR_FORMAT (truncated, wrong magic, unknown version,
+   its buffers; read makes an octree on the context's backend (on GL, its buffers), so a file written
+   on either backend is read on either. A bad file gives VOXGI_ERR_FORMAT (truncated, wrong magic, unknown version,
    counts that disagree with the size, pointers or labels out of range) with the byte offset in
    voxgi_last_error, before anything larger than the file is allocated. */
 VOXGI_API voxgi_result voxgi_svo_write_memory(voxgi_context *ctx, const voxgi_svo *svo, void *data, size_t capacity, size_t *size);
@@ -10104,6 +10104,38 @@ done:
     return r;
 }
 
+#ifndef VOXGI_NO_GL
+/* A read octree onto a GL context: its arrays into the buffers a GL build makes (the same bytes, each
+   attribute's leaf values from word gl_leaf_first), then the CPU arrays freed, as a GL octree holds none. */
+static voxgi_result voxgi__svo_upload_gl(voxgi_context *ctx, voxgi_svo *svo, const voxgi__svo_layout *L)
+{
+    voxgi__gl *gl = ctx->gl;
+    voxgi_result r;
+    int a;
+    svo->gl_child = voxgi__gl_buffer(ctx, (size_t)L->nodes * 4, svo->child);
+    if (svo->neighbour) svo->gl_neighbour = voxgi__gl_buffer(ctx, (size_t)L->nodes * 24, svo->neighbour);
+    if (svo->regions) svo->gl_regions = voxgi__gl_buffer(ctx, (size_t)L->region_words * 4, svo->regions);
+    for (a = 0; a < VOXGI__VOLUME_SLOTS; a++) {
+        uint64_t node_bytes = (L->nodes + 64 * L->bricks) * (uint64_t)L->slot_bytes[a], leaf_bytes = L->leaf_slots * (uint64_t)L->slot_bytes[a];
+        if (!(svo->info.attributes & (1u << a))) continue;
+        svo->gl_leaf_first[a] = (uint32_t)((node_bytes + 3) / 4);
+        svo->gl_values[a] = voxgi__gl_buffer(ctx, (size_t)(4 * (uint64_t)svo->gl_leaf_first[a] + (leaf_bytes + 3) / 4 * 4), NULL);
+        gl->NamedBufferSubData(svo->gl_values[a], 0, (ptrdiff_t)node_bytes, svo->node_values[a]);
+        if (leaf_bytes) gl->NamedBufferSubData(svo->gl_values[a], (ptrdiff_t)(4 * (uint64_t)svo->gl_leaf_first[a]), (ptrdiff_t)leaf_bytes, svo->leaf_values[a]);
+        voxgi__free(ctx, svo->node_values[a]);
+        voxgi__free(ctx, svo->leaf_values[a]);
+        svo->node_values[a] = svo->leaf_values[a] = NULL;
+    }
+    voxgi__free(ctx, svo->child);
+    voxgi__free(ctx, svo->neighbour);
+    voxgi__free(ctx, svo->regions);
+    svo->child = svo->neighbour = svo->regions = NULL;
+    svo->info.backend = VOXGI_BACKEND_GL;
+    if ((r = voxgi__gl_check(ctx, "uploading the octree read")) != VOXGI_OK) return r;
+    return VOXGI_OK;
+}
+#endif
+
 VOXGI_API voxgi_result voxgi_svo_read_memory(voxgi_context *ctx, const void *data, size_t size, voxgi_svo **out)
 {
     const unsigned char *p = (const unsigned char *)data;
@@ -10117,8 +10149,6 @@ VOXGI_API voxgi_result voxgi_svo_read_memory(voxgi_context *ctx, const void *dat
     int a, width;
     if (out) *out = NULL;
     if (!ctx || !out || (!data && size)) return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "ctx, data or out is NULL");
-    if (ctx->backend == VOXGI_BACKEND_GL)
-        return voxgi__fail(ctx, VOXGI_ERR_UNSUPPORTED, "octree files are read on a CPU context (VOXGI_BACKEND_CPU); this one is GL");
     if ((r = voxgi__svo_header(ctx, p, size, &info, &tiles, &flags, &region_count, &L)) != VOXGI_OK) return r;
     if (!(svo = (voxgi_svo *)voxgi__alloc_array(ctx, 1, sizeof *svo, 1))) return voxgi__fail(ctx, VOXGI_ERR_OUT_OF_MEMORY, "no memory for the octree");
     svo->info = info;
@@ -10170,6 +10200,9 @@ VOXGI_API voxgi_result voxgi_svo_read_memory(voxgi_context *ctx, const void *dat
         svo->region_count = (size_t)region_count;
         svo->info.bytes += (size_t)(4 * L.region_words);
     }
+#ifndef VOXGI_NO_GL
+    if (ctx->backend == VOXGI_BACKEND_GL && (r = voxgi__svo_upload_gl(ctx, svo, &L)) != VOXGI_OK) goto fail;
+#endif
     *out = svo;
     return VOXGI_OK;
 oom:

@@ -592,7 +592,7 @@ static int svo_same(voxgi_context *ctx, const voxgi_svo *a, const voxgi_svo *b, 
     voxgi_svo_query(b, &ib);
     s[0] = a; s[1] = b;
     if (memcmp(ia.grid.origin, ib.grid.origin, sizeof ia.grid.origin) || ia.grid.voxel_size != ib.grid.voxel_size ||
-        memcmp(ia.grid.res, ib.grid.res, sizeof ia.grid.res) || ib.backend != VOXGI_BACKEND_CPU || ia.attributes != ib.attributes || ia.format != ib.format ||
+        memcmp(ia.grid.res, ib.grid.res, sizeof ia.grid.res) || ia.attributes != ib.attributes || ia.format != ib.format ||
         ia.depth != ib.depth || ia.leaf_voxels != ib.leaf_voxels || ia.nodes != ib.nodes || ia.leaf_slots != ib.leaf_slots ||
         memcmp(ia.level_nodes, ib.level_nodes, sizeof ia.level_nodes) || ia.structure_bytes != ib.structure_bytes ||
         ia.neighbour_bytes != ib.neighbour_bytes || ia.brick_bytes != ib.brick_bytes || ia.bytes != ib.bytes || ia.dense_bytes != ib.dense_bytes) {
@@ -707,6 +707,9 @@ static voxgi_svo *svo_round_trip(voxgi_context *ctx, const voxgi_svo *svo, const
     }
     TH_CHECK(voxgi_svo_read_memory(ctx, d, *size, &back) == VOXGI_OK, "%s: read: %s", what, voxgi_last_error(ctx));
     if (back) {
+        voxgi_svo_info bi;
+        voxgi_svo_query(back, &bi);
+        TH_CHECK(bi.backend == VOXGI_BACKEND_CPU, "%s: read on a CPU context, the octree is on backend %d", what, (int)bi.backend);
         TH_CHECK(svo_same(ctx, svo, back, what, queries), "%s: the read octree answers otherwise", what);
         again = svo_bytes(ctx, back, &size2);
         TH_CHECK(again && size2 == *size && !memcmp(again, d, *size), "%s: the read octree writes other bytes", what);
@@ -967,10 +970,11 @@ static void test_svo_file_refusals(void)
     memcpy(bad, d, size); le_put(bad, 72, 8, 0xFFFFFFFFFFull);
     TH_CHECK(refused_with(ctx, svo_load_exact(ctx, bad, size, &got), got, "byte 72:"), "inner tiles that disagree with the levels");
     TH_CHECK(refused_with(ctx, voxgi_svo_read_memory(ctx, NULL, 0, &got), got, "truncated at byte 0"), "an empty file");
-    if (have_gl()) {
+    if (have_gl()) { /* on GL the same checks refuse before any buffer is made */
         voxgi_context *gl = make_ctx(VOXGI_BACKEND_GL, 0);
-        TH_CHECK(gl && voxgi_svo_read_memory(gl, d, size, &got) == VOXGI_ERR_UNSUPPORTED && !got && strstr(voxgi_last_error(gl), "CPU"),
-                 "a GL context read an octree: %s", gl ? voxgi_last_error(gl) : "no context");
+        memcpy(bad, d, size); le_put(bad, (size_t)regions_at + 4, 4, regions);
+        TH_CHECK(gl && refused_with(gl, voxgi_svo_read_memory(gl, bad, size, &got), got, "region label"), "GL: a region label out of range");
+        TH_CHECK(gl && refused_with(gl, voxgi_svo_read_memory(gl, d, size - 1, &got), got, "truncated"), "GL: a truncated file");
         voxgi_destroy(gl);
     }
     free(bad);
@@ -988,7 +992,10 @@ done:
 /* A GL octree's file (its buffers read back) read on a CPU context answers every query as the GL
    octree does (svo_same: lookups, node slots, neighbours and bricks, bit for bit): the
    material sphere's in float16 with neighbours and bricks, and the lit leak room's two-sided
-   radiance with its region labels; the file of the read octree is the GL one's, byte for byte. */
+   radiance with its region labels; the file of the read octree is the GL one's, byte for byte.
+   The same file read on GL makes a GL octree that answers every query and traces every cone
+   (points' cones and single cones) as the GL octree did, bit for bit, and
+   writes the same bytes; a CPU octree's file read on GL writes the CPU one's bytes. */
 static void test_gl_svo_file_read_on_cpu(void)
 {
     voxgi_context *gl, *cpu;
@@ -1032,6 +1039,41 @@ static void test_gl_svo_file_read_on_cpu(void)
         TH_CHECK(d && voxgi_svo_read_memory(cpu, d, size, &back) == VOXGI_OK, "read: %s", voxgi_last_error(cpu));
         TH_CHECK(back && svo_same(gl, svo, back, k ? "GL leak room radiance" : "GL sphere", &queries), "the read octree answers otherwise than the GL one");
         TH_CHECK(back && (again = svo_bytes(cpu, back, &size2)) && size2 == size && !memcmp(again, d, size), "the read octree writes other bytes");
+        free(again);
+        again = NULL;
+        voxgi_svo_destroy(cpu, back);
+        back = NULL;
+        { /* read on GL */
+            voxgi_svo_info bi;
+            TH_CHECK(d && voxgi_svo_read_memory(gl, d, size, &back) == VOXGI_OK, "read on GL: %s", voxgi_last_error(gl));
+            voxgi_svo_query(back, &bi);
+            TH_CHECK(back && bi.backend == VOXGI_BACKEND_GL, "read on GL, the octree is on backend %d", (int)bi.backend);
+            TH_CHECK(back && svo_same(gl, svo, back, k ? "GL leak room radiance read on GL" : "GL sphere read on GL", &queries), "the octree read on GL answers otherwise");
+            TH_CHECK(back && (again = svo_bytes(gl, back, &size2)) && size2 == size && !memcmp(again, d, size), "the octree read on GL writes other bytes");
+            if (back && k == 1) {
+                enum { N = 64 };
+                float pos[3 * N], nrm[3 * N];
+                voxgi_cone single[N];
+                int i;
+                for (i = 0; i < N; i++) { /* points on the room's floor and walls, normals into the room */
+                    int axis = i % 3;
+                    float u = (float)((i * 37) % 64) / 64.0f, v = (float)((i * 11) % 64) / 64.0f;
+                    pos[3 * i] = axis == 0 ? -0.98f : -0.9f + 1.8f * u; /* the room: x and z -1..1, y 0..2 */
+                    pos[3 * i + 1] = axis == 1 ? 0.02f : 0.1f + 1.8f * (axis == 0 ? u : v);
+                    pos[3 * i + 2] = axis == 2 ? -0.98f : -0.9f + 1.8f * v;
+                    nrm[3 * i] = axis == 0; nrm[3 * i + 1] = axis == 1; nrm[3 * i + 2] = axis == 2;
+                    memset(&single[i], 0, sizeof single[i]);
+                    memcpy(single[i].origin, pos + 3 * i, sizeof single[i].origin);
+                    memcpy(single[i].direction, nrm + 3 * i, sizeof single[i].direction);
+                    single[i].half_angle = 0.3f;
+                }
+                TH_CHECK(svo_same_cones(gl, svo, back, N, pos, nrm, single), "the octree read on GL traces other cones");
+            }
+            free(again);
+            again = NULL;
+            voxgi_svo_destroy(gl, back);
+            back = NULL;
+        }
         printf("    %s: %lu bytes%s\n", k ? "GL leak room radiance" : "GL sphere", (unsigned long)size, k && d ? (le_at(d, 216, 8) > 2 ? ", with regions" : ", no regions") : "");
         free(d); free(again);
         d = again = NULL;
