@@ -1,13 +1,16 @@
 /* examples/viewer.c - a window onto voxgi's images (GLFW, OpenGL 4.5 core): a built-in scene or a
    mesh file (voxgi_io.h), orbited with the mouse, lit by a light the mouse moves, rendered by voxel
    cone tracing on the window's own GL context (voxgi_render on GL) or by the direct light or the
-   path-traced reference, shown as a texture on the window.
+   path-traced reference, shown as a texture on the window; or the voxels themselves, drawn as
+   cubes (one instanced draw of their outer faces, coloured by the voxels' albedo).
        viewer [SCENE|MESH] [options]      (viewer --help lists them and the keys)
    Headless (tests, Xvfb): --frames N --screenshot out.ppm|out.png draws N frames, saves the last
    one's pixels as the window shows them (glReadPixels) and exits. Exit 77: no window or no GL 4.5
    core context here. The scene is re-rendered only when the view, the light, the method or the
    window's size changes; its voxels are made once (voxgi_render_voxelize) and only the light is
-   injected again. Links the implementation object (build/voxgi_impl.o) and GLFW. */
+   injected again. --voxels-npy PREFIX saves the voxels shown (PREFIX.npy, PREFIX.albedo.npy) and
+   prints their grid, so a test can draw them its own way. Links the implementation object
+   (build/voxgi_impl.o) and GLFW. */
 #include "../voxgi.h"
 #include "../voxgi_io.h"       /* the mesh loaders */
 #include "../tools/image_io.h" /* the voxgi tool's PNG writer (vxt_write_png8) */
@@ -23,7 +26,10 @@
     X(PFNGLBINDTEXTUREUNITPROC, glBindTextureUnit) X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer) X(PFNGLVIEWPORTPROC, glViewport) \
     X(PFNGLDISABLEPROC, glDisable) X(PFNGLCREATEVERTEXARRAYSPROC, glCreateVertexArrays) X(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray) \
     X(PFNGLDRAWARRAYSPROC, glDrawArrays) X(PFNGLREADBUFFERPROC, glReadBuffer) X(PFNGLPIXELSTOREIPROC, glPixelStorei) \
-    X(PFNGLREADPIXELSPROC, glReadPixels) X(PFNGLCLEARCOLORPROC, glClearColor) X(PFNGLCLEARPROC, glClear) X(PFNGLGETSTRINGPROC, glGetString)
+    X(PFNGLREADPIXELSPROC, glReadPixels) X(PFNGLCLEARCOLORPROC, glClearColor) X(PFNGLCLEARPROC, glClear) X(PFNGLGETSTRINGPROC, glGetString) \
+    X(PFNGLCREATEBUFFERSPROC, glCreateBuffers) X(PFNGLNAMEDBUFFERDATAPROC, glNamedBufferData) X(PFNGLDELETEBUFFERSPROC, glDeleteBuffers) \
+    X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase) X(PFNGLDRAWARRAYSINSTANCEDPROC, glDrawArraysInstanced) X(PFNGLENABLEPROC, glEnable) \
+    X(PFNGLPROGRAMUNIFORMMATRIX4FVPROC, glProgramUniformMatrix4fv) X(PFNGLPROGRAMUNIFORM3FPROC, glProgramUniform3f)
 #define GL_DECLARE(type, name) static type name;
 #define GL_LOAD(type, name) name = (type)glfwGetProcAddress(#name);
 GL_FUNCTIONS(GL_DECLARE)
@@ -38,13 +44,39 @@ static const char *fs = "#version 450 core\n layout(binding = 0) uniform sampler
     "  if (p.x < n.x && p.y < n.y) c = clamp(exposure * texelFetch(image, ivec2(p.x, n.y - 1 - p.y), 0).rgb, 0.0, 1.0);\n"
     "  colour = vec4(mix(12.92 * c, 1.055 * pow(c, vec3(1 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308))), 1); }\n";
 
-/* The methods a key steps through: cone tracing (on GL), the direct light alone, the reference. */
-typedef struct method { const char *name; voxgi_render_method method; int direct_only; } method;
-static const method methods[] = {{"vct", VOXGI_RENDER_VCT, 0}, {"direct", VOXGI_RENDER_VCT, 1}, {"reference", VOXGI_RENDER_REFERENCE, 0}};
+/* The voxels as cubes: one instance per voxel with an outer face, 36 vertices (6 faces x 2 triangles),
+   a face between two set voxels collapsed to a point. Each face's colour is the voxel's albedo
+   times a fixed shade per face direction (+x -x +y -y +z -z: the top brightest, the bottom darkest),
+   through the same transfer as the image (and tests/viewer_voxels.py's ray cast). */
+static const char *cube_vs = "#version 450 core\n"
+    "struct voxel { ivec4 at_faces; vec4 albedo; };\n"
+    "layout(std430, binding = 0) readonly buffer voxels { voxel v[]; };\n"
+    "layout(location = 0) uniform mat4 view_projection;\n"
+    "layout(location = 1) uniform vec3 origin;\n"
+    "layout(location = 2) uniform float voxel_size;\n"
+    "out vec3 colour;\n"
+    "const float shade[6] = float[](0.8, 0.8, 1.0, 0.5, 0.65, 0.65);\n"
+    "const int corner[6] = int[](0, 1, 2, 0, 2, 3);\n"
+    "void main() {\n"
+    "  voxel x = v[gl_InstanceID]; int face = gl_VertexID / 6, axis = face / 2, c = corner[gl_VertexID % 6];\n"
+    "  int u = (axis + 1) % 3, w = (axis + 2) % 3;\n"
+    "  vec3 p = vec3(0); p[axis] = (face & 1) == 0 ? 1.0 : 0.0;\n"
+    "  p[u] = (c == 1 || c == 2) ? 1.0 : 0.0; p[w] = c >= 2 ? 1.0 : 0.0;\n"
+    "  colour = x.albedo.rgb * shade[face];\n"
+    "  gl_Position = ((x.at_faces.w >> face) & 1) != 0 ? view_projection * vec4(origin + voxel_size * (vec3(x.at_faces.xyz) + p), 1) : vec4(0, 0, 2, 1);\n"
+    "}\n";
+static const char *cube_fs = "#version 450 core\n layout(location = 3) uniform float exposure;\n in vec3 colour; out vec4 frag;\n"
+    "void main() { vec3 c = clamp(exposure * colour, 0.0, 1.0);\n"
+    "  frag = vec4(mix(12.92 * c, 1.055 * pow(c, vec3(1 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308))), 1); }\n";
+
+/* The methods a key steps through: cone tracing (on GL), the direct light alone, the reference, the voxels. */
+typedef struct method { const char *name; voxgi_render_method method; int direct_only, voxels; } method;
+static const method methods[] = {{"vct", VOXGI_RENDER_VCT, 0, 0}, {"direct", VOXGI_RENDER_VCT, 1, 0}, {"reference", VOXGI_RENDER_REFERENCE, 0, 0},
+                                 {"voxels", VOXGI_RENDER_VCT, 0, 1}};
 enum { METHODS = sizeof methods / sizeof methods[0] };
 
 static const char *keys = "keys: left drag orbit, scroll zoom, right drag (or shift + left drag) move the light, "
-                          "M next method (1 vct, 2 direct, 3 reference), +/- exposure, R reset, P screenshot viewer.png, Q quit";
+                          "M next method (1 vct, 2 direct, 3 reference, 4 voxels), +/- exposure, R reset, P screenshot viewer.png, Q quit";
 
 /* What the callbacks change. */
 typedef struct viewer {
@@ -148,7 +180,7 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     if (action != GLFW_PRESS) return;
     switch (key) {
     case GLFW_KEY_M: v->method = (v->method + 1) % METHODS, v->dirty = 1; break;
-    case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: v->method = key - GLFW_KEY_1, v->dirty = 1; break;
+    case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4: v->method = key - GLFW_KEY_1, v->dirty = 1; break;
     case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: v->exposure *= 1.25f; break;
     case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: v->exposure /= 1.25f; break;
     case GLFW_KEY_R:
@@ -160,6 +192,110 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     case GLFW_KEY_Q: case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(w, 1); break;
     default: break;
     }
+}
+
+/* The cubes' instances (as cube_vs reads them): every set voxel with a face on an empty voxel or the
+   grid's edge, that face mask and its albedo (0.8 grey where the voxels hold none). Returns the
+   instances into *buffer and their count, or -1 (voxgi's message printed). */
+typedef struct cube { int32_t at_faces[4]; float albedo[4]; } cube;
+static long cube_instances(voxgi_context *ctx, const voxgi_voxels *vox, GLuint *buffer)
+{
+    voxgi_voxels_info in;
+    uint32_t *bits = NULL;
+    float *albedo = NULL;
+    cube *cubes = NULL;
+    size_t bytes = 0, set = 0, n = 0;
+    long count = -1;
+    int64_t c[3], res[3];
+    int a, f;
+    voxgi_voxels_query(vox, &in);
+    for (a = 0; a < 3; a++) res[a] = in.grid.res[a];
+    if (voxgi_voxels_read(ctx, vox, NULL, 0, &bytes) != VOXGI_OK || !(bits = (uint32_t *)malloc(bytes)) ||
+        voxgi_voxels_read(ctx, vox, bits, bytes, NULL) != VOXGI_OK)
+        goto done;
+    if ((in.attributes & VOXGI_ATTRIBUTE_ALBEDO) &&
+        (!(albedo = (float *)malloc(in.voxel_count * 12 + 12)) ||
+         voxgi_voxels_read_attribute(ctx, vox, VOXGI_ATTRIBUTE_ALBEDO, albedo, in.voxel_count * 12 + 12, NULL) != VOXGI_OK))
+        goto done;
+    if (!(cubes = (cube *)malloc((in.voxel_count + 1) * sizeof *cubes))) goto done;
+    for (c[2] = 0; c[2] < res[2]; c[2]++)
+        for (c[1] = 0; c[1] < res[1]; c[1]++)
+            for (c[0] = 0; c[0] < res[0]; c[0]++) {
+                int faces = 0;
+                if (!voxgi_bit_get(bits, (uint64_t)(c[0] + res[0] * (c[1] + res[1] * c[2])))) continue;
+                for (f = 0; f < 6; f++) { /* +x -x +y -y +z -z: the neighbour across the face */
+                    int64_t q[3] = {c[0], c[1], c[2]};
+                    q[f / 2] += f & 1 ? -1 : 1;
+                    if (q[f / 2] < 0 || q[f / 2] >= res[f / 2] || !voxgi_bit_get(bits, (uint64_t)(q[0] + res[0] * (q[1] + res[1] * q[2])))) faces |= 1 << f;
+                }
+                if (faces) {
+                    cube *x = &cubes[n++];
+                    for (a = 0; a < 3; a++) {
+                        x->at_faces[a] = (int32_t)c[a];
+                        x->albedo[a] = albedo ? albedo[3 * set + (size_t)a] : 0.8f;
+                    }
+                    x->at_faces[3] = faces, x->albedo[3] = 1;
+                }
+                set++;
+            }
+    glCreateBuffers(1, buffer);
+    glNamedBufferData(*buffer, (GLsizeiptr)((n ? n : 1) * sizeof *cubes), cubes, GL_STATIC_DRAW);
+    count = (long)n;
+done:
+    if (count < 0) fprintf(stderr, "viewer: the voxels: %s\n", voxgi_last_error(ctx));
+    free(bits);
+    free(albedo);
+    free(cubes);
+    return count;
+}
+
+/* The camera's view and projection (gluLookAt up +Y, gluPerspective) in column-major order, so that a
+   pixel's centre sees along voxgi's ray through it; near and far bound the box [lo, hi]. */
+static void view_projection(const voxgi_camera *c, int w, int h, const double lo[3], const double hi[3], float m[16])
+{
+    double f[3] = {c->target[0] - c->eye[0], c->target[1] - c->eye[1], c->target[2] - c->eye[2]}, r[3], u[3], far = 0, near, t, p[16], v[16];
+    int i, j, k;
+    normalize3(f);
+    camera_frame(c, r, u);
+    for (k = 0; k < 3; k++) far += fmax((lo[k] - c->eye[k]) * (lo[k] - c->eye[k]), (hi[k] - c->eye[k]) * (hi[k] - c->eye[k]));
+    far = 1.01 * sqrt(far);
+    near = far * 1e-4;
+    t = 1 / tan(c->fovy_degrees * 3.14159265358979 / 360);
+    memset(p, 0, sizeof p);
+    memset(v, 0, sizeof v);
+    p[0] = t * h / w, p[5] = t, p[10] = -(far + near) / (far - near), p[11] = -1, p[14] = -2 * far * near / (far - near);
+    for (k = 0; k < 3; k++) {
+        v[4 * k] = r[k], v[4 * k + 1] = u[k], v[4 * k + 2] = -f[k];
+        v[12] -= r[k] * c->eye[k], v[13] -= u[k] * c->eye[k], v[14] += f[k] * c->eye[k];
+    }
+    v[15] = 1;
+    for (i = 0; i < 4; i++) /* column i of p * v */
+        for (j = 0; j < 4; j++) {
+            double s = 0;
+            for (k = 0; k < 4; k++) s += p[4 * k + j] * v[4 * i + k];
+            m[4 * i + j] = (float)s;
+        }
+}
+
+/* A program from a vertex and a fragment shader's source; 0 (its log printed) when it does not link. */
+static GLuint program(const char *vertex, const char *fragment)
+{
+    GLuint prog = glCreateProgram(), shader;
+    GLint linked = 0;
+    char log[1024];
+    int i;
+    for (i = 0; i < 2; i++) {
+        shader = glCreateShader(i ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER);
+        glShaderSource(shader, 1, i ? &fragment : &vertex, NULL);
+        glCompileShader(shader);
+        glAttachShader(prog, shader);
+    }
+    glLinkProgram(prog);
+    glGetProgramiv(prog, GL_LINK_STATUS, &linked);
+    if (linked) return prog;
+    glGetProgramInfoLog(prog, sizeof log, NULL, log);
+    fprintf(stderr, "viewer: a display shader: %s\n", log);
+    return 0;
 }
 
 /* The window's pixels (the back buffer, as drawn) into a PPM or PNG, rows from the top; 0 on success. */
@@ -190,19 +326,20 @@ static int usage(FILE *to)
 {
     fprintf(to, "usage: viewer [SCENE|MESH] [options]\n"
                 "  SCENE: a built-in scene (%s; default cornell-box), MESH: .obj .off .stl .ply .gltf .glb\n"
-                "  --method vct|direct|reference   the first method (default vct: cone tracing on GL)\n"
+                "  --method vct|direct|reference|voxels  the first method (default vct: cone tracing on GL)\n"
                 "  --size W H                      the window's size in pixels (default 256 256)\n"
                 "  --camera EX EY EZ TX TY TZ FOVY the first view (default: the scene's, or the mesh framed)\n"
                 "  --spp N                         reference: paths per pixel (default 4)\n"
                 "  --frames N                      draw N frames, then exit (headless runs, tests)\n"
                 "  --screenshot OUT.ppm|OUT.png    with --frames: save the last frame's pixels\n"
+                "  --voxels-npy PREFIX             save the voxels (PREFIX.npy occupancy, PREFIX.albedo.npy) and print their grid\n"
                 "%s\n", voxgi_builtin_scene_names(), keys);
     return to == stdout ? 0 : 2;
 }
 
 int main(int argc, char **argv)
 {
-    const char *what = "cornell-box", *shot = NULL;
+    const char *what = "cornell-box", *shot = NULL, *voxels_npy = NULL;
     int size[2] = {256, 256}, frames = 0, spp = 4, have_camera = 0, i, k, ok = 1, frame, lit = 0, fw = 0, fh = 0, w = 0, h = 0, rc = 0;
     double cam[7];
     viewer v;
@@ -213,8 +350,9 @@ int main(int argc, char **argv)
     voxgi_context *ctx = NULL;
     voxgi_voxels *voxels = NULL;
     GLFWwindow *win;
-    GLuint prog, shader, vao, tex = 0;
-    GLint linked = 0;
+    GLuint prog, cube_prog, vao, tex = 0, cube_buffer = 0;
+    long cubes = -1;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     float *rgb = NULL;
     char err[512], line[1024];
 
@@ -242,6 +380,8 @@ int main(int argc, char **argv)
             if ((frames = atoi(argv[++i])) < 1) return usage(stderr);
         } else if (strcmp(a, "--screenshot") == 0 && more >= 1) {
             shot = argv[++i];
+        } else if (strcmp(a, "--voxels-npy") == 0 && more >= 1) {
+            voxels_npy = argv[++i];
         } else if (a[0] != '-') {
             what = a;
         } else {
@@ -289,7 +429,6 @@ int main(int argc, char **argv)
         }
         scene = bs.scene, v.camera = bs.camera;
     } else {
-        double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
         if (voxgi_io_load_mesh(what, &m, err, sizeof err) != 0) {
             fprintf(stderr, "%s\n", err);
             rc = 1;
@@ -301,11 +440,16 @@ int main(int argc, char **argv)
             rc = 1;
             goto done;
         }
-        for (i = 0; i < (int)scene.meshes[0].vertex_count; i++)
-            for (k = 0; k < 3; k++) lo[k] = fmin(lo[k], scene.meshes[0].positions[3 * i + k]), hi[k] = fmax(hi[k], scene.meshes[0].positions[3 * i + k]);
         v.camera.width = size[0], v.camera.height = size[1];
-        voxgi_camera_frame_bounds(lo, hi, &v.camera);
     }
+    /* The scene's box (positions as given: voxgi_scene.origin is zero here), to frame a mesh and bound the cubes' depth. */
+    for (i = 0; i < (int)scene.mesh_count; i++) {
+        const voxgi_mesh *mesh = &scene.meshes[i];
+        size_t j;
+        for (j = 0; mesh->positions && j < mesh->vertex_count; j++)
+            for (k = 0; k < 3; k++) lo[k] = fmin(lo[k], mesh->positions[3 * j + (size_t)k]), hi[k] = fmax(hi[k], mesh->positions[3 * j + (size_t)k]);
+    }
+    if (m.vertex_count) voxgi_camera_frame_bounds(lo, hi, &v.camera);
     if (have_camera) {
         for (k = 0; k < 3; k++) v.camera.eye[k] = cam[k], v.camera.target[k] = cam[3 + k];
         v.camera.fovy_degrees = cam[6];
@@ -333,19 +477,8 @@ int main(int argc, char **argv)
     v.home = v.camera, v.home_count = v.light_count, v.home_light = v.lights[0];
     scene.lights = v.lights;
 
-    /* 3. The program that shows the image. */
-    prog = glCreateProgram();
-    for (i = 0; i < 2; i++) {
-        shader = glCreateShader(i ? GL_FRAGMENT_SHADER : GL_VERTEX_SHADER);
-        glShaderSource(shader, 1, i ? &fs : &vs, NULL);
-        glCompileShader(shader);
-        glAttachShader(prog, shader);
-    }
-    glLinkProgram(prog);
-    glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-    if (!linked) {
-        glGetProgramInfoLog(prog, sizeof line, NULL, line);
-        fprintf(stderr, "viewer: the display shaders: %s\n", line);
+    /* 3. The programs that show the image and the cubes. */
+    if (!(prog = program(vs, fs)) || !(cube_prog = program(cube_vs, cube_fs))) {
         rc = 1;
         goto done;
     }
@@ -375,8 +508,40 @@ int main(int argc, char **argv)
             if (me->method == VOXGI_RENDER_REFERENCE) d.samples = spp;
             scene.light_count = v.light_count;
             /* the geometry stands still: its voxels once, then only the light is injected again */
-            if (me->method == VOXGI_RENDER_VCT && !voxels && voxgi_render_voxelize(ctx, &scene, &d, &voxels) != VOXGI_OK) voxels = NULL;
+            if ((me->method == VOXGI_RENDER_VCT || voxels_npy) && !voxels) {
+                voxgi_voxels_info in;
+                if (voxgi_render_voxelize(ctx, &scene, &d, &voxels) != VOXGI_OK) {
+                    fprintf(stderr, "viewer: voxgi: %s\n", voxgi_last_error(ctx));
+                    rc = 1;
+                    break;
+                }
+                voxgi_voxels_query(voxels, &in);
+                printf("viewer: voxels %d x %d x %d, origin %.9g %.9g %.9g, voxel size %.9g, %llu set\n", in.grid.res[0], in.grid.res[1], in.grid.res[2],
+                       in.grid.origin[0], in.grid.origin[1], in.grid.origin[2], in.grid.voxel_size, (unsigned long long)in.voxel_count);
+                if (voxels_npy) {
+                    snprintf(line, sizeof line, "%s.npy", voxels_npy);
+                    if (voxgi_io_write_npy(ctx, voxels, line, err, sizeof err) == 0) {
+                        snprintf(line, sizeof line, "%s.albedo.npy", voxels_npy);
+                        if (voxgi_io_write_npy_attribute(ctx, voxels, VOXGI_ATTRIBUTE_ALBEDO, line, err, sizeof err) == 0) err[0] = 0;
+                    }
+                    if (err[0]) {
+                        fprintf(stderr, "viewer: %s\n", err);
+                        rc = 1;
+                        break;
+                    }
+                }
+            }
             if (me->method == VOXGI_RENDER_VCT) d.voxels = voxels;
+            if (me->voxels) { /* the cubes: their instances once, drawn below every frame */
+                if (cubes < 0 && (cubes = cube_instances(ctx, voxels, &cube_buffer)) < 0) {
+                    rc = 1;
+                    break;
+                }
+                snprintf(line, sizeof line, "voxgi viewer - voxels: %ld cubes - M method, left drag orbit, +/- exposure, P screenshot", cubes);
+                glfwSetWindowTitle(win, line);
+                v.dirty = 0;
+                goto draw;
+            }
             if (fw != w || fh != h) {
                 free(rgb);
                 glDeleteTextures(1, &tex);
@@ -400,6 +565,7 @@ int main(int argc, char **argv)
             glTextureSubImage2D(tex, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, rgb);
             v.dirty = 0;
         }
+    draw:
         /* voxgi leaves its own GL state bound: set all this pass needs */
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glViewport(0, 0, fw, fh);
@@ -408,12 +574,28 @@ int main(int argc, char **argv)
         glDisable(GL_SCISSOR_TEST);
         glDisable(GL_CULL_FACE);
         glClearColor(0, 0, 0, 1);
-        glClear(GL_COLOR_BUFFER_BIT);
-        glUseProgram(prog);
-        glProgramUniform1f(prog, 0, v.exposure);
-        glBindTextureUnit(0, tex);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glBindVertexArray(vao);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
+        if (methods[v.method].voxels) { /* the cubes, nearest in front */
+            voxgi_voxels_info in;
+            float vp[16];
+            voxgi_voxels_query(voxels, &in);
+            view_projection(&v.camera, fw, fh, lo, hi, vp);
+            glEnable(GL_DEPTH_TEST);
+            glUseProgram(cube_prog);
+            glProgramUniformMatrix4fv(cube_prog, 0, 1, GL_FALSE, vp);
+            glProgramUniform3f(cube_prog, 1, (float)in.grid.origin[0], (float)in.grid.origin[1], (float)in.grid.origin[2]);
+            glProgramUniform1f(cube_prog, 2, (float)in.grid.voxel_size);
+            glProgramUniform1f(cube_prog, 3, v.exposure);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, cube_buffer);
+            glDrawArraysInstanced(GL_TRIANGLES, 0, 36, (GLsizei)cubes);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+        } else {
+            glUseProgram(prog);
+            glProgramUniform1f(prog, 0, v.exposure);
+            glBindTextureUnit(0, tex);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        }
         if ((shot && frame == frames - 1) || v.save) {
             const char *path = v.save ? "viewer.png" : shot;
             if (save_pixels(path, fw, fh) != 0) fprintf(stderr, "viewer: cannot write %s\n", path), rc = 1;
@@ -425,6 +607,7 @@ int main(int argc, char **argv)
         else glfwWaitEventsTimeout(0.1);
     }
 done:
+    if (cube_buffer) glDeleteBuffers(1, &cube_buffer);
     free(rgb);
     free(v.lights);
     voxgi_voxels_destroy(ctx, voxels);
