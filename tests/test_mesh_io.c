@@ -283,6 +283,60 @@ static void test_obj_mtl_scene_renders(void)
     voxgi_io_mesh_free(&m);
 }
 
+/* MTL opacity reaches the shadows: a wall (Kd 0.5) at z = 0 facing the camera, lit by a sun
+   travelling down and back along (0, -1, -1) / sqrt 2, and above the view at z = 2 two strips the
+   camera does not see, an opaque one (d 1) over x 0.1..1 and a translucent one (d 0.25, so
+   transparency 0.75) over x 1..2, both over y 1.5..2.5: the sun's rays through them land on the
+   wall at y -0.5..0.5, which pixel rows 3 and 4 lie in whole. Rendered by the direct light (cone tracing's shadow rays, which pass
+   translucent surfaces with their transparency; CPU, 16 x 8): a lit wall pixel shows
+   albedo E cos 45 / pi, one under the opaque strip 0, one under the translucent strip 0.75 of
+   the lit one. d read as transparency (or Tr as opacity) swaps them. */
+static void test_mtl_opacity_shadows(void)
+{
+    static const char mtl[] = "newmtl wall\nKd 0.5 0.5 0.5\nnewmtl blind\nKd 0.5 0.5 0.5\nd 1\nnewmtl veil\nKd 0.5 0.5 0.5\nd 0.25\n";
+    static const char obj[] = "mtllib shadows.mtl\n"
+                              "v -3 -2 0\nv 3 -2 0\nv 3 2 0\nv -3 2 0\n"
+                              "v 0.1 1.5 2\nv 1 1.5 2\nv 1 2.5 2\nv 0.1 2.5 2\n"
+                              "v 1 1.5 2\nv 2 1.5 2\nv 2 2.5 2\nv 1 2.5 2\n"
+                              "usemtl wall\nf 1 2 3 4\nusemtl blind\nf 5 6 7 8\nusemtl veil\nf 9 10 11 12\n";
+    const double pi = 3.14159265358979323846, irradiance = 2, lit = 0.5 * irradiance * sqrt(0.5) / pi;
+    voxgi_light sun;
+    voxgi_io_mesh m;
+    voxgi_scene scene;
+    voxgi_desc desc;
+    voxgi_render_desc d;
+    voxgi_context *ctx = NULL;
+    float rgb[16 * 8 * 3];
+    write_text("shadows.mtl", mtl);
+    if (!load_ok(write_text("shadows.obj", obj), &m)) return;
+    scene = voxgi_io_mesh_scene(&m);
+    memset(&sun, 0, sizeof sun);
+    sun.type = VOXGI_LIGHT_DIRECTIONAL;
+    sun.direction[1] = sun.direction[2] = (float)-sqrt(0.5);
+    sun.intensity[0] = sun.intensity[1] = sun.intensity[2] = (float)irradiance;
+    scene.lights = &sun;
+    scene.light_count = 1;
+    memset(&desc, 0, sizeof desc);
+    desc.backend = VOXGI_BACKEND_CPU;
+    memset(&d, 0, sizeof d);
+    d.method = VOXGI_RENDER_VCT;
+    d.direct_only = 1;
+    d.camera.eye[2] = 4; /* looking down -z: pixel column c at x = (2 (c + 0.5) / 16 - 1) 2.91, row r at y = (1 - 2 (r + 0.5) / 8) 1.46 */
+    d.camera.fovy_degrees = 40;
+    d.camera.width = 16, d.camera.height = 8;
+    TH_CHECK(voxgi_create(&desc, &ctx) == VOXGI_OK, "no CPU context");
+    if (ctx && voxgi_render(ctx, &scene, &d, rgb, sizeof rgb, NULL) == VOXGI_OK) {
+        const float *sunlit = rgb + 3 * (0 * 16 + 9), *under_blind = rgb + 3 * (4 * 16 + 9), *under_veil = rgb + 3 * (4 * 16 + 12); /* x 0.55, 0.55, 1.64 */
+        printf("    wall: lit %g (E cos 45 albedo / pi %g), under the opaque strip %g, under the translucent one %g (0.75 of lit: %g)\n", sunlit[1], lit,
+               under_blind[1], under_veil[1], 0.75 * lit);
+        TH_CHECK(fabs(sunlit[1] - lit) < 1e-3 * lit, "the lit wall shows %g, not %g", sunlit[1], lit);
+        TH_CHECK(under_blind[1] == 0, "under the opaque strip (d 1): %g, not 0", under_blind[1]);
+        TH_CHECK(fabs(under_veil[1] - 0.75 * lit) < 1e-3 * lit, "under the translucent strip (d 0.25): %g, not %g", under_veil[1], 0.75 * lit);
+    } else TH_CHECK(0, "voxgi_render: %s", voxgi_last_error(ctx));
+    voxgi_destroy(ctx);
+    voxgi_io_mesh_free(&m);
+}
+
 /* A malformed MTL line fails the OBJ, and the message names the MTL file and its line. */
 static void test_mtl_errors(void)
 {
@@ -1482,6 +1536,7 @@ int main(void)
     TH_RUN(test_obj_missing_mtl);
     TH_RUN(test_obj_mtl_in_subfolder);
     TH_RUN(test_obj_mtl_scene_renders);
+    TH_RUN(test_mtl_opacity_shadows);
     TH_RUN(test_mtl_errors);
     TH_RUN(test_off);
     TH_RUN(test_stl_ascii);
