@@ -108,8 +108,10 @@ VOXGI_IO_API unsigned long long voxgi_io_probes(void);
    any type (uint8, uint16, uint32) or none; POSITION and NORMAL must be float VEC3. Each glTF
    material is the material of the same index: pbrMetallicRoughness.baseColorFactor's rgb is the
    albedo, its alpha the opacity (in BLEND or MASK mode; OPAQUE ignores it), emissiveFactor times
-   KHR_materials_emissive_strength the emission. Textures are ignored. Other primitive modes,
-   sparse accessors, accessors without a bufferView, non-float positions, Draco or meshopt
+   KHR_materials_emissive_strength the emission. Textures are ignored. An accessor without a
+   bufferView is all zeros (at most as many elements as the JSON and its buffers have bytes); a sparse accessor's base (its bufferView, or zeros) has the elements at
+   sparse.indices (uint8, uint16 or uint32, strictly increasing, below its count) replaced by
+   sparse.values, both tightly packed. Other primitive modes, non-float positions, Draco or meshopt
    compression and other required extensions are refused by name; absolute or ".." buffer URIs are
    refused; malformed JSON or GLB structure gives its byte offset (in a .glb, from the file's start). */
 
@@ -1368,6 +1370,7 @@ typedef struct voxgi_io__gltf {
     const unsigned char *bin;    /* a .glb's BIN chunk, or NULL */
     size_t bin_size;
     voxgi_io__gltf_buffer *buffers;
+    unsigned char **dense;       /* per accessor: its sparse elements, tightly packed, once made */
     voxgi_io__jlist buffer_list, views, accessors, meshes, nodes, materials, scenes;
     uint32_t default_material;   /* NO_INDEX until a primitive without a material needs it */
 } voxgi_io__gltf;
@@ -1739,49 +1742,34 @@ static int voxgi_io__gltf_load_buffers(voxgi_io__gltf *G)
 
 /* ---- accessors -------------------------------------------------------------------------- */
 
-/* Resolves accessors[index] (what it is for names it in errors) to a checked view of its elements. */
-static int voxgi_io__gltf_accessor(voxgi_io__gltf *G, size_t ref_tok, size_t index, const char *role, voxgi_io__accessor *a)
+/* A bufferView's bytes, checked to lie inside its buffer. */
+typedef struct voxgi_io__gltf_view {
+    const unsigned char *data;
+    size_t length, stride; /* stride: byteStride, or the element size given when it has none */
+    size_t tok;            /* the bufferView's JSON object */
+    char what[48];         /* "bufferViews[i]" */
+} voxgi_io__gltf_view;
+
+/* Resolves obj.bufferView (what names obj in errors) for elements of elem bytes. */
+static int voxgi_io__gltf_buffer_view(voxgi_io__gltf *G, size_t obj, const char *what, size_t elem, voxgi_io__gltf_view *v)
 {
-    static const char *const types[7] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
-    static const int type_components[7] = {1, 2, 3, 4, 4, 9, 16};
-    size_t acc, view_index, view, buffer_index, component_type, view_offset, view_length, stride, offset, elem, size, k;
+    size_t view_index, buffer_index, view_offset;
     const voxgi_io__gltf_buffer *buffer;
-    char what[48], view_what[48];
-    if (index >= G->accessors.count) return voxgi_io__gltf_fail(G, ref_tok, "%s refers to accessors[%zu], which does not exist", role, index);
-    acc = G->accessors.item[index];
-    snprintf(what, sizeof what, "accessors[%zu]", index);
-    if (voxgi_io__json_get(G, acc, "sparse") != VOXGI_IO__NONE) return voxgi_io__gltf_fail(G, acc, "%s (%s): sparse accessors are not supported", what, role);
-    if (voxgi_io__json_uint(G, acc, "componentType", VOXGI_IO__NONE, 1u << 16, what, &component_type) ||
-        voxgi_io__json_uint(G, acc, "count", VOXGI_IO__NONE, SIZE_MAX / 2, what, &a->count) ||
-        voxgi_io__json_uint(G, acc, "byteOffset", 0, SIZE_MAX / 2, what, &offset))
+    if (voxgi_io__json_uint(G, obj, "bufferView", VOXGI_IO__NONE, SIZE_MAX / 2, what, &view_index)) return -1;
+    if (view_index >= G->views.count) return voxgi_io__gltf_fail(G, obj, "%s refers to bufferViews[%zu], which does not exist", what, view_index);
+    v->tok = G->views.item[view_index];
+    snprintf(v->what, sizeof v->what, "bufferViews[%zu]", view_index);
+    if (voxgi_io__json_uint(G, v->tok, "buffer", VOXGI_IO__NONE, SIZE_MAX / 2, v->what, &buffer_index) ||
+        voxgi_io__json_uint(G, v->tok, "byteOffset", 0, SIZE_MAX / 2, v->what, &view_offset) ||
+        voxgi_io__json_uint(G, v->tok, "byteLength", VOXGI_IO__NONE, SIZE_MAX / 2, v->what, &v->length) ||
+        voxgi_io__json_uint(G, v->tok, "byteStride", elem, 252, v->what, &v->stride))
         return -1;
-    a->component = (uint32_t)component_type;
-    size = component_type == 5120 || component_type == 5121 ? 1 : component_type == 5122 || component_type == 5123 ? 2 : component_type == 5125 || component_type == 5126 ? 4 : 0;
-    if (!size) return voxgi_io__gltf_fail(G, acc, "%s: unknown componentType %zu", what, component_type);
-    for (k = 0; k < 7 && !voxgi_io__json_is(G, voxgi_io__json_get(G, acc, "type"), types[k]); k++) {}
-    if (k == 7) return voxgi_io__gltf_fail(G, acc, "%s has no valid type (SCALAR, VEC2, VEC3, ...)", what);
-    a->components = type_components[k];
-    elem = size * (size_t)a->components;
-    if (!a->count) return voxgi_io__gltf_fail(G, acc, "%s has no elements", what);
-    if (voxgi_io__json_get(G, acc, "bufferView") == VOXGI_IO__NONE) return voxgi_io__gltf_fail(G, acc, "%s (%s) has no bufferView (all zeros), which is not supported", what, role);
-    if (voxgi_io__json_uint(G, acc, "bufferView", 0, SIZE_MAX / 2, what, &view_index)) return -1;
-    if (view_index >= G->views.count) return voxgi_io__gltf_fail(G, acc, "%s refers to bufferViews[%zu], which does not exist", what, view_index);
-    view = G->views.item[view_index];
-    snprintf(view_what, sizeof view_what, "bufferViews[%zu]", view_index);
-    if (voxgi_io__json_uint(G, view, "buffer", VOXGI_IO__NONE, SIZE_MAX / 2, view_what, &buffer_index) ||
-        voxgi_io__json_uint(G, view, "byteOffset", 0, SIZE_MAX / 2, view_what, &view_offset) ||
-        voxgi_io__json_uint(G, view, "byteLength", VOXGI_IO__NONE, SIZE_MAX / 2, view_what, &view_length) ||
-        voxgi_io__json_uint(G, view, "byteStride", elem, 252, view_what, &stride))
-        return -1;
-    if (buffer_index >= G->buffer_list.count) return voxgi_io__gltf_fail(G, view, "%s refers to buffers[%zu], which does not exist", view_what, buffer_index);
+    if (buffer_index >= G->buffer_list.count) return voxgi_io__gltf_fail(G, v->tok, "%s refers to buffers[%zu], which does not exist", v->what, buffer_index);
     buffer = &G->buffers[buffer_index];
-    if (view_offset > buffer->size || view_length > buffer->size - view_offset)
-        return voxgi_io__gltf_fail(G, view, "%s: bytes %zu..%zu lie outside buffers[%zu] (%zu bytes)", view_what, view_offset, view_offset + view_length, buffer_index, buffer->size);
-    if (stride < elem) return voxgi_io__gltf_fail(G, view, "%s: byteStride %zu is smaller than an element of %s (%zu bytes)", view_what, stride, what, elem);
-    if (offset > view_length || elem > view_length - offset || a->count - 1 > (view_length - offset - elem) / stride)
-        return voxgi_io__gltf_fail(G, acc, "%s: %zu elements of %zu bytes, %zu apart from byte %zu, overrun %s (%zu bytes)", what, a->count, elem, stride, offset, view_what, view_length);
-    a->data = buffer->data + view_offset + offset;
-    a->stride = stride;
+    if (view_offset > buffer->size || v->length > buffer->size - view_offset)
+        return voxgi_io__gltf_fail(G, v->tok, "%s: bytes %zu..%zu lie outside buffers[%zu] (%zu bytes)", v->what, view_offset, view_offset + v->length, buffer_index, buffer->size);
+    if (v->stride < elem) return voxgi_io__gltf_fail(G, v->tok, "%s: byteStride %zu is smaller than an element of %s (%zu bytes)", v->what, v->stride, what, elem);
+    v->data = buffer->data + view_offset;
     return 0;
 }
 
@@ -1797,6 +1785,116 @@ static float voxgi_io__gltf_float_at(const voxgi_io__accessor *a, size_t i, int 
     float f;
     memcpy(&f, &bits, sizeof f);
     return f;
+}
+
+/* One part of a sparse accessor (sparse.indices or sparse.values at tok): count packed elements of
+   elem bytes from its byteOffset in its bufferView, which the specification forbids a byteStride. */
+static int voxgi_io__gltf_sparse_part(voxgi_io__gltf *G, size_t tok, const char *what, size_t count, size_t elem, const unsigned char **data)
+{
+    voxgi_io__gltf_view v;
+    size_t offset;
+    if (voxgi_io__json_uint(G, tok, "byteOffset", 0, SIZE_MAX / 2, what, &offset) || voxgi_io__gltf_buffer_view(G, tok, what, elem, &v)) return -1;
+    if (voxgi_io__json_get(G, v.tok, "byteStride") != VOXGI_IO__NONE)
+        return voxgi_io__gltf_fail(G, v.tok, "%s: %s has a byteStride, which sparse data must not have", what, v.what);
+    if (offset > v.length || count > (v.length - offset) / elem)
+        return voxgi_io__gltf_fail(G, tok, "%s: %zu elements of %zu bytes from byte %zu overrun %s (%zu bytes)", what, count, elem, offset, v.what, v.length);
+    *data = v.data + offset;
+    return 0;
+}
+
+/* Applies accessors[index].sparse (the token sparse) to a, whose elements are elem bytes: they are
+   copied, tightly packed, into an array the load owns (made once per accessor), and the elements at
+   sparse.indices (strictly increasing, below a's count) replaced by sparse.values. */
+static int voxgi_io__gltf_sparse(voxgi_io__gltf *G, size_t index, size_t sparse, size_t elem, voxgi_io__accessor *a)
+{
+    size_t indices_tok = voxgi_io__json_get(G, sparse, "indices"), values_tok = voxgi_io__json_get(G, sparse, "values");
+    size_t count, component, i;
+    voxgi_io__accessor at;
+    const unsigned char *values;
+    unsigned char *dense;
+    char what[64], indices_what[64], values_what[64];
+    if (G->dense && G->dense[index]) {
+        a->data = G->dense[index];
+        a->stride = elem;
+        return 0;
+    }
+    snprintf(what, sizeof what, "accessors[%zu].sparse", index);
+    snprintf(indices_what, sizeof indices_what, "accessors[%zu].sparse.indices", index);
+    snprintf(values_what, sizeof values_what, "accessors[%zu].sparse.values", index);
+    if (voxgi_io__json_uint(G, sparse, "count", VOXGI_IO__NONE, SIZE_MAX / 2, what, &count)) return -1;
+    if (!count || count > a->count)
+        return voxgi_io__gltf_fail(G, voxgi_io__json_get(G, sparse, "count"), "%s.count %zu is not in 1..%zu (the accessor's count)", what, count, a->count);
+    if (indices_tok == VOXGI_IO__NONE || values_tok == VOXGI_IO__NONE)
+        return voxgi_io__gltf_fail(G, sparse, "%s has no %s", what, indices_tok == VOXGI_IO__NONE ? "indices" : "values");
+    if (voxgi_io__json_uint(G, indices_tok, "componentType", VOXGI_IO__NONE, 1u << 16, indices_what, &component)) return -1;
+    memset(&at, 0, sizeof at);
+    at.component = (uint32_t)component;
+    at.stride = component == 5121 ? 1 : component == 5123 ? 2 : component == 5125 ? 4 : 0;
+    if (!at.stride) return voxgi_io__gltf_fail(G, indices_tok, "%s: componentType %zu is not 5121, 5123 or 5125", indices_what, component);
+    if (voxgi_io__gltf_sparse_part(G, indices_tok, indices_what, count, at.stride, &at.data) ||
+        voxgi_io__gltf_sparse_part(G, values_tok, values_what, count, elem, &values))
+        return -1;
+    if (a->count > SIZE_MAX / elem) return voxgi_io__gltf_fail(G, sparse, "%s: %zu elements of %zu bytes do not fit in memory", what, a->count, elem);
+    if (!G->dense && !(G->dense = (unsigned char **)calloc(G->accessors.count, sizeof *G->dense)))
+        return voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory");
+    if (!(dense = G->dense[index] = (unsigned char *)malloc(a->count * elem))) return voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory");
+    for (i = 0; i < a->count; i++) memcpy(dense + i * elem, a->data + i * a->stride, elem);
+    for (i = 0; i < count; i++) {
+        uint32_t k = voxgi_io__gltf_index_at(&at, i), before = i ? voxgi_io__gltf_index_at(&at, i - 1) : 0;
+        if (k >= a->count)
+            return voxgi_io__gltf_fail(G, indices_tok, "%s: index %u (element %zu) is not below the accessor's count %zu", indices_what, k, i, a->count);
+        if (i && k <= before)
+            return voxgi_io__gltf_fail(G, indices_tok, "%s: index %u (element %zu) does not follow %u: sparse indices must increase", indices_what, k, i, before);
+        memcpy(dense + (size_t)k * elem, values + i * elem, elem);
+    }
+    a->data = dense;
+    a->stride = elem;
+    return 0;
+}
+
+/* Resolves accessors[index] (what it is for names it in errors) to a checked view of its elements:
+   in its bufferView, or all zeros without one, with its sparse substitutions applied. */
+static int voxgi_io__gltf_accessor(voxgi_io__gltf *G, size_t ref_tok, size_t index, const char *role, voxgi_io__accessor *a)
+{
+    static const char *const types[7] = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+    static const int type_components[7] = {1, 2, 3, 4, 4, 9, 16};
+    static const unsigned char zeros[64] = {0}; /* an element of the largest type, MAT4 of 4-byte components */
+    size_t acc, component_type, offset, elem, size, k, sparse;
+    char what[48];
+    if (index >= G->accessors.count) return voxgi_io__gltf_fail(G, ref_tok, "%s refers to accessors[%zu], which does not exist", role, index);
+    acc = G->accessors.item[index];
+    snprintf(what, sizeof what, "accessors[%zu]", index);
+    if (voxgi_io__json_uint(G, acc, "componentType", VOXGI_IO__NONE, 1u << 16, what, &component_type) ||
+        voxgi_io__json_uint(G, acc, "count", VOXGI_IO__NONE, SIZE_MAX / 2, what, &a->count) ||
+        voxgi_io__json_uint(G, acc, "byteOffset", 0, SIZE_MAX / 2, what, &offset))
+        return -1;
+    a->component = (uint32_t)component_type;
+    size = component_type == 5120 || component_type == 5121 ? 1 : component_type == 5122 || component_type == 5123 ? 2 : component_type == 5125 || component_type == 5126 ? 4 : 0;
+    if (!size) return voxgi_io__gltf_fail(G, acc, "%s: unknown componentType %zu", what, component_type);
+    for (k = 0; k < 7 && !voxgi_io__json_is(G, voxgi_io__json_get(G, acc, "type"), types[k]); k++) {}
+    if (k == 7) return voxgi_io__gltf_fail(G, acc, "%s has no valid type (SCALAR, VEC2, VEC3, ...)", what);
+    a->components = type_components[k];
+    elem = size * (size_t)a->components;
+    if (!a->count) return voxgi_io__gltf_fail(G, acc, "%s has no elements", what);
+    if (voxgi_io__json_get(G, acc, "bufferView") != VOXGI_IO__NONE) {
+        voxgi_io__gltf_view v;
+        if (voxgi_io__gltf_buffer_view(G, acc, what, elem, &v)) return -1;
+        if (offset > v.length || elem > v.length - offset || a->count - 1 > (v.length - offset - elem) / v.stride)
+            return voxgi_io__gltf_fail(G, acc, "%s: %zu elements of %zu bytes, %zu apart from byte %zu, overrun %s (%zu bytes)", what, a->count, elem, v.stride, offset, v.what, v.length);
+        a->data = v.data + offset;
+        a->stride = v.stride;
+    } else {
+        /* all zeros: one zero element, read in place of every element; no more of them than the glTF
+           has bytes, so that a few bytes cannot make the mesh gigabytes */
+        size_t bytes = G->json_size;
+        for (k = 0; k < G->buffer_list.count; k++) bytes += G->buffers[k].size;
+        if (a->count > bytes)
+            return voxgi_io__gltf_fail(G, acc, "%s has no bufferView and %zu elements (all zeros), more than the glTF's %zu bytes", what, a->count, bytes);
+        a->data = zeros;
+        a->stride = 0;
+    }
+    sparse = voxgi_io__json_get(G, acc, "sparse");
+    return sparse == VOXGI_IO__NONE ? 0 : voxgi_io__gltf_sparse(G, index, sparse, elem, a);
 }
 
 /* ---- meshes, materials, nodes -------------------------------------------------------------- */
@@ -2152,6 +2250,8 @@ static int voxgi_io__load_gltf(voxgi_io__loader *L, const char *path, const char
          voxgi_io__gltf_load_buffers(&G) || voxgi_io__gltf_materials(&G) || voxgi_io__gltf_nodes(&G);
     for (i = 0; G.buffers && i < G.buffer_list.count; i++) free(G.buffers[i].owned);
     free(G.buffers);
+    for (i = 0; G.dense && i < G.accessors.count; i++) free(G.dense[i]);
+    free(G.dense);
     free(G.buffer_list.item); free(G.views.item); free(G.accessors.item); free(G.meshes.item);
     free(G.nodes.item); free(G.materials.item); free(G.scenes.item);
     free(G.tok);

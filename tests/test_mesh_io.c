@@ -1225,19 +1225,26 @@ static growing gltf_small_bin(uint32_t last_index)
     return bin;
 }
 
-/* The small file with `from` replaced by `to` (once) must fail with `expect` in the message. */
-static void expect_gltf_edit_error(const char *name, const char *from, const char *to, const char *expect)
+/* The glTF text with `from` replaced by `to` (its first occurrence) must fail with `expect` in the message. */
+static void expect_text_edit_error(const char *name, const growing *text, const char *from, const char *to, const char *expect)
 {
-    growing bin = gltf_small_bin(2), j = gltf_json(gltf_small_body, &bin, NULL), edited = {0, 0, 0};
-    const char *at = strstr((const char *)j.data, from);
+    growing edited = {0, 0, 0};
+    const char *at = strstr((const char *)text->data, from);
     TH_CHECK(at != NULL, "%s: '%s' not in the file", name, from);
     if (at) {
-        grow_put(&edited, j.data, (size_t)(at - (const char *)j.data));
+        grow_put(&edited, text->data, (size_t)(at - (const char *)text->data));
         grow_str(&edited, to);
         grow_str(&edited, at + strlen(from));
         expect_error(name, edited.data, edited.size, expect);
     }
     free(edited.data);
+}
+
+/* The small file with `from` replaced by `to` (once) must fail with `expect` in the message. */
+static void expect_gltf_edit_error(const char *name, const char *from, const char *to, const char *expect)
+{
+    growing bin = gltf_small_bin(2), j = gltf_json(gltf_small_body, &bin, NULL);
+    expect_text_edit_error(name, &j, from, to, expect);
     free(j.data);
     free(bin.data);
 }
@@ -1273,8 +1280,9 @@ static void test_gltf_buffer_uris(void)
 
 /* Hostile and unsupported glTF: every prefix of a valid .glb fails with a byte offset (a cut
    header or chunk: "truncated glb" at the file's size); bad JSON at the offset of the defect; an
-   index out of range; each unsupported feature by name; nesting 100000 deep; a node cycle; and 3000
-   random corruptions of the .glb and .gltf load or fail cleanly (under ASan). */
+   index out of range; a sparse accessor without indices; each unsupported feature by name; nesting
+   100000 deep; a node cycle; and 3000 random corruptions of the .glb and .gltf load or fail
+   cleanly (under ASan). */
 static void test_gltf_bad_files(void)
 {
     growing bin = gltf_small_bin(2), j = gltf_json(gltf_small_body, &bin, ""), glb = glb_image(&j, &bin), deep = {0, 0, 0};
@@ -1309,7 +1317,7 @@ static void test_gltf_bad_files(void)
     expect_error("deep.gltf", deep.data, deep.size, "byte offset 64: malformed JSON: nested deeper than 64 levels");
     expect_gltf_edit_error("lines.gltf", "\"indices\":1", "\"indices\":1,\"mode\":1", "primitive mode 1 (lines) is not supported");
     expect_gltf_edit_error("strip.gltf", "\"indices\":1", "\"indices\":1,\"mode\":5", "primitive mode 5 (triangle strip) is not supported");
-    expect_gltf_edit_error("sparse.gltf", "\"type\":\"VEC3\"", "\"type\":\"VEC3\",\"sparse\":{\"count\":1}", "sparse accessors are not supported");
+    expect_gltf_edit_error("sparse.gltf", "\"type\":\"VEC3\"", "\"type\":\"VEC3\",\"sparse\":{\"count\":1}", "accessors[0].sparse has no indices");
     expect_gltf_edit_error("draco.gltf", "\"nodes\"", "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],\"nodes\"", "Draco compression");
     expect_gltf_edit_error("meshopt.gltf", "\"nodes\"", "\"extensionsRequired\":[\"EXT_meshopt_compression\"],\"nodes\"", "meshopt compression");
     expect_gltf_edit_error("required.gltf", "\"nodes\"", "\"extensionsRequired\":[\"KHR_texture_basisu\"],\"nodes\"", "requires extension KHR_texture_basisu");
@@ -1332,6 +1340,204 @@ static void test_gltf_bad_files(void)
     free(glb.data);
     free(j.data);
     free(bin.data);
+}
+
+/* ---- sparse accessors and accessors without a bufferView ---- */
+
+/* The sparse tests' replacement values: exact in float and unlike any gltf_vertex. */
+static void sparse_value(size_t j, float v[3]) { v[0] = 100.0f + (float)j; v[1] = -50.0f - (float)j; v[2] = 0.25f * (float)(j + 1); }
+
+/* A glTF text (data URI) of one primitive without indices whose POSITION accessor (count vertices)
+   is sparse. Its base: the padded gltf_vertex data (byteOffset 4, byteStride 16), or no
+   bufferView without has_base. Its n sparse indices at[], of componentType index_type, lie behind
+   4 junk bytes (sparse.indices.byteOffset 4) and the values sparse_value(0..n-1) behind 12
+   (sparse.values.byteOffset 12), each in its own bufferView, the values' values_cut bytes short;
+   sparse.count is sparse_count. */
+static growing sparse_positions_gltf(int has_base, size_t count, unsigned index_type, const uint32_t *at, size_t n, size_t sparse_count, size_t values_cut)
+{
+    growing bin = {0, 0, 0}, text;
+    size_t index_size = index_type == 5121 ? 1 : index_type == 5123 ? 2 : 4, indices_at, values_at, i;
+    char body[1024];
+    grow_padded_vertices(&bin, count);
+    indices_at = bin.size;
+    grow_uint(&bin, 0xEEEEEEEEu, 4);
+    for (i = 0; i < n; i++) grow_uint(&bin, at[i], (int)index_size);
+    while (bin.size % 4) grow_put(&bin, "", 1);
+    values_at = bin.size;
+    for (i = 0; i < 3; i++) grow_f32(&bin, -777.0f);
+    for (i = 0; i < n; i++) {
+        float v[3];
+        sparse_value(i, v);
+        grow_f32(&bin, v[0]); grow_f32(&bin, v[1]); grow_f32(&bin, v[2]);
+    }
+    snprintf(body, sizeof body,
+             "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteLength\":%lu,\"byteStride\":16},{\"buffer\":0,\"byteOffset\":%lu,\"byteLength\":%lu},"
+             "{\"buffer\":0,\"byteOffset\":%lu,\"byteLength\":%lu}],"
+             "\"accessors\":[{%s\"componentType\":5126,\"count\":%lu,\"type\":\"VEC3\",\"sparse\":{\"count\":%lu,"
+             "\"indices\":{\"bufferView\":1,\"byteOffset\":4,\"componentType\":%u},\"values\":{\"bufferView\":2,\"byteOffset\":12}}}]",
+             (unsigned long)(16 * count), (unsigned long)indices_at, (unsigned long)(4 + n * index_size), (unsigned long)values_at,
+             (unsigned long)(12 + 12 * n - values_cut), has_base ? "\"bufferView\":0,\"byteOffset\":4," : "", (unsigned long)count,
+             (unsigned long)sparse_count, index_type);
+    text = gltf_json(body, &bin, NULL);
+    free(bin.data);
+    return text;
+}
+
+/* Loads sparse_positions_gltf's file: position i must be sparse_value(j) where at[j] == i, else
+   its base (gltf_vertex(i), or zero without has_base), exactly; the triangles 0 1 2, 3 4 5, ... */
+static void check_sparse_positions(const char *name, int has_base, size_t count, unsigned index_type, const uint32_t *at, size_t n)
+{
+    growing text = sparse_positions_gltf(has_base, count, index_type, at, n, n, 0);
+    voxgi_io_mesh m;
+    size_t i, j, bad = 0;
+    int ok = load_ok(write_file(name, text.data, text.size), &m);
+    free(text.data);
+    if (!ok) return;
+    TH_CHECK(m.vertex_count == count && m.triangle_count == count / 3, "%s: %zu vertices, %zu triangles", name, m.vertex_count, m.triangle_count);
+    for (i = 0; m.vertex_count == count && m.triangle_count == count / 3 && i < count; i++) {
+        float v[3] = {0, 0, 0};
+        if (has_base) gltf_vertex(i, v);
+        for (j = 0; j < n; j++)
+            if (at[j] == i) sparse_value(j, v);
+        bad += m.positions[3 * i] != v[0] || m.positions[3 * i + 1] != v[1] || m.positions[3 * i + 2] != v[2] || m.indices[i] != i;
+    }
+    TH_CHECK(bad == 0, "%s: %zu vertices differ from those written", name, bad);
+    voxgi_io_mesh_free(&m);
+}
+
+/* Sparse POSITION accessors: a triangle given wholly by the sparse values over no bufferView (zeros
+   beneath); six zero vertices of which three are replaced; and six vertices in a strided
+   bufferView with one replaced (uint8 sparse indices), two (uint16) and three (uint32). */
+static void test_gltf_sparse_positions(void)
+{
+    static const uint32_t all3[3] = {0, 1, 2}, three[3] = {1, 2, 4}, one[1] = {4}, two[2] = {0, 5};
+    check_sparse_positions("sparse_triangle.gltf", 0, 3, 5121, all3, 3);
+    check_sparse_positions("sparse_on_zeros.gltf", 0, 6, 5125, three, 3);
+    check_sparse_positions("sparse_uint8.gltf", 1, 6, 5121, one, 1);
+    check_sparse_positions("sparse_uint16.gltf", 1, 6, 5123, two, 2);
+    check_sparse_positions("sparse_uint32.gltf", 1, 6, 5125, three, 3);
+}
+
+/* Sparse index accessors: two primitives over six packed vertices; the first's indices, uint16
+   0 1 2 3 4 5 in a bufferView, have elements 1 and 5 replaced by 5 and 1 (uint8 sparse indices,
+   uint16 values); the second's, uint32 without a bufferView (zeros), have elements 1 2 4 5
+   replaced by 1 2 4 5 (uint8 sparse indices, uint32 values). The mesh's indices: 0 5 2 3 4 1,
+   then the second primitive's vertices (6..11) by 0 1 2 0 4 5. */
+static void test_gltf_sparse_indices(void)
+{
+    static const uint32_t expect[12] = {0, 5, 2, 3, 4, 1, 6, 7, 8, 6, 10, 11};
+    growing bin = {0, 0, 0};
+    voxgi_io_mesh m;
+    size_t i, bad = 0;
+    for (i = 0; i < 6; i++) {
+        float v[3];
+        gltf_vertex(i, v);
+        grow_f32(&bin, v[0]); grow_f32(&bin, v[1]); grow_f32(&bin, v[2]);
+    }
+    for (i = 0; i < 6; i++) grow_uint(&bin, (uint32_t)i, 2);                        /* 72: dense indices */
+    grow_uint(&bin, 1, 1); grow_uint(&bin, 5, 1); grow_uint(&bin, 0, 2);            /* 84: sparse indices, 2 bytes */
+    grow_uint(&bin, 5, 2); grow_uint(&bin, 1, 2);                                   /* 88: their values */
+    grow_uint(&bin, 1, 1); grow_uint(&bin, 2, 1); grow_uint(&bin, 4, 1); grow_uint(&bin, 5, 1); /* 92 */
+    grow_uint(&bin, 1, 4); grow_uint(&bin, 2, 4); grow_uint(&bin, 4, 4); grow_uint(&bin, 5, 4); /* 96 */
+    if (!load_ok(write_gltf("sparse_indices", "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1},"
+                            "{\"attributes\":{\"POSITION\":0},\"indices\":2}]}],"
+                            "\"bufferViews\":[{\"buffer\":0,\"byteLength\":72},{\"buffer\":0,\"byteOffset\":72,\"byteLength\":12},"
+                            "{\"buffer\":0,\"byteOffset\":84,\"byteLength\":2},{\"buffer\":0,\"byteOffset\":88,\"byteLength\":4},"
+                            "{\"buffer\":0,\"byteOffset\":92,\"byteLength\":4},{\"buffer\":0,\"byteOffset\":96,\"byteLength\":16}],"
+                            "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":6,\"type\":\"VEC3\"},"
+                            "{\"bufferView\":1,\"componentType\":5123,\"count\":6,\"type\":\"SCALAR\",\"sparse\":{\"count\":2,"
+                            "\"indices\":{\"bufferView\":2,\"componentType\":5121},\"values\":{\"bufferView\":3}}},"
+                            "{\"componentType\":5125,\"count\":6,\"type\":\"SCALAR\",\"sparse\":{\"count\":4,"
+                            "\"indices\":{\"bufferView\":4,\"componentType\":5121},\"values\":{\"bufferView\":5}}}]",
+                            &bin, GLTF_GLB), &m)) { free(bin.data); return; }
+    free(bin.data);
+    TH_CHECK(m.vertex_count == 12 && m.triangle_count == 4, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+    for (i = 0; m.triangle_count == 4 && i < 12; i++) bad += m.indices[i] != expect[i];
+    TH_CHECK(bad == 0, "%zu indices differ: %u %u %u %u %u %u, %u %u %u %u %u %u", bad, m.indices[0], m.indices[1], m.indices[2], m.indices[3],
+             m.indices[4], m.indices[5], m.indices[6], m.indices[7], m.indices[8], m.indices[9], m.indices[10], m.indices[11]);
+    voxgi_io_mesh_free(&m);
+}
+
+/* A POSITION accessor without a bufferView and without sparse: six vertices, all (0, 0, 0). The
+   loader keeps degenerate triangles as they are (a point is what voxgi voxelizes of it), so it
+   gives 6 vertices at the origin and 2 triangles 0 1 2, 3 4 5; its count, componentType and type
+   are still checked, and a count of zeros beyond the file's bytes (3e9) is refused. */
+static void test_gltf_zero_accessor(void)
+{
+    static const char body[] = "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+                               "\"accessors\":[{\"componentType\":5126,\"count\":6,\"type\":\"VEC3\"}]";
+    growing bin = {0, 0, 0}, text;
+    voxgi_io_mesh m;
+    size_t i, bad = 0;
+    grow_uint(&bin, 0, 4);
+    text = gltf_json(body, &bin, NULL);
+    if (load_ok(write_file("zeros.gltf", text.data, text.size), &m)) {
+        TH_CHECK(m.vertex_count == 6 && m.triangle_count == 2, "%zu vertices, %zu triangles", m.vertex_count, m.triangle_count);
+        for (i = 0; m.vertex_count == 6 && m.triangle_count == 2 && i < 6; i++)
+            bad += m.positions[3 * i] != 0 || m.positions[3 * i + 1] != 0 || m.positions[3 * i + 2] != 0 || m.indices[i] != i;
+        TH_CHECK(bad == 0, "%zu vertices are not at the origin or out of order", bad);
+        voxgi_io_mesh_free(&m);
+    }
+    expect_text_edit_error("zeros_int.gltf", &text, "\"componentType\":5126", "\"componentType\":5123", "only float VEC3");
+    expect_text_edit_error("zeros_vec2.gltf", &text, "\"VEC3\"", "\"VEC2\"", "only float VEC3");
+    expect_text_edit_error("zeros_empty.gltf", &text, "\"count\":6", "\"count\":0", "accessors[0] has no elements");
+    expect_text_edit_error("zeros_huge.gltf", &text, "\"count\":6", "\"count\":3000000000", "accessors[0] has no bufferView and 3000000000 elements");
+    free(text.data);
+    free(bin.data);
+}
+
+/* Sparse accessors the specification forbids, each refused naming the accessor's sparse part:
+   indices that decrease (at the byte offset of sparse.indices) or repeat, an index equal to the
+   count, values or indices overrunning their bufferView, sparse.count 0 or above the count, an
+   index type that is not an unsigned integer, a byteStride on a sparse bufferView; and 1000 random
+   corruptions of a sparse file load or fail cleanly (under ASan). */
+static void test_gltf_sparse_refused(void)
+{
+    static const uint32_t down[2] = {2, 1}, same[2] = {3, 3}, at_count[2] = {1, 6}, fine[2] = {1, 4};
+    growing text = sparse_positions_gltf(1, 6, 5123, down, 2, 2, 0);
+    voxgi_io_mesh m;
+    char expect[160], err[512];
+    size_t i;
+    int k;
+    snprintf(expect, sizeof expect, "byte offset %lu: accessors[0].sparse.indices: index 1 (element 1) does not follow 2: sparse indices must increase",
+             (unsigned long)(strstr((const char *)text.data, "\"indices\":{") - (const char *)text.data + 10));
+    expect_error("sparse_down.gltf", text.data, text.size, expect);
+    free(text.data);
+    text = sparse_positions_gltf(1, 6, 5123, same, 2, 2, 0);
+    expect_error("sparse_same.gltf", text.data, text.size, "accessors[0].sparse.indices: index 3 (element 1) does not follow 3");
+    free(text.data);
+    text = sparse_positions_gltf(1, 6, 5123, at_count, 2, 2, 0);
+    expect_error("sparse_at_count.gltf", text.data, text.size, "accessors[0].sparse.indices: index 6 (element 1) is not below the accessor's count 6");
+    free(text.data);
+    text = sparse_positions_gltf(1, 6, 5123, fine, 2, 2, 1);
+    expect_error("sparse_short_values.gltf", text.data, text.size, "accessors[0].sparse.values: 2 elements of 12 bytes from byte 12 overrun bufferViews[2] (35 bytes)");
+    free(text.data);
+    text = sparse_positions_gltf(1, 6, 5123, fine, 2, 3, 0);
+    expect_error("sparse_short_indices.gltf", text.data, text.size, "accessors[0].sparse.indices: 3 elements of 2 bytes from byte 4 overrun bufferViews[1] (8 bytes)");
+    free(text.data);
+    text = sparse_positions_gltf(1, 6, 5123, fine, 2, 0, 0);
+    expect_error("sparse_count0.gltf", text.data, text.size, "accessors[0].sparse.count 0 is not in 1..6 (the accessor's count)");
+    free(text.data);
+    text = sparse_positions_gltf(0, 6, 5123, fine, 2, 7, 0);
+    expect_error("sparse_count7.gltf", text.data, text.size, "accessors[0].sparse.count 7 is not in 1..6 (the accessor's count)");
+    free(text.data);
+    text = sparse_positions_gltf(1, 6, 5126, fine, 2, 2, 0);
+    expect_error("sparse_float_indices.gltf", text.data, text.size, "accessors[0].sparse.indices: componentType 5126 is not 5121, 5123 or 5125");
+    free(text.data);
+    text = sparse_positions_gltf(1, 6, 5123, fine, 2, 2, 0);
+    expect_text_edit_error("sparse_stride.gltf", &text, "}],\"accessors\"", ",\"byteStride\":12}],\"accessors\"",
+                           "accessors[0].sparse.values: bufferViews[2] has a byteStride, which sparse data must not have");
+    for (i = 0; i < 1000; i++) {
+        unsigned char *copy = (unsigned char *)malloc(text.size);
+        memcpy(copy, text.data, text.size);
+        for (k = 0; k < 1 + (int)(rng() % 4); k++) copy[rng() % text.size] = (unsigned char)rng();
+        write_file("sparse_fuzz.gltf", copy, text.size);
+        if (voxgi_io_load_mesh(tmp_path("sparse_fuzz.gltf"), &m, err, sizeof err) == 0) { check_consistent(&m, "sparse_fuzz"); voxgi_io_mesh_free(&m); }
+        else TH_CHECK(is_empty(&m) && strstr(err, "sparse_fuzz"), "a failed load: %s", err);
+        free(copy);
+    }
+    free(text.data);
 }
 
 /* ---------------------------------------------------------------- PNG */
@@ -1557,6 +1763,10 @@ int main(void)
     TH_RUN(test_gltf_materials);
     TH_RUN(test_gltf_buffer_uris);
     TH_RUN(test_gltf_bad_files);
+    TH_RUN(test_gltf_sparse_positions);
+    TH_RUN(test_gltf_sparse_indices);
+    TH_RUN(test_gltf_zero_accessor);
+    TH_RUN(test_gltf_sparse_refused);
     TH_RUN(test_png_round_trip);
     for (i = 0; i < created_count; i++) remove(tmp_path(created[i]));
     rmdir(tmp_path("sub"));

@@ -931,6 +931,98 @@ static void test_output_extensions(void)
     if (f) fclose(f);
 }
 
+/* A .npy the tool wrote: its header must state dtype `descr` and shape `shape` (as numpy writes it,
+   "(12, 12, 12, 3)"), and its data hold `count` elements of `size` bytes; the data from malloc, or NULL. */
+static unsigned char *read_npy(const char *path, const char *descr, const char *shape, size_t count, size_t size)
+{
+    FILE *f = fopen(path, "rb");
+    unsigned char head[10], *data = NULL;
+    char header[512], want[96];
+    size_t hlen = 0;
+    int ok = f && fread(head, 1, 10, f) == 10 && !memcmp(head, "\x93NUMPY\x01\x00", 8) && (hlen = (size_t)head[8] | (size_t)head[9] << 8) < sizeof header &&
+             fread(header, 1, hlen, f) == hlen;
+    TH_CHECK(ok, "%s: no .npy 1.0 header", path);
+    if (ok) {
+        header[hlen] = 0;
+        snprintf(want, sizeof want, "'descr': '%s'", descr);
+        TH_CHECK(strstr(header, want) && strstr(header, "'fortran_order': False"), "%s: not %s in C order: %s", path, descr, header);
+        snprintf(want, sizeof want, "'shape': %s", shape);
+        TH_CHECK(strstr(header, want) != NULL, "%s: not of shape %s: %s", path, shape, header);
+        data = (unsigned char *)malloc(count * size + 1);
+        TH_CHECK(data && fread(data, 1, count * size + 1, f) == count * size, "%s: not %lu elements of %lu bytes", path, (unsigned long)count,
+                 (unsigned long)size);
+    }
+    if (f) fclose(f);
+    return data;
+}
+
+static float le_f32(const unsigned char *p)
+{
+    uint32_t u = (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+    float v;
+    memcpy(&v, &u, 4);
+    return v;
+}
+
+/* voxelize -o FILE.npy --npy-attribute: the cube [-1,1]^3 of one material (Kd 0.2 0.4 0.6, d 0.5)
+   on the grid whose planes pass through its faces (784 voxels set, as above). The occupancy .npy
+   names the set voxels; the albedo .npy ('<f4', (12, 12, 12, 3)) holds Kd at each of them (a mean
+   of equal values: within float rounding) and 0 elsewhere, the opacity .npy ('<f4', (12, 12, 12))
+   0.5. The option is listed in --help, and refused (exit 2, one line naming it) without a .npy
+   output or with an unknown attribute. */
+static void test_voxelize_npy_attribute(void)
+{
+    static char out[8192];
+    char mesh[512], path[512], args[1024];
+    const char *grid = "--grid -1.5 -1.5 -1.5 0.25 12 12 12 --backend cpu";
+    unsigned char *occ, *albedo, *opacity;
+    size_t i, set = 0, bad = 0;
+    int rc;
+    write_file("painted.mtl", "newmtl paint\nKd 0.2 0.4 0.6\nd 0.5\n", path, sizeof path);
+    write_file("painted.obj", "mtllib painted.mtl\nv -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nusemtl paint\n"
+                              "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n", mesh, sizeof mesh);
+    rc = run("voxelize --help", out, sizeof out);
+    TH_CHECK(rc == 0 && strstr(out, "--npy-attribute NAME"), "--npy-attribute not in voxelize --help: %s", out);
+    snprintf(args, sizeof args, "voxelize %s %s -o %s/occupancy.npy", mesh, grid, tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 0, "occupancy: exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "voxelize %s %s -o %s/albedo.npy --npy-attribute albedo", mesh, grid, tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 0, "albedo: exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "voxelize %s %s --npy-attribute opacity -o %s/opacity.npy", mesh, grid, tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 0, "opacity: exit %d: %s", rc, out);
+    snprintf(path, sizeof path, "%s/occupancy.npy", tmpdir);
+    occ = read_npy(path, "|u1", "(12, 12, 12)", 1728, 1);
+    snprintf(path, sizeof path, "%s/albedo.npy", tmpdir);
+    albedo = read_npy(path, "<f4", "(12, 12, 12, 3)", 1728 * 3, 4);
+    snprintf(path, sizeof path, "%s/opacity.npy", tmpdir);
+    opacity = read_npy(path, "<f4", "(12, 12, 12)", 1728, 4);
+    for (i = 0; occ && albedo && opacity && i < 1728; i++) {
+        static const float kd[3] = {0.2f, 0.4f, 0.6f};
+        int c;
+        set += occ[i] == 1;
+        for (c = 0; c < 3; c++) {
+            float v = le_f32(albedo + 4 * (3 * i + (size_t)c));
+            bad += occ[i] ? !(fabsf(v - kd[c]) <= 1e-6f) : v != 0;
+        }
+        bad += occ[i] ? !(fabsf(le_f32(opacity + 4 * i) - 0.5f) <= 1e-6f) : le_f32(opacity + 4 * i) != 0;
+    }
+    TH_CHECK(set == 784 && bad == 0, "%lu voxels set (784 expected), %lu attribute values differ from the material's", (unsigned long)set, (unsigned long)bad);
+    free(occ);
+    free(albedo);
+    free(opacity);
+    snprintf(args, sizeof args, "voxelize %s %s --npy-attribute albedo", mesh, grid);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--npy-attribute") && strstr(out, "-o FILE.npy") && count_of(out, "\n") == 1, "no output: exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "voxelize %s %s --npy-attribute albedo -o %s/albedo.vox", mesh, grid, tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--npy-attribute") && strstr(out, "-o FILE.npy") && count_of(out, "\n") == 1, ".vox output: exit %d: %s", rc, out);
+    snprintf(args, sizeof args, "voxelize %s %s --npy-attribute colour -o %s/x.npy", mesh, grid, tmpdir);
+    rc = run(args, out, sizeof out);
+    TH_CHECK(rc == 2 && strstr(out, "--npy-attribute needs one of albedo, normal, emission, opacity, got 'colour'"), "unknown attribute: exit %d: %s", rc, out);
+}
+
 static void test_version_and_exit_codes_documented(void)
 {
     static char out[8192];
@@ -1912,6 +2004,7 @@ int main(int argc, char **argv)
     TH_RUN(test_cornell_mesh);
     TH_RUN(test_usage_errors_named);
     TH_RUN(test_output_extensions);
+    TH_RUN(test_voxelize_npy_attribute);
     TH_RUN(test_version_and_exit_codes_documented);
     TH_RUN(test_library_error_once);
     TH_RUN(test_exit_codes);

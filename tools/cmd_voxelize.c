@@ -22,6 +22,9 @@ static const char *const atlas_uv_names[] = {"auto", "mesh", NULL};             
 static const char *const solid_mode_names[] = {"parity", "vote", "flood", NULL}; /* voxgi_solid_mode order */
 static const char *const axis_names[] = {"x", "y", "z", NULL};
 static const int axis_values[] = {VOXGI_AXIS_X, VOXGI_AXIS_Y, VOXGI_AXIS_Z};
+/* --npy-attribute: the attributes voxgi_io_write_npy_attribute writes */
+static const char *const npy_attribute_names[] = {"albedo", "normal", "emission", "opacity", NULL};
+static const int npy_attribute_values[] = {VOXGI_ATTRIBUTE_ALBEDO, VOXGI_ATTRIBUTE_NORMAL, VOXGI_ATTRIBUTE_EMISSION, VOXGI_ATTRIBUTE_OPACITY};
 
 static const char *const voxelize_help =
     "usage: voxgi voxelize MESH [options]\n"
@@ -38,6 +41,7 @@ typedef struct voxelize_args {
     const char *mesh, *out;
     out_format out_format;
     int res, per_axis, runs, method, atlas_size, atlas_uv, solid_mode, axis, have_grid, blend[4], nblend;
+    int npy_attribute, have_npy_attribute; /* a voxgi_attribute, written to the .npy instead of the occupancy */
     unsigned attributes;
     double pad;
     voxgi_grid grid;
@@ -73,6 +77,7 @@ static int voxelize_run(cli_session *s, const voxelize_args *a)
     vd.atlas_size = a->atlas_size;
     vd.atlas_uv = (voxgi_atlas_uv)a->atlas_uv;
     vd.attributes = a->attributes;
+    if (a->have_npy_attribute) vd.attributes |= (unsigned)a->npy_attribute;
     /* coloured outputs take the albedo where the method blends attributes */
     if ((a->out_format == OUT_VOX || a->out_format == OUT_PLY || a->out_format == OUT_OBJ) &&
         (vd.method == VOXGI_METHOD_CONSERVATIVE || vd.method == VOXGI_METHOD_THIN || vd.method == VOXGI_METHOD_GEOMETRY ||
@@ -108,6 +113,8 @@ static int voxelize_run(cli_session *s, const voxelize_args *a)
     if (a->out && a->out_format != OUT_BINVOX) {
         char err[1024];
         int r = a->out_format == OUT_VOX   ? voxgi_io_write_vox(c.vx, vox, a->out, err, sizeof err)
+                : a->out_format == OUT_NPY && a->have_npy_attribute
+                    ? voxgi_io_write_npy_attribute(c.vx, vox, (voxgi_attribute)a->npy_attribute, a->out, err, sizeof err)
                 : a->out_format == OUT_NPY ? voxgi_io_write_npy(c.vx, vox, a->out, err, sizeof err)
                 : a->out_format == OUT_PLY ? voxgi_io_write_ply_points(c.vx, vox, a->out, err, sizeof err)
                                            : voxgi_io_write_obj_faces(c.vx, vox, a->out, err, sizeof err);
@@ -218,6 +225,11 @@ int cmd_voxelize(int argc, char **argv)
                      "(uint8 occupancy [x,y,z]), .ply (coloured voxel centres), .obj\n"
                      "(outer faces); colours from the albedo (conservative, thin,\n"
                      "geometry, volume-buffer), else grey"},
+            {.name = "--npy-attribute", .arg = "NAME", .kind = CLI_ENUM, .dst = &a.npy_attribute, .names = npy_attribute_names,
+             .values = npy_attribute_values, .given = &a.have_npy_attribute,
+             .help = "with -o FILE.npy: this attribute (albedo, normal, emission or\n"
+                     "opacity; voxelized with it) instead of the occupancy, float32\n"
+                     "[x,y,z,3] ([x,y,z] for opacity), linear, 0 where empty"},
             CLI_OPT_JSON(&a.common, "print one JSON object instead of text")};
         const cli_command cmd = {.name = "voxelize", .help = voxelize_help, .column = 27, .options = options, .option_count = CLI_COUNT(options),
                                  .operand = "mesh", .operands = &a.mesh, .min_operands = 1, .max_operands = 1};
@@ -229,6 +241,8 @@ int cmd_voxelize(int argc, char **argv)
             return cli_usage("voxelize", "-o %s: voxelize writes .binvox, .vox, .npy, .ply or .obj files", a.out);
         a.out_format = (out_format)i;
     }
+    if (a.have_npy_attribute && (!a.out || a.out_format != OUT_NPY))
+        return cli_usage("voxelize", "--npy-attribute writes an attribute into a .npy file: it needs -o FILE.npy");
     cli_session_init(&s, "voxelize");
     return voxelize_run(&s, &a);
 }
