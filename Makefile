@@ -6,6 +6,7 @@ CFLAGS  ?= -O2 -g
 LDLIBS  := -lm -lpthread -ldl
 B       := build
 ASAN    := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer
+TSAN    := -O1 -g -fsanitize=thread -fno-omit-frame-pointer
 
 GLSL    := $(sort $(wildcard shaders/*.glsl))
 # The test programs, on one line (tests/run.sh reads it), in the order tests/run.sh starts them:
@@ -13,8 +14,9 @@ GLSL    := $(sort $(wildcard shaders/*.glsl))
 # (test_core: parts 2 and 4, test_rays 3, test_voxelize 5 and test_exact its GMP oracle,
 # test_volumes 6, test_octree 7, test_vct 8-9, test_lightspace 10, test_screenspace 11,
 # test_linespace 12, test_reference 13, test_plan 14, test_files 15), then the stiff cases across
-# the parts and the private helpers' tests (test_internals, ordered by part).
-TESTS   := test_tool test_mesh_io test_io_export test_headless_gl test_core test_rays test_voxelize test_exact test_volumes test_octree test_vct test_lightspace test_screenspace test_linespace test_reference test_plan test_files test_stiff test_internals
+# the parts, two contexts on two threads at once (test_threads; also under ThreadSanitizer: make
+# tsan) and the private helpers' tests (test_internals, ordered by part).
+TESTS   := test_tool test_mesh_io test_io_export test_headless_gl test_core test_rays test_voxelize test_exact test_volumes test_octree test_vct test_lightspace test_screenspace test_linespace test_reference test_plan test_files test_stiff test_threads test_internals
 # The test programs that link the implementation object (voxgi.h's and voxgi_io.h's; they include
 # the headers for the declarations only); test_internals (private helpers) compiles the
 # implementation itself.
@@ -27,14 +29,14 @@ TOOL_H   := $(wildcard tools/*.h)
 # The examples (examples/*.c; tests/run.sh runs each); quickstart.c is the README's, built by its test.
 EXAMPLES := $(addprefix $(B)/example_,voxelize octree render ambient_occlusion gl_cone_trace own_mesh)
 
-.PHONY: all deps test mutate demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
+.PHONY: all deps test tsan mutate demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
 all: deps $(B)/voxgi $(EXAMPLES) $(VIEWER)
 
 # Installs missing system packages (headless GL) with apt-get; silent when all is there.
 deps:
 	@bash tools/deps.sh
 
-$(B) $(B)/asan:
+$(B) $(B)/asan $(B)/tsan:
 	@mkdir -p $@
 
 $(B)/embed_shaders: tools/embed_shaders.c | $(B)
@@ -50,6 +52,8 @@ $(B)/voxgi_impl.o: tools/voxgi_impl.c voxgi.h voxgi_io.h shaders.h | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -c -o $@ $<
 $(B)/asan/voxgi_impl.o: tools/voxgi_impl.c voxgi.h voxgi_io.h shaders.h | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -c -o $@ $<
+$(B)/tsan/voxgi_impl.o: tools/voxgi_impl.c voxgi.h voxgi_io.h shaders.h | $(B)/tsan
+	$(CC) -std=c99 $(TSAN) $(WARN) -c -o $@ $<
 
 $(B)/voxgi: $(TOOL_SRC) $(TOOL_H) voxgi_io.h $(B)/voxgi_impl.o | $(B)
 	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $(TOOL_SRC) $(B)/voxgi_impl.o $(LDLIBS)
@@ -110,6 +114,12 @@ $(B)/test_rays_avx2: tests/test_rays.c tools/voxgi_impl.c voxgi.h $(TEST_H) shad
 $(B)/asan/voxgi: $(TOOL_SRC) $(TOOL_H) voxgi_io.h $(B)/asan/voxgi_impl.o | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $(TOOL_SRC) $(B)/asan/voxgi_impl.o $(LDLIBS)
 
+# Two contexts on two threads at once under ThreadSanitizer (CI runs it in make test; make tsan alone).
+$(B)/tsan/test_threads: tests/test_threads.c voxgi.h $(TEST_H) $(B)/tsan/voxgi_impl.o | $(B)/tsan
+	$(CC) -std=c99 $(TSAN) $(WARN) -o $@ $< $(B)/tsan/voxgi_impl.o $(LDLIBS)
+tsan: deps $(B)/tsan/test_threads
+	TSAN_OPTIONS=suppressions=$(CURDIR)/tests/tsan.supp $(B)/tsan/test_threads
+
 # Leaks on purpose: tests/run.sh checks that the leak checks report it.
 $(B)/asan/leak_canary: tests/leak_canary.c voxgi.h tools/headless_gl.h $(B)/asan/voxgi_impl.o | $(B)/asan
 	$(CC) -std=c99 $(ASAN) $(WARN) -o $@ $< $(B)/asan/voxgi_impl.o $(LDLIBS)
@@ -120,11 +130,12 @@ TEST_BUILD := $(B)/embed_shaders $(B)/voxgi $(B)/asan/voxgi $(EXAMPLES) $(addpre
               $(if $(AVX2_CC),$(B)/test_rays_avx2) \
               $(addprefix $(B)/asan/,$(TESTS)) $(B)/asan/leak_canary
 # CI (VOXGI_CI=1) also builds the tool and the test programs at -O0 and -O3 (the main build is
-# -O2), in $(B)/O<level>, and tests/run.sh runs them: no test may depend on the optimiser's mood.
+# -O2), in $(B)/O<level>, and tests/run.sh runs them: no test may depend on the optimiser's mood;
+# and test_threads under ThreadSanitizer.
 OPT_LEVELS := 0 3
 test: deps
 	@$(MAKE) --no-print-directory $(if $(filter -j%,$(MAKEFLAGS)),,-j$(NPROC)) $(TEST_BUILD) $(VIEWER) \
-	    $(if $(filter 1,$(VOXGI_CI)),$(addprefix opt-level-,$(OPT_LEVELS)))
+	    $(if $(filter 1,$(VOXGI_CI)),$(addprefix opt-level-,$(OPT_LEVELS)) $(B)/tsan/test_threads)
 	@VOXGI_BUILD=$(B) bash tests/run.sh
 
 opt-level-%:

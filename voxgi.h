@@ -309,7 +309,10 @@ typedef struct voxgi_info {
 } voxgi_info;
 
 /* Creates a context. With backend GL (or AUTO picking GL), the GL 4.5 context that is current now
-   is the one voxgi uses; every later call on this voxgi context must run with it current. */
+   is the one voxgi uses; every later call on this voxgi context must run with it current. Threads:
+   a context and what it made are used by one thread at a time; contexts share nothing, so
+   threads with a context each (on GL, a GL context each) run at once (tests/test_threads.c, under
+   ThreadSanitizer too). */
 VOXGI_API voxgi_result voxgi_create(const voxgi_desc *desc, voxgi_context **out);
 VOXGI_API void voxgi_destroy(voxgi_context *ctx);
 VOXGI_API voxgi_desc voxgi_query_desc(const voxgi_context *ctx);   /* with defaults resolved */
@@ -5405,8 +5408,9 @@ static void voxgi__set_voxel(const voxgi__vox_shared *vs, voxgi__stats *st, int6
     uint64_t idx = (uint64_t)i + (uint64_t)g->res[0] * ((uint64_t)j + (uint64_t)g->res[1] * (uint64_t)k);
     uint32_t *w = vs->bits + (idx >> 5), mask = 1u << (idx & 31u);
     if (vs->attr) { voxgi__attr_add(vs->attr, vs->bits, idx, st->tri); return; }
-    /* the old word tells whether this call set the bit, so counting costs nothing */
-    if (!(*w & mask) && !(VOXGI__ATOMIC_OR_U32(w, mask) & mask)) st->voxels++;
+    /* the old word tells whether this call set the bit, so counting costs nothing; read atomically,
+       as other workers set bits of the same word */
+    if (!(VOXGI__ATOMIC_LOAD_U32(w) & mask) && !(VOXGI__ATOMIC_OR_U32(w, mask) & mask)) st->voxels++;
 }
 
 /* Sets a voxel the conservative tests accepted (rel relative to t->lo), after the thin tests in thin mode. */
