@@ -15,8 +15,9 @@ GLSL    := $(sort $(wildcard shaders/*.glsl))
 # test_volumes 6, test_octree 7, test_vct 8-9, test_lightspace 10, test_screenspace 11,
 # test_linespace 12, test_reference 13, test_plan 14, test_files 15), then the stiff cases across
 # the parts, two contexts on two threads at once (test_threads; also under ThreadSanitizer: make
-# tsan) and the private helpers' tests (test_internals, ordered by part).
-TESTS   := test_tool test_mesh_io test_io_export test_headless_gl test_core test_rays test_voxelize test_exact test_volumes test_octree test_vct test_lightspace test_screenspace test_linespace test_reference test_plan test_files test_stiff test_threads test_internals
+# tsan), every allocation failing and every progress report cancelling in turn (test_faults) and
+# the private helpers' tests (test_internals, ordered by part).
+TESTS   := test_tool test_mesh_io test_io_export test_headless_gl test_core test_rays test_voxelize test_exact test_volumes test_octree test_vct test_lightspace test_screenspace test_linespace test_reference test_plan test_files test_stiff test_threads test_faults test_internals
 # The test programs that link the implementation object (voxgi.h's and voxgi_io.h's; they include
 # the headers for the declarations only); test_internals (private helpers) compiles the
 # implementation itself.

@@ -279,7 +279,8 @@ typedef struct voxgi_logger {
     void *user;
 } voxgi_logger;
 typedef struct voxgi_progress {
-    /* Called from the calling thread during long work; return non-zero to cancel. */
+    /* Called from the calling thread during long work; return non-zero to cancel: the call then
+       returns VOXGI_ERR_CANCELLED, whichever report it was (the last, at 1, too), and makes nothing */
     int (*func)(double fraction, const char *stage, void *user);
     void *user;
 } voxgi_progress;
@@ -16441,8 +16442,7 @@ static voxgi_result voxgi__vct_image_gather(voxgi__image *I)
     t0 = voxgi__now_ms();
     voxgi__parallel(ctx, (size_t)I->d->camera.height, 1, voxgi__vct_shade, &J);
     voxgi__image_stage(I, "direct", t0);
-    voxgi__progress(ctx, 1.0, "vct: done");
-    return VOXGI_OK;
+    return voxgi__cancelled(ctx, 1.0, "cone-traced image", "vct: done") ? VOXGI_ERR_CANCELLED : VOXGI_OK;
 }
 
 #endif
