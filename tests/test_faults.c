@@ -11,7 +11,8 @@
  *   - the k-th progress report asks to stop: VOXGI_ERR_CANCELLED with a message, and nothing
  *     left allocated;
  *   - a call that fails makes nothing: its result pointer stays NULL.
- * One worker thread (thread_count 1), so that the order of allocations is the same in every run. */
+ * One worker thread (thread_count 1), so that the order of allocations is the same in every run.
+ * Then a few of the chains again on a GL context. */
 #include "fixtures.h"
 
 /* ---------------------------------------------------------------- the counting allocator */
@@ -211,12 +212,13 @@ done:
 
 /* ---------------------------------------------------------------- the sweeps */
 
+static voxgi_backend sweep_backend = VOXGI_BACKEND_CPU;
+
 static voxgi_context *fault_ctx(faults *f)
 {
     voxgi_desc d;
     voxgi_context *ctx = NULL;
-    memset(&d, 0, sizeof d);
-    d.backend = VOXGI_BACKEND_CPU;
+    ctx_desc(&d, sweep_backend);
     d.thread_count = 1;
     d.allocator.alloc = fault_alloc;
     d.allocator.free = fault_free;
@@ -320,9 +322,28 @@ static void test_every_allocation_fails_in_turn(void)
     printf("    in all: %ld allocations failed one at a time, %ld cancellations\n", allocs, reports);
 }
 
+/* The same on a GL context: the GL passes' CPU-side allocations (read-backs, uploads, the exact
+   voxelizer's referee) fail in turn too. */
+static void test_every_allocation_fails_in_turn_gl(void)
+{
+    static const scenario scenarios[] = {
+        {"GL voxelize", sc_voxelize, VOXGI_METHOD_CONSERVATIVE}, {"GL render vct", sc_render, VOXGI_RENDER_VCT},
+        {"GL render linespace", sc_render, VOXGI_RENDER_LINESPACE}};
+    long allocs = 0, reports = 0;
+    size_t i;
+    if (!have_gl()) return;
+    sweep_backend = VOXGI_BACKEND_GL;
+    for (i = 0; i < sizeof scenarios / sizeof scenarios[0]; i++) sweep(&scenarios[i], &allocs, &reports);
+    sweep_backend = VOXGI_BACKEND_CPU;
+    printf("    in all: %ld allocations failed one at a time, %ld cancellations\n", allocs, reports);
+}
+
 int main(void)
 {
+    gl_open();
     TH_RUN(test_create_out_of_memory);
     TH_RUN(test_every_allocation_fails_in_turn);
+    TH_RUN(test_every_allocation_fails_in_turn_gl);
+    gl_close();
     return th_finish();
 }
