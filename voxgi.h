@@ -279,8 +279,11 @@ typedef struct voxgi_logger {
     void *user;
 } voxgi_logger;
 typedef struct voxgi_progress {
-    /* Called from the calling thread during long work; return non-zero to cancel: the call then
-       returns VOXGI_ERR_CANCELLED, whichever report it was (the last, at 1, too), and makes nothing */
+    /* Called from the calling thread during long work, with the share of the named stage done
+       (stages nest: voxgi_render's voxelization reports its own); every voxgi_render reports at
+       least "<method>: built" between its structures and its image. Return non-zero to cancel:
+       the call then returns VOXGI_ERR_CANCELLED, whichever report it was (the last, at 1, too),
+       and makes nothing */
     int (*func)(double fraction, const char *stage, void *user);
     void *user;
 } voxgi_progress;
@@ -7459,7 +7462,11 @@ VOXGI_API voxgi_result voxgi_voxelize(voxgi_context *ctx, const voxgi_scene *sce
     if (r == VOXGI_OK && ctx->backend == VOXGI_BACKEND_CPU)
         r = voxgi__vox_run_cpu(ctx, &flat, vp, desc, voxgi__is_atlas(desc->method) ? &atlas : NULL, vox);
 #ifndef VOXGI_NO_GL
-    else if (r == VOXGI_OK) r = voxgi__vox_run_gl(ctx, &flat, vp, desc, voxgi__is_atlas(desc->method) ? &atlas : NULL, vox);
+    else if (r == VOXGI_OK) {
+        r = voxgi__vox_run_gl(ctx, &flat, vp, desc, voxgi__is_atlas(desc->method) ? &atlas : NULL, vox);
+        if (r == VOXGI_OK && voxgi__progress(ctx, 1.0, "voxelize")) /* one report, as the CPU's last */
+            r = voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "voxelization cancelled by the progress callback (voxelize)");
+    }
 #endif
     voxgi__free(ctx, atlas.uv);
     voxgi__free(ctx, vp);
@@ -17460,6 +17467,11 @@ VOXGI_API voxgi_result voxgi_render(voxgi_context *ctx, const voxgi_scene *scene
     I.info = &inf;
     I.rgb = rgb;
     r = row->build(&I);
+    if (r == VOXGI_OK) { /* every method reports (and can be cancelled) between its structures and its image */
+        char stage[48];
+        snprintf(stage, sizeof stage, "%s: built", voxgi__render_method_names[inf.used.method]);
+        if (voxgi__progress(ctx, 1.0, stage)) r = voxgi__fail(ctx, VOXGI_ERR_CANCELLED, "the image cancelled by the progress callback (%s)", stage);
+    }
     if (r == VOXGI_OK) r = row->gather(&I);
     voxgi__image_free(&I);
     inf.ms = voxgi__now_ms() - t0;
