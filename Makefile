@@ -16,8 +16,9 @@ GLSL    := $(sort $(wildcard shaders/*.glsl))
 # test_linespace 12, test_reference 13, test_plan 14, test_files 15), then the stiff cases across
 # the parts, two contexts on two threads at once (test_threads; also under ThreadSanitizer: make
 # tsan), every allocation failing and every progress report cancelling in turn (test_faults) and
-# the private helpers' tests (test_internals, ordered by part).
-TESTS   := test_tool test_mesh_io test_io_export test_headless_gl test_core test_rays test_voxelize test_exact test_volumes test_octree test_vct test_lightspace test_screenspace test_linespace test_reference test_plan test_files test_stiff test_threads test_faults test_internals
+# the private helpers' tests (test_internals, ordered by part). test_fuzz_inputs runs the fuzzers'
+# seeds and findings (fuzz/) through their harnesses.
+TESTS   := test_tool test_mesh_io test_io_export test_fuzz_inputs test_headless_gl test_core test_rays test_voxelize test_exact test_volumes test_octree test_vct test_lightspace test_screenspace test_linespace test_reference test_plan test_files test_stiff test_threads test_faults test_internals
 # The test programs that link the implementation object (voxgi.h's and voxgi_io.h's; they include
 # the headers for the declarations only); test_internals (private helpers) compiles the
 # implementation itself.
@@ -30,7 +31,7 @@ TOOL_H   := $(wildcard tools/*.h)
 # The examples (examples/*.c; tests/run.sh runs each); quickstart.c is the README's, built by its test.
 EXAMPLES := $(addprefix $(B)/example_,voxelize octree render ambient_occlusion gl_cone_trace own_mesh)
 
-.PHONY: all deps test tsan mutate demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
+.PHONY: all deps test tsan mutate fuzz fuzz-build fuzz-deps fuzz-regress fuzz-seeds demo bench bench-anchors clean $(addprefix opt-level-,$(OPT_LEVELS))
 all: deps $(B)/voxgi $(EXAMPLES) $(VIEWER)
 
 # Installs missing system packages (headless GL) with apt-get; silent when all is there.
@@ -146,6 +147,43 @@ opt-level-%:
 # notice it; prints the survivors (minutes, not part of `make test`). MUTATE_ARGS: e.g. --only ID.
 mutate: deps
 	@bash tests/mutate.sh $(MUTATE_ARGS)
+
+# libFuzzer harnesses (fuzz/, docs/fuzzing.md), built by clang under ASan and UBSan without GL:
+# `make fuzz` installs clang (tools/deps.sh fuzz), builds them and fuzzes each FUZZ_S seconds in
+# turn, then prints a table of executions and findings; any finding fails it. `make fuzz-regress`
+# runs each harness once over its seeds and fuzz/regressions/ (seconds, no fuzzing).
+FUZZ_CC    ?= clang
+FUZZ_S     ?= 60
+FUZZERS    := obj mtl off stl ply gltf glb binvox pfm svo api
+FUZZ_FLAGS := -std=c99 -g -O1 -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer \
+              -Wall -Wextra -pedantic -Werror -DVOXGI_NO_GL
+FUZZ_BINS  := $(addprefix $(B)/fuzz/fuzz_,$(FUZZERS))
+
+fuzz-deps:
+	@bash tools/deps.sh fuzz
+
+$(B)/fuzz:
+	@mkdir -p $@
+
+$(B)/fuzz/voxgi_impl.o: tools/voxgi_impl.c voxgi.h voxgi_io.h | $(B)/fuzz
+	$(FUZZ_CC) $(FUZZ_FLAGS) -fsanitize=fuzzer-no-link -c -o $@ $<
+$(FUZZ_BINS): $(B)/fuzz/fuzz_%: fuzz/fuzz_%.c $(wildcard fuzz/*.h) tools/image_io.h voxgi.h voxgi_io.h $(B)/fuzz/voxgi_impl.o
+	$(FUZZ_CC) $(FUZZ_FLAGS) -fsanitize=fuzzer -o $@ $< $(B)/fuzz/voxgi_impl.o -lm -lpthread
+
+# The binary seeds of fuzz/corpus/ (committed; rerun when a seed's format or fuzz_api.c's decoding changes).
+$(B)/make_seeds: fuzz/make_seeds.c voxgi.h $(B)/voxgi_impl.o | $(B)
+	$(CC) -std=c99 $(CFLAGS) $(WARN) -o $@ $< $(B)/voxgi_impl.o $(LDLIBS)
+fuzz-seeds: $(B)/make_seeds
+	$(B)/make_seeds fuzz/corpus
+
+fuzz-build: $(FUZZ_BINS)
+fuzz: fuzz-deps
+	@$(MAKE) --no-print-directory fuzz-build
+	@bash fuzz/run.sh $(B)/fuzz $(FUZZ_S) $(FUZZERS)
+
+fuzz-regress: fuzz-deps
+	@$(MAKE) --no-print-directory fuzz-build
+	@bash fuzz/run.sh --regress $(B)/fuzz $(FUZZERS)
 
 demo: all
 	$(B)/voxgi bench voxelize

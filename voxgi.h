@@ -336,14 +336,14 @@ typedef struct voxgi_material {
 
 typedef struct voxgi_mesh {
     const float *positions;      /* x y z floats, in the scene's frame */
-    size_t position_stride;      /* bytes between vertices; 0 = 12 (floats) or 24 (doubles) */
+    size_t position_stride;      /* bytes between vertices (any: values are read unaligned); 0 = 12 (floats) or 24 (doubles) */
     size_t vertex_count;
     const uint32_t *indices;     /* 3 per triangle; NULL = vertices taken three at a time */
     size_t index_count;
     const float *normals;        /* optional, per vertex */
     size_t normal_stride;        /* 0 = 12 */
     const float *uvs;            /* optional, per vertex */
-    size_t uv_stride;            /* 0 = 8 */
+    size_t uv_stride;            /* 0 = 8 (any, as position_stride) */
     const uint32_t *material_ids;/* optional, one per triangle */
     uint32_t material;           /* material of every triangle when material_ids is NULL */
     const double *positions_double; /* instead of positions: x y z doubles in world units, taken into the
@@ -782,7 +782,7 @@ typedef struct voxgi_radiance_source {
 typedef struct voxgi_cone_desc {
     int cones;                    /* 0 = 16 */
     float half_angle;             /* radians; 0 = acos(1 - 1 / cones) */
-    float step;                   /* fraction of the diameter per step; 0 = 0.5 */
+    float step;                   /* fraction of the diameter per step, 0.01..4; 0 = 0.5 */
     float offset;                 /* start, in voxels along the normal; 0 = 1.5 */
     float max_distance;           /* in voxels; 0 = the grid's diagonal */
     int seen_from_eye;            /* 1: every point is a surface seen from `eye` (a camera's pixels), so the
@@ -1514,7 +1514,9 @@ VOXGI_API const char *voxgi_builtin_scene_names(void); /* space separated */
 /* binvox: "dim" lists x z y extents (binvox's depth, height, width), data runs with y fastest,
    then z, then x; translate = grid origin, scale = voxel_size * max(res). */
 VOXGI_API voxgi_result voxgi_binvox_write(FILE *f, const voxgi_grid *grid, const uint32_t *bits);
-/* Reads a binvox file: call with bits == NULL to learn the grid and *needed bytes, then again. */
+/* Reads a binvox file: call with bits == NULL to learn the grid and *needed bytes, then again.
+   VOXGI_ERR_FORMAT for a malformed file, and for one whose grid voxgi_validate_grid refuses (a
+   translate beyond 1e30 or not finite, a voxel size outside [1e-30, 1e30]). */
 VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *grid, uint32_t *bits,
                                          size_t bits_bytes, size_t *needed);
 
@@ -2050,12 +2052,14 @@ static void voxgi__parallel(voxgi_context *ctx, size_t count, size_t chunk, voxg
 
 /* ----- 3.1 validation and flattening */
 
-/* Vertex i of mesh m in the scene's frame: its floats, or its doubles less the frame's origin. */
+/* Vertex i of mesh m in the scene's frame: its floats, or its doubles less the frame's origin.
+   Copied out byte by byte: a stride need not keep the values aligned. */
 static void voxgi__vertex(const voxgi_scene *scene, const voxgi_mesh *m, size_t i, float out[3])
 {
     if (m->positions_double) {
-        const double *d = (const double *)(const void *)((const unsigned char *)m->positions_double + i * (m->position_stride ? m->position_stride : 24));
+        double d[3];
         int a;
+        memcpy(d, (const unsigned char *)m->positions_double + i * (m->position_stride ? m->position_stride : 24), sizeof d);
         for (a = 0; a < 3; a++) out[a] = (float)(d[a] - scene->origin[a]);
     } else
         memcpy(out, (const unsigned char *)m->positions + i * (m->position_stride ? m->position_stride : 12), 3 * sizeof(float));
@@ -2233,7 +2237,8 @@ static voxgi_result voxgi__flatten(voxgi_context *ctx, const voxgi_scene *scene,
             return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu has no uvs, and its own uvs were asked for", (unsigned long)mi);
         }
         for (v = 0; want_uv && v < m->vertex_count; v++) {
-            const float *uv = (const float *)(const void *)((const unsigned char *)m->uvs + v * (m->uv_stride ? m->uv_stride : 8));
+            float uv[2];
+            memcpy(uv, (const unsigned char *)m->uvs + v * (m->uv_stride ? m->uv_stride : 8), sizeof uv); /* as voxgi__vertex: unaligned */
             if (!isfinite(uv[0]) || !isfinite(uv[1])) {
                 voxgi__flat_free(ctx, f);
                 return voxgi__fail(ctx, VOXGI_ERR_INVALID_SCENE, "mesh %lu, vertex %lu: the uv is not finite", (unsigned long)mi, (unsigned long)v);
@@ -9711,8 +9716,9 @@ static int voxgi__svo_brick_trilinear(const void *source, int w, int k, const fl
     if (lev < 0) return 0;
     voxgi__corner_weights(p, k, i0, wt);
     for (a = 0; a < 3; a++) {
-        pc[a] = (int64_t)floor((double)p[a] / (double)(1 << (k + 1)));
-        if (pc[a] < 0 || (pc[a] >> lev)) return 0;
+        double c = floor((double)p[a] / (double)(1 << (k + 1)));
+        if (!(c >= 0 && c < ldexp(1.0, lev))) return 0; /* outside the cube (however far: checked before it becomes an int) */
+        pc[a] = (int64_t)c;
     }
     for (m = 0; m <= lev; m++) {
         ptr = svo->child[node];
@@ -10203,12 +10209,15 @@ VOXGI_API voxgi_result voxgi_svo_read_memory(voxgi_context *ctx, const void *dat
         uint64_t labels = L.nodes + L.leaf_slots;
         if (!(svo->regions = (uint32_t *)voxgi__alloc_array(ctx, (size_t)L.region_words, 4, 0))) goto oom;
         voxgi__svo_get_words(svo->regions, p + at, L.region_words, 4);
-        for (i = 0; i < labels; i++) /* labels index the bounds: MIXED, or a label (with its flags) below the count */
-            if (svo->regions[i] != VOXGI__REGION_MIXED && VOXGI__REGION_OF(svo->regions[i]) >= region_count) {
-                r = voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %llu: region label 0x%x of %llu regions", (unsigned long long)(at + 4 * i), svo->regions[i],
-                                (unsigned long long)region_count);
+        for (i = 0; i < labels; i++) { /* labels index the bounds: MIXED, or a label below the count; flags only on a voxel
+                                          (a leaf slot), UNSEEN with BORDER, as voxgi__volume_regions makes them */
+            uint32_t l = svo->regions[i], flags = l & (VOXGI__REGION_BORDER | VOXGI__REGION_UNSEEN);
+            if (l != VOXGI__REGION_MIXED && (VOXGI__REGION_OF(l) >= region_count || (flags && (i < L.nodes || !(l & VOXGI__REGION_BORDER))))) {
+                r = voxgi__fail(ctx, VOXGI_ERR_FORMAT, "byte %llu: region label 0x%x of %llu regions (%s)", (unsigned long long)(at + 4 * i), l,
+                                (unsigned long long)region_count, i < L.nodes ? "a node's" : "a voxel's");
                 goto fail;
             }
+        }
         svo->region_count = (size_t)region_count;
         svo->info.bytes += (size_t)(4 * L.region_words);
     }
@@ -10613,6 +10622,7 @@ static uint32_t voxgi__home_region(const voxgi__cone_job *J, const double o[3], 
     if (best) return best == VOXGI__REGION_OPEN ? 0 : best;
     for (a = 0; a < 3; a++) {
         q[a] = (float)o[a] + 0.25f * (float)n[a];
+        if (!(q[a] > -3.0f && q[a] < (float)dm[a] + 3.0f)) return 0; /* no voxel within 2 of q (however far: before it becomes an int) */
         c[a] = (int)floorf(q[a]);
     }
     for (strict = 1; strict >= 0 && !best; strict--)
@@ -10664,11 +10674,19 @@ static int voxgi__region_clear(const voxgi__cone_job *J, int k, const float p[3]
 static void voxgi__cone_march(const voxgi__cone_job *J, const double o[3], const double n[3], const double d[3], double lz, double tan_k, double max_d,
                               uint32_t home, double C[3], double *A_out)
 {
-    double t = J->offset, A = 0, start[3];
+    double t = J->offset, A = 0, start[3], from_centre = 0, half_diagonal = 0;
     float last[4] = {0, 0, 0, 0};
     voxgi__cone_axes X;
     int a;
     C[0] = C[1] = C[2] = 0;
+    /* past this distance every sample lies more than a voxel of the coarsest level outside the grid, where all is empty,
+       so the march ends there with what it would have gathered: a cone too narrow to widen would step on to max_d
+       (1e9 voxels: 2e9 steps) */
+    for (a = 0; a < 3; a++) {
+        from_centre += (o[a] - 0.5 * J->dims[0][a]) * (o[a] - 0.5 * J->dims[0][a]);
+        half_diagonal += 0.25 * J->dims[0][a] * J->dims[0][a];
+    }
+    max_d = VOXGI__MIN(max_d, sqrt(from_centre) + 2 * J->offset + sqrt(half_diagonal) + 1.7321 * ldexp(1.0, J->levels) + 1);
     voxgi__cone_axes_of(d, &X);
     for (a = 0; a < 3; a++) start[a] = o[a] + J->offset * n[a]; /* where a sample's side is seen from */
     while (t < max_d && A < 0.99) {
@@ -10943,7 +10961,7 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radianc
         J->levels = svo->info.depth + 1;
         J->enclosed = svo->region_count > 2; /* with two sides, below */
         J->regions = svo->regions;
-        J->boxes = svo->regions + svo->info.nodes + svo->info.leaf_slots;
+        if (svo->regions) J->boxes = svo->regions + svo->info.nodes + svo->info.leaf_slots; /* the bounds follow the labels */
         for (k = 0; k < J->levels; k++)
             for (a = 0; a < 3; a++) J->dims[k][a] = (int)(((int64_t)g->res[a] + ((int64_t)1 << k) - 1) >> k);
     }
@@ -10954,9 +10972,10 @@ static voxgi_result voxgi__cone_job_init(voxgi_context *ctx, const voxgi_radianc
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the %s holds no RADIANCE (%s)", what, maker);
     if (backend != ctx->backend)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "the %s was made on another backend than the context's", what);
-    if (desc->cones < 0 || desc->cones > 1024 || !(desc->half_angle >= 0 && desc->half_angle < 1.5f) || !(desc->step >= 0 && desc->step <= 4) ||
-        !(desc->offset >= 0) || !(desc->max_distance >= 0))
-        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "cones %d (0..1024), half_angle %g (0..1.5), step %g (0..4), offset %g, max_distance %g",
+    /* a step below 0.01 of the diameter: millions of samples a cone, and none at all past a step that no longer moves t */
+    if (desc->cones < 0 || desc->cones > 1024 || !(desc->half_angle >= 0 && desc->half_angle < 1.5f) ||
+        !(desc->step == 0 || (desc->step >= 0.01f && desc->step <= 4)) || !(desc->offset >= 0) || !(desc->max_distance >= 0))
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "cones %d (0..1024), half_angle %g (0..1.5), step %g (0.01..4, 0: 0.5), offset %g, max_distance %g",
                            desc->cones, desc->half_angle, desc->step, desc->offset, desc->max_distance);
     if (desc->seen_from_eye && !(isfinite(desc->eye[0]) && isfinite(desc->eye[1]) && isfinite(desc->eye[2])))
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "seen_from_eye with an eye that is not finite");
@@ -17080,6 +17099,9 @@ static voxgi_result voxgi__ls_defaults(voxgi_context *ctx, const voxgi_render_de
     if ((unsigned)L->mode > VOXGI_LINESPACE_FAST || L->samples < 0 || L->exact_ends < 0 || L->supersample < 0 || L->supersample > 16)
         return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "linespace: mode %d, samples %d, exact_ends %d, supersample %d (0..16)", (int)L->mode, L->samples,
                            L->exact_ends, L->supersample);
+    /* the tree's ranges as voxgi_linespace_create's, here already: the plan sizes the tree before it is made */
+    if (L->tree.n < 0 || L->tree.n == 1 || L->tree.n > 16 || L->tree.depth < 0 || L->tree.depth > 8)
+        return voxgi__fail(ctx, VOXGI_ERR_INVALID_ARGUMENT, "linespace: tree n %d (2..16, 0: 4), depth %d (1..8, 0: from the scene)", L->tree.n, L->tree.depth);
     if (!L->samples) L->samples = 4;
     if (!L->supersample) L->supersample = 2;
     if (!L->tree.n) L->tree.n = 4;
@@ -17811,6 +17833,9 @@ VOXGI_API voxgi_result voxgi_binvox_read(FILE *f, voxgi_grid *g, uint32_t *bits,
     g->origin[2] = tr[2];
     dmax = VOXGI__MAX(dims[0], VOXGI__MAX(dims[1], dims[2]));
     g->voxel_size = scale / dmax;
+    /* a grid voxgi takes (voxgi_validate_grid's ranges), or the file is refused */
+    if (!(fabs(tr[0]) <= 1e30 && fabs(tr[1]) <= 1e30 && fabs(tr[2]) <= 1e30 && g->voxel_size >= 1e-30 && g->voxel_size <= 1e30))
+        return VOXGI_ERR_FORMAT;
     total = voxgi_grid_voxel_count(g);
     if ((total + 31) / 32 * 4 > (uint64_t)((size_t)-1 / 2)) return VOXGI_ERR_TOO_LARGE;
     if (needed) *needed = (size_t)((total + 31) / 32 * 4);

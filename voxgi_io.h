@@ -31,8 +31,9 @@
 
    CONTENTS (declarations, then the implementation in the same parts)
      1. config          linkage
-     2. mesh files      the loaded mesh, loading and freeing it, its scene; the loaders' shared
-                        builder, the text cursor, MTL, OBJ, OFF, STL, PLY, the choice of format
+     2. mesh files      the loaded mesh, loading it (from a file or memory) and freeing it, its
+                        scene; the loaders' shared builder, the text cursor, MTL, OBJ, OFF, STL,
+                        PLY, the choice of format
      3. glTF            what is read of glTF 2.0; a JSON tokeniser, buffers, accessors, materials,
                         the node tree, GLB chunks
      4. exports         voxels out to MagicaVoxel .vox, NumPy .npy, a PLY point cloud, an OBJ of outer faces
@@ -86,6 +87,15 @@ typedef struct voxgi_io_mesh {
    the file and the line (text formats) or byte offset (binary formats) and what is wrong. err may
    be NULL. A mesh without any triangle is an error. */
 VOXGI_IO_API int voxgi_io_load_mesh(const char *path, voxgi_io_mesh *out, char *err, size_t err_size);
+/* The same from a file's bytes in memory (an archive's entry, a download): size bytes at data
+   (no NUL needed; data may be NULL when size is 0), loaded as voxgi_io_load_mesh loads a file of
+   that content whose path is name: the content picks the format, else name's extension; errors
+   name name (NULL: "(memory)"). Nothing is read from files, so what a file refers to is not
+   resolved: an OBJ's mtllib lines are skipped (its usemtl names still keep their faces apart, with
+   the default material each, as when voxgi_io_load_mesh finds no MTL file), and a .gltf buffer
+   whose uri names a file is refused with an error naming the uri (data URIs and a .glb's BIN chunk
+   are read as from a file). Returns 0, or non-zero with *out left empty, as voxgi_io_load_mesh. */
+VOXGI_IO_API int voxgi_io_load_mesh_memory(const void *data, size_t size, const char *name, voxgi_io_mesh *out, char *err, size_t err_size);
 /* Frees what voxgi_io_load_mesh allocated and zeroes *m; safe on an empty or zeroed mesh and NULL. */
 VOXGI_IO_API void voxgi_io_mesh_free(voxgi_io_mesh *m);
 /* A one-mesh scene of m with its materials and no lights: it points at m->mesh and
@@ -113,7 +123,8 @@ VOXGI_IO_API unsigned long long voxgi_io_probes(void);
    sparse.indices (uint8, uint16 or uint32, strictly increasing, below its count) replaced by
    sparse.values, both tightly packed. Other primitive modes, non-float positions, Draco or meshopt
    compression and other required extensions are refused by name; absolute or ".." buffer URIs are
-   refused; malformed JSON or GLB structure gives its byte offset (in a .glb, from the file's start). */
+   refused (and every file URI by voxgi_io_load_mesh_memory); malformed JSON or GLB structure gives
+   its byte offset (in a .glb, from the file's start). */
 
 /* ===================================================================== 4. exports */
 
@@ -290,6 +301,7 @@ typedef struct voxgi_io__builder {
 
 typedef struct voxgi_io__loader {
     const char *path; /* the file errors name: the mesh, or the MTL file being read */
+    int in_memory;    /* voxgi_io_load_mesh_memory: no file the mesh names is read */
     char *err;
     size_t err_size;
     voxgi_io__builder b;
@@ -697,8 +709,9 @@ malformed:
 static int voxgi_io__obj_mtllib(voxgi_io__loader *L, const char *names, size_t len)
 {
     const char *s = names, *end = names + len, *e;
-    int rc = voxgi_io__load_mtl(L, names, len);
-    if (rc <= 0) return rc;
+    int rc;
+    if (L->in_memory) return 0;
+    if ((rc = voxgi_io__load_mtl(L, names, len)) <= 0) return rc;
     while (s < end) {
         while (s < end && voxgi_io__is_blank(*s)) s++;
         for (e = s; e < end && !voxgi_io__is_blank(*e); e++) {}
@@ -1264,49 +1277,79 @@ static int voxgi_io__make_scene_view(voxgi_io_mesh *m)
     return 0;
 }
 
+/* Loads the mesh from data (size bytes and a NUL after them, which the text cursor's strtod stops
+   at) into *out, which is zeroed first; L names the input. The core of both public loaders. */
+static int voxgi_io__load(voxgi_io__loader *L, const char *data, size_t size, voxgi_io_mesh *out)
+{
+    uint32_t unused_id;
+    int rc = voxgi_io__load_any(L, L->path, data, size);
+    if (!rc && !L->b.indices.count) rc = voxgi_io__fail_at(L, NULL, 0, "contains no triangles");
+    if (!rc && !L->b.materials.count) rc = voxgi_io__material_id(L, "default", 7, &unused_id);
+    if (rc) {
+        voxgi_io__vec_free(&L->b.positions); voxgi_io__vec_free(&L->b.normals); voxgi_io__vec_free(&L->b.uvs);
+        voxgi_io__vec_free(&L->b.indices); voxgi_io__vec_free(&L->b.material_ids); voxgi_io__vec_free(&L->b.materials);
+        free(L->b.material_names.slots);
+        voxgi_io__vec_free(&L->b.polygon);
+        return -1;
+    }
+    out->positions = (float *)L->b.positions.data;
+    out->normals = (float *)L->b.normals.data;
+    out->uvs = (float *)L->b.uvs.data;
+    out->indices = (uint32_t *)L->b.indices.data;
+    out->material_ids = (uint32_t *)L->b.material_ids.data;
+    out->materials = (voxgi_io_material *)L->b.materials.data;
+    out->vertex_count = L->b.positions.count / 3;
+    out->triangle_count = L->b.indices.count / 3;
+    out->material_count = L->b.materials.count;
+    free(L->b.material_names.slots);
+    voxgi_io__vec_free(&L->b.polygon);
+    if (voxgi_io__make_scene_view(out) != 0) {
+        voxgi_io_mesh_free(out);
+        return voxgi_io__fail_at(L, NULL, 0, "out of memory");
+    }
+    return 0;
+}
+
+static void voxgi_io__loader_init(voxgi_io__loader *L, const char *path, char *err, size_t err_size)
+{
+    memset(L, 0, sizeof *L);
+    L->path = path;
+    L->err = err;
+    L->err_size = err_size;
+    if (err && err_size) err[0] = 0;
+}
+
 VOXGI_IO_API int voxgi_io_load_mesh(const char *path, voxgi_io_mesh *out, char *err, size_t err_size)
 {
     voxgi_io__loader L;
     char *data;
     size_t size;
     int rc, open_failed;
-    uint32_t unused_id;
-    memset(&L, 0, sizeof L);
-    L.path = path ? path : "(null)";
-    L.err = err;
-    L.err_size = err_size;
-    if (err && err_size) err[0] = 0;
+    voxgi_io__loader_init(&L, path ? path : "(null)", err, err_size);
     if (!out || !path) return voxgi_io__fail_at(&L, NULL, 0, "no mesh or no path given");
     memset(out, 0, sizeof *out);
     if ((rc = voxgi_io__read_file(path, &data, &size, &open_failed)) != 0)
         return voxgi_io__fail_at(&L, NULL, 0, "cannot %s: %s", open_failed ? "open" : "read", strerror(rc));
-    rc = voxgi_io__load_any(&L, path, data, size);
+    rc = voxgi_io__load(&L, data, size, out);
     free(data);
-    if (!rc && !L.b.indices.count) rc = voxgi_io__fail_at(&L, NULL, 0, "contains no triangles");
-    if (!rc && !L.b.materials.count) rc = voxgi_io__material_id(&L, "default", 7, &unused_id);
-    if (rc) {
-        voxgi_io__vec_free(&L.b.positions); voxgi_io__vec_free(&L.b.normals); voxgi_io__vec_free(&L.b.uvs);
-        voxgi_io__vec_free(&L.b.indices); voxgi_io__vec_free(&L.b.material_ids); voxgi_io__vec_free(&L.b.materials);
-        free(L.b.material_names.slots);
-        voxgi_io__vec_free(&L.b.polygon);
-        return -1;
-    }
-    out->positions = (float *)L.b.positions.data;
-    out->normals = (float *)L.b.normals.data;
-    out->uvs = (float *)L.b.uvs.data;
-    out->indices = (uint32_t *)L.b.indices.data;
-    out->material_ids = (uint32_t *)L.b.material_ids.data;
-    out->materials = (voxgi_io_material *)L.b.materials.data;
-    out->vertex_count = L.b.positions.count / 3;
-    out->triangle_count = L.b.indices.count / 3;
-    out->material_count = L.b.materials.count;
-    free(L.b.material_names.slots);
-    voxgi_io__vec_free(&L.b.polygon);
-    if (voxgi_io__make_scene_view(out) != 0) {
-        voxgi_io_mesh_free(out);
-        return voxgi_io__fail_at(&L, NULL, 0, "out of memory");
-    }
-    return 0;
+    return rc;
+}
+
+VOXGI_IO_API int voxgi_io_load_mesh_memory(const void *data, size_t size, const char *name, voxgi_io_mesh *out, char *err, size_t err_size)
+{
+    voxgi_io__loader L;
+    char *copy;
+    int rc;
+    voxgi_io__loader_init(&L, name ? name : "(memory)", err, err_size);
+    L.in_memory = 1;
+    if (!out || (!data && size)) return voxgi_io__fail_at(&L, NULL, 0, "no mesh or no data given");
+    memset(out, 0, sizeof *out);
+    if (size == SIZE_MAX || !(copy = (char *)malloc(size + 1))) return voxgi_io__fail_at(&L, NULL, 0, "out of memory");
+    if (size) memcpy(copy, data, size);
+    copy[size] = 0;
+    rc = voxgi_io__load(&L, copy, size, out);
+    free(copy);
+    return rc;
 }
 
 VOXGI_IO_API void voxgi_io_mesh_free(voxgi_io_mesh *m)
@@ -1719,6 +1762,9 @@ static int voxgi_io__gltf_load_buffers(voxgi_io__gltf *G)
                 if (back && (!slash || back > slash)) slash = back;
                 dir_len = slash ? (size_t)(slash - G->path) + 1 : 0;
                 if (voxgi_io__gltf_file_uri(G, uri_tok, i, uri)) return -1;
+                if (G->L->in_memory)
+                    return voxgi_io__gltf_fail(G, uri_tok, "%s: uri '%s' names a file, which a mesh loaded from memory cannot read "
+                                                           "(embed the buffer as a data URI, or as a .glb's BIN chunk)", what, uri);
                 if (!(file = (char *)malloc(dir_len + strlen(uri) + 1))) return voxgi_io__gltf_fail(G, VOXGI_IO__NONE, "out of memory");
                 memcpy(file, G->path, dir_len);
                 strcpy(file + dir_len, uri);

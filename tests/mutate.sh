@@ -102,11 +102,12 @@ trap 'exit 143' TERM
 mk() { env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory "$@"; }
 
 # ---------------------------------------------------------------- the sources, once
-# A snapshot of the working tree (tracked files, and new untracked ones under tests/, shaders/ and
-# tools/, e.g. a test program not committed yet), so that the whole run sees one version even
-# while the files are being edited. Every mutant and the baseline copy this snapshot.
+# A snapshot of the working tree (tracked files, and new untracked ones under tests/, shaders/,
+# tools/ and fuzz/, e.g. a test program or a fuzz finding not committed yet), so that the whole run
+# sees one version even while the files are being edited. Every mutant and the baseline copy this
+# snapshot.
 git rev-parse --is-inside-work-tree > /dev/null 2>&1 || die "needs a git checkout (it copies the files git knows of)"
-{ git ls-files -z; git ls-files -z -o --exclude-standard -- tests shaders tools; } |
+{ git ls-files -z; git ls-files -z -o --exclude-standard -- tests shaders tools fuzz; } |
     while IFS= read -r -d '' f; do [ -f "$f" ] && printf '%s\0' "$f"; done |
     xargs -0 cp --parents -p -t "$SRC" || die "could not copy the sources"
 

@@ -432,6 +432,17 @@ static void test_linespace_input(void)
         id.linespace.tree.depth = 2;
         TH_CHECK(voxgi_render(ctx, &sc, &id, rgb4, sizeof rgb4, &info) == VOXGI_OK && info.lights == 1, "%s (lights %d)",
                  voxgi_last_error(ctx), info.lights);
+        { /* the image's tree outside voxgi_linespace_create's ranges: refused before the plan sizes it (with n^4 in int) */
+            static const int bad[5][2] = {{1, 2}, {17, 2}, {2147483647, 2}, {4, 9}, {4, -1}};
+            voxgi_render_desc used, bd = id;
+            int k;
+            for (k = 0; k < 5; k++) {
+                bd.linespace.tree.n = bad[k][0];
+                bd.linespace.tree.depth = bad[k][1];
+                TH_CHECK(voxgi_render_resolve(ctx, &sc, &bd, &used) == VOXGI_ERR_INVALID_ARGUMENT && strstr(voxgi_last_error(ctx), "tree n"),
+                         "tree n %d, depth %d: %s", bad[k][0], bad[k][1], voxgi_last_error(ctx));
+            }
+        }
         TH_CHECK(voxgi_builtin_scene_create(ctx, "furnace", &bs) == VOXGI_OK, "%s", voxgi_last_error(ctx));
         bs.camera.width = bs.camera.height = 4;
         id.camera = bs.camera;

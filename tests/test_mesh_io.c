@@ -1540,6 +1540,95 @@ static void test_gltf_sparse_refused(void)
     free(text.data);
 }
 
+/* ---------------------------------------------------------------- from memory */
+
+static int same_floats(const float *a, const float *b, size_t n) { return (!a && !b) || (a && b && !memcmp(a, b, n * sizeof *a)); }
+
+/* The mesh loaded from memory is the one the same bytes give from a file: every array equal, and
+   each triangle's material the same by name, with the same values when the file's own materials
+   came along (with_values), else the defaults. */
+static void expect_same_mesh(const char *name, const voxgi_io_mesh *file, const voxgi_io_mesh *mem, int with_values)
+{
+    size_t t;
+    TH_CHECK(file->vertex_count == mem->vertex_count && file->triangle_count == mem->triangle_count,
+             "%s: %zu vertices and %zu triangles from the file, %zu and %zu from memory", name, file->vertex_count, file->triangle_count,
+             mem->vertex_count, mem->triangle_count);
+    if (file->vertex_count != mem->vertex_count || file->triangle_count != mem->triangle_count) return;
+    TH_CHECK(same_floats(file->positions, mem->positions, 3 * file->vertex_count), "%s: positions differ", name);
+    TH_CHECK(same_floats(file->normals, mem->normals, 3 * file->vertex_count), "%s: normals differ", name);
+    TH_CHECK(same_floats(file->uvs, mem->uvs, 2 * file->vertex_count), "%s: uvs differ", name);
+    TH_CHECK(!memcmp(file->indices, mem->indices, 3 * file->triangle_count * sizeof *file->indices), "%s: indices differ", name);
+    for (t = 0; t < file->triangle_count; t++) {
+        const voxgi_io_material *a = &file->materials[file->material_ids[t]], *b = &mem->materials[mem->material_ids[t]];
+        TH_CHECK(!strcmp(a->name, b->name), "%s: triangle %zu's material is '%s' from the file, '%s' from memory", name, t, a->name, b->name);
+        if (with_values)
+            TH_CHECK(!memcmp(a->albedo, b->albedo, sizeof a->albedo) && !memcmp(a->emission, b->emission, sizeof a->emission) && a->opacity == b->opacity,
+                     "%s: triangle %zu's material values differ", name, t);
+        else
+            TH_CHECK(b->albedo[0] == 0.8f && b->albedo[1] == 0.8f && b->albedo[2] == 0.8f && b->emission[0] == 0 && b->emission[1] == 0 &&
+                     b->emission[2] == 0 && b->opacity == 1, "%s: triangle %zu's material '%s' is not the default", name, t, b->name);
+    }
+    TH_CHECK(file->material_count == mem->material_count, "%s: %zu materials from the file, %zu from memory", name, file->material_count, mem->material_count);
+}
+
+/* voxgi_io_load_mesh_memory on the bytes of each format's files (OBJ with and without an MTL,
+   OFF, STL ASCII and binary, PLY ASCII and binary, glTF with a data URI, GLB) gives what
+   voxgi_io_load_mesh gives of the same bytes as a file of that name, the OBJ's mtllib aside (its
+   materials stay the defaults, by name, though the MTL file lies beside the name); a .gltf whose
+   buffer is a file beside it is refused from memory with the uri named, though the file loads; the bytes are copied (the caller's need no NUL
+   after them); errors name the name given, "(memory)" without one (then only content picks the
+   format: OBJ, which has no signature, needs its extension). */
+static void test_load_from_memory(void)
+{
+    static const char off_bad[] = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n";
+    sample s[10];
+    bytes stl, ply;
+    growing bin = gltf_small_bin(2), uri_json = gltf_json(gltf_small_body, &bin, NULL), glb_json = gltf_json(gltf_small_body, &bin, ""),
+            glb = glb_image(&glb_json, &bin), ext_json = gltf_json(gltf_small_body, &bin, "small.bin");
+    int n = valid_samples(s, &stl, &ply), i;
+    voxgi_io_mesh file, mem;
+    char err[512];
+    unsigned char *exact;
+    const char *ext_path;
+    s[n].name = "uri.gltf"; s[n].data = uri_json.data; s[n].size = uri_json.size; n++;
+    s[n].name = "small.glb"; s[n].data = glb.data; s[n].size = glb.size; n++;
+    s[n].name = "quads.obj"; s[n].data = obj_quads; s[n].size = strlen(obj_quads); n++;
+    for (i = 0; i < n; i++) {
+        const char *path = write_file(s[i].name, s[i].data, s[i].size);
+        if (!load_ok(path, &file)) continue;
+        /* an exact copy, so that ASan sees any read past the bytes given; named by the file's path,
+           beside which the OBJ's MTL file lies: it must not be read all the same */
+        exact = (unsigned char *)malloc(s[i].size);
+        memcpy(exact, s[i].data, s[i].size);
+        TH_CHECK(voxgi_io_load_mesh_memory(exact, s[i].size, path, &mem, err, sizeof err) == 0, "%s from memory: %s", s[i].name, err);
+        free(exact);
+        if (!err[0]) {
+            check_consistent(&mem, s[i].name);
+            expect_same_mesh(s[i].name, &file, &mem, strcmp(s[i].name, "scene.obj") != 0);
+            voxgi_io_mesh_free(&mem);
+        }
+        voxgi_io_mesh_free(&file);
+    }
+    write_file("small.bin", bin.data, bin.size);
+    ext_path = write_file("external.gltf", ext_json.data, ext_json.size);
+    if (load_ok(ext_path, &file)) voxgi_io_mesh_free(&file);
+    TH_CHECK(voxgi_io_load_mesh_memory(ext_json.data, ext_json.size, ext_path, &mem, err, sizeof err) != 0 && is_empty(&mem) &&
+             !strncmp(err, ext_path, strlen(ext_path)) && strstr(err, ": byte offset ") && strstr(err, "'small.bin'") && strstr(err, "from memory"),
+             "an external buffer from memory: %s", err);
+    TH_CHECK(voxgi_io_load_mesh_memory("hello world\n", 12, "archive/entry.dat", &mem, err, sizeof err) != 0 && is_empty(&mem) &&
+             !strcmp(err, "archive/entry.dat: unrecognised mesh format (expected OBJ, OFF, STL, PLY, glTF or GLB)"), "a name in errors: %s", err);
+    TH_CHECK(voxgi_io_load_mesh_memory(off_bad, strlen(off_bad), NULL, &mem, err, sizeof err) != 0 &&
+             !strncmp(err, "(memory): line 6: ", 18), "no name (the content picks OFF): %s", err);
+    TH_CHECK(voxgi_io_load_mesh_memory(NULL, 0, "empty.obj", &mem, err, sizeof err) != 0 && !strcmp(err, "empty.obj: contains no triangles"),
+             "no bytes: %s", err);
+    TH_CHECK(voxgi_io_load_mesh_memory(NULL, 1, "x.obj", &mem, err, sizeof err) != 0 && is_empty(&mem) && strstr(err, "no data"), "NULL data: %s", err);
+    free(uri_json.data);
+    free(glb_json.data);
+    free(glb.data);
+    free(ext_json.data);
+    free(bin.data);
+}
+
 /* ---------------------------------------------------------------- PNG */
 /* An inflater written from RFC 1951 for the test alone (stored and fixed-code blocks: what the
    writer makes; a dynamic block fails), so that the writer's deflate is held to the format, not to
@@ -1767,6 +1856,7 @@ int main(void)
     TH_RUN(test_gltf_sparse_indices);
     TH_RUN(test_gltf_zero_accessor);
     TH_RUN(test_gltf_sparse_refused);
+    TH_RUN(test_load_from_memory);
     TH_RUN(test_png_round_trip);
     for (i = 0; i < created_count; i++) remove(tmp_path(created[i]));
     rmdir(tmp_path("sub"));

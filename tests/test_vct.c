@@ -198,7 +198,10 @@ static void test_glowing_ceiling(void)
    one cone of 1e-5 or 1.49 rad gives a finite irradiance, at most the ceiling's pi x 2;
    half-angles 0, 1.5 and NaN are refused, and so is an eye of NaN for points seen from it. (An
    86-degree cone used to stride from 1.5 voxels to 22.5 at its first step, over the ceiling:
-   radiance 0, opacity 0.) */
+   radiance 0, opacity 0.) A cone of 1e-30 rad told to go 1e30 units ends past the grid with what
+   it gathers to 1000 units, bit for bit. The finest step, 0.01 of the diameter, gives a finite
+   irradiance; steps of 2.35e-38 (which no longer moved the march: it never ended), 0.005 and 4.5
+   are refused. */
 static void test_cone_apertures_extreme(void)
 {
     voxgi_context *ctx = make_ctx(VOXGI_BACKEND_CPU, 0);
@@ -209,7 +212,7 @@ static void test_cone_apertures_extreme(void)
     voxgi_volume *vol;
     voxgi_cone_desc cd;
     voxgi_cone c[4];
-    static const float angles[4] = {1e-6f, 1e-3f, 1.4f, 1.4999f}, wide[2] = {1e-5f, 1.49f}, bad[3] = {0, 1.5f, NAN};
+    static const float angles[4] = {1e-6f, 1e-3f, 1.4f, 1.4999f}, wide[2] = {1e-5f, 1.49f}, bad[3] = {0, 1.5f, NAN}, bad_steps[3] = {2.35e-38f, 0.005f, 4.5f};
     float out[4 * 4], pos[3] = {0.01f, -1, 0.02f}, nrm[3] = {0, 1, 0}, irr[3];
     int k;
     glowing_ceiling(&sc, &mesh, &q, &g);
@@ -239,6 +242,28 @@ static void test_cone_apertures_extreme(void)
         c[0].half_angle = bad[k];
         TH_CHECK(voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, 1, c, out) == VOXGI_ERR_INVALID_ARGUMENT, "half-angle %g accepted", (double)bad[k]);
     }
+    { /* a cone too narrow to widen, down from the ceiling, told to go 1e30 units: it ends once past the grid (it used to step
+         on for ever), with what it gathers when told to go 1000 units, bit for bit */
+        float far_out[4], near_out[4];
+        c[0].half_angle = 1e-30f; /* as wide as a voxel until 5e29 voxels out */
+        c[0].direction[1] = -1;
+        c[0].max_distance = 1e30f;
+        TH_CHECK(voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, 1, c, far_out) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        c[0].max_distance = 1000;
+        TH_CHECK(voxgi_cone_trace_each(ctx, VOLUME_SOURCE(vol), &cd, 1, c, near_out) == VOXGI_OK, "%s", voxgi_last_error(ctx));
+        TH_CHECK(!memcmp(far_out, near_out, sizeof far_out), "a cone to 1e30: %g %g, to 1000: %g %g", far_out[0], far_out[3], near_out[0], near_out[3]);
+        c[0].direction[1] = 1;
+        c[0].max_distance = 0;
+    }
+    cd.half_angle = 0;
+    cd.step = 0.01f; /* the finest step: 100 samples a diameter */
+    TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, 1, pos, nrm, irr, NULL) == VOXGI_OK && isfinite(irr[0]) && irr[0] >= 0 && irr[0] <= 2 * 3.1416f,
+             "step 0.01: %g (%s)", irr[0], voxgi_last_error(ctx));
+    for (k = 0; k < 3; k++) { /* a step that no longer moves the march (it hung), one under 0.01, one over 4 */
+        cd.step = bad_steps[k];
+        TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, 1, pos, nrm, irr, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "step %g accepted", (double)bad_steps[k]);
+    }
+    cd.step = 0;
     cd.seen_from_eye = 1; /* points seen from an eye that is not finite */
     cd.eye[1] = NAN;
     TH_CHECK(voxgi_cone_trace(ctx, VOLUME_SOURCE(vol), &cd, 1, pos, nrm, irr, NULL) == VOXGI_ERR_INVALID_ARGUMENT, "an eye of NaN accepted");

@@ -562,7 +562,7 @@ static int render_parse(int argc, char **argv, render_args *ap, int plan)
             {.name = "--res", .arg = "N", .kind = CLI_INT, .dst = &a.res, .lo = 1, .hi = 4096, .given = &a.res_given,
              .help = "vct: voxels along the scene's longest side (default 96); rsm: of the\nvisibility's voxels (default 64); sh: of the SH volume (default 64);\nvao, hybrid: of the voxels (default 128)"},
             {.name = "--cones", .arg = "N", .kind = CLI_INT, .dst = &a.cones, .lo = 1, .hi = 1024, .help = "vct: diffuse cones (default 24)"},
-            {.name = "--step", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.step, .lo = 0, .lo_open = 1, .hi = 4,
+            {.name = "--step", .arg = "S", .kind = CLI_DOUBLE, .dst = &a.step, .lo = 0.01, .hi = 4,
              .help = "vct: step as a fraction of the cone diameter (default 0.5)"},
             {.name = "--anisotropic", .kind = CLI_FLAG, .dst = &a.anisotropic, .help = "vct: six-direction mips (the default)"},
             {.name = "--isotropic", .kind = CLI_FLAG, .dst = &a.isotropic,

@@ -379,7 +379,7 @@ static int cmd_report_vct(int argc, char **argv)
         REPORT_LIST("--res", a.res, 0, 1, 4096, 0, "voxels along the longest side (default 32,64,128)"),
         REPORT_LIST("--cones", a.cones, 0, 1, 1024, 0, "diffuse cones (default 8,16,32)"),
         REPORT_LIST("--apertures", a.apertures, 0, 1, HUGE_VAL, 0, "half-angle as a multiple of each cone count's gap-free default (default 1)"),
-        REPORT_LIST("--steps", a.steps, 0, 1, 4, 0, "step as a fraction of the diameter (default 0.5,1)"),
+        REPORT_LIST("--steps", a.steps, 0.01, 0, 4, 0, "step as a fraction of the diameter, 0.01..4 (default 0.5,1)"),
         {.name = "--filters", .arg = "LIST", .kind = CLI_SET, .dst = &a.filters, .names = mips_names, .values = mips_bits,
          .help = "isotropic, anisotropic (dense mips) and/or octree (an octree of the\n"
                  "radiance, isotropic mips) (default isotropic,anisotropic)"},

@@ -17,9 +17,18 @@
 #   libglfw3-dev     GLFW's header and library, for the windowed viewer (examples/viewer.c)
 #   xvfb, xauth      a virtual X server (and the cookie xvfb-run hands it) in which the viewer's
 #                    test opens its window headless
+#
+# `bash tools/deps.sh fuzz` installs instead what `make fuzz` builds its harnesses with (fuzz/):
+#   clang               the compiler whose -fsanitize=fuzzer instruments and links libFuzzer
+#   libclang-rt-14-dev  clang's runtimes: libFuzzer's driver, ASan and UBSan
+#   libfuzzer-14-dev    libFuzzer as a library, for linking a harness outside clang's driver
 set -euo pipefail
 
-packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev g++ libgmp-dev python3-numpy libglfw3-dev xvfb xauth)
+case "${1:-}" in
+    "") packages=(libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6 libosmesa6-dev libegl-dev g++ libgmp-dev python3-numpy libglfw3-dev xvfb xauth) ;;
+    fuzz) packages=(clang libclang-rt-14-dev libfuzzer-14-dev) ;;
+    *) echo "usage: bash tools/deps.sh [fuzz]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -26,12 +26,22 @@ static inline int vxt_write_pfm(const char *path, const float *rgb, int w, int h
     return fclose(f) == 0 && ok ? 0 : -1;
 }
 
-/* Reads a colour PFM ("PF", either byte order) into *rgb (rows from the top; free() it). 0 on
-   success; else -1 with why in err (a missing file, another format, a short or bad header,
-   missing pixels, values that are not finite). */
-static inline int vxt_read_pfm(const char *path, float **rgb, int *w, int *h, char *err, size_t err_size)
+/* Whether f (seekable) holds at least n more bytes from where it stands; it stays there. */
+static inline int vxt_stream_holds(FILE *f, size_t n)
 {
-    FILE *f = fopen(path, "rb");
+    long here = ftell(f), end;
+    if (here < 0 || fseek(f, 0, SEEK_END) != 0) return 0;
+    end = ftell(f);
+    if (fseek(f, here, SEEK_SET) != 0) return 0;
+    return end >= here && (unsigned long)(end - here) >= n;
+}
+
+/* Reads a colour PFM ("PF", either byte order) from f (seekable), from where it stands, into *rgb
+   (rows from the top; free() it); name names it in err. 0 on success; else -1 with why in err
+   (another format, a short or bad header, missing pixels, values that are not finite). The pixels
+   are allocated only once f is known to hold them. f stays open. */
+static inline int vxt_read_pfm_stream(FILE *f, const char *name, float **rgb, int *w, int *h, char *err, size_t err_size)
+{
     char magic[3] = {0, 0, 0};
     double scale = 0;
     size_t n = 0, i;
@@ -41,19 +51,20 @@ static inline int vxt_read_pfm(const char *path, float **rgb, int *w, int *h, ch
     uint32_t one;
     *rgb = NULL;
     memcpy(&one, probe, 4);
-    if (!f) { snprintf(err, err_size, "%s: cannot open it: %s", path, strerror(errno)); return -1; }
-    if (fread(magic, 1, 2, f) != 2 || strcmp(magic, "PF") != 0) snprintf(err, err_size, "%s: not a colour PFM (no \"PF\")", path);
+    if (fread(magic, 1, 2, f) != 2 || strcmp(magic, "PF") != 0) snprintf(err, err_size, "%s: not a colour PFM (no \"PF\")", name);
     else if (fscanf(f, "%d %d %lf", w, h, &scale) != 3 || *w < 1 || *h < 1 || *w > 65536 || *h > 65536 || scale == 0 || !isfinite(scale) ||
              fgetc(f) == EOF)
-        snprintf(err, err_size, "%s: a PFM header needs a width and a height (1..65536) and a non-zero scale", path);
-    else if (!(px = (float *)malloc((n = (size_t)3 * (size_t)*w * (size_t)*h) * sizeof(float))))
-        snprintf(err, err_size, "%s: no memory for %d x %d pixels", path, *w, *h);
+        snprintf(err, err_size, "%s: a PFM header needs a width and a height (1..65536) and a non-zero scale", name);
+    else if (!vxt_stream_holds(f, (n = (size_t)3 * (size_t)*w * (size_t)*h) * sizeof(float)))
+        snprintf(err, err_size, "%s: fewer pixels than its %d x %d header says", name, *w, *h);
+    else if (!(px = (float *)malloc(n * sizeof(float))))
+        snprintf(err, err_size, "%s: no memory for %d x %d pixels", name, *w, *h);
     else {
         little = scale < 0;
         ok = 1;
         for (y = *h - 1; y >= 0 && ok; y--) /* rows from the bottom in the file */
             ok = fread(px + (size_t)3 * (size_t)*w * (size_t)y, sizeof(float), (size_t)3 * (size_t)*w, f) == (size_t)3 * (size_t)*w;
-        if (!ok) snprintf(err, err_size, "%s: fewer pixels than its %d x %d header says", path, *w, *h);
+        if (!ok) snprintf(err, err_size, "%s: fewer pixels than its %d x %d header says", name, *w, *h);
         for (i = 0; ok && i < n; i++) {
             if ((one == 1) != little) { /* the other byte order */
                 unsigned char b[4], t;
@@ -62,13 +73,24 @@ static inline int vxt_read_pfm(const char *path, float **rgb, int *w, int *h, ch
                 t = b[1]; b[1] = b[2]; b[2] = t;
                 memcpy(px + i, b, 4);
             }
-            if (!isfinite(px[i])) { ok = 0; snprintf(err, err_size, "%s: pixel %lu is not finite", path, (unsigned long)(i / 3)); }
+            if (!isfinite(px[i])) { ok = 0; snprintf(err, err_size, "%s: pixel %lu is not finite", name, (unsigned long)(i / 3)); }
         }
     }
-    fclose(f);
     if (!ok) { free(px); return -1; }
     *rgb = px;
     return 0;
+}
+
+/* vxt_read_pfm_stream of the file at path; also -1 when it cannot be opened. */
+static inline int vxt_read_pfm(const char *path, float **rgb, int *w, int *h, char *err, size_t err_size)
+{
+    FILE *f = fopen(path, "rb");
+    int rc;
+    *rgb = NULL;
+    if (!f) { snprintf(err, err_size, "%s: cannot open it: %s", path, strerror(errno)); return -1; }
+    rc = vxt_read_pfm_stream(f, path, rgb, w, h, err, err_size);
+    fclose(f);
+    return rc;
 }
 
 static inline uint32_t vxt_crc32(uint32_t crc, const unsigned char *p, size_t n)
