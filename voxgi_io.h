@@ -1838,7 +1838,7 @@ static float voxgi_io__gltf_float_at(const voxgi_io__accessor *a, size_t i, int 
 static int voxgi_io__gltf_sparse_part(voxgi_io__gltf *G, size_t tok, const char *what, size_t count, size_t elem, const unsigned char **data)
 {
     voxgi_io__gltf_view v;
-    size_t offset;
+    size_t offset = 0;
     if (voxgi_io__json_uint(G, tok, "byteOffset", 0, SIZE_MAX / 2, what, &offset) || voxgi_io__gltf_buffer_view(G, tok, what, elem, &v)) return -1;
     if (voxgi_io__json_get(G, v.tok, "byteStride") != VOXGI_IO__NONE)
         return voxgi_io__gltf_fail(G, v.tok, "%s: %s has a byteStride, which sparse data must not have", what, v.what);
