@@ -2425,7 +2425,8 @@ static size_t voxgi__bvh_partition(voxgi__bvh_build *b, voxgi__bvh_node *nd, siz
         if (chi[a] - clo[a] > chi[axis] - clo[axis]) axis = a;
     nd->first = (uint32_t)first;
     nd->count = (uint32_t)n;
-    if (n <= b->leaf || !(chi[axis] > clo[axis]) || depth >= VOXGI__BVH_DEPTH) return 0; /* a leaf */
+    /* a leaf also where the centroids' span is not finite: coordinates near FLT_MAX sum to infinity */
+    if (n <= b->leaf || !(chi[axis] > clo[axis]) || !isfinite((double)chi[axis] - clo[axis]) || depth >= VOXGI__BVH_DEPTH) return 0;
     {   /* binned SAH along the widest centroid axis */
         size_t cnt[BINS];
         float blo[BINS][3], bhi[BINS][3];
